@@ -1,0 +1,48 @@
+type rotation = { row0 : Vec3.t; row1 : Vec3.t; row2 : Vec3.t } [@@deriving show, eq]
+type t = { position : Vec3.t; rotation : rotation } [@@deriving show, eq]
+
+let identity = { row0 = Vec3.ox; row1 = Vec3.oy; row2 = Vec3.oz }
+let v ?(rotation = identity) position = { position; rotation }
+let default = v Vec3.zero
+let is_identity m = equal_rotation m identity
+let determinant m = Vec3.dot m.row0 (Vec3.cross m.row1 m.row2)
+
+let direction cam v =
+  let m = cam.rotation in
+  Vec3.v (Vec3.dot v m.row0) (Vec3.dot v m.row1) (Vec3.dot v m.row2)
+
+let look_at ?(up = Vec3.oy) ~position target =
+  let forward = Vec3.sub target position in
+  if Vec3.norm2 forward = 0. then Error "the camera looks at its own position"
+  else
+    let f = Vec3.unit forward in
+    let right = Vec3.cross up f in
+    (* Relative test: [up] parallel to [f] (or zero) leaves no horizontal. *)
+    if Vec3.norm2 up = 0. || Vec3.norm right <= 1e-9 *. Vec3.norm up then
+      Error "the camera's up vector is zero or parallel to its view direction"
+    else
+      let r = Vec3.unit right in
+      let u = Vec3.cross f r in
+      (* Columns right, up, forward: D = r V_x + u V_y + f d. *)
+      let rotation =
+        { row0 = Vec3.v r.x u.x f.x; row1 = Vec3.v r.y u.y f.y; row2 = Vec3.v r.z u.z f.z }
+      in
+      Ok { position; rotation }
+
+let check_position p = Limits.check_point "camera position" p
+
+let check_rotation m =
+  if not (Vec3.is_finite m.row0 && Vec3.is_finite m.row1 && Vec3.is_finite m.row2) then
+    Error "camera rotation must be finite"
+  else
+    (* Relative to the rows' scale, so that a uniformly scaled matrix passes
+       or fails alike. *)
+    let scale = Vec3.norm m.row0 *. Vec3.norm m.row1 *. Vec3.norm m.row2 in
+    if Float.abs (determinant m) <= 1e-12 *. scale || scale = 0. then
+      Error "camera rotation must be invertible, but its rows are (nearly) linearly dependent"
+    else Ok m
+
+let validate cam =
+  match (check_position cam.position, check_rotation cam.rotation) with
+  | Ok _, Ok _ -> Ok cam
+  | (Error e, _ | _, Error e) -> Error e

@@ -1,0 +1,9 @@
+let min_x w = -(w / 2)
+let max_x w = w - (w / 2) - 1
+let min_y h = -(h / 2)
+let max_y h = h - (h / 2) - 1
+let column ~width gx = gx + (width / 2)
+let row ~height gy = height - 1 - (gy + (height / 2))
+let x_of_column ~width col = col - (width / 2)
+let y_of_row ~height row = height - 1 - row - (height / 2)
+let screen ~width ~height gx gy = (gx + (width / 2), gy + (height / 2))

@@ -1,0 +1,87 @@
+let error path reason = Error (`Msg (Printf.sprintf "%s: %s" path reason))
+
+let read path =
+  match open_in_bin path with
+  | exception Sys_error e -> Error (`Msg e)
+  | ic -> (
+      match
+        Fun.protect
+          ~finally:(fun () -> close_in_noerr ic)
+          (fun () -> really_input_string ic (in_channel_length ic))
+      with
+      | s -> Ok s
+      | exception Sys_error e -> error path e
+      | exception End_of_file -> error path "file changed while it was read")
+
+(* Temporary files of writes in progress, for [remove_temporaries]. *)
+let temporaries : (string, unit) Hashtbl.t = Hashtbl.create 4
+
+let remove_temporaries () =
+  Hashtbl.iter (fun tmp () -> try Sys.remove tmp with Sys_error _ -> ()) temporaries;
+  Hashtbl.reset temporaries
+
+let is_special path =
+  match Unix.stat path with
+  | { Unix.st_kind = S_CHR | S_FIFO | S_SOCK | S_BLK; _ } -> true
+  | _ -> false
+  | exception Unix.Unix_error _ -> false
+
+let write_direct path f =
+  match open_out_gen [ Open_wronly; Open_binary ] 0o666 path with
+  | exception Sys_error e -> Error (`Msg e)
+  | oc -> (
+      match
+        f oc;
+        close_out oc
+      with
+      | () -> Ok ()
+      | exception Sys_error e ->
+          close_out_noerr oc;
+          error path e)
+
+(* A fresh name beside [path]; O_EXCL makes a collision an error, retried. *)
+let rec open_temporary path attempt =
+  let dir = Filename.dirname path and base = Filename.basename path in
+  let tmp =
+    Filename.concat dir
+      (Printf.sprintf ".%s.%d.%d.tmp" base (Unix.getpid ()) (Random.State.bits (Random.State.make_self_init ())))
+  in
+  match Unix.openfile tmp [ O_WRONLY; O_CREAT; O_EXCL; O_CLOEXEC ] 0o666 with
+  | fd -> (tmp, fd)
+  | exception Unix.Unix_error (EEXIST, _, _) when attempt < 100 -> open_temporary path (attempt + 1)
+
+let write_atomic path f =
+  if Sys.file_exists path && Sys.is_directory path then error path "is a directory"
+  else if is_special path then write_direct path f
+  else
+    match open_temporary path 0 with
+    | exception Unix.Unix_error (e, _, _) ->
+        error path ("cannot create a file in its directory: " ^ Unix.error_message e)
+    | tmp, fd -> (
+        Hashtbl.replace temporaries tmp ();
+        let oc = Unix.out_channel_of_descr fd in
+        set_binary_mode_out oc true;
+        let cleanup () =
+          close_out_noerr oc;
+          (try Sys.remove tmp with Sys_error _ -> ());
+          Hashtbl.remove temporaries tmp
+        in
+        match
+          f oc;
+          flush oc;
+          Unix.fsync fd;
+          close_out oc;
+          Unix.rename tmp path
+        with
+        | () ->
+            Hashtbl.remove temporaries tmp;
+            Ok ()
+        | exception Sys_error e ->
+            cleanup ();
+            error path e
+        | exception Unix.Unix_error (e, _, _) ->
+            cleanup ();
+            error path (Unix.error_message e)
+        | exception ex ->
+            cleanup ();
+            raise ex)

@@ -1,0 +1,27 @@
+(** Whole-file reads and atomic writes.
+
+    Every file the program writes goes through {!write_atomic}: the data go
+    to a temporary file in the target's directory, which is renamed over the
+    target only once it is complete, so a failed or interrupted write never
+    leaves a truncated file behind, and an existing file keeps its contents
+    unless the new ones are complete. Errors are values whose message starts
+    with the path. *)
+
+val read : string -> (string, [> `Msg of string ]) result
+(** [read path] is the contents of the file [path]. *)
+
+val write_atomic : string -> (out_channel -> unit) -> (unit, [> `Msg of string ]) result
+(** [write_atomic path f] calls [f oc] on a channel to a new temporary file
+    beside [path], then flushes it to disk and renames it to [path]. If
+    [path] exists and is not a regular file (a character device such as
+    [/dev/stdout] or [/dev/full], a pipe), [f] writes to it directly.
+    [Error] if the directory is missing or not writable, [path] is a
+    directory, the disk is full, or [f] raises [Sys_error]; then [path] is
+    left as it was and the temporary file is removed. Exceptions other than
+    [Sys_error] and [Unix.Unix_error] raised by [f] are re-raised after the
+    temporary file is removed. *)
+
+val remove_temporaries : unit -> unit
+(** [remove_temporaries ()] removes the temporary files of writes in
+    progress. A signal handler calls it before exiting, so that an
+    interrupted write leaves nothing behind. *)

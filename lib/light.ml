@@ -1,0 +1,68 @@
+type t =
+  | Ambient of { intensity : float }
+  | Point of { intensity : float; position : Vec3.t }
+  | Directional of { intensity : float; direction : Vec3.t }
+[@@deriving show, eq]
+
+let ambient intensity = Ambient { intensity }
+let point intensity position = Point { intensity; position }
+let directional intensity direction = Directional { intensity; direction }
+
+let intensity = function
+  | Ambient { intensity } | Point { intensity; _ } | Directional { intensity; _ } -> intensity
+
+let check_intensity i =
+  if Float.is_finite i && i >= 0. then Ok i
+  else
+    Error (Printf.sprintf "light intensity must be finite and >= 0, got %s" (Float_text.to_string i))
+
+let check_position q = Limits.check_point "point light position" q
+
+let check_direction l =
+  match Limits.check_point "directional light direction" l with
+  | Ok l when Vec3.norm2 l = 0. -> Error "directional light direction must not be the zero vector"
+  | r -> r
+
+let validate l =
+  let ( let* ) = Result.bind in
+  let* _ = check_intensity (intensity l) in
+  let* _ =
+    match l with
+    | Ambient _ -> Ok Vec3.zero
+    | Point { position; _ } -> check_position position
+    | Directional { direction; _ } -> check_direction direction
+  in
+  Ok l
+
+let vector l p =
+  match l with
+  | Ambient _ -> None
+  | Point { position; _ } -> Some (Vec3.sub position p)
+  | Directional { direction; _ } -> Some direction
+
+let shadow_t_max = function Point _ -> 1. | Ambient _ | Directional _ -> infinity
+
+type point = float * float * float
+type document = { k : char; i : float; v : point option }
+
+let of_document d =
+  let light =
+    match (d.k, d.v) with
+    | 'a', None -> Ok (ambient d.i)
+    | 'p', Some p -> Ok (point d.i (Vec3.of_tuple p))
+    | 'd', Some p -> Ok (directional d.i (Vec3.of_tuple p))
+    | 'a', Some _ -> Error "an ambient light ('a') has no vector: v must be None"
+    | ('p' | 'd'), None ->
+        Error (Printf.sprintf "a light of kind '%c' needs a vector: v must be Some _" d.k)
+    | k, _ -> Error (Printf.sprintf "unknown light kind %C: expected 'a', 'p' or 'd'" k)
+  in
+  match Result.bind light validate with Ok l -> Ok l | Error e -> Error (`Msg e)
+
+let of_document_exn d =
+  match of_document d with Ok l -> l | Error (`Msg e) -> invalid_arg ("Light.of_document: " ^ e)
+
+let to_document = function
+  | Ambient { intensity } -> { k = 'a'; i = intensity; v = None }
+  | Point { intensity; position } -> { k = 'p'; i = intensity; v = Some (Vec3.to_tuple position) }
+  | Directional { intensity; direction } ->
+      { k = 'd'; i = intensity; v = Some (Vec3.to_tuple direction) }

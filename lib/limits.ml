@@ -1,0 +1,34 @@
+let max_coordinate = 1e12
+let max_dimension = 65536
+let max_pixels = 1 lsl 28
+let max_depth = 64
+let num = Float_text.to_string
+
+let check_coordinate what x =
+  if Float.is_finite x && Float.abs x <= max_coordinate then Ok x
+  else Error (Printf.sprintf "%s must be finite and at most 1e12 in magnitude, got %s" what (num x))
+
+let check_point what (p : Vec3.t) =
+  match (check_coordinate what p.x, check_coordinate what p.y, check_coordinate what p.z) with
+  | Ok _, Ok _, Ok _ -> Ok p
+  | (Error e, _, _ | _, Error e, _ | _, _, Error e) -> Error e
+
+let check_canvas w h =
+  let dim what n =
+    if n < 1 || n > max_dimension then
+      Error (Printf.sprintf "canvas %s must lie in [1, %d], got %d" what max_dimension n)
+    else Ok ()
+  in
+  match (dim "width" w, dim "height" h) with
+  | (Error e, _ | _, Error e) -> Error e
+  | Ok (), Ok () ->
+      if w * h > max_pixels then
+        Error
+          (Printf.sprintf "canvas %dx%d has more than %d pixels" w h
+             max_pixels)
+      else Ok ()
+
+let check_depth d =
+  if d < 0 || d > max_depth then
+    Error (Printf.sprintf "recursion depth must lie in [0, %d], got %d" max_depth d)
+  else Ok d

@@ -1,0 +1,52 @@
+(** The document's algorithm, transcribed literally: the executable
+    specification.
+
+    This module follows the document (and, where it is silent, the CGFS
+    demos that it summarises) step by step, with lists, boxed vectors and
+    options, and no shortcut: every sphere is tested for every ray, every
+    light casts a shadow ray, reflection recurses. It is slow on purpose and
+    is kept as the oracle that the fast renderer ({!Render}) is tested
+    against. The arithmetic is done in the same order as the CGFS demos,
+    so that on the reference scene it reproduces their images byte for
+    byte.
+
+    It always uses the document's semantics: a scene without an epsilon is
+    traced with {!Scene.document_epsilon}. *)
+
+val closest_intersection :
+  Sphere.t list -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float ->
+  (Sphere.t * float) option
+(** [closest_intersection spheres ~origin ~direction ~t_min ~t_max] is the
+    sphere hit first by the ray [P = O + t D] with [t_min < t < t_max], and
+    its [t] (section 6.1, roots by {!Sphere.textbook_roots}); [None] if the
+    ray hits nothing in that range. Of two spheres hit at the same [t], the
+    first in the list wins. *)
+
+val compute_lighting :
+  Scene.t -> epsilon:float -> point:Vec3.t -> normal:Vec3.t -> view:Vec3.t -> specular:float ->
+  float
+(** [compute_lighting scene ~epsilon ~point ~normal ~view ~specular] is the
+    total intensity [I_total] at [point] (sections 7.4 to 7.7): the ambient
+    intensities plus, for each point or directional light that no sphere
+    shadows, its diffuse term and (unless [specular] is {!Sphere.matte}) its
+    specular term. A sphere shadows a light if it meets the shadow ray
+    [P + t L] with [epsilon < t < Light.shadow_t_max]. *)
+
+val trace_ray :
+  Scene.t -> epsilon:float -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float ->
+  depth:int -> Color.t
+(** [trace_ray scene ~epsilon ~origin ~direction ~t_min ~t_max ~depth] is the
+    unclamped colour seen along the ray: the background if it hits nothing,
+    else the hit sphere's colour times the lighting at the hit point,
+    blended with the colour seen along the mirror ray (section 7.8,
+    [t > epsilon], [depth - 1]) when the sphere is reflective and
+    [depth > 0]. *)
+
+val pixel : Scene.t -> int -> int -> Color.t
+(** [pixel scene gx gy] is the unclamped colour of canvas pixel [(gx, gy)]
+    (centered coordinates, {!Canvas}): the primary ray from the camera
+    through the viewport point of the pixel, [t > 1] (section 8). *)
+
+val render : Scene.t -> Image.t
+(** [render scene] is the image of [scene]: every pixel of the canvas
+    (section 8), clamped and rounded by {!Color.to_byte}. *)

@@ -1,0 +1,105 @@
+let header img = Printf.sprintf "P6\n%d %d\n255\n" (Image.width img) (Image.height img)
+
+let to_string img =
+  let data = Image.buffer img in
+  let h = header img in
+  let n = Bigarray.Array1.dim data in
+  let b = Bytes.create (String.length h + n) in
+  Bytes.blit_string h 0 b 0 (String.length h);
+  let off = String.length h in
+  for k = 0 to n - 1 do
+    Bytes.unsafe_set b (off + k) (Char.unsafe_chr (Bigarray.Array1.unsafe_get data k))
+  done;
+  Bytes.unsafe_to_string b
+
+let output oc img = output_string oc (to_string img)
+
+exception Bad of string
+
+let bad fmt = Printf.ksprintf (fun m -> raise (Bad m)) fmt
+let is_space c = c = ' ' || c = '\t' || c = '\n' || c = '\r' || c = '\011' || c = '\012'
+
+(* The token starting at or after [pos], skipping whitespace and comments,
+   and the position just after it; [None] at the end of the input. *)
+let rec token s pos =
+  let n = String.length s in
+  if pos >= n then None
+  else if is_space s.[pos] then token s (pos + 1)
+  else if s.[pos] = '#' then
+    match String.index_from_opt s pos '\n' with Some nl -> token s (nl + 1) | None -> None
+  else
+    let stop = ref pos in
+    while !stop < n && (not (is_space s.[!stop])) && s.[!stop] <> '#' do
+      incr stop
+    done;
+    Some (String.sub s pos (!stop - pos), !stop)
+
+(* A decimal number: digits only, so "-1" or "0x10" are refused. *)
+let number ~at_end what s pos =
+  match token s pos with
+  | None -> at_end ()
+  | Some (tok, next) -> (
+      let digits = tok <> "" && String.for_all (fun c -> c >= '0' && c <= '9') tok in
+      match if digits && String.length tok <= 9 then int_of_string_opt tok else None with
+      | Some v -> (v, next)
+      | None -> bad "%s: expected a decimal number at byte %d, got %S" what pos tok)
+
+let max_pixels = 1 lsl 30
+
+let decode s =
+  let in_header () = bad "unexpected end of file in the header" in
+  let magic = if String.length s >= 3 && is_space s.[2] then String.sub s 0 2 else "" in
+  let binary =
+    match magic with
+    | "P6" -> true
+    | "P3" -> false
+    | _ -> bad "not a PPM file: it must start with P6 or P3 and a whitespace"
+  in
+  let w, pos = number ~at_end:in_header "width" s 2 in
+  let h, pos = number ~at_end:in_header "height" s pos in
+  let maxval, pos = number ~at_end:in_header "maxval" s pos in
+  if w < 1 || h < 1 then bad "image size %dx%d is empty" w h;
+  if w > max_pixels / h then bad "image size %dx%d is too large" w h;
+  if maxval < 1 || maxval > 255 then bad "maxval must lie in [1, 255], got %d" maxval;
+  let n = 3 * w * h in
+  let start = pos + 1 in
+  (* Checked before allocating, so a lying header cannot ask for memory. *)
+  if binary then begin
+    if pos >= String.length s || not (is_space s.[pos]) then
+      bad "missing whitespace after maxval at byte %d" pos;
+    let avail = String.length s - start in
+    if avail < n then bad "pixel data is truncated: %d of %d bytes" avail n;
+    if avail > n then bad "%d bytes of unexpected data after the pixels" (avail - n)
+  end
+  else if String.length s - pos < (2 * n) - 1 then bad "pixel data is truncated: fewer than %d samples" n;
+  let img = Image.create w h in
+  let data = Image.buffer img in
+  let scale v = if maxval = 255 then v else ((v * 255) + (maxval / 2)) / maxval in
+  if binary then
+    for k = 0 to n - 1 do
+      let v = Char.code (String.unsafe_get s (start + k)) in
+      if v > maxval then bad "sample %d at byte %d exceeds maxval %d" v (start + k) maxval;
+      Bigarray.Array1.unsafe_set data k (scale v)
+    done
+  else begin
+    let pos = ref pos in
+    for k = 0 to n - 1 do
+      let truncated () = bad "pixel data is truncated: %d of %d samples" k n in
+      let v, next = number ~at_end:truncated "sample" s !pos in
+      if v > maxval then bad "sample %d at byte %d exceeds maxval %d" v !pos maxval;
+      Bigarray.Array1.unsafe_set data k (scale v);
+      pos := next
+    done;
+    if token s !pos <> None then bad "unexpected data after the pixels at byte %d" !pos
+  end;
+  img
+
+let of_string s = match decode s with img -> Ok img | exception Bad m -> Error (`Msg m)
+
+let read_file path =
+  match File_io.read path with
+  | Error (`Msg e) -> Error (`Msg e)
+  | Ok s -> (
+      match of_string s with Ok img -> Ok img | Error (`Msg m) -> Error (`Msg (path ^ ": " ^ m)))
+
+let write_file path img = File_io.write_atomic path (fun oc -> output oc img)

@@ -1,0 +1,124 @@
+type t = {
+  n_spheres : int;
+  cx : float array;
+  cy : float array;
+  cz : float array;
+  r2 : float array;
+  red : float array;
+  green : float array;
+  blue : float array;
+  specular : float array;
+  reflective : float array;
+  n_lights : int;
+  light_kind : int array;
+  light_intensity : float array;
+  lx : float array;
+  ly : float array;
+  lz : float array;
+  epsilon : float;
+  depth : int;
+  width : int;
+  height : int;
+  viewport : Viewport.t;
+  camera : Camera.t;
+  identity_rotation : bool;
+  background : Color.t;
+  primary_ocx : float array;
+  primary_ocy : float array;
+  primary_ocz : float array;
+  primary_k3 : float array;
+  max_channel : float;
+  skips : bool;
+}
+
+let ambient = 0
+let point = 1
+let directional = 2
+
+(* The largest channel any ray can return: background, or a sphere's colour
+   times the most light it can receive (ambient, plus each light's diffuse
+   term, at most its intensity, and specular term, likewise). Blends are
+   convex combinations, so they stay below it. The margin covers the
+   rounding of cosines and blends, each off by a few ulps at most. *)
+let max_channel (scene : Scene.t) =
+  let light_bound shiny =
+    List.fold_left
+      (fun acc l ->
+        match l with
+        | Light.Ambient { intensity } -> acc +. intensity
+        | Point { intensity; _ } | Directional { intensity; _ } ->
+            acc +. (intensity *. if shiny then 2. else 1.))
+      0. scene.lights
+  in
+  let bg = scene.background in
+  let bound =
+    List.fold_left
+      (fun acc (s : Sphere.t) ->
+        let c = s.color in
+        Float.max acc (Float.max c.r (Float.max c.g c.b) *. light_bound (not (Sphere.is_matte s))))
+      (Float.max bg.r (Float.max bg.g bg.b))
+      scene.spheres
+  in
+  (bound *. (1. +. 1e-6)) +. 1e-6
+
+let prepare ?(skips = true) (scene : Scene.t) =
+  (match Scene.validate scene with
+  | Ok _ -> ()
+  | Error (`Msg m) -> invalid_arg ("Prepared.prepare: invalid scene: " ^ m));
+  let spheres = Array.of_list scene.spheres in
+  let lights =
+    Array.of_list
+      (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
+  in
+  let sf f = Array.map f spheres and lf f = Array.map f lights in
+  let o = scene.camera.position in
+  let cx = sf (fun s -> s.Sphere.center.x) and cy = sf (fun s -> s.center.y) in
+  let cz = sf (fun s -> s.center.z) and r2 = sf (fun s -> s.radius *. s.radius) in
+  let primary_ocx = Array.map (fun c -> o.x -. c) cx in
+  let primary_ocy = Array.map (fun c -> o.y -. c) cy in
+  let primary_ocz = Array.map (fun c -> o.z -. c) cz in
+  (* Same operands in the same order as the tracer's per-ray [k3]. *)
+  let primary_k3 =
+    Array.init (Array.length spheres) (fun i ->
+        let x = primary_ocx.(i) and y = primary_ocy.(i) and z = primary_ocz.(i) in
+        ((x *. x) +. (y *. y) +. (z *. z)) -. r2.(i))
+  in
+  let vector l =
+    match l with
+    | Light.Ambient _ -> Vec3.zero
+    | Point { position; _ } -> position
+    | Directional { direction; _ } -> direction
+  in
+  {
+    n_spheres = Array.length spheres;
+    cx;
+    cy;
+    cz;
+    r2;
+    red = sf (fun s -> s.color.r);
+    green = sf (fun s -> s.color.g);
+    blue = sf (fun s -> s.color.b);
+    specular = sf (fun s -> s.specular);
+    reflective = sf (fun s -> s.reflective);
+    n_lights = Array.length lights;
+    light_kind =
+      lf (function Light.Ambient _ -> ambient | Point _ -> point | Directional _ -> directional);
+    light_intensity = lf Light.intensity;
+    lx = lf (fun l -> (vector l).x);
+    ly = lf (fun l -> (vector l).y);
+    lz = lf (fun l -> (vector l).z);
+    epsilon = Option.value scene.epsilon ~default:Scene.document_epsilon;
+    depth = scene.depth;
+    width = scene.width;
+    height = scene.height;
+    viewport = scene.viewport;
+    camera = scene.camera;
+    identity_rotation = Camera.is_identity scene.camera.rotation;
+    background = scene.background;
+    primary_ocx;
+    primary_ocy;
+    primary_ocz;
+    primary_k3;
+    max_channel = max_channel scene;
+    skips;
+  }

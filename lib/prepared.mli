@@ -1,0 +1,63 @@
+(** A scene prepared for fast tracing.
+
+    {!prepare} turns a {!Scene.t} into flat float arrays (structure of
+    arrays), drops what cannot change a pixel (lights of zero intensity),
+    and precomputes the constants that the tracer would otherwise
+    recompute for every ray. The fields are read by {!Trace}; they are
+    exposed for it and for tests, not for building by hand. *)
+
+type t = private {
+  n_spheres : int;
+  cx : float array;  (** Sphere centers, x coordinates. *)
+  cy : float array;
+  cz : float array;
+  r2 : float array;  (** [radius *. radius]. *)
+  red : float array;  (** Colour channels, 0-255. *)
+  green : float array;
+  blue : float array;
+  specular : float array;  (** Exponent, or {!Sphere.matte}. *)
+  reflective : float array;
+  n_lights : int;
+  light_kind : int array;  (** {!ambient}, {!point} or {!directional}. *)
+  light_intensity : float array;
+  lx : float array;  (** Position (point) or direction (directional). *)
+  ly : float array;
+  lz : float array;
+  epsilon : float;  (** Lower bound of [t] for secondary rays. *)
+  depth : int;  (** Recursion depth. *)
+  width : int;  (** Canvas size. *)
+  height : int;
+  viewport : Viewport.t;
+  camera : Camera.t;
+  identity_rotation : bool;  (** The camera matrix is exactly the identity. *)
+  background : Color.t;
+  primary_ocx : float array;  (** [camera - center], per sphere. *)
+  primary_ocy : float array;
+  primary_ocz : float array;
+  primary_k3 : float array;  (** [<CO, CO> - r^2] for the camera origin. *)
+  max_channel : float;
+      (** An upper bound of every colour channel a ray can return, used to
+          stop reflections that can no longer change an 8-bit value. *)
+  skips : bool;  (** Whether the exact skips are enabled. *)
+}
+(** The type for prepared scenes. *)
+
+val ambient : int
+(** [ambient] is the [light_kind] of ambient lights. *)
+
+val point : int
+(** [point] is the [light_kind] of point lights. *)
+
+val directional : int
+(** [directional] is the [light_kind] of directional lights. *)
+
+val prepare : ?skips:bool -> Scene.t -> t
+(** [prepare ~skips scene] is [scene] prepared for {!Trace}. With [skips]
+    (default [true]) the tracer skips work that provably cannot change an
+    output byte: lights of zero intensity are dropped here, shadow rays stop
+    at the first blocker and try the last blocker first, and reflections
+    stop once their remaining weight cannot change an 8-bit channel. With
+    [~skips:false] it does everything the document does, for tests that
+    prove the skips exact. A scene without epsilon is traced with
+    {!Scene.document_epsilon}.
+    @raise Invalid_argument if [scene] fails {!Scene.validate}. *)

@@ -1,0 +1,29 @@
+(** Rendering (document section 8): every pixel of the canvas, traced.
+
+    [Render] walks the pixels, asks {!Trace} for each one's colour and
+    stores it in an {!Image.t}, in one process or several. The image is the
+    same, byte for byte, whatever the number of jobs: each pixel is traced
+    alone, by the same code. *)
+
+val rows : Trace.t -> Image.t -> first:int -> step:int -> unit
+(** [rows tr img ~first ~step] renders image rows [first], [first + step],
+    [first + 2 step] ... of [img], whose size must be the canvas size of
+    [tr]'s scene.
+    @raise Invalid_argument if the sizes differ or [step < 1]. *)
+
+val region : Trace.t -> Image.t -> x:int -> y:int -> w:int -> h:int -> unit
+(** [region tr img ~x ~y ~w ~h] renders the [w x h] pixels of [img] whose
+    top-left pixel is [(x, y)] (image coordinates).
+    @raise Invalid_argument if the region is not inside the canvas. *)
+
+val image :
+  ?jobs:int -> ?skips:bool -> Scene.t -> (Image.t * Stats.t, [> `Msg of string ]) result
+(** [image ~jobs ~skips scene] is the image of [scene] and what it cost.
+    [jobs] (default 1) processes trace interleaved rows; [skips] is passed
+    to {!Prepared.prepare}. [Error] if a worker process dies.
+    @raise Invalid_argument if [scene] fails {!Scene.validate} or
+    [jobs < 1]. *)
+
+val image_exn : ?jobs:int -> ?skips:bool -> Scene.t -> Image.t
+(** [image_exn] is the image of {!image}.
+    @raise Failure if a worker process dies. *)

@@ -1,0 +1,77 @@
+(** Scenes (document section 3): what to render and how.
+
+    A scene is a canvas size, a viewport, a camera, a background colour,
+    a recursion depth, an optional epsilon, and lists of spheres and lights.
+    Scenes are plain values: build them in code with {!v} or load them from
+    files with {!Scene_file}. *)
+
+(** {1:scenes Scenes} *)
+
+type t = {
+  width : int;  (** Canvas width [G_w] in pixels, [>= 1]. *)
+  height : int;  (** Canvas height [G_h] in pixels, [>= 1]. *)
+  viewport : Viewport.t;
+  camera : Camera.t;
+  background : Color.t;  (** Colour of rays that hit nothing. *)
+  depth : int;  (** Recursion depth of mirror reflection (7.8), [>= 0]. *)
+  epsilon : float option;
+      (** [Some e]: the document's semantics, shadow and reflection rays
+          see objects at [t > e] only. [None]: the robust mode, which needs
+          no scene-dependent constant. *)
+  spheres : Sphere.t list;
+  lights : Light.t list;
+}
+[@@deriving show, eq]
+(** The type for scenes. *)
+
+val v :
+  ?width:int ->
+  ?height:int ->
+  ?viewport:Viewport.t ->
+  ?camera:Camera.t ->
+  ?background:Color.t ->
+  ?depth:int ->
+  ?epsilon:float ->
+  spheres:Sphere.t list ->
+  lights:Light.t list ->
+  unit ->
+  t
+(** [v ~spheres ~lights ()] is a scene with the given objects and lights,
+    and otherwise the document's values: a 600 x 600 canvas,
+    {!Viewport.default}, {!Camera.default}, a black background, depth 3, and
+    the robust mode (no epsilon). The result is not validated: see
+    {!validate}. *)
+
+val cgfs : t
+(** [cgfs] is the reference scene of CGFS's demos (and of
+    [scenes/cgfs.scene]): red, green, blue and a huge yellow ground sphere;
+    ambient 0.2, point 0.6 at [(2, 1, 0)], directional 0.2 toward
+    [(1, 4, 4)]; 600 x 600, depth 3, epsilon 0.001. It is the default
+    scene of the [raytrace] command. *)
+
+val cgfs_camera : t
+(** [cgfs_camera] is {!cgfs} seen from [(3, 0, 1)], turned by the CGFS
+    camera demo's matrix [(0.7071 0 -0.7071) (0 1 0) (0.7071 0 0.7071)]
+    (and [scenes/cgfs-camera.scene]). *)
+
+val document_epsilon : float
+(** [document_epsilon] is [0.0001], the document's lower bound of [t] for
+    shadow rays (7.7), used by {!Literal} for scenes without an epsilon. *)
+
+(** {1:validation Validation} *)
+
+val check_epsilon : float -> (float, string) result
+(** [check_epsilon e] checks that [e] is finite and [>= 0]. *)
+
+val check_background : Color.t -> (Color.t, string) result
+(** [check_background c] checks {!Color.in_gamut}. *)
+
+val validate : t -> (t, [> `Msg of string ]) result
+(** [validate s] is [Ok s] if every part of [s] passes its check (canvas
+    and depth within {!Limits}, {!Viewport.validate}, {!Camera.validate},
+    {!Sphere.validate}, {!Light.validate}), so that it renders without NaN
+    or infinity, and otherwise [Error (`Msg m)] with the first failure. *)
+
+val with_overrides : ?width:int -> ?height:int -> ?depth:int -> t -> t
+(** [with_overrides ~width ~height ~depth s] is [s] with the given fields
+    replaced (the command line's [--width], [--height] and [--depth]). *)

@@ -1,0 +1,42 @@
+(** Scene files: S-expressions, read with parsexp.
+
+    A scene file is a sequence of top-level forms in any order, with [;]
+    line comments, [#| |#] block comments and [#;] sexp comments:
+{v
+(canvas (width 600) (height 600))
+(viewport (width 1) (height 1) (distance 1))
+(camera (position 3 0 1) (rotation (0.7071 0 -0.7071) (0 1 0) (0.7071 0 0.7071)))
+(background 0 0 0)
+(recursion-depth 3)
+(epsilon 0.001)
+(sphere (center 0 -1 3) (radius 1) (color 255 0 0) (specular 500) (reflective 0.2))
+(light ambient (intensity 0.2))
+(light point (intensity 0.6) (position 2 1 0))
+(light directional (intensity 0.2) (direction 1 4 4))
+v}
+    Every form but [sphere] and [light] may appear at most once and has a
+    default ({!Scene.v}). A [camera] gives [position] (default the origin)
+    and either [rotation] (three rows) or [look-at] with an optional [up].
+    In a [sphere], [center], [radius] and [color] are required; [specular]
+    defaults to [-1] (matte) and [reflective] to [0]. Numbers are OCaml
+    floats ([1], [-0.5], [1e-3]), finite; sizes and depths are integers.
+
+    Errors are one line, [file:line:column: message], with 1-based lines
+    and columns pointing at the offending text, e.g.
+    [scenes/x.scene:4:17: sphere radius must be > 0, got -1]. Unknown forms
+    and fields, duplicates, missing fields, wrong arities and values out of
+    their domain ({!Sphere.validate}, {!Light.validate}, ...) are all
+    errors. *)
+
+val of_string : ?file:string -> string -> (Scene.t, [> `Msg of string ]) result
+(** [of_string ~file text] is the scene described by [text]. [file]
+    (default ["<string>"]) names the source in error messages. The scene
+    satisfies {!Scene.validate}. Never raises. *)
+
+val read : string -> (Scene.t, [> `Msg of string ]) result
+(** [read path] is the scene in file [path]. *)
+
+val to_string : Scene.t -> string
+(** [to_string s] is [s] in the scene-file syntax, every number written so
+    that it reads back as the same float: [of_string (to_string s)] is
+    [Ok s] for every [s] that satisfies {!Scene.validate}. *)

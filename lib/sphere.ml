@@ -1,0 +1,60 @@
+type t = {
+  center : Vec3.t;
+  radius : float;
+  color : Color.t;
+  specular : float;
+  reflective : float;
+}
+[@@deriving show, eq]
+
+let matte = -1.
+
+let v ?(specular = matte) ?(reflective = 0.) ~center ~radius color =
+  { center; radius; color; specular; reflective }
+
+let is_matte s = s.specular = matte
+let num = Float_text.to_string
+let check_center c = Limits.check_point "sphere center" c
+
+let check_radius r =
+  if not (r > 0.) then Error (Printf.sprintf "sphere radius must be > 0, got %s" (num r))
+  else Limits.check_coordinate "sphere radius" r
+
+let check_color c =
+  if Color.in_gamut c then Ok c
+  else Error (Format.asprintf "sphere color channels must lie in [0, 255], got %a" Color.pp c)
+
+let check_specular s =
+  if Float.is_finite s && (s = matte || s >= 0.) then Ok s
+  else Error (Printf.sprintf "sphere specular must be -1 (matte) or >= 0, got %s" (num s))
+
+let check_reflective r =
+  if r >= 0. && r <= 1. then Ok r
+  else Error (Printf.sprintf "sphere reflective must lie in [0, 1], got %s" (num r))
+
+let validate s =
+  let ( let* ) = Result.bind in
+  let* _ = check_center s.center in
+  let* _ = check_radius s.radius in
+  let* _ = check_color s.color in
+  let* _ = check_specular s.specular in
+  let* _ = check_reflective s.reflective in
+  Ok s
+
+let quadratic s ~origin ~direction =
+  let co = Vec3.sub origin s.center in
+  let a = Vec3.dot direction direction in
+  let b = 2. *. Vec3.dot co direction in
+  let c = Vec3.dot co co -. (s.radius *. s.radius) in
+  (a, b, c)
+
+let textbook_roots a b c =
+  let discriminant = (b *. b) -. (4. *. a *. c) in
+  if discriminant < 0. then (infinity, infinity)
+  else
+    let sq = sqrt discriminant in
+    ((-.b +. sq) /. (2. *. a), (-.b -. sq) /. (2. *. a))
+
+let normal s p =
+  let n = Vec3.sub p s.center in
+  Vec3.smul (1. /. Vec3.norm n) n

@@ -1,0 +1,72 @@
+(** Spheres (document sections 5 and 6.1).
+
+    A sphere is the set of points [P] with [<P - C, P - C> = r^2]. Besides
+    its shape it carries its material: a colour, a specular exponent (section
+    7.6) and a reflectivity (section 7.8). *)
+
+(** {1:spheres Spheres} *)
+
+type t = {
+  center : Vec3.t;  (** [C], in world units. *)
+  radius : float;  (** [r > 0], in world units. *)
+  color : Color.t;  (** Channels in [\[0, 255\]]. *)
+  specular : float;  (** [s >= 0], or {!matte} for no specular term. *)
+  reflective : float;  (** Reflectivity in [\[0, 1\]]; [0] is no mirror. *)
+}
+[@@deriving show, eq]
+(** The type for spheres. The invariants in the field comments are checked
+    by {!validate} and by scene loading, not by the constructor. *)
+
+val matte : float
+(** [matte] is [-1.], the specular exponent that means "no specular term"
+    (as in CGFS). An exponent of [0] is not matte. *)
+
+val v : ?specular:float -> ?reflective:float -> center:Vec3.t -> radius:float -> Color.t -> t
+(** [v ~specular ~reflective ~center ~radius color] is a sphere. [specular]
+    defaults to {!matte}, [reflective] to [0]. *)
+
+val is_matte : t -> bool
+(** [is_matte s] is [true] iff [s.specular = matte]. *)
+
+(** {1:validation Validation}
+
+    Each check returns its argument, or an error message that names the
+    field and the value, such as ["sphere radius must be > 0, got -1"]. *)
+
+val check_center : Vec3.t -> (Vec3.t, string) result
+(** [check_center c] checks {!Limits.check_point}. *)
+
+val check_radius : float -> (float, string) result
+(** [check_radius r] checks [0 < r <= Limits.max_coordinate]. *)
+
+val check_color : Color.t -> (Color.t, string) result
+(** [check_color c] checks {!Color.in_gamut}. *)
+
+val check_specular : float -> (float, string) result
+(** [check_specular s] checks that [s] is finite and [-1] or [>= 0]. *)
+
+val check_reflective : float -> (float, string) result
+(** [check_reflective r] checks [0 <= r <= 1]. *)
+
+val validate : t -> (t, string) result
+(** [validate s] is [Ok s] if every field passes its check, and otherwise
+    the first field's error. *)
+
+(** {1:geometry Geometry} *)
+
+val quadratic : t -> origin:Vec3.t -> direction:Vec3.t -> float * float * float
+(** [quadratic s ~origin:o ~direction:d] is [(a, b, c)] of section 6.1,
+    whose roots [t] are where the ray [P = O + t D] meets [s]:
+    [a = <D, D>], [b = 2 <CO, D>], [c = <CO, CO> - r^2] with [CO = O - C]. *)
+
+val textbook_roots : float -> float -> float -> float * float
+(** [textbook_roots a b c] is [(t1, t2)] with
+    [t1,2 = (-b +- sqrt (b^2 - 4ac)) / 2a], the document's formula, or
+    [(infinity, infinity)] when the discriminant is negative. It loses
+    digits when [b^2] is much larger than [4ac] and when the discriminant is
+    small: it is here as the document's formula, not for robust use. *)
+
+val normal : t -> Vec3.t -> Vec3.t
+(** [normal s p] is the outward unit normal [(P - C) / |P - C|] at a point
+    [p] of the surface of [s], computed as [(P - C) * (1 / |P - C|)] as in
+    CGFS. *)

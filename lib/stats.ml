@@ -1,0 +1,34 @@
+type t = {
+  pixels : int;
+  primary : int;
+  shadow : int;
+  reflection : int;
+  tests : int;
+  early_stops : int;
+  jobs : int;
+  prepare_s : float;
+  trace_s : float;
+  minor_words : float;
+}
+[@@deriving show]
+
+let rays s = s.primary + s.shadow + s.reflection
+
+let pp_table ppf s =
+  let per_pixel x = if s.pixels = 0 then 0. else x /. Float.of_int s.pixels in
+  let row label value = Format.fprintf ppf "%-24s %s@\n" label value in
+  let int n = Printf.sprintf "%d" n in
+  row "pixels" (int s.pixels);
+  row "rays, primary" (int s.primary);
+  row "rays, shadow" (int s.shadow);
+  row "rays, reflection" (int s.reflection);
+  row "rays, total" (int (rays s));
+  row "intersection tests" (int s.tests);
+  row "tests per ray" (Printf.sprintf "%.2f" (Float.of_int s.tests /. Float.of_int (max 1 (rays s))));
+  row "reflections cut short" (int s.early_stops);
+  row "jobs" (int s.jobs);
+  row "time, prepare (s)" (Printf.sprintf "%.4f" s.prepare_s);
+  row "time, trace (s)" (Printf.sprintf "%.4f" s.trace_s);
+  row "rays per second"
+    (if s.trace_s > 0. then Printf.sprintf "%.3g" (Float.of_int (rays s) /. s.trace_s) else "-");
+  row "minor words per pixel" (Printf.sprintf "%.3f" (per_pixel s.minor_words))

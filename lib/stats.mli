@@ -1,0 +1,23 @@
+(** What a render cost: rays by kind, intersection tests, time, allocation. *)
+
+type t = {
+  pixels : int;  (** Pixels rendered. *)
+  primary : int;  (** Primary rays, from the camera. *)
+  shadow : int;  (** Shadow rays, toward lights (section 7.7). *)
+  reflection : int;  (** Mirror rays (section 7.8). *)
+  tests : int;  (** Ray-sphere intersection tests. *)
+  early_stops : int;  (** Reflections stopped by the exact weight bound. *)
+  jobs : int;  (** Processes that traced. *)
+  prepare_s : float;  (** Seconds spent preparing the scene. *)
+  trace_s : float;  (** Wall-clock seconds spent tracing. *)
+  minor_words : float;  (** Minor-heap words allocated by the tracing loops. *)
+}
+[@@deriving show]
+(** The type for render statistics. *)
+
+val rays : t -> int
+(** [rays s] is [s.primary + s.shadow + s.reflection]. *)
+
+val pp_table : Format.formatter -> t -> unit
+(** [pp_table ppf s] prints [s] as a small table, one figure per line, with
+    rays per second and allocation per pixel. *)

@@ -1,0 +1,417 @@
+type counters = {
+  mutable primary : int;
+  mutable shadow : int;
+  mutable reflection : int;
+  mutable tests : int;
+  mutable early_stops : int;
+}
+
+(* All fields are floats, so the record is stored flat and its fields are
+   read and written without boxing. *)
+type scratch = {
+  mutable ox : float;
+  mutable oy : float;
+  mutable oz : float;
+  mutable dx : float;
+  mutable dy : float;
+  mutable dz : float;
+  mutable t_min : float;
+  mutable t_max : float;
+  mutable t : float;
+  mutable gx : float;  (** Canvas point of the primary ray. *)
+  mutable gy : float;
+  mutable px : float;  (** Hit point. *)
+  mutable py : float;
+  mutable pz : float;
+  mutable nx : float;  (** Unit normal at the hit point. *)
+  mutable ny : float;
+  mutable nz : float;
+  mutable vx : float;  (** View vector, [-D]. *)
+  mutable vy : float;
+  mutable vz : float;
+  mutable intensity : float;
+  mutable r : float;
+  mutable g : float;
+  mutable b : float;
+}
+
+type t = {
+  p : Prepared.t;
+  s : scratch;
+  stack : float array;  (** Per reflection level: local r, g, b and reflectivity. *)
+  last_blocker : int array;  (** Per light: the sphere that last shadowed it. *)
+  counters : counters;
+  mutable hit : int;  (** Index of the sphere found by [closest]. *)
+  mutable first_hit : int;
+}
+
+let create (p : Prepared.t) =
+  {
+    p;
+    s =
+      {
+        ox = 0.;
+        oy = 0.;
+        oz = 0.;
+        dx = 0.;
+        dy = 0.;
+        dz = 0.;
+        t_min = 0.;
+        t_max = 0.;
+        t = 0.;
+        gx = 0.;
+        gy = 0.;
+        px = 0.;
+        py = 0.;
+        pz = 0.;
+        nx = 0.;
+        ny = 0.;
+        nz = 0.;
+        vx = 0.;
+        vy = 0.;
+        vz = 0.;
+        intensity = 0.;
+        r = 0.;
+        g = 0.;
+        b = 0.;
+      };
+    stack = Array.make (4 * (p.depth + 1)) 0.;
+    last_blocker = Array.make (max 1 p.n_lights) (-1);
+    counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; early_stops = 0 };
+    hit = -1;
+    first_hit = -1;
+  }
+
+let prepared tr = tr.p
+let counters tr = tr.counters
+let red tr = tr.s.r
+let green tr = tr.s.g
+let blue tr = tr.s.b
+let hit_sphere tr = tr.first_hit
+
+(* [Color.to_byte], copied so that no float crosses a module boundary on the
+   per-ray path: in dev builds (-opaque) such a call boxes its argument. A
+   test checks the two agree. *)
+let to_byte x =
+  if not (x > 0.) then 0
+  else if x >= 255. then 255
+  else
+    let n = truncate x in
+    let frac = x -. Float.of_int n in
+    if frac > 0.5 then n + 1 else if frac < 0.5 then n else n + (n land 1)
+[@@inline]
+
+let store tr (buffer : Image.buffer) k =
+  let s = tr.s in
+  Bigarray.Array1.unsafe_set buffer k (to_byte s.r);
+  Bigarray.Array1.unsafe_set buffer (k + 1) (to_byte s.g);
+  Bigarray.Array1.unsafe_set buffer (k + 2) (to_byte s.b)
+
+(* The textbook quadratic of section 6.1, in CGFS's order of operations:
+   k1 = <D,D>, k2 = 2 <CO,D>, k3 = <CO,CO> - r^2, discriminant
+   k2^2 - 4 k1 k3, roots (-k2 +- sqrt disc) / 2 k1. The smaller root t2 is
+   tried first: it wins whenever both are in range, as in CGFS. *)
+let[@inline] consider tr s i k1x4 two_k1 k2 k3 =
+  let disc = (k2 *. k2) -. (k1x4 *. k3) in
+  if disc >= 0. then begin
+    let sq = sqrt disc in
+    let t2 = (-.k2 -. sq) /. two_k1 in
+    if t2 < s.t && s.t_min < t2 && t2 < s.t_max then begin
+      s.t <- t2;
+      tr.hit <- i
+    end
+    else
+      let t1 = (-.k2 +. sq) /. two_k1 in
+      if t1 < s.t && s.t_min < t1 && t1 < s.t_max then begin
+        s.t <- t1;
+        tr.hit <- i
+      end
+  end
+
+(* The closest sphere hit by the ray in [s], with [t_min < t < t_max]; its
+   [t] is left in [s.t] ([infinity] if none). *)
+let closest tr =
+  let p = tr.p and s = tr.s in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let k1 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let two_k1 = 2. *. k1 and k1x4 = 4. *. k1 in
+  tr.hit <- -1;
+  s.t <- infinity;
+  let n = p.n_spheres in
+  tr.counters.tests <- tr.counters.tests + n;
+  for i = 0 to n - 1 do
+    let ocx = s.ox -. Array.unsafe_get p.cx i and ocy = s.oy -. Array.unsafe_get p.cy i and ocz = s.oz -. Array.unsafe_get p.cz i in
+    let k2 = 2. *. ((ocx *. dx) +. (ocy *. dy) +. (ocz *. dz)) in
+    let k3 = ((ocx *. ocx) +. (ocy *. ocy) +. (ocz *. ocz)) -. Array.unsafe_get p.r2 i in
+    consider tr s i k1x4 two_k1 k2 k3
+  done;
+  tr.hit
+
+(* [closest] for a ray from the camera: [CO] and [k3] are per-frame constants. *)
+let closest_primary tr =
+  let p = tr.p and s = tr.s in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let k1 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let two_k1 = 2. *. k1 and k1x4 = 4. *. k1 in
+  tr.hit <- -1;
+  s.t <- infinity;
+  let n = p.n_spheres in
+  tr.counters.tests <- tr.counters.tests + n;
+  for i = 0 to n - 1 do
+    let k2 =
+      2.
+      *. ((Array.unsafe_get p.primary_ocx i *. dx) +. (Array.unsafe_get p.primary_ocy i *. dy) +. (Array.unsafe_get p.primary_ocz i *. dz))
+    in
+    consider tr s i k1x4 two_k1 k2 (Array.unsafe_get p.primary_k3 i)
+  done;
+  tr.hit
+
+(* Does sphere [i] meet the ray in [s] with [t_min < t < t_max]? The same
+   roots as [closest], so a sphere blocks exactly when [closest] would have
+   found it. *)
+let[@inline] blocks (p : Prepared.t) s i k1x4 two_k1 =
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let ocx = s.ox -. Array.unsafe_get p.cx i and ocy = s.oy -. Array.unsafe_get p.cy i and ocz = s.oz -. Array.unsafe_get p.cz i in
+  let k2 = 2. *. ((ocx *. dx) +. (ocy *. dy) +. (ocz *. dz)) in
+  let k3 = ((ocx *. ocx) +. (ocy *. ocy) +. (ocz *. ocz)) -. Array.unsafe_get p.r2 i in
+  let disc = (k2 *. k2) -. (k1x4 *. k3) in
+  disc >= 0.
+  &&
+  let sq = sqrt disc in
+  let t2 = (-.k2 -. sq) /. two_k1 in
+  (s.t_min < t2 && t2 < s.t_max)
+  ||
+  let t1 = (-.k2 +. sq) /. two_k1 in
+  s.t_min < t1 && t1 < s.t_max
+
+(* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
+   the first blocker and tries light [l]'s last blocker first; without, it
+   searches for the closest hit as the document does. Same answer. *)
+let shadowed tr l =
+  let p = tr.p and s = tr.s in
+  tr.counters.shadow <- tr.counters.shadow + 1;
+  if not p.skips then closest tr >= 0
+  else
+    let dx = s.dx and dy = s.dy and dz = s.dz in
+    let k1 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+    let two_k1 = 2. *. k1 and k1x4 = 4. *. k1 in
+    let last = Array.unsafe_get tr.last_blocker l in
+    if last >= 0 && blocks p s last k1x4 two_k1 then begin
+      tr.counters.tests <- tr.counters.tests + 1;
+      true
+    end
+    else begin
+      let n = p.n_spheres in
+      let i = ref 0 in
+      while !i < n && (!i = last || not (blocks p s !i k1x4 two_k1)) do
+        incr i
+      done;
+      tr.counters.tests <- tr.counters.tests + !i + 1;
+      if !i < n then begin
+        Array.unsafe_set tr.last_blocker l !i;
+        true
+      end
+      else false
+    end
+
+(* The total intensity at the hit point [s.px..] with unit normal [s.nx..]
+   and view vector [s.vx..] (sections 7.4 to 7.7), left in [s.intensity].
+   The shadow rays reuse [s]'s ray fields. *)
+let lighting tr ~shiny ~specular_of i =
+  let p = tr.p and s = tr.s in
+  let px = s.px and py = s.py and pz = s.pz in
+  let nx = s.nx and ny = s.ny and nz = s.nz in
+  let vx = s.vx and vy = s.vy and vz = s.vz in
+  s.intensity <- 0.;
+  let length_n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+  let length_v = sqrt ((vx *. vx) +. (vy *. vy) +. (vz *. vz)) in
+  for l = 0 to p.n_lights - 1 do
+    let li = Array.unsafe_get p.light_intensity l in
+    if Array.unsafe_get p.light_kind l = Prepared.ambient then s.intensity <- s.intensity +. li
+    else begin
+      if Array.unsafe_get p.light_kind l = Prepared.point then begin
+        s.dx <- Array.unsafe_get p.lx l -. px;
+        s.dy <- Array.unsafe_get p.ly l -. py;
+        s.dz <- Array.unsafe_get p.lz l -. pz;
+        s.t_max <- 1.
+      end
+      else begin
+        s.dx <- Array.unsafe_get p.lx l;
+        s.dy <- Array.unsafe_get p.ly l;
+        s.dz <- Array.unsafe_get p.lz l;
+        s.t_max <- infinity
+      end;
+      s.ox <- px;
+      s.oy <- py;
+      s.oz <- pz;
+      s.t_min <- p.epsilon;
+      if not (shadowed tr l) then begin
+        let lx = s.dx and ly = s.dy and lz = s.dz in
+        let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
+        if n_dot_l > 0. then
+          s.intensity <-
+            s.intensity
+            +. (li *. n_dot_l /. (length_n *. sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz))));
+        if shiny then begin
+          (* R = 2 <L, N> N - L (section 7.6). *)
+          let k = 2. *. ((lx *. nx) +. (ly *. ny) +. (lz *. nz)) in
+          let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
+          let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
+          if r_dot_v > 0. then
+            s.intensity <-
+              s.intensity
+              +. li
+                 *. Float.pow
+                      (r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v))
+                      (Array.unsafe_get specular_of i)
+        end
+      end
+    end
+  done
+
+(* Byte-exact early stop of reflection: the pixel's colour is a
+   non-decreasing function of the colour [rc] still to be traced (each blend
+   is local (1 - r) + rc r with r >= 0, and rounding is monotonic), and
+   0 <= rc <= max_channel. If the blend of the stack gives the same bytes
+   for rc = 0 and rc = max_channel, it gives them for the true rc too. *)
+let settled tr levels =
+  let stack = tr.stack and hi = tr.p.max_channel in
+  let lo_r = ref 0. and lo_g = ref 0. and lo_b = ref 0. in
+  let hi_r = ref hi and hi_g = ref hi and hi_b = ref hi in
+  for l = levels - 1 downto 0 do
+    let refl = Array.unsafe_get stack ((4 * l) + 3) in
+    let keep = 1. -. refl in
+    let r = Array.unsafe_get stack (4 * l) *. keep
+    and g = Array.unsafe_get stack ((4 * l) + 1) *. keep
+    and b = Array.unsafe_get stack ((4 * l) + 2) *. keep in
+    lo_r := r +. (!lo_r *. refl);
+    lo_g := g +. (!lo_g *. refl);
+    lo_b := b +. (!lo_b *. refl);
+    hi_r := r +. (!hi_r *. refl);
+    hi_g := g +. (!hi_g *. refl);
+    hi_b := b +. (!hi_b *. refl)
+  done;
+  to_byte !lo_r = to_byte !hi_r && to_byte !lo_g = to_byte !hi_g && to_byte !lo_b = to_byte !hi_b
+
+(* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
+   its local colour and reflectivity and continues with the mirror ray; then
+   the stack is folded back from the deepest colour, blend by blend, in the
+   same order as the recursion. The ray to trace is in [s]. *)
+let trace tr =
+  let p = tr.p and s = tr.s in
+  let levels = ref 0 and tracing = ref true in
+  tr.first_hit <- -1;
+  while !tracing do
+    let i = if !levels = 0 then closest_primary tr else closest tr in
+    if !levels = 0 then tr.first_hit <- i;
+    if i < 0 then begin
+      s.r <- p.background.r;
+      s.g <- p.background.g;
+      s.b <- p.background.b;
+      tracing := false
+    end
+    else begin
+      let t = s.t in
+      let dx = s.dx and dy = s.dy and dz = s.dz in
+      let px = s.ox +. (dx *. t) and py = s.oy +. (dy *. t) and pz = s.oz +. (dz *. t) in
+      let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
+      let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+      let nx = nx *. inv and ny = ny *. inv and nz = nz *. inv in
+      let vx = -.dx and vy = -.dy and vz = -.dz in
+      s.px <- px;
+      s.py <- py;
+      s.pz <- pz;
+      s.nx <- nx;
+      s.ny <- ny;
+      s.nz <- nz;
+      s.vx <- vx;
+      s.vy <- vy;
+      s.vz <- vz;
+      lighting tr ~shiny:(Array.unsafe_get p.specular i <> Sphere.matte) ~specular_of:p.specular i;
+      let light = s.intensity in
+      let lr = Array.unsafe_get p.red i *. light and lg = Array.unsafe_get p.green i *. light and lb = Array.unsafe_get p.blue i *. light in
+      let refl = Array.unsafe_get p.reflective i in
+      if refl <= 0. || !levels >= p.depth then begin
+        s.r <- lr;
+        s.g <- lg;
+        s.b <- lb;
+        tracing := false
+      end
+      else begin
+        let k = 4 * !levels in
+        Array.unsafe_set tr.stack k lr;
+        Array.unsafe_set tr.stack (k + 1) lg;
+        Array.unsafe_set tr.stack (k + 2) lb;
+        Array.unsafe_set tr.stack (k + 3) refl;
+        incr levels;
+        if p.skips && settled tr !levels then begin
+          tr.counters.early_stops <- tr.counters.early_stops + 1;
+          s.r <- 0.;
+          s.g <- 0.;
+          s.b <- 0.;
+          tracing := false
+        end
+        else begin
+          (* The mirror ray R = 2 <V, N> N - V from the hit point. *)
+          let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
+          s.ox <- px;
+          s.oy <- py;
+          s.oz <- pz;
+          s.dx <- (nx *. k) -. vx;
+          s.dy <- (ny *. k) -. vy;
+          s.dz <- (nz *. k) -. vz;
+          s.t_min <- p.epsilon;
+          s.t_max <- infinity;
+          tr.counters.reflection <- tr.counters.reflection + 1
+        end
+      end
+    end
+  done;
+  for l = !levels - 1 downto 0 do
+    let refl = Array.unsafe_get tr.stack ((4 * l) + 3) in
+    let keep = 1. -. refl in
+    s.r <- (Array.unsafe_get tr.stack (4 * l) *. keep) +. (s.r *. refl);
+    s.g <- (Array.unsafe_get tr.stack ((4 * l) + 1) *. keep) +. (s.g *. refl);
+    s.b <- (Array.unsafe_get tr.stack ((4 * l) + 2) *. keep) +. (s.b *. refl)
+  done
+
+(* The primary ray through canvas point [s.gx, s.gy]. *)
+let primary tr =
+  let p = tr.p and s = tr.s in
+  let gx = s.gx and gy = s.gy in
+  let vp = p.viewport in
+  (* Viewport point (section 3), multiplied before dividing as written. *)
+  let vx = gx *. vp.width /. Float.of_int p.width in
+  let vy = gy *. vp.height /. Float.of_int p.height in
+  let vz = vp.distance in
+  let cam = p.camera in
+  if p.identity_rotation then begin
+    s.dx <- vx;
+    s.dy <- vy;
+    s.dz <- vz
+  end
+  else begin
+    let m = cam.rotation in
+    s.dx <- (vx *. m.row0.x) +. (vy *. m.row0.y) +. (vz *. m.row0.z);
+    s.dy <- (vx *. m.row1.x) +. (vy *. m.row1.y) +. (vz *. m.row1.z);
+    s.dz <- (vx *. m.row2.x) +. (vy *. m.row2.y) +. (vz *. m.row2.z)
+  end;
+  s.ox <- cam.position.x;
+  s.oy <- cam.position.y;
+  s.oz <- cam.position.z;
+  s.t_min <- 1.;
+  s.t_max <- infinity;
+  tr.counters.primary <- tr.counters.primary + 1;
+  trace tr
+
+let pixel tr gx gy =
+  tr.s.gx <- Float.of_int gx;
+  tr.s.gy <- Float.of_int gy;
+  primary tr
+
+let sample tr gx gy ~i ~j ~n =
+  let n = Float.of_int n in
+  (* For n = 1 the offsets are 0.5 /. 1. -. 0.5 = 0 exactly: [pixel]. *)
+  tr.s.gx <- Float.of_int gx +. (((Float.of_int i +. 0.5) /. n) -. 0.5);
+  tr.s.gy <- Float.of_int gy +. (((Float.of_int j +. 0.5) /. n) -. 0.5);
+  primary tr
