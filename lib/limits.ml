@@ -13,15 +13,15 @@ let check_point what (p : Vec3.t) =
   | Ok _, Ok _, Ok _ -> Ok p
   | (Error e, _, _ | _, Error e, _ | _, _, Error e) -> Error e
 
+let check_dimension what n =
+  if n < 1 || n > max_dimension then
+    Error (Printf.sprintf "canvas %s must lie in [1, %d], got %d" what max_dimension n)
+  else Ok n
+
 let check_canvas w h =
-  let dim what n =
-    if n < 1 || n > max_dimension then
-      Error (Printf.sprintf "canvas %s must lie in [1, %d], got %d" what max_dimension n)
-    else Ok ()
-  in
-  match (dim "width" w, dim "height" h) with
+  match (check_dimension "width" w, check_dimension "height" h) with
   | (Error e, _ | _, Error e) -> Error e
-  | Ok (), Ok () ->
+  | Ok _, Ok _ ->
       if w * h > max_pixels then
         Error
           (Printf.sprintf "canvas %dx%d has more than %d pixels" w h

@@ -28,6 +28,10 @@ val check_coordinate : string -> float -> (float, string) result
 val check_point : string -> Vec3.t -> (Vec3.t, string) result
 (** [check_point what p] is {!check_coordinate} on each coordinate. *)
 
+val check_dimension : string -> int -> (int, string) result
+(** [check_dimension what n] is [Ok n] if [1 <= n <= max_dimension], and
+    otherwise [Error] naming the canvas's [what] ("width", "height"). *)
+
 val check_canvas : int -> int -> (unit, string) result
 (** [check_canvas w h] is [Ok ()] if [1 <= w, h <= max_dimension] and
     [w * h <= max_pixels]. *)

@@ -43,10 +43,21 @@ let map_shared kind n =
 let shared_bytes n = map_shared Bigarray.int8_unsigned n
 let shared_ints n = map_shared Bigarray.int64 n
 
+let signal_name s =
+  let names =
+    Sys.
+      [
+        (sigkill, "SIGKILL"); (sigterm, "SIGTERM"); (sigint, "SIGINT"); (sigsegv, "SIGSEGV");
+        (sigabrt, "SIGABRT"); (sigbus, "SIGBUS"); (sigfpe, "SIGFPE"); (sighup, "SIGHUP");
+        (sigquit, "SIGQUIT"); (sigpipe, "SIGPIPE"); (sigusr1, "SIGUSR1"); (sigusr2, "SIGUSR2");
+      ]
+  in
+  match List.assoc_opt s names with Some n -> n | None -> Printf.sprintf "signal %d" s
+
 let describe_status = function
   | Unix.WEXITED c -> Printf.sprintf "exited with status %d" c
-  | Unix.WSIGNALED s -> Printf.sprintf "was killed by signal %d" s
-  | Unix.WSTOPPED s -> Printf.sprintf "was stopped by signal %d" s
+  | Unix.WSIGNALED s -> "was killed by " ^ signal_name s
+  | Unix.WSTOPPED s -> "was stopped by " ^ signal_name s
 
 let rec wait_pid pid =
   match Unix.waitpid [] pid with

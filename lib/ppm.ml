@@ -19,8 +19,8 @@ exception Bad of string
 let bad fmt = Printf.ksprintf (fun m -> raise (Bad m)) fmt
 let is_space c = c = ' ' || c = '\t' || c = '\n' || c = '\r' || c = '\011' || c = '\012'
 
-(* The token starting at or after [pos], skipping whitespace and comments,
-   and the position just after it; [None] at the end of the input. *)
+(* The token at or after [pos], skipping whitespace and comments: its text,
+   where it starts, and the position just after it; [None] at the end. *)
 let rec token s pos =
   let n = String.length s in
   if pos >= n then None
@@ -32,17 +32,17 @@ let rec token s pos =
     while !stop < n && (not (is_space s.[!stop])) && s.[!stop] <> '#' do
       incr stop
     done;
-    Some (String.sub s pos (!stop - pos), !stop)
+    Some (String.sub s pos (!stop - pos), pos, !stop)
 
 (* A decimal number: digits only, so "-1" or "0x10" are refused. *)
 let number ~at_end what s pos =
   match token s pos with
   | None -> at_end ()
-  | Some (tok, next) -> (
+  | Some (tok, start, next) -> (
       let digits = tok <> "" && String.for_all (fun c -> c >= '0' && c <= '9') tok in
       match if digits && String.length tok <= 9 then int_of_string_opt tok else None with
-      | Some v -> (v, next)
-      | None -> bad "%s: expected a decimal number at byte %d, got %S" what pos tok)
+      | Some v -> (v, start, next)
+      | None -> bad "%s: expected a decimal number at byte %d, got %S" what start tok)
 
 let max_pixels = 1 lsl 30
 
@@ -55,9 +55,9 @@ let decode s =
     | "P3" -> false
     | _ -> bad "not a PPM file: it must start with P6 or P3 and a whitespace"
   in
-  let w, pos = number ~at_end:in_header "width" s 2 in
-  let h, pos = number ~at_end:in_header "height" s pos in
-  let maxval, pos = number ~at_end:in_header "maxval" s pos in
+  let w, _, pos = number ~at_end:in_header "width" s 2 in
+  let h, _, pos = number ~at_end:in_header "height" s pos in
+  let maxval, _, pos = number ~at_end:in_header "maxval" s pos in
   if w < 1 || h < 1 then bad "image size %dx%d is empty" w h;
   if w > max_pixels / h then bad "image size %dx%d is too large" w h;
   if maxval < 1 || maxval > 255 then bad "maxval must lie in [1, 255], got %d" maxval;
@@ -85,12 +85,14 @@ let decode s =
     let pos = ref pos in
     for k = 0 to n - 1 do
       let truncated () = bad "pixel data is truncated: %d of %d samples" k n in
-      let v, next = number ~at_end:truncated "sample" s !pos in
-      if v > maxval then bad "sample %d at byte %d exceeds maxval %d" v !pos maxval;
+      let v, start, next = number ~at_end:truncated "sample" s !pos in
+      if v > maxval then bad "sample %d at byte %d exceeds maxval %d" v start maxval;
       Bigarray.Array1.unsafe_set data k (scale v);
       pos := next
     done;
-    if token s !pos <> None then bad "unexpected data after the pixels at byte %d" !pos
+    match token s !pos with
+    | Some (_, start, _) -> bad "unexpected data after the pixels at byte %d" start
+    | None -> ()
   end;
   img
 

@@ -116,15 +116,20 @@ let single form name f =
 let float_field form name f = number (field_what form name) (single form name f)
 let int_field form name f = integer (field_what form name) (single form name f)
 
-let vec3_of_nodes what loc = function
-  | [ x; y; z ] -> Vec3.v (number what x) (number what y) (number what z)
-  | nodes -> fail loc "%s takes 3 numbers (x y z), got %d values" what (List.length nodes)
+let triple ~names what loc = function
+  | [ x; y; z ] -> (number what x, number what y, number what z)
+  | nodes -> fail loc "%s takes 3 numbers (%s), got %d values" what names (List.length nodes)
+
+let vec3_of_nodes what loc nodes =
+  let x, y, z = triple ~names:"x y z" what loc nodes in
+  Vec3.v x y z
+
+let color_of_nodes what loc nodes =
+  let r, g, b = triple ~names:"r g b" what loc nodes in
+  Color.v r g b
 
 let vec3_field form name f = vec3_of_nodes (field_what form name) f.loc f.args
-
-let color_field form name f =
-  let p = vec3_of_nodes (field_what form name) f.loc f.args in
-  Color.v p.x p.y p.z
+let color_field form name f = color_of_nodes (field_what form name) f.loc f.args
 
 (* Located value checks: the error points at the value, or at the field for
    vectors. *)
@@ -139,11 +144,17 @@ let with_loc fs name = Option.map (fun f -> f.loc) (List.assoc_opt name fs)
 
 (* Forms *)
 
-let canvas nodes =
+let canvas form_loc nodes =
   let form = "canvas" in
   let fs = fields ~form ~allowed:[ "width"; "height" ] nodes in
-  let dim name = Option.value (get ~form fs name (fun _ f -> int_field form name f)) ~default:600 in
-  let width = dim "width" and height = dim "height" in
+  let dim name =
+    Option.value ~default:600
+      (get ~form fs name (fun _ f ->
+           check (loc_of (single form name f)) (Limits.check_dimension name (int_field form name f))))
+  in
+  let width = dim "width" in
+  let height = dim "height" in
+  ignore (check form_loc (Limits.check_canvas width height));
   (width, height)
 
 let viewport nodes =
@@ -274,14 +285,13 @@ let scene_of_forms forms =
               if not (List.mem kw [ "sphere"; "light" ]) && List.mem kw top_level then once kw kw_loc;
               match kw with
               | "canvas" ->
-                  let width, height = canvas rest in
-                  ignore (check loc (Limits.check_canvas width height));
+                  let width, height = canvas loc rest in
                   s := { !s with width; height }
               | "viewport" -> s := { !s with viewport = viewport rest }
               | "camera" -> s := { !s with camera = camera rest }
               | "background" ->
-                  let c = vec3_of_nodes kw loc rest in
-                  s := { !s with background = check loc (Scene.check_background (Color.v c.x c.y c.z)) }
+                  let c = color_of_nodes kw loc rest in
+                  s := { !s with background = check loc (Scene.check_background c) }
               | "recursion-depth" ->
                   let node = List.hd (values kw loc rest 1) in
                   let d = integer kw node in

@@ -1,0 +1,48 @@
+# The two commands of the README:
+#   make run    set up, build, and show the default scene in a window
+#               (or render it to cgfs.ppm when there is no display)
+#   make test   set up, build, and run the whole test suite
+# `make deps` installs what the build and the tests need from Debian's
+# packages; it does nothing when everything is already there.
+
+# Debian packages: the build, then the tests (virtual X server, screenshots).
+BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-ocaml-dev \
+  libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev
+TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev xvfb x11-apps xdotool imagemagick
+
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+.PHONY: run test deps build golden clean
+
+run: deps build
+	@if [ -n "$$DISPLAY" ]; then \
+	  dune exec --no-print-directory -- raytrace; \
+	else \
+	  echo "No display: rendering the default scene to cgfs.ppm instead of opening a window."; \
+	  dune exec --no-print-directory -- raytrace render -o cgfs.ppm; \
+	fi
+
+test: deps
+	dune build @install @runtest
+
+deps:
+	@missing=$$(for p in $(BUILD_PKGS) $(TEST_PKGS); do \
+	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing from Debian:" $$missing; \
+	  $(SUDO) apt-get update -qq && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing >/dev/null; \
+	fi
+
+build:
+	dune build
+
+# Regenerates the golden images of the tests from the current renderer.
+# Only after a deliberate change of the pictures: say why in the commit.
+golden: build
+	dune build test/test.exe
+	cd _build/default/test && RAYTRACE_WRITE_GOLDEN=$(CURDIR)/test/golden ./test.exe test golden 0 >/dev/null
+	dune exec --no-print-directory -- examples/hello_scene.exe test/golden/hello_scene.ppm
+
+clean:
+	dune clean

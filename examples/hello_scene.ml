@@ -1,0 +1,34 @@
+(* Build a scene in code and render it to a PPM file:
+   dune exec examples/hello_scene.exe -- hello.ppm *)
+open Raytrace
+
+let scene =
+  Scene.v ~width:128 ~height:96
+    ~spheres:
+      [
+        Sphere.v ~center:(Vec3.v 0. (-0.5) 3.) ~radius:1. ~specular:500. ~reflective:0.3
+          (Color.v 255. 0. 0.);
+        Sphere.v ~center:(Vec3.v 1.5 0. 5.) ~radius:1. ~specular:10. (Color.v 0. 0. 255.);
+        (* A huge sphere makes the ground. *)
+        Sphere.v ~center:(Vec3.v 0. (-5001.) 0.) ~radius:5000. ~reflective:0.2
+          (Color.v 255. 255. 0.);
+      ]
+    ~lights:
+      [
+        Light.ambient 0.2;
+        Light.point 0.6 (Vec3.v 2. 1. 0.);
+        Light.directional 0.2 (Vec3.v 1. 4. 4.);
+      ]
+    ()
+
+let () =
+  let output = if Array.length Sys.argv > 1 then Sys.argv.(1) else "hello.ppm" in
+  let result =
+    Result.bind (Scene.validate scene) (fun scene ->
+        Result.bind (Render.image scene) (fun (image, _stats) -> Ppm.write_file output image))
+  in
+  match result with
+  | Ok () -> print_endline ("wrote " ^ output)
+  | Error (`Msg m) ->
+      prerr_endline m;
+      exit 1

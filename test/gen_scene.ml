@@ -1,0 +1,50 @@
+open Raytrace
+open QCheck.Gen
+
+let coord lo hi = float_range lo hi
+let vec lo hi = map3 Vec3.v (coord lo hi) (coord lo hi) (coord lo hi)
+let channel = oneof [ return 0.; return 255.; float_range 0. 255. ]
+
+let sphere =
+  let* center = map3 Vec3.v (coord (-3.) 3.) (coord (-3.) 3.) (coord 2. 9.) in
+  let* radius = oneof [ float_range 0.05 2.; return 1. ] in
+  let* color = map3 Color.v channel channel channel in
+  let* specular = oneof [ return Sphere.matte; return 0.; float_range 0. 1000. ] in
+  let* reflective = oneof [ return 0.; return 1.; float_range 0. 1. ] in
+  return (Sphere.v ~specular ~reflective ~center ~radius color)
+
+let light =
+  let* intensity = oneof [ return 0.; float_range 0. 1. ] in
+  oneof
+    [
+      return (Light.ambient intensity);
+      map (Light.point intensity) (vec (-5.) 5.);
+      map (Light.directional intensity)
+        (map (fun v -> if Vec3.norm2 v = 0. then Vec3.oy else v) (vec (-1.) 1.));
+    ]
+
+let gen =
+  let* width = int_range 1 12 and* height = int_range 1 12 in
+  let* depth = int_range 0 4 in
+  let* epsilon = oneof [ return None; map Option.some (float_range 0. 0.01) ] in
+  let* background = map3 Color.v channel channel channel in
+  let* spheres = list_size (int_range 0 6) sphere in
+  let* lights = list_size (int_range 0 4) light in
+  let* camera =
+    oneof
+      [
+        return Camera.default;
+        return Scene.cgfs_camera.camera;
+        map (fun p -> Camera.v p) (vec (-0.5) 0.5);
+      ]
+  in
+  return
+    { (Scene.v ~width ~height ~depth ?epsilon ~background ~camera ~spheres ~lights ()) with epsilon }
+
+let arbitrary =
+  let shrink (s : Scene.t) =
+    QCheck.Iter.(
+      map (fun spheres -> { s with spheres }) (QCheck.Shrink.list s.spheres)
+      <+> map (fun lights -> { s with lights }) (QCheck.Shrink.list s.lights))
+  in
+  QCheck.make ~print:Scene_file.to_string ~shrink gen

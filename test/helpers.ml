@@ -1,0 +1,89 @@
+open Raytrace
+
+let vec3 = Alcotest.testable Vec3.pp Vec3.equal
+
+let vec3_near eps =
+  Alcotest.testable Vec3.pp (Vec3.equal_f (fun a b -> Float.abs (a -. b) <= eps))
+
+let color = Alcotest.testable Color.pp Color.equal
+let float_near eps = Alcotest.float eps
+
+let check_images ?(max_abs = 0) ?min_share what ~expected actual =
+  match Image_diff.compare expected actual with
+  | Error (`Msg m) -> Alcotest.failf "%s: %s" what m
+  | Ok d ->
+      let ok =
+        match min_share with
+        | Some share -> Image_diff.share_within d >= share
+        | None -> d.max_abs <= max_abs
+      in
+      if not ok then
+        Alcotest.failf "%s: %d of %d pixels differ (%d by more than 1), by up to %d per channel, mean %.4f, PSNR %.2f dB"
+          what d.differing d.pixels d.differing_gt1 d.max_abs d.mean_abs d.psnr
+
+let scenes_dir = "../scenes"
+let scene_path name = Filename.concat scenes_dir name
+
+let scene_names () =
+  Sys.readdir scenes_dir |> Array.to_list
+  |> List.filter (fun f -> Filename.check_suffix f ".scene")
+  |> List.sort String.compare
+
+let load_scene name =
+  match Scene_file.read (scene_path name) with
+  | Ok s -> s
+  | Error (`Msg m) -> Alcotest.failf "cannot load %s: %s" name m
+
+let qcheck ?(count = 200) name arb prop =
+  let test = QCheck.Test.make ~count ~name arb prop in
+  Alcotest.test_case name `Quick (fun () ->
+      let rand = Random.State.make [| 20261121 |] in
+      QCheck.Test.check_exn ~rand test)
+
+let read_all fd =
+  let b = Buffer.create 4096 and chunk = Bytes.create 4096 in
+  let rec go () =
+    match Unix.read fd chunk 0 4096 with
+    | 0 -> ()
+    | n ->
+        Buffer.add_subbytes b chunk 0 n;
+        go ()
+    | exception Unix.Unix_error (EINTR, _, _) -> go ()
+  in
+  go ();
+  Buffer.contents b
+
+let run ?env exe args =
+  let out = Filename.temp_file "rt" ".out" and err = Filename.temp_file "rt" ".err" in
+  let fd_out = Unix.openfile out [ O_WRONLY; O_TRUNC ] 0o600 in
+  let fd_err = Unix.openfile err [ O_WRONLY; O_TRUNC ] 0o600 in
+  let argv = Array.of_list (exe :: args) in
+  let pid =
+    match env with
+    | None -> Unix.create_process exe argv Unix.stdin fd_out fd_err
+    | Some env -> Unix.create_process_env exe argv env Unix.stdin fd_out fd_err
+  in
+  Unix.close fd_out;
+  Unix.close fd_err;
+  let _, status = Unix.waitpid [] pid in
+  let slurp f =
+    let fd = Unix.openfile f [ O_RDONLY ] 0 in
+    let s = read_all fd in
+    Unix.close fd;
+    Sys.remove f;
+    s
+  in
+  let code = match status with Unix.WEXITED c -> c | WSIGNALED s | WSTOPPED s -> 128 + s in
+  (code, slurp out, slurp err)
+
+let raytrace () =
+  match Sys.getenv_opt "RAYTRACE_EXE" with
+  | Some p when Filename.is_relative p -> Filename.concat (Sys.getcwd ()) p
+  | Some p -> p
+  | None -> Alcotest.fail "RAYTRACE_EXE is not set (run the tests with dune test)"
+
+let temp_dir () =
+  let d = Filename.temp_file "raytrace-test" "" in
+  Sys.remove d;
+  Unix.mkdir d 0o755;
+  d

@@ -1,0 +1,45 @@
+(** Testables and helpers shared by the test suites. *)
+
+val vec3 : Raytrace.Vec3.t Alcotest.testable
+(** Vectors compared exactly. *)
+
+val vec3_near : float -> Raytrace.Vec3.t Alcotest.testable
+(** [vec3_near eps] compares coordinates within absolute [eps]. *)
+
+val color : Raytrace.Color.t Alcotest.testable
+(** Colours compared exactly. *)
+
+val float_near : float -> float Alcotest.testable
+(** [float_near eps] compares within absolute [eps]. *)
+
+val check_images : ?max_abs:int -> ?min_share:float -> string -> expected:Raytrace.Image.t -> Raytrace.Image.t -> unit
+(** [check_images ~max_abs ~min_share what ~expected actual] fails, saying
+    how many pixels differ and by how much, unless the sizes agree and
+    either every channel differs by at most [max_abs] (default 0) or, with
+    [min_share], at least that share of pixels is within 1 per channel. *)
+
+val scene_path : string -> string
+(** [scene_path name] is the path of [scenes/name] seen from the test
+    directory. *)
+
+val scene_names : unit -> string list
+(** [scene_names ()] is the sorted list of files in [scenes/] ending in
+    [.scene]. *)
+
+val load_scene : string -> Raytrace.Scene.t
+(** [load_scene name] parses [scenes/name], failing the test on error. *)
+
+val qcheck : ?count:int -> string -> 'a QCheck.arbitrary -> ('a -> bool) -> unit Alcotest.test_case
+(** [qcheck name arb prop] is an Alcotest case that checks the QCheck
+    property [prop] on [count] (default 200) values of [arb], with a fixed
+    seed so failures reproduce. *)
+
+val run : ?env:string array -> string -> string list -> int * string * string
+(** [run ~env exe args] runs [exe] with [args] (and environment [env],
+    default the test's) and is its exit status, stdout and stderr. *)
+
+val raytrace : unit -> string
+(** [raytrace ()] is the path of the [raytrace] executable under test. *)
+
+val temp_dir : unit -> string
+(** [temp_dir ()] is a fresh empty directory. *)

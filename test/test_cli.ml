@@ -1,0 +1,132 @@
+(* The raytrace command as a user runs it: exit statuses, one-line errors,
+   no backtraces, no partial output files. *)
+
+let run = Helpers.run
+let exe () = Helpers.raytrace ()
+
+let no_backtrace what err =
+  List.iter
+    (fun bad ->
+      if Astring_free.contains err bad then Alcotest.failf "%s: stderr shows %S:\n%s" what bad err)
+    [ "Raised at"; "Fatal error"; "exception"; "Called from" ]
+
+let one_line what err =
+  match String.split_on_char '\n' (String.trim err) with
+  | [ _ ] -> ()
+  | _ -> Alcotest.failf "%s: expected one line on stderr, got:\n%s" what err
+
+let bad_scenes =
+  [
+    ("syntax error", "(sphere (center 0 0 3)", ":1:23: syntax error");
+    ("unknown field", "(sphere (center 0 0 3) (radius 1) (colour 1 2 3))", ":1:36: unknown sphere field colour");
+    ("negative radius", "(sphere (center 0 0 3) (radius -1) (color 1 2 3))", ":1:32: sphere radius must be > 0, got -1");
+    ("reflective outside [0, 1]", "(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective -0.1))",
+     ":1:61: sphere reflective must lie in [0, 1], got -0.1");
+    ("a NaN", "(light ambient (intensity nan))", ":1:27: light ambient intensity must be a finite number, got nan");
+    ("missing light position", "(light point (intensity 0.5))", ":1:1: light point is missing its (position ...) field");
+  ]
+
+let tests =
+  [
+    Alcotest.test_case "render writes a P6 image of the canvas size" `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        let out = Filename.concat dir "x.ppm" in
+        let code, _, err = run (exe ()) [ "render"; "--width"; "40"; "--height"; "30"; Helpers.scene_path "cgfs.scene"; "-o"; out ] in
+        Alcotest.(check int) err 0 code;
+        match Raytrace.Ppm.read_file out with
+        | Ok img -> Alcotest.(check (pair int int)) __LOC__ (40, 30) (Raytrace.Image.width img, Raytrace.Image.height img)
+        | Error (`Msg m) -> Alcotest.fail m);
+    Alcotest.test_case "render -o - writes the image to stdout" `Quick (fun () ->
+        let code, out, _ = run (exe ()) [ "render"; "--width"; "8"; "--height"; "8"; "-o"; "-" ] in
+        Alcotest.(check int) __LOC__ 0 code;
+        Alcotest.(check string) __LOC__ "P6\n8 8\n255\n" (String.sub out 0 11);
+        Alcotest.(check int) __LOC__ (11 + (8 * 8 * 3)) (String.length out));
+    Alcotest.test_case "bad scenes: one located line, status 1, no output file" `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        List.iter
+          (fun (what, text, expected) ->
+            let scene = Filename.concat dir "bad.scene" and out = Filename.concat dir "bad.ppm" in
+            let oc = open_out_bin scene in
+            output_string oc text;
+            close_out oc;
+            let code, _, err = run (exe ()) [ "render"; scene; "-o"; out ] in
+            Alcotest.(check int) what 1 code;
+            one_line what err;
+            no_backtrace what err;
+            if not (Astring_free.contains err (scene ^ expected)) then
+              Alcotest.failf "%s: expected %S in %S" what (scene ^ expected) err;
+            Alcotest.(check bool) (what ^ ": no output file") false (Sys.file_exists out))
+          bad_scenes);
+    Alcotest.test_case "a missing scene file is one line and status 1" `Quick (fun () ->
+        let code, _, err = run (exe ()) [ "render"; "no-such.scene"; "-o"; "/tmp/never.ppm" ] in
+        Alcotest.(check int) __LOC__ 1 code;
+        Alcotest.(check string) __LOC__ "raytrace: no-such.scene: No such file or directory\n" err);
+    Alcotest.test_case "unwritable outputs are errors and leave no file" `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        List.iter
+          (fun (out, expected) ->
+            let code, _, err = run (exe ()) [ "render"; "--width"; "4"; "--height"; "4"; "-o"; out ] in
+            Alcotest.(check int) out 1 code;
+            one_line out err;
+            no_backtrace out err;
+            if not (Astring_free.contains err expected) then Alcotest.failf "expected %S in %S" expected err)
+          [
+            ("/nonexistent-dir/x.ppm", "No such file or directory");
+            (dir, "is a directory");
+            ("/dev/full", "No space left on device");
+          ];
+        Alcotest.(check (array string)) __LOC__ [||] (Sys.readdir dir));
+    Alcotest.test_case "the output may not overwrite the input scene" `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        let scene = Filename.concat dir "s.scene" in
+        let oc = open_out scene in
+        output_string oc "(light ambient (intensity 1))";
+        close_out oc;
+        let code, _, err = run (exe ()) [ "render"; scene; "-o"; scene ] in
+        Alcotest.(check int) __LOC__ 1 code;
+        one_line __LOC__ err;
+        let ic = open_in scene in
+        Alcotest.(check string) __LOC__ "(light ambient (intensity 1))" (input_line ic);
+        close_in ic);
+    Alcotest.test_case "bad command-line overrides are refused" `Quick (fun () ->
+        let code, _, err = run (exe ()) [ "render"; "--width"; "0"; "-o"; "/tmp/never.ppm" ] in
+        Alcotest.(check int) __LOC__ 1 code;
+        Alcotest.(check string) __LOC__ "raytrace: canvas width must lie in [1, 65536], got 0\n" err);
+    Alcotest.test_case "without a display, view says so in one line and exits 3" `Quick (fun () ->
+        let env =
+          Unix.environment () |> Array.to_list
+          |> List.filter (fun v -> not (String.length v >= 8 && String.sub v 0 8 = "DISPLAY="))
+          |> Array.of_list
+        in
+        let code, _, err = run ~env (exe ()) [ "view"; Helpers.scene_path "cgfs.scene" ] in
+        Alcotest.(check int) __LOC__ 3 code;
+        one_line __LOC__ err;
+        no_backtrace __LOC__ err;
+        if not (Astring_free.contains err "raytrace render") then Alcotest.failf "no hint in %S" err);
+    Alcotest.test_case "diff prints the metrics and --max-diff sets the status" `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        let a = Filename.concat dir "a.ppm" and b = Filename.concat dir "b.ppm" in
+        let img = Raytrace.Image.create 2 1 in
+        ignore (Raytrace.Ppm.write_file a img);
+        Raytrace.Image.set img 0 0 10 22 30;
+        ignore (Raytrace.Ppm.write_file b img);
+        let code, out, _ = run (exe ()) [ "diff"; a; b ] in
+        Alcotest.(check int) __LOC__ 0 code;
+        (* channel differences 10, 22, 30 and three zeros: mean 62 / 6;
+           MSE (100 + 484 + 900) / 6 = 247.33; PSNR 10 log10 (65025 / 247.33) = 24.20 *)
+        Alcotest.(check string) __LOC__
+          "pixels=2 differing=1 differing_gt1=1 max_abs=30 mean_abs=10.333333 psnr=24.20\n" out;
+        let code, _, err = run (exe ()) [ "diff"; "--max-diff"; "1"; a; b ] in
+        Alcotest.(check int) __LOC__ 1 code;
+        one_line __LOC__ err;
+        let code, _, err = run (exe ()) [ "diff"; a; Helpers.scene_path "cgfs.scene" ] in
+        Alcotest.(check int) __LOC__ 1 code;
+        one_line __LOC__ err);
+    Alcotest.test_case "every command has a manual with examples" `Quick (fun () ->
+        List.iter
+          (fun cmd ->
+            let code, out, _ = run (exe ()) (cmd @ [ "--help=plain" ]) in
+            Alcotest.(check int) __LOC__ 0 code;
+            if not (Astring_free.contains out "EXAMPLES") then Alcotest.failf "%s: no EXAMPLES" (String.concat " " cmd))
+          [ []; [ "view" ]; [ "render" ]; [ "diff" ] ]);
+  ]

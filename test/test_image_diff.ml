@@ -1,0 +1,36 @@
+open Raytrace
+
+let pair () =
+  let a = Image.create 2 1 and b = Image.create 2 1 in
+  Image.set a 0 0 10 20 30;
+  Image.set b 0 0 10 22 30;
+  (a, b)
+
+let stats a b = match Image_diff.compare a b with Ok d -> d | Error (`Msg m) -> Alcotest.fail m
+
+let tests =
+  [
+    Alcotest.test_case "identical images differ nowhere" `Quick (fun () ->
+        let a, _ = pair () in
+        let d = stats a a in
+        Alcotest.(check (list int)) __LOC__ [ 2; 0; 0; 0 ] [ d.pixels; d.differing; d.differing_gt1; d.max_abs ];
+        Alcotest.(check (float 0.)) __LOC__ infinity d.psnr);
+    Alcotest.test_case "one channel off by 2 in a 2 x 1 image" `Quick (fun () ->
+        let a, b = pair () in
+        let d = stats a b in
+        (* 6 channels, one differs by 2: mean 2 / 6; MSE 4 / 6;
+           PSNR = 10 log10 (65025 / (2/3)) = 10 log10 97537.5 = 49.8917 dB *)
+        Alcotest.(check (list int)) __LOC__ [ 2; 1; 1; 2 ] [ d.pixels; d.differing; d.differing_gt1; d.max_abs ];
+        Alcotest.(check (float 1e-12)) __LOC__ (2. /. 6.) d.mean_abs;
+        Alcotest.(check (float 1e-4)) __LOC__ 49.8917 d.psnr;
+        Alcotest.(check (float 0.)) __LOC__ 0.5 (Image_diff.share_within d));
+    Alcotest.test_case "a difference of 1 is within 1" `Quick (fun () ->
+        let a = Image.create 1 1 and b = Image.create 1 1 in
+        Image.set b 0 0 1 1 1;
+        let d = stats a b in
+        Alcotest.(check (list int)) __LOC__ [ 1; 0; 1 ] [ d.differing; d.differing_gt1; d.max_abs ]);
+    Alcotest.test_case "images of different sizes cannot be compared" `Quick (fun () ->
+        match Image_diff.compare (Image.create 2 1) (Image.create 1 2) with
+        | Ok _ -> Alcotest.fail "compared"
+        | Error (`Msg m) -> Alcotest.(check string) __LOC__ "image sizes differ: 2x1 and 1x2" m);
+  ]

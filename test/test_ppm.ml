@@ -1,0 +1,63 @@
+open Raytrace
+
+let image_2x1 () =
+  let img = Image.create 2 1 in
+  Image.set img 0 0 255 0 10;
+  Image.set img 1 0 1 2 3;
+  img
+
+let decode s = match Ppm.of_string s with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
+let error s = match Ppm.of_string s with Ok _ -> Alcotest.failf "accepted %S" s | Error (`Msg m) -> m
+
+let tests =
+  [
+    Alcotest.test_case "P6 is the header then the bytes, rows top-down" `Quick (fun () ->
+        Alcotest.(check string) __LOC__ "P6\n2 1\n255\n\255\000\010\001\002\003" (Ppm.to_string (image_2x1 ())));
+    Alcotest.test_case "P6 reads back what it wrote" `Quick (fun () ->
+        let img = image_2x1 () in
+        Alcotest.(check bool) __LOC__ true (Image.equal img (decode (Ppm.to_string img))));
+    Alcotest.test_case "P3 with comments and odd spacing reads" `Quick (fun () ->
+        let img = decode "P3 # plain\n2 1\n# max\n255\n255 0 10\t1 2\n3\n" in
+        Alcotest.(check bool) __LOC__ true (Image.equal (image_2x1 ()) img));
+    Alcotest.test_case "a maxval below 255 is rescaled" `Quick (fun () ->
+        (* 1 of maxval 1 is 255; 2 of 4 is round (2 * 255 / 4) = 128 *)
+        Alcotest.(check (triple int int int)) __LOC__ (255, 0, 255) (Image.get (decode "P3 1 1 1 1 0 1") 0 0);
+        Alcotest.(check (triple int int int)) __LOC__ (128, 0, 255) (Image.get (decode "P3 1 1 4 2 0 4") 0 0));
+    Alcotest.test_case "malformed files are errors, not exceptions" `Quick (fun () ->
+        List.iter
+          (fun (input, expected) -> Alcotest.(check string) (String.escaped input) expected (error input))
+          [
+            ("", "not a PPM file: it must start with P6 or P3 and a whitespace");
+            ("P5\n1 1\n255\n\000", "not a PPM file: it must start with P6 or P3 and a whitespace");
+            ("P6\n2 1\n255\n\000\000\000", "pixel data is truncated: 3 of 6 bytes");
+            ("P6\n1 1\n255\n\000\000\000\000", "1 bytes of unexpected data after the pixels");
+            ("P6\n1 1\n0\n\000\000\000", "maxval must lie in [1, 255], got 0");
+            ("P6\n1 1\n65535\n\000\000\000", "maxval must lie in [1, 255], got 65535");
+            ("P6\n-1 1\n255\n", "width: expected a decimal number at byte 3, got \"-1\"");
+            ("P6\n0 1\n255\n", "image size 0x1 is empty");
+            ("P6\n100000 100000\n255\n", "image size 100000x100000 is too large");
+            ("P6\n1 1", "unexpected end of file in the header");
+            ("P3\n1 1\n255\n1 2", "pixel data is truncated: fewer than 3 samples");
+            ("P3\n1 1\n255\n1 2 300", "sample 300 at byte 15 exceeds maxval 255");
+            ("P3\n1 1\n255\n1 2 3 4", "unexpected data after the pixels at byte 17");
+          ]);
+    Alcotest.test_case "write_file replaces the file only when complete" `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        let path = Filename.concat dir "out.ppm" in
+        (match Ppm.write_file path (image_2x1 ()) with Ok () -> () | Error (`Msg m) -> Alcotest.fail m);
+        (match Ppm.read_file path with
+        | Ok img -> Alcotest.(check bool) __LOC__ true (Image.equal img (image_2x1 ()))
+        | Error (`Msg m) -> Alcotest.fail m);
+        Alcotest.(check (list string)) __LOC__ [ "out.ppm" ] (Array.to_list (Sys.readdir dir)));
+    Alcotest.test_case "writing into a missing directory is an error that names it" `Quick (fun () ->
+        match Ppm.write_file "/nonexistent-dir/out.ppm" (image_2x1 ()) with
+        | Ok () -> Alcotest.fail "wrote into a missing directory"
+        | Error (`Msg m) ->
+            Alcotest.(check string) __LOC__
+              "/nonexistent-dir/out.ppm: cannot create a file in its directory: No such file or directory" m);
+    Alcotest.test_case "a full disk leaves no temporary file" `Quick (fun () ->
+        if Sys.file_exists "/dev/full" then
+          match Ppm.write_file "/dev/full" (image_2x1 ()) with
+          | Ok () -> Alcotest.fail "wrote to /dev/full"
+          | Error (`Msg m) -> Alcotest.(check string) __LOC__ "/dev/full: No space left on device" m);
+  ]

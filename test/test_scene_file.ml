@@ -1,0 +1,117 @@
+open Raytrace
+
+let scene = Alcotest.testable Scene.pp Scene.equal
+
+let parse text =
+  match Scene_file.of_string ~file:"t.scene" text with
+  | Ok s -> s
+  | Error (`Msg m) -> Alcotest.failf "unexpected error: %s" m
+
+let error text =
+  match Scene_file.of_string ~file:"t.scene" text with
+  | Ok _ -> Alcotest.failf "expected an error for %S" text
+  | Error (`Msg m) -> m
+
+(* Each bad input, and the exact message: file:line:column (1-based) and
+   what was expected. *)
+let bad_inputs =
+  [
+    ("(sphere (center 0 0 3) (radius 1) (color 1 2 3)", "t.scene:1:48: syntax error: unclosed parentheses at end of input");
+    ("(sphere (center 0 0 3) (radius -1) (color 1 2 3))", "t.scene:1:32: sphere radius must be > 0, got -1");
+    ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 1.5))",
+     "t.scene:1:61: sphere reflective must lie in [0, 1], got 1.5");
+    ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflectiv 0.5))",
+     "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, color, specular or reflective (did you mean reflective?)");
+    ("(sphere (center 0 nan 3) (radius 1) (color 1 2 3))", "t.scene:1:19: sphere center must be a finite number, got nan");
+    ("(sphere (center 0 0 3) (radius inf) (color 1 2 3))", "t.scene:1:32: sphere radius must be a finite number, got inf");
+    ("(sphere (center 0 0) (radius 1) (color 1 2 3))", "t.scene:1:9: sphere center takes 3 numbers (x y z), got 2 values");
+    ("(sphere (center 0 0 3) (color 1 2 3))", "t.scene:1:1: sphere is missing its (radius ...) field");
+    ("(sphere (center 0 0 3) (radius 1) (color 300 2 3))",
+     "t.scene:1:35: sphere color channels must lie in [0, 255], got (300 2 3)");
+    ("(sphere (center 0 0 3) (radius 1) (radius 2) (color 1 2 3))",
+     "t.scene:1:36: duplicate sphere field radius (first given at 1:25)");
+    ("(sphere (center 0 0 3) (radius one) (color 1 2 3))", "t.scene:1:32: sphere radius: expected a number, got one");
+    ("(light point (intensity 0.6))", "t.scene:1:1: light point is missing its (position ...) field");
+    ("(light spot (intensity 0.6))", "t.scene:1:8: unknown light kind spot; expected ambient, point or directional");
+    ("(light directional (intensity 0.2) (direction 0 0 0))",
+     "t.scene:1:36: directional light direction must not be the zero vector");
+    ("(light ambient (intensity -1))", "t.scene:1:27: light intensity must be finite and >= 0, got -1");
+    ("(light ambient (intensity 0.2) (position 1 2 3))",
+     "t.scene:1:33: unknown light ambient field position; expected intensity");
+    ("(canvas (width 600) (height 60.5))", "t.scene:1:29: canvas height: expected an integer, got 60.5");
+    ("(canvas (width 0))", "t.scene:1:16: canvas width must lie in [1, 65536], got 0");
+    ("(canvas (width 65536) (height 65536))", "t.scene:1:1: canvas 65536x65536 has more than 268435456 pixels");
+    ("(recursion-depth -1)", "t.scene:1:18: recursion depth must lie in [0, 64], got -1");
+    ("(epsilon 0.001)\n(epsilon 0.01)", "t.scene:2:2: duplicate epsilon form (first given at 1:2); it may appear only once");
+    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected canvas, viewport, camera, background, recursion-depth, epsilon, sphere or light (did you mean sphere?)");
+    ("sphere", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got sphere");
+    ("()", "t.scene:1:1: empty form (); expected one of canvas, viewport, camera, background, recursion-depth, epsilon, sphere or light");
+    ("(camera (look-at 0 0 0))", "t.scene:1:9: the camera looks at its own position");
+    ("(camera (rotation (1 0 0) (1 0 0) (0 0 1)))",
+     "t.scene:1:9: camera rotation must be invertible, but its rows are (nearly) linearly dependent");
+    ("(camera (rotation (1 0 0) (0 1 0) (0 0 1)) (look-at 0 0 1))",
+     "t.scene:1:44: camera takes either (rotation ...) or (look-at ...), not both");
+    ("(viewport (distance 0))", "t.scene:1:21: viewport distance must be > 0, got 0");
+    ("(background 0 0)", "t.scene:1:1: background takes 3 numbers (r g b), got 2 values");
+    ("\"a\nb\"", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got \"a\\nb\"");
+    ("(sphere (center 1e13 0 0) (radius 1) (color 1 2 3))",
+     "t.scene:1:9: sphere center must be finite and at most 1e12 in magnitude, got 10000000000000");
+  ]
+
+let tests =
+  [
+    Alcotest.test_case "scenes/cgfs.scene is the built-in reference scene" `Quick (fun () ->
+        Alcotest.check scene __LOC__ Scene.cgfs (Helpers.load_scene "cgfs.scene"));
+    Alcotest.test_case "scenes/cgfs-camera.scene is the camera demo" `Quick (fun () ->
+        Alcotest.check scene __LOC__ Scene.cgfs_camera (Helpers.load_scene "cgfs-camera.scene"));
+    Alcotest.test_case "every scene in scenes/ loads" `Quick (fun () ->
+        List.iter (fun name -> ignore (Helpers.load_scene name)) (Helpers.scene_names ()));
+    Alcotest.test_case "omitted forms take the document's values" `Quick (fun () ->
+        let s = parse "(light ambient (intensity 1))" in
+        Alcotest.(check (pair int int)) __LOC__ (600, 600) (s.width, s.height);
+        Alcotest.(check int) __LOC__ 3 s.depth;
+        Alcotest.(check bool) __LOC__ true (Viewport.equal s.viewport Viewport.default);
+        Alcotest.(check bool) __LOC__ true (Camera.equal s.camera Camera.default);
+        Alcotest.(check (option (float 0.))) __LOC__ None s.epsilon;
+        Alcotest.check Helpers.color __LOC__ Color.black s.background);
+    Alcotest.test_case "specular and reflective default to matte and 0" `Quick (fun () ->
+        let s = parse "(sphere (center 0 0 3) (radius 1) (color 1 2 3))" in
+        match s.spheres with
+        | [ sp ] ->
+            Alcotest.(check (float 0.)) __LOC__ (-1.) sp.specular;
+            Alcotest.(check (float 0.)) __LOC__ 0. sp.reflective
+        | _ -> Alcotest.fail "one sphere expected");
+    Alcotest.test_case "comments of every kind are ignored" `Quick (fun () ->
+        let s =
+          parse
+            "; line\n#| block |#\n#;(sphere (center 0 0 0))\n(recursion-depth 2) ; trailing\n"
+        in
+        Alcotest.(check int) __LOC__ 2 s.depth;
+        Alcotest.(check int) __LOC__ 0 (List.length s.spheres));
+    Alcotest.test_case "look-at builds the camera" `Quick (fun () ->
+        let s = parse "(camera (position 3 0 1) (look-at 2 0 2) (up 0 1 0))" in
+        let d = Camera.direction s.camera Vec3.oz in
+        let k = 1. /. sqrt 2. in
+        Alcotest.check (Helpers.vec3_near 1e-15) __LOC__ (Vec3.v (-.k) 0. k) d);
+    Alcotest.test_case "bad input gets one located line" `Quick (fun () ->
+        List.iter
+          (fun (text, expected) -> Alcotest.(check string) (String.escaped text) expected (error text))
+          bad_inputs);
+    Alcotest.test_case "errors are one line and never raise" `Quick (fun () ->
+        List.iter
+          (fun (text, _) -> Alcotest.(check bool) text false (String.contains (error text) '\n'))
+          bad_inputs);
+    Alcotest.test_case "a missing file is an error naming it" `Quick (fun () ->
+        match Scene_file.read "no/such.scene" with
+        | Ok _ -> Alcotest.fail "loaded a missing file"
+        | Error (`Msg m) -> Alcotest.(check string) __LOC__ "no/such.scene: No such file or directory" m);
+    Alcotest.test_case "printing the reference scenes reads back equal" `Quick (fun () ->
+        List.iter
+          (fun s -> Alcotest.check scene __LOC__ s (parse (Scene_file.to_string s)))
+          [ Scene.cgfs; Scene.cgfs_camera ]);
+    Helpers.qcheck ~count:300 "any valid scene prints and parses back equal" Gen_scene.arbitrary
+      (fun s ->
+        match Scene_file.of_string (Scene_file.to_string s) with
+        | Ok s' -> Scene.equal s s'
+        | Error (`Msg m) -> QCheck.Test.fail_report m);
+  ]
