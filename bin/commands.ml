@@ -11,6 +11,8 @@ type scene_options = {
   depth : int option;
 }
 
+type sampling_options = { samples : int option; adaptive : int option; subsample : bool }
+
 let ( let* ) = Result.bind
 let msg fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 
@@ -33,20 +35,30 @@ let scene_name opts =
 
 let jobs_or_cores = function Some j -> j | None -> Parallel.cores ()
 
+let sampling_of (o : sampling_options) =
+  Sampling.v ?samples:o.samples ?adaptive:o.adaptive ~subsample:o.subsample ()
+
 (* The image, its statistics (none for the oracle) and its tracing time. *)
-let render_image ~literal ~jobs scene =
+let render_image ?(sampling = Sampling.one) ~literal ~jobs scene =
   if literal then
-    let t0 = Unix.gettimeofday () in
-    let img = Literal.render scene in
-    Ok (img, None, Unix.gettimeofday () -. t0)
+    if not (Sampling.is_one sampling) then
+      msg "--literal traces one ray per pixel: it cannot be combined with --samples or --subsample"
+    else
+      let t0 = Unix.gettimeofday () in
+      let img = Literal.render scene in
+      Ok (img, None, Unix.gettimeofday () -. t0)
   else
-    let* img, stats = Render.image ~jobs scene in
+    let* img, stats =
+      Render.image ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
+        ~subsample:sampling.subsample scene
+    in
     Ok (img, Some stats, stats.trace_s)
 
-let view opts ~jobs =
+let view opts ~jobs ~sampling =
   report
-    (let* scene = load opts in
-     let* img, _, _ = render_image ~literal:false ~jobs:(jobs_or_cores jobs) scene in
+    (let* sampling = sampling_of sampling in
+     let* scene = load opts in
+     let* img, _, _ = render_image ~sampling ~literal:false ~jobs:(jobs_or_cores jobs) scene in
      match Window.show ~title:("raytrace: " ^ scene_name opts) img with
      | Ok () -> Ok exit_ok
      | Error (`Msg _ as e) -> Error e
@@ -77,7 +89,7 @@ let write output img =
   end
   else Ppm.write_file output img
 
-let render opts ~output ~jobs ~stats ~literal =
+let render opts ~output ~jobs ~stats ~literal ~sampling =
   let output = Option.value output ~default:(default_output opts) in
   report
     (let* () =
@@ -86,8 +98,9 @@ let render opts ~output ~jobs ~stats ~literal =
            msg "%s: the output file is the input scene; choose another output path" output
        | _ -> Ok ()
      in
+     let* sampling = sampling_of sampling in
      let* scene = load opts in
-     let* img, st, seconds = render_image ~literal ~jobs:(jobs_or_cores jobs) scene in
+     let* img, st, seconds = render_image ~sampling ~literal ~jobs:(jobs_or_cores jobs) scene in
      let* () = write output img in
      (match (stats, st) with
      | true, Some st -> Format.eprintf "%a@?" Stats.pp_table st

@@ -19,14 +19,29 @@ type scene_options = {
 }
 (** The options that select and override a scene. *)
 
-val view : scene_options -> jobs:int option -> int
-(** [view opts ~jobs] renders the scene and shows it in a window. *)
+type sampling_options = {
+  samples : int option;  (** [--samples N]: an [N x N] grid of rays per pixel. *)
+  adaptive : int option;  (** [--adaptive T]: adaptive supersampling, threshold [T]. *)
+  subsample : bool;  (** [--subsample]: CGFS's subsampling. *)
+}
+(** The options that choose the rays per pixel ({!Raytrace.Sampling}). *)
+
+val view : scene_options -> jobs:int option -> sampling:sampling_options -> int
+(** [view opts ~jobs ~sampling] renders the scene and shows it in a
+    window. *)
 
 val render :
-  scene_options -> output:string option -> jobs:int option -> stats:bool -> literal:bool -> int
-(** [render opts ~output ~jobs ~stats ~literal] renders the scene to a PPM
-    file ([-] for stdout; default: the scene's base name with [.ppm]),
-    written atomically. [literal] uses the oracle {!Raytrace.Literal}. *)
+  scene_options ->
+  output:string option ->
+  jobs:int option ->
+  stats:bool ->
+  literal:bool ->
+  sampling:sampling_options ->
+  int
+(** [render opts ~output ~jobs ~stats ~literal ~sampling] renders the
+    scene to a PPM file ([-] for stdout; default: the scene's base name
+    with [.ppm]), written atomically. [literal] uses the oracle
+    {!Raytrace.Literal}, which traces one ray per pixel only. *)
 
 val diff : string -> string -> max_diff:int option -> int
 (** [diff a b ~max_diff] prints the difference figures of images [a] and

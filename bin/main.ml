@@ -36,6 +36,50 @@ let jobs =
     & info [ "jobs"; "j" ] ~docv:"N"
         ~doc:"Trace with $(docv) processes (default: the number of cores). The image is the same for every $(docv).")
 
+let sampling =
+  let samples =
+    Arg.(
+      value
+      & opt (some int) None
+      & info [ "samples" ] ~docv:"N"
+          ~doc:
+            "Antialiasing: trace a regular $(docv) x $(docv) grid of rays in every pixel and \
+             average them (each clamped to 0-255 first). 1, the default, is the document's \
+             image. With $(b,--adaptive), the largest grid.")
+  in
+  let adaptive =
+    Arg.(
+      value
+      & opt (some int) None
+      & info [ "adaptive" ] ~docv:"T"
+          ~doc:
+            "Adaptive supersampling: trace one ray per pixel, then the rest of the $(b,--samples) \
+             grid only in pixels whose ray hit another sphere than a neighbour's, or whose \
+             colour differs from a neighbour's by more than $(docv) (0-255) in some channel. \
+             Never traces more rays than full sampling.")
+  in
+  let subsample =
+    Arg.(
+      value & flag
+      & info [ "subsample" ]
+          ~doc:
+            "CGFS's subsampling, approximate: where the pixels on either side of a pixel hit \
+             the same sphere, assume its ray hits that sphere too and skip the search for it.")
+  in
+  let make samples adaptive subsample = Commands.{ samples; adaptive; subsample } in
+  Term.(const make $ samples $ adaptive $ subsample)
+
+let quality_section =
+  `Blocks
+    [
+      `S "RUN TIME AGAINST ERROR";
+      `P
+        "$(b,--depth) (mirror reflections), $(b,--samples) (rays per pixel) and $(b,--adaptive) \
+         trade time for accuracy; the README shows the measured trade-off on four scenes \
+         ($(b,make bench-quality)) and the recommended settings: $(b,--samples 1) for previews, \
+         $(b,--samples 5 --adaptive 4) for final renders.";
+    ]
+
 let scene_format =
   `Blocks
     [
@@ -61,7 +105,8 @@ let view_info =
       ]
 
 let view_term =
-  Term.(const (fun opts jobs -> Commands.view opts ~jobs) $ scene_options $ jobs)
+  Term.(
+    const (fun opts jobs sampling -> Commands.view opts ~jobs ~sampling) $ scene_options $ jobs $ sampling)
 
 let render_cmd =
   let output =
@@ -92,17 +137,21 @@ let render_cmd =
              file is written atomically: a failed or interrupted render leaves no file, and an \
              existing file keeps its contents.";
           scene_format;
+          quality_section;
           `S Manpage.s_examples;
           `Pre
             "raytrace render scenes/cgfs.scene -o cgfs.ppm\n\
              raytrace render --width 1920 --height 1920 --stats scenes/cgfs.scene -o big.ppm\n\
+             raytrace render --samples 4 scenes/cgfs.scene -o smooth.ppm\n\
+             raytrace render --samples 5 --adaptive 4 scenes/sphere-grid.scene -o final.ppm\n\
              raytrace render scenes/cgfs.scene -o - | convert ppm:- cgfs.png";
         ]
   in
   Cmd.v info
     Term.(
-      const (fun opts output jobs stats literal -> Commands.render opts ~output ~jobs ~stats ~literal)
-      $ scene_options $ output $ jobs $ stats $ literal)
+      const (fun opts output jobs stats literal sampling ->
+          Commands.render opts ~output ~jobs ~stats ~literal ~sampling)
+      $ scene_options $ output $ jobs $ stats $ literal $ sampling)
 
 let diff_cmd =
   let image n =

@@ -47,13 +47,20 @@ let save_counters ints w tr words =
   set 4 c.early_stops;
   set 5 (truncate words)
 
-let image ?(jobs = 1) ?skips (scene : Scene.t) =
+let image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene.t) =
   if jobs < 1 then invalid_arg "Render.image: jobs < 1";
+  let sampling =
+    match Sampling.v ?samples ?adaptive ?subsample () with
+    | Ok s -> s
+    | Error (`Msg m) -> invalid_arg ("Render.image: " ^ m)
+  in
   let t0 = Unix.gettimeofday () in
   let p = Prepared.prepare ?skips scene in
   let t1 = Unix.gettimeofday () in
   let jobs = min jobs scene.height in
-  let sum ints i = List.init jobs (fun w -> Int64.to_int ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in
+  (* Counter slots: one per worker and pass. *)
+  let slots = ref jobs in
+  let sum ints i = List.init !slots (fun w -> Int64.to_int ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in
   let finish img ints =
     let t2 = Unix.gettimeofday () in
     let stats =
@@ -73,16 +80,18 @@ let image ?(jobs = 1) ?skips (scene : Scene.t) =
     in
     Ok (img, stats)
   in
-  let work img ints w =
-    let tr = Trace.create p in
-    let before = Gc.minor_words () in
-    rows tr img ~first:w ~step:jobs;
-    save_counters ints w tr (Gc.minor_words () -. before)
-  in
+  let averaging = Sampling.averaging sampling in
   if jobs = 1 then begin
+    (* One tracer for every pass. *)
     let img = Image.create scene.width scene.height in
+    let plan = Sampling.plan sampling img ~shared:false in
     let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
-    work img ints 0;
+    let tr = Trace.create ~averaging p in
+    let before = Gc.minor_words () in
+    for i = 0 to Sampling.passes plan - 1 do
+      Sampling.rows plan i tr ~first:0 ~step:1
+    done;
+    save_counters ints 0 tr (Gc.minor_words () -. before);
     finish img ints
   end
   else
@@ -90,10 +99,25 @@ let image ?(jobs = 1) ?skips (scene : Scene.t) =
       Image.of_buffer scene.width scene.height
         (Parallel.shared_bytes (3 * scene.width * scene.height))
     in
-    let ints = Parallel.shared_ints (jobs * counter_fields) in
-    match Parallel.run jobs (work img ints) with
-    | Ok () -> finish img ints
-    | Error e -> Error e
+    let plan = Sampling.plan sampling img ~shared:true in
+    let passes = Sampling.passes plan in
+    slots := passes * jobs;
+    let ints = Parallel.shared_ints (passes * jobs * counter_fields) in
+    (* A pass starts once the previous one has finished in every worker. *)
+    let rec run i =
+      if i = passes then finish img ints
+      else
+        let work w =
+          let tr = Trace.create ~averaging p in
+          let before = Gc.minor_words () in
+          Sampling.rows plan i tr ~first:w ~step:jobs;
+          save_counters ints ((i * jobs) + w) tr (Gc.minor_words () -. before)
+        in
+        match Parallel.run jobs work with Ok () -> run (i + 1) | Error e -> Error e
+    in
+    run 0
 
-let image_exn ?jobs ?skips scene =
-  match image ?jobs ?skips scene with Ok (img, _) -> img | Error (`Msg m) -> failwith m
+let image_exn ?jobs ?skips ?samples ?adaptive ?subsample scene =
+  match image ?jobs ?skips ?samples ?adaptive ?subsample scene with
+  | Ok (img, _) -> img
+  | Error (`Msg m) -> failwith m

@@ -17,13 +17,24 @@ val region : Trace.t -> Image.t -> x:int -> y:int -> w:int -> h:int -> unit
     @raise Invalid_argument if the region is not inside the canvas. *)
 
 val image :
-  ?jobs:int -> ?skips:bool -> Scene.t -> (Image.t * Stats.t, [> `Msg of string ]) result
-(** [image ~jobs ~skips scene] is the image of [scene] and what it cost.
-    [jobs] (default 1) processes trace interleaved rows; [skips] is passed
-    to {!Prepared.prepare}. [Error] if a worker process dies.
-    @raise Invalid_argument if [scene] fails {!Scene.validate} or
-    [jobs < 1]. *)
+  ?jobs:int ->
+  ?skips:bool ->
+  ?samples:int ->
+  ?adaptive:int ->
+  ?subsample:bool ->
+  Scene.t ->
+  (Image.t * Stats.t, [> `Msg of string ]) result
+(** [image ~jobs ~skips ~samples ~adaptive ~subsample scene] is the image
+    of [scene] and what it cost. [jobs] (default 1) processes trace
+    interleaved rows; [skips] is passed to {!Prepared.prepare};
+    [samples] (default 1: the document's image), [adaptive] and
+    [subsample] are the rays per pixel of {!Sampling.v}. The image is the
+    same for every [jobs], and with or without [skips]. [Error] if a
+    worker process dies.
+    @raise Invalid_argument if [scene] fails {!Scene.validate},
+    [jobs < 1], or {!Sampling.v} refuses the sampling settings. *)
 
-val image_exn : ?jobs:int -> ?skips:bool -> Scene.t -> Image.t
+val image_exn :
+  ?jobs:int -> ?skips:bool -> ?samples:int -> ?adaptive:int -> ?subsample:bool -> Scene.t -> Image.t
 (** [image_exn] is the image of {!image}.
     @raise Failure if a worker process dies. *)
