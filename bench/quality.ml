@@ -256,16 +256,27 @@ let summary ~runs scenes rows =
   Buffer.contents b
 
 let () =
-  let out = ref "docs" and runs = ref 5 and only = ref [] in
+  let out = ref "docs" and runs = ref 5 and only = ref [] and native = ref false in
   Arg.parse
     [
       ("--out", Arg.Set_string out, "DIR  where to write quality.csv, quality.png, quality.md (default docs)");
       ("--runs", Arg.Set_int runs, "R  at least R timed runs per setting (default 5)");
       ("--scene", Arg.String (fun s -> only := s :: !only), "NAME  only this scene (repeatable)");
+      ("--native", Arg.Set native, " at the scene files' own canvas sizes (slower)");
     ]
     (fun a -> raise (Arg.Bad ("unexpected argument " ^ a)))
-    "quality [--out DIR] [--runs R] [--scene NAME]: run time against error";
-  let selected = List.filter (fun (n, _, _, _) -> !only = [] || List.mem n !only) scenes in
+    "quality [--out DIR] [--runs R] [--scene NAME] [--native]: run time against error";
+  let selected =
+    List.filter_map
+      (fun (n, path, w, h) ->
+        if !only <> [] && not (List.mem n !only) then None
+        else if not !native then Some (n, path, w, h)
+        else
+          match Scene_file.read path with
+          | Ok s -> Some (n, path, s.width, s.height)
+          | Error (`Msg m) -> failwith m)
+      scenes
+  in
   let rows =
     List.concat_map
       (fun (name, path, w, h) ->

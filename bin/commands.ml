@@ -103,7 +103,7 @@ let render opts ~output ~jobs ~stats ~literal ~sampling =
      let* img, st, seconds = render_image ~sampling ~literal ~jobs:(jobs_or_cores jobs) scene in
      let* () = write output img in
      (match (stats, st) with
-     | true, Some st -> Format.eprintf "%a@?" Stats.pp_table st
+     | true, Some st -> Format.eprintf "%-24s %s@\n%a@?" "sampling" (Sampling.to_string sampling) Stats.pp_table st
      | true, None -> Format.eprintf "literal oracle: %.3f s@." seconds
      | false, _ -> ());
      if output <> "-" then

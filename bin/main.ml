@@ -53,10 +53,11 @@ let sampling =
       & opt (some int) None
       & info [ "adaptive" ] ~docv:"T"
           ~doc:
-            "Adaptive supersampling: trace one ray per pixel, then the rest of the $(b,--samples) \
-             grid only in pixels whose ray hit another sphere than a neighbour's, or whose \
-             colour differs from a neighbour's by more than $(docv) (0-255) in some channel. \
-             Never traces more rays than full sampling.")
+            "Adaptive supersampling: trace one ray per pixel, through its centre, then the rest \
+             of the $(b,--samples) grid (an odd N: 3, 5, 7...) only in pixels whose ray hit \
+             another sphere than a neighbour's, or whose colour differs from a neighbour's by \
+             more than $(docv) (0-255) in some channel. Never traces more rays than full \
+             sampling.")
   in
   let subsample =
     Arg.(
@@ -74,10 +75,12 @@ let quality_section =
     [
       `S "RUN TIME AGAINST ERROR";
       `P
-        "$(b,--depth) (mirror reflections), $(b,--samples) (rays per pixel) and $(b,--adaptive) \
-         trade time for accuracy; the README shows the measured trade-off on four scenes \
-         ($(b,make bench-quality)) and the recommended settings: $(b,--samples 1) for previews, \
-         $(b,--samples 5 --adaptive 4) for final renders.";
+        "$(b,--depth) (mirror reflections), $(b,--samples) (rays per pixel), $(b,--adaptive) \
+         and $(b,--subsample) trade time for accuracy; the README shows the trade-off measured \
+         on four scenes ($(b,make bench-quality)). Recommended: the default (one ray per \
+         pixel) or $(b,--subsample) for previews; $(b,--samples 5 --adaptive 2 --depth 5) for \
+         final renders; full sampling ($(b,--samples 4)) where spheres are smaller than a \
+         pixel, which adaptive sampling cannot see.";
     ]
 
 let scene_format =
@@ -143,7 +146,7 @@ let render_cmd =
             "raytrace render scenes/cgfs.scene -o cgfs.ppm\n\
              raytrace render --width 1920 --height 1920 --stats scenes/cgfs.scene -o big.ppm\n\
              raytrace render --samples 4 scenes/cgfs.scene -o smooth.ppm\n\
-             raytrace render --samples 5 --adaptive 4 scenes/sphere-grid.scene -o final.ppm\n\
+             raytrace render --samples 5 --adaptive 2 --depth 5 scenes/cgfs.scene -o final.ppm\n\
              raytrace render scenes/cgfs.scene -o - | convert ppm:- cgfs.png";
         ]
   in

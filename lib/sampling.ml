@@ -42,14 +42,18 @@ let plan s img ~shared =
   let pixels = Image.width img * Image.height img in
   let adaptive = s.adaptive <> None in
   let needs_hits = adaptive || s.subsample in
+  (* Empty buffers need no shared memory. *)
   let bytes n =
-    if shared then Parallel.shared_bytes n
+    if shared && n > 0 then Parallel.shared_bytes n
     else Bigarray.Array1.create Bigarray.int8_unsigned Bigarray.c_layout n
   in
   let floats n =
-    if shared then Parallel.shared_floats n else Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout n
+    if shared && n > 0 then Parallel.shared_floats n
+    else Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout n
   in
-  let ints n = if shared then Parallel.shared_ints n else Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout n in
+  let ints n =
+    if shared && n > 0 then Parallel.shared_ints n else Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout n
+  in
   (* Unused buffers are empty; every used element is written before it is read. *)
   {
     s;
