@@ -43,11 +43,10 @@ let render_image ~literal ~jobs scene =
     let* img, stats = Render.image ~jobs scene in
     Ok (img, Some stats, stats.trace_s)
 
-let view opts ~jobs =
+let view opts ~jobs:_ =
   report
     (let* scene = load opts in
-     let* img, _, _ = render_image ~literal:false ~jobs:(jobs_or_cores jobs) scene in
-     match Window.show ~title:("raytrace: " ^ scene_name opts) img with
+     match Window.run ~name:(scene_name opts) ~scene_file:opts.scene scene with
      | Ok () -> Ok exit_ok
      | Error (`Msg _ as e) -> Error e
      | Error (`No_display reason) ->

@@ -14,6 +14,9 @@ let () =
       ("ppm", Test_ppm.tests);
       ("image_diff", Test_image_diff.tests);
       ("render", Test_render.tests);
+      ("antialias", Test_antialias.tests);
+      ("progressive", Test_progressive.tests);
+      ("view", Test_view.tests);
       ("golden", Test_golden.tests);
       ("cli", Test_cli.tests);
       ("window", Test_window.tests);

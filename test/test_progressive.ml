@@ -1,0 +1,59 @@
+(* Progressive rendering ends in the very image that Render makes. *)
+open Raytrace
+
+let small (s : Scene.t) = Scene.with_overrides ~width:61 ~height:37 s
+
+let run_to_end r =
+  let bands = ref [] in
+  let rec go () = match Progressive.step r with Some b -> bands := b :: !bands; go () | None -> () in
+  go ();
+  List.rev !bands
+
+let primary r = (Trace.counters (Progressive.tracer r)).primary
+
+let tests =
+  [
+    Alcotest.test_case "the first step traces one band of 16-pixel blocks" `Quick (fun () ->
+        let r = Progressive.create Scene.cgfs in
+        (match Progressive.step r with
+        | Some b -> Alcotest.(check (list int)) __LOC__ [ 16; 0; 16 ] [ b.size; b.top; b.rows ]
+        | None -> Alcotest.fail "no band");
+        (* columns 0, 16, ..., 592: ceil (600 / 16) = 38 pixels *)
+        Alcotest.(check int) __LOC__ 38 (primary r);
+        Alcotest.(check bool) __LOC__ false (Progressive.finished r));
+    Alcotest.test_case "passes halve the blocks down to single pixels, band after band" `Quick (fun () ->
+        let bands = run_to_end (Progressive.create (small Scene.cgfs)) in
+        (* 37 rows: ceil (37 / s) bands per pass s = 16, 8, 4, 2, 1: 3 + 5 + 10 + 19 + 37 *)
+        Alcotest.(check int) __LOC__ 74 (List.length bands);
+        let last = List.nth bands 73 in
+        Alcotest.(check (list int)) __LOC__ [ 1; 36; 1 ] [ last.size; last.top; last.rows ];
+        let third = List.nth bands 2 in
+        (* the last 16-pixel band holds rows 32 to 36 *)
+        Alcotest.(check (list int)) __LOC__ [ 16; 32; 5 ] [ third.size; third.top; third.rows ]);
+    Alcotest.test_case "every pixel is traced exactly once" `Quick (fun () ->
+        let r = Progressive.create (small Scene.cgfs) in
+        ignore (run_to_end r);
+        Alcotest.(check int) __LOC__ (61 * 37) (primary r);
+        Alcotest.(check bool) __LOC__ true (Progressive.finished r);
+        Alcotest.(check bool) __LOC__ true (Progressive.step r = None));
+    Alcotest.test_case "the finished image is Render's, byte for byte, for every scene" `Quick (fun () ->
+        List.iter
+          (fun name ->
+            let s = small (Helpers.load_scene name) in
+            let r = Progressive.create s in
+            ignore (run_to_end r);
+            Helpers.check_images name ~expected:(Render.image_exn s) (Progressive.image r))
+          (Helpers.scene_names ()));
+    Helpers.qcheck ~count:50 "random scenes end as Render renders them" Gen_scene.arbitrary (fun s ->
+        let r = Progressive.create s in
+        ignore (run_to_end r);
+        Image.equal (Render.image_exn s) (Progressive.image r));
+    Alcotest.test_case "with antialiasing, the finished image is Antialias's" `Quick (fun () ->
+        let s = small Scene.cgfs_camera in
+        let r = Progressive.create ~samples:3 s in
+        ignore (run_to_end r);
+        Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:3 s) (Progressive.image r));
+    Alcotest.test_case "bad arguments are refused" `Quick (fun () ->
+        Alcotest.check_raises __LOC__ (Invalid_argument "Progressive.create: samples < 1") (fun () ->
+            ignore (Progressive.create ~samples:0 Scene.cgfs)));
+  ]
