@@ -37,9 +37,9 @@ wait_for() {
   i=0
   while [ "$(count "$1")" -lt "$2" ]; do
     i=$((i + 1))
-    [ $i -le 600 ] || fail "timed out waiting for '$1' (#$2)"
+    [ $i -le 1500 ] || fail "timed out waiting for '$1' (#$2)"
     kill -0 $pid 2>/dev/null || fail "the window exited while waiting for '$1'"
-    sleep 0.05
+    sleep 0.02
   done
 }
 
@@ -93,7 +93,8 @@ for step in "$@"; do
   esac
 done
 
-xdotool key --window "$win" q
+# The window is gone before xdotool sends the key's release: not an error.
+xdotool key --window "$win" q 2>/dev/null
 status=0
 wait $pid || status=$?
 exit $status
