@@ -116,6 +116,7 @@ type session = {
   mutable started : float;  (** When the frame began. *)
   mutable trace_s : float;  (** Seconds spent tracing this frame. *)
   mutable plot_s : float;  (** Seconds spent plotting its full-resolution pass. *)
+  mutable preview_s : float;  (** Seconds spent drawing its coarse passes. *)
   mutable save_pending : bool;
   mutable drag : (int * int) option;  (** Pointer position while a button is held. *)
   mutable quit : bool;
@@ -129,7 +130,8 @@ let start_frame s =
   s.render <- Progressive.create ~samples:(View.samples s.view) scene;
   s.started <- Unix.gettimeofday ();
   s.trace_s <- 0.;
-  s.plot_s <- 0.
+  s.plot_s <- 0.;
+  s.preview_s <- 0.
 
 let show_overlay s = if s.view.help then overlay (View.help_lines s.view)
 
@@ -160,8 +162,8 @@ let finish_frame s =
   let rays_per_s = if s.trace_s > 0. then rays /. s.trace_s else 0. in
   let scene = s.view.scene in
   Graphics.set_window_title (View.title ~name:s.name ~frame:(scene.width, scene.height, seconds, rays_per_s) ());
-  log "drawn %dx%d in %.3f s: traced in %.3f s (%.1f M rays/s), plotted in %.3f s" scene.width scene.height seconds
-    s.trace_s (rays_per_s /. 1e6) s.plot_s;
+  log "drawn %dx%d in %.3f s: traced in %.3f s (%.1f M rays/s), plotted in %.3f s, previews in %.3f s" scene.width
+    scene.height seconds s.trace_s (rays_per_s /. 1e6) s.plot_s s.preview_s;
   if s.save_pending then begin
     s.save_pending <- false;
     save s
@@ -223,7 +225,7 @@ let work s ~slice =
         draw_band img band;
         let t2 = Unix.gettimeofday () in
         s.trace_s <- s.trace_s +. (t1 -. t0);
-        if band.size = 1 then s.plot_s <- s.plot_s +. (t2 -. t1);
+        if band.size = 1 then s.plot_s <- s.plot_s +. (t2 -. t1) else s.preview_s <- s.preview_s +. (t2 -. t1);
         if t2 >= t_end then continue := false
   done;
   let t0 = Unix.gettimeofday () in
@@ -264,6 +266,7 @@ let run ~name ~scene_file (scene : Scene.t) =
             started = 0.;
             trace_s = 0.;
             plot_s = 0.;
+            preview_s = 0.;
             save_pending = false;
             drag = None;
             quit = false;

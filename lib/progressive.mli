@@ -1,16 +1,16 @@
 (** Progressive rendering: a coarse picture at once, refined to the full
     image, in steps small enough to keep a window responsive.
 
-    Pass [s] (for [s] = {!coarsest}, ..., 4, 2, 1, halving) traces the
-    pixels whose column and row are multiples of [s], skipping those that
-    a coarser pass already traced; after it, the [s x s] block below and to
-    the right of each such pixel can be shown in its colour. Every pixel is
-    traced once, as {!Trace.pixel} traces it, so the final image is
-    {!Render.image}'s byte for byte. With antialiasing ([samples > 1]) the
-    coarse passes trace one sample per pixel and the last pass traces every
-    pixel with {!Antialias.store}: the final image is {!Antialias.image}'s.
+    The passes trace blocks of {!coarsest}, 8 and 4 pixels, then single
+    pixels: pass [s] traces the pixels whose column and row are multiples
+    of [s], skipping those that an earlier pass traced; after it, the
+    [s x s] block below and to the right of each such pixel can be shown in
+    its colour. Every pixel is traced once, as {!Trace.pixel} traces it, so
+    the image after these passes is {!Render.image}'s byte for byte. With
+    antialiasing ([samples > 1]) one more pass traces every pixel with
+    {!Antialias.store}: the final image is then {!Antialias.image}'s.
 
-    One {!step} does one band of the current pass: [s] image rows. *)
+    One {!step} traces one band of the current pass: [s] image rows. *)
 
 type t
 (** The type for renders in progress. *)
@@ -25,7 +25,7 @@ val create : ?samples:int -> Scene.t -> t
     [samples < 1]. *)
 
 type band = {
-  size : int;  (** Block size of the pass, a power of two; [1] in the last pass. *)
+  size : int;  (** Block size of the pass: 16, 8, 4 or 1. *)
   top : int;  (** First image row of the band, a multiple of [size]. *)
   rows : int;  (** Image rows in the band: [size], or fewer at the bottom. *)
 }

@@ -21,11 +21,13 @@ let tests =
         (* columns 0, 16, ..., 592: ceil (600 / 16) = 38 pixels *)
         Alcotest.(check int) __LOC__ 38 (primary r);
         Alcotest.(check bool) __LOC__ false (Progressive.finished r));
-    Alcotest.test_case "passes halve the blocks down to single pixels, band after band" `Quick (fun () ->
+    Alcotest.test_case "passes refine the blocks down to single pixels, band after band" `Quick (fun () ->
         let bands = run_to_end (Progressive.create (small Scene.cgfs)) in
-        (* 37 rows: ceil (37 / s) bands per pass s = 16, 8, 4, 2, 1: 3 + 5 + 10 + 19 + 37 *)
-        Alcotest.(check int) __LOC__ 74 (List.length bands);
-        let last = List.nth bands 73 in
+        (* 37 rows: ceil (37 / s) bands per pass s = 16, 8, 4, 1: 3 + 5 + 10 + 37 *)
+        Alcotest.(check int) __LOC__ 55 (List.length bands);
+        Alcotest.(check (list int)) __LOC__ [ 16; 16; 16; 8; 8; 8; 8; 8; 4 ]
+          (List.map (fun (b : Progressive.band) -> b.size) (List.filteri (fun i _ -> i < 9) bands));
+        let last = List.nth bands 54 in
         Alcotest.(check (list int)) __LOC__ [ 1; 36; 1 ] [ last.size; last.top; last.rows ];
         let third = List.nth bands 2 in
         (* the last 16-pixel band holds rows 32 to 36 *)
@@ -51,7 +53,8 @@ let tests =
     Alcotest.test_case "with antialiasing, the finished image is Antialias's" `Quick (fun () ->
         let s = small Scene.cgfs_camera in
         let r = Progressive.create ~samples:3 s in
-        ignore (run_to_end r);
+        (* 55 bands as without antialiasing, then 37 rows of 3 x 3 samples *)
+        Alcotest.(check int) __LOC__ 92 (List.length (run_to_end r));
         Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:3 s) (Progressive.image r));
     Alcotest.test_case "bad arguments are refused" `Quick (fun () ->
         Alcotest.check_raises __LOC__ (Invalid_argument "Progressive.create: samples < 1") (fun () ->
