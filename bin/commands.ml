@@ -43,10 +43,10 @@ let render_image ~literal ~jobs scene =
     let* img, stats = Render.image ~jobs scene in
     Ok (img, Some stats, stats.trace_s)
 
-let view opts ~jobs:_ =
+let view opts ~jobs =
   report
     (let* scene = load opts in
-     match Window.run ~name:(scene_name opts) ~scene_file:opts.scene scene with
+     match Window.run ~name:(scene_name opts) ~scene_file:opts.scene ~jobs:(jobs_or_cores jobs) scene with
      | Ok () -> Ok exit_ok
      | Error (`Msg _ as e) -> Error e
      | Error (`No_display reason) ->

@@ -51,10 +51,22 @@ let view_info =
       [
         `S Manpage.s_description;
         `P
-          "Renders $(i,SCENE) (default: the built-in CGFS scene) and shows it in a Graphics \
-           window of the canvas size, drawn through the document's centered-origin $(b,plotc). \
-           Press $(b,q) or Escape to quit.";
+          "Renders $(i,SCENE) (default: the built-in CGFS scene) in a Graphics window of the \
+           canvas size: a coarse picture at once, refined to the full image, which is drawn \
+           through the document's centered-origin $(b,plotc) and is exactly what $(b,raytrace \
+           render) writes. The window answers keys while it renders. After each full frame, \
+           its title and a line on stderr give the time and the rays per second.";
         `P "Without a display it exits with status 3 and suggests $(b,raytrace render).";
+        `S "KEYS";
+        `I ("arrows, $(b,W) $(b,A) $(b,S) $(b,D)", "Move the camera forward, left, back, right, by half the viewport distance. Letters that move or turn are upper case (Shift), as lower-case $(b,a) and $(b,s) are commands.");
+        `I ("$(b,Q) $(b,E), $(b,<) $(b,>), drag", "Turn left or right by 5 degrees; dragging with a button held turns so that the picture follows the pointer.");
+        `I ("$(b,+) $(b,-)", "Recursion depth of mirror reflection up or down by one.");
+        `I ("$(b,a)", "Antialiasing on or off: each pixel the mean of 3 x 3 samples.");
+        `I ("$(b,r)", "Render again.");
+        `I ("$(b,s)", "Save the picture as a PPM next to the scene file ($(i,NAME)-$(i,N).ppm, written atomically), with the scene of the current view ($(i,NAME)-$(i,N).scene), and print their names.");
+        `I ("$(b,h)", "Show or hide the help.");
+        `I ("$(b,q), Escape", "Quit.");
+        `P "Resizing the window renders at the new size; pixels stay square and the scene's own view stays in sight.";
         scene_format;
         `S Manpage.s_examples;
         `Pre "raytrace\nraytrace view scenes/cgfs-camera.scene\nraytrace view --depth 0 scenes/cgfs.scene";

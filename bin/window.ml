@@ -76,12 +76,13 @@ let plotc x' y' color =
    of the last pass pixel by pixel through plotc. *)
 let draw_band img (band : Progressive.band) =
   let width = Image.width img and height = Image.height img in
-  if band.size = 1 then begin
-    let gy = Canvas.y_of_row ~height band.top in
-    for gx = Canvas.min_x width to Canvas.max_x width do
-      plotc gx gy (Image.get img (Canvas.column ~width gx) band.top)
+  if band.size = 1 then
+    for row = band.top to band.top + band.rows - 1 do
+      let gy = Canvas.y_of_row ~height row in
+      for gx = Canvas.min_x width to Canvas.max_x width do
+        plotc gx gy (Image.get img (Canvas.column ~width gx) row)
+      done
     done
-  end
   else begin
     let col = ref 0 in
     while !col < width do
@@ -111,6 +112,10 @@ let sync_server () = ignore (Graphics.point_color 0 0)
 type session = {
   name : string;
   scene_file : string option;
+  jobs : int;
+  mutable shared : Progressive.shared option;  (** For [jobs > 1], at the frame's size. *)
+  mutable row_s : float;  (** Seconds per row of the last full-resolution band. *)
+  mutable failure_told : bool;
   mutable view : View.t;
   mutable render : Progressive.t;
   mutable started : float;  (** When the frame began. *)
@@ -126,8 +131,13 @@ let log fmt = Printf.ksprintf (fun s -> prerr_endline ("raytrace: " ^ s)) fmt
 
 let start_frame s =
   let scene = s.view.scene in
-  if scene.width <> Frame.size_x () || scene.height <> Frame.size_y () then Frame.resize scene.width scene.height;
-  s.render <- Progressive.create ~samples:(View.samples s.view) scene;
+  if scene.width <> Frame.size_x () || scene.height <> Frame.size_y () then begin
+    Frame.resize scene.width scene.height;
+    s.shared <- None
+  end;
+  if s.jobs > 1 && s.shared = None then
+    s.shared <- Some (Progressive.shared ~jobs:s.jobs ~width:scene.width ~height:scene.height);
+  s.render <- Progressive.create ~samples:(View.samples s.view) ?shared:s.shared scene;
   s.started <- Unix.gettimeofday ();
   s.trace_s <- 0.;
   s.plot_s <- 0.;
@@ -211,17 +221,21 @@ let poll s =
     Graphics.synchronize ()
   end
 
-(* Traces and draws bands for about [slice] seconds, then shows them. *)
+(* Traces and draws bands for about [slice] seconds, then shows them. A
+   full-resolution band gets as many rows as fit in half a slice, by the
+   speed of the last one (at least one per worker). *)
 let work s ~slice =
   let t_end = Unix.gettimeofday () +. slice in
   let img = Progressive.image s.render in
   let continue = ref true in
   while !continue do
     let t0 = Unix.gettimeofday () in
-    match Progressive.step s.render with
+    let rows = max s.jobs (truncate (Float.min 1e6 (slice /. 2. /. s.row_s))) in
+    match Progressive.step ~rows s.render with
     | None -> continue := false
     | Some band ->
         let t1 = Unix.gettimeofday () in
+        if band.size = 1 then s.row_s <- Float.max 1e-7 ((t1 -. t0) /. Float.of_int band.rows);
         draw_band img band;
         let t2 = Unix.gettimeofday () in
         s.trace_s <- s.trace_s +. (t1 -. t0);
@@ -233,6 +247,12 @@ let work s ~slice =
   show_overlay s;
   Graphics.synchronize ();
   s.plot_s <- s.plot_s +. (Unix.gettimeofday () -. t0);
+  (match Progressive.failure s.render with
+  | Some m when not s.failure_told ->
+      s.failure_told <- true;
+      log "%s; tracing in this process from now on" m;
+      s.shared <- None
+  | _ -> ());
   if Progressive.finished s.render then finish_frame s
 
 let rec loop s =
@@ -245,7 +265,7 @@ let rec loop s =
 let keys_summary =
   "arrows or W A S D move, Q E or drag turn, + - depth, a antialiasing, r render, s save, h help, q quit"
 
-let run ~name ~scene_file (scene : Scene.t) =
+let run ~name ~scene_file ~jobs (scene : Scene.t) =
   match Graphics.open_graph (Printf.sprintf " %dx%d" scene.width scene.height) with
   | exception Graphics.Graphic_failure reason -> Error (`No_display reason)
   | () -> (
@@ -261,6 +281,10 @@ let run ~name ~scene_file (scene : Scene.t) =
           {
             name;
             scene_file;
+            jobs;
+            shared = None;
+            row_s = 1e-3;
+            failure_told = false;
             view = View.v scene;
             render = Progressive.create scene;
             started = 0.;

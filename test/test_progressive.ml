@@ -56,6 +56,26 @@ let tests =
         (* 55 bands as without antialiasing, then 37 rows of 3 x 3 samples *)
         Alcotest.(check int) __LOC__ 92 (List.length (run_to_end r));
         Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:3 s) (Progressive.image r));
+    Alcotest.test_case "worker processes trace the same image, in bands of any height" `Quick (fun () ->
+        List.iter
+          (fun (jobs, rows, samples) ->
+            let s = small Scene.cgfs_camera in
+            let shared = Progressive.shared ~jobs ~width:61 ~height:37 in
+            let r = Progressive.create ~samples ~shared s in
+            let rec go () = match Progressive.step ~rows r with Some _ -> go () | None -> () in
+            go ();
+            let expected = if samples = 1 then Render.image_exn s else Antialias.image ~n:samples s in
+            let what = Printf.sprintf "%d jobs, %d rows, %d samples" jobs rows samples in
+            Helpers.check_images what ~expected (Progressive.image r);
+            Alcotest.(check (option string)) what None (Progressive.failure r);
+            (* the workers' rays are counted: every pixel once, plus 9 per
+               pixel with antialiasing *)
+            Alcotest.(check int) what (61 * 37 * (if samples = 1 then 1 else 10)) (primary r))
+          [ (2, 5, 1); (3, 37, 1); (2, 1, 1); (2, 8, 3) ]);
+    Alcotest.test_case "a shared image of another size is refused" `Quick (fun () ->
+        let shared = Progressive.shared ~jobs:2 ~width:10 ~height:10 in
+        Alcotest.check_raises __LOC__ (Invalid_argument "Progressive.create: the shared image is not of the canvas size")
+          (fun () -> ignore (Progressive.create ~shared (small Scene.cgfs))));
     Alcotest.test_case "bad arguments are refused" `Quick (fun () ->
         Alcotest.check_raises __LOC__ (Invalid_argument "Progressive.create: samples < 1") (fun () ->
             ignore (Progressive.create ~samples:0 Scene.cgfs)));
