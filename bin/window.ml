@@ -6,8 +6,8 @@ external bind_arrows : string -> bool = "raytrace_bind_arrows"
 
 (* The window's pixels, kept here and sent to the X server in bulk.
    Graphics.plot sends two requests per pixel (a colour change and a point):
-   a 600 x 600 frame took 0.08-0.17 s that way, as long as tracing it, while
-   one image per band of rows takes a fraction of that (README, "The
+   a 600 x 600 frame took about as long to draw that way as to trace, and
+   four times as long as sent as one image (bench/draw.ml; README, "The
    window"). The document's plotc draws here, through the same calls. *)
 module Frame = struct
   let width = ref 0
@@ -222,15 +222,15 @@ let poll s =
   end
 
 (* Traces and draws bands for about [slice] seconds, then shows them. A
-   full-resolution band gets as many rows as fit in half a slice, by the
-   speed of the last one (at least one per worker). *)
+   full-resolution band gets as many rows as fit in a slice, by the speed
+   of the last one (at least one per worker: each band forks them anew). *)
 let work s ~slice =
   let t_end = Unix.gettimeofday () +. slice in
   let img = Progressive.image s.render in
   let continue = ref true in
   while !continue do
     let t0 = Unix.gettimeofday () in
-    let rows = max s.jobs (truncate (Float.min 1e6 (slice /. 2. /. s.row_s))) in
+    let rows = max s.jobs (truncate (Float.min 1e6 (slice /. s.row_s))) in
     match Progressive.step ~rows s.render with
     | None -> continue := false
     | Some band ->

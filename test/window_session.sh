@@ -12,14 +12,16 @@
 #                   window says it is turning, move by (DX, DY), wait for
 #                   the frame, release
 #   save            press s and wait until the window says it saved
-# The window's stderr is left in DIR/log.
+# The window's stderr is left in DIR/log. VIEW_ARGS, if set, are more
+# arguments for `raytrace view` (e.g. "--jobs 1").
 # usage: window_session.sh RAYTRACE SCENE DIR STEP...
 set -u
 raytrace=$1 scene=$2 dir=$3
 shift 3
 log=$dir/log
 : >"$log"
-"$raytrace" view "$scene" 2>"$log" &
+# shellcheck disable=SC2086 # VIEW_ARGS are words
+"$raytrace" view ${VIEW_ARGS:-} "$scene" 2>"$log" &
 pid=$!
 
 fail() {
@@ -46,6 +48,8 @@ wait_for() {
 wait_for "drawn" 1
 win=$(xdotool search --name "^raytrace: " | head -n 1)
 [ -n "$win" ] || fail "no window named raytrace"
+# Without a window manager nothing has the focus; xdotool complains then.
+xdotool windowfocus --sync "$win" || fail "cannot focus the window"
 
 for step in "$@"; do
   what=${step%%:*} arg=${step#*:}
