@@ -115,6 +115,7 @@ type session = {
   jobs : int;
   mutable shared : Progressive.shared option;  (** For [jobs > 1], at the frame's size. *)
   mutable row_s : float;  (** Seconds per row of the last full-resolution band. *)
+  mutable rows : int;  (** Rows of the last full-resolution band. *)
   mutable failure_told : bool;
   mutable view : View.t;
   mutable render : Progressive.t;
@@ -135,9 +136,10 @@ let start_frame s =
     Frame.resize scene.width scene.height;
     s.shared <- None
   end;
-  if s.jobs > 1 && s.shared = None then
+  if s.jobs > 1 && s.shared = None && not s.failure_told then
     s.shared <- Some (Progressive.shared ~jobs:s.jobs ~width:scene.width ~height:scene.height);
   s.render <- Progressive.create ~samples:(View.samples s.view) ?shared:s.shared scene;
+  s.rows <- 1;
   s.started <- Unix.gettimeofday ();
   s.trace_s <- 0.;
   s.plot_s <- 0.;
@@ -187,20 +189,21 @@ let apply s input =
   | Render -> `Render
   | Redraw -> `Redraw
   | Save ->
-      if Progressive.finished s.render then save s
-      else begin
-        s.save_pending <- true;
-        log "saving once this frame is complete"
-      end;
-      `None
+      s.save_pending <- true;
+      `Save
   | Quit ->
       s.quit <- true;
       `None
 
 (* Reads every input that arrived since the last call. *)
 let poll s =
-  let render = ref false and redraw = ref false in
-  let note = function `Render -> render := true | `Redraw -> redraw := true | `None -> () in
+  let render = ref false and redraw = ref false and saving = ref false in
+  let note = function
+    | `Render -> render := true
+    | `Redraw -> redraw := true
+    | `Save -> saving := true
+    | `None -> ()
+  in
   let w = Graphics.size_x () and h = Graphics.size_y () in
   note (apply s (View.Resize (w, h)));
   while (not s.quit) && Graphics.key_pressed () do
@@ -219,23 +222,34 @@ let poll s =
     Frame.flush_all ();
     show_overlay s;
     Graphics.synchronize ()
-  end
+  end;
+  (* The picture saved is the one the keys before [s] asked for. *)
+  if !saving then
+    if Progressive.finished s.render then begin
+      s.save_pending <- false;
+      save s
+    end
+    else log "saving once this frame is complete"
 
 (* Traces and draws bands for about [slice] seconds, then shows them. A
    full-resolution band gets as many rows as fit in a slice, by the speed
-   of the last one (at least one per worker: each band forks them anew). *)
+   of the last one (at least one per worker: each band forks them anew),
+   but at most twice as many as the last one: rows of sky are quick. *)
 let work s ~slice =
   let t_end = Unix.gettimeofday () +. slice in
   let img = Progressive.image s.render in
   let continue = ref true in
   while !continue do
     let t0 = Unix.gettimeofday () in
-    let rows = max s.jobs (truncate (Float.min 1e6 (slice /. s.row_s))) in
+    let rows = max s.jobs (min (2 * s.rows) (truncate (Float.min 1e6 (slice /. s.row_s)))) in
     match Progressive.step ~rows s.render with
     | None -> continue := false
     | Some band ->
         let t1 = Unix.gettimeofday () in
-        if band.size = 1 then s.row_s <- Float.max 1e-7 ((t1 -. t0) /. Float.of_int band.rows);
+        if band.size = 1 then begin
+          s.row_s <- Float.max 1e-7 ((t1 -. t0) /. Float.of_int band.rows);
+          s.rows <- band.rows
+        end;
         draw_band img band;
         let t2 = Unix.gettimeofday () in
         s.trace_s <- s.trace_s +. (t1 -. t0);
@@ -263,7 +277,8 @@ let rec loop s =
   end
 
 let keys_summary =
-  "arrows or W A S D move, Q E or drag turn, + - depth, a antialiasing, r render, s save, h help, q quit"
+  "arrows or Shift+W A S D move, Shift+Q E or drag turn, + - depth, a antialiasing, r render, s save, h help, \
+   q quit"
 
 let run ~name ~scene_file ~jobs (scene : Scene.t) =
   match Graphics.open_graph (Printf.sprintf " %dx%d" scene.width scene.height) with
@@ -275,7 +290,7 @@ let run ~name ~scene_file ~jobs (scene : Scene.t) =
         Graphics.resize_window scene.width scene.height;
         Graphics.auto_synchronize false;
         if not (bind_arrows (String.init 4 (fun i -> Char.chr (Char.code View.arrow_left + i)))) then
-          log "the arrow keys are not available; use W A S D";
+          log "the arrow keys are not available; use Shift+W A S D";
         log "keys: %s" keys_summary;
         let s =
           {
@@ -284,6 +299,7 @@ let run ~name ~scene_file ~jobs (scene : Scene.t) =
             jobs;
             shared = None;
             row_s = 1e-3;
+            rows = 1;
             failure_told = false;
             view = View.v scene;
             render = Progressive.create scene;
