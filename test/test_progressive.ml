@@ -72,6 +72,24 @@ let tests =
                pixel with antialiasing *)
             Alcotest.(check int) what (61 * 37 * (if samples = 1 then 1 else 10)) (primary r))
           [ (2, 5, 1); (3, 37, 1); (2, 1, 1); (2, 8, 3) ]);
+    Alcotest.test_case "when a worker dies, this process traces its rows: same image" `Quick (fun () ->
+        (* Memprof's callback is inherited by the forked workers: there it
+           kills the worker at its first sampled allocation (antialiasing
+           allocates a boxed float per sample). *)
+        let parent = Unix.getpid () in
+        let kill_workers _ =
+          if Unix.getpid () <> parent then Unix.kill (Unix.getpid ()) Sys.sigkill;
+          None
+        in
+        let s = small Scene.cgfs in
+        let shared = Progressive.shared ~jobs:2 ~width:61 ~height:37 in
+        let r = Progressive.create ~samples:3 ~shared s in
+        Gc.Memprof.start ~sampling_rate:0.01 { Gc.Memprof.null_tracker with alloc_minor = kill_workers };
+        Fun.protect ~finally:Gc.Memprof.stop (fun () ->
+            let rec go () = match Progressive.step ~rows:8 r with Some _ -> go () | None -> () in
+            go ());
+        Alcotest.(check (option string)) __LOC__ (Some "worker 1 of 2 was killed by SIGKILL") (Progressive.failure r);
+        Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:3 s) (Progressive.image r));
     Alcotest.test_case "a shared image of another size is refused" `Quick (fun () ->
         let shared = Progressive.shared ~jobs:2 ~width:10 ~height:10 in
         Alcotest.check_raises __LOC__ (Invalid_argument "Progressive.create: the shared image is not of the canvas size")

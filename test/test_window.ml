@@ -69,7 +69,7 @@ let tests =
               [
                 "keys:Left"; "shot:left"; "title:left"; "resize:320x240"; "shot:small"; "keys:W,E,plus";
                 "shot:moved"; "keys:a"; "shot:aa"; "press:h"; "keys:r"; "shot:help"; "press:h"; "keys:a";
-                "drag:160,120,24,-16"; "shot:drag"; "save";
+                "drag:160,120,24,-16"; "shot:drag"; "save:D,s"; "shot:final";
               ]
           in
           let start = View.v (Helpers.load_scene "cgfs.scene") in
@@ -80,6 +80,7 @@ let tests =
           let aa_image = Antialias.image ~n:(View.samples aa) aa.scene in
           (* xdotool moves the pointer 16 pixels up: +16 in Graphics' y *)
           let drag = views (keys [ 'a' ] @ [ View.Drag (24, 16) ]) aa in
+          let final = views (keys [ 'D' ]) drag in
           let check what (view : View.t) =
             let expected = if View.samples view = 1 then Render.image_exn view.scene else aa_image in
             Helpers.check_images ("window after " ^ what) ~expected (shot dir what)
@@ -89,6 +90,7 @@ let tests =
           check "small" small;
           check "aa" aa;
           check "drag" drag;
+          check "final" final;
           Alcotest.(check bool) "the left arrow changed the picture" false
             (Image.equal (Render.image_exn start.scene) (shot dir "left"));
           Alcotest.(check (pair int int)) "the resized window's picture" (320, 240)
@@ -103,15 +105,16 @@ let tests =
           List.iter
             (fun s -> Alcotest.(check bool) ("title has " ^ s ^ ": " ^ title) true (contains title s))
             [ "raytrace: cgfs.scene - 600x600 in "; " M rays/s"; "h: help" ];
-          (* s saved the last frame and its scene; the command line renders
-             that scene to the same picture. *)
+          (* s, pressed right after D, saved the frame that D asked for and
+             its scene; the command line renders that scene to the same
+             picture. *)
           let log = text (Filename.concat dir "log") in
           let ppm = Filename.concat dir "cgfs-1.ppm" and scene = Filename.concat dir "cgfs-1.scene" in
           Alcotest.(check bool) ("the window says where it saved: " ^ log) true (contains log ("saved " ^ ppm));
-          Helpers.check_images "the saved image" ~expected:(shot dir "drag") (read ppm);
+          Helpers.check_images "the saved image" ~expected:(shot dir "final") (read ppm);
           let out = Filename.concat dir "headless.ppm" in
           let code, _, err = Helpers.run (Helpers.raytrace ()) [ "render"; scene; "-o"; out ] in
           if code <> 0 then Alcotest.failf "raytrace render %s: %s" scene err;
-          Helpers.check_images "raytrace render of the saved scene" ~expected:(read out) (shot dir "drag")
+          Helpers.check_images "raytrace render of the saved scene" ~expected:(read out) (shot dir "final")
         end);
   ]

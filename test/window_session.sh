@@ -11,7 +11,8 @@
 #   drag:X,Y,DX,DY  press button 1 at (X, Y) of the window, wait until the
 #                   window says it is turning, move by (DX, DY), wait for
 #                   the frame, release
-#   save            press s and wait until the window says it saved
+#   save:KEYS       press the keys (the last one s) at once, and wait until
+#                   the window says it saved
 # The window's stderr is left in DIR/log. VIEW_ARGS, if set, are more
 # arguments for `raytrace view` (e.g. "--jobs 1").
 # usage: window_session.sh RAYTRACE SCENE DIR STEP...
@@ -90,7 +91,7 @@ for step in "$@"; do
     ;;
   save)
     n=$(count "saved")
-    xdotool key --window "$win" s
+    xdotool key --window "$win" $(echo "$arg" | tr ',' ' ')
     wait_for "saved" $((n + 1))
     ;;
   *) fail "unknown step $step" ;;
