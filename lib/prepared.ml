@@ -3,6 +3,7 @@ type t = {
   cx : float array;
   cy : float array;
   cz : float array;
+  radius : float array;
   r2 : float array;
   red : float array;
   green : float array;
@@ -15,6 +16,7 @@ type t = {
   lx : float array;
   ly : float array;
   lz : float array;
+  robust : bool;
   epsilon : float;
   depth : int;
   width : int;
@@ -94,6 +96,7 @@ let prepare ?(skips = true) (scene : Scene.t) =
     cx;
     cy;
     cz;
+    radius = sf (fun s -> s.radius);
     r2;
     red = sf (fun s -> s.color.r);
     green = sf (fun s -> s.color.g);
@@ -107,7 +110,8 @@ let prepare ?(skips = true) (scene : Scene.t) =
     lx = lf (fun l -> (vector l).x);
     ly = lf (fun l -> (vector l).y);
     lz = lf (fun l -> (vector l).z);
-    epsilon = Option.value scene.epsilon ~default:Scene.document_epsilon;
+    robust = scene.epsilon = None;
+    epsilon = Option.value scene.epsilon ~default:0.;
     depth = scene.depth;
     width = scene.width;
     height = scene.height;

@@ -11,6 +11,7 @@ type t = private {
   cx : float array;  (** Sphere centers, x coordinates. *)
   cy : float array;
   cz : float array;
+  radius : float array;
   r2 : float array;  (** [radius *. radius]. *)
   red : float array;  (** Colour channels, 0-255. *)
   green : float array;
@@ -23,7 +24,11 @@ type t = private {
   lx : float array;  (** Position (point) or direction (directional). *)
   ly : float array;
   lz : float array;
-  epsilon : float;  (** Lower bound of [t] for secondary rays. *)
+  robust : bool;  (** The robust mode: the scene gives no epsilon. *)
+  epsilon : float;
+      (** Lower bound of [t] for secondary rays: the scene's epsilon, or [0.]
+          in the robust mode, where the tracer handles the sphere a ray
+          leaves exactly instead. *)
   depth : int;  (** Recursion depth. *)
   width : int;  (** Canvas size. *)
   height : int;
@@ -58,6 +63,5 @@ val prepare : ?skips:bool -> Scene.t -> t
     at the first blocker and try the last blocker first, and reflections
     stop once their remaining weight cannot change an 8-bit channel. With
     [~skips:false] it does everything the document does, for tests that
-    prove the skips exact. A scene without epsilon is traced with
-    {!Scene.document_epsilon}.
+    prove the skips exact.
     @raise Invalid_argument if [scene] fails {!Scene.validate}. *)

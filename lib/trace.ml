@@ -18,6 +18,8 @@ type scratch = {
   mutable t_min : float;
   mutable t_max : float;
   mutable t : float;
+  mutable near : float;  (** Roots of the last robust intersection test. *)
+  mutable far : float;
   mutable gx : float;  (** Canvas point of the primary ray. *)
   mutable gy : float;
   mutable px : float;  (** Hit point. *)
@@ -42,6 +44,8 @@ type t = {
   last_blocker : int array;  (** Per light: the sphere that last shadowed it. *)
   counters : counters;
   mutable hit : int;  (** Index of the sphere found by [closest]. *)
+  mutable origin_sphere : int;
+      (** The sphere the current secondary ray leaves, or [-1]. *)
   mutable first_hit : int;
 }
 
@@ -59,6 +63,8 @@ let create (p : Prepared.t) =
         t_min = 0.;
         t_max = 0.;
         t = 0.;
+        near = 0.;
+        far = 0.;
         gx = 0.;
         gy = 0.;
         px = 0.;
@@ -79,6 +85,7 @@ let create (p : Prepared.t) =
     last_blocker = Array.make (max 1 p.n_lights) (-1);
     counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; early_stops = 0 };
     hit = -1;
+    origin_sphere = -1;
     first_hit = -1;
   }
 
@@ -107,11 +114,24 @@ let store tr (buffer : Image.buffer) k =
   Bigarray.Array1.unsafe_set buffer (k + 1) (to_byte s.g);
   Bigarray.Array1.unsafe_set buffer (k + 2) (to_byte s.b)
 
-(* The textbook quadratic of section 6.1, in CGFS's order of operations:
-   k1 = <D,D>, k2 = 2 <CO,D>, k3 = <CO,CO> - r^2, discriminant
+(* Two ways to intersect. The document's mode (the scene gives an epsilon)
+   uses the textbook quadratic of section 6.1 in CGFS's order of operations,
+   so that it reproduces the document's images byte for byte. The robust
+   mode uses the cancellation-free roots of [Sphere.roots] (same arithmetic,
+   inlined here) and needs no epsilon: a secondary ray cannot hit the sphere
+   it leaves except at that sphere's other root (see [leaving]). *)
+
+(* Keeps root [t] of sphere [i] if it is in range and closer than the best. *)
+let[@inline] keep tr s i t =
+  if t < s.t && s.t_min < t && t < s.t_max then begin
+    s.t <- t;
+    tr.hit <- i
+  end
+
+(* Textbook: k1 = <D,D>, k2 = 2 <CO,D>, k3 = <CO,CO> - r^2, disc
    k2^2 - 4 k1 k3, roots (-k2 +- sqrt disc) / 2 k1. The smaller root t2 is
    tried first: it wins whenever both are in range, as in CGFS. *)
-let[@inline] consider tr s i k1x4 two_k1 k2 k3 =
+let[@inline] consider_textbook tr s i k1x4 two_k1 k2 k3 =
   let disc = (k2 *. k2) -. (k1x4 *. k3) in
   if disc >= 0. then begin
     let sq = sqrt disc in
@@ -120,12 +140,69 @@ let[@inline] consider tr s i k1x4 two_k1 k2 k3 =
       s.t <- t2;
       tr.hit <- i
     end
-    else
-      let t1 = (-.k2 +. sq) /. two_k1 in
-      if t1 < s.t && s.t_min < t1 && t1 < s.t_max then begin
-        s.t <- t1;
-        tr.hit <- i
-      end
+    else keep tr s i ((-.k2 +. sq) /. two_k1)
+  end
+
+(* Robust: with f = O - C, b = <f, D>, l = f - (b / a) D is the vector from
+   the center to the line; the ray hits iff |l| <= r. The roots are
+   q / a and c / q with q = -(b + sign(b) sqrt (a (r - |l|)(r + |l|))):
+   neither subtracts nearly equal numbers. Leaves the roots in
+   [s.near <= s.far]; [false] if the ray misses. *)
+let[@inline] robust_roots (p : Prepared.t) s i fx fy fz dx dy dz a inv_a =
+  let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+  let k = b *. inv_a in
+  let lx = fx -. (k *. dx) and ly = fy -. (k *. dy) and lz = fz -. (k *. dz) in
+  let l2 = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
+  let r2 = Array.unsafe_get p.r2 i in
+  l2 <= r2
+  &&
+  let r = Array.unsafe_get p.radius i in
+  let len = sqrt l2 in
+  let sq = sqrt (a *. ((r -. len) *. (r +. len))) in
+  let q = -.(b +. Float.copy_sign sq b) in
+  if q = 0. then begin
+    s.near <- 0.;
+    s.far <- 0.
+  end
+  else begin
+    let t0 = (((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. r2) /. q and t1 = q *. inv_a in
+    if t0 <= t1 then begin
+      s.near <- t0;
+      s.far <- t1
+    end
+    else begin
+      s.near <- t1;
+      s.far <- t0
+    end
+  end;
+  true
+
+(* The other root of the sphere a secondary ray leaves: its origin P is on
+   the sphere, so with f = P - C the roots are 0 and -2 <f, D> / <D, D>.
+   The root 0 is the origin itself and never counts; the other is a hit only
+   if the ray goes into the sphere (a shadow ray toward a light behind the
+   surface), by more than the rounding of <f, D> (at most about 8 u |f| |D|)
+   can explain. No distance threshold: the test is relative. *)
+let leaving_margin = 16. *. epsilon_float *. epsilon_float (* (8u)^2, u = epsilon_float / 2 *)
+
+(* Whether the ray re-enters the sphere it leaves; then its other root is
+   [-2 b / a]. (A bool, not a float with [infinity] for "no": a float
+   chosen by an [if] is boxed.) *)
+let[@inline] reenters b fx fy fz a = b < 0. && b *. b > leaving_margin *. ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) *. a
+
+let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
+  if i = tr.origin_sphere then begin
+    let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+    if reenters b fx fy fz a then keep tr s i (-2. *. b *. inv_a)
+  end
+  else
+  if robust_roots tr.p s i fx fy fz dx dy dz a inv_a then begin
+    let near = s.near in
+    if near < s.t && s.t_min < near && near < s.t_max then begin
+      s.t <- near;
+      tr.hit <- i
+    end
+    else keep tr s i s.far
   end
 
 (* The closest sphere hit by the ray in [s], with [t_min < t < t_max]; its
@@ -133,56 +210,95 @@ let[@inline] consider tr s i k1x4 two_k1 k2 k3 =
 let closest tr =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
-  let k1 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
-  let two_k1 = 2. *. k1 and k1x4 = 4. *. k1 in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
   tr.hit <- -1;
   s.t <- infinity;
   let n = p.n_spheres in
   tr.counters.tests <- tr.counters.tests + n;
-  for i = 0 to n - 1 do
-    let ocx = s.ox -. Array.unsafe_get p.cx i and ocy = s.oy -. Array.unsafe_get p.cy i and ocz = s.oz -. Array.unsafe_get p.cz i in
-    let k2 = 2. *. ((ocx *. dx) +. (ocy *. dy) +. (ocz *. dz)) in
-    let k3 = ((ocx *. ocx) +. (ocy *. ocy) +. (ocz *. ocz)) -. Array.unsafe_get p.r2 i in
-    consider tr s i k1x4 two_k1 k2 k3
-  done;
+  if p.robust then begin
+    let inv_a = 1. /. a in
+    for i = 0 to n - 1 do
+      let fx = s.ox -. Array.unsafe_get p.cx i
+      and fy = s.oy -. Array.unsafe_get p.cy i
+      and fz = s.oz -. Array.unsafe_get p.cz i in
+      consider_robust tr s i dx dy dz a inv_a fx fy fz
+    done
+  end
+  else begin
+    let two_k1 = 2. *. a and k1x4 = 4. *. a in
+    for i = 0 to n - 1 do
+      let ocx = s.ox -. Array.unsafe_get p.cx i
+      and ocy = s.oy -. Array.unsafe_get p.cy i
+      and ocz = s.oz -. Array.unsafe_get p.cz i in
+      let k2 = 2. *. ((ocx *. dx) +. (ocy *. dy) +. (ocz *. dz)) in
+      let k3 = ((ocx *. ocx) +. (ocy *. ocy) +. (ocz *. ocz)) -. Array.unsafe_get p.r2 i in
+      consider_textbook tr s i k1x4 two_k1 k2 k3
+    done
+  end;
   tr.hit
 
-(* [closest] for a ray from the camera: [CO] and [k3] are per-frame constants. *)
+(* [closest] for a ray from the camera: [CO] and, for the textbook, [k3] are
+   per-frame constants. *)
 let closest_primary tr =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
-  let k1 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
-  let two_k1 = 2. *. k1 and k1x4 = 4. *. k1 in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
   tr.hit <- -1;
   s.t <- infinity;
   let n = p.n_spheres in
   tr.counters.tests <- tr.counters.tests + n;
-  for i = 0 to n - 1 do
-    let k2 =
-      2.
-      *. ((Array.unsafe_get p.primary_ocx i *. dx) +. (Array.unsafe_get p.primary_ocy i *. dy) +. (Array.unsafe_get p.primary_ocz i *. dz))
-    in
-    consider tr s i k1x4 two_k1 k2 (Array.unsafe_get p.primary_k3 i)
-  done;
+  if p.robust then begin
+    let inv_a = 1. /. a in
+    for i = 0 to n - 1 do
+      consider_robust tr s i dx dy dz a inv_a (Array.unsafe_get p.primary_ocx i)
+        (Array.unsafe_get p.primary_ocy i) (Array.unsafe_get p.primary_ocz i)
+    done
+  end
+  else begin
+    let two_k1 = 2. *. a and k1x4 = 4. *. a in
+    for i = 0 to n - 1 do
+      let k2 =
+        2.
+        *. ((Array.unsafe_get p.primary_ocx i *. dx)
+           +. (Array.unsafe_get p.primary_ocy i *. dy)
+           +. (Array.unsafe_get p.primary_ocz i *. dz))
+      in
+      consider_textbook tr s i k1x4 two_k1 k2 (Array.unsafe_get p.primary_k3 i)
+    done
+  end;
   tr.hit
 
 (* Does sphere [i] meet the ray in [s] with [t_min < t < t_max]? The same
    roots as [closest], so a sphere blocks exactly when [closest] would have
    found it. *)
-let[@inline] blocks (p : Prepared.t) s i k1x4 two_k1 =
+let[@inline] blocks tr i a inv_a =
+  let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
-  let ocx = s.ox -. Array.unsafe_get p.cx i and ocy = s.oy -. Array.unsafe_get p.cy i and ocz = s.oz -. Array.unsafe_get p.cz i in
-  let k2 = 2. *. ((ocx *. dx) +. (ocy *. dy) +. (ocz *. dz)) in
-  let k3 = ((ocx *. ocx) +. (ocy *. ocy) +. (ocz *. ocz)) -. Array.unsafe_get p.r2 i in
-  let disc = (k2 *. k2) -. (k1x4 *. k3) in
-  disc >= 0.
-  &&
-  let sq = sqrt disc in
-  let t2 = (-.k2 -. sq) /. two_k1 in
-  (s.t_min < t2 && t2 < s.t_max)
-  ||
-  let t1 = (-.k2 +. sq) /. two_k1 in
-  s.t_min < t1 && t1 < s.t_max
+  let fx = s.ox -. Array.unsafe_get p.cx i
+  and fy = s.oy -. Array.unsafe_get p.cy i
+  and fz = s.oz -. Array.unsafe_get p.cz i in
+  if p.robust then
+    if i = tr.origin_sphere then
+      let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+      reenters b fx fy fz a
+      &&
+      let t = -2. *. b *. inv_a in
+      s.t_min < t && t < s.t_max
+    else
+      robust_roots p s i fx fy fz dx dy dz a inv_a
+      && ((s.t_min < s.near && s.near < s.t_max) || (s.t_min < s.far && s.far < s.t_max))
+  else
+    let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+    let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get p.r2 i in
+    let disc = (k2 *. k2) -. (4. *. a *. k3) in
+    disc >= 0.
+    &&
+    let sq = sqrt disc in
+    let t2 = (-.k2 -. sq) /. (2. *. a) in
+    (s.t_min < t2 && t2 < s.t_max)
+    ||
+    let t1 = (-.k2 +. sq) /. (2. *. a) in
+    s.t_min < t1 && t1 < s.t_max
 
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
@@ -193,17 +309,17 @@ let shadowed tr l =
   if not p.skips then closest tr >= 0
   else
     let dx = s.dx and dy = s.dy and dz = s.dz in
-    let k1 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
-    let two_k1 = 2. *. k1 and k1x4 = 4. *. k1 in
+    let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+    let inv_a = 1. /. a in
     let last = Array.unsafe_get tr.last_blocker l in
-    if last >= 0 && blocks p s last k1x4 two_k1 then begin
+    if last >= 0 && blocks tr last a inv_a then begin
       tr.counters.tests <- tr.counters.tests + 1;
       true
     end
     else begin
       let n = p.n_spheres in
       let i = ref 0 in
-      while !i < n && (!i = last || not (blocks p s !i k1x4 two_k1)) do
+      while !i < n && (!i = last || not (blocks tr !i a inv_a)) do
         incr i
       done;
       tr.counters.tests <- tr.counters.tests + !i + 1;
@@ -245,7 +361,9 @@ let lighting tr ~shiny ~specular_of i =
       s.oy <- py;
       s.oz <- pz;
       s.t_min <- p.epsilon;
-      if not (shadowed tr l) then begin
+      (* A point light on the lit point itself gives no direction, L = 0:
+         it is skipped (as Literal does), not divided by zero. *)
+      if (s.dx <> 0. || s.dy <> 0. || s.dz <> 0.) && not (shadowed tr l) then begin
         let lx = s.dx and ly = s.dy and lz = s.dz in
         let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
         if n_dot_l > 0. then
@@ -301,6 +419,7 @@ let trace tr =
   let p = tr.p and s = tr.s in
   let levels = ref 0 and tracing = ref true in
   tr.first_hit <- -1;
+  tr.origin_sphere <- -1;
   while !tracing do
     let i = if !levels = 0 then closest_primary tr else closest tr in
     if !levels = 0 then tr.first_hit <- i;
@@ -327,6 +446,8 @@ let trace tr =
       s.vx <- vx;
       s.vy <- vy;
       s.vz <- vz;
+      (* Shadow and mirror rays leave sphere i. *)
+      tr.origin_sphere <- i;
       lighting tr ~shiny:(Array.unsafe_get p.specular i <> Sphere.matte) ~specular_of:p.specular i;
       let light = s.intensity in
       let lr = Array.unsafe_get p.red i *. light and lg = Array.unsafe_get p.green i *. light and lb = Array.unsafe_get p.blue i *. light in
@@ -415,3 +536,16 @@ let sample tr gx gy ~i ~j ~n =
   tr.s.gx <- Float.of_int gx +. (((Float.of_int i +. 0.5) /. n) -. 0.5);
   tr.s.gy <- Float.of_int gy +. (((Float.of_int j +. 0.5) /. n) -. 0.5);
   primary tr
+
+let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
+  let s = tr.s in
+  s.ox <- o.x;
+  s.oy <- o.y;
+  s.oz <- o.z;
+  s.dx <- d.x;
+  s.dy <- d.y;
+  s.dz <- d.z;
+  s.t_min <- tr.p.epsilon;
+  s.t_max <- infinity;
+  tr.origin_sphere <- from;
+  closest tr

@@ -14,6 +14,7 @@ let () =
       ("ppm", Test_ppm.tests);
       ("image_diff", Test_image_diff.tests);
       ("render", Test_render.tests);
+      ("numerics", Test_numerics.tests);
       ("golden", Test_golden.tests);
       ("cli", Test_cli.tests);
       ("window", Test_window.tests);
