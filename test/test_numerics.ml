@@ -190,6 +190,26 @@ let tests =
         if self_hits = 0 then Alcotest.fail "expected the textbook mode to show self-intersection";
         Printf.printf "textbook, epsilon 1e-12: %d of %d outward rays re-hit their own sphere\n" self_hits
           cases_per_family);
+    Alcotest.test_case "a blocker a hair's breadth away still casts its shadow, at any scale" `Quick
+      (fun () ->
+        (* Unit sphere A at the origin; B of radius 1e-10 just above A's top
+           with a gap of 1e-9: the ray from A's top (0, 1, 0) straight up
+           meets B at t = 1e-9 and 1.2e-9. The robust mode sees it at every
+           scale; a fixed epsilon of 0.001 (in t units) skips it. *)
+        List.iter
+          (fun scale ->
+            let a = Sphere.v ~center:Vec3.zero ~radius:scale Color.white in
+            let b =
+              Sphere.v ~center:(Vec3.v 0. (scale *. (1. +. 1.1e-9)) 0.) ~radius:(scale *. 1e-10) Color.white
+            in
+            let top = Vec3.v 0. scale 0. and up = Vec3.v 0. scale 0. in
+            let cast epsilon =
+              let scene = Scene.v ?epsilon ~spheres:[ a; b ] ~lights:[] () in
+              Trace.cast (Trace.create (Prepared.prepare scene)) ~from:0 top up
+            in
+            Alcotest.(check int) (Printf.sprintf "robust, scale %g" scale) 1 (cast None);
+            Alcotest.(check int) (Printf.sprintf "epsilon 0.001, scale %g" scale) (-1) (cast (Some 0.001)))
+          [ 1e-6; 1.; 1e6 ]);
     Alcotest.test_case "a sphere 1e7 times smaller than its distance is its exact disk" `Quick (fun () ->
         List.iter
           (fun (what, aim, translate) ->
