@@ -3,6 +3,7 @@ type counters = {
   mutable shadow : int;
   mutable reflection : int;
   mutable tests : int;
+  mutable box_tests : int;
   mutable early_stops : int;
 }
 
@@ -43,6 +44,7 @@ type t = {
   stack : float array;  (** Per reflection level: local r, g, b and reflectivity. *)
   last_blocker : int array;  (** Per light: the sphere that last shadowed it. *)
   counters : counters;
+  nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
   mutable hit : int;  (** Index of the sphere found by [closest]. *)
   mutable origin_sphere : int;
       (** The sphere the current secondary ray leaves, or [-1]. *)
@@ -83,7 +85,9 @@ let create (p : Prepared.t) =
       };
     stack = Array.make (4 * (p.depth + 1)) 0.;
     last_blocker = Array.make (max 1 p.n_lights) (-1);
-    counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; early_stops = 0 };
+    counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0 };
+    nodes =
+      Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0;
     hit = -1;
     origin_sphere = -1;
     first_hit = -1;
@@ -94,7 +98,7 @@ let counters tr = tr.counters
 let red tr = tr.s.r
 let green tr = tr.s.g
 let blue tr = tr.s.b
-let hit_sphere tr = tr.first_hit
+let hit_sphere tr = if tr.first_hit < 0 then -1 else Array.unsafe_get tr.p.index tr.first_hit
 
 (* [Color.to_byte], copied so that no float crosses a module boundary on the
    per-ray path: in dev builds (-opaque) such a call boxes its argument. A
@@ -121,9 +125,18 @@ let store tr (buffer : Image.buffer) k =
    inlined here) and needs no epsilon: a secondary ray cannot hit the sphere
    it leaves except at that sphere's other root (see [leaving]). *)
 
-(* Keeps root [t] of sphere [i] if it is in range and closer than the best. *)
+(* Is root [t] of the sphere in slot [i] better than the best so far?
+   Closer, or as close and earlier in the scene's list: the brute-force loop
+   of CGFS keeps the first of equal roots, and the hierarchy, which visits
+   spheres in another order, must give the same answer. *)
+let[@inline] better tr s i t =
+  t < s.t
+  || (t = s.t && tr.hit >= 0
+     && Array.unsafe_get tr.p.index i < Array.unsafe_get tr.p.index tr.hit)
+
+(* Keeps root [t] of the sphere in slot [i] if it is in range and better. *)
 let[@inline] keep tr s i t =
-  if t < s.t && s.t_min < t && t < s.t_max then begin
+  if better tr s i t && s.t_min < t && t < s.t_max then begin
     s.t <- t;
     tr.hit <- i
   end
@@ -136,7 +149,7 @@ let[@inline] consider_textbook tr s i k1x4 two_k1 k2 k3 =
   if disc >= 0. then begin
     let sq = sqrt disc in
     let t2 = (-.k2 -. sq) /. two_k1 in
-    if t2 < s.t && s.t_min < t2 && t2 < s.t_max then begin
+    if better tr s i t2 && s.t_min < t2 && t2 < s.t_max then begin
       s.t <- t2;
       tr.hit <- i
     end
@@ -195,82 +208,116 @@ let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
     let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
     if reenters b fx fy fz a then keep tr s i (-2. *. b *. inv_a)
   end
-  else
-  if robust_roots tr.p s i fx fy fz dx dy dz a inv_a then begin
+  else if robust_roots tr.p s i fx fy fz dx dy dz a inv_a then begin
     let near = s.near in
-    if near < s.t && s.t_min < near && near < s.t_max then begin
+    if better tr s i near && s.t_min < near && near < s.t_max then begin
       s.t <- near;
       tr.hit <- i
     end
     else keep tr s i s.far
   end
 
-(* The closest sphere hit by the ray in [s], with [t_min < t < t_max]; its
-   [t] is left in [s.t] ([infinity] if none). *)
-let closest tr =
-  let p = tr.p and s = tr.s in
-  let dx = s.dx and dy = s.dy and dz = s.dz in
-  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
-  tr.hit <- -1;
-  s.t <- infinity;
-  let n = p.n_spheres in
-  tr.counters.tests <- tr.counters.tests + n;
-  if p.robust then begin
-    let inv_a = 1. /. a in
-    for i = 0 to n - 1 do
-      let fx = s.ox -. Array.unsafe_get p.cx i
-      and fy = s.oy -. Array.unsafe_get p.cy i
-      and fz = s.oz -. Array.unsafe_get p.cz i in
-      consider_robust tr s i dx dy dz a inv_a fx fy fz
-    done
-  end
-  else begin
-    let two_k1 = 2. *. a and k1x4 = 4. *. a in
-    for i = 0 to n - 1 do
-      let ocx = s.ox -. Array.unsafe_get p.cx i
-      and ocy = s.oy -. Array.unsafe_get p.cy i
-      and ocz = s.oz -. Array.unsafe_get p.cz i in
-      let k2 = 2. *. ((ocx *. dx) +. (ocy *. dy) +. (ocz *. dz)) in
-      let k3 = ((ocx *. ocx) +. (ocy *. ocy) +. (ocz *. ocz)) -. Array.unsafe_get p.r2 i in
-      consider_textbook tr s i k1x4 two_k1 k2 k3
-    done
-  end;
-  tr.hit
-
-(* [closest] for a ray from the camera: [CO] and, for the textbook, [k3] are
+(* Tests the ray in [s] against the sphere in slot [i], keeping the better
+   hit. From the camera ([primary]), [CO] and the textbook's [k3] are
    per-frame constants. *)
-let closest_primary tr =
+let[@inline] test tr s i ~primary dx dy dz a inv_a two_k1 k1x4 =
+  let p = tr.p in
+  let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
+  let fy = if primary then Array.unsafe_get p.primary_ocy i else s.oy -. Array.unsafe_get p.cy i in
+  let fz = if primary then Array.unsafe_get p.primary_ocz i else s.oz -. Array.unsafe_get p.cz i in
+  if p.robust then consider_robust tr s i dx dy dz a inv_a fx fy fz
+  else
+    let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+    let k3 =
+      if primary then Array.unsafe_get p.primary_k3 i
+      else ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get p.r2 i
+    in
+    consider_textbook tr s i k1x4 two_k1 k2 k3
+
+(* The reciprocal of a direction coordinate for the slab test; a zero
+   coordinate gets a huge finite value instead of an infinity, so that
+   [0 * inv] is 0, never NaN (rays only look at t >= 0). *)
+let[@inline] slab_inverse d = if d = 0. then 1e300 else 1. /. d
+
+(* Does the ray in [s] (with slab inverses [ix, iy, iz]) meet box [k] of
+   [b] at some t in [t_min, limit]? *)
+let[@inline] meets_box (b : Bvh.t) s k ix iy iz limit =
+  let ox = s.ox and oy = s.oy and oz = s.oz in
+  let x0 = (Array.unsafe_get b.lo_x k -. ox) *. ix and x1 = (Array.unsafe_get b.hi_x k -. ox) *. ix in
+  let y0 = (Array.unsafe_get b.lo_y k -. oy) *. iy and y1 = (Array.unsafe_get b.hi_y k -. oy) *. iy in
+  let z0 = (Array.unsafe_get b.lo_z k -. oz) *. iz and z1 = (Array.unsafe_get b.hi_z k -. oz) *. iz in
+  let enter_x = if x0 < x1 then x0 else x1 and exit_x = if x0 < x1 then x1 else x0 in
+  let enter_y = if y0 < y1 then y0 else y1 and exit_y = if y0 < y1 then y1 else y0 in
+  let enter_z = if z0 < z1 then z0 else z1 and exit_z = if z0 < z1 then z1 else z0 in
+  let enter = if enter_x > enter_y then enter_x else enter_y in
+  let enter = if enter > enter_z then enter else enter_z in
+  let exit = if exit_x < exit_y then exit_x else exit_y in
+  let exit = if exit < exit_z then exit else exit_z in
+  enter <= exit && exit >= s.t_min && enter <= limit
+
+(* Pushes the children of inner node [k] on [stack] above [sp], so that the
+   nearer along the ray is popped first; the new stack pointer. *)
+let[@inline] push_children (b : Bvh.t) stack sp k dx dy dz =
+  let right = Array.unsafe_get b.right k in
+  let axis = Array.unsafe_get b.axis k in
+  let d = if axis = 0 then dx else if axis = 1 then dy else dz in
+  if d >= 0. then begin
+    Array.unsafe_set stack sp right;
+    Array.unsafe_set stack (sp + 1) (k + 1)
+  end
+  else begin
+    Array.unsafe_set stack sp (k + 1);
+    Array.unsafe_set stack (sp + 1) right
+  end;
+  sp + 2
+
+(* The closest sphere hit by the ray in [s], with [t_min < t < t_max]; its
+   [t] is left in [s.t] ([infinity] if none), its slot is returned. *)
+let closest_from tr ~primary =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let inv_a = 1. /. a and two_k1 = 2. *. a and k1x4 = 4. *. a in
   tr.hit <- -1;
   s.t <- infinity;
-  let n = p.n_spheres in
-  tr.counters.tests <- tr.counters.tests + n;
-  if p.robust then begin
-    let inv_a = 1. /. a in
-    for i = 0 to n - 1 do
-      consider_robust tr s i dx dy dz a inv_a (Array.unsafe_get p.primary_ocx i)
-        (Array.unsafe_get p.primary_ocy i) (Array.unsafe_get p.primary_ocz i)
-    done
-  end
-  else begin
-    let two_k1 = 2. *. a and k1x4 = 4. *. a in
-    for i = 0 to n - 1 do
-      let k2 =
-        2.
-        *. ((Array.unsafe_get p.primary_ocx i *. dx)
-           +. (Array.unsafe_get p.primary_ocy i *. dy)
-           +. (Array.unsafe_get p.primary_ocz i *. dz))
-      in
-      consider_textbook tr s i k1x4 two_k1 k2 (Array.unsafe_get p.primary_k3 i)
-    done
-  end;
+  (match p.bvh with
+  | None ->
+      let n = p.n_spheres in
+      tr.counters.tests <- tr.counters.tests + n;
+      for i = 0 to n - 1 do
+        test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+      done
+  | Some b ->
+      let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+      let stack = tr.nodes and sp = ref 1 in
+      Array.unsafe_set stack 0 0;
+      while !sp > 0 do
+        decr sp;
+        let k = Array.unsafe_get stack !sp in
+        tr.counters.box_tests <- tr.counters.box_tests + 1;
+        (* A box entered beyond the best hit so far cannot hold a better
+           one (its spheres' hit points lie inside it, rounding included);
+           one entered exactly there may hold an equal one. *)
+        if meets_box b s k ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
+          let count = Array.unsafe_get b.count k in
+          if count > 0 then begin
+            let first = Array.unsafe_get b.first k in
+            tr.counters.tests <- tr.counters.tests + count;
+            for i = first to first + count - 1 do
+              test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+            done
+          end
+          else sp := push_children b stack !sp k dx dy dz
+        end
+      done);
   tr.hit
 
-(* Does sphere [i] meet the ray in [s] with [t_min < t < t_max]? The same
-   roots as [closest], so a sphere blocks exactly when [closest] would have
-   found it. *)
+let closest tr = closest_from tr ~primary:false
+let closest_primary tr = closest_from tr ~primary:true
+
+(* Does the sphere in slot [i] meet the ray in [s] with
+   [t_min < t < t_max]? The same roots as [closest], so a sphere blocks
+   exactly when [closest] would have found it. *)
 let[@inline] blocks tr i a inv_a =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
@@ -300,6 +347,45 @@ let[@inline] blocks tr i a inv_a =
     let t1 = (-.k2 +. sq) /. (2. *. a) in
     s.t_min < t1 && t1 < s.t_max
 
+(* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
+let first_blocker tr skip a inv_a =
+  let p = tr.p and s = tr.s in
+  match p.bvh with
+  | None ->
+      let n = p.n_spheres in
+      let i = ref 0 in
+      while !i < n && (!i = skip || not (blocks tr !i a inv_a)) do
+        incr i
+      done;
+      tr.counters.tests <- tr.counters.tests + !i + 1;
+      if !i < n then !i else -1
+  | Some b ->
+      let dx = s.dx and dy = s.dy and dz = s.dz in
+      let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+      let stack = tr.nodes and sp = ref 1 and found = ref (-1) in
+      Array.unsafe_set stack 0 0;
+      while !sp > 0 do
+        decr sp;
+        let k = Array.unsafe_get stack !sp in
+        tr.counters.box_tests <- tr.counters.box_tests + 1;
+        if meets_box b s k ix iy iz s.t_max then begin
+          let count = Array.unsafe_get b.count k in
+          if count > 0 then begin
+            let i = ref (Array.unsafe_get b.first k) and last = Array.unsafe_get b.first k + count in
+            while !i < last && (!i = skip || not (blocks tr !i a inv_a)) do
+              incr i
+            done;
+            tr.counters.tests <- tr.counters.tests + count;
+            if !i < last then begin
+              found := !i;
+              sp := 0
+            end
+          end
+          else sp := push_children b stack !sp k dx dy dz
+        end
+      done;
+      !found
+
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
    searches for the closest hit as the document does. Same answer. *)
@@ -316,19 +402,10 @@ let shadowed tr l =
       tr.counters.tests <- tr.counters.tests + 1;
       true
     end
-    else begin
-      let n = p.n_spheres in
-      let i = ref 0 in
-      while !i < n && (!i = last || not (blocks tr !i a inv_a)) do
-        incr i
-      done;
-      tr.counters.tests <- tr.counters.tests + !i + 1;
-      if !i < n then begin
-        Array.unsafe_set tr.last_blocker l !i;
-        true
-      end
-      else false
-    end
+    else
+      let blocker = first_blocker tr last a inv_a in
+      if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
+      blocker >= 0
 
 (* The total intensity at the hit point [s.px..] with unit normal [s.nx..]
    and view vector [s.vx..] (sections 7.4 to 7.7), left in [s.intensity].
@@ -547,5 +624,6 @@ let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
   s.dz <- d.z;
   s.t_min <- tr.p.epsilon;
   s.t_max <- infinity;
-  tr.origin_sphere <- from;
-  closest tr
+  tr.origin_sphere <- (if from < 0 then -1 else tr.p.slot.(from));
+  let hit = closest tr in
+  if hit < 0 then -1 else tr.p.index.(hit)

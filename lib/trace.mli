@@ -15,6 +15,7 @@ type counters = {
   mutable shadow : int;  (** Shadow rays cast. *)
   mutable reflection : int;  (** Mirror rays cast. *)
   mutable tests : int;  (** Ray-sphere intersection tests. *)
+  mutable box_tests : int;  (** Ray-box tests in the sphere hierarchy. *)
   mutable early_stops : int;  (** Reflections stopped by the weight bound. *)
 }
 (** The type for work counters. *)

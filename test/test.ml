@@ -15,6 +15,7 @@ let () =
       ("image_diff", Test_image_diff.tests);
       ("render", Test_render.tests);
       ("numerics", Test_numerics.tests);
+      ("bvh", Test_bvh.tests);
       ("golden", Test_golden.tests);
       ("cli", Test_cli.tests);
       ("window", Test_window.tests);
