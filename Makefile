@@ -8,11 +8,11 @@
 # Debian packages: the build, then the tests (virtual X server, screenshots).
 BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-ocaml-dev \
   libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev libx11-dev
-TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev xvfb x11-apps xdotool imagemagick
+TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev xvfb x11-apps xdotool imagemagick
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: run test deps build golden screenshot clean
+.PHONY: run test deps build golden screenshot clean bench
 
 run: deps build
 	@if [ -n "$$DISPLAY" ]; then \
@@ -54,3 +54,8 @@ screenshot: build
 
 clean:
 	dune clean
+
+# The speed benchmark (bench/speed.ml): prints a table. Release build.
+bench: deps
+	dune build --profile release bin/main.exe bench/speed.exe
+	./_build/default/bench/speed.exe --raytrace ./_build/default/bin/main.exe

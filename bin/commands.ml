@@ -85,13 +85,19 @@ let render opts ~output ~jobs ~stats ~literal =
            msg "%s: the output file is the input scene; choose another output path" output
        | _ -> Ok ()
      in
+     let t0 = Unix.gettimeofday () in
      let* scene = load opts in
+     let t1 = Unix.gettimeofday () in
      let* img, st, seconds = render_image ~literal ~jobs:(jobs_or_cores jobs) scene in
+     let t2 = Unix.gettimeofday () in
      let* () = write output img in
-     (match (stats, st) with
-     | true, Some st -> Format.eprintf "%a@?" Stats.pp_table st
-     | true, None -> Format.eprintf "literal oracle: %.3f s@." seconds
-     | false, _ -> ());
+     let t3 = Unix.gettimeofday () in
+     if stats then begin
+       (match st with
+       | Some st -> Format.eprintf "%a@?" Stats.pp_table st
+       | None -> Format.eprintf "%-24s %.4f@." "time, literal oracle (s)" seconds);
+       Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" (t1 -. t0) "time, write (s)" (t3 -. t2)
+     end;
      if output <> "-" then
        Printf.eprintf "raytrace: wrote %s (%dx%d, %.3f s)\n%!" output scene.width scene.height
          seconds;

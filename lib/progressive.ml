@@ -18,7 +18,7 @@ type t = {
 type band = { size : int; top : int; rows : int }
 
 let coarsest = 16
-let counter_fields = 5
+let counter_fields = 6
 
 let shared ~jobs ~width ~height =
   if jobs < 2 then invalid_arg "Progressive.shared: jobs < 2";
@@ -81,13 +81,13 @@ let trace_rows_in_workers (r : t) (s : shared) pass ~top ~rows =
   let jobs = min s.jobs rows in
   let work w =
     let c = Trace.counters r.tr in
-    let before = [| c.primary; c.shadow; c.reflection; c.tests; c.early_stops |] in
+    let before = [| c.primary; c.shadow; c.reflection; c.tests; c.box_tests; c.early_stops |] in
     let row = ref (top + w) in
     while !row < top + rows do
       trace_row r r.tr pass !row;
       row := !row + jobs
     done;
-    let after = [| c.primary; c.shadow; c.reflection; c.tests; c.early_stops |] in
+    let after = [| c.primary; c.shadow; c.reflection; c.tests; c.box_tests; c.early_stops |] in
     Array.iteri (fun i a -> s.ints.{(w * counter_fields) + i} <- Int64.of_int (a - before.(i))) after
   in
   Bigarray.Array1.fill s.ints 0L;
@@ -98,7 +98,8 @@ let trace_rows_in_workers (r : t) (s : shared) pass ~top ~rows =
   c.shadow <- c.shadow + sum 1;
   c.reflection <- c.reflection + sum 2;
   c.tests <- c.tests + sum 3;
-  c.early_stops <- c.early_stops + sum 4;
+  c.box_tests <- c.box_tests + sum 4;
+  c.early_stops <- c.early_stops + sum 5;
   result
 
 let step ?(rows = 1) (r : t) =

@@ -33,7 +33,7 @@ let region tr img ~x ~y ~w ~h =
     row tr buffer ~width ~height ~x0:x ~x1:(x + w) r
   done
 
-let counter_fields = 6
+let counter_fields = 7
 
 (* Worker [w]'s counters go to slots [w * counter_fields ...]. *)
 let save_counters ints w tr words =
@@ -45,7 +45,8 @@ let save_counters ints w tr words =
   set 2 c.reflection;
   set 3 c.tests;
   set 4 c.early_stops;
-  set 5 (truncate words)
+  set 5 (truncate words);
+  set 6 c.box_tests
 
 let image ?(jobs = 1) ?skips (scene : Scene.t) =
   if jobs < 1 then invalid_arg "Render.image: jobs < 1";
@@ -64,6 +65,7 @@ let image ?(jobs = 1) ?skips (scene : Scene.t) =
           shadow = sum ints 1;
           reflection = sum ints 2;
           tests = sum ints 3;
+          box_tests = sum ints 6;
           early_stops = sum ints 4;
           jobs;
           prepare_s = t1 -. t0;

@@ -68,8 +68,15 @@ let tests =
             let what = Printf.sprintf "%d jobs, %d rows, %d samples" jobs rows samples in
             Helpers.check_images what ~expected (Progressive.image r);
             Alcotest.(check (option string)) what None (Progressive.failure r);
-            (* the workers' rays are counted: every pixel once, plus 9 per
-               pixel with antialiasing *)
+            (* the workers' rays are counted as one process counts them *)
+            let alone = Progressive.create ~samples s in
+            ignore (run_to_end alone);
+            let rays r =
+              let c = Trace.counters (Progressive.tracer r) in
+              [ c.primary; c.shadow; c.reflection ]
+            in
+            Alcotest.(check (list int)) what (rays alone) (rays r);
+            (* every pixel once, plus 9 per pixel with antialiasing *)
             Alcotest.(check int) what (61 * 37 * (if samples = 1 then 1 else 10)) (primary r))
           [ (2, 5, 1); (3, 37, 1); (2, 1, 1); (2, 8, 3) ]);
     Alcotest.test_case "when a worker dies, this process traces its rows: same image" `Quick (fun () ->
