@@ -174,8 +174,11 @@ let finish_frame s =
   let rays_per_s = if s.trace_s > 0. then rays /. s.trace_s else 0. in
   let scene = s.view.scene in
   Graphics.set_window_title (View.title ~name:s.name ~frame:(scene.width, scene.height, seconds, rays_per_s) ());
-  log "drawn %dx%d in %.3f s: traced in %.3f s (%.1f M rays/s), plotted in %.3f s, previews in %.3f s" scene.width
-    scene.height seconds s.trace_s (rays_per_s /. 1e6) s.plot_s s.preview_s;
+  let n = View.samples s.view in
+  log "drawn %dx%d%s in %.3f s: traced in %.3f s (%.1f M rays/s), plotted in %.3f s, previews in %.3f s" scene.width
+    scene.height
+    (if n > 1 then Printf.sprintf " antialiased %dx%d" n n else "")
+    seconds s.trace_s (rays_per_s /. 1e6) s.plot_s s.preview_s;
   if s.save_pending then begin
     s.save_pending <- false;
     save s

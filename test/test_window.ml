@@ -22,7 +22,7 @@ let available () =
 
 (* Runs the window on a copy of scenes/[name] in a fresh directory (where
    [s] saves) through [steps]; the directory then holds the screenshots. *)
-let session name steps =
+let session ?(view_args = "") name steps =
   let dir = Helpers.temp_dir () in
   let scene = Filename.concat dir name in
   (match File_io.read (Helpers.scene_path name) with
@@ -31,8 +31,9 @@ let session name steps =
       output_string oc text;
       close_out oc
   | Error (`Msg m) -> Alcotest.fail m);
+  let env = Array.append [| "VIEW_ARGS=" ^ view_args |] (Unix.environment ()) in
   let code, _, err =
-    Helpers.run "xvfb-run"
+    Helpers.run ~env "xvfb-run"
       ([ "-a"; "-s"; "-screen 0 1024x768x24"; "./window_session.sh"; Helpers.raytrace (); scene; dir ] @ steps)
   in
   if code <> 0 then Alcotest.failf "%s: the window session failed (%d): %s" name code err;
@@ -64,10 +65,13 @@ let tests =
     Alcotest.test_case "keys, the pointer and resizing change the picture as the headless render shows it" `Slow
       (fun () ->
         if available () then begin
+          (* Two workers: the full-resolution passes go through them, and
+             an antialiased 600 x 600 frame takes long enough (over 0.1 s)
+             for a key 30 ms later to come in the middle of it. *)
           let dir =
-            session "cgfs.scene"
+            session ~view_args:"--jobs 2" "cgfs.scene"
               [
-                "keys:Left"; "shot:left"; "title:left"; "resize:320x240"; "shot:small"; "keys:W,E,plus";
+                "frame:a,a"; "keys:Left"; "shot:left"; "title:left"; "resize:320x240"; "shot:small"; "keys:W,E,plus";
                 "shot:moved"; "keys:a"; "shot:aa"; "press:h"; "keys:r"; "shot:help"; "press:h"; "keys:a";
                 "drag:160,120,24,-16"; "shot:drag"; "save:D,s"; "shot:final";
               ]
@@ -81,6 +85,18 @@ let tests =
           (* xdotool moves the pointer 16 pixels up: +16 in Graphics' y *)
           let drag = views (keys [ 'a' ] @ [ View.Drag (24, 16) ]) aa in
           let final = views (keys [ 'D' ]) drag in
+          (* The second a came while the antialiased frame of the first was
+             being traced: that frame was dropped, never finished. The only
+             antialiased frames are those of a and r at 320 x 240. *)
+          let log = text (Filename.concat dir "log") in
+          let lines = String.split_on_char '\n' log in
+          Alcotest.(check (list string)) "the antialiased frames" [ "320x240"; "320x240" ]
+            (List.filter_map
+               (fun l ->
+                 match String.split_on_char ' ' l with
+                 | "raytrace:" :: "drawn" :: size :: "antialiased" :: _ -> Some size
+                 | _ -> None)
+               lines);
           let check what (view : View.t) =
             let expected = if View.samples view = 1 then Render.image_exn view.scene else aa_image in
             Helpers.check_images ("window after " ^ what) ~expected (shot dir what)
@@ -108,7 +124,6 @@ let tests =
           (* s, pressed right after D, saved the frame that D asked for and
              its scene; the command line renders that scene to the same
              picture. *)
-          let log = text (Filename.concat dir "log") in
           let ppm = Filename.concat dir "cgfs-1.ppm" and scene = Filename.concat dir "cgfs-1.scene" in
           Alcotest.(check bool) ("the window says where it saved: " ^ log) true (contains log ("saved " ^ ppm));
           Helpers.check_images "the saved image" ~expected:(shot dir "final") (read ppm);

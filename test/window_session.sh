@@ -5,6 +5,7 @@
 #   keys:K1,K2...   press each key (xdotool key names: Left, W, plus, a ...)
 #                   and wait for the full frame that it causes
 #   press:K1,K2...  press the keys without waiting (h, which draws no frame)
+#   frame:K1,K2...  press the keys 30 ms apart and wait for one full frame
 #   shot:NAME       screenshot of the window's inside -> DIR/NAME.ppm
 #   title:NAME      the window's title -> DIR/NAME.title
 #   resize:WxH      resize the window and wait for the frame at that size
@@ -65,6 +66,11 @@ for step in "$@"; do
     ;;
   press)
     xdotool key --window "$win" $(echo "$arg" | tr ',' ' ')
+    ;;
+  frame)
+    n=$(count "drawn")
+    xdotool key --delay 30 --window "$win" $(echo "$arg" | tr ',' ' ')
+    wait_for "drawn" $((n + 1))
     ;;
   shot)
     xwd -silent -nobdrs -id "$win" >"$dir/$arg.xwd" || fail "xwd failed"
