@@ -136,8 +136,14 @@ let start_frame s =
     Frame.resize scene.width scene.height;
     s.shared <- None
   end;
-  if s.jobs > 1 && s.shared = None && not s.failure_told then
-    s.shared <- Some (Progressive.shared ~jobs:s.jobs ~width:scene.width ~height:scene.height);
+  if s.jobs > 1 && s.shared = None && not s.failure_told then begin
+    match Progressive.shared ~jobs:s.jobs ~width:scene.width ~height:scene.height with
+    | shared -> s.shared <- Some shared
+    | exception ((Failure _ | Unix.Unix_error _) as e) ->
+        s.failure_told <- true;
+        let why = match e with Unix.Unix_error (err, _, _) -> Unix.error_message err | e -> Printexc.to_string e in
+        log "no memory to share with worker processes (%s); tracing in this process" why
+  end;
   s.render <- Progressive.create ~samples:(View.samples s.view) ?shared:s.shared scene;
   s.rows <- 1;
   s.started <- Unix.gettimeofday ();

@@ -91,7 +91,11 @@ let trace_rows_in_workers (r : t) (s : shared) pass ~top ~rows =
     Array.iteri (fun i a -> s.ints.{(w * counter_fields) + i} <- Int64.of_int (a - before.(i))) after
   in
   Bigarray.Array1.fill s.ints 0L;
-  let result = Parallel.run jobs work in
+  let result =
+    match Parallel.run jobs work with
+    | r -> r
+    | exception Unix.Unix_error (e, f, _) -> Error (`Msg (Printf.sprintf "%s: %s" f (Unix.error_message e)))
+  in
   let c = Trace.counters r.tr in
   let sum i = List.init jobs (fun w -> Int64.to_int s.ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in
   c.primary <- c.primary + sum 0;

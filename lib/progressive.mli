@@ -56,8 +56,9 @@ val step : ?rows:int -> t -> band option
 (** [step ~rows r] traces the next band and is [Some band], or is [None]
     (and does nothing) when the image is complete. A band of a
     full-resolution pass has [rows] rows (default 1), or fewer at the
-    bottom; a coarse band has its block size. If a worker fails, the band
-    is traced again in this process, as are all later ones ({!failure}).
+    bottom; a coarse band has its block size. If a worker fails (or no
+    worker can be started), the band is traced again in this process, as
+    are all later ones ({!failure}).
     @raise Invalid_argument if [rows < 1]. *)
 
 val failure : t -> string option
