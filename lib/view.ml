@@ -19,7 +19,7 @@ let arrow_down = '\x83'
 let move_step (scene : Scene.t) = 0.5 *. scene.viewport.distance
 let turn_step = Float.pi /. 36.
 
-(* Column [c] of the matrix: where the camera's axis [c] points. *)
+(* The column of the matrix that [pick] selects: where that camera axis points. *)
 let column (m : Camera.rotation) pick = Vec3.v (pick m.row0) (pick m.row1) (pick m.row2)
 
 let move ~right ~forward (cam : Camera.t) =
