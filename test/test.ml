@@ -16,6 +16,8 @@ let () =
       ("render", Test_render.tests);
       ("golden", Test_golden.tests);
       ("cli", Test_cli.tests);
+      ("region", Test_region.tests);
+      ("part", Test_part.tests);
       ("window", Test_window.tests);
       ("example", Test_example.tests);
     ]
