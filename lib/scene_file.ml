@@ -253,13 +253,62 @@ let light form_loc nodes =
       fail form_loc "light: expected its kind first, e.g. (light point (intensity 0.6) (position 2 1 0)); kinds are %s"
         (one_of kinds)
 
+let path_key key_loc nodes =
+  let form = "camera-path key" in
+  let fs = fields ~form ~allowed:[ "frame"; "position"; "look-at"; "up" ] nodes in
+  let frame =
+    required ~form ~form_loc:key_loc fs "frame" (fun _ f ->
+        let node = single form "frame" f in
+        let n = int_field form "frame" f in
+        if n < 0 || n > Camera_path.max_frame then
+          fail (loc_of node) "camera-path key frame must lie in [0, %d], got %d" Camera_path.max_frame n;
+        n)
+  in
+  let point name =
+    let loc, p = required ~form ~form_loc:key_loc fs name (fun _ f -> (f.loc, vec3_field form name f)) in
+    check loc (Limits.check_point (field_what form name) p)
+  in
+  let position = point "position" in
+  let target = point "look-at" in
+  let up =
+    Option.map
+      (fun (loc, p) -> check loc (Limits.check_point (field_what form "up") p))
+      (get ~form fs "up" (fun _ f -> (f.loc, vec3_field form "up" f)))
+  in
+  check key_loc (Camera_path.check_key (Camera_path.key ?up ~frame ~position target))
+
+let camera_path form_loc nodes =
+  let keys =
+    List.map
+      (fun node ->
+        match node with
+        | Cst.List { loc; elements } -> (
+            match sexps elements with
+            | Cst.Atom { atom = "key"; _ } :: rest -> (loc, path_key loc rest)
+            | _ -> fail loc "camera-path: expected a keyframe (key (frame N) (position x y z) (look-at x y z))")
+        | Cst.Atom { loc; atom; _ } ->
+            fail loc "camera-path: expected a keyframe (key ...), got %s" (show_atom atom))
+      nodes
+  in
+  let rec segments = function
+    | (_, k0) :: ((loc, k1) :: _ as rest) ->
+        ignore (check loc (Camera_path.check_segment k0 k1));
+        segments rest
+    | [ _ ] | [] -> ()
+  in
+  if keys = [] then
+    fail form_loc "camera-path needs at least one (key (frame N) (position x y z) (look-at x y z))";
+  segments keys;
+  check form_loc (Camera_path.v (List.map snd keys))
+
 (* A top-level form that takes its values directly, e.g. (epsilon 0.001). *)
 let values form form_loc nodes n =
   if List.length nodes <> n then
     fail form_loc "%s takes %d value%s, got %d" form n (if n = 1 then "" else "s") (List.length nodes);
   nodes
 
-let top_level = [ "canvas"; "viewport"; "camera"; "background"; "recursion-depth"; "epsilon"; "sphere"; "light" ]
+let top_level =
+  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "light" ]
 
 let scene_of_forms forms =
   let seen = Hashtbl.create 8 in
@@ -289,6 +338,7 @@ let scene_of_forms forms =
                   s := { !s with width; height }
               | "viewport" -> s := { !s with viewport = viewport rest }
               | "camera" -> s := { !s with camera = camera rest }
+              | "camera-path" -> s := { !s with camera_path = Some (camera_path loc rest) }
               | "background" ->
                   let c = color_of_nodes kw loc rest in
                   s := { !s with background = check loc (Scene.check_background c) }
@@ -306,7 +356,14 @@ let scene_of_forms forms =
                   fail kw_loc "unknown form %s; expected %s%s" (show_atom kw) (one_of top_level)
                     (suggestion kw top_level))))
     forms;
-  { !s with spheres = List.rev !spheres; lights = List.rev !lights }
+  (* Without a camera form, a still picture is the path's first frame. *)
+  let camera =
+    match !s.camera_path with
+    | Some path when not (Hashtbl.mem seen "camera") -> (
+        match Camera_path.camera path (Camera_path.first_frame path) with Ok c -> c | Error _ -> !s.camera)
+    | _ -> !s.camera
+  in
+  { !s with camera; spheres = List.rev !spheres; lights = List.rev !lights }
 
 let of_string ?(file = "<string>") text =
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
@@ -339,6 +396,18 @@ let to_string (s : Scene.t) =
   else
     line "(camera (position %s) (rotation (%s) (%s) (%s)))" (vec s.camera.position) (vec m.row0)
       (vec m.row1) (vec m.row2);
+  Option.iter
+    (fun path ->
+      Buffer.add_string b "(camera-path";
+      List.iter
+        (fun (k : Camera_path.key) ->
+          Buffer.add_string b
+            (Printf.sprintf "\n (key (frame %d) (position %s) (look-at %s)%s)" k.frame (vec k.position)
+               (vec k.look_at)
+               (if Vec3.equal k.up Vec3.oy then "" else Printf.sprintf " (up %s)" (vec k.up))))
+        (Camera_path.keys path);
+      line ")")
+    s.camera_path;
   line "(background %s %s %s)" (num s.background.r) (num s.background.g) (num s.background.b);
   line "(recursion-depth %d)" s.depth;
   Option.iter (fun e -> line "(epsilon %s)" (num e)) s.epsilon;

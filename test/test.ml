@@ -18,6 +18,7 @@ let () =
       ("cli", Test_cli.tests);
       ("region", Test_region.tests);
       ("part", Test_part.tests);
+      ("camera_path", Test_camera_path.tests);
       ("window", Test_window.tests);
       ("example", Test_example.tests);
     ]
