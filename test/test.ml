@@ -19,6 +19,7 @@ let () =
       ("region", Test_region.tests);
       ("part", Test_part.tests);
       ("camera_path", Test_camera_path.tests);
+      ("png", Test_png.tests);
       ("window", Test_window.tests);
       ("example", Test_example.tests);
     ]
