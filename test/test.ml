@@ -20,6 +20,7 @@ let () =
       ("part", Test_part.tests);
       ("camera_path", Test_camera_path.tests);
       ("png", Test_png.tests);
+      ("cli_parts", Test_cli_parts.tests);
       ("window", Test_window.tests);
       ("example", Test_example.tests);
     ]
