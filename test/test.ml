@@ -21,6 +21,7 @@ let () =
       ("camera_path", Test_camera_path.tests);
       ("png", Test_png.tests);
       ("cli_parts", Test_cli_parts.tests);
+      ("recipes", Test_recipes.tests);
       ("window", Test_window.tests);
       ("example", Test_example.tests);
     ]
