@@ -33,6 +33,13 @@ let concurrently commands =
     pids
 
 let size = [ "--width"; "97"; "--height"; "61" ]
+let small = [ "--width"; "24"; "--height"; "18" ]
+let orbit = Helpers.scene_path "orbit.scene"
+
+(* A fresh directory, and the path of a name in it. *)
+let fresh () =
+  let dir = Helpers.temp_dir () in
+  (dir, Filename.concat dir)
 
 let tests =
   [
@@ -57,8 +64,7 @@ let tests =
         succeed __LOC__ [ "merge"; f "c.ppm"; f "a.ppm"; f "b.ppm"; "-o"; f "merged.png" ];
         Alcotest.(check bool) "merged PNG = whole PNG" true (String.equal (read (f "whole.png")) (read (f "merged.png"))));
     Alcotest.test_case "merge refuses parts of another scene, size or depth" `Quick (fun () ->
-        let dir = Helpers.temp_dir () in
-        let f name = Filename.concat dir name in
+        let _, f = fresh () in
         let scene = Helpers.scene_path "cgfs.scene" in
         let tile ?(scene = scene) ?(extra = []) ?(size = size) i name =
           succeed __LOC__ ([ "render"; scene; "--tile"; Printf.sprintf "%d/2" i; "-o"; f name ] @ size @ extra)
@@ -116,10 +122,7 @@ let tests =
         Alcotest.(check int) __LOC__ 0 code;
         Alcotest.(check string) __LOC__ "pixels=600 differing=0 differing_gt1=0 max_abs=0 mean_abs=0.000000 psnr=inf\n" out);
     Alcotest.test_case "frames rendered together or one per process are the same files" `Quick (fun () ->
-        let dir = Helpers.temp_dir () in
-        let f name = Filename.concat dir name in
-        let orbit = Helpers.scene_path "orbit.scene" in
-        let small = [ "--width"; "24"; "--height"; "18" ] in
+        let dir, f = fresh () in
         succeed __LOC__ ([ "render"; orbit; "--frames"; "10:13"; "-o"; f "all-%03d.ppm" ] @ small);
         Alcotest.(check (list string)) __LOC__ [ "all-010.ppm"; "all-011.ppm"; "all-012.ppm"; "all-013.ppm" ]
           (List.sort String.compare (Array.to_list (Sys.readdir dir)));
@@ -140,16 +143,12 @@ let tests =
         succeed __LOC__ ([ "render"; still; "-o"; f "still.ppm" ] @ small);
         Alcotest.(check bool) "frame 12 = the still" true (String.equal (read (f "still.ppm")) (read (f "all-012.ppm"))));
     Alcotest.test_case "a frame's still is frame 0, which here is the reference view" `Quick (fun () ->
-        let dir = Helpers.temp_dir () in
-        let f name = Filename.concat dir name in
+        let _, f = fresh () in
         succeed __LOC__ [ "render"; Helpers.scene_path "orbit.scene"; "--frames"; "0"; "--width"; "30"; "--height"; "30"; "-o"; f "o.ppm" ];
         succeed __LOC__ [ "render"; Helpers.scene_path "cgfs.scene"; "--width"; "30"; "--height"; "30"; "-o"; f "c.ppm" ];
         Alcotest.(check bool) __LOC__ true (String.equal (read (f "o.ppm")) (read (f "c.ppm"))));
     Alcotest.test_case "tiles of a frame merge into that frame" `Quick (fun () ->
-        let dir = Helpers.temp_dir () in
-        let f name = Filename.concat dir name in
-        let orbit = Helpers.scene_path "orbit.scene" in
-        let small = [ "--width"; "24"; "--height"; "18" ] in
+        let _, f = fresh () in
         succeed __LOC__ ([ "render"; orbit; "--frames"; "5"; "-o"; f "whole.ppm" ] @ small);
         List.iter (fun i -> succeed __LOC__ ([ "render"; orbit; "--frames"; "5"; "--tile"; i ^ "/2"; "-o"; f ("t" ^ i ^ ".ppm") ] @ small)) [ "1"; "2" ];
         succeed __LOC__ [ "merge"; f "t1.ppm"; f "t2.ppm"; "-o"; f "m.ppm" ];
@@ -161,7 +160,6 @@ let tests =
     Alcotest.test_case "bad frames are one line, no file" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let out = Filename.concat dir "f-%d.ppm" in
-        let orbit = Helpers.scene_path "orbit.scene" in
         refused "beyond the path" ~out:(Filename.concat dir "f-49.ppm")
           ~expected:"frame 49 is outside the camera path, which runs from frame 0 to 48"
           [ "render"; orbit; "--frames"; "47:49"; "-o"; out ];
@@ -177,7 +175,6 @@ let tests =
         if not (Astring_free.contains err "the first frame 3 comes after") then Alcotest.failf "%s" err);
     Alcotest.test_case "frame numbers fill the first %d or %0Nd of the name, as printf does" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
-        let orbit = Helpers.scene_path "orbit.scene" in
         List.iter
           (fun pattern ->
             succeed __LOC__ [ "render"; orbit; "--frames"; "7"; "--width"; "4"; "--height"; "4"; "-o"; Filename.concat dir pattern ])

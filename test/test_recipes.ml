@@ -35,6 +35,17 @@ let sh ?(vars = []) dir script =
   if code <> 0 then Alcotest.failf "%s\nexited with %d:\n%s%s" script code out err;
   (out, err)
 
+(* A directory to work in, the stand-in Slurm's state directory, and the
+   environment that puts its sbatch first on the PATH. *)
+let slurm () =
+  let dir = Helpers.temp_dir () in
+  let bin = Filename.concat dir "bin" and state = Filename.concat dir "slurm" in
+  Unix.mkdir bin 0o755;
+  Unix.mkdir state 0o755;
+  Unix.symlink (here "fake-sbatch") (Filename.concat bin "sbatch");
+  let path = bin ^ ":" ^ Option.value (Sys.getenv_opt "PATH") ~default:"/usr/bin:/bin" in
+  (dir, state, [ "PATH=" ^ path; "FAKE_SLURM=" ^ state; "RAYTRACE=" ^ exe () ])
+
 let size = "--width 97 --height 61"
 let scene () = Helpers.scene_path "mirrors.scene" |> Filename.concat (Sys.getcwd ())
 
@@ -104,16 +115,11 @@ let tests =
             Alcotest.(check bool) (string_of_int i ^ " remote") true (String.equal (read (f "one")) (read (f "remote"))))
           [ 8; 9; 10; 11 ]);
     Alcotest.test_case "the Slurm job array and its merge give the single render's bytes" `Quick (fun () ->
-        let dir = Helpers.temp_dir () in
-        let bin = Filename.concat dir "bin" and slurm = Filename.concat dir "slurm" in
-        Unix.mkdir bin 0o755;
-        Unix.mkdir slurm 0o755;
-        Unix.symlink (here "fake-sbatch") (Filename.concat bin "sbatch");
+        let dir, slurm, vars = slurm () in
         let expected = single dir "single.ppm" in
-        let path = bin ^ ":" ^ Option.value (Sys.getenv_opt "PATH") ~default:"/usr/bin:/bin" in
         let out, _ =
           sh dir
-            ~vars:[ "PATH=" ^ path; "FAKE_SLURM=" ^ slurm; "RAYTRACE=" ^ exe () ]
+            ~vars
             (Printf.sprintf "%s %s 7 slurm.ppm %s" (contrib "slurm-render.sh") (scene ()) size)
         in
         Alcotest.(check string) "job IDs" "tiles: job 101; merge: job 102\n" out;
@@ -121,16 +127,11 @@ let tests =
         Alcotest.(check bool) "slurm = single" true (String.equal expected (read (Filename.concat dir "slurm.ppm")));
         Alcotest.(check bool) "the merge job removes the parts" false (Sys.file_exists (Filename.concat dir "slurm.ppm.parts")));
     Alcotest.test_case "a failed tile task stops the Slurm merge" `Quick (fun () ->
-        let dir = Helpers.temp_dir () in
-        let bin = Filename.concat dir "bin" and slurm = Filename.concat dir "slurm" in
-        Unix.mkdir bin 0o755;
-        Unix.mkdir slurm 0o755;
-        Unix.symlink (here "fake-sbatch") (Filename.concat bin "sbatch");
-        let path = bin ^ ":" ^ Option.value (Sys.getenv_opt "PATH") ~default:"/usr/bin:/bin" in
+        let dir, slurm, vars = slurm () in
         (* A depth beyond the limit: every tile task fails. *)
         ignore
           (sh dir
-             ~vars:[ "PATH=" ^ path; "FAKE_SLURM=" ^ slurm; "RAYTRACE=" ^ exe () ]
+             ~vars
              (Printf.sprintf "%s %s 3 slurm.ppm %s --depth 99" (contrib "slurm-render.sh") (scene ()) size));
         if not (Astring_free.contains (read (Filename.concat slurm "job-101.log")) "recursion depth must lie in [0, 64]") then
           Alcotest.fail "the tasks' log lacks raytrace's message";
