@@ -51,7 +51,7 @@ let region_rows tr img ~x ~y ~first ~step =
     r := !r + step
   done
 
-let counter_fields = 6
+let counter_fields = 7
 
 (* Worker [w]'s counters go to slots [w * counter_fields ...]. *)
 let save_counters ints w tr words =
@@ -63,7 +63,8 @@ let save_counters ints w tr words =
   set 2 c.reflection;
   set 3 c.tests;
   set 4 c.early_stops;
-  set 5 (truncate words)
+  set 5 (truncate words);
+  set 6 c.box_tests
 
 let region_image ?(jobs = 1) ?skips (scene : Scene.t) (region : Region.t) =
   if jobs < 1 then invalid_arg "Render.region_image: jobs < 1";
@@ -84,6 +85,7 @@ let region_image ?(jobs = 1) ?skips (scene : Scene.t) (region : Region.t) =
           shadow = sum ints 1;
           reflection = sum ints 2;
           tests = sum ints 3;
+          box_tests = sum ints 6;
           early_stops = sum ints 4;
           jobs;
           prepare_s = t1 -. t0;

@@ -53,6 +53,28 @@ let cgfs_camera =
   in
   { cgfs with camera = Camera.v ~rotation (Vec3.v 3. 0. 1.) }
 
+let grid n =
+  if n < 1 then invalid_arg "Scene.grid: n < 1";
+  let k = ref 1 in
+  while !k * !k < n do incr k done;
+  let k = !k in
+  let palette =
+    [| Color.v 255. 0. 0.; Color.v 0. 255. 0.; Color.v 0. 0. 255.; Color.v 255. 255. 0.;
+       Color.v 0. 255. 255.; Color.v 255. 0. 255. |]
+  in
+  let specular = [| -1.; 10.; 500.; 1000. |] and reflective = [| 0.; 0.2; 0.4 |] in
+  let wall =
+    List.init n (fun i ->
+        let col = i mod k and row = i / k in
+        let center =
+          Vec3.v (Float.of_int col -. (Float.of_int (k - 1) /. 2.)) (Float.of_int row -. 0.6) (2. *. Float.of_int k)
+        in
+        Sphere.v ~specular:specular.(i mod 4) ~reflective:reflective.(i mod 3) ~center ~radius:0.4
+          palette.(i mod 6))
+  in
+  let ground = List.nth cgfs.spheres 3 in
+  { cgfs with width = 800; height = 800; spheres = wall @ [ ground ] }
+
 let check_epsilon e =
   if Float.is_finite e && e >= 0. then Ok e
   else Error (Printf.sprintf "epsilon must be finite and >= 0, got %s" (Float_text.to_string e))

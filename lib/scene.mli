@@ -58,6 +58,17 @@ val cgfs_camera : t
     camera demo's matrix [(0.7071 0 -0.7071) (0 1 0) (0.7071 0 0.7071)]
     (and [scenes/cgfs-camera.scene]). *)
 
+val grid : int -> t
+(** [grid n] is the many-sphere scene [grid:n] of the C reference
+    ([../shared/reference/]): [n] spheres of radius 0.4 in a wall facing
+    the camera -- with [k] the smallest integer such that [k * k >= n],
+    sphere [i] has center [(i mod k - (k - 1) / 2, i / k - 0.6, 2 k)],
+    colour red, green, blue, yellow, cyan, magenta by [i mod 6], specular
+    [-1, 10, 500, 1000] by [i mod 4] and reflective [0, 0.2, 0.4] by
+    [i mod 3] -- then the ground sphere and the three lights of {!cgfs};
+    800 x 800, depth 3, epsilon 0.001.
+    @raise Invalid_argument if [n < 1]. *)
+
 val document_epsilon : float
 (** [document_epsilon] is [0.0001], the document's lower bound of [t] for
     shadow rays (7.7), used by {!Literal} for scenes without an epsilon. *)

@@ -60,6 +60,34 @@ let gen =
       camera_path;
     }
 
+let crowd =
+  let* base = gen in
+  let* n = int_range 9 80 in
+  let* cluster = map3 Vec3.v (coord (-2.) 2.) (coord (-2.) 2.) (coord 3. 8.) in
+  let* spread = oneof [ return 0.5; return 3.; return 10. ] in
+  let* spheres =
+    list_repeat n
+      (let* s = sphere in
+       let* offset = vec (-.spread) spread in
+       return { s with Sphere.center = Vec3.add cluster offset })
+  in
+  (* Duplicates (ties between equal roots), a sphere inside another, a huge
+     ground, a sphere around the camera. *)
+  let* dup = bool and* ground = bool and* around = oneof [ return false; return false; return true ] in
+  let spheres =
+    match spheres with
+    | a :: b :: rest ->
+        let nested = { b with Sphere.center = a.center; radius = a.radius *. 0.5 } in
+        (if dup then [ a; a; nested ] else [ a; nested ]) @ rest
+    | l -> l
+  in
+  let spheres =
+    if ground then spheres @ [ Sphere.v ~center:(Vec3.v 0. (-5001.) 0.) ~radius:5000. ~reflective:0.3 Color.white ]
+    else spheres
+  in
+  let spheres = if around then Sphere.v ~center:Vec3.zero ~radius:0.5 Color.white :: spheres else spheres in
+  return { base with spheres }
+
 let arbitrary =
   let shrink (s : Scene.t) =
     QCheck.Iter.(

@@ -14,6 +14,8 @@ let () =
       ("ppm", Test_ppm.tests);
       ("image_diff", Test_image_diff.tests);
       ("render", Test_render.tests);
+      ("numerics", Test_numerics.tests);
+      ("bvh", Test_bvh.tests);
       ("golden", Test_golden.tests);
       ("cli", Test_cli.tests);
       ("region", Test_region.tests);

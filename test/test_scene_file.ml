@@ -34,8 +34,8 @@ let bad_inputs =
     ("(light point (intensity 0.6))", "t.scene:1:1: light point is missing its (position ...) field");
     ("(light spot (intensity 0.6))", "t.scene:1:8: unknown light kind spot; expected ambient, point or directional");
     ("(light directional (intensity 0.2) (direction 0 0 0))",
-     "t.scene:1:36: directional light direction must not be the zero vector");
-    ("(light ambient (intensity -1))", "t.scene:1:27: light intensity must be finite and >= 0, got -1");
+     "t.scene:1:36: directional light direction must not be the zero vector (its length must be at least 1e-30)");
+    ("(light ambient (intensity -1))", "t.scene:1:27: light intensity must lie in [0, 1e6], got -1");
     ("(light ambient (intensity 0.2) (position 1 2 3))",
      "t.scene:1:33: unknown light ambient field position; expected intensity");
     ("(canvas (width 600) (height 60.5))", "t.scene:1:29: canvas height: expected an integer, got 60.5");
@@ -54,6 +54,8 @@ let bad_inputs =
     ("(viewport (distance 0))", "t.scene:1:21: viewport distance must be > 0, got 0");
     ("(background 0 0)", "t.scene:1:1: background takes 3 numbers (r g b), got 2 values");
     ("\"a\nb\"", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got \"a\\nb\"");
+    ("(sphere (center 0 0 3) (radius 1e-31) (color 1 2 3))", "t.scene:1:32: sphere radius must be at least 1e-30, got 1e-31");
+    ("(light point (intensity 1e7) (position 0 0 0))", "t.scene:1:25: light intensity must lie in [0, 1e6], got 10000000");
     ("(sphere (center 1e13 0 0) (radius 1) (color 1 2 3))",
      "t.scene:1:9: sphere center must be finite and at most 1e12 in magnitude, got 10000000000000");
     ("(camera-path)", "t.scene:1:1: camera-path needs at least one (key (frame N) (position x y z) (look-at x y z))");
