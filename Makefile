@@ -13,7 +13,7 @@ TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev xvfb x
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: run test deps build golden clean
+.PHONY: run test deps build golden clean bench
 
 run: deps build
 	@if [ -n "$$DISPLAY" ]; then \
@@ -47,3 +47,8 @@ golden: build
 
 clean:
 	dune clean
+
+# The speed benchmark (bench/speed.ml): prints a table. Release build.
+bench: deps
+	dune build --profile release bin/main.exe bench/speed.exe
+	./_build/default/bench/speed.exe --raytrace ./_build/default/bin/main.exe

@@ -154,7 +154,7 @@ let check_output opts ~frames ~part output =
   | _ -> Ok ()
 
 (* One picture (a frame, a part, or both) rendered and written. *)
-let render_one ~literal ~jobs ~stats ~frame ~region ~output (scene : Scene.t) =
+let render_one ~literal ~jobs ~stats ~load_s ~frame ~region ~output (scene : Scene.t) =
   let* img, st, seconds =
     match region with
     | None -> render_image ~literal ~jobs scene
@@ -165,6 +165,7 @@ let render_one ~literal ~jobs ~stats ~frame ~region ~output (scene : Scene.t) =
         let* img, st = Render.region_image ~jobs scene r in
         Ok (img, Some st, st.trace_s)
   in
+  let t2 = Unix.gettimeofday () in
   let* () =
     match region with
     | None -> write output img
@@ -176,10 +177,13 @@ let render_one ~literal ~jobs ~stats ~frame ~region ~output (scene : Scene.t) =
         in
         if output = "-" then to_stdout (Part.to_string part) else Part.write_file output part
   in
-  (match (stats, st) with
-  | true, Some st -> Format.eprintf "%a@?" Stats.pp_table st
-  | true, None -> Format.eprintf "literal oracle: %.3f s@." seconds
-  | false, _ -> ());
+  let t3 = Unix.gettimeofday () in
+  if stats then begin
+    (match st with
+    | Some st -> Format.eprintf "%a@?" Stats.pp_table st
+    | None -> Format.eprintf "%-24s %.4f@." "time, literal oracle (s)" seconds);
+    Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" load_s "time, write (s)" (t3 -. t2)
+  end;
   if output <> "-" then begin
     let what =
       match region with
@@ -196,12 +200,14 @@ let render opts ~output ~jobs ~stats ~literal ~part ~frames =
   in
   report
     (let* () = check_output opts ~frames ~part:(Option.is_some part) output in
+     let t0 = Unix.gettimeofday () in
      let* scene = load opts in
+     let load_s = Unix.gettimeofday () -. t0 in
      let* region = part_region scene part in
      let jobs = jobs_or_cores jobs in
      match frames with
      | None ->
-         let* () = render_one ~literal ~jobs ~stats ~frame:None ~region ~output scene in
+         let* () = render_one ~literal ~jobs ~stats ~load_s ~frame:None ~region ~output scene in
          Ok exit_ok
      | Some (a, b) ->
          (* Every frame is checked before the first is rendered. *)
@@ -217,7 +223,7 @@ let render opts ~output ~jobs ~stats ~literal ~part ~frames =
            List.fold_left
              (fun acc (f, s) ->
                let* () = acc in
-               render_one ~literal ~jobs ~stats ~frame:(Some f) ~region ~output:(frame_path output f) s)
+               render_one ~literal ~jobs ~stats ~load_s ~frame:(Some f) ~region ~output:(frame_path output f) s)
              (Ok ()) (List.rev scenes)
          in
          Ok exit_ok)

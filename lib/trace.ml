@@ -271,46 +271,96 @@ let[@inline] push_children (b : Bvh.t) stack sp k dx dy dz =
   end;
   sp + 2
 
+(* The intersection loops below read every loop invariant (arrays, ray,
+   range) into a local once per ray: without flambda, OCaml reloads a
+   record field at every use. *)
+
+(* Every sphere, in scene order, with the textbook roots: the document's
+   mode without a hierarchy (the reference scene). Scene order makes a plain
+   [<] keep the first of equal roots, as CGFS does. *)
+let closest_textbook_all tr ~primary =
+  let p = tr.p and s = tr.s in
+  let cx = p.cx and cy = p.cy and cz = p.cz and r2 = p.r2 in
+  let pox = p.primary_ocx and poy = p.primary_ocy and poz = p.primary_ocz and pk3 = p.primary_k3 in
+  let ox = s.ox and oy = s.oy and oz = s.oz and dx = s.dx and dy = s.dy and dz = s.dz in
+  let t_min = s.t_min and t_max = s.t_max in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let two_k1 = 2. *. a and k1x4 = 4. *. a in
+  let best = ref infinity and hit = ref (-1) in
+  let n = p.n_spheres in
+  tr.counters.tests <- tr.counters.tests + n;
+  for i = 0 to n - 1 do
+    let fx = if primary then Array.unsafe_get pox i else ox -. Array.unsafe_get cx i in
+    let fy = if primary then Array.unsafe_get poy i else oy -. Array.unsafe_get cy i in
+    let fz = if primary then Array.unsafe_get poz i else oz -. Array.unsafe_get cz i in
+    let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+    let k3 =
+      if primary then Array.unsafe_get pk3 i
+      else ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get r2 i
+    in
+    let disc = (k2 *. k2) -. (k1x4 *. k3) in
+    if disc >= 0. then begin
+      let sq = sqrt disc in
+      let t2 = (-.k2 -. sq) /. two_k1 in
+      if t2 < !best && t_min < t2 && t2 < t_max then begin
+        best := t2;
+        hit := i
+      end
+      else
+        let t1 = (-.k2 +. sq) /. two_k1 in
+        if t1 < !best && t_min < t1 && t1 < t_max then begin
+          best := t1;
+          hit := i
+        end
+    end
+  done;
+  s.t <- !best;
+  tr.hit <- !hit;
+  !hit
+
 (* The closest sphere hit by the ray in [s], with [t_min < t < t_max]; its
    [t] is left in [s.t] ([infinity] if none), its slot is returned. *)
 let closest_from tr ~primary =
   let p = tr.p and s = tr.s in
-  let dx = s.dx and dy = s.dy and dz = s.dz in
-  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
-  let inv_a = 1. /. a and two_k1 = 2. *. a and k1x4 = 4. *. a in
-  tr.hit <- -1;
-  s.t <- infinity;
-  (match p.bvh with
-  | None ->
-      let n = p.n_spheres in
-      tr.counters.tests <- tr.counters.tests + n;
-      for i = 0 to n - 1 do
-        test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
-      done
-  | Some b ->
-      let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
-      let stack = tr.nodes and sp = ref 1 in
-      Array.unsafe_set stack 0 0;
-      while !sp > 0 do
-        decr sp;
-        let k = Array.unsafe_get stack !sp in
-        tr.counters.box_tests <- tr.counters.box_tests + 1;
-        (* A box entered beyond the best hit so far cannot hold a better
-           one (its spheres' hit points lie inside it, rounding included);
-           one entered exactly there may hold an equal one. *)
-        if meets_box b s k ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
-          let count = Array.unsafe_get b.count k in
-          if count > 0 then begin
-            let first = Array.unsafe_get b.first k in
-            tr.counters.tests <- tr.counters.tests + count;
-            for i = first to first + count - 1 do
-              test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
-            done
-          end
-          else sp := push_children b stack !sp k dx dy dz
-        end
-      done);
-  tr.hit
+  match p.bvh with
+  | None when not p.robust -> closest_textbook_all tr ~primary
+  | bvh ->
+      let dx = s.dx and dy = s.dy and dz = s.dz in
+      let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+      let inv_a = 1. /. a and two_k1 = 2. *. a and k1x4 = 4. *. a in
+      tr.hit <- -1;
+      s.t <- infinity;
+      (match bvh with
+      | None ->
+          let n = p.n_spheres in
+          tr.counters.tests <- tr.counters.tests + n;
+          for i = 0 to n - 1 do
+            test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+          done
+      | Some b ->
+          let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+          let stack = tr.nodes and sp = ref 1 in
+          Array.unsafe_set stack 0 0;
+          while !sp > 0 do
+            decr sp;
+            let k = Array.unsafe_get stack !sp in
+            tr.counters.box_tests <- tr.counters.box_tests + 1;
+            (* A box entered beyond the best hit so far cannot hold a better
+               one (its spheres' hit points lie inside it, rounding
+               included); one entered exactly there may hold an equal one. *)
+            if meets_box b s k ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
+              let count = Array.unsafe_get b.count k in
+              if count > 0 then begin
+                let first = Array.unsafe_get b.first k in
+                tr.counters.tests <- tr.counters.tests + count;
+                for i = first to first + count - 1 do
+                  test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+                done
+              end
+              else sp := push_children b stack !sp k dx dy dz
+            end
+          done);
+      tr.hit
 
 let closest tr = closest_from tr ~primary:false
 let closest_primary tr = closest_from tr ~primary:true
@@ -346,6 +396,51 @@ let[@inline] blocks tr i a inv_a =
     ||
     let t1 = (-.k2 +. sq) /. (2. *. a) in
     s.t_min < t1 && t1 < s.t_max
+
+(* Does sphere [i] meet the ray [o + t d] with [t_min < t < t_max]? The
+   textbook roots, on loop invariants passed in (see below). *)
+let[@inline] textbook_blocks cx cy cz r2 ox oy oz dx dy dz t_min t_max two_k1 k1x4 i =
+  let fx = ox -. Array.unsafe_get cx i
+  and fy = oy -. Array.unsafe_get cy i
+  and fz = oz -. Array.unsafe_get cz i in
+  let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+  let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get r2 i in
+  let disc = (k2 *. k2) -. (k1x4 *. k3) in
+  disc >= 0.
+  &&
+  let sq = sqrt disc in
+  let t2 = (-.k2 -. sq) /. two_k1 in
+  (t_min < t2 && t2 < t_max)
+  ||
+  let t1 = (-.k2 +. sq) /. two_k1 in
+  t_min < t1 && t1 < t_max
+
+(* A blocker of the ray in [s] with the textbook roots and no hierarchy:
+   slot [last] first (the blocker of this light's previous shadow ray, if
+   [last >= 0]), then the others in scene order; [-1] if none. *)
+let blocker_textbook_all tr last =
+  let p = tr.p and s = tr.s in
+  let cx = p.cx and cy = p.cy and cz = p.cz and r2 = p.r2 in
+  let ox = s.ox and oy = s.oy and oz = s.oz and dx = s.dx and dy = s.dy and dz = s.dz in
+  let t_min = s.t_min and t_max = s.t_max in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let two_k1 = 2. *. a and k1x4 = 4. *. a in
+  if last >= 0 && textbook_blocks cx cy cz r2 ox oy oz dx dy dz t_min t_max two_k1 k1x4 last then begin
+    tr.counters.tests <- tr.counters.tests + 1;
+    last
+  end
+  else begin
+    let n = p.n_spheres in
+    let i = ref 0 in
+    while
+      !i < n
+      && (!i = last || not (textbook_blocks cx cy cz r2 ox oy oz dx dy dz t_min t_max two_k1 k1x4 !i))
+    do
+      incr i
+    done;
+    tr.counters.tests <- tr.counters.tests + !i + if last >= 0 then 1 else 0;
+    if !i < n then !i else -1
+  end
 
 (* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
 let first_blocker tr skip a inv_a =
@@ -392,12 +487,17 @@ let first_blocker tr skip a inv_a =
 let shadowed tr l =
   let p = tr.p and s = tr.s in
   tr.counters.shadow <- tr.counters.shadow + 1;
+  let last = Array.unsafe_get tr.last_blocker l in
   if not p.skips then closest tr >= 0
+  else if p.bvh = None && not p.robust then begin
+    let blocker = blocker_textbook_all tr last in
+    if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
+    blocker >= 0
+  end
   else
     let dx = s.dx and dy = s.dy and dz = s.dz in
     let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
     let inv_a = 1. /. a in
-    let last = Array.unsafe_get tr.last_blocker l in
     if last >= 0 && blocks tr last a inv_a then begin
       tr.counters.tests <- tr.counters.tests + 1;
       true
@@ -422,7 +522,8 @@ let lighting tr ~shiny ~specular_of i =
     let li = Array.unsafe_get p.light_intensity l in
     if Array.unsafe_get p.light_kind l = Prepared.ambient then s.intensity <- s.intensity +. li
     else begin
-      if Array.unsafe_get p.light_kind l = Prepared.point then begin
+      let point = Array.unsafe_get p.light_kind l = Prepared.point in
+      if point then begin
         s.dx <- Array.unsafe_get p.lx l -. px;
         s.dy <- Array.unsafe_get p.ly l -. py;
         s.dz <- Array.unsafe_get p.lz l -. pz;
@@ -440,7 +541,7 @@ let lighting tr ~shiny ~specular_of i =
       s.t_min <- p.epsilon;
       (* A point light on the lit point itself gives no direction, L = 0:
          it is skipped (as Literal does), not divided by zero. *)
-      if (s.dx <> 0. || s.dy <> 0. || s.dz <> 0.) && not (shadowed tr l) then begin
+      if ((not point) || s.dx <> 0. || s.dy <> 0. || s.dz <> 0.) && not (shadowed tr l) then begin
         let lx = s.dx and ly = s.dy and lz = s.dz in
         let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
         if n_dot_l > 0. then
@@ -495,6 +596,9 @@ let settled tr levels =
 let trace tr =
   let p = tr.p and s = tr.s in
   let levels = ref 0 and tracing = ref true in
+  (* The weight of the colour still to be traced: the product of the
+     reflectivities on the stack. *)
+  let weight = ref 1. in
   tr.first_hit <- -1;
   tr.origin_sphere <- -1;
   while !tracing do
@@ -542,7 +646,14 @@ let trace tr =
         Array.unsafe_set tr.stack (k + 2) lb;
         Array.unsafe_set tr.stack (k + 3) refl;
         incr levels;
-        if p.skips && settled tr !levels then begin
+        weight := !weight *. refl;
+        (* Checking costs two folds of the stack: worth it only when what is
+           left weighs less than a unit, or this colour saturates. Skipping
+           the check is always exact. *)
+        if p.skips
+           && (!weight *. p.max_channel < 1. || (lr >= 255. && lg >= 255. && lb >= 255.))
+           && settled tr !levels
+        then begin
           tr.counters.early_stops <- tr.counters.early_stops + 1;
           s.r <- 0.;
           s.g <- 0.;

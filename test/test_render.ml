@@ -89,6 +89,25 @@ let tests =
               __LOC__ c
               (Trace.red tr, Trace.green tr, Trace.blue tr))
           [ (0, 0); (-300, 299); (120, -40) ]);
+    Alcotest.test_case "the number of cores is what the kernel allows this process" `Quick (fun () ->
+        (* /proc/self/status says e.g. "Cpus_allowed_list:\t0-1" for 2 cores *)
+        match Raytrace.File_io.read "/proc/self/status" with
+        | Error _ -> ()
+        | Ok text ->
+            let line =
+              List.find (fun l -> String.length l > 18 && String.sub l 0 18 = "Cpus_allowed_list:")
+                (String.split_on_char '\n' text)
+            in
+            let expected =
+              String.split_on_char ',' (String.trim (String.sub line 18 (String.length line - 18)))
+              |> List.fold_left
+                   (fun acc r ->
+                     match String.split_on_char '-' r with
+                     | [ a; b ] -> acc + int_of_string b - int_of_string a + 1
+                     | _ -> acc + 1)
+                   0
+            in
+            Alcotest.(check int) __LOC__ expected (Parallel.cores ()));
     Alcotest.test_case "a worker that dies fails the render" `Quick (fun () ->
         match Parallel.run 3 (fun w -> if w = 1 then Unix.kill (Unix.getpid ()) Sys.sigkill) with
         | Ok () -> Alcotest.fail "a killed worker went unnoticed"
