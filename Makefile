@@ -7,8 +7,10 @@
 
 # Debian packages: the build, then the tests (virtual X server, screenshots).
 BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-ocaml-dev \
-  libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev libx11-dev
-TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev xvfb x11-apps xdotool imagemagick
+  libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev libcamlimages-ocaml-dev \
+  libx11-dev
+TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev xvfb x11-apps xdotool imagemagick \
+  parallel rsync
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 

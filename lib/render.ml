@@ -33,6 +33,24 @@ let region tr img ~x ~y ~w ~h =
     row tr buffer ~width ~height ~x0:x ~x1:(x + w) r
   done
 
+(* Rows [first], [first + step] ... of the [w x h] image [img] that holds
+   the region at [(x, y)] of the canvas: canvas coordinates from the
+   canvas size, storage from the region's. *)
+let region_rows tr img ~x ~y ~first ~step =
+  let p = Trace.prepared tr in
+  let width = p.width and height = p.height in
+  let w = Image.width img and h = Image.height img in
+  let buffer = Image.buffer img in
+  let r = ref first in
+  while !r < h do
+    let gy = Canvas.y_of_row ~height (y + !r) in
+    for c = 0 to w - 1 do
+      Trace.pixel tr (Canvas.x_of_column ~width (x + c)) gy;
+      Trace.store tr buffer (3 * ((!r * w) + c))
+    done;
+    r := !r + step
+  done
+
 let counter_fields = 7
 
 (* Worker [w]'s counters go to slots [w * counter_fields ...]. *)
@@ -48,19 +66,21 @@ let save_counters ints w tr words =
   set 5 (truncate words);
   set 6 c.box_tests
 
-let image ?(jobs = 1) ?skips (scene : Scene.t) =
-  if jobs < 1 then invalid_arg "Render.image: jobs < 1";
+let region_image ?(jobs = 1) ?skips (scene : Scene.t) (region : Region.t) =
+  if jobs < 1 then invalid_arg "Render.region_image: jobs < 1";
+  if not (Region.contains region ~width:scene.width ~height:scene.height) then
+    invalid_arg "Render.region_image: region outside the canvas";
   let t0 = Unix.gettimeofday () in
   let p = Prepared.prepare ?skips scene in
   let t1 = Unix.gettimeofday () in
-  let jobs = min jobs scene.height in
+  let jobs = min jobs region.h in
   let sum ints i = List.init jobs (fun w -> Int64.to_int ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in
   let finish img ints =
     let t2 = Unix.gettimeofday () in
     let stats =
       Stats.
         {
-          pixels = scene.width * scene.height;
+          pixels = Region.pixels region;
           primary = sum ints 0;
           shadow = sum ints 1;
           reflection = sum ints 2;
@@ -78,24 +98,26 @@ let image ?(jobs = 1) ?skips (scene : Scene.t) =
   let work img ints w =
     let tr = Trace.create p in
     let before = Gc.minor_words () in
-    rows tr img ~first:w ~step:jobs;
+    region_rows tr img ~x:region.x ~y:region.y ~first:w ~step:jobs;
     save_counters ints w tr (Gc.minor_words () -. before)
   in
   if jobs = 1 then begin
-    let img = Image.create scene.width scene.height in
+    let img = Image.create region.w region.h in
     let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
     work img ints 0;
     finish img ints
   end
   else
     let img =
-      Image.of_buffer scene.width scene.height
-        (Parallel.shared_bytes (3 * scene.width * scene.height))
+      Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region))
     in
     let ints = Parallel.shared_ints (jobs * counter_fields) in
     match Parallel.run jobs (work img ints) with
     | Ok () -> finish img ints
     | Error e -> Error e
+
+let image ?jobs ?skips (scene : Scene.t) =
+  region_image ?jobs ?skips scene (Region.full ~width:scene.width ~height:scene.height)
 
 let image_exn ?jobs ?skips scene =
   match image ?jobs ?skips scene with Ok (img, _) -> img | Error (`Msg m) -> failwith m

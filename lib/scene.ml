@@ -8,12 +8,13 @@ type t = {
   epsilon : float option;
   spheres : Sphere.t list;
   lights : Light.t list;
+  camera_path : Camera_path.t option;
 }
 [@@deriving show, eq]
 
 let v ?(width = 600) ?(height = 600) ?(viewport = Viewport.default) ?(camera = Camera.default)
-    ?(background = Color.black) ?(depth = 3) ?epsilon ~spheres ~lights () =
-  { width; height; viewport; camera; background; depth; epsilon; spheres; lights }
+    ?(background = Color.black) ?(depth = 3) ?epsilon ?camera_path ~spheres ~lights () =
+  { width; height; viewport; camera; background; depth; epsilon; spheres; lights; camera_path }
 
 let document_epsilon = 0.0001
 
@@ -105,3 +106,11 @@ let validate s =
 let with_overrides ?width ?height ?depth s =
   let pick o d = match o with Some x -> x | None -> d in
   { s with width = pick width s.width; height = pick height s.height; depth = pick depth s.depth }
+
+let at_frame s f =
+  match s.camera_path with
+  | None -> Error (`Msg "the scene has no camera-path, so it has no frames to render")
+  | Some path -> (
+      match Camera_path.camera path f with
+      | Ok camera -> Ok { s with camera; camera_path = None }
+      | Error e -> Error e)

@@ -239,12 +239,57 @@ let light ~where form_node nodes =
         "light: expected its kind first, e.g. (light point (intensity 0.6) (position 2 1 0)); kinds are %s"
         (one_of kinds)
 
+let path_key ~where key_node nodes =
+  let form = "camera-path key" in
+  let fs = fields ~where ~form ~allowed:[ "frame"; "position"; "look-at"; "up" ] nodes in
+  let frame =
+    required ~form ~form_node:key_node fs "frame" (fun _ f ->
+        let n = int_field form "frame" f in
+        if n < 0 || n > Camera_path.max_frame then
+          fail (single form "frame" f) "camera-path key frame must lie in [0, %d], got %d" Camera_path.max_frame n;
+        n)
+  in
+  let point name =
+    let node, p = required ~form ~form_node:key_node fs name (fun _ f -> (f.node, vec3_field form name f)) in
+    check node (Limits.check_point (field_what form name) p)
+  in
+  let position = point "position" in
+  let target = point "look-at" in
+  let up =
+    Option.map
+      (fun (node, p) -> check node (Limits.check_point (field_what form "up") p))
+      (get ~form fs "up" (fun _ f -> (f.node, vec3_field form "up" f)))
+  in
+  check key_node (Camera_path.check_key (Camera_path.key ?up ~frame ~position target))
+
+let camera_path ~where form_node nodes =
+  let keys =
+    List.map
+      (fun node ->
+        match node with
+        | Sexp.List (Sexp.Atom "key" :: rest) -> (node, path_key ~where node rest)
+        | Sexp.List _ -> fail node "camera-path: expected a keyframe (key (frame N) (position x y z) (look-at x y z))"
+        | Sexp.Atom atom -> fail node "camera-path: expected a keyframe (key ...), got %s" (show_atom atom))
+      nodes
+  in
+  let rec segments = function
+    | (_, k0) :: ((node, k1) :: _ as rest) ->
+        ignore (check node (Camera_path.check_segment k0 k1));
+        segments rest
+    | [ _ ] | [] -> ()
+  in
+  (match keys with
+  | [] -> fail form_node "camera-path needs at least one (key (frame N) (position x y z) (look-at x y z))"
+  | _ -> segments keys);
+  check form_node (Camera_path.v (List.map snd keys))
+
 (* A top-level form that takes its values directly, e.g. (epsilon 0.001). *)
 let value form form_node = function
   | [ x ] -> x
   | nodes -> fail form_node "%s takes 1 value, got %d" form (List.length nodes)
 
-let top_level = [ "canvas"; "viewport"; "camera"; "background"; "recursion-depth"; "epsilon"; "sphere"; "light" ]
+let top_level =
+  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "light" ]
 
 (* The scene being read, form by form. *)
 type builder = {
@@ -285,6 +330,9 @@ let add_form b node =
       | "camera" ->
           once b kw kw_node;
           b.scene <- { b.scene with camera = camera ~where rest }
+      | "camera-path" ->
+          once b kw kw_node;
+          b.scene <- { b.scene with camera_path = Some (camera_path ~where node rest) }
       | "background" ->
           once b kw kw_node;
           let c = color_of_nodes kw node rest in
@@ -301,7 +349,15 @@ let add_form b node =
           fail kw_node "unknown form %s; expected %s%s" (show_atom kw) (one_of top_level)
             (suggestion kw top_level))
 
-let finish b = { b.scene with spheres = List.rev b.spheres; lights = List.rev b.lights }
+let finish b =
+  (* Without a camera form, a still picture is the path's first frame. *)
+  let camera =
+    match b.scene.camera_path with
+    | Some path when not (Hashtbl.mem b.seen "camera") -> (
+        match Camera_path.camera path (Camera_path.first_frame path) with Ok c -> c | Error _ -> b.scene.camera)
+    | _ -> b.scene.camera
+  in
+  { b.scene with camera; spheres = List.rev b.spheres; lights = List.rev b.lights }
 
 (* The located pass: the same conversion over a parse that kept positions. *)
 let locate_error text =
@@ -361,6 +417,18 @@ let to_string (s : Scene.t) =
   else
     line "(camera (position %s) (rotation (%s) (%s) (%s)))" (vec s.camera.position) (vec m.row0)
       (vec m.row1) (vec m.row2);
+  Option.iter
+    (fun path ->
+      Buffer.add_string b "(camera-path";
+      List.iter
+        (fun (k : Camera_path.key) ->
+          Buffer.add_string b
+            (Printf.sprintf "\n (key (frame %d) (position %s) (look-at %s)%s)" k.frame (vec k.position)
+               (vec k.look_at)
+               (if Vec3.equal k.up Vec3.oy then "" else Printf.sprintf " (up %s)" (vec k.up))))
+        (Camera_path.keys path);
+      line ")")
+    s.camera_path;
   line "(background %s %s %s)" (num s.background.r) (num s.background.g) (num s.background.b);
   line "(recursion-depth %d)" s.depth;
   Option.iter (fun e -> line "(epsilon %s)" (num e)) s.epsilon;

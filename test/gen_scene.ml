@@ -23,6 +23,20 @@ let light =
         (map (fun v -> if Vec3.norm2 v = 0. then Vec3.oy else v) (vec (-1.) 1.));
     ]
 
+(* Keys whose view direction always has z >= 1, so that no frame between
+   them looks at its own position or along its up vector. *)
+let camera_path =
+  let key frame =
+    let* position = vec (-2.) 2. in
+    let* dx = coord (-1.) 1. and* dy = coord (-1.) 1. and* dz = coord 1. 3. in
+    return (Camera_path.key ~frame ~position (Vec3.add position (Vec3.v dx dy dz)))
+  in
+  let* first = int_range 0 5 in
+  let* gaps = list_size (int_range 0 3) (int_range 1 6) in
+  let frames = List.rev (List.fold_left (fun acc g -> (List.hd acc + g) :: acc) [ first ] gaps) in
+  let* keys = flatten_l (List.map key frames) in
+  return (match Camera_path.v keys with Ok p -> Some p | Error _ -> None)
+
 let gen =
   let* width = int_range 1 12 and* height = int_range 1 12 in
   let* depth = int_range 0 4 in
@@ -38,8 +52,13 @@ let gen =
         map (fun p -> Camera.v p) (vec (-0.5) 0.5);
       ]
   in
+  let* camera_path = oneof [ return None; camera_path ] in
   return
-    { (Scene.v ~width ~height ~depth ?epsilon ~background ~camera ~spheres ~lights ()) with epsilon }
+    {
+      (Scene.v ~width ~height ~depth ?epsilon ~background ~camera ~spheres ~lights ()) with
+      epsilon;
+      camera_path;
+    }
 
 let crowd =
   let* base = gen in

@@ -21,6 +21,12 @@ let () =
       ("view", Test_view.tests);
       ("golden", Test_golden.tests);
       ("cli", Test_cli.tests);
+      ("region", Test_region.tests);
+      ("part", Test_part.tests);
+      ("camera_path", Test_camera_path.tests);
+      ("png", Test_png.tests);
+      ("cli_parts", Test_cli_parts.tests);
+      ("recipes", Test_recipes.tests);
       ("window", Test_window.tests);
       ("example", Test_example.tests);
     ]
