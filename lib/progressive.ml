@@ -28,7 +28,7 @@ let shared ~jobs ~width ~height =
 (* 2 x 2 blocks would cost as much to draw as single pixels (one request
    per block), for little preview: the pass after 4 is the full one. *)
 let passes samples =
-  let plain = [ (16, 1); (8, 1); (4, 1); (1, 1) ] in
+  let plain = [ (coarsest, 1); (8, 1); (4, 1); (1, 1) ] in
   Array.of_list (if samples = 1 then plain else plain @ [ (1, samples) ])
 
 let create ?(samples = 1) ?shared (scene : Scene.t) =

@@ -30,7 +30,7 @@ val shared : jobs:int -> width:int -> height:int -> shared
 (** [shared ~jobs ~width ~height] is memory for [jobs] workers rendering
     [width x height] images.
     @raise Invalid_argument if [jobs < 2].
-    @raise Failure if no shared memory can be mapped. *)
+    @raise Failure or [Unix.Unix_error] if no shared memory can be mapped. *)
 
 val create : ?samples:int -> ?shared:shared -> Scene.t -> t
 (** [create ~samples ~shared scene] is the render of [scene] about to
