@@ -36,6 +36,18 @@ let jobs =
     & info [ "jobs"; "j" ] ~docv:"N"
         ~doc:"Trace with $(docv) processes (default: the number of cores). The image is the same for every $(docv).")
 
+(* The window forks its workers anew for every band of rows (each about
+   0.1 s of tracing), which pays only where cores are idle: by default it
+   traces in its own process (README, "The window"). *)
+let view_jobs =
+  Arg.(
+    value
+    & opt (some int) (Some 1)
+    & info [ "jobs"; "j" ] ~docv:"N"
+        ~doc:
+          "Trace the full-resolution passes with $(docv) processes (default: 1, this process). \
+           The picture is the same for every $(docv).")
+
 let scene_format =
   `Blocks
     [
@@ -73,7 +85,7 @@ let view_info =
       ]
 
 let view_term =
-  Term.(const (fun opts jobs -> Commands.view opts ~jobs) $ scene_options $ jobs)
+  Term.(const (fun opts jobs -> Commands.view opts ~jobs) $ scene_options $ view_jobs)
 
 (* A cmdliner converter from a parser of ours. *)
 let parsed parse docv =

@@ -242,15 +242,17 @@ let poll s =
 
 (* Traces and draws bands for about [slice] seconds, then shows them. A
    full-resolution band gets as many rows as fit in a slice, by the speed
-   of the last one (at least one per worker: each band forks them anew),
-   but at most twice as many as the last one: rows of sky are quick. *)
+   of the last one, but at most twice as many as the last one: rows of sky
+   are quick. Workers are forked anew for each band, which costs a few
+   milliseconds (more on a busy machine): their bands are 5 slices long. *)
 let work s ~slice =
   let t_end = Unix.gettimeofday () +. slice in
   let img = Progressive.image s.render in
+  let band_s = if s.jobs > 1 then 5. *. slice else slice in
   let continue = ref true in
   while !continue do
     let t0 = Unix.gettimeofday () in
-    let rows = max s.jobs (min (2 * s.rows) (truncate (Float.min 1e6 (slice /. s.row_s)))) in
+    let rows = max s.jobs (min (2 * s.rows) (truncate (Float.min 1e6 (band_s /. s.row_s)))) in
     match Progressive.step ~rows s.render with
     | None -> continue := false
     | Some band ->
