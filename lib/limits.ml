@@ -4,7 +4,13 @@ let max_intensity = 1e6
 let max_dimension = 65536
 let max_pixels = 1 lsl 28
 let max_depth = 64
+let max_jobs = 1024
 let num = Float_text.to_string
+
+let check_jobs n =
+  if n < 1 || n > max_jobs then
+    Error (Printf.sprintf "--jobs must lie in [1, %d], got %d" max_jobs n)
+  else Ok n
 
 let check_coordinate what x =
   if Float.is_finite x && Float.abs x <= max_coordinate then Ok x

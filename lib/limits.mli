@@ -30,6 +30,12 @@ val max_depth : int
     the weight of the reflected colour by at most 1, but deeper recursion
     only costs time. *)
 
+val max_jobs : int
+(** [max_jobs] is [1024]: the most worker processes a render forks. *)
+
+val check_jobs : int -> (int, string) result
+(** [check_jobs n] is [Ok n] if [1 <= n <= max_jobs]. *)
+
 val check_coordinate : string -> float -> (float, string) result
 (** [check_coordinate what x] is [Ok x] if [x] is finite with
     [|x| <= max_coordinate], and otherwise [Error] naming [what]. *)
