@@ -7,14 +7,16 @@
 
 # Debian packages: the build, then the tests (virtual X server, screenshots).
 BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-ocaml-dev \
-  libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev
-TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev xvfb x11-apps xdotool imagemagick
-# The benchmark's plot (make bench-quality only).
+  libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev libcamlimages-ocaml-dev \
+  libx11-dev
+TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev xvfb x11-apps xdotool imagemagick \
+  parallel rsync
+# The plot of the run time against error benchmark (make bench-quality only).
 BENCH_PKGS = gnuplot-nox
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: run test deps build golden clean bench-quality
+.PHONY: run test deps build golden screenshot clean bench bench-quality
 
 run: deps build
 	@if [ -n "$$DISPLAY" ]; then \
@@ -46,8 +48,16 @@ golden: build
 	cd _build/default/test && RAYTRACE_WRITE_GOLDEN=$(CURDIR)/test/golden ./test.exe test golden 0 >/dev/null
 	dune exec --no-print-directory -- examples/hello_scene.exe test/golden/hello_scene.ppm
 
+# Regenerates the README's picture of the window, taken as the window test
+# takes its screenshots (test/window_session.sh, in a virtual X server).
+screenshot: build
+	@d=$$(mktemp -d) && cp scenes/cgfs.scene $$d/ && \
+	xvfb-run -a -s "-screen 0 1024x768x24" test/window_session.sh \
+	  $(CURDIR)/_build/default/bin/main.exe $$d/cgfs.scene $$d keys:D,Q,a press:h keys:r shot:window && \
+	convert $$d/window.ppm docs/window.png && rm -rf $$d && echo "wrote docs/window.png"
+
 # Run time against error (bench/quality.ml): regenerates docs/quality.csv,
-# docs/quality.png and docs/quality.md. Takes minutes; the timings are only
+# docs/quality.png, docs/quality.md and docs/quality.gp. Takes minutes; the timings are only
 # as quiet as the machine. Built in release mode in its own build directory,
 # so that the dev build of `make test` stays as it is. BENCH_NICE= runs it
 # at normal priority.
@@ -59,3 +69,8 @@ bench-quality:
 
 clean:
 	dune clean
+
+# The speed benchmark (bench/speed.ml): prints a table. Release build.
+bench: deps
+	dune build --profile release bin/main.exe bench/speed.exe
+	./_build/default/bench/speed.exe --raytrace ./_build/default/bin/main.exe

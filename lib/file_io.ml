@@ -4,14 +4,19 @@ let read path =
   match open_in_bin path with
   | exception Sys_error e -> Error (`Msg e)
   | ic -> (
-      match
-        Fun.protect
-          ~finally:(fun () -> close_in_noerr ic)
-          (fun () -> really_input_string ic (in_channel_length ic))
-      with
-      | s -> Ok s
-      | exception Sys_error e -> error path e
-      | exception End_of_file -> error path "file changed while it was read")
+      (* Until end of file, not [in_channel_length] bytes: /proc files and
+         pipes report a length of 0. *)
+      let b = Buffer.create 65536 and chunk = Bytes.create 65536 in
+      let rec loop () =
+        match input ic chunk 0 65536 with
+        | 0 -> ()
+        | n ->
+            Buffer.add_subbytes b chunk 0 n;
+            loop ()
+      in
+      match Fun.protect ~finally:(fun () -> close_in_noerr ic) loop with
+      | () -> Ok (Buffer.contents b)
+      | exception Sys_error e -> error path e)
 
 (* Temporary files of writes in progress, for [remove_temporaries]. *)
 let temporaries : (string, unit) Hashtbl.t = Hashtbl.create 4

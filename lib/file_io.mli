@@ -8,7 +8,8 @@
     with the path. *)
 
 val read : string -> (string, [> `Msg of string ]) result
-(** [read path] is the contents of the file [path]. *)
+(** [read path] is the contents of the file [path], read until its end (so
+    pipes and [/proc] files work too). *)
 
 val write_atomic : string -> (out_channel -> unit) -> (unit, [> `Msg of string ]) result
 (** [write_atomic path f] calls [f oc] on a channel to a new temporary file

@@ -9,6 +9,15 @@ val max_coordinate : float
     radius or a viewport dimension. Squares of larger values approach the
     range where sums of squares lose every digit of a unit-sized sphere. *)
 
+val min_size : float
+(** [min_size] is [1e-30]: the smallest radius, viewport dimension or
+    directional-light vector length. Squares and products of smaller values
+    underflow and would turn into division by zero. *)
+
+val max_intensity : float
+(** [max_intensity] is [1e6]: the largest light intensity, so that sums of
+    intensities times colours can never overflow to infinity. *)
+
 val max_dimension : int
 (** [max_dimension] is [65536]: the largest canvas width or height. *)
 
@@ -21,9 +30,19 @@ val max_depth : int
     the weight of the reflected colour by at most 1, but deeper recursion
     only costs time. *)
 
+val max_jobs : int
+(** [max_jobs] is [1024]: the most worker processes a render forks. *)
+
+val check_jobs : int -> (int, string) result
+(** [check_jobs n] is [Ok n] if [1 <= n <= max_jobs]. *)
+
 val check_coordinate : string -> float -> (float, string) result
 (** [check_coordinate what x] is [Ok x] if [x] is finite with
     [|x| <= max_coordinate], and otherwise [Error] naming [what]. *)
+
+val check_size : string -> float -> (float, string) result
+(** [check_size what x] is [Ok x] if [min_size <= x <= max_coordinate],
+    and otherwise [Error] naming [what] ("sphere radius", ...). *)
 
 val check_point : string -> Vec3.t -> (Vec3.t, string) result
 (** [check_point what p] is {!check_coordinate} on each coordinate. *)

@@ -4,12 +4,15 @@
     and plain P3, with [#] comments in the header, and maxval from 1 to 255
     (values are rescaled to 0-255). *)
 
-val to_string : Image.t -> string
-(** [to_string img] is [img] as a binary P6 file: the header
-    ["P6\n<w> <h>\n255\n"] then the pixels, rows top-down. *)
+val to_string : ?comments:string list -> Image.t -> string
+(** [to_string ~comments img] is [img] as a binary P6 file: the header
+    ["P6\n<w> <h>\n255\n"] then the pixels, rows top-down. Each of
+    [comments] (default none) is a header line ["# <comment>\n"] after
+    ["P6\n"], which every PPM reader skips.
+    @raise Invalid_argument if a comment contains a line break. *)
 
-val output : out_channel -> Image.t -> unit
-(** [output oc img] writes [to_string img] to [oc]. *)
+val output : ?comments:string list -> out_channel -> Image.t -> unit
+(** [output ~comments oc img] writes [to_string ~comments img] to [oc]. *)
 
 val of_string : string -> (Image.t, [> `Msg of string ]) result
 (** [of_string s] is the image in the PPM file contents [s]. [Error] says
@@ -21,7 +24,14 @@ val read_file : string -> (Image.t, [> `Msg of string ]) result
 (** [read_file path] reads and decodes the PPM file [path]. [Error]
     messages start with [path]. *)
 
-val write_file : string -> Image.t -> (unit, [> `Msg of string ]) result
-(** [write_file path img] writes [img] to [path] atomically
-    ({!File_io.write_atomic}): [path] either keeps its old contents or gets the
-    whole image. *)
+val write_file : ?comments:string list -> string -> Image.t -> (unit, [> `Msg of string ]) result
+(** [write_file ~comments path img] writes [to_string ~comments img] to
+    [path] atomically ({!File_io.write_atomic}): [path] either keeps its old
+    contents or gets the whole image. *)
+
+val header_comments : string -> string list
+(** [header_comments s] is the text of the [#] comments in the header of
+    the PPM file contents [s] (between the magic number and the maxval), in
+    order, each without its [#], one following space, and the line end.
+    It is [\[\]] if [s] does not start with [P6] or [P3]; it does not
+    check the rest of the file ({!of_string} does). *)

@@ -33,7 +33,7 @@ let region tr img ~x ~y ~w ~h =
     row tr buffer ~width ~height ~x0:x ~x1:(x + w) r
   done
 
-let counter_fields = 6
+let counter_fields = 7
 
 (* Worker [w]'s counters go to slots [w * counter_fields ...]. *)
 let save_counters ints w tr words =
@@ -45,19 +45,22 @@ let save_counters ints w tr words =
   set 2 c.reflection;
   set 3 c.tests;
   set 4 c.early_stops;
-  set 5 (truncate words)
+  set 5 (truncate words);
+  set 6 c.box_tests
 
-let image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene.t) =
-  if jobs < 1 then invalid_arg "Render.image: jobs < 1";
+let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene.t) (region : Region.t) =
+  if jobs < 1 then invalid_arg "Render.region_image: jobs < 1";
+  if not (Region.contains region ~width:scene.width ~height:scene.height) then
+    invalid_arg "Render.region_image: region outside the canvas";
   let sampling =
     match Sampling.v ?samples ?adaptive ?subsample () with
     | Ok s -> s
-    | Error (`Msg m) -> invalid_arg ("Render.image: " ^ m)
+    | Error (`Msg m) -> invalid_arg ("Render.region_image: " ^ m)
   in
   let t0 = Unix.gettimeofday () in
   let p = Prepared.prepare ?skips scene in
   let t1 = Unix.gettimeofday () in
-  let jobs = min jobs scene.height in
+  let jobs = min jobs region.h in
   (* Counter slots: one per worker and pass. *)
   let slots = ref jobs in
   let sum ints i = List.init !slots (fun w -> Int64.to_int ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in
@@ -66,11 +69,12 @@ let image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene.t) =
     let stats =
       Stats.
         {
-          pixels = scene.width * scene.height;
+          pixels = Region.pixels region;
           primary = sum ints 0;
           shadow = sum ints 1;
           reflection = sum ints 2;
           tests = sum ints 3;
+          box_tests = sum ints 6;
           early_stops = sum ints 4;
           jobs;
           prepare_s = t1 -. t0;
@@ -83,8 +87,8 @@ let image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene.t) =
   let averaging = Sampling.averaging sampling in
   if jobs = 1 then begin
     (* One tracer for every pass. *)
-    let img = Image.create scene.width scene.height in
-    let plan = Sampling.plan sampling img ~shared:false in
+    let img = Image.create region.w region.h in
+    let plan = Sampling.plan sampling img ~canvas:(scene.width, scene.height) ~at:(region.x, region.y) ~shared:false in
     let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
     let tr = Trace.create ~averaging p in
     let before = Gc.minor_words () in
@@ -96,10 +100,9 @@ let image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene.t) =
   end
   else
     let img =
-      Image.of_buffer scene.width scene.height
-        (Parallel.shared_bytes (3 * scene.width * scene.height))
+      Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region))
     in
-    let plan = Sampling.plan sampling img ~shared:true in
+    let plan = Sampling.plan sampling img ~canvas:(scene.width, scene.height) ~at:(region.x, region.y) ~shared:true in
     let passes = Sampling.passes plan in
     slots := passes * jobs;
     let ints = Parallel.shared_ints (passes * jobs * counter_fields) in
@@ -116,6 +119,9 @@ let image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene.t) =
         match Parallel.run jobs work with Ok () -> run (i + 1) | Error e -> Error e
     in
     run 0
+
+let image ?jobs ?skips ?samples ?adaptive ?subsample (scene : Scene.t) =
+  region_image ?jobs ?skips ?samples ?adaptive ?subsample scene (Region.full ~width:scene.width ~height:scene.height)
 
 let image_exn ?jobs ?skips ?samples ?adaptive ?subsample scene =
   match image ?jobs ?skips ?samples ?adaptive ?subsample scene with

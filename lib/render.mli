@@ -34,6 +34,25 @@ val image :
     @raise Invalid_argument if [scene] fails {!Scene.validate},
     [jobs < 1], or {!Sampling.v} refuses the sampling settings. *)
 
+val region_image :
+  ?jobs:int ->
+  ?skips:bool ->
+  ?samples:int ->
+  ?adaptive:int ->
+  ?subsample:bool ->
+  Scene.t ->
+  Region.t ->
+  (Image.t * Stats.t, [> `Msg of string ]) result
+(** [region_image ~jobs ~skips ~samples ~adaptive ~subsample scene r] is
+    the image of the region [r] of [scene]'s canvas, [r.w x r.h] pixels,
+    and what it cost: byte for byte the pixels of {!image} there, for every
+    sampling (adaptive sampling and subsampling trace the first rays of a
+    one-pixel margin around [r] too, to decide as the whole image does).
+    The arguments are as for {!image}.
+    @raise Invalid_argument if [scene] fails {!Scene.validate}, [jobs < 1],
+    [r] is not inside the canvas, or {!Sampling.v} refuses the sampling
+    settings. *)
+
 val image_exn :
   ?jobs:int -> ?skips:bool -> ?samples:int -> ?adaptive:int -> ?subsample:bool -> Scene.t -> Image.t
 (** [image_exn] is the image of {!image}.

@@ -68,10 +68,17 @@ type plan
 (** The type for the work of rendering one image with some settings: its
     passes, and the buffers through which they pass results on. *)
 
-val plan : t -> Image.t -> shared:bool -> plan
-(** [plan s img ~shared] is the work of rendering [img] with [s]. With
-    [shared], its buffers are shared with forked processes
-    ({!Parallel.shared_bytes}): passes may then run in workers.
+val plan : t -> Image.t -> canvas:int * int -> at:int * int -> shared:bool -> plan
+(** [plan s img ~canvas:(cw, ch) ~at:(x, y) ~shared] is the work of
+    rendering with [s] the rectangle of a [cw x ch] canvas whose top-left
+    pixel is [(x, y)] (image coordinates) into [img], of the rectangle's
+    size: byte for byte those pixels of the whole image. Adaptive sampling
+    and subsampling also trace the first rays of a one-pixel margin around
+    the rectangle, so that they decide as the whole image does. With
+    [shared], the buffers that carry results from pass to pass are shared
+    with forked processes ({!Parallel.shared_bytes}): passes may then run
+    in workers.
+    @raise Invalid_argument if the rectangle is not inside the canvas.
     @raise Failure if shared memory cannot be mapped. *)
 
 val passes : plan -> int
@@ -81,8 +88,9 @@ val passes : plan -> int
 
 val rows : plan -> int -> Trace.t -> first:int -> step:int -> unit
 (** [rows pl i tr ~first ~step] runs pass [i] of [pl] on rows [first],
-    [first + step], ... of the rows the pass works on (all image rows,
-    or the even or odd ones), with tracer [tr], whose scene must have the
-    image's size and whose {!Trace.averaging} must be {!averaging}.
+    [first + step], ... of the rows that pass works on (the rectangle's, or
+    the margin's, all of them or every other one), with tracer [tr], whose
+    scene must have the canvas size of [pl] and whose {!Trace.averaging}
+    must be {!averaging}.
     @raise Invalid_argument if [i] is not a pass, [step < 1], or the
-    sizes or the averaging disagree. *)
+    canvas sizes or the averaging disagree. *)

@@ -89,9 +89,17 @@ let tests =
         Alcotest.(check string) __LOC__ "(light ambient (intensity 1))" (input_line ic);
         close_in ic);
     Alcotest.test_case "bad command-line overrides are refused" `Quick (fun () ->
-        let code, _, err = run (exe ()) [ "render"; "--width"; "0"; "-o"; "/tmp/never.ppm" ] in
-        Alcotest.(check int) __LOC__ 1 code;
-        Alcotest.(check string) __LOC__ "raytrace: canvas width must lie in [1, 65536], got 0\n" err);
+        List.iter
+          (fun (args, expected) ->
+            let code, _, err = run (exe ()) ("render" :: args @ [ "-o"; "/tmp/never.ppm" ]) in
+            Alcotest.(check int) __LOC__ 1 code;
+            Alcotest.(check string) __LOC__ expected err)
+          [
+            ([ "--width"; "0" ], "raytrace: canvas width must lie in [1, 65536], got 0\n");
+            ([ "--jobs"; "0" ], "raytrace: --jobs must lie in [1, 1024], got 0\n");
+            ([ "--jobs"; "100000" ], "raytrace: --jobs must lie in [1, 1024], got 100000\n");
+          ];
+        Alcotest.(check bool) __LOC__ false (Sys.file_exists "/tmp/never.ppm"));
     Alcotest.test_case "without a display, view says so in one line and exits 3" `Quick (fun () ->
         let env =
           Unix.environment () |> Array.to_list
@@ -147,6 +155,31 @@ let tests =
         Helpers.check_images "--subsample"
           ~expected:(Raytrace.Render.image_exn ~subsample:true s)
           (render "sub.ppm" [ "--subsample" ]));
+    Alcotest.test_case "tiles rendered with --samples 3 --adaptive 4 merge into the whole render, others do not" `Quick
+      (fun () ->
+        let dir = Helpers.temp_dir () in
+        let out name = Filename.concat dir name in
+        let scene = Helpers.scene_path "cgfs.scene" and size = [ "--width"; "30"; "--height"; "20" ] in
+        let sampling = [ "--samples"; "3"; "--adaptive"; "4" ] in
+        let run_ok args =
+          let code, _, err = run (exe ()) args in
+          Alcotest.(check int) err 0 code
+        in
+        let read name = match Raytrace.Ppm.read_file (out name) with Ok img -> img | Error (`Msg m) -> Alcotest.fail m in
+        run_ok ([ "render"; scene; "-o"; out "whole.ppm" ] @ size @ sampling);
+        List.iter
+          (fun i ->
+            run_ok
+              ([ "render"; scene; "--tile"; Printf.sprintf "%d/3" i; "-o"; out (Printf.sprintf "part-%d.ppm" i) ]
+              @ size @ sampling))
+          [ 1; 2; 3 ];
+        run_ok [ "merge"; out "part-1.ppm"; out "part-2.ppm"; out "part-3.ppm"; "-o"; out "merged.ppm" ];
+        Helpers.check_images "merged tiles" ~expected:(read "whole.ppm") (read "merged.ppm");
+        run_ok ([ "render"; scene; "--tile"; "3/3"; "-o"; out "full-3.ppm"; "--samples"; "3" ] @ size);
+        let code, _, err = run (exe ()) [ "merge"; out "part-1.ppm"; out "part-2.ppm"; out "full-3.ppm"; "-o"; out "bad.ppm" ] in
+        Alcotest.(check int) __LOC__ 1 code;
+        let expected = "with adaptive (none)" in
+        if not (Astring_free.contains err expected) then Alcotest.failf "expected %S in %S" expected err);
     Alcotest.test_case "bad sampling options: one line, status 1, no output file" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let out = Filename.concat dir "never.ppm" in

@@ -70,6 +70,17 @@ let faint_mirrors =
   in
   QCheck.map ~rev:Fun.id faint Gen_scene.arbitrary
 
+(* Each sampling mode as optional arguments, for tables of modes. *)
+let modes =
+  [
+    ("samples 3", fun ?jobs s r -> Render.region_image ?jobs ~samples:3 s r);
+    ("adaptive 3 t 4", fun ?jobs s r -> Render.region_image ?jobs ~samples:3 ~adaptive:4 s r);
+    ("adaptive 5 t 0", fun ?jobs s r -> Render.region_image ?jobs ~samples:5 ~adaptive:0 s r);
+    ("subsampling", fun ?jobs s r -> Render.region_image ?jobs ~subsample:true s r);
+  ]
+
+let region_of render ?jobs s r = match render ?jobs s r with Ok (img, _) -> img | Error (`Msg m) -> Alcotest.fail m
+
 let tests =
   [
     Alcotest.test_case "one sample per pixel is the document's image, byte for byte" `Quick (fun () ->
@@ -95,6 +106,12 @@ let tests =
         Alcotest.check rgb __LOC__ (128, 0, 128) (pixel0 (image ~samples:2 half_covered));
         Alcotest.check rgb __LOC__ (85, 0, 170) (pixel0 (image ~samples:3 half_covered));
         Alcotest.check rgb __LOC__ (128, 0, 128) (pixel0 (image ~samples:4 half_covered)));
+    Alcotest.test_case "the window's antialiasing is supersampling, byte for byte" `Quick (fun () ->
+        List.iter
+          (fun name ->
+            let s = Scene.with_overrides ~width:24 ~height:18 (Helpers.load_scene name) in
+            Helpers.check_images name ~expected:(image ~samples:3 s) (Antialias.image ~n:3 s))
+          (Helpers.scene_names ()));
     Alcotest.test_case "supersampling traces n x n primary rays per pixel" `Quick (fun () ->
         let _, st = render ~samples:3 (Scene.with_overrides ~width:10 ~height:7 Scene.cgfs) in
         (* 10 * 7 pixels * 9 samples *)
@@ -151,6 +168,31 @@ let tests =
             ("adaptive 5 t 4", fun jobs -> image ~jobs ~samples:5 ~adaptive:4 s);
             ("subsampling", fun jobs -> image ~jobs ~subsample:true s);
           ]);
+    Alcotest.test_case "a region is the same region of the whole image in every sampling mode" `Quick (fun () ->
+        let s = Scene.with_overrides ~width:37 ~height:23 Scene.cgfs_camera in
+        let full = Region.full ~width:37 ~height:23 in
+        List.iter
+          (fun (what, render) ->
+            let whole = region_of render s full in
+            List.iter
+              (fun (r : Region.t) ->
+                let expected = Image.sub whole ~x:r.x ~y:r.y ~w:r.w ~h:r.h in
+                let name = Format.asprintf "%s, region %a" what Region.pp r in
+                Helpers.check_images name ~expected (region_of render s r);
+                Helpers.check_images (name ^ ", 2 jobs") ~expected (region_of render ~jobs:2 s r))
+              Region.[ { x = 5; y = 3; w = 20; h = 11 }; { x = 0; y = 0; w = 1; h = 1 }; { x = 36; y = 22; w = 1; h = 1 };
+                       { x = 1; y = 1; w = 35; h = 21 }; { x = 0; y = 7; w = 37; h = 4 }; { x = 10; y = 0; w = 3; h = 23 } ])
+          modes);
+    Helpers.qcheck ~count:60 "any region of any scene is that part of the whole, in every sampling mode"
+      QCheck.(pair Gen_scene.arbitrary (quad small_nat small_nat small_nat small_nat))
+      (fun ((s : Scene.t), (a, b, c, d)) ->
+        let x = a mod s.width and y = b mod s.height in
+        let w = 1 + (c mod (s.width - x)) and h = 1 + (d mod (s.height - y)) in
+        List.for_all
+          (fun (_, render) ->
+            let whole = region_of render s (Region.full ~width:s.width ~height:s.height) in
+            Image.equal (Image.sub whole ~x ~y ~w ~h) (region_of render s { x; y; w; h }))
+          modes);
     Alcotest.test_case "tracing allocates nothing per pixel, whatever the sampling" `Quick (fun () ->
         let s = Scene.with_overrides ~width:60 ~height:60 Scene.cgfs in
         List.iter
