@@ -12,6 +12,7 @@ type t = {
   green : float array;
   blue : float array;
   specular : float array;
+  specular_zero : float array;
   reflective : float array;
   n_lights : int;
   light_kind : int array;
@@ -66,6 +67,17 @@ let max_channel (scene : Scene.t) =
       scene.spheres
   in
   (bound *. (1. +. 1e-6)) +. 1e-6
+
+(* The largest x with x ** s certainly 0: x <= 2^(-1080 / s) gives
+   x ** s <= 2^-1080, 32 times below half the smallest subnormal (2^-1075),
+   so pow, accurate to within an ulp, returns 0. Two ulps lower still, for
+   the rounding of this computation. For huge s the threshold approaches 1
+   and must stay below it, since 1 ** s = 1. *)
+let specular_zero s =
+  if not (s > 0.) then 0.
+  else
+    let x = Float.pred (Float.pred (2. ** (-1080. /. s))) in
+    if x < 1. then Float.max x 0. else 0.
 
 let prepare ?(skips = true) (scene : Scene.t) =
   (match Scene.validate scene with
@@ -125,6 +137,7 @@ let prepare ?(skips = true) (scene : Scene.t) =
     green = sf (fun s -> s.color.g);
     blue = sf (fun s -> s.color.b);
     specular = sf (fun s -> s.specular);
+    specular_zero = sf (fun s -> if skips then specular_zero s.specular else 0.);
     reflective = sf (fun s -> s.reflective);
     n_lights = Array.length lights;
     light_kind =

@@ -24,6 +24,10 @@ type t = private {
   green : float array;
   blue : float array;
   specular : float array;  (** Exponent, or {!Sphere.matte}. *)
+  specular_zero : float array;
+      (** Below this cosine, [cosine ** specular] is exactly [0.] (it lies
+          under the smallest subnormal float), so the specular term adds
+          nothing; [0.] when no cosine in [(0, 1]] qualifies. *)
   reflective : float array;
   n_lights : int;
   light_kind : int array;  (** {!ambient}, {!point} or {!directional}. *)

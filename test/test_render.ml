@@ -108,6 +108,14 @@ let tests =
                    0
             in
             Alcotest.(check int) __LOC__ expected (Parallel.cores ()));
+    Helpers.qcheck ~count:1000 "below a sphere's specular threshold, cos ** s is exactly 0"
+      QCheck.(pair (float_range 0. 1.) (oneofl [ 0.; 0.5; 1.; 10.; 500.; 1000.; 1e5; 1e12; 1e300 ]))
+      (fun (u, specular) ->
+        let p = Prepared.prepare (Scene.v ~spheres:[ Sphere.v ~specular ~center:Vec3.oz ~radius:1. Color.white ] ~lights:[] ()) in
+        let zero = p.specular_zero.(0) in
+        (* every cosine at or below the threshold, here u times it *)
+        zero >= 0. && zero < 1. && (zero = 0. || Float.pow (u *. zero) specular = 0.)
+        && Float.pow zero specular = (if zero = 0. then Float.pow 0. specular else 0.));
     Alcotest.test_case "a worker that dies fails the render" `Quick (fun () ->
         match Parallel.run 3 (fun w -> if w = 1 then Unix.kill (Unix.getpid ()) Sys.sigkill) with
         | Ok () -> Alcotest.fail "a killed worker went unnoticed"
