@@ -1,16 +1,37 @@
 let error path reason = Error (`Msg (Printf.sprintf "%s: %s" path reason))
 
-let read path =
+(* Files whose length is unknown (/proc files, pipes, devices): read in
+   chunks, checking the size so far. *)
+let read_to_end ~check_size ic =
+  let b = Buffer.create 4096 and chunk = Bytes.create 65536 in
+  let rec go () =
+    match input ic chunk 0 (Bytes.length chunk) with
+    | 0 -> Ok (Buffer.contents b)
+    | k -> (
+        Buffer.add_subbytes b chunk 0 k;
+        match check_size (Buffer.length b) with Ok _ -> go () | Error m -> Error m)
+  in
+  go ()
+
+let read ?(check_size = fun n -> Ok n) path =
   match open_in_bin path with
   | exception Sys_error e -> Error (`Msg e)
   | ic -> (
       match
         Fun.protect
           ~finally:(fun () -> close_in_noerr ic)
-          (fun () -> really_input_string ic (in_channel_length ic))
+          (fun () ->
+            (* The size is checked before a byte is read or allocated. *)
+            match Unix.fstat (Unix.descr_of_in_channel ic) with
+            | { st_kind = S_REG; st_size = n; _ } when n > 0 -> (
+                match check_size n with Error m -> Error m | Ok _ -> Ok (really_input_string ic n))
+            | _ -> read_to_end ~check_size ic)
       with
-      | s -> Ok s
+      | Ok s -> Ok s
+      | Error m -> error path m
       | exception Sys_error e -> error path e
+      | exception Unix.Unix_error (e, _, _) -> error path (Unix.error_message e)
+      | exception Out_of_memory -> error path "not enough memory to read the file"
       | exception End_of_file -> error path "file changed while it was read")
 
 (* Temporary files of writes in progress, for [remove_temporaries]. *)

@@ -7,8 +7,11 @@
     unless the new ones are complete. Errors are values whose message starts
     with the path. *)
 
-val read : string -> (string, [> `Msg of string ]) result
-(** [read path] is the contents of the file [path]. *)
+val read : ?check_size:(int -> (int, string) result) -> string -> (string, [> `Msg of string ]) result
+(** [read ~check_size path] is the contents of the file [path]. Before it
+    reads anything, it calls [check_size] (default: accept all) on the
+    file's length in bytes; an [Error m] of it is returned as [path: m], so
+    that an oversized file costs no memory. *)
 
 val write_atomic : string -> (out_channel -> unit) -> (unit, [> `Msg of string ]) result
 (** [write_atomic path f] calls [f oc] on a channel to a new temporary file

@@ -2,7 +2,56 @@ let max_coordinate = 1e12
 let max_dimension = 65536
 let max_pixels = 1 lsl 28
 let max_depth = 64
+let max_samples = 1024
+let max_spheres = 100_000
+let max_lights = 1000
+let max_scene_bytes = 16 * 1024 * 1024
+let max_work = 1e12
 let num = Float_text.to_string
+
+type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Work ]
+
+let variable = function
+  | `Pixels -> "RAYTRACE_MAX_PIXELS"
+  | `Depth -> "RAYTRACE_MAX_DEPTH"
+  | `Samples -> "RAYTRACE_MAX_SAMPLES"
+  | `Spheres -> "RAYTRACE_MAX_SPHERES"
+  | `Lights -> "RAYTRACE_MAX_LIGHTS"
+  | `Scene_bytes -> "RAYTRACE_MAX_SCENE_BYTES"
+  | `Work -> "RAYTRACE_MAX_WORK"
+
+let default = function
+  | `Pixels -> Float.of_int max_pixels
+  | `Depth -> Float.of_int max_depth
+  | `Samples -> Float.of_int max_samples
+  | `Spheres -> Float.of_int max_spheres
+  | `Lights -> Float.of_int max_lights
+  | `Scene_bytes -> Float.of_int max_scene_bytes
+  | `Work -> max_work
+
+(* Read at every check rather than once: cheap, and a test or a program can
+   change the bound with [Unix.putenv]. Values are integers; a float keeps
+   them exact up to 2^53, far beyond any useful bound. *)
+let current n =
+  match Sys.getenv_opt (variable n) with
+  | None | Some "" -> Ok (default n)
+  | Some text -> (
+      let digits = String.concat "" (String.split_on_char '_' (String.trim text)) in
+      match Float_text.of_string digits with
+      | Some x when x >= 1. && Float.is_integer x -> Ok x
+      | _ -> Error (Printf.sprintf "%s must be a positive integer, got %S" (variable n) text))
+
+let show_bound x = if x < 1e15 then Printf.sprintf "%.0f" x else num x
+
+let exceeded n what =
+  let bound = match current n with Ok b -> show_bound b | Error _ -> "?" in
+  Printf.sprintf "%s, more than the limit of %s (set %s to raise it)" what bound (variable n)
+
+(* [Ok ()] if [x <= bound n]; [what ()] describes [x] for the message. *)
+let within n x what =
+  match current n with
+  | Error e -> Error e
+  | Ok bound -> if x <= bound then Ok () else Error (exceeded n (what ()))
 
 let check_coordinate what x =
   if Float.is_finite x && Float.abs x <= max_coordinate then Ok x
@@ -18,17 +67,53 @@ let check_dimension what n =
     Error (Printf.sprintf "canvas %s must lie in [1, %d], got %d" what max_dimension n)
   else Ok n
 
+let pixels_within kind w h =
+  (* A float product: two header fields of a file can overflow an int. *)
+  let area = Float.of_int w *. Float.of_int h in
+  within `Pixels area (fun () -> Printf.sprintf "%s %dx%d has %s pixels" kind w h (show_bound area))
+
 let check_canvas w h =
   match (check_dimension "width" w, check_dimension "height" h) with
   | (Error e, _ | _, Error e) -> Error e
-  | Ok _, Ok _ ->
-      if w * h > max_pixels then
-        Error
-          (Printf.sprintf "canvas %dx%d has more than %d pixels" w h
-             max_pixels)
-      else Ok ()
+  | Ok _, Ok _ -> pixels_within "canvas" w h
+
+let check_image_size w h =
+  if w < 1 || h < 1 then Error (Printf.sprintf "image size %dx%d is empty" w h)
+  else pixels_within "image" w h
 
 let check_depth d =
-  if d < 0 || d > max_depth then
-    Error (Printf.sprintf "recursion depth must lie in [0, %d], got %d" max_depth d)
-  else Ok d
+  if d < 0 then Error (Printf.sprintf "recursion depth must be >= 0, got %d" d)
+  else
+    match within `Depth (Float.of_int d) (fun () -> Printf.sprintf "recursion depth %d is too deep" d) with
+    | Ok () -> Ok d
+    | Error e -> Error e
+
+let check_samples n =
+  if n < 1 then Error (Printf.sprintf "samples per pixel must be >= 1, got %d" n)
+  else
+    match within `Samples (Float.of_int n) (fun () -> Printf.sprintf "%d samples per pixel are too many" n) with
+    | Ok () -> Ok n
+    | Error e -> Error e
+
+let check_count kind n =
+  let noun = match kind with `Spheres -> "spheres" | `Lights -> "lights" in
+  match within (kind :> name) (Float.of_int n) (fun () -> Printf.sprintf "the scene has %d %s" n noun) with
+  | Ok () -> Ok n
+  | Error e -> Error e
+
+let check_scene_bytes n =
+  match within `Scene_bytes (Float.of_int n) (fun () -> Printf.sprintf "the scene is %d bytes long" n) with
+  | Ok () -> Ok n
+  | Error e -> Error e
+
+let work ~pixels ~samples ~depth ~spheres ~lights =
+  let f = Float.of_int in
+  f pixels *. f samples *. f (depth + 1) *. f spheres *. f (1 + lights)
+
+let check_work ~pixels ~samples ~depth ~spheres ~lights =
+  let w = work ~pixels ~samples ~depth ~spheres ~lights in
+  within `Work w (fun () ->
+      Printf.sprintf
+        "the render needs up to %.3g ray-sphere intersection tests (%d pixels x %d samples x %d \
+         rays x %d spheres x (1 + %d lights))"
+        w pixels samples (depth + 1) spheres lights)

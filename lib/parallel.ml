@@ -27,6 +27,20 @@ let cores () =
   in
   match from_status () with Some n -> n | None -> 1
 
+(* "MemAvailable:   12345678 kB" -> 12345678 * 1024 *)
+let available_memory () =
+  match File_io.read "/proc/meminfo" with
+  | Error _ -> None
+  | Ok text ->
+      String.split_on_char '\n' text
+      |> List.find_map (fun line ->
+             match String.split_on_char ':' line with
+             | [ "MemAvailable"; v ] -> (
+                 match String.split_on_char ' ' (String.trim v) with
+                 | [ n; "kB" ] -> Option.map (fun k -> k * 1024) (int_of_string_opt n)
+                 | _ -> None)
+             | _ -> None)
+
 let map_shared kind n =
   (* A file in memory-backed /dev/shm when there is one, unlinked at once:
      the mapping outlives the name. *)

@@ -9,6 +9,11 @@ val cores : unit -> int
 (** [cores ()] is the number of processors this process may run on
     (its CPU affinity, as [nproc] reports), at least 1. *)
 
+val available_memory : unit -> int option
+(** [available_memory ()] is the memory, in bytes, that the system can give
+    to new allocations without swapping ([MemAvailable] of
+    [/proc/meminfo]), or [None] where it cannot be known. *)
+
 val shared_bytes : int -> (int, Bigarray.int8_unsigned_elt, Bigarray.c_layout) Bigarray.Array1.t
 (** [shared_bytes n] is [n] zeroed bytes that forked children share with
     their parent: their writes are visible to it.

@@ -15,11 +15,15 @@ val of_string : string -> (Image.t, [> `Msg of string ]) result
 (** [of_string s] is the image in the PPM file contents [s]. [Error] says
     what is wrong and where (byte offset): not a PPM, a bad or missing
     header field, a maxval outside [\[1, 255\]], missing or extra pixel
-    data, a P3 sample above maxval. It never raises. *)
+    data, a P3 sample above maxval, an image of more pixels than
+    {!Limits.check_image_size} allows (checked before any allocation). It
+    never raises. *)
 
 val read_file : string -> (Image.t, [> `Msg of string ]) result
 (** [read_file path] reads and decodes the PPM file [path]. [Error]
-    messages start with [path]. *)
+    messages start with [path]. A file larger than a binary image of the
+    {!Limits} pixel bound ([3] bytes a pixel, plus 1 MiB of header) is
+    refused before it is read. *)
 
 val write_file : string -> Image.t -> (unit, [> `Msg of string ]) result
 (** [write_file path img] writes [img] to [path] atomically

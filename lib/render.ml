@@ -47,8 +47,30 @@ let save_counters ints w tr words =
   set 4 c.early_stops;
   set 5 (truncate words)
 
+(* Refused before anything is allocated: a render that cannot finish
+   should fail now, not after hours or with the machine out of memory. *)
+let check_resources (scene : Scene.t) =
+  match Scene.check_work scene with
+  | Error e -> Error e
+  | Ok () -> (
+      let bytes = 3 * scene.width * scene.height in
+      match Parallel.available_memory () with
+      | Some available when bytes > available ->
+          let gib n = Float.of_int n /. 1073741824. in
+          Error
+            (`Msg
+              (Printf.sprintf "a %dx%d image needs %.2f GiB of memory, but only %.2f GiB are available"
+                 scene.width scene.height (gib bytes) (gib available)))
+      | _ -> Ok ())
+
+let out_of_memory (scene : Scene.t) =
+  Error (`Msg (Printf.sprintf "out of memory for a %dx%d image" scene.width scene.height))
+
 let image ?(jobs = 1) ?skips (scene : Scene.t) =
   if jobs < 1 then invalid_arg "Render.image: jobs < 1";
+  match check_resources scene with
+  | Error e -> Error e
+  | Ok () ->
   let t0 = Unix.gettimeofday () in
   let p = Prepared.prepare ?skips scene in
   let t1 = Unix.gettimeofday () in
@@ -79,21 +101,24 @@ let image ?(jobs = 1) ?skips (scene : Scene.t) =
     rows tr img ~first:w ~step:jobs;
     save_counters ints w tr (Gc.minor_words () -. before)
   in
-  if jobs = 1 then begin
-    let img = Image.create scene.width scene.height in
-    let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
-    work img ints 0;
-    finish img ints
-  end
+  if jobs = 1 then
+    match Image.create scene.width scene.height with
+    | exception Out_of_memory -> out_of_memory scene
+    | img ->
+        let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
+        work img ints 0;
+        finish img ints
   else
-    let img =
-      Image.of_buffer scene.width scene.height
-        (Parallel.shared_bytes (3 * scene.width * scene.height))
-    in
-    let ints = Parallel.shared_ints (jobs * counter_fields) in
-    match Parallel.run jobs (work img ints) with
-    | Ok () -> finish img ints
-    | Error e -> Error e
+    match
+      ( Image.of_buffer scene.width scene.height (Parallel.shared_bytes (3 * scene.width * scene.height)),
+        Parallel.shared_ints (jobs * counter_fields) )
+    with
+    | exception Out_of_memory -> out_of_memory scene
+    | exception Failure m -> Error (`Msg m)
+    | img, ints -> (
+        match Parallel.run jobs (work img ints) with
+        | Ok () -> finish img ints
+        | Error e -> Error e)
 
 let image_exn ?jobs ?skips scene =
   match image ?jobs ?skips scene with Ok (img, _) -> img | Error (`Msg m) -> failwith m

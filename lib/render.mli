@@ -20,10 +20,13 @@ val image :
   ?jobs:int -> ?skips:bool -> Scene.t -> (Image.t * Stats.t, [> `Msg of string ]) result
 (** [image ~jobs ~skips scene] is the image of [scene] and what it cost.
     [jobs] (default 1) processes trace interleaved rows; [skips] is passed
-    to {!Prepared.prepare}. [Error] if a worker process dies.
+    to {!Prepared.prepare}. [Error], before anything is allocated, if the
+    render needs more work than {!Scene.check_work} allows or the image
+    more memory than the system has available; [Error] if no memory can be
+    had for the image, or if a worker process dies.
     @raise Invalid_argument if [scene] fails {!Scene.validate} or
     [jobs < 1]. *)
 
 val image_exn : ?jobs:int -> ?skips:bool -> Scene.t -> Image.t
 (** [image_exn] is the image of {!image}.
-    @raise Failure if a worker process dies. *)
+    @raise Failure with the message of {!image}'s [Error]. *)
