@@ -12,7 +12,21 @@ let to_string img =
   done;
   Bytes.unsafe_to_string b
 
-let output oc img = output_string oc (to_string img)
+(* In chunks: writing a large image costs 64 KiB, not a copy of it. *)
+let output oc img =
+  let data = Image.buffer img in
+  output_string oc (header img);
+  let n = Bigarray.Array1.dim data in
+  let chunk = Bytes.create (min n 65536) in
+  let k = ref 0 in
+  while !k < n do
+    let len = min (Bytes.length chunk) (n - !k) in
+    for i = 0 to len - 1 do
+      Bytes.unsafe_set chunk i (Char.unsafe_chr (Bigarray.Array1.unsafe_get data (!k + i)))
+    done;
+    output oc chunk 0 len;
+    k := !k + len
+  done
 
 exception Bad of string
 
@@ -105,8 +119,8 @@ let check_file_size n =
       if Float.of_int n <= most then Ok n
       else
         Error
-          (Limits.exceeded `Pixels
-             (Printf.sprintf "the file is %d bytes, more than any PPM image within the pixel limit (%.0f bytes)" n most))
+          (Printf.sprintf "the file is %d bytes, more than a PPM image of at most %.0f pixels can be (%.0f bytes; set %s to raise the limit)"
+             n pixels most (Limits.variable `Pixels))
 
 let read_file path =
   match File_io.read ~check_size:check_file_size path with

@@ -9,7 +9,8 @@ val to_string : Image.t -> string
     ["P6\n<w> <h>\n255\n"] then the pixels, rows top-down. *)
 
 val output : out_channel -> Image.t -> unit
-(** [output oc img] writes [to_string img] to [oc]. *)
+(** [output oc img] writes [to_string img] to [oc], through a 64 KiB
+    buffer rather than a copy of the image. *)
 
 val of_string : string -> (Image.t, [> `Msg of string ]) result
 (** [of_string s] is the image in the PPM file contents [s]. [Error] says

@@ -19,6 +19,8 @@ let rows tr img ~first ~step =
   let buffer = Image.buffer img in
   let r = ref first in
   while !r < height do
+    (* A worker whose parent was killed stops here, within one row. *)
+    Parallel.exit_if_orphaned ();
     row tr buffer ~width ~height ~x0:0 ~x1:width !r;
     r := !r + step
   done
@@ -64,7 +66,8 @@ let check_resources (scene : Scene.t) =
       | _ -> Ok ())
 
 let out_of_memory (scene : Scene.t) =
-  Error (`Msg (Printf.sprintf "out of memory for a %dx%d image" scene.width scene.height))
+  let mib = Float.of_int (3 * scene.width * scene.height) /. 1048576. in
+  Error (`Msg (Printf.sprintf "not enough memory for a %dx%d image (%.0f MiB)" scene.width scene.height mib))
 
 let image ?(jobs = 1) ?skips (scene : Scene.t) =
   if jobs < 1 then invalid_arg "Render.image: jobs < 1";

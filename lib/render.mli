@@ -8,7 +8,9 @@
 val rows : Trace.t -> Image.t -> first:int -> step:int -> unit
 (** [rows tr img ~first ~step] renders image rows [first], [first + step],
     [first + 2 step] ... of [img], whose size must be the canvas size of
-    [tr]'s scene.
+    [tr]'s scene. In a worker process of {!Parallel.run}, it ends the
+    process before a row if the parent has died
+    ({!Parallel.exit_if_orphaned}).
     @raise Invalid_argument if the sizes differ or [step < 1]. *)
 
 val region : Trace.t -> Image.t -> x:int -> y:int -> w:int -> h:int -> unit

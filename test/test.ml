@@ -18,4 +18,6 @@ let () =
       ("cli", Test_cli.tests);
       ("window", Test_window.tests);
       ("example", Test_example.tests);
+      ("hostile", Test_hostile.tests);
+      ("faults", Test_faults.tests);
     ]
