@@ -36,9 +36,12 @@ let jobs_or_cores = function Some j -> j | None -> Parallel.cores ()
 (* The image, its statistics (none for the oracle) and its tracing time. *)
 let render_image ~literal ~jobs scene =
   if literal then
+    (* Render.image checks these itself; the oracle does not. *)
+    let* () = Scene.check_work scene in
     let t0 = Unix.gettimeofday () in
-    let img = Literal.render scene in
-    Ok (img, None, Unix.gettimeofday () -. t0)
+    match Literal.render scene with
+    | exception Out_of_memory -> msg "not enough memory for a %dx%d image" scene.width scene.height
+    | img -> Ok (img, None, Unix.gettimeofday () -. t0)
   else
     let* img, stats = Render.image ~jobs scene in
     Ok (img, Some stats, stats.trace_s)

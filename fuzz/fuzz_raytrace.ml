@@ -5,7 +5,20 @@
 
 open Crowbar
 
-let check property input = match property input with Ok () -> () | Error m -> fail m
+(* With RAYTRACE_FUZZ_DUMP=DIR, every input is also saved in DIR, named by
+   its digest: that turns the crowbar-encoded files of a campaign's queue
+   into the scene and image files of test/corpus/. *)
+let dump extension input =
+  match Sys.getenv_opt "RAYTRACE_FUZZ_DUMP" with
+  | None | Some "" -> ()
+  | Some dir ->
+      let oc = open_out_bin (Filename.concat dir (Digest.to_hex (Digest.string input) ^ extension)) in
+      output_string oc input;
+      close_out oc
+
+let check extension property input =
+  dump extension input;
+  match property input with Ok () -> () | Error m -> fail m
 let token tokens = map [ range (Array.length tokens) ] (fun i -> tokens.(i))
 
 let number =
@@ -49,6 +62,43 @@ let scene_text =
   map [ list (pair separator (choose [ form; form; form; sexp ])) ] (fun forms ->
       String.concat "" (List.map (fun (sep, f) -> sep ^ f) forms))
 
+(* Scenes that are valid most of the time, with values anywhere in their
+   domains and sometimes at or beyond its edges, so that validation, the
+   printer and the renderer see many real scenes. *)
+let scaled lo hi = map [ uint16 ] (fun n -> Raytrace.Float_text.to_string (lo +. ((hi -. lo) *. Float.of_int n /. 65535.)))
+let value lo hi = choose [ scaled lo hi; scaled lo hi; scaled lo hi; number ]
+let triple lo hi = map [ value lo hi; value lo hi; value lo hi ] (fun a b c -> String.concat " " [ a; b; c ])
+let optional name v = map [ bool; v ] (fun present x -> if present then Printf.sprintf " (%s %s)" name x else "")
+
+let valid_sphere =
+  map
+    [ triple (-10.) 10.; value 0. 5.; triple 0. 255.; optional "specular" (choose [ const "-1"; value 0. 1000. ]);
+      optional "reflective" (value 0. 1.) ]
+    (fun c r col spec refl -> Printf.sprintf "(sphere (center %s) (radius %s) (color %s)%s%s)" c r col spec refl)
+
+let valid_light =
+  choose
+    [
+      map [ value 0. 1. ] (Printf.sprintf "(light ambient (intensity %s))");
+      map [ value 0. 1.; triple (-10.) 10. ] (Printf.sprintf "(light point (intensity %s) (position %s))");
+      map [ value 0. 1.; triple (-10.) 10. ] (Printf.sprintf "(light directional (intensity %s) (direction %s))");
+    ]
+
+let valid_setting =
+  choose
+    [
+      map [ range ~min:1 40; range ~min:1 40 ] (Printf.sprintf "(canvas (width %d) (height %d))");
+      map [ value 0.1 3.; value 0.1 3.; value 0.1 3. ] (Printf.sprintf "(viewport (width %s) (height %s) (distance %s))");
+      map [ triple (-5.) 5.; optional "look-at" (triple (-5.) 5.) ] (Printf.sprintf "(camera (position %s)%s)");
+      map [ triple 0. 255. ] (Printf.sprintf "(background %s)");
+      map [ range 10 ] (Printf.sprintf "(recursion-depth %d)");
+      map [ value 0. 0.1 ] (Printf.sprintf "(epsilon %s)");
+    ]
+
+let valid_scene =
+  map [ list valid_setting; list valid_sphere; list valid_light ] (fun settings spheres lights ->
+      String.concat "\n" (settings @ spheres @ lights))
+
 (* Deep nesting, balanced or not, around a generated form. *)
 let nested =
   map [ range 100_000; range 3; scene_text ] (fun depth shape inner ->
@@ -70,15 +120,22 @@ let ppm_text =
       ^ (if one_space then "\n" else "")
       ^ data)
 
-(* A P6 image whose header is right, so that the pixel checks are reached. *)
+(* Images whose header is right and whose pixel data has the right length
+   (most of the time), so that the pixel checks and rescaling are reached;
+   at most 9 x 9 pixels, as crowbar draws at most 256 bytes at once. *)
 let ppm_image =
-  map [ range ~min:1 40; range ~min:1 40; range ~min:1 255; bytes ] (fun w h maxval data ->
-      Printf.sprintf "P6\n%d %d\n%d\n" w h maxval ^ data)
+  dynamic_bind (pair (range ~min:1 9) (range ~min:1 9)) (fun (w, h) ->
+      map [ range ~min:1 255; bool; bytes_fixed (3 * w * h); range 3 ] (fun maxval plain data slack ->
+          if plain then
+            Printf.sprintf "P3\n%d %d\n%d\n" w h maxval
+            ^ String.concat " " (List.init (String.length data - slack) (fun i -> string_of_int (Char.code data.[i])))
+          else Printf.sprintf "P6\n%d %d\n%d\n" w h maxval ^ String.sub data 0 (String.length data - slack)))
 
 let () =
-  add_test ~name:"scene: any bytes" [ bytes ] (check Hostile.scene);
-  add_test ~name:"scene: forms and fields" [ scene_text ] (check Hostile.scene);
-  add_test ~name:"scene: deep nesting" [ nested ] (check Hostile.scene);
-  add_test ~name:"ppm: any bytes" [ bytes ] (check Hostile.ppm);
-  add_test ~name:"ppm: headers" [ ppm_text ] (check Hostile.ppm);
-  add_test ~name:"ppm: P6 pixels" [ ppm_image ] (check Hostile.ppm)
+  add_test ~name:"scene: any bytes" [ bytes ] (check ".scene" Hostile.scene);
+  add_test ~name:"scene: forms and fields" [ scene_text ] (check ".scene" Hostile.scene);
+  add_test ~name:"scene: mostly valid" [ valid_scene ] (check ".scene" Hostile.scene);
+  add_test ~name:"scene: deep nesting" [ nested ] (check ".scene" Hostile.scene);
+  add_test ~name:"ppm: any bytes" [ bytes ] (check ".ppm" Hostile.ppm);
+  add_test ~name:"ppm: headers" [ ppm_text ] (check ".ppm" Hostile.ppm);
+  add_test ~name:"ppm: pixels" [ ppm_image ] (check ".ppm" Hostile.ppm)

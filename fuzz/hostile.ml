@@ -74,7 +74,7 @@ let ppm bytes =
 
 let scene_tokens =
   [|
-    "("; ")"; "(("; "))"; " "; "\n"; "\t"; "\r\n"; ";"; "; comment\n"; "#|"; "|#"; "#| block |#"; "#;";
+    "("; ")"; "(("; "))"; " "; "\n"; "\t"; "\r\n"; ";"; "; comment\n"; "#|"; "|#"; "#| block |#"; "#;"; "#;)"; "(#;)"; "#; #;";
     "\""; "\"str\""; "\"\\n\""; "\\"; "canvas"; "viewport"; "camera"; "background"; "recursion-depth";
     "epsilon"; "sphere"; "light"; "width"; "height"; "distance"; "position"; "rotation"; "look-at"; "up";
     "center"; "radius"; "color"; "specular"; "reflective"; "intensity"; "direction"; "ambient"; "point";

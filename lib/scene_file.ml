@@ -331,8 +331,17 @@ let of_string ?(file = "<string>") text =
   match Limits.check_scene_bytes (String.length text) with
   | Error m -> Error (`Msg (Printf.sprintf "%s: %s" file m))
   | Ok _ ->
+  let syntax_error e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
   match Parsexp.Many_cst.parse_string text with
-  | Error e -> error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e)
+  | exception e -> (
+      (* parsexp v0.15's CST parser fails an assertion where a sexp comment
+         [#;] has nothing to comment before a closing parenthesis, as in
+         "(#;)" (found by fuzzing); its plain parser reports the error. *)
+      match Parsexp.Many.parse_string text with
+      | Error e -> syntax_error e
+      | Ok _ | (exception _) ->
+          error { line = 1; col = 0; offset = 0 } ("syntax error: the S-expression parser failed: " ^ Printexc.to_string e))
+  | Error e -> syntax_error e
   | Ok forms -> (
       match scene_of_forms (sexps forms) with
       | exception Located (loc, m) -> error loc.start_pos m

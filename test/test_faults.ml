@@ -341,7 +341,29 @@ let tests =
           "raytrace: canvas 65536x65536 has 4294967296 pixels, more than the limit of 268435456 (set \
            RAYTRACE_MAX_PIXELS to raise it)\n"
           err;
+        let scene = Helpers.scene_path "cgfs.scene" in
+        let code, _, err = sh ("RAYTRACE_MAX_SCENE_BYTES=100 " ^ command [ exe (); "render"; scene; "-o"; "/tmp/never.ppm" ]) in
+        Alcotest.(check int) __LOC__ 1 code;
+        Alcotest.(check string) __LOC__
+          (Printf.sprintf
+             "raytrace: %s: the scene is %d bytes long, more than the limit of 100 (set \
+              RAYTRACE_MAX_SCENE_BYTES to raise it)\n"
+             scene (Unix.stat scene).st_size)
+          err;
         Alcotest.(check bool) "no output" false (Sys.file_exists "/tmp/never.ppm"));
+    Alcotest.test_case "a scene read from a pipe renders, and its size is bounded too" `Quick (fun () ->
+        let scene = Helpers.scene_path "cgfs.scene" in
+        let code, out, err =
+          sh ("cat " ^ Filename.quote scene ^ " | " ^ command [ exe (); "render"; "/dev/stdin"; "--width"; "4"; "--height"; "4"; "-o"; "-" ])
+        in
+        Alcotest.(check int) err 0 code;
+        Alcotest.(check string) __LOC__ "P6\n4 4\n255\n" (String.sub out 0 11);
+        let code, _, err =
+          sh ("cat " ^ Filename.quote scene ^ " | RAYTRACE_MAX_SCENE_BYTES=100 " ^ command [ exe (); "render"; "/dev/stdin"; "-o"; "-" ])
+        in
+        Alcotest.(check int) __LOC__ 1 code;
+        one_line __LOC__ err;
+        contains __LOC__ err "RAYTRACE_MAX_SCENE_BYTES");
     Alcotest.test_case "diff refuses an image file larger than the pixel bound before reading it" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let big = Filename.concat dir "big.ppm" in
