@@ -81,30 +81,32 @@ let check_image_size w h =
   if w < 1 || h < 1 then Error (Printf.sprintf "image size %dx%d is empty" w h)
   else pixels_within "image" w h
 
+(* [Ok n] if [n >= lo] (else [Error (low ())]) and [n] is within bound
+   [name] (else [what ()] describes [n]). *)
+let bounded name ~lo ~low ~what n =
+  if n < lo then Error (low ())
+  else match within name (Float.of_int n) what with Ok () -> Ok n | Error e -> Error e
+
 let check_depth d =
-  if d < 0 then Error (Printf.sprintf "recursion depth must be >= 0, got %d" d)
-  else
-    match within `Depth (Float.of_int d) (fun () -> Printf.sprintf "recursion depth %d is too deep" d) with
-    | Ok () -> Ok d
-    | Error e -> Error e
+  bounded `Depth ~lo:0 d
+    ~low:(fun () -> Printf.sprintf "recursion depth must be >= 0, got %d" d)
+    ~what:(fun () -> Printf.sprintf "recursion depth %d is too deep" d)
 
 let check_samples n =
-  if n < 1 then Error (Printf.sprintf "samples per pixel must be >= 1, got %d" n)
-  else
-    match within `Samples (Float.of_int n) (fun () -> Printf.sprintf "%d samples per pixel are too many" n) with
-    | Ok () -> Ok n
-    | Error e -> Error e
+  bounded `Samples ~lo:1 n
+    ~low:(fun () -> Printf.sprintf "samples per pixel must be >= 1, got %d" n)
+    ~what:(fun () -> Printf.sprintf "%d samples per pixel are too many" n)
 
 let check_count kind n =
   let noun = match kind with `Spheres -> "spheres" | `Lights -> "lights" in
-  match within (kind :> name) (Float.of_int n) (fun () -> Printf.sprintf "the scene has %d %s" n noun) with
-  | Ok () -> Ok n
-  | Error e -> Error e
+  bounded (kind :> name) ~lo:0 n
+    ~low:(fun () -> Printf.sprintf "a negative number of %s: %d" noun n)
+    ~what:(fun () -> Printf.sprintf "the scene has %d %s" n noun)
 
 let check_scene_bytes n =
-  match within `Scene_bytes (Float.of_int n) (fun () -> Printf.sprintf "the scene is %d bytes long" n) with
-  | Ok () -> Ok n
-  | Error e -> Error e
+  bounded `Scene_bytes ~lo:0 n
+    ~low:(fun () -> Printf.sprintf "a negative size: %d" n)
+    ~what:(fun () -> Printf.sprintf "the scene is %d bytes long" n)
 
 let work ~pixels ~samples ~depth ~spheres ~lights =
   let f = Float.of_int in

@@ -12,34 +12,30 @@ let count_cpu_list s =
          | _ -> acc)
        0
 
-let cores () =
-  let from_status () =
-    match File_io.read "/proc/self/status" with
-    | Error _ -> None
-    | Ok text ->
-        String.split_on_char '\n' text
-        |> List.find_map (fun line ->
-               match String.index_opt line ':' with
-               | Some i when String.sub line 0 i = "Cpus_allowed_list" ->
-                   let n = count_cpu_list (String.sub line (i + 1) (String.length line - i - 1)) in
-                   if n > 0 then Some n else None
-               | _ -> None)
-  in
-  match from_status () with Some n -> n | None -> 1
-
-(* "MemAvailable:   12345678 kB" -> 12345678 * 1024 *)
-let available_memory () =
-  match File_io.read "/proc/meminfo" with
+(* The value of the first "key: value" line of a /proc file that [parse]
+   accepts. *)
+let proc_field file key parse =
+  match File_io.read file with
   | Error _ -> None
   | Ok text ->
       String.split_on_char '\n' text
       |> List.find_map (fun line ->
-             match String.split_on_char ':' line with
-             | [ "MemAvailable"; v ] -> (
-                 match String.split_on_char ' ' (String.trim v) with
-                 | [ n; "kB" ] -> Option.map (fun k -> k * 1024) (int_of_string_opt n)
-                 | _ -> None)
+             match String.index_opt line ':' with
+             | Some i when String.sub line 0 i = key -> parse (String.trim (String.sub line (i + 1) (String.length line - i - 1)))
              | _ -> None)
+
+let cores () =
+  let positive n = if n > 0 then Some n else None in
+  match proc_field "/proc/self/status" "Cpus_allowed_list" (fun v -> positive (count_cpu_list v)) with
+  | Some n -> n
+  | None -> 1
+
+(* "MemAvailable:   12345678 kB" -> 12345678 * 1024 *)
+let available_memory () =
+  proc_field "/proc/meminfo" "MemAvailable" (fun v ->
+      match String.split_on_char ' ' v with
+      | [ n; "kB" ] -> Option.map (fun k -> k * 1024) (int_of_string_opt n)
+      | _ -> None)
 
 (* The file is filled with zeros before it is mapped: a full /dev/shm or a
    file-size limit is then an error here, not a SIGBUS in a worker that

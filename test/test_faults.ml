@@ -47,6 +47,7 @@ let sh script = Helpers.run "/bin/sh" [ "-c"; script ]
 let fst3 (a, _, _) = a
 let available tool = fst3 (sh ("command -v " ^ tool ^ " >/dev/null")) = 0
 
+(* This Alcotest has no skip: the reason goes to the test's output. *)
 let skip what why = Printf.printf "SKIPPED %s: %s\n%!" what why
 
 (* Starting raytrace in the background, with SIGINT at its default action
