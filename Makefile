@@ -7,13 +7,13 @@
 
 # Debian packages: the build, then the tests (virtual X server, screenshots).
 BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-ocaml-dev \
-  libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev
-TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libcrowbar-ocaml-dev xvfb x11-apps xdotool \
-  imagemagick
+  libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev libcamlimages-ocaml-dev
+TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev libcrowbar-ocaml-dev xvfb \
+  x11-apps xdotool imagemagick parallel rsync
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: run test deps build golden clean fuzz
+.PHONY: run test deps build golden clean bench fuzz
 
 run: deps build
 	@if [ -n "$$DISPLAY" ]; then \
@@ -47,6 +47,11 @@ golden: build
 
 clean:
 	dune clean
+
+# The speed benchmark (bench/speed.ml): prints a table. Release build.
+bench: deps
+	dune build --profile release bin/main.exe bench/speed.exe
+	./_build/default/bench/speed.exe --raytrace ./_build/default/bin/main.exe
 
 # A coverage-guided fuzzing campaign (AFL++ driving the crowbar target
 # fuzz/fuzz_raytrace.ml, built instrumented in _build_fuzz) on the scene

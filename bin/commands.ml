@@ -71,40 +71,188 @@ let same_file a b =
   | sa, sb -> sa.st_dev = sb.st_dev && sa.st_ino = sb.st_ino
   | exception Unix.Unix_error _ -> false
 
-let write output img =
-  if output = "-" then begin
-    set_binary_mode_out stdout true;
-    Ppm.output stdout img;
-    flush stdout;
-    Ok ()
-  end
-  else Ppm.write_file output img
+let to_stdout data =
+  set_binary_mode_out stdout true;
+  print_string data;
+  flush stdout;
+  Ok ()
 
-let render opts ~output ~jobs ~stats ~literal =
-  let output = Option.value output ~default:(default_output opts) in
+(* PPM to stdout; a file in the format its name says. *)
+let write output img =
+  if output = "-" then to_stdout (Ppm.to_string img) else Raytrace_png.Image_file.write_file output img
+
+type part_spec = Tile of int * int | Corners of int * int * int * int
+
+(* The rectangle to render, [None] for the whole image. *)
+let part_region (scene : Scene.t) = function
+  | None -> Ok None
+  | Some (Tile (index, count)) ->
+      Result.map Option.some (Region.tile ~width:scene.width ~height:scene.height ~index ~count)
+  | Some (Corners (x0, y0, x1, y1)) ->
+      Result.map Option.some (Region.of_corners ~width:scene.width ~height:scene.height x0 y0 x1 y1)
+
+let parse_frames s =
+  let frame t =
+    if t <> "" && String.length t <= 9 && String.for_all (fun c -> c >= '0' && c <= '9') t then
+      Some (int_of_string t)
+    else None
+  in
+  match List.map frame (String.split_on_char ':' s) with
+  | [ Some a ] -> Ok (a, a)
+  | [ Some a; Some b ] when a <= b -> Ok (a, b)
+  | [ Some a; Some b ] -> msg "frames %s: the first frame %d comes after the last %d" s a b
+  | _ -> msg "frames %S: expected A:B (frames A to B, both included) or A, e.g. 0:47" s
+
+(* The frame number in an output path: the first %d or %0Nd, as printf
+   would write it. [None] when there is none. *)
+let frame_placeholder path =
+  let n = String.length path in
+  let rec from i =
+    match String.index_from_opt path i '%' with
+    | None -> None
+    | Some p ->
+        let j = ref (p + 1) in
+        while !j < n && path.[!j] >= '0' && path.[!j] <= '9' do incr j done;
+        let digits = String.sub path (p + 1) (!j - p - 1) in
+        if !j < n && path.[!j] = 'd' && (digits = "" || (digits.[0] = '0' && String.length digits <= 3)) then
+          Some (p, !j + 1, if digits = "" then 0 else int_of_string digits)
+        else from (p + 1)
+  in
+  from 0
+
+let frame_path path f =
+  match frame_placeholder path with
+  | None -> path
+  | Some (start, stop, width) ->
+      String.sub path 0 start ^ Printf.sprintf "%0*d" width f ^ String.sub path stop (String.length path - stop)
+
+let default_render_output opts ~frames ~spec =
+  let base = Filename.remove_extension (default_output opts) in
+  let frame = match frames with Some _ -> "-%04d" | None -> "" in
+  let part =
+    match spec with
+    | None -> ""
+    | Some (Tile (i, n)) -> Printf.sprintf "-tile-%d-of-%d" i n
+    | Some (Corners (x0, y0, x1, y1)) -> Printf.sprintf "-region-%d-%d-%d-%d" x0 y0 x1 y1
+  in
+  base ^ frame ^ part ^ ".ppm"
+
+let check_output opts ~frames ~part output =
+  let* () =
+    match (frames, frame_placeholder output) with
+    | Some (a, b), None when a < b && output <> "-" ->
+        msg "%s: with --frames %d:%d, the output needs the frame number, e.g. anim-%%04d.ppm" output a b
+    | _ -> Ok ()
+  in
+  let* () =
+    match (part, Raytrace_png.Image_file.format_of_path output) with
+    | true, Raytrace_png.Image_file.Png when output <> "-" ->
+        msg "%s: a part of an image is written as PPM, whose header records what raytrace merge checks; name it .ppm"
+          output
+    | _ -> Ok ()
+  in
+  match opts.scene with
+  | Some input when output <> "-" && same_file input output ->
+      msg "%s: the output file is the input scene; choose another output path" output
+  | _ -> Ok ()
+
+(* One picture (a frame, a part, or both) rendered and written. *)
+let render_one ~literal ~jobs ~stats ~load_s ~frame ~region ~output (scene : Scene.t) =
+  let* img, st, seconds =
+    match region with
+    | None -> render_image ~literal ~jobs scene
+    | Some (r : Region.t) when literal ->
+        let* img, st, seconds = render_image ~literal ~jobs scene in
+        Ok (Image.sub img ~x:r.x ~y:r.y ~w:r.w ~h:r.h, st, seconds)
+    | Some r ->
+        let* img, st = Render.region_image ~jobs scene r in
+        Ok (img, Some st, st.trace_s)
+  in
+  let t2 = Unix.gettimeofday () in
+  let* () =
+    match region with
+    | None -> write output img
+    | Some region ->
+        let renderer = if literal then "literal" else "fast" in
+        let part =
+          Part.v ~canvas_width:scene.width ~canvas_height:scene.height ~region
+            ~settings:(Part.settings ?frame ~renderer scene) img
+        in
+        if output = "-" then to_stdout (Part.to_string part) else Part.write_file output part
+  in
+  let t3 = Unix.gettimeofday () in
+  if stats then begin
+    (match st with
+    | Some st -> Format.eprintf "%a@?" Stats.pp_table st
+    | None -> Format.eprintf "%-24s %.4f@." "time, literal oracle (s)" seconds);
+    Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" load_s "time, write (s)" (t3 -. t2)
+  end;
+  if output <> "-" then begin
+    let what =
+      match region with
+      | None -> Printf.sprintf "%dx%d" scene.width scene.height
+      | Some r -> Format.asprintf "region %a of %dx%d" Region.pp_corners r scene.width scene.height
+    in
+    Printf.eprintf "raytrace: wrote %s (%s, %.3f s)\n%!" output what seconds
+  end;
+  Ok ()
+
+let render opts ~output ~jobs ~stats ~literal ~part ~frames =
+  let output =
+    match output with Some o -> o | None -> default_render_output opts ~frames ~spec:part
+  in
   report
-    (let* () =
-       match opts.scene with
-       | Some input when output <> "-" && same_file input output ->
-           msg "%s: the output file is the input scene; choose another output path" output
-       | _ -> Ok ()
-     in
+    (let* () = check_output opts ~frames ~part:(Option.is_some part) output in
+     let t0 = Unix.gettimeofday () in
      let* scene = load opts in
-     let* img, st, seconds = render_image ~literal ~jobs:(jobs_or_cores jobs) scene in
+     let load_s = Unix.gettimeofday () -. t0 in
+     let* region = part_region scene part in
+     let jobs = jobs_or_cores jobs in
+     match frames with
+     | None ->
+         let* () = render_one ~literal ~jobs ~stats ~load_s ~frame:None ~region ~output scene in
+         Ok exit_ok
+     | Some (a, b) ->
+         (* Every frame is checked before the first is rendered. *)
+         let* scenes =
+           List.fold_left
+             (fun acc f ->
+               let* acc = acc in
+               let* s = Scene.at_frame scene f in
+               Ok ((f, s) :: acc))
+             (Ok []) (List.init (b - a + 1) (fun i -> a + i))
+         in
+         let* () =
+           List.fold_left
+             (fun acc (f, s) ->
+               let* () = acc in
+               render_one ~literal ~jobs ~stats ~load_s ~frame:(Some f) ~region ~output:(frame_path output f) s)
+             (Ok ()) (List.rev scenes)
+         in
+         Ok exit_ok)
+
+let merge parts ~output =
+  report
+    (let* parts =
+       List.fold_left
+         (fun acc path ->
+           let* acc = acc in
+           let* p = Part.read_file path in
+           Ok ((path, p) :: acc))
+         (Ok []) parts
+     in
+     let parts = List.rev parts in
+     let* img = Part.merge parts in
      let* () = write output img in
-     (match (stats, st) with
-     | true, Some st -> Format.eprintf "%a@?" Stats.pp_table st
-     | true, None -> Format.eprintf "literal oracle: %.3f s@." seconds
-     | false, _ -> ());
      if output <> "-" then
-       Printf.eprintf "raytrace: wrote %s (%dx%d, %.3f s)\n%!" output scene.width scene.height
-         seconds;
+       Printf.eprintf "raytrace: wrote %s (%dx%d, from %d parts)\n%!" output (Image.width img)
+         (Image.height img) (List.length parts);
      Ok exit_ok)
 
 let diff a b ~max_diff =
   report
-    (let* ia = Ppm.read_file a in
-     let* ib = Ppm.read_file b in
+    (let* ia = Raytrace_png.Image_file.read_file a in
+     let* ib = Raytrace_png.Image_file.read_file b in
      let* d = Image_diff.compare ia ib in
      Format.printf "%a@." Image_diff.pp_summary d;
      match max_diff with

@@ -22,12 +22,43 @@ type scene_options = {
 val view : scene_options -> jobs:int option -> int
 (** [view opts ~jobs] renders the scene and shows it in a window. *)
 
+type part_spec =
+  | Tile of int * int  (** [--tile I/N]: tile [I] of [N]. *)
+  | Corners of int * int * int * int  (** [--region X0,Y0,X1,Y1]. *)
+(** The part of the image to render. *)
+
+val parse_frames : string -> (int * int, [> `Msg of string ]) result
+(** [parse_frames s] is [(a, b)] for [s = "A:B"] with [a <= b], or [(a, a)]
+    for [s = "A"]. *)
+
+val frame_path : string -> int -> string
+(** [frame_path pattern f] is [pattern] with its first [%d] or [%0Nd]
+    ([N] up to 3 digits) replaced by [f] as [printf] writes it; [pattern]
+    itself if it has none. *)
+
 val render :
-  scene_options -> output:string option -> jobs:int option -> stats:bool -> literal:bool -> int
-(** [render opts ~output ~jobs ~stats ~literal] renders the scene to a PPM
-    file ([-] for stdout; default: the scene's base name with [.ppm]),
-    written atomically. [literal] uses the oracle {!Raytrace.Literal}. *)
+  scene_options ->
+  output:string option ->
+  jobs:int option ->
+  stats:bool ->
+  literal:bool ->
+  part:part_spec option ->
+  frames:(int * int) option ->
+  int
+(** [render opts ~output ~jobs ~stats ~literal ~part ~frames] renders the
+    scene to an image file, written atomically: PNG if [output] ends in
+    [.png], PPM otherwise, [-] for PPM on stdout; default: the scene's base
+    name with [.ppm]. [literal] uses the oracle {!Raytrace.Literal}. With
+    [part], only that rectangle is rendered, to a part file
+    ({!Raytrace.Part}, always PPM). With [frames], the frames of the scene's
+    camera path, to [frame_path output f] for each frame [f]. *)
+
+val merge : string list -> output:string -> int
+(** [merge parts ~output] assembles the part files [parts] into the whole
+    image ({!Raytrace.Part.merge}) and writes it to [output] (PNG or PPM by
+    its name, [-] for PPM on stdout). *)
 
 val diff : string -> string -> max_diff:int option -> int
 (** [diff a b ~max_diff] prints the difference figures of images [a] and
-    [b]; with [max_diff], fails if a channel differs by more. *)
+    [b] (PPM or PNG files, told apart by their contents); with [max_diff],
+    fails if a channel differs by more. *)

@@ -23,7 +23,7 @@ let limit_envs =
     env `Spheres "spheres in a scene";
     env `Lights "lights in a scene";
     env `Scene_bytes "the size of a scene file, in bytes";
-    env `Work "the ray-sphere intersection tests that a render may need (pixels x samples x rays per sample x spheres x (1 + lights)); 1e12 is a few hours of one core";
+    env `Work "the ray-sphere intersection tests that a render may need (pixels x samples x rays per sample x spheres met per ray x (1 + lights)); 1e12 is a few hours of one core";
   ]
 
 let scene_options =
@@ -83,6 +83,48 @@ let view_info =
 let view_term =
   Term.(const (fun opts jobs -> Commands.view opts ~jobs) $ scene_options $ jobs)
 
+(* A cmdliner converter from a parser of ours. *)
+let parsed parse docv =
+  Arg.conv ~docv ((fun s -> (parse s :> (_, [ `Msg of string ]) result)), fun ppf _ -> Format.pp_print_string ppf docv)
+
+let part =
+  let tile =
+    Arg.(
+      value
+      & opt (some (parsed Raytrace.Region.parse_tile "I/N")) None
+      & info [ "tile" ] ~docv:"I/N"
+          ~doc:
+            "Render only tile $(i,I) of $(i,N) (from 1 to $(i,N)): a band of full rows, the $(i,N) \
+             tiles top to bottom. The output is a part file for $(b,raytrace merge).")
+  in
+  let region =
+    Arg.(
+      value
+      & opt (some (parsed Raytrace.Region.parse_corners "X0,Y0,X1,Y1")) None
+      & info [ "region" ] ~docv:"X0,Y0,X1,Y1"
+          ~doc:
+            "Render only columns $(i,X0) to $(i,X1)-1 and rows $(i,Y0) to $(i,Y1)-1 (rows from the \
+             top, as in the image file). The output is a part file for $(b,raytrace merge).")
+  in
+  let make tile region =
+    match (tile, region) with
+    | Some _, Some _ -> `Error (true, "--tile and --region exclude each other: give one")
+    | Some (i, n), None -> `Ok (Some (Commands.Tile (i, n)))
+    | None, Some (x0, y0, x1, y1) -> `Ok (Some (Commands.Corners (x0, y0, x1, y1)))
+    | None, None -> `Ok None
+  in
+  Term.(ret (const make $ tile $ region))
+
+let frames =
+  Arg.(
+    value
+    & opt (some (parsed Commands.parse_frames "A:B")) None
+    & info [ "frames" ] ~docv:"A:B"
+        ~doc:
+          "Render frames $(i,A) to $(i,B) (both included; $(i,A) alone is one frame) of the scene's \
+           $(b,camera-path), each to the output name with its $(b,%d) or $(b,%04d) replaced by the \
+           frame number (default: the scene's base name with $(b,-%04d.ppm)).")
+
 let render_cmd =
   let output =
     Arg.(
@@ -90,8 +132,9 @@ let render_cmd =
       & opt (some string) None
       & info [ "output"; "o" ] ~docv:"FILE"
           ~doc:
-            "Write the image to $(docv), a binary PPM (P6). $(b,-) writes to standard output. \
-             Default: the scene's base name with $(b,.ppm), in the current directory.")
+            "Write the image to $(docv): PNG if its name ends in $(b,.png), otherwise a binary PPM \
+             (P6). $(b,-) writes PPM to standard output. Default: the scene's base name with \
+             $(b,.ppm), in the current directory.")
   in
   let stats =
     Arg.(value & flag & info [ "stats" ] ~doc:"Print rays by kind, intersection tests, time and allocation to stderr.")
@@ -108,9 +151,15 @@ let render_cmd =
         [
           `S Manpage.s_description;
           `P
-            "Renders $(i,SCENE) (default: the built-in CGFS scene) to a binary PPM file. The \
-             file is written atomically: a failed or interrupted render leaves no file, and an \
+            "Renders $(i,SCENE) (default: the built-in CGFS scene) to a binary PPM or a PNG file. \
+             The file is written atomically: a failed or interrupted render leaves no file, and an \
              existing file keeps its contents.";
+          `P
+            "$(b,--tile) and $(b,--region) render one part of the image, to a PPM file whose header \
+             records the canvas, the region and every setting that changes pixels; $(b,raytrace \
+             merge) assembles the parts, from any processes or machines, into exactly the image a \
+             single render gives. $(b,--frames) renders the frames of an animated scene; each \
+             frame is an independent job.";
           `P
             "Interrupted (Ctrl-C, SIGTERM, SIGHUP), it stops its worker processes, removes its \
              temporary file and ends with the signal. A worker that dies (killed, out of memory) \
@@ -120,18 +169,57 @@ let render_cmd =
           `S Manpage.s_examples;
           `Pre
             "raytrace render scenes/cgfs.scene -o cgfs.ppm\n\
+             raytrace render scenes/cgfs.scene -o cgfs.png\n\
              raytrace render --width 1920 --height 1920 --stats scenes/cgfs.scene -o big.ppm\n\
-             raytrace render scenes/cgfs.scene -o - | convert ppm:- cgfs.png";
+             raytrace render scenes/cgfs.scene --tile 3/16 -o part-3.ppm\n\
+             raytrace render scenes/cgfs.scene --region 0,0,300,300 -o corner.ppm\n\
+             raytrace render scenes/orbit.scene --frames 0:47 -o 'orbit-%04d.png'\n\
+             raytrace render scenes/cgfs.scene -o - | convert ppm:- cgfs.jpg";
         ]
   in
   Cmd.v info
     Term.(
-      const (fun opts output jobs stats literal -> Commands.render opts ~output ~jobs ~stats ~literal)
-      $ scene_options $ output $ jobs $ stats $ literal)
+      const (fun opts output jobs stats literal part frames ->
+          Commands.render opts ~output ~jobs ~stats ~literal ~part ~frames)
+      $ scene_options $ output $ jobs $ stats $ literal $ part $ frames)
+
+let merge_cmd =
+  let parts =
+    Arg.(non_empty & pos_all string [] & info [] ~docv:"PART" ~doc:"A part file written by $(b,raytrace render --tile) or $(b,--region).")
+  in
+  let output =
+    Arg.(
+      required
+      & opt (some string) None
+      & info [ "output"; "o" ] ~docv:"FILE"
+          ~doc:"Write the whole image to $(docv): PNG if its name ends in $(b,.png), otherwise PPM; $(b,-) writes PPM to standard output.")
+  in
+  let info =
+    Cmd.info "merge" ~exits ~doc:"assemble the parts of an image"
+      ~man:
+        [
+          `S Manpage.s_description;
+          `P
+            "Assembles parts rendered with $(b,raytrace render --tile) or $(b,--region) (in any \
+             order, by any processes on any machines) into the whole image: byte for byte the \
+             image that one $(b,raytrace render) gives.";
+          `P
+            "Refuses, naming the files, parts that do not fit together: of different canvas \
+             sizes, rendered with a different depth, number of samples, renderer or frame, or \
+             from a different scene (a digest of the scene is in every part's header); parts \
+             that overlap; and parts that leave pixels uncovered.";
+          `S Manpage.s_examples;
+          `Pre
+            "raytrace merge part-*.ppm -o cgfs.png\n\
+             parallel raytrace render scenes/cgfs.scene --tile {}/16 -o part-{}.ppm ::: $(seq 16)\n\
+             raytrace merge part-*.ppm -o cgfs.ppm";
+        ]
+  in
+  Cmd.v info Term.(const (fun parts output -> Commands.merge parts ~output) $ parts $ output)
 
 let diff_cmd =
   let image n =
-    Arg.(required & pos n (some string) None & info [] ~docv:(if n = 0 then "A" else "B") ~doc:"A PPM image.")
+    Arg.(required & pos n (some string) None & info [] ~docv:(if n = 0 then "A" else "B") ~doc:"A PPM or PNG image.")
   in
   let max_diff =
     Arg.(
@@ -169,6 +257,6 @@ let main =
           `Pre "raytrace\nraytrace render scenes/cgfs.scene -o cgfs.ppm\nraytrace diff a.ppm b.ppm";
         ]
   in
-  Cmd.group ~default:view_term info [ Cmd.v view_info view_term; render_cmd; diff_cmd ]
+  Cmd.group ~default:view_term info [ Cmd.v view_info view_term; render_cmd; merge_cmd; diff_cmd ]
 
 let () = exit (Cmd.eval' main)

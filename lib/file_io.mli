@@ -8,10 +8,12 @@
     with the path. *)
 
 val read : ?check_size:(int -> (int, string) result) -> string -> (string, [> `Msg of string ]) result
-(** [read ~check_size path] is the contents of the file [path]. Before it
-    reads anything, it calls [check_size] (default: accept all) on the
-    file's length in bytes; an [Error m] of it is returned as [path: m], so
-    that an oversized file costs no memory. *)
+(** [read ~check_size path] is the contents of the file [path], read until
+    its end (so pipes and [/proc] files work too). [check_size] (default:
+    accept all) is called on the file's length in bytes before anything is
+    read, and on the bytes read so far for files of unknown length; an
+    [Error m] of it is returned as [path: m], so that an oversized file
+    costs no memory. *)
 
 val write_atomic : string -> (out_channel -> unit) -> (unit, [> `Msg of string ]) result
 (** [write_atomic path f] calls [f oc] on a channel to a new temporary file

@@ -12,15 +12,17 @@ let intensity = function
   | Ambient { intensity } | Point { intensity; _ } | Directional { intensity; _ } -> intensity
 
 let check_intensity i =
-  if Float.is_finite i && i >= 0. then Ok i
+  if i >= 0. && i <= Limits.max_intensity then Ok i
   else
-    Error (Printf.sprintf "light intensity must be finite and >= 0, got %s" (Float_text.to_string i))
+    Error
+      (Printf.sprintf "light intensity must lie in [0, 1e6], got %s" (Float_text.to_string i))
 
 let check_position q = Limits.check_point "point light position" q
 
 let check_direction l =
   match Limits.check_point "directional light direction" l with
-  | Ok l when Vec3.norm2 l = 0. -> Error "directional light direction must not be the zero vector"
+  | Ok l when Vec3.norm l < Limits.min_size ->
+      Error "directional light direction must not be the zero vector (its length must be at least 1e-30)"
   | r -> r
 
 let validate l =

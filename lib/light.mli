@@ -32,7 +32,7 @@ val intensity : t -> float
 (** [intensity l] is the intensity of [l]. *)
 
 val check_intensity : float -> (float, string) result
-(** [check_intensity i] checks that [i] is finite and [>= 0]. *)
+(** [check_intensity i] checks [0 <= i <= Limits.max_intensity]. *)
 
 val check_position : Vec3.t -> (Vec3.t, string) result
 (** [check_position q] checks a point light's position with
@@ -40,7 +40,8 @@ val check_position : Vec3.t -> (Vec3.t, string) result
 
 val check_direction : Vec3.t -> (Vec3.t, string) result
 (** [check_direction l] checks a directional light's direction with
-    {!Limits.check_point}, and that it is not the zero vector. *)
+    {!Limits.check_point}, and that its length is at least
+    {!Limits.min_size}. *)
 
 val validate : t -> (t, string) result
 (** [validate l] is [Ok l] if the intensity, position and direction pass

@@ -1,4 +1,6 @@
 let max_coordinate = 1e12
+let min_size = 1e-30
+let max_intensity = 1e6
 let max_dimension = 65536
 let max_pixels = 1 lsl 28
 let max_depth = 64
@@ -57,6 +59,12 @@ let check_coordinate what x =
   if Float.is_finite x && Float.abs x <= max_coordinate then Ok x
   else Error (Printf.sprintf "%s must be finite and at most 1e12 in magnitude, got %s" what (num x))
 
+let check_size what x =
+  if not (x > 0.) then Error (Printf.sprintf "%s must be > 0, got %s" what (num x))
+  else if x < min_size then
+    Error (Printf.sprintf "%s must be at least 1e-30, got %s" what (num x))
+  else check_coordinate what x
+
 let check_point what (p : Vec3.t) =
   match (check_coordinate what p.x, check_coordinate what p.y, check_coordinate what p.z) with
   | Ok _, Ok _, Ok _ -> Ok p
@@ -108,14 +116,25 @@ let check_scene_bytes n =
     ~low:(fun () -> Printf.sprintf "a negative size: %d" n)
     ~what:(fun () -> Printf.sprintf "the scene is %d bytes long" n)
 
+(* Beyond 8 spheres the renderer walks a bounding volume hierarchy: about
+   log2 n levels of boxes, each with leaves of up to 4 spheres on either
+   side; 16 log2 n is a generous bound of what a ray meets on scenes that
+   are not pathological. *)
+let spheres_per_ray n =
+  if n <= 8 then n
+  else
+    let log2 = ref 0 in
+    while 1 lsl !log2 < n do incr log2 done;
+    min n (16 * !log2)
+
 let work ~pixels ~samples ~depth ~spheres ~lights =
   let f = Float.of_int in
-  f pixels *. f samples *. f (depth + 1) *. f spheres *. f (1 + lights)
+  f pixels *. f samples *. f (depth + 1) *. f (spheres_per_ray spheres) *. f (1 + lights)
 
 let check_work ~pixels ~samples ~depth ~spheres ~lights =
   let w = work ~pixels ~samples ~depth ~spheres ~lights in
   within `Work w (fun () ->
       Printf.sprintf
-        "the render needs up to %.3g ray-sphere intersection tests (%d pixels x %d samples x %d \
-         rays x %d spheres x (1 + %d lights))"
-        w pixels samples (depth + 1) spheres lights)
+        "the render needs about %.3g ray-sphere intersection tests (%d pixels x %d samples x %d \
+         rays x %d spheres per ray x (1 + %d lights))"
+        w pixels samples (depth + 1) (spheres_per_ray spheres) lights)

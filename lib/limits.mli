@@ -25,6 +25,15 @@ val max_coordinate : float
     radius or a viewport dimension. Squares of larger values approach the
     range where sums of squares lose every digit of a unit-sized sphere. *)
 
+val min_size : float
+(** [min_size] is [1e-30]: the smallest radius, viewport dimension or
+    directional-light vector length. Squares and products of smaller values
+    underflow and would turn into division by zero. *)
+
+val max_intensity : float
+(** [max_intensity] is [1e6]: the largest light intensity, so that sums of
+    intensities times colours can never overflow to infinity. *)
+
 val max_dimension : int
 (** [max_dimension] is [65536]: the largest canvas width or height. *)
 
@@ -60,8 +69,8 @@ val max_scene_bytes : int
 val max_work : float
 (** [max_work] is [1e12]: the default largest number of ray-sphere
     intersection tests that a render may need by the estimate of
-    {!check_work}, about four hours of one core at the 7e7 tests per
-    second measured on the reference scene. *)
+    {!work}, about four hours of one core at the 7e7 tests per second
+    measured on the reference scene. *)
 
 (** {1:current Bounds in force} *)
 
@@ -91,6 +100,10 @@ val exceeded : name -> string -> string
 val check_coordinate : string -> float -> (float, string) result
 (** [check_coordinate what x] is [Ok x] if [x] is finite with
     [|x| <= max_coordinate], and otherwise [Error] naming [what]. *)
+
+val check_size : string -> float -> (float, string) result
+(** [check_size what x] is [Ok x] if [min_size <= x <= max_coordinate],
+    and otherwise [Error] naming [what] ("sphere radius", ...). *)
 
 val check_point : string -> Vec3.t -> (Vec3.t, string) result
 (** [check_point what p] is {!check_coordinate} on each coordinate. *)
@@ -126,12 +139,14 @@ val check_scene_bytes : int -> (int, string) result
     the [`Scene_bytes] bound in force. *)
 
 val work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> float
-(** [work ~pixels ~samples ~depth ~spheres ~lights] is an upper bound of the
-    ray-sphere intersection tests of a render:
-    [pixels * samples * (depth + 1) * spheres * (1 + lights)], where
-    [depth] counts the reflections a ray may make (0 without reflective
-    spheres) and [lights] the lights that cast shadow rays (point and
-    directional). A float, so that it cannot overflow. *)
+(** [work ~pixels ~samples ~depth ~spheres ~lights] estimates the ray-sphere
+    intersection tests of a render:
+    [pixels * samples * (depth + 1) * m * (1 + lights)], where [depth]
+    counts the reflections a ray may make (0 without reflective spheres),
+    [lights] the lights that cast shadow rays (point and directional), and
+    [m] the spheres a ray meets: all of them up to 8, beyond that (where the
+    renderer uses a bounding volume hierarchy) at most [16 log2 spheres],
+    rounded up. A float, so that it cannot overflow. *)
 
 val check_work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> (unit, string) result
 (** [check_work ...] is [Ok ()] if {!work} is within the [`Work] bound in

@@ -21,6 +21,11 @@ let compute_lighting (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
     (fun light ->
       match Light.vector light point with
       | None -> intensity := !intensity +. Light.intensity light
+      | Some l when Vec3.norm2 l = 0. ->
+          (* A point light exactly at the point: L has no direction, and the
+             formulas would divide by zero. The document is silent; the light
+             is skipped. *)
+          ()
       | Some l ->
           (* Shadow check (7.7): is any sphere between the point and the light? *)
           let shadowed =

@@ -30,7 +30,8 @@ val compute_lighting :
     intensities plus, for each point or directional light that no sphere
     shadows, its diffuse term and (unless [specular] is {!Sphere.matte}) its
     specular term. A sphere shadows a light if it meets the shadow ray
-    [P + t L] with [epsilon < t < Light.shadow_t_max]. *)
+    [P + t L] with [epsilon < t < Light.shadow_t_max]. A point light
+    located exactly at [point] ([L = 0]) is skipped: it has no direction. *)
 
 val trace_ray :
   Scene.t -> epsilon:float -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float ->

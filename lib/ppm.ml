@@ -1,8 +1,15 @@
-let header img = Printf.sprintf "P6\n%d %d\n255\n" (Image.width img) (Image.height img)
+let header ?(comments = []) img =
+  let comment c =
+    if String.contains c '\n' || String.contains c '\r' then
+      invalid_arg "Ppm.to_string: a comment contains a line break";
+    "# " ^ c ^ "\n"
+  in
+  Printf.sprintf "P6\n%s%d %d\n255\n" (String.concat "" (List.map comment comments)) (Image.width img)
+    (Image.height img)
 
-let to_string img =
+let to_string ?comments img =
   let data = Image.buffer img in
-  let h = header img in
+  let h = header ?comments img in
   let n = Bigarray.Array1.dim data in
   let b = Bytes.create (String.length h + n) in
   Bytes.blit_string h 0 b 0 (String.length h);
@@ -13,9 +20,9 @@ let to_string img =
   Bytes.unsafe_to_string b
 
 (* In chunks: writing a large image costs 64 KiB, not a copy of it. *)
-let output oc img =
+let output ?comments oc img =
   let data = Image.buffer img in
-  output_string oc (header img);
+  output_string oc (header ?comments img);
   let n = Bigarray.Array1.dim data in
   let chunk = Bytes.create (min n 65536) in
   let k = ref 0 in
@@ -128,4 +135,29 @@ let read_file path =
   | Ok s -> (
       match of_string s with Ok img -> Ok img | Error (`Msg m) -> Error (`Msg (path ^ ": " ^ m)))
 
-let write_file path img = File_io.write_atomic path (fun oc -> output oc img)
+let write_file ?comments path img = File_io.write_atomic path (fun oc -> output ?comments oc img)
+
+(* The comments between the magic number and the maxval: the header ends
+   after three numbers. *)
+let header_comments s =
+  let n = String.length s in
+  let rec scan pos numbers acc =
+    if numbers = 3 || pos >= n then List.rev acc
+    else if is_space s.[pos] then scan (pos + 1) numbers acc
+    else if s.[pos] = '#' then
+      let stop = match String.index_from_opt s pos '\n' with Some nl -> nl | None -> n in
+      let text = String.sub s (pos + 1) (stop - pos - 1) in
+      let text = if String.length text > 0 && text.[0] = ' ' then String.sub text 1 (String.length text - 1) else text in
+      let text =
+        if String.length text > 0 && text.[String.length text - 1] = '\r' then String.sub text 0 (String.length text - 1)
+        else text
+      in
+      scan stop numbers (text :: acc)
+    else
+      let stop = ref pos in
+      while !stop < n && (not (is_space s.[!stop])) && s.[!stop] <> '#' do
+        incr stop
+      done;
+      scan !stop (numbers + 1) acc
+  in
+  if n >= 2 && (String.sub s 0 2 = "P6" || String.sub s 0 2 = "P3") then scan 2 0 [] else []

@@ -4,13 +4,16 @@
     and plain P3, with [#] comments in the header, and maxval from 1 to 255
     (values are rescaled to 0-255). *)
 
-val to_string : Image.t -> string
-(** [to_string img] is [img] as a binary P6 file: the header
-    ["P6\n<w> <h>\n255\n"] then the pixels, rows top-down. *)
+val to_string : ?comments:string list -> Image.t -> string
+(** [to_string ~comments img] is [img] as a binary P6 file: the header
+    ["P6\n<w> <h>\n255\n"] then the pixels, rows top-down. Each of
+    [comments] (default none) is a header line ["# <comment>\n"] after
+    ["P6\n"], which every PPM reader skips.
+    @raise Invalid_argument if a comment contains a line break. *)
 
-val output : out_channel -> Image.t -> unit
-(** [output oc img] writes [to_string img] to [oc], through a 64 KiB
-    buffer rather than a copy of the image. *)
+val output : ?comments:string list -> out_channel -> Image.t -> unit
+(** [output ~comments oc img] writes [to_string ~comments img] to [oc],
+    through a 64 KiB buffer rather than a copy of the image. *)
 
 val of_string : string -> (Image.t, [> `Msg of string ]) result
 (** [of_string s] is the image in the PPM file contents [s]. [Error] says
@@ -26,7 +29,20 @@ val read_file : string -> (Image.t, [> `Msg of string ]) result
     {!Limits} pixel bound ([3] bytes a pixel, plus 1 MiB of header) is
     refused before it is read. *)
 
-val write_file : string -> Image.t -> (unit, [> `Msg of string ]) result
-(** [write_file path img] writes [img] to [path] atomically
-    ({!File_io.write_atomic}): [path] either keeps its old contents or gets the
-    whole image. *)
+val check_file_size : int -> (int, string) result
+(** [check_file_size n] is [Ok n] if [n] bytes can hold an image within the
+    {!Limits} pixel bound: at most [3] bytes a pixel plus 1 MiB of header
+    (a PNG compresses, so it fits too); [Error] says so and names the
+    variable that raises the bound. For {!File_io.read}'s [check_size]. *)
+
+val write_file : ?comments:string list -> string -> Image.t -> (unit, [> `Msg of string ]) result
+(** [write_file ~comments path img] writes [to_string ~comments img] to
+    [path] atomically ({!File_io.write_atomic}): [path] either keeps its old
+    contents or gets the whole image. *)
+
+val header_comments : string -> string list
+(** [header_comments s] is the text of the [#] comments in the header of
+    the PPM file contents [s] (between the magic number and the maxval), in
+    order, each without its [#], one following space, and the line end.
+    It is [\[\]] if [s] does not start with [P6] or [P3]; it does not
+    check the rest of the file ({!of_string} does). *)

@@ -1,8 +1,12 @@
 type t = {
   n_spheres : int;
+  index : int array;
+  slot : int array;
+  bvh : Bvh.t option;
   cx : float array;
   cy : float array;
   cz : float array;
+  radius : float array;
   r2 : float array;
   red : float array;
   green : float array;
@@ -15,6 +19,7 @@ type t = {
   lx : float array;
   ly : float array;
   lz : float array;
+  robust : bool;
   epsilon : float;
   depth : int;
   width : int;
@@ -31,6 +36,7 @@ type t = {
   skips : bool;
 }
 
+let bvh_threshold = 8
 let ambient = 0
 let point = 1
 let directional = 2
@@ -65,7 +71,23 @@ let prepare ?(skips = true) (scene : Scene.t) =
   (match Scene.validate scene with
   | Ok _ -> ()
   | Error (`Msg m) -> invalid_arg ("Prepared.prepare: invalid scene: " ^ m));
-  let spheres = Array.of_list scene.spheres in
+  let listed = Array.of_list scene.spheres in
+  let n = Array.length listed in
+  let bvh =
+    if skips && n > bvh_threshold then begin
+      let cx = Array.map (fun s -> s.Sphere.center.x) listed in
+      let cy = Array.map (fun s -> s.Sphere.center.y) listed in
+      let cz = Array.map (fun s -> s.Sphere.center.z) listed in
+      let radius = Array.map (fun s -> s.Sphere.radius) listed in
+      let margin = Bvh.ray_box_margin ~cx ~cy ~cz ~radius scene.camera.position in
+      Some (Bvh.build ~cx ~cy ~cz (Array.mapi (fun i r -> r +. margin.(i)) radius))
+    end
+    else None
+  in
+  let index = match bvh with Some b -> b.order | None -> Array.init n Fun.id in
+  let slot = Array.make n 0 in
+  Array.iteri (fun k i -> slot.(i) <- k) index;
+  let spheres = Array.map (fun i -> listed.(i)) index in
   let lights =
     Array.of_list
       (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
@@ -90,10 +112,14 @@ let prepare ?(skips = true) (scene : Scene.t) =
     | Directional { direction; _ } -> direction
   in
   {
-    n_spheres = Array.length spheres;
+    n_spheres = n;
+    index;
+    slot;
+    bvh;
     cx;
     cy;
     cz;
+    radius = sf (fun s -> s.radius);
     r2;
     red = sf (fun s -> s.color.r);
     green = sf (fun s -> s.color.g);
@@ -107,7 +133,8 @@ let prepare ?(skips = true) (scene : Scene.t) =
     lx = lf (fun l -> (vector l).x);
     ly = lf (fun l -> (vector l).y);
     lz = lf (fun l -> (vector l).z);
-    epsilon = Option.value scene.epsilon ~default:Scene.document_epsilon;
+    robust = scene.epsilon = None;
+    epsilon = Option.value scene.epsilon ~default:0.;
     depth = scene.depth;
     width = scene.width;
     height = scene.height;

@@ -8,9 +8,17 @@
 
 type t = private {
   n_spheres : int;
+  index : int array;
+      (** The scene-list index of the sphere in each slot: the per-sphere
+          arrays below are in slot order (the hierarchy's leaf order). *)
+  slot : int array;  (** The inverse of [index]. *)
+  bvh : Bvh.t option;
+      (** The hierarchy over the spheres, when the skips are enabled and
+          there are more than {!bvh_threshold} spheres. *)
   cx : float array;  (** Sphere centers, x coordinates. *)
   cy : float array;
   cz : float array;
+  radius : float array;
   r2 : float array;  (** [radius *. radius]. *)
   red : float array;  (** Colour channels, 0-255. *)
   green : float array;
@@ -23,7 +31,11 @@ type t = private {
   lx : float array;  (** Position (point) or direction (directional). *)
   ly : float array;
   lz : float array;
-  epsilon : float;  (** Lower bound of [t] for secondary rays. *)
+  robust : bool;  (** The robust mode: the scene gives no epsilon. *)
+  epsilon : float;
+      (** Lower bound of [t] for secondary rays: the scene's epsilon, or [0.]
+          in the robust mode, where the tracer handles the sphere a ray
+          leaves exactly instead. *)
   depth : int;  (** Recursion depth. *)
   width : int;  (** Canvas size. *)
   height : int;
@@ -42,6 +54,10 @@ type t = private {
 }
 (** The type for prepared scenes. *)
 
+val bvh_threshold : int
+(** [bvh_threshold] is [8]: with at most this many spheres, testing every
+    one is cheaper than walking a hierarchy. *)
+
 val ambient : int
 (** [ambient] is the [light_kind] of ambient lights. *)
 
@@ -56,8 +72,9 @@ val prepare : ?skips:bool -> Scene.t -> t
     (default [true]) the tracer skips work that provably cannot change an
     output byte: lights of zero intensity are dropped here, shadow rays stop
     at the first blocker and try the last blocker first, and reflections
-    stop once their remaining weight cannot change an 8-bit channel. With
+    stop once their remaining weight cannot change an 8-bit channel, and
+    rays are tested only against spheres whose (conservatively padded,
+    {!Bvh.ray_box_margin}) boxes they meet. With
     [~skips:false] it does everything the document does, for tests that
-    prove the skips exact. A scene without epsilon is traced with
-    {!Scene.document_epsilon}.
+    prove the skips exact.
     @raise Invalid_argument if [scene] fails {!Scene.validate}. *)

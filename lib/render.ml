@@ -35,7 +35,27 @@ let region tr img ~x ~y ~w ~h =
     row tr buffer ~width ~height ~x0:x ~x1:(x + w) r
   done
 
-let counter_fields = 6
+(* Rows [first], [first + step] ... of the [w x h] image [img] that holds
+   the region at [(x, y)] of the canvas: canvas coordinates from the
+   canvas size, storage from the region's. *)
+let region_rows tr img ~x ~y ~first ~step =
+  let p = Trace.prepared tr in
+  let width = p.width and height = p.height in
+  let w = Image.width img and h = Image.height img in
+  let buffer = Image.buffer img in
+  let r = ref first in
+  while !r < h do
+    (* A worker whose parent was killed stops here, within one row. *)
+    Parallel.exit_if_orphaned ();
+    let gy = Canvas.y_of_row ~height (y + !r) in
+    for c = 0 to w - 1 do
+      Trace.pixel tr (Canvas.x_of_column ~width (x + c)) gy;
+      Trace.store tr buffer (3 * ((!r * w) + c))
+    done;
+    r := !r + step
+  done
+
+let counter_fields = 7
 
 (* Worker [w]'s counters go to slots [w * counter_fields ...]. *)
 let save_counters ints w tr words =
@@ -47,48 +67,52 @@ let save_counters ints w tr words =
   set 2 c.reflection;
   set 3 c.tests;
   set 4 c.early_stops;
-  set 5 (truncate words)
+  set 5 (truncate words);
+  set 6 c.box_tests
 
 (* Refused before anything is allocated: a render that cannot finish
    should fail now, not after hours or with the machine out of memory. *)
-let check_resources (scene : Scene.t) =
-  match Scene.check_work scene with
+let check_resources (scene : Scene.t) (region : Region.t) =
+  match Scene.check_work ~pixels:(Region.pixels region) scene with
   | Error e -> Error e
   | Ok () -> (
-      let bytes = 3 * scene.width * scene.height in
+      let bytes = 3 * Region.pixels region in
       match Parallel.available_memory () with
       | Some available when bytes > available ->
           let gib n = Float.of_int n /. 1073741824. in
           Error
             (`Msg
               (Printf.sprintf "a %dx%d image needs %.2f GiB of memory, but only %.2f GiB are available"
-                 scene.width scene.height (gib bytes) (gib available)))
+                 region.w region.h (gib bytes) (gib available)))
       | _ -> Ok ())
 
-let out_of_memory (scene : Scene.t) =
-  let mib = Float.of_int (3 * scene.width * scene.height) /. 1048576. in
-  Error (`Msg (Printf.sprintf "not enough memory for a %dx%d image (%.0f MiB)" scene.width scene.height mib))
+let out_of_memory (region : Region.t) =
+  let mib = Float.of_int (3 * Region.pixels region) /. 1048576. in
+  Error (`Msg (Printf.sprintf "not enough memory for a %dx%d image (%.0f MiB)" region.w region.h mib))
 
-let image ?(jobs = 1) ?skips (scene : Scene.t) =
-  if jobs < 1 then invalid_arg "Render.image: jobs < 1";
-  match check_resources scene with
+let region_image ?(jobs = 1) ?skips (scene : Scene.t) (region : Region.t) =
+  if jobs < 1 then invalid_arg "Render.region_image: jobs < 1";
+  if not (Region.contains region ~width:scene.width ~height:scene.height) then
+    invalid_arg "Render.region_image: region outside the canvas";
+  match check_resources scene region with
   | Error e -> Error e
   | Ok () ->
   let t0 = Unix.gettimeofday () in
   let p = Prepared.prepare ?skips scene in
   let t1 = Unix.gettimeofday () in
-  let jobs = min jobs scene.height in
+  let jobs = min jobs region.h in
   let sum ints i = List.init jobs (fun w -> Int64.to_int ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in
   let finish img ints =
     let t2 = Unix.gettimeofday () in
     let stats =
       Stats.
         {
-          pixels = scene.width * scene.height;
+          pixels = Region.pixels region;
           primary = sum ints 0;
           shadow = sum ints 1;
           reflection = sum ints 2;
           tests = sum ints 3;
+          box_tests = sum ints 6;
           early_stops = sum ints 4;
           jobs;
           prepare_s = t1 -. t0;
@@ -101,27 +125,30 @@ let image ?(jobs = 1) ?skips (scene : Scene.t) =
   let work img ints w =
     let tr = Trace.create p in
     let before = Gc.minor_words () in
-    rows tr img ~first:w ~step:jobs;
+    region_rows tr img ~x:region.x ~y:region.y ~first:w ~step:jobs;
     save_counters ints w tr (Gc.minor_words () -. before)
   in
   if jobs = 1 then
-    match Image.create scene.width scene.height with
-    | exception Out_of_memory -> out_of_memory scene
+    match Image.create region.w region.h with
+    | exception Out_of_memory -> out_of_memory region
     | img ->
         let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
         work img ints 0;
         finish img ints
   else
     match
-      ( Image.of_buffer scene.width scene.height (Parallel.shared_bytes (3 * scene.width * scene.height)),
+      ( Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)),
         Parallel.shared_ints (jobs * counter_fields) )
     with
-    | exception Out_of_memory -> out_of_memory scene
+    | exception Out_of_memory -> out_of_memory region
     | exception Failure m -> Error (`Msg m)
     | img, ints -> (
         match Parallel.run jobs (work img ints) with
         | Ok () -> finish img ints
         | Error e -> Error e)
+
+let image ?jobs ?skips (scene : Scene.t) =
+  region_image ?jobs ?skips scene (Region.full ~width:scene.width ~height:scene.height)
 
 let image_exn ?jobs ?skips scene =
   match image ?jobs ?skips scene with Ok (img, _) -> img | Error (`Msg m) -> failwith m

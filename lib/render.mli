@@ -29,6 +29,14 @@ val image :
     @raise Invalid_argument if [scene] fails {!Scene.validate} or
     [jobs < 1]. *)
 
+val region_image :
+  ?jobs:int -> ?skips:bool -> Scene.t -> Region.t -> (Image.t * Stats.t, [> `Msg of string ]) result
+(** [region_image ~jobs ~skips scene r] is the image of the region [r] of
+    [scene]'s canvas, [r.w x r.h] pixels, and what it cost: byte for byte
+    the pixels of {!image} there. [jobs] and [skips] are as for {!image}.
+    @raise Invalid_argument if [scene] fails {!Scene.validate}, [jobs < 1]
+    or [r] is not inside the canvas. *)
+
 val image_exn : ?jobs:int -> ?skips:bool -> Scene.t -> Image.t
 (** [image_exn] is the image of {!image}.
     @raise Failure with the message of {!image}'s [Error]. *)

@@ -8,12 +8,13 @@ type t = {
   epsilon : float option;
   spheres : Sphere.t list;
   lights : Light.t list;
+  camera_path : Camera_path.t option;
 }
 [@@deriving show, eq]
 
 let v ?(width = 600) ?(height = 600) ?(viewport = Viewport.default) ?(camera = Camera.default)
-    ?(background = Color.black) ?(depth = 3) ?epsilon ~spheres ~lights () =
-  { width; height; viewport; camera; background; depth; epsilon; spheres; lights }
+    ?(background = Color.black) ?(depth = 3) ?epsilon ?camera_path ~spheres ~lights () =
+  { width; height; viewport; camera; background; depth; epsilon; spheres; lights; camera_path }
 
 let document_epsilon = 0.0001
 
@@ -52,6 +53,28 @@ let cgfs_camera =
   in
   { cgfs with camera = Camera.v ~rotation (Vec3.v 3. 0. 1.) }
 
+let grid n =
+  if n < 1 then invalid_arg "Scene.grid: n < 1";
+  let k = ref 1 in
+  while !k * !k < n do incr k done;
+  let k = !k in
+  let palette =
+    [| Color.v 255. 0. 0.; Color.v 0. 255. 0.; Color.v 0. 0. 255.; Color.v 255. 255. 0.;
+       Color.v 0. 255. 255.; Color.v 255. 0. 255. |]
+  in
+  let specular = [| -1.; 10.; 500.; 1000. |] and reflective = [| 0.; 0.2; 0.4 |] in
+  let wall =
+    List.init n (fun i ->
+        let col = i mod k and row = i / k in
+        let center =
+          Vec3.v (Float.of_int col -. (Float.of_int (k - 1) /. 2.)) (Float.of_int row -. 0.6) (2. *. Float.of_int k)
+        in
+        Sphere.v ~specular:specular.(i mod 4) ~reflective:reflective.(i mod 3) ~center ~radius:0.4
+          palette.(i mod 6))
+  in
+  let ground = List.nth cgfs.spheres 3 in
+  { cgfs with width = 800; height = 800; spheres = wall @ [ ground ] }
+
 let check_epsilon e =
   if Float.is_finite e && e >= 0. then Ok e
   else Error (Printf.sprintf "epsilon must be finite and >= 0, got %s" (Float_text.to_string e))
@@ -86,11 +109,19 @@ let with_overrides ?width ?height ?depth s =
   let pick o d = match o with Some x -> x | None -> d in
   { s with width = pick width s.width; height = pick height s.height; depth = pick depth s.depth }
 
-let check_work ?(samples = 1) s =
+let at_frame s f =
+  match s.camera_path with
+  | None -> Error (`Msg "the scene has no camera-path, so it has no frames to render")
+  | Some path -> (
+      match Camera_path.camera path f with
+      | Ok camera -> Ok { s with camera; camera_path = None }
+      | Error e -> Error e)
+
+let check_work ?(samples = 1) ?pixels s =
   let depth = if List.exists (fun (sp : Sphere.t) -> sp.reflective > 0.) s.spheres then s.depth else 0 in
   let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in
   match
-    Limits.check_work ~pixels:(s.width * s.height) ~samples ~depth ~spheres:(List.length s.spheres) ~lights
+    Limits.check_work ~pixels:(Option.value pixels ~default:(s.width * s.height)) ~samples ~depth ~spheres:(List.length s.spheres) ~lights
   with
   | Ok () -> Ok ()
   | Error m -> Error (`Msg m)

@@ -20,6 +20,9 @@ type t = {
           no scene-dependent constant. *)
   spheres : Sphere.t list;
   lights : Light.t list;
+  camera_path : Camera_path.t option;
+      (** The camera of each frame of an animation ({!at_frame}); [camera]
+          is the camera of a still picture. *)
 }
 [@@deriving show, eq]
 (** The type for scenes. *)
@@ -32,6 +35,7 @@ val v :
   ?background:Color.t ->
   ?depth:int ->
   ?epsilon:float ->
+  ?camera_path:Camera_path.t ->
   spheres:Sphere.t list ->
   lights:Light.t list ->
   unit ->
@@ -39,8 +43,8 @@ val v :
 (** [v ~spheres ~lights ()] is a scene with the given objects and lights,
     and otherwise the document's values: a 600 x 600 canvas,
     {!Viewport.default}, {!Camera.default}, a black background, depth 3, and
-    the robust mode (no epsilon). The result is not validated: see
-    {!validate}. *)
+    the robust mode (no epsilon), no camera path. The result is not
+    validated: see {!validate}. *)
 
 val cgfs : t
 (** [cgfs] is the reference scene of CGFS's demos (and of
@@ -53,6 +57,17 @@ val cgfs_camera : t
 (** [cgfs_camera] is {!cgfs} seen from [(3, 0, 1)], turned by the CGFS
     camera demo's matrix [(0.7071 0 -0.7071) (0 1 0) (0.7071 0 0.7071)]
     (and [scenes/cgfs-camera.scene]). *)
+
+val grid : int -> t
+(** [grid n] is the many-sphere scene [grid:n] of the C reference
+    ([../shared/reference/]): [n] spheres of radius 0.4 in a wall facing
+    the camera -- with [k] the smallest integer such that [k * k >= n],
+    sphere [i] has center [(i mod k - (k - 1) / 2, i / k - 0.6, 2 k)],
+    colour red, green, blue, yellow, cyan, magenta by [i mod 6], specular
+    [-1, 10, 500, 1000] by [i mod 4] and reflective [0, 0.2, 0.4] by
+    [i mod 3] -- then the ground sphere and the three lights of {!cgfs};
+    800 x 800, depth 3, epsilon 0.001.
+    @raise Invalid_argument if [n < 1]. *)
 
 val document_epsilon : float
 (** [document_epsilon] is [0.0001], the document's lower bound of [t] for
@@ -72,8 +87,9 @@ val validate : t -> (t, [> `Msg of string ]) result
     {!Sphere.validate}, {!Light.validate}), so that it renders without NaN
     or infinity, and otherwise [Error (`Msg m)] with the first failure. *)
 
-val check_work : ?samples:int -> t -> (unit, [> `Msg of string ]) result
-(** [check_work ~samples s] is [Ok ()] if rendering [s] with [samples]
+val check_work : ?samples:int -> ?pixels:int -> t -> (unit, [> `Msg of string ]) result
+(** [check_work ~samples ~pixels s] is [Ok ()] if rendering [pixels]
+    (default the whole canvas; fewer for a region) of [s] with [samples]
     (default 1) samples per pixel needs at most the {!Limits} bound on
     ray-sphere intersection tests ({!Limits.check_work}; the recursion
     depth counts only when some sphere is reflective, and only point and
@@ -84,3 +100,11 @@ val check_work : ?samples:int -> t -> (unit, [> `Msg of string ]) result
 val with_overrides : ?width:int -> ?height:int -> ?depth:int -> t -> t
 (** [with_overrides ~width ~height ~depth s] is [s] with the given fields
     replaced (the command line's [--width], [--height] and [--depth]). *)
+
+(** {1:animation Animation} *)
+
+val at_frame : t -> int -> (t, [> `Msg of string ]) result
+(** [at_frame s f] is the still scene of frame [f] of [s]'s camera path:
+    [s] with the path's camera of frame [f] ({!Camera_path.camera}) and no
+    camera path. [Error] if [s] has no camera path or [f] lies outside
+    it. *)

@@ -1,9 +1,11 @@
-module Cst = Parsexp.Cst
+module Sexp = Sexplib0.Sexp
 module Positions = Parsexp.Positions
 
-exception Located of Positions.range * string
+(* Conversion errors name the offending node; its position is found only if
+   there is an error (see [of_string]). *)
+exception Located of Sexp.t * string
 
-let fail (loc : Positions.range) fmt = Printf.ksprintf (fun m -> raise (Located (loc, m))) fmt
+let fail node fmt = Printf.ksprintf (fun m -> raise (Located (node, m))) fmt
 let position (p : Positions.pos) = Printf.sprintf "%d:%d" p.line (p.col + 1)
 
 (* Atoms echoed in messages are kept on one line and short. *)
@@ -17,10 +19,7 @@ let show_atom a =
     let a = if String.length a > 40 then String.sub a 0 40 ^ "..." else a in
     Printf.sprintf "%S" a
 
-let loc_of = function Cst.Atom { loc; _ } | Cst.List { loc; _ } -> loc
-let sexps elements = List.filter_map (function Cst.Sexp s -> Some s | Cst.Comment _ -> None) elements
-
-(* Edit distance, to suggest the field a user probably meant. *)
+(* Edit distance, to suggest the name a user probably meant. *)
 let distance a b =
   let la = String.length a and lb = String.length b in
   let d = Array.make_matrix (la + 1) (lb + 1) 0 in
@@ -55,121 +54,112 @@ let one_of names =
 
 let number what node =
   match node with
-  | Cst.Atom { atom; loc; _ } -> (
+  | Sexp.Atom atom -> (
       match Float_text.of_string atom with
       | Some x -> x
       | None -> (
           match float_of_string_opt atom with
-          | Some _ -> fail loc "%s must be a finite number, got %s" what (show_atom atom)
-          | None -> fail loc "%s: expected a number, got %s" what (show_atom atom)))
-  | Cst.List { loc; _ } -> fail loc "%s: expected a number, got a list" what
+          | Some _ -> fail node "%s must be a finite number, got %s" what (show_atom atom)
+          | None -> fail node "%s: expected a number, got %s" what (show_atom atom)))
+  | Sexp.List _ -> fail node "%s: expected a number, got a list" what
 
 let integer what node =
   match node with
-  | Cst.Atom { atom; loc; _ } -> (
+  | Sexp.Atom atom -> (
       match int_of_string_opt atom with
       | Some n -> n
-      | None -> fail loc "%s: expected an integer, got %s" what (show_atom atom))
-  | Cst.List { loc; _ } -> fail loc "%s: expected an integer, got a list" what
+      | None -> fail node "%s: expected an integer, got %s" what (show_atom atom))
+  | Sexp.List _ -> fail node "%s: expected an integer, got a list" what
 
-let check loc = function Ok x -> x | Error m -> fail loc "%s" m
+let check node = function Ok x -> x | Error m -> fail node "%s" m
 
-(* Fields: a form's [(name args...)] children. *)
+(* Fields: a form's [(name args...)] children. [where] gives a node's
+   position when it is known (the second, located pass). *)
 
-type field = { name_loc : Positions.range; loc : Positions.range; args : Cst.t list }
+type field = { name_node : Sexp.t; node : Sexp.t; args : Sexp.t list }
 
-let fields ~form ~allowed nodes =
+let fields ~where ~form ~allowed nodes =
   List.fold_left
     (fun acc node ->
       match node with
-      | Cst.List { loc; elements } -> (
-          match sexps elements with
-          | Cst.Atom { atom = name; loc = name_loc; _ } :: args ->
-              if not (List.mem name allowed) then
-                fail name_loc "unknown %s field %s; expected %s%s" form (show_atom name)
-                  (one_of allowed) (suggestion name allowed);
-              (match List.assoc_opt name acc with
-              | Some first ->
-                  fail name_loc "duplicate %s field %s (first given at %s)" form name
-                    (position first.name_loc.start_pos)
-              | None -> ());
-              (name, { name_loc; loc; args }) :: acc
-          | _ -> fail loc "%s: expected a field (name value...), e.g. (%s ...)" form (List.hd allowed))
-      | Cst.Atom { loc; atom; _ } ->
-          fail loc "%s: expected a field in parentheses, e.g. (%s ...), got %s" form
-            (List.hd allowed) (show_atom atom))
+      | Sexp.List ((Sexp.Atom name as name_node) :: args) ->
+          if not (List.exists (String.equal name) allowed) then
+            fail name_node "unknown %s field %s; expected %s%s" form (show_atom name) (one_of allowed)
+              (suggestion name allowed);
+          (match List.find_opt (fun (n, _) -> String.equal n name) acc with
+          | Some (_, first) ->
+              fail name_node "duplicate %s field %s (first given at %s)" form name
+                (Option.fold ~none:"?" ~some:position (where first.name_node))
+          | None -> ());
+          (name, { name_node; node; args }) :: acc
+      | Sexp.List _ -> fail node "%s: expected a field (name value...), e.g. (%s ...)" form (List.hd allowed)
+      | Sexp.Atom atom ->
+          fail node "%s: expected a field in parentheses, e.g. (%s ...), got %s" form (List.hd allowed)
+            (show_atom atom))
     [] nodes
 
 let field_what form name = form ^ " " ^ name
 
-let arity form name f n =
-  if List.length f.args <> n then
-    fail f.loc "%s takes %d value%s, got %d" (field_what form name) n
-      (if n = 1 then "" else "s")
-      (List.length f.args)
+let find fs name = List.find_map (fun (n, f) -> if String.equal n name then Some f else None) fs
+let get ~form fs name parse = Option.map (fun f -> parse (field_what form name) f) (find fs name)
 
-let get ~form fs name parse = Option.map (fun f -> parse (field_what form name) f) (List.assoc_opt name fs)
-
-let require ~form ~form_loc name = function
+let require ~form ~form_node name = function
   | Some v -> v
-  | None -> fail form_loc "%s is missing its (%s ...) field" form name
+  | None -> fail form_node "%s is missing its (%s ...) field" form name
 
-let required ~form ~form_loc fs name parse = require ~form ~form_loc name (get ~form fs name parse)
+let required ~form ~form_node fs name parse = require ~form ~form_node name (get ~form fs name parse)
 
 let single form name f =
-  arity form name f 1;
-  List.hd f.args
+  match f.args with
+  | [ x ] -> x
+  | args -> fail f.node "%s takes 1 value, got %d" (field_what form name) (List.length args)
 
 let float_field form name f = number (field_what form name) (single form name f)
 let int_field form name f = integer (field_what form name) (single form name f)
 
-let triple ~names what loc = function
+let triple ~names what node = function
   | [ x; y; z ] -> (number what x, number what y, number what z)
-  | nodes -> fail loc "%s takes 3 numbers (%s), got %d values" what names (List.length nodes)
+  | nodes -> fail node "%s takes 3 numbers (%s), got %d values" what names (List.length nodes)
 
-let vec3_of_nodes what loc nodes =
-  let x, y, z = triple ~names:"x y z" what loc nodes in
+let vec3_of_nodes what node nodes =
+  let x, y, z = triple ~names:"x y z" what node nodes in
   Vec3.v x y z
 
-let color_of_nodes what loc nodes =
-  let r, g, b = triple ~names:"r g b" what loc nodes in
+let color_of_nodes what node nodes =
+  let r, g, b = triple ~names:"r g b" what node nodes in
   Color.v r g b
 
-let vec3_field form name f = vec3_of_nodes (field_what form name) f.loc f.args
-let color_field form name f = color_of_nodes (field_what form name) f.loc f.args
+let vec3_field form name f = vec3_of_nodes (field_what form name) f.node f.args
+let color_field form name f = color_of_nodes (field_what form name) f.node f.args
 
-(* Located value checks: the error points at the value, or at the field for
-   vectors. *)
-let checked_float form fs name check =
+(* A checked number: the error points at the value. *)
+let checked_float form fs name check_value =
   Option.map
     (fun f ->
       let x = float_field form name f in
-      check (loc_of (List.hd f.args)) x)
-    (List.assoc_opt name fs)
-
-let with_loc fs name = Option.map (fun f -> f.loc) (List.assoc_opt name fs)
+      check (single form name f) (check_value x))
+    (find fs name)
 
 (* Forms *)
 
-let canvas form_loc nodes =
+let canvas ~where form_node nodes =
   let form = "canvas" in
-  let fs = fields ~form ~allowed:[ "width"; "height" ] nodes in
+  let fs = fields ~where ~form ~allowed:[ "width"; "height" ] nodes in
   let dim name =
     Option.value ~default:600
       (get ~form fs name (fun _ f ->
-           check (loc_of (single form name f)) (Limits.check_dimension name (int_field form name f))))
+           check (single form name f) (Limits.check_dimension name (int_field form name f))))
   in
   let width = dim "width" in
   let height = dim "height" in
-  ignore (check form_loc (Limits.check_canvas width height));
+  ignore (check form_node (Limits.check_canvas width height));
   (width, height)
 
-let viewport nodes =
+let viewport ~where nodes =
   let form = "viewport" in
-  let fs = fields ~form ~allowed:[ "width"; "height"; "distance" ] nodes in
+  let fs = fields ~where ~form ~allowed:[ "width"; "height"; "distance" ] nodes in
   let dim name =
-    Option.value ~default:1.
-      (checked_float form fs name (fun loc x -> check loc (Viewport.check_dimension name x)))
+    Option.value ~default:1. (checked_float form fs name (Viewport.check_dimension name))
   in
   let width = dim "width" in
   let height = dim "height" in
@@ -182,174 +172,263 @@ let rotation form name f =
   | [ r0; r1; r2 ] ->
       let row node =
         match node with
-        | Cst.List { loc; elements } -> vec3_of_nodes (what ^ " row") loc (sexps elements)
-        | Cst.Atom { loc; atom; _ } ->
-            fail loc "%s: expected a row of 3 numbers in parentheses, got %s" what (show_atom atom)
+        | Sexp.List elements -> vec3_of_nodes (what ^ " row") node elements
+        | Sexp.Atom atom ->
+            fail node "%s: expected a row of 3 numbers in parentheses, got %s" what (show_atom atom)
       in
       Camera.{ row0 = row r0; row1 = row r1; row2 = row r2 }
-  | args -> fail f.loc "%s takes 3 rows, e.g. (1 0 0) (0 1 0) (0 0 1), got %d values" what (List.length args)
+  | args ->
+      fail f.node "%s takes 3 rows, e.g. (1 0 0) (0 1 0) (0 0 1), got %d values" what (List.length args)
 
-let camera nodes =
+let camera ~where nodes =
   let form = "camera" in
-  let fs = fields ~form ~allowed:[ "position"; "rotation"; "look-at"; "up" ] nodes in
+  let fs = fields ~where ~form ~allowed:[ "position"; "rotation"; "look-at"; "up" ] nodes in
+  let with_node name parse = get ~form fs name (fun _ f -> (f.node, parse f)) in
   let position =
-    Option.value ~default:Vec3.zero (get ~form fs "position" (fun _ f -> vec3_field form "position" f))
+    match with_node "position" (vec3_field form "position") with
+    | Some (node, p) -> check node (Camera.check_position p)
+    | None -> Vec3.zero
   in
-  ignore (Option.map (fun loc -> check loc (Camera.check_position position)) (with_loc fs "position"));
-  let rot = get ~form fs "rotation" (fun _ f -> (f.loc, rotation form "rotation" f)) in
-  let look = get ~form fs "look-at" (fun _ f -> (f.loc, vec3_field form "look-at" f)) in
-  let up = get ~form fs "up" (fun _ f -> (f.loc, vec3_field form "up" f)) in
+  let rot = with_node "rotation" (rotation form "rotation") in
+  let look = with_node "look-at" (vec3_field form "look-at") in
+  let up = with_node "up" (vec3_field form "up") in
   match (rot, look, up) with
-  | Some _, Some (loc, _), _ -> fail loc "camera takes either (rotation ...) or (look-at ...), not both"
-  | _, None, Some (loc, _) -> fail loc "camera (up ...) needs a (look-at ...) target"
-  | Some (loc, rotation), None, None -> Camera.v ~rotation:(check loc (Camera.check_rotation rotation)) position
-  | None, Some (loc, target), up -> (
-      ignore (check loc (Limits.check_point "camera look-at" target));
-      let up = Option.map snd up in
-      match Camera.look_at ?up ~position target with
+  | Some _, Some (node, _), _ -> fail node "camera takes either (rotation ...) or (look-at ...), not both"
+  | _, None, Some (node, _) -> fail node "camera (up ...) needs a (look-at ...) target"
+  | Some (node, rotation), None, None -> Camera.v ~rotation:(check node (Camera.check_rotation rotation)) position
+  | None, Some (node, target), up -> (
+      ignore (check node (Limits.check_point "camera look-at" target));
+      match Camera.look_at ?up:(Option.map snd up) ~position target with
       | Ok cam -> cam
-      | Error m -> fail loc "%s" m)
+      | Error m -> fail node "%s" m)
   | None, None, _ -> Camera.v position
 
-let sphere form_loc nodes =
+let sphere ~where form_node nodes =
   let form = "sphere" in
-  let fs =
-    fields ~form ~allowed:[ "center"; "radius"; "color"; "specular"; "reflective" ] nodes
+  let fs = fields ~where ~form ~allowed:[ "center"; "radius"; "color"; "specular"; "reflective" ] nodes in
+  let node_and parse name = required ~form ~form_node fs name (fun _ f -> (f.node, parse f)) in
+  let center =
+    let node, c = node_and (vec3_field form "center") "center" in
+    check node (Sphere.check_center c)
   in
-  let center = required ~form ~form_loc fs "center" (fun _ f -> (f.loc, vec3_field form "center" f)) in
-  let center = check (fst center) (Sphere.check_center (snd center)) in
-  let radius =
-    require ~form ~form_loc "radius"
-      (checked_float form fs "radius" (fun loc r -> check loc (Sphere.check_radius r)))
+  let radius = require ~form ~form_node "radius" (checked_float form fs "radius" Sphere.check_radius) in
+  let color =
+    let node, c = node_and (color_field form "color") "color" in
+    check node (Sphere.check_color c)
   in
-  let color = required ~form ~form_loc fs "color" (fun _ f -> (f.loc, color_field form "color" f)) in
-  let color = check (fst color) (Sphere.check_color (snd color)) in
-  let specular =
-    Option.value ~default:Sphere.matte
-      (checked_float form fs "specular" (fun loc s -> check loc (Sphere.check_specular s)))
-  in
-  let reflective =
-    Option.value ~default:0.
-      (checked_float form fs "reflective" (fun loc r -> check loc (Sphere.check_reflective r)))
-  in
+  let specular = Option.value ~default:Sphere.matte (checked_float form fs "specular" Sphere.check_specular) in
+  let reflective = Option.value ~default:0. (checked_float form fs "reflective" Sphere.check_reflective) in
   Sphere.v ~specular ~reflective ~center ~radius color
 
-let light form_loc nodes =
+let light ~where form_node nodes =
   let kinds = [ "ambient"; "point"; "directional" ] in
   match nodes with
-  | Cst.Atom { atom = kind; loc = kind_loc; _ } :: rest ->
+  | (Sexp.Atom kind as kind_node) :: rest ->
       let form = "light " ^ kind in
       let vector = match kind with "point" -> [ "position" ] | "directional" -> [ "direction" ] | _ -> [] in
-      if not (List.mem kind kinds) then
-        fail kind_loc "unknown light kind %s; expected %s%s" (show_atom kind) (one_of kinds)
+      if not (List.exists (String.equal kind) kinds) then
+        fail kind_node "unknown light kind %s; expected %s%s" (show_atom kind) (one_of kinds)
           (suggestion kind kinds);
-      let fs = fields ~form ~allowed:("intensity" :: vector) rest in
+      let fs = fields ~where ~form ~allowed:("intensity" :: vector) rest in
       let intensity =
-        require ~form ~form_loc "intensity"
-          (checked_float form fs "intensity" (fun loc i -> check loc (Light.check_intensity i)))
+        require ~form ~form_node "intensity" (checked_float form fs "intensity" Light.check_intensity)
       in
       let vec name check_v =
-        let loc, p = required ~form ~form_loc fs name (fun _ f -> (f.loc, vec3_field form name f)) in
-        check loc (check_v p)
+        let node, p = required ~form ~form_node fs name (fun _ f -> (f.node, vec3_field form name f)) in
+        check node (check_v p)
       in
       (match kind with
       | "point" -> Light.point intensity (vec "position" Light.check_position)
       | "directional" -> Light.directional intensity (vec "direction" Light.check_direction)
       | _ -> Light.ambient intensity)
   | _ ->
-      fail form_loc "light: expected its kind first, e.g. (light point (intensity 0.6) (position 2 1 0)); kinds are %s"
+      fail form_node
+        "light: expected its kind first, e.g. (light point (intensity 0.6) (position 2 1 0)); kinds are %s"
         (one_of kinds)
 
+let path_key ~where key_node nodes =
+  let form = "camera-path key" in
+  let fs = fields ~where ~form ~allowed:[ "frame"; "position"; "look-at"; "up" ] nodes in
+  let frame =
+    required ~form ~form_node:key_node fs "frame" (fun _ f ->
+        let n = int_field form "frame" f in
+        if n < 0 || n > Camera_path.max_frame then
+          fail (single form "frame" f) "camera-path key frame must lie in [0, %d], got %d" Camera_path.max_frame n;
+        n)
+  in
+  let point name =
+    let node, p = required ~form ~form_node:key_node fs name (fun _ f -> (f.node, vec3_field form name f)) in
+    check node (Limits.check_point (field_what form name) p)
+  in
+  let position = point "position" in
+  let target = point "look-at" in
+  let up =
+    Option.map
+      (fun (node, p) -> check node (Limits.check_point (field_what form "up") p))
+      (get ~form fs "up" (fun _ f -> (f.node, vec3_field form "up" f)))
+  in
+  check key_node (Camera_path.check_key (Camera_path.key ?up ~frame ~position target))
+
+let camera_path ~where form_node nodes =
+  let keys =
+    List.map
+      (fun node ->
+        match node with
+        | Sexp.List (Sexp.Atom "key" :: rest) -> (node, path_key ~where node rest)
+        | Sexp.List _ -> fail node "camera-path: expected a keyframe (key (frame N) (position x y z) (look-at x y z))"
+        | Sexp.Atom atom -> fail node "camera-path: expected a keyframe (key ...), got %s" (show_atom atom))
+      nodes
+  in
+  let rec segments = function
+    | (_, k0) :: ((node, k1) :: _ as rest) ->
+        ignore (check node (Camera_path.check_segment k0 k1));
+        segments rest
+    | [ _ ] | [] -> ()
+  in
+  (match keys with
+  | [] -> fail form_node "camera-path needs at least one (key (frame N) (position x y z) (look-at x y z))"
+  | _ -> segments keys);
+  check form_node (Camera_path.v (List.map snd keys))
+
 (* A top-level form that takes its values directly, e.g. (epsilon 0.001). *)
-let values form form_loc nodes n =
-  if List.length nodes <> n then
-    fail form_loc "%s takes %d value%s, got %d" form n (if n = 1 then "" else "s") (List.length nodes);
-  nodes
+let value form form_node = function
+  | [ x ] -> x
+  | nodes -> fail form_node "%s takes 1 value, got %d" form (List.length nodes)
 
-let top_level = [ "canvas"; "viewport"; "camera"; "background"; "recursion-depth"; "epsilon"; "sphere"; "light" ]
+let top_level =
+  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "light" ]
 
-let scene_of_forms forms =
-  let seen = Hashtbl.create 8 in
-  let once kw kw_loc =
-    match Hashtbl.find_opt seen kw with
-    | Some (first : Positions.range) ->
-        fail kw_loc "duplicate %s form (first given at %s); it may appear only once" kw
-          (position first.start_pos)
-    | None -> Hashtbl.add seen kw kw_loc
+(* The scene being read, form by form. *)
+type builder = {
+  where : Sexp.t -> Positions.pos option;
+  seen : (string, Sexp.t) Hashtbl.t;  (** Forms that may appear once, and where. *)
+  mutable scene : Scene.t;
+  mutable spheres : Sphere.t list;  (** In reverse order. *)
+  mutable lights : Light.t list;  (** In reverse order. *)
+  mutable n_spheres : int;
+  mutable n_lights : int;
+}
+
+let builder where =
+  {
+    where;
+    seen = Hashtbl.create 8;
+    scene = Scene.v ~spheres:[] ~lights:[] ();
+    spheres = [];
+    lights = [];
+    n_spheres = 0;
+    n_lights = 0;
+  }
+
+let once b kw kw_node =
+  match Hashtbl.find_opt b.seen kw with
+  | Some first ->
+      fail kw_node "duplicate %s form (first given at %s); it may appear only once" kw
+        (Option.fold ~none:"?" ~some:position (b.where first))
+  | None -> Hashtbl.add b.seen kw kw_node
+
+let add_form b node =
+  let where = b.where in
+  match node with
+  | Sexp.Atom atom -> fail node "expected a form in parentheses such as (sphere ...), got %s" (show_atom atom)
+  | Sexp.List [] -> fail node "empty form (); expected one of %s" (one_of top_level)
+  | Sexp.List (Sexp.List _ :: _) -> fail node "expected a form name such as sphere or light, got a list"
+  | Sexp.List ((Sexp.Atom kw as kw_node) :: rest) -> (
+      match kw with
+      (* Counted as they come, so that the error points at the first form
+         beyond the bound, before the rest of the file is read. *)
+      | "sphere" ->
+          b.n_spheres <- b.n_spheres + 1;
+          ignore (check node (Limits.check_count `Spheres b.n_spheres));
+          b.spheres <- sphere ~where node rest :: b.spheres
+      | "light" ->
+          b.n_lights <- b.n_lights + 1;
+          ignore (check node (Limits.check_count `Lights b.n_lights));
+          b.lights <- light ~where node rest :: b.lights
+      | "canvas" ->
+          once b kw kw_node;
+          let width, height = canvas ~where node rest in
+          b.scene <- { b.scene with width; height }
+      | "viewport" ->
+          once b kw kw_node;
+          b.scene <- { b.scene with viewport = viewport ~where rest }
+      | "camera" ->
+          once b kw kw_node;
+          b.scene <- { b.scene with camera = camera ~where rest }
+      | "camera-path" ->
+          once b kw kw_node;
+          b.scene <- { b.scene with camera_path = Some (camera_path ~where node rest) }
+      | "background" ->
+          once b kw kw_node;
+          let c = color_of_nodes kw node rest in
+          b.scene <- { b.scene with background = check node (Scene.check_background c) }
+      | "recursion-depth" ->
+          once b kw kw_node;
+          let v = value kw node rest in
+          b.scene <- { b.scene with depth = check v (Limits.check_depth (integer kw v)) }
+      | "epsilon" ->
+          once b kw kw_node;
+          let v = value kw node rest in
+          b.scene <- { b.scene with epsilon = Some (check v (Scene.check_epsilon (number kw v))) }
+      | _ ->
+          fail kw_node "unknown form %s; expected %s%s" (show_atom kw) (one_of top_level)
+            (suggestion kw top_level))
+
+let finish b =
+  (* Without a camera form, a still picture is the path's first frame. *)
+  let camera =
+    match b.scene.camera_path with
+    | Some path when not (Hashtbl.mem b.seen "camera") -> (
+        match Camera_path.camera path (Camera_path.first_frame path) with Ok c -> c | Error _ -> b.scene.camera)
+    | _ -> b.scene.camera
   in
-  let s = ref (Scene.v ~spheres:[] ~lights:[] ()) in
-  let spheres = ref [] and lights = ref [] in
-  (* Counted as they come, so that the error points at the first form
-     beyond the bound. *)
-  let n_spheres = ref 0 and n_lights = ref 0 in
-  let count kind n loc =
-    incr n;
-    ignore (check loc (Limits.check_count kind !n))
-  in
-  List.iter
-    (fun node ->
-      match node with
-      | Cst.Atom { loc; atom; _ } ->
-          fail loc "expected a form in parentheses such as (sphere ...), got %s" (show_atom atom)
-      | Cst.List { loc; elements } -> (
-          match sexps elements with
-          | [] -> fail loc "empty form (); expected one of %s" (one_of top_level)
-          | Cst.List { loc; _ } :: _ -> fail loc "expected a form name such as sphere or light, got a list"
-          | Cst.Atom { atom = kw; loc = kw_loc; _ } :: rest -> (
-              if not (List.mem kw [ "sphere"; "light" ]) && List.mem kw top_level then once kw kw_loc;
-              match kw with
-              | "canvas" ->
-                  let width, height = canvas loc rest in
-                  s := { !s with width; height }
-              | "viewport" -> s := { !s with viewport = viewport rest }
-              | "camera" -> s := { !s with camera = camera rest }
-              | "background" ->
-                  let c = color_of_nodes kw loc rest in
-                  s := { !s with background = check loc (Scene.check_background c) }
-              | "recursion-depth" ->
-                  let node = List.hd (values kw loc rest 1) in
-                  let d = integer kw node in
-                  s := { !s with depth = check (loc_of node) (Limits.check_depth d) }
-              | "epsilon" ->
-                  let node = List.hd (values kw loc rest 1) in
-                  let e = number kw node in
-                  s := { !s with epsilon = Some (check (loc_of node) (Scene.check_epsilon e)) }
-              | "sphere" ->
-                  count `Spheres n_spheres loc;
-                  spheres := sphere loc rest :: !spheres
-              | "light" ->
-                  count `Lights n_lights loc;
-                  lights := light loc rest :: !lights
-              | _ ->
-                  fail kw_loc "unknown form %s; expected %s%s" (show_atom kw) (one_of top_level)
-                    (suggestion kw top_level))))
-    forms;
-  { !s with spheres = List.rev !spheres; lights = List.rev !lights }
+  { b.scene with camera; spheres = List.rev b.spheres; lights = List.rev b.lights }
+
+(* The located pass: the same conversion over a parse that kept positions. *)
+let locate_error text =
+  match Parsexp.Many_and_positions.parse_string text with
+  | Error e -> `Syntax e
+  | Ok (forms, positions) -> (
+      let where node =
+        (* parsexp's search recurses as deep as the nesting: a million
+           nested parentheses overflow the stack (found by the hostile
+           tests); such an error is placed at the start of the file. *)
+        match Positions.find_sub_sexp_in_list_phys positions forms ~sub:node with
+        | found -> Option.map (fun (r : Positions.range) -> r.start_pos) found
+        | exception Stack_overflow -> None
+      in
+      let b = builder where in
+      match List.iter (add_form b) forms with
+      | () -> `Not_found
+      | exception Located (node, m) -> `Located (where node, m))
 
 let of_string ?(file = "<string>") text =
+  let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
   match Limits.check_scene_bytes (String.length text) with
   | Error m -> Error (`Msg (Printf.sprintf "%s: %s" file m))
-  | Ok _ ->
-  let syntax_error e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
-  match Parsexp.Many_cst.parse_string text with
-  | exception e -> (
-      (* parsexp v0.15's CST parser fails an assertion where a sexp comment
-         [#;] has nothing to comment before a closing parenthesis, as in
-         "(#;)" (found by fuzzing); its plain parser reports the error. *)
-      match Parsexp.Many.parse_string text with
-      | Error e -> syntax_error e
-      | Ok _ | (exception _) ->
-          error { line = 1; col = 0; offset = 0 } ("syntax error: the S-expression parser failed: " ^ Printexc.to_string e))
-  | Error e -> syntax_error e
-  | Ok forms -> (
-      match scene_of_forms (sexps forms) with
-      | exception Located (loc, m) -> error loc.start_pos m
-      | scene -> (
-          (* Every field was checked where it was read; this is a net. *)
-          match Scene.validate scene with
-          | Ok s -> Ok s
-          | Error (`Msg m) -> error { line = 1; col = 0; offset = 0 } m))
+  | Ok _ -> (
+    let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
+    (* Each form is converted as soon as it is parsed, and positions are not
+       recorded: big scenes load in little time and memory. Only an error
+       triggers a second pass that records positions, and fails on the same
+       node. *)
+    let b = builder (fun _ -> None) in
+    let state = Parsexp.Eager.State.create (fun _ form -> add_form b form) in
+    match
+      Parsexp.Eager.feed_eoi state (Parsexp.Eager.feed_string state text Parsexp.Eager.Stack.empty)
+    with
+    | exception Parsexp.Parse_error.Parse_error e -> syntax e
+    | exception Located _ -> (
+        match locate_error text with
+        | `Syntax e -> syntax e
+        | `Located (pos, m) -> error (Option.value pos ~default:origin) m
+        | `Not_found -> error origin "internal error: the located pass found no error")
+    | () -> (
+        (* Every field was checked where it was read; this is a net. *)
+        match Scene.validate (finish b) with
+        | Ok s -> Ok s
+        | Error (`Msg m) -> error origin m))
 
 let read path =
   match File_io.read ~check_size:Limits.check_scene_bytes path with
@@ -369,6 +448,18 @@ let to_string (s : Scene.t) =
   else
     line "(camera (position %s) (rotation (%s) (%s) (%s)))" (vec s.camera.position) (vec m.row0)
       (vec m.row1) (vec m.row2);
+  Option.iter
+    (fun path ->
+      Buffer.add_string b "(camera-path";
+      List.iter
+        (fun (k : Camera_path.key) ->
+          Buffer.add_string b
+            (Printf.sprintf "\n (key (frame %d) (position %s) (look-at %s)%s)" k.frame (vec k.position)
+               (vec k.look_at)
+               (if Vec3.equal k.up Vec3.oy then "" else Printf.sprintf " (up %s)" (vec k.up))))
+        (Camera_path.keys path);
+      line ")")
+    s.camera_path;
   line "(background %s %s %s)" (num s.background.r) (num s.background.g) (num s.background.b);
   line "(recursion-depth %d)" s.depth;
   Option.iter (fun e -> line "(epsilon %s)" (num e)) s.epsilon;

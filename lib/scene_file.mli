@@ -17,6 +17,16 @@ v}
     Every form but [sphere] and [light] may appear at most once and has a
     default ({!Scene.v}). A [camera] gives [position] (default the origin)
     and either [rotation] (three rows) or [look-at] with an optional [up].
+    A [camera-path] animates the camera ({!Camera_path}):
+{v
+(camera-path
+ (key (frame 0) (position 0 0 -1) (look-at 0 0 3))
+ (key (frame 48) (position 3 1 1) (look-at 0 0 3) (up 0 1 0)))
+v}
+    Each [key] gives [frame] (an integer in [\[0, Camera_path.max_frame\]]),
+    [position] and [look-at], and optionally [up] (default [0 1 0]); keys
+    come in increasing frame order. Without a [camera] form, a still
+    picture of such a scene is the path's first frame.
     In a [sphere], [center], [radius] and [color] are required; [specular]
     defaults to [-1] (matte) and [reflective] to [0]. Numbers are OCaml
     floats ([1], [-0.5], [1e-3]), finite; sizes and depths are integers.

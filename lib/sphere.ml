@@ -16,9 +16,7 @@ let is_matte s = s.specular = matte
 let num = Float_text.to_string
 let check_center c = Limits.check_point "sphere center" c
 
-let check_radius r =
-  if not (r > 0.) then Error (Printf.sprintf "sphere radius must be > 0, got %s" (num r))
-  else Limits.check_coordinate "sphere radius" r
+let check_radius r = Limits.check_size "sphere radius" r
 
 let check_color c =
   if Color.in_gamut c then Ok c
@@ -54,6 +52,25 @@ let textbook_roots a b c =
   else
     let sq = sqrt discriminant in
     ((-.b +. sq) /. (2. *. a), (-.b -. sq) /. (2. *. a))
+
+(* The textbook b is 2 <CO, D>; here b = <CO, D>, so the roots are
+   (-b +- sqrt (b^2 - a c)) / a and b^2 - a c = a (r^2 - |l|^2). *)
+let roots s ~origin ~direction:d =
+  let f = Vec3.sub origin s.center in
+  let a = Vec3.dot d d in
+  let b = Vec3.dot f d in
+  let k = b *. (1. /. a) in
+  let l = Vec3.sub f (Vec3.smul k d) in
+  let l2 = Vec3.dot l l and r2 = s.radius *. s.radius in
+  if l2 > r2 then (infinity, infinity)
+  else
+    let len = sqrt l2 in
+    let sq = sqrt (a *. ((s.radius -. len) *. (s.radius +. len))) in
+    let q = -.(b +. Float.copy_sign sq b) in
+    if q = 0. then (0., 0.)
+    else
+      let t0 = (Vec3.dot f f -. r2) /. q and t1 = q /. a in
+      if t0 <= t1 then (t0, t1) else (t1, t0)
 
 let normal s p =
   let n = Vec3.sub p s.center in

@@ -4,6 +4,7 @@ type t = {
   shadow : int;
   reflection : int;
   tests : int;
+  box_tests : int;
   early_stops : int;
   jobs : int;
   prepare_s : float;
@@ -25,6 +26,7 @@ let pp_table ppf s =
   row "rays, total" (int (rays s));
   row "intersection tests" (int s.tests);
   row "tests per ray" (Printf.sprintf "%.2f" (Float.of_int s.tests /. Float.of_int (max 1 (rays s))));
+  row "box tests" (int s.box_tests);
   row "reflections cut short" (int s.early_stops);
   row "jobs" (int s.jobs);
   row "time, prepare (s)" (Printf.sprintf "%.4f" s.prepare_s);

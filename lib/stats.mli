@@ -6,6 +6,7 @@ type t = {
   shadow : int;  (** Shadow rays, toward lights (section 7.7). *)
   reflection : int;  (** Mirror rays (section 7.8). *)
   tests : int;  (** Ray-sphere intersection tests. *)
+  box_tests : int;  (** Ray-box tests in the sphere hierarchy. *)
   early_stops : int;  (** Reflections stopped by the exact weight bound. *)
   jobs : int;  (** Processes that traced. *)
   prepare_s : float;  (** Seconds spent preparing the scene. *)

@@ -3,6 +3,7 @@ type counters = {
   mutable shadow : int;
   mutable reflection : int;
   mutable tests : int;
+  mutable box_tests : int;
   mutable early_stops : int;
 }
 
@@ -18,6 +19,8 @@ type scratch = {
   mutable t_min : float;
   mutable t_max : float;
   mutable t : float;
+  mutable near : float;  (** Roots of the last robust intersection test. *)
+  mutable far : float;
   mutable gx : float;  (** Canvas point of the primary ray. *)
   mutable gy : float;
   mutable px : float;  (** Hit point. *)
@@ -41,7 +44,10 @@ type t = {
   stack : float array;  (** Per reflection level: local r, g, b and reflectivity. *)
   last_blocker : int array;  (** Per light: the sphere that last shadowed it. *)
   counters : counters;
+  nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
   mutable hit : int;  (** Index of the sphere found by [closest]. *)
+  mutable origin_sphere : int;
+      (** The sphere the current secondary ray leaves, or [-1]. *)
   mutable first_hit : int;
 }
 
@@ -59,6 +65,8 @@ let create (p : Prepared.t) =
         t_min = 0.;
         t_max = 0.;
         t = 0.;
+        near = 0.;
+        far = 0.;
         gx = 0.;
         gy = 0.;
         px = 0.;
@@ -77,8 +85,11 @@ let create (p : Prepared.t) =
       };
     stack = Array.make (4 * (p.depth + 1)) 0.;
     last_blocker = Array.make (max 1 p.n_lights) (-1);
-    counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; early_stops = 0 };
+    counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0 };
+    nodes =
+      Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0;
     hit = -1;
+    origin_sphere = -1;
     first_hit = -1;
   }
 
@@ -87,7 +98,7 @@ let counters tr = tr.counters
 let red tr = tr.s.r
 let green tr = tr.s.g
 let blue tr = tr.s.b
-let hit_sphere tr = tr.first_hit
+let hit_sphere tr = if tr.first_hit < 0 then -1 else Array.unsafe_get tr.p.index tr.first_hit
 
 (* [Color.to_byte], copied so that no float crosses a module boundary on the
    per-ray path: in dev builds (-opaque) such a call boxes its argument. A
@@ -107,82 +118,368 @@ let store tr (buffer : Image.buffer) k =
   Bigarray.Array1.unsafe_set buffer (k + 1) (to_byte s.g);
   Bigarray.Array1.unsafe_set buffer (k + 2) (to_byte s.b)
 
-(* The textbook quadratic of section 6.1, in CGFS's order of operations:
-   k1 = <D,D>, k2 = 2 <CO,D>, k3 = <CO,CO> - r^2, discriminant
+(* Two ways to intersect. The document's mode (the scene gives an epsilon)
+   uses the textbook quadratic of section 6.1 in CGFS's order of operations,
+   so that it reproduces the document's images byte for byte. The robust
+   mode uses the cancellation-free roots of [Sphere.roots] (same arithmetic,
+   inlined here) and needs no epsilon: a secondary ray cannot hit the sphere
+   it leaves except at that sphere's other root (see [leaving]). *)
+
+(* Is root [t] of the sphere in slot [i] better than the best so far?
+   Closer, or as close and earlier in the scene's list: the brute-force loop
+   of CGFS keeps the first of equal roots, and the hierarchy, which visits
+   spheres in another order, must give the same answer. *)
+let[@inline] better tr s i t =
+  t < s.t
+  || (t = s.t && tr.hit >= 0
+     && Array.unsafe_get tr.p.index i < Array.unsafe_get tr.p.index tr.hit)
+
+(* Keeps root [t] of the sphere in slot [i] if it is in range and better. *)
+let[@inline] keep tr s i t =
+  if better tr s i t && s.t_min < t && t < s.t_max then begin
+    s.t <- t;
+    tr.hit <- i
+  end
+
+(* Textbook: k1 = <D,D>, k2 = 2 <CO,D>, k3 = <CO,CO> - r^2, disc
    k2^2 - 4 k1 k3, roots (-k2 +- sqrt disc) / 2 k1. The smaller root t2 is
    tried first: it wins whenever both are in range, as in CGFS. *)
-let[@inline] consider tr s i k1x4 two_k1 k2 k3 =
+let[@inline] consider_textbook tr s i k1x4 two_k1 k2 k3 =
   let disc = (k2 *. k2) -. (k1x4 *. k3) in
   if disc >= 0. then begin
     let sq = sqrt disc in
     let t2 = (-.k2 -. sq) /. two_k1 in
-    if t2 < s.t && s.t_min < t2 && t2 < s.t_max then begin
+    if better tr s i t2 && s.t_min < t2 && t2 < s.t_max then begin
       s.t <- t2;
       tr.hit <- i
     end
-    else
-      let t1 = (-.k2 +. sq) /. two_k1 in
-      if t1 < s.t && s.t_min < t1 && t1 < s.t_max then begin
-        s.t <- t1;
-        tr.hit <- i
-      end
+    else keep tr s i ((-.k2 +. sq) /. two_k1)
   end
 
-(* The closest sphere hit by the ray in [s], with [t_min < t < t_max]; its
-   [t] is left in [s.t] ([infinity] if none). *)
-let closest tr =
-  let p = tr.p and s = tr.s in
-  let dx = s.dx and dy = s.dy and dz = s.dz in
-  let k1 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
-  let two_k1 = 2. *. k1 and k1x4 = 4. *. k1 in
-  tr.hit <- -1;
-  s.t <- infinity;
-  let n = p.n_spheres in
-  tr.counters.tests <- tr.counters.tests + n;
-  for i = 0 to n - 1 do
-    let ocx = s.ox -. Array.unsafe_get p.cx i and ocy = s.oy -. Array.unsafe_get p.cy i and ocz = s.oz -. Array.unsafe_get p.cz i in
-    let k2 = 2. *. ((ocx *. dx) +. (ocy *. dy) +. (ocz *. dz)) in
-    let k3 = ((ocx *. ocx) +. (ocy *. ocy) +. (ocz *. ocz)) -. Array.unsafe_get p.r2 i in
-    consider tr s i k1x4 two_k1 k2 k3
-  done;
-  tr.hit
+(* Robust: with f = O - C, b = <f, D>, l = f - (b / a) D is the vector from
+   the center to the line; the ray hits iff |l| <= r. The roots are
+   q / a and c / q with q = -(b + sign(b) sqrt (a (r - |l|)(r + |l|))):
+   neither subtracts nearly equal numbers. Leaves the roots in
+   [s.near <= s.far]; [false] if the ray misses. *)
+let[@inline] robust_roots (p : Prepared.t) s i fx fy fz dx dy dz a inv_a =
+  let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+  let k = b *. inv_a in
+  let lx = fx -. (k *. dx) and ly = fy -. (k *. dy) and lz = fz -. (k *. dz) in
+  let l2 = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
+  let r2 = Array.unsafe_get p.r2 i in
+  l2 <= r2
+  &&
+  let r = Array.unsafe_get p.radius i in
+  let len = sqrt l2 in
+  let sq = sqrt (a *. ((r -. len) *. (r +. len))) in
+  let q = -.(b +. Float.copy_sign sq b) in
+  if q = 0. then begin
+    s.near <- 0.;
+    s.far <- 0.
+  end
+  else begin
+    let t0 = (((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. r2) /. q and t1 = q *. inv_a in
+    if t0 <= t1 then begin
+      s.near <- t0;
+      s.far <- t1
+    end
+    else begin
+      s.near <- t1;
+      s.far <- t0
+    end
+  end;
+  true
 
-(* [closest] for a ray from the camera: [CO] and [k3] are per-frame constants. *)
-let closest_primary tr =
-  let p = tr.p and s = tr.s in
-  let dx = s.dx and dy = s.dy and dz = s.dz in
-  let k1 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
-  let two_k1 = 2. *. k1 and k1x4 = 4. *. k1 in
-  tr.hit <- -1;
-  s.t <- infinity;
-  let n = p.n_spheres in
-  tr.counters.tests <- tr.counters.tests + n;
-  for i = 0 to n - 1 do
-    let k2 =
-      2.
-      *. ((Array.unsafe_get p.primary_ocx i *. dx) +. (Array.unsafe_get p.primary_ocy i *. dy) +. (Array.unsafe_get p.primary_ocz i *. dz))
+(* The other root of the sphere a secondary ray leaves: its origin P is on
+   the sphere, so with f = P - C the roots are 0 and -2 <f, D> / <D, D>.
+   The root 0 is the origin itself and never counts; the other is a hit only
+   if the ray goes into the sphere (a shadow ray toward a light behind the
+   surface), by more than the rounding of <f, D> (at most about 8 u |f| |D|)
+   can explain. No distance threshold: the test is relative. *)
+let leaving_margin = 16. *. epsilon_float *. epsilon_float (* (8u)^2, u = epsilon_float / 2 *)
+
+(* Whether the ray re-enters the sphere it leaves; then its other root is
+   [-2 b / a]. (A bool, not a float with [infinity] for "no": a float
+   chosen by an [if] is boxed.) *)
+let[@inline] reenters b fx fy fz a = b < 0. && b *. b > leaving_margin *. ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) *. a
+
+let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
+  if i = tr.origin_sphere then begin
+    let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+    if reenters b fx fy fz a then keep tr s i (-2. *. b *. inv_a)
+  end
+  else if robust_roots tr.p s i fx fy fz dx dy dz a inv_a then begin
+    let near = s.near in
+    if better tr s i near && s.t_min < near && near < s.t_max then begin
+      s.t <- near;
+      tr.hit <- i
+    end
+    else keep tr s i s.far
+  end
+
+(* Tests the ray in [s] against the sphere in slot [i], keeping the better
+   hit. From the camera ([primary]), [CO] and the textbook's [k3] are
+   per-frame constants. *)
+let[@inline] test tr s i ~primary dx dy dz a inv_a two_k1 k1x4 =
+  let p = tr.p in
+  let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
+  let fy = if primary then Array.unsafe_get p.primary_ocy i else s.oy -. Array.unsafe_get p.cy i in
+  let fz = if primary then Array.unsafe_get p.primary_ocz i else s.oz -. Array.unsafe_get p.cz i in
+  if p.robust then consider_robust tr s i dx dy dz a inv_a fx fy fz
+  else
+    let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+    let k3 =
+      if primary then Array.unsafe_get p.primary_k3 i
+      else ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get p.r2 i
     in
-    consider tr s i k1x4 two_k1 k2 (Array.unsafe_get p.primary_k3 i)
-  done;
-  tr.hit
+    consider_textbook tr s i k1x4 two_k1 k2 k3
 
-(* Does sphere [i] meet the ray in [s] with [t_min < t < t_max]? The same
-   roots as [closest], so a sphere blocks exactly when [closest] would have
-   found it. *)
-let[@inline] blocks (p : Prepared.t) s i k1x4 two_k1 =
+(* The reciprocal of a direction coordinate for the slab test; a zero
+   coordinate gets a huge finite value instead of an infinity, so that
+   [0 * inv] is 0, never NaN (rays only look at t >= 0). *)
+let[@inline] slab_inverse d = if d = 0. then 1e300 else 1. /. d
+
+(* Does the ray in [s] (with slab inverses [ix, iy, iz]) meet box [k] of
+   [b] at some t in [t_min, limit]? *)
+let[@inline] meets_box (b : Bvh.t) s k ix iy iz limit =
+  let ox = s.ox and oy = s.oy and oz = s.oz in
+  let x0 = (Array.unsafe_get b.lo_x k -. ox) *. ix and x1 = (Array.unsafe_get b.hi_x k -. ox) *. ix in
+  let y0 = (Array.unsafe_get b.lo_y k -. oy) *. iy and y1 = (Array.unsafe_get b.hi_y k -. oy) *. iy in
+  let z0 = (Array.unsafe_get b.lo_z k -. oz) *. iz and z1 = (Array.unsafe_get b.hi_z k -. oz) *. iz in
+  let enter_x = if x0 < x1 then x0 else x1 and exit_x = if x0 < x1 then x1 else x0 in
+  let enter_y = if y0 < y1 then y0 else y1 and exit_y = if y0 < y1 then y1 else y0 in
+  let enter_z = if z0 < z1 then z0 else z1 and exit_z = if z0 < z1 then z1 else z0 in
+  let enter = if enter_x > enter_y then enter_x else enter_y in
+  let enter = if enter > enter_z then enter else enter_z in
+  let exit = if exit_x < exit_y then exit_x else exit_y in
+  let exit = if exit < exit_z then exit else exit_z in
+  enter <= exit && exit >= s.t_min && enter <= limit
+
+(* Pushes the children of inner node [k] on [stack] above [sp], so that the
+   nearer along the ray is popped first; the new stack pointer. *)
+let[@inline] push_children (b : Bvh.t) stack sp k dx dy dz =
+  let right = Array.unsafe_get b.right k in
+  let axis = Array.unsafe_get b.axis k in
+  let d = if axis = 0 then dx else if axis = 1 then dy else dz in
+  if d >= 0. then begin
+    Array.unsafe_set stack sp right;
+    Array.unsafe_set stack (sp + 1) (k + 1)
+  end
+  else begin
+    Array.unsafe_set stack sp (k + 1);
+    Array.unsafe_set stack (sp + 1) right
+  end;
+  sp + 2
+
+(* The intersection loops below read every loop invariant (arrays, ray,
+   range) into a local once per ray: without flambda, OCaml reloads a
+   record field at every use. *)
+
+(* Every sphere, in scene order, with the textbook roots: the document's
+   mode without a hierarchy (the reference scene). Scene order makes a plain
+   [<] keep the first of equal roots, as CGFS does. *)
+let closest_textbook_all tr ~primary =
+  let p = tr.p and s = tr.s in
+  let cx = p.cx and cy = p.cy and cz = p.cz and r2 = p.r2 in
+  let pox = p.primary_ocx and poy = p.primary_ocy and poz = p.primary_ocz and pk3 = p.primary_k3 in
+  let ox = s.ox and oy = s.oy and oz = s.oz and dx = s.dx and dy = s.dy and dz = s.dz in
+  let t_min = s.t_min and t_max = s.t_max in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let two_k1 = 2. *. a and k1x4 = 4. *. a in
+  let best = ref infinity and hit = ref (-1) in
+  let n = p.n_spheres in
+  tr.counters.tests <- tr.counters.tests + n;
+  for i = 0 to n - 1 do
+    let fx = if primary then Array.unsafe_get pox i else ox -. Array.unsafe_get cx i in
+    let fy = if primary then Array.unsafe_get poy i else oy -. Array.unsafe_get cy i in
+    let fz = if primary then Array.unsafe_get poz i else oz -. Array.unsafe_get cz i in
+    let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+    let k3 =
+      if primary then Array.unsafe_get pk3 i
+      else ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get r2 i
+    in
+    let disc = (k2 *. k2) -. (k1x4 *. k3) in
+    if disc >= 0. then begin
+      let sq = sqrt disc in
+      let t2 = (-.k2 -. sq) /. two_k1 in
+      if t2 < !best && t_min < t2 && t2 < t_max then begin
+        best := t2;
+        hit := i
+      end
+      else
+        let t1 = (-.k2 +. sq) /. two_k1 in
+        if t1 < !best && t_min < t1 && t1 < t_max then begin
+          best := t1;
+          hit := i
+        end
+    end
+  done;
+  s.t <- !best;
+  tr.hit <- !hit;
+  !hit
+
+(* The closest sphere hit by the ray in [s], with [t_min < t < t_max]; its
+   [t] is left in [s.t] ([infinity] if none), its slot is returned. *)
+let closest_from tr ~primary =
+  let p = tr.p and s = tr.s in
+  match p.bvh with
+  | None when not p.robust -> closest_textbook_all tr ~primary
+  | bvh ->
+      let dx = s.dx and dy = s.dy and dz = s.dz in
+      let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+      let inv_a = 1. /. a and two_k1 = 2. *. a and k1x4 = 4. *. a in
+      tr.hit <- -1;
+      s.t <- infinity;
+      (match bvh with
+      | None ->
+          let n = p.n_spheres in
+          tr.counters.tests <- tr.counters.tests + n;
+          for i = 0 to n - 1 do
+            test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+          done
+      | Some b ->
+          let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+          let stack = tr.nodes and sp = ref 1 in
+          Array.unsafe_set stack 0 0;
+          while !sp > 0 do
+            decr sp;
+            let k = Array.unsafe_get stack !sp in
+            tr.counters.box_tests <- tr.counters.box_tests + 1;
+            (* A box entered beyond the best hit so far cannot hold a better
+               one (its spheres' hit points lie inside it, rounding
+               included); one entered exactly there may hold an equal one. *)
+            if meets_box b s k ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
+              let count = Array.unsafe_get b.count k in
+              if count > 0 then begin
+                let first = Array.unsafe_get b.first k in
+                tr.counters.tests <- tr.counters.tests + count;
+                for i = first to first + count - 1 do
+                  test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+                done
+              end
+              else sp := push_children b stack !sp k dx dy dz
+            end
+          done);
+      tr.hit
+
+let closest tr = closest_from tr ~primary:false
+let closest_primary tr = closest_from tr ~primary:true
+
+(* Does the sphere in slot [i] meet the ray in [s] with
+   [t_min < t < t_max]? The same roots as [closest], so a sphere blocks
+   exactly when [closest] would have found it. *)
+let[@inline] blocks tr i a inv_a =
+  let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
-  let ocx = s.ox -. Array.unsafe_get p.cx i and ocy = s.oy -. Array.unsafe_get p.cy i and ocz = s.oz -. Array.unsafe_get p.cz i in
-  let k2 = 2. *. ((ocx *. dx) +. (ocy *. dy) +. (ocz *. dz)) in
-  let k3 = ((ocx *. ocx) +. (ocy *. ocy) +. (ocz *. ocz)) -. Array.unsafe_get p.r2 i in
+  let fx = s.ox -. Array.unsafe_get p.cx i
+  and fy = s.oy -. Array.unsafe_get p.cy i
+  and fz = s.oz -. Array.unsafe_get p.cz i in
+  if p.robust then
+    if i = tr.origin_sphere then
+      let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+      reenters b fx fy fz a
+      &&
+      let t = -2. *. b *. inv_a in
+      s.t_min < t && t < s.t_max
+    else
+      robust_roots p s i fx fy fz dx dy dz a inv_a
+      && ((s.t_min < s.near && s.near < s.t_max) || (s.t_min < s.far && s.far < s.t_max))
+  else
+    let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+    let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get p.r2 i in
+    let disc = (k2 *. k2) -. (4. *. a *. k3) in
+    disc >= 0.
+    &&
+    let sq = sqrt disc in
+    let t2 = (-.k2 -. sq) /. (2. *. a) in
+    (s.t_min < t2 && t2 < s.t_max)
+    ||
+    let t1 = (-.k2 +. sq) /. (2. *. a) in
+    s.t_min < t1 && t1 < s.t_max
+
+(* Does sphere [i] meet the ray [o + t d] with [t_min < t < t_max]? The
+   textbook roots, on loop invariants passed in (see below). *)
+let[@inline] textbook_blocks cx cy cz r2 ox oy oz dx dy dz t_min t_max two_k1 k1x4 i =
+  let fx = ox -. Array.unsafe_get cx i
+  and fy = oy -. Array.unsafe_get cy i
+  and fz = oz -. Array.unsafe_get cz i in
+  let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+  let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get r2 i in
   let disc = (k2 *. k2) -. (k1x4 *. k3) in
   disc >= 0.
   &&
   let sq = sqrt disc in
   let t2 = (-.k2 -. sq) /. two_k1 in
-  (s.t_min < t2 && t2 < s.t_max)
+  (t_min < t2 && t2 < t_max)
   ||
   let t1 = (-.k2 +. sq) /. two_k1 in
-  s.t_min < t1 && t1 < s.t_max
+  t_min < t1 && t1 < t_max
+
+(* A blocker of the ray in [s] with the textbook roots and no hierarchy:
+   slot [last] first (the blocker of this light's previous shadow ray, if
+   [last >= 0]), then the others in scene order; [-1] if none. *)
+let blocker_textbook_all tr last =
+  let p = tr.p and s = tr.s in
+  let cx = p.cx and cy = p.cy and cz = p.cz and r2 = p.r2 in
+  let ox = s.ox and oy = s.oy and oz = s.oz and dx = s.dx and dy = s.dy and dz = s.dz in
+  let t_min = s.t_min and t_max = s.t_max in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let two_k1 = 2. *. a and k1x4 = 4. *. a in
+  if last >= 0 && textbook_blocks cx cy cz r2 ox oy oz dx dy dz t_min t_max two_k1 k1x4 last then begin
+    tr.counters.tests <- tr.counters.tests + 1;
+    last
+  end
+  else begin
+    let n = p.n_spheres in
+    let i = ref 0 in
+    while
+      !i < n
+      && (!i = last || not (textbook_blocks cx cy cz r2 ox oy oz dx dy dz t_min t_max two_k1 k1x4 !i))
+    do
+      incr i
+    done;
+    tr.counters.tests <- tr.counters.tests + !i + if last >= 0 then 1 else 0;
+    if !i < n then !i else -1
+  end
+
+(* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
+let first_blocker tr skip a inv_a =
+  let p = tr.p and s = tr.s in
+  match p.bvh with
+  | None ->
+      let n = p.n_spheres in
+      let i = ref 0 in
+      while !i < n && (!i = skip || not (blocks tr !i a inv_a)) do
+        incr i
+      done;
+      tr.counters.tests <- tr.counters.tests + !i + 1;
+      if !i < n then !i else -1
+  | Some b ->
+      let dx = s.dx and dy = s.dy and dz = s.dz in
+      let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+      let stack = tr.nodes and sp = ref 1 and found = ref (-1) in
+      Array.unsafe_set stack 0 0;
+      while !sp > 0 do
+        decr sp;
+        let k = Array.unsafe_get stack !sp in
+        tr.counters.box_tests <- tr.counters.box_tests + 1;
+        if meets_box b s k ix iy iz s.t_max then begin
+          let count = Array.unsafe_get b.count k in
+          if count > 0 then begin
+            let i = ref (Array.unsafe_get b.first k) and last = Array.unsafe_get b.first k + count in
+            while !i < last && (!i = skip || not (blocks tr !i a inv_a)) do
+              incr i
+            done;
+            tr.counters.tests <- tr.counters.tests + count;
+            if !i < last then begin
+              found := !i;
+              sp := 0
+            end
+          end
+          else sp := push_children b stack !sp k dx dy dz
+        end
+      done;
+      !found
 
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
@@ -190,29 +487,25 @@ let[@inline] blocks (p : Prepared.t) s i k1x4 two_k1 =
 let shadowed tr l =
   let p = tr.p and s = tr.s in
   tr.counters.shadow <- tr.counters.shadow + 1;
+  let last = Array.unsafe_get tr.last_blocker l in
   if not p.skips then closest tr >= 0
+  else if p.bvh = None && not p.robust then begin
+    let blocker = blocker_textbook_all tr last in
+    if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
+    blocker >= 0
+  end
   else
     let dx = s.dx and dy = s.dy and dz = s.dz in
-    let k1 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
-    let two_k1 = 2. *. k1 and k1x4 = 4. *. k1 in
-    let last = Array.unsafe_get tr.last_blocker l in
-    if last >= 0 && blocks p s last k1x4 two_k1 then begin
+    let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+    let inv_a = 1. /. a in
+    if last >= 0 && blocks tr last a inv_a then begin
       tr.counters.tests <- tr.counters.tests + 1;
       true
     end
-    else begin
-      let n = p.n_spheres in
-      let i = ref 0 in
-      while !i < n && (!i = last || not (blocks p s !i k1x4 two_k1)) do
-        incr i
-      done;
-      tr.counters.tests <- tr.counters.tests + !i + 1;
-      if !i < n then begin
-        Array.unsafe_set tr.last_blocker l !i;
-        true
-      end
-      else false
-    end
+    else
+      let blocker = first_blocker tr last a inv_a in
+      if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
+      blocker >= 0
 
 (* The total intensity at the hit point [s.px..] with unit normal [s.nx..]
    and view vector [s.vx..] (sections 7.4 to 7.7), left in [s.intensity].
@@ -229,7 +522,8 @@ let lighting tr ~shiny ~specular_of i =
     let li = Array.unsafe_get p.light_intensity l in
     if Array.unsafe_get p.light_kind l = Prepared.ambient then s.intensity <- s.intensity +. li
     else begin
-      if Array.unsafe_get p.light_kind l = Prepared.point then begin
+      let point = Array.unsafe_get p.light_kind l = Prepared.point in
+      if point then begin
         s.dx <- Array.unsafe_get p.lx l -. px;
         s.dy <- Array.unsafe_get p.ly l -. py;
         s.dz <- Array.unsafe_get p.lz l -. pz;
@@ -245,7 +539,9 @@ let lighting tr ~shiny ~specular_of i =
       s.oy <- py;
       s.oz <- pz;
       s.t_min <- p.epsilon;
-      if not (shadowed tr l) then begin
+      (* A point light on the lit point itself gives no direction, L = 0:
+         it is skipped (as Literal does), not divided by zero. *)
+      if ((not point) || s.dx <> 0. || s.dy <> 0. || s.dz <> 0.) && not (shadowed tr l) then begin
         let lx = s.dx and ly = s.dy and lz = s.dz in
         let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
         if n_dot_l > 0. then
@@ -300,7 +596,11 @@ let settled tr levels =
 let trace tr =
   let p = tr.p and s = tr.s in
   let levels = ref 0 and tracing = ref true in
+  (* The weight of the colour still to be traced: the product of the
+     reflectivities on the stack. *)
+  let weight = ref 1. in
   tr.first_hit <- -1;
+  tr.origin_sphere <- -1;
   while !tracing do
     let i = if !levels = 0 then closest_primary tr else closest tr in
     if !levels = 0 then tr.first_hit <- i;
@@ -327,6 +627,8 @@ let trace tr =
       s.vx <- vx;
       s.vy <- vy;
       s.vz <- vz;
+      (* Shadow and mirror rays leave sphere i. *)
+      tr.origin_sphere <- i;
       lighting tr ~shiny:(Array.unsafe_get p.specular i <> Sphere.matte) ~specular_of:p.specular i;
       let light = s.intensity in
       let lr = Array.unsafe_get p.red i *. light and lg = Array.unsafe_get p.green i *. light and lb = Array.unsafe_get p.blue i *. light in
@@ -344,7 +646,14 @@ let trace tr =
         Array.unsafe_set tr.stack (k + 2) lb;
         Array.unsafe_set tr.stack (k + 3) refl;
         incr levels;
-        if p.skips && settled tr !levels then begin
+        weight := !weight *. refl;
+        (* Checking costs two folds of the stack: worth it only when what is
+           left weighs less than a unit, or this colour saturates. Skipping
+           the check is always exact. *)
+        if p.skips
+           && (!weight *. p.max_channel < 1. || (lr >= 255. && lg >= 255. && lb >= 255.))
+           && settled tr !levels
+        then begin
           tr.counters.early_stops <- tr.counters.early_stops + 1;
           s.r <- 0.;
           s.g <- 0.;
@@ -415,3 +724,17 @@ let sample tr gx gy ~i ~j ~n =
   tr.s.gx <- Float.of_int gx +. (((Float.of_int i +. 0.5) /. n) -. 0.5);
   tr.s.gy <- Float.of_int gy +. (((Float.of_int j +. 0.5) /. n) -. 0.5);
   primary tr
+
+let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
+  let s = tr.s in
+  s.ox <- o.x;
+  s.oy <- o.y;
+  s.oz <- o.z;
+  s.dx <- d.x;
+  s.dy <- d.y;
+  s.dz <- d.z;
+  s.t_min <- tr.p.epsilon;
+  s.t_max <- infinity;
+  tr.origin_sphere <- (if from < 0 then -1 else tr.p.slot.(from));
+  let hit = closest tr in
+  if hit < 0 then -1 else tr.p.index.(hit)

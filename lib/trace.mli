@@ -15,6 +15,7 @@ type counters = {
   mutable shadow : int;  (** Shadow rays cast. *)
   mutable reflection : int;  (** Mirror rays cast. *)
   mutable tests : int;  (** Ray-sphere intersection tests. *)
+  mutable box_tests : int;  (** Ray-box tests in the sphere hierarchy. *)
   mutable early_stops : int;  (** Reflections stopped by the weight bound. *)
 }
 (** The type for work counters. *)
@@ -54,6 +55,13 @@ val store : t -> Image.buffer -> int -> unit
 val to_byte : float -> int
 (** [to_byte] is {!Color.to_byte}: a copy kept in this module so that the
     per-ray path passes no float across modules. *)
+
+val cast : t -> from:int -> Vec3.t -> Vec3.t -> int
+(** [cast tr ~from origin direction] is the sphere that the secondary ray
+    [origin + t direction] leaving sphere [from] ([-1]: none) meets first
+    with [t > epsilon] (the scene's epsilon, or [0] in the robust mode, where
+    [from] is handled exactly: the ray can meet it only by going into it),
+    or [-1] if it meets none: the test behind shadow and mirror rays. *)
 
 val red : t -> float
 (** [red tr] is the red channel of the last {!pixel}, unclamped. *)

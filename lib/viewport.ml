@@ -3,9 +3,7 @@ type t = { width : float; height : float; distance : float } [@@deriving show, e
 let v ~width ~height ~distance = { width; height; distance }
 let default = v ~width:1. ~height:1. ~distance:1.
 
-let check_dimension what x =
-  if x > 0. then Limits.check_coordinate ("viewport " ^ what) x
-  else Error (Printf.sprintf "viewport %s must be > 0, got %s" what (Float_text.to_string x))
+let check_dimension what x = Limits.check_size ("viewport " ^ what) x
 
 let validate vp =
   let ( let* ) = Result.bind in

@@ -15,8 +15,8 @@ val default : t
 (** [default] is the document's viewport, [V_w = V_h = d = 1]. *)
 
 val check_dimension : string -> float -> (float, string) result
-(** [check_dimension what x] is [Ok x] if [0 < x <= Limits.max_coordinate],
-    and otherwise [Error] naming the viewport's [what]. *)
+(** [check_dimension what x] is {!Limits.check_size} of the viewport's
+    [what] ("width", "height", "distance"). *)
 
 val validate : t -> (t, string) result
 (** [validate vp] checks the three dimensions with {!check_dimension}. *)

@@ -23,6 +23,20 @@ let light =
         (map (fun v -> if Vec3.norm2 v = 0. then Vec3.oy else v) (vec (-1.) 1.));
     ]
 
+(* Keys whose view direction always has z >= 1, so that no frame between
+   them looks at its own position or along its up vector. *)
+let camera_path =
+  let key frame =
+    let* position = vec (-2.) 2. in
+    let* dx = coord (-1.) 1. and* dy = coord (-1.) 1. and* dz = coord 1. 3. in
+    return (Camera_path.key ~frame ~position (Vec3.add position (Vec3.v dx dy dz)))
+  in
+  let* first = int_range 0 5 in
+  let* gaps = list_size (int_range 0 3) (int_range 1 6) in
+  let frames = List.rev (List.fold_left (fun acc g -> (List.hd acc + g) :: acc) [ first ] gaps) in
+  let* keys = flatten_l (List.map key frames) in
+  return (match Camera_path.v keys with Ok p -> Some p | Error _ -> None)
+
 let gen =
   let* width = int_range 1 12 and* height = int_range 1 12 in
   let* depth = int_range 0 4 in
@@ -38,8 +52,41 @@ let gen =
         map (fun p -> Camera.v p) (vec (-0.5) 0.5);
       ]
   in
+  let* camera_path = oneof [ return None; camera_path ] in
   return
-    { (Scene.v ~width ~height ~depth ?epsilon ~background ~camera ~spheres ~lights ()) with epsilon }
+    {
+      (Scene.v ~width ~height ~depth ?epsilon ~background ~camera ~spheres ~lights ()) with
+      epsilon;
+      camera_path;
+    }
+
+let crowd =
+  let* base = gen in
+  let* n = int_range 9 80 in
+  let* cluster = map3 Vec3.v (coord (-2.) 2.) (coord (-2.) 2.) (coord 3. 8.) in
+  let* spread = oneof [ return 0.5; return 3.; return 10. ] in
+  let* spheres =
+    list_repeat n
+      (let* s = sphere in
+       let* offset = vec (-.spread) spread in
+       return { s with Sphere.center = Vec3.add cluster offset })
+  in
+  (* Duplicates (ties between equal roots), a sphere inside another, a huge
+     ground, a sphere around the camera. *)
+  let* dup = bool and* ground = bool and* around = oneof [ return false; return false; return true ] in
+  let spheres =
+    match spheres with
+    | a :: b :: rest ->
+        let nested = { b with Sphere.center = a.center; radius = a.radius *. 0.5 } in
+        (if dup then [ a; a; nested ] else [ a; nested ]) @ rest
+    | l -> l
+  in
+  let spheres =
+    if ground then spheres @ [ Sphere.v ~center:(Vec3.v 0. (-5001.) 0.) ~radius:5000. ~reflective:0.3 Color.white ]
+    else spheres
+  in
+  let spheres = if around then Sphere.v ~center:Vec3.zero ~radius:0.5 Color.white :: spheres else spheres in
+  return { base with spheres }
 
 let arbitrary =
   let shrink (s : Scene.t) =

@@ -5,7 +5,13 @@ val gen : Raytrace.Scene.t QCheck.Gen.t
     canvases (so that rendering them is quick), 0 to 6 spheres in front of
     the camera, 0 to 4 lights of every kind, random materials including the
     edge values (matte, specular 0, reflective 0 and 1), with or without
-    epsilon. *)
+    epsilon, with or without a camera path of 1 to 4 keys. *)
+
+val crowd : Raytrace.Scene.t QCheck.Gen.t
+(** [crowd] generates scenes of 9 to 80 spheres, more than
+    {!Raytrace.Prepared.bvh_threshold}, so that the tracer uses its
+    hierarchy: clustered, overlapping, nested and duplicated spheres, often
+    a huge ground sphere, sometimes spheres around the camera. *)
 
 val arbitrary : Raytrace.Scene.t QCheck.arbitrary
 (** [arbitrary] is {!gen} with a printer (the scene file) and shrinking of

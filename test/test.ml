@@ -14,8 +14,16 @@ let () =
       ("ppm", Test_ppm.tests);
       ("image_diff", Test_image_diff.tests);
       ("render", Test_render.tests);
+      ("numerics", Test_numerics.tests);
+      ("bvh", Test_bvh.tests);
       ("golden", Test_golden.tests);
       ("cli", Test_cli.tests);
+      ("region", Test_region.tests);
+      ("part", Test_part.tests);
+      ("camera_path", Test_camera_path.tests);
+      ("png", Test_png.tests);
+      ("cli_parts", Test_cli_parts.tests);
+      ("recipes", Test_recipes.tests);
       ("window", Test_window.tests);
       ("example", Test_example.tests);
       ("hostile", Test_hostile.tests);

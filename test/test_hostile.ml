@@ -154,19 +154,31 @@ let tests =
             Alcotest.(check string) __LOC__ "t.scene:1:18: RAYTRACE_MAX_DEPTH must be a positive integer, got \"lots\""
               (scene_error "(recursion-depth 3)")));
     Alcotest.test_case "a render that would take years is refused before it starts" `Quick (fun () ->
-        (* 65536 x 4096 pixels x 4 rays (depth 3, reflective spheres) x 4
-           spheres x (1 + 2 shadow-casting lights) = 1.288e10 tests: within
-           1e12. With 400 spheres: 1.288e12, beyond. *)
+        (* 65536 x 4096 = 268435456 pixels x 4 rays (depth 3, reflective
+           spheres) x 4 spheres x (1 + 2 shadow-casting lights) = 1.288e10
+           tests: within 1e12. 1024 samples per pixel: 1.319e13, beyond. *)
         let big = Scene.with_overrides ~width:65536 ~height:4096 Scene.cgfs in
-        let cost s = Scene.check_work s in
-        Alcotest.(check bool) __LOC__ true (cost big = Ok ());
-        let crowded = { big with spheres = List.concat (List.init 100 (fun _ -> Scene.cgfs.spheres)) } in
+        Alcotest.(check bool) __LOC__ true (Scene.check_work big = Ok ());
+        (match Scene.check_work ~samples:1024 big with
+        | Ok () -> Alcotest.fail "1024 samples accepted"
+        | Error (`Msg m) ->
+            Alcotest.(check string) __LOC__
+              "the render needs about 1.32e+13 ray-sphere intersection tests (268435456 pixels x \
+               1024 samples x 4 rays x 4 spheres per ray x (1 + 2 lights)), more than the limit of \
+               1000000000000 (set RAYTRACE_MAX_WORK to raise it)"
+              m);
+        (* 400 spheres: a hierarchy of ceil (log2 400) = 9 levels, at most
+           16 x 9 = 144 spheres per ray; depth 64: 65 rays.
+           268435456 x 65 x 144 x 3 = 7.54e12. *)
+        let crowded =
+          { big with depth = 64; spheres = List.concat (List.init 100 (fun _ -> Scene.cgfs.spheres)) }
+        in
         match Render.image crowded with
         | Ok _ -> Alcotest.fail "rendered"
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
-              "the render needs up to 1.29e+12 ray-sphere intersection tests (268435456 pixels x 1 \
-               samples x 4 rays x 400 spheres x (1 + 2 lights)), more than the limit of \
+              "the render needs about 7.54e+12 ray-sphere intersection tests (268435456 pixels x 1 \
+               samples x 65 rays x 144 spheres per ray x (1 + 2 lights)), more than the limit of \
                1000000000000 (set RAYTRACE_MAX_WORK to raise it)"
               m);
     Alcotest.test_case "samples per pixel have a bound for --samples" `Quick (fun () ->
@@ -178,5 +190,9 @@ let tests =
     Alcotest.test_case "the work estimate is the product of its factors" `Quick (fun () ->
         (* 600 * 600 pixels * 4 samples * (3 + 1) rays * 4 spheres * (1 + 2) = 69120000 *)
         Alcotest.(check (float 0.)) __LOC__ 69120000.
-          (Limits.work ~pixels:360000 ~samples:4 ~depth:3 ~spheres:4 ~lights:2));
+          (Limits.work ~pixels:360000 ~samples:4 ~depth:3 ~spheres:4 ~lights:2);
+        (* 100000 spheres: 2^17 = 131072 >= 100000, so 16 x 17 = 272 per ray;
+           1000 * 1 * 1 * 272 * 1 = 272000 *)
+        Alcotest.(check (float 0.)) __LOC__ 272000.
+          (Limits.work ~pixels:1000 ~samples:1 ~depth:0 ~spheres:100_000 ~lights:0));
   ]

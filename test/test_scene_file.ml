@@ -34,8 +34,8 @@ let bad_inputs =
     ("(light point (intensity 0.6))", "t.scene:1:1: light point is missing its (position ...) field");
     ("(light spot (intensity 0.6))", "t.scene:1:8: unknown light kind spot; expected ambient, point or directional");
     ("(light directional (intensity 0.2) (direction 0 0 0))",
-     "t.scene:1:36: directional light direction must not be the zero vector");
-    ("(light ambient (intensity -1))", "t.scene:1:27: light intensity must be finite and >= 0, got -1");
+     "t.scene:1:36: directional light direction must not be the zero vector (its length must be at least 1e-30)");
+    ("(light ambient (intensity -1))", "t.scene:1:27: light intensity must lie in [0, 1e6], got -1");
     ("(light ambient (intensity 0.2) (position 1 2 3))",
      "t.scene:1:33: unknown light ambient field position; expected intensity");
     ("(canvas (width 600) (height 60.5))", "t.scene:1:29: canvas height: expected an integer, got 60.5");
@@ -43,9 +43,9 @@ let bad_inputs =
     ("(canvas (width 65536) (height 65536))", "t.scene:1:1: canvas 65536x65536 has 4294967296 pixels, more than the limit of 268435456 (set RAYTRACE_MAX_PIXELS to raise it)");
     ("(recursion-depth -1)", "t.scene:1:18: recursion depth must be >= 0, got -1");
     ("(epsilon 0.001)\n(epsilon 0.01)", "t.scene:2:2: duplicate epsilon form (first given at 1:2); it may appear only once");
-    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected canvas, viewport, camera, background, recursion-depth, epsilon, sphere or light (did you mean sphere?)");
+    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere or light (did you mean sphere?)");
     ("sphere", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got sphere");
-    ("()", "t.scene:1:1: empty form (); expected one of canvas, viewport, camera, background, recursion-depth, epsilon, sphere or light");
+    ("()", "t.scene:1:1: empty form (); expected one of canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere or light");
     ("(camera (look-at 0 0 0))", "t.scene:1:9: the camera looks at its own position");
     ("(camera (rotation (1 0 0) (1 0 0) (0 0 1)))",
      "t.scene:1:9: camera rotation must be invertible, but its rows are (nearly) linearly dependent");
@@ -54,8 +54,29 @@ let bad_inputs =
     ("(viewport (distance 0))", "t.scene:1:21: viewport distance must be > 0, got 0");
     ("(background 0 0)", "t.scene:1:1: background takes 3 numbers (r g b), got 2 values");
     ("\"a\nb\"", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got \"a\\nb\"");
+    ("(sphere (center 0 0 3) (radius 1e-31) (color 1 2 3))", "t.scene:1:32: sphere radius must be at least 1e-30, got 1e-31");
+    ("(light point (intensity 1e7) (position 0 0 0))", "t.scene:1:25: light intensity must lie in [0, 1e6], got 10000000");
     ("(sphere (center 1e13 0 0) (radius 1) (color 1 2 3))",
      "t.scene:1:9: sphere center must be finite and at most 1e12 in magnitude, got 10000000000000");
+    ("(camera-path)", "t.scene:1:1: camera-path needs at least one (key (frame N) (position x y z) (look-at x y z))");
+    ("(camera-path (key (frame 0) (position 0 0 0)))", "t.scene:1:14: camera-path key is missing its (look-at ...) field");
+    ("(camera-path (key (frame 0) (position 0 0 0) (look-at 0 0 1) (fov 2)))",
+     "t.scene:1:63: unknown camera-path key field fov; expected frame, position, look-at or up");
+    ("(camera-path (key (frame -2) (position 0 0 0) (look-at 0 0 1)))",
+     "t.scene:1:26: camera-path key frame must lie in [0, 1000000], got -2");
+    ("(camera-path (key (frame 1.5) (position 0 0 0) (look-at 0 0 1)))",
+     "t.scene:1:26: camera-path key frame: expected an integer, got 1.5");
+    ("(camera-path (key (frame 0) (position 0 0 1) (look-at 0 0 1)))",
+     "t.scene:1:14: the camera looks at its own position");
+    ("(camera-path (key (frame 0) (position 0 0 0) (look-at 0 0 1) (up 0 0 1)))",
+     "t.scene:1:14: the camera's up vector is zero or parallel to its view direction");
+    ("(camera-path (key (frame 0) (position 0 0 nan) (look-at 0 0 1)))",
+     "t.scene:1:43: camera-path key position must be a finite number, got nan");
+    ("(camera-path\n (key (frame 5) (position 0 0 0) (look-at 0 0 1))\n (key (frame 3) (position 0 0 0) (look-at 0 0 1)))",
+     "t.scene:3:2: camera-path keys must come in increasing frame order, but frame 3 follows frame 5");
+    ("(camera-path\n (key (frame 0) (position 0 0 0) (look-at 0 0 2))\n (key (frame 2) (position 0 0 4) (look-at 0 0 2)))",
+     "t.scene:3:2: at frame 1, between the keys of frames 0 and 2, the camera looks at its own position");
+    ("(camera-path (frame 0))", "t.scene:1:14: camera-path: expected a keyframe (key (frame N) (position x y z) (look-at x y z))");
   ]
 
 let tests =
@@ -109,6 +130,27 @@ let tests =
         List.iter
           (fun s -> Alcotest.check scene __LOC__ s (parse (Scene_file.to_string s)))
           [ Scene.cgfs; Scene.cgfs_camera ]);
+    Alcotest.test_case "a camera-path gives keys; without a camera form, stills are its first frame" `Quick (fun () ->
+        let s =
+          parse
+            "(camera-path (key (frame 2) (position 0 1 -2) (look-at 0 0 4))\n\
+             (key (frame 10) (position 1 1 -2) (look-at 0 0 4) (up 0 1 0.5)))"
+        in
+        match s.camera_path with
+        | None -> Alcotest.fail "no camera path"
+        | Some p ->
+            Alcotest.(check (list int)) __LOC__ [ 2; 10 ] (List.map (fun (k : Camera_path.key) -> k.frame) (Camera_path.keys p));
+            Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 1. 0.5) (List.nth (Camera_path.keys p) 1).up;
+            Alcotest.check Helpers.vec3 __LOC__ Vec3.oy (List.hd (Camera_path.keys p)).up;
+            (match Camera.look_at ~position:(Vec3.v 0. 1. (-2.)) (Vec3.v 0. 0. 4.) with
+            | Ok c -> Alcotest.(check bool) __LOC__ true (Camera.equal c s.camera)
+            | Error m -> Alcotest.fail m);
+            let with_camera = parse "(camera (position 0 0 -1))\n(camera-path (key (frame 0) (position 0 0 0) (look-at 0 0 1)))" in
+            Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 0. (-1.)) with_camera.camera.position);
+    Alcotest.test_case "a scene with a camera path prints and parses back equal" `Quick (fun () ->
+        let s = Helpers.load_scene "orbit.scene" in
+        Alcotest.(check bool) __LOC__ true (Option.is_some s.camera_path);
+        Alcotest.check scene __LOC__ s (parse (Scene_file.to_string s)));
     Helpers.qcheck ~count:300 "any valid scene prints and parses back equal" Gen_scene.arbitrary
       (fun s ->
         match Scene_file.of_string (Scene_file.to_string s) with

@@ -1,0 +1,171 @@
+(* The speed benchmark: whole-process run time and rays per second of
+   `raytrace render` on the reference scene and on grid:N, with 1 and 2
+   jobs, against the C reference (../shared/reference/cref.c, gcc -O2) and
+   the literal oracle. Runs alternate between programs; each figure is the
+   median of --runs runs. Every image is checked: ours with 1 and 2 jobs
+   must be identical, and the table says how ours differs from C's.
+
+   make bench   (or: dune build --profile release bench/speed.exe bin/main.exe &&
+                 ./_build/default/bench/speed.exe --help) *)
+
+open Raytrace
+
+let usage =
+  "speed [--runs N] [--quick] [--raytrace EXE] [--cref SOURCE] [--out DIR]\n\
+   Prints a table of run times; --quick uses smaller sizes and fewer scenes."
+
+type program = Ours of int | C | Literal
+
+let name = function Ours j -> Printf.sprintf "ours -j%d" j | C -> "C -O2" | Literal -> "literal"
+
+let median l =
+  let a = Array.of_list l in
+  Array.sort Float.compare a;
+  let n = Array.length a in
+  if n = 0 then nan else if n mod 2 = 1 then a.(n / 2) else (a.((n / 2) - 1) +. a.(n / 2)) /. 2.
+
+(* Runs [argv], returns wall seconds and stderr; fails loudly on errors. *)
+let run argv =
+  let err = Filename.temp_file "bench" ".err" in
+  let fd = Unix.openfile err [ O_WRONLY; O_TRUNC ] 0o600 in
+  let null = Unix.openfile "/dev/null" [ O_WRONLY ] 0 in
+  let t0 = Unix.gettimeofday () in
+  let pid = Unix.create_process argv.(0) argv Unix.stdin null fd in
+  let _, status = Unix.waitpid [] pid in
+  let t = Unix.gettimeofday () -. t0 in
+  Unix.close fd;
+  Unix.close null;
+  let text = match File_io.read err with Ok s -> s | Error _ -> "" in
+  Sys.remove err;
+  (match status with
+  | Unix.WEXITED 0 -> ()
+  | _ -> failwith (Printf.sprintf "%s failed:\n%s" (String.concat " " (Array.to_list argv)) text));
+  (t, text)
+
+(* The number after [key] in [text] (our --stats or cref's stderr). *)
+let find_int key text =
+  let open String in
+  let rec from i =
+    if i + length key > length text then None
+    else if sub text i (length key) = key then
+      let j = ref (i + length key) in
+      while !j < length text && (text.[!j] = ' ' || text.[!j] = '=') do incr j done;
+      let k = ref !j in
+      while !k < length text && text.[!k] >= '0' && text.[!k] <= '9' do incr k done;
+      int_of_string_opt (sub text !j (!k - !j))
+    else from (i + 1)
+  in
+  from 0
+
+let build_cref source dir =
+  let exe = Filename.concat dir "cref" in
+  let cmd = Printf.sprintf "gcc -O2 -o %s %s -lm" (Filename.quote exe) (Filename.quote source) in
+  if Sys.file_exists source && Sys.command cmd = 0 then Some exe else None
+
+type case = { label : string; scene : Scene.t; cref_name : string; literal : bool }
+
+let () =
+  let runs = ref 5 and quick = ref false and out = ref "" in
+  let raytrace = ref "_build/default/bin/main.exe" and cref = ref "../shared/reference/cref.c" in
+  Arg.parse
+    [
+      ("--runs", Arg.Set_int runs, "N  runs per figure (median)");
+      ("--quick", Arg.Set quick, " smaller sizes, fewer scenes");
+      ("--raytrace", Arg.Set_string raytrace, "EXE  the raytrace binary (release build)");
+      ("--cref", Arg.Set_string cref, "SOURCE  the C reference to compile with gcc -O2");
+      ("--out", Arg.Set_string out, "DIR  keep the images there");
+    ]
+    (fun a -> raise (Arg.Bad ("unexpected argument " ^ a)))
+    usage;
+  let dir =
+    if !out <> "" then !out
+    else
+      let d = Filename.temp_file "raytrace-bench" "" in
+      Sys.remove d;
+      d
+  in
+  if not (Sys.file_exists dir) then Unix.mkdir dir 0o755;
+  let cref = build_cref !cref dir in
+  let size = if !quick then 600 else 1920 in
+  let grid_size = if !quick then 400 else 800 in
+  let cases =
+    { label = "cgfs"; scene = Scene.with_overrides ~width:size ~height:size Scene.cgfs; cref_name = "gambetta"; literal = true }
+    :: List.map
+         (fun n ->
+           {
+             label = Printf.sprintf "grid:%d" n;
+             scene = Scene.with_overrides ~width:grid_size ~height:grid_size (Scene.grid n);
+             cref_name = Printf.sprintf "grid:%d" n;
+             (* The C reference and the oracle test every sphere: minutes. *)
+             literal = n <= 100;
+           })
+         (if !quick then [ 100; 10000 ] else [ 100; 1000; 10000; 100000 ])
+  in
+  Printf.printf "raytrace speed benchmark: whole process, median of %d alternating runs%s\n" !runs
+    (match cref with Some _ -> "" | None -> " (no C reference: ../shared/reference/cref.c or gcc missing)");
+  Printf.printf "%-12s %-10s %12s %9s %9s %8s %9s %8s %9s %9s  %s\n" "scene" "size" "rays" "-j1 (s)"
+    "rays/s" "-j2 (s)" "speedup" "C (s)" "ours/C" "literal" "image vs C";
+  List.iter
+    (fun c ->
+      let file = Filename.concat dir (c.label ^ ".scene") in
+      (match File_io.write_atomic file (fun oc -> output_string oc (Scene_file.to_string c.scene)) with
+      | Ok () -> ()
+      | Error (`Msg m) -> failwith m);
+      let image p = Filename.concat dir (Printf.sprintf "%s-%s.ppm" c.label (match p with Ours j -> Printf.sprintf "j%d" j | C -> "c" | Literal -> "literal")) in
+      let argv p =
+        match p with
+        | Ours j -> [| !raytrace; "render"; file; "-o"; image p; "--jobs"; string_of_int j; "--stats" |]
+        | Literal -> [| !raytrace; "render"; file; "-o"; image p; "--literal" |]
+        | C -> (
+            match cref with
+            | Some exe ->
+                let w = string_of_int c.scene.width and h = string_of_int c.scene.height in
+                [| exe; c.cref_name; w; h; string_of_int c.scene.depth; image p |]
+            | None -> [||])
+      in
+      let n_spheres = List.length c.scene.spheres in
+      (* The C reference tests every sphere for every ray: grid:100000 would
+         take about 9 minutes, so it stops at grid:10000 (51 s). *)
+      let programs =
+        [ Ours 1; Ours 2 ]
+        @ (if cref <> None && n_spheres <= 10001 then [ C ] else [])
+        @ if c.literal then [ Literal ] else []
+      in
+      (* Programs that take many seconds run once; ours run every time. *)
+      let once p = match p with Ours _ -> false | Literal -> true | C -> n_spheres > 200 in
+      let times = Hashtbl.create 4 and rays = ref 0 in
+      for r = 1 to !runs do
+        List.iter
+          (fun p ->
+            if r = 1 || not (once p) then begin
+              let t, err = run (argv p) in
+              (match (p, find_int "rays, total" err) with Ours 1, Some n -> rays := n | _ -> ());
+              Hashtbl.replace times p (t :: Option.value (Hashtbl.find_opt times p) ~default:[])
+            end)
+          programs
+      done;
+      let time p = match Hashtbl.find_opt times p with Some l -> median l | None -> nan in
+      let read p = match Ppm.read_file (image p) with Ok i -> Some i | Error _ -> None in
+      let same =
+        match (read (Ours 1), read (Ours 2)) with Some a, Some b -> Image.equal a b | _ -> false
+      in
+      if not same then Printf.printf "!! %s: the images of -j1 and -j2 differ\n" c.label;
+      let vs_c =
+        match (read (Ours 1), if List.mem C programs then read C else None) with
+        | Some a, Some b -> (
+            match Image_diff.compare a b with
+            | Ok d when d.differing = 0 -> "identical"
+            | Ok d -> Printf.sprintf "%d px differ, %d by >1" d.differing d.differing_gt1
+            | Error (`Msg m) -> m)
+        | _ -> "-"
+      in
+      let s x = if Float.is_nan x then "-" else Printf.sprintf "%.3f" x in
+      let ratio x = if Float.is_nan x then "-" else Printf.sprintf "%.2fx" x in
+      let t1 = time (Ours 1) and t2 = time (Ours 2) and tc = time C in
+      Printf.printf "%-12s %-10s %12d %9s %8.1fM %8s %9s %8s %9s %9s  %s\n%!" c.label
+        (Printf.sprintf "%dx%d" c.scene.width c.scene.height)
+        !rays (s t1)
+        (Float.of_int !rays /. t1 /. 1e6)
+        (s t2) (ratio (t1 /. t2)) (s tc) (ratio (t1 /. tc)) (s (time Literal)) vs_c)
+    cases;
+  if !out = "" then Printf.printf "(images in %s)\n" dir

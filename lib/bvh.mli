@@ -1,0 +1,50 @@
+(** Bounding volume hierarchies over spheres.
+
+    A binary tree of axis-aligned boxes, each leaf holding a few spheres,
+    so that a ray is tested only against the spheres whose boxes it meets:
+    about [log n] boxes per ray instead of [n] spheres. Built top-down by
+    splitting each node's spheres at the median of their centers along the
+    longest axis (a linear-time selection, so building is [O(n log n)]).
+
+    Nodes are stored depth-first in flat arrays: the left child of inner
+    node [k] is [k + 1], the right child is [right.(k)]. Spheres are
+    referred to by slot: leaf [k] holds slots [first.(k)] to
+    [first.(k) + count.(k) - 1], and [order.(slot)] is the sphere's index
+    in the input. *)
+
+type t = private {
+  order : int array;  (** Input index of the sphere in each slot. *)
+  n_nodes : int;
+  lo_x : float array;  (** Box of each node: lower corner. *)
+  lo_y : float array;
+  lo_z : float array;
+  hi_x : float array;  (** Upper corner. *)
+  hi_y : float array;
+  hi_z : float array;
+  right : int array;  (** Inner node: index of the right child; leaf: [-1]. *)
+  first : int array;  (** Leaf: first slot; inner node: unused. *)
+  count : int array;  (** Leaf: number of slots, [>= 1]; inner node: [0]. *)
+  axis : int array;  (** Inner node: the axis its children are split along, 0 to 2. *)
+  depth : int;  (** Largest number of nodes on a path from the root. *)
+}
+(** The type for hierarchies. *)
+
+val build : ?leaf_size:int -> cx:float array -> cy:float array -> cz:float array -> float array -> t
+(** [build ~leaf_size ~cx ~cy ~cz extent] is a hierarchy over the spheres
+    with centers [(cx.(i), cy.(i), cz.(i))], each boxed by the cube of
+    half-side [extent.(i)] around its center (the radius, plus any margin the
+    caller needs). Leaves hold at most [leaf_size] (default 4) spheres.
+    @raise Invalid_argument if the arrays are empty or of different
+    lengths. *)
+
+val ray_box_margin :
+  cx:float array -> cy:float array -> cz:float array -> radius:float array -> Vec3.t -> float array
+(** [ray_box_margin ~cx ~cy ~cz ~radius camera] is, for each sphere, how much
+    to grow its box beyond its radius so that no intersection test of the
+    tracer can report a hit outside the box through rounding: rays start at
+    [camera] or on a sphere, so with [D] the diameter and [M] the largest
+    coordinate of everything, the textbook quadratic's hit points stay
+    within about [3 u D^2 / r] of the sphere and the slab test errs by a few
+    [u M]; the margin is [64 u (D^2 / r + M)] ([u = 2^-53]), a safety
+    factor of 20 over the worst error measured on the hard cases of the
+    test suite. For the reference scene it is about 2e-6. *)

@@ -1,0 +1,21 @@
+open Raytrace
+
+type format = Ppm | Png
+
+let format_of_path path =
+  if Filename.check_suffix (String.lowercase_ascii path) ".png" then Png else Ppm
+
+let extension = function Ppm -> ".ppm" | Png -> ".png"
+
+let write_file path img =
+  match format_of_path path with Png -> Png_file.write_file path img | Ppm -> Ppm.write_file path img
+
+let read_file path =
+  match File_io.read ~check_size:Ppm.check_file_size path with
+  | Error e -> Error e
+  | Ok contents when Png_file.is_png contents -> Png_file.read_file path
+  | Ok _ when format_of_path path = Png -> Error (`Msg (path ^ ": not a PNG file (it lacks the PNG signature)"))
+  | Ok contents -> (
+      match Ppm.of_string contents with
+      | Ok img -> Ok img
+      | Error (`Msg m) -> Error (`Msg (path ^ ": " ^ m)))

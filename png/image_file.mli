@@ -1,0 +1,22 @@
+(** Image files in the format their name or contents say: PPM or PNG.
+
+    PPM ({!Raytrace.Ppm}) is the default and needs no library; a name
+    ending in [.png] (in any case) means PNG ({!Png_file}). *)
+
+type format = Ppm | Png  (** The type for image file formats. *)
+
+val format_of_path : string -> format
+(** [format_of_path path] is [Png] if [path] ends in [.png], ignoring case,
+    and [Ppm] otherwise. *)
+
+val extension : format -> string
+(** [extension f] is [".ppm"] or [".png"]. *)
+
+val write_file : string -> Raytrace.Image.t -> (unit, [> `Msg of string ]) result
+(** [write_file path img] writes [img] to [path] atomically, in
+    [format_of_path path]. *)
+
+val read_file : string -> (Raytrace.Image.t, [> `Msg of string ]) result
+(** [read_file path] reads the image in [path]: a PNG file if its contents
+    start with the PNG signature, whatever its name; [Error] if they do not
+    and [path] ends in [.png]; and otherwise a PPM file. *)

@@ -1,0 +1,93 @@
+open Raytrace
+
+let signature = "\137PNG\r\n\026\n"
+let is_png s = String.length s >= 8 && String.sub s 0 8 = signature
+let ( let* ) = Result.bind
+
+(* camlimages' libpng stubs print to stderr, and crash (SIGSEGV) on a file
+   that breaks off or goes wrong after its header. So libpng runs in a
+   child process, its stderr silenced, writing the pixels into shared
+   memory: a crash there becomes an error message here. *)
+let in_child ~pixels ~crash f =
+  let out = Parallel.shared_bytes (max 1 (3 * pixels)) in
+  let message = Parallel.shared_bytes 256 in
+  let work _ =
+    let null = Unix.openfile "/dev/null" [ O_WRONLY ] 0 in
+    Unix.dup2 null Unix.stderr;
+    match f out with
+    | () -> ()
+    | exception (Failure m as e) ->
+        String.iteri (fun i c -> if i < 255 then message.{i} <- Char.code c) m;
+        raise e
+  in
+  match Parallel.run 1 work with
+  | Ok () -> Ok out
+  | Error (`Msg _) ->
+      let text = String.init 255 (fun i -> Char.chr message.{i}) in
+      let text = match String.index_opt text '\000' with Some n -> String.sub text 0 n | None -> text in
+      Error (if text <> "" then text else crash)
+
+let copy_rgb bytes (out : Image.buffer) =
+  for k = 0 to Bytes.length bytes - 1 do
+    Bigarray.Array1.unsafe_set out k (Char.code (Bytes.unsafe_get bytes k))
+  done
+
+(* In the child: the file's pixels, alpha dropped, into [out]. *)
+let decode path ~width ~height out =
+  let rgb b =
+    if b.Rgb24.width <> width || b.Rgb24.height <> height then failwith "size differs from the header";
+    copy_rgb (Rgb24.dump b) out
+  in
+  match Png.load_as_rgb24 path [] with
+  | Images.Rgb24 b -> rgb b
+  | _ -> failwith "unsupported PNG layout"
+  | exception Failure _ -> (
+      (* RGB files with a transparent colour are refused by that loader. *)
+      match Png.load path [] with
+      | Images.Rgba32 b -> rgb (Rgb24.of_rgba32 b)
+      | Images.Rgb24 b -> rgb b
+      | _ -> failwith "unsupported PNG layout")
+
+let be32 s o =
+  (Char.code s.[o] lsl 24) lor (Char.code s.[o + 1] lsl 16) lor (Char.code s.[o + 2] lsl 8) lor Char.code s.[o + 3]
+
+let read_file path =
+  let fail m = Error (`Msg (Printf.sprintf "%s: %s" path m)) in
+  let* contents = File_io.read path in
+  if not (is_png contents) then fail "not a PNG file"
+  else if String.length contents < 33 || String.sub contents 12 4 <> "IHDR" then fail "not a PNG file: no IHDR header"
+  else
+    (* The size, read here to bound the memory before libpng sees it. *)
+    let width = be32 contents 16 and height = be32 contents 20 in
+    if width < 1 || height < 1 || width > Limits.max_dimension || height > Limits.max_dimension
+       || width * height > Limits.max_pixels
+    then fail (Printf.sprintf "PNG size %dx%d is empty or too large" width height)
+    else
+      match in_child ~pixels:(width * height) ~crash:"corrupt or truncated data" (decode path ~width ~height) with
+      | Ok out ->
+          let img = Image.create width height in
+          Bigarray.Array1.blit (Bigarray.Array1.sub out 0 (3 * width * height)) (Image.buffer img);
+          Ok img
+      | Error m -> fail ("cannot decode the PNG file: " ^ m)
+
+let to_string img =
+  let w = Image.width img and h = Image.height img in
+  let data = Bytes.create (3 * w * h) in
+  let buf = Image.buffer img in
+  for k = 0 to (3 * w * h) - 1 do
+    Bytes.unsafe_set data k (Char.unsafe_chr (Bigarray.Array1.unsafe_get buf k))
+  done;
+  match Filename.temp_file "raytrace" ".png" with
+  | exception Sys_error e -> Error (`Msg ("cannot create a temporary PNG file: " ^ e))
+  | tmp ->
+      Fun.protect
+        ~finally:(fun () -> try Sys.remove tmp with Sys_error _ -> ())
+        (fun () ->
+          let save _ = Png.save tmp [] (Images.Rgb24 (Rgb24.create_with w h [] data)) in
+          match in_child ~pixels:0 ~crash:"libpng failed" save with
+          | Ok _ -> File_io.read tmp
+          | Error m -> Error (`Msg (Printf.sprintf "cannot encode the PNG file: %s" m)))
+
+let write_file path img =
+  let* png = to_string img in
+  File_io.write_atomic path (fun oc -> output_string oc png)

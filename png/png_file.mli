@@ -1,0 +1,23 @@
+(** PNG image files, through camlimages and libpng.
+
+    Images are written as 8-bit RGB PNG. The reader accepts what libpng
+    reads (grey, palette, RGB, 16-bit samples, interlacing) as 8-bit RGB;
+    alpha channels are ignored. Errors are values whose message starts with
+    the path, on one line: libpng's own messages to stderr are silenced. *)
+
+val signature : string
+(** [signature] is the 8 bytes every PNG file starts with. *)
+
+val is_png : string -> bool
+(** [is_png s] is [true] iff the file contents [s] start with {!signature}. *)
+
+val read_file : string -> (Raytrace.Image.t, [> `Msg of string ]) result
+(** [read_file path] reads and decodes the PNG file [path]. *)
+
+val to_string : Raytrace.Image.t -> (string, [> `Msg of string ]) result
+(** [to_string img] is [img] encoded as an 8-bit RGB PNG file. [Error] if
+    the temporary file that libpng writes through cannot be written. *)
+
+val write_file : string -> Raytrace.Image.t -> (unit, [> `Msg of string ]) result
+(** [write_file path img] writes [to_string img] to [path] atomically
+    ({!Raytrace.File_io.write_atomic}). *)

@@ -1,0 +1,83 @@
+open Raytrace
+
+let random_spheres n seed =
+  let rand = Random.State.make [| seed |] in
+  let f lo hi = lo +. Random.State.float rand (hi -. lo) in
+  ( Array.init n (fun _ -> f (-50.) 50.),
+    Array.init n (fun _ -> f (-50.) 50.),
+    Array.init n (fun _ -> f 0. 100.),
+    Array.init n (fun i -> if i = 0 then 5000. else f 0.01 3.) )
+
+let inside (b : Bvh.t) k x y z e =
+  b.lo_x.(k) <= x -. e && x +. e <= b.hi_x.(k)
+  && b.lo_y.(k) <= y -. e && y +. e <= b.hi_y.(k)
+  && b.lo_z.(k) <= z -. e && z +. e <= b.hi_z.(k)
+
+let tests =
+  [
+    Alcotest.test_case "every sphere sits in exactly one leaf, inside every box above it" `Quick (fun () ->
+        List.iter
+          (fun n ->
+            let cx, cy, cz, e = random_spheres n n in
+            let b = Bvh.build ~cx ~cy ~cz e in
+            let seen = Array.make n 0 in
+            (* Walk the tree, carrying the path of boxes. *)
+            let rec walk k path =
+              if b.count.(k) > 0 then begin
+                if b.count.(k) > 4 then Alcotest.failf "leaf %d holds %d spheres" k b.count.(k);
+                for slot = b.first.(k) to b.first.(k) + b.count.(k) - 1 do
+                  let i = b.order.(slot) in
+                  seen.(i) <- seen.(i) + 1;
+                  List.iter
+                    (fun j ->
+                      if not (inside b j cx.(i) cy.(i) cz.(i) e.(i)) then
+                        Alcotest.failf "sphere %d sticks out of box %d" i j)
+                    (k :: path)
+                done
+              end
+              else begin
+                walk (k + 1) (k :: path);
+                walk b.right.(k) (k :: path)
+              end
+            in
+            walk 0 [];
+            Alcotest.(check (array int)) (Printf.sprintf "%d spheres each once" n) (Array.make n 1) seen;
+            Alcotest.(check int) "order is a permutation" n
+              (List.length (List.sort_uniq compare (Array.to_list b.order))))
+          [ 1; 2; 5; 9; 100; 1000 ]);
+    Alcotest.test_case "the tree of grid:10000 is shallow" `Quick (fun () ->
+        let p = Prepared.prepare (Scene.grid 10000) in
+        match p.bvh with
+        | None -> Alcotest.fail "no hierarchy for 10001 spheres"
+        | Some b ->
+            (* log2 (10001 / 4) = 11.3; the binned build stays within a small
+               factor of it *)
+            if b.depth > 40 then Alcotest.failf "depth %d" b.depth);
+    Alcotest.test_case "identical centers do not break the build" `Quick (fun () ->
+        let n = 50 in
+        let b = Bvh.build ~cx:(Array.make n 1.) ~cy:(Array.make n 2.) ~cz:(Array.make n 3.) (Array.make n 0.5) in
+        Alcotest.(check int) __LOC__ n (Array.length b.order));
+    Alcotest.test_case "box margins cover the textbook's rounding and stay tiny" `Quick (fun () ->
+        (* the reference scene's bounding box (camera and spheres) spans
+           10000 x 10002 x 10000: D^2 = 3.0004e8; largest coordinate 10001;
+           smallest radius 1: 64 u (3.0004e8 + 1e4) = 2.13e-6 *)
+        let s = Scene.cgfs in
+        let arr f = Array.of_list (List.map f s.spheres) in
+        let m =
+          Bvh.ray_box_margin ~cx:(arr (fun s -> s.center.x)) ~cy:(arr (fun s -> s.center.y))
+            ~cz:(arr (fun s -> s.center.z)) ~radius:(arr (fun s -> s.radius)) s.camera.position
+        in
+        Alcotest.(check (float 1e-8)) "radius 1" 2.132e-6 m.(0);
+        Array.iter (fun x -> if not (x > 0. && x < 3e-6) then Alcotest.failf "margin %g" x) m);
+    Helpers.qcheck ~count:150 "crowded scenes: the hierarchy gives the brute force's bytes"
+      (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
+      (fun s ->
+        let render skips s = Render.image_exn ~skips s in
+        Image.equal (render false s) (render true s)
+        && Image.equal (render false { s with epsilon = None }) (render true { s with epsilon = None }));
+    Helpers.qcheck ~count:60 "crowded scenes in the document's mode: the oracle's bytes"
+      (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
+      (fun s ->
+        let s = { s with epsilon = Some 0.001 } in
+        Image.equal (Literal.render s) (Render.image_exn s));
+  ]
