@@ -42,7 +42,8 @@ let sexp =
 
 let names =
   [|
-    "canvas"; "viewport"; "camera"; "background"; "recursion-depth"; "epsilon"; "sphere"; "light";
+    "canvas"; "viewport"; "camera"; "camera-path"; "key"; "frame"; "background"; "recursion-depth"; "epsilon";
+    "sphere"; "light";
     "width"; "height"; "distance"; "position"; "rotation"; "look-at"; "up"; "center"; "radius"; "color";
     "specular"; "reflective"; "intensity"; "direction"; "ambient"; "point"; "directional";
   |]
@@ -92,6 +93,10 @@ let valid_setting =
       map [ triple (-5.) 5.; optional "look-at" (triple (-5.) 5.) ] (Printf.sprintf "(camera (position %s)%s)");
       map [ triple 0. 255. ] (Printf.sprintf "(background %s)");
       map [ range 10 ] (Printf.sprintf "(recursion-depth %d)");
+      map
+        [ list1 (map [ range 100; triple (-5.) 5.; triple (-5.) 5.; optional "up" (triple (-1.) 1.) ] (fun f p l u ->
+              Printf.sprintf "(key (frame %d) (position %s) (look-at %s)%s)" f p l u)) ]
+        (fun keys -> "(camera-path " ^ String.concat " " keys ^ ")");
       map [ value 0. 0.1 ] (Printf.sprintf "(epsilon %s)");
     ]
 

@@ -63,20 +63,31 @@ let scene text =
           | Error (`Msg m) -> Error ("rendering the scene at 3x2 failed: " ^ m)))
 
 let ppm bytes =
-  guard "Ppm.of_string" (fun () ->
-      match Ppm.of_string bytes with
-      | Error (`Msg m) -> one_line "ppm" m
-      | Ok img -> (
-          match Ppm.of_string (Ppm.to_string img) with
-          | Ok img' when Image.equal img img' -> Ok ()
-          | Ok _ -> Error "the image written as P6 reads back different"
-          | Error (`Msg m) -> Error ("the image written as P6 does not read back: " ^ m)))
+  let* () =
+    guard "Ppm.of_string" (fun () ->
+        match Ppm.of_string bytes with
+        | Error (`Msg m) -> one_line "ppm" m
+        | Ok img -> (
+            match Ppm.of_string (Ppm.to_string img) with
+            | Ok img' when Image.equal img img' -> Ok ()
+            | Ok _ -> Error "the image written as P6 reads back different"
+            | Error (`Msg m) -> Error ("the image written as P6 does not read back: " ^ m)))
+  in
+  let* () = guard "Ppm.header_comments" (fun () -> ignore (Ppm.header_comments bytes); Ok ()) in
+  (* The parts that [raytrace merge] reads are PPM files too. *)
+  guard "Part.of_string" (fun () ->
+      match Part.of_string bytes with
+      | Error (`Msg m) -> one_line "part" m
+      | Ok part -> (
+          match Part.of_string (Part.to_string part) with
+          | Ok _ -> Ok ()
+          | Error (`Msg m) -> Error ("the part written back does not read back: " ^ m)))
 
 let scene_tokens =
   [|
     "("; ")"; "(("; "))"; " "; "\n"; "\t"; "\r\n"; ";"; "; comment\n"; "#|"; "|#"; "#| block |#"; "#;"; "#;)"; "(#;)"; "#; #;";
     "\""; "\"str\""; "\"\\n\""; "\\"; "canvas"; "viewport"; "camera"; "background"; "recursion-depth";
-    "epsilon"; "sphere"; "light"; "width"; "height"; "distance"; "position"; "rotation"; "look-at"; "up";
+    "epsilon"; "sphere"; "light"; "camera-path"; "key"; "frame"; "width"; "height"; "distance"; "position"; "rotation"; "look-at"; "up";
     "center"; "radius"; "color"; "specular"; "reflective"; "intensity"; "direction"; "ambient"; "point";
     "directional"; "spot"; "0"; "1"; "-1"; "-0"; "0.5"; "3"; "255"; "256"; "600"; "65536"; "65537"; "1e12";
     "1.0000001e12"; "1e13"; "-1e12"; "1e308"; "1e309"; "-1e309"; "4.9e-324"; "1e-320"; "0x1p-1074";
@@ -88,11 +99,15 @@ let scene_tokens =
     "(sphere (center 0 -1 3) (radius 1) (color 255 0 0) (specular 500) (reflective 0.2))";
     "(light point (intensity 0.6) (position 2 1 0))"; "(light ambient (intensity 0.2))";
     "(light directional (intensity 0.2) (direction 1 4 4))"; "(recursion-depth 64)"; "(recursion-depth 65)";
-    "(epsilon 0.001)"; "(camera (position 0 0 0) (look-at 0 0 0))"; "\xff"; "\x00"; "\xc3\xa9";
+    "(epsilon 0.001)"; "(camera (position 0 0 0) (look-at 0 0 0))";
+    "(camera-path (key (frame 0) (position 0 0 -1) (look-at 0 0 3)) (key (frame 48) (position 3 1 1) (look-at 0 0 3)))";
+    "(key (frame 10) (position 1 0 0) (look-at 0 0 3) (up 0 1 0))"; "\xff"; "\x00"; "\xc3\xa9";
   |]
 
 let ppm_tokens =
   [|
+    "# raytrace-part 1\n"; "# canvas 4 3\n"; "# region 0 0 4 3\n"; "# region 1 1 2 2\n"; "# depth 3\n";
+    "# samples 1\n"; "# scene 9e107d9d372bb6826bd81d3542a419d6\n"; "# frame 0\n";
     "P6"; "P3"; "P5"; "P1"; "P"; " "; "\n"; "\t"; "#"; "# comment\n"; "0"; "1"; "2"; "3"; "-1"; "255"; "256";
     "65535"; "65536"; "16384"; "16385"; "268435456"; "99999999999"; "1e3"; "0x10"; "\x00"; "\xff"; "\x00\x00\x00";
     "\xff\xff\xff";

@@ -25,7 +25,10 @@ val scene : string -> (unit, string) result
 val ppm : string -> (unit, string) result
 (** [ppm bytes] is [Ok ()] if {!Raytrace.Ppm.of_string} on [bytes] returns
     without raising, and either [Ok img] where [img] written as P6 reads
-    back equal, or [Error m] where [m] is one non-empty line. *)
+    back equal, or [Error m] where [m] is one non-empty line; and if
+    {!Raytrace.Ppm.header_comments} does not raise, and
+    {!Raytrace.Part.of_string} (the parts that [raytrace merge] reads)
+    returns a part that reads back once written, or one line of error. *)
 
 val scene_tokens : string array
 (** [scene_tokens] are fragments of scene files, valid and hostile (form
