@@ -7,13 +7,14 @@
 
 # Debian packages: the build, then the tests (virtual X server, screenshots).
 BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-ocaml-dev \
-  libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev libcamlimages-ocaml-dev
+  libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev libcamlimages-ocaml-dev \
+  libx11-dev
 TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev libcrowbar-ocaml-dev xvfb \
   x11-apps xdotool imagemagick parallel rsync
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: run test deps build golden clean bench fuzz
+.PHONY: run test deps build golden screenshot clean bench fuzz
 
 run: deps build
 	@if [ -n "$$DISPLAY" ]; then \
@@ -44,6 +45,14 @@ golden: build
 	dune build test/test.exe
 	cd _build/default/test && RAYTRACE_WRITE_GOLDEN=$(CURDIR)/test/golden ./test.exe test golden 0 >/dev/null
 	dune exec --no-print-directory -- examples/hello_scene.exe test/golden/hello_scene.ppm
+
+# Regenerates the README's picture of the window, taken as the window test
+# takes its screenshots (test/window_session.sh, in a virtual X server).
+screenshot: build
+	@d=$$(mktemp -d) && cp scenes/cgfs.scene $$d/ && \
+	xvfb-run -a -s "-screen 0 1024x768x24" test/window_session.sh \
+	  $(CURDIR)/_build/default/bin/main.exe $$d/cgfs.scene $$d keys:D,Q,a press:h keys:r shot:window && \
+	convert $$d/window.ppm docs/window.png && rm -rf $$d && echo "wrote docs/window.png"
 
 clean:
 	dune clean

@@ -31,7 +31,10 @@ let load opts =
 let scene_name opts =
   match opts.scene with None -> "cgfs (built-in)" | Some p -> Filename.basename p
 
-let jobs_or_cores = function Some j -> j | None -> Parallel.cores ()
+(* --jobs, or all cores; checked like any other input. *)
+let jobs_or_cores = function
+  | None -> Ok (Parallel.cores ())
+  | Some j -> ( match Limits.check_jobs j with Ok j -> Ok j | Error m -> Error (`Msg m))
 
 (* The image, its statistics (none for the oracle) and its tracing time. *)
 let render_image ~literal ~jobs scene =
@@ -48,9 +51,9 @@ let render_image ~literal ~jobs scene =
 
 let view opts ~jobs =
   report
-    (let* scene = load opts in
-     let* img, _, _ = render_image ~literal:false ~jobs:(jobs_or_cores jobs) scene in
-     match Window.show ~title:("raytrace: " ^ scene_name opts) img with
+    (let* jobs = jobs_or_cores jobs in
+     let* scene = load opts in
+     match Window.run ~name:(scene_name opts) ~scene_file:opts.scene ~jobs scene with
      | Ok () -> Ok exit_ok
      | Error (`Msg _ as e) -> Error e
      | Error (`No_display reason) ->
@@ -207,7 +210,7 @@ let render opts ~output ~jobs ~stats ~literal ~part ~frames =
      let* scene = load opts in
      let load_s = Unix.gettimeofday () -. t0 in
      let* region = part_region scene part in
-     let jobs = jobs_or_cores jobs in
+     let* jobs = jobs_or_cores jobs in
      match frames with
      | None ->
          let* () = render_one ~literal ~jobs ~stats ~load_s ~frame:None ~region ~output scene in

@@ -56,6 +56,18 @@ let jobs =
     & info [ "jobs"; "j" ] ~docv:"N"
         ~doc:"Trace with $(docv) processes (default: the number of cores). The image is the same for every $(docv).")
 
+(* The window forks its workers anew for every band of rows (each about
+   0.1 s of tracing), which pays only where cores are idle: by default it
+   traces in its own process (README, "The window"). *)
+let view_jobs =
+  Arg.(
+    value
+    & opt (some int) (Some 1)
+    & info [ "jobs"; "j" ] ~docv:"N"
+        ~doc:
+          "Trace the full-resolution passes with $(docv) processes (default: 1, this process). \
+           The picture is the same for every $(docv).")
+
 let scene_format =
   `Blocks
     [
@@ -71,17 +83,29 @@ let view_info =
       [
         `S Manpage.s_description;
         `P
-          "Renders $(i,SCENE) (default: the built-in CGFS scene) and shows it in a Graphics \
-           window of the canvas size, drawn through the document's centered-origin $(b,plotc). \
-           Press $(b,q) or Escape to quit.";
+          "Renders $(i,SCENE) (default: the built-in CGFS scene) in a Graphics window of the \
+           canvas size: a coarse picture at once, refined to the full image, which is drawn \
+           through the document's centered-origin $(b,plotc) and is exactly what $(b,raytrace \
+           render) writes. The window answers keys while it renders. After each full frame, \
+           its title and a line on stderr give the time and the rays per second.";
         `P "Without a display it exits with status 3 and suggests $(b,raytrace render).";
+        `S "KEYS";
+        `I ("arrows, $(b,W) $(b,A) $(b,S) $(b,D)", "Move the camera forward, left, back, right, by half the viewport distance. Letters that move or turn are upper case (Shift), as lower-case $(b,a) and $(b,s) are commands.");
+        `I ("$(b,Q) $(b,E), $(b,<) $(b,>), drag", "Turn left or right by 5 degrees; dragging with a button held turns so that the picture follows the pointer.");
+        `I ("$(b,+) $(b,-)", "Recursion depth of mirror reflection up or down by one.");
+        `I ("$(b,a)", "Antialiasing on or off: each pixel the mean of 3 x 3 samples.");
+        `I ("$(b,r)", "Render again.");
+        `I ("$(b,s)", "Save the picture as a PPM next to the scene file ($(i,NAME)-$(i,N).ppm, written atomically), with the scene of the current view ($(i,NAME)-$(i,N).scene), and print their names.");
+        `I ("$(b,h)", "Show or hide the help.");
+        `I ("$(b,q), Escape", "Quit.");
+        `P "Resizing the window renders at the new size; pixels stay square and the scene's own view stays in sight.";
         scene_format;
         `S Manpage.s_examples;
         `Pre "raytrace\nraytrace view scenes/cgfs-camera.scene\nraytrace view --depth 0 scenes/cgfs.scene";
       ]
 
 let view_term =
-  Term.(const (fun opts jobs -> Commands.view opts ~jobs) $ scene_options $ jobs)
+  Term.(const (fun opts jobs -> Commands.view opts ~jobs) $ scene_options $ view_jobs)
 
 (* A cmdliner converter from a parser of ours. *)
 let parsed parse docv =

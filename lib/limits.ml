@@ -54,6 +54,12 @@ let within n x what =
   match current n with
   | Error e -> Error e
   | Ok bound -> if x <= bound then Ok () else Error (exceeded n (what ()))
+let max_jobs = 1024
+
+let check_jobs n =
+  if n < 1 || n > max_jobs then
+    Error (Printf.sprintf "--jobs must lie in [1, %d], got %d" max_jobs n)
+  else Ok n
 
 let check_coordinate what x =
   if Float.is_finite x && Float.abs x <= max_coordinate then Ok x

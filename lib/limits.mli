@@ -98,6 +98,12 @@ val exceeded : name -> string -> string
 
 (** {1:checks Checks} *)
 
+val max_jobs : int
+(** [max_jobs] is [1024]: the most worker processes a render forks. *)
+
+val check_jobs : int -> (int, string) result
+(** [check_jobs n] is [Ok n] if [1 <= n <= max_jobs]. *)
+
 val check_coordinate : string -> float -> (float, string) result
 (** [check_coordinate what x] is [Ok x] if [x] is finite with
     [|x| <= max_coordinate], and otherwise [Error] naming [what]. *)

@@ -163,8 +163,10 @@ let run n work =
          fail (Printf.sprintf "cannot start worker processes: %s" (Unix.error_message e));
          Array.iteri (fun w pid -> if pid = 0 then done_.(w) <- true) pids);
       Array.iter (fun (_, wr) -> close_quietly wr) fds;
-      (* Polled rather than waited for in order, so that a dead worker is
-         noticed at once even while the others still run. *)
+      (* Not waited for in order, so that a dead worker is noticed at once
+         even while the others still run: a worker's pipe becomes readable
+         (end of file) when it exits, however it exits, which wakes
+         [select]; then the exited workers are reaped. *)
       let rec wait () =
         let progress = ref false in
         Array.iteri
@@ -190,7 +192,13 @@ let run n work =
                   fail (Printf.sprintf "worker %d of %d was lost: %s" (w + 1) n (Unix.error_message e)))
           pids;
         if Array.exists not done_ then begin
-          if not !progress then (try Unix.sleepf 0.005 with Unix.Unix_error (EINTR, _, _) -> ());
+          if not !progress then begin
+            let live = List.filter_map (fun w -> if done_.(w) then None else Some (fst fds.(w))) (List.init n Fun.id) in
+            (* [select] takes descriptors below 1024 only: with more than 256
+               workers (two descriptors each while they start), poll. *)
+            try if n <= 256 then ignore (Unix.select live [] [] 1.) else Unix.sleepf 0.005
+            with Unix.Unix_error (EINTR, _, _) -> ()
+          end;
           wait ()
         end
       in

@@ -16,6 +16,9 @@ let () =
       ("render", Test_render.tests);
       ("numerics", Test_numerics.tests);
       ("bvh", Test_bvh.tests);
+      ("antialias", Test_antialias.tests);
+      ("progressive", Test_progressive.tests);
+      ("view", Test_view.tests);
       ("golden", Test_golden.tests);
       ("cli", Test_cli.tests);
       ("region", Test_region.tests);

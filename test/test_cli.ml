@@ -89,9 +89,17 @@ let tests =
         Alcotest.(check string) __LOC__ "(light ambient (intensity 1))" (input_line ic);
         close_in ic);
     Alcotest.test_case "bad command-line overrides are refused" `Quick (fun () ->
-        let code, _, err = run (exe ()) [ "render"; "--width"; "0"; "-o"; "/tmp/never.ppm" ] in
-        Alcotest.(check int) __LOC__ 1 code;
-        Alcotest.(check string) __LOC__ "raytrace: canvas width must lie in [1, 65536], got 0\n" err);
+        List.iter
+          (fun (args, expected) ->
+            let code, _, err = run (exe ()) ("render" :: args @ [ "-o"; "/tmp/never.ppm" ]) in
+            Alcotest.(check int) __LOC__ 1 code;
+            Alcotest.(check string) __LOC__ expected err)
+          [
+            ([ "--width"; "0" ], "raytrace: canvas width must lie in [1, 65536], got 0\n");
+            ([ "--jobs"; "0" ], "raytrace: --jobs must lie in [1, 1024], got 0\n");
+            ([ "--jobs"; "100000" ], "raytrace: --jobs must lie in [1, 1024], got 100000\n");
+          ];
+        Alcotest.(check bool) __LOC__ false (Sys.file_exists "/tmp/never.ppm"));
     Alcotest.test_case "without a display, view says so in one line and exits 3" `Quick (fun () ->
         let env =
           Unix.environment () |> Array.to_list

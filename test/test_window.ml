@@ -1,5 +1,6 @@
-(* The Graphics window, in a virtual X server: what it shows is what
-   `raytrace render` writes. Runs when xvfb-run is installed. *)
+(* The Graphics window, in a virtual X server: driven by keys and the
+   pointer (test/window_session.sh), what it shows is what the headless
+   renderer makes of the same view. Runs when xvfb-run is installed. *)
 open Raytrace
 
 let on_path tool =
@@ -9,29 +10,126 @@ let on_path tool =
 
 let tools = [ "xvfb-run"; "xwd"; "xdotool"; "convert" ]
 
+let available () =
+  if not (on_path "xvfb-run") then begin
+    print_endline "skipped: xvfb-run is not installed";
+    false
+  end
+  else
+    match List.filter (fun t -> not (on_path t)) tools with
+    | [] -> true
+    | missing -> Alcotest.failf "xvfb-run is installed but not %s (make deps)" (String.concat ", " missing)
+
+(* Runs the window on a copy of scenes/[name] in a fresh directory (where
+   [s] saves) through [steps]; the directory then holds the screenshots. *)
+let session ?(view_args = "") name steps =
+  let dir = Helpers.temp_dir () in
+  let scene = Filename.concat dir name in
+  (match File_io.read (Helpers.scene_path name) with
+  | Ok text ->
+      let oc = open_out_bin scene in
+      output_string oc text;
+      close_out oc
+  | Error (`Msg m) -> Alcotest.fail m);
+  let env = Array.append [| "VIEW_ARGS=" ^ view_args |] (Unix.environment ()) in
+  let code, _, err =
+    Helpers.run ~env "xvfb-run"
+      ([ "-a"; "-s"; "-screen 0 1024x768x24"; "./window_session.sh"; Helpers.raytrace (); scene; dir ] @ steps)
+  in
+  if code <> 0 then Alcotest.failf "%s: the window session failed (%d): %s" name code err;
+  dir
+
+let read path = match Ppm.read_file path with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
+let shot dir name = read (Filename.concat dir (name ^ ".ppm"))
+
+let contains text s =
+  let n = String.length s in
+  let rec go i = i + n <= String.length text && (String.sub text i n = s || go (i + 1)) in
+  go 0
+
+let text path = match File_io.read path with Ok t -> t | Error (`Msg m) -> Alcotest.fail m
+
+let views inputs view = List.fold_left (fun v i -> fst (View.handle v i)) view inputs
+let keys cs = List.map (fun c -> View.Key c) cs
+
 let tests =
   [
     Alcotest.test_case "a screenshot of the window equals the rendered image" `Slow (fun () ->
-        if not (on_path "xvfb-run") then print_endline "skipped: xvfb-run is not installed"
-        else begin
-        (match List.filter (fun t -> not (on_path t)) tools with
-        | [] -> ()
-        | missing -> Alcotest.failf "xvfb-run is installed but not %s (make deps)" (String.concat ", " missing));
-        let dir = Helpers.temp_dir () in
-        List.iter
-          (fun name ->
-            let shot = Filename.concat dir (name ^ ".ppm") in
-            let code, _, err =
-              Helpers.run "xvfb-run"
-                [ "-a"; "-s"; "-screen 0 1024x768x24"; "./window_screenshot.sh"; Helpers.raytrace ();
-                  Helpers.scene_path name; shot ]
-            in
-            if code <> 0 then Alcotest.failf "%s: screenshot failed (%d): %s" name code err;
-            match Ppm.read_file shot with
-            | Error (`Msg m) -> Alcotest.fail m
-            | Ok img ->
-                Helpers.check_images ~max_abs:1 ("window of " ^ name)
-                  ~expected:(Render.image_exn (Helpers.load_scene name)) img)
-          [ "cgfs.scene"; "cgfs-camera.scene" ]
+        if available () then
+          List.iter
+            (fun name ->
+              let dir = session name [ "shot:window" ] in
+              Helpers.check_images ("window of " ^ name)
+                ~expected:(Render.image_exn (Helpers.load_scene name)) (shot dir "window"))
+            [ "cgfs.scene"; "cgfs-camera.scene" ]);
+    Alcotest.test_case "keys, the pointer and resizing change the picture as the headless render shows it" `Slow
+      (fun () ->
+        if available () then begin
+          (* Two workers: the full-resolution passes go through them, and
+             an antialiased 600 x 600 frame takes long enough (over 0.1 s)
+             for a key 30 ms later to come in the middle of it. *)
+          let dir =
+            session ~view_args:"--jobs 2" "cgfs.scene"
+              [
+                "frame:a,a"; "keys:Left"; "shot:left"; "title:left"; "resize:320x240"; "shot:small"; "keys:W,E,plus";
+                "shot:moved"; "keys:a"; "shot:aa"; "press:h"; "keys:r"; "shot:help"; "press:h"; "keys:a";
+                "drag:160,120,24,-16"; "shot:drag"; "save:D,s"; "shot:final";
+              ]
+          in
+          let start = View.v (Helpers.load_scene "cgfs.scene") in
+          let left = views (keys [ View.arrow_left ]) start in
+          let small = views [ View.Resize (320, 240) ] left in
+          let moved = views (keys [ 'W'; 'E'; '+' ]) small in
+          let aa = views (keys [ 'a' ]) moved in
+          let aa_image = Antialias.image ~n:(View.samples aa) aa.scene in
+          (* xdotool moves the pointer 16 pixels up: +16 in Graphics' y *)
+          let drag = views (keys [ 'a' ] @ [ View.Drag (24, 16) ]) aa in
+          let final = views (keys [ 'D' ]) drag in
+          (* The second a came while the antialiased frame of the first was
+             being traced: that frame was dropped, never finished. The only
+             antialiased frames are those of a and r at 320 x 240. *)
+          let log = text (Filename.concat dir "log") in
+          let lines = String.split_on_char '\n' log in
+          Alcotest.(check (list string)) "the antialiased frames" [ "320x240"; "320x240" ]
+            (List.filter_map
+               (fun l ->
+                 match String.split_on_char ' ' l with
+                 | "raytrace:" :: "drawn" :: size :: "antialiased" :: _ -> Some size
+                 | _ -> None)
+               lines);
+          let check what (view : View.t) =
+            let expected = if View.samples view = 1 then Render.image_exn view.scene else aa_image in
+            Helpers.check_images ("window after " ^ what) ~expected (shot dir what)
+          in
+          check "left" left;
+          check "moved" moved;
+          check "small" small;
+          check "aa" aa;
+          check "drag" drag;
+          check "final" final;
+          Alcotest.(check bool) "the left arrow changed the picture" false
+            (Image.equal (Render.image_exn start.scene) (shot dir "left"));
+          Alcotest.(check (pair int int)) "the resized window's picture" (320, 240)
+            (Image.width (shot dir "small"), Image.height (shot dir "small"));
+          (* The help box covers the top left; below it the picture is intact. *)
+          let help = shot dir "help" in
+          Alcotest.(check bool) "the help is drawn" false (Image.equal help aa_image);
+          Helpers.check_images "the picture below the help"
+            ~expected:(Image.sub aa_image ~x:0 ~y:170 ~w:320 ~h:70)
+            (Image.sub help ~x:0 ~y:170 ~w:320 ~h:70);
+          let title = text (Filename.concat dir "left.title") in
+          List.iter
+            (fun s -> Alcotest.(check bool) ("title has " ^ s ^ ": " ^ title) true (contains title s))
+            [ "raytrace: cgfs.scene - 600x600 in "; " M rays/s"; "h: help" ];
+          (* s, pressed right after D, saved the frame that D asked for and
+             its scene; the command line renders that scene to the same
+             picture. *)
+          let ppm = Filename.concat dir "cgfs-1.ppm" and scene = Filename.concat dir "cgfs-1.scene" in
+          Alcotest.(check bool) ("the window says where it saved: " ^ log) true (contains log ("saved " ^ ppm));
+          Helpers.check_images "the saved image" ~expected:(shot dir "final") (read ppm);
+          let out = Filename.concat dir "headless.ppm" in
+          let code, _, err = Helpers.run (Helpers.raytrace ()) [ "render"; scene; "-o"; out ] in
+          if code <> 0 then Alcotest.failf "raytrace render %s: %s" scene err;
+          Helpers.check_images "raytrace render of the saved scene" ~expected:(read out) (shot dir "final")
         end);
   ]

@@ -1,0 +1,140 @@
+type shared = {
+  jobs : int;
+  shared_image : Image.t;
+  ints : (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t;  (** Counters per worker. *)
+}
+
+type t = {
+  tr : Trace.t;
+  img : Image.t;
+  samples : int;
+  workers : shared option;
+  passes : (int * int) array;  (** Block size and samples per pixel of each pass. *)
+  mutable pass : int;  (** Index of the current pass; [Array.length passes] once finished. *)
+  mutable top : int;  (** First row of the next band. *)
+  mutable failure : string option;
+}
+
+type band = { size : int; top : int; rows : int }
+
+let coarsest = 16
+let counter_fields = 6
+
+let shared ~jobs ~width ~height =
+  if jobs < 2 then invalid_arg "Progressive.shared: jobs < 2";
+  let shared_image = Image.of_buffer width height (Parallel.shared_bytes (3 * width * height)) in
+  { jobs; shared_image; ints = Parallel.shared_ints (jobs * counter_fields) }
+
+(* 2 x 2 blocks would cost as much to draw as single pixels (one request
+   per block), for little preview: the pass after 4 is the full one. *)
+let passes samples =
+  let plain = [ (coarsest, 1); (8, 1); (4, 1); (1, 1) ] in
+  Array.of_list (if samples = 1 then plain else plain @ [ (1, samples) ])
+
+let create ?(samples = 1) ?shared (scene : Scene.t) =
+  if samples < 1 then invalid_arg "Progressive.create: samples < 1";
+  let tr = Trace.create (Prepared.prepare scene) in
+  let img =
+    match shared with
+    | None -> Image.create scene.width scene.height
+    | Some s ->
+        if Image.width s.shared_image <> scene.width || Image.height s.shared_image <> scene.height then
+          invalid_arg "Progressive.create: the shared image is not of the canvas size";
+        s.shared_image
+  in
+  { tr; img; samples; workers = shared; passes = passes samples; pass = 0; top = 0; failure = None }
+
+let finished (r : t) = r.pass >= Array.length r.passes
+let image r = r.img
+let samples r = r.samples
+let tracer r = r.tr
+let failure r = r.failure
+
+(* Row [row] of pass [pass], traced by [tr] into [r]'s image. *)
+let trace_row (r : t) tr pass row =
+  let width = Image.width r.img and height = Image.height r.img in
+  let buffer = Image.buffer r.img in
+  let size, n = r.passes.(pass) in
+  let gy = Canvas.y_of_row ~height row in
+  if n > 1 then
+    for col = 0 to width - 1 do
+      Antialias.store tr buffer (Canvas.x_of_column ~width col) gy ~n (3 * ((row * width) + col))
+    done
+  else
+    (* The grid of the previous one-sample pass holds every pixel traced
+       so far: the block sizes divide each other. *)
+    let prev = if pass = 0 then 0 else fst r.passes.(pass - 1) in
+    let row_done = prev > 0 && row mod prev = 0 in
+    let col = ref 0 in
+    while !col < width do
+      if not (row_done && !col mod prev = 0) then begin
+        Trace.pixel tr (Canvas.x_of_column ~width !col) gy;
+        Trace.store tr buffer (3 * ((row * width) + !col))
+      end;
+      col := !col + size
+    done
+
+(* Rows [top .. top + rows - 1] of a full-resolution pass, interleaved over
+   the workers; each child's tracer is its own copy of [r.tr], whose counts
+   come back through shared memory. *)
+let trace_rows_in_workers (r : t) (s : shared) pass ~top ~rows =
+  let jobs = min s.jobs rows in
+  let work w =
+    let c = Trace.counters r.tr in
+    let before = [| c.primary; c.shadow; c.reflection; c.tests; c.box_tests; c.early_stops |] in
+    let row = ref (top + w) in
+    while !row < top + rows do
+      trace_row r r.tr pass !row;
+      row := !row + jobs
+    done;
+    let after = [| c.primary; c.shadow; c.reflection; c.tests; c.box_tests; c.early_stops |] in
+    Array.iteri (fun i a -> s.ints.{(w * counter_fields) + i} <- Int64.of_int (a - before.(i))) after
+  in
+  Bigarray.Array1.fill s.ints 0L;
+  let result =
+    match Parallel.run jobs work with
+    | r -> r
+    | exception Unix.Unix_error (e, f, _) -> Error (`Msg (Printf.sprintf "%s: %s" f (Unix.error_message e)))
+  in
+  let c = Trace.counters r.tr in
+  let sum i = List.init jobs (fun w -> Int64.to_int s.ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in
+  c.primary <- c.primary + sum 0;
+  c.shadow <- c.shadow + sum 1;
+  c.reflection <- c.reflection + sum 2;
+  c.tests <- c.tests + sum 3;
+  c.box_tests <- c.box_tests + sum 4;
+  c.early_stops <- c.early_stops + sum 5;
+  result
+
+let step ?(rows = 1) (r : t) =
+  if rows < 1 then invalid_arg "Progressive.step: rows < 1";
+  if finished r then None
+  else begin
+    let height = Image.height r.img in
+    let size = fst r.passes.(r.pass) in
+    let rows = if size = 1 then min rows (height - r.top) else min size (height - r.top) in
+    (match r.workers with
+    | Some s when size = 1 && rows > 1 && r.failure = None -> (
+        match trace_rows_in_workers r s r.pass ~top:r.top ~rows with
+        | Ok () -> ()
+        | Error (`Msg m) ->
+            (* Every pixel stands alone: trace the band again here, and go
+               on in this process. *)
+            r.failure <- Some m;
+            for row = r.top to r.top + rows - 1 do
+              trace_row r r.tr r.pass row
+            done)
+    | _ ->
+        if size = 1 then
+          for row = r.top to r.top + rows - 1 do
+            trace_row r r.tr r.pass row
+          done
+        else trace_row r r.tr r.pass r.top);
+    let band = { size; top = r.top; rows } in
+    r.top <- r.top + (if size = 1 then rows else size);
+    if r.top >= height then begin
+      r.pass <- r.pass + 1;
+      r.top <- 0
+    end;
+    Some band
+  end
