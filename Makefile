@@ -11,10 +11,12 @@ BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-oca
   libx11-dev
 TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev libcrowbar-ocaml-dev xvfb \
   x11-apps xdotool imagemagick parallel rsync
+# The plot of the run time against error benchmark (make bench-quality only).
+BENCH_PKGS = gnuplot-nox
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: run test deps build golden screenshot clean bench fuzz
+.PHONY: run test deps build golden screenshot clean bench bench-quality fuzz
 
 run: deps build
 	@if [ -n "$$DISPLAY" ]; then \
@@ -53,6 +55,17 @@ screenshot: build
 	xvfb-run -a -s "-screen 0 1024x768x24" test/window_session.sh \
 	  $(CURDIR)/_build/default/bin/main.exe $$d/cgfs.scene $$d keys:D,Q,a press:h keys:r shot:window && \
 	convert $$d/window.ppm docs/window.png && rm -rf $$d && echo "wrote docs/window.png"
+
+# Run time against error (bench/quality.ml): regenerates docs/quality.csv,
+# docs/quality.png, docs/quality.md and docs/quality.gp. Takes minutes; the timings are only
+# as quiet as the machine. Built in release mode in its own build directory,
+# so that the dev build of `make test` stays as it is. BENCH_NICE= runs it
+# at normal priority.
+BENCH_NICE = nice -n 19
+bench-quality:
+	@$(MAKE) --no-print-directory deps TEST_PKGS="$(TEST_PKGS) $(BENCH_PKGS)"
+	dune build --profile release --build-dir _build-release bench/quality.exe
+	$(BENCH_NICE) _build-release/default/bench/quality.exe --out docs
 
 clean:
 	dune clean

@@ -11,6 +11,8 @@ type scene_options = {
   depth : int option;
 }
 
+type sampling_options = { samples : int option; adaptive : int option; subsample : bool }
+
 let ( let* ) = Result.bind
 let msg fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 
@@ -36,17 +38,26 @@ let jobs_or_cores = function
   | None -> Ok (Parallel.cores ())
   | Some j -> ( match Limits.check_jobs j with Ok j -> Ok j | Error m -> Error (`Msg m))
 
+let sampling_of (o : sampling_options) =
+  Sampling.v ?samples:o.samples ?adaptive:o.adaptive ~subsample:o.subsample ()
+
 (* The image, its statistics (none for the oracle) and its tracing time. *)
-let render_image ~literal ~jobs scene =
+let render_image ~sampling ~literal ~jobs scene =
   if literal then
-    (* Render.image checks these itself; the oracle does not. *)
-    let* () = Scene.check_work scene in
-    let t0 = Unix.gettimeofday () in
-    match Literal.render scene with
-    | exception Out_of_memory -> msg "not enough memory for a %dx%d image" scene.width scene.height
-    | img -> Ok (img, None, Unix.gettimeofday () -. t0)
+    if not (Sampling.is_one sampling) then
+      msg "--literal traces one ray per pixel: it cannot be combined with --samples or --subsample"
+    else
+      (* Render.image checks these itself; the oracle does not. *)
+      let* () = Scene.check_work scene in
+      let t0 = Unix.gettimeofday () in
+      match Literal.render scene with
+      | exception Out_of_memory -> msg "not enough memory for a %dx%d image" scene.width scene.height
+      | img -> Ok (img, None, Unix.gettimeofday () -. t0)
   else
-    let* img, stats = Render.image ~jobs scene in
+    let* img, stats =
+      Render.image ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
+        ~subsample:sampling.subsample scene
+    in
     Ok (img, Some stats, stats.trace_s)
 
 let view opts ~jobs =
@@ -160,15 +171,18 @@ let check_output opts ~frames ~part output =
   | _ -> Ok ()
 
 (* One picture (a frame, a part, or both) rendered and written. *)
-let render_one ~literal ~jobs ~stats ~load_s ~frame ~region ~output (scene : Scene.t) =
+let render_one ~literal ~jobs ~stats ~load_s ~frame ~region ~output ~sampling (scene : Scene.t) =
   let* img, st, seconds =
     match region with
-    | None -> render_image ~literal ~jobs scene
+    | None -> render_image ~sampling ~literal ~jobs scene
     | Some (r : Region.t) when literal ->
-        let* img, st, seconds = render_image ~literal ~jobs scene in
+        let* img, st, seconds = render_image ~sampling ~literal ~jobs scene in
         Ok (Image.sub img ~x:r.x ~y:r.y ~w:r.w ~h:r.h, st, seconds)
     | Some r ->
-        let* img, st = Render.region_image ~jobs scene r in
+        let* img, st =
+          Render.region_image ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
+            ~subsample:sampling.subsample scene r
+        in
         Ok (img, Some st, st.trace_s)
   in
   let t2 = Unix.gettimeofday () in
@@ -179,14 +193,17 @@ let render_one ~literal ~jobs ~stats ~load_s ~frame ~region ~output (scene : Sce
         let renderer = if literal then "literal" else "fast" in
         let part =
           Part.v ~canvas_width:scene.width ~canvas_height:scene.height ~region
-            ~settings:(Part.settings ?frame ~renderer scene) img
+            ~settings:
+              (Part.settings ?frame ~samples:sampling.samples ?adaptive:sampling.adaptive
+                 ~subsample:sampling.subsample ~renderer scene)
+            img
         in
         if output = "-" then to_stdout (Part.to_string part) else Part.write_file output part
   in
   let t3 = Unix.gettimeofday () in
   if stats then begin
     (match st with
-    | Some st -> Format.eprintf "%a@?" Stats.pp_table st
+    | Some st -> Format.eprintf "%-24s %s@\n%a@?" "sampling" (Sampling.to_string sampling) Stats.pp_table st
     | None -> Format.eprintf "%-24s %.4f@." "time, literal oracle (s)" seconds);
     Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" load_s "time, write (s)" (t3 -. t2)
   end;
@@ -200,12 +217,13 @@ let render_one ~literal ~jobs ~stats ~load_s ~frame ~region ~output (scene : Sce
   end;
   Ok ()
 
-let render opts ~output ~jobs ~stats ~literal ~part ~frames =
+let render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling =
   let output =
     match output with Some o -> o | None -> default_render_output opts ~frames ~spec:part
   in
   report
     (let* () = check_output opts ~frames ~part:(Option.is_some part) output in
+     let* sampling = sampling_of sampling in
      let t0 = Unix.gettimeofday () in
      let* scene = load opts in
      let load_s = Unix.gettimeofday () -. t0 in
@@ -213,7 +231,7 @@ let render opts ~output ~jobs ~stats ~literal ~part ~frames =
      let* jobs = jobs_or_cores jobs in
      match frames with
      | None ->
-         let* () = render_one ~literal ~jobs ~stats ~load_s ~frame:None ~region ~output scene in
+         let* () = render_one ~literal ~jobs ~stats ~load_s ~frame:None ~region ~output ~sampling scene in
          Ok exit_ok
      | Some (a, b) ->
          (* Every frame is checked before the first is rendered. *)
@@ -229,7 +247,8 @@ let render opts ~output ~jobs ~stats ~literal ~part ~frames =
            List.fold_left
              (fun acc (f, s) ->
                let* () = acc in
-               render_one ~literal ~jobs ~stats ~load_s ~frame:(Some f) ~region ~output:(frame_path output f) s)
+               render_one ~literal ~jobs ~stats ~load_s ~frame:(Some f) ~region ~output:(frame_path output f)
+                 ~sampling s)
              (Ok ()) (List.rev scenes)
          in
          Ok exit_ok)

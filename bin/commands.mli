@@ -19,6 +19,13 @@ type scene_options = {
 }
 (** The options that select and override a scene. *)
 
+type sampling_options = {
+  samples : int option;  (** [--samples N]: an [N x N] grid of rays per pixel. *)
+  adaptive : int option;  (** [--adaptive T]: adaptive supersampling, threshold [T]. *)
+  subsample : bool;  (** [--subsample]: CGFS's subsampling. *)
+}
+(** The options that choose the rays per pixel ({!Raytrace.Sampling}). *)
+
 val view : scene_options -> jobs:int option -> int
 (** [view opts ~jobs] renders the scene and shows it in a window. *)
 
@@ -44,11 +51,13 @@ val render :
   literal:bool ->
   part:part_spec option ->
   frames:(int * int) option ->
+  sampling:sampling_options ->
   int
-(** [render opts ~output ~jobs ~stats ~literal ~part ~frames] renders the
-    scene to an image file, written atomically: PNG if [output] ends in
+(** [render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling]
+    renders the scene to an image file, written atomically: PNG if [output] ends in
     [.png], PPM otherwise, [-] for PPM on stdout; default: the scene's base
-    name with [.ppm]. [literal] uses the oracle {!Raytrace.Literal}. With
+    name with [.ppm]. [sampling] chooses the rays per pixel; [literal] uses
+    the oracle {!Raytrace.Literal}, which traces one ray per pixel. With
     [part], only that rectangle is rendered, to a part file
     ({!Raytrace.Part}, always PPM). With [frames], the frames of the scene's
     camera path, to [frame_path output f] for each frame [f]. *)

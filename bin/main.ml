@@ -19,7 +19,7 @@ let limit_envs =
   [
     env `Pixels "canvas and image pixels (width x height)";
     env `Depth "the recursion depth";
-    env `Samples "samples per pixel";
+    env `Samples "rays per pixel (--samples N traces N x N)";
     env `Spheres "spheres in a scene";
     env `Lights "lights in a scene";
     env `Scene_bytes "the size of a scene file, in bytes";
@@ -55,6 +55,53 @@ let jobs =
     & opt (some int) None
     & info [ "jobs"; "j" ] ~docv:"N"
         ~doc:"Trace with $(docv) processes (default: the number of cores). The image is the same for every $(docv).")
+
+let sampling =
+  let samples =
+    Arg.(
+      value
+      & opt (some int) None
+      & info [ "samples" ] ~docv:"N"
+          ~doc:
+            "Antialiasing: trace a regular $(docv) x $(docv) grid of rays in every pixel and \
+             average them (each clamped to 0-255 first). 1, the default, is the document's \
+             image. With $(b,--adaptive), the largest grid.")
+  in
+  let adaptive =
+    Arg.(
+      value
+      & opt (some int) None
+      & info [ "adaptive" ] ~docv:"T"
+          ~doc:
+            "Adaptive supersampling: trace one ray per pixel, through its centre, then the rest \
+             of the $(b,--samples) grid (an odd N: 3, 5, 7...) only in pixels whose ray hit \
+             another sphere than a neighbour's, or whose colour differs from a neighbour's by \
+             more than $(docv) (0-255) in some channel. Never traces more rays than full \
+             sampling.")
+  in
+  let subsample =
+    Arg.(
+      value & flag
+      & info [ "subsample" ]
+          ~doc:
+            "CGFS's subsampling, approximate: where the pixels on either side of a pixel hit \
+             the same sphere, assume its ray hits that sphere too and skip the search for it.")
+  in
+  let make samples adaptive subsample = Commands.{ samples; adaptive; subsample } in
+  Term.(const make $ samples $ adaptive $ subsample)
+
+let quality_section =
+  `Blocks
+    [
+      `S "RUN TIME AGAINST ERROR";
+      `P
+        "$(b,--depth) (mirror reflections), $(b,--samples) (rays per pixel), $(b,--adaptive) \
+         and $(b,--subsample) trade time for accuracy; the README shows the trade-off measured \
+         on four scenes ($(b,make bench-quality)). Recommended: the default (one ray per \
+         pixel) or $(b,--subsample) for previews; $(b,--samples 5 --adaptive 2 --depth 5) for \
+         final renders; full sampling ($(b,--samples 4)) where spheres are smaller than a \
+         pixel, which adaptive sampling cannot see.";
+    ]
 
 (* The window forks its workers anew for every band of rows (each about
    0.1 s of tracing), which pays only where cores are idle: by default it
@@ -190,11 +237,14 @@ let render_cmd =
              fails the render with a message instead of leaving a hole in the image. A scene or \
              an override beyond a limit (see ENVIRONMENT) is refused before any work.";
           scene_format;
+          quality_section;
           `S Manpage.s_examples;
           `Pre
             "raytrace render scenes/cgfs.scene -o cgfs.ppm\n\
              raytrace render scenes/cgfs.scene -o cgfs.png\n\
              raytrace render --width 1920 --height 1920 --stats scenes/cgfs.scene -o big.ppm\n\
+             raytrace render --samples 4 scenes/cgfs.scene -o smooth.ppm\n\
+             raytrace render --samples 5 --adaptive 2 --depth 5 scenes/cgfs.scene -o final.ppm\n\
              raytrace render scenes/cgfs.scene --tile 3/16 -o part-3.ppm\n\
              raytrace render scenes/cgfs.scene --region 0,0,300,300 -o corner.ppm\n\
              raytrace render scenes/orbit.scene --frames 0:47 -o 'orbit-%04d.png'\n\
@@ -203,9 +253,9 @@ let render_cmd =
   in
   Cmd.v info
     Term.(
-      const (fun opts output jobs stats literal part frames ->
-          Commands.render opts ~output ~jobs ~stats ~literal ~part ~frames)
-      $ scene_options $ output $ jobs $ stats $ literal $ part $ frames)
+      const (fun opts output jobs stats literal part frames sampling ->
+          Commands.render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling)
+      $ scene_options $ output $ jobs $ stats $ literal $ part $ frames $ sampling)
 
 let merge_cmd =
   let parts =
@@ -229,7 +279,7 @@ let merge_cmd =
              image that one $(b,raytrace render) gives.";
           `P
             "Refuses, naming the files, parts that do not fit together: of different canvas \
-             sizes, rendered with a different depth, number of samples, renderer or frame, or \
+             sizes, rendered with a different depth, sampling, renderer or frame, or \
              from a different scene (a digest of the scene is in every part's header); parts \
              that overlap; and parts that leave pixels uncovered.";
           `S Manpage.s_examples;

@@ -1,24 +1,20 @@
-let clamp x = if x > 255. then 255. else if x > 0. then x else 0. [@@inline]
-
+(* The sums stay in the tracer (Trace.average): no float crosses a module
+   boundary per sample, and its early stop is exact for averaged samples. *)
 let store tr buffer gx gy ~n k =
   if n < 1 then invalid_arg "Antialias.store: n < 1";
-  let r = ref 0. and g = ref 0. and b = ref 0. in
-  for j = 0 to n - 1 do
-    for i = 0 to n - 1 do
-      Trace.sample tr gx gy ~i ~j ~n;
-      r := !r +. clamp (Trace.red tr);
-      g := !g +. clamp (Trace.green tr);
-      b := !b +. clamp (Trace.blue tr)
-    done
-  done;
-  let count = Float.of_int (n * n) in
-  Bigarray.Array1.unsafe_set buffer k (Trace.to_byte (!r /. count));
-  Bigarray.Array1.unsafe_set buffer (k + 1) (Trace.to_byte (!g /. count));
-  Bigarray.Array1.unsafe_set buffer (k + 2) (Trace.to_byte (!b /. count))
+  if n = 1 then begin
+    Trace.pixel tr gx gy;
+    Trace.store tr buffer k
+  end
+  else begin
+    if not (Trace.averaging tr) then invalid_arg "Antialias.store: the tracer does not average";
+    Trace.average tr gx gy ~n;
+    Trace.store_average tr buffer k ~count:(n * n)
+  end
 
 let image ?(n = 3) (scene : Scene.t) =
   if n < 1 then invalid_arg "Antialias.image: n < 1";
-  let tr = Trace.create (Prepared.prepare scene) in
+  let tr = Trace.create ~averaging:(n > 1) (Prepared.prepare scene) in
   let img = Image.create scene.width scene.height in
   let buffer = Image.buffer img and width = scene.width and height = scene.height in
   for row = 0 to height - 1 do

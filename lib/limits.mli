@@ -49,8 +49,9 @@ val max_depth : int
     recursion only costs time. *)
 
 val max_samples : int
-(** [max_samples] is [1024]: the default largest number of samples per
-    pixel (a 32 x 32 subpixel grid). *)
+(** [max_samples] is [4096]: the default largest number of rays per pixel,
+    that of {!Sampling.max_samples}'s [64 x 64] grid, which stays a fixed
+    bound; the variable can only lower it. *)
 
 val max_spheres : int
 (** [max_spheres] is [100_000]: the default largest number of spheres of a
@@ -133,9 +134,9 @@ val check_depth : int -> (int, string) result
     bound in force. *)
 
 val check_samples : int -> (int, string) result
-(** [check_samples n] is [Ok n] if [1 <= n] and [n] samples per pixel are
-    within the [`Samples] bound in force. (For the command line's
-    [--samples].) *)
+(** [check_samples n] is [Ok n] if [1 <= n] and [n] rays per pixel are
+    within the [`Samples] bound in force ({!Render.image} checks
+    [samples x samples]). *)
 
 val check_count : [ `Spheres | `Lights ] -> int -> (int, string) result
 (** [check_count kind n] is [Ok n] if a scene with [n] spheres (or lights)

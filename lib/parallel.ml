@@ -74,6 +74,7 @@ let map_shared kind n =
 
 let shared_bytes n = map_shared Bigarray.int8_unsigned n
 let shared_ints n = map_shared Bigarray.int64 n
+let shared_floats n = map_shared Bigarray.float64 n
 
 let signal_name s =
   let names =

@@ -26,6 +26,10 @@ val shared_ints : int -> (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray
 (** [shared_ints n] is [n] zeroed 64-bit integers shared like
     {!shared_bytes}. *)
 
+val shared_floats : int -> (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t
+(** [shared_floats n] is [n] zeroed 64-bit floats shared like
+    {!shared_bytes}. *)
+
 val run : int -> (int -> unit) -> (unit, [> `Msg of string ]) result
 (** [run n work] runs [work 0], ..., [work (n - 1)], each in a forked child
     process, and waits for all of them. [Error] names the first worker that

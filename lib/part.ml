@@ -25,8 +25,11 @@ let v ~canvas_width ~canvas_height ~region ~settings image =
     settings;
   { canvas_width; canvas_height; region; settings; image }
 
-let settings ?frame ?(samples = 1) ?(renderer = "fast") (scene : Scene.t) =
-  [ ("depth", string_of_int scene.depth); ("samples", string_of_int samples); ("renderer", renderer) ]
+let settings ?frame ?(samples = 1) ?adaptive ?(subsample = false) ?(renderer = "fast") (scene : Scene.t) =
+  [ ("depth", string_of_int scene.depth); ("samples", string_of_int samples) ]
+  @ (match adaptive with Some th -> [ ("adaptive", string_of_int th) ] | None -> [])
+  @ (if subsample then [ ("subsample", "true") ] else [])
+  @ [ ("renderer", renderer) ]
   @ (match frame with Some f -> [ ("frame", string_of_int f) ] | None -> [])
   @ [ ("scene", Digest.to_hex (Digest.string (Scene_file.to_string scene))) ]
 

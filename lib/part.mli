@@ -41,10 +41,19 @@ val v :
     value holds a line break, a key is repeated or is one of [raytrace-part],
     [canvas] and [region]. *)
 
-val settings : ?frame:int -> ?samples:int -> ?renderer:string -> Scene.t -> (string * string) list
-(** [settings ~frame ~samples ~renderer scene] is the settings of a part of
-    [scene]: [depth], [samples] (default [1]), [renderer] (default
-    ["fast"]), [frame] when given, and last [scene], the MD5 digest of
+val settings :
+  ?frame:int ->
+  ?samples:int ->
+  ?adaptive:int ->
+  ?subsample:bool ->
+  ?renderer:string ->
+  Scene.t ->
+  (string * string) list
+(** [settings ~frame ~samples ~adaptive ~subsample ~renderer scene] is the
+    settings of a part of [scene]: [depth], [samples] (default [1]),
+    [adaptive] (the threshold) when given, [subsample] when [true]
+    ({!Sampling.v}), [renderer] (default ["fast"]), [frame] when given,
+    and last [scene], the MD5 digest of
     {!Scene_file.to_string}[ scene] (which covers every field of the scene,
     the canvas and the camera of the frame included). *)
 

@@ -33,7 +33,9 @@ let passes samples =
 
 let create ?(samples = 1) ?shared (scene : Scene.t) =
   if samples < 1 then invalid_arg "Progressive.create: samples < 1";
-  let tr = Trace.create (Prepared.prepare scene) in
+  (* An averaging tracer, for the antialiased pass, stops reflections
+     exactly for single-sample pixels too. *)
+  let tr = Trace.create ~averaging:(samples > 1) (Prepared.prepare scene) in
   let img =
     match shared with
     | None -> Image.create scene.width scene.height

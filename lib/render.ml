@@ -35,26 +35,6 @@ let region tr img ~x ~y ~w ~h =
     row tr buffer ~width ~height ~x0:x ~x1:(x + w) r
   done
 
-(* Rows [first], [first + step] ... of the [w x h] image [img] that holds
-   the region at [(x, y)] of the canvas: canvas coordinates from the
-   canvas size, storage from the region's. *)
-let region_rows tr img ~x ~y ~first ~step =
-  let p = Trace.prepared tr in
-  let width = p.width and height = p.height in
-  let w = Image.width img and h = Image.height img in
-  let buffer = Image.buffer img in
-  let r = ref first in
-  while !r < h do
-    (* A worker whose parent was killed stops here, within one row. *)
-    Parallel.exit_if_orphaned ();
-    let gy = Canvas.y_of_row ~height (y + !r) in
-    for c = 0 to w - 1 do
-      Trace.pixel tr (Canvas.x_of_column ~width (x + c)) gy;
-      Trace.store tr buffer (3 * ((!r * w) + c))
-    done;
-    r := !r + step
-  done
-
 let counter_fields = 7
 
 (* Worker [w]'s counters go to slots [w * counter_fields ...]. *)
@@ -72,36 +52,46 @@ let save_counters ints w tr words =
 
 (* Refused before anything is allocated: a render that cannot finish
    should fail now, not after hours or with the machine out of memory. *)
-let check_resources (scene : Scene.t) (region : Region.t) =
-  match Scene.check_work ~pixels:(Region.pixels region) scene with
-  | Error e -> Error e
-  | Ok () -> (
-      let bytes = 3 * Region.pixels region in
-      match Parallel.available_memory () with
-      | Some available when bytes > available ->
-          let gib n = Float.of_int n /. 1073741824. in
-          Error
-            (`Msg
-              (Printf.sprintf "a %dx%d image needs %.2f GiB of memory, but only %.2f GiB are available"
-                 region.w region.h (gib bytes) (gib available)))
-      | _ -> Ok ())
+let check_resources (scene : Scene.t) (region : Region.t) ~rays_per_pixel =
+  let ( let* ) = Result.bind in
+  let* _ = Result.map_error (fun m -> `Msg m) (Limits.check_samples rays_per_pixel) in
+  let* () = Scene.check_work ~samples:rays_per_pixel ~pixels:(Region.pixels region) scene in
+  let bytes = 3 * Region.pixels region in
+  match Parallel.available_memory () with
+  | Some available when bytes > available ->
+      let gib n = Float.of_int n /. 1073741824. in
+      Error
+        (`Msg
+          (Printf.sprintf "a %dx%d image needs %.2f GiB of memory, but only %.2f GiB are available"
+             region.w region.h (gib bytes) (gib available)))
+  | _ -> Ok ()
 
 let out_of_memory (region : Region.t) =
   let mib = Float.of_int (3 * Region.pixels region) /. 1048576. in
   Error (`Msg (Printf.sprintf "not enough memory for a %dx%d image (%.0f MiB)" region.w region.h mib))
 
-let region_image ?(jobs = 1) ?skips (scene : Scene.t) (region : Region.t) =
+let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene.t) (region : Region.t) =
   if jobs < 1 then invalid_arg "Render.region_image: jobs < 1";
   if not (Region.contains region ~width:scene.width ~height:scene.height) then
     invalid_arg "Render.region_image: region outside the canvas";
-  match check_resources scene region with
+  let sampling =
+    match Sampling.v ?samples ?adaptive ?subsample () with
+    | Ok s -> s
+    | Error (`Msg m) -> invalid_arg ("Render.region_image: " ^ m)
+  in
+  (* At most [samples x samples] rays a pixel (adaptive sampling traces
+     fewer, subsampling about half a ray). *)
+  let rays_per_pixel = sampling.samples * sampling.samples in
+  match check_resources scene region ~rays_per_pixel with
   | Error e -> Error e
   | Ok () ->
   let t0 = Unix.gettimeofday () in
   let p = Prepared.prepare ?skips scene in
   let t1 = Unix.gettimeofday () in
   let jobs = min jobs region.h in
-  let sum ints i = List.init jobs (fun w -> Int64.to_int ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in
+  (* Counter slots: one per worker and pass. *)
+  let slots = ref jobs in
+  let sum ints i = List.init !slots (fun w -> Int64.to_int ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in
   let finish img ints =
     let t2 = Unix.gettimeofday () in
     let stats =
@@ -122,33 +112,52 @@ let region_image ?(jobs = 1) ?skips (scene : Scene.t) (region : Region.t) =
     in
     Ok (img, stats)
   in
-  let work img ints w =
-    let tr = Trace.create p in
-    let before = Gc.minor_words () in
-    region_rows tr img ~x:region.x ~y:region.y ~first:w ~step:jobs;
-    save_counters ints w tr (Gc.minor_words () -. before)
-  in
-  if jobs = 1 then
+  let averaging = Sampling.averaging sampling in
+  if jobs = 1 then begin
+    (* One tracer for every pass. *)
     match Image.create region.w region.h with
     | exception Out_of_memory -> out_of_memory region
     | img ->
-        let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
-        work img ints 0;
-        finish img ints
+    let plan = Sampling.plan sampling img ~canvas:(scene.width, scene.height) ~at:(region.x, region.y) ~shared:false in
+    let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
+    let tr = Trace.create ~averaging p in
+    let before = Gc.minor_words () in
+    for i = 0 to Sampling.passes plan - 1 do
+      Sampling.rows plan i tr ~first:0 ~step:1
+    done;
+    save_counters ints 0 tr (Gc.minor_words () -. before);
+    finish img ints
+  end
   else
-    match
-      ( Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)),
-        Parallel.shared_ints (jobs * counter_fields) )
-    with
+    match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
     | exception Out_of_memory -> out_of_memory region
     | exception Failure m -> Error (`Msg m)
-    | img, ints -> (
-        match Parallel.run jobs (work img ints) with
-        | Ok () -> finish img ints
-        | Error e -> Error e)
+    | img ->
+    let plan = Sampling.plan sampling img ~canvas:(scene.width, scene.height) ~at:(region.x, region.y) ~shared:true in
+    let passes = Sampling.passes plan in
+    slots := passes * jobs;
+    match Parallel.shared_ints (passes * jobs * counter_fields) with
+    | exception Out_of_memory -> out_of_memory region
+    | exception Failure m -> Error (`Msg m)
+    | ints ->
+    (* A pass starts once the previous one has finished in every worker. *)
+    let rec run i =
+      if i = passes then finish img ints
+      else
+        let work w =
+          let tr = Trace.create ~averaging p in
+          let before = Gc.minor_words () in
+          Sampling.rows plan i tr ~first:w ~step:jobs;
+          save_counters ints ((i * jobs) + w) tr (Gc.minor_words () -. before)
+        in
+        match Parallel.run jobs work with Ok () -> run (i + 1) | Error e -> Error e
+    in
+    run 0
 
-let image ?jobs ?skips (scene : Scene.t) =
-  region_image ?jobs ?skips scene (Region.full ~width:scene.width ~height:scene.height)
+let image ?jobs ?skips ?samples ?adaptive ?subsample (scene : Scene.t) =
+  region_image ?jobs ?skips ?samples ?adaptive ?subsample scene (Region.full ~width:scene.width ~height:scene.height)
 
-let image_exn ?jobs ?skips scene =
-  match image ?jobs ?skips scene with Ok (img, _) -> img | Error (`Msg m) -> failwith m
+let image_exn ?jobs ?skips ?samples ?adaptive ?subsample scene =
+  match image ?jobs ?skips ?samples ?adaptive ?subsample scene with
+  | Ok (img, _) -> img
+  | Error (`Msg m) -> failwith m

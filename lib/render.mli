@@ -19,24 +19,47 @@ val region : Trace.t -> Image.t -> x:int -> y:int -> w:int -> h:int -> unit
     @raise Invalid_argument if the region is not inside the canvas. *)
 
 val image :
-  ?jobs:int -> ?skips:bool -> Scene.t -> (Image.t * Stats.t, [> `Msg of string ]) result
-(** [image ~jobs ~skips scene] is the image of [scene] and what it cost.
-    [jobs] (default 1) processes trace interleaved rows; [skips] is passed
-    to {!Prepared.prepare}. [Error], before anything is allocated, if the
-    render needs more work than {!Scene.check_work} allows or the image
-    more memory than the system has available; [Error] if no memory can be
-    had for the image, or if a worker process dies.
-    @raise Invalid_argument if [scene] fails {!Scene.validate} or
-    [jobs < 1]. *)
+  ?jobs:int ->
+  ?skips:bool ->
+  ?samples:int ->
+  ?adaptive:int ->
+  ?subsample:bool ->
+  Scene.t ->
+  (Image.t * Stats.t, [> `Msg of string ]) result
+(** [image ~jobs ~skips ~samples ~adaptive ~subsample scene] is the image
+    of [scene] and what it cost. [jobs] (default 1) processes trace
+    interleaved rows; [skips] is passed to {!Prepared.prepare};
+    [samples] (default 1: the document's image), [adaptive] and
+    [subsample] are the rays per pixel of {!Sampling.v}. The image is the
+    same for every [jobs], and with or without [skips]. [Error], before
+    anything is allocated, if the rays per pixel exceed
+    {!Limits.check_samples}, the render needs more work than
+    {!Scene.check_work} allows, or the image more memory than the system
+    has available; [Error] if no memory can be had for the image, or if a
+    worker process dies.
+    @raise Invalid_argument if [scene] fails {!Scene.validate},
+    [jobs < 1], or {!Sampling.v} refuses the sampling settings. *)
 
 val region_image :
-  ?jobs:int -> ?skips:bool -> Scene.t -> Region.t -> (Image.t * Stats.t, [> `Msg of string ]) result
-(** [region_image ~jobs ~skips scene r] is the image of the region [r] of
-    [scene]'s canvas, [r.w x r.h] pixels, and what it cost: byte for byte
-    the pixels of {!image} there. [jobs] and [skips] are as for {!image}.
-    @raise Invalid_argument if [scene] fails {!Scene.validate}, [jobs < 1]
-    or [r] is not inside the canvas. *)
+  ?jobs:int ->
+  ?skips:bool ->
+  ?samples:int ->
+  ?adaptive:int ->
+  ?subsample:bool ->
+  Scene.t ->
+  Region.t ->
+  (Image.t * Stats.t, [> `Msg of string ]) result
+(** [region_image ~jobs ~skips ~samples ~adaptive ~subsample scene r] is
+    the image of the region [r] of [scene]'s canvas, [r.w x r.h] pixels,
+    and what it cost: byte for byte the pixels of {!image} there, for every
+    sampling (adaptive sampling and subsampling trace the first rays of a
+    one-pixel margin around [r] too, to decide as the whole image does).
+    The arguments are as for {!image}.
+    @raise Invalid_argument if [scene] fails {!Scene.validate}, [jobs < 1],
+    [r] is not inside the canvas, or {!Sampling.v} refuses the sampling
+    settings. *)
 
-val image_exn : ?jobs:int -> ?skips:bool -> Scene.t -> Image.t
+val image_exn :
+  ?jobs:int -> ?skips:bool -> ?samples:int -> ?adaptive:int -> ?subsample:bool -> Scene.t -> Image.t
 (** [image_exn] is the image of {!image}.
     @raise Failure with the message of {!image}'s [Error]. *)

@@ -36,6 +36,9 @@ type scratch = {
   mutable r : float;
   mutable g : float;
   mutable b : float;
+  mutable acc_r : float;  (** Sum of clamped sample colours, see [accumulate]. *)
+  mutable acc_g : float;
+  mutable acc_b : float;
 }
 
 type t = {
@@ -49,9 +52,14 @@ type t = {
   mutable origin_sphere : int;
       (** The sphere the current secondary ray leaves, or [-1]. *)
   mutable first_hit : int;
+  averaging : bool;  (** Samples are averaged: see [settled]. *)
+  mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see [primary_hit]. *)
 }
 
-let create (p : Prepared.t) =
+(* [assumed] when the primary ray searches every sphere. *)
+let no_assumption = -2
+
+let create ?(averaging = false) (p : Prepared.t) =
   {
     p;
     s =
@@ -82,6 +90,9 @@ let create (p : Prepared.t) =
         r = 0.;
         g = 0.;
         b = 0.;
+        acc_r = 0.;
+        acc_g = 0.;
+        acc_b = 0.;
       };
     stack = Array.make (4 * (p.depth + 1)) 0.;
     last_blocker = Array.make (max 1 p.n_lights) (-1);
@@ -91,6 +102,8 @@ let create (p : Prepared.t) =
     hit = -1;
     origin_sphere = -1;
     first_hit = -1;
+    averaging;
+    assumed = no_assumption;
   }
 
 let prepared tr = tr.p
@@ -565,6 +578,12 @@ let lighting tr ~shiny ~specular_of i =
     end
   done
 
+(* When samples are averaged, a pixel is the mean of the samples' clamped
+   floats, not of their bytes: a reflection may stop only if it cannot
+   change the clamped float itself. Clamping is monotonic, so that holds
+   when both extremes clamp alike: both [>= 255], both [<= 0], or equal. *)
+let[@inline] same_clamped (lo : float) (hi : float) = hi <= 0. || lo >= 255. || lo = hi
+
 (* Byte-exact early stop of reflection: the pixel's colour is a
    non-decreasing function of the colour [rc] still to be traced (each blend
    is local (1 - r) + rc r with r >= 0, and rounding is monotonic), and
@@ -587,7 +606,32 @@ let settled tr levels =
     hi_g := g +. (!hi_g *. refl);
     hi_b := b +. (!hi_b *. refl)
   done;
-  to_byte !lo_r = to_byte !hi_r && to_byte !lo_g = to_byte !hi_g && to_byte !lo_b = to_byte !hi_b
+  if tr.averaging then same_clamped !lo_r !hi_r && same_clamped !lo_g !hi_g && same_clamped !lo_b !hi_b
+  else to_byte !lo_r = to_byte !hi_r && to_byte !lo_g = to_byte !hi_g && to_byte !lo_b = to_byte !hi_b
+
+(* CGFS's subsampling: when [tr.assumed] names a sphere, the primary ray is
+   tested against it alone (against none for [-1]); a ray that misses the
+   assumed sphere falls back to the full search. Approximate: a sphere in
+   front of the assumed one is not seen. *)
+let primary_hit tr =
+  let k = tr.assumed in
+  if k = no_assumption then closest_primary tr
+  else if k < 0 then begin
+    tr.hit <- -1;
+    tr.s.t <- infinity;
+    -1
+  end
+  else begin
+    let s = tr.s in
+    let dx = s.dx and dy = s.dy and dz = s.dz in
+    let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+    tr.hit <- -1;
+    s.t <- infinity;
+    tr.counters.tests <- tr.counters.tests + 1;
+    (* The same test as [closest_primary] makes of that sphere: the same t. *)
+    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true dx dy dz a (1. /. a) (2. *. a) (4. *. a);
+    if tr.hit >= 0 then tr.hit else closest_primary tr
+  end
 
 (* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
    its local colour and reflectivity and continues with the mirror ray; then
@@ -602,7 +646,7 @@ let trace tr =
   tr.first_hit <- -1;
   tr.origin_sphere <- -1;
   while !tracing do
-    let i = if !levels = 0 then closest_primary tr else closest tr in
+    let i = if !levels = 0 then primary_hit tr else closest tr in
     if !levels = 0 then tr.first_hit <- i;
     if i < 0 then begin
       s.r <- p.background.r;
@@ -738,3 +782,87 @@ let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
   tr.origin_sphere <- (if from < 0 then -1 else tr.p.slot.(from));
   let hit = closest tr in
   if hit < 0 then -1 else tr.p.index.(hit)
+
+(* Several rays per pixel. The colours are summed here, in the scratch
+   record, so that no float crosses a module boundary per sample. *)
+
+type samples = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t
+
+let averaging tr = tr.averaging
+
+let pixel_assuming tr gx gy k =
+  if k < -1 || k >= tr.p.n_spheres then invalid_arg "Trace.pixel_assuming: no such sphere";
+  tr.assumed <- k;
+  pixel tr gx gy;
+  tr.assumed <- no_assumption
+
+(* [Color.clamp] without the NaN case (no NaN reaches a colour here). *)
+let[@inline] clamp x = if x >= 255. then 255. else if x > 0. then x else 0.
+
+let check_averaging tr fn =
+  if not tr.averaging then
+    invalid_arg (Printf.sprintf "Trace.%s: the tracer was not created with ~averaging:true" fn)
+
+let clear tr =
+  let s = tr.s in
+  s.acc_r <- 0.;
+  s.acc_g <- 0.;
+  s.acc_b <- 0.
+
+let[@inline] add_clamped s =
+  s.acc_r <- s.acc_r +. clamp s.r;
+  s.acc_g <- s.acc_g +. clamp s.g;
+  s.acc_b <- s.acc_b +. clamp s.b
+
+let accumulate tr =
+  check_averaging tr "accumulate";
+  add_clamped tr.s
+
+(* The samples of the grid in one fixed order, rows [j] then columns [i]:
+   [average] and [average_reusing] add the same floats in the same order,
+   so they give the same sums. *)
+let grid tr gx gy n ~reuse (saved : samples) k =
+  let c = n / 2 in
+  let s = tr.s in
+  clear tr;
+  for j = 0 to n - 1 do
+    for i = 0 to n - 1 do
+      if reuse && i = c && j = c then begin
+        s.acc_r <- s.acc_r +. Bigarray.Array1.get saved k;
+        s.acc_g <- s.acc_g +. Bigarray.Array1.get saved (k + 1);
+        s.acc_b <- s.acc_b +. Bigarray.Array1.get saved (k + 2)
+      end
+      else begin
+        sample tr gx gy ~i ~j ~n;
+        add_clamped s
+      end
+    done
+  done
+
+(* A 0-element array for [grid ~reuse:false], which never reads it. *)
+let no_samples : samples = Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout 0
+
+let average tr gx gy ~n =
+  check_averaging tr "average";
+  if n < 1 then invalid_arg "Trace.average: n < 1";
+  grid tr gx gy n ~reuse:false no_samples 0
+
+(* For an odd [n], the centre sample [(n / 2, n / 2)] has offsets
+   [(n / 2 + 0.5) / n - 0.5 = 0.5 - 0.5 = 0] exactly ([n / 2 + 0.5] is
+   [n / 2] exactly in floats), so it is the ray of [pixel]. *)
+let save tr (saved : samples) k =
+  let s = tr.s in
+  Bigarray.Array1.set saved k (clamp s.r);
+  Bigarray.Array1.set saved (k + 1) (clamp s.g);
+  Bigarray.Array1.set saved (k + 2) (clamp s.b)
+
+let average_reusing tr saved k gx gy ~n =
+  check_averaging tr "average_reusing";
+  if n < 1 || n land 1 = 0 then invalid_arg "Trace.average_reusing: n is not odd and positive";
+  grid tr gx gy n ~reuse:true saved k
+
+let store_average tr (buffer : Image.buffer) k ~count =
+  let s = tr.s and c = Float.of_int count in
+  Bigarray.Array1.unsafe_set buffer k (to_byte (s.acc_r /. c));
+  Bigarray.Array1.unsafe_set buffer (k + 1) (to_byte (s.acc_g /. c));
+  Bigarray.Array1.unsafe_set buffer (k + 2) (to_byte (s.acc_b /. c))

@@ -24,8 +24,18 @@ type t
 (** The type for tracers: a prepared scene and the scratch space of one
     process. A tracer is not reentrant. *)
 
-val create : Prepared.t -> t
-(** [create p] is a tracer for [p] with zeroed counters. *)
+val create : ?averaging:bool -> Prepared.t -> t
+(** [create ~averaging p] is a tracer for [p] with zeroed counters.
+    [averaging] (default [false]) says how the colours it computes will be
+    combined, which decides when the reflection early stop of
+    {!Prepared.prepare}'s skips is exact. Without it, each ray is one
+    pixel, rounded to bytes on its own: a reflection stops once its
+    remaining weight cannot change a byte of the pixel. With it, rays are
+    samples whose clamped floats are averaged ({!accumulate}): a reflection
+    stops only when it cannot change the clamped float of the sample
+    (every channel already saturated, or the bound is exact), since the
+    mean of several samples can round differently from any one of them.
+    Either way the skips change no output byte. *)
 
 val prepared : t -> Prepared.t
 (** [prepared tr] is the scene [tr] traces. *)
@@ -75,3 +85,71 @@ val blue : t -> float
 val hit_sphere : t -> int
 (** [hit_sphere tr] is the index of the sphere the primary ray of the last
     {!pixel} hit, or [-1] if it hit nothing. *)
+
+(** {1:sampling Several rays per pixel}
+
+    Supersampling averages the colours of an [n x n] grid of {!sample}s.
+    Each sample is clamped to [\[0, 255\]] first (as a float, not
+    rounded), the clamped colours are summed in the tracer, and the mean is
+    rounded once by {!store_average}. Clamping before averaging makes a
+    pixel the mean of what the document would display at its sample
+    points, so the image converges to the area average of the document's
+    picture; averaging unclamped colours would let one overexposed sample
+    (a highlight of 2000) brighten a whole pixel. The sums live in the
+    tracer so that no float crosses a module boundary per sample. The
+    functions below that sum raise [Invalid_argument] on a tracer created
+    without [~averaging:true]. *)
+
+type samples = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t
+(** The type for saved sample colours: three floats per pixel, clamped to
+    [\[0, 255\]], at indices [k], [k + 1], [k + 2]. *)
+
+val averaging : t -> bool
+(** [averaging tr] is the [averaging] argument [tr] was created with. *)
+
+val clear : t -> unit
+(** [clear tr] sets the sum of sample colours of [tr] to zero. *)
+
+val accumulate : t -> unit
+(** [accumulate tr] adds the colour of the last {!pixel} or {!sample},
+    each channel clamped to [\[0, 255\]], to the sum.
+    @raise Invalid_argument if [tr] is not {!averaging}. *)
+
+val average : t -> int -> int -> n:int -> unit
+(** [average tr gx gy ~n] is {!clear}, then {!sample} and {!accumulate}
+    for every sample of the [n x n] grid of pixel [(gx, gy)], rows [j]
+    then columns [i]. {!store_average} [~count:(n * n)] then writes the
+    pixel; for [n = 1] that is exactly the byte {!store} writes after
+    {!pixel}.
+    @raise Invalid_argument if [tr] is not {!averaging} or [n < 1]. *)
+
+val save : t -> samples -> int -> unit
+(** [save tr saved k] writes the colour of the last {!pixel} or {!sample}, each
+    channel clamped to [\[0, 255\]], to [saved] at [k], [k + 1], [k + 2].
+    @raise Invalid_argument if [k + 2] is outside [saved]. *)
+
+val average_reusing : t -> samples -> int -> int -> int -> n:int -> unit
+(** [average_reusing tr saved k gx gy ~n] is {!average} [tr gx gy ~n] for
+    an odd [n], whose grid has the pixel's centre as its middle sample
+    [(n / 2, n / 2)], exactly the ray of {!pixel}: that sample is not
+    traced again, its clamped colour is read from [saved] at [k] (where
+    {!save} wrote it after {!pixel} [tr gx gy]). The sum, and so the pixel,
+    is exactly that of {!average}, for [n * n - 1] rays.
+    @raise Invalid_argument if [tr] is not {!averaging}, [n] is not odd
+    and positive, or [k + 2] is outside [saved]. *)
+
+val store_average : t -> Image.buffer -> int -> count:int -> unit
+(** [store_average tr buf k ~count] writes the sum divided by [count],
+    each channel rounded by the rule of {!Color.to_byte}, to bytes [k],
+    [k + 1] and [k + 2] of [buf] ([k] unchecked, as for {!store}). *)
+
+val pixel_assuming : t -> int -> int -> int -> unit
+(** [pixel_assuming tr gx gy k] is {!pixel} [tr gx gy] for CGFS's
+    subsampling: the primary ray is assumed to hit sphere [k] (or nothing
+    if [k = -1]), as the rays of two neighbouring pixels did, and is
+    intersected with that sphere alone; if it misses it, all spheres are
+    searched as usual. Shading, shadows and reflections are traced as
+    usual. Approximate: a sphere in front of sphere [k], or a sphere
+    where both neighbours saw nothing, is missed.
+    @raise Invalid_argument if [k < -1] or [k] is not a sphere of the
+    scene. *)

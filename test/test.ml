@@ -14,6 +14,7 @@ let () =
       ("ppm", Test_ppm.tests);
       ("image_diff", Test_image_diff.tests);
       ("render", Test_render.tests);
+      ("sampling", Test_sampling.tests);
       ("numerics", Test_numerics.tests);
       ("bvh", Test_bvh.tests);
       ("antialias", Test_antialias.tests);

@@ -27,7 +27,7 @@ let tests =
     Alcotest.test_case "a pixel is the rounded mean of its clamped samples" `Quick (fun () ->
         let s = small Scene.cgfs in
         let img = Antialias.image ~n:3 s in
-        let tr = Trace.create (Prepared.prepare s) in
+        let tr = Trace.create ~averaging:true (Prepared.prepare s) in
         for row = 0 to 29 do
           for col = 0 to 39 do
             let expected = reference tr (Canvas.x_of_column ~width:40 col) (Canvas.y_of_row ~height:30 row) 3 in

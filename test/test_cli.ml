@@ -137,4 +137,67 @@ let tests =
             Alcotest.(check int) __LOC__ 0 code;
             if not (Astring_free.contains out "EXAMPLES") then Alcotest.failf "%s: no EXAMPLES" (String.concat " " cmd))
           [ []; [ "view" ]; [ "render" ]; [ "diff" ] ]);
+    Alcotest.test_case "--samples 1 writes the plain render's bytes, --samples N --adaptive T the library's" `Quick
+      (fun () ->
+        let dir = Helpers.temp_dir () in
+        let out name = Filename.concat dir name in
+        let scene = Helpers.scene_path "cgfs.scene" and size = [ "--width"; "30"; "--height"; "20" ] in
+        let render name args =
+          let code, _, err = run (exe ()) ([ "render"; scene; "-o"; out name ] @ size @ args) in
+          Alcotest.(check int) err 0 code;
+          match Raytrace.Ppm.read_file (out name) with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
+        in
+        Helpers.check_images "--samples 1" ~expected:(render "plain.ppm" []) (render "one.ppm" [ "--samples"; "1" ]);
+        let s = Raytrace.Scene.with_overrides ~width:30 ~height:20 (Helpers.load_scene "cgfs.scene") in
+        Helpers.check_images "--samples 3 --adaptive 5"
+          ~expected:(Raytrace.Render.image_exn ~samples:3 ~adaptive:5 s)
+          (render "adaptive.ppm" [ "--samples"; "3"; "--adaptive"; "5"; "--jobs"; "2" ]);
+        Helpers.check_images "--subsample"
+          ~expected:(Raytrace.Render.image_exn ~subsample:true s)
+          (render "sub.ppm" [ "--subsample" ]));
+    Alcotest.test_case "tiles rendered with --samples 3 --adaptive 4 merge into the whole render, others do not" `Quick
+      (fun () ->
+        let dir = Helpers.temp_dir () in
+        let out name = Filename.concat dir name in
+        let scene = Helpers.scene_path "cgfs.scene" and size = [ "--width"; "30"; "--height"; "20" ] in
+        let sampling = [ "--samples"; "3"; "--adaptive"; "4" ] in
+        let run_ok args =
+          let code, _, err = run (exe ()) args in
+          Alcotest.(check int) err 0 code
+        in
+        let read name = match Raytrace.Ppm.read_file (out name) with Ok img -> img | Error (`Msg m) -> Alcotest.fail m in
+        run_ok ([ "render"; scene; "-o"; out "whole.ppm" ] @ size @ sampling);
+        List.iter
+          (fun i ->
+            run_ok
+              ([ "render"; scene; "--tile"; Printf.sprintf "%d/3" i; "-o"; out (Printf.sprintf "part-%d.ppm" i) ]
+              @ size @ sampling))
+          [ 1; 2; 3 ];
+        run_ok [ "merge"; out "part-1.ppm"; out "part-2.ppm"; out "part-3.ppm"; "-o"; out "merged.ppm" ];
+        Helpers.check_images "merged tiles" ~expected:(read "whole.ppm") (read "merged.ppm");
+        run_ok ([ "render"; scene; "--tile"; "3/3"; "-o"; out "full-3.ppm"; "--samples"; "3" ] @ size);
+        let code, _, err = run (exe ()) [ "merge"; out "part-1.ppm"; out "part-2.ppm"; out "full-3.ppm"; "-o"; out "bad.ppm" ] in
+        Alcotest.(check int) __LOC__ 1 code;
+        let expected = "with adaptive (none)" in
+        if not (Astring_free.contains err expected) then Alcotest.failf "expected %S in %S" expected err);
+    Alcotest.test_case "bad sampling options: one line, status 1, no output file" `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        let out = Filename.concat dir "never.ppm" in
+        List.iter
+          (fun (args, expected) ->
+            let code, _, err = run (exe ()) ([ "render"; "--width"; "4"; "--height"; "4"; "-o"; out ] @ args) in
+            let what = String.concat " " args in
+            Alcotest.(check int) what 1 code;
+            Alcotest.(check string) what ("raytrace: " ^ expected ^ "\n") err;
+            Alcotest.(check bool) (what ^ ": no output file") false (Sys.file_exists out))
+          [
+            ([ "--samples"; "0" ], "samples must lie in [1, 64] (an N x N grid per pixel), got 0");
+            ( [ "--adaptive"; "8" ],
+              "adaptive sampling needs an odd number of samples >= 3, whose grid has the pixel's centre in its \
+               middle, got 1" );
+            ([ "--samples"; "3"; "--adaptive"; "300" ], "the adaptive threshold must lie in [0, 255], got 300");
+            ([ "--samples"; "2"; "--subsample" ], "subsampling traces one ray per pixel: it cannot be combined with samples > 1");
+            ( [ "--literal"; "--samples"; "2" ],
+              "--literal traces one ray per pixel: it cannot be combined with --samples or --subsample" );
+          ]);
   ]

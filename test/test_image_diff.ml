@@ -29,6 +29,25 @@ let tests =
         Image.set b 0 0 1 1 1;
         let d = stats a b in
         Alcotest.(check (list int)) __LOC__ [ 1; 0; 1 ] [ d.differing; d.differing_gt1; d.max_abs ]);
+    Alcotest.test_case "four pixels off by 0, 1, 4 and 255" `Quick (fun () ->
+        let a = Image.create 2 2 and b = Image.create 2 2 in
+        Image.set a 0 0 7 7 7;
+        Image.set b 0 0 7 7 7;
+        Image.set b 1 0 1 0 0;
+        Image.set a 0 1 10 20 30;
+        Image.set b 0 1 13 20 26;
+        Image.set b 1 1 0 255 0;
+        let d = stats a b in
+        (* Channel differences 0 0 0 | 1 0 0 | 3 0 4 | 0 255 0: three pixels
+           differ, two by more than 1, the largest by 255.
+           mean = (1 + 3 + 4 + 255) / 12 = 263 / 12 = 21.916667
+           MSE = (1 + 9 + 16 + 65025) / 12 = 65051 / 12 = 5420.916667
+           PSNR = 10 log10 (65025 / 5420.916667) = 10 log10 11.995203 = 10.790076 dB
+           within 1: 2 of 4 pixels. *)
+        Alcotest.(check (list int)) __LOC__ [ 4; 3; 2; 255 ] [ d.pixels; d.differing; d.differing_gt1; d.max_abs ];
+        Alcotest.(check (float 1e-9)) __LOC__ (263. /. 12.) d.mean_abs;
+        Alcotest.(check (float 1e-6)) __LOC__ 10.790076 d.psnr;
+        Alcotest.(check (float 0.)) __LOC__ 0.5 (Image_diff.share_within d));
     Alcotest.test_case "images of different sizes cannot be compared" `Quick (fun () ->
         match Image_diff.compare (Image.create 2 1) (Image.create 1 2) with
         | Ok _ -> Alcotest.fail "compared"
