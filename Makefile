@@ -9,14 +9,14 @@
 BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-ocaml-dev \
   libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev libcamlimages-ocaml-dev \
   libx11-dev
-TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev xvfb x11-apps xdotool imagemagick \
-  parallel rsync
+TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev libcrowbar-ocaml-dev xvfb \
+  x11-apps xdotool imagemagick parallel rsync
 # The plot of the run time against error benchmark (make bench-quality only).
 BENCH_PKGS = gnuplot-nox
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: run test deps build golden screenshot clean bench bench-quality
+.PHONY: run test deps build golden screenshot clean bench bench-quality fuzz
 
 run: deps build
 	@if [ -n "$$DISPLAY" ]; then \
@@ -74,3 +74,18 @@ clean:
 bench: deps
 	dune build --profile release bin/main.exe bench/speed.exe
 	./_build/default/bench/speed.exe --raytrace ./_build/default/bin/main.exe
+
+# A coverage-guided fuzzing campaign (AFL++ driving the crowbar target
+# fuzz/fuzz_raytrace.ml, built instrumented in _build_fuzz) on the scene
+# parser and the PPM reader, for FUZZ_SECONDS, at the lowest priority.
+# Findings go to $(FUZZ_OUT)/default/crashes and hangs; a finding becomes a
+# regression file in test/corpus/. `make fuzz` resumes an earlier campaign.
+FUZZ_SECONDS ?= 1800
+FUZZ_OUT ?= _fuzz
+fuzz: deps
+	@command -v afl-fuzz >/dev/null || DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq afl++
+	dune build --profile fuzz --build-dir _build_fuzz ./fuzz/fuzz_raytrace.exe
+	AFL_SKIP_CPUFREQ=1 AFL_NO_UI=1 AFL_AUTORESUME=1 AFL_I_DONT_CARE_ABOUT_MISSING_CRASHES=1 \
+	  nice -n 19 afl-fuzz -V $(FUZZ_SECONDS) -i fuzz/seeds -o $(FUZZ_OUT) -t 2000 -m none \
+	  -- _build_fuzz/default/fuzz/fuzz_raytrace.exe @@
+	@grep -E 'run_time|execs_done|execs_per_sec|corpus_count|saved_crashes|saved_hangs' $(FUZZ_OUT)/default/fuzzer_stats

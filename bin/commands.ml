@@ -47,9 +47,12 @@ let render_image ~sampling ~literal ~jobs scene =
     if not (Sampling.is_one sampling) then
       msg "--literal traces one ray per pixel: it cannot be combined with --samples or --subsample"
     else
+      (* Render.image checks these itself; the oracle does not. *)
+      let* () = Scene.check_work scene in
       let t0 = Unix.gettimeofday () in
-      let img = Literal.render scene in
-      Ok (img, None, Unix.gettimeofday () -. t0)
+      match Literal.render scene with
+      | exception Out_of_memory -> msg "not enough memory for a %dx%d image" scene.width scene.height
+      | img -> Ok (img, None, Unix.gettimeofday () -. t0)
   else
     let* img, stats =
       Render.image ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive

@@ -6,6 +6,26 @@ let exits =
   :: Cmd.Exit.info Commands.exit_no_display ~doc:"when no window can be opened (no X display)."
   :: Cmd.Exit.defaults
 
+(* The environment variables of Raytrace.Limits, for the ENVIRONMENT
+   section of the manuals. *)
+let limit_envs =
+  let open Raytrace in
+  let env name what =
+    Cmd.Env.info (Limits.variable name)
+      ~doc:
+        (Printf.sprintf "Raise (or lower) the limit on %s; default %s. Inputs beyond a limit are refused before any work, with a message that names the variable."
+           what (Printf.sprintf "%.0f" (Limits.default name)))
+  in
+  [
+    env `Pixels "canvas and image pixels (width x height)";
+    env `Depth "the recursion depth";
+    env `Samples "rays per pixel (--samples N traces N x N)";
+    env `Spheres "spheres in a scene";
+    env `Lights "lights in a scene";
+    env `Scene_bytes "the size of a scene file, in bytes";
+    env `Work "the ray-sphere intersection tests that a render may need (pixels x samples x rays per sample x spheres met per ray x (1 + lights)); 1e12 is a few hours of one core";
+  ]
+
 let scene_options =
   let scene =
     Arg.(
@@ -105,7 +125,7 @@ let scene_format =
     ]
 
 let view_info =
-  Cmd.info "view" ~exits ~doc:"show a scene in a window"
+  Cmd.info "view" ~exits ~envs:limit_envs ~doc:"show a scene in a window"
     ~man:
       [
         `S Manpage.s_description;
@@ -197,7 +217,7 @@ let render_cmd =
           ~doc:"Render with the literal transcription of the document (slow; the oracle the fast renderer is tested against).")
   in
   let info =
-    Cmd.info "render" ~exits ~doc:"render a scene to an image file"
+    Cmd.info "render" ~exits ~envs:limit_envs ~doc:"render a scene to an image file"
       ~man:
         [
           `S Manpage.s_description;
@@ -211,6 +231,11 @@ let render_cmd =
              merge) assembles the parts, from any processes or machines, into exactly the image a \
              single render gives. $(b,--frames) renders the frames of an animated scene; each \
              frame is an independent job.";
+          `P
+            "Interrupted (Ctrl-C, SIGTERM, SIGHUP), it stops its worker processes, removes its \
+             temporary file and ends with the signal. A worker that dies (killed, out of memory) \
+             fails the render with a message instead of leaving a hole in the image. A scene or \
+             an override beyond a limit (see ENVIRONMENT) is refused before any work.";
           scene_format;
           quality_section;
           `S Manpage.s_examples;
@@ -277,7 +302,7 @@ let diff_cmd =
       & info [ "max-diff" ] ~docv:"N" ~doc:"Exit with status 1 if any channel differs by more than $(docv).")
   in
   let info =
-    Cmd.info "diff" ~exits ~doc:"compare two images"
+    Cmd.info "diff" ~exits ~envs:[ List.hd limit_envs ] ~doc:"compare two images"
       ~man:
         [
           `S Manpage.s_description;

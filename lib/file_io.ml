@@ -1,22 +1,38 @@
 let error path reason = Error (`Msg (Printf.sprintf "%s: %s" path reason))
 
-let read path =
+(* Files whose length is unknown (/proc files, pipes, devices): read in
+   chunks, checking the size so far. *)
+let read_to_end ~check_size ic =
+  let b = Buffer.create 4096 and chunk = Bytes.create 65536 in
+  let rec go () =
+    match input ic chunk 0 (Bytes.length chunk) with
+    | 0 -> Ok (Buffer.contents b)
+    | k -> (
+        Buffer.add_subbytes b chunk 0 k;
+        match check_size (Buffer.length b) with Ok _ -> go () | Error m -> Error m)
+  in
+  go ()
+
+let read ?(check_size = fun n -> Ok n) path =
   match open_in_bin path with
   | exception Sys_error e -> Error (`Msg e)
   | ic -> (
-      (* Until end of file, not [in_channel_length] bytes: /proc files and
-         pipes report a length of 0. *)
-      let b = Buffer.create 65536 and chunk = Bytes.create 65536 in
-      let rec loop () =
-        match input ic chunk 0 65536 with
-        | 0 -> ()
-        | n ->
-            Buffer.add_subbytes b chunk 0 n;
-            loop ()
-      in
-      match Fun.protect ~finally:(fun () -> close_in_noerr ic) loop with
-      | () -> Ok (Buffer.contents b)
-      | exception Sys_error e -> error path e)
+      match
+        Fun.protect
+          ~finally:(fun () -> close_in_noerr ic)
+          (fun () ->
+            (* The size is checked before a byte is read or allocated. *)
+            match Unix.fstat (Unix.descr_of_in_channel ic) with
+            | { st_kind = S_REG; st_size = n; _ } when n > 0 -> (
+                match check_size n with Error m -> Error m | Ok _ -> Ok (really_input_string ic n))
+            | _ -> read_to_end ~check_size ic)
+      with
+      | Ok s -> Ok s
+      | Error m -> error path m
+      | exception Sys_error e -> error path e
+      | exception Unix.Unix_error (e, _, _) -> error path (Unix.error_message e)
+      | exception Out_of_memory -> error path "not enough memory to read the file"
+      | exception End_of_file -> error path "file changed while it was read")
 
 (* Temporary files of writes in progress, for [remove_temporaries]. *)
 let temporaries : (string, unit) Hashtbl.t = Hashtbl.create 4
@@ -55,38 +71,82 @@ let rec open_temporary path attempt =
   | fd -> (tmp, fd)
   | exception Unix.Unix_error (EEXIST, _, _) when attempt < 100 -> open_temporary path (attempt + 1)
 
+(* A symbolic link is written through, as [cp] does: the link stays and
+   its target gets the new contents. A dangling link is an error. *)
+let resolve path =
+  match Unix.lstat path with
+  | { st_kind = S_LNK; _ } -> (
+      match Unix.realpath path with
+      | real -> Ok real
+      | exception Unix.Unix_error (e, _, _) ->
+          error path ("is a symbolic link that cannot be followed: " ^ Unix.error_message e))
+  | _ -> Ok path
+  | exception Unix.Unix_error _ -> Ok path
+
+(* An existing file that this process may not write stays as it is, even
+   though its directory would let a rename replace it. (For root, as in
+   [cp], permission bits do not make a file read-only.) *)
+let check_writable path =
+  match Unix.access path [ W_OK ] with
+  | () -> Ok ()
+  | exception Unix.Unix_error (ENOENT, _, _) -> Ok ()
+  | exception Unix.Unix_error (e, _, _) -> error path ("cannot be replaced: " ^ Unix.error_message e)
+
+(* Best effort: the rename is durable once the directory is on disk. *)
+let sync_directory dir =
+  match Unix.openfile dir [ O_RDONLY; O_CLOEXEC ] 0 with
+  | fd ->
+      (try Unix.fsync fd with Unix.Unix_error _ -> ());
+      Unix.close fd
+  | exception Unix.Unix_error _ -> ()
+
+let write_temporary path f =
+  match open_temporary path 0 with
+  | exception Unix.Unix_error (e, _, _) ->
+      error path ("cannot create a file in its directory: " ^ Unix.error_message e)
+  | tmp, fd -> (
+      Hashtbl.replace temporaries tmp ();
+      let oc = Unix.out_channel_of_descr fd in
+      set_binary_mode_out oc true;
+      let cleanup () =
+        close_out_noerr oc;
+        (try Sys.remove tmp with Sys_error _ -> ());
+        Hashtbl.remove temporaries tmp
+      in
+      match
+        (* The replaced file's permissions carry over to the new one. *)
+        (match Unix.stat path with
+        | st -> Unix.fchmod fd (st.st_perm land 0o7777)
+        | exception Unix.Unix_error _ -> ());
+        f oc;
+        flush oc;
+        Unix.fsync fd;
+        close_out oc;
+        Unix.rename tmp path
+      with
+      | () ->
+          Hashtbl.remove temporaries tmp;
+          sync_directory (Filename.dirname path);
+          Ok ()
+      | exception Sys_error e ->
+          cleanup ();
+          error path e
+      | exception Unix.Unix_error (e, _, _) ->
+          cleanup ();
+          error path (Unix.error_message e)
+      | exception ex ->
+          cleanup ();
+          raise ex)
+
 let write_atomic path f =
-  if Sys.file_exists path && Sys.is_directory path then error path "is a directory"
-  else if is_special path then write_direct path f
-  else
-    match open_temporary path 0 with
-    | exception Unix.Unix_error (e, _, _) ->
-        error path ("cannot create a file in its directory: " ^ Unix.error_message e)
-    | tmp, fd -> (
-        Hashtbl.replace temporaries tmp ();
-        let oc = Unix.out_channel_of_descr fd in
-        set_binary_mode_out oc true;
-        let cleanup () =
-          close_out_noerr oc;
-          (try Sys.remove tmp with Sys_error _ -> ());
-          Hashtbl.remove temporaries tmp
-        in
-        match
-          f oc;
-          flush oc;
-          Unix.fsync fd;
-          close_out oc;
-          Unix.rename tmp path
-        with
-        | () ->
-            Hashtbl.remove temporaries tmp;
-            Ok ()
-        | exception Sys_error e ->
-            cleanup ();
-            error path e
-        | exception Unix.Unix_error (e, _, _) ->
-            cleanup ();
-            error path (Unix.error_message e)
-        | exception ex ->
-            cleanup ();
-            raise ex)
+  match resolve path with
+  | Error e -> Error e
+  | Ok path ->
+      if Sys.file_exists path && Sys.is_directory path then error path "is a directory"
+      else if is_special path then write_direct path f
+      else
+        match check_writable path with
+        | Error e -> Error e
+        | Ok () ->
+            Signals.protect ~cleanup:remove_temporaries (fun () ->
+                Signals.without_sigxfsz (fun () -> write_temporary path f))

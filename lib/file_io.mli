@@ -7,9 +7,13 @@
     unless the new ones are complete. Errors are values whose message starts
     with the path. *)
 
-val read : string -> (string, [> `Msg of string ]) result
-(** [read path] is the contents of the file [path], read until its end (so
-    pipes and [/proc] files work too). *)
+val read : ?check_size:(int -> (int, string) result) -> string -> (string, [> `Msg of string ]) result
+(** [read ~check_size path] is the contents of the file [path], read until
+    its end (so pipes and [/proc] files work too). [check_size] (default:
+    accept all) is called on the file's length in bytes before anything is
+    read, and on the bytes read so far for files of unknown length; an
+    [Error m] of it is returned as [path: m], so that an oversized file
+    costs no memory. *)
 
 val write_atomic : string -> (out_channel -> unit) -> (unit, [> `Msg of string ]) result
 (** [write_atomic path f] calls [f oc] on a channel to a new temporary file

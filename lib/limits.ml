@@ -4,8 +4,57 @@ let max_intensity = 1e6
 let max_dimension = 65536
 let max_pixels = 1 lsl 28
 let max_depth = 64
-let max_jobs = 1024
+let max_samples = 4096
+let max_spheres = 100_000
+let max_lights = 1000
+let max_scene_bytes = 16 * 1024 * 1024
+let max_work = 1e12
 let num = Float_text.to_string
+
+type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Work ]
+
+let variable = function
+  | `Pixels -> "RAYTRACE_MAX_PIXELS"
+  | `Depth -> "RAYTRACE_MAX_DEPTH"
+  | `Samples -> "RAYTRACE_MAX_SAMPLES"
+  | `Spheres -> "RAYTRACE_MAX_SPHERES"
+  | `Lights -> "RAYTRACE_MAX_LIGHTS"
+  | `Scene_bytes -> "RAYTRACE_MAX_SCENE_BYTES"
+  | `Work -> "RAYTRACE_MAX_WORK"
+
+let default = function
+  | `Pixels -> Float.of_int max_pixels
+  | `Depth -> Float.of_int max_depth
+  | `Samples -> Float.of_int max_samples
+  | `Spheres -> Float.of_int max_spheres
+  | `Lights -> Float.of_int max_lights
+  | `Scene_bytes -> Float.of_int max_scene_bytes
+  | `Work -> max_work
+
+(* Read at every check rather than once: cheap, and a test or a program can
+   change the bound with [Unix.putenv]. Values are integers; a float keeps
+   them exact up to 2^53, far beyond any useful bound. *)
+let current n =
+  match Sys.getenv_opt (variable n) with
+  | None | Some "" -> Ok (default n)
+  | Some text -> (
+      let digits = String.concat "" (String.split_on_char '_' (String.trim text)) in
+      match Float_text.of_string digits with
+      | Some x when x >= 1. && Float.is_integer x -> Ok x
+      | _ -> Error (Printf.sprintf "%s must be a positive integer, got %S" (variable n) text))
+
+let show_bound x = if x < 1e15 then Printf.sprintf "%.0f" x else num x
+
+let exceeded n what =
+  let bound = match current n with Ok b -> show_bound b | Error _ -> "?" in
+  Printf.sprintf "%s, more than the limit of %s (set %s to raise it)" what bound (variable n)
+
+(* [Ok ()] if [x <= bound n]; [what ()] describes [x] for the message. *)
+let within n x what =
+  match current n with
+  | Error e -> Error e
+  | Ok bound -> if x <= bound then Ok () else Error (exceeded n (what ()))
+let max_jobs = 1024
 
 let check_jobs n =
   if n < 1 || n > max_jobs then
@@ -32,17 +81,66 @@ let check_dimension what n =
     Error (Printf.sprintf "canvas %s must lie in [1, %d], got %d" what max_dimension n)
   else Ok n
 
+let pixels_within kind w h =
+  (* A float product: two header fields of a file can overflow an int. *)
+  let area = Float.of_int w *. Float.of_int h in
+  within `Pixels area (fun () -> Printf.sprintf "%s %dx%d has %s pixels" kind w h (show_bound area))
+
 let check_canvas w h =
   match (check_dimension "width" w, check_dimension "height" h) with
   | (Error e, _ | _, Error e) -> Error e
-  | Ok _, Ok _ ->
-      if w * h > max_pixels then
-        Error
-          (Printf.sprintf "canvas %dx%d has more than %d pixels" w h
-             max_pixels)
-      else Ok ()
+  | Ok _, Ok _ -> pixels_within "canvas" w h
+
+let check_image_size w h =
+  if w < 1 || h < 1 then Error (Printf.sprintf "image size %dx%d is empty" w h)
+  else pixels_within "image" w h
+
+(* [Ok n] if [n >= lo] (else [Error (low ())]) and [n] is within bound
+   [name] (else [what ()] describes [n]). *)
+let bounded name ~lo ~low ~what n =
+  if n < lo then Error (low ())
+  else match within name (Float.of_int n) what with Ok () -> Ok n | Error e -> Error e
 
 let check_depth d =
-  if d < 0 || d > max_depth then
-    Error (Printf.sprintf "recursion depth must lie in [0, %d], got %d" max_depth d)
-  else Ok d
+  bounded `Depth ~lo:0 d
+    ~low:(fun () -> Printf.sprintf "recursion depth must be >= 0, got %d" d)
+    ~what:(fun () -> Printf.sprintf "recursion depth %d is too deep" d)
+
+let check_samples n =
+  bounded `Samples ~lo:1 n
+    ~low:(fun () -> Printf.sprintf "samples per pixel must be >= 1, got %d" n)
+    ~what:(fun () -> Printf.sprintf "%d samples per pixel are too many" n)
+
+let check_count kind n =
+  let noun = match kind with `Spheres -> "spheres" | `Lights -> "lights" in
+  bounded (kind :> name) ~lo:0 n
+    ~low:(fun () -> Printf.sprintf "a negative number of %s: %d" noun n)
+    ~what:(fun () -> Printf.sprintf "the scene has %d %s" n noun)
+
+let check_scene_bytes n =
+  bounded `Scene_bytes ~lo:0 n
+    ~low:(fun () -> Printf.sprintf "a negative size: %d" n)
+    ~what:(fun () -> Printf.sprintf "the scene is %d bytes long" n)
+
+(* Beyond 8 spheres the renderer walks a bounding volume hierarchy: about
+   log2 n levels of boxes, each with leaves of up to 4 spheres on either
+   side; 16 log2 n is a generous bound of what a ray meets on scenes that
+   are not pathological. *)
+let spheres_per_ray n =
+  if n <= 8 then n
+  else
+    let log2 = ref 0 in
+    while 1 lsl !log2 < n do incr log2 done;
+    min n (16 * !log2)
+
+let work ~pixels ~samples ~depth ~spheres ~lights =
+  let f = Float.of_int in
+  f pixels *. f samples *. f (depth + 1) *. f (spheres_per_ray spheres) *. f (1 + lights)
+
+let check_work ~pixels ~samples ~depth ~spheres ~lights =
+  let w = work ~pixels ~samples ~depth ~spheres ~lights in
+  within `Work w (fun () ->
+      Printf.sprintf
+        "the render needs about %.3g ray-sphere intersection tests (%d pixels x %d samples x %d \
+         rays x %d spheres per ray x (1 + %d lights))"
+        w pixels samples (depth + 1) (spheres_per_ray spheres) lights)

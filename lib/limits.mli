@@ -1,8 +1,24 @@
 (** The bounds that inputs must respect.
 
     Beyond these, a render would lose all precision, exhaust memory or run
-    for years; scenes and command lines outside them are refused up front
-    with a message that names the bound. *)
+    for years; scenes, images and command lines outside them are refused up
+    front, before any large allocation, with a message that names the bound
+    and how to raise it.
+
+    Two kinds of bounds:
+    - fixed ones, which protect precision or a file format:
+      {!max_coordinate}, {!max_dimension};
+    - resource ones, which protect memory and time. Each has a default
+      ({!max_pixels}, ...) and an environment variable that replaces it for
+      the process, read at every check (so that a program and its tests can
+      set it): [RAYTRACE_MAX_PIXELS], [RAYTRACE_MAX_DEPTH],
+      [RAYTRACE_MAX_SAMPLES], [RAYTRACE_MAX_SPHERES], [RAYTRACE_MAX_LIGHTS],
+      [RAYTRACE_MAX_SCENE_BYTES], [RAYTRACE_MAX_WORK]. A value is a
+      positive integer, optionally written with [_] separators or in
+      exponent notation ([1e13]); a malformed value makes every check that
+      reads it fail, saying so. *)
+
+(** {1:fixed Fixed bounds} *)
 
 val max_coordinate : float
 (** [max_coordinate] is [1e12]: the largest magnitude of a coordinate, a
@@ -21,14 +37,67 @@ val max_intensity : float
 val max_dimension : int
 (** [max_dimension] is [65536]: the largest canvas width or height. *)
 
+(** {1:defaults Defaults of the resource bounds} *)
+
 val max_pixels : int
-(** [max_pixels] is [268435456] ([2^28], 768 MiB of RGB): the largest
-    canvas area. *)
+(** [max_pixels] is [268435456] ([2^28], 768 MiB of RGB): the default
+    largest canvas area, and the largest PPM image read. *)
 
 val max_depth : int
-(** [max_depth] is [64]: the largest recursion depth. Each level multiplies
-    the weight of the reflected colour by at most 1, but deeper recursion
-    only costs time. *)
+(** [max_depth] is [64]: the default largest recursion depth. Each level
+    multiplies the weight of the reflected colour by at most 1, but deeper
+    recursion only costs time. *)
+
+val max_samples : int
+(** [max_samples] is [4096]: the default largest number of rays per pixel,
+    that of {!Sampling.max_samples}'s [64 x 64] grid, which stays a fixed
+    bound; the variable can only lower it. *)
+
+val max_spheres : int
+(** [max_spheres] is [100_000]: the default largest number of spheres of a
+    scene. *)
+
+val max_lights : int
+(** [max_lights] is [1000]: the default largest number of lights of a
+    scene. *)
+
+val max_scene_bytes : int
+(** [max_scene_bytes] is [16_777_216] (16 MiB): the default largest scene
+    file. Loading streams, but an error triggers a second pass that keeps
+    the positions of the whole file, about 17 bytes of memory per byte of
+    text: measured on a 16 MiB file of 200,000 spheres, 68 MB to load it,
+    272 MB to locate an error in it. *)
+
+val max_work : float
+(** [max_work] is [1e12]: the default largest number of ray-sphere
+    intersection tests that a render may need by the estimate of
+    {!work}, about four hours of one core at the 7e7 tests per second
+    measured on the reference scene. *)
+
+(** {1:current Bounds in force} *)
+
+type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Work ]
+(** The type for the names of the resource bounds. *)
+
+val variable : name -> string
+(** [variable n] is the environment variable that sets the bound [n], e.g.
+    ["RAYTRACE_MAX_PIXELS"]. *)
+
+val default : name -> float
+(** [default n] is the default of bound [n] ({!max_pixels}, ...). *)
+
+val current : name -> (float, string) result
+(** [current n] is the bound [n] in force: the value of {!variable}[ n]
+    when it is set, else {!default}[ n]. [Error] if the variable is set to
+    something other than a positive integer. *)
+
+val exceeded : name -> string -> string
+(** [exceeded n what] is the message for a value beyond bound [n]:
+    [what] (which says the value), then the bound in force and how to
+    raise it, e.g. ["canvas 70000x70000 has 4900000000 pixels, more than
+    the limit of 268435456 (set RAYTRACE_MAX_PIXELS to raise it)"]. *)
+
+(** {1:checks Checks} *)
 
 val max_jobs : int
 (** [max_jobs] is [1024]: the most worker processes a render forks. *)
@@ -53,7 +122,40 @@ val check_dimension : string -> int -> (int, string) result
 
 val check_canvas : int -> int -> (unit, string) result
 (** [check_canvas w h] is [Ok ()] if [1 <= w, h <= max_dimension] and
-    [w * h <= max_pixels]. *)
+    [w * h] is within the [`Pixels] bound in force. *)
+
+val check_image_size : int -> int -> (unit, string) result
+(** [check_image_size w h] is [Ok ()] if [w, h >= 1] and [w * h] is within
+    the [`Pixels] bound in force (images read from files, which have no
+    {!max_dimension}). Never overflows. *)
 
 val check_depth : int -> (int, string) result
-(** [check_depth d] is [Ok d] if [0 <= d <= max_depth]. *)
+(** [check_depth d] is [Ok d] if [0 <= d] and [d] is within the [`Depth]
+    bound in force. *)
+
+val check_samples : int -> (int, string) result
+(** [check_samples n] is [Ok n] if [1 <= n] and [n] rays per pixel are
+    within the [`Samples] bound in force ({!Render.image} checks
+    [samples x samples]). *)
+
+val check_count : [ `Spheres | `Lights ] -> int -> (int, string) result
+(** [check_count kind n] is [Ok n] if a scene with [n] spheres (or lights)
+    is within that bound in force. *)
+
+val check_scene_bytes : int -> (int, string) result
+(** [check_scene_bytes n] is [Ok n] if a scene text of [n] bytes is within
+    the [`Scene_bytes] bound in force. *)
+
+val work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> float
+(** [work ~pixels ~samples ~depth ~spheres ~lights] estimates the ray-sphere
+    intersection tests of a render:
+    [pixels * samples * (depth + 1) * m * (1 + lights)], where [depth]
+    counts the reflections a ray may make (0 without reflective spheres),
+    [lights] the lights that cast shadow rays (point and directional), and
+    [m] the spheres a ray meets: all of them up to 8, beyond that (where the
+    renderer uses a bounding volume hierarchy) at most [16 log2 spheres],
+    rounded up. A float, so that it cannot overflow. *)
+
+val check_work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> (unit, string) result
+(** [check_work ...] is [Ok ()] if {!work} is within the [`Work] bound in
+    force. *)

@@ -12,33 +12,65 @@ let count_cpu_list s =
          | _ -> acc)
        0
 
+(* The value of the first "key: value" line of a /proc file that [parse]
+   accepts. *)
+let proc_field file key parse =
+  match File_io.read file with
+  | Error _ -> None
+  | Ok text ->
+      String.split_on_char '\n' text
+      |> List.find_map (fun line ->
+             match String.index_opt line ':' with
+             | Some i when String.sub line 0 i = key -> parse (String.trim (String.sub line (i + 1) (String.length line - i - 1)))
+             | _ -> None)
+
 let cores () =
-  let from_status () =
-    match File_io.read "/proc/self/status" with
-    | Error _ -> None
-    | Ok text ->
-        String.split_on_char '\n' text
-        |> List.find_map (fun line ->
-               match String.index_opt line ':' with
-               | Some i when String.sub line 0 i = "Cpus_allowed_list" ->
-                   let n = count_cpu_list (String.sub line (i + 1) (String.length line - i - 1)) in
-                   if n > 0 then Some n else None
-               | _ -> None)
+  let positive n = if n > 0 then Some n else None in
+  match proc_field "/proc/self/status" "Cpus_allowed_list" (fun v -> positive (count_cpu_list v)) with
+  | Some n -> n
+  | None -> 1
+
+(* "MemAvailable:   12345678 kB" -> 12345678 * 1024 *)
+let available_memory () =
+  proc_field "/proc/meminfo" "MemAvailable" (fun v ->
+      match String.split_on_char ' ' v with
+      | [ n; "kB" ] -> Option.map (fun k -> k * 1024) (int_of_string_opt n)
+      | _ -> None)
+
+(* The file is filled with zeros before it is mapped: a full /dev/shm or a
+   file-size limit is then an error here, not a SIGBUS in a worker that
+   touches a page the file system cannot back. *)
+let fill_zeros fd bytes =
+  let chunk = Bytes.make 65536 '\000' in
+  let rec go left =
+    if left > 0 then begin
+      let k = Unix.write fd chunk 0 (min left (Bytes.length chunk)) in
+      go (left - k)
+    end
   in
-  match from_status () with Some n -> n | None -> 1
+  go bytes
 
 let map_shared kind n =
   (* A file in memory-backed /dev/shm when there is one, unlinked at once:
      the mapping outlives the name. *)
   let dir = if Sys.file_exists "/dev/shm" then "/dev/shm" else Filename.get_temp_dir_name () in
-  let path = Filename.temp_file ~temp_dir:dir "raytrace" ".shm" in
-  let fd = Unix.openfile path [ O_RDWR; O_CLOEXEC ] 0o600 in
-  Fun.protect
-    ~finally:(fun () ->
-      Unix.close fd;
-      try Sys.remove path with Sys_error _ -> ())
-    (fun () ->
-      Bigarray.array1_of_genarray (Unix.map_file fd kind Bigarray.c_layout true [| max 1 n |]))
+  let bytes = max 1 n * Bigarray.kind_size_in_bytes kind in
+  match
+    Signals.without_sigxfsz (fun () ->
+        let path = Filename.temp_file ~temp_dir:dir "raytrace" ".shm" in
+        let fd = Unix.openfile path [ O_RDWR; O_CLOEXEC ] 0o600 in
+        Fun.protect
+          ~finally:(fun () ->
+            Unix.close fd;
+            try Sys.remove path with Sys_error _ -> ())
+          (fun () ->
+            fill_zeros fd bytes;
+            Bigarray.array1_of_genarray (Unix.map_file fd kind Bigarray.c_layout true [| max 1 n |])))
+  with
+  | a -> a
+  | exception (Unix.Unix_error (e, _, _)) ->
+      failwith (Printf.sprintf "cannot get %d bytes of shared memory in %s: %s" bytes dir (Unix.error_message e))
+  | exception Sys_error e -> failwith (Printf.sprintf "cannot get shared memory in %s: %s" dir e)
 
 let shared_bytes n = map_shared Bigarray.int8_unsigned n
 let shared_ints n = map_shared Bigarray.int64 n
@@ -60,38 +92,116 @@ let describe_status = function
   | Unix.WSIGNALED s -> "was killed by " ^ signal_name s
   | Unix.WSTOPPED s -> "was stopped by " ^ signal_name s
 
-let rec wait_pid pid =
-  match Unix.waitpid [] pid with
-  | _, status -> status
-  | exception Unix.Unix_error (EINTR, _, _) -> wait_pid pid
+(* In a worker: the pid of its parent, to notice that the parent died.
+   0 outside workers. *)
+let parent = ref 0
+
+let exit_if_orphaned () =
+  if !parent <> 0 && Unix.getppid () <> !parent then Unix._exit 3
+
+let read_message fd =
+  let b = Bytes.create 512 in
+  match Unix.read fd b 0 512 with
+  | n when n > 0 -> Some (String.trim (Bytes.sub_string b 0 n))
+  | _ -> None
+  | exception Unix.Unix_error _ -> None
+
+let close_quietly fd = try Unix.close fd with Unix.Unix_error _ -> ()
+
+(* Worker [w] in the child process: its exit code, and an exception's text
+   on its pipe. *)
+let child work w me (fds : (Unix.file_descr * Unix.file_descr) array) =
+  Signals.reset_in_child ();
+  parent := me;
+  Array.iteri (fun i (r, wr) -> close_quietly r; if i <> w then close_quietly wr) fds;
+  let code =
+    match work w with
+    | () -> 0
+    | exception e ->
+        let m = Printexc.to_string e in
+        (try ignore (Unix.write_substring (snd fds.(w)) m 0 (min 500 (String.length m))) with Unix.Unix_error _ -> ());
+        2
+  in
+  Unix._exit code
 
 let run n work =
   flush stdout;
   flush stderr;
-  let pids =
-    Array.init n (fun w ->
-        match Unix.fork () with
-        | 0 ->
-            let code =
-              match work w with
-              | () -> 0
-              | exception e ->
-                  prerr_endline ("raytrace worker: " ^ Printexc.to_string e);
-                  2
-            in
-            Unix._exit code
-        | pid -> pid)
+  let me = Unix.getpid () in
+  let pids = Array.make n 0 in
+  let done_ = Array.make n false in
+  let kill_live () =
+    Array.iteri
+      (fun w pid -> if pid > 0 && not done_.(w) then try Unix.kill pid Sys.sigkill with Unix.Unix_error _ -> ())
+      pids
   in
+  let reap_live () =
+    Array.iteri
+      (fun w pid ->
+        if pid > 0 && not done_.(w) then begin
+          (try ignore (Unix.waitpid [] pid) with Unix.Unix_error _ -> ());
+          done_.(w) <- true
+        end)
+      pids
+  in
+  let fds = Array.init n (fun _ -> Unix.pipe ~cloexec:true ()) in
+  let close_pipes () = Array.iter (fun (r, w) -> close_quietly r; close_quietly w) fds in
   let first_error = ref None in
-  Array.iteri
-    (fun w pid ->
-      match wait_pid pid with
-      | Unix.WEXITED 0 -> ()
-      | status ->
-          if !first_error = None then begin
-            first_error := Some (Printf.sprintf "worker %d of %d %s" (w + 1) n (describe_status status));
-            (* The image is lost anyway: stop the others now. *)
-            Array.iter (fun p -> try Unix.kill p Sys.sigterm with Unix.Unix_error _ -> ()) pids
-          end)
-    pids;
+  let fail m =
+    if !first_error = None then begin
+      first_error := Some m;
+      (* The image is lost anyway: stop the others now. *)
+      kill_live ()
+    end
+  in
+  (* Interrupted: no worker may outlive the parent. *)
+  Signals.protect ~cleanup:(fun () -> kill_live (); reap_live ()) (fun () ->
+      (try
+         for w = 0 to n - 1 do
+           match Unix.fork () with 0 -> child work w me fds | pid -> pids.(w) <- pid
+         done
+       with Unix.Unix_error (e, _, _) ->
+         fail (Printf.sprintf "cannot start worker processes: %s" (Unix.error_message e));
+         Array.iteri (fun w pid -> if pid = 0 then done_.(w) <- true) pids);
+      Array.iter (fun (_, wr) -> close_quietly wr) fds;
+      (* Not waited for in order, so that a dead worker is noticed at once
+         even while the others still run: a worker's pipe becomes readable
+         (end of file) when it exits, however it exits, which wakes
+         [select]; then the exited workers are reaped. *)
+      let rec wait () =
+        let progress = ref false in
+        Array.iteri
+          (fun w pid ->
+            if not done_.(w) then
+              match Unix.waitpid [ WNOHANG ] pid with
+              | 0, _ -> ()
+              | _, Unix.WEXITED 0 ->
+                  done_.(w) <- true;
+                  progress := true
+              | _, status ->
+                  done_.(w) <- true;
+                  progress := true;
+                  let detail =
+                    match (status, read_message (fst fds.(w))) with
+                    | Unix.WEXITED _, Some m -> describe_status status ^ ": " ^ m
+                    | _ -> describe_status status
+                  in
+                  fail (Printf.sprintf "worker %d of %d %s" (w + 1) n detail)
+              | exception Unix.Unix_error (EINTR, _, _) -> ()
+              | exception Unix.Unix_error (e, _, _) ->
+                  done_.(w) <- true;
+                  fail (Printf.sprintf "worker %d of %d was lost: %s" (w + 1) n (Unix.error_message e)))
+          pids;
+        if Array.exists not done_ then begin
+          if not !progress then begin
+            let live = List.filter_map (fun w -> if done_.(w) then None else Some (fst fds.(w))) (List.init n Fun.id) in
+            (* [select] takes descriptors below 1024 only: with more than 256
+               workers (two descriptors each while they start), poll. *)
+            try if n <= 256 then ignore (Unix.select live [] [] 1.) else Unix.sleepf 0.005
+            with Unix.Unix_error (EINTR, _, _) -> ()
+          end;
+          wait ()
+        end
+      in
+      Fun.protect ~finally:close_pipes wait);
   match !first_error with None -> Ok () | Some m -> Error (`Msg m)

@@ -9,10 +9,18 @@ val cores : unit -> int
 (** [cores ()] is the number of processors this process may run on
     (its CPU affinity, as [nproc] reports), at least 1. *)
 
+val available_memory : unit -> int option
+(** [available_memory ()] is the memory, in bytes, that the system can give
+    to new allocations without swapping ([MemAvailable] of
+    [/proc/meminfo]), or [None] where it cannot be known. *)
+
 val shared_bytes : int -> (int, Bigarray.int8_unsigned_elt, Bigarray.c_layout) Bigarray.Array1.t
 (** [shared_bytes n] is [n] zeroed bytes that forked children share with
-    their parent: their writes are visible to it.
-    @raise Failure if no shared memory can be mapped. *)
+    their parent: their writes are visible to it. The memory is reserved
+    (written) before it is mapped, so that a worker never meets a page
+    that cannot be backed (SIGBUS).
+    @raise Failure with a one-line message if no shared memory can be had
+    (a full [/dev/shm], a file-size limit). *)
 
 val shared_ints : int -> (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t
 (** [shared_ints n] is [n] zeroed 64-bit integers shared like
@@ -25,6 +33,19 @@ val shared_floats : int -> (float, Bigarray.float64_elt, Bigarray.c_layout) Biga
 val run : int -> (int -> unit) -> (unit, [> `Msg of string ]) result
 (** [run n work] runs [work 0], ..., [work (n - 1)], each in a forked child
     process, and waits for all of them. [Error] names the first worker that
-    raised, exited with a non-zero status or was killed by a signal; the
-    others are then killed. Children leave with [Unix._exit], never running
-    the parent's [at_exit] handlers or flushing its buffers. *)
+    raised (with the exception), exited with a non-zero status or was
+    killed by a signal ([worker 2 of 4 was killed by SIGKILL]), noticed as
+    soon as it happens; the others are then killed. [Error] too if the
+    workers cannot be started. Children leave with [Unix._exit], never
+    running the parent's [at_exit] handlers or flushing its buffers.
+
+    If the parent is interrupted (SIGINT, SIGTERM, SIGHUP) while the
+    workers run, it kills and reaps them before it ends
+    ({!Signals.protect}); a worker whose parent died anyway (SIGKILL) ends
+    at its next {!exit_if_orphaned}. *)
+
+val exit_if_orphaned : unit -> unit
+(** [exit_if_orphaned ()], called by [work] now and then (once per image
+    row), ends the worker process at once if the parent that forked it has
+    died; outside a worker of {!run} it does nothing. It allocates
+    nothing. *)

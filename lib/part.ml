@@ -92,7 +92,7 @@ let decode s =
 let of_string ?(file = "<string>") s = Result.map_error (fun (`Msg m) -> `Msg (file ^ ": " ^ m)) (decode s)
 
 let read_file path =
-  let* s = File_io.read path in
+  let* s = File_io.read ~check_size:Ppm.check_file_size path in
   of_string ~file:path s
 
 let merge parts =

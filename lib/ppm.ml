@@ -19,7 +19,21 @@ let to_string ?comments img =
   done;
   Bytes.unsafe_to_string b
 
-let output ?comments oc img = output_string oc (to_string ?comments img)
+(* In chunks: writing a large image costs 64 KiB, not a copy of it. *)
+let output ?comments oc img =
+  let data = Image.buffer img in
+  output_string oc (header ?comments img);
+  let n = Bigarray.Array1.dim data in
+  let chunk = Bytes.create (min n 65536) in
+  let k = ref 0 in
+  while !k < n do
+    let len = min (Bytes.length chunk) (n - !k) in
+    for i = 0 to len - 1 do
+      Bytes.unsafe_set chunk i (Char.unsafe_chr (Bigarray.Array1.unsafe_get data (!k + i)))
+    done;
+    output oc chunk 0 len;
+    k := !k + len
+  done
 
 exception Bad of string
 
@@ -51,8 +65,6 @@ let number ~at_end what s pos =
       | Some v -> (v, start, next)
       | None -> bad "%s: expected a decimal number at byte %d, got %S" what start tok)
 
-let max_pixels = 1 lsl 30
-
 let decode s =
   let in_header () = bad "unexpected end of file in the header" in
   let magic = if String.length s >= 3 && is_space s.[2] then String.sub s 0 2 else "" in
@@ -65,8 +77,7 @@ let decode s =
   let w, _, pos = number ~at_end:in_header "width" s 2 in
   let h, _, pos = number ~at_end:in_header "height" s pos in
   let maxval, _, pos = number ~at_end:in_header "maxval" s pos in
-  if w < 1 || h < 1 then bad "image size %dx%d is empty" w h;
-  if w > max_pixels / h then bad "image size %dx%d is too large" w h;
+  (match Limits.check_image_size w h with Ok () -> () | Error m -> bad "%s" m);
   if maxval < 1 || maxval > 255 then bad "maxval must lie in [1, 255], got %d" maxval;
   let n = 3 * w * h in
   let start = pos + 1 in
@@ -105,8 +116,21 @@ let decode s =
 
 let of_string s = match decode s with img -> Ok img | exception Bad m -> Error (`Msg m)
 
+(* A P6 image at the pixel bound, with room for a long commented header;
+   anything larger is refused before it is read. *)
+let check_file_size n =
+  match Limits.current `Pixels with
+  | Error e -> Error e
+  | Ok pixels ->
+      let most = (3. *. pixels) +. 1048576. in
+      if Float.of_int n <= most then Ok n
+      else
+        Error
+          (Printf.sprintf "the file is %d bytes, more than a PPM image of at most %.0f pixels can be (%.0f bytes; set %s to raise the limit)"
+             n pixels most (Limits.variable `Pixels))
+
 let read_file path =
-  match File_io.read path with
+  match File_io.read ~check_size:check_file_size path with
   | Error (`Msg e) -> Error (`Msg e)
   | Ok s -> (
       match of_string s with Ok img -> Ok img | Error (`Msg m) -> Error (`Msg (path ^ ": " ^ m)))

@@ -19,6 +19,8 @@ let rows tr img ~first ~step =
   let buffer = Image.buffer img in
   let r = ref first in
   while !r < height do
+    (* A worker whose parent was killed stops here, within one row. *)
+    Parallel.exit_if_orphaned ();
     row tr buffer ~width ~height ~x0:0 ~x1:width !r;
     r := !r + step
   done
@@ -48,6 +50,26 @@ let save_counters ints w tr words =
   set 5 (truncate words);
   set 6 c.box_tests
 
+(* Refused before anything is allocated: a render that cannot finish
+   should fail now, not after hours or with the machine out of memory. *)
+let check_resources (scene : Scene.t) (region : Region.t) ~rays_per_pixel =
+  let ( let* ) = Result.bind in
+  let* _ = Result.map_error (fun m -> `Msg m) (Limits.check_samples rays_per_pixel) in
+  let* () = Scene.check_work ~samples:rays_per_pixel ~pixels:(Region.pixels region) scene in
+  let bytes = 3 * Region.pixels region in
+  match Parallel.available_memory () with
+  | Some available when bytes > available ->
+      let gib n = Float.of_int n /. 1073741824. in
+      Error
+        (`Msg
+          (Printf.sprintf "a %dx%d image needs %.2f GiB of memory, but only %.2f GiB are available"
+             region.w region.h (gib bytes) (gib available)))
+  | _ -> Ok ()
+
+let out_of_memory (region : Region.t) =
+  let mib = Float.of_int (3 * Region.pixels region) /. 1048576. in
+  Error (`Msg (Printf.sprintf "not enough memory for a %dx%d image (%.0f MiB)" region.w region.h mib))
+
 let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene.t) (region : Region.t) =
   if jobs < 1 then invalid_arg "Render.region_image: jobs < 1";
   if not (Region.contains region ~width:scene.width ~height:scene.height) then
@@ -57,6 +79,12 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene
     | Ok s -> s
     | Error (`Msg m) -> invalid_arg ("Render.region_image: " ^ m)
   in
+  (* At most [samples x samples] rays a pixel (adaptive sampling traces
+     fewer, subsampling about half a ray). *)
+  let rays_per_pixel = sampling.samples * sampling.samples in
+  match check_resources scene region ~rays_per_pixel with
+  | Error e -> Error e
+  | Ok () ->
   let t0 = Unix.gettimeofday () in
   let p = Prepared.prepare ?skips scene in
   let t1 = Unix.gettimeofday () in
@@ -87,7 +115,9 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene
   let averaging = Sampling.averaging sampling in
   if jobs = 1 then begin
     (* One tracer for every pass. *)
-    let img = Image.create region.w region.h in
+    match Image.create region.w region.h with
+    | exception Out_of_memory -> out_of_memory region
+    | img ->
     let plan = Sampling.plan sampling img ~canvas:(scene.width, scene.height) ~at:(region.x, region.y) ~shared:false in
     let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
     let tr = Trace.create ~averaging p in
@@ -99,13 +129,17 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene
     finish img ints
   end
   else
-    let img =
-      Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region))
-    in
+    match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
+    | exception Out_of_memory -> out_of_memory region
+    | exception Failure m -> Error (`Msg m)
+    | img ->
     let plan = Sampling.plan sampling img ~canvas:(scene.width, scene.height) ~at:(region.x, region.y) ~shared:true in
     let passes = Sampling.passes plan in
     slots := passes * jobs;
-    let ints = Parallel.shared_ints (passes * jobs * counter_fields) in
+    match Parallel.shared_ints (passes * jobs * counter_fields) with
+    | exception Out_of_memory -> out_of_memory region
+    | exception Failure m -> Error (`Msg m)
+    | ints ->
     (* A pass starts once the previous one has finished in every worker. *)
     let rec run i =
       if i = passes then finish img ints

@@ -8,7 +8,9 @@
 val rows : Trace.t -> Image.t -> first:int -> step:int -> unit
 (** [rows tr img ~first ~step] renders image rows [first], [first + step],
     [first + 2 step] ... of [img], whose size must be the canvas size of
-    [tr]'s scene.
+    [tr]'s scene. In a worker process of {!Parallel.run}, it ends the
+    process before a row if the parent has died
+    ({!Parallel.exit_if_orphaned}).
     @raise Invalid_argument if the sizes differ or [step < 1]. *)
 
 val region : Trace.t -> Image.t -> x:int -> y:int -> w:int -> h:int -> unit
@@ -29,7 +31,11 @@ val image :
     interleaved rows; [skips] is passed to {!Prepared.prepare};
     [samples] (default 1: the document's image), [adaptive] and
     [subsample] are the rays per pixel of {!Sampling.v}. The image is the
-    same for every [jobs], and with or without [skips]. [Error] if a
+    same for every [jobs], and with or without [skips]. [Error], before
+    anything is allocated, if the rays per pixel exceed
+    {!Limits.check_samples}, the render needs more work than
+    {!Scene.check_work} allows, or the image more memory than the system
+    has available; [Error] if no memory can be had for the image, or if a
     worker process dies.
     @raise Invalid_argument if [scene] fails {!Scene.validate},
     [jobs < 1], or {!Sampling.v} refuses the sampling settings. *)
@@ -56,4 +62,4 @@ val region_image :
 val image_exn :
   ?jobs:int -> ?skips:bool -> ?samples:int -> ?adaptive:int -> ?subsample:bool -> Scene.t -> Image.t
 (** [image_exn] is the image of {!image}.
-    @raise Failure if a worker process dies. *)
+    @raise Failure with the message of {!image}'s [Error]. *)

@@ -220,6 +220,8 @@ let rows pl i tr ~first ~step =
   let start = if pl.s.subsample && lo land 1 <> i then lo + 1 else lo in
   let r = ref (start + (every * first)) in
   while !r < stop do
+    (* A worker whose parent was killed stops here, within one row. *)
+    Parallel.exit_if_orphaned ();
     (match pl.s.adaptive with
     | Some _ when i = 0 -> first_rays pl tr !r
     | Some th -> refine pl th tr !r

@@ -98,6 +98,8 @@ let validate s =
     let* _ = check_background s.background in
     let* _ = Limits.check_depth s.depth in
     let* _ = match s.epsilon with Some e -> check_epsilon e | None -> Ok 0. in
+    let* _ = Limits.check_count `Spheres (List.length s.spheres) in
+    let* _ = Limits.check_count `Lights (List.length s.lights) in
     let* () = all Sphere.validate s.spheres in
     all Light.validate s.lights
   in
@@ -114,3 +116,12 @@ let at_frame s f =
       match Camera_path.camera path f with
       | Ok camera -> Ok { s with camera; camera_path = None }
       | Error e -> Error e)
+
+let check_work ?(samples = 1) ?pixels s =
+  let depth = if List.exists (fun (sp : Sphere.t) -> sp.reflective > 0.) s.spheres then s.depth else 0 in
+  let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in
+  match
+    Limits.check_work ~pixels:(Option.value pixels ~default:(s.width * s.height)) ~samples ~depth ~spheres:(List.length s.spheres) ~lights
+  with
+  | Ok () -> Ok ()
+  | Error m -> Error (`Msg m)

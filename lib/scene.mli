@@ -82,10 +82,20 @@ val check_background : Color.t -> (Color.t, string) result
 (** [check_background c] checks {!Color.in_gamut}. *)
 
 val validate : t -> (t, [> `Msg of string ]) result
-(** [validate s] is [Ok s] if every part of [s] passes its check (canvas
-    and depth within {!Limits}, {!Viewport.validate}, {!Camera.validate},
+(** [validate s] is [Ok s] if every part of [s] passes its check (canvas,
+    depth and the numbers of spheres and lights within {!Limits}, {!Viewport.validate}, {!Camera.validate},
     {!Sphere.validate}, {!Light.validate}), so that it renders without NaN
     or infinity, and otherwise [Error (`Msg m)] with the first failure. *)
+
+val check_work : ?samples:int -> ?pixels:int -> t -> (unit, [> `Msg of string ]) result
+(** [check_work ~samples ~pixels s] is [Ok ()] if rendering [pixels]
+    (default the whole canvas; fewer for a region) of [s] with [samples]
+    (default 1) samples per pixel needs at most the {!Limits} bound on
+    ray-sphere intersection tests ({!Limits.check_work}; the recursion
+    depth counts only when some sphere is reflective, and only point and
+    directional lights cast shadow rays), and otherwise [Error] saying the
+    estimate, the bound and how to raise it. {!Render.image} checks it
+    before it allocates anything. *)
 
 val with_overrides : ?width:int -> ?height:int -> ?depth:int -> t -> t
 (** [with_overrides ~width ~height ~depth s] is [s] with the given fields

@@ -34,7 +34,14 @@ let distance a b =
   d.(la).(lb)
 
 let suggestion name candidates =
-  let close = List.filter (fun c -> distance name c <= max 1 (String.length c / 3)) candidates in
+  let near c =
+    let bound = max 1 (String.length c / 3) in
+    (* The distance is at least the difference of the lengths: checking that
+       first keeps a hostile 10 MB name from costing a 10 MB x 15 table
+       (it took 51 s and 2.4 GB). *)
+    abs (String.length name - String.length c) <= bound && distance name c <= bound
+  in
+  let close = List.filter near candidates in
   match close with c :: _ -> Printf.sprintf " (did you mean %s?)" c | [] -> ""
 
 let one_of names =
@@ -298,10 +305,20 @@ type builder = {
   mutable scene : Scene.t;
   mutable spheres : Sphere.t list;  (** In reverse order. *)
   mutable lights : Light.t list;  (** In reverse order. *)
+  mutable n_spheres : int;
+  mutable n_lights : int;
 }
 
 let builder where =
-  { where; seen = Hashtbl.create 8; scene = Scene.v ~spheres:[] ~lights:[] (); spheres = []; lights = [] }
+  {
+    where;
+    seen = Hashtbl.create 8;
+    scene = Scene.v ~spheres:[] ~lights:[] ();
+    spheres = [];
+    lights = [];
+    n_spheres = 0;
+    n_lights = 0;
+  }
 
 let once b kw kw_node =
   match Hashtbl.find_opt b.seen kw with
@@ -318,8 +335,16 @@ let add_form b node =
   | Sexp.List (Sexp.List _ :: _) -> fail node "expected a form name such as sphere or light, got a list"
   | Sexp.List ((Sexp.Atom kw as kw_node) :: rest) -> (
       match kw with
-      | "sphere" -> b.spheres <- sphere ~where node rest :: b.spheres
-      | "light" -> b.lights <- light ~where node rest :: b.lights
+      (* Counted as they come, so that the error points at the first form
+         beyond the bound, before the rest of the file is read. *)
+      | "sphere" ->
+          b.n_spheres <- b.n_spheres + 1;
+          ignore (check node (Limits.check_count `Spheres b.n_spheres));
+          b.spheres <- sphere ~where node rest :: b.spheres
+      | "light" ->
+          b.n_lights <- b.n_lights + 1;
+          ignore (check node (Limits.check_count `Lights b.n_lights));
+          b.lights <- light ~where node rest :: b.lights
       | "canvas" ->
           once b kw kw_node;
           let width, height = canvas ~where node rest in
@@ -365,9 +390,12 @@ let locate_error text =
   | Error e -> `Syntax e
   | Ok (forms, positions) -> (
       let where node =
-        Option.map
-          (fun (r : Positions.range) -> r.start_pos)
-          (Positions.find_sub_sexp_in_list_phys positions forms ~sub:node)
+        (* parsexp's search recurses as deep as the nesting: a million
+           nested parentheses overflow the stack (found by the hostile
+           tests); such an error is placed at the start of the file. *)
+        match Positions.find_sub_sexp_in_list_phys positions forms ~sub:node with
+        | found -> Option.map (fun (r : Positions.range) -> r.start_pos) found
+        | exception Stack_overflow -> None
       in
       let b = builder where in
       match List.iter (add_form b) forms with
@@ -377,30 +405,33 @@ let locate_error text =
 let of_string ?(file = "<string>") text =
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
-  let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
-  (* Each form is converted as soon as it is parsed, and positions are not
-     recorded: big scenes load in little time and memory. Only an error
-     triggers a second pass that records positions, and fails on the same
-     node. *)
-  let b = builder (fun _ -> None) in
-  let state = Parsexp.Eager.State.create (fun _ form -> add_form b form) in
-  match
-    Parsexp.Eager.feed_eoi state (Parsexp.Eager.feed_string state text Parsexp.Eager.Stack.empty)
-  with
-  | exception Parsexp.Parse_error.Parse_error e -> syntax e
-  | exception Located _ -> (
-      match locate_error text with
-      | `Syntax e -> syntax e
-      | `Located (pos, m) -> error (Option.value pos ~default:origin) m
-      | `Not_found -> error origin "internal error: the located pass found no error")
-  | () -> (
-      (* Every field was checked where it was read; this is a net. *)
-      match Scene.validate (finish b) with
-      | Ok s -> Ok s
-      | Error (`Msg m) -> error origin m)
+  match Limits.check_scene_bytes (String.length text) with
+  | Error m -> Error (`Msg (Printf.sprintf "%s: %s" file m))
+  | Ok _ -> (
+    let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
+    (* Each form is converted as soon as it is parsed, and positions are not
+       recorded: big scenes load in little time and memory. Only an error
+       triggers a second pass that records positions, and fails on the same
+       node. *)
+    let b = builder (fun _ -> None) in
+    let state = Parsexp.Eager.State.create (fun _ form -> add_form b form) in
+    match
+      Parsexp.Eager.feed_eoi state (Parsexp.Eager.feed_string state text Parsexp.Eager.Stack.empty)
+    with
+    | exception Parsexp.Parse_error.Parse_error e -> syntax e
+    | exception Located _ -> (
+        match locate_error text with
+        | `Syntax e -> syntax e
+        | `Located (pos, m) -> error (Option.value pos ~default:origin) m
+        | `Not_found -> error origin "internal error: the located pass found no error")
+    | () -> (
+        (* Every field was checked where it was read; this is a net. *)
+        match Scene.validate (finish b) with
+        | Ok s -> Ok s
+        | Error (`Msg m) -> error origin m))
 
 let read path =
-  match File_io.read path with
+  match File_io.read ~check_size:Limits.check_scene_bytes path with
   | Error e -> Error e
   | Ok text -> of_string ~file:path text
 

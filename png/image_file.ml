@@ -11,7 +11,7 @@ let write_file path img =
   match format_of_path path with Png -> Png_file.write_file path img | Ppm -> Ppm.write_file path img
 
 let read_file path =
-  match File_io.read path with
+  match File_io.read ~check_size:Ppm.check_file_size path with
   | Error e -> Error e
   | Ok contents when Png_file.is_png contents -> Png_file.read_file path
   | Ok _ when format_of_path path = Png -> Error (`Msg (path ^ ": not a PNG file (it lacks the PNG signature)"))

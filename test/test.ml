@@ -30,4 +30,6 @@ let () =
       ("recipes", Test_recipes.tests);
       ("window", Test_window.tests);
       ("example", Test_example.tests);
+      ("hostile", Test_hostile.tests);
+      ("faults", Test_faults.tests);
     ]

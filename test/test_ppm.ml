@@ -35,7 +35,9 @@ let tests =
             ("P6\n1 1\n65535\n\000\000\000", "maxval must lie in [1, 255], got 65535");
             ("P6\n-1 1\n255\n", "width: expected a decimal number at byte 3, got \"-1\"");
             ("P6\n0 1\n255\n", "image size 0x1 is empty");
-            ("P6\n100000 100000\n255\n", "image size 100000x100000 is too large");
+            ("P6\n100000 100000\n255\n",
+             "image 100000x100000 has 10000000000 pixels, more than the limit of 268435456 (set \
+              RAYTRACE_MAX_PIXELS to raise it)");
             ("P6\n1 1", "unexpected end of file in the header");
             ("P3\n1 1\n255\n1 2", "pixel data is truncated: fewer than 3 samples");
             ("P3\n1 1\n255\n1 2 300", "sample 300 at byte 15 exceeds maxval 255");

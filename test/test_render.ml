@@ -123,5 +123,5 @@ let tests =
     Alcotest.test_case "a worker that raises fails the render" `Quick (fun () ->
         match Parallel.run 2 (fun w -> if w = 0 then failwith "boom") with
         | Ok () -> Alcotest.fail "a failed worker went unnoticed"
-        | Error (`Msg m) -> Alcotest.(check string) __LOC__ "worker 1 of 2 exited with status 2" m);
+        | Error (`Msg m) -> Alcotest.(check string) __LOC__ "worker 1 of 2 exited with status 2: Failure(\"boom\")" m);
   ]

@@ -40,8 +40,8 @@ let bad_inputs =
      "t.scene:1:33: unknown light ambient field position; expected intensity");
     ("(canvas (width 600) (height 60.5))", "t.scene:1:29: canvas height: expected an integer, got 60.5");
     ("(canvas (width 0))", "t.scene:1:16: canvas width must lie in [1, 65536], got 0");
-    ("(canvas (width 65536) (height 65536))", "t.scene:1:1: canvas 65536x65536 has more than 268435456 pixels");
-    ("(recursion-depth -1)", "t.scene:1:18: recursion depth must lie in [0, 64], got -1");
+    ("(canvas (width 65536) (height 65536))", "t.scene:1:1: canvas 65536x65536 has 4294967296 pixels, more than the limit of 268435456 (set RAYTRACE_MAX_PIXELS to raise it)");
+    ("(recursion-depth -1)", "t.scene:1:18: recursion depth must be >= 0, got -1");
     ("(epsilon 0.001)\n(epsilon 0.01)", "t.scene:2:2: duplicate epsilon form (first given at 1:2); it may appear only once");
     ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere or light (did you mean sphere?)");
     ("sphere", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got sphere");

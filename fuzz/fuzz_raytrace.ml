@@ -1,0 +1,146 @@
+(* The fuzz target: crowbar generators of hostile scene files and PPM
+   images, checked by the properties of [Hostile]. Run by AFL++ (`make
+   fuzz`), crowbar's input bytes steer the generators and coverage guides
+   the search; run alone it draws random inputs (the tests do so briefly). *)
+
+open Crowbar
+
+(* With RAYTRACE_FUZZ_DUMP=DIR, every input is also saved in DIR, named by
+   its digest: that turns the crowbar-encoded files of a campaign's queue
+   into the scene and image files of test/corpus/. *)
+let dump extension input =
+  match Sys.getenv_opt "RAYTRACE_FUZZ_DUMP" with
+  | None | Some "" -> ()
+  | Some dir ->
+      let oc = open_out_bin (Filename.concat dir (Digest.to_hex (Digest.string input) ^ extension)) in
+      output_string oc input;
+      close_out oc
+
+let check extension property input =
+  dump extension input;
+  match property input with Ok () -> () | Error m -> fail m
+let token tokens = map [ range (Array.length tokens) ] (fun i -> tokens.(i))
+
+let number =
+  choose
+    [
+      map [ int ] string_of_int;
+      map [ int8 ] string_of_int;
+      map [ float ] Raytrace.Float_text.to_string;
+      map [ float ] (Printf.sprintf "%h");
+      (* Numbers of a sensible size, so that scenes are often valid. *)
+      map [ int16 ] (fun n -> Raytrace.Float_text.to_string (Float.of_int n /. 256.));
+      map [ uint8 ] string_of_int;
+      token Hostile.scene_tokens;
+    ]
+
+let atom = choose [ number; token Hostile.scene_tokens; bytes ]
+
+let sexp =
+  fix (fun sexp ->
+      choose [ atom; map [ list sexp ] (fun l -> "(" ^ String.concat " " l ^ ")") ])
+
+let names =
+  [|
+    "canvas"; "viewport"; "camera"; "camera-path"; "key"; "frame"; "background"; "recursion-depth"; "epsilon";
+    "sphere"; "light";
+    "width"; "height"; "distance"; "position"; "rotation"; "look-at"; "up"; "center"; "radius"; "color";
+    "specular"; "reflective"; "intensity"; "direction"; "ambient"; "point"; "directional";
+  |]
+
+let field =
+  map [ token names; list (choose [ number; number; sexp ]) ] (fun n values ->
+      "(" ^ n ^ " " ^ String.concat " " values ^ ")")
+
+let form =
+  map [ token names; option (token [| "ambient"; "point"; "directional" |]); list (choose [ field; number ]) ]
+    (fun n kind fields ->
+      "(" ^ n ^ (match kind with Some k -> " " ^ k | None -> "") ^ " " ^ String.concat " " fields ^ ")")
+
+let separator = choose [ const "\n"; const " "; token [| "; c\n"; "#| b |#"; "#;"; "\r\n"; "" |] ]
+
+let scene_text =
+  map [ list (pair separator (choose [ form; form; form; sexp ])) ] (fun forms ->
+      String.concat "" (List.map (fun (sep, f) -> sep ^ f) forms))
+
+(* Scenes that are valid most of the time, with values anywhere in their
+   domains and sometimes at or beyond its edges, so that validation, the
+   printer and the renderer see many real scenes. *)
+let scaled lo hi = map [ uint16 ] (fun n -> Raytrace.Float_text.to_string (lo +. ((hi -. lo) *. Float.of_int n /. 65535.)))
+let value lo hi = choose [ scaled lo hi; scaled lo hi; scaled lo hi; number ]
+let triple lo hi = map [ value lo hi; value lo hi; value lo hi ] (fun a b c -> String.concat " " [ a; b; c ])
+let optional name v = map [ bool; v ] (fun present x -> if present then Printf.sprintf " (%s %s)" name x else "")
+
+let valid_sphere =
+  map
+    [ triple (-10.) 10.; value 0. 5.; triple 0. 255.; optional "specular" (choose [ const "-1"; value 0. 1000. ]);
+      optional "reflective" (value 0. 1.) ]
+    (fun c r col spec refl -> Printf.sprintf "(sphere (center %s) (radius %s) (color %s)%s%s)" c r col spec refl)
+
+let valid_light =
+  choose
+    [
+      map [ value 0. 1. ] (Printf.sprintf "(light ambient (intensity %s))");
+      map [ value 0. 1.; triple (-10.) 10. ] (Printf.sprintf "(light point (intensity %s) (position %s))");
+      map [ value 0. 1.; triple (-10.) 10. ] (Printf.sprintf "(light directional (intensity %s) (direction %s))");
+    ]
+
+let valid_setting =
+  choose
+    [
+      map [ range ~min:1 40; range ~min:1 40 ] (Printf.sprintf "(canvas (width %d) (height %d))");
+      map [ value 0.1 3.; value 0.1 3.; value 0.1 3. ] (Printf.sprintf "(viewport (width %s) (height %s) (distance %s))");
+      map [ triple (-5.) 5.; optional "look-at" (triple (-5.) 5.) ] (Printf.sprintf "(camera (position %s)%s)");
+      map [ triple 0. 255. ] (Printf.sprintf "(background %s)");
+      map [ range 10 ] (Printf.sprintf "(recursion-depth %d)");
+      map
+        [ list1 (map [ range 100; triple (-5.) 5.; triple (-5.) 5.; optional "up" (triple (-1.) 1.) ] (fun f p l u ->
+              Printf.sprintf "(key (frame %d) (position %s) (look-at %s)%s)" f p l u)) ]
+        (fun keys -> "(camera-path " ^ String.concat " " keys ^ ")");
+      map [ value 0. 0.1 ] (Printf.sprintf "(epsilon %s)");
+    ]
+
+let valid_scene =
+  map [ list valid_setting; list valid_sphere; list valid_light ] (fun settings spheres lights ->
+      String.concat "\n" (settings @ spheres @ lights))
+
+(* Deep nesting, balanced or not, around a generated form. *)
+let nested =
+  map [ range 100_000; range 3; scene_text ] (fun depth shape inner ->
+      let opening = String.make depth '(' and closing = String.make depth ')' in
+      match shape with
+      | 0 -> opening ^ inner ^ closing
+      | 1 -> opening ^ inner
+      | _ -> "(sphere " ^ opening ^ inner ^ closing ^ ")")
+
+let ppm_text =
+  map
+    [
+      token Hostile.ppm_tokens; list (pair (token [| " "; "\n"; "#c\n"; "\t" |]) (choose [ number; token Hostile.ppm_tokens ]));
+      bool; bytes;
+    ]
+    (fun magic header one_space data ->
+      magic
+      ^ String.concat "" (List.map (fun (sep, f) -> sep ^ f) header)
+      ^ (if one_space then "\n" else "")
+      ^ data)
+
+(* Images whose header is right and whose pixel data has the right length
+   (most of the time), so that the pixel checks and rescaling are reached;
+   at most 9 x 9 pixels, as crowbar draws at most 256 bytes at once. *)
+let ppm_image =
+  dynamic_bind (pair (range ~min:1 9) (range ~min:1 9)) (fun (w, h) ->
+      map [ range ~min:1 255; bool; bytes_fixed (3 * w * h); range 3 ] (fun maxval plain data slack ->
+          if plain then
+            Printf.sprintf "P3\n%d %d\n%d\n" w h maxval
+            ^ String.concat " " (List.init (String.length data - slack) (fun i -> string_of_int (Char.code data.[i])))
+          else Printf.sprintf "P6\n%d %d\n%d\n" w h maxval ^ String.sub data 0 (String.length data - slack)))
+
+let () =
+  add_test ~name:"scene: any bytes" [ bytes ] (check ".scene" Hostile.scene);
+  add_test ~name:"scene: forms and fields" [ scene_text ] (check ".scene" Hostile.scene);
+  add_test ~name:"scene: mostly valid" [ valid_scene ] (check ".scene" Hostile.scene);
+  add_test ~name:"scene: deep nesting" [ nested ] (check ".scene" Hostile.scene);
+  add_test ~name:"ppm: any bytes" [ bytes ] (check ".ppm" Hostile.ppm);
+  add_test ~name:"ppm: headers" [ ppm_text ] (check ".ppm" Hostile.ppm);
+  add_test ~name:"ppm: pixels" [ ppm_image ] (check ".ppm" Hostile.ppm)

@@ -1,0 +1,45 @@
+(** The properties that every input must satisfy, whatever its bytes.
+
+    Shared by the coverage-guided fuzz target ([fuzz/fuzz_raytrace.ml],
+    crowbar under AFL++) and the normal tests, which replay the regression
+    corpus ([test/corpus/]) and mutate the example files with QCheck. Each
+    property runs the code under test, catches every exception (stack
+    overflow and out of memory included) and checks the outcome; [Error]
+    says what went wrong, for the fuzzer to report. *)
+
+val scene_file : string
+(** [scene_file] is ["fuzz.scene"], the file name given to the parser. *)
+
+val scene : string -> (unit, string) result
+(** [scene text] is [Ok ()] if {!Raytrace.Scene_file.of_string} on [text]
+    returns without raising, and either
+    - [Ok s] where [s] passes {!Raytrace.Scene.validate}, prints back
+      ({!Raytrace.Scene_file.to_string}) to text that parses to an equal
+      scene, and renders at 3 x 2 pixels with {!Raytrace.Render.image}
+      without an error or an exception; or
+    - [Error m] where [m] is one line that starts with
+      [fuzz.scene:LINE:COLUMN: ] (a line and a column that exist in
+      [text], 1-based) or, for a text beyond the size bound, with
+      [fuzz.scene: ]. *)
+
+val ppm : string -> (unit, string) result
+(** [ppm bytes] is [Ok ()] if {!Raytrace.Ppm.of_string} on [bytes] returns
+    without raising, and either [Ok img] where [img] written as P6 reads
+    back equal, or [Error m] where [m] is one non-empty line; and if
+    {!Raytrace.Ppm.header_comments} does not raise, and
+    {!Raytrace.Part.of_string} (the parts that [raytrace merge] reads)
+    returns a part that reads back once written, or one line of error. *)
+
+val scene_tokens : string array
+(** [scene_tokens] are fragments of scene files, valid and hostile (form
+    and field names, numbers at and beyond every bound, NaN, comments,
+    strings, parentheses), from which fuzzers and mutators build inputs. *)
+
+val ppm_tokens : string array
+(** [ppm_tokens] are fragments of PPM files (magic numbers, sizes and
+    maxvals at and beyond their bounds, comments, whitespace). *)
+
+val mutate : Random.State.t -> tokens:string array -> string -> string
+(** [mutate rand ~tokens s] is [s] after 1 to 8 random edits: bytes
+    deleted, replaced or inserted, a token of [tokens] inserted, a span
+    duplicated or wrapped in up to 10000 parentheses, the text truncated. *)

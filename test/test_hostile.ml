@@ -1,0 +1,205 @@
+(* Hostile input: the fuzzing corpus replayed, example files mutated at
+   random, and the inputs that once crashed, hung or exhausted memory.
+   Every input must end in a scene or one line of error ([Hostile]), and
+   every resource bound must be refused up front, saying how to raise it. *)
+open Raytrace
+
+let corpus kind =
+  let dir = Filename.concat "corpus" kind in
+  Sys.readdir dir |> Array.to_list |> List.sort String.compare
+  |> List.map (fun f -> (f, In_channel_free.read (Filename.concat dir f)))
+
+let holds what property input =
+  match property input with
+  | Ok () -> ()
+  | Error m ->
+      let shown = if String.length input > 200 then String.sub input 0 200 ^ "..." else input in
+      Alcotest.failf "%s: %s\ninput: %S" what m shown
+
+let example_scenes () = List.map (fun n -> In_channel_free.read (Helpers.scene_path n)) (Helpers.scene_names ())
+
+let example_ppms () =
+  let img = Render.image_exn (Scene.with_overrides ~width:5 ~height:3 Scene.cgfs) in
+  let p6 = Ppm.to_string img in
+  let p3 =
+    let b = Buffer.create 256 in
+    Buffer.add_string b "P3\n# a comment\n5 3\n255\n";
+    for k = 0 to (3 * 5 * 3) - 1 do
+      Buffer.add_string b (string_of_int (Image.channel img k));
+      Buffer.add_char b (if k mod 3 = 2 then '\n' else ' ')
+    done;
+    Buffer.contents b
+  in
+  [ p6; p3; "P6\n1 1\n7\n\001\002\003" ]
+
+(* A seed file, mutated by [Hostile.mutate]; printed escaped on failure. *)
+let mutated seeds tokens =
+  let seeds = Array.of_list seeds in
+  QCheck.make ~print:String.escaped
+    QCheck.Gen.(
+      int_bound (Array.length seeds - 1) >>= fun i ->
+      fun rand -> Hostile.mutate rand ~tokens seeds.(i))
+
+let scene_error text =
+  match Scene_file.of_string ~file:"t.scene" text with
+  | Ok _ -> Alcotest.failf "accepted %S" (String.sub text 0 (min 60 (String.length text)))
+  | Error (`Msg m) -> m
+
+(* Runs [f] with environment variable [name] set to [value], then unset. *)
+let with_env name value f =
+  Unix.putenv name value;
+  Fun.protect ~finally:(fun () -> Unix.putenv name "") f
+
+let allocated f =
+  let before = Gc.allocated_bytes () in
+  f ();
+  Gc.allocated_bytes () -. before
+
+let spheres n =
+  String.concat "\n"
+    (List.init n (fun i -> Printf.sprintf "(sphere (center %d 0 5) (radius 0.5) (color 255 0 0))" i))
+
+let tests =
+  [
+    Alcotest.test_case "every scene of the fuzzing corpus is a scene or one located line" `Quick (fun () ->
+        let files = corpus "scene" in
+        if List.length files < 20 then Alcotest.failf "only %d files in corpus/scene" (List.length files);
+        List.iter (fun (f, text) -> holds f Hostile.scene text) files);
+    Alcotest.test_case "every image of the fuzzing corpus is an image or one line" `Quick (fun () ->
+        let files = corpus "ppm" in
+        if List.length files < 10 then Alcotest.failf "only %d files in corpus/ppm" (List.length files);
+        List.iter (fun (f, bytes) -> holds f Hostile.ppm bytes) files);
+    Helpers.qcheck ~count:400 "mutated example scenes are scenes or one located line"
+      (mutated (example_scenes ()) Hostile.scene_tokens)
+      (fun text -> holds "mutated scene" Hostile.scene text; true);
+    Helpers.qcheck ~count:400 "mutated images are images or one line"
+      (mutated (example_ppms ()) Hostile.ppm_tokens)
+      (fun bytes -> holds "mutated image" Hostile.ppm bytes; true);
+    Alcotest.test_case "a million nested parentheses are one error, not a stack overflow" `Quick (fun () ->
+        let n = 1_000_000 and m = 100_000 in
+        List.iter
+          (fun text -> holds "deep nesting" Hostile.scene text)
+          [
+            String.make n '(' ^ String.make n ')';
+            String.make m '(';
+            "(sphere " ^ String.make m '(' ^ String.make m ')' ^ ")";
+            "(camera (rotation (1 0 0) (0 1 0) " ^ String.make m '(' ^ String.make m ')' ^ "))";
+            String.concat "" (List.init m (fun _ -> "()"));
+          ]);
+    Alcotest.test_case "a sexp comment with nothing to comment is a syntax error, not an assertion" `Quick
+      (fun () ->
+        (* parsexp v0.15's CST parser raises Assert_failure on these (found
+           by the crowbar target); the plain parser's message is used. *)
+        List.iter
+          (fun (text, expected) -> Alcotest.(check string) text expected (scene_error text))
+          [
+            ("(#;)", "t.scene:1:4: syntax error: unterminated sexp comment");
+            ("(sphere (center 0 0 3) (radius #;) (color 1 2 3))", "t.scene:1:34: syntax error: unterminated sexp comment");
+            ("(light ambient\n  (intensity 1) #; ; why\n)", "t.scene:3:1: syntax error: unterminated sexp comment");
+          ]);
+    Alcotest.test_case "a megabyte-long unknown name costs no more memory than its text" `Quick (fun () ->
+        (* The suggestion for a misspelt name once computed an edit distance
+           table of 2 MB x 15 cells for this input (500 MB; 2.4 GB and 51 s
+           for a 10 MB name). *)
+        let text = "(" ^ String.make 2_000_000 'x' ^ ")" in
+        let bytes = allocated (fun () -> ignore (scene_error text)) in
+        if bytes > 64e6 then Alcotest.failf "parsing allocated %.0f MB" (bytes /. 1e6);
+        Alcotest.(check string) __LOC__ "t.scene:1:2: unknown form"
+          (String.sub (scene_error text) 0 (String.length "t.scene:1:2: unknown form")));
+    Alcotest.test_case "an image header cannot ask for more memory than the pixel bound" `Quick (fun () ->
+        let bytes = allocated (fun () -> ignore (Ppm.of_string "P6\n16384 16384\n255\n\000")) in
+        if bytes > 1e6 then Alcotest.failf "decoding a lying header allocated %.0f bytes" bytes;
+        match Ppm.of_string "P6\n99999 99999\n255\n" with
+        | Ok _ -> Alcotest.fail "accepted"
+        | Error (`Msg m) ->
+            Alcotest.(check string) __LOC__
+              "image 99999x99999 has 9999800001 pixels, more than the limit of 268435456 (set \
+               RAYTRACE_MAX_PIXELS to raise it)"
+              m);
+    Alcotest.test_case "resource bounds are refused with the variable that raises them" `Quick (fun () ->
+        Alcotest.(check string) __LOC__
+          "t.scene:1:1: canvas 65536x8192 has 536870912 pixels, more than the limit of 268435456 (set \
+           RAYTRACE_MAX_PIXELS to raise it)"
+          (scene_error "(canvas (width 65536) (height 8192))");
+        Alcotest.(check string) __LOC__
+          "t.scene:1:18: recursion depth 65 is too deep, more than the limit of 64 (set \
+           RAYTRACE_MAX_DEPTH to raise it)"
+          (scene_error "(recursion-depth 65)");
+        with_env "RAYTRACE_MAX_SPHERES" "3" (fun () ->
+            Alcotest.(check string) __LOC__
+              "t.scene:4:1: the scene has 4 spheres, more than the limit of 3 (set \
+               RAYTRACE_MAX_SPHERES to raise it)"
+              (scene_error (spheres 4)));
+        with_env "RAYTRACE_MAX_LIGHTS" "1" (fun () ->
+            Alcotest.(check string) __LOC__
+              "t.scene:1:30: the scene has 2 lights, more than the limit of 1 (set \
+               RAYTRACE_MAX_LIGHTS to raise it)"
+              (scene_error "(light ambient (intensity 1))(light ambient (intensity 1))"));
+        with_env "RAYTRACE_MAX_SCENE_BYTES" "1000" (fun () ->
+            Alcotest.(check string) __LOC__
+              "t.scene: the scene is 1002 bytes long, more than the limit of 1000 (set \
+               RAYTRACE_MAX_SCENE_BYTES to raise it)"
+              (scene_error (";" ^ String.make 1000 'x' ^ "\n"))));
+    Alcotest.test_case "a raised bound lets the scene through" `Quick (fun () ->
+        with_env "RAYTRACE_MAX_DEPTH" "1_000" (fun () ->
+            match Scene_file.of_string "(recursion-depth 1000)" with
+            | Ok s -> Alcotest.(check int) __LOC__ 1000 s.depth
+            | Error (`Msg m) -> Alcotest.fail m);
+        with_env "RAYTRACE_MAX_PIXELS" "1e9" (fun () ->
+            match Scene_file.of_string "(canvas (width 65536) (height 8192))" with
+            | Ok s -> Alcotest.(check int) __LOC__ 8192 s.height
+            | Error (`Msg m) -> Alcotest.fail m));
+    Alcotest.test_case "a malformed bound is an error that names the variable" `Quick (fun () ->
+        with_env "RAYTRACE_MAX_DEPTH" "lots" (fun () ->
+            Alcotest.(check string) __LOC__ "t.scene:1:18: RAYTRACE_MAX_DEPTH must be a positive integer, got \"lots\""
+              (scene_error "(recursion-depth 3)")));
+    Alcotest.test_case "a render that would take years is refused before it starts" `Quick (fun () ->
+        (* 65536 x 4096 = 268435456 pixels x 4 rays (depth 3, reflective
+           spheres) x 4 spheres x (1 + 2 shadow-casting lights) = 1.288e10
+           tests: within 1e12. 1024 samples per pixel: 1.319e13, beyond. *)
+        let big = Scene.with_overrides ~width:65536 ~height:4096 Scene.cgfs in
+        Alcotest.(check bool) __LOC__ true (Scene.check_work big = Ok ());
+        (match Scene.check_work ~samples:1024 big with
+        | Ok () -> Alcotest.fail "1024 samples accepted"
+        | Error (`Msg m) ->
+            Alcotest.(check string) __LOC__
+              "the render needs about 1.32e+13 ray-sphere intersection tests (268435456 pixels x \
+               1024 samples x 4 rays x 4 spheres per ray x (1 + 2 lights)), more than the limit of \
+               1000000000000 (set RAYTRACE_MAX_WORK to raise it)"
+              m);
+        (* 400 spheres: a hierarchy of ceil (log2 400) = 9 levels, at most
+           16 x 9 = 144 spheres per ray; depth 64: 65 rays.
+           268435456 x 65 x 144 x 3 = 7.54e12. *)
+        let crowded =
+          { big with depth = 64; spheres = List.concat (List.init 100 (fun _ -> Scene.cgfs.spheres)) }
+        in
+        match Render.image crowded with
+        | Ok _ -> Alcotest.fail "rendered"
+        | Error (`Msg m) ->
+            Alcotest.(check string) __LOC__
+              "the render needs about 7.54e+12 ray-sphere intersection tests (268435456 pixels x 1 \
+               samples x 65 rays x 144 spheres per ray x (1 + 2 lights)), more than the limit of \
+               1000000000000 (set RAYTRACE_MAX_WORK to raise it)"
+              m);
+    Alcotest.test_case "rays per pixel have a bound that --samples meets" `Quick (fun () ->
+        Alcotest.(check (result int string)) __LOC__ (Ok 4096) (Limits.check_samples 4096);
+        Alcotest.(check (result int string)) __LOC__
+          (Error "4097 samples per pixel are too many, more than the limit of 4096 (set RAYTRACE_MAX_SAMPLES to raise it)")
+          (Limits.check_samples 4097);
+        (* --samples 8 is an 8 x 8 grid: 64 rays a pixel, beyond a bound of 50. *)
+        with_env "RAYTRACE_MAX_SAMPLES" "50" (fun () ->
+            match Render.image ~samples:8 (Scene.with_overrides ~width:4 ~height:4 Scene.cgfs) with
+            | Ok _ -> Alcotest.fail "rendered"
+            | Error (`Msg m) ->
+                Alcotest.(check string) __LOC__
+                  "64 samples per pixel are too many, more than the limit of 50 (set RAYTRACE_MAX_SAMPLES to raise it)" m);
+        Alcotest.(check (result int string)) __LOC__ (Error "samples per pixel must be >= 1, got 0") (Limits.check_samples 0));
+    Alcotest.test_case "the work estimate is the product of its factors" `Quick (fun () ->
+        (* 600 * 600 pixels * 4 samples * (3 + 1) rays * 4 spheres * (1 + 2) = 69120000 *)
+        Alcotest.(check (float 0.)) __LOC__ 69120000.
+          (Limits.work ~pixels:360000 ~samples:4 ~depth:3 ~spheres:4 ~lights:2);
+        (* 100000 spheres: 2^17 = 131072 >= 100000, so 16 x 17 = 272 per ray;
+           1000 * 1 * 1 * 272 * 1 = 272000 *)
+        Alcotest.(check (float 0.)) __LOC__ 272000.
+          (Limits.work ~pixels:1000 ~samples:1 ~depth:0 ~spheres:100_000 ~lights:0));
+  ]
