@@ -117,8 +117,11 @@ let full pl tr cy =
     end
   done
 
-let set_hit (hits : ints) i tr = Bigarray.Array1.unsafe_set hits i (Int64.of_int (Trace.hit_sphere tr))
-let hit (hits : ints) i = Int64.to_int (Bigarray.Array1.unsafe_get hits i)
+(* Per pixel, not per ray: these accesses keep their bounds checks, so that
+   a wrong neighbour index fails loudly rather than reading past a mapped
+   buffer. *)
+let set_hit (hits : ints) i tr = Bigarray.Array1.set hits i (Int64.of_int (Trace.hit_sphere tr))
+let hit (hits : ints) i = Int64.to_int (Bigarray.Array1.get hits i)
 
 (* Adaptive, pass 0: the first ray of each pixel of canvas row [cy] of the
    margin, kept three ways. *)
@@ -135,7 +138,7 @@ let first_rays pl tr cy =
 (* Do the first rays of margin pixels [p] and [q] differ: another sphere,
    or a channel more than [th] apart? *)
 let[@inline] apart (f : Image.buffer) th p q c =
-  abs (Bigarray.Array1.unsafe_get f ((3 * p) + c) - Bigarray.Array1.unsafe_get f ((3 * q) + c)) > th
+  abs (Bigarray.Array1.get f ((3 * p) + c) - Bigarray.Array1.get f ((3 * q) + c)) > th
 
 let differ pl th p q =
   hit pl.hits p <> hit pl.hits q || apart pl.first th p q 0 || apart pl.first th p q 1 || apart pl.first th p q 2
@@ -159,7 +162,7 @@ let refine pl th tr cy =
     end
     else
       for c = 0 to 2 do
-        Bigarray.Array1.unsafe_set buffer (k + c) (Bigarray.Array1.unsafe_get pl.first ((3 * i) + c))
+        Bigarray.Array1.set buffer (k + c) (Bigarray.Array1.get pl.first ((3 * i) + c))
       done
   done
 
@@ -167,8 +170,10 @@ let refine pl th tr cy =
    [b], when both exist ([both]) and hit the same sphere; traced in full
    otherwise. Stored if it lies in the rectangle. *)
 let subsampled pl tr cx cy i a b ~both =
-  let ha = hit pl.hits a in
-  if both && ha = hit pl.hits b then Trace.pixel_assuming tr (gx pl cx) (gy pl cy) ha
+  (* [a] and [b] may lie outside the margin when not [both]: read only then
+     (an unchecked read before a mapped buffer can fault). *)
+  if both && hit pl.hits a = hit pl.hits b then
+    Trace.pixel_assuming tr (gx pl cx) (gy pl cy) (hit pl.hits a)
   else Trace.pixel tr (gx pl cx) (gy pl cy);
   if inside pl cx cy then Trace.store tr (Image.buffer pl.img) (3 * out pl cx cy);
   set_hit pl.hits i tr
