@@ -5,9 +5,9 @@ let max_dimension = 65536
 let max_pixels = 1 lsl 28
 let max_depth = 64
 let max_samples = 4096
-let max_spheres = 100_000
+let max_spheres = 1_000_000
 let max_lights = 1000
-let max_scene_bytes = 16 * 1024 * 1024
+let max_scene_bytes = 128 * 1024 * 1024
 let max_work = 1e12
 let num = Float_text.to_string
 

@@ -73,7 +73,8 @@ let grid n =
           palette.(i mod 6))
   in
   let ground = List.nth cgfs.spheres 3 in
-  { cgfs with width = 800; height = 800; spheres = wall @ [ ground ] }
+  (* Not [wall @ [ ground ]]: (@) recurses as deep as the list is long. *)
+  { cgfs with width = 800; height = 800; spheres = List.rev (ground :: List.rev wall) }
 
 let check_epsilon e =
   if Float.is_finite e && e >= 0. then Ok e

@@ -270,8 +270,11 @@ let path_key ~where key_node nodes =
   check key_node (Camera_path.check_key (Camera_path.key ?up ~frame ~position target))
 
 let camera_path ~where form_node nodes =
+  (* Tail-recursive maps throughout (List.rev_map, then List.rev): a scene
+     file may hold very many keys, and List.map of OCaml 4.13 recurses as
+     deep as the list is long. *)
   let keys =
-    List.map
+    List.rev @@ List.rev_map
       (fun node ->
         match node with
         | Sexp.List (Sexp.Atom "key" :: rest) -> (node, path_key ~where node rest)
@@ -288,7 +291,7 @@ let camera_path ~where form_node nodes =
   (match keys with
   | [] -> fail form_node "camera-path needs at least one (key (frame N) (position x y z) (look-at x y z))"
   | _ -> segments keys);
-  check form_node (Camera_path.v (List.map snd keys))
+  check form_node (Camera_path.v (List.rev (List.rev_map snd keys)))
 
 (* A top-level form that takes its values directly, e.g. (epsilon 0.001). *)
 let value form form_node = function
@@ -301,7 +304,8 @@ let top_level =
 (* The scene being read, form by form. *)
 type builder = {
   where : Sexp.t -> Positions.pos option;
-  seen : (string, Sexp.t) Hashtbl.t;  (** Forms that may appear once, and where. *)
+  seen : (string, Positions.pos option) Hashtbl.t;
+      (** Forms that may appear once, and where they first did. *)
   mutable scene : Scene.t;
   mutable spheres : Sphere.t list;  (** In reverse order. *)
   mutable lights : Light.t list;  (** In reverse order. *)
@@ -324,8 +328,8 @@ let once b kw kw_node =
   match Hashtbl.find_opt b.seen kw with
   | Some first ->
       fail kw_node "duplicate %s form (first given at %s); it may appear only once" kw
-        (Option.fold ~none:"?" ~some:position (b.where first))
-  | None -> Hashtbl.add b.seen kw kw_node
+        (Option.fold ~none:"?" ~some:position first)
+  | None -> Hashtbl.add b.seen kw (b.where kw_node)
 
 let add_form b node =
   let where = b.where in
@@ -385,22 +389,32 @@ let finish b =
   { b.scene with camera; spheres = List.rev b.spheres; lights = List.rev b.lights }
 
 (* The located pass: the same conversion over a parse that kept positions. *)
+(* The located pass streams too: it keeps the positions of the form being
+   converted only, so locating an error costs no more memory than loading. *)
 let locate_error text =
-  match Parsexp.Many_and_positions.parse_string text with
-  | Error e -> `Syntax e
-  | Ok (forms, positions) -> (
-      let where node =
+  let module P = Parsexp.Eager_and_positions in
+  let current = ref None in
+  let where node =
+    match !current with
+    | None -> None
+    | Some (form, positions) -> (
         (* parsexp's search recurses as deep as the nesting: a million
            nested parentheses overflow the stack (found by the hostile
            tests); such an error is placed at the start of the file. *)
-        match Positions.find_sub_sexp_in_list_phys positions forms ~sub:node with
+        match Positions.find_sub_sexp_phys positions form ~sub:node with
         | found -> Option.map (fun (r : Positions.range) -> r.start_pos) found
-        | exception Stack_overflow -> None
-      in
-      let b = builder where in
-      match List.iter (add_form b) forms with
-      | () -> `Not_found
-      | exception Located (node, m) -> `Located (where node, m))
+        | exception Stack_overflow -> None)
+  in
+  let b = builder where in
+  let state =
+    P.State.create (fun _ (form, positions) ->
+        current := Some (form, positions);
+        add_form b form)
+  in
+  match P.feed_eoi state (P.feed_string state text P.Stack.empty) with
+  | () -> `Not_found
+  | exception Parsexp.Parse_error.Parse_error e -> `Syntax e
+  | exception Located (node, m) -> `Located (where node, m)
 
 let of_string ?(file = "<string>") text =
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in

@@ -53,6 +53,11 @@ let tests =
             (* log2 (10001 / 4) = 11.3; the binned build stays within a small
                factor of it *)
             if b.depth > 40 then Alcotest.failf "depth %d" b.depth);
+    Alcotest.test_case "grid:100000, the benchmark's largest scene, is within the default limits" `Quick
+      (fun () ->
+        match Scene.validate (Scene.grid 100_000) with
+        | Ok _ -> ()
+        | Error (`Msg m) -> Alcotest.fail m);
     Alcotest.test_case "identical centers do not break the build" `Quick (fun () ->
         let n = 50 in
         let b = Bvh.build ~cx:(Array.make n 1.) ~cy:(Array.make n 2.) ~cz:(Array.make n 3.) (Array.make n 0.5) in
