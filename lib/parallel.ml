@@ -205,3 +205,32 @@ let run n work =
       in
       Fun.protect ~finally:close_pipes wait);
   match !first_error with None -> Ok () | Some m -> Error (`Msg m)
+
+(* A pipe filled with the task indices, 4 bytes each, before the workers
+   start, its write end closed: a read of 4 bytes from a pipe that holds a
+   multiple of 4 bytes takes exactly one index, atomically, whatever the
+   number of readers; end of file means no task is left. *)
+type queue = { read_end : Unix.file_descr; buffer : Bytes.t }
+
+let max_tasks = 16384
+
+let queue m =
+  if m < 0 || m > max_tasks then invalid_arg (Printf.sprintf "Parallel.queue: %d tasks" m);
+  let r, w = Unix.pipe ~cloexec:true () in
+  let data = Bytes.create (4 * m) in
+  for t = 0 to m - 1 do
+    Bytes.set_int32_le data (4 * t) (Int32.of_int t)
+  done;
+  let rec write off =
+    if off < Bytes.length data then write (off + Unix.write w data off (Bytes.length data - off))
+  in
+  Fun.protect ~finally:(fun () -> Unix.close w) (fun () -> write 0);
+  { read_end = r; buffer = Bytes.create 4 }
+
+let rec take q =
+  match Unix.read q.read_end q.buffer 0 4 with
+  | 4 -> Int32.to_int (Bytes.get_int32_le q.buffer 0)
+  | _ -> -1
+  | exception Unix.Unix_error (EINTR, _, _) -> take q
+
+let close_queue q = close_quietly q.read_end

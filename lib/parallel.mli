@@ -49,3 +49,30 @@ val exit_if_orphaned : unit -> unit
     row), ends the worker process at once if the parent that forked it has
     died; outside a worker of {!run} it does nothing. It allocates
     nothing. *)
+
+(** {1:queue Task queues}
+
+    Workers that take tasks as they go, rather than a fixed share each,
+    finish together even when one core runs slower than another. *)
+
+type queue
+(** The type for queues of task indices, shared by the workers of a
+    {!run} started after the queue was made. *)
+
+val max_tasks : int
+(** [max_tasks] is [16384]: the most tasks a queue holds (4 bytes each in a
+    pipe, whose buffer is 64 KiB). *)
+
+val queue : int -> queue
+(** [queue m] holds the tasks [0 .. m - 1].
+    @raise Invalid_argument if [m < 0] or [m > max_tasks].
+    @raise Unix.Unix_error if no pipe can be made. *)
+
+val take : queue -> int
+(** [take q] is the next task of [q], or [-1] when none is left. Each task
+    is taken by exactly one process, whatever the number of processes that
+    take from [q]. *)
+
+val close_queue : queue -> unit
+(** [close_queue q] releases [q]'s descriptors (in the parent, after
+    {!run}). *)

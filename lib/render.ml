@@ -140,17 +140,31 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene
     | exception Out_of_memory -> out_of_memory region
     | exception Failure m -> Error (`Msg m)
     | ints ->
-    (* A pass starts once the previous one has finished in every worker. *)
+    (* A pass starts once the previous one has finished in every worker.
+       Its rows are dealt into [classes] interleaved classes (rows c,
+       c + classes, ...), all about as costly, that the workers take from a
+       queue as they go: they finish together even if a core is slowed. *)
+    let classes = min Parallel.max_tasks (min region.h (32 * jobs)) in
     let rec run i =
       if i = passes then finish img ints
       else
+        let queue = Parallel.queue classes in
         let work w =
           let tr = Trace.create ~averaging p in
           let before = Gc.minor_words () in
-          Sampling.rows plan i tr ~first:w ~step:jobs;
+          let rec loop () =
+            let c = Parallel.take queue in
+            if c >= 0 then begin
+              Sampling.rows plan i tr ~first:c ~step:classes;
+              loop ()
+            end
+          in
+          loop ();
           save_counters ints ((i * jobs) + w) tr (Gc.minor_words () -. before)
         in
-        match Parallel.run jobs work with Ok () -> run (i + 1) | Error e -> Error e
+        let result = Parallel.run jobs work in
+        Parallel.close_queue queue;
+        match result with Ok () -> run (i + 1) | Error e -> Error e
     in
     run 0
 

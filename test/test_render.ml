@@ -116,6 +116,25 @@ let tests =
         (* every cosine at or below the threshold, here u times it *)
         zero >= 0. && zero < 1. && (zero = 0. || Float.pow (u *. zero) specular = 0.)
         && Float.pow zero specular = (if zero = 0. then Float.pow 0. specular else 0.));
+    Alcotest.test_case "a task queue hands every task to exactly one worker" `Quick (fun () ->
+        let m = 5000 in
+        let taken = Parallel.shared_ints m in
+        let q = Parallel.queue m in
+        let work _ =
+          let rec loop () =
+            let t = Parallel.take q in
+            if t >= 0 then begin
+              taken.{t} <- Int64.add taken.{t} 1L;
+              loop ()
+            end
+          in
+          loop ()
+        in
+        (match Parallel.run 3 work with Ok () -> () | Error (`Msg e) -> Alcotest.fail e);
+        Parallel.close_queue q;
+        for t = 0 to m - 1 do
+          if taken.{t} <> 1L then Alcotest.failf "task %d taken %Ld times" t taken.{t}
+        done);
     Alcotest.test_case "a worker that dies fails the render" `Quick (fun () ->
         match Parallel.run 3 (fun w -> if w = 1 then Unix.kill (Unix.getpid ()) Sys.sigkill) with
         | Ok () -> Alcotest.fail "a killed worker went unnoticed"
