@@ -64,6 +64,7 @@ let build ?(leaf_size = 4) ~cx ~cy ~cz extent =
   let bin_n = Array.make bins 0 in
   let bin_box = Array.init 6 (fun _ -> Array.make bins 0.) in
   let left_area = Array.make bins 0. in
+  let acc = Array.make 6 0. in
   let next = ref 0 and depth = ref 0 in
   let bin_of key c0 scale i =
     let b = truncate ((key.(i) -. c0) *. scale) in
@@ -130,24 +131,27 @@ let build ?(leaf_size = 4) ~cx ~cy ~cz extent =
             bin_box.(4).(b) <- fmax bin_box.(4).(b) (cy.(i) +. e);
             bin_box.(5).(b) <- fmax bin_box.(5).(b) (cz.(i) +. e)
           done;
-          let x0 = ref infinity and y0 = ref infinity and z0 = ref infinity in
-          let x1 = ref neg_infinity and y1 = ref neg_infinity and z1 = ref neg_infinity in
-          let grow b =
-            if bin_n.(b) > 0 then begin
-              x0 := fmin !x0 bin_box.(0).(b);
-              y0 := fmin !y0 bin_box.(1).(b);
-              z0 := fmin !z0 bin_box.(2).(b);
-              x1 := fmax !x1 bin_box.(3).(b);
-              y1 := fmax !y1 bin_box.(4).(b);
-              z1 := fmax !z1 bin_box.(5).(b)
-            end
+          (* The growing box of bins, in a float array rather than float
+             refs that a closure would box at every update. *)
+          let reset () =
+            for c = 0 to 5 do
+              acc.(c) <- (if c < 3 then infinity else neg_infinity)
+            done
           in
+          let grow b =
+            if bin_n.(b) > 0 then
+              for c = 0 to 5 do
+                let v = bin_box.(c).(b) in
+                acc.(c) <- (if c < 3 then fmin acc.(c) v else fmax acc.(c) v)
+              done
+          in
+          let acc_area () = half_area acc.(0) acc.(1) acc.(2) acc.(3) acc.(4) acc.(5) in
+          reset ();
           for b = 0 to bins - 2 do
             grow b;
-            left_area.(b) <- half_area !x0 !y0 !z0 !x1 !y1 !z1
+            left_area.(b) <- acc_area ()
           done;
-          x0 := infinity; y0 := infinity; z0 := infinity;
-          x1 := neg_infinity; y1 := neg_infinity; z1 := neg_infinity;
+          reset ();
           let best = ref (-1) and best_cost = ref infinity and right_n = ref 0 and left_n = ref n in
           for b = bins - 1 downto 1 do
             grow b;
@@ -156,7 +160,7 @@ let build ?(leaf_size = 4) ~cx ~cy ~cz extent =
             if !left_n > 0 && !right_n > 0 then begin
               let cost =
                 (left_area.(b - 1) *. Float.of_int !left_n)
-                +. (half_area !x0 !y0 !z0 !x1 !y1 !z1 *. Float.of_int !right_n)
+                +. (acc_area () *. Float.of_int !right_n)
               in
               if cost < !best_cost then begin
                 best_cost := cost;
