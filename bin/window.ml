@@ -293,7 +293,11 @@ let keys_summary =
 
 let run ~name ~scene_file ~jobs (scene : Scene.t) =
   match Graphics.open_graph (Printf.sprintf " %dx%d" scene.width scene.height) with
-  | exception Graphics.Graphic_failure reason -> Error (`No_display reason)
+  | exception Graphics.Graphic_failure reason ->
+      (* Graphics says "Cannot open display " with an empty name when
+         DISPLAY is unset: say what is wrong. *)
+      let unset = match Sys.getenv_opt "DISPLAY" with None | Some "" -> true | Some _ -> false in
+      Error (`No_display (if unset then "DISPLAY is not set" else reason))
   | () -> (
       match
         Graphics.set_window_title (View.title ~name ());

@@ -110,7 +110,8 @@ let tests =
         Alcotest.(check int) __LOC__ 3 code;
         one_line __LOC__ err;
         no_backtrace __LOC__ err;
-        if not (Astring_free.contains err "raytrace render") then Alcotest.failf "no hint in %S" err);
+        if not (Astring_free.contains err "raytrace render") then Alcotest.failf "no hint in %S" err;
+        if not (Astring_free.contains err "DISPLAY is not set") then Alcotest.failf "no reason in %S" err);
     Alcotest.test_case "diff prints the metrics and --max-diff sets the status" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let a = Filename.concat dir "a.ppm" and b = Filename.concat dir "b.ppm" in
