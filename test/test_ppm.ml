@@ -16,6 +16,28 @@ let tests =
     Alcotest.test_case "P6 reads back what it wrote" `Quick (fun () ->
         let img = image_2x1 () in
         Alcotest.(check bool) __LOC__ true (Image.equal img (decode (Ppm.to_string img))));
+    Alcotest.test_case "P6 holds every byte at any size, by string and by channel" `Quick (fun () ->
+        (* Sizes around the 8-byte words of the copy and the 64 KiB chunks
+           of [output]: 21845 pixels are 65535 bytes. *)
+        List.iter
+          (fun (w, h) ->
+            let img = Image.create w h in
+            let buf = Image.buffer img in
+            let n = Bigarray.Array1.dim buf in
+            for k = 0 to n - 1 do
+              buf.{k} <- ((k * 7919) + (k / 251)) land 255
+            done;
+            let expected = Printf.sprintf "P6\n%d %d\n255\n" w h ^ String.init n (fun k -> Char.chr buf.{k}) in
+            let what = Printf.sprintf "%dx%d" w h in
+            Alcotest.(check bool) (what ^ " to_string") true (String.equal expected (Ppm.to_string img));
+            let path = Filename.temp_file "ppm" ".ppm" in
+            let oc = open_out_bin path in
+            Ppm.output oc img;
+            close_out oc;
+            let written = match File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m in
+            Sys.remove path;
+            Alcotest.(check bool) (what ^ " output") true (String.equal expected written))
+          [ (1, 1); (2, 1); (3, 1); (8, 3); (21845, 1); (21846, 1); (21848, 1); (97, 61) ]);
     Alcotest.test_case "P3 with comments and odd spacing reads" `Quick (fun () ->
         let img = decode "P3 # plain\n2 1\n# max\n255\n255 0 10\t1 2\n3\n" in
         Alcotest.(check bool) __LOC__ true (Image.equal (image_2x1 ()) img));
