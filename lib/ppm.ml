@@ -9,7 +9,8 @@ let header ?(comments = []) img =
 
 (* The buffer's bytes are copied 8 at a time: byte by byte, the copy took
    most of the time of writing an image. The compiler's primitives read and
-   write the 64-bit words unboxed; the callers check the bounds. *)
+   write the 64-bit words unboxed, both little-endian, so the bytes keep
+   their order; [copy] checks the bounds once for all of them. *)
 external unsafe_get64 : Image.buffer -> int -> int64 = "%caml_bigstring_get64u"
 external unsafe_set64 : Bytes.t -> int -> int64 -> unit = "%caml_bytes_set64u"
 
