@@ -52,24 +52,27 @@ let one_of names =
 
 (* Values *)
 
-let number what node =
+(* [what] names the value in error messages. It is a function so that the
+   name is built only for an error: concatenating it for every value took a
+   quarter of the loading time of big scenes. *)
+let number (what : unit -> string) node =
   match node with
   | Sexp.Atom atom -> (
       match Float_text.of_string atom with
       | Some x -> x
       | None -> (
           match float_of_string_opt atom with
-          | Some _ -> fail node "%s must be a finite number, got %s" what (show_atom atom)
-          | None -> fail node "%s: expected a number, got %s" what (show_atom atom)))
-  | Sexp.List _ -> fail node "%s: expected a number, got a list" what
+          | Some _ -> fail node "%s must be a finite number, got %s" (what ()) (show_atom atom)
+          | None -> fail node "%s: expected a number, got %s" (what ()) (show_atom atom)))
+  | Sexp.List _ -> fail node "%s: expected a number, got a list" (what ())
 
-let integer what node =
+let integer (what : unit -> string) node =
   match node with
   | Sexp.Atom atom -> (
       match int_of_string_opt atom with
       | Some n -> n
-      | None -> fail node "%s: expected an integer, got %s" what (show_atom atom))
-  | Sexp.List _ -> fail node "%s: expected an integer, got a list" what
+      | None -> fail node "%s: expected an integer, got %s" (what ()) (show_atom atom))
+  | Sexp.List _ -> fail node "%s: expected an integer, got a list" (what ())
 
 let check node = function Ok x -> x | Error m -> fail node "%s" m
 
@@ -98,7 +101,7 @@ let fields ~where ~form ~allowed nodes =
             (show_atom atom))
     [] nodes
 
-let field_what form name = form ^ " " ^ name
+let field_what form name () = form ^ " " ^ name
 
 let find fs name = List.find_map (fun (n, f) -> if String.equal n name then Some f else None) fs
 let get ~form fs name parse = Option.map (fun f -> parse (field_what form name) f) (find fs name)
@@ -112,14 +115,14 @@ let required ~form ~form_node fs name parse = require ~form ~form_node name (get
 let single form name f =
   match f.args with
   | [ x ] -> x
-  | args -> fail f.node "%s takes 1 value, got %d" (field_what form name) (List.length args)
+  | args -> fail f.node "%s takes 1 value, got %d" (field_what form name ()) (List.length args)
 
 let float_field form name f = number (field_what form name) (single form name f)
 let int_field form name f = integer (field_what form name) (single form name f)
 
 let triple ~names what node = function
   | [ x; y; z ] -> (number what x, number what y, number what z)
-  | nodes -> fail node "%s takes 3 numbers (%s), got %d values" what names (List.length nodes)
+  | nodes -> fail node "%s takes 3 numbers (%s), got %d values" (what ()) names (List.length nodes)
 
 let vec3_of_nodes what node nodes =
   let x, y, z = triple ~names:"x y z" what node nodes in
@@ -172,13 +175,13 @@ let rotation form name f =
   | [ r0; r1; r2 ] ->
       let row node =
         match node with
-        | Sexp.List elements -> vec3_of_nodes (what ^ " row") node elements
+        | Sexp.List elements -> vec3_of_nodes (fun () -> what () ^ " row") node elements
         | Sexp.Atom atom ->
-            fail node "%s: expected a row of 3 numbers in parentheses, got %s" what (show_atom atom)
+            fail node "%s: expected a row of 3 numbers in parentheses, got %s" (what ()) (show_atom atom)
       in
       Camera.{ row0 = row r0; row1 = row r1; row2 = row r2 }
   | args ->
-      fail f.node "%s takes 3 rows, e.g. (1 0 0) (0 1 0) (0 0 1), got %d values" what (List.length args)
+      fail f.node "%s takes 3 rows, e.g. (1 0 0) (0 1 0) (0 0 1), got %d values" (what ()) (List.length args)
 
 let camera ~where nodes =
   let form = "camera" in
@@ -258,13 +261,13 @@ let path_key ~where key_node nodes =
   in
   let point name =
     let node, p = required ~form ~form_node:key_node fs name (fun _ f -> (f.node, vec3_field form name f)) in
-    check node (Limits.check_point (field_what form name) p)
+    check node (Limits.check_point (field_what form name ()) p)
   in
   let position = point "position" in
   let target = point "look-at" in
   let up =
     Option.map
-      (fun (node, p) -> check node (Limits.check_point (field_what form "up") p))
+      (fun (node, p) -> check node (Limits.check_point (field_what form "up" ()) p))
       (get ~form fs "up" (fun _ f -> (f.node, vec3_field form "up" f)))
   in
   check key_node (Camera_path.check_key (Camera_path.key ?up ~frame ~position target))
@@ -364,16 +367,16 @@ let add_form b node =
           b.scene <- { b.scene with camera_path = Some (camera_path ~where node rest) }
       | "background" ->
           once b kw kw_node;
-          let c = color_of_nodes kw node rest in
+          let c = color_of_nodes (fun () -> kw) node rest in
           b.scene <- { b.scene with background = check node (Scene.check_background c) }
       | "recursion-depth" ->
           once b kw kw_node;
           let v = value kw node rest in
-          b.scene <- { b.scene with depth = check v (Limits.check_depth (integer kw v)) }
+          b.scene <- { b.scene with depth = check v (Limits.check_depth (integer (fun () -> kw) v)) }
       | "epsilon" ->
           once b kw kw_node;
           let v = value kw node rest in
-          b.scene <- { b.scene with epsilon = Some (check v (Scene.check_epsilon (number kw v))) }
+          b.scene <- { b.scene with epsilon = Some (check v (Scene.check_epsilon (number (fun () -> kw) v))) }
       | _ ->
           fail kw_node "unknown form %s; expected %s%s" (show_atom kw) (one_of top_level)
             (suggestion kw top_level))
