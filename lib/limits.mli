@@ -37,6 +37,10 @@ val max_intensity : float
 val max_dimension : int
 (** [max_dimension] is [65536]: the largest canvas width or height. *)
 
+val max_grid : int
+(** [max_grid] is [64]: the largest side of a pixel's grid of samples
+    ({!Sampling.max_samples}), a fixed bound. *)
+
 (** {1:defaults Defaults of the resource bounds} *)
 
 val max_pixels : int
@@ -49,9 +53,8 @@ val max_depth : int
     recursion only costs time. *)
 
 val max_samples : int
-(** [max_samples] is [4096]: the default largest number of rays per pixel,
-    that of {!Sampling.max_samples}'s [64 x 64] grid, which stays a fixed
-    bound; the variable can only lower it. *)
+(** [max_samples] is [max_grid * max_grid = 4096]: the default largest
+    number of rays per pixel; the variable can only lower it. *)
 
 val max_spheres : int
 (** [max_spheres] is [1_000_000]: the default largest number of spheres of

@@ -1,6 +1,6 @@
 type t = { samples : int; adaptive : int option; subsample : bool }
 
-let max_samples = 64
+let max_samples = Limits.max_grid
 let max_threshold = 255
 let msg fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 
