@@ -5,19 +5,6 @@
     same, byte for byte, whatever the number of jobs: each pixel is traced
     alone, by the same code. *)
 
-val rows : Trace.t -> Image.t -> first:int -> step:int -> unit
-(** [rows tr img ~first ~step] renders image rows [first], [first + step],
-    [first + 2 step] ... of [img], whose size must be the canvas size of
-    [tr]'s scene. In a worker process of {!Parallel.run}, it ends the
-    process before a row if the parent has died
-    ({!Parallel.exit_if_orphaned}).
-    @raise Invalid_argument if the sizes differ or [step < 1]. *)
-
-val region : Trace.t -> Image.t -> x:int -> y:int -> w:int -> h:int -> unit
-(** [region tr img ~x ~y ~w ~h] renders the [w x h] pixels of [img] whose
-    top-left pixel is [(x, y)] (image coordinates).
-    @raise Invalid_argument if the region is not inside the canvas. *)
-
 val image :
   ?jobs:int ->
   ?skips:bool ->
