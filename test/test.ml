@@ -29,6 +29,7 @@ let () =
       ("cli_parts", Test_cli_parts.tests);
       ("recipes", Test_recipes.tests);
       ("window", Test_window.tests);
+      ("web_session", Test_web_session.tests);
       ("web", Test_web.tests);
       ("example", Test_example.tests);
       ("hostile", Test_hostile.tests);

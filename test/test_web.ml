@@ -113,6 +113,22 @@ let main =
 
 let held = lazy (drive ~hash:"#hold" [ step "advance:38"; step "shot:coarse"; step "release"; step "probe:progress"; step "shot:final" ])
 
+(* Every example scene, small (the size chosen fits the viewport as a
+   resized window does), with 2 x 2 samples: shots named after the scenes. *)
+let scenes =
+  lazy
+    (drive
+       (step "select:size=200x200"
+       :: step "select:samples=2"
+       :: List.concat_map
+            (fun name ->
+              [
+                (fun dir -> file_step "edit" name (read_text (Helpers.scene_path name)) dir);
+                step "wait";
+                step ("shot:" ^ Filename.remove_extension name);
+              ])
+            (Helpers.scene_names ())))
+
 let read_image path = match Ppm.read_file path with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
 let shot dir name = read_image (Filename.concat dir (name ^ ".ppm"))
 
@@ -177,6 +193,14 @@ let tests =
             let sized = shot dir "sized" in
             Alcotest.(check (pair int int)) __LOC__ (400, 300) (Image.width sized, Image.height sized);
             Helpers.check_images __LOC__ ~expected:(native ~samples:2 (shown dir "sized")) sized));
+    Alcotest.test_case "every example scene is raytrace render's, byte for byte" `Slow (fun () ->
+        with_browser "web: example scenes" (fun () ->
+            let dir = Lazy.force scenes in
+            List.iter
+              (fun name ->
+                let shot_name = Filename.remove_extension name in
+                Helpers.check_images name ~expected:(native ~samples:2 (shown dir shot_name)) (shot dir shot_name))
+              (Helpers.scene_names ())));
     Alcotest.test_case "a broken scene shows file:line:column under the editor, the picture stays" `Slow
       (fun () ->
         with_browser "web: errors" (fun () ->

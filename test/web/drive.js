@@ -91,7 +91,7 @@ async function run(page, step) {
       return page.keyboard.type(arg);
     case 'select': {
       const [id, value] = arg.split('=');
-      return page.selectOption('#' + id, value);
+      return page.selectOption('#' + id, value, { timeout: 5000 });
     }
     case 'advance': return page.evaluate((n) => window.raytrace.advance(n), Number(arg));
     case 'release': return page.evaluate(() => window.raytrace.hold(false));
