@@ -123,11 +123,33 @@ let scenes =
        :: List.concat_map
             (fun name ->
               [
-                (fun dir -> file_step "edit" name (read_text (Helpers.scene_path name)) dir);
+                (fun dir -> file_step "set" name (read_text (Helpers.scene_path name)) dir);
                 step "wait";
                 step ("shot:" ^ Filename.remove_extension name);
               ])
             (Helpers.scene_names ())))
+
+(* Random scenes of the property tests' generators, fixed seed: small
+   canvases, every light and material, both modes, and crowds that the
+   bounding volume hierarchy serves. *)
+let random_scenes =
+  lazy
+    (let rand = Random.State.make [| 16 |] in
+     List.init 40 (fun _ -> QCheck.Gen.generate1 ~rand Gen_scene.gen)
+     @ List.init 10 (fun _ -> QCheck.Gen.generate1 ~rand Gen_scene.crowd))
+
+let random =
+  lazy
+    (drive
+       (List.concat
+          (List.mapi
+             (fun i scene ->
+               [
+                 (fun dir -> file_step "set" (Printf.sprintf "r%d.txt" i) (Scene_file.to_string scene) dir);
+                 step "wait";
+                 step (Printf.sprintf "shot:r%d" i);
+               ])
+             (Lazy.force random_scenes))))
 
 let read_image path = match Ppm.read_file path with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
 let shot dir name = read_image (Filename.concat dir (name ^ ".ppm"))
@@ -201,6 +223,15 @@ let tests =
                 let shot_name = Filename.remove_extension name in
                 Helpers.check_images name ~expected:(native ~samples:2 (shown dir shot_name)) (shot dir shot_name))
               (Helpers.scene_names ())));
+    Alcotest.test_case "random scenes are the renderer's, byte for byte" `Slow (fun () ->
+        with_browser "web: random scenes" (fun () ->
+            let dir = Lazy.force random in
+            List.iteri
+              (fun i scene ->
+                let name = Printf.sprintf "r%d" i in
+                Alcotest.(check string) name (Scene_file.to_string scene) (shown dir name);
+                Helpers.check_images name ~expected:(Render.image_exn scene) (shot dir name))
+              (Lazy.force random_scenes)));
     Alcotest.test_case "a broken scene shows file:line:column under the editor, the picture stays" `Slow
       (fun () ->
         with_browser "web: errors" (fun () ->
