@@ -99,6 +99,8 @@ let main =
          step "download:first";
          step "keys:Shift+D,Shift+Q,ArrowUp,=";
          step "shot:moved";
+         step "drag:300,300,30,-20";
+         step "shot:dragged";
          step "select:size=400x300";
          step "select:samples=2";
          step "wait";
@@ -209,6 +211,14 @@ let tests =
             let moved = shot dir "moved" in
             Alcotest.(check bool) "the picture changed" false (Image.equal moved (shot dir "first"));
             Helpers.check_images __LOC__ ~expected:(native (shown dir "moved")) moved));
+    Alcotest.test_case "dragging turns the camera as in the window" `Slow (fun () ->
+        with_browser "web: drag" (fun () ->
+            let dir = Lazy.force main in
+            (* The pointer moved 30 pixels right and 20 up. *)
+            let before = match Scene_file.of_string (shown dir "moved") with Ok s -> s | Error (`Msg m) -> Alcotest.fail m in
+            let view, _ = View.handle (View.v before) (View.Drag (30, 20)) in
+            Alcotest.(check string) __LOC__ (Scene_file.to_string view.scene) (shown dir "dragged");
+            Helpers.check_images __LOC__ ~expected:(native (shown dir "dragged")) (shot dir "dragged")));
     Alcotest.test_case "size and samples chosen: raytrace render --samples of the scene shown" `Slow (fun () ->
         with_browser "web: size and samples" (fun () ->
             let dir = Lazy.force main in

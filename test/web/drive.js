@@ -11,6 +11,8 @@
 //                     shown), NAME.json (the page's state)
 //   keys:K1,K2,...    focus the canvas and press keys (Playwright names:
 //                     ArrowLeft, Shift+D, a, Plus ...), each followed by wait
+//   drag:X,Y,DX,DY    press the mouse button at canvas pixel (X, Y), move it by
+//                     (DX, DY) in one event, release it; then wait
 //   edit:FILE         replace the editor's text by FILE's
 //   set:FILE          the same, at once (an input event, without Playwright's
 //                     checks of the element: many times quicker)
@@ -86,6 +88,15 @@ async function run(page, step) {
         await waitFinished(page);
       }
       return;
+    case 'drag': {
+      const [x, y, dx, dy] = arg.split(',').map(Number);
+      const box = await page.locator('#canvas').boundingBox();
+      await page.mouse.move(box.x + x, box.y + y);
+      await page.mouse.down();
+      await page.mouse.move(box.x + x + dx, box.y + y + dy, { steps: 1 });
+      await page.mouse.up();
+      return waitFinished(page);
+    }
     case 'edit': return page.fill('#scene', fs.readFileSync(arg, 'utf8'));
     case 'set':
       return page.evaluate((text) => {
