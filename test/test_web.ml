@@ -153,6 +153,49 @@ let random =
                ])
              (Lazy.force random_scenes))))
 
+(* The scene files of the fuzzing corpus (test/corpus/scene), as the
+   editor holds them. *)
+let corpus_files () =
+  let dir = "corpus/scene" in
+  Sys.readdir dir |> Array.to_list |> List.sort compare |> List.map (Filename.concat dir)
+
+let corpus =
+  lazy
+    (drive
+       [
+         (fun dir ->
+           file_step "parse" "list"
+             (String.concat "\n" (List.map (Filename.concat (Sys.getcwd ())) (corpus_files ())))
+             dir);
+       ])
+
+(* [("scene:L:C", rest)] of a located message. *)
+let split_location m =
+  match String.split_on_char ':' m with
+  | file :: line :: col :: rest -> (String.concat ":" [ file; line; col ], String.concat ":" rest)
+  | _ -> (m, "")
+
+(* The page's message differs from raytrace's in the two ways docs/web.md
+   gives: an integer beyond 31 bits (JavaScript's OCaml ints have 32), and
+   an error whose location search ran out of JavaScript's smaller stack,
+   placed at 1:1 as raytrace places it when its own stack runs out. *)
+let documented_difference ~native ~page =
+  let nloc, nrest = split_location native and ploc, prest = split_location page in
+  let beyond_31_bits =
+    let marker = ": expected an integer, got " in
+    let n = String.length marker in
+    let rec find i = if i + n > String.length prest then None else if String.sub prest i n = marker then Some (i + n) else find (i + 1) in
+    match find 0 with
+    | Some j -> (
+        nloc = ploc
+        &&
+        match int_of_string_opt (String.sub prest j (String.length prest - j)) with
+        | Some k -> k > 0x7fff_ffff || k < -0x8000_0000
+        | None -> false)
+    | None -> false
+  in
+  beyond_31_bits || (ploc = "scene:1:1" && nrest = prest)
+
 let read_image path = match Ppm.read_file path with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
 let shot dir name = read_image (Filename.concat dir (name ^ ".ppm"))
 
@@ -256,6 +299,22 @@ let tests =
             Alcotest.(check string) __LOC__ expected error;
             Alcotest.(check string) __LOC__ "scene:14:" (String.sub error 0 9);
             Helpers.check_images __LOC__ ~expected:(shot dir "sized") (shot dir "broken")));
+    Alcotest.test_case "every scene of the fuzzing corpus gets raytrace's message, or a documented variant" `Slow (fun () ->
+        with_browser "web: corpus" (fun () ->
+            let dir = Lazy.force corpus in
+            let differ = ref 0 and known = ref 0 in
+            List.iteri
+              (fun i file ->
+                let page_text = read_text (Filename.concat dir (Printf.sprintf "parse-%d.txt" i)) in
+                let page_error = read_text (Filename.concat dir (Printf.sprintf "parse-%d.err" i)) in
+                let native = match Scene_file.of_string ~file:"scene" page_text with Ok _ -> "" | Error (`Msg m) -> m in
+                if native <> page_error then begin
+                  if documented_difference ~native ~page:page_error then incr known else incr differ;
+                  Printf.printf "%s:\n  native: %s\n  page:   %s\n" file native page_error
+                end)
+              (corpus_files ());
+            Printf.printf "%d files, %d messages differ as docs/web.md says\n" (List.length (corpus_files ())) !known;
+            Alcotest.(check int) "messages that differ" 0 !differ));
     Alcotest.test_case "text typed into the editor is rendered" `Slow (fun () ->
         with_browser "web: typing" (fun () ->
             let dir = Lazy.force main in

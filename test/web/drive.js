@@ -16,6 +16,10 @@
 //   edit:FILE         replace the editor's text by FILE's
 //   set:FILE          the same, at once (an input event, without Playwright's
 //                     checks of the element: many times quicker)
+//   parse:LIST        for each file named in the file LIST (one per line), put
+//                     its text in the editor; OUTDIR/parse-I.txt is the text the
+//                     editor then holds (textareas turn CRLF into LF),
+//                     OUTDIR/parse-I.err the error shown ("" if none)
 //   type:TEXT         type TEXT at the end of the editor, key by key
 //   select:ID=VALUE   choose VALUE in the select #ID
 //   advance:N         trace N bands (with #hold)
@@ -104,6 +108,21 @@ async function run(page, step) {
         e.value = text;
         e.dispatchEvent(new Event('input'));
       }, fs.readFileSync(arg, 'utf8'));
+    case 'parse': {
+      const files = fs.readFileSync(arg, 'utf8').split('\n').filter((f) => f !== '');
+      const texts = files.map((f) => fs.readFileSync(f, 'utf8'));
+      const results = await page.evaluate((texts) => texts.map((text) => {
+        const e = document.getElementById('scene');
+        e.value = text;
+        e.dispatchEvent(new Event('input'));
+        return [e.value, document.getElementById('error').textContent];
+      }), texts);
+      results.forEach(([text, error], i) => {
+        fs.writeFileSync(path.join(outDir, `parse-${i}.txt`), text);
+        fs.writeFileSync(path.join(outDir, `parse-${i}.err`), error);
+      });
+      return;
+    }
     case 'type':
       await page.focus('#scene');
       await page.keyboard.press('Control+End');
