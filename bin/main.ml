@@ -196,6 +196,12 @@ let frames =
            $(b,camera-path), each to the output name with its $(b,%d) or $(b,%04d) replaced by the \
            frame number (default: the scene's base name with $(b,-%04d.ppm)).")
 
+let quiet =
+  Arg.(
+    value & flag
+    & info [ "quiet"; "q" ]
+        ~doc:"Print nothing on stderr but errors (and $(b,--stats) when asked): no progress line, no line naming the file written.")
+
 let render_cmd =
   let output =
     Arg.(
@@ -236,6 +242,11 @@ let render_cmd =
              temporary file and ends with the signal. A worker that dies (killed, out of memory) \
              fails the render with a message instead of leaving a hole in the image. A scene or \
              an override beyond a limit (see ENVIRONMENT) is refused before any work.";
+          `P
+            "On a terminal, a render that takes more than a second shows its progress on stderr, \
+             on one line rewritten in place: the share done, the rays per second and the time \
+             left. Nothing of it is written when stderr is not a terminal; $(b,--quiet) hides it \
+             too.";
           scene_format;
           quality_section;
           `S Manpage.s_examples;
@@ -253,9 +264,9 @@ let render_cmd =
   in
   Cmd.v info
     Term.(
-      const (fun opts output jobs stats literal part frames sampling ->
-          Commands.render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling)
-      $ scene_options $ output $ jobs $ stats $ literal $ part $ frames $ sampling)
+      const (fun opts output jobs stats quiet literal part frames sampling ->
+          Commands.render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling)
+      $ scene_options $ output $ jobs $ stats $ quiet $ literal $ part $ frames $ sampling)
 
 let merge_cmd =
   let parts =
@@ -289,7 +300,7 @@ let merge_cmd =
              raytrace merge part-*.ppm -o cgfs.ppm";
         ]
   in
-  Cmd.v info Term.(const (fun parts output -> Commands.merge parts ~output) $ parts $ output)
+  Cmd.v info Term.(const (fun parts output quiet -> Commands.merge parts ~output ~quiet) $ parts $ output $ quiet)
 
 let diff_cmd =
   let image n =

@@ -11,10 +11,7 @@ let here name = Filename.concat (Sys.getcwd ()) name
 let read path =
   match Raytrace.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
 
-let on_path prog =
-  List.exists
-    (fun dir -> Sys.file_exists (Filename.concat dir prog))
-    (String.split_on_char ':' (Option.value (Sys.getenv_opt "PATH") ~default:""))
+let on_path = Helpers.on_path
 
 (* [with_tools progs f] runs [f] if every program is installed (make deps
    installs them), and otherwise says why it did not: this Alcotest has no
