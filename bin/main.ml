@@ -96,8 +96,8 @@ let quality_section =
       `S "RUN TIME AGAINST ERROR";
       `P
         "$(b,--depth) (mirror reflections), $(b,--samples) (rays per pixel), $(b,--adaptive) \
-         and $(b,--subsample) trade time for accuracy; the README shows the trade-off measured \
-         on four scenes ($(b,make bench-quality)). Recommended: the default (one ray per \
+         and $(b,--subsample) trade time for accuracy; docs/run-time-against-error.md shows the \
+         trade-off measured on four scenes ($(b,make bench-quality)). Recommended: the default (one ray per \
          pixel) or $(b,--subsample) for previews; $(b,--samples 5 --adaptive 2 --depth 5) for \
          final renders; full sampling ($(b,--samples 4)) where spheres are smaller than a \
          pixel, which adaptive sampling cannot see.";
@@ -105,7 +105,7 @@ let quality_section =
 
 (* The window forks its workers anew for every band of rows (each about
    0.1 s of tracing), which pays only where cores are idle: by default it
-   traces in its own process (README, "The window"). *)
+   traces in its own process (docs/window.md). *)
 let view_jobs =
   Arg.(
     value
@@ -121,7 +121,7 @@ let scene_format =
       `S "SCENE FILES";
       `P
         "A scene is a file of S-expressions, for instance $(b,scenes/cgfs.scene). See the \
-         README for every form; errors name the file, line and column.";
+         $(b,docs/scene-format.md) for every form; errors name the file, line and column.";
     ]
 
 let view_info =
