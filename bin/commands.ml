@@ -41,8 +41,12 @@ let jobs_or_cores = function
 let sampling_of (o : sampling_options) =
   Sampling.v ?samples:o.samples ?adaptive:o.adaptive ~subsample:o.subsample ()
 
+(* The meter's hook into the renderer; none when there is nothing to
+   show, so that a render without a terminal does no more than before. *)
+let progress meter = match meter with None -> None | Some m -> Some (Meter.update m)
+
 (* The image, its statistics (none for the oracle) and its tracing time. *)
-let render_image ~sampling ~literal ~jobs scene =
+let render_image ~sampling ~literal ~jobs ~meter scene =
   if literal then
     if not (Sampling.is_one sampling) then
       msg "--literal traces one ray per pixel: it cannot be combined with --samples or --subsample"
@@ -56,7 +60,7 @@ let render_image ~sampling ~literal ~jobs scene =
   else
     let* img, stats =
       Render.image ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
-        ~subsample:sampling.subsample scene
+        ~subsample:sampling.subsample ?progress:(progress meter) scene
     in
     Ok (img, Some stats, stats.trace_s)
 
@@ -171,20 +175,21 @@ let check_output opts ~frames ~part output =
   | _ -> Ok ()
 
 (* One picture (a frame, a part, or both) rendered and written. *)
-let render_one ~literal ~jobs ~stats ~load_s ~frame ~region ~output ~sampling (scene : Scene.t) =
+let render_one ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~region ~output ~sampling (scene : Scene.t) =
   let* img, st, seconds =
     match region with
-    | None -> render_image ~sampling ~literal ~jobs scene
+    | None -> render_image ~sampling ~literal ~jobs ~meter scene
     | Some (r : Region.t) when literal ->
-        let* img, st, seconds = render_image ~sampling ~literal ~jobs scene in
+        let* img, st, seconds = render_image ~sampling ~literal ~jobs ~meter scene in
         Ok (Image.sub img ~x:r.x ~y:r.y ~w:r.w ~h:r.h, st, seconds)
     | Some r ->
         let* img, st =
           Render.region_image ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
-            ~subsample:sampling.subsample scene r
+            ~subsample:sampling.subsample ?progress:(progress meter) scene r
         in
         Ok (img, Some st, st.trace_s)
   in
+  Option.iter Meter.clear meter;
   let t2 = Unix.gettimeofday () in
   let* () =
     match region with
@@ -207,7 +212,7 @@ let render_one ~literal ~jobs ~stats ~load_s ~frame ~region ~output ~sampling (s
     | None -> Format.eprintf "%-24s %.4f@." "time, literal oracle (s)" seconds);
     Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" load_s "time, write (s)" (t3 -. t2)
   end;
-  if output <> "-" then begin
+  if output <> "-" && not quiet then begin
     let what =
       match region with
       | None -> Printf.sprintf "%dx%d" scene.width scene.height
@@ -217,7 +222,7 @@ let render_one ~literal ~jobs ~stats ~load_s ~frame ~region ~output ~sampling (s
   end;
   Ok ()
 
-let render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling =
+let render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling =
   let output =
     match output with Some o -> o | None -> default_render_output opts ~frames ~spec:part
   in
@@ -229,9 +234,16 @@ let render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling =
      let load_s = Unix.gettimeofday () -. t0 in
      let* region = part_region scene part in
      let* jobs = jobs_or_cores jobs in
+     let count = match frames with None -> 1 | Some (a, b) -> b - a + 1 in
+     let meter =
+       if Meter.wanted ~quiet && not literal then Some (Meter.create ~frames:count) else None
+     in
+     (* An error's message, or an interrupt, finds the line erased. *)
+     Fun.protect ~finally:(fun () -> Option.iter Meter.clear meter) @@ fun () ->
+     let render_one = render_one ~literal ~jobs ~stats ~quiet ~meter ~load_s ~region ~sampling in
      match frames with
      | None ->
-         let* () = render_one ~literal ~jobs ~stats ~load_s ~frame:None ~region ~output ~sampling scene in
+         let* () = render_one ~frame:None ~output scene in
          Ok exit_ok
      | Some (a, b) ->
          (* Every frame is checked before the first is rendered. *)
@@ -247,13 +259,14 @@ let render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling =
            List.fold_left
              (fun acc (f, s) ->
                let* () = acc in
-               render_one ~literal ~jobs ~stats ~load_s ~frame:(Some f) ~region ~output:(frame_path output f)
-                 ~sampling s)
+               let* () = render_one ~frame:(Some f) ~output:(frame_path output f) s in
+               Option.iter Meter.next_frame meter;
+               Ok ())
              (Ok ()) (List.rev scenes)
          in
          Ok exit_ok)
 
-let merge parts ~output =
+let merge parts ~output ~quiet =
   report
     (let* parts =
        List.fold_left
@@ -266,7 +279,7 @@ let merge parts ~output =
      let parts = List.rev parts in
      let* img = Part.merge parts in
      let* () = write output img in
-     if output <> "-" then
+     if output <> "-" && not quiet then
        Printf.eprintf "raytrace: wrote %s (%dx%d, from %d parts)\n%!" output (Image.width img)
          (Image.height img) (List.length parts);
      Ok exit_ok)

@@ -96,8 +96,8 @@ let quality_section =
       `S "RUN TIME AGAINST ERROR";
       `P
         "$(b,--depth) (mirror reflections), $(b,--samples) (rays per pixel), $(b,--adaptive) \
-         and $(b,--subsample) trade time for accuracy; the README shows the trade-off measured \
-         on four scenes ($(b,make bench-quality)). Recommended: the default (one ray per \
+         and $(b,--subsample) trade time for accuracy; docs/run-time-against-error.md shows the \
+         trade-off measured on four scenes ($(b,make bench-quality)). Recommended: the default (one ray per \
          pixel) or $(b,--subsample) for previews; $(b,--samples 5 --adaptive 2 --depth 5) for \
          final renders; full sampling ($(b,--samples 4)) where spheres are smaller than a \
          pixel, which adaptive sampling cannot see.";
@@ -105,7 +105,7 @@ let quality_section =
 
 (* The window forks its workers anew for every band of rows (each about
    0.1 s of tracing), which pays only where cores are idle: by default it
-   traces in its own process (README, "The window"). *)
+   traces in its own process (docs/window.md). *)
 let view_jobs =
   Arg.(
     value
@@ -121,7 +121,7 @@ let scene_format =
       `S "SCENE FILES";
       `P
         "A scene is a file of S-expressions, for instance $(b,scenes/cgfs.scene). See the \
-         README for every form; errors name the file, line and column.";
+         $(b,docs/scene-format.md) for every form; errors name the file, line and column.";
     ]
 
 let view_info =
@@ -196,6 +196,12 @@ let frames =
            $(b,camera-path), each to the output name with its $(b,%d) or $(b,%04d) replaced by the \
            frame number (default: the scene's base name with $(b,-%04d.ppm)).")
 
+let quiet =
+  Arg.(
+    value & flag
+    & info [ "quiet"; "q" ]
+        ~doc:"Print nothing on stderr but errors (and $(b,--stats) when asked): no progress line, no line naming the file written.")
+
 let render_cmd =
   let output =
     Arg.(
@@ -236,6 +242,11 @@ let render_cmd =
              temporary file and ends with the signal. A worker that dies (killed, out of memory) \
              fails the render with a message instead of leaving a hole in the image. A scene or \
              an override beyond a limit (see ENVIRONMENT) is refused before any work.";
+          `P
+            "On a terminal, a render that takes more than a second shows its progress on stderr, \
+             on one line rewritten in place: the share done, the rays per second and the time \
+             left. Nothing of it is written when stderr is not a terminal; $(b,--quiet) hides it \
+             too.";
           scene_format;
           quality_section;
           `S Manpage.s_examples;
@@ -253,9 +264,9 @@ let render_cmd =
   in
   Cmd.v info
     Term.(
-      const (fun opts output jobs stats literal part frames sampling ->
-          Commands.render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling)
-      $ scene_options $ output $ jobs $ stats $ literal $ part $ frames $ sampling)
+      const (fun opts output jobs stats quiet literal part frames sampling ->
+          Commands.render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling)
+      $ scene_options $ output $ jobs $ stats $ quiet $ literal $ part $ frames $ sampling)
 
 let merge_cmd =
   let parts =
@@ -289,7 +300,7 @@ let merge_cmd =
              raytrace merge part-*.ppm -o cgfs.ppm";
         ]
   in
-  Cmd.v info Term.(const (fun parts output -> Commands.merge parts ~output) $ parts $ output)
+  Cmd.v info Term.(const (fun parts output quiet -> Commands.merge parts ~output ~quiet) $ parts $ output $ quiet)
 
 let diff_cmd =
   let image n =

@@ -7,8 +7,7 @@ external bind_arrows : string -> bool = "raytrace_bind_arrows"
 (* The window's pixels, kept here and sent to the X server in bulk.
    Graphics.plot sends two requests per pixel (a colour change and a point):
    a 600 x 600 frame took half as long to draw that way as to trace, and
-   four times as long as sent as one image (bench/draw.ml; README, "The
-   window"). The document's plotc draws here, through the same calls. *)
+   four times as long as sent as one image (bench/draw.ml; docs/window.md). The document's plotc draws here, through the same calls. *)
 module Frame = struct
   let width = ref 0
   let height = ref 0

@@ -124,7 +124,7 @@ let child work w me (fds : (Unix.file_descr * Unix.file_descr) array) =
   in
   Unix._exit code
 
-let run n work =
+let run ?tick n work =
   flush stdout;
   flush stderr;
   let me = Unix.getpid () in
@@ -197,9 +197,13 @@ let run n work =
             let live = List.filter_map (fun w -> if done_.(w) then None else Some (fst fds.(w))) (List.init n Fun.id) in
             (* [select] takes descriptors below 1024 only: with more than 256
                workers (two descriptors each while they start), poll. *)
-            try if n <= 256 then ignore (Unix.select live [] [] 1.) else Unix.sleepf 0.005
+            (* With a [tick], wake up often enough to call it a few
+               times a second. *)
+            let timeout = match tick with None -> 1. | Some _ -> 0.1 in
+            try if n <= 256 then ignore (Unix.select live [] [] timeout) else Unix.sleepf 0.005
             with Unix.Unix_error (EINTR, _, _) -> ()
           end;
+          Option.iter (fun tick -> tick ()) tick;
           wait ()
         end
       in

@@ -30,9 +30,11 @@ val shared_floats : int -> (float, Bigarray.float64_elt, Bigarray.c_layout) Biga
 (** [shared_floats n] is [n] zeroed 64-bit floats shared like
     {!shared_bytes}. *)
 
-val run : int -> (int -> unit) -> (unit, [> `Msg of string ]) result
-(** [run n work] runs [work 0], ..., [work (n - 1)], each in a forked child
-    process, and waits for all of them. [Error] names the first worker that
+val run : ?tick:(unit -> unit) -> int -> (int -> unit) -> (unit, [> `Msg of string ]) result
+(** [run ~tick n work] runs [work 0], ..., [work (n - 1)], each in a forked child
+    process, and waits for all of them, calling [tick ()] in the parent
+    about ten times a second meanwhile (e.g. to report progress that the
+    workers count in shared memory); [tick] must not raise. [Error] names the first worker that
     raised (with the exception), exited with a non-zero status or was
     killed by a signal ([worker 2 of 4 was killed by SIGKILL]), noticed as
     soon as it happens; the others are then killed. [Error] too if the

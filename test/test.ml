@@ -22,6 +22,7 @@ let () =
       ("view", Test_view.tests);
       ("golden", Test_golden.tests);
       ("cli", Test_cli.tests);
+      ("progress", Test_progress.tests);
       ("region", Test_region.tests);
       ("part", Test_part.tests);
       ("camera_path", Test_camera_path.tests);
