@@ -1,4 +1,8 @@
-let handled = [ Sys.sigint; Sys.sigterm; Sys.sighup ]
+let handled =
+  Sys.
+    [
+      sigint; sigterm; sighup; sigquit; sigusr1; sigusr2; sigalrm; sigpipe; sigxcpu; sigxfsz; sigvtalrm; sigprof;
+    ]
 
 let redeliver signal previous =
   match previous with
@@ -46,10 +50,7 @@ let reset_in_child () =
       | _ -> ())
     handled
 
-(* Linux's number; OCaml's [Sys] has no name for it. *)
-let sigxfsz = 25
-
 let without_sigxfsz f =
-  match Sys.signal sigxfsz Sys.Signal_ignore with
-  | previous -> Fun.protect ~finally:(fun () -> Sys.set_signal sigxfsz previous) f
+  match Sys.signal Sys.sigxfsz Sys.Signal_ignore with
+  | previous -> Fun.protect ~finally:(fun () -> Sys.set_signal Sys.sigxfsz previous) f
   | exception (Invalid_argument _ | Sys_error _) -> f ()
