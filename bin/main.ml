@@ -285,7 +285,7 @@ let merge_cmd =
           `S Manpage.s_examples;
           `Pre
             "raytrace merge part-*.ppm -o cgfs.png\n\
-             parallel raytrace render scenes/cgfs.scene --tile {}/16 -o part-{}.ppm ::: $(seq 16)\n\
+             parallel raytrace render scenes/cgfs.scene --tile {}/16 -o part-{}.ppm ::: \\$(seq 16)\n\
              raytrace merge part-*.ppm -o cgfs.ppm";
         ]
   in
@@ -389,15 +389,24 @@ let () =
      ignores what becomes of the pager: into a file or a pipe, it prints
      the help itself, whose write errors reach us. *)
   if not (Unix.isatty Unix.stdout) then Unix.putenv "TERM" "dumb";
-  let flush_all () =
-    Format.pp_print_flush Format.std_formatter ();
-    Format.pp_print_flush Format.err_formatter ();
-    flush stdout;
-    flush stderr
+  (* A failed flush keeps the bytes, and the standard library's flush at
+     exit would fail again and abort: then the process leaves with
+     [_exit]. *)
+  let flush_error flush = match flush () with () -> None | exception Sys_error e -> Some e in
+  let stdout_error () =
+    match flush_error (fun () -> Format.pp_print_flush Format.std_formatter ()) with
+    | None -> flush_error (fun () -> flush stdout)
+    | e -> e
+  in
+  let leave code =
+    let out = stdout_error () in
+    let err = flush_error (fun () -> Format.pp_print_flush Format.err_formatter ()) in
+    let err = match err with None -> flush_error (fun () -> flush stderr) | e -> e in
+    if out = None && err = None then exit code else Unix._exit code
   in
   let failed ?(code = Commands.exit_input) line =
     Commands.say line;
-    Unix._exit code
+    leave code
   in
   let usage = Buffer.create 256 in
   let err = Format.formatter_of_buffer usage in
@@ -405,13 +414,11 @@ let () =
   | code -> (
       Format.pp_print_flush err ();
       if Buffer.length usage > 0 then Commands.say (one_line_usage (Buffer.contents usage));
-      match flush_all () with
-      | () -> exit code
-      | exception Sys_error _ when code <> Commands.exit_ok ->
-          (* The failed write was reported already; its bytes are still
-             buffered. *)
-          Unix._exit code
-      | exception Sys_error e -> failed ("standard output: " ^ e))
+      (* A write that failed in a command was reported already; stderr's
+         failures lose only messages. *)
+      match stdout_error () with
+      | Some e when code = Commands.exit_ok -> failed ("standard output: " ^ e)
+      | _ -> leave code)
   | exception Sys_error e -> failed ("standard output: " ^ e)
   | exception Out_of_memory -> failed "not enough memory"
   | exception Stack_overflow -> failed "stack overflow"

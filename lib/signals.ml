@@ -21,8 +21,9 @@ let protect ~cleanup f =
     let saved = ref Sys.Signal_default in
     let handler s =
       (* A child forked inside the section inherits this handler until it
-         calls [reset_in_child]: it must not clean up after its parent. *)
-      if Unix.getpid () <> owner then Unix._exit 130
+         calls [reset_in_child]: it must not clean up after its parent,
+         and ends by the signal as it would have by default. *)
+      if Unix.getpid () <> owner then redeliver s Sys.Signal_default
       else begin
         if not !cleaned then begin
           cleaned := true;
