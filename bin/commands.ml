@@ -19,8 +19,20 @@ let msg fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 (* A line on stderr. A closed or full stderr loses it, as it would lose
    any message: the exit status still tells. *)
 let say line =
+  (* A name with a newline in it (a file name, an argument) must not make
+     two lines of one: control characters are written escaped. *)
+  let b = Buffer.create (String.length line + 16) in
+  String.iter
+    (fun c ->
+      match c with
+      | '\n' -> Buffer.add_string b "\\n"
+      | '\r' -> Buffer.add_string b "\\r"
+      | '\t' -> Buffer.add_string b "\\t"
+      | c when Char.code c < 0x20 || Char.code c = 0x7f -> Printf.bprintf b "\\x%02x" (Char.code c)
+      | c -> Buffer.add_char b c)
+    line;
   try
-    prerr_string ("raytrace: " ^ line ^ "\n");
+    prerr_string ("raytrace: " ^ Buffer.contents b ^ "\n");
     flush stderr
   with Sys_error _ -> ()
 

@@ -33,4 +33,5 @@ let () =
       ("hostile", Test_hostile.tests);
       ("faults", Test_faults.tests);
       ("outputs", Test_outputs.tests);
+      ("cli_fuzz", Test_cli_fuzz.tests);
     ]
