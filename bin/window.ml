@@ -292,6 +292,8 @@ let keys_summary =
    q quit"
 
 let run ~name ~scene_file ~jobs (scene : Scene.t) =
+  (* Graphics flushes the display on a SIGALRM timer of its own. *)
+  Signals.leave_alone Sys.sigalrm;
   match Graphics.open_graph (Printf.sprintf " %dx%d" scene.width scene.height) with
   | exception Graphics.Graphic_failure reason ->
       (* Graphics says "Cannot open display " with an empty name when

@@ -4,6 +4,13 @@ let handled =
       sigint; sigterm; sighup; sigquit; sigusr1; sigusr2; sigalrm; sigpipe; sigxcpu; sigxfsz; sigvtalrm; sigprof;
     ]
 
+(* Signals that C code of another library handles itself, which
+   [Sys.signal] reports as [Signal_default] and would then reset. *)
+let left_alone = ref []
+
+let leave_alone signal = if not (List.mem signal !left_alone) then left_alone := signal :: !left_alone
+let active () = List.filter (fun s -> not (List.mem s !left_alone)) handled
+
 let redeliver signal previous =
   match previous with
   | Sys.Signal_handle f -> f signal
@@ -40,7 +47,7 @@ let protect ~cleanup f =
         saved := before;
         (signal, before)
   in
-  let previous = List.map install handled in
+  let previous = List.map install (active ()) in
   Fun.protect ~finally:(fun () -> List.iter (fun (s, b) -> Sys.set_signal s b) previous) f
 
 let reset_in_child () =
@@ -49,7 +56,7 @@ let reset_in_child () =
       match Sys.signal s Sys.Signal_default with
       | Sys.Signal_ignore -> Sys.set_signal s Sys.Signal_ignore
       | _ -> ())
-    handled
+    (active ())
 
 let without_sigxfsz f =
   match Sys.signal Sys.sigxfsz Sys.Signal_ignore with

@@ -25,6 +25,14 @@ val handled : int list
     (SIGKILL and SIGSTOP cannot be handled; SIGSEGV, SIGBUS, SIGFPE,
     SIGILL, SIGABRT and SIGTRAP come from faults of the program itself.) *)
 
+val leave_alone : int -> unit
+(** [leave_alone s] takes [s] out of the signals that {!protect} and
+    {!reset_in_child} touch, for good: for a signal that the C code of
+    another library handles, such as the SIGALRM of Graphics' refresh
+    timer. (OCaml cannot see such a C handler: {!protect} would take the
+    signal over and then restore the default action, which ends the
+    process at the next tick.) *)
+
 val protect : cleanup:(unit -> unit) -> (unit -> 'a) -> 'a
 (** [protect ~cleanup f] is [f ()], during which each signal of {!handled}
     that is not ignored first calls [cleanup ()] (at most once), then acts
