@@ -128,7 +128,8 @@ type session = {
   mutable quit : bool;
 }
 
-let log fmt = Printf.ksprintf (fun s -> prerr_endline ("raytrace: " ^ s)) fmt
+(* A closed or full stderr loses the line; the window goes on. *)
+let log fmt = Printf.ksprintf (fun s -> try prerr_endline ("raytrace: " ^ s) with Sys_error _ -> ()) fmt
 
 let start_frame s =
   let scene = s.view.scene in

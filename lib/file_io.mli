@@ -29,6 +29,12 @@ val write_atomic : string -> (out_channel -> unit) -> (unit, [> `Msg of string ]
     [Sys_error] and [Unix.Unix_error] raised by [f] are re-raised after the
     temporary file is removed. *)
 
+val standard_channel : string -> out_channel option
+(** [standard_channel path] is [Some stdout] (or [Some stderr]) if [path]
+    names the file that standard output (error) writes to: the same device
+    and inode, as [/dev/stdout] or the file of a [>] or [>>] redirection
+    are; [None] otherwise, or if [path] does not exist. *)
+
 val remove_temporaries : unit -> unit
 (** [remove_temporaries ()] removes the temporary files of writes in
     progress. A signal handler calls it before exiting, so that an

@@ -2,11 +2,6 @@ type file = Inode of int * int | Path of string
 
 let msg fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 
-let same_inode (st : Unix.stats) fd =
-  match Unix.fstat fd with
-  | s -> s.st_dev = st.st_dev && s.st_ino = st.st_ino
-  | exception Unix.Unix_error _ -> false
-
 (* The file a path reaches, and whether it is a stream: written to in
    turn, never replaced, so that several outputs may share it. *)
 let output_file path =
@@ -15,7 +10,7 @@ let output_file path =
       let stream =
         match st.st_kind with
         | S_CHR | S_FIFO | S_SOCK | S_BLK -> true
-        | S_REG -> path = "-" || same_inode st Unix.stdout || same_inode st Unix.stderr
+        | S_REG -> path = "-" || File_io.standard_channel path <> None
         | S_DIR | S_LNK -> false
       in
       (Some st.st_kind, Inode (st.st_dev, st.st_ino), stream)

@@ -171,6 +171,7 @@ let check c (status, err, seconds) =
     | Some (WSIGNALED s) -> fail "killed by signal %d" s
     | Some (WSTOPPED s) -> fail "stopped by signal %d" s
   in
+  if code = 97 then fail "the test could not start raytrace (status 97 of its own child)";
   if not (List.mem code [ 0; 1; 3; 124 ]) then fail "exit status %d" code;
   List.iter (fun w -> if Astring_free.contains err w then fail "%S on stderr" w) forbidden;
   let lines =
