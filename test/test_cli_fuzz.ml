@@ -1,6 +1,7 @@
 (* The command line fuzzed: random argument vectors built from the real
    commands, options and values (and junk), random RAYTRACE_* variables
-   with hostile values, descriptors 0, 1 and 2 closed or full. Every run
+   with hostile values, TERM and DISPLAY set or not, descriptors 0, 1 and
+   2 closed or full. Every run
    must end, within a time bound, with a documented status (0, 1, 3, 124),
    at most one line on stderr besides the "wrote" lines (more with
    --stats), and never a backtrace, "Fatal error" or "internal error".
@@ -75,6 +76,8 @@ let generate rand =
     List.init (Random.State.int rand 3) (fun _ ->
         Printf.sprintf "RAYTRACE_MAX_%s=%s" (pick rand variables) (pick rand hostile_values))
     @ (if Random.State.bool rand then [ "TERM=xterm" ] else [])
+    (* No X server answers there: the window is status 3. *)
+    @ (match Random.State.int rand 4 with 0 -> [ "DISPLAY=" ] | 1 -> [ "DISPLAY=:98765" ] | _ -> [])
   in
   let chosen p = List.filter (fun _ -> Random.State.int rand 100 < p) [ 0; 1; 2 ] in
   let closed = chosen 12 in
@@ -162,6 +165,9 @@ let run_case dir c =
 
 let forbidden = [ "internal error"; "Fatal error"; "exception"; "Raised at"; "Called from"; "uncaught" ]
 
+(* How many runs ended with each status, to show what was reached. *)
+let statuses = Hashtbl.create 8
+
 let check c (status, err, seconds) =
   let fail fmt = Printf.ksprintf (fun m -> Alcotest.failf "%s\n  case: %s\n  stderr: %S" m (show c) err) fmt in
   let code =
@@ -171,6 +177,7 @@ let check c (status, err, seconds) =
     | Some (WSIGNALED s) -> fail "killed by signal %d" s
     | Some (WSTOPPED s) -> fail "stopped by signal %d" s
   in
+  Hashtbl.replace statuses code (1 + Option.value (Hashtbl.find_opt statuses code) ~default:0);
   if code = 97 then fail "the test could not start raytrace (status 97 of its own child)";
   if not (List.mem code [ 0; 1; 3; 124 ]) then fail "exit status %d" code;
   List.iter (fun w -> if Astring_free.contains err w then fail "%S on stderr" w) forbidden;
@@ -200,7 +207,9 @@ let fuzz () =
     slowest := Float.max !slowest seconds;
     check c result
   done;
-  Printf.printf "%d command lines (seed %d), the slowest %.2f s\n" (cases ()) (seed ()) !slowest
+  Printf.printf "%d command lines (seed %d), the slowest %.2f s; statuses %s\n" (cases ()) (seed ()) !slowest
+    (Hashtbl.fold (fun code n acc -> Printf.sprintf "%d: %d" code n :: acc) statuses []
+    |> List.sort compare |> String.concat ", ")
 
 let tests =
   [
