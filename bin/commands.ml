@@ -16,11 +16,31 @@ type sampling_options = { samples : int option; adaptive : int option; subsample
 let ( let* ) = Result.bind
 let msg fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 
+(* A line on stderr. A closed or full stderr loses it, as it would lose
+   any message: the exit status still tells. *)
+let say line =
+  (* A name with a newline in it (a file name, an argument) must not make
+     two lines of one: control characters are written escaped. *)
+  let b = Buffer.create (String.length line + 16) in
+  String.iter
+    (fun c ->
+      match c with
+      | '\n' -> Buffer.add_string b "\\n"
+      | '\r' -> Buffer.add_string b "\\r"
+      | '\t' -> Buffer.add_string b "\\t"
+      | c when Char.code c < 0x20 || Char.code c = 0x7f -> Printf.bprintf b "\\x%02x" (Char.code c)
+      | c -> Buffer.add_char b c)
+    line;
+  try
+    prerr_string ("raytrace: " ^ Buffer.contents b ^ "\n");
+    flush stderr
+  with Sys_error _ -> ()
+
 (* The one place where an error becomes a message and an exit status. *)
 let report = function
   | Ok code -> code
   | Error (`Msg m) ->
-      prerr_endline ("raytrace: " ^ m);
+      say m;
       exit_input
 
 let load opts =
@@ -72,11 +92,11 @@ let view opts ~jobs =
      | Ok () -> Ok exit_ok
      | Error (`Msg _ as e) -> Error e
      | Error (`No_display reason) ->
-         Printf.eprintf
-           "raytrace: cannot open a window (%s); to render without a display, use: raytrace \
-            render%s -o out.ppm\n"
-           reason
-           (match opts.scene with Some p -> " " ^ Filename.quote p | None -> "");
+         say
+           (Printf.sprintf
+              "cannot open a window (%s); to render without a display, use: raytrace render%s -o out.ppm"
+              reason
+              (match opts.scene with Some p -> " " ^ Filename.quote p | None -> ""));
          Ok exit_no_display)
 
 let default_output opts =
@@ -84,16 +104,16 @@ let default_output opts =
   | None -> "cgfs.ppm"
   | Some p -> Filename.remove_extension (Filename.basename p) ^ ".ppm"
 
-let same_file a b =
-  match (Unix.stat a, Unix.stat b) with
-  | sa, sb -> sa.st_dev = sb.st_dev && sa.st_ino = sb.st_ino
-  | exception Unix.Unix_error _ -> false
-
+(* A full disk, a closed stdout or a reader gone (SIGPIPE is ignored, see
+   bin/main.ml) is one line. *)
 let to_stdout data =
-  set_binary_mode_out stdout true;
-  print_string data;
-  flush stdout;
-  Ok ()
+  match
+    set_binary_mode_out stdout true;
+    print_string data;
+    flush stdout
+  with
+  | () -> Ok ()
+  | exception Sys_error e -> msg "standard output: %s" e
 
 (* PPM to stdout; a file in the format its name says. *)
 let write output img =
@@ -155,23 +175,27 @@ let default_render_output opts ~frames ~spec =
   in
   base ^ frame ^ part ^ ".ppm"
 
+let scene_input opts = match opts.scene with Some p -> [ ("scene", p) ] | None -> []
+
+(* The output plan ({!Io_plan}): no output is an input or another output.
+   Frames without a number in their name collide, unless they go to a
+   stream. *)
 let check_output opts ~frames ~part output =
+  let outputs =
+    match frames with
+    | None -> [ ("output", output) ]
+    | Some (a, b) -> List.init (b - a + 1) (fun i -> (Printf.sprintf "frame %d" (a + i), frame_path output (a + i)))
+  in
   let* () =
-    match (frames, frame_placeholder output) with
-    | Some (a, b), None when a < b && output <> "-" ->
+    match (Io_plan.check ~inputs:(scene_input opts) ~outputs, frames, frame_placeholder output) with
+    | Error _, Some (a, b), None when a < b ->
         msg "%s: with --frames %d:%d, the output needs the frame number, e.g. anim-%%04d.ppm" output a b
-    | _ -> Ok ()
+    | r, _, _ -> r
   in
-  let* () =
-    match (part, Raytrace_png.Image_file.format_of_path output) with
-    | true, Raytrace_png.Image_file.Png when output <> "-" ->
-        msg "%s: a part of an image is written as PPM, whose header records what raytrace merge checks; name it .ppm"
-          output
-    | _ -> Ok ()
-  in
-  match opts.scene with
-  | Some input when output <> "-" && same_file input output ->
-      msg "%s: the output file is the input scene; choose another output path" output
+  match (part, Raytrace_png.Image_file.format_of_path output) with
+  | true, Raytrace_png.Image_file.Png when output <> "-" ->
+      msg "%s: a part of an image is written as PPM, whose header records what raytrace merge checks; name it .ppm"
+        output
   | _ -> Ok ()
 
 (* One picture (a frame, a part, or both) rendered and written. *)
@@ -218,7 +242,7 @@ let render_one ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~region ~outpu
       | None -> Printf.sprintf "%dx%d" scene.width scene.height
       | Some r -> Format.asprintf "region %a of %dx%d" Region.pp_corners r scene.width scene.height
     in
-    Printf.eprintf "raytrace: wrote %s (%s, %.3f s)\n%!" output what seconds
+    say (Printf.sprintf "wrote %s (%s, %.3f s)" output what seconds)
   end;
   Ok ()
 
@@ -268,7 +292,10 @@ let render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling =
 
 let merge parts ~output ~quiet =
   report
-    (let* parts =
+    (let* () =
+       Io_plan.check ~inputs:(List.map (fun p -> ("part " ^ p, p)) parts) ~outputs:[ ("output", output) ]
+     in
+     let* parts =
        List.fold_left
          (fun acc path ->
            let* acc = acc in
@@ -280,16 +307,18 @@ let merge parts ~output ~quiet =
      let* img = Part.merge parts in
      let* () = write output img in
      if output <> "-" && not quiet then
-       Printf.eprintf "raytrace: wrote %s (%dx%d, from %d parts)\n%!" output (Image.width img)
-         (Image.height img) (List.length parts);
+       say
+         (Printf.sprintf "wrote %s (%dx%d, from %d parts)" output (Image.width img) (Image.height img)
+            (List.length parts));
      Ok exit_ok)
 
 let diff a b ~max_diff =
   report
-    (let* ia = Raytrace_png.Image_file.read_file a in
+    (let* () = Io_plan.check ~inputs:[ ("image " ^ a, a); ("image " ^ b, b) ] ~outputs:[ ("output", "-") ] in
+     let* ia = Raytrace_png.Image_file.read_file a in
      let* ib = Raytrace_png.Image_file.read_file b in
      let* d = Image_diff.compare ia ib in
-     Format.printf "%a@." Image_diff.pp_summary d;
+     let* () = to_stdout (Format.asprintf "%a\n" Image_diff.pp_summary d) in
      match max_diff with
      | Some m when d.max_abs > m ->
          msg "images differ by up to %d per channel, more than --max-diff %d" d.max_abs m

@@ -11,6 +11,10 @@ val exit_input : int
 val exit_no_display : int
 (** [exit_no_display] is [3]: no window could be opened. *)
 
+val say : string -> unit
+(** [say line] writes [raytrace: line] and a newline on stderr, and
+    flushes it; a closed or full stderr loses the line silently. *)
+
 type scene_options = {
   scene : string option;  (** Scene file; [None] for the built-in scene. *)
   width : int option;

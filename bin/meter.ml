@@ -32,8 +32,11 @@ let line m ~fraction ~elapsed =
 let draw m text =
   (* Spaces over what is left of a longer previous line. *)
   let pad = String.make (max 0 (m.width - String.length text)) ' ' in
-  prerr_string ("\r" ^ text ^ pad);
-  flush stderr;
+  (* A terminal that went away (EIO) loses the line, not the render. *)
+  (try
+     prerr_string ("\r" ^ text ^ pad);
+     flush stderr
+   with Sys_error _ -> ());
   m.width <- String.length text
 
 let update m ~rows ~total ~rays =
@@ -54,7 +57,9 @@ let next_frame m =
 
 let clear m =
   if m.width > 0 then begin
-    prerr_string ("\r" ^ String.make m.width ' ' ^ "\r");
-    flush stderr;
+    (try
+       prerr_string ("\r" ^ String.make m.width ' ' ^ "\r");
+       flush stderr
+     with Sys_error _ -> ());
     m.width <- 0
   end

@@ -127,7 +127,8 @@ type session = {
   mutable quit : bool;
 }
 
-let log fmt = Printf.ksprintf (fun s -> prerr_endline ("raytrace: " ^ s)) fmt
+(* A closed or full stderr loses the line; the window goes on. *)
+let log fmt = Printf.ksprintf (fun s -> try prerr_endline ("raytrace: " ^ s) with Sys_error _ -> ()) fmt
 
 let start_frame s =
   let scene = s.view.scene in
@@ -291,6 +292,8 @@ let keys_summary =
    q quit"
 
 let run ~name ~scene_file ~jobs (scene : Scene.t) =
+  (* Graphics flushes the display on a SIGALRM timer of its own. *)
+  Signals.leave_alone Sys.sigalrm;
   match Graphics.open_graph (Printf.sprintf " %dx%d" scene.width scene.height) with
   | exception Graphics.Graphic_failure reason ->
       (* Graphics says "Cannot open display " with an empty name when

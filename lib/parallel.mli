@@ -39,10 +39,13 @@ val run : ?tick:(unit -> unit) -> int -> (int -> unit) -> (unit, [> `Msg of stri
     killed by a signal ([worker 2 of 4 was killed by SIGKILL]), noticed as
     soon as it happens; the others are then killed. [Error] too if the
     workers cannot be started. Children leave with [Unix._exit], never
-    running the parent's [at_exit] handlers or flushing its buffers.
+    running the parent's [at_exit] handlers or flushing its buffers. A
+    worker that is stopped (SIGSTOP) is continued (SIGCONT) within a
+    second, so that the parent never waits for it for ever.
 
-    If the parent is interrupted (SIGINT, SIGTERM, SIGHUP) while the
-    workers run, it kills and reaps them before it ends
+    If the parent gets a signal of {!Signals.handled} (SIGINT, SIGTERM,
+    SIGHUP, SIGUSR1, ...) while the workers run, it kills and reaps them
+    before it ends
     ({!Signals.protect}); a worker whose parent died anyway (SIGKILL) ends
     at its next {!exit_if_orphaned}. *)
 

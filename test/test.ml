@@ -33,4 +33,6 @@ let () =
       ("example", Test_example.tests);
       ("hostile", Test_hostile.tests);
       ("faults", Test_faults.tests);
+      ("outputs", Test_outputs.tests);
+      ("cli_fuzz", Test_cli_fuzz.tests);
     ]
