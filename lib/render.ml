@@ -33,7 +33,36 @@ let out_of_memory (region : Region.t) =
   let mib = Float.of_int (3 * Region.pixels region) /. 1048576. in
   Error (`Msg (Printf.sprintf "not enough memory for a %dx%d image (%.0f MiB)" region.w region.h mib))
 
-let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene.t) (region : Region.t) =
+(* Rays cast so far by [tr]. *)
+let rays tr =
+  let c = Trace.counters tr in
+  c.primary + c.shadow + c.reflection
+
+let total_rows plan =
+  let t = ref 0 in
+  for i = 0 to Sampling.passes plan - 1 do
+    t := !t + Sampling.pass_rows plan i
+  done;
+  !t
+
+type progress_slots = (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t
+
+(* Worker [w] of [jobs] counts the rows it has finished, over every pass,
+   in slot [w] and its rays in slot [jobs + w]: writes of its own, read by
+   the parent between them. The type is known here, so that a write
+   allocates nothing. *)
+let count_row (slots : progress_slots) ~jobs w ~rays =
+  Bigarray.Array1.set slots w (Int64.succ (Bigarray.Array1.get slots w));
+  Bigarray.Array1.set slots (jobs + w) (Int64.of_int rays)
+
+let sum_slots (slots : progress_slots) lo n =
+  let s = ref 0 in
+  for k = lo to lo + n - 1 do
+    s := !s + Int64.to_int (Bigarray.Array1.get slots k)
+  done;
+  !s
+
+let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress (scene : Scene.t) (region : Region.t) =
   if jobs < 1 then invalid_arg "Render.region_image: jobs < 1";
   if not (Region.contains region ~width:scene.width ~height:scene.height) then
     invalid_arg "Render.region_image: region outside the canvas";
@@ -84,11 +113,28 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene
     let plan = Sampling.plan sampling img ~canvas:(scene.width, scene.height) ~at:(region.x, region.y) ~shared:false in
     let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
     let tr = Trace.create ~averaging p in
+    (* What the caller's [progress] allocates is not the tracer's. *)
+    let progress_words = Array.make 1 0. in
     let before = Gc.minor_words () in
-    for i = 0 to Sampling.passes plan - 1 do
-      Sampling.rows plan i tr ~first:0 ~step:1
-    done;
-    save_counters ints 0 tr (Gc.minor_words () -. before);
+    (match progress with
+    | None ->
+        for i = 0 to Sampling.passes plan - 1 do
+          Sampling.rows plan i tr ~first:0 ~step:1
+        done
+    | Some progress ->
+        let total = total_rows plan in
+        let finished = ref 0 in
+        for i = 0 to Sampling.passes plan - 1 do
+          let n = Sampling.pass_rows plan i in
+          for r = 0 to n - 1 do
+            Sampling.rows plan i tr ~first:r ~step:n;
+            incr finished;
+            let w = Gc.minor_words () in
+            progress ~rows:!finished ~total ~rays:(rays tr);
+            progress_words.(0) <- progress_words.(0) +. (Gc.minor_words () -. w)
+          done
+        done);
+    save_counters ints 0 tr (Gc.minor_words () -. before -. progress_words.(0));
     finish img ints
   end
   else
@@ -103,36 +149,62 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene
     | exception Out_of_memory -> out_of_memory region
     | exception Failure m -> Error (`Msg m)
     | ints ->
+    match Option.map (fun _ -> Parallel.shared_ints (2 * jobs)) progress with
+    | exception Out_of_memory -> out_of_memory region
+    | exception Failure m -> Error (`Msg m)
+    | slots ->
+    let total = total_rows plan in
+    let report () =
+      match (progress, slots) with
+      | Some progress, Some slots ->
+          progress ~rows:(sum_slots slots 0 jobs) ~total ~rays:(sum_slots slots jobs jobs)
+      | _ -> ()
+    in
     (* A pass starts once the previous one has finished in every worker.
        Its rows are dealt into [classes] interleaved classes (rows c,
        c + classes, ...), all about as costly, that the workers take from a
        queue as they go: they finish together even if a core is slowed. *)
     let classes = min Parallel.max_tasks (min region.h (32 * jobs)) in
     let rec run i =
-      if i = passes then finish img ints
+      if i = passes then begin
+        report ();
+        finish img ints
+      end
       else
         let queue = Parallel.queue classes in
+        let n = Sampling.pass_rows plan i in
         let work w =
           let tr = Trace.create ~averaging p in
           let before = Gc.minor_words () in
           let rec loop () =
             let c = Parallel.take queue in
             if c >= 0 then begin
-              Sampling.rows plan i tr ~first:c ~step:classes;
+              (match slots with
+              | None -> Sampling.rows plan i tr ~first:c ~step:classes
+              | Some slots ->
+                  (* Rays of the earlier passes, whose tracers are gone. *)
+                  let earlier = Int64.to_int (Bigarray.Array1.get slots (jobs + w)) - rays tr in
+                  let r = ref c in
+                  while !r < n do
+                    Sampling.rows plan i tr ~first:!r ~step:n;
+                    count_row slots ~jobs w ~rays:(earlier + rays tr);
+                    r := !r + classes
+                  done);
               loop ()
             end
           in
           loop ();
           save_counters ints ((i * jobs) + w) tr (Gc.minor_words () -. before)
         in
-        let result = Parallel.run jobs work in
+        let tick = Option.map (fun _ -> report) progress in
+        let result = Parallel.run ?tick jobs work in
         Parallel.close_queue queue;
         match result with Ok () -> run (i + 1) | Error e -> Error e
     in
     run 0
 
-let image ?jobs ?skips ?samples ?adaptive ?subsample (scene : Scene.t) =
-  region_image ?jobs ?skips ?samples ?adaptive ?subsample scene (Region.full ~width:scene.width ~height:scene.height)
+let image ?jobs ?skips ?samples ?adaptive ?subsample ?progress (scene : Scene.t) =
+  region_image ?jobs ?skips ?samples ?adaptive ?subsample ?progress scene (Region.full ~width:scene.width ~height:scene.height)
 
 let image_exn ?jobs ?skips ?samples ?adaptive ?subsample scene =
   match image ?jobs ?skips ?samples ?adaptive ?subsample scene with

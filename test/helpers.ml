@@ -87,3 +87,8 @@ let temp_dir () =
   Sys.remove d;
   Unix.mkdir d 0o755;
   d
+
+let on_path prog =
+  List.exists
+    (fun dir -> Sys.file_exists (Filename.concat dir prog))
+    (String.split_on_char ':' (Option.value (Sys.getenv_opt "PATH") ~default:""))

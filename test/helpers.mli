@@ -43,3 +43,7 @@ val raytrace : unit -> string
 
 val temp_dir : unit -> string
 (** [temp_dir ()] is a fresh empty directory. *)
+
+val on_path : string -> bool
+(** [on_path prog] is [true] iff a file [prog] is in a directory of
+    [PATH]. *)
