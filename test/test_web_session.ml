@@ -83,7 +83,7 @@ let tests =
         Alcotest.(check int) "one sample again" 1 (Session.samples p);
         Alcotest.(check bool) "h only redraws" true (Session.input p (View.Key 'h') = View.Redraw);
         Alcotest.(check bool) "unbound keys do nothing" true (Session.input p (View.Key 'x') = View.Nothing));
-    Alcotest.test_case "samples chosen set the antialiasing flag; bad sizes and samples are refused" `Quick (fun () ->
+    Alcotest.test_case "samples chosen set the antialiasing flag; sizes keep the camera; bad ones are refused" `Quick (fun () ->
         let p = session (cgfs_text ()) in
         ok (Session.set_samples p 4);
         Alcotest.(check bool) "flag on" true (Session.view p).antialias;
@@ -95,9 +95,14 @@ let tests =
         refused "0 wide" (Session.set_size p (Some (0, 10)));
         refused "too wide" (Session.set_size p (Some (65537, 10)));
         Alcotest.(check (option (pair int int))) "size unchanged" None (Session.size p);
+        ignore (Session.input p (View.Key 'D'));
+        let moved = (Session.view p).scene.camera in
         small p;
         ok (Session.set_size p None);
-        Alcotest.(check int) "the scene's canvas again" 600 (Session.view p).scene.width);
+        let shown = (Session.view p).scene in
+        Alcotest.(check (pair int int)) "the scene's canvas again" (600, 600) (shown.width, shown.height);
+        Alcotest.(check bool) "its viewport" true (Viewport.equal Scene.cgfs.viewport shown.viewport);
+        Alcotest.(check bool) "the camera moved stays" true (Camera.equal moved shown.camera));
     Alcotest.test_case "browser key names are the window's characters" `Quick (fun () ->
         List.iter
           (fun (name, expected) -> Alcotest.(check (option char)) name expected (Key.to_char name))

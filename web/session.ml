@@ -26,9 +26,12 @@ type t = {
 }
 
 let file = "scene"
+let ( let* ) = Result.bind
 
-let check_work samples (view : View.t) =
-  Scene.check_work ~samples:(samples * samples) view.scene
+let check_work samples (view : View.t) = Scene.check_work ~samples:(samples * samples) view.scene
+
+let check_canvas w h =
+  match Limits.check_canvas w h with Ok () -> Ok () | Error m -> Error (`Msg m)
 
 let restart p =
   p.render <- Progressive.create ~samples:p.samples p.view.scene;
@@ -38,117 +41,74 @@ let restart p =
   p.bands <- 0;
   p.longest_slice <- 0.
 
-(* The view of [scene] at [size], its antialiasing flag saying whether
-   [samples > 1], as the window's would after the same keys. *)
-let view_of scene ~size ~samples =
-  let view = View.v scene in
-  let view =
-    match size with
-    | None -> Ok view
-    | Some (w, h) -> (
-        match Limits.check_canvas w h with
-        | Error m -> Error (`Msg m)
-        | Ok () -> Ok (fst (View.handle view (View.Resize (w, h)))))
-  in
-  Result.map (fun view -> if samples > 1 then fst (View.handle view (View.Key 'a')) else view) view
+(* Shows [view] with [samples] from now on, if that render is allowed. *)
+let commit p view ~size ~samples =
+  let* () = check_work samples view in
+  p.view <- view;
+  p.size <- size;
+  p.samples <- samples;
+  restart p;
+  Ok ()
+
+(* [view] at [w x h], as the window resizes: the camera stays. *)
+let resized view (w, h) =
+  let* () = check_canvas w h in
+  Ok (fst (View.handle view (View.Resize (w, h))))
+
+(* [view] with its antialiasing flag saying whether [samples > 1], as the
+   window's would after the key [a]. *)
+let flagged (view : View.t) samples =
+  if (samples > 1) <> view.antialias then fst (View.handle view (View.Key 'a')) else view
 
 let v ~now text =
-  match Scene_file.of_string ~file text with
-  | Error e -> Error e
-  | Ok scene -> (
-      match view_of scene ~size:None ~samples:1 with
-      | Error e -> Error e
-      | Ok view -> (
-          match check_work 1 view with
-          | Error e -> Error e
-          | Ok () ->
-              let p =
-                {
-                  now;
-                  size = None;
-                  samples = 1;
-                  view;
-                  render = Progressive.create view.scene;
-                  started = 0.;
-                  trace_seconds = 0.;
-                  slices = 0;
-                  bands = 0;
-                  longest_slice = 0.;
-                  last_frame = None;
-                }
-              in
-              restart p;
-              Ok p))
-
-
-(* Shows [scene] at [size] with [samples], if the render is allowed. *)
-let show p scene ~size ~samples =
-  match view_of scene ~size ~samples with
-  | Error e -> Error e
-  | Ok view -> (
-      match check_work samples view with
-      | Error e -> Error e
-      | Ok () ->
-          p.view <- view;
-          p.size <- size;
-          p.samples <- samples;
-          restart p;
-          Ok ())
+  let* scene = Scene_file.of_string ~file text in
+  let view = View.v scene in
+  let* () = check_work 1 view in
+  let p =
+    {
+      now;
+      size = None;
+      samples = 1;
+      view;
+      render = Progressive.create view.scene;
+      started = 0.;
+      trace_seconds = 0.;
+      slices = 0;
+      bands = 0;
+      longest_slice = 0.;
+      last_frame = None;
+    }
+  in
+  restart p;
+  Ok p
 
 let edit p text =
-  match Scene_file.of_string ~file text with
-  | Error e -> Error e
-  | Ok scene -> show p scene ~size:p.size ~samples:p.samples
+  let* scene = Scene_file.of_string ~file text in
+  let view = View.v scene in
+  let* view = match p.size with None -> Ok view | Some size -> resized view size in
+  commit p (flagged view p.samples) ~size:p.size ~samples:p.samples
 
 let set_size p size =
   if size = p.size then Ok ()
   else
-    match size with
-    | None -> show p p.view.base ~size ~samples:p.samples
-    | Some (w, h) -> (
-        match Limits.check_canvas w h with
-        | Error m -> Error (`Msg m)
-        | Ok () -> (
-            (* As the window resizes: the camera moved so far stays. *)
-            let view, _ = View.handle p.view (View.Resize (w, h)) in
-            match check_work p.samples view with
-            | Error e -> Error e
-            | Ok () ->
-                p.view <- view;
-                p.size <- size;
-                restart p;
-                Ok ()))
+    let base = p.view.base in
+    let* view = resized p.view (Option.value size ~default:(base.width, base.height)) in
+    commit p view ~size ~samples:p.samples
 
 let set_samples p n =
   if n = p.samples then Ok ()
   else if n < 1 || n > Limits.max_grid then
     Error (`Msg (Printf.sprintf "samples per pixel must lie in [1, %d], got %d" Limits.max_grid n))
-  else
-    let view = if (n > 1) <> p.view.antialias then fst (View.handle p.view (View.Key 'a')) else p.view in
-    match check_work n view with
-    | Error e -> Error e
-    | Ok () ->
-        p.view <- view;
-        p.samples <- n;
-        restart p;
-        Ok ()
+  else commit p (flagged p.view n) ~size:p.size ~samples:n
 
 let input p i =
   let view, effect = View.handle p.view i in
-  let samples =
-    if view.antialias = p.view.antialias then p.samples
-    else if view.antialias then View.antialias_samples
-    else 1
-  in
   match effect with
   | View.Render -> (
-      match check_work samples view with
-      | Error _ -> View.Nothing
-      | Ok () ->
-          p.view <- view;
-          p.samples <- samples;
-          restart p;
-          effect)
+      let samples =
+        if view.antialias = p.view.antialias then p.samples else if view.antialias then View.antialias_samples else 1
+      in
+      match commit p view ~size:p.size ~samples with Ok () -> effect | Error _ -> View.Nothing)
   | _ ->
       p.view <- view;
       effect

@@ -39,10 +39,10 @@ val input : t -> View.input -> View.effect
     {!View.antialias_samples}, as in the window. *)
 
 val set_size : t -> (int * int) option -> (unit, [> `Msg of string ]) result
-(** [set_size p size] renders at [size = Some (w, h)] pixels, the
-    viewport fitted as when the window is resized ({!View.fit}), or at the
-    scene's canvas size for [None], and starts a new frame if that changed
-    anything. [Error], [p] unchanged, for a canvas outside
+(** [set_size p size] renders at [size = Some (w, h)] pixels, or at the
+    scene's canvas size for [None], the viewport fitted and the camera
+    kept as when the window is resized ({!View.fit}), and starts a new
+    frame if that changed anything. [Error], [p] unchanged, for a canvas outside
     {!Limits.check_canvas} or a render beyond {!Scene.check_work}. *)
 
 val set_samples : t -> int -> (unit, [> `Msg of string ]) result
