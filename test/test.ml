@@ -1,4 +1,8 @@
+(* Alcotest prints its summary and exits (its [test] command exits even
+   with [~and_exit:false]); the skips' summary comes after it, at exit, and
+   under CI=true a skip fails the run even if every test passed. *)
 let () =
+  at_exit (fun () -> if Helpers.report_skips () <> 0 then exit 1);
   Alcotest.run "raytrace"
     [
       ("vec3", Test_vec3.tests);
@@ -32,4 +36,5 @@ let () =
       ("example", Test_example.tests);
       ("hostile", Test_hostile.tests);
       ("faults", Test_faults.tests);
+      ("skips", Test_skips.tests);
     ]

@@ -9,8 +9,8 @@
    is made in ways that bind root too: a read-only mount and a full
    file system in a private mount namespace ([unshare -rm]), an immutable
    file ([chattr +i]); permission bits are tested as the user nobody
-   ([setpriv]). A test whose tool or privilege is missing says so and
-   checks nothing else. *)
+   ([setpriv]). A test whose tool or privilege is missing is skipped
+   (Helpers.skip: on the console, and a failure under CI=true). *)
 
 let exe () = Helpers.raytrace ()
 
@@ -45,10 +45,9 @@ let command args = String.concat " " (List.map Filename.quote args)
 
 let sh script = Helpers.run "/bin/sh" [ "-c"; script ]
 let fst3 (a, _, _) = a
-let available tool = fst3 (sh ("command -v " ^ tool ^ " >/dev/null")) = 0
+let available = Helpers.on_path
 
-(* This Alcotest has no skip: the reason goes to the test's output. *)
-let skip what why = Printf.printf "SKIPPED %s: %s\n%!" what why
+let skip what why = Helpers.skip ("faults: " ^ what) ~why
 
 (* Starting raytrace in the background, with SIGINT at its default action
    even if this test was started with it ignored (a shell's background
