@@ -113,7 +113,7 @@ let report_skips () =
   | [] -> 0
   | l ->
       say
-        (Printf.sprintf "%d check%s SKIPPED, so not everything was tested:\n%s" (List.length l)
+        (Printf.sprintf "\n%d check%s SKIPPED, so not everything was tested:\n%s" (List.length l)
            (if List.length l = 1 then "" else "s")
            (String.concat "" (List.map (fun (what, why) -> Printf.sprintf "  SKIPPED %s: %s\n" what why) l)));
       if in_ci () then 1 else 0
