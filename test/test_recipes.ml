@@ -75,6 +75,18 @@ let tests =
              (Printf.sprintf "%s %s 7 tiled.ppm" (contrib "parallel-tiles.sh") (scene ())));
         Alcotest.(check bool) "tiled = single" true (String.equal expected (read (Filename.concat dir "tiled.ppm")));
         Alcotest.(check (list string)) "the parts are cleaned up" [ "single.ppm"; "tiled.ppm" ] (files dir));
+    Alcotest.test_case "a failed tile stops GNU parallel's recipe before the merge: no image, nothing left" `Quick
+      (with_tools "recipes: GNU parallel, a failed tile" [ "parallel" ] @@ fun () ->
+        let dir = Helpers.temp_dir () in
+        let code, _, err =
+          Helpers.run
+            ~env:(Farm.env [ "RAYTRACE=" ^ exe (); "RAYTRACE_OPTS=" ^ size ^ " --depth 99"; "TMPDIR=" ^ dir ])
+            (contrib "parallel-tiles.sh")
+            [ scene (); "4"; Filename.concat dir "tiled.ppm" ]
+        in
+        Alcotest.(check int) "status" 1 code;
+        contains "stderr" err "raytrace: recursion depth 99 is too deep";
+        Alcotest.(check (list string)) "no image, no temporary directory" [] (files dir));
     Alcotest.test_case "GNU parallel over ssh to a real sshd sends the scene and fetches the parts" `Quick
       (with_tools "recipes: GNU parallel over ssh" [ "parallel" ] @@ fun () ->
         Farm.with_sshd "recipes: GNU parallel over ssh" [ "hostA"; "hostB" ] @@ fun h ->
