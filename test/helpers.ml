@@ -95,6 +95,11 @@ let console = Unix.dup ~cloexec:true Unix.stderr
 let skipped = ref []
 
 let say text =
+  (* What Alcotest has buffered goes first, so that the console reads in order. *)
+  Format.pp_print_flush Format.std_formatter ();
+  Format.pp_print_flush Format.err_formatter ();
+  flush stdout;
+  flush stderr;
   let b = Bytes.of_string text in
   let rec go off = if off < Bytes.length b then go (off + Unix.write console b off (Bytes.length b - off)) in
   try go 0 with Unix.Unix_error _ -> ()
