@@ -146,7 +146,7 @@ let with_slurm what f =
     write conf (slurm_conf ~dir ~ctld_port:(free_port ()) ~slurmd_port:(free_port ()) ~cpus:2);
     (* slurmd 22.05 loads a cgroup plugin even when nothing uses it and
        knows no "disabled"; the v1 plugin's loading touches no cgroup file,
-       so it loads on cgroup v2 hosts and in containers too. *)
+       so it should load on cgroup v2 hosts too (tried only here, on v1). *)
     write (Filename.concat dir "cgroup.conf") "CgroupPlugin=cgroup/v1\nCgroupAutomount=no\n";
     let s = { dir; vars = [ "SLURM_CONF=" ^ conf ] } in
     let daemons = ref [] in
