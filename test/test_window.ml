@@ -3,20 +3,15 @@
    renderer makes of the same view. Runs when xvfb-run is installed. *)
 open Raytrace
 
-let on_path tool =
-  List.exists
-    (fun dir -> Sys.file_exists (Filename.concat dir tool))
-    (String.split_on_char ':' (Option.value (Sys.getenv_opt "PATH") ~default:""))
-
 let tools = [ "xvfb-run"; "xwd"; "xdotool"; "convert" ]
 
 let available () =
-  if not (on_path "xvfb-run") then begin
-    print_endline "skipped: xvfb-run is not installed";
+  if not (Helpers.on_path "xvfb-run") then begin
+    Helpers.skip "window" ~why:"xvfb-run is not installed (make deps installs it)";
     false
   end
   else
-    match List.filter (fun t -> not (on_path t)) tools with
+    match Helpers.missing tools with
     | [] -> true
     | missing -> Alcotest.failf "xvfb-run is installed but not %s (make deps)" (String.concat ", " missing)
 
