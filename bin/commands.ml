@@ -52,6 +52,7 @@ let render_image ~sampling ~literal ~jobs scene =
       let t0 = Unix.gettimeofday () in
       match Literal.render scene with
       | exception Out_of_memory -> msg "not enough memory for a %dx%d image" scene.width scene.height
+      | exception Limits.Work_exceeded n -> Error (`Msg (Limits.work_exceeded n))
       | img -> Ok (img, None, Unix.gettimeofday () -. t0)
   else
     let* img, stats =

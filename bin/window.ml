@@ -281,6 +281,7 @@ let work s ~slice =
       log "%s; tracing in this process from now on" m;
       s.shared <- None
   | _ -> ());
+  (match Progressive.stopped s.render with Some m -> log "%s; the frame is incomplete" m | None -> ());
   if Progressive.finished s.render then finish_frame s
 
 let rec loop s =

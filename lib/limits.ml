@@ -145,3 +145,12 @@ let check_work ~pixels ~samples ~depth ~spheres ~lights =
         "the render needs about %.3g ray-sphere intersection tests (%d pixels x %d samples x %d \
          rays x %d spheres per ray x (1 + %d lights))"
         w pixels samples (depth + 1) (spheres_per_ray spheres) lights)
+
+exception Work_exceeded of int
+
+let work_budget () =
+  let bound = match current `Work with Ok b -> b | Error _ -> max_work in
+  if bound >= Float.of_int max_int then max_int else Float.to_int bound
+
+let work_exceeded n =
+  exceeded `Work (Printf.sprintf "the render was stopped after %d intersection tests (spheres and boxes)" n)

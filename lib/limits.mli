@@ -159,6 +159,22 @@ val work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -
     renderer uses a bounding volume hierarchy) at most [16 log2 spheres],
     rounded up. A float, so that it cannot overflow. *)
 
+exception Work_exceeded of int
+(** [Work_exceeded n] is raised by a renderer that has counted [n]
+    intersection tests (ray-sphere and ray-box) in a render, more than
+    {!work_budget}: the estimate of {!check_work} can be beaten by a scene
+    that defeats the bounding volume hierarchy (many coincident spheres),
+    so the work done is also counted as it is done. *)
+
+val work_budget : unit -> int
+(** [work_budget ()] is the [`Work] bound in force as a count of tests,
+    [max_int] if it is larger; {!max_work} if the variable is malformed
+    (which {!check_work} reports before any render starts). *)
+
+val work_exceeded : int -> string
+(** [work_exceeded n] is the message for a render stopped after [n]
+    intersection tests, naming the bound and how to raise it. *)
+
 val check_work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> (unit, string) result
 (** [check_work ...] is [Ok ()] if {!work} is within the [`Work] bound in
     force. *)

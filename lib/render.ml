@@ -76,6 +76,18 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene
     Ok (img, stats)
   in
   let averaging = Sampling.averaging sampling in
+  let budget = Limits.work_budget () in
+  (* Tests and box tests of every slot; a loop, since workers call it
+     between classes of rows and their allocation is measured. *)
+  let work_done (ints : (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t) =
+    let n = ref 0 in
+    for w = 0 to !slots - 1 do
+      let k = w * counter_fields in
+      n := !n + Int64.to_int ints.{k + 3} + Int64.to_int ints.{k + 6}
+    done;
+    !n
+  in
+  let over_budget n = Error (`Msg (Limits.work_exceeded n)) in
   if jobs = 1 then begin
     (* One tracer for every pass. *)
     match Image.create region.w region.h with
@@ -85,11 +97,15 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene
     let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
     let tr = Trace.create ~averaging p in
     let before = Gc.minor_words () in
-    for i = 0 to Sampling.passes plan - 1 do
-      Sampling.rows plan i tr ~first:0 ~step:1
-    done;
-    save_counters ints 0 tr (Gc.minor_words () -. before);
-    finish img ints
+    match
+      for i = 0 to Sampling.passes plan - 1 do
+        Sampling.rows plan i tr ~first:0 ~step:1
+      done
+    with
+    | exception Limits.Work_exceeded n -> over_budget n
+    | () ->
+        save_counters ints 0 tr (Gc.minor_words () -. before);
+        finish img ints
   end
   else
     match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
@@ -114,20 +130,29 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene
         let queue = Parallel.queue classes in
         let work w =
           let tr = Trace.create ~averaging p in
+          let slot = (i * jobs) + w in
           let before = Gc.minor_words () in
+          let publish () = save_counters ints slot tr (Gc.minor_words () -. before) in
+          (* The work budget is shared: before each class of rows, a
+             worker publishes its count and keeps for itself what the
+             others (as last published) have left. *)
           let rec loop () =
             let c = Parallel.take queue in
             if c >= 0 then begin
+              publish ();
+              Trace.set_budget tr (budget - (work_done ints - Trace.work tr));
               Sampling.rows plan i tr ~first:c ~step:classes;
               loop ()
             end
           in
-          loop ();
-          save_counters ints ((i * jobs) + w) tr (Gc.minor_words () -. before)
+          (try loop () with Limits.Work_exceeded _ -> ());
+          publish ()
         in
         let result = Parallel.run jobs work in
         Parallel.close_queue queue;
-        match result with Ok () -> run (i + 1) | Error e -> Error e
+        match result with
+        | Error e -> Error e
+        | Ok () -> if work_done ints > budget then over_budget (work_done ints) else run (i + 1)
     in
     run 0
 
