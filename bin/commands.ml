@@ -235,34 +235,40 @@ let render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling =
          let* () = render_one ~literal ~jobs ~stats ~load_s ~frame:None ~region ~output ~sampling scene in
          Ok exit_ok
      | Some (a, b) ->
-         (* Every frame is checked before the first is rendered. *)
-         let* scenes =
-           List.fold_left
-             (fun acc f ->
-               let* acc = acc in
-               let* s = Scene.at_frame scene f in
-               Ok ((f, s) :: acc))
-             (Ok []) (List.init (b - a + 1) (fun i -> a + i))
-         in
-         let* () =
-           List.fold_left
-             (fun acc (f, s) ->
-               let* () = acc in
+         (* Both ends are checked before the first frame is rendered, and
+            the path has checked every frame between its keys: a bad range
+            fails at once. Frames are then made one by one, never all held:
+            memory is that of one frame, whatever the range. *)
+         let* _ = Scene.at_frame scene a in
+         let* _ = Scene.at_frame scene b in
+         let rec frames f =
+           if f > b then Ok exit_ok
+           else
+             let* s = Scene.at_frame scene f in
+             let* () =
                render_one ~literal ~jobs ~stats ~load_s ~frame:(Some f) ~region ~output:(frame_path output f)
-                 ~sampling s)
-             (Ok ()) (List.rev scenes)
+                 ~sampling s
+             in
+             frames (f + 1)
          in
-         Ok exit_ok)
+         frames a)
 
 let merge parts ~output =
   report
-    (let* parts =
+    (let* parts, _ =
        List.fold_left
          (fun acc path ->
-           let* acc = acc in
+           let* acc, pixels = acc in
            let* p = Part.read_file path in
-           Ok ((path, p) :: acc))
-         (Ok []) parts
+           (* Parts that fit together cover their canvas once: parts with
+              more pixels than the first one's canvas overlap, and are
+              refused before more of them fill the memory. *)
+           let pixels = pixels + Region.pixels p.region in
+           if pixels > p.canvas_width * p.canvas_height then
+             msg "%s: the parts up to this one hold %d pixels, more than their %dx%d canvas: they overlap" path
+               pixels p.canvas_width p.canvas_height
+           else Ok ((path, p) :: acc, pixels))
+         (Ok ([], 0)) parts
      in
      let parts = List.rev parts in
      let* img = Part.merge parts in

@@ -23,6 +23,7 @@ let limit_envs =
     env `Spheres "spheres in a scene";
     env `Lights "lights in a scene";
     env `Scene_bytes "the size of a scene file, in bytes";
+    env `Form_bytes "the size of one top-level form of a scene file (such as a camera-path), in bytes: the parser holds a form whole, in about 50 times its size";
     env `Work "the ray-sphere intersection tests that a render may need (pixels x samples x rays per sample x spheres met per ray x (1 + lights)); 1e12 is a few hours of one core";
   ]
 
@@ -333,4 +334,20 @@ let main =
   in
   Cmd.group ~default:view_term info [ Cmd.v view_info view_term; render_cmd; merge_cmd; diff_cmd ]
 
-let () = exit (Cmd.eval' main)
+(* An allocation that fails despite the bounds checked before (the
+   machine's memory is shared, or limited by ulimit): one line that says it
+   is memory. Other exceptions are reported as cmdliner reports them. *)
+external install_fatal_hook : unit -> unit = "raytrace_install_fatal_hook"
+
+let () =
+  install_fatal_hook ();
+  match Cmd.eval' ~catch:false main with
+  | code -> exit code
+  | exception Out_of_memory ->
+      prerr_endline
+        "raytrace: out of memory: an allocation failed (see the limits in raytrace render --help, ENVIRONMENT)";
+      exit Commands.exit_input
+  | exception e ->
+      let bt = Printexc.get_backtrace () in
+      Printf.eprintf "raytrace: internal error, uncaught exception:\n%s\n%s%!" (Printexc.to_string e) bt;
+      exit Cmd.Exit.internal_error

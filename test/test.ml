@@ -32,4 +32,5 @@ let () =
       ("example", Test_example.tests);
       ("hostile", Test_hostile.tests);
       ("faults", Test_faults.tests);
+      ("memory", Test_memory.tests);
     ]
