@@ -75,10 +75,10 @@ val max_scene_bytes : int
 val max_form_bytes : int
 (** [max_form_bytes] is [16_777_216] (16 MiB): the default largest
     top-level form of a scene file (a camera path of about 250000 keys).
-    The parser holds a form whole before it is converted, in about 50 bytes
-    of memory per byte of text (measured: 1 GB for a 20 MB form of
-    numbers), so this bounds the memory of loading to about 850 MB
-    whatever the file's size. *)
+    The parser holds a form whole before it is converted, in 30 to 50
+    bytes of memory per byte of text (measured on a form of numbers: 1 GB
+    for 20 MB; refused at this bound, 500 MB), so this bounds the memory
+    of loading whatever the file's size. *)
 
 val max_work : float
 (** [max_work] is [1e12]: the default largest number of ray-sphere

@@ -453,7 +453,7 @@ let of_string ?(file = "<string>") text =
        triggers a second pass that records positions, and fails on the same
        node. *)
     let b = builder (fun _ -> None) in
-    (* The parser holds a form whole, in about 50 times its text: the text
+    (* The parser holds a form whole, in 30 to 50 times its text: the text
        is fed in chunks, and a form that grows past the form bound is
        refused before it can take more. *)
     let form_end = ref 0 in
