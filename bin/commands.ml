@@ -255,20 +255,22 @@ let render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling =
 
 let merge parts ~output =
   report
-    (let* parts, _ =
+    (let* parts, _, _ =
        List.fold_left
          (fun acc path ->
-           let* acc, pixels = acc in
+           let* acc, canvas, pixels = acc in
            let* p = Part.read_file path in
-           (* Parts that fit together cover their canvas once: parts with
-              more pixels than the first one's canvas overlap, and are
-              refused before more of them fill the memory. *)
-           let pixels = pixels + Region.pixels p.region in
-           if pixels > p.canvas_width * p.canvas_height then
+           (* Parts that fit together cover their canvas once: more pixels
+              on the first part's canvas than it has means an overlap,
+              refused before more parts fill the memory. (A part of another
+              canvas is left to [Part.merge], which says so.) *)
+           let canvas = Option.value canvas ~default:(p.canvas_width, p.canvas_height) in
+           let pixels = if canvas = (p.canvas_width, p.canvas_height) then pixels + Region.pixels p.region else pixels in
+           if pixels > fst canvas * snd canvas then
              msg "%s: the parts up to this one hold %d pixels, more than their %dx%d canvas: they overlap" path
-               pixels p.canvas_width p.canvas_height
-           else Ok ((path, p) :: acc, pixels))
-         (Ok ([], 0)) parts
+               pixels (fst canvas) (snd canvas)
+           else Ok ((path, p) :: acc, Some canvas, pixels))
+         (Ok ([], None, 0)) parts
      in
      let parts = List.rev parts in
      let* img = Part.merge parts in
