@@ -40,4 +40,5 @@ let () =
       ("outputs", Test_outputs.tests);
       ("cli_fuzz", Test_cli_fuzz.tests);
       ("skips", Test_skips.tests);
+      ("memory", Test_memory.tests);
     ]

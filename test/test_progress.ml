@@ -6,7 +6,6 @@
 
 let exe () = Helpers.raytrace ()
 
-
 (* Without `script` there is no pseudo-terminal to test on. *)
 let with_script f () =
   match Helpers.missing [ "script" ] with
