@@ -187,7 +187,8 @@ let check_output opts ~frames ~part output =
   let* () =
     match frames with
     | Some (a, b) when a < 0 || b > Camera_path.max_frame ->
-        msg "--frames %d:%d: a camera-path's frames lie in [0, %d]" a b Camera_path.max_frame
+        msg "frame %d is outside every camera path, whose frames lie in [0, %d]" (if a < 0 then a else b)
+          Camera_path.max_frame
     | _ -> Ok ()
   in
   let outputs =
