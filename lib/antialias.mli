@@ -20,4 +20,6 @@ val store : Trace.t -> Image.buffer -> int -> int -> n:int -> int -> unit
 val image : ?n:int -> Scene.t -> Image.t
 (** [image ~n scene] is [scene] rendered with {!store} at every pixel
     ([n] default 3), in one process.
-    @raise Invalid_argument if [scene] fails {!Scene.validate} or [n < 1]. *)
+    @raise Invalid_argument if [scene] fails {!Scene.validate} or [n < 1].
+    @raise Limits.Work_exceeded when the tests done pass
+    {!Limits.work_budget} (checked after each row). *)

@@ -9,10 +9,11 @@ let max_samples = max_grid * max_grid
 let max_spheres = 1_000_000
 let max_lights = 1000
 let max_scene_bytes = 128 * 1024 * 1024
+let max_form_bytes = 16 * 1024 * 1024
 let max_work = 1e12
 let num = Float_text.to_string
 
-type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Work ]
+type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Form_bytes | `Work ]
 
 let variable = function
   | `Pixels -> "RAYTRACE_MAX_PIXELS"
@@ -21,6 +22,7 @@ let variable = function
   | `Spheres -> "RAYTRACE_MAX_SPHERES"
   | `Lights -> "RAYTRACE_MAX_LIGHTS"
   | `Scene_bytes -> "RAYTRACE_MAX_SCENE_BYTES"
+  | `Form_bytes -> "RAYTRACE_MAX_FORM_BYTES"
   | `Work -> "RAYTRACE_MAX_WORK"
 
 let default = function
@@ -30,6 +32,7 @@ let default = function
   | `Spheres -> Float.of_int max_spheres
   | `Lights -> Float.of_int max_lights
   | `Scene_bytes -> Float.of_int max_scene_bytes
+  | `Form_bytes -> Float.of_int max_form_bytes
   | `Work -> max_work
 
 (* Read at every check rather than once: cheap, and a test or a program can
@@ -123,6 +126,11 @@ let check_scene_bytes n =
     ~low:(fun () -> Printf.sprintf "a negative size: %d" n)
     ~what:(fun () -> Printf.sprintf "the scene is %d bytes long" n)
 
+let check_form_bytes n =
+  bounded `Form_bytes ~lo:0 n
+    ~low:(fun () -> Printf.sprintf "a negative size: %d" n)
+    ~what:(fun () -> Printf.sprintf "a form of the scene is more than %d bytes long" n)
+
 (* Beyond 8 spheres the renderer walks a bounding volume hierarchy: about
    log2 n levels of boxes, each with leaves of up to 4 spheres on either
    side; 16 log2 n is a generous bound of what a ray meets on scenes that
@@ -145,3 +153,12 @@ let check_work ~pixels ~samples ~depth ~spheres ~lights =
         "the render needs about %.3g ray-sphere intersection tests (%d pixels x %d samples x %d \
          rays x %d spheres per ray x (1 + %d lights))"
         w pixels samples (depth + 1) (spheres_per_ray spheres) lights)
+
+exception Work_exceeded of int
+
+let work_budget () =
+  let bound = match current `Work with Ok b -> b | Error _ -> max_work in
+  if bound >= Float.of_int max_int then max_int else Float.to_int bound
+
+let work_exceeded n =
+  exceeded `Work (Printf.sprintf "the render was stopped after %d intersection tests (spheres and boxes)" n)

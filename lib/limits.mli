@@ -13,7 +13,8 @@
       the process, read at every check (so that a program and its tests can
       set it): [RAYTRACE_MAX_PIXELS], [RAYTRACE_MAX_DEPTH],
       [RAYTRACE_MAX_SAMPLES], [RAYTRACE_MAX_SPHERES], [RAYTRACE_MAX_LIGHTS],
-      [RAYTRACE_MAX_SCENE_BYTES], [RAYTRACE_MAX_WORK]. A value is a
+      [RAYTRACE_MAX_SCENE_BYTES], [RAYTRACE_MAX_FORM_BYTES],
+      [RAYTRACE_MAX_WORK]. A value is a
       positive integer, optionally written with [_] separators or in
       exponent notation ([1e13]); a malformed value makes every check that
       reads it fail, saying so. *)
@@ -71,6 +72,14 @@ val max_scene_bytes : int
     that locates an error: measured on [grid:1000000] (88 MB), 590 MB to
     load and render it, 380 MB to locate an error at its end. *)
 
+val max_form_bytes : int
+(** [max_form_bytes] is [16_777_216] (16 MiB): the default largest
+    top-level form of a scene file (a camera path of about 250000 keys).
+    The parser holds a form whole before it is converted, in 30 to 50
+    bytes of memory per byte of text (measured on a form of numbers: 1 GB
+    for 20 MB; refused at this bound, 500 MB), so this bounds the memory
+    of loading whatever the file's size. *)
+
 val max_work : float
 (** [max_work] is [1e12]: the default largest number of ray-sphere
     intersection tests that a render may need by the estimate of
@@ -79,7 +88,7 @@ val max_work : float
 
 (** {1:current Bounds in force} *)
 
-type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Work ]
+type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Form_bytes | `Work ]
 (** The type for the names of the resource bounds. *)
 
 val variable : name -> string
@@ -149,6 +158,11 @@ val check_scene_bytes : int -> (int, string) result
 (** [check_scene_bytes n] is [Ok n] if a scene text of [n] bytes is within
     the [`Scene_bytes] bound in force. *)
 
+val check_form_bytes : int -> (int, string) result
+(** [check_form_bytes n] is [Ok n] if a top-level form of [n] bytes (or
+    more, as far as it was read) is within the [`Form_bytes] bound in
+    force. *)
+
 val work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> float
 (** [work ~pixels ~samples ~depth ~spheres ~lights] estimates the ray-sphere
     intersection tests of a render:
@@ -158,6 +172,22 @@ val work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -
     [m] the spheres a ray meets: all of them up to 8, beyond that (where the
     renderer uses a bounding volume hierarchy) at most [16 log2 spheres],
     rounded up. A float, so that it cannot overflow. *)
+
+exception Work_exceeded of int
+(** [Work_exceeded n] is raised by a renderer that has counted [n]
+    intersection tests (ray-sphere and ray-box) in a render, more than
+    {!work_budget}: the estimate of {!check_work} can be beaten by a scene
+    that defeats the bounding volume hierarchy (many coincident spheres),
+    so the work done is also counted as it is done. *)
+
+val work_budget : unit -> int
+(** [work_budget ()] is the [`Work] bound in force as a count of tests,
+    [max_int] if it is larger; {!max_work} if the variable is malformed
+    (which {!check_work} reports before any render starts). *)
+
+val work_exceeded : int -> string
+(** [work_exceeded n] is the message for a render stopped after [n]
+    intersection tests, naming the bound and how to raise it. *)
 
 val check_work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> (unit, string) result
 (** [check_work ...] is [Ok ()] if {!work} is within the [`Work] bound in

@@ -50,4 +50,8 @@ val pixel : Scene.t -> int -> int -> Color.t
 
 val render : Scene.t -> Image.t
 (** [render scene] is the image of [scene]: every pixel of the canvas
-    (section 8), clamped and rounded by {!Color.to_byte}. *)
+    (section 8), clamped and rounded by {!Color.to_byte}. Reflections are
+    followed in a loop, not by recursion: any depth fits in the stack, and
+    memory grows with the reflections of one ray (a few words a level).
+    @raise Limits.Work_exceeded once the ray-sphere tests counted so far
+    pass {!Limits.work_budget} (checked after each column of pixels). *)

@@ -13,6 +13,7 @@ type t = {
   mutable pass : int;  (** Index of the current pass; [Array.length passes] once finished. *)
   mutable top : int;  (** First row of the next band. *)
   mutable failure : string option;
+  mutable stopped : string option;  (** Why the render stopped before its end. *)
 }
 
 type band = { size : int; top : int; rows : int }
@@ -44,13 +45,14 @@ let create ?(samples = 1) ?shared (scene : Scene.t) =
           invalid_arg "Progressive.create: the shared image is not of the canvas size";
         s.shared_image
   in
-  { tr; img; samples; workers = shared; passes = passes samples; pass = 0; top = 0; failure = None }
+  { tr; img; samples; workers = shared; passes = passes samples; pass = 0; top = 0; failure = None; stopped = None }
 
 let finished (r : t) = r.pass >= Array.length r.passes
 let image r = r.img
 let samples r = r.samples
 let tracer r = r.tr
 let failure r = r.failure
+let stopped r = r.stopped
 
 (* Row [row] of pass [pass], traced by [tr] into [r]'s image. *)
 let trace_row (r : t) tr pass row =
@@ -74,7 +76,8 @@ let trace_row (r : t) tr pass row =
         Trace.store tr buffer (3 * ((row * width) + !col))
       end;
       col := !col + size
-    done
+    done;
+  Trace.check_budget tr
 
 (* Rows [top .. top + rows - 1] of a full-resolution pass, interleaved over
    the workers; each child's tracer is its own copy of [r.tr], whose counts
@@ -85,10 +88,13 @@ let trace_rows_in_workers (r : t) (s : shared) pass ~top ~rows =
     let c = Trace.counters r.tr in
     let before = [| c.primary; c.shadow; c.reflection; c.tests; c.box_tests; c.early_stops |] in
     let row = ref (top + w) in
-    while !row < top + rows do
-      trace_row r r.tr pass !row;
-      row := !row + jobs
-    done;
+    (* Over its budget, a worker stops; the parent sees the sum. *)
+    (try
+       while !row < top + rows do
+         trace_row r r.tr pass !row;
+         row := !row + jobs
+       done
+     with Limits.Work_exceeded _ -> ());
     let after = [| c.primary; c.shadow; c.reflection; c.tests; c.box_tests; c.early_stops |] in
     Array.iteri (fun i a -> s.ints.{(w * counter_fields) + i} <- Int64.of_int (a - before.(i))) after
   in
@@ -106,6 +112,7 @@ let trace_rows_in_workers (r : t) (s : shared) pass ~top ~rows =
   c.tests <- c.tests + sum 3;
   c.box_tests <- c.box_tests + sum 4;
   c.early_stops <- c.early_stops + sum 5;
+  Trace.check_budget r.tr;
   result
 
 let step ?(rows = 1) (r : t) =
@@ -115,7 +122,8 @@ let step ?(rows = 1) (r : t) =
     let height = Image.height r.img in
     let size = fst r.passes.(r.pass) in
     let rows = if size = 1 then min rows (height - r.top) else min size (height - r.top) in
-    (match r.workers with
+    (match
+       match r.workers with
     | Some s when size = 1 && rows > 1 && r.failure = None -> (
         match trace_rows_in_workers r s r.pass ~top:r.top ~rows with
         | Ok () -> ()
@@ -131,7 +139,13 @@ let step ?(rows = 1) (r : t) =
           for row = r.top to r.top + rows - 1 do
             trace_row r r.tr r.pass row
           done
-        else trace_row r r.tr r.pass r.top);
+        else trace_row r r.tr r.pass r.top
+     with
+    | () -> ()
+    | exception Limits.Work_exceeded n ->
+        (* The band is incomplete: the render ends here. *)
+        r.stopped <- Some (Limits.work_exceeded n);
+        r.pass <- Array.length r.passes);
     let band = { size; top = r.top; rows } in
     r.top <- r.top + (if size = 1 then rows else size);
     if r.top >= height then begin

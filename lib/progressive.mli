@@ -65,6 +65,14 @@ val failure : t -> string option
 (** [failure r] is why the workers of [r] stopped being used, if they
     did: the first worker failure ({!Parallel.run}'s message). *)
 
+val stopped : t -> string option
+(** [stopped r] is why [r] ended before its last pass, if it did: the
+    message of {!Limits.work_exceeded} once the tests counted by [r]'s
+    tracer (and its workers) pass {!Limits.work_budget}, checked after each
+    row. [r] is then {!finished}; its image is incomplete. With workers,
+    each may do a band's share beyond the budget before the count is
+    summed. *)
+
 val finished : t -> bool
 (** [finished r] is [true] iff the image is complete. *)
 

@@ -105,6 +105,18 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress (sce
     Ok (img, stats)
   in
   let averaging = Sampling.averaging sampling in
+  let budget = Limits.work_budget () in
+  (* Tests and box tests of every slot; a loop, since workers call it
+     between classes of rows and their allocation is measured. *)
+  let work_done (ints : (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t) =
+    let n = ref 0 in
+    for w = 0 to !slots - 1 do
+      let k = w * counter_fields in
+      n := !n + Int64.to_int ints.{k + 3} + Int64.to_int ints.{k + 6}
+    done;
+    !n
+  in
+  let over_budget n = Error (`Msg (Limits.work_exceeded n)) in
   if jobs = 1 then begin
     (* One tracer for every pass. *)
     match Image.create region.w region.h with
@@ -116,26 +128,30 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress (sce
     (* What the caller's [progress] allocates is not the tracer's. *)
     let progress_words = Array.make 1 0. in
     let before = Gc.minor_words () in
-    (match progress with
-    | None ->
-        for i = 0 to Sampling.passes plan - 1 do
-          Sampling.rows plan i tr ~first:0 ~step:1
-        done
-    | Some progress ->
-        let total = total_rows plan in
-        let finished = ref 0 in
-        for i = 0 to Sampling.passes plan - 1 do
-          let n = Sampling.pass_rows plan i in
-          for r = 0 to n - 1 do
-            Sampling.rows plan i tr ~first:r ~step:n;
-            incr finished;
-            let w = Gc.minor_words () in
-            progress ~rows:!finished ~total ~rays:(rays tr);
-            progress_words.(0) <- progress_words.(0) +. (Gc.minor_words () -. w)
+    match
+      match progress with
+      | None ->
+          for i = 0 to Sampling.passes plan - 1 do
+            Sampling.rows plan i tr ~first:0 ~step:1
           done
-        done);
-    save_counters ints 0 tr (Gc.minor_words () -. before -. progress_words.(0));
-    finish img ints
+      | Some progress ->
+          let total = total_rows plan in
+          let finished = ref 0 in
+          for i = 0 to Sampling.passes plan - 1 do
+            let n = Sampling.pass_rows plan i in
+            for r = 0 to n - 1 do
+              Sampling.rows plan i tr ~first:r ~step:n;
+              incr finished;
+              let w = Gc.minor_words () in
+              progress ~rows:!finished ~total ~rays:(rays tr);
+              progress_words.(0) <- progress_words.(0) +. (Gc.minor_words () -. w)
+            done
+          done
+    with
+    | exception Limits.Work_exceeded n -> over_budget n
+    | () ->
+        save_counters ints 0 tr (Gc.minor_words () -. before -. progress_words.(0));
+        finish img ints
   end
   else
     match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
@@ -152,10 +168,10 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress (sce
     match Option.map (fun _ -> Parallel.shared_ints (2 * jobs)) progress with
     | exception Out_of_memory -> out_of_memory region
     | exception Failure m -> Error (`Msg m)
-    | slots ->
+    | progress_slots ->
     let total = total_rows plan in
     let report () =
-      match (progress, slots) with
+      match (progress, progress_slots) with
       | Some progress, Some slots ->
           progress ~rows:(sum_slots slots 0 jobs) ~total ~rays:(sum_slots slots jobs jobs)
       | _ -> ()
@@ -175,11 +191,18 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress (sce
         let n = Sampling.pass_rows plan i in
         let work w =
           let tr = Trace.create ~averaging p in
+          let slot = (i * jobs) + w in
           let before = Gc.minor_words () in
+          let publish () = save_counters ints slot tr (Gc.minor_words () -. before) in
+          (* The work budget is shared: before each class of rows, a
+             worker publishes its count and keeps for itself what the
+             others (as last published) have left. *)
           let rec loop () =
             let c = Parallel.take queue in
             if c >= 0 then begin
-              (match slots with
+              publish ();
+              Trace.set_budget tr (budget - (work_done ints - Trace.work tr));
+              (match progress_slots with
               | None -> Sampling.rows plan i tr ~first:c ~step:classes
               | Some slots ->
                   (* Rays of the earlier passes, whose tracers are gone. *)
@@ -193,13 +216,15 @@ let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress (sce
               loop ()
             end
           in
-          loop ();
-          save_counters ints ((i * jobs) + w) tr (Gc.minor_words () -. before)
+          (try loop () with Limits.Work_exceeded _ -> ());
+          publish ()
         in
         let tick = Option.map (fun _ -> report) progress in
         let result = Parallel.run ?tick jobs work in
         Parallel.close_queue queue;
-        match result with Ok () -> run (i + 1) | Error e -> Error e
+        match result with
+        | Error e -> Error e
+        | Ok () -> if work_done ints > budget then over_budget (work_done ints) else run (i + 1)
     in
     run 0
 

@@ -41,7 +41,11 @@ v}
 val of_string : ?file:string -> string -> (Scene.t, [> `Msg of string ]) result
 (** [of_string ~file text] is the scene described by [text]. [file]
     (default ["<string>"]) names the source in error messages. The scene
-    satisfies {!Scene.validate}. Never raises. *)
+    satisfies {!Scene.validate}. [Error] if [text] is longer than
+    {!Limits.check_scene_bytes} allows, or one of its top-level forms
+    longer than {!Limits.check_form_bytes} allows (found as the text is
+    parsed, 64 KiB at a time, before the form is held whole). Never
+    raises. *)
 
 val read : string -> (Scene.t, [> `Msg of string ]) result
 (** [read path] is the scene in file [path]. *)

@@ -5,13 +5,6 @@
    [held] (frames advanced band by band). *)
 open Raytrace
 
-let ci () = Sys.getenv_opt "CI" = Some "true"
-
-let on_path tool =
-  List.exists
-    (fun dir -> Sys.file_exists (Filename.concat dir tool))
-    (String.split_on_char ':' (Option.value (Sys.getenv_opt "PATH") ~default:""))
-
 (* The source tree, whose test/web/node_modules holds playwright-core
    (make deps runs npm ci there): the tests run in _build/default/test. *)
 let source_root () =
@@ -30,7 +23,7 @@ let chromium () = Option.value (Sys.getenv_opt "RAYTRACE_CHROMIUM") ~default:"/u
 (* [Some why] when the browser tests cannot run here. *)
 let missing () =
   if not (Sys.file_exists (chromium ())) then Some (chromium () ^ " is not installed (make deps installs chromium)")
-  else if not (on_path "node") then Some "node is not installed (make deps installs nodejs)"
+  else if not (Helpers.on_path "node") then Some "node is not installed (make deps installs nodejs)"
   else if not (Sys.file_exists (Filename.concat (node_modules ()) "playwright-core")) then
     Some "playwright-core is not in test/web/node_modules (make deps runs npm ci there)"
   else None
@@ -40,8 +33,7 @@ let runnable what =
   match missing () with
   | None -> true
   | Some why ->
-      if ci () then Alcotest.failf "%s cannot run under CI=true: %s" what why;
-      Printf.printf "SKIPPED %s: %s\n%!" what why;
+      Helpers.skip what ~why;
       false
 
 let page () = Option.value (Sys.getenv_opt "RAYTRACE_WEB_PAGE") ~default:"../web/index.html"
