@@ -1,8 +1,9 @@
 (* The web page (web/), in headless Chromium: driven by test/web/drive.js
    (playwright-core), what its canvas shows is what `raytrace render` makes
-   of the same scene, byte for byte. Two browser sessions serve every case:
-   [main] (the page as a visitor finds it, then keys, selectors, edits) and
-   [held] (frames advanced band by band). *)
+   of the same scene, byte for byte. A few browser sessions serve every
+   case: [main] (the page as a visitor finds it, then keys, a drag,
+   selectors, edits), [held] (frames advanced band by band), [scenes],
+   [random] and [corpus] (many texts put in the editor). *)
 open Raytrace
 
 (* The source tree, whose test/web/node_modules holds playwright-core
