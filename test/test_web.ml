@@ -90,6 +90,7 @@ let main =
          step "wait";
          step "shot:first";
          step "download:first";
+         step "savekey:first-key";
          step "keys:Shift+D,Shift+Q,ArrowUp,=";
          step "shot:moved";
          step "drag:300,300,30,-20";
@@ -232,12 +233,15 @@ let tests =
             Printf.printf "after keys: %s\n" (json_string dir "moved" "frame");
             let prefix = "600 x 600, 1 sample per pixel: " in
             Alcotest.(check string) __LOC__ prefix (String.sub frame 0 (String.length prefix))));
-    Alcotest.test_case "the download link gives the canvas's picture as PNG" `Slow (fun () ->
+    Alcotest.test_case "the download link and the key s give the canvas's picture as PNG" `Slow (fun () ->
         with_browser "web: download" (fun () ->
             let dir = Lazy.force main in
-            match Raytrace_png.Png_file.read_file (Filename.concat dir "first.png") with
-            | Error (`Msg m) -> Alcotest.fail m
-            | Ok png -> Helpers.check_images __LOC__ ~expected:(shot dir "first") png));
+            List.iter
+              (fun name ->
+                match Raytrace_png.Png_file.read_file (Filename.concat dir (name ^ ".png")) with
+                | Error (`Msg m) -> Alcotest.fail m
+                | Ok png -> Helpers.check_images name ~expected:(shot dir "first") png)
+              [ "first"; "first-key" ]));
     Alcotest.test_case "keys move and turn the camera as in the window, and the picture follows" `Slow (fun () ->
         with_browser "web: keys" (fun () ->
             let dir = Lazy.force main in

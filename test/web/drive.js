@@ -27,6 +27,7 @@
 //   probe:NAME        until the frame is finished, ask the page its state
 //                     every few ms; NAME.txt: one line per answer, "finished bands"
 //   download:NAME     click the download link; NAME.png is what it gives
+//   savekey:NAME      press s on the canvas; NAME.png is the download it starts
 //   screenshot:FILE   a PNG of the page
 // Exit status: 0 done, 1 a step failed, 2 Chromium could not be started.
 'use strict';
@@ -144,8 +145,11 @@ async function run(page, step) {
       fs.writeFileSync(path.join(outDir, arg + '.txt'), lines.join('\n') + '\n');
       return;
     }
-    case 'download': {
-      const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+    case 'download':
+    case 'savekey': {
+      const start = verb === 'download' ? page.click('#download')
+        : page.focus('#canvas').then(() => page.keyboard.press('s'));
+      const [dl] = await Promise.all([page.waitForEvent('download', { timeout: 30000 }), start]);
       return dl.saveAs(path.join(outDir, arg + '.png'));
     }
     case 'screenshot': return page.screenshot({ path: arg, fullPage: true });
