@@ -113,7 +113,7 @@ type session = {
   name : string;
   scene_file : string option;
   jobs : int;
-  mutable shared : Progressive.shared option;  (** For [jobs > 1], at the frame's size. *)
+  mutable shared : Progressive.workers option;  (** For [jobs > 1], at the frame's size. *)
   mutable row_s : float;  (** Seconds per row of the last full-resolution band. *)
   mutable rows : int;  (** Rows of the last full-resolution band. *)
   mutable failure_told : bool;
@@ -136,15 +136,15 @@ let start_frame s =
     Frame.resize scene.width scene.height;
     s.shared <- None
   end;
-  if s.jobs > 1 && s.shared = None && not s.failure_told then begin
-    match Progressive.shared ~jobs:s.jobs ~width:scene.width ~height:scene.height with
+  if s.jobs > 1 && Option.is_none s.shared && not s.failure_told then begin
+    match Progressive_workers.v ~jobs:s.jobs ~width:scene.width ~height:scene.height with
     | shared -> s.shared <- Some shared
     | exception ((Failure _ | Unix.Unix_error _) as e) ->
         s.failure_told <- true;
         let why = match e with Unix.Unix_error (err, _, _) -> Unix.error_message err | e -> Printexc.to_string e in
         log "no memory to share with worker processes (%s); tracing in this process" why
   end;
-  s.render <- Progressive.create ~samples:(View.samples s.view) ?shared:s.shared scene;
+  s.render <- Progressive.create ~samples:(View.samples s.view) ?workers:s.shared s.view.valid;
   s.rows <- 1;
   s.started <- Unix.gettimeofday ();
   s.trace_s <- 0.;
@@ -157,7 +157,7 @@ let save s =
   let img = Progressive.image s.render in
   let exists = Sys.file_exists in
   let ppm, scene_path = View.save_paths ~scene_file:s.scene_file ~exists in
-  match Ppm.write_file ppm img with
+  match Files.write_ppm ppm img with
   | Error (`Msg m) -> log "cannot save: %s" m
   | Ok () -> (
       match
@@ -291,7 +291,8 @@ let keys_summary =
   "arrows or Shift+W A S D move, Shift+Q E or drag turn, + - depth, a antialiasing, r render, s save, h help, \
    q quit"
 
-let run ~name ~scene_file ~jobs (scene : Scene.t) =
+let run ~limits ~name ~scene_file ~jobs valid =
+  let scene = Scene.of_valid valid in
   match Graphics.open_graph (Printf.sprintf " %dx%d" scene.width scene.height) with
   | exception Graphics.Graphic_failure reason ->
       (* Graphics says "Cannot open display " with an empty name when
@@ -316,8 +317,8 @@ let run ~name ~scene_file ~jobs (scene : Scene.t) =
             row_s = 1e-3;
             rows = 1;
             failure_told = false;
-            view = View.v scene;
-            render = Progressive.create scene;
+            view = View.v ~limits valid;
+            render = Progressive.create valid;
             started = 0.;
             trace_s = 0.;
             plot_s = 0.;

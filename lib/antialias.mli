@@ -17,7 +17,7 @@ val store : Trace.t -> Image.buffer -> int -> int -> n:int -> int -> unit
     @raise Invalid_argument if [n < 1], or [n > 1] and [tr] does not
     average. *)
 
-val image : ?n:int -> Scene.t -> Image.t
+val image : ?n:int -> Scene.valid -> Image.t
 (** [image ~n scene] is [scene] rendered with {!store} at every pixel
     ([n] default 3), in one process.
-    @raise Invalid_argument if [scene] fails {!Scene.validate} or [n < 1]. *)
+    @raise Invalid_argument if [n < 1]. *)

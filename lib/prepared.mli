@@ -71,7 +71,7 @@ val point : int
 val directional : int
 (** [directional] is the [light_kind] of directional lights. *)
 
-val prepare : ?skips:bool -> Scene.t -> t
+val prepare : ?skips:bool -> Scene.valid -> t
 (** [prepare ~skips scene] is [scene] prepared for {!Trace}. With [skips]
     (default [true]) the tracer skips work that provably cannot change an
     output byte: lights of zero intensity are dropped here, shadow rays stop
@@ -80,5 +80,4 @@ val prepare : ?skips:bool -> Scene.t -> t
     rays are tested only against spheres whose (conservatively padded,
     {!Bvh.ray_box_margin}) boxes they meet. With
     [~skips:false] it does everything the document does, for tests that
-    prove the skips exact.
-    @raise Invalid_argument if [scene] fails {!Scene.validate}. *)
+    prove the skips exact. *)

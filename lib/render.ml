@@ -1,140 +1,32 @@
-let counter_fields = 7
+let ( let* ) = Result.bind
 
-(* Worker [w]'s counters go to slots [w * counter_fields ...]. *)
-let save_counters ints w tr words =
-  let c = Trace.counters tr in
-  let k = w * counter_fields in
-  let set i v = Bigarray.Array1.set ints (k + i) (Int64.of_int v) in
-  set 0 c.primary;
-  set 1 c.shadow;
-  set 2 c.reflection;
-  set 3 c.tests;
-  set 4 c.early_stops;
-  set 5 (truncate words);
-  set 6 c.box_tests
+let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples ?adaptive ?subsample scene
+    (region : Region.t) =
+  Render_work.inside "Raytrace.Render.region_image" scene region;
+  let* sampling = Render_work.sampling ?samples ?adaptive ?subsample () in
+  let* () = Render_work.check ~limits scene region sampling in
+  let s = Scene.of_valid scene in
+  match Image.create region.w region.h with
+  | exception Out_of_memory -> Render_work.out_of_memory region
+  | img ->
+      let t0 = clock () in
+      let p = Prepared.prepare ?skips scene in
+      let t1 = clock () in
+      let plan = Sampling.plan sampling img ~canvas:(s.width, s.height) ~at:(region.x, region.y) in
+      let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout Render_work.counter_fields in
+      (* One tracer for every pass. *)
+      let tr = Trace.create ~averaging:(Sampling.averaging sampling) p in
+      let before = Gc.minor_words () in
+      for i = 0 to Sampling.passes plan - 1 do
+        Sampling.rows plan i tr ~first:0 ~step:1
+      done;
+      Render_work.save ints 0 tr (Gc.minor_words () -. before);
+      let t2 = clock () in
+      Ok
+        ( img,
+          Render_work.stats ints ~slots:1 ~pixels:(Region.pixels region) ~jobs:1 ~prepare_s:(t1 -. t0)
+            ~trace_s:(t2 -. t1) )
 
-(* Refused before anything is allocated: a render that cannot finish
-   should fail now, not after hours or with the machine out of memory. *)
-let check_resources (scene : Scene.t) (region : Region.t) ~rays_per_pixel =
-  let ( let* ) = Result.bind in
-  let* _ = Result.map_error (fun m -> `Msg m) (Limits.check_samples rays_per_pixel) in
-  let* () = Scene.check_work ~samples:rays_per_pixel ~pixels:(Region.pixels region) scene in
-  let bytes = 3 * Region.pixels region in
-  match Parallel.available_memory () with
-  | Some available when bytes > available ->
-      let gib n = Float.of_int n /. 1073741824. in
-      Error
-        (`Msg
-          (Printf.sprintf "a %dx%d image needs %.2f GiB of memory, but only %.2f GiB are available"
-             region.w region.h (gib bytes) (gib available)))
-  | _ -> Ok ()
-
-let out_of_memory (region : Region.t) =
-  let mib = Float.of_int (3 * Region.pixels region) /. 1048576. in
-  Error (`Msg (Printf.sprintf "not enough memory for a %dx%d image (%.0f MiB)" region.w region.h mib))
-
-let region_image ?(jobs = 1) ?skips ?samples ?adaptive ?subsample (scene : Scene.t) (region : Region.t) =
-  if jobs < 1 then invalid_arg "Render.region_image: jobs < 1";
-  if not (Region.contains region ~width:scene.width ~height:scene.height) then
-    invalid_arg "Render.region_image: region outside the canvas";
-  let sampling =
-    match Sampling.v ?samples ?adaptive ?subsample () with
-    | Ok s -> s
-    | Error (`Msg m) -> invalid_arg ("Render.region_image: " ^ m)
-  in
-  (* At most [samples x samples] rays a pixel (adaptive sampling traces
-     fewer, subsampling about half a ray). *)
-  let rays_per_pixel = sampling.samples * sampling.samples in
-  match check_resources scene region ~rays_per_pixel with
-  | Error e -> Error e
-  | Ok () ->
-  let t0 = Unix.gettimeofday () in
-  let p = Prepared.prepare ?skips scene in
-  let t1 = Unix.gettimeofday () in
-  let jobs = min jobs region.h in
-  (* Counter slots: one per worker and pass. *)
-  let slots = ref jobs in
-  let sum ints i = List.init !slots (fun w -> Int64.to_int ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in
-  let finish img ints =
-    let t2 = Unix.gettimeofday () in
-    let stats =
-      Stats.
-        {
-          pixels = Region.pixels region;
-          primary = sum ints 0;
-          shadow = sum ints 1;
-          reflection = sum ints 2;
-          tests = sum ints 3;
-          box_tests = sum ints 6;
-          early_stops = sum ints 4;
-          jobs;
-          prepare_s = t1 -. t0;
-          trace_s = t2 -. t1;
-          minor_words = Float.of_int (sum ints 5);
-        }
-    in
-    Ok (img, stats)
-  in
-  let averaging = Sampling.averaging sampling in
-  if jobs = 1 then begin
-    (* One tracer for every pass. *)
-    match Image.create region.w region.h with
-    | exception Out_of_memory -> out_of_memory region
-    | img ->
-    let plan = Sampling.plan sampling img ~canvas:(scene.width, scene.height) ~at:(region.x, region.y) ~shared:false in
-    let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout counter_fields in
-    let tr = Trace.create ~averaging p in
-    let before = Gc.minor_words () in
-    for i = 0 to Sampling.passes plan - 1 do
-      Sampling.rows plan i tr ~first:0 ~step:1
-    done;
-    save_counters ints 0 tr (Gc.minor_words () -. before);
-    finish img ints
-  end
-  else
-    match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
-    | exception Out_of_memory -> out_of_memory region
-    | exception Failure m -> Error (`Msg m)
-    | img ->
-    let plan = Sampling.plan sampling img ~canvas:(scene.width, scene.height) ~at:(region.x, region.y) ~shared:true in
-    let passes = Sampling.passes plan in
-    slots := passes * jobs;
-    match Parallel.shared_ints (passes * jobs * counter_fields) with
-    | exception Out_of_memory -> out_of_memory region
-    | exception Failure m -> Error (`Msg m)
-    | ints ->
-    (* A pass starts once the previous one has finished in every worker.
-       Its rows are dealt into [classes] interleaved classes (rows c,
-       c + classes, ...), all about as costly, that the workers take from a
-       queue as they go: they finish together even if a core is slowed. *)
-    let classes = min Parallel.max_tasks (min region.h (32 * jobs)) in
-    let rec run i =
-      if i = passes then finish img ints
-      else
-        let queue = Parallel.queue classes in
-        let work w =
-          let tr = Trace.create ~averaging p in
-          let before = Gc.minor_words () in
-          let rec loop () =
-            let c = Parallel.take queue in
-            if c >= 0 then begin
-              Sampling.rows plan i tr ~first:c ~step:classes;
-              loop ()
-            end
-          in
-          loop ();
-          save_counters ints ((i * jobs) + w) tr (Gc.minor_words () -. before)
-        in
-        let result = Parallel.run jobs work in
-        Parallel.close_queue queue;
-        match result with Ok () -> run (i + 1) | Error e -> Error e
-    in
-    run 0
-
-let image ?jobs ?skips ?samples ?adaptive ?subsample (scene : Scene.t) =
-  region_image ?jobs ?skips ?samples ?adaptive ?subsample scene (Region.full ~width:scene.width ~height:scene.height)
-
-let image_exn ?jobs ?skips ?samples ?adaptive ?subsample scene =
-  match image ?jobs ?skips ?samples ?adaptive ?subsample scene with
-  | Ok (img, _) -> img
-  | Error (`Msg m) -> failwith m
+let image ?limits ?clock ?skips ?samples ?adaptive ?subsample scene =
+  let s = Scene.of_valid scene in
+  region_image ?limits ?clock ?skips ?samples ?adaptive ?subsample scene (Region.full ~width:s.width ~height:s.height)

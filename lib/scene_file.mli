@@ -38,15 +38,15 @@ v}
     their domain ({!Sphere.validate}, {!Light.validate}, ...) are all
     errors. *)
 
-val of_string : ?file:string -> string -> (Scene.t, [> `Msg of string ]) result
-(** [of_string ~file text] is the scene described by [text]. [file]
-    (default ["<string>"]) names the source in error messages. The scene
-    satisfies {!Scene.validate}. Never raises. *)
-
-val read : string -> (Scene.t, [> `Msg of string ]) result
-(** [read path] is the scene in file [path]. *)
+val of_string : ?limits:Limits.t -> ?file:string -> string -> (Scene.valid, [> `Msg of string ]) result
+(** [of_string ~limits ~file text] is the scene described by [text],
+    validated against [limits] (default {!Limits.default}): a text longer
+    than its [`Scene_bytes] bound is refused before it is parsed. [file]
+    (default ["<string>"]) names the source in error messages. Never
+    raises. ([Raytrace_unix.Files.read_scene] reads a scene file.) *)
 
 val to_string : Scene.t -> string
 (** [to_string s] is [s] in the scene-file syntax, every number written so
     that it reads back as the same float: [of_string (to_string s)] is
-    [Ok s] for every [s] that satisfies {!Scene.validate}. *)
+    [Ok v] with [Scene.of_valid v = s] for every [s] that passes
+    {!Scene.validate}. *)

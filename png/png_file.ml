@@ -1,4 +1,4 @@
-open Raytrace
+
 
 let signature = "\137PNG\r\n\026\n"
 let is_png s = String.length s >= 8 && String.sub s 0 8 = signature

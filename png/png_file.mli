@@ -20,4 +20,4 @@ val to_string : Raytrace.Image.t -> (string, [> `Msg of string ]) result
 
 val write_file : string -> Raytrace.Image.t -> (unit, [> `Msg of string ]) result
 (** [write_file path img] writes [to_string img] to [path] atomically
-    ({!Raytrace.File_io.write_atomic}). *)
+    ({!Raytrace_unix.File_io.write_atomic}). *)

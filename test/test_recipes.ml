@@ -9,7 +9,7 @@ let contrib name = Filename.concat (Filename.concat (Sys.getcwd ()) "../contrib"
 let here name = Filename.concat (Sys.getcwd ()) name
 
 let read path =
-  match Raytrace.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
+  match Raytrace_unix.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
 
 let on_path prog =
   List.exists

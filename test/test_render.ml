@@ -6,7 +6,7 @@
 open Raytrace
 
 let small (s : Scene.t) = Scene.with_overrides ~width:80 ~height:80 s
-let render ?jobs ?skips s = Render.image_exn ?jobs ?skips s
+let render ?jobs ?skips s = Helpers.image_exn ?jobs ?skips s
 
 let check_against_oracle what (s : Scene.t) =
   match s.epsilon with
@@ -68,18 +68,18 @@ let tests =
         let s = Scene.with_overrides ~width:5 ~height:2 Scene.cgfs in
         Helpers.check_images "8 jobs" ~expected:(render s) (render ~jobs:8 s));
     Alcotest.test_case "tracing allocates nothing per pixel" `Quick (fun () ->
-        match Render.image (Scene.with_overrides ~width:120 ~height:120 Scene.cgfs) with
+        match Helpers.render (Scene.with_overrides ~width:120 ~height:120 Scene.cgfs) with
         | Ok (_, stats) -> Alcotest.(check (float 0.)) __LOC__ 0. stats.minor_words
         | Error (`Msg m) -> Alcotest.fail m);
     Alcotest.test_case "the counters count the document's rays" `Quick (fun () ->
         (* The C reference reports 360000 primary, 784856 shadow and 367660
            reflection rays for this scene at 600 x 600. *)
-        match Render.image Scene.cgfs with
+        match Helpers.render Scene.cgfs with
         | Ok (_, st) ->
             Alcotest.(check (list int)) __LOC__ [ 360000; 784856; 367660 ] [ st.primary; st.shadow; st.reflection ]
         | Error (`Msg m) -> Alcotest.fail m);
     Alcotest.test_case "sample 0 of a 1 x 1 grid is the pixel itself" `Quick (fun () ->
-        let tr = Trace.create (Prepared.prepare Scene.cgfs) in
+        let tr = Trace.create (Helpers.prepare Scene.cgfs) in
         List.iter
           (fun (x, y) ->
             Trace.pixel tr x y;
@@ -91,7 +91,7 @@ let tests =
           [ (0, 0); (-300, 299); (120, -40) ]);
     Alcotest.test_case "the number of cores is what the kernel allows this process" `Quick (fun () ->
         (* /proc/self/status says e.g. "Cpus_allowed_list:\t0-1" for 2 cores *)
-        match Raytrace.File_io.read "/proc/self/status" with
+        match Raytrace_unix.File_io.read "/proc/self/status" with
         | Error _ -> ()
         | Ok text ->
             let line =
@@ -111,7 +111,7 @@ let tests =
     Helpers.qcheck ~count:1000 "below a sphere's specular threshold, cos ** s is exactly 0"
       QCheck.(pair (float_range 0. 1.) (oneofl [ 0.; 0.5; 1.; 10.; 500.; 1000.; 1e5; 1e12; 1e300 ]))
       (fun (u, specular) ->
-        let p = Prepared.prepare (Scene.v ~spheres:[ Sphere.v ~specular ~center:Vec3.oz ~radius:1. Color.white ] ~lights:[] ()) in
+        let p = Helpers.prepare (Scene.v ~spheres:[ Sphere.v ~specular ~center:Vec3.oz ~radius:1. Color.white ] ~lights:[] ()) in
         let zero = p.specular_zero.(0) in
         (* every cosine at or below the threshold, here u times it *)
         zero >= 0. && zero < 1. && (zero = 0. || Float.pow (u *. zero) specular = 0.)

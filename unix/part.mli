@@ -61,14 +61,17 @@ val to_string : t -> string
 (** [to_string p] is [p] as a binary PPM file of the part's pixels whose
     header comments record the canvas, the region and the settings. *)
 
-val of_string : ?file:string -> string -> (t, [> `Msg of string ]) result
-(** [of_string ~file s] is the part stored in the PPM file contents [s].
+val of_string : ?limits:Limits.t -> ?file:string -> string -> (t, [> `Msg of string ]) result
+(** [of_string ~limits ~file s] is the part stored in the PPM file
+    contents [s], within [limits] (default {!Limits.default}).
     [Error], with a message that starts with [file] (default
     ["<string>"]), if [s] is not a PPM file, has no [raytrace-part 1]
     header, or its header is malformed or disagrees with its pixels. *)
 
-val read_file : string -> (t, [> `Msg of string ]) result
-(** [read_file path] reads the part stored in file [path]. *)
+val read_file : ?limits:Limits.t -> string -> (t, [> `Msg of string ]) result
+(** [read_file ~limits path] reads the part stored in file [path]; a file
+    too large for an image within [limits] is refused before it is read
+    ({!Ppm.check_file_size}). *)
 
 val write_file : string -> t -> (unit, [> `Msg of string ]) result
 (** [write_file path p] writes [to_string p] to [path] atomically

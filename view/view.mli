@@ -22,14 +22,17 @@ type t = private {
   scene : Scene.t;
       (** The scene shown: [base] with the current camera and depth, the
           window's size as canvas and the viewport {!fit} to it. *)
+  valid : Scene.valid;  (** [scene], validated: what the renderer takes. *)
+  limits : Limits.t;  (** The bounds the canvas and depth stay within. *)
   antialias : bool;  (** Whether pixels are averaged over {!antialias_samples}{^2} samples. *)
   help : bool;  (** Whether the help overlay is shown. *)
 }
 (** The type for views. *)
 
-val v : Scene.t -> t
-(** [v scene] is the view of [scene] as loaded: its camera, depth and
-    canvas size, no antialiasing, no help. *)
+val v : ?limits:Limits.t -> Scene.valid -> t
+(** [v ~limits scene] is the view of [scene] as loaded: its camera, depth
+    and canvas size, no antialiasing, no help. Canvas sizes and depths
+    stay within [limits] (default {!Limits.default}). *)
 
 val samples : t -> int
 (** [samples view] is the side of the grid of samples per pixel: [1], or
