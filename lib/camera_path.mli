@@ -14,12 +14,33 @@ type key = {
   look_at : Vec3.t;  (** The point the camera looks at, [<> position]. *)
   up : Vec3.t;  (** Up in the picture, not parallel to [look_at - position]. *)
 }
-[@@deriving show, eq]
 (** The type for keyframes. *)
 
-type t = private key list [@@deriving show, eq]
+val pp_key : Format.formatter -> key -> unit
+(** [pp_key ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show_key : key -> string
+(** [show_key x] is [x] formatted by {!pp_key}. *)
+
+val equal_key : key -> key -> bool
+(** [equal_key a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
+
+type t = private key list
 (** The type for camera paths: at least one key, frames strictly
     increasing. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val max_frame : int
 (** [max_frame] is [1_000_000], the largest frame number. *)

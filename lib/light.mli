@@ -15,8 +15,18 @@ type t =
       (** Shines from infinitely far away: [direction] points from the
           scene {e toward} the light, and is the same vector [L] at every
           point (7.2). It need not be unit length but must not be zero. *)
-[@@deriving show, eq]
 (** The type for lights. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val ambient : float -> t
 (** [ambient i] is [Ambient {intensity = i}]. *)

@@ -45,7 +45,7 @@ val trace_ray :
 
 val pixel : Scene.t -> int -> int -> Color.t
 (** [pixel scene gx gy] is the unclamped colour of canvas pixel [(gx, gy)]
-    (centered coordinates, {!Canvas}): the primary ray from the camera
+    (centered coordinates, {!Raytrace.Private.Canvas}): the primary ray from the camera
     through the viewport point of the pixel, [t > 1] (section 8). *)
 
 val render : Scene.t -> Image.t

@@ -1,6 +1,8 @@
 (** The parts of a render shared by {!Render} (one process) and the
     multi-process renderer of [raytrace.unix]: the checks made before
-    anything is allocated, the work counters, the statistics. Internal. *)
+    anything is allocated, the work counters, the statistics. Internal.
+
+    @canonical Raytrace.Private.Render_work *)
 
 val sampling :
   ?samples:int -> ?adaptive:int -> ?subsample:bool -> unit -> (Sampling.t, [> `Msg of string ]) result

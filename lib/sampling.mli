@@ -3,9 +3,9 @@
     recursion depth of {!Scene.t}).
 
     - {e Supersampling} with [samples = n] traces the [n x n] regular grid
-      of {!Trace.sample} in every pixel and averages it; deterministic.
+      of {!Raytrace.Private.Trace.sample} in every pixel and averages it; deterministic.
       Each sample is clamped to [\[0, 255\]] before the average and the mean
-      is rounded once ({!Trace.accumulate} says why). [n = 1] is exactly
+      is rounded once ({!Raytrace.Private.Trace.accumulate} says why). [n = 1] is exactly
       the document's image.
     - {e Adaptive} supersampling with threshold [th] and an odd [n] first
       traces one ray per pixel, through its centre, then traces the rest
@@ -23,7 +23,7 @@
       per pixel but skips the search for the primary ray's sphere where
       the two neighbours on either side (left and right on even rows, above
       and below on odd rows) hit the same sphere, and assumes it hits that
-      one ({!Trace.pixel_assuming}). Approximate, opt-in, measured by the
+      one ({!Raytrace.Private.Trace.pixel_assuming}). Approximate, opt-in, measured by the
       benchmark.
 
     Every mode gives the same image whatever the number of processes: a
@@ -103,7 +103,7 @@ val rows : plan -> int -> Trace.t -> first:int -> step:int -> unit
 (** [rows pl i tr ~first ~step] runs pass [i] of [pl] on rows [first],
     [first + step], ... of the rows that pass works on (the rectangle's, or
     the margin's, all of them or every other one), with tracer [tr], whose
-    scene must have the canvas size of [pl] and whose {!Trace.averaging}
+    scene must have the canvas size of [pl] and whose {!Raytrace.Private.Trace.averaging}
     must be {!averaging}.
     @raise Invalid_argument if [i] is not a pass, [step < 1], or the
     canvas sizes or the averaging disagree. *)

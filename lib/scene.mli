@@ -24,8 +24,18 @@ type t = {
       (** The camera of each frame of an animation ({!at_frame}); [camera]
           is the camera of a still picture. *)
 }
-[@@deriving show, eq]
 (** The type for scenes. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val v :
   ?width:int ->

@@ -13,9 +13,19 @@ type t = {
   specular : float;  (** [s >= 0], or {!matte} for no specular term. *)
   reflective : float;  (** Reflectivity in [\[0, 1\]]; [0] is no mirror. *)
 }
-[@@deriving show, eq]
 (** The type for spheres. The invariants in the field comments are checked
     by {!validate} and by scene loading, not by the constructor. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val matte : float
 (** [matte] is [-1.], the specular exponent that means "no specular term"

@@ -1,14 +1,16 @@
-(** The fast tracer: the document's algorithm on a {!Prepared.t} scene,
+(** The fast tracer: the document's algorithm on a {!Raytrace.Private.Prepared.t} scene,
     allocating nothing per ray.
 
     It computes the same floating-point operations in the same order as
     {!Literal}, so it produces the same bytes; it only skips work whose
-    result provably cannot change them (see {!Prepared.prepare}). Rays,
+    result provably cannot change them (see {!Raytrace.Private.Prepared.prepare}). Rays,
     hit points and colours live in a mutable all-float record (stored
     unboxed), hits are returned as sphere indices ([-1] for none), and
     reflection is a loop over a small stack instead of recursion, because
     in OCaml 4.13 without flambda a float crossing a function call that is
-    not inlined is boxed. *)
+    not inlined is boxed.
+
+    @canonical Raytrace.Private.Trace *)
 
 type counters = {
   mutable primary : int;  (** Primary rays cast. *)
@@ -28,7 +30,7 @@ val create : ?averaging:bool -> Prepared.t -> t
 (** [create ~averaging p] is a tracer for [p] with zeroed counters.
     [averaging] (default [false]) says how the colours it computes will be
     combined, which decides when the reflection early stop of
-    {!Prepared.prepare}'s skips is exact. Without it, each ray is one
+    {!Raytrace.Private.Prepared.prepare}'s skips is exact. Without it, each ray is one
     pixel, rounded to bytes on its own: a reflection stops once its
     remaining weight cannot change a byte of the pixel. With it, rays are
     samples whose clamped floats are averaged ({!accumulate}): a reflection
@@ -45,7 +47,7 @@ val counters : t -> counters
 
 val pixel : t -> int -> int -> unit
 (** [pixel tr gx gy] traces the primary ray through canvas pixel
-    [(gx, gy)] (centered coordinates, {!Canvas}) from the camera, [t > 1],
+    [(gx, gy)] (centered coordinates, {!Raytrace.Private.Canvas}) from the camera, [t > 1],
     with the scene's recursion depth (section 8). The unclamped colour is
     then in {!red}, {!green} and {!blue}, and {!store} writes it. *)
 

@@ -1,18 +1,18 @@
-(** Scene and PPM files: {!Scene_file} and {!Ppm} on files, read whole
+(** Scene and PPM files: {!Raytrace.Scene_file} and {!Raytrace.Ppm} on files, read whole
     with a size bound and written atomically ({!File_io}). Errors start
     with the path. *)
 
 val read_scene : ?limits:Limits.t -> string -> (Scene.valid, [> `Msg of string ]) result
 (** [read_scene ~limits path] is the scene in file [path]
-    ({!Scene_file.of_string} with [~file:path]); a file larger than the
-    [`Scene_bytes] bound of [limits] (default {!Limits.default}) is
+    ({!Raytrace.Scene_file.of_string} with [~file:path]); a file larger than the
+    [`Scene_bytes] bound of [limits] (default {!Raytrace.Limits.default}) is
     refused before it is read. *)
 
 val read_ppm : ?limits:Limits.t -> string -> (Image.t, [> `Msg of string ]) result
 (** [read_ppm ~limits path] reads and decodes the PPM file [path]. A file
     larger than a binary image of the pixel bound of [limits] (default
-    {!Limits.default}) is refused before it is read
-    ({!Ppm.check_file_size}). *)
+    {!Raytrace.Limits.default}) is refused before it is read
+    ({!Raytrace.Ppm.check_file_size}). *)
 
 val write_ppm : ?comments:string list -> string -> Image.t -> (unit, [> `Msg of string ]) result
 (** [write_ppm ~comments path img] writes [Ppm.to_string ~comments img] to

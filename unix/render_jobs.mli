@@ -1,4 +1,4 @@
-(** Rendering in several processes: {!Render} with [jobs] worker
+(** Rendering in several processes: {!Raytrace.Render} with [jobs] worker
     processes that trace interleaved rows into shared memory
     ({!Parallel}). The image is the same, byte for byte, whatever the
     number of jobs: each pixel is traced alone, by the same code. *)
@@ -13,8 +13,8 @@ val image :
   Scene.valid ->
   (Image.t * Stats.t, [> `Msg of string ]) result
 (** [image ~limits ~jobs ~skips ~samples ~adaptive ~subsample scene] is
-    {!Render.image} traced by [jobs] processes (default 1: this one), timed
-    by the wall clock. Besides {!Render.image}'s errors, [Error] before
+    {!Raytrace.Render.image} traced by [jobs] processes (default 1: this one), timed
+    by the wall clock. Besides {!Raytrace.Render.image}'s errors, [Error] before
     anything is allocated if the image needs more memory than the system
     has available, and [Error] if no shared memory can be had or a worker
     process dies.
@@ -31,7 +31,7 @@ val region_image :
   Region.t ->
   (Image.t * Stats.t, [> `Msg of string ]) result
 (** [region_image ~limits ~jobs ~skips ~samples ~adaptive ~subsample scene r]
-    is {!Render.region_image} traced by [jobs] processes, with the errors
+    is {!Raytrace.Render.region_image} traced by [jobs] processes, with the errors
     of {!image}.
     @raise Invalid_argument if [jobs < 1] or [r] is not inside the
     canvas. *)

@@ -5,10 +5,10 @@
     pixels: pass [s] traces the pixels whose column and row are multiples
     of [s], skipping those that an earlier pass traced; after it, the
     [s x s] block below and to the right of each such pixel can be shown in
-    its colour. Every pixel is traced once, as {!Trace.pixel} traces it, so
-    the image after these passes is {!Render.image}'s byte for byte. With
+    its colour. Every pixel is traced once, as {!Raytrace.Private.Trace.pixel} traces it, so
+    the image after these passes is {!Raytrace.Render.image}'s byte for byte. With
     antialiasing ([samples > 1]) one more pass traces every pixel with
-    {!Antialias.store}: the final image is then {!Antialias.image}'s.
+    {!Raytrace.Private.Antialias.store}: the final image is then {!Raytrace.Private.Antialias.image}'s.
 
     One {!step} traces one band of the current pass: [s] image rows of a
     coarse pass, or as many rows as asked of a full-resolution pass. Given
@@ -80,5 +80,5 @@ val samples : t -> int
 (** [samples r] is the side of the sample grid of the last pass. *)
 
 val tracer : t -> Trace.t
-(** [tracer r] is the tracer of [r], whose {!Trace.counters} count the
+(** [tracer r] is the tracer of [r], whose {!Raytrace.Private.Trace.counters} count the
     work done so far. *)
