@@ -38,7 +38,7 @@ let scene_name opts =
 (* --jobs, or all cores; checked like any other input. *)
 let jobs_or_cores = function
   | None -> Ok (Parallel.cores ())
-  | Some j -> ( match Limits.check_jobs j with Ok j -> Ok j | Error m -> Error (`Msg m))
+  | Some j -> Limits.check_jobs j
 
 let sampling_of (o : sampling_options) =
   Sampling.v ?samples:o.samples ?adaptive:o.adaptive ~subsample:o.subsample ()

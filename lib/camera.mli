@@ -48,7 +48,7 @@ val v : ?rotation:rotation -> Vec3.t -> t
 (** [v ~rotation position] is a camera at [position] turned by [rotation]
     (default {!identity}). *)
 
-val look_at : ?up:Vec3.t -> position:Vec3.t -> Vec3.t -> (t, string) result
+val look_at : ?up:Vec3.t -> position:Vec3.t -> Vec3.t -> (t, [> `Msg of string ]) result
 (** [look_at ~up ~position target] is the camera at [position] whose
     viewport center lies in the direction of [target], with [up] (default
     [Vec3.oy]) pointing up in the picture as far as it can. The matrix is
@@ -57,14 +57,14 @@ val look_at : ?up:Vec3.t -> position:Vec3.t -> Vec3.t -> (t, string) result
 
 (** {1:validation Validation} *)
 
-val check_position : Vec3.t -> (Vec3.t, string) result
+val check_position : Vec3.t -> (Vec3.t, [> `Msg of string ]) result
 (** [check_position p] checks {!Limits.check_point}. *)
 
-val check_rotation : rotation -> (rotation, string) result
+val check_rotation : rotation -> (rotation, [> `Msg of string ]) result
 (** [check_rotation m] checks that [m] is finite and invertible: a singular
     matrix would send some rays in no direction at all. *)
 
-val validate : t -> (t, string) result
+val validate : t -> (t, [> `Msg of string ]) result
 (** [validate cam] checks position and rotation. *)
 
 (** {1:functions Functions} *)

@@ -49,18 +49,18 @@ val key : ?up:Vec3.t -> frame:int -> position:Vec3.t -> Vec3.t -> key
 (** [key ~up ~frame ~position target] is the keyframe [frame] with the camera
     at [position] looking at [target]; [up] defaults to [Vec3.oy]. *)
 
-val check_key : key -> (key, string) result
+val check_key : key -> (key, [> `Msg of string ]) result
 (** [check_key k] checks that [k.frame] lies in [\[0, max_frame\]], that its
     points are within {!Limits.check_point}, and that {!Camera.look_at}
     accepts it. *)
 
-val check_segment : key -> key -> (unit, string) result
+val check_segment : key -> key -> (unit, [> `Msg of string ]) result
 (** [check_segment k0 k1] checks that [k0.frame < k1.frame] and that every
     frame strictly between them has a camera: the interpolated position is
     not the interpolated target and the interpolated up is not parallel to
     the view direction. The error names the first bad frame. *)
 
-val v : key list -> (t, string) result
+val v : key list -> (t, [> `Msg of string ]) result
 (** [v keys] is the path through [keys], after {!check_key} on each key and
     {!check_segment} on each pair of neighbours. [Error] also if [keys] is
     empty. *)

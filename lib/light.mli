@@ -41,19 +41,19 @@ val directional : float -> Vec3.t -> t
 val intensity : t -> float
 (** [intensity l] is the intensity of [l]. *)
 
-val check_intensity : float -> (float, string) result
+val check_intensity : float -> (float, [> `Msg of string ]) result
 (** [check_intensity i] checks [0 <= i <= Limits.max_intensity]. *)
 
-val check_position : Vec3.t -> (Vec3.t, string) result
+val check_position : Vec3.t -> (Vec3.t, [> `Msg of string ]) result
 (** [check_position q] checks a point light's position with
     {!Limits.check_point}. *)
 
-val check_direction : Vec3.t -> (Vec3.t, string) result
+val check_direction : Vec3.t -> (Vec3.t, [> `Msg of string ]) result
 (** [check_direction l] checks a directional light's direction with
     {!Limits.check_point}, and that its length is at least
     {!Limits.min_size}. *)
 
-val validate : t -> (t, string) result
+val validate : t -> (t, [> `Msg of string ]) result
 (** [validate l] is [Ok l] if the intensity, position and direction pass
     their checks, and otherwise the first error. *)
 

@@ -1,4 +1,5 @@
 let max_coordinate = 1e12
+let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let min_size = 1e-30
 let max_intensity = 1e6
 let max_dimension = 65536
@@ -88,22 +89,22 @@ let exceeded l n what =
   Printf.sprintf "%s, more than the limit of %s (set %s to raise it)" what (show_bound (bound l n)) (variable n)
 
 (* [Ok ()] if [x <= bound l n]; [what ()] describes [x] for the message. *)
-let within l n x what = if x <= bound l n then Ok () else Error (exceeded l n (what ()))
+let within l n x what = if x <= bound l n then Ok () else Error (`Msg (exceeded l n (what ())))
 let max_jobs = 1024
 
 let check_jobs n =
   if n < 1 || n > max_jobs then
-    Error (Printf.sprintf "--jobs must lie in [1, %d], got %d" max_jobs n)
+    (error "--jobs must lie in [1, %d], got %d" max_jobs n)
   else Ok n
 
 let check_coordinate what x =
   if Float.is_finite x && Float.abs x <= max_coordinate then Ok x
-  else Error (Printf.sprintf "%s must be finite and at most 1e12 in magnitude, got %s" what (num x))
+  else (error "%s must be finite and at most 1e12 in magnitude, got %s" what (num x))
 
 let check_size what x =
-  if not (x > 0.) then Error (Printf.sprintf "%s must be > 0, got %s" what (num x))
+  if not (x > 0.) then (error "%s must be > 0, got %s" what (num x))
   else if x < min_size then
-    Error (Printf.sprintf "%s must be at least 1e-30, got %s" what (num x))
+    (error "%s must be at least 1e-30, got %s" what (num x))
   else check_coordinate what x
 
 let check_point what (p : Vec3.t) =
@@ -113,7 +114,7 @@ let check_point what (p : Vec3.t) =
 
 let check_dimension what n =
   if n < 1 || n > max_dimension then
-    Error (Printf.sprintf "canvas %s must lie in [1, %d], got %d" what max_dimension n)
+    (error "canvas %s must lie in [1, %d], got %d" what max_dimension n)
   else Ok n
 
 let pixels_within l kind w h =
@@ -127,13 +128,13 @@ let check_canvas l w h =
   | Ok _, Ok _ -> pixels_within l "canvas" w h
 
 let check_image_size l w h =
-  if w < 1 || h < 1 then Error (Printf.sprintf "image size %dx%d is empty" w h)
+  if w < 1 || h < 1 then (error "image size %dx%d is empty" w h)
   else pixels_within l "image" w h
 
 (* [Ok n] if [n >= lo] (else [Error (low ())]) and [n] is within bound
    [name] (else [what ()] describes [n]). *)
 let bounded l name ~lo ~low ~what n =
-  if n < lo then Error (low ())
+  if n < lo then Error (`Msg (low ()))
   else match within l name (Float.of_int n) what with Ok () -> Ok n | Error e -> Error e
 
 let check_depth l d =

@@ -117,47 +117,47 @@ val exceeded : t -> name -> string -> string
 val max_jobs : int
 (** [max_jobs] is [1024]: the most worker processes a render forks. *)
 
-val check_jobs : int -> (int, string) result
+val check_jobs : int -> (int, [> `Msg of string ]) result
 (** [check_jobs n] is [Ok n] if [1 <= n <= max_jobs]. *)
 
-val check_coordinate : string -> float -> (float, string) result
+val check_coordinate : string -> float -> (float, [> `Msg of string ]) result
 (** [check_coordinate what x] is [Ok x] if [x] is finite with
     [|x| <= max_coordinate], and otherwise [Error] naming [what]. *)
 
-val check_size : string -> float -> (float, string) result
+val check_size : string -> float -> (float, [> `Msg of string ]) result
 (** [check_size what x] is [Ok x] if [min_size <= x <= max_coordinate],
     and otherwise [Error] naming [what] ("sphere radius", ...). *)
 
-val check_point : string -> Vec3.t -> (Vec3.t, string) result
+val check_point : string -> Vec3.t -> (Vec3.t, [> `Msg of string ]) result
 (** [check_point what p] is {!check_coordinate} on each coordinate. *)
 
-val check_dimension : string -> int -> (int, string) result
+val check_dimension : string -> int -> (int, [> `Msg of string ]) result
 (** [check_dimension what n] is [Ok n] if [1 <= n <= max_dimension], and
     otherwise [Error] naming the canvas's [what] ("width", "height"). *)
 
-val check_canvas : t -> int -> int -> (unit, string) result
+val check_canvas : t -> int -> int -> (unit, [> `Msg of string ]) result
 (** [check_canvas l w h] is [Ok ()] if [1 <= w, h <= max_dimension] and
     [w * h] is within the [`Pixels] bound of [l]. *)
 
-val check_image_size : t -> int -> int -> (unit, string) result
+val check_image_size : t -> int -> int -> (unit, [> `Msg of string ]) result
 (** [check_image_size l w h] is [Ok ()] if [w, h >= 1] and [w * h] is within
     the [`Pixels] bound of [l] (images read from files, which have no
     {!max_dimension}). Never overflows. *)
 
-val check_depth : t -> int -> (int, string) result
+val check_depth : t -> int -> (int, [> `Msg of string ]) result
 (** [check_depth l d] is [Ok d] if [0 <= d] and [d] is within the [`Depth]
     bound of [l]. *)
 
-val check_samples : t -> int -> (int, string) result
+val check_samples : t -> int -> (int, [> `Msg of string ]) result
 (** [check_samples l n] is [Ok n] if [1 <= n] and [n] rays per pixel are
     within the [`Samples] bound of [l] (the renderer checks
     [samples x samples]). *)
 
-val check_count : t -> [ `Spheres | `Lights ] -> int -> (int, string) result
+val check_count : t -> [ `Spheres | `Lights ] -> int -> (int, [> `Msg of string ]) result
 (** [check_count l kind n] is [Ok n] if a scene with [n] spheres (or lights)
     is within that bound of [l]. *)
 
-val check_scene_bytes : t -> int -> (int, string) result
+val check_scene_bytes : t -> int -> (int, [> `Msg of string ]) result
 (** [check_scene_bytes l n] is [Ok n] if a scene text of [n] bytes is within
     the [`Scene_bytes] bound of [l]. *)
 
@@ -171,6 +171,6 @@ val work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -
     renderer uses a bounding volume hierarchy) at most [16 log2 spheres],
     rounded up. A float, so that it cannot overflow. *)
 
-val check_work : t -> pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> (unit, string) result
+val check_work : t -> pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> (unit, [> `Msg of string ]) result
 (** [check_work l ...] is [Ok ()] if {!work} is within the [`Work] bound of
     [l]. *)

@@ -91,7 +91,7 @@ let decode ~limits s =
   let w, _, pos = number ~at_end:in_header "width" s 2 in
   let h, _, pos = number ~at_end:in_header "height" s pos in
   let maxval, _, pos = number ~at_end:in_header "maxval" s pos in
-  (match Limits.check_image_size limits w h with Ok () -> () | Error m -> bad "%s" m);
+  (match Limits.check_image_size limits w h with Ok () -> () | Error (`Msg m) -> bad "%s" m);
   if maxval < 1 || maxval > 255 then bad "maxval must lie in [1, 255], got %d" maxval;
   let n = 3 * w * h in
   let start = pos + 1 in
@@ -138,8 +138,8 @@ let check_file_size ?(limits = Limits.default) n =
   if Float.of_int n <= most then Ok n
   else
     Error
-      (Printf.sprintf "the file is %d bytes, more than a PPM image of at most %.0f pixels can be (%.0f bytes; set %s to raise the limit)"
-         n pixels most (Limits.variable `Pixels))
+      (`Msg (Printf.sprintf "the file is %d bytes, more than a PPM image of at most %.0f pixels can be (%.0f bytes; set %s to raise the limit)"
+         n pixels most (Limits.variable `Pixels)))
 
 (* The comments between the magic number and the maxval: the header ends
    after three numbers. *)

@@ -23,7 +23,7 @@ val of_string : ?limits:Limits.t -> string -> (Image.t, [> `Msg of string ]) res
     {!Limits.check_image_size} allows with [limits] (default
     {!Limits.default}; checked before any allocation). It never raises. *)
 
-val check_file_size : ?limits:Limits.t -> int -> (int, string) result
+val check_file_size : ?limits:Limits.t -> int -> (int, [> `Msg of string ]) result
 (** [check_file_size ~limits n] is [Ok n] if [n] bytes can hold an image
     within the pixel bound of [limits] (default {!Limits.default}): at most
     [3] bytes a pixel plus 1 MiB of header (a PNG compresses, so it fits

@@ -13,7 +13,7 @@ let inside fn scene (region : Region.t) =
    subsampling about half a ray). *)
 let check ~limits scene (region : Region.t) (sampling : Sampling.t) =
   let rays_per_pixel = sampling.samples * sampling.samples in
-  let* _ = Result.map_error (fun m -> `Msg m) (Limits.check_samples limits rays_per_pixel) in
+  let* _ = Limits.check_samples limits rays_per_pixel in
   Scene.check_work ~limits ~samples:rays_per_pixel ~pixels:(Region.pixels region) scene
 
 let out_of_memory (region : Region.t) =

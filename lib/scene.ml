@@ -12,6 +12,8 @@ type t = {
 }
 [@@deriving show, eq]
 
+let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
+let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
 let v ?(width = 600) ?(height = 600) ?(viewport = Viewport.default) ?(camera = Camera.default)
     ?(background = Color.black) ?(depth = 3) ?epsilon ?camera_path ~spheres ~lights () =
   { width; height; viewport; camera; background; depth; epsilon; spheres; lights; camera_path }
@@ -78,11 +80,11 @@ let grid n =
 
 let check_epsilon e =
   if Float.is_finite e && e >= 0. then Ok e
-  else Error (Printf.sprintf "epsilon must be finite and >= 0, got %s" (Float_text.to_string e))
+  else (error "epsilon must be finite and >= 0, got %s" (Float_text.to_string e))
 
 let check_background c =
   if Color.in_gamut c then Ok c
-  else Error (Format.asprintf "background channels must lie in [0, 255], got %a" Color.pp c)
+  else (error_pp "background channels must lie in [0, 255], got %a" Color.pp c)
 
 type valid = t
 
@@ -108,7 +110,7 @@ let validate ?(limits = Limits.default) s =
     let* () = all Sphere.validate s.spheres in
     all Light.validate s.lights
   in
-  match result with Ok () -> Ok s | Error m -> Error (`Msg m)
+  match result with Ok () -> Ok s | Error _ as e -> e
 
 let with_overrides ?width ?height ?depth s =
   let pick o d = match o with Some x -> x | None -> d in
@@ -127,7 +129,7 @@ let override ?(limits = Limits.default) ?width ?height ?depth ?viewport ?camera 
     let* () = given Viewport.validate viewport in
     given Camera.validate camera
   in
-  match checked with Ok () -> Ok s | Error m -> Error (`Msg m)
+  match checked with Ok () -> Ok s | Error _ as e -> e
 
 (* The path's cameras pass Camera.validate: Camera_path.v checked every key
    and segment. *)
@@ -146,4 +148,4 @@ let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
     Limits.check_work limits ~pixels:(Option.value pixels ~default:(s.width * s.height)) ~samples ~depth ~spheres:(List.length s.spheres) ~lights
   with
   | Ok () -> Ok ()
-  | Error m -> Error (`Msg m)
+  | Error _ as e -> e

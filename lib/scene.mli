@@ -85,10 +85,10 @@ val document_epsilon : float
 
 (** {1:validation Validation} *)
 
-val check_epsilon : float -> (float, string) result
+val check_epsilon : float -> (float, [> `Msg of string ]) result
 (** [check_epsilon e] checks that [e] is finite and [>= 0]. *)
 
-val check_background : Color.t -> (Color.t, string) result
+val check_background : Color.t -> (Color.t, [> `Msg of string ]) result
 (** [check_background c] checks {!Color.in_gamut}. *)
 
 type valid

@@ -74,7 +74,7 @@ let integer (what : unit -> string) node =
       | None -> fail node "%s: expected an integer, got %s" (what ()) (show_atom atom))
   | Sexp.List _ -> fail node "%s: expected an integer, got a list" (what ())
 
-let check node = function Ok x -> x | Error m -> fail node "%s" m
+let check node = function Ok x -> x | Error (`Msg m) -> fail node "%s" m
 
 (* Fields: a form's [(name args...)] children. [where] gives a node's
    position when it is known (the second, located pass). *)
@@ -203,7 +203,7 @@ let camera ~where nodes =
       ignore (check node (Limits.check_point "camera look-at" target));
       match Camera.look_at ?up:(Option.map snd up) ~position target with
       | Ok cam -> cam
-      | Error m -> fail node "%s" m)
+      | Error (`Msg m) -> fail node "%s" m)
   | None, None, _ -> Camera.v position
 
 let sphere ~where form_node nodes =
@@ -425,7 +425,7 @@ let of_string ?(limits = Limits.default) ?(file = "<string>") text =
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
   match Limits.check_scene_bytes limits (String.length text) with
-  | Error m -> Error (`Msg (Printf.sprintf "%s: %s" file m))
+  | Error (`Msg m) -> Error (`Msg (Printf.sprintf "%s: %s" file m))
   | Ok _ -> (
     let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
     (* Each form is converted as soon as it is parsed, and positions are not

@@ -43,22 +43,22 @@ val is_matte : t -> bool
     Each check returns its argument, or an error message that names the
     field and the value, such as ["sphere radius must be > 0, got -1"]. *)
 
-val check_center : Vec3.t -> (Vec3.t, string) result
+val check_center : Vec3.t -> (Vec3.t, [> `Msg of string ]) result
 (** [check_center c] checks {!Limits.check_point}. *)
 
-val check_radius : float -> (float, string) result
+val check_radius : float -> (float, [> `Msg of string ]) result
 (** [check_radius r] checks [Limits.min_size <= r <= Limits.max_coordinate]. *)
 
-val check_color : Color.t -> (Color.t, string) result
+val check_color : Color.t -> (Color.t, [> `Msg of string ]) result
 (** [check_color c] checks {!Color.in_gamut}. *)
 
-val check_specular : float -> (float, string) result
+val check_specular : float -> (float, [> `Msg of string ]) result
 (** [check_specular s] checks that [s] is finite and [-1] or [>= 0]. *)
 
-val check_reflective : float -> (float, string) result
+val check_reflective : float -> (float, [> `Msg of string ]) result
 (** [check_reflective r] checks [0 <= r <= 1]. *)
 
-val validate : t -> (t, string) result
+val validate : t -> (t, [> `Msg of string ]) result
 (** [validate s] is [Ok s] if every field passes its check, and otherwise
     the first field's error. *)
 

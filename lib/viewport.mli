@@ -25,11 +25,11 @@ val v : width:float -> height:float -> distance:float -> t
 val default : t
 (** [default] is the document's viewport, [V_w = V_h = d = 1]. *)
 
-val check_dimension : string -> float -> (float, string) result
+val check_dimension : string -> float -> (float, [> `Msg of string ]) result
 (** [check_dimension what x] is {!Limits.check_size} of the viewport's
     [what] ("width", "height", "distance"). *)
 
-val validate : t -> (t, string) result
+val validate : t -> (t, [> `Msg of string ]) result
 (** [validate vp] checks the three dimensions with {!check_dimension}. *)
 
 val of_canvas : t -> canvas_width:int -> canvas_height:int -> int -> int -> Vec3.t

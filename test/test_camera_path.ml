@@ -3,8 +3,8 @@ open Raytrace
 
 let camera = Alcotest.testable Camera.pp Camera.equal
 let ok = function Ok x -> x | Error (`Msg m) -> Alcotest.fail m
-let ok_s = function Ok x -> x | Error m -> Alcotest.fail m
-let error_s = function Ok _ -> Alcotest.fail "expected an error" | Error m -> m
+let ok_s = function Ok x -> x | Error (`Msg m) -> Alcotest.fail m
+let error_s = function Ok _ -> Alcotest.fail "expected an error" | Error (`Msg m) -> m
 let look ?up ~position target = ok_s (Camera.look_at ?up ~position target)
 
 (* Frame 0 at the origin looking along +z; frame 4 at x = 4, looking at

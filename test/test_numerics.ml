@@ -115,7 +115,7 @@ let tiny_far_scene ?(epsilon : float option) ?aim ?(translate = Vec3.zero) () =
   in
   let up = if aim = None then Vec3.oy else Vec3.v 0.3 1. 0.2 in
   let camera =
-    match Camera.look_at ~up ~position:translate target with Ok c -> c | Error e -> failwith e
+    match Camera.look_at ~up ~position:translate target with Ok c -> c | Error (`Msg e) -> failwith e
   in
   let scene =
     Scene.v ~width:90 ~height:90 ~viewport:vp ~camera ?epsilon ~spheres:[ sphere ]

@@ -144,7 +144,7 @@ let tests =
             Alcotest.check Helpers.vec3 __LOC__ Vec3.oy (List.hd (Camera_path.keys p)).up;
             (match Camera.look_at ~position:(Vec3.v 0. 1. (-2.)) (Vec3.v 0. 0. 4.) with
             | Ok c -> Alcotest.(check bool) __LOC__ true (Camera.equal c s.camera)
-            | Error m -> Alcotest.fail m);
+            | Error (`Msg m) -> Alcotest.fail m);
             let with_camera = parse "(camera (position 0 0 -1))\n(camera-path (key (frame 0) (position 0 0 0) (look-at 0 0 1)))" in
             Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 0. (-1.)) with_camera.camera.position);
     Alcotest.test_case "a scene with a camera path prints and parses back equal" `Quick (fun () ->

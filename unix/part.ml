@@ -74,7 +74,7 @@ let decode ~limits s =
           let* () =
             match Limits.check_canvas limits width height with
             | Ok () -> Ok ()
-            | Error m -> msg "bad canvas in the part's header: %s" m
+            | Error (`Msg m) -> msg "bad canvas in the part's header: %s" m
           in
           let* region = Region.of_corners ~width ~height x0 y0 x1 y1 in
           if Image.width image <> region.w || Image.height image <> region.h then
