@@ -100,9 +100,9 @@ let tests =
         Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:3 (Helpers.valid s)) (Progressive.image r));
     Alcotest.test_case "a shared image of another size is refused" `Quick (fun () ->
         let shared = Progressive_workers.v ~jobs:2 ~width:10 ~height:10 in
-        Alcotest.check_raises __LOC__ (Invalid_argument "Raytrace_view.Progressive.create: the workers' image is not of the canvas size")
+        Alcotest.check_raises __LOC__ (Invalid_argument "Progressive.create: the workers' image is not of the canvas size")
           (fun () -> ignore (create ~workers:shared (small Scene.cgfs))));
     Alcotest.test_case "bad arguments are refused" `Quick (fun () ->
-        Alcotest.check_raises __LOC__ (Invalid_argument "Raytrace_view.Progressive.create: samples < 1") (fun () ->
+        Alcotest.check_raises __LOC__ (Invalid_argument "Progressive.create: samples < 1") (fun () ->
             ignore (create ~samples:0 Scene.cgfs)));
   ]

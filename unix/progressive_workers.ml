@@ -2,7 +2,7 @@
 let counter_fields = 6
 
 let v ~jobs ~width ~height =
-  if jobs < 2 then invalid_arg "Raytrace_unix.Progressive_workers.v: jobs < 2";
+  if jobs < 2 then invalid_arg "Progressive_workers.v: jobs < 2";
   let image = Image.of_buffer width height (Parallel.shared_bytes (3 * width * height)) in
   let ints = Parallel.shared_ints (jobs * counter_fields) in
   let run n work =

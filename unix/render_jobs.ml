@@ -74,8 +74,8 @@ let in_workers ~jobs ~limits ?skips sampling scene (region : Region.t) =
 
 let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptive ?subsample scene
     (region : Region.t) =
-  if jobs < 1 then invalid_arg "Raytrace_unix.Render_jobs.region_image: jobs < 1";
-  Render_work.inside "Raytrace_unix.Render_jobs.region_image" scene region;
+  if jobs < 1 then invalid_arg "Render_jobs.region_image: jobs < 1";
+  Render_work.inside "Render_jobs.region_image" scene region;
   let jobs = min jobs region.h in
   if jobs = 1 then
     let* sampling = Render_work.sampling ?samples ?adaptive ?subsample () in
@@ -87,5 +87,6 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptiv
     in_workers ~jobs ~limits ?skips sampling scene region
 
 let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample scene =
+  if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";
   let s = Scene.of_valid scene in
   region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample scene (Region.full ~width:s.width ~height:s.height)

@@ -26,7 +26,7 @@ let passes samples =
   Array.of_list (if samples = 1 then plain else plain @ [ (1, samples) ])
 
 let create ?(samples = 1) ?workers valid =
-  if samples < 1 then invalid_arg "Raytrace_view.Progressive.create: samples < 1";
+  if samples < 1 then invalid_arg "Progressive.create: samples < 1";
   let scene = Scene.of_valid valid in
   (* An averaging tracer, for the antialiased pass, stops reflections
      exactly for single-sample pixels too. *)
@@ -36,7 +36,7 @@ let create ?(samples = 1) ?workers valid =
     | None -> Image.create scene.width scene.height
     | Some w ->
         if Image.width w.image <> scene.width || Image.height w.image <> scene.height then
-          invalid_arg "Raytrace_view.Progressive.create: the workers' image is not of the canvas size";
+          invalid_arg "Progressive.create: the workers' image is not of the canvas size";
         w.image
   in
   { tr; img; samples; workers; passes = passes samples; pass = 0; top = 0; failure = None }
@@ -103,7 +103,7 @@ let trace_rows_in_workers (r : t) (ws : workers) pass ~top ~rows =
       Ok ()
 
 let step ?(rows = 1) (r : t) =
-  if rows < 1 then invalid_arg "Raytrace_view.Progressive.step: rows < 1";
+  if rows < 1 then invalid_arg "Progressive.step: rows < 1";
   if finished r then None
   else begin
     let height = Image.height r.img in
