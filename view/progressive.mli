@@ -80,5 +80,5 @@ val samples : t -> int
 (** [samples r] is the side of the sample grid of the last pass. *)
 
 val tracer : t -> Trace.t
-(** [tracer r] is the tracer of [r], whose {!Raytrace.Private.Trace.counters} count the
+(** [tracer r] is the tracer of [r], whose {!Raytrace.Private.Trace.val-counters} count the
     work done so far. *)
