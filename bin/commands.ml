@@ -53,7 +53,7 @@ let render_image ~limits ~sampling ~literal ~jobs valid =
       (* Render.image checks these itself; the oracle does not. *)
       let* () = Scene.check_work ~limits valid in
       let t0 = Unix.gettimeofday () in
-      match Literal.render scene with
+      match Literal.render valid with
       | exception Out_of_memory -> msg "not enough memory for a %dx%d image" scene.width scene.height
       | img -> Ok (img, None, Unix.gettimeofday () -. t0)
   else

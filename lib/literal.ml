@@ -72,7 +72,8 @@ let pixel (scene : Scene.t) gx gy =
   trace_ray scene ~epsilon ~origin:scene.camera.position ~direction ~t_min:1. ~t_max:infinity
     ~depth:scene.depth
 
-let render (scene : Scene.t) =
+let render valid =
+  let scene = Scene.of_valid valid in
   let img = Image.create scene.width scene.height in
   for gx = Canvas.min_x scene.width to Canvas.max_x scene.width do
     for gy = Canvas.min_y scene.height to Canvas.max_y scene.height do

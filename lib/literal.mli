@@ -48,6 +48,6 @@ val pixel : Scene.t -> int -> int -> Color.t
     (centered coordinates, {!Raytrace.Private.Canvas}): the primary ray from the camera
     through the viewport point of the pixel, [t > 1] (section 8). *)
 
-val render : Scene.t -> Image.t
+val render : Scene.valid -> Image.t
 (** [render scene] is the image of [scene]: every pixel of the canvas
     (section 8), clamped and rounded by {!Color.to_byte}. *)

@@ -84,5 +84,5 @@ let tests =
       (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
       (fun s ->
         let s = { s with epsilon = Some 0.001 } in
-        Image.equal (Literal.render s) (Helpers.image_exn s));
+        Image.equal (Literal.render (Helpers.valid s)) (Helpers.image_exn s));
   ]

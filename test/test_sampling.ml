@@ -87,7 +87,7 @@ let tests =
         List.iter
           (fun name ->
             let s = small (Helpers.load_scene name) in
-            let expected = Literal.render s in
+            let expected = Literal.render (Helpers.valid s) in
             Helpers.check_images (name ^ ", samples 1") ~expected (image ~samples:1 s);
             Helpers.check_images (name ^ ", averaging path") ~expected (averaged_one s))
           (Helpers.scene_names ()));
