@@ -1,5 +1,7 @@
 (* The core library compiled to JavaScript: a scene parsed from a string,
-   rendered, encoded as PPM and decoded back, and one pixel traced alone.
+   rendered, encoded as PPM and decoded back, and one pixel traced alone;
+   and the window model (raytrace.view): a view turned by a key, rendered
+   coarse-first.
    Built twice, native and JavaScript (run by node); the dune rule checks
    that both print the same lines, so the core builds for JavaScript and
    computes the same bytes there. *)
@@ -30,6 +32,12 @@ let () =
           (match Raytrace.Ppm.of_string ppm with
           | Ok back -> Printf.printf "decoded back equal: %b\n" (Raytrace.Image.equal img back)
           | Error (`Msg m) -> failwith m);
+          let view, _ = Raytrace_view.View.handle (Raytrace_view.View.v scene) (Raytrace_view.View.Key 'E') in
+          let r = Raytrace_view.Progressive.create view.valid in
+          let rec go bands = match Raytrace_view.Progressive.step ~rows:4 r with Some _ -> go (bands + 1) | None -> bands in
+          let bands = go 0 in
+          Printf.printf "progressive: %d bands, md5 %s\n" bands
+            (Digest.to_hex (Digest.string (Raytrace.Ppm.to_string (Raytrace_view.Progressive.image r))));
           let c = Raytrace.Pixel.color (Raytrace.Pixel.v scene) 24 20 in
           Printf.printf "pixel (24, 20): %d %d %d\n" (Raytrace.Color.to_byte c.r) (Raytrace.Color.to_byte c.g)
             (Raytrace.Color.to_byte c.b);
