@@ -3,7 +3,7 @@ let ( let* ) = Result.bind
 let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples ?adaptive ?subsample scene
     (region : Region.t) =
   Render_work.inside "Render.region_image" scene region;
-  let* sampling = Render_work.sampling ?samples ?adaptive ?subsample () in
+  let* sampling = Sampling.v ?samples ?adaptive ?subsample () in
   let* () = Render_work.check ~limits scene region sampling in
   let s = Scene.of_valid scene in
   match Image.create region.w region.h with

@@ -1,7 +1,5 @@
 let ( let* ) = Result.bind
 
-let sampling ?samples ?adaptive ?subsample () = Sampling.v ?samples ?adaptive ?subsample ()
-
 let inside fn scene (region : Region.t) =
   let s = Scene.of_valid scene in
   if not (Region.contains region ~width:s.width ~height:s.height) then

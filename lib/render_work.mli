@@ -4,18 +4,12 @@
 
     @canonical Raytrace.Private.Render_work *)
 
-val sampling :
-  ?samples:int -> ?adaptive:int -> ?subsample:bool -> unit -> (Sampling.t, [> `Msg of string ]) result
-(** [sampling ~samples ~adaptive ~subsample ()] is {!Sampling.v}. *)
-
 val check :
   limits:Limits.t -> Scene.valid -> Region.t -> Sampling.t -> (unit, [> `Msg of string ]) result
 (** [check ~limits scene region sampling] is [Ok ()] if the rays per pixel
     of [sampling] (at most [samples x samples]) are within [limits]
     ({!Limits.check_samples}) and so is the work of rendering [region] of
-    [scene] ({!Scene.check_work}).
-    @raise Invalid_argument naming [fn] if [region] is not inside the
-    canvas. *)
+    [scene] ({!Scene.check_work}). *)
 
 val inside : string -> Scene.valid -> Region.t -> unit
 (** [inside fn scene r] checks that [r] lies inside [scene]'s canvas.

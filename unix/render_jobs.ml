@@ -23,9 +23,7 @@ let shared_memory =
    rows are dealt into [classes] interleaved classes (rows c, c + classes,
    ...), all about as costly, that the workers take from a queue as they
    go: they finish together even if a core is slowed. *)
-let in_workers ~jobs ~limits ?skips sampling scene (region : Region.t) =
-  let* () = Render_work.check ~limits scene region sampling in
-  let* () = check_memory region in
+let in_workers ~jobs ?skips sampling scene (region : Region.t) =
   let s = Scene.of_valid scene in
   match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
   | exception Out_of_memory -> Render_work.out_of_memory region
@@ -76,15 +74,13 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptiv
     (region : Region.t) =
   if jobs < 1 then invalid_arg "Render_jobs.region_image: jobs < 1";
   Render_work.inside "Render_jobs.region_image" scene region;
+  let* sampling = Sampling.v ?samples ?adaptive ?subsample () in
+  let* () = Render_work.check ~limits scene region sampling in
+  let* () = check_memory region in
   let jobs = min jobs region.h in
   if jobs = 1 then
-    let* sampling = Render_work.sampling ?samples ?adaptive ?subsample () in
-    let* () = Render_work.check ~limits scene region sampling in
-    let* () = check_memory region in
     Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample scene region
-  else
-    let* sampling = Render_work.sampling ?samples ?adaptive ?subsample () in
-    in_workers ~jobs ~limits ?skips sampling scene region
+  else in_workers ~jobs ?skips sampling scene region
 
 let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample scene =
   if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";
