@@ -49,7 +49,7 @@ golden: build
 	cd _build/default/test && RAYTRACE_WRITE_GOLDEN=$(CURDIR)/test/golden ./test.exe test golden 0 >/dev/null
 	dune exec --no-print-directory -- examples/hello_scene.exe test/golden/hello_scene.ppm
 
-# Regenerates the README's picture of the window, taken as the window test
+# Regenerates the picture of the window in docs/window.md, taken as the window test
 # takes its screenshots (test/window_session.sh, in a virtual X server).
 screenshot: build
 	@d=$$(mktemp -d) && cp scenes/cgfs.scene $$d/ && \

@@ -16,11 +16,31 @@ type sampling_options = { samples : int option; adaptive : int option; subsample
 let ( let* ) = Result.bind
 let msg fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 
+(* A line on stderr. A closed or full stderr loses it, as it would lose
+   any message: the exit status still tells. *)
+let say line =
+  (* A name with a newline in it (a file name, an argument) must not make
+     two lines of one: control characters are written escaped. *)
+  let b = Buffer.create (String.length line + 16) in
+  String.iter
+    (fun c ->
+      match c with
+      | '\n' -> Buffer.add_string b "\\n"
+      | '\r' -> Buffer.add_string b "\\r"
+      | '\t' -> Buffer.add_string b "\\t"
+      | c when Char.code c < 0x20 || Char.code c = 0x7f -> Printf.bprintf b "\\x%02x" (Char.code c)
+      | c -> Buffer.add_char b c)
+    line;
+  try
+    prerr_string ("raytrace: " ^ Buffer.contents b ^ "\n");
+    flush stderr
+  with Sys_error _ -> ()
+
 (* The one place where an error becomes a message and an exit status. *)
 let report = function
   | Ok code -> code
   | Error (`Msg m) ->
-      prerr_endline ("raytrace: " ^ m);
+      say m;
       exit_input
 
 (* The one scene validation of a command: a file's, or the built-in
@@ -43,8 +63,12 @@ let jobs_or_cores = function
 let sampling_of (o : sampling_options) =
   Sampling.v ?samples:o.samples ?adaptive:o.adaptive ~subsample:o.subsample ()
 
+(* The meter's hook into the renderer; none when there is nothing to
+   show, so that a render without a terminal does no more than before. *)
+let progress meter = match meter with None -> None | Some m -> Some (Meter.update m)
+
 (* The image, its statistics (none for the oracle) and its tracing time. *)
-let render_image ~limits ~sampling ~literal ~jobs valid =
+let render_image ~limits ~sampling ~literal ~jobs ~meter valid =
   let scene = Scene.of_valid valid in
   if literal then
     if not (Sampling.is_one sampling) then
@@ -59,7 +83,7 @@ let render_image ~limits ~sampling ~literal ~jobs valid =
   else
     let* img, stats =
       Render_jobs.image ~limits ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
-        ~subsample:sampling.subsample valid
+        ~subsample:sampling.subsample ?progress:(progress meter) valid
     in
     Ok (img, Some stats, stats.trace_s)
 
@@ -72,11 +96,11 @@ let view opts ~jobs =
      | Ok () -> Ok exit_ok
      | Error (`Msg _ as e) -> Error e
      | Error (`No_display reason) ->
-         Printf.eprintf
-           "raytrace: cannot open a window (%s); to render without a display, use: raytrace \
-            render%s -o out.ppm\n"
-           reason
-           (match opts.scene with Some p -> " " ^ Filename.quote p | None -> "");
+         say
+           (Printf.sprintf
+              "cannot open a window (%s); to render without a display, use: raytrace render%s -o out.ppm"
+              reason
+              (match opts.scene with Some p -> " " ^ Filename.quote p | None -> ""));
          Ok exit_no_display)
 
 let default_output opts =
@@ -84,16 +108,16 @@ let default_output opts =
   | None -> "cgfs.ppm"
   | Some p -> Filename.remove_extension (Filename.basename p) ^ ".ppm"
 
-let same_file a b =
-  match (Unix.stat a, Unix.stat b) with
-  | sa, sb -> sa.st_dev = sb.st_dev && sa.st_ino = sb.st_ino
-  | exception Unix.Unix_error _ -> false
-
+(* A full disk, a closed stdout or a reader gone (SIGPIPE is ignored, see
+   bin/main.ml) is one line. *)
 let to_stdout data =
-  set_binary_mode_out stdout true;
-  print_string data;
-  flush stdout;
-  Ok ()
+  match
+    set_binary_mode_out stdout true;
+    print_string data;
+    flush stdout
+  with
+  | () -> Ok ()
+  | exception Sys_error e -> msg "standard output: %s" e
 
 (* PPM to stdout; a file in the format its name says. *)
 let write output img =
@@ -155,41 +179,46 @@ let default_render_output opts ~frames ~spec =
   in
   base ^ frame ^ part ^ ".ppm"
 
+let scene_input opts = match opts.scene with Some p -> [ ("scene", p) ] | None -> []
+
+(* The output plan ({!Io_plan}): no output is an input or another output.
+   Frames without a number in their name collide, unless they go to a
+   stream. *)
 let check_output opts ~frames ~part output =
+  let outputs =
+    match frames with
+    | None -> [ ("output", output) ]
+    | Some (a, b) -> List.init (b - a + 1) (fun i -> (Printf.sprintf "frame %d" (a + i), frame_path output (a + i)))
+  in
   let* () =
-    match (frames, frame_placeholder output) with
-    | Some (a, b), None when a < b && output <> "-" ->
+    match (Io_plan.check ~inputs:(scene_input opts) ~outputs, frames, frame_placeholder output) with
+    | Error _, Some (a, b), None when a < b ->
         msg "%s: with --frames %d:%d, the output needs the frame number, e.g. anim-%%04d.ppm" output a b
-    | _ -> Ok ()
+    | r, _, _ -> r
   in
-  let* () =
-    match (part, Image_file.format_of_path output) with
-    | true, Image_file.Png when output <> "-" ->
-        msg "%s: a part of an image is written as PPM, whose header records what raytrace merge checks; name it .ppm"
-          output
-    | _ -> Ok ()
-  in
-  match opts.scene with
-  | Some input when output <> "-" && same_file input output ->
-      msg "%s: the output file is the input scene; choose another output path" output
+  match (part, Image_file.format_of_path output) with
+  | true, Image_file.Png when output <> "-" ->
+      msg "%s: a part of an image is written as PPM, whose header records what raytrace merge checks; name it .ppm"
+        output
   | _ -> Ok ()
 
 (* One picture (a frame, a part, or both) rendered and written. *)
-let render_one ~limits ~literal ~jobs ~stats ~load_s ~frame ~region ~output ~sampling valid =
+let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~region ~output ~sampling valid =
   let scene = Scene.of_valid valid in
   let* img, st, seconds =
     match region with
-    | None -> render_image ~limits ~sampling ~literal ~jobs valid
+    | None -> render_image ~limits ~sampling ~literal ~jobs ~meter valid
     | Some (r : Region.t) when literal ->
-        let* img, st, seconds = render_image ~limits ~sampling ~literal ~jobs valid in
+        let* img, st, seconds = render_image ~limits ~sampling ~literal ~jobs ~meter valid in
         Ok (Image.sub img ~x:r.x ~y:r.y ~w:r.w ~h:r.h, st, seconds)
     | Some r ->
         let* img, st =
           Render_jobs.region_image ~limits ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
-            ~subsample:sampling.subsample valid r
+            ~subsample:sampling.subsample ?progress:(progress meter) valid r
         in
         Ok (img, Some st, st.trace_s)
   in
+  Option.iter Meter.clear meter;
   let t2 = Unix.gettimeofday () in
   let* () =
     match region with
@@ -212,17 +241,17 @@ let render_one ~limits ~literal ~jobs ~stats ~load_s ~frame ~region ~output ~sam
     | None -> Format.eprintf "%-24s %.4f@." "time, literal oracle (s)" seconds);
     Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" load_s "time, write (s)" (t3 -. t2)
   end;
-  if output <> "-" then begin
+  if output <> "-" && not quiet then begin
     let what =
       match region with
       | None -> Printf.sprintf "%dx%d" scene.width scene.height
       | Some r -> Format.asprintf "region %a of %dx%d" Region.pp_corners r scene.width scene.height
     in
-    Printf.eprintf "raytrace: wrote %s (%s, %.3f s)\n%!" output what seconds
+    say (Printf.sprintf "wrote %s (%s, %.3f s)" output what seconds)
   end;
   Ok ()
 
-let render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling =
+let render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling =
   let output =
     match output with Some o -> o | None -> default_render_output opts ~frames ~spec:part
   in
@@ -235,9 +264,16 @@ let render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling =
      let load_s = Unix.gettimeofday () -. t0 in
      let* region = part_region (Scene.of_valid scene) part in
      let* jobs = jobs_or_cores jobs in
+     let count = match frames with None -> 1 | Some (a, b) -> b - a + 1 in
+     let meter =
+       if Meter.wanted ~quiet && not literal then Some (Meter.create ~frames:count) else None
+     in
+     (* An error's message, or an interrupt, finds the line erased. *)
+     Fun.protect ~finally:(fun () -> Option.iter Meter.clear meter) @@ fun () ->
+     let render_one = render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~region ~sampling in
      match frames with
      | None ->
-         let* () = render_one ~limits ~literal ~jobs ~stats ~load_s ~frame:None ~region ~output ~sampling scene in
+         let* () = render_one ~frame:None ~output scene in
          Ok exit_ok
      | Some (a, b) ->
          (* Every frame is checked before the first is rendered. *)
@@ -253,15 +289,19 @@ let render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling =
            List.fold_left
              (fun acc (f, s) ->
                let* () = acc in
-               render_one ~limits ~literal ~jobs ~stats ~load_s ~frame:(Some f) ~region ~output:(frame_path output f)
-                 ~sampling s)
+               let* () = render_one ~frame:(Some f) ~output:(frame_path output f) s in
+               Option.iter Meter.next_frame meter;
+               Ok ())
              (Ok ()) (List.rev scenes)
          in
          Ok exit_ok)
 
-let merge parts ~output =
+let merge parts ~output ~quiet =
   report
-    (let* limits = Limits_env.read () in
+    (let* () =
+       Io_plan.check ~inputs:(List.map (fun p -> ("part " ^ p, p)) parts) ~outputs:[ ("output", output) ]
+     in
+     let* limits = Limits_env.read () in
      let* parts =
        List.fold_left
          (fun acc path ->
@@ -273,18 +313,20 @@ let merge parts ~output =
      let parts = List.rev parts in
      let* img = Part.merge parts in
      let* () = write output img in
-     if output <> "-" then
-       Printf.eprintf "raytrace: wrote %s (%dx%d, from %d parts)\n%!" output (Image.width img)
-         (Image.height img) (List.length parts);
+     if output <> "-" && not quiet then
+       say
+         (Printf.sprintf "wrote %s (%dx%d, from %d parts)" output (Image.width img) (Image.height img)
+            (List.length parts));
      Ok exit_ok)
 
 let diff a b ~max_diff =
   report
-    (let* limits = Limits_env.read () in
+    (let* () = Io_plan.check ~inputs:[ ("image " ^ a, a); ("image " ^ b, b) ] ~outputs:[ ("output", "-") ] in
+     let* limits = Limits_env.read () in
      let* ia = Image_file.read_file ~limits a in
      let* ib = Image_file.read_file ~limits b in
      let* d = Image_diff.compare ia ib in
-     Format.printf "%a@." Image_diff.pp_summary d;
+     let* () = to_stdout (Format.asprintf "%a\n" Image_diff.pp_summary d) in
      match max_diff with
      | Some m when d.max_abs > m ->
          msg "images differ by up to %d per channel, more than --max-diff %d" d.max_abs m

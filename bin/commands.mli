@@ -11,6 +11,10 @@ val exit_input : int
 val exit_no_display : int
 (** [exit_no_display] is [3]: no window could be opened. *)
 
+val say : string -> unit
+(** [say line] writes [raytrace: line] and a newline on stderr, and
+    flushes it; a closed or full stderr loses the line silently. *)
+
 type scene_options = {
   scene : string option;  (** Scene file; [None] for the built-in scene. *)
   width : int option;
@@ -48,24 +52,30 @@ val render :
   output:string option ->
   jobs:int option ->
   stats:bool ->
+  quiet:bool ->
   literal:bool ->
   part:part_spec option ->
   frames:(int * int) option ->
   sampling:sampling_options ->
   int
-(** [render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling]
+(** [render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling]
     renders the scene to an image file, written atomically: PNG if [output] ends in
     [.png], PPM otherwise, [-] for PPM on stdout; default: the scene's base
     name with [.ppm]. [sampling] chooses the rays per pixel; [literal] uses
     the oracle {!Raytrace.Literal}, which traces one ray per pixel. With
     [part], only that rectangle is rendered, to a part file
     ({!Raytrace.Part}, always PPM). With [frames], the frames of the scene's
-    camera path, to [frame_path output f] for each frame [f]. *)
+    camera path, to [frame_path output f] for each frame [f]. When stderr
+    is a terminal, a progress line ({!Meter}) shows how far the work has
+    gone (not for [literal]); after each image, a line says what was
+    written. [quiet] silences both; errors and [stats] are still
+    printed. *)
 
-val merge : string list -> output:string -> int
-(** [merge parts ~output] assembles the part files [parts] into the whole
+val merge : string list -> output:string -> quiet:bool -> int
+(** [merge parts ~output ~quiet] assembles the part files [parts] into the whole
     image ({!Raytrace.Part.merge}) and writes it to [output] (PNG or PPM by
-    its name, [-] for PPM on stdout). *)
+    its name, [-] for PPM on stdout), and says so on stderr unless
+    [quiet]. *)
 
 val diff : string -> string -> max_diff:int option -> int
 (** [diff a b ~max_diff] prints the difference figures of images [a] and

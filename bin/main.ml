@@ -96,8 +96,8 @@ let quality_section =
       `S "RUN TIME AGAINST ERROR";
       `P
         "$(b,--depth) (mirror reflections), $(b,--samples) (rays per pixel), $(b,--adaptive) \
-         and $(b,--subsample) trade time for accuracy; the README shows the trade-off measured \
-         on four scenes ($(b,make bench-quality)). Recommended: the default (one ray per \
+         and $(b,--subsample) trade time for accuracy; docs/run-time-against-error.md shows the \
+         trade-off measured on four scenes ($(b,make bench-quality)). Recommended: the default (one ray per \
          pixel) or $(b,--subsample) for previews; $(b,--samples 5 --adaptive 2 --depth 5) for \
          final renders; full sampling ($(b,--samples 4)) where spheres are smaller than a \
          pixel, which adaptive sampling cannot see.";
@@ -105,7 +105,7 @@ let quality_section =
 
 (* The window forks its workers anew for every band of rows (each about
    0.1 s of tracing), which pays only where cores are idle: by default it
-   traces in its own process (README, "The window"). *)
+   traces in its own process (docs/window.md). *)
 let view_jobs =
   Arg.(
     value
@@ -121,7 +121,7 @@ let scene_format =
       `S "SCENE FILES";
       `P
         "A scene is a file of S-expressions, for instance $(b,scenes/cgfs.scene). See the \
-         README for every form; errors name the file, line and column.";
+         $(b,docs/scene-format.md) for every form; errors name the file, line and column.";
     ]
 
 let view_info =
@@ -196,6 +196,12 @@ let frames =
            $(b,camera-path), each to the output name with its $(b,%d) or $(b,%04d) replaced by the \
            frame number (default: the scene's base name with $(b,-%04d.ppm)).")
 
+let quiet =
+  Arg.(
+    value & flag
+    & info [ "quiet"; "q" ]
+        ~doc:"Print nothing on stderr but errors (and $(b,--stats) when asked): no progress line, no line naming the file written.")
+
 let render_cmd =
   let output =
     Arg.(
@@ -236,6 +242,11 @@ let render_cmd =
              temporary file and ends with the signal. A worker that dies (killed, out of memory) \
              fails the render with a message instead of leaving a hole in the image. A scene or \
              an override beyond a limit (see ENVIRONMENT) is refused before any work.";
+          `P
+            "On a terminal, a render that takes more than a second shows its progress on stderr, \
+             on one line rewritten in place: the share done, the rays per second and the time \
+             left. Nothing of it is written when stderr is not a terminal; $(b,--quiet) hides it \
+             too.";
           scene_format;
           quality_section;
           `S Manpage.s_examples;
@@ -253,9 +264,9 @@ let render_cmd =
   in
   Cmd.v info
     Term.(
-      const (fun opts output jobs stats literal part frames sampling ->
-          Commands.render opts ~output ~jobs ~stats ~literal ~part ~frames ~sampling)
-      $ scene_options $ output $ jobs $ stats $ literal $ part $ frames $ sampling)
+      const (fun opts output jobs stats quiet literal part frames sampling ->
+          Commands.render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling)
+      $ scene_options $ output $ jobs $ stats $ quiet $ literal $ part $ frames $ sampling)
 
 let merge_cmd =
   let parts =
@@ -285,11 +296,11 @@ let merge_cmd =
           `S Manpage.s_examples;
           `Pre
             "raytrace merge part-*.ppm -o cgfs.png\n\
-             parallel raytrace render scenes/cgfs.scene --tile {}/16 -o part-{}.ppm ::: $(seq 16)\n\
+             parallel raytrace render scenes/cgfs.scene --tile {}/16 -o part-{}.ppm ::: \\$(seq 16)\n\
              raytrace merge part-*.ppm -o cgfs.ppm";
         ]
   in
-  Cmd.v info Term.(const (fun parts output -> Commands.merge parts ~output) $ parts $ output)
+  Cmd.v info Term.(const (fun parts output quiet -> Commands.merge parts ~output ~quiet) $ parts $ output $ quiet)
 
 let diff_cmd =
   let image n =
@@ -333,4 +344,93 @@ let main =
   in
   Cmd.group ~default:view_term info [ Cmd.v view_info view_term; render_cmd; merge_cmd; diff_cmd ]
 
-let () = exit (Cmd.eval' main)
+(* A descriptor 0, 1 or 2 closed by the caller ([>&-]) would be reused by
+   the next file opened, and the image or a message would land in it: each
+   is held by /dev/null. Read-only for stdin and stdout, so that writing
+   the image to a closed stdout fails ("Bad file descriptor"); write-only
+   for stderr, whose messages the caller chose not to see. *)
+let hold_closed_descriptors () =
+  List.iter
+    (fun (fd, flag) ->
+      match Unix.fstat fd with
+      | _ -> ()
+      | exception Unix.Unix_error (EBADF, _, _) -> (
+          match Unix.openfile "/dev/null" [ flag; O_CLOEXEC ] 0 with
+          | null ->
+              if null <> fd then begin
+                Unix.dup2 ~cloexec:false null fd;
+                Unix.close null
+              end
+          | exception Unix.Unix_error _ -> ())
+      | exception Unix.Unix_error _ -> ())
+    [ (Unix.stdin, Unix.O_RDONLY); (Unix.stdout, Unix.O_RDONLY); (Unix.stderr, Unix.O_WRONLY) ]
+
+(* Cmdliner's error on the command line is three lines (the error, the
+   usage, where to find help): one line here, the error and where to find
+   help. *)
+let one_line_usage text =
+  let lines = List.filter (fun l -> String.trim l <> "") (String.split_on_char '\n' text) in
+  let strip prefix l =
+    let n = String.length prefix in
+    if String.length l >= n && String.sub l 0 n = prefix then String.sub l n (String.length l - n) else l
+  in
+  let help =
+    List.find_map
+      (fun l ->
+        match String.split_on_char '\'' l with
+        | "Try " :: command :: _ -> Some (Printf.sprintf "; see '%s'" command)
+        | _ -> None)
+      lines
+  in
+  match lines with
+  | [] -> ""
+  | first :: _ -> strip "raytrace: " first ^ Option.value help ~default:""
+
+(* The single exit point. Every output channel may fail, cmdliner's help
+   and version included (a full disk, a closed stdout, a reader gone): one
+   line, status 1. SIGPIPE is ignored on purpose, so that a reader gone is
+   such an error ("Broken pipe") and not a silent death; a stray SIGPIPE
+   from [kill] does nothing. What the channels still buffer after a
+   failure is dropped by leaving with [_exit], as the standard library's
+   own flush at exit would raise again. *)
+let () =
+  hold_closed_descriptors ();
+  Sys.set_signal Sys.sigpipe Sys.Signal_ignore;
+  (* Cmdliner pages its help through [less] whenever TERM is set, and
+     ignores what becomes of the pager: into a file or a pipe, it prints
+     the help itself, whose write errors reach us. *)
+  if not (Unix.isatty Unix.stdout) then Unix.putenv "TERM" "dumb";
+  (* A failed flush keeps the bytes, and the standard library's flush at
+     exit would fail again and abort: then the process leaves with
+     [_exit]. *)
+  let flush_error flush = match flush () with () -> None | exception Sys_error e -> Some e in
+  let stdout_error () =
+    match flush_error (fun () -> Format.pp_print_flush Format.std_formatter ()) with
+    | None -> flush_error (fun () -> flush stdout)
+    | e -> e
+  in
+  let leave code =
+    let out = stdout_error () in
+    let err = flush_error (fun () -> Format.pp_print_flush Format.err_formatter ()) in
+    let err = match err with None -> flush_error (fun () -> flush stderr) | e -> e in
+    if out = None && err = None then exit code else Unix._exit code
+  in
+  let failed ?(code = Commands.exit_input) line =
+    Commands.say line;
+    leave code
+  in
+  let usage = Buffer.create 256 in
+  let err = Format.formatter_of_buffer usage in
+  match Cmd.eval' ~catch:false ~err main with
+  | code -> (
+      Format.pp_print_flush err ();
+      if Buffer.length usage > 0 then Commands.say (one_line_usage (Buffer.contents usage));
+      (* A write that failed in a command was reported already; stderr's
+         failures lose only messages. *)
+      match stdout_error () with
+      | Some e when code = Commands.exit_ok -> failed ("standard output: " ^ e)
+      | _ -> leave code)
+  | exception Sys_error e -> failed ("standard output: " ^ e)
+  | exception Out_of_memory -> failed "not enough memory"
+  | exception Stack_overflow -> failed "stack overflow"
+  | exception e -> failed ~code:Cmd.Exit.internal_error ("internal error: " ^ Printexc.to_string e)

@@ -7,8 +7,7 @@ external bind_arrows : string -> bool = "raytrace_bind_arrows"
 (* The window's pixels, kept here and sent to the X server in bulk.
    Graphics.plot sends two requests per pixel (a colour change and a point):
    a 600 x 600 frame took half as long to draw that way as to trace, and
-   four times as long as sent as one image (bench/draw.ml; README, "The
-   window"). The document's plotc draws here, through the same calls. *)
+   four times as long as sent as one image (bench/draw.ml; docs/window.md). The document's plotc draws here, through the same calls. *)
 module Frame = struct
   let width = ref 0
   let height = ref 0
@@ -128,7 +127,8 @@ type session = {
   mutable quit : bool;
 }
 
-let log fmt = Printf.ksprintf (fun s -> prerr_endline ("raytrace: " ^ s)) fmt
+(* A closed or full stderr loses the line; the window goes on. *)
+let log fmt = Printf.ksprintf (fun s -> try prerr_endline ("raytrace: " ^ s) with Sys_error _ -> ()) fmt
 
 let start_frame s =
   let scene = s.view.scene in
@@ -293,6 +293,8 @@ let keys_summary =
 
 let run ~limits ~name ~scene_file ~jobs valid =
   let scene = Scene.of_valid valid in
+  (* Graphics flushes the display on a SIGALRM timer of its own. *)
+  Signals.leave_alone Sys.sigalrm;
   match Graphics.open_graph (Printf.sprintf " %dx%d" scene.width scene.height) with
   | exception Graphics.Graphic_failure reason ->
       (* Graphics says "Cannot open display " with an empty name when

@@ -1,6 +1,6 @@
 let ( let* ) = Result.bind
 
-let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples ?adaptive ?subsample scene
+let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples ?adaptive ?subsample ?progress scene
     (region : Region.t) =
   Render_work.inside "Render.region_image" scene region;
   let* sampling = Sampling.v ?samples ?adaptive ?subsample () in
@@ -16,17 +16,35 @@ let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples 
       let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout Render_work.counter_fields in
       (* One tracer for every pass. *)
       let tr = Trace.create ~averaging:(Sampling.averaging sampling) p in
+      (* What the caller's [progress] allocates is not the tracer's. *)
+      let progress_words = Array.make 1 0. in
       let before = Gc.minor_words () in
-      for i = 0 to Sampling.passes plan - 1 do
-        Sampling.rows plan i tr ~first:0 ~step:1
-      done;
-      Render_work.save ints 0 tr (Gc.minor_words () -. before);
+      (match progress with
+      | None ->
+          for i = 0 to Sampling.passes plan - 1 do
+            Sampling.rows plan i tr ~first:0 ~step:1
+          done
+      | Some progress ->
+          let total = Render_work.total_rows plan in
+          let finished = ref 0 in
+          for i = 0 to Sampling.passes plan - 1 do
+            let n = Sampling.pass_rows plan i in
+            for r = 0 to n - 1 do
+              Sampling.rows plan i tr ~first:r ~step:n;
+              incr finished;
+              let w = Gc.minor_words () in
+              progress ~rows:!finished ~total ~rays:(Render_work.rays tr);
+              progress_words.(0) <- progress_words.(0) +. (Gc.minor_words () -. w)
+            done
+          done);
+      Render_work.save ints 0 tr (Gc.minor_words () -. before -. progress_words.(0));
       let t2 = clock () in
       Ok
         ( img,
           Render_work.stats ints ~slots:1 ~pixels:(Region.pixels region) ~jobs:1 ~prepare_s:(t1 -. t0)
             ~trace_s:(t2 -. t1) )
 
-let image ?limits ?clock ?skips ?samples ?adaptive ?subsample scene =
+let image ?limits ?clock ?skips ?samples ?adaptive ?subsample ?progress scene =
   let s = Scene.of_valid scene in
-  region_image ?limits ?clock ?skips ?samples ?adaptive ?subsample scene (Region.full ~width:s.width ~height:s.height)
+  region_image ?limits ?clock ?skips ?samples ?adaptive ?subsample ?progress scene
+    (Region.full ~width:s.width ~height:s.height)

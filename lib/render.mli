@@ -13,9 +13,10 @@ val image :
   ?samples:int ->
   ?adaptive:int ->
   ?subsample:bool ->
+  ?progress:(rows:int -> total:int -> rays:int -> unit) ->
   Scene.valid ->
   (Image.t * Stats.t, [> `Msg of string ]) result
-(** [image ~limits ~clock ~skips ~samples ~adaptive ~subsample scene] is
+(** [image ~limits ~clock ~skips ~samples ~adaptive ~subsample ~progress scene] is
     the image of [scene] and what it cost. [skips] (default [true]) enables
     the exact skips of the fast tracer (the image is the same without
     them); [samples] (default 1: the document's image), [adaptive] and
@@ -24,7 +25,14 @@ val image :
     allocated, if {!Sampling.v} refuses the sampling settings, or the rays
     per pixel or the work of the render exceed [limits] (default
     {!Limits.default}; {!Scene.check_work}); [Error] if no memory can be
-    had for the image. *)
+    had for the image.
+
+    [progress ~rows ~total ~rays], if given, is called after each row:
+    [rows] of the [total] rows of work (the rows of every pass of
+    {!Sampling.passes}: [total] is the image height or more) are finished
+    and [rays] were cast so far. [rows] never decreases, and the last call
+    has [rows = total]. What [progress] allocates is not counted in the
+    statistics' [minor_words]; it must not raise. *)
 
 val region_image :
   ?limits:Limits.t ->
@@ -33,10 +41,11 @@ val region_image :
   ?samples:int ->
   ?adaptive:int ->
   ?subsample:bool ->
+  ?progress:(rows:int -> total:int -> rays:int -> unit) ->
   Scene.valid ->
   Region.t ->
   (Image.t * Stats.t, [> `Msg of string ]) result
-(** [region_image ~limits ~clock ~skips ~samples ~adaptive ~subsample scene r]
+(** [region_image ~limits ~clock ~skips ~samples ~adaptive ~subsample ~progress scene r]
     is the image of the region [r] of [scene]'s canvas, [r.w x r.h]
     pixels, and what it cost: byte for byte the pixels of {!image} there,
     for every sampling (adaptive sampling and subsampling trace the first

@@ -51,3 +51,14 @@ let stats ints ~slots ~pixels ~jobs ~prepare_s ~trace_s =
       trace_s;
       minor_words = Float.of_int (sum 5);
     }
+
+let rays tr =
+  let c = Trace.counters tr in
+  c.primary + c.shadow + c.reflection
+
+let total_rows plan =
+  let t = ref 0 in
+  for i = 0 to Sampling.passes plan - 1 do
+    t := !t + Sampling.pass_rows plan i
+  done;
+  !t

@@ -32,3 +32,12 @@ val stats :
   counters -> slots:int -> pixels:int -> jobs:int -> prepare_s:float -> trace_s:float -> Stats.t
 (** [stats ints ~slots ~pixels ~jobs ~prepare_s ~trace_s] sums the
     counters of the first [slots] slots of [ints] into statistics. *)
+
+(** {1:progress Progress} *)
+
+val rays : Trace.t -> int
+(** [rays tr] is the number of rays [tr] has cast so far. *)
+
+val total_rows : Sampling.plan -> int
+(** [total_rows pl] is the number of rows of work of [pl]: the rows of
+    every pass ({!Sampling.pass_rows}). *)

@@ -217,22 +217,33 @@ let odd_row pl tr cy =
     subsampled pl tr cx cy i (i - pl.mw) (i + pl.mw) ~both:(cy + 1 < pl.ch)
   done
 
+(* The canvas rows pass [i] works on are [start], [start + every], ...
+   below [stop]: the rectangle's, or the margin's for the first rays of
+   adaptive sampling, every other one for subsampling. Three functions, not
+   a tuple: [rows] may run once per row, and must not allocate. *)
+let[@inline] on_margin pl i = i = 0 && (pl.s.adaptive <> None || pl.s.subsample)
+let[@inline] stop pl i = if on_margin pl i then pl.my + pl.mh else pl.y + pl.h
+let[@inline] every pl = if pl.s.subsample then 2 else 1
+
+let[@inline] start pl i =
+  let lo = if on_margin pl i then pl.my else pl.y in
+  (* Subsampling: even canvas rows in pass 0, odd ones in pass 1. *)
+  if pl.s.subsample && lo land 1 <> i then lo + 1 else lo
+
+let pass_rows pl i =
+  if i < 0 || i >= passes pl then invalid_arg "Sampling.pass_rows: no such pass";
+  let span = stop pl i - start pl i in
+  if span <= 0 then 0 else (span + every pl - 1) / every pl
+
 let rows pl i tr ~first ~step =
   let p = Trace.prepared tr in
   if p.width <> pl.cw || p.height <> pl.ch then invalid_arg "Sampling.rows: the canvas sizes differ";
   if Trace.averaging tr <> averaging pl.s then invalid_arg "Sampling.rows: the tracer's averaging differs";
   if step < 1 then invalid_arg "Sampling.rows: step < 1";
   if i < 0 || i >= passes pl then invalid_arg "Sampling.rows: no such pass";
-  (* The canvas rows a pass works on, [start], [start + every], ... below
-     [stop]: the rectangle's, or the margin's for the first rays of
-     adaptive sampling, every other one for subsampling. A plain loop: a
-     closure per pass would show in the allocation test. *)
-  let margin = i = 0 && (pl.s.adaptive <> None || pl.s.subsample) in
-  let lo = if margin then pl.my else pl.y and stop = if margin then pl.my + pl.mh else pl.y + pl.h in
-  let every = if pl.s.subsample then 2 else 1 in
-  (* Subsampling: even canvas rows in pass 0, odd ones in pass 1. *)
-  let start = if pl.s.subsample && lo land 1 <> i then lo + 1 else lo in
-  let r = ref (start + (every * first)) in
+  (* A plain loop: a closure per pass would show in the allocation test. *)
+  let stop = stop pl i and every = every pl in
+  let r = ref (start pl i + (every * first)) in
   while !r < stop do
     (* A worker whose parent was killed stops here, within one row. *)
     pl.at_row ();

@@ -99,6 +99,12 @@ val passes : plan -> int
     supersampling, 2 for adaptive sampling and subsampling. Pass [i + 1]
     may start only when pass [i] has finished on every row. *)
 
+val pass_rows : plan -> int -> int
+(** [pass_rows pl i] is the number of rows that pass [i] of [pl] works on:
+    [rows pl i tr ~first:r ~step:(pass_rows pl i)] runs row [r] alone, for
+    [r] in [\[0, pass_rows pl i - 1\]].
+    @raise Invalid_argument if [i] is not a pass. *)
+
 val rows : plan -> int -> Trace.t -> first:int -> step:int -> unit
 (** [rows pl i tr ~first ~step] runs pass [i] of [pl] on rows [first],
     [first + step], ... of the rows that pass works on (the rectangle's, or

@@ -90,12 +90,13 @@ let temp_dir () =
 
 let valid s = match Scene.validate s with Ok v -> v | Error (`Msg m) -> Alcotest.failf "invalid scene: %s" m
 
-let render ?limits ?jobs ?skips ?samples ?adaptive ?subsample s =
-  Result.bind (Scene.validate ?limits s) (Raytrace_unix.Render_jobs.image ?limits ?jobs ?skips ?samples ?adaptive ?subsample)
+let render ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress s =
+  Result.bind (Scene.validate ?limits s)
+    (Raytrace_unix.Render_jobs.image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress)
 
-let render_region ?limits ?jobs ?skips ?samples ?adaptive ?subsample s r =
+let render_region ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress s r =
   Result.bind (Scene.validate ?limits s) (fun v ->
-      Raytrace_unix.Render_jobs.region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample v r)
+      Raytrace_unix.Render_jobs.region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress v r)
 
 let image_exn ?jobs ?skips ?samples ?adaptive ?subsample s =
   match render ?jobs ?skips ?samples ?adaptive ?subsample s with Ok (img, _) -> img | Error (`Msg m) -> Alcotest.fail m
@@ -103,3 +104,8 @@ let image_exn ?jobs ?skips ?samples ?adaptive ?subsample s =
 let prepare ?skips s = Raytrace.Private.Prepared.prepare ?skips (valid s)
 let read_scene path = Result.map Scene.of_valid (Raytrace_unix.Files.read_scene path)
 let of_string ?limits ?file text = Result.map Scene.of_valid (Scene_file.of_string ?limits ?file text)
+
+let on_path prog =
+  List.exists
+    (fun dir -> Sys.file_exists (Filename.concat dir prog))
+    (String.split_on_char ':' (Option.value (Sys.getenv_opt "PATH") ~default:""))

@@ -56,6 +56,7 @@ val render :
   ?samples:int ->
   ?adaptive:int ->
   ?subsample:bool ->
+  ?progress:(rows:int -> total:int -> rays:int -> unit) ->
   Raytrace.Scene.t ->
   (Raytrace.Image.t * Raytrace.Stats.t, [> `Msg of string ]) result
 (** [render ... s] is {!Raytrace_unix.Render_jobs.image} on [s]
@@ -68,6 +69,7 @@ val render_region :
   ?samples:int ->
   ?adaptive:int ->
   ?subsample:bool ->
+  ?progress:(rows:int -> total:int -> rays:int -> unit) ->
   Raytrace.Scene.t ->
   Raytrace.Region.t ->
   (Raytrace.Image.t * Raytrace.Stats.t, [> `Msg of string ]) result
@@ -88,3 +90,7 @@ val read_scene : string -> (Raytrace.Scene.t, [> `Msg of string ]) result
 val of_string : ?limits:Raytrace.Limits.t -> ?file:string -> string -> (Raytrace.Scene.t, [> `Msg of string ]) result
 (** [of_string ~limits ~file text] is {!Raytrace.Scene_file.of_string} as a plain
     scene. *)
+
+val on_path : string -> bool
+(** [on_path prog] is [true] iff a file [prog] is in a directory of
+    [PATH]. *)

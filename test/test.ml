@@ -22,6 +22,7 @@ let () =
       ("view", Test_view.tests);
       ("golden", Test_golden.tests);
       ("cli", Test_cli.tests);
+      ("progress", Test_progress.tests);
       ("region", Test_region.tests);
       ("part", Test_part.tests);
       ("camera_path", Test_camera_path.tests);
@@ -34,4 +35,6 @@ let () =
       ("library", Test_library.tests);
       ("hostile", Test_hostile.tests);
       ("faults", Test_faults.tests);
+      ("outputs", Test_outputs.tests);
+      ("cli_fuzz", Test_cli_fuzz.tests);
     ]

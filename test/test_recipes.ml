@@ -1,4 +1,4 @@
-(* The recipes of the README for existing engines, run as a user runs them:
+(* The recipes of docs/farm.md for existing engines, run as a user runs them:
    GNU parallel on this machine and over ssh (a stand-in ssh that runs each
    "host" in its own directory, so the scene and parts really travel), and
    Slurm job arrays (a stand-in sbatch that runs the jobs at once with
@@ -11,10 +11,7 @@ let here name = Filename.concat (Sys.getcwd ()) name
 let read path =
   match Raytrace_unix.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
 
-let on_path prog =
-  List.exists
-    (fun dir -> Sys.file_exists (Filename.concat dir prog))
-    (String.split_on_char ':' (Option.value (Sys.getenv_opt "PATH") ~default:""))
+let on_path = Helpers.on_path
 
 (* [with_tools progs f] runs [f] if every program is installed (make deps
    installs them), and otherwise says why it did not: this Alcotest has no
@@ -88,13 +85,13 @@ let tests =
     Alcotest.test_case "GNU parallel renders frames, one job each, here and over ssh" `Quick
       (with_tools [ "parallel"; "rsync" ] @@ fun () ->
         let dir = Helpers.temp_dir () and remote = Helpers.temp_dir () in
-        (* The scene where the README's lines expect it. *)
+        (* The scene where the recipe's lines expect it. *)
         Unix.mkdir (Filename.concat dir "scenes") 0o755;
         Unix.symlink
           (Filename.concat (Sys.getcwd ()) (Helpers.scene_path "orbit.scene"))
           (Filename.concat dir "scenes/orbit.scene");
         let raytrace = Filename.quote (exe ()) in
-        (* The README's two lines, with the test's binary and a small canvas. *)
+        (* The recipe's two lines, with the test's binary and a small canvas. *)
         ignore
           (sh dir
              (Printf.sprintf

@@ -71,6 +71,61 @@ let tests =
         match Helpers.render (Scene.with_overrides ~width:120 ~height:120 Scene.cgfs) with
         | Ok (_, stats) -> Alcotest.(check (float 0.)) __LOC__ 0. stats.minor_words
         | Error (`Msg m) -> Alcotest.fail m);
+    Alcotest.test_case "progress counts every row of every pass and ends with the render's rays" `Quick (fun () ->
+        (* 40 x 30, so 30 rows. Adaptive sampling traces first rays on the
+           rows of the margin (the whole canvas: 30), then refines 30:
+           60. Subsampling traces even rows (15), then odd ones (15): 30. *)
+        let s = Scene.with_overrides ~width:40 ~height:30 Scene.cgfs in
+        let cases = [ ("one ray", [], 30); ("adaptive", [ `Adaptive ], 60); ("subsampled", [ `Subsample ], 30) ] in
+        List.iter
+          (fun (what, how, expected_total) ->
+            let adaptive = if List.mem `Adaptive how then Some 4 else None in
+            let samples = if adaptive = None then 1 else 3 in
+            let subsample = List.mem `Subsample how in
+            let plain = Helpers.image_exn ~samples ?adaptive ~subsample s in
+            List.iter
+              (fun jobs ->
+                let what = Printf.sprintf "%s, %d jobs" what jobs in
+                let calls = ref [] in
+                let progress ~rows ~total ~rays = calls := (rows, total, rays) :: !calls in
+                match Helpers.render ~jobs ~samples ?adaptive ~subsample ~progress s with
+                | Error (`Msg m) -> Alcotest.fail m
+                | Ok (img, st) ->
+                    Helpers.check_images what ~expected:plain img;
+                    let calls = List.rev !calls in
+                    List.iter (fun (_, total, _) -> Alcotest.(check int) what expected_total total) calls;
+                    let rows = List.map (fun (r, _, _) -> r) calls in
+                    Alcotest.(check bool) (what ^ ": rows never decrease") true (rows = List.sort compare rows);
+                    (* One job: a call after each row. *)
+                    if jobs = 1 then Alcotest.(check (list int)) what (List.init expected_total succ) rows;
+                    let last_rows, _, last_rays = List.nth calls (List.length calls - 1) in
+                    Alcotest.(check int) (what ^ ": last rows") expected_total last_rows;
+                    Alcotest.(check int) (what ^ ": rays") (st.primary + st.shadow + st.reflection) last_rays)
+              [ 1; 2; 3 ])
+          cases);
+    Alcotest.test_case "progress on a region counts the region's rows" `Quick (fun () ->
+        let s = Scene.with_overrides ~width:40 ~height:30 Scene.cgfs in
+        let last = ref (0, 0) in
+        let progress ~rows ~total ~rays:_ = last := (rows, total) in
+        List.iter
+          (fun jobs ->
+            match Helpers.render_region ~jobs ~progress s { x = 3; y = 5; w = 20; h = 7 } with
+            | Ok _ -> Alcotest.(check (pair int int)) __LOC__ (7, 7) !last
+            | Error (`Msg m) -> Alcotest.fail m)
+          [ 1; 2 ]);
+    Alcotest.test_case "reporting progress allocates nothing per pixel" `Quick (fun () ->
+        (* The callback allocates; that is the caller's, not the tracer's.
+           Workers allocate a few words each, once (not per pixel), with or
+           without progress: the counting adds nothing. *)
+        let seen = ref [] in
+        let progress ~rows ~total:_ ~rays:_ = seen := rows :: !seen in
+        let words ?progress jobs =
+          match Helpers.render ~jobs ?progress (Scene.with_overrides ~width:120 ~height:120 Scene.cgfs) with
+          | Ok (_, stats) -> stats.minor_words
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        Alcotest.(check (float 0.)) __LOC__ 0. (words ~progress 1);
+        Alcotest.(check (float 0.)) __LOC__ (words 2) (words ~progress 2));
     Alcotest.test_case "the counters count the document's rays" `Quick (fun () ->
         (* The C reference reports 360000 primary, 784856 shadow and 367660
            reflection rays for this scene at 600 x 600. *)

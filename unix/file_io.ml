@@ -138,10 +138,35 @@ let write_temporary path f =
           cleanup ();
           raise ex)
 
+(* Standard output or error, when [path] names the very file it writes to
+   ([/dev/stdout], [/proc/self/fd/2], the file of a redirection): written
+   through the open descriptor, at its offset and with its flags (a [>>]
+   redirection appends), never reopened from the start or replaced. *)
+let standard_channel path =
+  match Unix.stat path with
+  | exception Unix.Unix_error _ -> None
+  | st ->
+      let same fd =
+        match Unix.fstat fd with
+        | s -> s.st_dev = st.st_dev && s.st_ino = st.st_ino
+        | exception Unix.Unix_error _ -> false
+      in
+      if same Unix.stdout then Some stdout else if same Unix.stderr then Some stderr else None
+
+let write_channel path oc f =
+  match
+    set_binary_mode_out oc true;
+    f oc;
+    flush oc
+  with
+  | () -> Ok ()
+  | exception Sys_error e -> error path e
+
 let write_atomic path f =
-  match resolve path with
-  | Error e -> Error e
-  | Ok path ->
+  match (standard_channel path, resolve path) with
+  | Some oc, _ -> write_channel path oc f
+  | None, Error e -> Error e
+  | None, Ok path ->
       if Sys.file_exists path && Sys.is_directory path then error path "is a directory"
       else if is_special path then write_direct path f
       else

@@ -18,13 +18,22 @@ val read : ?check_size:(int -> (int, [ `Msg of string ]) result) -> string -> (s
 val write_atomic : string -> (out_channel -> unit) -> (unit, [> `Msg of string ]) result
 (** [write_atomic path f] calls [f oc] on a channel to a new temporary file
     beside [path], then flushes it to disk and renames it to [path]. If
+    [path] is the file that standard output or error writes to
+    ([/dev/stdout], [/dev/fd/2], the file of a redirection), [f] writes to
+    that channel, at its position (appending after a [>>] redirection). If
     [path] exists and is not a regular file (a character device such as
-    [/dev/stdout] or [/dev/full], a pipe), [f] writes to it directly.
+    [/dev/full], a FIFO), [f] writes to it directly.
     [Error] if the directory is missing or not writable, [path] is a
     directory, the disk is full, or [f] raises [Sys_error]; then [path] is
     left as it was and the temporary file is removed. Exceptions other than
     [Sys_error] and [Unix.Unix_error] raised by [f] are re-raised after the
     temporary file is removed. *)
+
+val standard_channel : string -> out_channel option
+(** [standard_channel path] is [Some stdout] (or [Some stderr]) if [path]
+    names the file that standard output (error) writes to: the same device
+    and inode, as [/dev/stdout] or the file of a [>] or [>>] redirection
+    are; [None] otherwise, or if [path] does not exist. *)
 
 val remove_temporaries : unit -> unit
 (** [remove_temporaries ()] removes the temporary files of writes in

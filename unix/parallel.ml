@@ -52,20 +52,28 @@ let fill_zeros fd bytes =
 
 let map_shared kind n =
   (* A file in memory-backed /dev/shm when there is one, unlinked at once:
-     the mapping outlives the name. *)
+     the mapping outlives the name. Filling a large file takes a while: a
+     signal meanwhile removes it too. *)
   let dir = if Sys.file_exists "/dev/shm" then "/dev/shm" else Filename.get_temp_dir_name () in
   let bytes = max 1 n * Bigarray.kind_size_in_bytes kind in
+  let created = ref None in
+  let remove () =
+    Option.iter (fun path -> try Sys.remove path with Sys_error _ -> ()) !created;
+    created := None
+  in
   match
-    Signals.without_sigxfsz (fun () ->
-        let path = Filename.temp_file ~temp_dir:dir "raytrace" ".shm" in
-        let fd = Unix.openfile path [ O_RDWR; O_CLOEXEC ] 0o600 in
-        Fun.protect
-          ~finally:(fun () ->
-            Unix.close fd;
-            try Sys.remove path with Sys_error _ -> ())
-          (fun () ->
-            fill_zeros fd bytes;
-            Bigarray.array1_of_genarray (Unix.map_file fd kind Bigarray.c_layout true [| max 1 n |])))
+    Signals.protect ~cleanup:remove (fun () ->
+        Signals.without_sigxfsz (fun () ->
+            let path = Filename.temp_file ~temp_dir:dir "raytrace" ".shm" in
+            created := Some path;
+            let fd = Unix.openfile path [ O_RDWR; O_CLOEXEC ] 0o600 in
+            Fun.protect
+              ~finally:(fun () ->
+                Unix.close fd;
+                remove ())
+              (fun () ->
+                fill_zeros fd bytes;
+                Bigarray.array1_of_genarray (Unix.map_file fd kind Bigarray.c_layout true [| max 1 n |]))))
   with
   | a -> a
   | exception (Unix.Unix_error (e, _, _)) ->
@@ -83,6 +91,9 @@ let signal_name s =
         (sigkill, "SIGKILL"); (sigterm, "SIGTERM"); (sigint, "SIGINT"); (sigsegv, "SIGSEGV");
         (sigabrt, "SIGABRT"); (sigbus, "SIGBUS"); (sigfpe, "SIGFPE"); (sighup, "SIGHUP");
         (sigquit, "SIGQUIT"); (sigpipe, "SIGPIPE"); (sigusr1, "SIGUSR1"); (sigusr2, "SIGUSR2");
+        (sigalrm, "SIGALRM"); (sigxcpu, "SIGXCPU"); (sigxfsz, "SIGXFSZ"); (sigvtalrm, "SIGVTALRM");
+        (sigprof, "SIGPROF"); (sigill, "SIGILL"); (sigtrap, "SIGTRAP"); (sigsys, "SIGSYS");
+        (sigstop, "SIGSTOP"); (sigtstp, "SIGTSTP"); (sigttin, "SIGTTIN"); (sigttou, "SIGTTOU");
       ]
   in
   match List.assoc_opt s names with Some n -> n | None -> Printf.sprintf "signal %d" s
@@ -124,7 +135,7 @@ let child work w me (fds : (Unix.file_descr * Unix.file_descr) array) =
   in
   Unix._exit code
 
-let run n work =
+let run ?tick n work =
   flush stdout;
   flush stderr;
   let me = Unix.getpid () in
@@ -173,8 +184,14 @@ let run n work =
         Array.iteri
           (fun w pid ->
             if not done_.(w) then
-              match Unix.waitpid [ WNOHANG ] pid with
+              match Unix.waitpid [ WNOHANG; WUNTRACED ] pid with
               | 0, _ -> ()
+              | _, Unix.WSTOPPED _ ->
+                  (* Stopped (SIGSTOP, or SIGTSTP to it alone): the render
+                     would wait for it for ever. It is continued; after a
+                     Ctrl-Z that stopped us all, the extra SIGCONT is
+                     harmless. *)
+                  (try Unix.kill pid Sys.sigcont with Unix.Unix_error _ -> ())
               | _, Unix.WEXITED 0 ->
                   done_.(w) <- true;
                   progress := true
@@ -197,9 +214,13 @@ let run n work =
             let live = List.filter_map (fun w -> if done_.(w) then None else Some (fst fds.(w))) (List.init n Fun.id) in
             (* [select] takes descriptors below 1024 only: with more than 256
                workers (two descriptors each while they start), poll. *)
-            try if n <= 256 then ignore (Unix.select live [] [] 1.) else Unix.sleepf 0.005
+            (* With a [tick], wake up often enough to call it a few
+               times a second. *)
+            let timeout = match tick with None -> 1. | Some _ -> 0.1 in
+            try if n <= 256 then ignore (Unix.select live [] [] timeout) else Unix.sleepf 0.005
             with Unix.Unix_error (EINTR, _, _) -> ()
           end;
+          Option.iter (fun tick -> tick ()) tick;
           wait ()
         end
       in

@@ -30,17 +30,22 @@ val shared_floats : int -> (float, Bigarray.float64_elt, Bigarray.c_layout) Biga
 (** [shared_floats n] is [n] zeroed 64-bit floats shared like
     {!shared_bytes}. *)
 
-val run : int -> (int -> unit) -> (unit, [> `Msg of string ]) result
-(** [run n work] runs [work 0], ..., [work (n - 1)], each in a forked child
-    process, and waits for all of them. [Error] names the first worker that
+val run : ?tick:(unit -> unit) -> int -> (int -> unit) -> (unit, [> `Msg of string ]) result
+(** [run ~tick n work] runs [work 0], ..., [work (n - 1)], each in a forked child
+    process, and waits for all of them, calling [tick ()] in the parent
+    about ten times a second meanwhile (e.g. to report progress that the
+    workers count in shared memory); [tick] must not raise. [Error] names the first worker that
     raised (with the exception), exited with a non-zero status or was
     killed by a signal ([worker 2 of 4 was killed by SIGKILL]), noticed as
     soon as it happens; the others are then killed. [Error] too if the
     workers cannot be started. Children leave with [Unix._exit], never
-    running the parent's [at_exit] handlers or flushing its buffers.
+    running the parent's [at_exit] handlers or flushing its buffers. A
+    worker that is stopped (SIGSTOP) is continued (SIGCONT) within a
+    second, so that the parent never waits for it for ever.
 
-    If the parent is interrupted (SIGINT, SIGTERM, SIGHUP) while the
-    workers run, it kills and reaps them before it ends
+    If the parent gets a signal of {!Signals.handled} (SIGINT, SIGTERM,
+    SIGHUP, SIGUSR1, ...) while the workers run, it kills and reaps them
+    before it ends
     ({!Signals.protect}); a worker whose parent died anyway (SIGKILL) ends
     at its next {!exit_if_orphaned}. *)
 

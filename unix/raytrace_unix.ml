@@ -1,6 +1,7 @@
 module Limits_env = Limits_env
 module File_io = File_io
 module Files = Files
+module Io_plan = Io_plan
 module Parallel = Parallel
 module Render_jobs = Render_jobs
 module Progressive_workers = Progressive_workers

@@ -18,6 +18,7 @@ let () =
 module Limits_env = Limits_env
 module File_io = File_io
 module Files = Files
+module Io_plan = Io_plan
 module Parallel = Parallel
 module Render_jobs = Render_jobs
 module Progressive_workers = Progressive_workers

@@ -19,11 +19,28 @@ let shared_memory =
     at_row = Parallel.exit_if_orphaned;
   }
 
+type progress_slots = (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t
+
+(* Worker [w] of [jobs] counts the rows it has finished, over every pass,
+   in slot [w] and its rays in slot [jobs + w]: writes of its own, read by
+   the parent between them. The type is known here, so that a write
+   allocates nothing. *)
+let count_row (slots : progress_slots) ~jobs w ~rays =
+  Bigarray.Array1.set slots w (Int64.succ (Bigarray.Array1.get slots w));
+  Bigarray.Array1.set slots (jobs + w) (Int64.of_int rays)
+
+let sum_slots (slots : progress_slots) lo n =
+  let s = ref 0 in
+  for k = lo to lo + n - 1 do
+    s := !s + Int64.to_int (Bigarray.Array1.get slots k)
+  done;
+  !s
+
 (* A pass starts once the previous one has finished in every worker. Its
    rows are dealt into [classes] interleaved classes (rows c, c + classes,
    ...), all about as costly, that the workers take from a queue as they
    go: they finish together even if a core is slowed. *)
-let in_workers ~jobs ?skips sampling scene (region : Region.t) =
+let in_workers ~jobs ?skips ?progress sampling scene (region : Region.t) =
   let s = Scene.of_valid scene in
   match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
   | exception Out_of_memory -> Render_work.out_of_memory region
@@ -39,11 +56,23 @@ let in_workers ~jobs ?skips sampling scene (region : Region.t) =
       match Parallel.shared_ints (passes * jobs * Render_work.counter_fields) with
       | exception Out_of_memory -> Render_work.out_of_memory region
       | exception Failure m -> Error (`Msg m)
-      | ints ->
+      | ints -> (
+          match Option.map (fun _ -> Parallel.shared_ints (2 * jobs)) progress with
+          | exception Out_of_memory -> Render_work.out_of_memory region
+          | exception Failure m -> Error (`Msg m)
+          | slots ->
+          let total = Render_work.total_rows plan in
+          let report () =
+            match (progress, slots) with
+            | Some progress, Some slots ->
+                progress ~rows:(sum_slots slots 0 jobs) ~total ~rays:(sum_slots slots jobs jobs)
+            | _ -> ()
+          in
           let averaging = Sampling.averaging sampling in
           let classes = min Parallel.max_tasks (min region.h (32 * jobs)) in
           let rec run i =
             if i = passes then
+              let () = report () in
               let t2 = Unix.gettimeofday () in
               Ok
                 ( img,
@@ -51,26 +80,38 @@ let in_workers ~jobs ?skips sampling scene (region : Region.t) =
                     ~prepare_s:(t1 -. t0) ~trace_s:(t2 -. t1) )
             else
               let queue = Parallel.queue classes in
+              let n = Sampling.pass_rows plan i in
               let work w =
                 let tr = Trace.create ~averaging p in
                 let before = Gc.minor_words () in
                 let rec loop () =
                   let c = Parallel.take queue in
                   if c >= 0 then begin
-                    Sampling.rows plan i tr ~first:c ~step:classes;
+                    (match slots with
+                    | None -> Sampling.rows plan i tr ~first:c ~step:classes
+                    | Some slots ->
+                        (* Rays of the earlier passes, whose tracers are gone. *)
+                        let earlier = Int64.to_int (Bigarray.Array1.get slots (jobs + w)) - Render_work.rays tr in
+                        let r = ref c in
+                        while !r < n do
+                          Sampling.rows plan i tr ~first:!r ~step:n;
+                          count_row slots ~jobs w ~rays:(earlier + Render_work.rays tr);
+                          r := !r + classes
+                        done);
                     loop ()
                   end
                 in
                 loop ();
                 Render_work.save ints ((i * jobs) + w) tr (Gc.minor_words () -. before)
               in
-              let result = Parallel.run jobs work in
+              let tick = Option.map (fun _ -> report) progress in
+              let result = Parallel.run ?tick jobs work in
               Parallel.close_queue queue;
               match result with Ok () -> run (i + 1) | Error e -> Error e
           in
-          run 0)
+          run 0))
 
-let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptive ?subsample scene
+let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress scene
     (region : Region.t) =
   if jobs < 1 then invalid_arg "Render_jobs.region_image: jobs < 1";
   Render_work.inside "Render_jobs.region_image" scene region;
@@ -79,10 +120,11 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptiv
   let* () = check_memory region in
   let jobs = min jobs region.h in
   if jobs = 1 then
-    Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample scene region
-  else in_workers ~jobs ?skips sampling scene region
+    Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample ?progress scene region
+  else in_workers ~jobs ?skips ?progress sampling scene region
 
-let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample scene =
+let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress scene =
   if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";
   let s = Scene.of_valid scene in
-  region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample scene (Region.full ~width:s.width ~height:s.height)
+  region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress scene
+    (Region.full ~width:s.width ~height:s.height)

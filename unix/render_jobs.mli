@@ -10,11 +10,14 @@ val image :
   ?samples:int ->
   ?adaptive:int ->
   ?subsample:bool ->
+  ?progress:(rows:int -> total:int -> rays:int -> unit) ->
   Scene.valid ->
   (Image.t * Stats.t, [> `Msg of string ]) result
-(** [image ~limits ~jobs ~skips ~samples ~adaptive ~subsample scene] is
+(** [image ~limits ~jobs ~skips ~samples ~adaptive ~subsample ~progress scene] is
     {!Raytrace.Render.image} traced by [jobs] processes (default 1: this one), timed
-    by the wall clock. Besides {!Raytrace.Render.image}'s errors, [Error] before
+    by the wall clock. With several jobs, [progress] is called about ten
+    times a second by this process (the workers count their rows in shared
+    memory), with the meaning it has for {!Raytrace.Render.image}. Besides {!Raytrace.Render.image}'s errors, [Error] before
     anything is allocated if the image needs more memory than the system
     has available, and [Error] if no shared memory can be had or a worker
     process dies.
@@ -27,10 +30,11 @@ val region_image :
   ?samples:int ->
   ?adaptive:int ->
   ?subsample:bool ->
+  ?progress:(rows:int -> total:int -> rays:int -> unit) ->
   Scene.valid ->
   Region.t ->
   (Image.t * Stats.t, [> `Msg of string ]) result
-(** [region_image ~limits ~jobs ~skips ~samples ~adaptive ~subsample scene r]
+(** [region_image ~limits ~jobs ~skips ~samples ~adaptive ~subsample ~progress scene r]
     is {!Raytrace.Render.region_image} traced by [jobs] processes, with the errors
     of {!image}.
     @raise Invalid_argument if [jobs < 1] or [r] is not inside the

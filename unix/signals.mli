@@ -1,8 +1,10 @@
 (** Cleaning up when the process is interrupted.
 
-    While a file is half written or worker processes run, an interrupt
-    (SIGINT from Ctrl-C, SIGTERM from [kill], SIGHUP from a closed
-    terminal) must not leave a temporary file or a stray process behind.
+    While a file is half written or worker processes run, a signal whose
+    default action ends the process (SIGINT from Ctrl-C, SIGTERM from
+    [kill], SIGHUP from a closed terminal, SIGXCPU from a CPU time limit,
+    and the others of {!handled}) must not leave a temporary file or a
+    stray process behind.
     {!protect} installs handlers for these signals around such a section
     only: elsewhere the signals keep their previous behaviour (by default
     they end the process at once, which is then safe since nothing needs
@@ -17,7 +19,19 @@
     workers), so a handler runs at once. *)
 
 val handled : int list
-(** [handled] is [[Sys.sigint; Sys.sigterm; Sys.sighup]]. *)
+(** [handled] is every signal whose default action ends the process and
+    that a process can handle: SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1,
+    SIGUSR2, SIGALRM, SIGPIPE, SIGXCPU, SIGXFSZ, SIGVTALRM and SIGPROF.
+    (SIGKILL and SIGSTOP cannot be handled; SIGSEGV, SIGBUS, SIGFPE,
+    SIGILL, SIGABRT and SIGTRAP come from faults of the program itself.) *)
+
+val leave_alone : int -> unit
+(** [leave_alone s] takes [s] out of the signals that {!protect} and
+    {!reset_in_child} touch, for good: for a signal that the C code of
+    another library handles, such as the SIGALRM of Graphics' refresh
+    timer. (OCaml cannot see such a C handler: {!protect} would take the
+    signal over and then restore the default action, which ends the
+    process at the next tick.) *)
 
 val protect : cleanup:(unit -> unit) -> (unit -> 'a) -> 'a
 (** [protect ~cleanup f] is [f ()], during which each signal of {!handled}
