@@ -77,8 +77,9 @@ let render_image ~limits ~sampling ~literal ~jobs ~meter valid =
       (* Render.image checks these itself; the oracle does not. *)
       let* () = Scene.check_work ~limits valid in
       let t0 = Unix.gettimeofday () in
-      match Literal.render valid with
+      match Literal.render ~limits valid with
       | exception Out_of_memory -> msg "not enough memory for a %dx%d image" scene.width scene.height
+      | exception Limits.Work_exceeded n -> Error (`Msg (Limits.work_exceeded limits n))
       | img -> Ok (img, None, Unix.gettimeofday () -. t0)
   else
     let* img, stats =
@@ -185,6 +186,15 @@ let scene_input opts = match opts.scene with Some p -> [ ("scene", p) ] | None -
    Frames without a number in their name collide, unless they go to a
    stream. *)
 let check_output opts ~frames ~part output =
+  (* No camera path has frames outside [0, Camera_path.max_frame]: a range
+     beyond it is refused before its list of outputs is made. *)
+  let* () =
+    match frames with
+    | Some (a, b) when a < 0 || b > Camera_path.max_frame ->
+        msg "frame %d is outside every camera path, whose frames lie in [0, %d]" (if a < 0 then a else b)
+          Camera_path.max_frame
+    | _ -> Ok ()
+  in
   let outputs =
     match frames with
     | None -> [ ("output", output) ]
@@ -276,25 +286,21 @@ let render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling =
          let* () = render_one ~frame:None ~output scene in
          Ok exit_ok
      | Some (a, b) ->
-         (* Every frame is checked before the first is rendered. *)
-         let* scenes =
-           List.fold_left
-             (fun acc f ->
-               let* acc = acc in
-               let* s = Scene.at_frame scene f in
-               Ok ((f, s) :: acc))
-             (Ok []) (List.init (b - a + 1) (fun i -> a + i))
+         (* Both ends are checked before the first frame is rendered, and
+            the path has checked every frame between its keys: a bad range
+            fails at once. Frames are then made one by one, never all held:
+            memory is that of one frame, whatever the range. *)
+         let* _ = Scene.at_frame scene a in
+         let* _ = Scene.at_frame scene b in
+         let rec frames f =
+           if f > b then Ok exit_ok
+           else
+             let* s = Scene.at_frame scene f in
+             let* () = render_one ~frame:(Some f) ~output:(frame_path output f) s in
+             Option.iter Meter.next_frame meter;
+             frames (f + 1)
          in
-         let* () =
-           List.fold_left
-             (fun acc (f, s) ->
-               let* () = acc in
-               let* () = render_one ~frame:(Some f) ~output:(frame_path output f) s in
-               Option.iter Meter.next_frame meter;
-               Ok ())
-             (Ok ()) (List.rev scenes)
-         in
-         Ok exit_ok)
+         frames a)
 
 let merge parts ~output ~quiet =
   report
@@ -302,13 +308,22 @@ let merge parts ~output ~quiet =
        Io_plan.check ~inputs:(List.map (fun p -> ("part " ^ p, p)) parts) ~outputs:[ ("output", output) ]
      in
      let* limits = Limits_env.read () in
-     let* parts =
+     let* parts, _, _ =
        List.fold_left
          (fun acc path ->
-           let* acc = acc in
+           let* acc, canvas, pixels = acc in
            let* p = Part.read_file ~limits path in
-           Ok ((path, p) :: acc))
-         (Ok []) parts
+           (* Parts that fit together cover their canvas once: more pixels
+              on the first part's canvas than it has means an overlap,
+              refused before more parts fill the memory. (A part of another
+              canvas is left to [Part.merge], which says so.) *)
+           let canvas = Option.value canvas ~default:(p.canvas_width, p.canvas_height) in
+           let pixels = if canvas = (p.canvas_width, p.canvas_height) then pixels + Region.pixels p.region else pixels in
+           if pixels > fst canvas * snd canvas then
+             msg "%s: the parts up to this one hold %d pixels, more than their %dx%d canvas: they overlap" path
+               pixels (fst canvas) (snd canvas)
+           else Ok ((path, p) :: acc, Some canvas, pixels))
+         (Ok ([], None, 0)) parts
      in
      let parts = List.rev parts in
      let* img = Part.merge parts in

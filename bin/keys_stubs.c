@@ -10,6 +10,8 @@
 #include <X11/keysym.h>
 #include <X11/XKBlib.h>
 #include <caml/mlvalues.h>
+#include <caml/alloc.h>
+#include <caml/memory.h>
 
 /* Graphics' connection to the X server (graphics/src/unix/open.c);
    NULL while no window is open. */
@@ -42,4 +44,27 @@ value raytrace_bind_arrows(value chars)
     XRebindKeysym(caml_gr_display, keys[i], both, 2, c, 1);
   }
   return Val_true;
+}
+
+/* The size in pixels of the default screen of the display that Graphics
+   will open ($DISPLAY), as the pair (width, height); (0, 0) if no display
+   can be opened (Graphics then says why). Its connection is its own, and
+   stays open until the process ends: an X server started for one program
+   (xvfb-run) resets when its last client leaves, and would refuse
+   Graphics' connection while it does. */
+value raytrace_screen_size(value unit)
+{
+  static Display *d = NULL;
+  int w = 0, h = 0;
+  value pair;
+  (void) unit;
+  if (d == NULL) d = XOpenDisplay(NULL);
+  if (d != NULL) {
+    w = DisplayWidth(d, DefaultScreen(d));
+    h = DisplayHeight(d, DefaultScreen(d));
+  }
+  pair = caml_alloc_tuple(2);
+  Store_field(pair, 0, Val_int(w));
+  Store_field(pair, 1, Val_int(h));
+  return pair;
 }

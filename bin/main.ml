@@ -23,6 +23,7 @@ let limit_envs =
     env `Spheres "spheres in a scene";
     env `Lights "lights in a scene";
     env `Scene_bytes "the size of a scene file, in bytes";
+    env `Form_bytes "the size of one top-level form of a scene file (such as a camera-path), in bytes: the parser holds a form whole, in about 50 times its size";
     env `Work "the ray-sphere intersection tests that a render may need (pixels x samples x rays per sample x spheres met per ray x (1 + lights)); 1e12 is a few hours of one core";
   ]
 
@@ -393,7 +394,14 @@ let one_line_usage text =
    from [kill] does nothing. What the channels still buffer after a
    failure is dropped by leaving with [_exit], as the standard library's
    own flush at exit would raise again. *)
+(* An allocation that fails despite the bounds checked before (the
+   machine's memory is shared, or limited by ulimit) may end in the
+   runtime's fatal error rather than [Out_of_memory]: the hook makes that
+   one line that says it is memory too. *)
+external install_fatal_hook : unit -> unit = "raytrace_install_fatal_hook"
+
 let () =
+  install_fatal_hook ();
   hold_closed_descriptors ();
   Sys.set_signal Sys.sigpipe Sys.Signal_ignore;
   (* Cmdliner pages its help through [less] whenever TERM is set, and
@@ -431,6 +439,7 @@ let () =
       | Some e when code = Commands.exit_ok -> failed ("standard output: " ^ e)
       | _ -> leave code)
   | exception Sys_error e -> failed ("standard output: " ^ e)
-  | exception Out_of_memory -> failed "not enough memory"
+  | exception Out_of_memory ->
+      failed "out of memory: an allocation failed (see the limits in raytrace render --help, ENVIRONMENT)"
   | exception Stack_overflow -> failed "stack overflow"
   | exception e -> failed ~code:Cmd.Exit.internal_error ("internal error: " ^ Printexc.to_string e)

@@ -4,6 +4,9 @@ open Raytrace
    asks Xlib to give them the characters of [View.arrow_left] ... *)
 external bind_arrows : string -> bool = "raytrace_bind_arrows"
 
+(* The size of the X screen, (0, 0) if there is no display. *)
+external screen_size : unit -> int * int = "raytrace_screen_size"
+
 (* The window's pixels, kept here and sent to the X server in bulk.
    Graphics.plot sends two requests per pixel (a colour change and a point):
    a 600 x 600 frame took half as long to draw that way as to trace, and
@@ -144,7 +147,7 @@ let start_frame s =
         let why = match e with Unix.Unix_error (err, _, _) -> Unix.error_message err | e -> Printexc.to_string e in
         log "no memory to share with worker processes (%s); tracing in this process" why
   end;
-  s.render <- Progressive.create ~samples:(View.samples s.view) ?workers:s.shared s.view.valid;
+  s.render <- Progressive.create ~limits:s.view.limits ~samples:(View.samples s.view) ?workers:s.shared s.view.valid;
   s.rows <- 1;
   s.started <- Unix.gettimeofday ();
   s.trace_s <- 0.;
@@ -278,6 +281,7 @@ let work s ~slice =
       log "%s; tracing in this process from now on" m;
       s.shared <- None
   | _ -> ());
+  (match Progressive.stopped s.render with Some m -> log "%s; the frame is incomplete" m | None -> ());
   if Progressive.finished s.render then finish_frame s
 
 let rec loop s =
@@ -291,10 +295,29 @@ let keys_summary =
   "arrows or Shift+W A S D move, Shift+Q E or drag turn, + - depth, a antialiasing, r render, s save, h help, \
    q quit"
 
+(* Images made by [Graphics.make_image] are X pixmaps that their GC
+   finalizer frees through the display: one collected after [close_graph]
+   frees it through a closed display, a segmentation fault (seen on [q] with
+   small canvases, whose images stay in the minor heap). Frame keeps no
+   image, so a full collection here frees them all while the display is
+   open. *)
+let close () =
+  Gc.full_major ();
+  Graphics.close_graph ()
+
 let run ~limits ~name ~scene_file ~jobs valid =
   let scene = Scene.of_valid valid in
   (* Graphics flushes the display on a SIGALRM timer of its own. *)
   Signals.leave_alone Sys.sigalrm;
+  (* A window larger than the screen cannot be seen whole, and a very large
+     one makes the server fail to allocate it (an Xlib error): refused. *)
+  let screen_w, screen_h = screen_size () in
+  if screen_w > 0 && (scene.width > screen_w || scene.height > screen_h) then
+    Error
+      (`No_display
+        (Printf.sprintf "the X screen is %dx%d pixels, too small for the %dx%d canvas" screen_w screen_h
+           scene.width scene.height))
+  else
   match Graphics.open_graph (Printf.sprintf " %dx%d" scene.width scene.height) with
   | exception Graphics.Graphic_failure reason ->
       (* Graphics says "Cannot open display " with an empty name when
@@ -334,7 +357,7 @@ let run ~limits ~name ~scene_file ~jobs valid =
         loop s
       with
       | () ->
-          Graphics.close_graph ();
+          close ();
           Ok ()
       (* Closing the window by hand ends the event loop with this error. *)
       | exception Graphics.Graphic_failure "graphic screen not opened" -> Ok ()

@@ -1,7 +1,9 @@
 #!/bin/bash
 # Render a scene as N tiles on a Slurm cluster: a job array of N tile
-# tasks (contrib/slurm-tiles.sbatch), then a merge job that runs once they
-# have all succeeded. Run it from a directory that every node shares:
+# tasks (contrib/slurm-tiles.sbatch), then a merge job
+# (contrib/slurm-merge.sbatch) that runs once they have all ended and
+# refuses in one line if a tile is missing. Run it from a directory that
+# every node shares:
 #
 #   contrib/slurm-render.sh SCENE N OUT [RENDER OPTIONS...]
 #   contrib/slurm-render.sh scenes/cgfs.scene 64 big.png --width 7680 --height 4320
@@ -17,12 +19,11 @@ scene=$1 n=$2 out=$3
 shift 3
 here=$(cd "$(dirname "$0")" && pwd)
 parts=$out.parts
-raytrace=${RAYTRACE:-raytrace}
 # shellcheck disable=SC2086 # SBATCH_OPTS is a list of options
 array=$(sbatch --parsable ${SBATCH_OPTS:-} --array="1-$n" "$here/slurm-tiles.sbatch" "$scene" "$parts" "$@")
 array=${array%%;*}
+# afterany, not afterok: with afterok a failed tile would leave the merge
+# pending for ever (DependencyNeverSatisfied) on most clusters.
 # shellcheck disable=SC2086
-merge=$(sbatch --parsable ${SBATCH_OPTS:-} --dependency="afterok:$array" --job-name=raytrace-merge \
-  --output=raytrace-merge-%j.log \
-  --wrap "$(printf '%q' "$raytrace") merge $(printf '%q' "$parts")/part-*.ppm -o $(printf '%q' "$out") && rm -r $(printf '%q' "$parts")")
+merge=$(sbatch --parsable ${SBATCH_OPTS:-} --dependency="afterany:$array" "$here/slurm-merge.sbatch" "$parts" "$out")
 echo "tiles: job $array; merge: job ${merge%%;*}"

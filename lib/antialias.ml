@@ -22,6 +22,7 @@ let image ?(n = 3) valid =
     let gy = Canvas.y_of_row ~height row in
     for col = 0 to width - 1 do
       store tr buffer (Canvas.x_of_column ~width col) gy ~n (3 * ((row * width) + col))
-    done
+    done;
+    Trace.check_budget tr
   done;
   img

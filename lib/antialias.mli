@@ -22,4 +22,7 @@ val store : Trace.t -> Image.buffer -> int -> int -> n:int -> int -> unit
 val image : ?n:int -> Scene.valid -> Image.t
 (** [image ~n scene] is [scene] rendered with {!store} at every pixel
     ([n] default 3), in one process.
-    @raise Invalid_argument if [n < 1]. *)
+    @raise Invalid_argument if [n < 1].
+    @raise Limits.Work_exceeded when the tests done pass the budget of
+    the tracer ({!Raytrace.Private.Trace.check_budget}, checked after each
+    row). *)

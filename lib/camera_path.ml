@@ -1,13 +1,14 @@
 type key = { frame : int; position : Vec3.t; look_at : Vec3.t; up : Vec3.t } [@@deriving show, eq]
-type t = key list [@@deriving show, eq]
+(* An array, so that the key of a frame is found by binary search. *)
+type t = key array [@@deriving show, eq]
 
 let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let max_frame = 1_000_000
 let key ?(up = Vec3.oy) ~frame ~position look_at = { frame; position; look_at; up }
 let ( let* ) = Result.bind
-let keys p = p
-let first_frame p = match p with k :: _ -> k.frame | [] -> invalid_arg "Camera_path: empty path"
-let last_frame p = first_frame (List.rev p)
+let keys p = Array.to_list p
+let first_frame p = p.(0).frame
+let last_frame p = p.(Array.length p - 1).frame
 let look k = Camera.look_at ~up:k.up ~position:k.position k.look_at
 
 let check_key k =
@@ -60,7 +61,7 @@ let v keys =
   | _ ->
       let* () = List.fold_left (fun acc k -> let* () = acc in Result.map ignore (check_key k)) (Ok ()) keys in
       let* () = segments keys in
-      Ok keys
+      Ok (Array.of_list keys)
 
 let camera p f =
   let outside () =
@@ -69,11 +70,18 @@ let camera p f =
         (Printf.sprintf "frame %d is outside the camera path, which runs from frame %d to %d" f
            (first_frame p) (last_frame p)))
   in
-  let rec find = function
-    | k :: _ when k.frame = f -> Ok k
-    | k0 :: (k1 :: _ as rest) -> if f > k0.frame && f < k1.frame then Ok (between k0 k1 f) else find rest
-    | [ _ ] | [] -> outside ()
+  (* The last key at or before [f]: [lo] is at or before it, [hi] after. *)
+  let rec last_key lo hi = if hi - lo <= 1 then lo else
+      let mid = lo + ((hi - lo) / 2) in
+      if p.(mid).frame <= f then last_key mid hi else last_key lo mid
   in
-  let* k = find p in
+  let find () =
+    let n = Array.length p in
+    if f < first_frame p || f > last_frame p then outside ()
+    else
+      let i = last_key 0 n in
+      if p.(i).frame = f then Ok p.(i) else Ok (between p.(i) p.(i + 1) f)
+  in
+  let* k = find () in
   (* Checked when the path was built: every frame in range has a camera. *)
   match look k with Ok c -> Ok c | Error (`Msg e) -> error "frame %d: %s" f e

@@ -1,6 +1,6 @@
 (** Camera paths: the camera of each frame of an animation.
 
-    A path is a list of keyframes in increasing frame order. Each key puts
+    A path is a sequence of keyframes in increasing frame order. Each key puts
     the camera at a [position], looking at a [look_at] target with an [up]
     direction ({!Camera.look_at}). Between two keys, position, target and up
     move linearly with the frame number; at a key's frame the camera is
@@ -27,7 +27,7 @@ val equal_key : key -> key -> bool
 (** [equal_key a b] is [true] iff [a] and [b] are equal field by field, floats
     compared with [=]. *)
 
-type t = private key list
+type t
 (** The type for camera paths: at least one key, frames strictly
     increasing. *)
 
@@ -80,4 +80,5 @@ val camera : t -> int -> (Camera.t, [> `Msg of string ]) result
     [t = (f - k0.frame) / (k1.frame - k0.frame)], the {!Camera.look_at}
     camera of [(1 - t) a + t b] for position, target and up, coordinate by
     coordinate. [Error] if [f] lies outside
-    [\[first_frame p, last_frame p\]]. *)
+    [\[first_frame p, last_frame p\]]. [O(log n)] for a path of [n] keys:
+    the keys are found by binary search. *)

@@ -10,10 +10,11 @@ let max_samples = max_grid * max_grid
 let max_spheres = 1_000_000
 let max_lights = 1000
 let max_scene_bytes = 128 * 1024 * 1024
+let max_form_bytes = 16 * 1024 * 1024
 let max_work = 1e12
 let num = Float_text.to_string
 
-type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Work ]
+type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Form_bytes | `Work ]
 
 let variable = function
   | `Pixels -> "RAYTRACE_MAX_PIXELS"
@@ -22,6 +23,7 @@ let variable = function
   | `Spheres -> "RAYTRACE_MAX_SPHERES"
   | `Lights -> "RAYTRACE_MAX_LIGHTS"
   | `Scene_bytes -> "RAYTRACE_MAX_SCENE_BYTES"
+  | `Form_bytes -> "RAYTRACE_MAX_FORM_BYTES"
   | `Work -> "RAYTRACE_MAX_WORK"
 
 (* Values are integers; a float keeps them exact up to 2^53, far beyond
@@ -33,6 +35,7 @@ type t = {
   spheres : float;
   lights : float;
   scene_bytes : float;
+  form_bytes : float;
   work : float;
 }
 
@@ -44,6 +47,7 @@ let default =
     spheres = Float.of_int max_spheres;
     lights = Float.of_int max_lights;
     scene_bytes = Float.of_int max_scene_bytes;
+    form_bytes = Float.of_int max_form_bytes;
     work = max_work;
   }
 
@@ -54,6 +58,7 @@ let bound l = function
   | `Spheres -> l.spheres
   | `Lights -> l.lights
   | `Scene_bytes -> l.scene_bytes
+  | `Form_bytes -> l.form_bytes
   | `Work -> l.work
 
 let with_bound l n x =
@@ -64,9 +69,10 @@ let with_bound l n x =
   | `Spheres -> { l with spheres = x }
   | `Lights -> { l with lights = x }
   | `Scene_bytes -> { l with scene_bytes = x }
+  | `Form_bytes -> { l with form_bytes = x }
   | `Work -> { l with work = x }
 
-let names = [ `Pixels; `Depth; `Samples; `Spheres; `Lights; `Scene_bytes; `Work ]
+let names = [ `Pixels; `Depth; `Samples; `Spheres; `Lights; `Scene_bytes; `Form_bytes; `Work ]
 
 let of_lookup lookup =
   let parse l n =
@@ -158,6 +164,11 @@ let check_scene_bytes l n =
     ~low:(fun () -> Printf.sprintf "a negative size: %d" n)
     ~what:(fun () -> Printf.sprintf "the scene is %d bytes long" n)
 
+let check_form_bytes l n =
+  bounded l `Form_bytes ~lo:0 n
+    ~low:(fun () -> Printf.sprintf "a negative size: %d" n)
+    ~what:(fun () -> Printf.sprintf "a form of the scene is more than %d bytes long" n)
+
 (* Beyond 8 spheres the renderer walks a bounding volume hierarchy: about
    log2 n levels of boxes, each with leaves of up to 4 spheres on either
    side; 16 log2 n is a generous bound of what a ray meets on scenes that
@@ -180,3 +191,12 @@ let check_work l ~pixels ~samples ~depth ~spheres ~lights =
         "the render needs about %.3g ray-sphere intersection tests (%d pixels x %d samples x %d \
          rays x %d spheres per ray x (1 + %d lights))"
         w pixels samples (depth + 1) (spheres_per_ray spheres) lights)
+
+exception Work_exceeded of int
+
+let work_budget l =
+  let bound = bound l `Work in
+  if bound >= Float.of_int max_int then max_int else Float.to_int bound
+
+let work_exceeded l n =
+  exceeded l `Work (Printf.sprintf "the render was stopped after %d intersection tests (spheres and boxes)" n)

@@ -14,7 +14,7 @@
       the command line replaces it: [RAYTRACE_MAX_PIXELS],
       [RAYTRACE_MAX_DEPTH], [RAYTRACE_MAX_SAMPLES], [RAYTRACE_MAX_SPHERES],
       [RAYTRACE_MAX_LIGHTS], [RAYTRACE_MAX_SCENE_BYTES],
-      [RAYTRACE_MAX_WORK]. This library reads no environment:
+      [RAYTRACE_MAX_FORM_BYTES], [RAYTRACE_MAX_WORK]. This library reads no environment:
       {!of_lookup} turns the variables into a {!t} given a lookup function
       (the system library [raytrace.unix] calls it once, with
       [Sys.getenv_opt]). *)
@@ -72,6 +72,14 @@ val max_scene_bytes : int
     that locates an error: measured on [grid:1000000] (88 MB), 590 MB to
     load and render it, 380 MB to locate an error at its end. *)
 
+val max_form_bytes : int
+(** [max_form_bytes] is [16_777_216] (16 MiB): the default largest
+    top-level form of a scene file (a camera path of about 250000 keys).
+    The parser holds a form whole before it is converted, in 30 to 50
+    bytes of memory per byte of text (measured on a form of numbers: 1 GB
+    for 20 MB; refused at this bound, 500 MB), so this bounds the memory
+    of loading whatever the file's size. *)
+
 val max_work : float
 (** [max_work] is [1e12]: the default largest number of ray-sphere
     intersection tests that a render may need by the estimate of
@@ -83,7 +91,7 @@ val max_work : float
 type t
 (** The type for resource bounds. *)
 
-type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Work ]
+type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Form_bytes | `Work ]
 (** The type for the names of the resource bounds. *)
 
 val default : t
@@ -161,6 +169,11 @@ val check_scene_bytes : t -> int -> (int, [> `Msg of string ]) result
 (** [check_scene_bytes l n] is [Ok n] if a scene text of [n] bytes is within
     the [`Scene_bytes] bound of [l]. *)
 
+val check_form_bytes : t -> int -> (int, [> `Msg of string ]) result
+(** [check_form_bytes l n] is [Ok n] if a top-level form of [n] bytes (or
+    more, as far as it was read) is within the [`Form_bytes] bound of
+    [l]. *)
+
 val work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> float
 (** [work ~pixels ~samples ~depth ~spheres ~lights] estimates the ray-sphere
     intersection tests of a render:
@@ -170,6 +183,21 @@ val work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -
     [m] the spheres a ray meets: all of them up to 8, beyond that (where the
     renderer uses a bounding volume hierarchy) at most [16 log2 spheres],
     rounded up. A float, so that it cannot overflow. *)
+
+exception Work_exceeded of int
+(** [Work_exceeded n] is raised by a renderer that has counted [n]
+    intersection tests (ray-sphere and ray-box) in a render, more than
+    {!work_budget}: the estimate of {!check_work} can be beaten by a scene
+    that defeats the bounding volume hierarchy (many coincident spheres),
+    so the work done is also counted as it is done. *)
+
+val work_budget : t -> int
+(** [work_budget l] is the [`Work] bound of [l] as a count of tests,
+    [max_int] if it is larger. *)
+
+val work_exceeded : t -> int -> string
+(** [work_exceeded l n] is the message for a render stopped after [n]
+    intersection tests, naming the bound of [l] and how to raise it. *)
 
 val check_work : t -> pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> (unit, [> `Msg of string ]) result
 (** [check_work l ...] is [Ok ()] if {!work} is within the [`Work] bound of

@@ -1,4 +1,9 @@
+(* Ray-sphere tests done since the last [render] began, checked against
+   the work bound after each column of the canvas. *)
+let tests = ref 0
+
 let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
+  tests := !tests + List.length spheres;
   let closest = ref None and closest_t = ref infinity in
   List.iter
     (fun sphere ->
@@ -43,25 +48,32 @@ let compute_lighting (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
     scene.lights;
   !intensity
 
-let rec trace_ray (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~t_max ~depth =
-  match closest_intersection scene.spheres ~origin ~direction ~t_min ~t_max with
-  | None -> scene.background
-  | Some (sphere, t) ->
-      let point = Vec3.add origin (Vec3.smul t direction) in
-      let normal = Sphere.normal sphere point in
-      let view = Vec3.neg direction in
-      let lighting =
-        compute_lighting scene ~epsilon ~point ~normal ~view ~specular:sphere.specular
-      in
-      let local = Color.smul lighting sphere.color in
-      if sphere.reflective <= 0. || depth <= 0 then local
-      else
-        let mirror = Shading.reflect view normal in
-        let reflected =
-          trace_ray scene ~epsilon ~origin:point ~direction:mirror ~t_min:epsilon ~t_max:infinity
-            ~depth:(depth - 1)
+(* Iterative, so that no depth the limits allow can overflow the stack:
+   the mirror rays are followed down, each level's local colour and
+   reflectivity kept, then blended back up from the deepest colour, in the
+   order of the document's recursion (the same floating-point operations). *)
+let trace_ray (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~t_max ~depth =
+  let rec follow levels ~origin ~direction ~t_min ~t_max ~depth =
+    match closest_intersection scene.spheres ~origin ~direction ~t_min ~t_max with
+    | None -> (levels, scene.background)
+    | Some (sphere, t) ->
+        let point = Vec3.add origin (Vec3.smul t direction) in
+        let normal = Sphere.normal sphere point in
+        let view = Vec3.neg direction in
+        let lighting =
+          compute_lighting scene ~epsilon ~point ~normal ~view ~specular:sphere.specular
         in
-        Color.blend ~reflective:sphere.reflective ~local ~reflected
+        let local = Color.smul lighting sphere.color in
+        if sphere.reflective <= 0. || depth <= 0 then (levels, local)
+        else
+          let mirror = Shading.reflect view normal in
+          follow ((sphere.reflective, local) :: levels) ~origin:point ~direction:mirror
+            ~t_min:epsilon ~t_max:infinity ~depth:(depth - 1)
+  in
+  let levels, deepest = follow [] ~origin ~direction ~t_min ~t_max ~depth in
+  List.fold_left
+    (fun reflected (reflective, local) -> Color.blend ~reflective ~local ~reflected)
+    deepest levels
 
 let pixel (scene : Scene.t) gx gy =
   let epsilon = Option.value scene.epsilon ~default:Scene.document_epsilon in
@@ -72,8 +84,10 @@ let pixel (scene : Scene.t) gx gy =
   trace_ray scene ~epsilon ~origin:scene.camera.position ~direction ~t_min:1. ~t_max:infinity
     ~depth:scene.depth
 
-let render valid =
+let render ?(limits = Limits.default) valid =
   let scene = Scene.of_valid valid in
+  let budget = Limits.work_budget limits in
+  tests := 0;
   let img = Image.create scene.width scene.height in
   for gx = Canvas.min_x scene.width to Canvas.max_x scene.width do
     for gy = Canvas.min_y scene.height to Canvas.max_y scene.height do
@@ -82,6 +96,7 @@ let render valid =
         (Canvas.column ~width:scene.width gx)
         (Canvas.row ~height:scene.height gy)
         (Color.to_byte c.r) (Color.to_byte c.g) (Color.to_byte c.b)
-    done
+    done;
+    if !tests > budget then raise (Limits.Work_exceeded !tests)
   done;
   img

@@ -16,10 +16,12 @@ let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples 
       let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout Render_work.counter_fields in
       (* One tracer for every pass. *)
       let tr = Trace.create ~averaging:(Sampling.averaging sampling) p in
+      Trace.set_budget tr (Limits.work_budget limits);
       (* What the caller's [progress] allocates is not the tracer's. *)
       let progress_words = Array.make 1 0. in
       let before = Gc.minor_words () in
-      (match progress with
+      match
+      match progress with
       | None ->
           for i = 0 to Sampling.passes plan - 1 do
             Sampling.rows plan i tr ~first:0 ~step:1
@@ -36,13 +38,16 @@ let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples 
               progress ~rows:!finished ~total ~rays:(Render_work.rays tr);
               progress_words.(0) <- progress_words.(0) +. (Gc.minor_words () -. w)
             done
-          done);
-      Render_work.save ints 0 tr (Gc.minor_words () -. before -. progress_words.(0));
-      let t2 = clock () in
-      Ok
-        ( img,
-          Render_work.stats ints ~slots:1 ~pixels:(Region.pixels region) ~jobs:1 ~prepare_s:(t1 -. t0)
-            ~trace_s:(t2 -. t1) )
+          done
+      with
+      | exception Limits.Work_exceeded n -> Error (`Msg (Limits.work_exceeded limits n))
+      | () ->
+          Render_work.save ints 0 tr (Gc.minor_words () -. before -. progress_words.(0));
+          let t2 = clock () in
+          Ok
+            ( img,
+              Render_work.stats ints ~slots:1 ~pixels:(Region.pixels region) ~jobs:1 ~prepare_s:(t1 -. t0)
+                ~trace_s:(t2 -. t1) )
 
 let image ?limits ?clock ?skips ?samples ?adaptive ?subsample ?progress scene =
   let s = Scene.of_valid scene in

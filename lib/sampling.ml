@@ -251,5 +251,6 @@ let rows pl i tr ~first ~step =
     | Some _ when i = 0 -> first_rays pl tr !r
     | Some th -> refine pl th tr !r
     | None -> if not pl.s.subsample then full pl tr !r else if i = 0 then even_row pl tr !r else odd_row pl tr !r);
+    Trace.check_budget tr;
     r := !r + (every * step)
   done

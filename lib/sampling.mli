@@ -110,6 +110,8 @@ val rows : plan -> int -> Trace.t -> first:int -> step:int -> unit
     [first + step], ... of the rows that pass works on (the rectangle's, or
     the margin's, all of them or every other one), with tracer [tr], whose
     scene must have the canvas size of [pl] and whose {!Raytrace.Private.Trace.averaging}
-    must be {!averaging}.
+    must be {!averaging}. After each row it checks [tr]'s work budget
+    ({!Raytrace.Private.Trace.check_budget}).
     @raise Invalid_argument if [i] is not a pass, [step < 1], or the
-    canvas sizes or the averaging disagree. *)
+    canvas sizes or the averaging disagree.
+    @raise Limits.Work_exceeded when [tr] passes its budget. *)

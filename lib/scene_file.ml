@@ -421,6 +421,28 @@ let locate_error ~limits text =
   | exception Parsexp.Parse_error.Parse_error e -> `Syntax e
   | exception Located (node, m) -> `Located (where node, m)
 
+(* The position of the first character after [offset] in [text] that is
+   neither blank nor in a line comment: where the next form starts. *)
+let form_start text offset =
+  let n = String.length text in
+  let rec skip i =
+    if i >= n then i
+    else
+      match text.[i] with
+      | ' ' | '\t' | '\n' | '\r' | '\012' -> skip (i + 1)
+      | ';' -> ( match String.index_from_opt text i '\n' with Some j -> skip (j + 1) | None -> n)
+      | _ -> i
+  in
+  let i = skip offset in
+  let line = ref 1 and bol = ref 0 in
+  for k = 0 to i - 1 do
+    if text.[k] = '\n' then begin
+      incr line;
+      bol := k + 1
+    end
+  done;
+  Positions.{ line = !line; col = i - !bol; offset = i }
+
 let of_string ?(limits = Limits.default) ?(file = "<string>") text =
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
@@ -433,17 +455,34 @@ let of_string ?(limits = Limits.default) ?(file = "<string>") text =
        triggers a second pass that records positions, and fails on the same
        node. *)
     let b = builder ~limits (fun _ -> None) in
-    let state = Parsexp.Eager.State.create (fun _ form -> add_form b form) in
-    match
-      Parsexp.Eager.feed_eoi state (Parsexp.Eager.feed_string state text Parsexp.Eager.Stack.empty)
-    with
+    (* The parser holds a form whole, in 30 to 50 times its text: the text
+       is fed in chunks, and a form that grows past the form bound is
+       refused before it can take more. *)
+    let form_end = ref 0 in
+    let state =
+      Parsexp.Eager.State.create (fun ro form ->
+          form_end := Parsexp.Eager.State.Read_only.offset ro;
+          add_form b form)
+    in
+    let chunk = 65536 and n = String.length text in
+    let rec feed stack pos =
+      if pos >= n then Ok (Parsexp.Eager.feed_eoi state stack)
+      else
+        let len = min chunk (n - pos) in
+        let stack = Parsexp.Eager.feed_substring state text ~pos ~len stack in
+        match Limits.check_form_bytes limits (pos + len - !form_end) with
+        | Ok _ -> feed stack (pos + len)
+        | Error (`Msg m) -> Error (form_start text !form_end, m)
+    in
+    match feed Parsexp.Eager.Stack.empty 0 with
+    | Error (p, m) -> error p m
     | exception Parsexp.Parse_error.Parse_error e -> syntax e
     | exception Located _ -> (
         match locate_error ~limits text with
         | `Syntax e -> syntax e
         | `Located (pos, m) -> error (Option.value pos ~default:origin) m
         | `Not_found -> error origin "internal error: the located pass found no error")
-    | () -> (
+    | Ok () -> (
         (* Every field was checked where it was read; this is a net. *)
         match Scene.validate ~limits (finish b) with
         | Ok s -> Ok s

@@ -40,10 +40,13 @@ v}
 
 val of_string : ?limits:Limits.t -> ?file:string -> string -> (Scene.valid, [> `Msg of string ]) result
 (** [of_string ~limits ~file text] is the scene described by [text],
-    validated against [limits] (default {!Limits.default}): a text longer
-    than its [`Scene_bytes] bound is refused before it is parsed. [file]
-    (default ["<string>"]) names the source in error messages. Never
-    raises. ([Raytrace_unix.Files.read_scene] reads a scene file.) *)
+    validated against [limits] (default {!Limits.default}). [Error] if
+    [text] is longer than its [`Scene_bytes] bound (refused before it is
+    parsed), or one of its top-level forms longer than its [`Form_bytes]
+    bound (found as the text is parsed, 64 KiB at a time, before the form
+    is held whole). [file] (default ["<string>"]) names the source in error
+    messages. Never raises. ([Raytrace_unix.Files.read_scene] reads a
+    scene file.) *)
 
 val to_string : Scene.t -> string
 (** [to_string s] is [s] in the scene-file syntax, every number written so

@@ -54,6 +54,7 @@ type t = {
   mutable first_hit : int;
   averaging : bool;  (** Samples are averaged: see [settled]. *)
   mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see [primary_hit]. *)
+  mutable budget : int;  (** Most tests [check_budget] accepts. *)
 }
 
 (* [assumed] when the primary ray searches every sphere. *)
@@ -104,10 +105,17 @@ let create ?(averaging = false) (p : Prepared.t) =
     first_hit = -1;
     averaging;
     assumed = no_assumption;
+    budget = Limits.work_budget Limits.default;
   }
 
 let prepared tr = tr.p
 let counters tr = tr.counters
+let work tr = tr.counters.tests + tr.counters.box_tests
+let set_budget tr n = tr.budget <- n
+
+let check_budget tr =
+  let w = work tr in
+  if w > tr.budget then raise (Limits.Work_exceeded w)
 let red tr = tr.s.r
 let green tr = tr.s.g
 let blue tr = tr.s.b

@@ -27,7 +27,8 @@ type t
     process. A tracer is not reentrant. *)
 
 val create : ?averaging:bool -> Prepared.t -> t
-(** [create ~averaging p] is a tracer for [p] with zeroed counters.
+(** [create ~averaging p] is a tracer for [p] with zeroed counters and
+    the budget of {!Limits.default} ({!Limits.work_budget}, {!set_budget}).
     [averaging] (default [false]) says how the colours it computes will be
     combined, which decides when the reflection early stop of
     {!Raytrace.Private.Prepared.prepare}'s skips is exact. Without it, each ray is one
@@ -44,6 +45,25 @@ val prepared : t -> Prepared.t
 
 val counters : t -> counters
 (** [counters tr] are the work counters of [tr], updated by every call. *)
+
+(** {1:budget The work budget}
+
+    The estimate of {!Limits.check_work} can be beaten by a scene that
+    defeats the bounding volume hierarchy (many coincident spheres). The
+    renderers therefore count the work as it is done, from the counters,
+    and check it between rows of pixels: nothing is added per ray. *)
+
+val work : t -> int
+(** [work tr] is the intersection tests [tr] has done: [tests + box_tests]
+    of {!counters}. *)
+
+val set_budget : t -> int -> unit
+(** [set_budget tr n] lets {!check_budget} accept up to [n] tests of [tr];
+    {!create} sets the budget of {!Limits.default}. *)
+
+val check_budget : t -> unit
+(** [check_budget tr] does nothing while {!work}[ tr] is within the budget
+    of [tr], and otherwise raises [Limits.Work_exceeded (work tr)]. *)
 
 val pixel : t -> int -> int -> unit
 (** [pixel tr gx gy] traces the primary ray through canvas pixel

@@ -11,7 +11,7 @@ let write_file path img =
 let read_file ?(limits = Limits.default) path =
   match File_io.read ~check_size:(Ppm.check_file_size ~limits) path with
   | Error e -> Error e
-  | Ok contents when Png_file.is_png contents -> Png_file.read_file path
+  | Ok contents when Png_file.is_png contents -> Png_file.read_file ~limits path
   | Ok _ when format_of_path path = Png -> Error (`Msg (path ^ ": not a PNG file (it lacks the PNG signature)"))
   | Ok contents -> (
       match Ppm.of_string ~limits contents with

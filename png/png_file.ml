@@ -14,18 +14,28 @@ let in_child ~pixels ~crash f =
   let work _ =
     let null = Unix.openfile "/dev/null" [ O_WRONLY ] 0 in
     Unix.dup2 null Unix.stderr;
+    let tell m = String.iteri (fun i c -> if i < 255 then message.{i} <- Char.code c) m in
     match f out with
     | () -> ()
     | exception (Failure m as e) ->
-        String.iteri (fun i c -> if i < 255 then message.{i} <- Char.code c) m;
+        tell m;
         raise e
+    | exception Out_of_memory ->
+        tell "not enough memory";
+        raise Out_of_memory
   in
   match Parallel.run 1 work with
   | Ok () -> Ok out
-  | Error (`Msg _) ->
+  | Error (`Msg why) ->
       let text = String.init 255 (fun i -> Char.chr message.{i}) in
       let text = match String.index_opt text '\000' with Some n -> String.sub text 0 n | None -> text in
-      Error (if text <> "" then text else crash)
+      (* SIGKILL is what the kernel sends when memory runs out: not a
+         corrupt file. *)
+      let killed = String.length why >= 7 && String.sub why (String.length why - 7) 7 = "SIGKILL" in
+      Error
+        (if text <> "" then text
+         else if killed then "the decoding process was killed by SIGKILL (out of memory?)"
+         else crash)
 
 let copy_rgb bytes (out : Image.buffer) =
   for k = 0 to Bytes.length bytes - 1 do
@@ -48,10 +58,16 @@ let decode path ~width ~height out =
       | Images.Rgb24 b -> rgb b
       | _ -> failwith "unsupported PNG layout")
 
+(* The most memory decoding takes, in bytes: the pixels in shared memory
+   (3 bytes a pixel, which become the image), and in the decoding process
+   camlimages' RGB image and its copy as a string (3 + 3), or an RGBA image
+   first (4 more). *)
+let decode_bytes pixels = 13 * pixels
+
 let be32 s o =
   (Char.code s.[o] lsl 24) lor (Char.code s.[o + 1] lsl 16) lor (Char.code s.[o + 2] lsl 8) lor Char.code s.[o + 3]
 
-let read_file path =
+let read_file ?(limits = Limits.default) path =
   let fail m = Error (`Msg (Printf.sprintf "%s: %s" path m)) in
   let* contents = File_io.read path in
   if not (is_png contents) then fail "not a PNG file"
@@ -59,16 +75,22 @@ let read_file path =
   else
     (* The size, read here to bound the memory before libpng sees it. *)
     let width = be32 contents 16 and height = be32 contents 20 in
-    if width < 1 || height < 1 || width > Limits.max_dimension || height > Limits.max_dimension
-       || width * height > Limits.max_pixels
-    then fail (Printf.sprintf "PNG size %dx%d is empty or too large" width height)
-    else
-      match in_child ~pixels:(width * height) ~crash:"corrupt or truncated data" (decode path ~width ~height) with
-      | Ok out ->
-          let img = Image.create width height in
-          Bigarray.Array1.blit (Bigarray.Array1.sub out 0 (3 * width * height)) (Image.buffer img);
-          Ok img
-      | Error m -> fail ("cannot decode the PNG file: " ^ m)
+    (* The same bound as a PPM image's. *)
+    match Limits.check_image_size limits width height with
+    | Error (`Msg m) -> fail m
+    | Ok () -> (
+        let pixels = width * height in
+        match Parallel.available_memory () with
+        | Some available when decode_bytes pixels > available ->
+            let gib n = Float.of_int n /. 1073741824. in
+            fail
+              (Printf.sprintf "a %dx%d PNG image needs %.2f GiB of memory to decode, but only %.2f GiB are available"
+                 width height (gib (decode_bytes pixels)) (gib available))
+        | _ -> (
+            match in_child ~pixels ~crash:"corrupt or truncated data" (decode path ~width ~height) with
+            | exception Failure m -> fail m
+            | Ok out -> Ok (Image.of_buffer width height (Bigarray.Array1.sub out 0 (3 * pixels)))
+            | Error m -> fail ("cannot decode the PNG file: " ^ m)))
 
 let to_string img =
   let w = Image.width img and h = Image.height img in

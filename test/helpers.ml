@@ -105,7 +105,44 @@ let prepare ?skips s = Raytrace.Private.Prepared.prepare ?skips (valid s)
 let read_scene path = Result.map Scene.of_valid (Raytrace_unix.Files.read_scene path)
 let of_string ?limits ?file text = Result.map Scene.of_valid (Scene_file.of_string ?limits ?file text)
 
+(* Alcotest sends what a test prints to stdout and stderr into the test's
+   output file; a skip must reach the console, so it writes to a copy of
+   stderr taken before any test runs. *)
+let console = Unix.dup ~cloexec:true Unix.stderr
+let skipped = ref []
+
+let say text =
+  (* What Alcotest has buffered goes first, so that the console reads in order. *)
+  Format.pp_print_flush Format.std_formatter ();
+  Format.pp_print_flush Format.err_formatter ();
+  flush stdout;
+  flush stderr;
+  let b = Bytes.of_string text in
+  let rec go off = if off < Bytes.length b then go (off + Unix.write console b off (Bytes.length b - off)) in
+  try go 0 with Unix.Unix_error _ -> ()
+
+let in_ci () = Sys.getenv_opt "CI" = Some "true"
+
+let skip what ~why =
+  skipped := (what, why) :: !skipped;
+  say (Printf.sprintf "SKIPPED %s: %s\n" what why);
+  if in_ci () then Alcotest.failf "SKIPPED %s: %s (a skip is a failure under CI=true)" what why
+
+let skips () = List.rev !skipped
+
+let report_skips () =
+  match skips () with
+  | [] -> 0
+  | l ->
+      say
+        (Printf.sprintf "\n%d check%s SKIPPED, so not everything was tested:\n%s" (List.length l)
+           (if List.length l = 1 then "" else "s")
+           (String.concat "" (List.map (fun (what, why) -> Printf.sprintf "  SKIPPED %s: %s\n" what why) l)));
+      if in_ci () then 1 else 0
+
 let on_path prog =
   List.exists
-    (fun dir -> Sys.file_exists (Filename.concat dir prog))
+    (fun dir -> dir <> "" && Sys.file_exists (Filename.concat dir prog))
     (String.split_on_char ':' (Option.value (Sys.getenv_opt "PATH") ~default:""))
+
+let missing progs = List.filter (fun p -> not (on_path p)) progs

@@ -91,6 +91,29 @@ val of_string : ?limits:Raytrace.Limits.t -> ?file:string -> string -> (Raytrace
 (** [of_string ~limits ~file text] is {!Raytrace.Scene_file.of_string} as a plain
     scene. *)
 
+(** {1:skips Skips}
+
+    A check that cannot run here (a tool missing, no root) is skipped
+    through {!skip}, never silently: the skip is on the console, in the
+    summary at the end of the run, and under [CI=true] a failure. *)
+
+val skip : string -> why:string -> unit
+(** [skip what ~why] records that the check [what] did not run because of
+    [why] and prints [SKIPPED what: why] on the console (the stderr the
+    test program started with: Alcotest captures the tests' own). Under
+    the environment variable [CI=true] it then fails the test.
+    @raise Alcotest's failure under [CI=true]. *)
+
+val skips : unit -> (string * string) list
+(** [skips ()] is the list of [(what, why)] skipped so far, in order. *)
+
+val report_skips : unit -> int
+(** [report_skips ()] prints on the console a summary of the skips, if
+    any, and is the exit status they call for: 1 if anything was skipped
+    under [CI=true], 0 otherwise. *)
+
 val on_path : string -> bool
-(** [on_path prog] is [true] iff a file [prog] is in a directory of
-    [PATH]. *)
+(** [on_path prog] is [true] iff a file [prog] is in a directory of [PATH]. *)
+
+val missing : string list -> string list
+(** [missing progs] is the programs of [progs] that are not on [PATH]. *)

@@ -1,4 +1,8 @@
+(* Alcotest prints its summary and exits (its [test] command exits even
+   with [~and_exit:false]); the skips' summary comes after it, at exit, and
+   under CI=true a skip fails the run even if every test passed. *)
 let () =
+  at_exit (fun () -> if Helpers.report_skips () <> 0 then exit 1);
   Alcotest.run "raytrace"
     [
       ("vec3", Test_vec3.tests);
@@ -37,4 +41,6 @@ let () =
       ("faults", Test_faults.tests);
       ("outputs", Test_outputs.tests);
       ("cli_fuzz", Test_cli_fuzz.tests);
+      ("skips", Test_skips.tests);
+      ("memory", Test_memory.tests);
     ]

@@ -32,6 +32,24 @@ let tests =
         Alcotest.check camera __LOC__
           (look ~position:(Vec3.v 4. 0. 2.) (Vec3.v 2. 0. 0.5))
           (ok (Camera_path.camera path 6)));
+    Alcotest.test_case "a frame's camera is found in logarithmic time among many keys" `Slow (fun () ->
+        (* 300001 keys, one a frame, each at x = frame. A search from the
+           first key (as before) took 300001 x 150000 = 4.5e10 steps for
+           every frame; a binary search takes 19 steps a frame. *)
+        let n = 300_000 in
+        let keys =
+          List.init (n + 1) (fun f ->
+              let x = Float.of_int f in
+              Camera_path.key ~frame:f ~position:(Vec3.v x 0. 0.) (Vec3.v x 0. 1.))
+        in
+        let p = ok_s (Camera_path.v keys) in
+        let t0 = Unix.gettimeofday () in
+        for f = 0 to n do
+          let c = ok (Camera_path.camera p f) in
+          if c.Camera.position.x <> Float.of_int f then Alcotest.failf "frame %d: camera at x = %g" f c.position.x
+        done;
+        let seconds = Unix.gettimeofday () -. t0 in
+        Alcotest.(check bool) (Printf.sprintf "every frame in %.2f s, under 30 s" seconds) true (seconds < 30.));
     Alcotest.test_case "frames outside the path are errors" `Quick (fun () ->
         match Camera_path.camera path 9 with
         | Ok _ -> Alcotest.fail "frame 9 rendered"

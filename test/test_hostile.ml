@@ -60,6 +60,15 @@ let with_env name value f =
       (match Limits_env.read () with Ok l -> limits := l | Error (`Msg m) -> Alcotest.fail m);
       f ())
 
+(* A fresh directory holding the scene file [name] with [text]: both paths. *)
+let scene_file name text =
+  let dir = Helpers.temp_dir () in
+  let path = Filename.concat dir name in
+  let oc = open_out_bin path in
+  output_string oc text;
+  close_out oc;
+  (dir, path)
+
 let allocated f =
   let before = Gc.allocated_bytes () in
   f ();
@@ -196,6 +205,95 @@ let tests =
                samples x 65 rays x 144 spheres per ray x (1 + 2 lights)), more than the limit of \
                1000000000000 (set RAYTRACE_MAX_WORK to raise it)"
               m);
+    Alcotest.test_case "a scene that defeats the hierarchy is stopped once its tests pass the work bound" `Slow
+      (fun () ->
+        (* 20000 spheres at one place: no split separates them, and a ray
+           that meets their box tests all 20000. The estimate: 32 x 32
+           pixels x 1 ray x 16 log2 20000 = 16 x 15 spheres = 245760 tests,
+           within 1e6. Done: about 130 pixels hit the sphere, 2.6e6 tests. *)
+        let dir, scene =
+          scene_file "coincident.scene"
+            ("(canvas (width 32) (height 32)) (viewport (width 1) (height 1) (distance 1))\n\
+              (camera (position 0 0 0)) (background 0 0 0) (recursion-depth 0)\n\
+              (light ambient (intensity 1))\n"
+            ^ String.concat ""
+                (List.init 20000 (fun _ ->
+                     "(sphere (center 0 0 5) (radius 1) (color 255 0 0) (specular -1) (reflective 0))\n")))
+        in
+        let out = Filename.concat dir "out.ppm" in
+        let env = Array.append [| "RAYTRACE_MAX_WORK=1e6" |] (Unix.environment ()) in
+        List.iter
+          (fun args ->
+            let what = String.concat " " args in
+            let code, _, err = Helpers.run ~env (Helpers.raytrace ()) ([ "render"; scene; "-o"; out ] @ args) in
+            Alcotest.(check int) (what ^ ": exit status: " ^ err) 1 code;
+            let prefix = "raytrace: the render was stopped after " in
+            let suffix =
+              " intersection tests (spheres and boxes), more than the limit of 1000000 (set RAYTRACE_MAX_WORK \
+               to raise it)\n"
+            in
+            let ends_with s e =
+              String.length s >= String.length e && String.sub s (String.length s - String.length e) (String.length e) = e
+            in
+            Alcotest.(check bool) (what ^ ": one line: " ^ err) true
+              (String.length err > String.length prefix
+              && String.sub err 0 (String.length prefix) = prefix
+              && ends_with err suffix
+              && List.length (String.split_on_char '\n' err) = 2);
+            Alcotest.(check bool) (what ^ ": no output") false (Sys.file_exists out))
+          [
+            [ "--jobs"; "1" ]; [ "--jobs"; "2" ]; [ "--literal" ]; [ "--jobs"; "2"; "--tile"; "1/2" ];
+            [ "--jobs"; "1"; "--samples"; "2" ]; [ "--jobs"; "2"; "--subsample" ];
+          ];
+        (* Raised, the same scene renders. *)
+        let env = Array.append [| "RAYTRACE_MAX_WORK=1e8" |] (Unix.environment ()) in
+        let code, _, err = Helpers.run ~env (Helpers.raytrace ()) [ "render"; scene; "-o"; out; "--jobs"; "2" ] in
+        Alcotest.(check int) ("a raised bound renders: " ^ err) 0 code);
+    Alcotest.test_case "the progressive render stops at the work bound too" `Quick (fun () ->
+        (* 2000 coincident spheres, 16 x 16 pixels: estimate 256 x 16 x 11
+           x (1 + 2 lights) = 135168 tests, within 2e5; a pixel that sees
+           the sphere alone does 2000 x 3. *)
+        let sphere = List.hd Scene.cgfs.spheres in
+        let scene =
+          {
+            (Scene.with_overrides ~width:16 ~height:16 Scene.cgfs) with
+            spheres = List.init 2000 (fun _ -> sphere);
+            depth = 0;
+          }
+        in
+        with_env "RAYTRACE_MAX_WORK" "200000" (fun () ->
+            let valid = Helpers.valid scene in
+            Alcotest.(check bool) "the estimate lets it through" true (Scene.check_work ~limits:!limits valid = Ok ());
+            let r = Progressive.create ~limits:!limits valid in
+            let rec go () = match Progressive.step ~rows:4 r with Some _ -> go () | None -> () in
+            go ();
+            Alcotest.(check bool) "finished" true (Progressive.finished r);
+            match Progressive.stopped r with
+            | None -> Alcotest.fail "the render went to its end"
+            | Some m ->
+                Alcotest.(check bool) ("names the variable: " ^ m) true
+                  (String.length m > 30 && String.sub m (String.length m - 35) 35 = "(set RAYTRACE_MAX_WORK to raise it)")));
+    Alcotest.test_case "the oracle follows a million reflections without overflowing the stack" `Slow (fun () ->
+        (* Two convex mirrors face each other on the z axis; the middle
+           pixel's ray bounces between them until the depth runs out. The
+           recursive oracle died of Stack_overflow at this depth. *)
+        let dir, scene =
+          scene_file "mirrors.scene"
+          "(canvas (width 3) (height 3)) (viewport (width 1) (height 1) (distance 1))\n\
+           (camera (position 0 0 0)) (background 0 0 0) (recursion-depth 1000000)\n\
+           (sphere (center 0 0 -1001) (radius 998) (color 255 0 0) (specular -1) (reflective 0.999))\n\
+           (sphere (center 0 0 1001) (radius 998) (color 0 255 0) (specular -1) (reflective 0.999))\n\
+           (light ambient (intensity 0.2))\n"
+        in
+        let env = Array.append [| "RAYTRACE_MAX_DEPTH=1000000" |] (Unix.environment ()) in
+        let render args name =
+          let out = Filename.concat dir name in
+          let code, _, err = Helpers.run ~env (Helpers.raytrace ()) ([ "render"; scene; "-o"; out ] @ args) in
+          Alcotest.(check int) (String.concat " " args ^ ": " ^ err) 0 code;
+          match Files.read_ppm out with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
+        in
+        Helpers.check_images "the oracle's image is the renderer's" ~expected:(render [ "--jobs"; "1" ] "fast.ppm")
+          (render [ "--literal" ] "literal.ppm"));
     Alcotest.test_case "rays per pixel have a bound that --samples meets" `Quick (fun () ->
         let check_samples n = Result.map_error (fun (`Msg m) -> m) (Limits.check_samples Limits.default n) in
         Alcotest.(check (result int string)) __LOC__ (Ok 4096) (check_samples 4096);

@@ -80,7 +80,8 @@ let tests =
             Alcotest.(check string) __LOC__
               "/nonexistent-dir/out.ppm: cannot create a file in its directory: No such file or directory" m);
     Alcotest.test_case "a full disk leaves no temporary file" `Quick (fun () ->
-        if Sys.file_exists "/dev/full" then
+        if not (Sys.file_exists "/dev/full") then Helpers.skip "ppm: a full disk" ~why:"there is no /dev/full"
+        else
           match Files.write_ppm "/dev/full" (image_2x1 ()) with
           | Ok () -> Alcotest.fail "wrote to /dev/full"
           | Error (`Msg m) -> Alcotest.(check string) __LOC__ "/dev/full: No space left on device" m);

@@ -96,7 +96,11 @@ let tests =
         Fun.protect ~finally:Gc.Memprof.stop (fun () ->
             let rec go () = match Progressive.step ~rows:8 r with Some _ -> go () | None -> () in
             go ());
-        Alcotest.(check (option string)) __LOC__ (Some "worker 1 of 2 was killed by SIGKILL") (Progressive.failure r);
+        (* Both workers die; which one is reported depends on which the
+           parent reaps first. *)
+        (match Progressive.failure r with
+        | Some ("worker 1 of 2 was killed by SIGKILL" | "worker 2 of 2 was killed by SIGKILL") -> ()
+        | f -> Alcotest.failf "%s: the failure is %s" __LOC__ (Option.value f ~default:"none"));
         Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:3 (Helpers.valid s)) (Progressive.image r));
     Alcotest.test_case "a shared image of another size is refused" `Quick (fun () ->
         let shared = Progressive_workers.v ~jobs:2 ~width:10 ~height:10 in

@@ -3,38 +3,33 @@
    renderer makes of the same view. Runs when xvfb-run is installed. *)
 open Raytrace
 
-let on_path tool =
-  List.exists
-    (fun dir -> Sys.file_exists (Filename.concat dir tool))
-    (String.split_on_char ':' (Option.value (Sys.getenv_opt "PATH") ~default:""))
-
 let tools = [ "xvfb-run"; "xwd"; "xdotool"; "convert" ]
 
 let available () =
-  if not (on_path "xvfb-run") then begin
-    print_endline "skipped: xvfb-run is not installed";
+  if not (Helpers.on_path "xvfb-run") then begin
+    Helpers.skip "window" ~why:"xvfb-run is not installed (make deps installs it)";
     false
   end
   else
-    match List.filter (fun t -> not (on_path t)) tools with
+    match Helpers.missing tools with
     | [] -> true
     | missing -> Alcotest.failf "xvfb-run is installed but not %s (make deps)" (String.concat ", " missing)
 
 (* Runs the window on a copy of scenes/[name] in a fresh directory (where
    [s] saves) through [steps]; the directory then holds the screenshots. *)
-let session ?(view_args = "") name steps =
+let session ?(view_args = "") ?(screen = "1024x768") ?(edit = Fun.id) name steps =
   let dir = Helpers.temp_dir () in
   let scene = Filename.concat dir name in
   (match File_io.read (Helpers.scene_path name) with
   | Ok text ->
       let oc = open_out_bin scene in
-      output_string oc text;
+      output_string oc (edit text);
       close_out oc
   | Error (`Msg m) -> Alcotest.fail m);
   let env = Array.append [| "VIEW_ARGS=" ^ view_args |] (Unix.environment ()) in
   let code, _, err =
     Helpers.run ~env "xvfb-run"
-      ([ "-a"; "-s"; "-screen 0 1024x768x24"; "./window_session.sh"; Helpers.raytrace (); scene; dir ] @ steps)
+      ([ "-a"; "-s"; "-screen 0 " ^ screen ^ "x24"; "./window_session.sh"; Helpers.raytrace (); scene; dir ] @ steps)
   in
   if code <> 0 then Alcotest.failf "%s: the window session failed (%d): %s" name code err;
   dir
@@ -52,8 +47,58 @@ let text path = match File_io.read path with Ok t -> t | Error (`Msg m) -> Alcot
 let views inputs view = List.fold_left (fun v i -> fst (View.handle v i)) view inputs
 let keys cs = List.map (fun c -> View.Key c) cs
 
+(* [text] with the canvas of scenes/cgfs.scene made [w x h]. *)
+let with_canvas w h text =
+  let from = "(canvas (width 600) (height 600))" in
+  let n = String.length from in
+  let rec find i =
+    if i + n > String.length text then Alcotest.fail "cgfs.scene has no 600x600 canvas"
+    else if String.sub text i n = from then i
+    else find (i + 1)
+  in
+  let i = find 0 in
+  String.sub text 0 i
+  ^ Printf.sprintf "(canvas (width %d) (height %d))" w h
+  ^ String.sub text (i + n) (String.length text - i - n)
+
 let tests =
   [
+    Alcotest.test_case "quitting with q never crashes, whatever the canvas size" `Slow (fun () ->
+        if available () then
+          (* 1x2 and 7x8 crashed (SIGSEGV, status 139) on q: the frame's
+             Graphics images were freed by the GC after close_graph. *)
+          List.iter
+            (fun (w, h) ->
+              (* window_session.sh fails unless the window exits with 0 on q *)
+              let dir = session ~screen:"1280x1024" ~edit:(with_canvas w h) "cgfs.scene" [ "shot:window" ] in
+              Alcotest.(check (pair int int))
+                (Printf.sprintf "the window of a %dx%d canvas" w h)
+                (w, h)
+                (let img = shot dir "window" in
+                 (Image.width img, Image.height img)))
+            [ (1, 2); (7, 8); (2, 1); (333, 334); (1001, 701) ]);
+    Alcotest.test_case "a canvas larger than the X screen is one line, not a crash" `Slow (fun () ->
+        if available () then begin
+          let dir = Helpers.temp_dir () in
+          let scene = Filename.concat dir "big.scene" in
+          (match File_io.read (Helpers.scene_path "cgfs.scene") with
+          | Ok text ->
+              let oc = open_out_bin scene in
+              output_string oc (with_canvas 800 800 text);
+              close_out oc
+          | Error (`Msg m) -> Alcotest.fail m);
+          let code, out, err =
+            Helpers.run "xvfb-run" [ "-a"; "-s"; "-screen 0 640x480x24"; Helpers.raytrace (); "view"; scene ]
+          in
+          Alcotest.(check int) ("exit status 3 (no window): " ^ err) 3 code;
+          Alcotest.(check string) "nothing on stdout" "" out;
+          Alcotest.(check (list string)) "one line"
+            [
+              "raytrace: cannot open a window (the X screen is 640x480 pixels, too small for the 800x800 canvas); to \
+               render without a display, use: raytrace render " ^ Filename.quote scene ^ " -o out.ppm";
+            ]
+            (List.filter (fun l -> l <> "") (String.split_on_char '\n' err))
+        end);
     Alcotest.test_case "a screenshot of the window equals the rendered image" `Slow (fun () ->
         if available () then
           List.iter

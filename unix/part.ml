@@ -122,8 +122,18 @@ let merge parts =
       let* () = List.fold_left (fun acc part -> let* () = acc in differ part) (Ok ()) parts in
       let width = p0.canvas_width and height = p0.canvas_height in
       (* One byte per pixel: covered yet? *)
-      let covered = Bytes.make (width * height) '\000' in
-      let image = Image.create width height in
+      (* The canvas is within the pixel bound (checked by [decode]); its
+         memory, 4 bytes a pixel, is checked too before it is taken. *)
+      let bytes = 4 * width * height in
+      let mib n = n / 1048576 in
+      match Parallel.available_memory () with
+      | Some available when bytes > available ->
+          msg "merging a %dx%d image needs %d MiB of memory, but only %d MiB are available" width height (mib bytes)
+            (mib available)
+      | _ -> (
+      match (Bytes.make (width * height) '\000', Image.create width height) with
+      | exception Out_of_memory -> msg "not enough memory to merge a %dx%d image (%d MiB)" width height (mib bytes)
+      | covered, image ->
       let inside (r : Region.t) x y = x >= r.x && x < r.x + r.w && y >= r.y && y < r.y + r.h in
       let exception Overlap of int * int in
       let place placed (name, p) =
@@ -156,4 +166,4 @@ let merge parts =
       if !missing = 0 then Ok image
       else
         msg "the parts leave %d of %d pixels uncovered, the first at (%d, %d) (column, row): a part is missing"
-          !missing (width * height) (!first mod width) (!first / width)
+          !missing (width * height) (!first mod width) (!first / width))

@@ -40,7 +40,7 @@ let sum_slots (slots : progress_slots) lo n =
    rows are dealt into [classes] interleaved classes (rows c, c + classes,
    ...), all about as costly, that the workers take from a queue as they
    go: they finish together even if a core is slowed. *)
-let in_workers ~jobs ?skips ?progress sampling scene (region : Region.t) =
+let in_workers ~limits ~jobs ?skips ?progress sampling scene (region : Region.t) =
   let s = Scene.of_valid scene in
   match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
   | exception Out_of_memory -> Render_work.out_of_memory region
@@ -69,6 +69,18 @@ let in_workers ~jobs ?skips ?progress sampling scene (region : Region.t) =
             | _ -> ()
           in
           let averaging = Sampling.averaging sampling in
+          let budget = Limits.work_budget limits in
+          (* Tests and box tests of every slot; a loop, since workers call it
+             between classes of rows and their allocation is measured. *)
+          let work_done (ints : Render_work.counters) =
+            let n = ref 0 in
+            for w = 0 to (passes * jobs) - 1 do
+              let k = w * Render_work.counter_fields in
+              n := !n + Int64.to_int ints.{k + 3} + Int64.to_int ints.{k + 6}
+            done;
+            !n
+          in
+          let over_budget n = Error (`Msg (Limits.work_exceeded limits n)) in
           let classes = min Parallel.max_tasks (min region.h (32 * jobs)) in
           let rec run i =
             if i = passes then
@@ -83,10 +95,17 @@ let in_workers ~jobs ?skips ?progress sampling scene (region : Region.t) =
               let n = Sampling.pass_rows plan i in
               let work w =
                 let tr = Trace.create ~averaging p in
+                let slot = (i * jobs) + w in
                 let before = Gc.minor_words () in
+                let publish () = Render_work.save ints slot tr (Gc.minor_words () -. before) in
+                (* The work budget is shared: before each class of rows, a
+                   worker publishes its count and keeps for itself what the
+                   others (as last published) have left. *)
                 let rec loop () =
                   let c = Parallel.take queue in
                   if c >= 0 then begin
+                    publish ();
+                    Trace.set_budget tr (budget - (work_done ints - Trace.work tr));
                     (match slots with
                     | None -> Sampling.rows plan i tr ~first:c ~step:classes
                     | Some slots ->
@@ -101,13 +120,15 @@ let in_workers ~jobs ?skips ?progress sampling scene (region : Region.t) =
                     loop ()
                   end
                 in
-                loop ();
-                Render_work.save ints ((i * jobs) + w) tr (Gc.minor_words () -. before)
+                (try loop () with Limits.Work_exceeded _ -> ());
+                publish ()
               in
               let tick = Option.map (fun _ -> report) progress in
               let result = Parallel.run ?tick jobs work in
               Parallel.close_queue queue;
-              match result with Ok () -> run (i + 1) | Error e -> Error e
+              match result with
+              | Error e -> Error e
+              | Ok () -> if work_done ints > budget then over_budget (work_done ints) else run (i + 1)
           in
           run 0))
 
@@ -121,7 +142,7 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptiv
   let jobs = min jobs region.h in
   if jobs = 1 then
     Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample ?progress scene region
-  else in_workers ~jobs ?skips ?progress sampling scene region
+  else in_workers ~limits ~jobs ?skips ?progress sampling scene region
 
 let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress scene =
   if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";

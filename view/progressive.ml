@@ -13,6 +13,8 @@ type t = {
   mutable pass : int;  (** Index of the current pass; [Array.length passes] once finished. *)
   mutable top : int;  (** First row of the next band. *)
   mutable failure : string option;
+  mutable stopped : string option;  (** Why the render stopped before its end. *)
+  limits : Limits.t;
 }
 
 type band = { size : int; top : int; rows : int }
@@ -25,12 +27,13 @@ let passes samples =
   let plain = [ (coarsest, 1); (8, 1); (4, 1); (1, 1) ] in
   Array.of_list (if samples = 1 then plain else plain @ [ (1, samples) ])
 
-let create ?(samples = 1) ?workers valid =
+let create ?(limits = Limits.default) ?(samples = 1) ?workers valid =
   if samples < 1 then invalid_arg "Progressive.create: samples < 1";
   let scene = Scene.of_valid valid in
   (* An averaging tracer, for the antialiased pass, stops reflections
      exactly for single-sample pixels too. *)
   let tr = Trace.create ~averaging:(samples > 1) (Prepared.prepare valid) in
+  Trace.set_budget tr (Limits.work_budget limits);
   let img =
     match workers with
     | None -> Image.create scene.width scene.height
@@ -39,13 +42,14 @@ let create ?(samples = 1) ?workers valid =
           invalid_arg "Progressive.create: the workers' image is not of the canvas size";
         w.image
   in
-  { tr; img; samples; workers; passes = passes samples; pass = 0; top = 0; failure = None }
+  { tr; img; samples; workers; passes = passes samples; pass = 0; top = 0; failure = None; stopped = None; limits }
 
 let finished (r : t) = r.pass >= Array.length r.passes
 let image r = r.img
 let samples r = r.samples
 let tracer r = r.tr
 let failure r = r.failure
+let stopped r = r.stopped
 
 (* Row [row] of pass [pass], traced by [tr] into [r]'s image. *)
 let trace_row (r : t) tr pass row =
@@ -69,7 +73,8 @@ let trace_row (r : t) tr pass row =
         Trace.store tr buffer (3 * ((row * width) + !col))
       end;
       col := !col + size
-    done
+    done;
+  Trace.check_budget tr
 
 (* Rows [top .. top + rows - 1] of a full-resolution pass, interleaved over
    the workers; each worker's tracer is its own copy of [r.tr], whose
@@ -83,10 +88,13 @@ let trace_rows_in_workers (r : t) (ws : workers) pass ~top ~rows =
   let work w =
     let before = counts () in
     let row = ref (top + w) in
-    while !row < top + rows do
-      trace_row r r.tr pass !row;
-      row := !row + jobs
-    done;
+    (* Over its budget, a worker stops; the parent sees the sum. *)
+    (try
+       while !row < top + rows do
+         trace_row r r.tr pass !row;
+         row := !row + jobs
+       done
+     with Limits.Work_exceeded _ -> ());
     Array.map2 ( - ) (counts ()) before
   in
   match ws.run jobs work with
@@ -100,6 +108,7 @@ let trace_rows_in_workers (r : t) (ws : workers) pass ~top ~rows =
       c.tests <- c.tests + sum 3;
       c.box_tests <- c.box_tests + sum 4;
       c.early_stops <- c.early_stops + sum 5;
+      Trace.check_budget r.tr;
       Ok ()
 
 let step ?(rows = 1) (r : t) =
@@ -109,7 +118,8 @@ let step ?(rows = 1) (r : t) =
     let height = Image.height r.img in
     let size = fst r.passes.(r.pass) in
     let rows = if size = 1 then min rows (height - r.top) else min size (height - r.top) in
-    (match r.workers with
+    (match
+       match r.workers with
     | Some s when size = 1 && rows > 1 && r.failure = None -> (
         match trace_rows_in_workers r s r.pass ~top:r.top ~rows with
         | Ok () -> ()
@@ -125,7 +135,13 @@ let step ?(rows = 1) (r : t) =
           for row = r.top to r.top + rows - 1 do
             trace_row r r.tr r.pass row
           done
-        else trace_row r r.tr r.pass r.top);
+        else trace_row r r.tr r.pass r.top
+     with
+    | () -> ()
+    | exception Limits.Work_exceeded n ->
+        (* The band is incomplete: the render ends here. *)
+        r.stopped <- Some (Limits.work_exceeded r.limits n);
+        r.pass <- Array.length r.passes);
     let band = { size; top = r.top; rows } in
     r.top <- r.top + (if size = 1 then rows else size);
     if r.top >= height then begin

@@ -35,13 +35,14 @@ type workers = {
 (** The type for workers that trace rows of full-resolution passes. One
     value serves frame after frame of the same size. *)
 
-val create : ?samples:int -> ?workers:workers -> Scene.valid -> t
-(** [create ~samples ~workers scene] is the render of [scene] about to
+val create : ?limits:Raytrace.Limits.t -> ?samples:int -> ?workers:workers -> Scene.valid -> t
+(** [create ~limits ~samples ~workers scene] is the render of [scene] about to
     start, with [samples x samples] samples per pixel in its last pass
     (default 1). With [workers], the image is [workers.image]
     (overwritten; a render started later with the same [workers]
     overwrites it again) and the full-resolution passes are traced by
-    them.
+    them. The work it may do is the [`Work] bound of [limits] (default
+    {!Raytrace.Limits.default}; see {!stopped}).
     @raise Invalid_argument if [samples < 1], or [workers.image] is not of
     the canvas size. *)
 
@@ -68,6 +69,14 @@ val step : ?rows:int -> t -> band option
 val failure : t -> string option
 (** [failure r] is why the workers of [r] stopped being used, if they
     did: the first worker failure (the message of [run]'s [Error]). *)
+
+val stopped : t -> string option
+(** [stopped r] is why [r] ended before its last pass, if it did: the
+    message of {!Raytrace.Limits.work_exceeded} once the tests counted by [r]'s
+    tracer (and its workers) pass {!Raytrace.Limits.work_budget}, checked after each
+    row. [r] is then {!finished}; its image is incomplete. With workers,
+    each may do a band's share beyond the budget before the count is
+    summed. *)
 
 val finished : t -> bool
 (** [finished r] is [true] iff the image is complete. *)

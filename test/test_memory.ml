@@ -1,0 +1,126 @@
+(* Memory is bounded before it is allocated: frame ranges, big forms of a
+   scene file, image headers and parts are checked against the documented
+   limits first, and an allocation that fails anyway is one line saying it
+   is memory. *)
+open Raytrace
+
+let write path text =
+  let oc = open_out_bin path in
+  output_string oc text;
+  close_out oc
+
+(* [args] run with at most [kb] KiB of address space (ulimit -v). *)
+let run_limited ?(env = []) ~kb args =
+  let env = Array.append (Array.of_list env) (Unix.environment ()) in
+  Helpers.run ~env "/bin/sh"
+    ([ "-c"; Printf.sprintf "ulimit -v %d; exec \"$0\" \"$@\"" kb; Helpers.raytrace () ] @ args)
+
+let check_one_line what ~code ~expected (c, out, err) =
+  Alcotest.(check int) (what ^ ": exit status: " ^ err) code c;
+  Alcotest.(check string) (what ^ ": stdout") "" out;
+  Alcotest.(check string) (what ^ ": stderr") expected err
+
+(* A PNG file whose header says [w x h] RGB pixels, and whose data is
+   missing: only the header can be read. *)
+let png_header w h =
+  let be32 n = String.init 4 (fun i -> Char.chr ((n lsr (8 * (3 - i))) land 255)) in
+  Raytrace_png.Png_file.signature ^ be32 13 ^ "IHDR" ^ be32 w ^ be32 h ^ "\008\002\000\000\000" ^ be32 0
+  ^ be32 0 ^ "IEND" ^ be32 0
+
+(* Runs [f] with the limits that RAYTRACE_MAX_FORM_BYTES=[value] sets, read
+   as the command line reads them. *)
+let with_env_form_bytes value f =
+  Unix.putenv "RAYTRACE_MAX_FORM_BYTES" value;
+  Fun.protect
+    ~finally:(fun () -> Unix.putenv "RAYTRACE_MAX_FORM_BYTES" "")
+    (fun () -> match Limits_env.read () with Ok limits -> f limits | Error (`Msg m) -> Alcotest.fail m)
+
+let tests =
+  [
+    Alcotest.test_case "a huge frame range is refused before any memory is taken" `Quick (fun () ->
+        (* A list of the 10^9 frames' scenes (or of their file names) was
+           built first: with 300 MB of address space, an uncaught
+           Out_of_memory (status 125). No path has such a frame: refused
+           before the scene is read. *)
+        let dir = Helpers.temp_dir () in
+        check_one_line "--frames 0:999999999" ~code:1
+          ~expected:"raytrace: frame 999999999 is outside every camera path, whose frames lie in [0, 1000000]\n"
+          (run_limited ~kb:300_000
+             [ "render"; Helpers.scene_path "orbit.scene"; "--frames"; "0:999999999"; "-o"; Filename.concat dir "o-%d.ppm" ]);
+        Alcotest.(check (array string)) "no frame written" [||] (Sys.readdir dir));
+    Alcotest.test_case "a PNG header is held to the pixel bound in force before libpng sees it" `Quick (fun () ->
+        (* 10000 x 10000 is within the default bound (2^28 pixels), which
+           was the only one checked: the file went to the decoder, and came
+           back as "corrupt or truncated data". *)
+        let dir = Helpers.temp_dir () in
+        let png = Filename.concat dir "big.png" in
+        write png (png_header 10000 10000);
+        let small = Filename.concat dir "small.ppm" in
+        write small "P6 1 1 255\n\000\000\000";
+        check_one_line "diff" ~code:1
+          ~expected:
+            (Printf.sprintf
+               "raytrace: %s: image 10000x10000 has 100000000 pixels, more than the limit of 1000000 (set \
+                RAYTRACE_MAX_PIXELS to raise it)\n"
+               png)
+          (Helpers.run
+             ~env:(Array.append [| "RAYTRACE_MAX_PIXELS=1000000" |] (Unix.environment ()))
+             (Helpers.raytrace ()) [ "diff"; png; small ]));
+    Alcotest.test_case "one enormous form of a scene file is refused as it grows" `Quick (fun () ->
+        (* 400 KB of numbers in one form: held whole, it would take about
+           30 bytes of memory per byte. With the form bound at 100000
+           bytes, the parser stops within a chunk of 64 KiB past it. *)
+        with_env_form_bytes "100000" (fun limits ->
+            let text = "(canvas (width 10) (height 10))\n; a comment\n  (sphere (center " ^ String.concat "" (List.init 200_000 (fun _ -> "0 ")) ^ "))\n" in
+            let before = Gc.allocated_bytes () in
+            (match Scene_file.of_string ~limits ~file:"big.scene" text with
+            | Ok _ -> Alcotest.fail "loaded"
+            | Error (`Msg m) ->
+                Alcotest.(check string) __LOC__
+                  (* Two chunks of 65536 bytes, less the 31 of the canvas form. *)
+                  "big.scene:3:3: a form of the scene is more than 131041 bytes long, more than the limit of 100000 \
+                   (set RAYTRACE_MAX_FORM_BYTES to raise it)"
+                  m);
+            let mb = (Gc.allocated_bytes () -. before) /. 1e6 in
+            Alcotest.(check bool) (Printf.sprintf "%.1f MB allocated, under 8" mb) true (mb < 8.)));
+    Alcotest.test_case "parts with more pixels than their canvas are refused as they are read" `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        let part i =
+          let p = Filename.concat dir (Printf.sprintf "p%d.ppm" i) in
+          let code, _, err =
+            Helpers.run (Helpers.raytrace ())
+              [ "render"; "--width"; "8"; "--height"; "8"; "--region"; "0,0,8,8"; "-o"; p ]
+          in
+          if code <> 0 then Alcotest.failf "render: %s" err;
+          p
+        in
+        let p1 = part 1 in
+        let p2 = Filename.concat dir "p2.ppm" and p3 = Filename.concat dir "p3.ppm" in
+        write p2 (In_channel_free.read p1);
+        write p3 (In_channel_free.read p1);
+        check_one_line "merge" ~code:1
+          ~expected:
+            (Printf.sprintf
+               "raytrace: %s: the parts up to this one hold 128 pixels, more than their 8x8 canvas: they overlap\n" p2)
+          (Helpers.run (Helpers.raytrace ()) [ "merge"; p1; p2; p3; "-o"; Filename.concat dir "whole.ppm" ]);
+        Alcotest.(check bool) "no merged image" false (Sys.file_exists (Filename.concat dir "whole.ppm")));
+    Alcotest.test_case "an allocation that fails anyway is one line saying it is memory" `Quick (fun () ->
+        (* 10 MB of numbers in one form, the form bound raised: the parser
+           needs about 300 MB, beyond 150 MB of address space. The runtime
+           said "Fatal error: out of memory" and aborted (status 134). *)
+        let dir = Helpers.temp_dir () in
+        let scene = Filename.concat dir "big.scene" in
+        write scene ("(sphere (center " ^ String.concat "" (List.init 5_000_000 (fun _ -> "0 ")) ^ "))\n");
+        let code, out, err =
+          run_limited ~env:[ "RAYTRACE_MAX_FORM_BYTES=1e9" ] ~kb:150_000
+            [ "render"; scene; "-o"; Filename.concat dir "out.ppm" ]
+        in
+        Alcotest.(check int) ("exit status: " ^ err) 1 code;
+        Alcotest.(check string) "stdout" "" out;
+        let prefix = "raytrace: out of memory: " in
+        Alcotest.(check bool) ("one line about memory: " ^ err) true
+          (String.length err > String.length prefix
+          && String.sub err 0 (String.length prefix) = prefix
+          && List.length (String.split_on_char '\n' err) = 2);
+        Alcotest.(check bool) "no output" false (Sys.file_exists (Filename.concat dir "out.ppm")));
+  ]
