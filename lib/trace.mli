@@ -55,7 +55,7 @@ val counters : t -> counters
 
 val work : t -> int
 (** [work tr] is the intersection tests [tr] has done: [tests + box_tests]
-    of {!counters}. *)
+    of {!val-counters}. *)
 
 val set_budget : t -> int -> unit
 (** [set_budget tr n] lets {!check_budget} accept up to [n] tests of [tr];
