@@ -87,8 +87,7 @@ let tests =
     Alcotest.test_case "progress works with jobs, frames, tiles and adaptive sampling" `Slow
       (with_script (fun () ->
            let args =
-             (* About 2 s without other load: the line appears after 1 s. *)
-             [ "render"; Helpers.scene_path "orbit.scene"; "--width"; "1600"; "--height"; "1600"; "--samples"; "7";
+             [ "render"; Helpers.scene_path "orbit.scene"; "--width"; "1200"; "--height"; "1200"; "--samples"; "5";
                "--adaptive"; "0"; "--jobs"; "2"; "--frames"; "0:1"; "--tile"; "1/2"; "-o"; "OUT" ]
            in
            let _, progress = render_both ~what:"2 jobs, 2 frames, a tile" args [ "0.ppm"; "1.ppm" ] in
