@@ -6,7 +6,8 @@
 # packages; it does nothing when everything is already there.
 
 # Debian packages: the build, then the tests (virtual X server, screenshots;
-# a real Slurm cluster and sshd for the render-farm recipes, docs/farm.md).
+# js_of_ocaml and node run the core library as JavaScript, Chromium the web
+# page; a real Slurm cluster and sshd for the render-farm recipes, docs/farm.md).
 BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-ocaml-dev \
   libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev libcamlimages-ocaml-dev \
   libx11-dev js-of-ocaml libjs-of-ocaml-dev

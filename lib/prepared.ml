@@ -79,10 +79,8 @@ let specular_zero s =
     let x = Float.pred (Float.pred (2. ** (-1080. /. s))) in
     if x < 1. then Float.max x 0. else 0.
 
-let prepare ?(skips = true) (scene : Scene.t) =
-  (match Scene.validate scene with
-  | Ok _ -> ()
-  | Error (`Msg m) -> invalid_arg ("Prepared.prepare: invalid scene: " ^ m));
+let prepare ?(skips = true) scene =
+  let scene = Scene.of_valid scene in
   let listed = Array.of_list scene.spheres in
   let n = Array.length listed in
   let bvh =

@@ -74,7 +74,7 @@ let integer (what : unit -> string) node =
       | None -> fail node "%s: expected an integer, got %s" (what ()) (show_atom atom))
   | Sexp.List _ -> fail node "%s: expected an integer, got a list" (what ())
 
-let check node = function Ok x -> x | Error m -> fail node "%s" m
+let check node = function Ok x -> x | Error (`Msg m) -> fail node "%s" m
 
 (* Fields: a form's [(name args...)] children. [where] gives a node's
    position when it is known (the second, located pass). *)
@@ -145,7 +145,7 @@ let checked_float form fs name check_value =
 
 (* Forms *)
 
-let canvas ~where form_node nodes =
+let canvas ~limits ~where form_node nodes =
   let form = "canvas" in
   let fs = fields ~where ~form ~allowed:[ "width"; "height" ] nodes in
   let dim name =
@@ -155,7 +155,7 @@ let canvas ~where form_node nodes =
   in
   let width = dim "width" in
   let height = dim "height" in
-  ignore (check form_node (Limits.check_canvas width height));
+  ignore (check form_node (Limits.check_canvas limits width height));
   (width, height)
 
 let viewport ~where nodes =
@@ -203,7 +203,7 @@ let camera ~where nodes =
       ignore (check node (Limits.check_point "camera look-at" target));
       match Camera.look_at ?up:(Option.map snd up) ~position target with
       | Ok cam -> cam
-      | Error m -> fail node "%s" m)
+      | Error (`Msg m) -> fail node "%s" m)
   | None, None, _ -> Camera.v position
 
 let sphere ~where form_node nodes =
@@ -306,6 +306,7 @@ let top_level =
 
 (* The scene being read, form by form. *)
 type builder = {
+  limits : Limits.t;
   where : Sexp.t -> Positions.pos option;
   seen : (string, Positions.pos option) Hashtbl.t;
       (** Forms that may appear once, and where they first did. *)
@@ -316,8 +317,9 @@ type builder = {
   mutable n_lights : int;
 }
 
-let builder where =
+let builder ~limits where =
   {
+    limits;
     where;
     seen = Hashtbl.create 8;
     scene = Scene.v ~spheres:[] ~lights:[] ();
@@ -346,15 +348,15 @@ let add_form b node =
          beyond the bound, before the rest of the file is read. *)
       | "sphere" ->
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
           b.spheres <- sphere ~where node rest :: b.spheres
       | "light" ->
           b.n_lights <- b.n_lights + 1;
-          ignore (check node (Limits.check_count `Lights b.n_lights));
+          ignore (check node (Limits.check_count b.limits `Lights b.n_lights));
           b.lights <- light ~where node rest :: b.lights
       | "canvas" ->
           once b kw kw_node;
-          let width, height = canvas ~where node rest in
+          let width, height = canvas ~limits:b.limits ~where node rest in
           b.scene <- { b.scene with width; height }
       | "viewport" ->
           once b kw kw_node;
@@ -372,7 +374,7 @@ let add_form b node =
       | "recursion-depth" ->
           once b kw kw_node;
           let v = value kw node rest in
-          b.scene <- { b.scene with depth = check v (Limits.check_depth (integer (fun () -> kw) v)) }
+          b.scene <- { b.scene with depth = check v (Limits.check_depth b.limits (integer (fun () -> kw) v)) }
       | "epsilon" ->
           once b kw kw_node;
           let v = value kw node rest in
@@ -394,7 +396,7 @@ let finish b =
 (* The located pass: the same conversion over a parse that kept positions. *)
 (* The located pass streams too: it keeps the positions of the form being
    converted only, so locating an error costs no more memory than loading. *)
-let locate_error text =
+let locate_error ~limits text =
   let module P = Parsexp.Eager_and_positions in
   let current = ref None in
   let where node =
@@ -408,7 +410,7 @@ let locate_error text =
         | found -> Option.map (fun (r : Positions.range) -> r.start_pos) found
         | exception Stack_overflow -> None)
   in
-  let b = builder where in
+  let b = builder ~limits where in
   let state =
     P.State.create (fun _ (form, positions) ->
         current := Some (form, positions);
@@ -441,18 +443,18 @@ let form_start text offset =
   done;
   Positions.{ line = !line; col = i - !bol; offset = i }
 
-let of_string ?(file = "<string>") text =
+let of_string ?(limits = Limits.default) ?(file = "<string>") text =
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
-  match Limits.check_scene_bytes (String.length text) with
-  | Error m -> Error (`Msg (Printf.sprintf "%s: %s" file m))
+  match Limits.check_scene_bytes limits (String.length text) with
+  | Error (`Msg m) -> Error (`Msg (Printf.sprintf "%s: %s" file m))
   | Ok _ -> (
     let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
     (* Each form is converted as soon as it is parsed, and positions are not
        recorded: big scenes load in little time and memory. Only an error
        triggers a second pass that records positions, and fails on the same
        node. *)
-    let b = builder (fun _ -> None) in
+    let b = builder ~limits (fun _ -> None) in
     (* The parser holds a form whole, in 30 to 50 times its text: the text
        is fed in chunks, and a form that grows past the form bound is
        refused before it can take more. *)
@@ -468,28 +470,23 @@ let of_string ?(file = "<string>") text =
       else
         let len = min chunk (n - pos) in
         let stack = Parsexp.Eager.feed_substring state text ~pos ~len stack in
-        match Limits.check_form_bytes (pos + len - !form_end) with
+        match Limits.check_form_bytes limits (pos + len - !form_end) with
         | Ok _ -> feed stack (pos + len)
-        | Error m -> Error (form_start text !form_end, m)
+        | Error (`Msg m) -> Error (form_start text !form_end, m)
     in
     match feed Parsexp.Eager.Stack.empty 0 with
     | Error (p, m) -> error p m
     | exception Parsexp.Parse_error.Parse_error e -> syntax e
     | exception Located _ -> (
-        match locate_error text with
+        match locate_error ~limits text with
         | `Syntax e -> syntax e
         | `Located (pos, m) -> error (Option.value pos ~default:origin) m
         | `Not_found -> error origin "internal error: the located pass found no error")
     | Ok () -> (
         (* Every field was checked where it was read; this is a net. *)
-        match Scene.validate (finish b) with
+        match Scene.validate ~limits (finish b) with
         | Ok s -> Ok s
         | Error (`Msg m) -> error origin m))
-
-let read path =
-  match File_io.read ~check_size:Limits.check_scene_bytes path with
-  | Error e -> Error e
-  | Ok text -> of_string ~file:path text
 
 let to_string (s : Scene.t) =
   let b = Buffer.create 1024 in

@@ -38,19 +38,18 @@ v}
     their domain ({!Sphere.validate}, {!Light.validate}, ...) are all
     errors. *)
 
-val of_string : ?file:string -> string -> (Scene.t, [> `Msg of string ]) result
-(** [of_string ~file text] is the scene described by [text]. [file]
-    (default ["<string>"]) names the source in error messages. The scene
-    satisfies {!Scene.validate}. [Error] if [text] is longer than
-    {!Limits.check_scene_bytes} allows, or one of its top-level forms
-    longer than {!Limits.check_form_bytes} allows (found as the text is
-    parsed, 64 KiB at a time, before the form is held whole). Never
-    raises. *)
-
-val read : string -> (Scene.t, [> `Msg of string ]) result
-(** [read path] is the scene in file [path]. *)
+val of_string : ?limits:Limits.t -> ?file:string -> string -> (Scene.valid, [> `Msg of string ]) result
+(** [of_string ~limits ~file text] is the scene described by [text],
+    validated against [limits] (default {!Limits.default}). [Error] if
+    [text] is longer than its [`Scene_bytes] bound (refused before it is
+    parsed), or one of its top-level forms longer than its [`Form_bytes]
+    bound (found as the text is parsed, 64 KiB at a time, before the form
+    is held whole). [file] (default ["<string>"]) names the source in error
+    messages. Never raises. ([Raytrace_unix.Files.read_scene] reads a
+    scene file.) *)
 
 val to_string : Scene.t -> string
 (** [to_string s] is [s] in the scene-file syntax, every number written so
     that it reads back as the same float: [of_string (to_string s)] is
-    [Ok s] for every [s] that satisfies {!Scene.validate}. *)
+    [Ok v] with [Scene.of_valid v = s] for every [s] that passes
+    {!Scene.validate}. *)

@@ -37,6 +37,8 @@ let () =
       ("web_session", Test_web_session.tests);
       ("web", Test_web.tests);
       ("example", Test_example.tests);
+      ("pixel", Test_pixel.tests);
+      ("library", Test_library.tests);
       ("hostile", Test_hostile.tests);
       ("faults", Test_faults.tests);
       ("outputs", Test_outputs.tests);

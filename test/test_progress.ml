@@ -29,7 +29,7 @@ let contains s sub =
   at 0
 
 let read_file path =
-  match Raytrace.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
+  match Raytrace_unix.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
 
 (* A progress line: "\rraytrace: 42%, 12.3 M rays/s, 2 s left". *)
 let check_progress_shown what out =

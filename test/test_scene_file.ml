@@ -3,12 +3,12 @@ open Raytrace
 let scene = Alcotest.testable Scene.pp Scene.equal
 
 let parse text =
-  match Scene_file.of_string ~file:"t.scene" text with
+  match Helpers.of_string ~file:"t.scene" text with
   | Ok s -> s
   | Error (`Msg m) -> Alcotest.failf "unexpected error: %s" m
 
 let error text =
-  match Scene_file.of_string ~file:"t.scene" text with
+  match Helpers.of_string ~file:"t.scene" text with
   | Ok _ -> Alcotest.failf "expected an error for %S" text
   | Error (`Msg m) -> m
 
@@ -123,7 +123,7 @@ let tests =
           (fun (text, _) -> Alcotest.(check bool) text false (String.contains (error text) '\n'))
           bad_inputs);
     Alcotest.test_case "a missing file is an error naming it" `Quick (fun () ->
-        match Scene_file.read "no/such.scene" with
+        match Helpers.read_scene "no/such.scene" with
         | Ok _ -> Alcotest.fail "loaded a missing file"
         | Error (`Msg m) -> Alcotest.(check string) __LOC__ "no/such.scene: No such file or directory" m);
     Alcotest.test_case "printing the reference scenes reads back equal" `Quick (fun () ->
@@ -144,7 +144,7 @@ let tests =
             Alcotest.check Helpers.vec3 __LOC__ Vec3.oy (List.hd (Camera_path.keys p)).up;
             (match Camera.look_at ~position:(Vec3.v 0. 1. (-2.)) (Vec3.v 0. 0. 4.) with
             | Ok c -> Alcotest.(check bool) __LOC__ true (Camera.equal c s.camera)
-            | Error m -> Alcotest.fail m);
+            | Error (`Msg m) -> Alcotest.fail m);
             let with_camera = parse "(camera (position 0 0 -1))\n(camera-path (key (frame 0) (position 0 0 0) (look-at 0 0 1)))" in
             Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 0. (-1.)) with_camera.camera.position);
     Alcotest.test_case "a scene with a camera path prints and parses back equal" `Quick (fun () ->
@@ -153,7 +153,7 @@ let tests =
         Alcotest.check scene __LOC__ s (parse (Scene_file.to_string s)));
     Helpers.qcheck ~count:300 "any valid scene prints and parses back equal" Gen_scene.arbitrary
       (fun s ->
-        match Scene_file.of_string (Scene_file.to_string s) with
+        match Helpers.of_string (Scene_file.to_string s) with
         | Ok s' -> Scene.equal s s'
         | Error (`Msg m) -> QCheck.Test.fail_report m);
   ]
