@@ -190,7 +190,7 @@ let documented_difference ~native ~page =
   in
   beyond_31_bits || (ploc = "scene:1:1" && nrest = prest)
 
-let read_image path = match Ppm.read_file path with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
+let read_image path = match Files.read_ppm path with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
 let shot dir name = read_image (Filename.concat dir (name ^ ".ppm"))
 
 (* `raytrace render` of the scene text [text] with [samples]. *)
@@ -246,7 +246,7 @@ let tests =
         with_browser "web: keys" (fun () ->
             let dir = Lazy.force main in
             let keys = View.[ Key 'D'; Key 'Q'; Key arrow_up; Key '=' ] in
-            let view = List.fold_left (fun v i -> fst (View.handle v i)) (View.v Scene.cgfs) keys in
+            let view = List.fold_left (fun v i -> fst (View.handle v i)) (View.v (Helpers.valid Scene.cgfs)) keys in
             Alcotest.(check string) __LOC__ (Scene_file.to_string view.scene) (shown dir "moved");
             let moved = shot dir "moved" in
             Alcotest.(check bool) "the picture changed" false (Image.equal moved (shot dir "first"));
@@ -280,7 +280,7 @@ let tests =
               (fun i scene ->
                 let name = Printf.sprintf "r%d" i in
                 Alcotest.(check string) name (Scene_file.to_string scene) (shown dir name);
-                Helpers.check_images name ~expected:(Render.image_exn scene) (shot dir name))
+                Helpers.check_images name ~expected:(Helpers.image_exn scene) (shot dir name))
               (Lazy.force random_scenes)));
     Alcotest.test_case "a broken scene shows file:line:column under the editor, the picture stays" `Slow
       (fun () ->
@@ -316,7 +316,7 @@ let tests =
         with_browser "web: typing" (fun () ->
             let dir = Lazy.force main in
             let text = shown dir "typed" in
-            let scene = match Scene_file.of_string text with Ok s -> s | Error (`Msg m) -> Alcotest.fail m in
+            let scene = match Helpers.of_string text with Ok s -> s | Error (`Msg m) -> Alcotest.fail m in
             Alcotest.(check int) "spheres" 5 (List.length scene.spheres);
             Alcotest.(check string) "typed error cleared" "" (json_string dir "typed" "error");
             Helpers.check_images __LOC__ ~expected:(native ~samples:2 text) (shot dir "typed")));

@@ -31,7 +31,7 @@ let tests =
   [
     Alcotest.test_case "the finished picture of the default text is raytrace render's" `Quick (fun () ->
         let p = session (cgfs_text ()) in
-        Helpers.check_images __LOC__ ~expected:(Render.image_exn Scene.cgfs) (finish p);
+        Helpers.check_images __LOC__ ~expected:(Helpers.image_exn Scene.cgfs) (finish p);
         Alcotest.(check string) __LOC__ (Scene_file.to_string Scene.cgfs) (Session.shown_text p));
     Alcotest.test_case "a step traces at least one band and stops at its deadline" `Quick (fun () ->
         let p = session (cgfs_text ()) in
@@ -67,7 +67,7 @@ let tests =
         Alcotest.(check (pair int int)) "size" (60, 40) (shown.width, shown.height);
         Alcotest.(check int) "samples" 2 (Session.samples p);
         Alcotest.(check bool) "camera of the text" true (Camera.equal Scene.cgfs_camera.camera shown.camera);
-        Helpers.check_images __LOC__ ~expected:(Render.image_exn ~samples:2 shown) (finish p));
+        Helpers.check_images __LOC__ ~expected:(Helpers.image_exn ~samples:2 shown) (finish p));
     Alcotest.test_case "keys change the view as in the window; a is 3 x 3 samples or 1" `Quick (fun () ->
         let p = session (cgfs_text ()) in
         small p;
@@ -78,7 +78,7 @@ let tests =
         in
         Alcotest.(check string) __LOC__ (Scene_file.to_string view.scene) (Session.shown_text p);
         Alcotest.(check int) "antialiased" 3 (Session.samples p);
-        Helpers.check_images __LOC__ ~expected:(Render.image_exn ~samples:3 view.scene) (finish p);
+        Helpers.check_images __LOC__ ~expected:(Helpers.image_exn ~samples:3 view.scene) (finish p);
         ignore (Session.input p (View.Key 'a'));
         Alcotest.(check int) "one sample again" 1 (Session.samples p);
         Alcotest.(check bool) "h only redraws" true (Session.input p (View.Key 'h') = View.Redraw);

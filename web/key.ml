@@ -1,4 +1,4 @@
-open Raytrace
+open Raytrace_view
 
 let to_char = function
   | "ArrowLeft" -> Some View.arrow_left

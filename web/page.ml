@@ -5,6 +5,7 @@
 
 open Js_of_ocaml
 open Raytrace
+open Raytrace_view
 module Session = Raytrace_web.Session
 module Key = Raytrace_web.Key
 

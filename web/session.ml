@@ -1,4 +1,5 @@
 open Raytrace
+open Raytrace_view
 
 type frame = {
   width : int;
@@ -28,13 +29,11 @@ type t = {
 let file = "scene"
 let ( let* ) = Result.bind
 
-let check_work samples (view : View.t) = Scene.check_work ~samples:(samples * samples) view.scene
-
-let check_canvas w h =
-  match Limits.check_canvas w h with Ok () -> Ok () | Error m -> Error (`Msg m)
+let check_work samples (view : View.t) = Scene.check_work ~samples:(samples * samples) view.valid
+let check_canvas w h = Limits.check_canvas Limits.default w h
 
 let restart p =
-  p.render <- Progressive.create ~samples:p.samples p.view.scene;
+  p.render <- Progressive.create ~samples:p.samples p.view.valid;
   p.started <- p.now ();
   p.trace_seconds <- 0.;
   p.slices <- 0;
@@ -70,7 +69,7 @@ let v ~now text =
       size = None;
       samples = 1;
       view;
-      render = Progressive.create view.scene;
+      render = Progressive.create view.valid;
       started = 0.;
       trace_seconds = 0.;
       slices = 0;
@@ -123,7 +122,7 @@ let bands p = p.bands
 let shown_text p = Scene_file.to_string p.view.scene
 
 let rays p =
-  let c = Trace.counters (Progressive.tracer p.render) in
+  let c = Private.Trace.counters (Progressive.tracer p.render) in
   Float.of_int c.primary +. Float.of_int c.shadow +. Float.of_int c.reflection
 
 let step p ~until =

@@ -10,6 +10,7 @@
     so that the finished picture is [raytrace render]'s byte for byte. *)
 
 open Raytrace
+open Raytrace_view
 
 type t
 (** The type for page states. *)
