@@ -6,20 +6,20 @@
 # packages; it does nothing when everything is already there.
 
 # Debian packages: the build, then the tests (virtual X server, screenshots;
-# js_of_ocaml and node run the core library as JavaScript; a real Slurm
-# cluster and sshd for the render-farm recipes, docs/farm.md).
+# js_of_ocaml and node run the core library as JavaScript, Chromium the web
+# page; a real Slurm cluster and sshd for the render-farm recipes, docs/farm.md).
 BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-ocaml-dev \
   libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev libcamlimages-ocaml-dev \
-  libx11-dev
+  libx11-dev js-of-ocaml libjs-of-ocaml-dev
 TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev libcrowbar-ocaml-dev xvfb \
   x11-apps xdotool imagemagick parallel rsync slurmctld slurmd slurm-client munge openssh-server \
-  openssh-client js-of-ocaml libjs-of-ocaml-dev nodejs
+  openssh-client chromium
 # The plot of the run time against error benchmark (make bench-quality only).
 BENCH_PKGS = gnuplot-nox
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: run test deps build golden screenshot clean bench bench-quality fuzz
+.PHONY: run test deps build golden screenshot web web-screenshot clean bench bench-quality fuzz
 
 run: deps build
 	@if [ -n "$$DISPLAY" ]; then \
@@ -32,14 +32,20 @@ run: deps build
 test: deps
 	dune build @install @runtest
 
+# Node.js drives Chromium in the web page's tests (test/web): Debian's nodejs
+# and npm only where there is no node or npm (Debian's npm conflicts with
+# other builds of node), then playwright-core, pinned in test/web.
 deps:
 	@missing=$$(for p in $(BUILD_PKGS) $(TEST_PKGS); do \
-	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
+	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done; \
+	  command -v node >/dev/null || echo nodejs; command -v npm >/dev/null || echo npm); \
 	if [ -n "$$missing" ]; then \
 	  echo "Installing from Debian:" $$missing; \
 	  $(SUDO) apt-get update -qq && \
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing >/dev/null; \
 	fi
+	@[ -d test/web/node_modules/playwright-core ] || \
+	  { echo "Installing playwright-core from npm (test/web)"; cd test/web && npm ci --no-audit --no-fund --loglevel=error; }
 
 build:
 	dune build
@@ -58,6 +64,19 @@ screenshot: build
 	xvfb-run -a -s "-screen 0 1024x768x24" test/window_session.sh \
 	  $(CURDIR)/_build/default/bin/main.exe $$d/cgfs.scene $$d keys:D,Q,a press:h keys:r shot:window && \
 	convert $$d/window.ppm docs/window.png && rm -rf $$d && echo "wrote docs/window.png"
+
+# The ray tracer in a web page (docs/web.md): one HTML file and one
+# JavaScript file, opened from the file system.
+web: deps
+	dune build web/index.html web/raytrace.js
+	@echo "Open file://$(CURDIR)/_build/default/web/index.html in a browser."
+
+# Regenerates the README's picture of the web page, taken in headless
+# Chromium by the web tests' driver (test/web/drive.js).
+web-screenshot: web
+	@d=$$(mktemp -d) && \
+	NODE_PATH=$(CURDIR)/test/web/node_modules node test/web/drive.js _build/default/web/index.html $$d \
+	  wait keys:h screenshot:$(CURDIR)/docs/web.png && rm -rf $$d && echo "wrote docs/web.png"
 
 # Run time against error (bench/quality.ml): regenerates docs/quality.csv,
 # docs/quality.png, docs/quality.md and docs/quality.gp. Takes minutes; the timings are only

@@ -34,6 +34,8 @@ let () =
       ("cli_parts", Test_cli_parts.tests);
       ("recipes", Test_recipes.tests);
       ("window", Test_window.tests);
+      ("web_session", Test_web_session.tests);
+      ("web", Test_web.tests);
       ("example", Test_example.tests);
       ("pixel", Test_pixel.tests);
       ("library", Test_library.tests);

@@ -1,0 +1,123 @@
+(* The web page's state (web/session.ml) and key names (web/key.ml),
+   natively: what the page decides, without a browser. *)
+open Raytrace
+module Session = Raytrace_web.Session
+module Key = Raytrace_web.Key
+
+(* A clock that advances by one second each time it is read. *)
+let ticking () =
+  let t = ref 0. in
+  fun () ->
+    t := !t +. 1.;
+    !t
+
+let cgfs_text () = match File_io.read (Helpers.scene_path "cgfs.scene") with Ok t -> t | Error (`Msg m) -> Alcotest.fail m
+
+let session ?(now = ticking ()) text =
+  match Session.v ~now text with Ok p -> p | Error (`Msg m) -> Alcotest.fail m
+
+let ok = function Ok () -> () | Error (`Msg m) -> Alcotest.fail m
+
+let finish p =
+  while not (Session.finished p) do
+    ignore (Session.step p ~until:infinity)
+  done;
+  Session.image p
+
+(* A small picture of the scene, so that frames are quick. *)
+let small p = ok (Session.set_size p (Some (60, 40)))
+
+let tests =
+  [
+    Alcotest.test_case "the finished picture of the default text is raytrace render's" `Quick (fun () ->
+        let p = session (cgfs_text ()) in
+        Helpers.check_images __LOC__ ~expected:(Helpers.image_exn Scene.cgfs) (finish p);
+        Alcotest.(check string) __LOC__ (Scene_file.to_string Scene.cgfs) (Session.shown_text p));
+    Alcotest.test_case "a step traces at least one band and stops at its deadline" `Quick (fun () ->
+        let p = session (cgfs_text ()) in
+        (* The ticking clock passes [until] at the first reading after a band. *)
+        let bands = Session.step p ~until:0. in
+        Alcotest.(check int) "one band" 1 (List.length bands);
+        Alcotest.(check int) "a block of 16 first" 16 (List.hd bands).size;
+        let bands = Session.step p ~until:infinity in
+        Alcotest.(check bool) "until the end" true (Session.finished p);
+        Alcotest.(check int) "every band counted" (1 + List.length bands) (Session.bands p);
+        match Session.last_frame p with
+        | None -> Alcotest.fail "no frame statistics"
+        | Some f ->
+            Alcotest.(check (pair int int)) "size" (600, 600) (f.width, f.height);
+            Alcotest.(check int) "slices" 2 f.slices);
+    Alcotest.test_case "a broken text is a scene:line:column error and the picture stays" `Quick (fun () ->
+        let p = session (cgfs_text ()) in
+        small p;
+        let before = Image.copy (finish p) in
+        let text = cgfs_text () ^ "(sphere (center 0 0 3) (radius 0) (color 1 2 3))\n" in
+        (match Session.edit p text with
+        | Ok () -> Alcotest.fail "a zero radius was accepted"
+        | Error (`Msg m) -> Alcotest.(check string) __LOC__ "scene:22:32: sphere radius must be > 0, got 0" m);
+        Alcotest.(check bool) "still finished" true (Session.finished p);
+        Helpers.check_images __LOC__ ~expected:before (Session.image p));
+    Alcotest.test_case "an edit keeps the size and samples chosen, and resets the camera" `Quick (fun () ->
+        let p = session (cgfs_text ()) in
+        small p;
+        ok (Session.set_samples p 2);
+        ignore (Session.input p (View.Key 'D'));
+        ok (Session.edit p (Scene_file.to_string Scene.cgfs_camera));
+        let shown = (Session.view p).scene in
+        Alcotest.(check (pair int int)) "size" (60, 40) (shown.width, shown.height);
+        Alcotest.(check int) "samples" 2 (Session.samples p);
+        Alcotest.(check bool) "camera of the text" true (Camera.equal Scene.cgfs_camera.camera shown.camera);
+        Helpers.check_images __LOC__ ~expected:(Helpers.image_exn ~samples:2 shown) (finish p));
+    Alcotest.test_case "keys change the view as in the window; a is 3 x 3 samples or 1" `Quick (fun () ->
+        let p = session (cgfs_text ()) in
+        small p;
+        let keys = View.[ Key 'D'; Key 'Q'; Key arrow_up; Key '+'; Key 'a' ] in
+        List.iter (fun k -> Alcotest.(check bool) "renders" true (Session.input p k = View.Render)) keys;
+        let view =
+          List.fold_left (fun v k -> fst (View.handle v k)) (Session.view (session (cgfs_text ()))) (View.Resize (60, 40) :: keys)
+        in
+        Alcotest.(check string) __LOC__ (Scene_file.to_string view.scene) (Session.shown_text p);
+        Alcotest.(check int) "antialiased" 3 (Session.samples p);
+        Helpers.check_images __LOC__ ~expected:(Helpers.image_exn ~samples:3 view.scene) (finish p);
+        ignore (Session.input p (View.Key 'a'));
+        Alcotest.(check int) "one sample again" 1 (Session.samples p);
+        Alcotest.(check bool) "h only redraws" true (Session.input p (View.Key 'h') = View.Redraw);
+        Alcotest.(check bool) "unbound keys do nothing" true (Session.input p (View.Key 'x') = View.Nothing));
+    Alcotest.test_case "samples chosen set the antialiasing flag; sizes keep the camera; bad ones are refused" `Quick (fun () ->
+        let p = session (cgfs_text ()) in
+        ok (Session.set_samples p 4);
+        Alcotest.(check bool) "flag on" true (Session.view p).antialias;
+        ok (Session.set_samples p 1);
+        Alcotest.(check bool) "flag off" false (Session.view p).antialias;
+        let refused what r = Alcotest.(check bool) what true (Result.is_error r) in
+        refused "0 samples" (Session.set_samples p 0);
+        refused "65 samples" (Session.set_samples p 65);
+        refused "0 wide" (Session.set_size p (Some (0, 10)));
+        refused "too wide" (Session.set_size p (Some (65537, 10)));
+        Alcotest.(check (option (pair int int))) "size unchanged" None (Session.size p);
+        ignore (Session.input p (View.Key 'D'));
+        let moved = (Session.view p).scene.camera in
+        small p;
+        ok (Session.set_size p None);
+        let shown = (Session.view p).scene in
+        Alcotest.(check (pair int int)) "the scene's canvas again" (600, 600) (shown.width, shown.height);
+        Alcotest.(check bool) "its viewport" true (Viewport.equal Scene.cgfs.viewport shown.viewport);
+        Alcotest.(check bool) "the camera moved stays" true (Camera.equal moved shown.camera));
+    Alcotest.test_case "browser key names are the window's characters" `Quick (fun () ->
+        List.iter
+          (fun (name, expected) -> Alcotest.(check (option char)) name expected (Key.to_char name))
+          [
+            ("ArrowLeft", Some View.arrow_left);
+            ("ArrowUp", Some View.arrow_up);
+            ("ArrowRight", Some View.arrow_right);
+            ("ArrowDown", Some View.arrow_down);
+            ("Escape", Some '\027');
+            ("D", Some 'D');
+            ("a", Some 'a');
+            ("+", Some '+');
+            ("Shift", None);
+            ("F1", None);
+            ("\xc3\xa9", None);
+            ("", None);
+          ]);
+  ]
