@@ -3,6 +3,13 @@
    under CI=true a skip fails the run even if every test passed. *)
 let () =
   at_exit (fun () -> if Helpers.report_skips () <> 0 then exit 1);
+  (* The farm's daemons (munged, slurmctld, slurmd, sshd) live in the sbin
+     directories, which an environment without a login shell (env -i, some
+     CI runners) may leave off PATH: the tests would skip them. *)
+  let path = Option.value (Sys.getenv_opt "PATH") ~default:"/usr/bin:/bin" in
+  let dirs = String.split_on_char ':' path in
+  let extra = List.filter (fun d -> not (List.mem d dirs)) [ "/usr/local/sbin"; "/usr/sbin"; "/sbin" ] in
+  if extra <> [] then Unix.putenv "PATH" (String.concat ":" (path :: extra));
   Alcotest.run "raytrace"
     [
       ("vec3", Test_vec3.tests);
