@@ -20,6 +20,40 @@ let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
     spheres;
   match !closest with Some sphere -> Some (sphere, !closest_t) | None -> None
 
+type obj = Sphere of Sphere.t | Shape of Shape.t
+
+let material = function
+  | Sphere s -> Material.v ~specular:s.specular ~reflective:s.reflective s.color
+  | Shape sh -> Shape.material sh
+
+(* The spheres first, then the other shapes, each root compared with a
+   strict [<]: of equal roots, the first object in that order wins. *)
+let closest_hit (scene : Scene.t) ~origin ~direction ~t_min ~t_max =
+  let best =
+    match closest_intersection scene.spheres ~origin ~direction ~t_min ~t_max with
+    | Some (sphere, t) -> Some (Sphere sphere, t)
+    | None -> None
+  in
+  tests := !tests + List.length scene.shapes;
+  List.fold_left
+    (fun best shape ->
+      let near, far = Shape.roots shape ~origin ~direction in
+      let best_t = match best with Some (_, t) -> t | None -> infinity in
+      if near < best_t && t_min < near && near < t_max then Some (Shape shape, near)
+      else if far < best_t && t_min < far && far < t_max then Some (Shape shape, far)
+      else best)
+    best scene.shapes
+
+(* A sphere's normal points out of it, as in the document; a plane's or a
+   triangle's, and a box's (outward), is turned toward the ray, so that
+   they are lit from the side they are seen from. *)
+let normal obj ~point ~direction =
+  match obj with
+  | Sphere sphere -> Sphere.normal sphere point
+  | Shape shape ->
+      let n = Shape.normal shape point in
+      if Vec3.dot n direction > 0. then Vec3.neg n else n
+
 let compute_lighting (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
   let intensity = ref 0. in
   List.iter
@@ -32,10 +66,9 @@ let compute_lighting (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
              is skipped. *)
           ()
       | Some l ->
-          (* Shadow check (7.7): is any sphere between the point and the light? *)
+          (* Shadow check (7.7): is any object between the point and the light? *)
           let shadowed =
-            closest_intersection scene.spheres ~origin:point ~direction:l ~t_min:epsilon
-              ~t_max:(Light.shadow_t_max light)
+            closest_hit scene ~origin:point ~direction:l ~t_min:epsilon ~t_max:(Light.shadow_t_max light)
             <> None
           in
           if not shadowed then begin
@@ -54,20 +87,19 @@ let compute_lighting (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
    order of the document's recursion (the same floating-point operations). *)
 let trace_ray (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~t_max ~depth =
   let rec follow levels ~origin ~direction ~t_min ~t_max ~depth =
-    match closest_intersection scene.spheres ~origin ~direction ~t_min ~t_max with
+    match closest_hit scene ~origin ~direction ~t_min ~t_max with
     | None -> (levels, scene.background)
-    | Some (sphere, t) ->
+    | Some (obj, t) ->
+        let m = material obj in
         let point = Vec3.add origin (Vec3.smul t direction) in
-        let normal = Sphere.normal sphere point in
+        let normal = normal obj ~point ~direction in
         let view = Vec3.neg direction in
-        let lighting =
-          compute_lighting scene ~epsilon ~point ~normal ~view ~specular:sphere.specular
-        in
-        let local = Color.smul lighting sphere.color in
-        if sphere.reflective <= 0. || depth <= 0 then (levels, local)
+        let lighting = compute_lighting scene ~epsilon ~point ~normal ~view ~specular:m.specular in
+        let local = Color.smul lighting m.color in
+        if m.reflective <= 0. || depth <= 0 then (levels, local)
         else
           let mirror = Shading.reflect view normal in
-          follow ((sphere.reflective, local) :: levels) ~origin:point ~direction:mirror
+          follow ((m.reflective, local) :: levels) ~origin:point ~direction:mirror
             ~t_min:epsilon ~t_max:infinity ~depth:(depth - 1)
   in
   let levels, deepest = follow [] ~origin ~direction ~t_min ~t_max ~depth in

@@ -7,14 +7,15 @@ type t = {
   depth : int;
   epsilon : float option;
   spheres : Sphere.t list;
+  shapes : Shape.t list;
   lights : Light.t list;
   camera_path : Camera_path.t option;
 }
 [@@deriving show, eq]
 
 let v ?(width = 600) ?(height = 600) ?(viewport = Viewport.default) ?(camera = Camera.default)
-    ?(background = Color.black) ?(depth = 3) ?epsilon ?camera_path ~spheres ~lights () =
-  { width; height; viewport; camera; background; depth; epsilon; spheres; lights; camera_path }
+    ?(background = Color.black) ?(depth = 3) ?epsilon ?camera_path ?(shapes = []) ~spheres ~lights () =
+  { width; height; viewport; camera; background; depth; epsilon; spheres; shapes; lights; camera_path }
 
 let document_epsilon = 0.0001
 
@@ -99,12 +100,15 @@ let validate s =
     let* _ = check_background s.background in
     let* _ = Limits.check_depth s.depth in
     let* _ = match s.epsilon with Some e -> check_epsilon e | None -> Ok 0. in
-    let* _ = Limits.check_count `Spheres (List.length s.spheres) in
+    let* _ = Limits.check_count `Spheres (List.length s.spheres + List.length s.shapes) in
     let* _ = Limits.check_count `Lights (List.length s.lights) in
     let* () = all Sphere.validate s.spheres in
     all Light.validate s.lights
   in
-  match result with Ok () -> Ok s | Error m -> Error (`Msg m)
+  let shapes () =
+    List.fold_left (fun acc sh -> Result.bind acc (fun () -> Result.map ignore (Shape.validate sh))) (Ok ()) s.shapes
+  in
+  match result with Ok () -> Result.map (fun () -> s) (shapes ()) | Error m -> Error (`Msg m)
 
 let with_overrides ?width ?height ?depth s =
   let pick o d = match o with Some x -> x | None -> d in
@@ -119,10 +123,16 @@ let at_frame s f =
       | Error e -> Error e)
 
 let check_work ?(samples = 1) ?pixels s =
-  let depth = if List.exists (fun (sp : Sphere.t) -> sp.reflective > 0.) s.spheres then s.depth else 0 in
+  let depth =
+    if
+      List.exists (fun (sp : Sphere.t) -> sp.reflective > 0.) s.spheres
+      || List.exists (fun sh -> (Shape.material sh).reflective > 0.) s.shapes
+    then s.depth
+    else 0
+  in
   let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in
   match
-    Limits.check_work ~pixels:(Option.value pixels ~default:(s.width * s.height)) ~samples ~depth ~spheres:(List.length s.spheres) ~lights
+    Limits.check_work ~pixels:(Option.value pixels ~default:(s.width * s.height)) ~samples ~depth ~spheres:(List.length s.spheres + List.length s.shapes) ~lights
   with
   | Ok () -> Ok ()
   | Error m -> Error (`Msg m)

@@ -223,6 +223,67 @@ let sphere ~where form_node nodes =
   let reflective = Option.value ~default:0. (checked_float form fs "reflective" Sphere.check_reflective) in
   Sphere.v ~specular ~reflective ~center ~radius color
 
+let check_msg node = function Ok x -> x | Error (`Msg m) -> fail node "%s" m
+
+(* The material fields that every shape takes, as a sphere does. *)
+let material_fields = [ "color"; "specular"; "reflective" ]
+
+let material ~form ~form_node fs =
+  let color =
+    let node, c = required ~form ~form_node fs "color" (fun _ f -> (f.node, color_field form "color" f)) in
+    check_msg node (Material.check_color ~form c)
+  in
+  let checked name check_value =
+    Option.map
+      (fun f -> check_msg (single form name f) (check_value (float_field form name f)))
+      (find fs name)
+  in
+  let specular = Option.value ~default:Sphere.matte (checked "specular" (Material.check_specular ~form)) in
+  let reflective = Option.value ~default:0. (checked "reflective" (Material.check_reflective ~form)) in
+  Material.v ~specular ~reflective color
+
+let point_field ~form ~form_node fs name =
+  let node, p = required ~form ~form_node fs name (fun _ f -> (f.node, vec3_field form name f)) in
+  (node, check node (Limits.check_point (field_what form name ()) p))
+
+let plane ~where form_node nodes =
+  let form = "plane" in
+  let fs = fields ~where ~form ~allowed:([ "point"; "normal" ] @ material_fields) nodes in
+  let _, point = point_field ~form ~form_node fs "point" in
+  let normal_node, normal = point_field ~form ~form_node fs "normal" in
+  let m = material ~form ~form_node fs in
+  Shape.Plane (check_msg normal_node (Plane.validate (Plane.v ~point ~normal m)))
+
+let triangle ~where form_node nodes =
+  let form = "triangle" in
+  let fs = fields ~where ~form ~allowed:("vertices" :: material_fields) nodes in
+  let node, (v0, v1, v2) =
+    required ~form ~form_node fs "vertices" (fun what f ->
+        let vertex node =
+          match node with
+          | Sexp.List elements ->
+              let p = vec3_of_nodes (fun () -> what () ^ " vertex") node elements in
+              check node (Limits.check_point (what () ^ " vertex") p)
+          | Sexp.Atom atom ->
+              fail node "%s: expected a vertex of 3 numbers in parentheses, got %s" (what ()) (show_atom atom)
+        in
+        match f.args with
+        | [ a; b; c ] -> (f.node, (vertex a, vertex b, vertex c))
+        | args ->
+            fail f.node "%s takes 3 vertices, e.g. (-1 0 4) (1 0 4) (0 1.5 4), got %d values" (what ())
+              (List.length args))
+  in
+  let m = material ~form ~form_node fs in
+  Shape.Triangle (check_msg node (Triangle.validate (Triangle.v v0 v1 v2 m)))
+
+let box ~where form_node nodes =
+  let form = "box" in
+  let fs = fields ~where ~form ~allowed:([ "min"; "max" ] @ material_fields) nodes in
+  let _, min = point_field ~form ~form_node fs "min" in
+  let max_node, max = point_field ~form ~form_node fs "max" in
+  let m = material ~form ~form_node fs in
+  Shape.Box (check_msg max_node (Box.validate (Box.v ~min ~max m)))
+
 let light ~where form_node nodes =
   let kinds = [ "ambient"; "point"; "directional" ] in
   match nodes with
@@ -302,7 +363,7 @@ let value form form_node = function
   | nodes -> fail form_node "%s takes 1 value, got %d" form (List.length nodes)
 
 let top_level =
-  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "light" ]
+  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "plane"; "triangle"; "box"; "light" ]
 
 (* The scene being read, form by form. *)
 type builder = {
@@ -311,6 +372,7 @@ type builder = {
       (** Forms that may appear once, and where they first did. *)
   mutable scene : Scene.t;
   mutable spheres : Sphere.t list;  (** In reverse order. *)
+  mutable shapes : Shape.t list;  (** In reverse order. *)
   mutable lights : Light.t list;  (** In reverse order. *)
   mutable n_spheres : int;
   mutable n_lights : int;
@@ -322,6 +384,7 @@ let builder where =
     seen = Hashtbl.create 8;
     scene = Scene.v ~spheres:[] ~lights:[] ();
     spheres = [];
+    shapes = [];
     lights = [];
     n_spheres = 0;
     n_lights = 0;
@@ -348,6 +411,12 @@ let add_form b node =
           b.n_spheres <- b.n_spheres + 1;
           ignore (check node (Limits.check_count `Spheres b.n_spheres));
           b.spheres <- sphere ~where node rest :: b.spheres
+      | ("plane" | "triangle" | "box") as form ->
+          (* Shapes count against the bound of spheres: both are objects. *)
+          b.n_spheres <- b.n_spheres + 1;
+          ignore (check node (Limits.check_count `Spheres b.n_spheres));
+          let parse = match form with "plane" -> plane | "triangle" -> triangle | _ -> box in
+          b.shapes <- parse ~where node rest :: b.shapes
       | "light" ->
           b.n_lights <- b.n_lights + 1;
           ignore (check node (Limits.check_count `Lights b.n_lights));
@@ -389,7 +458,7 @@ let finish b =
         match Camera_path.camera path (Camera_path.first_frame path) with Ok c -> c | Error _ -> b.scene.camera)
     | _ -> b.scene.camera
   in
-  { b.scene with camera; spheres = List.rev b.spheres; lights = List.rev b.lights }
+  { b.scene with camera; spheres = List.rev b.spheres; shapes = List.rev b.shapes; lights = List.rev b.lights }
 
 (* The located pass: the same conversion over a parse that kept positions. *)
 (* The located pass streams too: it keeps the positions of the form being
@@ -528,6 +597,21 @@ let to_string (s : Scene.t) =
       if sp.reflective <> 0. then Buffer.add_string b (Printf.sprintf " (reflective %s)" (num sp.reflective));
       line ")")
     s.spheres;
+  List.iter
+    (fun sh ->
+      let m = Shape.material sh in
+      (match sh with
+      | Shape.Plane p ->
+          Buffer.add_string b (Printf.sprintf "(plane (point %s) (normal %s)" (vec p.point) (vec p.normal))
+      | Shape.Triangle t ->
+          Buffer.add_string b
+            (Printf.sprintf "(triangle (vertices (%s) (%s) (%s))" (vec t.v0) (vec t.v1) (vec t.v2))
+      | Shape.Box x -> Buffer.add_string b (Printf.sprintf "(box (min %s) (max %s)" (vec x.min) (vec x.max)));
+      Buffer.add_string b (Printf.sprintf " (color %s %s %s)" (num m.color.r) (num m.color.g) (num m.color.b));
+      if m.specular <> Sphere.matte then Buffer.add_string b (Printf.sprintf " (specular %s)" (num m.specular));
+      if m.reflective <> 0. then Buffer.add_string b (Printf.sprintf " (reflective %s)" (num m.reflective));
+      line ")")
+    s.shapes;
   List.iter
     (function
       | Light.Ambient { intensity } -> line "(light ambient (intensity %s))" (num intensity)
