@@ -7,15 +7,32 @@
     exposed for it and for tests, not for building by hand. *)
 
 type t = private {
-  n_spheres : int;
+  n_spheres : int;  (** The number of spheres. *)
+  n_objects : int;  (** The number of objects: spheres and other shapes. *)
+  all_spheres : bool;  (** Every object is a sphere: [n_spheres = n_objects]. *)
+  textbook_all : bool;
+      (** Spheres only, no hierarchy, the document's mode: the tracer's
+          fastest loop (the reference scene). *)
   index : int array;
-      (** The scene-list index of the sphere in each slot: the per-sphere
-          arrays below are in slot order (the hierarchy's leaf order). *)
+      (** The index of the object in each slot, objects counted spheres
+          first, then the scene's [shapes]: the per-object arrays below are
+          in slot order (the hierarchy's leaf order, then the planes). *)
   slot : int array;  (** The inverse of [index]. *)
   bvh : Bvh.t option;
-      (** The hierarchy over the spheres, when the skips are enabled and
-          there are more than {!bvh_threshold} spheres. *)
-  cx : float array;  (** Sphere centers, x coordinates. *)
+      (** The hierarchy over the bounded objects (all but planes), when the
+          skips are enabled and there are more than {!bvh_threshold} of them;
+          its leaves hold slots [0 .. n - 1], the planes follow. *)
+  unbounded : int array;  (** The slots of the planes, in scene order. *)
+  kind : int array;  (** {!Shape.sphere}, {!Shape.plane}, ... *)
+  geom : float array;
+      (** The geometry of the object in slot [k] at [Shape.stride * k], as
+          the shape module's [store] writes it (unused for spheres). *)
+  extent : float array;
+      (** The largest magnitude of a coordinate of the object's geometry. *)
+  twin : int array;
+      (** The first slot, in scene order, whose object has the same kind and
+          geometry: identical objects are one surface. *)
+  cx : float array;  (** Sphere centers, x coordinates ([0] for other shapes). *)
   cy : float array;
   cz : float array;
   radius : float array;
@@ -53,7 +70,10 @@ type t = private {
   primary_k3 : float array;  (** [<CO, CO> - r^2] for the camera origin. *)
   max_channel : float;
       (** An upper bound of every colour channel a ray can return, used to
-          stop reflections that can no longer change an 8-bit value. *)
+          stop reflections that can no longer change an 8-bit value;
+          [infinity] if a huge specular exponent leaves none (the cosine,
+          rounded, may exceed 1 by a few ulps, and its power explodes). *)
+  early_stop : bool;  (** The skips are on and [max_channel] is finite. *)
   skips : bool;  (** Whether the exact skips are enabled. *)
 }
 (** The type for prepared scenes. *)

@@ -7,50 +7,23 @@ type counters = {
   mutable early_stops : int;
 }
 
-(* All fields are floats, so the record is stored flat and its fields are
-   read and written without boxing. *)
-type scratch = {
-  mutable ox : float;
-  mutable oy : float;
-  mutable oz : float;
-  mutable dx : float;
-  mutable dy : float;
-  mutable dz : float;
-  mutable t_min : float;
-  mutable t_max : float;
-  mutable t : float;
-  mutable near : float;  (** Roots of the last robust intersection test. *)
-  mutable far : float;
-  mutable gx : float;  (** Canvas point of the primary ray. *)
-  mutable gy : float;
-  mutable px : float;  (** Hit point. *)
-  mutable py : float;
-  mutable pz : float;
-  mutable nx : float;  (** Unit normal at the hit point. *)
-  mutable ny : float;
-  mutable nz : float;
-  mutable vx : float;  (** View vector, [-D]. *)
-  mutable vy : float;
-  mutable vz : float;
-  mutable intensity : float;
-  mutable r : float;
-  mutable g : float;
-  mutable b : float;
-  mutable acc_r : float;  (** Sum of clamped sample colours, see [accumulate]. *)
-  mutable acc_g : float;
-  mutable acc_b : float;
-}
+(* The per-ray state (ray, roots, hit point, colour) is [Scratch.t], at
+   the bottom of the kernel, so that the shapes' root routines read the ray
+   without depending on the tracer. *)
+open Scratch
 
 type t = {
   p : Prepared.t;
-  s : scratch;
+  s : Scratch.t;
   stack : float array;  (** Per reflection level: local r, g, b and reflectivity. *)
   last_blocker : int array;  (** Per light: the sphere that last shadowed it. *)
   counters : counters;
   nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
   mutable hit : int;  (** Index of the sphere found by [closest]. *)
   mutable origin_sphere : int;
-      (** The sphere the current secondary ray leaves, or [-1]. *)
+      (** The twin slot ([Prepared.twin]) of the sphere the current
+          secondary ray leaves, or [-1]: in the robust mode that sphere, and
+          any identical one, is handled exactly. *)
   mutable first_hit : int;
   averaging : bool;  (** Samples are averaged: see [settled]. *)
   mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see [primary_hit]. *)
@@ -63,38 +36,7 @@ let no_assumption = -2
 let create ?(averaging = false) (p : Prepared.t) =
   {
     p;
-    s =
-      {
-        ox = 0.;
-        oy = 0.;
-        oz = 0.;
-        dx = 0.;
-        dy = 0.;
-        dz = 0.;
-        t_min = 0.;
-        t_max = 0.;
-        t = 0.;
-        near = 0.;
-        far = 0.;
-        gx = 0.;
-        gy = 0.;
-        px = 0.;
-        py = 0.;
-        pz = 0.;
-        nx = 0.;
-        ny = 0.;
-        nz = 0.;
-        vx = 0.;
-        vy = 0.;
-        vz = 0.;
-        intensity = 0.;
-        r = 0.;
-        g = 0.;
-        b = 0.;
-        acc_r = 0.;
-        acc_g = 0.;
-        acc_b = 0.;
-      };
+    s = Scratch.create ();
     stack = Array.make (4 * (p.depth + 1)) 0.;
     last_blocker = Array.make (max 1 p.n_lights) (-1);
     counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0 };
@@ -119,7 +61,7 @@ let check_budget tr =
 let red tr = tr.s.r
 let green tr = tr.s.g
 let blue tr = tr.s.b
-let hit_sphere tr = if tr.first_hit < 0 then -1 else Array.unsafe_get tr.p.index tr.first_hit
+let hit_object tr = if tr.first_hit < 0 then -1 else Array.unsafe_get tr.p.index tr.first_hit
 
 (* [Color.to_byte], copied so that no float crosses a module boundary on the
    per-ray path: in dev builds (-opaque) such a call boxes its argument. A
@@ -225,7 +167,7 @@ let leaving_margin = 16. *. epsilon_float *. epsilon_float (* (8u)^2, u = epsilo
 let[@inline] reenters b fx fy fz a = b < 0. && b *. b > leaving_margin *. ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) *. a
 
 let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
-  if i = tr.origin_sphere then begin
+  if Array.unsafe_get tr.p.twin i = tr.origin_sphere then begin
     let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
     if reenters b fx fy fz a then keep tr s i (-2. *. b *. inv_a)
   end
@@ -238,11 +180,34 @@ let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
     else keep tr s i s.far
   end
 
-(* Tests the ray in [s] against the sphere in slot [i], keeping the better
+(* The roots of the shape (not a sphere) in slot [i], by its module's
+   routine, in [s.near] and [s.far]; [false] if it misses. *)
+let shape_roots (p : Prepared.t) s i =
+  let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
+  if k = Shape.triangle then Triangle.roots s p.geom o
+  else if k = Shape.plane then Plane.roots s p.geom o
+  else Box.roots s p.geom o
+
+(* Tests the ray in [s] against the shape (not a sphere) in slot [i],
+   keeping the better hit. Secondary rays of the robust mode start off
+   the surface they leave (see [trace]), so no shape is special here. *)
+let shape_test tr s i =
+  if shape_roots tr.p s i then begin
+    let near = s.near in
+    if better tr s i near && s.t_min < near && near < s.t_max then begin
+      s.t <- near;
+      tr.hit <- i
+    end
+    else keep tr s i s.far
+  end
+
+(* Tests the ray in [s] against the object in slot [i], keeping the better
    hit. From the camera ([primary]), [CO] and the textbook's [k3] are
    per-frame constants. *)
 let[@inline] test tr s i ~primary dx dy dz a inv_a two_k1 k1x4 =
   let p = tr.p in
+  if Array.unsafe_get p.kind i <> Shape.sphere then shape_test tr s i
+  else
   let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
   let fy = if primary then Array.unsafe_get p.primary_ocy i else s.oy -. Array.unsafe_get p.cy i in
   let fz = if primary then Array.unsafe_get p.primary_ocz i else s.oz -. Array.unsafe_get p.cz i in
@@ -343,14 +308,16 @@ let[@inline] closest_textbook_all tr ~primary =
 let closest_textbook_primary tr = closest_textbook_all tr ~primary:true
 let closest_textbook_secondary tr = closest_textbook_all tr ~primary:false
 
-(* The closest sphere hit by the ray in [s], with [t_min < t < t_max]; its
-   [t] is left in [s.t] ([infinity] if none), its slot is returned. *)
+(* The closest object hit by the ray in [s], with [t_min < t < t_max]; its
+   [t] is left in [s.t] ([infinity] if none), its slot is returned. One
+   traversal for every kind of object; spheres alone in the document's
+   mode without a hierarchy (the reference scene) take the loop above. *)
 let closest_from tr ~primary =
   let p = tr.p and s = tr.s in
-  match p.bvh with
-  | None when not p.robust ->
-      if primary then closest_textbook_primary tr else closest_textbook_secondary tr
-  | bvh ->
+  if p.textbook_all then
+    if primary then closest_textbook_primary tr else closest_textbook_secondary tr
+  else
+      let bvh = p.bvh in
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
       let inv_a = 1. /. a and two_k1 = 2. *. a and k1x4 = 4. *. a in
@@ -358,12 +325,21 @@ let closest_from tr ~primary =
       s.t <- infinity;
       (match bvh with
       | None ->
-          let n = p.n_spheres in
+          let n = p.n_objects in
           tr.counters.tests <- tr.counters.tests + n;
           for i = 0 to n - 1 do
             test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
           done
       | Some b ->
+          (* Planes, unbounded, are outside the hierarchy. *)
+          let planes = p.unbounded in
+          let n = Array.length planes in
+          if n > 0 then begin
+            tr.counters.tests <- tr.counters.tests + n;
+            for j = 0 to n - 1 do
+              shape_test tr s (Array.unsafe_get planes j)
+            done
+          end;
           let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
           let stack = tr.nodes and sp = ref 1 in
           Array.unsafe_set stack 0 0;
@@ -391,17 +367,26 @@ let closest_from tr ~primary =
 let closest tr = closest_from tr ~primary:false
 let closest_primary tr = closest_from tr ~primary:true
 
-(* Does the sphere in slot [i] meet the ray in [s] with
-   [t_min < t < t_max]? The same roots as [closest], so a sphere blocks
+(* Does the shape (not a sphere) in slot [i] meet the ray in [s] with
+   [t_min < t < t_max]? *)
+let shape_blocks tr i =
+  let s = tr.s in
+  shape_roots tr.p s i
+  && ((s.t_min < s.near && s.near < s.t_max) || (s.t_min < s.far && s.far < s.t_max))
+
+(* Does the object in slot [i] meet the ray in [s] with
+   [t_min < t < t_max]? The same roots as [closest], so an object blocks
    exactly when [closest] would have found it. *)
 let[@inline] blocks tr i a inv_a =
   let p = tr.p and s = tr.s in
+  Array.unsafe_get p.kind i <> Shape.sphere && shape_blocks tr i
+  || Array.unsafe_get p.kind i = Shape.sphere &&
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let fx = s.ox -. Array.unsafe_get p.cx i
   and fy = s.oy -. Array.unsafe_get p.cy i
   and fz = s.oz -. Array.unsafe_get p.cz i in
   if p.robust then
-    if i = tr.origin_sphere then
+    if Array.unsafe_get p.twin i = tr.origin_sphere then
       let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
       reenters b fx fy fz a
       &&
@@ -473,7 +458,7 @@ let first_blocker tr skip a inv_a =
   let p = tr.p and s = tr.s in
   match p.bvh with
   | None ->
-      let n = p.n_spheres in
+      let n = p.n_objects in
       let i = ref 0 in
       while !i < n && (!i = skip || not (blocks tr !i a inv_a)) do
         incr i
@@ -484,6 +469,17 @@ let first_blocker tr skip a inv_a =
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
       let stack = tr.nodes and sp = ref 1 and found = ref (-1) in
+      (* Planes first: they are outside the hierarchy. *)
+      let planes = p.unbounded in
+      let j = ref 0 and n = Array.length planes in
+      while !j < n && (Array.unsafe_get planes !j = skip || not (shape_blocks tr (Array.unsafe_get planes !j))) do
+        incr j
+      done;
+      tr.counters.tests <- tr.counters.tests + min n (!j + 1);
+      if !j < n then begin
+        found := Array.unsafe_get planes !j;
+        sp := 0
+      end;
       Array.unsafe_set stack 0 0;
       while !sp > 0 do
         decr sp;
@@ -515,7 +511,7 @@ let shadowed tr l =
   tr.counters.shadow <- tr.counters.shadow + 1;
   let last = Array.unsafe_get tr.last_blocker l in
   if not p.skips then closest tr >= 0
-  else if p.bvh = None && not p.robust then begin
+  else if p.textbook_all then begin
     let blocker = blocker_textbook_all tr last in
     if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
     blocker >= 0
@@ -646,6 +642,51 @@ let primary_hit tr =
     if tr.hit >= 0 then tr.hit else closest_primary tr
   end
 
+(* [64 u]: the hit point [O + t D] of a plane, triangle or box lies within
+   [32 u (|O| + |P| + extent)] of the surface (the shapes' stated bounds,
+   plus the rounding of [P]); twice that leaves the secondary ray's own
+   root on the surface (error [16 u (|P| + extent)] at most) negative. *)
+let offset_bound = 32. *. epsilon_float
+
+(* The hit point [px, py, pz] on the shape (not a sphere) in slot [i],
+   for the ray in [s]: its normal, turned toward the ray (planes and
+   triangles are seen from both sides, and a box from inside shows its
+   walls' inner sides), and the view vector, in [s]. In the robust mode,
+   the point is then moved off the surface, along the normal toward the
+   ray's side, by a bound on its rounding error (Ray Tracing Gems,
+   chapter 6): shadow and mirror rays leave from there, and their roots on
+   this surface, or on any surface through the same point, are negative
+   whatever the angle, with no constant tied to the scene's scale. *)
+let shape_hit tr i px py pz =
+  let p = tr.p and s = tr.s in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  s.px <- px;
+  s.py <- py;
+  s.pz <- pz;
+  let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
+  if k = Shape.triangle then Triangle.normal s p.geom o
+  else if k = Shape.plane then Plane.normal s p.geom o
+  else Box.normal s p.geom o;
+  if (s.nx *. dx) +. (s.ny *. dy) +. (s.nz *. dz) > 0. then begin
+    s.nx <- -.s.nx;
+    s.ny <- -.s.ny;
+    s.nz <- -.s.nz
+  end;
+  s.vx <- -.dx;
+  s.vy <- -.dy;
+  s.vz <- -.dz;
+  tr.origin_sphere <- -1;
+  if p.robust then begin
+    let size =
+      Float.abs s.ox +. Float.abs s.oy +. Float.abs s.oz +. Float.abs px +. Float.abs py +. Float.abs pz
+      +. Array.unsafe_get p.extent i
+    in
+    let e = offset_bound *. size in
+    s.px <- px +. (e *. s.nx);
+    s.py <- py +. (e *. s.ny);
+    s.pz <- pz +. (e *. s.nz)
+  end
+
 (* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
    its local colour and reflectivity and continues with the mirror ray; then
    the stack is folded back from the deepest colour, blend by blend, in the
@@ -671,21 +712,22 @@ let trace tr =
       let t = s.t in
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let px = s.ox +. (dx *. t) and py = s.oy +. (dy *. t) and pz = s.oz +. (dz *. t) in
-      let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
-      let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
-      let nx = nx *. inv and ny = ny *. inv and nz = nz *. inv in
-      let vx = -.dx and vy = -.dy and vz = -.dz in
-      s.px <- px;
-      s.py <- py;
-      s.pz <- pz;
-      s.nx <- nx;
-      s.ny <- ny;
-      s.nz <- nz;
-      s.vx <- vx;
-      s.vy <- vy;
-      s.vz <- vz;
-      (* Shadow and mirror rays leave sphere i. *)
-      tr.origin_sphere <- i;
+      if Array.unsafe_get p.kind i = Shape.sphere then begin
+        let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
+        let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+        s.px <- px;
+        s.py <- py;
+        s.pz <- pz;
+        s.nx <- nx *. inv;
+        s.ny <- ny *. inv;
+        s.nz <- nz *. inv;
+        s.vx <- -.dx;
+        s.vy <- -.dy;
+        s.vz <- -.dz;
+        (* Shadow and mirror rays leave sphere i, and its twins. *)
+        tr.origin_sphere <- Array.unsafe_get p.twin i
+      end
+      else shape_hit tr i px py pz;
       lighting tr ~shiny:(Array.unsafe_get p.specular i <> Sphere.matte) ~specular_of:p.specular i;
       let light = s.intensity in
       let lr = Array.unsafe_get p.red i *. light and lg = Array.unsafe_get p.green i *. light and lb = Array.unsafe_get p.blue i *. light in
@@ -707,7 +749,7 @@ let trace tr =
         (* Checking costs two folds of the stack: worth it only when what is
            left weighs less than a unit, or this colour saturates. Skipping
            the check is always exact. *)
-        if p.skips
+        if p.early_stop
            && (!weight *. p.max_channel < 1. || (lr >= 255. && lg >= 255. && lb >= 255.))
            && settled tr !levels
         then begin
@@ -719,10 +761,11 @@ let trace tr =
         end
         else begin
           (* The mirror ray R = 2 <V, N> N - V from the hit point. *)
+          let nx = s.nx and ny = s.ny and nz = s.nz and vx = s.vx and vy = s.vy and vz = s.vz in
           let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
-          s.ox <- px;
-          s.oy <- py;
-          s.oz <- pz;
+          s.ox <- s.px;
+          s.oy <- s.py;
+          s.oz <- s.pz;
           s.dx <- (nx *. k) -. vx;
           s.dy <- (ny *. k) -. vy;
           s.dz <- (nz *. k) -. vz;
@@ -792,7 +835,8 @@ let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
   s.dz <- d.z;
   s.t_min <- tr.p.epsilon;
   s.t_max <- infinity;
-  tr.origin_sphere <- (if from < 0 then -1 else tr.p.slot.(from));
+  tr.origin_sphere <-
+    (if from < 0 || tr.p.kind.(tr.p.slot.(from)) <> Shape.sphere then -1 else tr.p.twin.(tr.p.slot.(from)));
   let hit = closest tr in
   if hit < 0 then -1 else tr.p.index.(hit)
 
@@ -804,7 +848,7 @@ type samples = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.
 let averaging tr = tr.averaging
 
 let pixel_assuming tr gx gy k =
-  if k < -1 || k >= tr.p.n_spheres then invalid_arg "Trace.pixel_assuming: no such sphere";
+  if k < -1 || k >= tr.p.n_objects then invalid_arg "Trace.pixel_assuming: no such object";
   tr.assumed <- k;
   pixel tr gx gy;
   tr.assumed <- no_assumption

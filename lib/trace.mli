@@ -14,8 +14,8 @@ type counters = {
   mutable primary : int;  (** Primary rays cast. *)
   mutable shadow : int;  (** Shadow rays cast. *)
   mutable reflection : int;  (** Mirror rays cast. *)
-  mutable tests : int;  (** Ray-sphere intersection tests. *)
-  mutable box_tests : int;  (** Ray-box tests in the sphere hierarchy. *)
+  mutable tests : int;  (** Ray-object intersection tests. *)
+  mutable box_tests : int;  (** Ray-box tests in the object hierarchy. *)
   mutable early_stops : int;  (** Reflections stopped by the weight bound. *)
 }
 (** The type for work counters. *)
@@ -102,9 +102,10 @@ val green : t -> float
 val blue : t -> float
 (** [blue tr] is the blue channel of the last {!pixel}, unclamped. *)
 
-val hit_sphere : t -> int
-(** [hit_sphere tr] is the index of the sphere the primary ray of the last
-    {!pixel} hit, or [-1] if it hit nothing. *)
+val hit_object : t -> int
+(** [hit_object tr] is the index of the object the primary ray of the last
+    {!pixel} hit (objects counted spheres first, then the scene's
+    [shapes]), or [-1] if it hit nothing. *)
 
 (** {1:sampling Several rays per pixel}
 

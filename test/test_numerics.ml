@@ -61,7 +61,7 @@ let hit_mask scene =
   Array.init h (fun row ->
       Array.init w (fun col ->
           Trace.pixel tr (Canvas.x_of_column ~width:w col) (Canvas.y_of_row ~height:h row);
-          Trace.hit_sphere tr >= 0))
+          Trace.hit_object tr >= 0))
 
 (* The exact disk/ellipse: pixel (col, row) sees sphere [s] iff the exact
    distance from its center to the pixel's float ray is <= r. Pixels within

@@ -209,9 +209,9 @@ let tests =
         for gy = Canvas.min_y s.height to Canvas.max_y s.height do
           for gx = Canvas.min_x s.width to Canvas.max_x s.width do
             Trace.pixel tr gx gy;
-            let hit = Trace.hit_sphere tr and c = (Trace.red tr, Trace.green tr, Trace.blue tr) in
+            let hit = Trace.hit_object tr and c = (Trace.red tr, Trace.green tr, Trace.blue tr) in
             Trace.pixel_assuming tr gx gy hit;
-            if (Trace.red tr, Trace.green tr, Trace.blue tr) <> c || Trace.hit_sphere tr <> hit then ok := false
+            if (Trace.red tr, Trace.green tr, Trace.blue tr) <> c || Trace.hit_object tr <> hit then ok := false
           done
         done;
         !ok);
