@@ -37,8 +37,9 @@ val roots : Scratch.t -> float array -> int -> bool
     the plane.
 
     Accuracy (checked by the test suite in exact rational arithmetic): the
-    exact point [O + t D] lies within [16 u |P0 - O|] of the plane
-    ([u = 2^-53]), whatever the angle of the ray. *)
+    exact point [O + t D] lies within [16 u (|P0 - O| + |t D|)] of the
+    plane ([u = 2^-53]), whatever the angle of the ray: a grazing ray's
+    root is as uncertain as its direction, along its length [|t D|]. *)
 
 val normal : Scratch.t -> float array -> int -> unit
 (** [normal s g o] sets [s.nx], [s.ny], [s.nz] to the unit normal of the

@@ -840,6 +840,39 @@ let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
   let hit = closest tr in
   if hit < 0 then -1 else tr.p.index.(hit)
 
+(* The roots of object [k]'s test, by the same code as [closest] runs for a
+   secondary ray (not the camera's per-frame constants). *)
+let roots tr k (o : Vec3.t) (d : Vec3.t) =
+  let p = tr.p and s = tr.s in
+  if k < 0 || k >= p.n_objects then invalid_arg "Trace.roots: no such object";
+  let i = p.slot.(k) in
+  Scratch.set_ray s o d;
+  if p.kind.(i) <> Shape.sphere then
+    if shape_roots p s i then (s.near, s.far) else (infinity, infinity)
+  else
+    let fx = s.ox -. p.cx.(i) and fy = s.oy -. p.cy.(i) and fz = s.oz -. p.cz.(i) in
+    let dx = s.dx and dy = s.dy and dz = s.dz in
+    let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+    if p.robust then
+      if robust_roots p s i fx fy fz dx dy dz a (1. /. a) then (s.near, s.far) else (infinity, infinity)
+    else begin
+      (* [consider_textbook]'s roots, kept when in range: the range is opened
+         wide, and the better of the two, then the other, read back. *)
+      s.t_min <- neg_infinity;
+      s.t_max <- infinity;
+      let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+      let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. p.r2.(i) in
+      tr.hit <- -1;
+      s.t <- infinity;
+      consider_textbook tr s i (4. *. a) (2. *. a) k2 k3;
+      if tr.hit < 0 then (infinity, infinity)
+      else
+        let near = s.t in
+        let disc = (k2 *. k2) -. (4. *. a *. k3) in
+        let far = (-.k2 +. sqrt disc) /. (2. *. a) in
+        (near, if far < near then near else far)
+    end
+
 (* Several rays per pixel. The colours are summed here, in the scratch
    record, so that no float crosses a module boundary per sample. *)
 

@@ -93,6 +93,16 @@ val cast : t -> from:int -> Vec3.t -> Vec3.t -> int
     [from] is handled exactly: the ray can meet it only by going into it),
     or [-1] if it meets none: the test behind shadow and mirror rays. *)
 
+val roots : t -> int -> Vec3.t -> Vec3.t -> float * float
+(** [roots tr k origin direction] is [(near, far)], the roots that the
+    tracer's own intersection test computes for object [k] (objects
+    counted spheres first, then the scene's shapes) and the secondary ray
+    [origin + t direction]: the cancellation-free roots of a sphere in the
+    robust mode, the textbook roots in the document's mode, the shape
+    module's routine for the others; [(infinity, infinity)] for a miss. It
+    runs the code the renderer runs, for the tests of its accuracy.
+    @raise Invalid_argument if [k] is not an object of the scene. *)
+
 val red : t -> float
 (** [red tr] is the red channel of the last {!pixel}, unclamped. *)
 

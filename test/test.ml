@@ -20,6 +20,7 @@ let () =
       ("render", Test_render.tests);
       ("sampling", Test_sampling.tests);
       ("numerics", Test_numerics.tests);
+      ("shapes", Test_shapes.tests);
       ("bvh", Test_bvh.tests);
       ("antialias", Test_antialias.tests);
       ("progressive", Test_progressive.tests);
