@@ -41,10 +41,14 @@ val roots : Scratch.t -> float array -> int -> bool
     root in [s.near] and [s.far]; [false] when it misses it or lies in its
     plane.
 
-    Accuracy (checked by the test suite in exact rational arithmetic): a
-    ray whose exact line passes inside the triangle by more than
-    [64 u] times the size of the edge functions is reported as a hit, one
-    that passes outside by as much as a miss, and the exact point
+    Accuracy (checked by the test suite in exact rational arithmetic): with
+    the exact edge functions [e(a, b) = <D, (a - O) x (b - O)>] of the
+    three edges, a ray whose exact line passes inside the triangle (all
+    three of one sign) is reported as a hit, and one that passes outside
+    (two of opposite signs) as a miss, whenever each [e(a, b)] involved
+    exceeds [64 u (|a - O| |(b - O) x D| + |b - O| |(a - O) x D|)] in
+    magnitude, the rounding of the vertices moved into the ray's frame;
+    and the exact point
     [O + t D] of a hit lies within [32 u (|v0 - O| + |v1 - O| + |v2 - O|)]
     of the triangle's plane ([u = 2^-53]). *)
 
