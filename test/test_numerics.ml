@@ -141,6 +141,13 @@ let transform ~scale ~translate (s : Scene.t) =
         ~distance:(scale *. s.viewport.distance);
     camera = { s.camera with position = p s.camera.position };
     spheres = List.map (fun (sp : Sphere.t) -> { sp with center = p sp.center; radius = scale *. sp.radius }) s.spheres;
+    shapes =
+      List.map
+        (function
+          | Shape.Plane pl -> Shape.Plane { pl with point = p pl.point }
+          | Shape.Triangle t -> Shape.Triangle { t with v0 = p t.v0; v1 = p t.v1; v2 = p t.v2 }
+          | Shape.Box b -> Shape.Box { b with min = p b.min; max = p b.max })
+        s.shapes;
     lights =
       List.map
         (function
