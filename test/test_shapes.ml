@@ -520,7 +520,7 @@ let tests =
             ("cgfs.scene", [ 4096; 9060; 4243; 61403; 0; 0 ]);
             ("grid-100.scene", [ 4096; 7028; 3034; 17296; 98543; 0 ]);
             ("mirrors.scene", [ 3072; 23096; 11368; 212575; 0; 75 ]);
-            ("room.scene", [ 3072; 11190; 2523; 109594; 0; 11 ]);
+            ("room.scene", [ 3072; 11164; 2510; 109343; 0; 11 ]);
             ("boxes.scene", [ 3072; 6226; 2668; 100925; 0; 0 ]);
           ];
         if !fails <> [] then Alcotest.fail (String.concat "\n" (List.rev !fails)));
