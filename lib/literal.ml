@@ -20,11 +20,21 @@ let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
     spheres;
   match !closest with Some sphere -> Some (sphere, !closest_t) | None -> None
 
-type obj = Sphere of Sphere.t | Shape of Shape.t
+type obj = Sphere of Sphere.t | Shape of Shape.t | Mesh_triangle of Mesh.t * int
 
 let material = function
   | Sphere s -> Material.v ~specular:s.specular ~reflective:s.reflective s.color
   | Shape sh -> Shape.material sh
+  | Mesh_triangle (m, _) -> m.material
+
+(* A mesh is its triangles, in order, less the degenerate ones (no ray
+   can hit them). *)
+let objects_of_shape = function
+  | Shape.Mesh m ->
+      List.filter_map
+        (fun k -> if Mesh.degenerate m k then None else Some (Mesh_triangle (m, k), Shape.Triangle (Mesh.triangle m k)))
+        (List.init (Mesh.triangle_count m) Fun.id)
+  | sh -> [ (Shape sh, sh) ]
 
 (* The spheres first, then the other shapes, each root compared with a
    strict [<]: of equal roots, the first object in that order wins. *)
@@ -34,14 +44,17 @@ let closest_hit (scene : Scene.t) ~origin ~direction ~t_min ~t_max =
     | Some (sphere, t) -> Some (Sphere sphere, t)
     | None -> None
   in
-  tests := !tests + List.length scene.shapes;
   List.fold_left
     (fun best shape ->
-      let near, far = Shape.roots shape ~origin ~direction in
-      let best_t = match best with Some (_, t) -> t | None -> infinity in
-      if near < best_t && t_min < near && near < t_max then Some (Shape shape, near)
-      else if far < best_t && t_min < far && far < t_max then Some (Shape shape, far)
-      else best)
+      List.fold_left
+        (fun best (obj, shape) ->
+          incr tests;
+          let near, far = Shape.roots shape ~origin ~direction in
+          let best_t = match best with Some (_, t) -> t | None -> infinity in
+          if near < best_t && t_min < near && near < t_max then Some (obj, near)
+          else if far < best_t && t_min < far && far < t_max then Some (obj, far)
+          else best)
+        best (objects_of_shape shape))
     best scene.shapes
 
 (* A sphere's normal points out of it, as in the document; a plane's or a
@@ -53,6 +66,22 @@ let normal obj ~point ~direction =
   | Shape shape ->
       let n = Shape.normal shape point in
       if Vec3.dot n direction > 0. then Vec3.neg n else n
+  | Mesh_triangle (m, k) -> (
+      let tri = Mesh.triangle m k in
+      let n = Shape.normal (Shape.Triangle tri) point in
+      let flip = Vec3.dot n direction > 0. in
+      let turn n = if flip then Vec3.neg n else n in
+      (* Smooth: the corners' normals interpolated at the point, on the
+         side the ray sees. *)
+      let g = Array.make 9 0. and vn = Array.make 9 0. in
+      Triangle.store tri g 0;
+      let s = Scratch.create () in
+      s.px <- point.x;
+      s.py <- point.y;
+      s.pz <- point.z;
+      match Mesh.corner_normals m k vn 0 && Triangle.smooth_normal s g 0 vn 0 with
+      | true -> turn (Vec3.v s.nx s.ny s.nz)
+      | false -> turn n)
 
 let compute_lighting (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
   let intensity = ref 0. in

@@ -22,7 +22,12 @@ val closest_intersection :
     ray hits nothing in that range. Of two spheres hit at the same [t], the
     first in the list wins. *)
 
-type obj = Sphere of Sphere.t | Shape of Shape.t  (** The type for the objects of a scene. *)
+type obj =
+  | Sphere of Sphere.t
+  | Shape of Shape.t  (** A plane, a triangle or a box. *)
+  | Mesh_triangle of Mesh.t * int  (** Triangle [k] of a mesh. *)
+(** The type for the objects of a scene: a mesh is one object per
+    triangle, less its degenerate ones. *)
 
 val closest_hit :
   Scene.t -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float -> (obj * float) option
@@ -36,7 +41,9 @@ val normal : obj -> point:Vec3.t -> direction:Vec3.t -> Vec3.t
 (** [normal obj ~point ~direction] is the unit normal of [obj] at [point]
     for a ray along [direction]: {!Sphere.normal} for a sphere (outward, as
     in the document), and for the other shapes {!Shape.normal} turned
-    toward the ray ([-n] when [<n, D> > 0]). *)
+    toward the ray ([-n] when [<n, D> > 0]); a mesh's smooth triangle
+    gives its corners' normals interpolated ({!Triangle.smooth_normal}),
+    turned as its flat normal is. *)
 
 val compute_lighting :
   Scene.t -> epsilon:float -> point:Vec3.t -> normal:Vec3.t -> view:Vec3.t -> specular:float ->

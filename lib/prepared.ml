@@ -9,8 +9,10 @@ type t = {
   unbounded : int array;
   kind : int array;
   geom : float array;
+  vnormal : float array;
   extent : float array;
   twin : int array;
+  material : int array;
   cx : float array;
   cy : float array;
   cz : float array;
@@ -101,59 +103,100 @@ let specular_zero s =
     let x = Float.pred (Float.pred (2. ** (-1080. /. s))) in
     if x < 1. then Float.max x 0. else 0.
 
-(* Per object: its kind, geometry (spheres: center and radius, in the
-   first 4 floats), material, and for the hierarchy a cube around it. *)
-type obj = { okind : int; ogeom : float array; mat : Material.t; bounded : bool; center : Vec3.t; half : float }
+(* The objects in scene order: the spheres, then each shape, a mesh giving
+   one object per triangle (less its degenerate ones, which no ray can
+   hit). [iter] calls [sphere k s], [single k sh] or [mesh_triangle k m t]
+   for object [k]; [material] numbers the materials alike. *)
+let iter_objects (scene : Scene.t) ~sphere ~single ~mesh_triangle =
+  let k = ref 0 in
+  List.iter
+    (fun s ->
+      sphere !k s;
+      incr k)
+    scene.spheres;
+  List.iter
+    (fun sh ->
+      match sh with
+      | Shape.Mesh m ->
+          for t = 0 to Mesh.triangle_count m - 1 do
+            if not (Mesh.degenerate m t) then begin
+              mesh_triangle !k m t;
+              incr k
+            end
+          done
+      | _ ->
+          single !k sh;
+          incr k)
+    scene.shapes;
+  !k
 
-let objects (scene : Scene.t) =
-  let sphere (s : Sphere.t) =
-    {
-      okind = Shape.sphere;
-      ogeom = [| s.center.x; s.center.y; s.center.z; s.radius; 0.; 0.; 0.; 0.; 0. |];
-      mat = Material.v ~specular:s.specular ~reflective:s.reflective s.color;
-      bounded = true;
-      center = s.center;
-      half = s.radius;
-    }
-  in
-  let shape sh =
-    let g = Array.make Shape.stride 0. in
-    Shape.store sh g 0;
-    let center, half = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.) in
-    { okind = Shape.kind sh; ogeom = g; mat = Shape.material sh; bounded = Shape.bounded sh; center; half }
-  in
-  Array.of_list (List.map sphere scene.spheres @ List.map shape scene.shapes)
-
-(* The first object with the same kind and geometry, for each: such twins
-   are one surface, and a ray leaving one leaves both. *)
-let twins (listed : obj array) =
-  let first = Hashtbl.create 16 in
-  Array.mapi
-    (fun i o ->
-      let key = (o.okind, Array.to_list o.ogeom) in
-      match Hashtbl.find_opt first key with
-      | Some j -> j
-      | None ->
-          Hashtbl.add first key i;
-          i)
-    listed
+(* Identical spheres, by the first of them in scene order: a ray leaving
+   one leaves all. Other objects are their own. *)
+let sphere_twins (scene : Scene.t) n =
+  let twin = Array.init n Fun.id and first = Hashtbl.create 16 in
+  List.iteri
+    (fun k (s : Sphere.t) ->
+      let key = (s.center.x, s.center.y, s.center.z, s.radius) in
+      match Hashtbl.find_opt first key with Some j -> twin.(k) <- j | None -> Hashtbl.add first key k)
+    scene.spheres;
+  twin
 
 let prepare ?(skips = true) (scene : Scene.t) =
   (match Scene.validate scene with
   | Ok _ -> ()
   | Error (`Msg m) -> invalid_arg ("Prepared.prepare: invalid scene: " ^ m));
-  let listed = objects scene in
-  let n = Array.length listed in
   let n_spheres = List.length scene.spheres in
-  let bounded = List.filter (fun i -> listed.(i).bounded) (List.init n Fun.id) |> Array.of_list in
-  let unbounded = List.filter (fun i -> not listed.(i).bounded) (List.init n Fun.id) |> Array.of_list in
+  let n = iter_objects scene ~sphere:(fun _ _ -> ()) ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
+  (* Per object, in scene order: kind, material, and a cube around it
+     (center, half side) for the hierarchy. *)
+  let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
+  let ocx = Array.make n 0. and ocy = Array.make n 0. and ocz = Array.make n 0. and ohalf = Array.make n 0. in
+  let materials = ref [] and n_materials = ref 0 in
+  let new_material m =
+    materials := m :: !materials;
+    incr n_materials;
+    !n_materials - 1
+  in
+  (* A mesh's triangles come in a run: one material for the run. *)
+  let last_mesh = ref None in
+  let set k kind mat (c : Vec3.t) h =
+    okind.(k) <- kind;
+    omat.(k) <- mat;
+    ocx.(k) <- c.x;
+    ocy.(k) <- c.y;
+    ocz.(k) <- c.z;
+    ohalf.(k) <- h
+  in
+  ignore
+    (iter_objects scene
+       ~sphere:(fun k (s : Sphere.t) ->
+         set k Shape.sphere
+           (new_material (Material.v ~specular:s.specular ~reflective:s.reflective s.color))
+           s.center s.radius)
+       ~single:(fun k sh ->
+         let c, h = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.) in
+         set k (Shape.kind sh) (new_material (Shape.material sh)) c h)
+       ~mesh_triangle:(fun k m t ->
+         let mat =
+           match !last_mesh with
+           | Some (m', i) when m' == m -> i
+           | _ ->
+               let i = new_material m.material in
+               last_mesh := Some (m, i);
+               i
+         in
+         let c, h = Shape.bounds (Shape.Triangle (Mesh.triangle m t)) in
+         let smooth = Mesh.corner_normals m t (Array.make 9 0.) 0 in
+         set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h));
+  let materials = Array.of_list (List.rev !materials) in
+  let is_bounded k = okind.(k) <> Shape.plane in
+  let bounded = Array.of_list (List.filter is_bounded (List.init n Fun.id)) in
+  let unbounded = Array.of_list (List.filter (fun k -> not (is_bounded k)) (List.init n Fun.id)) in
   let nb = Array.length bounded in
   let bvh =
     if skips && nb > bvh_threshold then begin
-      let cx = Array.map (fun i -> listed.(i).center.x) bounded in
-      let cy = Array.map (fun i -> listed.(i).center.y) bounded in
-      let cz = Array.map (fun i -> listed.(i).center.z) bounded in
-      let radius = Array.map (fun i -> listed.(i).half) bounded in
+      let pick a = Array.map (fun k -> a.(k)) bounded in
+      let cx = pick ocx and cy = pick ocy and cz = pick ocz and radius = pick ohalf in
       let margin = Bvh.ray_box_margin ~cx ~cy ~cz ~radius scene.camera.position in
       Some (Bvh.build ~cx ~cy ~cz (Array.mapi (fun i r -> r +. margin.(i)) radius))
     end
@@ -168,22 +211,57 @@ let prepare ?(skips = true) (scene : Scene.t) =
   in
   let slot = Array.make n 0 in
   Array.iteri (fun k i -> slot.(i) <- k) index;
-  let objs = Array.map (fun i -> listed.(i)) index in
-  let twin_of = twins listed in
+  (* Geometry and sphere data, written in slot order. *)
+  let stride = Shape.stride in
+  let geom = Array.make (stride * n) 0. and extent = Array.make n 0. in
+  let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
+  let vnormal = if any_smooth then Array.make (stride * n) 0. else [||] in
+  let sphere_len = if n_spheres > 0 then n else 0 in
+  let cx = Array.make sphere_len 0. and cy = Array.make sphere_len 0. and cz = Array.make sphere_len 0. in
+  let radius = Array.make sphere_len 0. in
+  let extent_of i =
+    let e = ref 0. in
+    for j = stride * i to (stride * i) + stride - 1 do
+      e := Float.max !e (Float.abs geom.(j))
+    done;
+    extent.(i) <- !e
+  in
+  ignore
+    (iter_objects scene
+       ~sphere:(fun k (s : Sphere.t) ->
+         let i = slot.(k) in
+         cx.(i) <- s.center.x;
+         cy.(i) <- s.center.y;
+         cz.(i) <- s.center.z;
+         radius.(i) <- s.radius)
+       ~single:(fun k sh ->
+         let i = slot.(k) in
+         Shape.store sh geom (stride * i);
+         extent_of i)
+       ~mesh_triangle:(fun k m t ->
+         let i = slot.(k) in
+         for c = 0 to 2 do
+           let v = 3 * m.triangles.((3 * t) + c) in
+           for a = 0 to 2 do
+             geom.((stride * i) + (3 * c) + a) <- m.positions.(v + a)
+           done
+         done;
+         if any_smooth then ignore (Mesh.corner_normals m t vnormal (stride * i));
+         extent_of i));
+  let twin_of = sphere_twins scene n in
   let lights =
     Array.of_list
       (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
   in
-  let sf f = Array.map f objs and lf f = Array.map f lights in
+  let lf f = Array.map f lights and mf f = Array.map f materials in
   let o = scene.camera.position in
-  let cx = sf (fun s -> s.ogeom.(0)) and cy = sf (fun s -> s.ogeom.(1)) in
-  let cz = sf (fun s -> s.ogeom.(2)) and r2 = sf (fun s -> s.ogeom.(3) *. s.ogeom.(3)) in
+  let r2 = Array.map (fun r -> r *. r) radius in
   let primary_ocx = Array.map (fun c -> o.x -. c) cx in
   let primary_ocy = Array.map (fun c -> o.y -. c) cy in
   let primary_ocz = Array.map (fun c -> o.z -. c) cz in
   (* Same operands in the same order as the tracer's per-ray [k3]. *)
   let primary_k3 =
-    Array.init n (fun i ->
+    Array.init sphere_len (fun i ->
         let x = primary_ocx.(i) and y = primary_ocy.(i) and z = primary_ocz.(i) in
         ((x *. x) +. (y *. y) +. (z *. z)) -. r2.(i))
   in
@@ -193,8 +271,6 @@ let prepare ?(skips = true) (scene : Scene.t) =
     | Point { position; _ } -> position
     | Directional { direction; _ } -> direction
   in
-  let geom = Array.make (Shape.stride * n) 0. in
-  Array.iteri (fun k ob -> Array.blit ob.ogeom 0 geom (Shape.stride * k) Shape.stride) objs;
   let max_channel = max_channel scene in
   {
     n_spheres;
@@ -205,21 +281,23 @@ let prepare ?(skips = true) (scene : Scene.t) =
     slot;
     bvh;
     unbounded = Array.map (fun i -> slot.(i)) unbounded;
-    kind = sf (fun s -> s.okind);
+    kind = Array.map (fun k -> okind.(k)) index;
     geom;
-    extent = sf (fun s -> Array.fold_left (fun acc x -> Float.max acc (Float.abs x)) 0. s.ogeom);
-    twin = Array.map (fun i -> slot.(twin_of.(i))) index;
+    vnormal;
+    extent;
+    twin = Array.map (fun k -> slot.(twin_of.(k))) index;
+    material = Array.map (fun k -> omat.(k)) index;
     cx;
     cy;
     cz;
-    radius = sf (fun s -> s.ogeom.(3));
+    radius;
     r2;
-    red = sf (fun s -> s.mat.color.r);
-    green = sf (fun s -> s.mat.color.g);
-    blue = sf (fun s -> s.mat.color.b);
-    specular = sf (fun s -> s.mat.specular);
-    specular_zero = sf (fun s -> if skips then specular_zero s.mat.specular else 0.);
-    reflective = sf (fun s -> s.mat.reflective);
+    red = mf (fun m -> m.Material.color.r);
+    green = mf (fun m -> m.color.g);
+    blue = mf (fun m -> m.color.b);
+    specular = mf (fun m -> m.specular);
+    specular_zero = mf (fun m -> if skips then specular_zero m.specular else 0.);
+    reflective = mf (fun m -> m.reflective);
     n_lights = Array.length lights;
     light_kind =
       lf (function Light.Ambient _ -> ambient | Point _ -> point | Directional _ -> directional);

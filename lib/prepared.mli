@@ -27,17 +27,26 @@ type t = private {
   geom : float array;
       (** The geometry of the object in slot [k] at [Shape.stride * k], as
           the shape module's [store] writes it (unused for spheres). *)
+  vnormal : float array;
+      (** Smooth triangles: the unit normals of the three corners of the
+          object in slot [k] at [Shape.stride * k] (empty if the scene has
+          no smooth triangle). *)
   extent : float array;
       (** The largest magnitude of a coordinate of the object's geometry. *)
   twin : int array;
-      (** The first slot, in scene order, whose object has the same kind and
-          geometry: identical objects are one surface. *)
-  cx : float array;  (** Sphere centers, x coordinates ([0] for other shapes). *)
+      (** For a sphere, the slot of the first sphere in scene order with the
+          same center and radius: identical spheres are one surface. *)
+  material : int array;
+      (** The material of the object in each slot: an index into the
+          material arrays [red] to [reflective]. *)
+  cx : float array;
+      (** Sphere centers, x coordinates, by slot ([0] for other shapes;
+          empty when the scene has no sphere). *)
   cy : float array;
   cz : float array;
   radius : float array;
   r2 : float array;  (** [radius *. radius]. *)
-  red : float array;  (** Colour channels, 0-255. *)
+  red : float array;  (** Colour channels of each material, 0-255. *)
   green : float array;
   blue : float array;
   specular : float array;  (** Exponent, or {!Sphere.matte}. *)

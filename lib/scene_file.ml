@@ -606,7 +606,13 @@ let to_string (s : Scene.t) =
       | Shape.Triangle t ->
           Buffer.add_string b
             (Printf.sprintf "(triangle (vertices (%s) (%s) (%s))" (vec t.v0) (vec t.v1) (vec t.v2))
-      | Shape.Box x -> Buffer.add_string b (Printf.sprintf "(box (min %s) (max %s)" (vec x.min) (vec x.max)));
+      | Shape.Box x -> Buffer.add_string b (Printf.sprintf "(box (min %s) (max %s)" (vec x.min) (vec x.max))
+      | Shape.Mesh m ->
+          (* The file's text is not kept: a mesh prints as the form that
+             reads it again. *)
+          Buffer.add_string b
+            (Printf.sprintf "(mesh (file %S) (scale %s) (translate %s)%s" m.source (num m.scale) (vec m.translate)
+               (if m.smooth then " (smooth true)" else "")));
       Buffer.add_string b (Printf.sprintf " (color %s %s %s)" (num m.color.r) (num m.color.g) (num m.color.b));
       if m.specular <> Sphere.matte then Buffer.add_string b (Printf.sprintf " (specular %s)" (num m.specular));
       if m.reflective <> 0. then Buffer.add_string b (Printf.sprintf " (reflective %s)" (num m.reflective));

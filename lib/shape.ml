@@ -1,6 +1,10 @@
-type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t [@@deriving show, eq]
+type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t [@@deriving show, eq]
 
-let material = function Plane p -> p.material | Triangle t -> t.material | Box b -> b.material
+let material = function
+  | Plane p -> p.material
+  | Triangle t -> t.material
+  | Box b -> b.material
+  | Mesh m -> m.material
 
 let validate s =
   let ( let* ) = Result.bind in
@@ -14,19 +18,29 @@ let validate s =
   | Box b ->
       let* b = Box.validate b in
       Ok (Box b)
+  | Mesh m ->
+      (* Its arrays and placement were checked by [Mesh.v]. *)
+      let* _ = Material.validate ~form:"mesh" m.material in
+      Ok (Mesh m)
 
-let name = function Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box"
+let name = function Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh"
 let sphere = 0
 let plane = 1
 let triangle = 2
 let box = 3
-let kind = function Plane _ -> plane | Triangle _ -> triangle | Box _ -> box
+let smooth_triangle = 4
+let one fn = invalid_arg (Printf.sprintf "Shape.%s: a mesh is many objects" fn)
+let kind = function Plane _ -> plane | Triangle _ -> triangle | Box _ -> box | Mesh _ -> one "kind"
 let stride = 9
 
 let store s g o =
-  match s with Plane p -> Plane.store p g o | Triangle t -> Triangle.store t g o | Box b -> Box.store b g o
+  match s with
+  | Plane p -> Plane.store p g o
+  | Triangle t -> Triangle.store t g o
+  | Box b -> Box.store b g o
+  | Mesh _ -> one "store"
 
-let bounded = function Plane _ -> false | Triangle _ | Box _ -> true
+let bounded = function Plane _ -> false | Triangle _ | Box _ | Mesh _ -> true
 
 let cube (lo : Vec3.t) (hi : Vec3.t) =
   let c = Vec3.smul 0.5 (Vec3.add lo hi) in
@@ -35,6 +49,7 @@ let cube (lo : Vec3.t) (hi : Vec3.t) =
 
 let bounds = function
   | Plane _ -> invalid_arg "Shape.bounds: a plane is unbounded"
+  | Mesh _ -> one "bounds"
   | Box b -> cube b.min b.max
   | Triangle t ->
       let lo = Vec3.v (Float.min t.v0.x (Float.min t.v1.x t.v2.x)) (Float.min t.v0.y (Float.min t.v1.y t.v2.y))
@@ -56,6 +71,7 @@ let roots s ~origin ~direction =
         | Plane _ -> Plane.roots sc g 0
         | Triangle _ -> Triangle.roots sc g 0
         | Box _ -> Box.roots sc g 0
+        | Mesh _ -> one "roots"
       in
       if hit then (sc.near, sc.far) else (infinity, infinity))
 
@@ -67,5 +83,6 @@ let normal s (p : Vec3.t) =
       (match s with
       | Plane _ -> Plane.normal sc g 0
       | Triangle _ -> Triangle.normal sc g 0
-      | Box _ -> Box.normal sc g 0);
+      | Box _ -> Box.normal sc g 0
+      | Mesh _ -> one "normal");
       Vec3.v sc.nx sc.ny sc.nz)

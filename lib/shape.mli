@@ -5,7 +5,7 @@
     written by the shape module's [store]). This module ties the kinds to
     the shape modules, for the kernel and for {!Literal}. *)
 
-type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t [@@deriving show, eq]
+type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t [@@deriving show, eq]
 (** The type for shapes. *)
 
 val material : t -> Material.t
@@ -15,7 +15,7 @@ val validate : t -> (t, [> `Msg of string ]) result
 (** [validate s] is the shape module's [validate]. *)
 
 val name : t -> string
-(** [name s] is the scene-file form of [s]: ["plane"], ["triangle"] or ["box"]. *)
+(** [name s] is the scene-file form of [s]: ["plane"], ["triangle"], ["box"] or ["mesh"]. *)
 
 (** {1:kinds Kinds} *)
 
@@ -31,8 +31,15 @@ val triangle : int
 val box : int
 (** [box] is [3]. *)
 
+val smooth_triangle : int
+(** [smooth_triangle] is [4]: a mesh's triangle shaded with normals
+    interpolated from its corners ({!Triangle.smooth_normal}). *)
+
 val kind : t -> int
-(** [kind s] is the kind of [s]. *)
+(** [kind s] is the kind of [s].
+    @raise Invalid_argument on a mesh, which is many objects of kind
+    {!triangle} or {!smooth_triangle} (so are {!store}, {!bounds},
+    {!roots} and {!normal}). *)
 
 val stride : int
 (** [stride] is [9], the floats of geometry per shape in the table. *)

@@ -184,7 +184,7 @@ let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
    routine, in [s.near] and [s.far]; [false] if it misses. *)
 let shape_roots (p : Prepared.t) s i =
   let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
-  if k = Shape.triangle then Triangle.roots s p.geom o
+  if k = Shape.triangle || k = Shape.smooth_triangle then Triangle.roots s p.geom o
   else if k = Shape.plane then Plane.roots s p.geom o
   else Box.roots s p.geom o
 
@@ -204,9 +204,9 @@ let shape_test tr s i =
 (* Tests the ray in [s] against the object in slot [i], keeping the better
    hit. From the camera ([primary]), [CO] and the textbook's [k3] are
    per-frame constants. *)
-let[@inline] test tr s i ~primary dx dy dz a inv_a two_k1 k1x4 =
+let[@inline] test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4 =
   let p = tr.p in
-  if Array.unsafe_get p.kind i <> Shape.sphere then shape_test tr s i
+  if (not spheres) && Array.unsafe_get p.kind i <> Shape.sphere then shape_test tr s i
   else
   let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
   let fy = if primary then Array.unsafe_get p.primary_ocy i else s.oy -. Array.unsafe_get p.cy i in
@@ -312,7 +312,7 @@ let closest_textbook_secondary tr = closest_textbook_all tr ~primary:false
    [t] is left in [s.t] ([infinity] if none), its slot is returned. One
    traversal for every kind of object; spheres alone in the document's
    mode without a hierarchy (the reference scene) take the loop above. *)
-let closest_from tr ~primary =
+let[@inline] closest_from tr ~primary ~spheres =
   let p = tr.p and s = tr.s in
   if p.textbook_all then
     if primary then closest_textbook_primary tr else closest_textbook_secondary tr
@@ -328,13 +328,13 @@ let closest_from tr ~primary =
           let n = p.n_objects in
           tr.counters.tests <- tr.counters.tests + n;
           for i = 0 to n - 1 do
-            test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+            test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
           done
       | Some b ->
           (* Planes, unbounded, are outside the hierarchy. *)
           let planes = p.unbounded in
           let n = Array.length planes in
-          if n > 0 then begin
+          if (not spheres) && n > 0 then begin
             tr.counters.tests <- tr.counters.tests + n;
             for j = 0 to n - 1 do
               shape_test tr s (Array.unsafe_get planes j)
@@ -356,7 +356,7 @@ let closest_from tr ~primary =
                 let first = Array.unsafe_get b.first k in
                 tr.counters.tests <- tr.counters.tests + count;
                 for i = first to first + count - 1 do
-                  test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+                  test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
                 done
               end
               else sp := push_children b stack !sp k dx dy dz
@@ -364,8 +364,14 @@ let closest_from tr ~primary =
           done);
       tr.hit
 
-let closest tr = closest_from tr ~primary:false
-let closest_primary tr = closest_from tr ~primary:true
+(* One copy of the traversal per kind of ray and per kind of scene:
+   spheres alone test no object's kind. *)
+let closest_spheres tr = closest_from tr ~primary:false ~spheres:true
+let closest_objects tr = closest_from tr ~primary:false ~spheres:false
+let closest_primary_spheres tr = closest_from tr ~primary:true ~spheres:true
+let closest_primary_objects tr = closest_from tr ~primary:true ~spheres:false
+let closest tr = if tr.p.all_spheres then closest_spheres tr else closest_objects tr
+let closest_primary tr = if tr.p.all_spheres then closest_primary_spheres tr else closest_primary_objects tr
 
 (* Does the shape (not a sphere) in slot [i] meet the ray in [s] with
    [t_min < t < t_max]? *)
@@ -377,10 +383,10 @@ let shape_blocks tr i =
 (* Does the object in slot [i] meet the ray in [s] with
    [t_min < t < t_max]? The same roots as [closest], so an object blocks
    exactly when [closest] would have found it. *)
-let[@inline] blocks tr i a inv_a =
+let[@inline] blocks tr i ~spheres a inv_a =
   let p = tr.p and s = tr.s in
-  Array.unsafe_get p.kind i <> Shape.sphere && shape_blocks tr i
-  || Array.unsafe_get p.kind i = Shape.sphere &&
+  (not spheres) && Array.unsafe_get p.kind i <> Shape.sphere && shape_blocks tr i
+  || (spheres || Array.unsafe_get p.kind i = Shape.sphere) &&
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let fx = s.ox -. Array.unsafe_get p.cx i
   and fy = s.oy -. Array.unsafe_get p.cy i
@@ -454,13 +460,13 @@ let blocker_textbook_all tr last =
   end
 
 (* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
-let first_blocker tr skip a inv_a =
+let[@inline] first_blocker_from tr ~spheres skip a inv_a =
   let p = tr.p and s = tr.s in
   match p.bvh with
   | None ->
       let n = p.n_objects in
       let i = ref 0 in
-      while !i < n && (!i = skip || not (blocks tr !i a inv_a)) do
+      while !i < n && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
         incr i
       done;
       tr.counters.tests <- tr.counters.tests + !i + 1;
@@ -471,14 +477,17 @@ let first_blocker tr skip a inv_a =
       let stack = tr.nodes and sp = ref 1 and found = ref (-1) in
       (* Planes first: they are outside the hierarchy. *)
       let planes = p.unbounded in
-      let j = ref 0 and n = Array.length planes in
-      while !j < n && (Array.unsafe_get planes !j = skip || not (shape_blocks tr (Array.unsafe_get planes !j))) do
-        incr j
-      done;
-      tr.counters.tests <- tr.counters.tests + min n (!j + 1);
-      if !j < n then begin
-        found := Array.unsafe_get planes !j;
-        sp := 0
+      let n = Array.length planes in
+      if (not spheres) && n > 0 then begin
+        let j = ref 0 in
+        while !j < n && (Array.unsafe_get planes !j = skip || not (shape_blocks tr (Array.unsafe_get planes !j))) do
+          incr j
+        done;
+        tr.counters.tests <- tr.counters.tests + (if !j < n then !j + 1 else n);
+        if !j < n then begin
+          found := Array.unsafe_get planes !j;
+          sp := 0
+        end
       end;
       Array.unsafe_set stack 0 0;
       while !sp > 0 do
@@ -489,7 +498,7 @@ let first_blocker tr skip a inv_a =
           let count = Array.unsafe_get b.count k in
           if count > 0 then begin
             let i = ref (Array.unsafe_get b.first k) and last = Array.unsafe_get b.first k + count in
-            while !i < last && (!i = skip || not (blocks tr !i a inv_a)) do
+            while !i < last && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
               incr i
             done;
             tr.counters.tests <- tr.counters.tests + count;
@@ -502,6 +511,12 @@ let first_blocker tr skip a inv_a =
         end
       done;
       !found
+
+let first_blocker_spheres tr skip a inv_a = first_blocker_from tr ~spheres:true skip a inv_a
+let first_blocker_objects tr skip a inv_a = first_blocker_from tr ~spheres:false skip a inv_a
+
+let first_blocker tr skip a inv_a =
+  if tr.p.all_spheres then first_blocker_spheres tr skip a inv_a else first_blocker_objects tr skip a inv_a
 
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
@@ -520,7 +535,7 @@ let shadowed tr l =
     let dx = s.dx and dy = s.dy and dz = s.dz in
     let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
     let inv_a = 1. /. a in
-    if last >= 0 && blocks tr last a inv_a then begin
+    if last >= 0 && blocks tr last ~spheres:p.all_spheres a inv_a then begin
       tr.counters.tests <- tr.counters.tests + 1;
       true
     end
@@ -532,7 +547,7 @@ let shadowed tr l =
 (* The total intensity at the hit point [s.px..] with unit normal [s.nx..]
    and view vector [s.vx..] (sections 7.4 to 7.7), left in [s.intensity].
    The shadow rays reuse [s]'s ray fields. *)
-let lighting tr ~shiny ~specular_of i =
+let lighting tr ~shiny ~specular_of m =
   let p = tr.p and s = tr.s in
   let px = s.px and py = s.py and pz = s.pz in
   let nx = s.nx and ny = s.ny and nz = s.nz in
@@ -579,8 +594,8 @@ let lighting tr ~shiny ~specular_of i =
             let cos = r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v) in
             (* Below the sphere's threshold, cos^s is exactly 0 and adds
                nothing: pow is not called (Prepared.specular_zero). *)
-            if cos > Array.unsafe_get p.specular_zero i then
-              s.intensity <- s.intensity +. (li *. Float.pow cos (Array.unsafe_get specular_of i))
+            if cos > Array.unsafe_get p.specular_zero m then
+              s.intensity <- s.intensity +. (li *. Float.pow cos (Array.unsafe_get specular_of m))
           end
         end
       end
@@ -638,7 +653,7 @@ let primary_hit tr =
     s.t <- infinity;
     tr.counters.tests <- tr.counters.tests + 1;
     (* The same test as [closest_primary] makes of that sphere: the same t. *)
-    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true dx dy dz a (1. /. a) (2. *. a) (4. *. a);
+    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres:false dx dy dz a (1. /. a) (2. *. a) (4. *. a);
     if tr.hit >= 0 then tr.hit else closest_primary tr
   end
 
@@ -664,10 +679,21 @@ let shape_hit tr i px py pz =
   s.py <- py;
   s.pz <- pz;
   let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
-  if k = Shape.triangle then Triangle.normal s p.geom o
+  if k = Shape.triangle || k = Shape.smooth_triangle then Triangle.normal s p.geom o
   else if k = Shape.plane then Plane.normal s p.geom o
   else Box.normal s p.geom o;
-  if (s.nx *. dx) +. (s.ny *. dy) +. (s.nz *. dz) > 0. then begin
+  let flip = (s.nx *. dx) +. (s.ny *. dy) +. (s.nz *. dz) > 0. in
+  if flip then begin
+    s.nx <- -.s.nx;
+    s.ny <- -.s.ny;
+    s.nz <- -.s.nz
+  end;
+  (* The geometric normal, turned toward the ray: the side to start
+     secondary rays on. *)
+  let gx = s.nx and gy = s.ny and gz = s.nz in
+  (* A smooth triangle shades with its interpolated normal, on the side
+     the ray sees. *)
+  if k = Shape.smooth_triangle && Triangle.smooth_normal s p.geom o p.vnormal o && flip then begin
     s.nx <- -.s.nx;
     s.ny <- -.s.ny;
     s.nz <- -.s.nz
@@ -682,9 +708,9 @@ let shape_hit tr i px py pz =
       +. Array.unsafe_get p.extent i
     in
     let e = offset_bound *. size in
-    s.px <- px +. (e *. s.nx);
-    s.py <- py +. (e *. s.ny);
-    s.pz <- pz +. (e *. s.nz)
+    s.px <- px +. (e *. gx);
+    s.py <- py +. (e *. gy);
+    s.pz <- pz +. (e *. gz)
   end
 
 (* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
@@ -728,10 +754,11 @@ let trace tr =
         tr.origin_sphere <- Array.unsafe_get p.twin i
       end
       else shape_hit tr i px py pz;
-      lighting tr ~shiny:(Array.unsafe_get p.specular i <> Sphere.matte) ~specular_of:p.specular i;
+      let m = Array.unsafe_get p.material i in
+      lighting tr ~shiny:(Array.unsafe_get p.specular m <> Sphere.matte) ~specular_of:p.specular m;
       let light = s.intensity in
-      let lr = Array.unsafe_get p.red i *. light and lg = Array.unsafe_get p.green i *. light and lb = Array.unsafe_get p.blue i *. light in
-      let refl = Array.unsafe_get p.reflective i in
+      let lr = Array.unsafe_get p.red m *. light and lg = Array.unsafe_get p.green m *. light and lb = Array.unsafe_get p.blue m *. light in
+      let refl = Array.unsafe_get p.reflective m in
       if refl <= 0. || !levels >= p.depth then begin
         s.r <- lr;
         s.g <- lg;

@@ -80,6 +80,34 @@ let normal (s : Scratch.t) g o =
   s.ny <- ny *. inv;
   s.nz <- nz *. inv
 
+(* Barycentric coordinates of P in the triangle by the normal equations of
+   P - v0 = b1 e1 + b2 e2; then the corners' normals weighted by them. *)
+let smooth_normal (s : Scratch.t) g o vn k =
+  let x0 = g.(o) and y0 = g.(o + 1) and z0 = g.(o + 2) in
+  let e1x = g.(o + 3) -. x0 and e1y = g.(o + 4) -. y0 and e1z = g.(o + 5) -. z0 in
+  let e2x = g.(o + 6) -. x0 and e2y = g.(o + 7) -. y0 and e2z = g.(o + 8) -. z0 in
+  let wx = s.px -. x0 and wy = s.py -. y0 and wz = s.pz -. z0 in
+  let d00 = (e1x *. e1x) +. (e1y *. e1y) +. (e1z *. e1z) in
+  let d01 = (e1x *. e2x) +. (e1y *. e2y) +. (e1z *. e2z) in
+  let d11 = (e2x *. e2x) +. (e2y *. e2y) +. (e2z *. e2z) in
+  let d20 = (wx *. e1x) +. (wy *. e1y) +. (wz *. e1z) in
+  let d21 = (wx *. e2x) +. (wy *. e2y) +. (wz *. e2z) in
+  let den = (d00 *. d11) -. (d01 *. d01) in
+  let b1 = ((d11 *. d20) -. (d01 *. d21)) /. den and b2 = ((d00 *. d21) -. (d01 *. d20)) /. den in
+  let b0 = 1. -. b1 -. b2 in
+  let nx = (b0 *. vn.(k)) +. (b1 *. vn.(k + 3)) +. (b2 *. vn.(k + 6)) in
+  let ny = (b0 *. vn.(k + 1)) +. (b1 *. vn.(k + 4)) +. (b2 *. vn.(k + 7)) in
+  let nz = (b0 *. vn.(k + 2)) +. (b1 *. vn.(k + 5)) +. (b2 *. vn.(k + 8)) in
+  let l = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+  if l > 0. && l < infinity then begin
+    let inv = 1. /. l in
+    s.nx <- nx *. inv;
+    s.ny <- ny *. inv;
+    s.nz <- nz *. inv;
+    true
+  end
+  else false
+
 let intersect tri ~origin ~direction =
   let g = Array.make 9 0. and s = Scratch.create () in
   store tri g 0;

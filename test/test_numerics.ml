@@ -146,7 +146,21 @@ let transform ~scale ~translate (s : Scene.t) =
         (function
           | Shape.Plane pl -> Shape.Plane { pl with point = p pl.point }
           | Shape.Triangle t -> Shape.Triangle { t with v0 = p t.v0; v1 = p t.v1; v2 = p t.v2 }
-          | Shape.Box b -> Shape.Box { b with min = p b.min; max = p b.max })
+          | Shape.Box b -> Shape.Box { b with min = p b.min; max = p b.max }
+          | Shape.Mesh m ->
+              let positions = Array.copy m.positions in
+              for i = 0 to (Array.length positions / 3) - 1 do
+                let v = p (Vec3.v positions.(3 * i) positions.((3 * i) + 1) positions.((3 * i) + 2)) in
+                positions.(3 * i) <- v.x;
+                positions.((3 * i) + 1) <- v.y;
+                positions.((3 * i) + 2) <- v.z
+              done;
+              match
+                Mesh.v ~smooth:m.smooth ~positions ~triangles:m.triangles ~normals:m.normals
+                  ~triangle_normals:m.triangle_normals m.material
+              with
+              | Ok m -> Shape.Mesh m
+              | Error (`Msg e) -> Alcotest.fail e)
         s.shapes;
     lights =
       List.map
