@@ -11,7 +11,7 @@ type t = {
   geom : float array;
   vnormal : float array;
   extent : float array;
-  twin : int array;
+  n_scene_objects : int;
   material : int array;
   cx : float array;
   cy : float array;
@@ -130,8 +130,13 @@ let iter_objects (scene : Scene.t) ~sphere ~single ~mesh_triangle =
     scene.shapes;
   !k
 
-(* Identical spheres, by the first of them in scene order: a ray leaving
-   one leaves all. Other objects are their own. *)
+(* Identical spheres, by the first of them in scene order. Only the first
+   gets a slot: the others have the same roots, so the first wins every
+   tie (it comes first) and blocks every shadow ray they would block; and
+   a ray leaving one leaves them all, which the robust mode's exact
+   handling of the sphere a ray leaves must see (or an identical twin,
+   with a root of about 1e-16 there, would shadow it). Other objects are
+   their own. *)
 let sphere_twins (scene : Scene.t) n =
   let twin = Array.init n Fun.id and first = Hashtbl.create 16 in
   List.iteri
@@ -189,9 +194,11 @@ let prepare ?(skips = true) (scene : Scene.t) =
          let smooth = Mesh.corner_normals m t (Array.make 9 0.) 0 in
          set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h));
   let materials = Array.of_list (List.rev !materials) in
+  let twin_of = sphere_twins scene n in
+  let kept = List.filter (fun k -> twin_of.(k) = k) (List.init n Fun.id) in
   let is_bounded k = okind.(k) <> Shape.plane in
-  let bounded = Array.of_list (List.filter is_bounded (List.init n Fun.id)) in
-  let unbounded = Array.of_list (List.filter (fun k -> not (is_bounded k)) (List.init n Fun.id)) in
+  let bounded = Array.of_list (List.filter is_bounded kept) in
+  let unbounded = Array.of_list (List.filter (fun k -> not (is_bounded k)) kept) in
   let nb = Array.length bounded in
   let bvh =
     if skips && nb > bvh_threshold then begin
@@ -207,16 +214,18 @@ let prepare ?(skips = true) (scene : Scene.t) =
   let index =
     match bvh with
     | Some b -> Array.append (Array.map (fun k -> bounded.(k)) b.order) unbounded
-    | None -> Array.init n Fun.id
+    | None -> Array.of_list kept
   in
   let slot = Array.make n 0 in
   Array.iteri (fun k i -> slot.(i) <- k) index;
+  Array.iteri (fun k first -> if first <> k then slot.(k) <- slot.(first)) twin_of;
+  let n_kept = Array.length index in
   (* Geometry and sphere data, written in slot order. *)
   let stride = Shape.stride in
-  let geom = Array.make (stride * n) 0. and extent = Array.make n 0. in
+  let geom = Array.make (stride * n_kept) 0. and extent = Array.make n_kept 0. in
   let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
-  let vnormal = if any_smooth then Array.make (stride * n) 0. else [||] in
-  let sphere_len = if n_spheres > 0 then n else 0 in
+  let vnormal = if any_smooth then Array.make (stride * n_kept) 0. else [||] in
+  let sphere_len = if n_spheres > 0 then n_kept else 0 in
   let cx = Array.make sphere_len 0. and cy = Array.make sphere_len 0. and cz = Array.make sphere_len 0. in
   let radius = Array.make sphere_len 0. in
   let extent_of i =
@@ -248,7 +257,6 @@ let prepare ?(skips = true) (scene : Scene.t) =
          done;
          if any_smooth then ignore (Mesh.corner_normals m t vnormal (stride * i));
          extent_of i));
-  let twin_of = sphere_twins scene n in
   let lights =
     Array.of_list
       (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
@@ -274,9 +282,9 @@ let prepare ?(skips = true) (scene : Scene.t) =
   let max_channel = max_channel scene in
   {
     n_spheres;
-    n_objects = n;
-    all_spheres = n_spheres = n;
-    textbook_all = n_spheres = n && bvh = None && scene.epsilon <> None;
+    n_objects = n_kept;
+    all_spheres = scene.shapes = [];
+    textbook_all = scene.shapes = [] && bvh = None && scene.epsilon <> None;
     index;
     slot;
     bvh;
@@ -285,7 +293,7 @@ let prepare ?(skips = true) (scene : Scene.t) =
     geom;
     vnormal;
     extent;
-    twin = Array.map (fun k -> slot.(twin_of.(k))) index;
+    n_scene_objects = n;
     material = Array.map (fun k -> omat.(k)) index;
     cx;
     cy;

@@ -8,7 +8,7 @@
 
 type t = private {
   n_spheres : int;  (** The number of spheres. *)
-  n_objects : int;  (** The number of objects: spheres and other shapes. *)
+  n_objects : int;  (** The number of slots: spheres and other shapes. *)
   all_spheres : bool;  (** Every object is a sphere: [n_spheres = n_objects]. *)
   textbook_all : bool;
       (** Spheres only, no hierarchy, the document's mode: the tracer's
@@ -17,7 +17,9 @@ type t = private {
       (** The index of the object in each slot, objects counted spheres
           first, then the scene's [shapes]: the per-object arrays below are
           in slot order (the hierarchy's leaf order, then the planes). *)
-  slot : int array;  (** The inverse of [index]. *)
+  slot : int array;
+      (** The slot of each object: the inverse of [index], but for the
+          identical spheres of [n_scene_objects], which share a slot. *)
   bvh : Bvh.t option;
       (** The hierarchy over the bounded objects (all but planes), when the
           skips are enabled and there are more than {!bvh_threshold} of them;
@@ -33,9 +35,12 @@ type t = private {
           no smooth triangle). *)
   extent : float array;
       (** The largest magnitude of a coordinate of the object's geometry. *)
-  twin : int array;
-      (** For a sphere, the slot of the first sphere in scene order with the
-          same center and radius: identical spheres are one surface. *)
+  n_scene_objects : int;
+      (** The objects of the scene, [>= n_objects]: a sphere identical (same
+          center and radius) to an earlier one has no slot of its own, its
+          [slot] is the earlier one's. It would never be seen first, nor
+          block a ray the earlier one does not block, and identical spheres
+          are one surface, which a ray leaves at once. *)
   material : int array;
       (** The material of the object in each slot: an index into the
           material arrays [red] to [reflective]. *)

@@ -21,9 +21,9 @@ type t = {
   nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
   mutable hit : int;  (** Index of the sphere found by [closest]. *)
   mutable origin_sphere : int;
-      (** The twin slot ([Prepared.twin]) of the sphere the current
-          secondary ray leaves, or [-1]: in the robust mode that sphere, and
-          any identical one, is handled exactly. *)
+      (** The slot of the sphere the current secondary ray leaves, or
+          [-1]: in the robust mode that sphere is handled exactly. (An
+          identical sphere has no slot of its own: {!Prepared.prepare}.) *)
   mutable first_hit : int;
   averaging : bool;  (** Samples are averaged: see [settled]. *)
   mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see [primary_hit]. *)
@@ -167,7 +167,7 @@ let leaving_margin = 16. *. epsilon_float *. epsilon_float (* (8u)^2, u = epsilo
 let[@inline] reenters b fx fy fz a = b < 0. && b *. b > leaving_margin *. ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) *. a
 
 let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
-  if Array.unsafe_get tr.p.twin i = tr.origin_sphere then begin
+  if i = tr.origin_sphere then begin
     let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
     if reenters b fx fy fz a then keep tr s i (-2. *. b *. inv_a)
   end
@@ -274,7 +274,7 @@ let[@inline] closest_textbook_all tr ~primary =
   let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
   let two_k1 = 2. *. a and k1x4 = 4. *. a in
   let best = ref infinity and hit = ref (-1) in
-  let n = p.n_spheres in
+  let n = p.n_objects in
   tr.counters.tests <- tr.counters.tests + n;
   for i = 0 to n - 1 do
     let fx = if primary then Array.unsafe_get pox i else ox -. Array.unsafe_get cx i in
@@ -314,9 +314,6 @@ let closest_textbook_secondary tr = closest_textbook_all tr ~primary:false
    mode without a hierarchy (the reference scene) take the loop above. *)
 let[@inline] closest_from tr ~primary ~spheres =
   let p = tr.p and s = tr.s in
-  if p.textbook_all then
-    if primary then closest_textbook_primary tr else closest_textbook_secondary tr
-  else
       let bvh = p.bvh in
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
@@ -366,12 +363,22 @@ let[@inline] closest_from tr ~primary ~spheres =
 
 (* One copy of the traversal per kind of ray and per kind of scene:
    spheres alone test no object's kind. *)
-let closest_spheres tr = closest_from tr ~primary:false ~spheres:true
 let closest_objects tr = closest_from tr ~primary:false ~spheres:false
-let closest_primary_spheres tr = closest_from tr ~primary:true ~spheres:true
 let closest_primary_objects tr = closest_from tr ~primary:true ~spheres:false
-let closest tr = if tr.p.all_spheres then closest_spheres tr else closest_objects tr
-let closest_primary tr = if tr.p.all_spheres then closest_primary_spheres tr else closest_primary_objects tr
+
+(* Spheres alone, the common case, inline where called, as before there
+   were other shapes. *)
+let[@inline] closest tr =
+  let p = tr.p in
+  if p.textbook_all then closest_textbook_secondary tr
+  else if p.all_spheres then closest_from tr ~primary:false ~spheres:true
+  else closest_objects tr
+
+let[@inline] closest_primary tr =
+  let p = tr.p in
+  if p.textbook_all then closest_textbook_primary tr
+  else if p.all_spheres then closest_from tr ~primary:true ~spheres:true
+  else closest_primary_objects tr
 
 (* Does the shape (not a sphere) in slot [i] meet the ray in [s] with
    [t_min < t < t_max]? *)
@@ -392,7 +399,7 @@ let[@inline] blocks tr i ~spheres a inv_a =
   and fy = s.oy -. Array.unsafe_get p.cy i
   and fz = s.oz -. Array.unsafe_get p.cz i in
   if p.robust then
-    if Array.unsafe_get p.twin i = tr.origin_sphere then
+    if i = tr.origin_sphere then
       let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
       reenters b fx fy fz a
       &&
@@ -447,7 +454,7 @@ let blocker_textbook_all tr last =
     last
   end
   else begin
-    let n = p.n_spheres in
+    let n = p.n_objects in
     let i = ref 0 in
     while
       !i < n
@@ -512,11 +519,10 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
       done;
       !found
 
-let first_blocker_spheres tr skip a inv_a = first_blocker_from tr ~spheres:true skip a inv_a
 let first_blocker_objects tr skip a inv_a = first_blocker_from tr ~spheres:false skip a inv_a
 
-let first_blocker tr skip a inv_a =
-  if tr.p.all_spheres then first_blocker_spheres tr skip a inv_a else first_blocker_objects tr skip a inv_a
+let[@inline] first_blocker tr skip a inv_a =
+  if tr.p.all_spheres then first_blocker_from tr ~spheres:true skip a inv_a else first_blocker_objects tr skip a inv_a
 
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
@@ -750,8 +756,8 @@ let trace tr =
         s.vx <- -.dx;
         s.vy <- -.dy;
         s.vz <- -.dz;
-        (* Shadow and mirror rays leave sphere i, and its twins. *)
-        tr.origin_sphere <- Array.unsafe_get p.twin i
+        (* Shadow and mirror rays leave sphere i. *)
+        tr.origin_sphere <- i
       end
       else shape_hit tr i px py pz;
       let m = Array.unsafe_get p.material i in
@@ -863,7 +869,7 @@ let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
   s.t_min <- tr.p.epsilon;
   s.t_max <- infinity;
   tr.origin_sphere <-
-    (if from < 0 || tr.p.kind.(tr.p.slot.(from)) <> Shape.sphere then -1 else tr.p.twin.(tr.p.slot.(from)));
+    (if from < 0 || tr.p.kind.(tr.p.slot.(from)) <> Shape.sphere then -1 else tr.p.slot.(from));
   let hit = closest tr in
   if hit < 0 then -1 else tr.p.index.(hit)
 
@@ -871,7 +877,7 @@ let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
    secondary ray (not the camera's per-frame constants). *)
 let roots tr k (o : Vec3.t) (d : Vec3.t) =
   let p = tr.p and s = tr.s in
-  if k < 0 || k >= p.n_objects then invalid_arg "Trace.roots: no such object";
+  if k < 0 || k >= p.n_scene_objects then invalid_arg "Trace.roots: no such object";
   let i = p.slot.(k) in
   Scratch.set_ray s o d;
   if p.kind.(i) <> Shape.sphere then
@@ -908,7 +914,7 @@ type samples = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.
 let averaging tr = tr.averaging
 
 let pixel_assuming tr gx gy k =
-  if k < -1 || k >= tr.p.n_objects then invalid_arg "Trace.pixel_assuming: no such object";
+  if k < -1 || k >= tr.p.n_scene_objects then invalid_arg "Trace.pixel_assuming: no such object";
   tr.assumed <- k;
   pixel tr gx gy;
   tr.assumed <- no_assumption
