@@ -524,4 +524,38 @@ let tests =
             ("boxes.scene", [ 3072; 6226; 2668; 100925; 0; 0 ]);
           ];
         if !fails <> [] then Alcotest.fail (String.concat "\n" (List.rev !fails)));
+      Alcotest.test_case "smooth and flat meshes render as the oracle does, and no shape allocates per pixel" `Quick
+      (fun () ->
+        let _, tris, faces = icosphere ~center:(Vec3.v 0. 0. 4.) ~radius:1. 2 in
+        let vs, _, _ = icosphere ~center:(Vec3.v 0. 0. 4.) ~radius:1. 2 in
+        let positions = Array.concat (List.map (fun (v : Vec3.t) -> [| v.x; v.y; v.z |]) (Array.to_list vs)) in
+        let triangles = Array.concat (List.map (fun (a, b, c) -> [| a; b; c |]) faces) in
+        (* Normals: the vertices themselves, around the center. *)
+        let normals = Array.mapi (fun i x -> if i mod 3 = 2 then x -. 4. else x) positions in
+        let mesh smooth =
+          match
+            Mesh.v ~smooth ~translate:(Vec3.v 1.5 0. 1.) ~positions ~triangles ~normals ~triangle_normals:triangles
+              (Material.v ~specular:50. ~reflective:0.3 Color.white)
+          with
+          | Ok m -> m
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        let flat = mesh false and mesh = mesh true in
+        ignore tris;
+        let doc = Scene.with_overrides ~width:40 ~height:40 { Scene.cgfs with shapes = [ Shape.Mesh mesh ] } in
+        if not (same_floats doc) then Alcotest.fail "a smooth mesh: the fast colours differ from the oracle's";
+        if not (same_floats { doc with shapes = [ Shape.Mesh flat ] }) then
+          Alcotest.fail "a flat mesh: the fast colours differ from the oracle's";
+        List.iter
+          (fun (what, s) ->
+            List.iter
+              (fun epsilon ->
+                let s = Scene.with_overrides ~width:64 ~height:64 { s with Scene.epsilon } in
+                Alcotest.(check (float 0.)) what 0. (stats s).minor_words)
+              [ None; Some 0.001 ])
+          [
+            ("room", Helpers.load_scene "room.scene");
+            ("boxes", Helpers.load_scene "boxes.scene");
+            ("a smooth mesh", { Scene.cgfs with shapes = [ Shape.Mesh mesh ] });
+          ]);
   ]
