@@ -558,4 +558,36 @@ let tests =
             ("boxes", Helpers.load_scene "boxes.scene");
             ("a smooth mesh", { Scene.cgfs with shapes = [ Shape.Mesh mesh ] });
           ]);
+      Alcotest.test_case "a floor tiled by coplanar triangles shows no acne: it renders as the plane it tiles" `Quick
+      (fun () ->
+        (* 40 x 40 cells of two triangles on y = 0, from -20 to 20 in x and
+           0 to 40 in z; the camera looks down at it, lights graze it. *)
+        let m = Material.v ~specular:10. (Color.v 200. 180. 150.) in
+        let cells = 40 in
+        let tiles =
+          List.concat
+            (List.init cells (fun i ->
+                 List.concat
+                   (List.init cells (fun j ->
+                        let x0 = Float.of_int i -. 20. and z0 = Float.of_int j in
+                        let v x z = Vec3.v x 0. z in
+                        [
+                          Shape.Triangle (Triangle.v (v x0 z0) (v (x0 +. 1.) z0) (v (x0 +. 1.) (z0 +. 1.)) m);
+                          Shape.Triangle (Triangle.v (v x0 z0) (v (x0 +. 1.) (z0 +. 1.)) (v x0 (z0 +. 1.)) m);
+                        ]))))
+        in
+        let plane = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy m) in
+        (* Every pixel sees the tiled part of the floor (up to z = 35). *)
+        let camera = match Camera.look_at ~position:(Vec3.v 0. 6. 2.) (Vec3.v 0. 0. 10.) with Ok c -> c | Error e -> failwith e in
+        let scene shapes =
+          Scene.v ~width:64 ~height:64 ~camera ~spheres:[] ~shapes
+            ~lights:[ Light.ambient 0.1; Light.point 0.6 (Vec3.v 0. 0.05 10.); Light.directional 0.3 (Vec3.v 1. 0.01 0.3) ]
+            ()
+        in
+        List.iter
+          (fun (what, scale) ->
+            let scaled (s : Scene.t) = Test_numerics.transform ~scale ~translate:Vec3.zero s in
+            Helpers.check_images ~max_abs:1 what ~expected:(Render.image_exn (scaled (scene [ plane ])))
+              (Render.image_exn (scaled (scene tiles))))
+          [ ("unit", 1.); ("scaled by 1e-6", 1e-6); ("scaled by 1e6", 1e6) ]);
   ]
