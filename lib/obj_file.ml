@@ -182,7 +182,8 @@ let number p b i k e =
   else fail p i k "number %s is too large (infinite as a float)" (shown b k e)
 
 (* [v x y z [w]] or [v x y z r g b] (or [vn x y z]) after the keyword at
-   [kw]: pushes x y z. *)
+   [kw]: pushes x y z. Here and in faces a token that starts with [#]
+   starts a comment to the end of the line, as some exporters write. *)
 let vertex p b i kw k j ~normal =
   let k = ref k and n = ref 0 in
   let g = if normal then p.nrm else p.pos in
@@ -191,7 +192,7 @@ let vertex p b i kw k j ~normal =
     fail p i kw "more than %d %s (the limit of vertices)" p.max_vertices (if normal then "normals" else "vertices");
   let most = if normal then 3 else 7 in
   k := skip_spaces b !k j;
-  while !k < j do
+  while !k < j && Bytes.unsafe_get b !k <> '#' do
     let e = token_end b !k j in
     if !n >= most then
       fail p i !k "expected at most %d numbers (%s), found %S" most
@@ -230,7 +231,7 @@ let face p b i f k j =
   p.face_n.len <- 0;
   let nv = float_length p.pos / 3 and nn = float_length p.nrm / 3 in
   let k = ref (skip_spaces b k j) in
-  while !k < j do
+  while !k < j && Bytes.unsafe_get b !k <> '#' do
     push_face p.face_v (index p b i k j ~count:nv ~what:"vertex");
     let n = ref (-1) in
     if !k < j && Bytes.unsafe_get b !k = '/' then begin

@@ -65,6 +65,11 @@ let tests =
         Alcotest.check ints __LOC__ [| -1; -1; 1; 0; 1; 1 |] m.triangle_normals;
         Alcotest.check floats __LOC__ [| 0.; 0.; 1.; 0.; 0.; -1. |] m.normals;
         Alcotest.(check (list (pair string int))) __LOC__ [ ("vt", 1) ] m.skipped);
+    Alcotest.test_case "a # word starts a comment in v, vn and f lines" `Quick (fun () ->
+        let m = mesh "v 0 0 0 # origin\nv 1 0 0 #x\nv 0 1 0\t#\nvn 0 0 1 #up\nf 1//1 2//1 3//1 # a face\n" in
+        Alcotest.check floats __LOC__ [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] m.positions;
+        Alcotest.check ints __LOC__ [| 0; 1; 2 |] m.triangles;
+        Alcotest.(check string) __LOC__ "t.obj:1:7: expected a number, found \"3#x\"" (error "v 1 2 3#x"));
     Alcotest.test_case "v keeps x y z of v x y z w and of v x y z r g b" `Quick (fun () ->
         let m = mesh "v 1 2 3 0.5\nv 4 5 6 1 0 0\n" in
         Alcotest.check floats __LOC__ [| 1.; 2.; 3.; 4.; 5.; 6. |] m.positions);
@@ -172,6 +177,19 @@ let tests =
         let n = String.length text in
         let cuts = List.sort_uniq compare (List.map (fun c -> c mod (n + 1)) cuts) in
         same_result (parse text) (chunked text cuts));
+    Helpers.qcheck ~count:2000 "any text of OBJ words is a mesh or an error, never an exception"
+      QCheck.(
+        make ~print:String.escaped
+          Gen.(
+            map (String.concat "")
+              (list_size (int_bound 60)
+                 (oneofl
+                    [ "v"; "vn"; "vt"; "f"; " "; "\t"; "\n"; "\r\n"; "\r"; "/"; "//"; "-"; "1"; "2"; "-1"; "0"; "3";
+                      "1.5"; "e"; "."; "#"; "nan"; "9999999999999999999999"; "\000"; "o x" ]))))
+      (fun text ->
+        match parse ~max_vertices:5 ~max_triangles:5 text with
+        | Ok m -> Obj_file.vertex_count m <= 5 && Obj_file.triangle_count m <= 5
+        | Error (`Msg e) -> String.length e > 6 && String.sub e 0 6 = "t.obj:");
     Alcotest.test_case "one byte at a time reads as the whole text" `Quick (fun () ->
         List.iter
           (fun text ->
