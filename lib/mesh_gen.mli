@@ -10,7 +10,7 @@
 val torus_knot : p:int -> q:int -> radius:float -> tube:float -> segments:int -> sides:int -> Obj_file.t
 (** [torus_knot ~p ~q ~radius ~tube ~segments ~sides] is a tube of radius
     [tube] around the [(p, q)] torus knot, the curve
-    [(2 + cos q t) (cos p t, sin p t) , -sin q t] scaled by [radius / 3]
+    [((2 + cos q t) cos p t, (2 + cos q t) sin p t, -sin q t)] scaled by [radius / 3]
     for [t] in \[0, 2π\] (it winds [p] times around the z axis and [q]
     times through the torus's hole; coprime [p] and [q] make a knot, others
     a link that crosses itself). The tube is cut into [segments] rings of

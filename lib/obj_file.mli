@@ -94,7 +94,7 @@ val feed : parser -> string -> int -> int -> (unit, [> `Msg of string ]) result
     numbers and line ends included. After an error, every later [feed]
     and {!finish} return that error.
     @raise Invalid_argument if [off] and [len] do not designate a
-    substring of [s]. *)
+    substring of [s], or after {!finish}. *)
 
 val feed_bytes : parser -> Bytes.t -> int -> int -> (unit, [> `Msg of string ]) result
 (** [feed_bytes] is {!feed} on bytes, e.g. the buffer of [input]; the
