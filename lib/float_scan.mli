@@ -6,8 +6,12 @@
     simple decimals take Clinger's exact fast path (an integer mantissa of
     at most 2{^53} and a power of ten of at most 10{^22}, both exact
     floats, so one correctly rounded multiplication or division gives the
-    correctly rounded result); any other decimal falls back to
-    [float_of_string] on a copy of its bytes. *)
+    correctly rounded result); decimals of 17 digits (doubles printed
+    exactly) with such a power of ten are the integer split in two exact
+    floats, multiplied or divided with the exact error terms of fused
+    multiply-adds, and the sum rounded once when the bound on its error
+    proves the rounding (else they fall back); any other decimal falls
+    back to [float_of_string] on a copy of its bytes. *)
 
 val to_float : Bytes.t -> int -> int -> float
 (** [to_float b i j] is the value of the decimal [b.[i] .. b.[j-1]], equal
