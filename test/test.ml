@@ -42,4 +42,7 @@ let () =
       ("cli_fuzz", Test_cli_fuzz.tests);
       ("skips", Test_skips.tests);
       ("memory", Test_memory.tests);
+      ("float_scan", Test_float_scan.tests);
+      ("obj_file", Test_obj_file.tests);
+      ("mesh_gen", Test_mesh_gen.tests);
     ]
