@@ -35,7 +35,7 @@ let[@inline] slab (s : Scratch.t) lo hi o d =
     true
   end
 
-let roots (s : Scratch.t) g o =
+let[@inline never] roots (s : Scratch.t) g o =
   s.near <- neg_infinity;
   s.far <- infinity;
   if
@@ -60,7 +60,7 @@ let[@inline] smallest (a0 : float) a1 a2 a3 a4 a5 =
   let m45 = if a5 < a4 then a5 else a4 in
   if m23 < m01 then if m45 < m23 then f45 else f23 else if m45 < m01 then f45 else f01
 
-let normal (s : Scratch.t) g o =
+let[@inline never] normal (s : Scratch.t) g o =
   let face =
     smallest
       (Float.abs (s.px -. g.(o)))

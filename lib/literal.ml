@@ -28,13 +28,46 @@ let material = function
   | Mesh_triangle (m, _) -> m.material
 
 (* A mesh is its triangles, in order, less the degenerate ones (no ray
-   can hit them). *)
+   can hit them). Each object comes with its geometry as the kernel's
+   routine reads it (Shape.store), made once per list of shapes: a mesh
+   has thousands of triangles, and every ray tests them all. *)
 let objects_of_shape = function
   | Shape.Mesh m ->
       List.filter_map
         (fun k -> if Mesh.degenerate m k then None else Some (Mesh_triangle (m, k), Shape.Triangle (Mesh.triangle m k)))
         (List.init (Mesh.triangle_count m) Fun.id)
   | sh -> [ (Shape sh, sh) ]
+
+let table shape =
+  let g = Array.make Shape.stride 0. in
+  Shape.store shape g 0;
+  g
+
+let objects_cache = ref ([], [||])
+
+let objects (shapes : Shape.t list) =
+  match !objects_cache with
+  | cached, objects when cached == shapes -> objects
+  | _ ->
+      let objects =
+        Array.of_list (List.concat_map (fun sh -> List.map (fun (o, s) -> (o, s, table s)) (objects_of_shape sh)) shapes)
+      in
+      objects_cache := (shapes, objects);
+      objects
+
+let scratch = Scratch.create ()
+
+(* The roots of [shape] (stored in [g]) by its module's routine. *)
+let roots shape g ~origin ~direction =
+  Scratch.set_ray scratch origin direction;
+  let hit =
+    match shape with
+    | Shape.Plane _ -> Plane.roots scratch g 0
+    | Shape.Triangle _ -> Triangle.roots scratch g 0
+    | Shape.Box _ -> Box.roots scratch g 0
+    | Shape.Mesh _ -> invalid_arg "Literal.roots: a mesh is its triangles"
+  in
+  if hit then (scratch.near, scratch.far) else (infinity, infinity)
 
 (* The spheres first, then the other shapes, each root compared with a
    strict [<]: of equal roots, the first object in that order wins. *)
@@ -44,18 +77,15 @@ let closest_hit (scene : Scene.t) ~origin ~direction ~t_min ~t_max =
     | Some (sphere, t) -> Some (Sphere sphere, t)
     | None -> None
   in
-  List.fold_left
-    (fun best shape ->
-      List.fold_left
-        (fun best (obj, shape) ->
-          incr tests;
-          let near, far = Shape.roots shape ~origin ~direction in
-          let best_t = match best with Some (_, t) -> t | None -> infinity in
-          if near < best_t && t_min < near && near < t_max then Some (obj, near)
-          else if far < best_t && t_min < far && far < t_max then Some (obj, far)
-          else best)
-        best (objects_of_shape shape))
-    best scene.shapes
+  Array.fold_left
+    (fun best (obj, shape, g) ->
+      incr tests;
+      let near, far = roots shape g ~origin ~direction in
+      let best_t = match best with Some (_, t) -> t | None -> infinity in
+      if near < best_t && t_min < near && near < t_max then Some (obj, near)
+      else if far < best_t && t_min < far && far < t_max then Some (obj, far)
+      else best)
+    best (objects scene.shapes)
 
 (* A sphere's normal points out of it, as in the document; a plane's or a
    triangle's, and a box's (outward), is turned toward the ray, so that

@@ -24,7 +24,7 @@ let store p g o =
   g.(o + 4) <- n.y;
   g.(o + 5) <- n.z
 
-let roots (s : Scratch.t) g o =
+let[@inline never] roots (s : Scratch.t) g o =
   let nx = Array.unsafe_get g (o + 3) and ny = Array.unsafe_get g (o + 4) and nz = Array.unsafe_get g (o + 5) in
   let den = (s.dx *. nx) +. (s.dy *. ny) +. (s.dz *. nz) in
   if den = 0. then begin
@@ -44,7 +44,7 @@ let roots (s : Scratch.t) g o =
     true
   end
 
-let normal (s : Scratch.t) g o =
+let[@inline never] normal (s : Scratch.t) g o =
   s.nx <- Array.unsafe_get g (o + 3);
   s.ny <- Array.unsafe_get g (o + 4);
   s.nz <- Array.unsafe_get g (o + 5)

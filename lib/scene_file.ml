@@ -284,6 +284,45 @@ let box ~where form_node nodes =
   let m = material ~form ~form_node fs in
   Shape.Box (check_msg max_node (Box.validate (Box.v ~min ~max m)))
 
+(* A mesh: its file is read by [load] (the path as the scene gives it). *)
+let mesh ~where ~load form_node nodes =
+  let form = "mesh" in
+  let fs = fields ~where ~form ~allowed:([ "file"; "scale"; "translate"; "smooth" ] @ material_fields) nodes in
+  let file_node, file =
+    required ~form ~form_node fs "file" (fun what f ->
+        match f.args with
+        | [ Sexp.Atom a ] when a <> "" -> (f.node, a)
+        | _ -> fail f.node "%s: expected a file name, e.g. (file \"models/knot.obj\")" (what ()))
+  in
+  let scale =
+    Option.value ~default:1.
+      (Option.map
+         (fun f ->
+           let x = float_field form "scale" f in
+           if x > 0. then x else fail (single form "scale" f) "mesh scale must be > 0, got %s" (Float_text.to_string x))
+         (find fs "scale"))
+  in
+  let translate =
+    match find fs "translate" with
+    | Some f -> check f.node (Limits.check_point "mesh translate" (vec3_field form "translate" f))
+    | None -> Vec3.zero
+  in
+  let smooth =
+    match find fs "smooth" with
+    | None -> false
+    | Some f -> (
+        match single form "smooth" f with
+        | Sexp.Atom "true" -> true
+        | Sexp.Atom "false" -> false
+        | node -> fail node "mesh smooth: expected true or false")
+  in
+  let m = material ~form ~form_node fs in
+  let obj = check_msg file_node (load file) in
+  Shape.Mesh
+    (check_msg form_node
+       (Mesh.v ~smooth ~scale ~translate ~source:file ~skipped:(Obj_file.skipped_total obj) ~positions:obj.positions
+          ~triangles:obj.triangles ~normals:obj.normals ~triangle_normals:obj.triangle_normals m))
+
 let light ~where form_node nodes =
   let kinds = [ "ambient"; "point"; "directional" ] in
   match nodes with
@@ -363,11 +402,12 @@ let value form form_node = function
   | nodes -> fail form_node "%s takes 1 value, got %d" form (List.length nodes)
 
 let top_level =
-  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "plane"; "triangle"; "box"; "light" ]
+  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "plane"; "triangle"; "box"; "mesh"; "light" ]
 
 (* The scene being read, form by form. *)
 type builder = {
   where : Sexp.t -> Positions.pos option;
+  load : string -> (Obj_file.t, [ `Msg of string ]) result;  (** Reads a mesh file. *)
   seen : (string, Positions.pos option) Hashtbl.t;
       (** Forms that may appear once, and where they first did. *)
   mutable scene : Scene.t;
@@ -378,9 +418,10 @@ type builder = {
   mutable n_lights : int;
 }
 
-let builder where =
+let builder ~load where =
   {
     where;
+    load;
     seen = Hashtbl.create 8;
     scene = Scene.v ~spheres:[] ~lights:[] ();
     spheres = [];
@@ -417,6 +458,10 @@ let add_form b node =
           ignore (check node (Limits.check_count `Spheres b.n_spheres));
           let parse = match form with "plane" -> plane | "triangle" -> triangle | _ -> box in
           b.shapes <- parse ~where node rest :: b.shapes
+      | "mesh" ->
+          b.n_spheres <- b.n_spheres + 1;
+          ignore (check node (Limits.check_count `Spheres b.n_spheres));
+          b.shapes <- mesh ~where ~load:b.load node rest :: b.shapes
       | "light" ->
           b.n_lights <- b.n_lights + 1;
           ignore (check node (Limits.check_count `Lights b.n_lights));
@@ -463,7 +508,7 @@ let finish b =
 (* The located pass: the same conversion over a parse that kept positions. *)
 (* The located pass streams too: it keeps the positions of the form being
    converted only, so locating an error costs no more memory than loading. *)
-let locate_error text =
+let locate_error ~load text =
   let module P = Parsexp.Eager_and_positions in
   let current = ref None in
   let where node =
@@ -477,7 +522,7 @@ let locate_error text =
         | found -> Option.map (fun (r : Positions.range) -> r.start_pos) found
         | exception Stack_overflow -> None)
   in
-  let b = builder where in
+  let b = builder ~load where in
   let state =
     P.State.create (fun _ (form, positions) ->
         current := Some (form, positions);
@@ -510,7 +555,25 @@ let form_start text offset =
   done;
   Positions.{ line = !line; col = i - !bol; offset = i }
 
-let of_string ?(file = "<string>") text =
+(* Without a loader, a scene names no mesh file it can read. *)
+let no_loader path =
+  Error
+    (`Msg
+      (Printf.sprintf "cannot read mesh file %s: this scene was given as text, with no way to read files" path))
+
+let of_string ?(load_mesh = no_loader) ?(file = "<string>") text =
+  (* Mesh files are named relative to the scene file; each is read once,
+     even when an error makes a second, located pass over the text. *)
+  let loaded = Hashtbl.create 4 in
+  let load path =
+    let path = if Filename.is_relative path then Filename.concat (Filename.dirname file) path else path in
+    match Hashtbl.find_opt loaded path with
+    | Some r -> r
+    | None ->
+        let r = match load_mesh path with Ok m -> Ok m | Error (`Msg m) -> Error (`Msg m) in
+        Hashtbl.add loaded path r;
+        r
+  in
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
   match Limits.check_scene_bytes (String.length text) with
@@ -521,7 +584,7 @@ let of_string ?(file = "<string>") text =
        recorded: big scenes load in little time and memory. Only an error
        triggers a second pass that records positions, and fails on the same
        node. *)
-    let b = builder (fun _ -> None) in
+    let b = builder ~load (fun _ -> None) in
     (* The parser holds a form whole, in 30 to 50 times its text: the text
        is fed in chunks, and a form that grows past the form bound is
        refused before it can take more. *)
@@ -545,7 +608,7 @@ let of_string ?(file = "<string>") text =
     | Error (p, m) -> error p m
     | exception Parsexp.Parse_error.Parse_error e -> syntax e
     | exception Located _ -> (
-        match locate_error text with
+        match locate_error ~load text with
         | `Syntax e -> syntax e
         | `Located (pos, m) -> error (Option.value pos ~default:origin) m
         | `Not_found -> error origin "internal error: the located pass found no error")
@@ -555,10 +618,28 @@ let of_string ?(file = "<string>") text =
         | Ok s -> Ok s
         | Error (`Msg m) -> error origin m))
 
+(* A mesh file, 64 KiB at a time: the text is never held whole. *)
+let read_mesh path =
+  match open_in_bin path with
+  | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
+  | ic ->
+      Fun.protect
+        ~finally:(fun () -> close_in_noerr ic)
+        (fun () ->
+          let p = Obj_file.create ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
+          let chunk = Bytes.create 65536 in
+          let rec go () =
+            match input ic chunk 0 (Bytes.length chunk) with
+            | 0 -> Obj_file.finish p
+            | n -> ( match Obj_file.feed_bytes p chunk 0 n with Ok () -> go () | Error e -> Error e)
+            | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
+          in
+          go ())
+
 let read path =
   match File_io.read ~check_size:Limits.check_scene_bytes path with
   | Error e -> Error e
-  | Ok text -> of_string ~file:path text
+  | Ok text -> of_string ~load_mesh:read_mesh ~file:path text
 
 let to_string (s : Scene.t) =
   let b = Buffer.create 1024 in

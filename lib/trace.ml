@@ -669,8 +669,8 @@ let primary_hit tr =
    root on the surface (error [16 u (|P| + extent)] at most) negative. *)
 let offset_bound = 32. *. epsilon_float
 
-(* The hit point [px, py, pz] on the shape (not a sphere) in slot [i],
-   for the ray in [s]: its normal, turned toward the ray (planes and
+(* The hit point [s.px, s.py, s.pz] on the shape (not a sphere) in slot
+   [i], for the ray in [s]: its normal, turned toward the ray (planes and
    triangles are seen from both sides, and a box from inside shows its
    walls' inner sides), and the view vector, in [s]. In the robust mode,
    the point is then moved off the surface, along the normal toward the
@@ -678,12 +678,10 @@ let offset_bound = 32. *. epsilon_float
    chapter 6): shadow and mirror rays leave from there, and their roots on
    this surface, or on any surface through the same point, are negative
    whatever the angle, with no constant tied to the scene's scale. *)
-let shape_hit tr i px py pz =
+let shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
-  s.px <- px;
-  s.py <- py;
-  s.pz <- pz;
+  let px = s.px and py = s.py and pz = s.pz in
   let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
   if k = Shape.triangle || k = Shape.smooth_triangle then Triangle.normal s p.geom o
   else if k = Shape.plane then Plane.normal s p.geom o
@@ -759,7 +757,14 @@ let trace tr =
         (* Shadow and mirror rays leave sphere i. *)
         tr.origin_sphere <- i
       end
-      else shape_hit tr i px py pz;
+      else begin
+        (* The point goes in [s], not as arguments: floats passed to a
+           function that is not inlined are boxed. *)
+        s.px <- px;
+        s.py <- py;
+        s.pz <- pz;
+        shape_hit tr i
+      end;
       let m = Array.unsafe_get p.material i in
       lighting tr ~shiny:(Array.unsafe_get p.specular m <> Sphere.matte) ~specular_of:p.specular m;
       let light = s.intensity in

@@ -39,7 +39,7 @@ let[@inline] pick axis (x : float) y z = if axis = 0 then x else if axis = 1 the
 (* Woop, Benthin and Wald, JCGT 2(1), 2013, section 3, in double precision
    throughout. kz is the largest axis of D, and kx, ky follow it so that
    the winding is kept (swapped when D.kz < 0). *)
-let roots (s : Scratch.t) g o =
+let[@inline never] roots (s : Scratch.t) g o =
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let ax = Float.abs dx and ay = Float.abs dy and az = Float.abs dz in
   let kz = if ax > ay then (if ax > az then 0 else 2) else if ay > az then 1 else 2 in
@@ -71,7 +71,7 @@ let roots (s : Scratch.t) g o =
     true
   end
 
-let normal (s : Scratch.t) g o =
+let[@inline never] normal (s : Scratch.t) g o =
   let e1x = g.(o + 3) -. g.(o) and e1y = g.(o + 4) -. g.(o + 1) and e1z = g.(o + 5) -. g.(o + 2) in
   let e2x = g.(o + 6) -. g.(o) and e2y = g.(o + 7) -. g.(o + 1) and e2z = g.(o + 8) -. g.(o + 2) in
   let nx = (e1y *. e2z) -. (e1z *. e2y) and ny = (e1z *. e2x) -. (e1x *. e2z) and nz = (e1x *. e2y) -. (e1y *. e2x) in
@@ -82,7 +82,7 @@ let normal (s : Scratch.t) g o =
 
 (* Barycentric coordinates of P in the triangle by the normal equations of
    P - v0 = b1 e1 + b2 e2; then the corners' normals weighted by them. *)
-let smooth_normal (s : Scratch.t) g o vn k =
+let[@inline never] smooth_normal (s : Scratch.t) g o vn k =
   let x0 = g.(o) and y0 = g.(o + 1) and z0 = g.(o + 2) in
   let e1x = g.(o + 3) -. x0 and e1y = g.(o + 4) -. y0 and e1z = g.(o + 5) -. z0 in
   let e2x = g.(o + 6) -. x0 and e2y = g.(o + 7) -. y0 and e2z = g.(o + 8) -. z0 in
