@@ -162,6 +162,7 @@ let prepare ?(skips = true) (scene : Scene.t) =
     incr n_materials;
     !n_materials - 1
   in
+  let corners = Array.make 9 0. in
   (* A mesh's triangles come in a run: one material for the run. *)
   let last_mesh = ref None in
   let set k kind mat (c : Vec3.t) h =
@@ -191,14 +192,24 @@ let prepare ?(skips = true) (scene : Scene.t) =
                i
          in
          let c, h = Shape.bounds (Shape.Triangle (Mesh.triangle m t)) in
-         let smooth = Mesh.corner_normals m t (Array.make 9 0.) 0 in
+         let smooth = Mesh.corner_normals m t corners 0 in
          set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h));
   let materials = Array.of_list (List.rev !materials) in
   let twin_of = sphere_twins scene n in
-  let kept = List.filter (fun k -> twin_of.(k) = k) (List.init n Fun.id) in
-  let is_bounded k = okind.(k) <> Shape.plane in
-  let bounded = Array.of_list (List.filter is_bounded kept) in
-  let unbounded = Array.of_list (List.filter (fun k -> not (is_bounded k)) kept) in
+  (* Arrays, not lists: a mesh makes millions of objects. *)
+  let select keep =
+    let a = Array.make n 0 and m = ref 0 in
+    for k = 0 to n - 1 do
+      if keep k then begin
+        a.(!m) <- k;
+        incr m
+      end
+    done;
+    Array.sub a 0 !m
+  in
+  let kept k = twin_of.(k) = k in
+  let bounded = select (fun k -> kept k && okind.(k) <> Shape.plane) in
+  let unbounded = select (fun k -> kept k && okind.(k) = Shape.plane) in
   let nb = Array.length bounded in
   let bvh =
     if skips && nb > bvh_threshold then begin
@@ -214,7 +225,7 @@ let prepare ?(skips = true) (scene : Scene.t) =
   let index =
     match bvh with
     | Some b -> Array.append (Array.map (fun k -> bounded.(k)) b.order) unbounded
-    | None -> Array.of_list kept
+    | None -> select kept
   in
   let slot = Array.make n 0 in
   Array.iteri (fun k i -> slot.(i) <- k) index;
