@@ -566,7 +566,8 @@ let of_string ?(load_mesh = no_loader) ?(file = "<string>") text =
      even when an error makes a second, located pass over the text. *)
   let loaded = Hashtbl.create 4 in
   let load path =
-    let path = if Filename.is_relative path then Filename.concat (Filename.dirname file) path else path in
+    let dir = Filename.dirname file in
+    let path = if Filename.is_relative path && dir <> Filename.current_dir_name then Filename.concat dir path else path in
     match Hashtbl.find_opt loaded path with
     | Some r -> r
     | None ->
