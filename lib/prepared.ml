@@ -137,12 +137,19 @@ let iter_objects (scene : Scene.t) ~sphere ~single ~mesh_triangle =
    handling of the sphere a ray leaves must see (or an identical twin,
    with a root of about 1e-16 there, would shadow it). Other objects are
    their own. *)
+module Spheres = Hashtbl.Make (struct
+  type t = float array  (** Center and radius. *)
+
+  let equal (a : t) (b : t) = a.(0) = b.(0) && a.(1) = b.(1) && a.(2) = b.(2) && a.(3) = b.(3)
+  let hash (a : t) = Hashtbl.hash a
+end)
+
 let sphere_twins (scene : Scene.t) n =
-  let twin = Array.init n Fun.id and first = Hashtbl.create 16 in
+  let twin = Array.init n Fun.id and first = Spheres.create 16 in
   List.iteri
     (fun k (s : Sphere.t) ->
-      let key = (s.center.x, s.center.y, s.center.z, s.radius) in
-      match Hashtbl.find_opt first key with Some j -> twin.(k) <- j | None -> Hashtbl.add first key k)
+      let key = [| s.center.x; s.center.y; s.center.z; s.radius |] in
+      match Spheres.find_opt first key with Some j -> twin.(k) <- j | None -> Spheres.add first key k)
     scene.spheres;
   twin
 
