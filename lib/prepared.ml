@@ -69,27 +69,37 @@ let specular_bound s = if s = Sphere.matte then 0. else Float.pow (1. +. (8. *. 
    blends, each off by a few ulps at most. Infinite (no early stop) when a
    specular term can be. *)
 let max_channel (scene : Scene.t) =
-  let light_bound ~diffuse ~specular =
+  let ambient, direct =
     List.fold_left
-      (fun acc l ->
+      (fun (a, d) l ->
         match l with
-        | Light.Ambient { intensity } -> acc +. intensity
-        | Point { intensity; _ } | Directional { intensity; _ } ->
-            acc +. (intensity *. diffuse) +. (intensity *. specular))
-      0. scene.lights
+        | Light.Ambient { intensity } -> (a +. intensity, d)
+        | Point { intensity; _ } | Directional { intensity; _ } -> (a, d +. intensity))
+      (0., 0.) scene.lights
   in
-  let channel (m : Material.t) =
-    Float.max m.color.r (Float.max m.color.g m.color.b) *. light_bound ~diffuse:1. ~specular:(specular_bound m.specular)
+  (* One pow per run of equal exponents: scenes repeat a few. *)
+  let last_s = ref nan and last_bound = ref 0. in
+  let channel (c : Color.t) s =
+    if not (Float.equal s !last_s) then begin
+      last_s := s;
+      last_bound := specular_bound s
+    end;
+    Float.max c.r (Float.max c.g c.b) *. (ambient +. direct +. (direct *. !last_bound))
   in
   let bg = scene.background in
   let bound =
     List.fold_left
-      (fun acc (s : Sphere.t) ->
-        Float.max acc (channel (Material.v ~specular:s.specular ~reflective:s.reflective s.color)))
+      (fun acc (s : Sphere.t) -> Float.max acc (channel s.color s.specular))
       (Float.max bg.r (Float.max bg.g bg.b))
       scene.spheres
   in
-  let bound = List.fold_left (fun acc sh -> Float.max acc (channel (Shape.material sh))) bound scene.shapes in
+  let bound =
+    List.fold_left
+      (fun acc sh ->
+        let m = Shape.material sh in
+        Float.max acc (channel m.color m.specular))
+      bound scene.shapes
+  in
   (bound *. (1. +. 1e-6)) +. 1e-6
 
 (* The largest x with x ** s certainly 0: x <= 2^(-1080 / s) gives
@@ -137,20 +147,28 @@ let iter_objects (scene : Scene.t) ~sphere ~single ~mesh_triangle =
    handling of the sphere a ray leaves must see (or an identical twin,
    with a root of about 1e-16 there, would shadow it). Other objects are
    their own. *)
-module Spheres = Hashtbl.Make (struct
-  type t = float array  (** Center and radius. *)
-
-  let equal (a : t) (b : t) = a.(0) = b.(0) && a.(1) = b.(1) && a.(2) = b.(2) && a.(3) = b.(3)
-  let hash (a : t) = Hashtbl.hash a
-end)
-
 let sphere_twins (scene : Scene.t) n =
-  let twin = Array.init n Fun.id and first = Spheres.create 16 in
-  List.iteri
-    (fun k (s : Sphere.t) ->
-      let key = [| s.center.x; s.center.y; s.center.z; s.radius |] in
-      match Spheres.find_opt first key with Some j -> twin.(k) <- j | None -> Spheres.add first key k)
-    scene.spheres;
+  let twin = Array.init n Fun.id in
+  let spheres = Array.of_list scene.spheres in
+  let key k = spheres.(k) in
+  let compare_spheres a b =
+    let (a : Sphere.t) = key a and (b : Sphere.t) = key b in
+    let c = Float.compare a.center.x b.center.x in
+    if c <> 0 then c
+    else
+      let c = Float.compare a.center.y b.center.y in
+      if c <> 0 then c
+      else
+        let c = Float.compare a.center.z b.center.z in
+        if c <> 0 then c else Float.compare a.radius b.radius
+  in
+  (* Sorted, stably: equal spheres are adjacent, the first in scene order
+     first. *)
+  let order = Array.init (Array.length spheres) Fun.id in
+  Array.stable_sort compare_spheres order;
+  for i = 1 to Array.length order - 1 do
+    if compare_spheres order.(i - 1) order.(i) = 0 then twin.(order.(i)) <- twin.(order.(i - 1))
+  done;
   twin
 
 let prepare ?(skips = true) (scene : Scene.t) =
@@ -240,7 +258,9 @@ let prepare ?(skips = true) (scene : Scene.t) =
   let n_kept = Array.length index in
   (* Geometry and sphere data, written in slot order. *)
   let stride = Shape.stride in
-  let geom = Array.make (stride * n_kept) 0. and extent = Array.make n_kept 0. in
+  (* Spheres alone need no table of shapes. *)
+  let shapes_len = if scene.shapes = [] then 0 else n_kept in
+  let geom = Array.make (stride * shapes_len) 0. and extent = Array.make shapes_len 0. in
   let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
   let vnormal = if any_smooth then Array.make (stride * n_kept) 0. else [||] in
   let sphere_len = if n_spheres > 0 then n_kept else 0 in

@@ -541,7 +541,10 @@ let shadowed tr l =
     let dx = s.dx and dy = s.dy and dz = s.dz in
     let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
     let inv_a = 1. /. a in
-    if last >= 0 && blocks tr last ~spheres:p.all_spheres a inv_a then begin
+    if
+      last >= 0
+      && if p.all_spheres then blocks tr last ~spheres:true a inv_a else blocks tr last ~spheres:false a inv_a
+    then begin
       tr.counters.tests <- tr.counters.tests + 1;
       true
     end
