@@ -6,13 +6,14 @@
 # packages; it does nothing when everything is already there.
 
 # Debian packages: the build, then the tests (virtual X server, screenshots;
-# a real Slurm cluster and sshd for the render-farm recipes, docs/farm.md).
+# js_of_ocaml and node run the core library as JavaScript; a real Slurm
+# cluster and sshd for the render-farm recipes, docs/farm.md).
 BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-ocaml-dev \
   libsexplib0-ocaml-dev libppx-deriving-ocaml-dev libgraphics-ocaml-dev libcamlimages-ocaml-dev \
   libx11-dev
 TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev libcrowbar-ocaml-dev xvfb \
   x11-apps xdotool imagemagick parallel rsync slurmctld slurmd slurm-client munge openssh-server \
-  openssh-client
+  openssh-client js-of-ocaml libjs-of-ocaml-dev nodejs
 # The plot of the run time against error benchmark (make bench-quality only).
 BENCH_PKGS = gnuplot-nox
 

@@ -8,16 +8,14 @@
    [runs] frames. Run under a display, e.g.
      xvfb-run -a -s "-screen 0 1024x768x24" \
        dune exec --profile release bench/draw.exe -- [SCENE] [RUNS] *)
-open Raytrace
-
 let scene () =
   if Array.length Sys.argv > 1 then
-    match Scene_file.read Sys.argv.(1) with
+    match Files.read_scene Sys.argv.(1) with
     | Ok s -> s
     | Error (`Msg m) ->
         prerr_endline m;
         exit 1
-  else Scene.cgfs
+  else Result.get_ok (Scene.validate Scene.cgfs)
 
 let runs = if Array.length Sys.argv > 2 then int_of_string Sys.argv.(2) else 9
 
@@ -64,7 +62,8 @@ let report name times =
 
 let () =
   let scene = scene () in
-  let img = Render.image_exn scene in
+  let img = match Render.image scene with Ok (img, _) -> img | Error (`Msg m) -> failwith m in
+  let scene = Scene.of_valid scene in
   Graphics.open_graph (Printf.sprintf " %dx%d" scene.width scene.height);
   Graphics.resize_window scene.width scene.height;
   Graphics.auto_synchronize false;

@@ -112,7 +112,7 @@ let cpu () =
 let render (scene : Scene.t) s =
   let scene = Scene.with_overrides ~depth:s.depth scene in
   let c0 = cpu () and t0 = Unix.gettimeofday () in
-  match Render.image ~jobs:1 ~samples:s.samples ?adaptive:s.adaptive ~subsample:s.subsample scene with
+  match Result.bind (Scene.validate scene) (Render.image ~samples:s.samples ?adaptive:s.adaptive ~subsample:s.subsample) with
   | Ok (img, stats) -> (img, stats, cpu () -. c0, Unix.gettimeofday () -. t0)
   | Error (`Msg m) -> failwith m
 
@@ -275,7 +275,7 @@ let () =
       (fun (n, path) ->
         if !only <> [] && not (List.mem n !only) then None
         else
-          match Scene_file.read path with
+          match Result.map Scene.of_valid (Files.read_scene path) with
           | Ok s -> Some (n, path, (if !half then s.width / 2 else s.width), if !half then s.height / 2 else s.height)
           | Error (`Msg m) -> failwith m)
       scenes
@@ -284,7 +284,7 @@ let () =
     List.concat_map
       (fun (name, path, w, h) ->
         let scene =
-          match Scene_file.read path with
+          match Result.map Scene.of_valid (Files.read_scene path) with
           | Ok s -> Scene.with_overrides ~width:w ~height:h s
           | Error (`Msg m) -> failwith m
         in

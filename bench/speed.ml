@@ -159,7 +159,7 @@ let () =
           programs
       done;
       let time p = match Hashtbl.find_opt times p with Some l -> median l | None -> nan in
-      let read p = match Ppm.read_file (image p) with Ok i -> Some i | Error _ -> None in
+      let read p = match Files.read_ppm (image p) with Ok i -> Some i | Error _ -> None in
       let same =
         match (read (Ours 1), read (Ours 2)) with Some a, Some b -> Image.equal a b | _ -> false
       in

@@ -43,12 +43,14 @@ let report = function
       say m;
       exit_input
 
-let load opts =
+(* The one scene validation of a command: a file's, or the built-in
+   scene's. Overrides come from the command line: checked like a file's
+   values, and only they. *)
+let load ~limits opts =
   let* scene =
-    match opts.scene with None -> Ok Scene.cgfs | Some path -> Scene_file.read path
+    match opts.scene with None -> Scene.validate ~limits Scene.cgfs | Some path -> Files.read_scene ~limits path
   in
-  (* Overrides come from the command line: checked like a file's values. *)
-  Scene.validate (Scene.with_overrides ?width:opts.width ?height:opts.height ?depth:opts.depth scene)
+  Scene.override ~limits ?width:opts.width ?height:opts.height ?depth:opts.depth scene
 
 let scene_name opts =
   match opts.scene with None -> "cgfs (built-in)" | Some p -> Filename.basename p
@@ -56,7 +58,7 @@ let scene_name opts =
 (* --jobs, or all cores; checked like any other input. *)
 let jobs_or_cores = function
   | None -> Ok (Parallel.cores ())
-  | Some j -> ( match Limits.check_jobs j with Ok j -> Ok j | Error m -> Error (`Msg m))
+  | Some j -> Limits.check_jobs j
 
 let sampling_of (o : sampling_options) =
   Sampling.v ?samples:o.samples ?adaptive:o.adaptive ~subsample:o.subsample ()
@@ -66,30 +68,32 @@ let sampling_of (o : sampling_options) =
 let progress meter = match meter with None -> None | Some m -> Some (Meter.update m)
 
 (* The image, its statistics (none for the oracle) and its tracing time. *)
-let render_image ~sampling ~literal ~jobs ~meter scene =
+let render_image ~limits ~sampling ~literal ~jobs ~meter valid =
+  let scene = Scene.of_valid valid in
   if literal then
     if not (Sampling.is_one sampling) then
       msg "--literal traces one ray per pixel: it cannot be combined with --samples or --subsample"
     else
       (* Render.image checks these itself; the oracle does not. *)
-      let* () = Scene.check_work scene in
+      let* () = Scene.check_work ~limits valid in
       let t0 = Unix.gettimeofday () in
-      match Literal.render scene with
+      match Literal.render ~limits valid with
       | exception Out_of_memory -> msg "not enough memory for a %dx%d image" scene.width scene.height
-      | exception Limits.Work_exceeded n -> Error (`Msg (Limits.work_exceeded n))
+      | exception Limits.Work_exceeded n -> Error (`Msg (Limits.work_exceeded limits n))
       | img -> Ok (img, None, Unix.gettimeofday () -. t0)
   else
     let* img, stats =
-      Render.image ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
-        ~subsample:sampling.subsample ?progress:(progress meter) scene
+      Render_jobs.image ~limits ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
+        ~subsample:sampling.subsample ?progress:(progress meter) valid
     in
     Ok (img, Some stats, stats.trace_s)
 
 let view opts ~jobs =
   report
-    (let* jobs = jobs_or_cores jobs in
-     let* scene = load opts in
-     match Window.run ~name:(scene_name opts) ~scene_file:opts.scene ~jobs scene with
+    (let* limits = Limits_env.read () in
+     let* jobs = jobs_or_cores jobs in
+     let* scene = load ~limits opts in
+     match Window.run ~limits ~name:(scene_name opts) ~scene_file:opts.scene ~jobs scene with
      | Ok () -> Ok exit_ok
      | Error (`Msg _ as e) -> Error e
      | Error (`No_display reason) ->
@@ -118,7 +122,7 @@ let to_stdout data =
 
 (* PPM to stdout; a file in the format its name says. *)
 let write output img =
-  if output = "-" then to_stdout (Ppm.to_string img) else Raytrace_png.Image_file.write_file output img
+  if output = "-" then to_stdout (Ppm.to_string img) else Image_file.write_file output img
 
 type part_spec = Tile of int * int | Corners of int * int * int * int
 
@@ -202,8 +206,8 @@ let check_output opts ~frames ~part output =
         msg "%s: with --frames %d:%d, the output needs the frame number, e.g. anim-%%04d.ppm" output a b
     | r, _, _ -> r
   in
-  match (part, Raytrace_png.Image_file.format_of_path output) with
-  | true, Raytrace_png.Image_file.Png when output <> "-" ->
+  match (part, Image_file.format_of_path output) with
+  | true, Image_file.Png when output <> "-" ->
       msg "%s: a part of an image is written as PPM, whose header records what raytrace merge checks; name it .ppm"
         output
   | _ -> Ok ()
@@ -227,17 +231,18 @@ let peak_kb () =
       r
 
 (* One picture (a frame, a part, or both) rendered and written. *)
-let render_one ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~region ~output ~sampling (scene : Scene.t) =
+let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~region ~output ~sampling valid =
+  let scene = Scene.of_valid valid in
   let* img, st, seconds =
     match region with
-    | None -> render_image ~sampling ~literal ~jobs ~meter scene
+    | None -> render_image ~limits ~sampling ~literal ~jobs ~meter valid
     | Some (r : Region.t) when literal ->
-        let* img, st, seconds = render_image ~sampling ~literal ~jobs ~meter scene in
+        let* img, st, seconds = render_image ~limits ~sampling ~literal ~jobs ~meter valid in
         Ok (Image.sub img ~x:r.x ~y:r.y ~w:r.w ~h:r.h, st, seconds)
     | Some r ->
         let* img, st =
-          Render.region_image ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
-            ~subsample:sampling.subsample ?progress:(progress meter) scene r
+          Render_jobs.region_image ~limits ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
+            ~subsample:sampling.subsample ?progress:(progress meter) valid r
         in
         Ok (img, Some st, st.trace_s)
   in
@@ -289,10 +294,11 @@ let render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling =
   report
     (let* () = check_output opts ~frames ~part:(Option.is_some part) output in
      let* sampling = sampling_of sampling in
+     let* limits = Limits_env.read () in
      let t0 = Unix.gettimeofday () in
-     let* scene = load opts in
+     let* scene = load ~limits opts in
      let load_s = Unix.gettimeofday () -. t0 in
-     let* region = part_region scene part in
+     let* region = part_region (Scene.of_valid scene) part in
      let* jobs = jobs_or_cores jobs in
      let count = match frames with None -> 1 | Some (a, b) -> b - a + 1 in
      let meter =
@@ -300,7 +306,7 @@ let render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling =
      in
      (* An error's message, or an interrupt, finds the line erased. *)
      Fun.protect ~finally:(fun () -> Option.iter Meter.clear meter) @@ fun () ->
-     let render_one = render_one ~literal ~jobs ~stats ~quiet ~meter ~load_s ~region ~sampling in
+     let render_one = render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~region ~sampling in
      match frames with
      | None ->
          let* () = render_one ~frame:None ~output scene in
@@ -327,11 +333,12 @@ let merge parts ~output ~quiet =
     (let* () =
        Io_plan.check ~inputs:(List.map (fun p -> ("part " ^ p, p)) parts) ~outputs:[ ("output", output) ]
      in
+     let* limits = Limits_env.read () in
      let* parts, _, _ =
        List.fold_left
          (fun acc path ->
            let* acc, canvas, pixels = acc in
-           let* p = Part.read_file path in
+           let* p = Part.read_file ~limits path in
            (* Parts that fit together cover their canvas once: more pixels
               on the first part's canvas than it has means an overlap,
               refused before more parts fill the memory. (A part of another
@@ -356,8 +363,9 @@ let merge parts ~output ~quiet =
 let diff a b ~max_diff =
   report
     (let* () = Io_plan.check ~inputs:[ ("image " ^ a, a); ("image " ^ b, b) ] ~outputs:[ ("output", "-") ] in
-     let* ia = Raytrace_png.Image_file.read_file a in
-     let* ib = Raytrace_png.Image_file.read_file b in
+     let* limits = Limits_env.read () in
+     let* ia = Image_file.read_file ~limits a in
+     let* ib = Image_file.read_file ~limits b in
      let* d = Image_diff.compare ia ib in
      let* () = to_stdout (Format.asprintf "%a\n" Image_diff.pp_summary d) in
      match max_diff with

@@ -14,7 +14,7 @@ let limit_envs =
     Cmd.Env.info (Limits.variable name)
       ~doc:
         (Printf.sprintf "Raise (or lower) the limit on %s; default %s. Inputs beyond a limit are refused before any work, with a message that names the variable."
-           what (Printf.sprintf "%.0f" (Limits.default name)))
+           what (Printf.sprintf "%.0f" (Limits.bound Limits.default name)))
   in
   [
     env `Pixels "canvas and image pixels (width x height)";
@@ -330,7 +330,7 @@ let diff_cmd =
 
 let main =
   let info =
-    Cmd.info "raytrace" ~version:"%%VERSION%%" ~exits ~doc:"a very basic ray tracer, faithful and fast"
+    Cmd.info "raytrace" ~version:Raytrace.version ~exits ~doc:"a very basic ray tracer, faithful and fast"
       ~man:
         [
           `S Manpage.s_description;

@@ -115,7 +115,7 @@ type session = {
   name : string;
   scene_file : string option;
   jobs : int;
-  mutable shared : Progressive.shared option;  (** For [jobs > 1], at the frame's size. *)
+  mutable shared : Progressive.workers option;  (** For [jobs > 1], at the frame's size. *)
   mutable row_s : float;  (** Seconds per row of the last full-resolution band. *)
   mutable rows : int;  (** Rows of the last full-resolution band. *)
   mutable failure_told : bool;
@@ -139,15 +139,15 @@ let start_frame s =
     Frame.resize scene.width scene.height;
     s.shared <- None
   end;
-  if s.jobs > 1 && s.shared = None && not s.failure_told then begin
-    match Progressive.shared ~jobs:s.jobs ~width:scene.width ~height:scene.height with
+  if s.jobs > 1 && Option.is_none s.shared && not s.failure_told then begin
+    match Progressive_workers.v ~jobs:s.jobs ~width:scene.width ~height:scene.height with
     | shared -> s.shared <- Some shared
     | exception ((Failure _ | Unix.Unix_error _) as e) ->
         s.failure_told <- true;
         let why = match e with Unix.Unix_error (err, _, _) -> Unix.error_message err | e -> Printexc.to_string e in
         log "no memory to share with worker processes (%s); tracing in this process" why
   end;
-  s.render <- Progressive.create ~samples:(View.samples s.view) ?shared:s.shared scene;
+  s.render <- Progressive.create ~limits:s.view.limits ~samples:(View.samples s.view) ?workers:s.shared s.view.valid;
   s.rows <- 1;
   s.started <- Unix.gettimeofday ();
   s.trace_s <- 0.;
@@ -160,7 +160,7 @@ let save s =
   let img = Progressive.image s.render in
   let exists = Sys.file_exists in
   let ppm, scene_path = View.save_paths ~scene_file:s.scene_file ~exists in
-  match Ppm.write_file ppm img with
+  match Files.write_ppm ppm img with
   | Error (`Msg m) -> log "cannot save: %s" m
   | Ok () -> (
       match
@@ -305,7 +305,8 @@ let close () =
   Gc.full_major ();
   Graphics.close_graph ()
 
-let run ~name ~scene_file ~jobs (scene : Scene.t) =
+let run ~limits ~name ~scene_file ~jobs valid =
+  let scene = Scene.of_valid valid in
   (* Graphics flushes the display on a SIGALRM timer of its own. *)
   Signals.leave_alone Sys.sigalrm;
   (* A window larger than the screen cannot be seen whole, and a very large
@@ -341,8 +342,8 @@ let run ~name ~scene_file ~jobs (scene : Scene.t) =
             row_s = 1e-3;
             rows = 1;
             failure_told = false;
-            view = View.v scene;
-            render = Progressive.create scene;
+            view = View.v ~limits valid;
+            render = Progressive.create valid;
             started = 0.;
             trace_s = 0.;
             plot_s = 0.;

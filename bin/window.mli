@@ -17,15 +17,17 @@ val plotc : int -> int -> int * int * int -> unit
     server one band of rows at a time. *)
 
 val run :
+  limits:Raytrace.Limits.t ->
   name:string ->
   scene_file:string option ->
   jobs:int ->
-  Raytrace.Scene.t ->
+  Raytrace.Scene.valid ->
   (unit, [ `No_display of string | `Msg of string ]) result
-(** [run ~name ~scene_file ~jobs scene] opens a window titled after [name],
+(** [run ~limits ~name ~scene_file ~jobs scene] opens a window titled after [name],
     renders [scene] in it and answers keys until the user presses [q] or
     Escape or closes the window. With [jobs > 1], the full-resolution
     passes are traced by [jobs] processes, a band of rows at a time. [s] saves next to [scene_file] (in the
-    current directory when [None]; {!Raytrace.View.save_paths}).
+    current directory when [None]; {!Raytrace_view.View.save_paths}).
     [`No_display] if no window can be opened (no X server), with the
-    reason; [`Msg] if the connection to the display is lost. *)
+    reason; [`Msg] if the connection to the display is lost. Canvas
+    sizes and depths stay within [limits]. *)

@@ -1,5 +1,5 @@
-(* Build a scene in code and render it to a PPM file:
-   dune exec examples/hello_scene.exe -- hello.ppm *)
+(* Build a scene in code and render it to a PPM file, with the core
+   library alone: dune exec examples/hello_scene.exe -- hello.ppm *)
 open Raytrace
 
 let scene =
@@ -23,12 +23,12 @@ let scene =
 
 let () =
   let output = if Array.length Sys.argv > 1 then Sys.argv.(1) else "hello.ppm" in
-  let result =
-    Result.bind (Scene.validate scene) (fun scene ->
-        Result.bind (Render.image scene) (fun (image, _stats) -> Ppm.write_file output image))
-  in
-  match result with
-  | Ok () -> print_endline ("wrote " ^ output)
+  match Result.bind (Scene.validate scene) Render.image with
+  | Ok (image, _stats) ->
+      let oc = open_out_bin output in
+      output_string oc (Ppm.to_string image);
+      close_out oc;
+      print_endline ("wrote " ^ output)
   | Error (`Msg m) ->
       prerr_endline m;
       exit 1

@@ -26,10 +26,10 @@ let number =
     [
       map [ int ] string_of_int;
       map [ int8 ] string_of_int;
-      map [ float ] Raytrace.Float_text.to_string;
+      map [ float ] Raytrace.Private.Float_text.to_string;
       map [ float ] (Printf.sprintf "%h");
       (* Numbers of a sensible size, so that scenes are often valid. *)
-      map [ int16 ] (fun n -> Raytrace.Float_text.to_string (Float.of_int n /. 256.));
+      map [ int16 ] (fun n -> Raytrace.Private.Float_text.to_string (Float.of_int n /. 256.));
       map [ uint8 ] string_of_int;
       token Hostile.scene_tokens;
     ]
@@ -66,7 +66,7 @@ let scene_text =
 (* Scenes that are valid most of the time, with values anywhere in their
    domains and sometimes at or beyond its edges, so that validation, the
    printer and the renderer see many real scenes. *)
-let scaled lo hi = map [ uint16 ] (fun n -> Raytrace.Float_text.to_string (lo +. ((hi -. lo) *. Float.of_int n /. 65535.)))
+let scaled lo hi = map [ uint16 ] (fun n -> Raytrace.Private.Float_text.to_string (lo +. ((hi -. lo) *. Float.of_int n /. 65535.)))
 let value lo hi = choose [ scaled lo hi; scaled lo hi; scaled lo hi; number ]
 let triple lo hi = map [ value lo hi; value lo hi; value lo hi ] (fun a b c -> String.concat " " [ a; b; c ])
 let optional name v = map [ bool; v ] (fun present x -> if present then Printf.sprintf " (%s %s)" name x else "")

@@ -46,19 +46,19 @@ let scene text =
       | Error (`Msg m) ->
           let* () = one_line "scene" m in
           located text m
-      | Ok s ->
+      | Ok valid ->
+          let s = Scene.of_valid valid in
           let* _ =
             Result.map_error (fun (`Msg m) -> "accepted a scene that fails validation: " ^ m) (Scene.validate s)
           in
           let printed = Scene_file.to_string s in
           let* () =
             match Scene_file.of_string printed with
-            | Ok s' when Scene.equal s s' -> Ok ()
+            | Ok s' when Scene.equal s (Scene.of_valid s') -> Ok ()
             | Ok _ -> Error ("the printed scene reads back different:\n" ^ printed)
             | Error (`Msg m) -> Error (Printf.sprintf "the printed scene does not parse (%s):\n%s" m printed)
           in
-          let small = Scene.with_overrides ~width:3 ~height:2 s in
-          (match Render.image small with
+          (match Result.bind (Scene.override ~width:3 ~height:2 valid) Render.image with
           | Ok _ -> Ok ()
           | Error (`Msg m) -> Error ("rendering the scene at 3x2 failed: " ^ m)))
 

@@ -4,9 +4,8 @@ let v ~min ~max material = { min; max; material }
 
 let validate b =
   let ( let* ) = Result.bind in
-  let msg r = Result.map_error (fun m -> `Msg m) r in
-  let* _ = msg (Limits.check_point "box min" b.min) in
-  let* _ = msg (Limits.check_point "box max" b.max) in
+  let* _ = Limits.check_point "box min" b.min in
+  let* _ = Limits.check_point "box max" b.max in
   let* () =
     if b.min.x < b.max.x && b.min.y < b.max.y && b.min.z < b.max.z then Ok ()
     else

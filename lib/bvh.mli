@@ -10,7 +10,9 @@
     node [k] is [k + 1], the right child is [right.(k)]. Spheres are
     referred to by slot: leaf [k] holds slots [first.(k)] to
     [first.(k) + count.(k) - 1], and [order.(slot)] is the sphere's index
-    in the input. *)
+    in the input.
+
+    @canonical Raytrace.Private.Bvh *)
 
 type t = private {
   order : int array;  (** Input index of the sphere in each slot. *)

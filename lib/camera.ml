@@ -13,13 +13,13 @@ let direction cam v =
 
 let look_at ?(up = Vec3.oy) ~position target =
   let forward = Vec3.sub target position in
-  if Vec3.norm2 forward = 0. then Error "the camera looks at its own position"
+  if Vec3.norm2 forward = 0. then Error (`Msg "the camera looks at its own position")
   else
     let f = Vec3.unit forward in
     let right = Vec3.cross up f in
     (* Relative test: [up] parallel to [f] (or zero) leaves no horizontal. *)
     if Vec3.norm2 up = 0. || Vec3.norm right <= 1e-9 *. Vec3.norm up then
-      Error "the camera's up vector is zero or parallel to its view direction"
+      Error (`Msg "the camera's up vector is zero or parallel to its view direction")
     else
       let r = Vec3.unit right in
       let u = Vec3.cross f r in
@@ -33,13 +33,13 @@ let check_position p = Limits.check_point "camera position" p
 
 let check_rotation m =
   if not (Vec3.is_finite m.row0 && Vec3.is_finite m.row1 && Vec3.is_finite m.row2) then
-    Error "camera rotation must be finite"
+    Error (`Msg "camera rotation must be finite")
   else
     (* Relative to the rows' scale, so that a uniformly scaled matrix passes
        or fails alike. *)
     let scale = Vec3.norm m.row0 *. Vec3.norm m.row1 *. Vec3.norm m.row2 in
     if Float.abs (determinant m) <= 1e-12 *. scale || scale = 0. then
-      Error "camera rotation must be invertible, but its rows are (nearly) linearly dependent"
+      Error (`Msg "camera rotation must be invertible, but its rows are (nearly) linearly dependent")
     else Ok m
 
 let validate cam =

@@ -8,12 +8,34 @@
 
 (** {1:cameras Cameras} *)
 
-type rotation = { row0 : Vec3.t; row1 : Vec3.t; row2 : Vec3.t } [@@deriving show, eq]
+type rotation = { row0 : Vec3.t; row1 : Vec3.t; row2 : Vec3.t }
 (** The type for orientation matrices, by rows: the direction of the ray
     through viewport point [v] is [(<v, row0>, <v, row1>, <v, row2>)]. *)
 
-type t = { position : Vec3.t; rotation : rotation } [@@deriving show, eq]
+val pp_rotation : Format.formatter -> rotation -> unit
+(** [pp_rotation ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show_rotation : rotation -> string
+(** [show_rotation x] is [x] formatted by {!pp_rotation}. *)
+
+val equal_rotation : rotation -> rotation -> bool
+(** [equal_rotation a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
+
+type t = { position : Vec3.t; rotation : rotation }
 (** The type for cameras: where the camera is, and how it is turned. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val identity : rotation
 (** [identity] is the identity matrix: looking along [+z] with [y] up. *)
@@ -26,7 +48,7 @@ val v : ?rotation:rotation -> Vec3.t -> t
 (** [v ~rotation position] is a camera at [position] turned by [rotation]
     (default {!identity}). *)
 
-val look_at : ?up:Vec3.t -> position:Vec3.t -> Vec3.t -> (t, string) result
+val look_at : ?up:Vec3.t -> position:Vec3.t -> Vec3.t -> (t, [> `Msg of string ]) result
 (** [look_at ~up ~position target] is the camera at [position] whose
     viewport center lies in the direction of [target], with [up] (default
     [Vec3.oy]) pointing up in the picture as far as it can. The matrix is
@@ -35,14 +57,14 @@ val look_at : ?up:Vec3.t -> position:Vec3.t -> Vec3.t -> (t, string) result
 
 (** {1:validation Validation} *)
 
-val check_position : Vec3.t -> (Vec3.t, string) result
+val check_position : Vec3.t -> (Vec3.t, [> `Msg of string ]) result
 (** [check_position p] checks {!Limits.check_point}. *)
 
-val check_rotation : rotation -> (rotation, string) result
+val check_rotation : rotation -> (rotation, [> `Msg of string ]) result
 (** [check_rotation m] checks that [m] is finite and invertible: a singular
     matrix would send some rays in no direction at all. *)
 
-val validate : t -> (t, string) result
+val validate : t -> (t, [> `Msg of string ]) result
 (** [validate cam] checks position and rotation. *)
 
 (** {1:functions Functions} *)

@@ -2,6 +2,7 @@ type key = { frame : int; position : Vec3.t; look_at : Vec3.t; up : Vec3.t } [@@
 (* An array, so that the key of a frame is found by binary search. *)
 type t = key array [@@deriving show, eq]
 
+let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let max_frame = 1_000_000
 let key ?(up = Vec3.oy) ~frame ~position look_at = { frame; position; look_at; up }
 let ( let* ) = Result.bind
@@ -12,7 +13,7 @@ let look k = Camera.look_at ~up:k.up ~position:k.position k.look_at
 
 let check_key k =
   if k.frame < 0 || k.frame > max_frame then
-    Error (Printf.sprintf "camera-path key frame must lie in [0, %d], got %d" max_frame k.frame)
+    (error "camera-path key frame must lie in [0, %d], got %d" max_frame k.frame)
   else
     let* _ = Limits.check_point "camera-path key position" k.position in
     let* _ = Limits.check_point "camera-path key look-at" k.look_at in
@@ -35,8 +36,8 @@ let between k0 k1 f =
 
 let check_segment k0 k1 =
   if k1.frame <= k0.frame then
-    Error
-      (Printf.sprintf "camera-path keys must come in increasing frame order, but frame %d follows frame %d"
+    (error
+      "camera-path keys must come in increasing frame order, but frame %d follows frame %d"
          k1.frame k0.frame)
   else
     let rec frames f =
@@ -44,7 +45,7 @@ let check_segment k0 k1 =
       else
         match look (between k0 k1 f) with
         | Ok _ -> frames (f + 1)
-        | Error e -> Error (Printf.sprintf "at frame %d, between the keys of frames %d and %d, %s" f k0.frame k1.frame e)
+        | Error (`Msg e) -> error "at frame %d, between the keys of frames %d and %d, %s" f k0.frame k1.frame e
     in
     frames (k0.frame + 1)
 
@@ -56,7 +57,7 @@ let v keys =
     | [ _ ] | [] -> Ok ()
   in
   match keys with
-  | [] -> Error "a camera path needs at least one key"
+  | [] -> Error (`Msg "a camera path needs at least one key")
   | _ ->
       let* () = List.fold_left (fun acc k -> let* () = acc in Result.map ignore (check_key k)) (Ok ()) keys in
       let* () = segments keys in
@@ -83,4 +84,4 @@ let camera p f =
   in
   let* k = find () in
   (* Checked when the path was built: every frame in range has a camera. *)
-  match look k with Ok c -> Ok c | Error e -> Error (`Msg (Printf.sprintf "frame %d: %s" f e))
+  match look k with Ok c -> Ok c | Error (`Msg e) -> error "frame %d: %s" f e

@@ -14,12 +14,33 @@ type key = {
   look_at : Vec3.t;  (** The point the camera looks at, [<> position]. *)
   up : Vec3.t;  (** Up in the picture, not parallel to [look_at - position]. *)
 }
-[@@deriving show, eq]
 (** The type for keyframes. *)
 
-type t [@@deriving show, eq]
+val pp_key : Format.formatter -> key -> unit
+(** [pp_key ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show_key : key -> string
+(** [show_key x] is [x] formatted by {!pp_key}. *)
+
+val equal_key : key -> key -> bool
+(** [equal_key a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
+
+type t
 (** The type for camera paths: at least one key, frames strictly
     increasing. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val max_frame : int
 (** [max_frame] is [1_000_000], the largest frame number. *)
@@ -28,18 +49,18 @@ val key : ?up:Vec3.t -> frame:int -> position:Vec3.t -> Vec3.t -> key
 (** [key ~up ~frame ~position target] is the keyframe [frame] with the camera
     at [position] looking at [target]; [up] defaults to [Vec3.oy]. *)
 
-val check_key : key -> (key, string) result
+val check_key : key -> (key, [> `Msg of string ]) result
 (** [check_key k] checks that [k.frame] lies in [\[0, max_frame\]], that its
     points are within {!Limits.check_point}, and that {!Camera.look_at}
     accepts it. *)
 
-val check_segment : key -> key -> (unit, string) result
+val check_segment : key -> key -> (unit, [> `Msg of string ]) result
 (** [check_segment k0 k1] checks that [k0.frame < k1.frame] and that every
     frame strictly between them has a camera: the interpolated position is
     not the interpolated target and the interpolated up is not parallel to
     the view direction. The error names the first bad frame. *)
 
-val v : key list -> (t, string) result
+val v : key list -> (t, [> `Msg of string ]) result
 (** [v keys] is the path through [keys], after {!check_key} on each key and
     {!check_segment} on each pair of neighbours. [Error] also if [keys] is
     empty. *)

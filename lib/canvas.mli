@@ -10,7 +10,9 @@
 
     Images ({!Image}) store rows top-down, as PPM files do. This module is
     the one place where the upward canvas [y] is flipped into a downward
-    image row. *)
+    image row.
+
+    @canonical Raytrace.Private.Canvas *)
 
 val min_x : int -> int
 (** [min_x w] is [-(w / 2)], the leftmost canvas [G_x] of a canvas [w]

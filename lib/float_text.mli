@@ -2,7 +2,9 @@
 
     Scene files and printed scenes write each number as the shortest decimal
     that reads back as the same float, so a printed scene parses back to an
-    equal one. *)
+    equal one.
+
+    @canonical Raytrace.Private.Float_text *)
 
 val to_string : float -> string
 (** [to_string x] is the shortest decimal of [x] that [float_of_string]

@@ -1,7 +1,7 @@
 (** Images: rectangles of 8-bit RGB pixels.
 
     Pixels are addressed by column [x] (left to right) and row [y] (top to
-    bottom), the order of PPM files; {!Canvas} converts from the document's
+    bottom), the order of PPM files; {!Raytrace.Private.Canvas} converts from the document's
     centered, upward coordinates. The bytes live in a [Bigarray], so that
     worker processes can fill one image through shared memory. *)
 

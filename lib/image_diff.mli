@@ -14,8 +14,13 @@ type t = {
       (** Peak signal-to-noise ratio in decibels, [10 log10 (255^2 / MSE)]
           over all channels; [infinity] for identical images. *)
 }
-[@@deriving show]
 (** The type for difference figures. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml record (derived). *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
 
 val compare : Image.t -> Image.t -> (t, [> `Msg of string ]) result
 (** [compare a b] is the difference figures of [a] and [b], or [Error] if

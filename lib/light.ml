@@ -4,6 +4,7 @@ type t =
   | Directional of { intensity : float; direction : Vec3.t }
 [@@deriving show, eq]
 
+let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let ambient intensity = Ambient { intensity }
 let point intensity position = Point { intensity; position }
 let directional intensity direction = Directional { intensity; direction }
@@ -14,15 +15,15 @@ let intensity = function
 let check_intensity i =
   if i >= 0. && i <= Limits.max_intensity then Ok i
   else
-    Error
-      (Printf.sprintf "light intensity must lie in [0, 1e6], got %s" (Float_text.to_string i))
+    (error
+      "light intensity must lie in [0, 1e6], got %s" (Float_text.to_string i))
 
 let check_position q = Limits.check_point "point light position" q
 
 let check_direction l =
   match Limits.check_point "directional light direction" l with
   | Ok l when Vec3.norm l < Limits.min_size ->
-      Error "directional light direction must not be the zero vector (its length must be at least 1e-30)"
+      Error (`Msg "directional light direction must not be the zero vector (its length must be at least 1e-30)")
   | r -> r
 
 let validate l =
@@ -53,12 +54,12 @@ let of_document d =
     | 'a', None -> Ok (ambient d.i)
     | 'p', Some p -> Ok (point d.i (Vec3.of_tuple p))
     | 'd', Some p -> Ok (directional d.i (Vec3.of_tuple p))
-    | 'a', Some _ -> Error "an ambient light ('a') has no vector: v must be None"
+    | 'a', Some _ -> Error (`Msg "an ambient light ('a') has no vector: v must be None")
     | ('p' | 'd'), None ->
-        Error (Printf.sprintf "a light of kind '%c' needs a vector: v must be Some _" d.k)
-    | k, _ -> Error (Printf.sprintf "unknown light kind %C: expected 'a', 'p' or 'd'" k)
+        (error "a light of kind '%c' needs a vector: v must be Some _" d.k)
+    | k, _ -> (error "unknown light kind %C: expected 'a', 'p' or 'd'" k)
   in
-  match Result.bind light validate with Ok l -> Ok l | Error e -> Error (`Msg e)
+  Result.bind light validate
 
 let of_document_exn d =
   match of_document d with Ok l -> l | Error (`Msg e) -> invalid_arg ("Light.of_document: " ^ e)

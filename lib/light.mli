@@ -15,8 +15,18 @@ type t =
       (** Shines from infinitely far away: [direction] points from the
           scene {e toward} the light, and is the same vector [L] at every
           point (7.2). It need not be unit length but must not be zero. *)
-[@@deriving show, eq]
 (** The type for lights. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val ambient : float -> t
 (** [ambient i] is [Ambient {intensity = i}]. *)
@@ -31,19 +41,19 @@ val directional : float -> Vec3.t -> t
 val intensity : t -> float
 (** [intensity l] is the intensity of [l]. *)
 
-val check_intensity : float -> (float, string) result
+val check_intensity : float -> (float, [> `Msg of string ]) result
 (** [check_intensity i] checks [0 <= i <= Limits.max_intensity]. *)
 
-val check_position : Vec3.t -> (Vec3.t, string) result
+val check_position : Vec3.t -> (Vec3.t, [> `Msg of string ]) result
 (** [check_position q] checks a point light's position with
     {!Limits.check_point}. *)
 
-val check_direction : Vec3.t -> (Vec3.t, string) result
+val check_direction : Vec3.t -> (Vec3.t, [> `Msg of string ]) result
 (** [check_direction l] checks a directional light's direction with
     {!Limits.check_point}, and that its length is at least
     {!Limits.min_size}. *)
 
-val validate : t -> (t, string) result
+val validate : t -> (t, [> `Msg of string ]) result
 (** [validate l] is [Ok l] if the intensity, position and direction pass
     their checks, and otherwise the first error. *)
 

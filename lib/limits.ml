@@ -1,4 +1,5 @@
 let max_coordinate = 1e12
+let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let min_size = 1e-30
 let max_intensity = 1e6
 let max_dimension = 65536
@@ -26,54 +27,91 @@ let variable = function
   | `Form_bytes -> "RAYTRACE_MAX_FORM_BYTES"
   | `Work -> "RAYTRACE_MAX_WORK"
 
-let default = function
-  | `Pixels -> Float.of_int max_pixels
-  | `Depth -> Float.of_int max_depth
-  | `Samples -> Float.of_int max_samples
-  | `Spheres -> Float.of_int max_spheres
-  | `Lights -> Float.of_int max_lights
-  | `Scene_bytes -> Float.of_int max_scene_bytes
-  | `Form_bytes -> Float.of_int max_form_bytes
-  | `Work -> max_work
+(* Values are integers; a float keeps them exact up to 2^53, far beyond
+   any useful bound. *)
+type t = {
+  pixels : float;
+  depth : float;
+  samples : float;
+  spheres : float;
+  lights : float;
+  scene_bytes : float;
+  form_bytes : float;
+  work : float;
+}
 
-(* Read at every check rather than once: cheap, and a test or a program can
-   change the bound with [Unix.putenv]. Values are integers; a float keeps
-   them exact up to 2^53, far beyond any useful bound. *)
-let current n =
-  match Sys.getenv_opt (variable n) with
-  | None | Some "" -> Ok (default n)
-  | Some text -> (
-      let digits = String.concat "" (String.split_on_char '_' (String.trim text)) in
-      match Float_text.of_string digits with
-      | Some x when x >= 1. && Float.is_integer x -> Ok x
-      | _ -> Error (Printf.sprintf "%s must be a positive integer, got %S" (variable n) text))
+let default =
+  {
+    pixels = Float.of_int max_pixels;
+    depth = Float.of_int max_depth;
+    samples = Float.of_int max_samples;
+    spheres = Float.of_int max_spheres;
+    lights = Float.of_int max_lights;
+    scene_bytes = Float.of_int max_scene_bytes;
+    form_bytes = Float.of_int max_form_bytes;
+    work = max_work;
+  }
+
+let bound l = function
+  | `Pixels -> l.pixels
+  | `Depth -> l.depth
+  | `Samples -> l.samples
+  | `Spheres -> l.spheres
+  | `Lights -> l.lights
+  | `Scene_bytes -> l.scene_bytes
+  | `Form_bytes -> l.form_bytes
+  | `Work -> l.work
+
+let with_bound l n x =
+  match n with
+  | `Pixels -> { l with pixels = x }
+  | `Depth -> { l with depth = x }
+  | `Samples -> { l with samples = x }
+  | `Spheres -> { l with spheres = x }
+  | `Lights -> { l with lights = x }
+  | `Scene_bytes -> { l with scene_bytes = x }
+  | `Form_bytes -> { l with form_bytes = x }
+  | `Work -> { l with work = x }
+
+let names = [ `Pixels; `Depth; `Samples; `Spheres; `Lights; `Scene_bytes; `Form_bytes; `Work ]
+
+let of_lookup lookup =
+  let parse l n =
+    match l with
+    | Error _ as e -> e
+    | Ok l -> (
+        match lookup (variable n) with
+        | None | Some "" -> Ok l
+        | Some text -> (
+            let digits = String.concat "" (String.split_on_char '_' (String.trim text)) in
+            match Float_text.of_string digits with
+            | Some x when x >= 1. && Float.is_integer x -> Ok (with_bound l n x)
+            | _ -> Error (`Msg (Printf.sprintf "%s must be a positive integer, got %S" (variable n) text))))
+  in
+  List.fold_left parse (Ok default) names
 
 let show_bound x = if x < 1e15 then Printf.sprintf "%.0f" x else num x
 
-let exceeded n what =
-  let bound = match current n with Ok b -> show_bound b | Error _ -> "?" in
-  Printf.sprintf "%s, more than the limit of %s (set %s to raise it)" what bound (variable n)
+let exceeded l n what =
+  Printf.sprintf "%s, more than the limit of %s (set %s to raise it)" what (show_bound (bound l n)) (variable n)
 
-(* [Ok ()] if [x <= bound n]; [what ()] describes [x] for the message. *)
-let within n x what =
-  match current n with
-  | Error e -> Error e
-  | Ok bound -> if x <= bound then Ok () else Error (exceeded n (what ()))
+(* [Ok ()] if [x <= bound l n]; [what ()] describes [x] for the message. *)
+let within l n x what = if x <= bound l n then Ok () else Error (`Msg (exceeded l n (what ())))
 let max_jobs = 1024
 
 let check_jobs n =
   if n < 1 || n > max_jobs then
-    Error (Printf.sprintf "--jobs must lie in [1, %d], got %d" max_jobs n)
+    (error "--jobs must lie in [1, %d], got %d" max_jobs n)
   else Ok n
 
 let check_coordinate what x =
   if Float.is_finite x && Float.abs x <= max_coordinate then Ok x
-  else Error (Printf.sprintf "%s must be finite and at most 1e12 in magnitude, got %s" what (num x))
+  else (error "%s must be finite and at most 1e12 in magnitude, got %s" what (num x))
 
 let check_size what x =
-  if not (x > 0.) then Error (Printf.sprintf "%s must be > 0, got %s" what (num x))
+  if not (x > 0.) then (error "%s must be > 0, got %s" what (num x))
   else if x < min_size then
-    Error (Printf.sprintf "%s must be at least 1e-30, got %s" what (num x))
+    (error "%s must be at least 1e-30, got %s" what (num x))
   else check_coordinate what x
 
 let check_point what (p : Vec3.t) =
@@ -83,52 +121,52 @@ let check_point what (p : Vec3.t) =
 
 let check_dimension what n =
   if n < 1 || n > max_dimension then
-    Error (Printf.sprintf "canvas %s must lie in [1, %d], got %d" what max_dimension n)
+    (error "canvas %s must lie in [1, %d], got %d" what max_dimension n)
   else Ok n
 
-let pixels_within kind w h =
+let pixels_within l kind w h =
   (* A float product: two header fields of a file can overflow an int. *)
   let area = Float.of_int w *. Float.of_int h in
-  within `Pixels area (fun () -> Printf.sprintf "%s %dx%d has %s pixels" kind w h (show_bound area))
+  within l `Pixels area (fun () -> Printf.sprintf "%s %dx%d has %s pixels" kind w h (show_bound area))
 
-let check_canvas w h =
+let check_canvas l w h =
   match (check_dimension "width" w, check_dimension "height" h) with
   | (Error e, _ | _, Error e) -> Error e
-  | Ok _, Ok _ -> pixels_within "canvas" w h
+  | Ok _, Ok _ -> pixels_within l "canvas" w h
 
-let check_image_size w h =
-  if w < 1 || h < 1 then Error (Printf.sprintf "image size %dx%d is empty" w h)
-  else pixels_within "image" w h
+let check_image_size l w h =
+  if w < 1 || h < 1 then (error "image size %dx%d is empty" w h)
+  else pixels_within l "image" w h
 
 (* [Ok n] if [n >= lo] (else [Error (low ())]) and [n] is within bound
    [name] (else [what ()] describes [n]). *)
-let bounded name ~lo ~low ~what n =
-  if n < lo then Error (low ())
-  else match within name (Float.of_int n) what with Ok () -> Ok n | Error e -> Error e
+let bounded l name ~lo ~low ~what n =
+  if n < lo then Error (`Msg (low ()))
+  else match within l name (Float.of_int n) what with Ok () -> Ok n | Error e -> Error e
 
-let check_depth d =
-  bounded `Depth ~lo:0 d
+let check_depth l d =
+  bounded l `Depth ~lo:0 d
     ~low:(fun () -> Printf.sprintf "recursion depth must be >= 0, got %d" d)
     ~what:(fun () -> Printf.sprintf "recursion depth %d is too deep" d)
 
-let check_samples n =
-  bounded `Samples ~lo:1 n
+let check_samples l n =
+  bounded l `Samples ~lo:1 n
     ~low:(fun () -> Printf.sprintf "samples per pixel must be >= 1, got %d" n)
     ~what:(fun () -> Printf.sprintf "%d samples per pixel are too many" n)
 
-let check_count kind n =
+let check_count l kind n =
   let noun = match kind with `Spheres -> "spheres" | `Lights -> "lights" in
-  bounded (kind :> name) ~lo:0 n
+  bounded l (kind :> name) ~lo:0 n
     ~low:(fun () -> Printf.sprintf "a negative number of %s: %d" noun n)
     ~what:(fun () -> Printf.sprintf "the scene has %d %s" n noun)
 
-let check_scene_bytes n =
-  bounded `Scene_bytes ~lo:0 n
+let check_scene_bytes l n =
+  bounded l `Scene_bytes ~lo:0 n
     ~low:(fun () -> Printf.sprintf "a negative size: %d" n)
     ~what:(fun () -> Printf.sprintf "the scene is %d bytes long" n)
 
-let check_form_bytes n =
-  bounded `Form_bytes ~lo:0 n
+let check_form_bytes l n =
+  bounded l `Form_bytes ~lo:0 n
     ~low:(fun () -> Printf.sprintf "a negative size: %d" n)
     ~what:(fun () -> Printf.sprintf "a form of the scene is more than %d bytes long" n)
 
@@ -147,9 +185,9 @@ let work ~pixels ~samples ~depth ~spheres ~lights =
   let f = Float.of_int in
   f pixels *. f samples *. f (depth + 1) *. f (spheres_per_ray spheres) *. f (1 + lights)
 
-let check_work ~pixels ~samples ~depth ~spheres ~lights =
+let check_work l ~pixels ~samples ~depth ~spheres ~lights =
   let w = work ~pixels ~samples ~depth ~spheres ~lights in
-  within `Work w (fun () ->
+  within l `Work w (fun () ->
       Printf.sprintf
         "the render needs about %.3g ray-sphere intersection tests (%d pixels x %d samples x %d \
          rays x %d spheres per ray x (1 + %d lights))"
@@ -157,9 +195,9 @@ let check_work ~pixels ~samples ~depth ~spheres ~lights =
 
 exception Work_exceeded of int
 
-let work_budget () =
-  let bound = match current `Work with Ok b -> b | Error _ -> max_work in
+let work_budget l =
+  let bound = bound l `Work in
   if bound >= Float.of_int max_int then max_int else Float.to_int bound
 
-let work_exceeded n =
-  exceeded `Work (Printf.sprintf "the render was stopped after %d intersection tests (spheres and boxes)" n)
+let work_exceeded l n =
+  exceeded l `Work (Printf.sprintf "the render was stopped after %d intersection tests (spheres and boxes)" n)

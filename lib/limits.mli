@@ -8,16 +8,16 @@
     Two kinds of bounds:
     - fixed ones, which protect precision or a file format:
       {!max_coordinate}, {!max_dimension};
-    - resource ones, which protect memory and time. Each has a default
-      ({!max_pixels}, ...) and an environment variable that replaces it for
-      the process, read at every check (so that a program and its tests can
-      set it): [RAYTRACE_MAX_PIXELS], [RAYTRACE_MAX_DEPTH],
-      [RAYTRACE_MAX_SAMPLES], [RAYTRACE_MAX_SPHERES], [RAYTRACE_MAX_LIGHTS],
-      [RAYTRACE_MAX_SCENE_BYTES], [RAYTRACE_MAX_FORM_BYTES],
-      [RAYTRACE_MAX_WORK]. A value is a
-      positive integer, optionally written with [_] separators or in
-      exponent notation ([1e13]); a malformed value makes every check that
-      reads it fail, saying so. *)
+    - resource ones, which protect memory and time: a value of type {!t},
+      passed explicitly to what checks them. Each has a default
+      ({!max_pixels}, ...) and a name, the environment variable by which
+      the command line replaces it: [RAYTRACE_MAX_PIXELS],
+      [RAYTRACE_MAX_DEPTH], [RAYTRACE_MAX_SAMPLES], [RAYTRACE_MAX_SPHERES],
+      [RAYTRACE_MAX_LIGHTS], [RAYTRACE_MAX_SCENE_BYTES],
+      [RAYTRACE_MAX_FORM_BYTES], [RAYTRACE_MAX_WORK]. This library reads no environment:
+      {!of_lookup} turns the variables into a {!t} given a lookup function
+      (the system library [raytrace.unix] calls it once, with
+      [Sys.getenv_opt]). *)
 
 (** {1:fixed Fixed bounds} *)
 
@@ -90,82 +90,93 @@ val max_work : float
     {!work}, about four hours of one core at the 7e7 tests per second
     measured on the reference scene. *)
 
-(** {1:current Bounds in force} *)
+(** {1:current Resource bounds} *)
+
+type t
+(** The type for resource bounds. *)
 
 type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Form_bytes | `Work ]
 (** The type for the names of the resource bounds. *)
+
+val default : t
+(** [default] is every bound at its default ({!max_pixels}, ...). *)
+
+val bound : t -> name -> float
+(** [bound l n] is the bound [n] of [l], an integer. *)
+
+val with_bound : t -> name -> float -> t
+(** [with_bound l n x] is [l] with bound [n] set to [x]. *)
 
 val variable : name -> string
 (** [variable n] is the environment variable that sets the bound [n], e.g.
     ["RAYTRACE_MAX_PIXELS"]. *)
 
-val default : name -> float
-(** [default n] is the default of bound [n] ({!max_pixels}, ...). *)
+val of_lookup : (string -> string option) -> (t, [> `Msg of string ]) result
+(** [of_lookup lookup] is {!default} with each bound [n] replaced by the
+    value of [lookup (variable n)] when that is [Some] non-empty text: a
+    positive integer, optionally written with [_] separators or in exponent
+    notation ([1e13]). [Error] names the first variable whose value is
+    something else. *)
 
-val current : name -> (float, string) result
-(** [current n] is the bound [n] in force: the value of {!variable}[ n]
-    when it is set, else {!default}[ n]. [Error] if the variable is set to
-    something other than a positive integer. *)
-
-val exceeded : name -> string -> string
-(** [exceeded n what] is the message for a value beyond bound [n]:
-    [what] (which says the value), then the bound in force and how to
-    raise it, e.g. ["canvas 70000x70000 has 4900000000 pixels, more than
-    the limit of 268435456 (set RAYTRACE_MAX_PIXELS to raise it)"]. *)
+val exceeded : t -> name -> string -> string
+(** [exceeded l n what] is the message for a value beyond bound [n] of
+    [l]: [what] (which says the value), then the bound and how to raise
+    it, e.g. ["canvas 70000x70000 has 4900000000 pixels, more than the
+    limit of 268435456 (set RAYTRACE_MAX_PIXELS to raise it)"]. *)
 
 (** {1:checks Checks} *)
 
 val max_jobs : int
 (** [max_jobs] is [1024]: the most worker processes a render forks. *)
 
-val check_jobs : int -> (int, string) result
+val check_jobs : int -> (int, [> `Msg of string ]) result
 (** [check_jobs n] is [Ok n] if [1 <= n <= max_jobs]. *)
 
-val check_coordinate : string -> float -> (float, string) result
+val check_coordinate : string -> float -> (float, [> `Msg of string ]) result
 (** [check_coordinate what x] is [Ok x] if [x] is finite with
     [|x| <= max_coordinate], and otherwise [Error] naming [what]. *)
 
-val check_size : string -> float -> (float, string) result
+val check_size : string -> float -> (float, [> `Msg of string ]) result
 (** [check_size what x] is [Ok x] if [min_size <= x <= max_coordinate],
     and otherwise [Error] naming [what] ("sphere radius", ...). *)
 
-val check_point : string -> Vec3.t -> (Vec3.t, string) result
+val check_point : string -> Vec3.t -> (Vec3.t, [> `Msg of string ]) result
 (** [check_point what p] is {!check_coordinate} on each coordinate. *)
 
-val check_dimension : string -> int -> (int, string) result
+val check_dimension : string -> int -> (int, [> `Msg of string ]) result
 (** [check_dimension what n] is [Ok n] if [1 <= n <= max_dimension], and
     otherwise [Error] naming the canvas's [what] ("width", "height"). *)
 
-val check_canvas : int -> int -> (unit, string) result
-(** [check_canvas w h] is [Ok ()] if [1 <= w, h <= max_dimension] and
-    [w * h] is within the [`Pixels] bound in force. *)
+val check_canvas : t -> int -> int -> (unit, [> `Msg of string ]) result
+(** [check_canvas l w h] is [Ok ()] if [1 <= w, h <= max_dimension] and
+    [w * h] is within the [`Pixels] bound of [l]. *)
 
-val check_image_size : int -> int -> (unit, string) result
-(** [check_image_size w h] is [Ok ()] if [w, h >= 1] and [w * h] is within
-    the [`Pixels] bound in force (images read from files, which have no
+val check_image_size : t -> int -> int -> (unit, [> `Msg of string ]) result
+(** [check_image_size l w h] is [Ok ()] if [w, h >= 1] and [w * h] is within
+    the [`Pixels] bound of [l] (images read from files, which have no
     {!max_dimension}). Never overflows. *)
 
-val check_depth : int -> (int, string) result
-(** [check_depth d] is [Ok d] if [0 <= d] and [d] is within the [`Depth]
-    bound in force. *)
+val check_depth : t -> int -> (int, [> `Msg of string ]) result
+(** [check_depth l d] is [Ok d] if [0 <= d] and [d] is within the [`Depth]
+    bound of [l]. *)
 
-val check_samples : int -> (int, string) result
-(** [check_samples n] is [Ok n] if [1 <= n] and [n] rays per pixel are
-    within the [`Samples] bound in force ({!Render.image} checks
+val check_samples : t -> int -> (int, [> `Msg of string ]) result
+(** [check_samples l n] is [Ok n] if [1 <= n] and [n] rays per pixel are
+    within the [`Samples] bound of [l] (the renderer checks
     [samples x samples]). *)
 
-val check_count : [ `Spheres | `Lights ] -> int -> (int, string) result
-(** [check_count kind n] is [Ok n] if a scene with [n] spheres (or lights)
-    is within that bound in force. *)
+val check_count : t -> [ `Spheres | `Lights ] -> int -> (int, [> `Msg of string ]) result
+(** [check_count l kind n] is [Ok n] if a scene with [n] spheres (or lights)
+    is within that bound of [l]. *)
 
-val check_scene_bytes : int -> (int, string) result
-(** [check_scene_bytes n] is [Ok n] if a scene text of [n] bytes is within
-    the [`Scene_bytes] bound in force. *)
+val check_scene_bytes : t -> int -> (int, [> `Msg of string ]) result
+(** [check_scene_bytes l n] is [Ok n] if a scene text of [n] bytes is within
+    the [`Scene_bytes] bound of [l]. *)
 
-val check_form_bytes : int -> (int, string) result
-(** [check_form_bytes n] is [Ok n] if a top-level form of [n] bytes (or
-    more, as far as it was read) is within the [`Form_bytes] bound in
-    force. *)
+val check_form_bytes : t -> int -> (int, [> `Msg of string ]) result
+(** [check_form_bytes l n] is [Ok n] if a top-level form of [n] bytes (or
+    more, as far as it was read) is within the [`Form_bytes] bound of
+    [l]. *)
 
 val work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> float
 (** [work ~pixels ~samples ~depth ~spheres ~lights] estimates the ray-sphere
@@ -184,15 +195,14 @@ exception Work_exceeded of int
     that defeats the bounding volume hierarchy (many coincident spheres),
     so the work done is also counted as it is done. *)
 
-val work_budget : unit -> int
-(** [work_budget ()] is the [`Work] bound in force as a count of tests,
-    [max_int] if it is larger; {!max_work} if the variable is malformed
-    (which {!check_work} reports before any render starts). *)
+val work_budget : t -> int
+(** [work_budget l] is the [`Work] bound of [l] as a count of tests,
+    [max_int] if it is larger. *)
 
-val work_exceeded : int -> string
-(** [work_exceeded n] is the message for a render stopped after [n]
-    intersection tests, naming the bound and how to raise it. *)
+val work_exceeded : t -> int -> string
+(** [work_exceeded l n] is the message for a render stopped after [n]
+    intersection tests, naming the bound of [l] and how to raise it. *)
 
-val check_work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> (unit, string) result
-(** [check_work ...] is [Ok ()] if {!work} is within the [`Work] bound in
-    force. *)
+val check_work : t -> pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> (unit, [> `Msg of string ]) result
+(** [check_work l ...] is [Ok ()] if {!work} is within the [`Work] bound of
+    [l]. *)

@@ -175,8 +175,9 @@ let pixel (scene : Scene.t) gx gy =
   trace_ray scene ~epsilon ~origin:scene.camera.position ~direction ~t_min:1. ~t_max:infinity
     ~depth:scene.depth
 
-let render (scene : Scene.t) =
-  let budget = Limits.work_budget () in
+let render ?(limits = Limits.default) valid =
+  let scene = Scene.of_valid valid in
+  let budget = Limits.work_budget limits in
   tests := 0;
   let img = Image.create scene.width scene.height in
   for gx = Canvas.min_x scene.width to Canvas.max_x scene.width do

@@ -68,13 +68,14 @@ val trace_ray :
 
 val pixel : Scene.t -> int -> int -> Color.t
 (** [pixel scene gx gy] is the unclamped colour of canvas pixel [(gx, gy)]
-    (centered coordinates, {!Canvas}): the primary ray from the camera
+    (centered coordinates, {!Raytrace.Private.Canvas}): the primary ray from the camera
     through the viewport point of the pixel, [t > 1] (section 8). *)
 
-val render : Scene.t -> Image.t
-(** [render scene] is the image of [scene]: every pixel of the canvas
+val render : ?limits:Limits.t -> Scene.valid -> Image.t
+(** [render ~limits scene] is the image of [scene]: every pixel of the canvas
     (section 8), clamped and rounded by {!Color.to_byte}. Reflections are
     followed in a loop, not by recursion: any depth fits in the stack, and
     memory grows with the reflections of one ray (a few words a level).
     @raise Limits.Work_exceeded once the ray-sphere tests counted so far
-    pass {!Limits.work_budget} (checked after each column of pixels). *)
+    pass the work bound of [limits] (default {!Limits.default};
+    {!Limits.work_budget}), checked after each column of pixels. *)

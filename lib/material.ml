@@ -10,7 +10,7 @@ let rename ~form m =
   if String.length m >= n && String.sub m 0 n = prefix then form ^ " " ^ String.sub m n (String.length m - n)
   else m
 
-let named ~form r = Result.map_error (fun e -> `Msg (rename ~form e)) r
+let named ~form r = Result.map_error (fun (`Msg e) -> `Msg (rename ~form e)) r
 let check_color ~form c = named ~form (Sphere.check_color c)
 let check_specular ~form x = named ~form (Sphere.check_specular x)
 let check_reflective ~form x = named ~form (Sphere.check_reflective x)

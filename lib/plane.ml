@@ -4,9 +4,8 @@ let v ~point ~normal material = { point; normal; material }
 
 let validate p =
   let ( let* ) = Result.bind in
-  let msg r = Result.map_error (fun m -> `Msg m) r in
-  let* _ = msg (Limits.check_point "plane point" p.point) in
-  let* _ = msg (Limits.check_point "plane normal" p.normal) in
+  let* _ = Limits.check_point "plane point" p.point in
+  let* _ = Limits.check_point "plane normal" p.normal in
   let n = Vec3.norm p.normal in
   let* () =
     if n >= Limits.min_size && Float.is_finite n then Ok ()

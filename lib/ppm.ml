@@ -79,7 +79,7 @@ let number ~at_end what s pos =
       | Some v -> (v, start, next)
       | None -> bad "%s: expected a decimal number at byte %d, got %S" what start tok)
 
-let decode s =
+let decode ~limits s =
   let in_header () = bad "unexpected end of file in the header" in
   let magic = if String.length s >= 3 && is_space s.[2] then String.sub s 0 2 else "" in
   let binary =
@@ -91,7 +91,7 @@ let decode s =
   let w, _, pos = number ~at_end:in_header "width" s 2 in
   let h, _, pos = number ~at_end:in_header "height" s pos in
   let maxval, _, pos = number ~at_end:in_header "maxval" s pos in
-  (match Limits.check_image_size w h with Ok () -> () | Error m -> bad "%s" m);
+  (match Limits.check_image_size limits w h with Ok () -> () | Error (`Msg m) -> bad "%s" m);
   if maxval < 1 || maxval > 255 then bad "maxval must lie in [1, 255], got %d" maxval;
   let n = 3 * w * h in
   let start = pos + 1 in
@@ -128,28 +128,18 @@ let decode s =
   end;
   img
 
-let of_string s = match decode s with img -> Ok img | exception Bad m -> Error (`Msg m)
+let of_string ?(limits = Limits.default) s = match decode ~limits s with img -> Ok img | exception Bad m -> Error (`Msg m)
 
 (* A P6 image at the pixel bound, with room for a long commented header;
    anything larger is refused before it is read. *)
-let check_file_size n =
-  match Limits.current `Pixels with
-  | Error e -> Error e
-  | Ok pixels ->
-      let most = (3. *. pixels) +. 1048576. in
-      if Float.of_int n <= most then Ok n
-      else
-        Error
-          (Printf.sprintf "the file is %d bytes, more than a PPM image of at most %.0f pixels can be (%.0f bytes; set %s to raise the limit)"
-             n pixels most (Limits.variable `Pixels))
-
-let read_file path =
-  match File_io.read ~check_size:check_file_size path with
-  | Error (`Msg e) -> Error (`Msg e)
-  | Ok s -> (
-      match of_string s with Ok img -> Ok img | Error (`Msg m) -> Error (`Msg (path ^ ": " ^ m)))
-
-let write_file ?comments path img = File_io.write_atomic path (fun oc -> output ?comments oc img)
+let check_file_size ?(limits = Limits.default) n =
+  let pixels = Limits.bound limits `Pixels in
+  let most = (3. *. pixels) +. 1048576. in
+  if Float.of_int n <= most then Ok n
+  else
+    Error
+      (`Msg (Printf.sprintf "the file is %d bytes, more than a PPM image of at most %.0f pixels can be (%.0f bytes; set %s to raise the limit)"
+         n pixels most (Limits.variable `Pixels)))
 
 (* The comments between the magic number and the maxval: the header ends
    after three numbers. *)

@@ -15,30 +15,20 @@ val output : ?comments:string list -> out_channel -> Image.t -> unit
 (** [output ~comments oc img] writes [to_string ~comments img] to [oc],
     through a 64 KiB buffer rather than a copy of the image. *)
 
-val of_string : string -> (Image.t, [> `Msg of string ]) result
-(** [of_string s] is the image in the PPM file contents [s]. [Error] says
+val of_string : ?limits:Limits.t -> string -> (Image.t, [> `Msg of string ]) result
+(** [of_string ~limits s] is the image in the PPM file contents [s]. [Error] says
     what is wrong and where (byte offset): not a PPM, a bad or missing
     header field, a maxval outside [\[1, 255\]], missing or extra pixel
     data, a P3 sample above maxval, an image of more pixels than
-    {!Limits.check_image_size} allows (checked before any allocation). It
-    never raises. *)
+    {!Limits.check_image_size} allows with [limits] (default
+    {!Limits.default}; checked before any allocation). It never raises. *)
 
-val read_file : string -> (Image.t, [> `Msg of string ]) result
-(** [read_file path] reads and decodes the PPM file [path]. [Error]
-    messages start with [path]. A file larger than a binary image of the
-    {!Limits} pixel bound ([3] bytes a pixel, plus 1 MiB of header) is
-    refused before it is read. *)
-
-val check_file_size : int -> (int, string) result
-(** [check_file_size n] is [Ok n] if [n] bytes can hold an image within the
-    {!Limits} pixel bound: at most [3] bytes a pixel plus 1 MiB of header
-    (a PNG compresses, so it fits too); [Error] says so and names the
-    variable that raises the bound. For {!File_io.read}'s [check_size]. *)
-
-val write_file : ?comments:string list -> string -> Image.t -> (unit, [> `Msg of string ]) result
-(** [write_file ~comments path img] writes [to_string ~comments img] to
-    [path] atomically ({!File_io.write_atomic}): [path] either keeps its old
-    contents or gets the whole image. *)
+val check_file_size : ?limits:Limits.t -> int -> (int, [> `Msg of string ]) result
+(** [check_file_size ~limits n] is [Ok n] if [n] bytes can hold an image
+    within the pixel bound of [limits] (default {!Limits.default}): at most
+    [3] bytes a pixel plus 1 MiB of header (a PNG compresses, so it fits
+    too); [Error] says so and names the variable that raises the bound.
+    For readers of files, which check a file's size before they read it. *)
 
 val header_comments : string -> string list
 (** [header_comments s] is the text of the [#] comments in the header of

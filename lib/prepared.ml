@@ -171,10 +171,8 @@ let sphere_twins (scene : Scene.t) n =
   done;
   twin
 
-let prepare ?(skips = true) (scene : Scene.t) =
-  (match Scene.validate scene with
-  | Ok _ -> ()
-  | Error (`Msg m) -> invalid_arg ("Prepared.prepare: invalid scene: " ^ m));
+let prepare ?(skips = true) scene =
+  let scene = Scene.of_valid scene in
   let n_spheres = List.length scene.spheres in
   let n = iter_objects scene ~sphere:(fun _ _ -> ()) ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
   (* Per object, in scene order: kind, material, and a cube around it

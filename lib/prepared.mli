@@ -3,8 +3,10 @@
     {!prepare} turns a {!Scene.t} into flat float arrays (structure of
     arrays), drops what cannot change a pixel (lights of zero intensity),
     and precomputes the constants that the tracer would otherwise
-    recompute for every ray. The fields are read by {!Trace}; they are
-    exposed for it and for tests, not for building by hand. *)
+    recompute for every ray. The fields are read by {!Raytrace.Private.Trace}; they are
+    exposed for it and for tests, not for building by hand.
+
+    @canonical Raytrace.Private.Prepared *)
 
 type t = private {
   n_spheres : int;  (** The number of spheres. *)
@@ -58,7 +60,7 @@ type t = private {
   specular_zero : float array;
       (** Below this cosine, [cosine ** specular] is exactly [0.] (it lies
           under the smallest subnormal float), so the specular term adds
-          nothing; [0.] when no cosine in [(0, 1]] qualifies. *)
+          nothing; [0.] when no cosine in [(0, 1\]] qualifies. *)
   reflective : float array;
   n_lights : int;
   light_kind : int array;  (** {!ambient}, {!point} or {!directional}. *)
@@ -105,14 +107,13 @@ val point : int
 val directional : int
 (** [directional] is the [light_kind] of directional lights. *)
 
-val prepare : ?skips:bool -> Scene.t -> t
-(** [prepare ~skips scene] is [scene] prepared for {!Trace}. With [skips]
+val prepare : ?skips:bool -> Scene.valid -> t
+(** [prepare ~skips scene] is [scene] prepared for {!Raytrace.Private.Trace}. With [skips]
     (default [true]) the tracer skips work that provably cannot change an
     output byte: lights of zero intensity are dropped here, shadow rays stop
     at the first blocker and try the last blocker first, and reflections
     stop once their remaining weight cannot change an 8-bit channel, and
     rays are tested only against spheres whose (conservatively padded,
-    {!Bvh.ray_box_margin}) boxes they meet. With
+    {!Raytrace.Private.Bvh.ray_box_margin}) boxes they meet. With
     [~skips:false] it does everything the document does, for tests that
-    prove the skips exact.
-    @raise Invalid_argument if [scene] fails {!Scene.validate}. *)
+    prove the skips exact. *)

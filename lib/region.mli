@@ -2,13 +2,22 @@
 
     A region is a rectangle of image pixels: columns [x] to [x + w - 1] and
     rows [y] to [y + h - 1], rows counted from the top as in {!Image} and
-    PPM files. Parts of an image rendered separately ({!Part}) are regions;
+    PPM files. Parts of an image rendered separately ([Raytrace_unix.Part]) are regions;
     since every pixel is traced alone, a region renders to exactly the
     bytes that the whole image has there. *)
 
-type t = { x : int; y : int; w : int; h : int } [@@deriving show, eq]
+type t = { x : int; y : int; w : int; h : int }
 (** The type for regions: top-left pixel [(x, y)], [w x h] pixels, [w] and
     [h] positive. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml record (derived). *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field. *)
 
 val full : width:int -> height:int -> t
 (** [full ~width ~height] is the whole canvas, [{x = 0; y = 0; w = width;

@@ -1,65 +1,55 @@
 (** Rendering (document section 8): every pixel of the canvas, traced.
 
-    [Render] walks the pixels, asks {!Trace} for each one's colour and
-    stores it in an {!Image.t}, in one process or several. The image is the
-    same, byte for byte, whatever the number of jobs: each pixel is traced
-    alone, by the same code. *)
+    [Render] walks the pixels, asks the tracer for each one's colour and
+    stores it in an {!Image.t}, in this process. The system library
+    [raytrace.unix] renders the same image, byte for byte, in several
+    processes ([Raytrace_unix.Render_jobs]): each pixel is traced alone, by
+    the same code. *)
 
 val image :
-  ?jobs:int ->
+  ?limits:Limits.t ->
+  ?clock:(unit -> float) ->
   ?skips:bool ->
   ?samples:int ->
   ?adaptive:int ->
   ?subsample:bool ->
   ?progress:(rows:int -> total:int -> rays:int -> unit) ->
-  Scene.t ->
+  Scene.valid ->
   (Image.t * Stats.t, [> `Msg of string ]) result
-(** [image ~jobs ~skips ~samples ~adaptive ~subsample ~progress scene] is the image
-    of [scene] and what it cost. [jobs] (default 1) processes trace
-    interleaved rows; [skips] is passed to {!Prepared.prepare};
-    [samples] (default 1: the document's image), [adaptive] and
-    [subsample] are the rays per pixel of {!Sampling.v}. The image is the
-    same for every [jobs], and with or without [skips].
+(** [image ~limits ~clock ~skips ~samples ~adaptive ~subsample ~progress scene] is
+    the image of [scene] and what it cost. [skips] (default [true]) enables
+    the exact skips of the fast tracer (the image is the same without
+    them); [samples] (default 1: the document's image), [adaptive] and
+    [subsample] are the rays per pixel of {!Sampling.v}; [clock] (default
+    [Sys.time]) times the statistics. [Error], before anything is
+    allocated, if {!Sampling.v} refuses the sampling settings, or the rays
+    per pixel or the work of the render exceed [limits] (default
+    {!Limits.default}; {!Scene.check_work}); [Error] if no memory can be
+    had for the image.
 
-    [progress ~rows ~total ~rays], if given, is called as the render goes:
+    [progress ~rows ~total ~rays], if given, is called after each row:
     [rows] of the [total] rows of work (the rows of every pass of
     {!Sampling.passes}: [total] is the image height or more) are finished
-    and [rays] were cast so far. With one job it is called after each row;
-    with several, about ten times a second by the parent process (the
-    workers count their rows in shared memory). [rows] never decreases, and
-    the last call has [rows = total]. What [progress] allocates is not
-    counted in the statistics' [minor_words]; it must not raise.
-
-    [Error], before
-    anything is allocated, if the rays per pixel exceed
-    {!Limits.check_samples}, the render needs more work than
-    {!Scene.check_work} allows, or the image more memory than the system
-    has available; [Error] if no memory can be had for the image, or if a
-    worker process dies.
-    @raise Invalid_argument if [scene] fails {!Scene.validate},
-    [jobs < 1], or {!Sampling.v} refuses the sampling settings. *)
+    and [rays] were cast so far. [rows] never decreases, and the last call
+    has [rows = total]. What [progress] allocates is not counted in the
+    statistics' [minor_words]; it must not raise. *)
 
 val region_image :
-  ?jobs:int ->
+  ?limits:Limits.t ->
+  ?clock:(unit -> float) ->
   ?skips:bool ->
   ?samples:int ->
   ?adaptive:int ->
   ?subsample:bool ->
   ?progress:(rows:int -> total:int -> rays:int -> unit) ->
-  Scene.t ->
+  Scene.valid ->
   Region.t ->
   (Image.t * Stats.t, [> `Msg of string ]) result
-(** [region_image ~jobs ~skips ~samples ~adaptive ~subsample ~progress scene r] is
-    the image of the region [r] of [scene]'s canvas, [r.w x r.h] pixels,
-    and what it cost: byte for byte the pixels of {!image} there, for every
-    sampling (adaptive sampling and subsampling trace the first rays of a
-    one-pixel margin around [r] too, to decide as the whole image does).
-    The arguments are as for {!image}.
-    @raise Invalid_argument if [scene] fails {!Scene.validate}, [jobs < 1],
-    [r] is not inside the canvas, or {!Sampling.v} refuses the sampling
-    settings. *)
-
-val image_exn :
-  ?jobs:int -> ?skips:bool -> ?samples:int -> ?adaptive:int -> ?subsample:bool -> Scene.t -> Image.t
-(** [image_exn] is the image of {!image}.
-    @raise Failure with the message of {!image}'s [Error]. *)
+(** [region_image ~limits ~clock ~skips ~samples ~adaptive ~subsample ~progress scene r]
+    is the image of the region [r] of [scene]'s canvas, [r.w x r.h]
+    pixels, and what it cost: byte for byte the pixels of {!image} there,
+    for every sampling (adaptive sampling and subsampling trace the first
+    rays of a one-pixel margin around [r] too, to decide as the whole image
+    does). The arguments and errors are as for {!image}.
+    @raise Invalid_argument if [r] is not inside the canvas (make regions
+    with {!Region.tile} or {!Region.of_corners}, which check). *)

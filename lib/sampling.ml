@@ -30,6 +30,21 @@ let to_string s =
 
 type ints = (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t
 
+type memory = {
+  bytes : int -> Image.buffer;
+  floats : int -> Trace.samples;
+  ints : int -> ints;
+  at_row : unit -> unit;
+}
+
+let local =
+  {
+    bytes = (fun n -> Bigarray.Array1.create Bigarray.int8_unsigned Bigarray.c_layout n);
+    floats = (fun n -> Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout n);
+    ints = (fun n -> Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout n);
+    at_row = ignore;
+  }
+
 (* A plan renders the [w x h] rectangle of the canvas at [(x, y)] into
    [img]. Adaptive sampling and subsampling decide a pixel from its
    neighbours' first rays, so their first pass also traces a margin of one
@@ -51,9 +66,10 @@ type plan = {
   first : Image.buffer;  (** Adaptive: the bytes of each pixel's first ray. *)
   saved : Trace.samples;  (** Adaptive: its clamped colour. *)
   hits : ints;  (** The sphere each pixel's (first) ray hit, [-1] for none. *)
+  at_row : unit -> unit;
 }
 
-let plan s img ~canvas:(cw, ch) ~at:(x, y) ~shared =
+let plan ?(memory = local) s img ~canvas:(cw, ch) ~at:(x, y) =
   let w = Image.width img and h = Image.height img in
   if x < 0 || y < 0 || x + w > cw || y + h > ch then invalid_arg "Sampling.plan: rectangle outside the canvas";
   let mx = max 0 (x - 1) and my = max 0 (y - 1) in
@@ -61,17 +77,9 @@ let plan s img ~canvas:(cw, ch) ~at:(x, y) ~shared =
   let adaptive = s.adaptive <> None in
   let margin = if adaptive || s.subsample then mw * mh else 0 in
   (* Empty buffers need no shared memory. *)
-  let bytes n =
-    if shared && n > 0 then Parallel.shared_bytes n
-    else Bigarray.Array1.create Bigarray.int8_unsigned Bigarray.c_layout n
-  in
-  let floats n =
-    if shared && n > 0 then Parallel.shared_floats n
-    else Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout n
-  in
-  let ints n =
-    if shared && n > 0 then Parallel.shared_ints n else Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout n
-  in
+  let bytes n = if n > 0 then memory.bytes n else local.bytes 0 in
+  let floats n = if n > 0 then memory.floats n else local.floats 0 in
+  let ints n = if n > 0 then memory.ints n else local.ints 0 in
   (* Every element a pass reads was written by an earlier pass. *)
   {
     s;
@@ -89,6 +97,7 @@ let plan s img ~canvas:(cw, ch) ~at:(x, y) ~shared =
     first = bytes (if adaptive then 3 * margin else 0);
     saved = floats (if adaptive then 3 * margin else 0);
     hits = ints margin;
+    at_row = memory.at_row;
   }
 
 let passes pl = if pl.s.adaptive <> None || pl.s.subsample then 2 else 1
@@ -237,7 +246,7 @@ let rows pl i tr ~first ~step =
   let r = ref (start pl i + (every * first)) in
   while !r < stop do
     (* A worker whose parent was killed stops here, within one row. *)
-    Parallel.exit_if_orphaned ();
+    pl.at_row ();
     (match pl.s.adaptive with
     | Some _ when i = 0 -> first_rays pl tr !r
     | Some th -> refine pl th tr !r

@@ -13,6 +13,8 @@ type t = {
 }
 [@@deriving show, eq]
 
+let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
+let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
 let v ?(width = 600) ?(height = 600) ?(viewport = Viewport.default) ?(camera = Camera.default)
     ?(background = Color.black) ?(depth = 3) ?epsilon ?camera_path ?(shapes = []) ~spheres ~lights () =
   { width; height; viewport; camera; background; depth; epsilon; spheres; shapes; lights; camera_path }
@@ -79,13 +81,17 @@ let grid n =
 
 let check_epsilon e =
   if Float.is_finite e && e >= 0. then Ok e
-  else Error (Printf.sprintf "epsilon must be finite and >= 0, got %s" (Float_text.to_string e))
+  else (error "epsilon must be finite and >= 0, got %s" (Float_text.to_string e))
 
 let check_background c =
   if Color.in_gamut c then Ok c
-  else Error (Format.asprintf "background channels must lie in [0, 255], got %a" Color.pp c)
+  else (error_pp "background channels must lie in [0, 255], got %a" Color.pp c)
 
-let validate s =
+type valid = t
+
+let of_valid v = v
+
+let validate ?(limits = Limits.default) s =
   let ( let* ) = Result.bind in
   let rec all check = function
     | [] -> Ok ()
@@ -94,27 +100,42 @@ let validate s =
         all check rest
   in
   let result =
-    let* () = Limits.check_canvas s.width s.height in
+    let* () = Limits.check_canvas limits s.width s.height in
     let* _ = Viewport.validate s.viewport in
     let* _ = Camera.validate s.camera in
     let* _ = check_background s.background in
-    let* _ = Limits.check_depth s.depth in
+    let* _ = Limits.check_depth limits s.depth in
     let* _ = match s.epsilon with Some e -> check_epsilon e | None -> Ok 0. in
-    let* _ = Limits.check_count `Spheres (List.length s.spheres + List.length s.shapes) in
-    let* _ = Limits.check_count `Lights (List.length s.lights) in
+    let* _ = Limits.check_count limits `Spheres (List.length s.spheres + List.length s.shapes) in
+    let* _ = Limits.check_count limits `Lights (List.length s.lights) in
     let* () = all Sphere.validate s.spheres in
-    all Light.validate s.lights
+    let* () = all Light.validate s.lights in
+    all (fun sh -> Result.map ignore (Shape.validate sh)) s.shapes
   in
-  let shapes () =
-    List.fold_left (fun acc sh -> Result.bind acc (fun () -> Result.map ignore (Shape.validate sh))) (Ok ()) s.shapes
-  in
-  match result with Ok () -> Result.map (fun () -> s) (shapes ()) | Error m -> Error (`Msg m)
+  match result with Ok () -> Ok s | Error _ as e -> e
 
 let with_overrides ?width ?height ?depth s =
   let pick o d = match o with Some x -> x | None -> d in
   { s with width = pick width s.width; height = pick height s.height; depth = pick depth s.depth }
 
-let at_frame s f =
+(* Only what changed is checked: the rest was validated. *)
+let override ?(limits = Limits.default) ?width ?height ?depth ?viewport ?camera (s : valid) =
+  let ( let* ) = Result.bind in
+  let s = with_overrides ?width ?height ?depth s in
+  let s = match viewport with Some viewport -> { s with viewport } | None -> s in
+  let s = match camera with Some camera -> { s with camera } | None -> s in
+  let given check = function Some x -> Result.map ignore (check x) | None -> Ok () in
+  let checked =
+    let* () = if width = None && height = None then Ok () else Limits.check_canvas limits s.width s.height in
+    let* () = given (Limits.check_depth limits) depth in
+    let* () = given Viewport.validate viewport in
+    given Camera.validate camera
+  in
+  match checked with Ok () -> Ok s | Error _ as e -> e
+
+(* The path's cameras pass Camera.validate: Camera_path.v checked every key
+   and segment. *)
+let at_frame (s : valid) f =
   match s.camera_path with
   | None -> Error (`Msg "the scene has no camera-path, so it has no frames to render")
   | Some path -> (
@@ -122,7 +143,7 @@ let at_frame s f =
       | Ok camera -> Ok { s with camera; camera_path = None }
       | Error e -> Error e)
 
-let check_work ?(samples = 1) ?pixels s =
+let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
   let depth =
     if
       List.exists (fun (sp : Sphere.t) -> sp.reflective > 0.) s.spheres
@@ -132,7 +153,8 @@ let check_work ?(samples = 1) ?pixels s =
   in
   let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in
   match
-    Limits.check_work ~pixels:(Option.value pixels ~default:(s.width * s.height)) ~samples ~depth ~spheres:(List.length s.spheres + List.length s.shapes) ~lights
+    Limits.check_work limits ~pixels:(Option.value pixels ~default:(s.width * s.height)) ~samples ~depth
+      ~spheres:(List.length s.spheres + List.length s.shapes) ~lights
   with
   | Ok () -> Ok ()
-  | Error m -> Error (`Msg m)
+  | Error _ as e -> e

@@ -27,8 +27,18 @@ type t = {
       (** The camera of each frame of an animation ({!at_frame}); [camera]
           is the camera of a still picture. *)
 }
-[@@deriving show, eq]
 (** The type for scenes. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val v :
   ?width:int ->
@@ -79,23 +89,46 @@ val document_epsilon : float
 
 (** {1:validation Validation} *)
 
-val check_epsilon : float -> (float, string) result
+val check_epsilon : float -> (float, [> `Msg of string ]) result
 (** [check_epsilon e] checks that [e] is finite and [>= 0]. *)
 
-val check_background : Color.t -> (Color.t, string) result
+val check_background : Color.t -> (Color.t, [> `Msg of string ]) result
 (** [check_background c] checks {!Color.in_gamut}. *)
 
-val validate : t -> (t, [> `Msg of string ]) result
-(** [validate s] is [Ok s] if every part of [s] passes its check (canvas,
-    depth and the numbers of spheres and lights within {!Limits}, {!Viewport.validate}, {!Camera.validate},
-    {!Sphere.validate}, {!Light.validate}), so that it renders without NaN
-    or infinity, and otherwise [Error (`Msg m)] with the first failure. *)
+type valid
+(** The type for validated scenes: only {!validate} makes them, so a value
+    of this type renders without NaN or infinity, within the bounds it was
+    validated against. The renderers take only validated scenes. *)
 
-val check_work : ?samples:int -> ?pixels:int -> t -> (unit, [> `Msg of string ]) result
-(** [check_work ~samples ~pixels s] is [Ok ()] if rendering [pixels]
-    (default the whole canvas; fewer for a region) of [s] with [samples]
-    (default 1) samples per pixel needs at most the {!Limits} bound on
-    ray-sphere intersection tests ({!Limits.check_work}; the recursion
+val validate : ?limits:Limits.t -> t -> (valid, [> `Msg of string ]) result
+(** [validate ~limits s] is [Ok s] if every part of [s] passes its check
+    (canvas, depth and the numbers of spheres and lights within [limits],
+    default {!Limits.default}; {!Viewport.validate}, {!Camera.validate},
+    {!Sphere.validate}, {!Light.validate}), and otherwise
+    [Error (`Msg m)] with the first failure. *)
+
+val of_valid : valid -> t
+(** [of_valid v] is the scene [v]. *)
+
+val override :
+  ?limits:Limits.t ->
+  ?width:int ->
+  ?height:int ->
+  ?depth:int ->
+  ?viewport:Viewport.t ->
+  ?camera:Camera.t ->
+  valid ->
+  (valid, [> `Msg of string ]) result
+(** [override ~limits ~width ~height ~depth ~viewport ~camera v] is [v]
+    with the given parts replaced, checking only those (the canvas against
+    [limits] if [width] or [height] is given, the depth, the viewport, the
+    camera): the rest was validated. *)
+
+val check_work : ?limits:Limits.t -> ?samples:int -> ?pixels:int -> valid -> (unit, [> `Msg of string ]) result
+(** [check_work ~limits ~samples ~pixels s] is [Ok ()] if rendering
+    [pixels] (default the whole canvas; fewer for a region) of [s] with
+    [samples] (default 1) samples per pixel needs at most [limits]' bound
+    on ray-sphere intersection tests ({!Limits.check_work}; the recursion
     depth counts only when some sphere is reflective, and only point and
     directional lights cast shadow rays), and otherwise [Error] saying the
     estimate, the bound and how to raise it. {!Render.image} checks it
@@ -103,11 +136,11 @@ val check_work : ?samples:int -> ?pixels:int -> t -> (unit, [> `Msg of string ])
 
 val with_overrides : ?width:int -> ?height:int -> ?depth:int -> t -> t
 (** [with_overrides ~width ~height ~depth s] is [s] with the given fields
-    replaced (the command line's [--width], [--height] and [--depth]). *)
+    replaced. *)
 
 (** {1:animation Animation} *)
 
-val at_frame : t -> int -> (t, [> `Msg of string ]) result
+val at_frame : valid -> int -> (valid, [> `Msg of string ]) result
 (** [at_frame s f] is the still scene of frame [f] of [s]'s camera path:
     [s] with the path's camera of frame [f] ({!Camera_path.camera}) and no
     camera path. [Error] if [s] has no camera path or [f] lies outside

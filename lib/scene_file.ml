@@ -74,7 +74,7 @@ let integer (what : unit -> string) node =
       | None -> fail node "%s: expected an integer, got %s" (what ()) (show_atom atom))
   | Sexp.List _ -> fail node "%s: expected an integer, got a list" (what ())
 
-let check node = function Ok x -> x | Error m -> fail node "%s" m
+let check node = function Ok x -> x | Error (`Msg m) -> fail node "%s" m
 
 (* Fields: a form's [(name args...)] children. [where] gives a node's
    position when it is known (the second, located pass). *)
@@ -145,7 +145,7 @@ let checked_float form fs name check_value =
 
 (* Forms *)
 
-let canvas ~where form_node nodes =
+let canvas ~limits ~where form_node nodes =
   let form = "canvas" in
   let fs = fields ~where ~form ~allowed:[ "width"; "height" ] nodes in
   let dim name =
@@ -155,7 +155,7 @@ let canvas ~where form_node nodes =
   in
   let width = dim "width" in
   let height = dim "height" in
-  ignore (check form_node (Limits.check_canvas width height));
+  ignore (check form_node (Limits.check_canvas limits width height));
   (width, height)
 
 let viewport ~where nodes =
@@ -203,7 +203,7 @@ let camera ~where nodes =
       ignore (check node (Limits.check_point "camera look-at" target));
       match Camera.look_at ?up:(Option.map snd up) ~position target with
       | Ok cam -> cam
-      | Error m -> fail node "%s" m)
+      | Error (`Msg m) -> fail node "%s" m)
   | None, None, _ -> Camera.v position
 
 let sphere ~where form_node nodes =
@@ -223,19 +223,17 @@ let sphere ~where form_node nodes =
   let reflective = Option.value ~default:0. (checked_float form fs "reflective" Sphere.check_reflective) in
   Sphere.v ~specular ~reflective ~center ~radius color
 
-let check_msg node = function Ok x -> x | Error (`Msg m) -> fail node "%s" m
-
 (* The material fields that every shape takes, as a sphere does. *)
 let material_fields = [ "color"; "specular"; "reflective" ]
 
 let material ~form ~form_node fs =
   let color =
     let node, c = required ~form ~form_node fs "color" (fun _ f -> (f.node, color_field form "color" f)) in
-    check_msg node (Material.check_color ~form c)
+    check node (Material.check_color ~form c)
   in
   let checked name check_value =
     Option.map
-      (fun f -> check_msg (single form name f) (check_value (float_field form name f)))
+      (fun f -> check (single form name f) (check_value (float_field form name f)))
       (find fs name)
   in
   let specular = Option.value ~default:Sphere.matte (checked "specular" (Material.check_specular ~form)) in
@@ -252,7 +250,7 @@ let plane ~where form_node nodes =
   let _, point = point_field ~form ~form_node fs "point" in
   let normal_node, normal = point_field ~form ~form_node fs "normal" in
   let m = material ~form ~form_node fs in
-  Shape.Plane (check_msg normal_node (Plane.validate (Plane.v ~point ~normal m)))
+  Shape.Plane (check normal_node (Plane.validate (Plane.v ~point ~normal m)))
 
 let triangle ~where form_node nodes =
   let form = "triangle" in
@@ -274,7 +272,7 @@ let triangle ~where form_node nodes =
               (List.length args))
   in
   let m = material ~form ~form_node fs in
-  Shape.Triangle (check_msg node (Triangle.validate (Triangle.v v0 v1 v2 m)))
+  Shape.Triangle (check node (Triangle.validate (Triangle.v v0 v1 v2 m)))
 
 let box ~where form_node nodes =
   let form = "box" in
@@ -282,7 +280,7 @@ let box ~where form_node nodes =
   let _, min = point_field ~form ~form_node fs "min" in
   let max_node, max = point_field ~form ~form_node fs "max" in
   let m = material ~form ~form_node fs in
-  Shape.Box (check_msg max_node (Box.validate (Box.v ~min ~max m)))
+  Shape.Box (check max_node (Box.validate (Box.v ~min ~max m)))
 
 (* A mesh: its file is read by [load] (the path as the scene gives it). *)
 let mesh ~where ~load form_node nodes =
@@ -317,9 +315,9 @@ let mesh ~where ~load form_node nodes =
         | node -> fail node "mesh smooth: expected true or false")
   in
   let m = material ~form ~form_node fs in
-  let obj = check_msg file_node (load file) in
+  let obj = check file_node (load file) in
   Shape.Mesh
-    (check_msg form_node
+    (check form_node
        (Mesh.v ~smooth ~scale ~translate ~source:file ~skipped:(Obj_file.skipped_total obj) ~positions:obj.positions
           ~triangles:obj.triangles ~normals:obj.normals ~triangle_normals:obj.triangle_normals m))
 
@@ -406,6 +404,7 @@ let top_level =
 
 (* The scene being read, form by form. *)
 type builder = {
+  limits : Limits.t;
   where : Sexp.t -> Positions.pos option;
   load : string -> (Obj_file.t, [ `Msg of string ]) result;  (** Reads a mesh file. *)
   seen : (string, Positions.pos option) Hashtbl.t;
@@ -418,8 +417,9 @@ type builder = {
   mutable n_lights : int;
 }
 
-let builder ~load where =
+let builder ~limits ~load where =
   {
+    limits;
     where;
     load;
     seen = Hashtbl.create 8;
@@ -450,25 +450,25 @@ let add_form b node =
          beyond the bound, before the rest of the file is read. *)
       | "sphere" ->
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
           b.spheres <- sphere ~where node rest :: b.spheres
       | ("plane" | "triangle" | "box") as form ->
           (* Shapes count against the bound of spheres: both are objects. *)
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
           let parse = match form with "plane" -> plane | "triangle" -> triangle | _ -> box in
           b.shapes <- parse ~where node rest :: b.shapes
       | "mesh" ->
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
           b.shapes <- mesh ~where ~load:b.load node rest :: b.shapes
       | "light" ->
           b.n_lights <- b.n_lights + 1;
-          ignore (check node (Limits.check_count `Lights b.n_lights));
+          ignore (check node (Limits.check_count b.limits `Lights b.n_lights));
           b.lights <- light ~where node rest :: b.lights
       | "canvas" ->
           once b kw kw_node;
-          let width, height = canvas ~where node rest in
+          let width, height = canvas ~limits:b.limits ~where node rest in
           b.scene <- { b.scene with width; height }
       | "viewport" ->
           once b kw kw_node;
@@ -486,7 +486,7 @@ let add_form b node =
       | "recursion-depth" ->
           once b kw kw_node;
           let v = value kw node rest in
-          b.scene <- { b.scene with depth = check v (Limits.check_depth (integer (fun () -> kw) v)) }
+          b.scene <- { b.scene with depth = check v (Limits.check_depth b.limits (integer (fun () -> kw) v)) }
       | "epsilon" ->
           once b kw kw_node;
           let v = value kw node rest in
@@ -508,7 +508,7 @@ let finish b =
 (* The located pass: the same conversion over a parse that kept positions. *)
 (* The located pass streams too: it keeps the positions of the form being
    converted only, so locating an error costs no more memory than loading. *)
-let locate_error ~load text =
+let locate_error ~limits ~load text =
   let module P = Parsexp.Eager_and_positions in
   let current = ref None in
   let where node =
@@ -522,7 +522,7 @@ let locate_error ~load text =
         | found -> Option.map (fun (r : Positions.range) -> r.start_pos) found
         | exception Stack_overflow -> None)
   in
-  let b = builder ~load where in
+  let b = builder ~limits ~load where in
   let state =
     P.State.create (fun _ (form, positions) ->
         current := Some (form, positions);
@@ -561,7 +561,7 @@ let no_loader path =
     (`Msg
       (Printf.sprintf "cannot read mesh file %s: this scene was given as text, with no way to read files" path))
 
-let of_string ?(load_mesh = no_loader) ?(file = "<string>") text =
+let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") text =
   (* Mesh files are named relative to the scene file; each is read once,
      even when an error makes a second, located pass over the text. *)
   let loaded = Hashtbl.create 4 in
@@ -577,15 +577,15 @@ let of_string ?(load_mesh = no_loader) ?(file = "<string>") text =
   in
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
-  match Limits.check_scene_bytes (String.length text) with
-  | Error m -> Error (`Msg (Printf.sprintf "%s: %s" file m))
+  match Limits.check_scene_bytes limits (String.length text) with
+  | Error (`Msg m) -> Error (`Msg (Printf.sprintf "%s: %s" file m))
   | Ok _ -> (
     let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
     (* Each form is converted as soon as it is parsed, and positions are not
        recorded: big scenes load in little time and memory. Only an error
        triggers a second pass that records positions, and fails on the same
        node. *)
-    let b = builder ~load (fun _ -> None) in
+    let b = builder ~limits ~load (fun _ -> None) in
     (* The parser holds a form whole, in 30 to 50 times its text: the text
        is fed in chunks, and a form that grows past the form bound is
        refused before it can take more. *)
@@ -601,46 +601,23 @@ let of_string ?(load_mesh = no_loader) ?(file = "<string>") text =
       else
         let len = min chunk (n - pos) in
         let stack = Parsexp.Eager.feed_substring state text ~pos ~len stack in
-        match Limits.check_form_bytes (pos + len - !form_end) with
+        match Limits.check_form_bytes limits (pos + len - !form_end) with
         | Ok _ -> feed stack (pos + len)
-        | Error m -> Error (form_start text !form_end, m)
+        | Error (`Msg m) -> Error (form_start text !form_end, m)
     in
     match feed Parsexp.Eager.Stack.empty 0 with
     | Error (p, m) -> error p m
     | exception Parsexp.Parse_error.Parse_error e -> syntax e
     | exception Located _ -> (
-        match locate_error ~load text with
+        match locate_error ~limits ~load text with
         | `Syntax e -> syntax e
         | `Located (pos, m) -> error (Option.value pos ~default:origin) m
         | `Not_found -> error origin "internal error: the located pass found no error")
     | Ok () -> (
         (* Every field was checked where it was read; this is a net. *)
-        match Scene.validate (finish b) with
+        match Scene.validate ~limits (finish b) with
         | Ok s -> Ok s
         | Error (`Msg m) -> error origin m))
-
-(* A mesh file, 64 KiB at a time: the text is never held whole. *)
-let read_mesh path =
-  match open_in_bin path with
-  | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
-  | ic ->
-      Fun.protect
-        ~finally:(fun () -> close_in_noerr ic)
-        (fun () ->
-          let p = Obj_file.create ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
-          let chunk = Bytes.create 65536 in
-          let rec go () =
-            match input ic chunk 0 (Bytes.length chunk) with
-            | 0 -> Obj_file.finish p
-            | n -> ( match Obj_file.feed_bytes p chunk 0 n with Ok () -> go () | Error e -> Error e)
-            | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
-          in
-          go ())
-
-let read path =
-  match File_io.read ~check_size:Limits.check_scene_bytes path with
-  | Error e -> Error e
-  | Ok text -> of_string ~load_mesh:read_mesh ~file:path text
 
 let to_string (s : Scene.t) =
   let b = Buffer.create 1024 in

@@ -39,32 +39,26 @@ v}
     errors. *)
 
 val of_string :
+  ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
   ?file:string ->
   string ->
-  (Scene.t, [> `Msg of string ]) result
-(** [of_string ~load_mesh ~file text] is the scene described by [text].
-    [file] (default ["<string>"]) names the source in error messages. A
-    [(mesh (file p) ...)] form is read by [load_mesh], given [p] joined
-    to the directory of [file] when [p] is relative, once per path; its
-    error becomes the form's (the default refuses every mesh: text alone
-    names no file it can read; {!read} reads them). The scene
-    satisfies {!Scene.validate}. [Error] if [text] is longer than
-    {!Limits.check_scene_bytes} allows, or one of its top-level forms
-    longer than {!Limits.check_form_bytes} allows (found as the text is
-    parsed, 64 KiB at a time, before the form is held whole). Never
-    raises. *)
-
-val read : string -> (Scene.t, [> `Msg of string ]) result
-(** [read path] is the scene in file [path], its meshes read by
-    {!read_mesh}. *)
-
-val read_mesh : string -> (Obj_file.t, [ `Msg of string ]) result
-(** [read_mesh path] is the Wavefront OBJ mesh in file [path], read 64 KiB
-    at a time by {!Obj_file.feed_bytes}, with at most
-    {!Limits.max_triangles} vertices and triangles. *)
+  (Scene.valid, [> `Msg of string ]) result
+(** [of_string ~limits ~load_mesh ~file text] is the scene described by
+    [text], validated against [limits] (default {!Limits.default}). [Error]
+    if [text] is longer than its [`Scene_bytes] bound (refused before it is
+    parsed), or one of its top-level forms longer than its [`Form_bytes]
+    bound (found as the text is parsed, 64 KiB at a time, before the form
+    is held whole). [file] (default ["<string>"]) names the source in error
+    messages. A [(mesh (file p) ...)] form is read by [load_mesh], given
+    [p] joined to the directory of [file] when [p] is relative, once per
+    path; its error becomes the form's (the default refuses every mesh:
+    text alone names no file it can read;
+    [Raytrace_unix.Files.read_scene] reads scene files and their meshes).
+    Never raises. *)
 
 val to_string : Scene.t -> string
 (** [to_string s] is [s] in the scene-file syntax, every number written so
     that it reads back as the same float: [of_string (to_string s)] is
-    [Ok s] for every [s] that satisfies {!Scene.validate}. *)
+    [Ok v] with [Scene.of_valid v = s] for every [s] that passes
+    {!Scene.validate}. *)

@@ -4,7 +4,9 @@
     [I_a + sum_i I_i (<L_i, N> / (|L_i| |N|) + (<R_i, V> / (|R_i| |V|))^s)],
     each term counted only when positive, and each light counted only when
     no object shadows it (7.7). These functions are the terms of that sum;
-    {!Literal} adds them up as the document does. *)
+    {!Literal} adds them up as the document does.
+
+    @canonical Raytrace.Private.Shading *)
 
 val diffuse : intensity:float -> l:Vec3.t -> n:Vec3.t -> float
 (** [diffuse ~intensity:i ~l ~n] is the diffuse term [i <L, N> / (|L| |N|)]

@@ -7,6 +7,8 @@ type t = {
 }
 [@@deriving show, eq]
 
+let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
+let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
 let matte = -1.
 
 let v ?(specular = matte) ?(reflective = 0.) ~center ~radius color =
@@ -20,15 +22,15 @@ let check_radius r = Limits.check_size "sphere radius" r
 
 let check_color c =
   if Color.in_gamut c then Ok c
-  else Error (Format.asprintf "sphere color channels must lie in [0, 255], got %a" Color.pp c)
+  else (error_pp "sphere color channels must lie in [0, 255], got %a" Color.pp c)
 
 let check_specular s =
   if Float.is_finite s && (s = matte || s >= 0.) then Ok s
-  else Error (Printf.sprintf "sphere specular must be -1 (matte) or >= 0, got %s" (num s))
+  else (error "sphere specular must be -1 (matte) or >= 0, got %s" (num s))
 
 let check_reflective r =
   if r >= 0. && r <= 1. then Ok r
-  else Error (Printf.sprintf "sphere reflective must lie in [0, 1], got %s" (num r))
+  else (error "sphere reflective must lie in [0, 1], got %s" (num r))
 
 let validate s =
   let ( let* ) = Result.bind in

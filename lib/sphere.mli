@@ -13,9 +13,19 @@ type t = {
   specular : float;  (** [s >= 0], or {!matte} for no specular term. *)
   reflective : float;  (** Reflectivity in [\[0, 1\]]; [0] is no mirror. *)
 }
-[@@deriving show, eq]
 (** The type for spheres. The invariants in the field comments are checked
     by {!validate} and by scene loading, not by the constructor. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val matte : float
 (** [matte] is [-1.], the specular exponent that means "no specular term"
@@ -33,22 +43,22 @@ val is_matte : t -> bool
     Each check returns its argument, or an error message that names the
     field and the value, such as ["sphere radius must be > 0, got -1"]. *)
 
-val check_center : Vec3.t -> (Vec3.t, string) result
+val check_center : Vec3.t -> (Vec3.t, [> `Msg of string ]) result
 (** [check_center c] checks {!Limits.check_point}. *)
 
-val check_radius : float -> (float, string) result
+val check_radius : float -> (float, [> `Msg of string ]) result
 (** [check_radius r] checks [Limits.min_size <= r <= Limits.max_coordinate]. *)
 
-val check_color : Color.t -> (Color.t, string) result
+val check_color : Color.t -> (Color.t, [> `Msg of string ]) result
 (** [check_color c] checks {!Color.in_gamut}. *)
 
-val check_specular : float -> (float, string) result
+val check_specular : float -> (float, [> `Msg of string ]) result
 (** [check_specular s] checks that [s] is finite and [-1] or [>= 0]. *)
 
-val check_reflective : float -> (float, string) result
+val check_reflective : float -> (float, [> `Msg of string ]) result
 (** [check_reflective r] checks [0 <= r <= 1]. *)
 
-val validate : t -> (t, string) result
+val validate : t -> (t, [> `Msg of string ]) result
 (** [validate s] is [Ok s] if every field passes its check, and otherwise
     the first field's error. *)
 

@@ -13,8 +13,13 @@ type t = {
   trace_s : float;  (** Wall-clock seconds spent tracing. *)
   minor_words : float;  (** Minor-heap words allocated by the tracing loops. *)
 }
-[@@deriving show]
 (** The type for render statistics. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml record (derived). *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
 
 val rays : t -> int
 (** [rays s] is [s.primary + s.shadow + s.reflection]. *)

@@ -47,7 +47,7 @@ let create ?(averaging = false) (p : Prepared.t) =
     first_hit = -1;
     averaging;
     assumed = no_assumption;
-    budget = Limits.work_budget ();
+    budget = Limits.work_budget Limits.default;
   }
 
 let prepared tr = tr.p

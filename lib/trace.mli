@@ -1,14 +1,16 @@
-(** The fast tracer: the document's algorithm on a {!Prepared.t} scene,
+(** The fast tracer: the document's algorithm on a {!Raytrace.Private.Prepared.t} scene,
     allocating nothing per ray.
 
     It computes the same floating-point operations in the same order as
     {!Literal}, so it produces the same bytes; it only skips work whose
-    result provably cannot change them (see {!Prepared.prepare}). Rays,
+    result provably cannot change them (see {!Raytrace.Private.Prepared.prepare}). Rays,
     hit points and colours live in a mutable all-float record (stored
     unboxed), hits are returned as sphere indices ([-1] for none), and
     reflection is a loop over a small stack instead of recursion, because
     in OCaml 4.13 without flambda a float crossing a function call that is
-    not inlined is boxed. *)
+    not inlined is boxed.
+
+    @canonical Raytrace.Private.Trace *)
 
 type counters = {
   mutable primary : int;  (** Primary rays cast. *)
@@ -26,10 +28,10 @@ type t
 
 val create : ?averaging:bool -> Prepared.t -> t
 (** [create ~averaging p] is a tracer for [p] with zeroed counters and
-    the budget {!Limits.work_budget}[ ()] ({!set_budget}).
+    the budget of {!Limits.default} ({!Limits.work_budget}, {!set_budget}).
     [averaging] (default [false]) says how the colours it computes will be
     combined, which decides when the reflection early stop of
-    {!Prepared.prepare}'s skips is exact. Without it, each ray is one
+    {!Raytrace.Private.Prepared.prepare}'s skips is exact. Without it, each ray is one
     pixel, rounded to bytes on its own: a reflection stops once its
     remaining weight cannot change a byte of the pixel. With it, rays are
     samples whose clamped floats are averaged ({!accumulate}): a reflection
@@ -53,11 +55,11 @@ val counters : t -> counters
 
 val work : t -> int
 (** [work tr] is the intersection tests [tr] has done: [tests + box_tests]
-    of {!counters}. *)
+    of {!val-counters}. *)
 
 val set_budget : t -> int -> unit
 (** [set_budget tr n] lets {!check_budget} accept up to [n] tests of [tr];
-    {!create} sets {!Limits.work_budget}[ ()]. *)
+    {!create} sets the budget of {!Limits.default}. *)
 
 val check_budget : t -> unit
 (** [check_budget tr] does nothing while {!work}[ tr] is within the budget
@@ -65,7 +67,7 @@ val check_budget : t -> unit
 
 val pixel : t -> int -> int -> unit
 (** [pixel tr gx gy] traces the primary ray through canvas pixel
-    [(gx, gy)] (centered coordinates, {!Canvas}) from the camera, [t > 1],
+    [(gx, gy)] (centered coordinates, {!Raytrace.Private.Canvas}) from the camera, [t > 1],
     with the scene's recursion depth (section 8). The unclamped colour is
     then in {!red}, {!green} and {!blue}, and {!store} writes it. *)
 

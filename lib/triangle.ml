@@ -4,10 +4,9 @@ let v v0 v1 v2 material = { v0; v1; v2; material }
 
 let validate tri =
   let ( let* ) = Result.bind in
-  let msg r = Result.map_error (fun m -> `Msg m) r in
-  let* _ = msg (Limits.check_point "triangle vertex" tri.v0) in
-  let* _ = msg (Limits.check_point "triangle vertex" tri.v1) in
-  let* _ = msg (Limits.check_point "triangle vertex" tri.v2) in
+  let* _ = Limits.check_point "triangle vertex" tri.v0 in
+  let* _ = Limits.check_point "triangle vertex" tri.v1 in
+  let* _ = Limits.check_point "triangle vertex" tri.v2 in
   let n = Vec3.norm (Vec3.cross (Vec3.sub tri.v1 tri.v0) (Vec3.sub tri.v2 tri.v0)) in
   let* () =
     if n > 0. && Float.is_finite n && Float.is_finite (1. /. n) then Ok ()

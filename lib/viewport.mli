@@ -5,8 +5,19 @@
     looks. The document's values [V_w = V_h = d = 1] give a field of view of
     about 53 degrees. *)
 
-type t = { width : float; height : float; distance : float } [@@deriving show, eq]
+type t = { width : float; height : float; distance : float }
 (** The type for viewports: [V_w], [V_h] and [d], all positive. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
+    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val v : width:float -> height:float -> distance:float -> t
 (** [v ~width ~height ~distance] is the viewport with these dimensions. *)
@@ -14,17 +25,17 @@ val v : width:float -> height:float -> distance:float -> t
 val default : t
 (** [default] is the document's viewport, [V_w = V_h = d = 1]. *)
 
-val check_dimension : string -> float -> (float, string) result
+val check_dimension : string -> float -> (float, [> `Msg of string ]) result
 (** [check_dimension what x] is {!Limits.check_size} of the viewport's
     [what] ("width", "height", "distance"). *)
 
-val validate : t -> (t, string) result
+val validate : t -> (t, [> `Msg of string ]) result
 (** [validate vp] checks the three dimensions with {!check_dimension}. *)
 
 val of_canvas : t -> canvas_width:int -> canvas_height:int -> int -> int -> Vec3.t
 (** [of_canvas vp ~canvas_width:gw ~canvas_height:gh gx gy] is the point
     [(V_x, V_y, d)] of the viewport seen through the canvas pixel [(gx, gy)]
-    (centered canvas coordinates, {!Canvas}), with [V_x = G_x * V_w / G_w]
+    (centered canvas coordinates, {!Raytrace.Private.Canvas}), with [V_x = G_x * V_w / G_w]
     and [V_y = G_y * V_h / G_h], multiplied before dividing as the document
     writes it. *)
 

@@ -1,5 +1,3 @@
-open Raytrace
-
 type format = Ppm | Png
 
 let format_of_path path =
@@ -8,14 +6,14 @@ let format_of_path path =
 let extension = function Ppm -> ".ppm" | Png -> ".png"
 
 let write_file path img =
-  match format_of_path path with Png -> Png_file.write_file path img | Ppm -> Ppm.write_file path img
+  match format_of_path path with Png -> Png_file.write_file path img | Ppm -> Files.write_ppm path img
 
-let read_file path =
-  match File_io.read ~check_size:Ppm.check_file_size path with
+let read_file ?(limits = Limits.default) path =
+  match File_io.read ~check_size:(Ppm.check_file_size ~limits) path with
   | Error e -> Error e
-  | Ok contents when Png_file.is_png contents -> Png_file.read_file path
+  | Ok contents when Png_file.is_png contents -> Png_file.read_file ~limits path
   | Ok _ when format_of_path path = Png -> Error (`Msg (path ^ ": not a PNG file (it lacks the PNG signature)"))
   | Ok contents -> (
-      match Ppm.of_string contents with
+      match Ppm.of_string ~limits contents with
       | Ok img -> Ok img
       | Error (`Msg m) -> Error (`Msg (path ^ ": " ^ m)))

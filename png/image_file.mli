@@ -16,7 +16,9 @@ val write_file : string -> Raytrace.Image.t -> (unit, [> `Msg of string ]) resul
 (** [write_file path img] writes [img] to [path] atomically, in
     [format_of_path path]. *)
 
-val read_file : string -> (Raytrace.Image.t, [> `Msg of string ]) result
-(** [read_file path] reads the image in [path]: a PNG file if its contents
+val read_file : ?limits:Raytrace.Limits.t -> string -> (Raytrace.Image.t, [> `Msg of string ]) result
+(** [read_file ~limits path] reads the image in [path]: a PNG file if its contents
     start with the PNG signature, whatever its name; [Error] if they do not
-    and [path] ends in [.png]; and otherwise a PPM file. *)
+    and [path] ends in [.png]; and otherwise a PPM file. A file larger than
+    a PPM image within [limits] (default {!Raytrace.Limits.default}) is
+    refused before it is read. *)

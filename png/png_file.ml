@@ -1,4 +1,4 @@
-open Raytrace
+
 
 let signature = "\137PNG\r\n\026\n"
 let is_png s = String.length s >= 8 && String.sub s 0 8 = signature
@@ -67,7 +67,7 @@ let decode_bytes pixels = 13 * pixels
 let be32 s o =
   (Char.code s.[o] lsl 24) lor (Char.code s.[o + 1] lsl 16) lor (Char.code s.[o + 2] lsl 8) lor Char.code s.[o + 3]
 
-let read_file path =
+let read_file ?(limits = Limits.default) path =
   let fail m = Error (`Msg (Printf.sprintf "%s: %s" path m)) in
   let* contents = File_io.read path in
   if not (is_png contents) then fail "not a PNG file"
@@ -75,9 +75,9 @@ let read_file path =
   else
     (* The size, read here to bound the memory before libpng sees it. *)
     let width = be32 contents 16 and height = be32 contents 20 in
-    (* The same bound as a PPM image's, in force (RAYTRACE_MAX_PIXELS). *)
-    match Limits.check_image_size width height with
-    | Error m -> fail m
+    (* The same bound as a PPM image's. *)
+    match Limits.check_image_size limits width height with
+    | Error (`Msg m) -> fail m
     | Ok () -> (
         let pixels = width * height in
         match Parallel.available_memory () with

@@ -11,11 +11,11 @@ val signature : string
 val is_png : string -> bool
 (** [is_png s] is [true] iff the file contents [s] start with {!signature}. *)
 
-val read_file : string -> (Raytrace.Image.t, [> `Msg of string ]) result
-(** [read_file path] reads and decodes the PNG file [path]. Its header's
+val read_file : ?limits:Raytrace.Limits.t -> string -> (Raytrace.Image.t, [> `Msg of string ]) result
+(** [read_file ~limits path] reads and decodes the PNG file [path]. Its header's
     width and height are checked first, before libpng allocates anything:
     [Error] if they are beyond {!Raytrace.Limits.check_image_size} (the
-    pixel bound in force) or if decoding would need more memory than is
+    pixel bound of [limits], default {!Raytrace.Limits.default}) or if decoding would need more memory than is
     available (13 bytes a pixel); [Error] saying so if the decoding process
     runs out of memory or is killed by SIGKILL. *)
 
@@ -25,4 +25,4 @@ val to_string : Raytrace.Image.t -> (string, [> `Msg of string ]) result
 
 val write_file : string -> Raytrace.Image.t -> (unit, [> `Msg of string ]) result
 (** [write_file path img] writes [to_string img] to [path] atomically
-    ({!Raytrace.File_io.write_atomic}). *)
+    ({!Raytrace_unix.File_io.write_atomic}). *)

@@ -30,8 +30,8 @@ let scene_names () =
   |> List.sort String.compare
 
 let load_scene name =
-  match Scene_file.read (scene_path name) with
-  | Ok s -> s
+  match Raytrace_unix.Files.read_scene (scene_path name) with
+  | Ok s -> Scene.of_valid s
   | Error (`Msg m) -> Alcotest.failf "cannot load %s: %s" name m
 
 let qcheck ?(count = 200) name arb prop =
@@ -87,6 +87,23 @@ let temp_dir () =
   Sys.remove d;
   Unix.mkdir d 0o755;
   d
+
+let valid s = match Scene.validate s with Ok v -> v | Error (`Msg m) -> Alcotest.failf "invalid scene: %s" m
+
+let render ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress s =
+  Result.bind (Scene.validate ?limits s)
+    (Raytrace_unix.Render_jobs.image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress)
+
+let render_region ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress s r =
+  Result.bind (Scene.validate ?limits s) (fun v ->
+      Raytrace_unix.Render_jobs.region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress v r)
+
+let image_exn ?jobs ?skips ?samples ?adaptive ?subsample s =
+  match render ?jobs ?skips ?samples ?adaptive ?subsample s with Ok (img, _) -> img | Error (`Msg m) -> Alcotest.fail m
+
+let prepare ?skips s = Raytrace.Private.Prepared.prepare ?skips (valid s)
+let read_scene path = Result.map Scene.of_valid (Raytrace_unix.Files.read_scene path)
+let of_string ?limits ?file text = Result.map Scene.of_valid (Scene_file.of_string ?limits ?file text)
 
 (* Alcotest sends what a test prints to stdout and stderr into the test's
    output file; a skip must reach the console, so it writes to a copy of

@@ -44,6 +44,53 @@ val raytrace : unit -> string
 val temp_dir : unit -> string
 (** [temp_dir ()] is a fresh empty directory. *)
 
+(** {1:valid Validated scenes for the tests} *)
+
+val valid : Raytrace.Scene.t -> Raytrace.Scene.valid
+(** [valid s] is [s] validated, failing the test if it is invalid. *)
+
+val render :
+  ?limits:Raytrace.Limits.t ->
+  ?jobs:int ->
+  ?skips:bool ->
+  ?samples:int ->
+  ?adaptive:int ->
+  ?subsample:bool ->
+  ?progress:(rows:int -> total:int -> rays:int -> unit) ->
+  Raytrace.Scene.t ->
+  (Raytrace.Image.t * Raytrace.Stats.t, [> `Msg of string ]) result
+(** [render ... s] is {!Raytrace_unix.Render_jobs.image} on [s]
+    validated (with the same [limits]); [Error] if [s] is invalid. *)
+
+val render_region :
+  ?limits:Raytrace.Limits.t ->
+  ?jobs:int ->
+  ?skips:bool ->
+  ?samples:int ->
+  ?adaptive:int ->
+  ?subsample:bool ->
+  ?progress:(rows:int -> total:int -> rays:int -> unit) ->
+  Raytrace.Scene.t ->
+  Raytrace.Region.t ->
+  (Raytrace.Image.t * Raytrace.Stats.t, [> `Msg of string ]) result
+(** [render_region ... s r] is {!Raytrace_unix.Render_jobs.region_image}
+    on [s] validated; [Error] if [s] is invalid. *)
+
+val image_exn :
+  ?jobs:int -> ?skips:bool -> ?samples:int -> ?adaptive:int -> ?subsample:bool -> Raytrace.Scene.t -> Raytrace.Image.t
+(** [image_exn ~jobs ~skips ~samples ~adaptive ~subsample s] is the image of {!render}, failing
+    the test on [Error]. *)
+
+val prepare : ?skips:bool -> Raytrace.Scene.t -> Raytrace.Private.Prepared.t
+(** [prepare ~skips s] is [s] validated and prepared. *)
+
+val read_scene : string -> (Raytrace.Scene.t, [> `Msg of string ]) result
+(** [read_scene path] is the scene of the file [path], as a plain scene. *)
+
+val of_string : ?limits:Raytrace.Limits.t -> ?file:string -> string -> (Raytrace.Scene.t, [> `Msg of string ]) result
+(** [of_string ~limits ~file text] is {!Raytrace.Scene_file.of_string} as a plain
+    scene. *)
+
 (** {1:skips Skips}
 
     A check that cannot run here (a tool missing, no root) is skipped

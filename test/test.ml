@@ -36,6 +36,8 @@ let () =
       ("recipes", Test_recipes.tests);
       ("window", Test_window.tests);
       ("example", Test_example.tests);
+      ("pixel", Test_pixel.tests);
+      ("library", Test_library.tests);
       ("hostile", Test_hostile.tests);
       ("faults", Test_faults.tests);
       ("outputs", Test_outputs.tests);

@@ -22,12 +22,12 @@ let tests =
         List.iter
           (fun name ->
             let s = small (Helpers.load_scene name) in
-            Helpers.check_images name ~expected:(Render.image_exn s) (Antialias.image ~n:1 s))
+            Helpers.check_images name ~expected:(Helpers.image_exn s) (Antialias.image ~n:1 (Helpers.valid s)))
           (Helpers.scene_names ()));
     Alcotest.test_case "a pixel is the rounded mean of its clamped samples" `Quick (fun () ->
         let s = small Scene.cgfs in
-        let img = Antialias.image ~n:3 s in
-        let tr = Trace.create ~averaging:true (Prepared.prepare s) in
+        let img = Antialias.image ~n:3 (Helpers.valid s) in
+        let tr = Trace.create ~averaging:true (Helpers.prepare s) in
         for row = 0 to 29 do
           for col = 0 to 39 do
             let expected = reference tr (Canvas.x_of_column ~width:40 col) (Canvas.y_of_row ~height:30 row) 3 in
@@ -47,11 +47,11 @@ let tests =
         (* The sphere covers x < 0 at depth 2 around the pixel column
            gx = -1 (V_x in [-0.75, -0.25]) fully and gx = 0 (V_x in [-0.25,
            0.25]) for its samples left of the center: V_x = -0.125. *)
-        let img = Antialias.image ~n:2 s in
+        let img = Antialias.image ~n:2 (Helpers.valid s) in
         Alcotest.(check (list int)) __LOC__ [ 255; 255; 255 ] (let r, g, b = Image.get img 0 0 in [ r; g; b ]);
         (* 2 of 4 samples white: 127.5 rounds half to even, to 128 *)
         Alcotest.(check (list int)) __LOC__ [ 128; 128; 128 ] (let r, g, b = Image.get img 1 0 in [ r; g; b ]));
     Alcotest.test_case "n < 1 is refused" `Quick (fun () ->
         Alcotest.check_raises __LOC__ (Invalid_argument "Antialias.image: n < 1") (fun () ->
-            ignore (Antialias.image ~n:0 Scene.cgfs)));
+            ignore (Antialias.image ~n:0 (Helpers.valid Scene.cgfs))));
   ]

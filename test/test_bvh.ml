@@ -46,7 +46,7 @@ let tests =
               (List.length (List.sort_uniq compare (Array.to_list b.order))))
           [ 1; 2; 5; 9; 100; 1000 ]);
     Alcotest.test_case "the tree of grid:10000 is shallow" `Quick (fun () ->
-        let p = Prepared.prepare (Scene.grid 10000) in
+        let p = Helpers.prepare (Scene.grid 10000) in
         match p.bvh with
         | None -> Alcotest.fail "no hierarchy for 10001 spheres"
         | Some b ->
@@ -77,12 +77,12 @@ let tests =
     Helpers.qcheck ~count:150 "crowded scenes: the hierarchy gives the brute force's bytes"
       (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
       (fun s ->
-        let render skips s = Render.image_exn ~skips s in
+        let render skips s = Helpers.image_exn ~skips s in
         Image.equal (render false s) (render true s)
         && Image.equal (render false { s with epsilon = None }) (render true { s with epsilon = None }));
     Helpers.qcheck ~count:60 "crowded scenes in the document's mode: the oracle's bytes"
       (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
       (fun s ->
         let s = { s with epsilon = Some 0.001 } in
-        Image.equal (Literal.render s) (Render.image_exn s));
+        Image.equal (Literal.render (Helpers.valid s)) (Helpers.image_exn s));
   ]

@@ -16,7 +16,7 @@ let tests =
     Alcotest.test_case "look-at along +z is the identity" `Quick (fun () ->
         match Camera.look_at ~position:Vec3.zero (Vec3.v 0. 0. 5.) with
         | Ok cam -> Alcotest.(check bool) __LOC__ true (Camera.is_identity cam.rotation)
-        | Error e -> Alcotest.fail e);
+        | Error (`Msg e) -> Alcotest.fail e);
     Alcotest.test_case "look-at sends the viewport center toward the target" `Quick (fun () ->
         (* from (3, 0, 1) toward (2, 0, 2): forward = (-1, 0, 1) / sqrt 2 *)
         match Camera.look_at ~position:(Vec3.v 3. 0. 1.) (Vec3.v 2. 0. 2.) with
@@ -25,7 +25,7 @@ let tests =
             Alcotest.check (Helpers.vec3_near 1e-15) __LOC__ (Vec3.v (-.s) 0. s)
               (Camera.direction cam Vec3.oz);
             Alcotest.(check (float 1e-12)) __LOC__ 1. (Camera.determinant cam.rotation)
-        | Error e -> Alcotest.fail e);
+        | Error (`Msg e) -> Alcotest.fail e);
     Alcotest.test_case "look-at refuses degenerate input" `Quick (fun () ->
         let fails what r = Alcotest.(check bool) what true (Result.is_error r) in
         fails "target = position" (Camera.look_at ~position:Vec3.oz Vec3.oz);

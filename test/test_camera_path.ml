@@ -3,8 +3,8 @@ open Raytrace
 
 let camera = Alcotest.testable Camera.pp Camera.equal
 let ok = function Ok x -> x | Error (`Msg m) -> Alcotest.fail m
-let ok_s = function Ok x -> x | Error m -> Alcotest.fail m
-let error_s = function Ok _ -> Alcotest.fail "expected an error" | Error m -> m
+let ok_s = function Ok x -> x | Error (`Msg m) -> Alcotest.fail m
+let error_s = function Ok _ -> Alcotest.fail "expected an error" | Error (`Msg m) -> m
 let look ?up ~position target = ok_s (Camera.look_at ?up ~position target)
 
 (* Frame 0 at the origin looking along +z; frame 4 at x = 4, looking at
@@ -70,10 +70,10 @@ let tests =
         Alcotest.(check string) __LOC__ "a camera path needs at least one key" (error_s (Camera_path.v [])));
     Alcotest.test_case "a scene's frame is a still scene with that frame's camera" `Quick (fun () ->
         let s = { Scene.cgfs with camera_path = Some path } in
-        let f = ok (Scene.at_frame s 6) in
+        let f = Scene.of_valid (ok (Scene.at_frame (Helpers.valid s) 6)) in
         Alcotest.check camera __LOC__ (ok (Camera_path.camera path 6)) f.camera;
         Alcotest.(check bool) __LOC__ true (Option.is_none f.camera_path);
-        match Scene.at_frame Scene.cgfs 0 with
+        match Scene.at_frame (Helpers.valid Scene.cgfs) 0 with
         | Ok _ -> Alcotest.fail "a still scene has frames"
         | Error (`Msg m) -> Alcotest.(check string) __LOC__ "the scene has no camera-path, so it has no frames to render" m);
   ]

@@ -1,5 +1,3 @@
-open Raytrace
-
 let int = Alcotest.(check int)
 
 let tests =

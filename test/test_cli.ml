@@ -37,7 +37,7 @@ let tests =
         let out = Filename.concat dir "x.ppm" in
         let code, _, err = run (exe ()) [ "render"; "--width"; "40"; "--height"; "30"; Helpers.scene_path "cgfs.scene"; "-o"; out ] in
         Alcotest.(check int) err 0 code;
-        match Raytrace.Ppm.read_file out with
+        match Raytrace_unix.Files.read_ppm out with
         | Ok img -> Alcotest.(check (pair int int)) __LOC__ (40, 30) (Raytrace.Image.width img, Raytrace.Image.height img)
         | Error (`Msg m) -> Alcotest.fail m);
     Alcotest.test_case "render -o - writes the image to stdout" `Quick (fun () ->
@@ -126,9 +126,9 @@ let tests =
         let dir = Helpers.temp_dir () in
         let a = Filename.concat dir "a.ppm" and b = Filename.concat dir "b.ppm" in
         let img = Raytrace.Image.create 2 1 in
-        ignore (Raytrace.Ppm.write_file a img);
+        ignore (Raytrace_unix.Files.write_ppm a img);
         Raytrace.Image.set img 0 0 10 22 30;
-        ignore (Raytrace.Ppm.write_file b img);
+        ignore (Raytrace_unix.Files.write_ppm b img);
         let code, out, _ = run (exe ()) [ "diff"; a; b ] in
         Alcotest.(check int) __LOC__ 0 code;
         (* channel differences 10, 22, 30 and three zeros: mean 62 / 6;
@@ -156,15 +156,15 @@ let tests =
         let render name args =
           let code, _, err = run (exe ()) ([ "render"; scene; "-o"; out name ] @ size @ args) in
           Alcotest.(check int) err 0 code;
-          match Raytrace.Ppm.read_file (out name) with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
+          match Raytrace_unix.Files.read_ppm (out name) with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
         in
         Helpers.check_images "--samples 1" ~expected:(render "plain.ppm" []) (render "one.ppm" [ "--samples"; "1" ]);
         let s = Raytrace.Scene.with_overrides ~width:30 ~height:20 (Helpers.load_scene "cgfs.scene") in
         Helpers.check_images "--samples 3 --adaptive 5"
-          ~expected:(Raytrace.Render.image_exn ~samples:3 ~adaptive:5 s)
+          ~expected:(Helpers.image_exn ~samples:3 ~adaptive:5 s)
           (render "adaptive.ppm" [ "--samples"; "3"; "--adaptive"; "5"; "--jobs"; "2" ]);
         Helpers.check_images "--subsample"
-          ~expected:(Raytrace.Render.image_exn ~subsample:true s)
+          ~expected:(Helpers.image_exn ~subsample:true s)
           (render "sub.ppm" [ "--subsample" ]));
     Alcotest.test_case "tiles rendered with --samples 3 --adaptive 4 merge into the whole render, others do not" `Quick
       (fun () ->
@@ -176,7 +176,7 @@ let tests =
           let code, _, err = run (exe ()) args in
           Alcotest.(check int) err 0 code
         in
-        let read name = match Raytrace.Ppm.read_file (out name) with Ok img -> img | Error (`Msg m) -> Alcotest.fail m in
+        let read name = match Raytrace_unix.Files.read_ppm (out name) with Ok img -> img | Error (`Msg m) -> Alcotest.fail m in
         run_ok ([ "render"; scene; "-o"; out "whole.ppm" ] @ size @ sampling);
         List.iter
           (fun i ->

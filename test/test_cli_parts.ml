@@ -5,7 +5,7 @@ let run = Helpers.run
 let exe () = Helpers.raytrace ()
 
 let read path =
-  match Raytrace.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
+  match Raytrace_unix.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
 
 let succeed what args =
   let code, _, err = run (exe ()) args in
@@ -109,7 +109,7 @@ let tests =
     Alcotest.test_case "a tile to stdout is the part file" `Quick (fun () ->
         let code, out, _ = run (exe ()) [ "render"; "--tile"; "2/3"; "--width"; "4"; "--height"; "6"; "-o"; "-" ] in
         Alcotest.(check int) __LOC__ 0 code;
-        match Raytrace.Part.of_string out with
+        match Part.of_string out with
         | Ok p -> Alcotest.(check (list int)) __LOC__ [ 0; 2; 4; 2 ] [ p.region.x; p.region.y; p.region.w; p.region.h ]
         | Error (`Msg m) -> Alcotest.fail m);
     Alcotest.test_case "render writes PNG for .png names, and diff reads it" `Quick (fun () ->

@@ -1,5 +1,4 @@
 (* The README's program that builds a scene in code. *)
-open Raytrace
 
 let tests =
   [
@@ -13,7 +12,7 @@ let tests =
         let code, stdout, err = Helpers.run exe [ out ] in
         Alcotest.(check int) err 0 code;
         Alcotest.(check string) __LOC__ ("wrote " ^ out ^ "\n") stdout;
-        match (Ppm.read_file out, Ppm.read_file "golden/hello_scene.ppm") with
+        match (Files.read_ppm out, Files.read_ppm "golden/hello_scene.ppm") with
         | Ok img, Ok expected -> Helpers.check_images ~max_abs:1 "hello_scene" ~expected img
         | Error (`Msg m), _ | _, Error (`Msg m) -> Alcotest.fail m);
   ]

@@ -161,7 +161,7 @@ let tests =
         match Unix.fork () with
         | 0 ->
             ignore
-              (Raytrace.File_io.write_atomic path (fun oc ->
+              (Raytrace_unix.File_io.write_atomic path (fun oc ->
                    output_string oc "new, half written";
                    Unix.kill (Unix.getpid ()) Sys.sigterm;
                    output_string oc " and the rest"));

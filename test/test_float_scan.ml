@@ -1,4 +1,4 @@
-open Raytrace
+
 
 (* [Float_scan.of_string s] against [float_of_string]: the same bits, or
    NaN where OCaml's reader refuses [s] and where [s] has characters

@@ -23,15 +23,15 @@ let tests =
     Alcotest.test_case "every scene matches its golden image within 1 per channel" `Quick (fun () ->
         List.iter
           (fun name ->
-            let img = Render.image_exn (small (Helpers.load_scene name)) in
+            let img = Helpers.image_exn (small (Helpers.load_scene name)) in
             match Sys.getenv_opt "RAYTRACE_WRITE_GOLDEN" with
             | Some dir -> (
                 let path = Filename.concat dir (Filename.basename (golden_path name)) in
-                match Ppm.write_file path img with
+                match Files.write_ppm path img with
                 | Ok () -> print_endline ("wrote " ^ path)
                 | Error (`Msg m) -> Alcotest.fail m)
             | None -> (
-                match Ppm.read_file (golden_path name) with
+                match Files.read_ppm (golden_path name) with
                 | Error (`Msg m) -> Alcotest.failf "%s: no golden image (%s); run `make golden`" name m
                 | Ok expected -> Helpers.check_images ~max_abs:1 name ~expected img))
           (Helpers.scene_names ()));
@@ -39,7 +39,7 @@ let tests =
       (fun () ->
         List.iter
           (fun (name, digest) ->
-            let img = Render.image_exn (Helpers.load_scene name) in
+            let img = Helpers.image_exn (Helpers.load_scene name) in
             Alcotest.(check string) name digest (Digest.to_hex (Digest.string (Ppm.to_string img))))
           cgfs_digests);
   ]

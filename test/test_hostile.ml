@@ -19,7 +19,7 @@ let holds what property input =
 let example_scenes () = List.map (fun n -> In_channel_free.read (Helpers.scene_path n)) (Helpers.scene_names ())
 
 let example_ppms () =
-  let img = Render.image_exn (Scene.with_overrides ~width:5 ~height:3 Scene.cgfs) in
+  let img = Helpers.image_exn (Scene.with_overrides ~width:5 ~height:3 Scene.cgfs) in
   let p6 = Ppm.to_string img in
   let p3 =
     let b = Buffer.create 256 in
@@ -40,15 +40,25 @@ let mutated seeds tokens =
       int_bound (Array.length seeds - 1) >>= fun i ->
       fun rand -> Hostile.mutate rand ~tokens seeds.(i))
 
+(* The bounds of the tests: the environment's, read once by [with_env]. *)
+let limits = ref Limits.default
+
 let scene_error text =
-  match Scene_file.of_string ~file:"t.scene" text with
+  match Scene_file.of_string ~limits:!limits ~file:"t.scene" text with
   | Ok _ -> Alcotest.failf "accepted %S" (String.sub text 0 (min 60 (String.length text)))
   | Error (`Msg m) -> m
 
-(* Runs [f] with environment variable [name] set to [value], then unset. *)
+(* Runs [f] with environment variable [name] set to [value] and [limits]
+   read from the environment as the command line reads them, then unset. *)
 let with_env name value f =
   Unix.putenv name value;
-  Fun.protect ~finally:(fun () -> Unix.putenv name "") f
+  Fun.protect
+    ~finally:(fun () ->
+      Unix.putenv name "";
+      limits := Limits.default)
+    (fun () ->
+      (match Limits_env.read () with Ok l -> limits := l | Error (`Msg m) -> Alcotest.fail m);
+      f ())
 
 (* A fresh directory holding the scene file [name] with [text]: both paths. *)
 let scene_file name text =
@@ -151,24 +161,29 @@ let tests =
               (scene_error (";" ^ String.make 1000 'x' ^ "\n"))));
     Alcotest.test_case "a raised bound lets the scene through" `Quick (fun () ->
         with_env "RAYTRACE_MAX_DEPTH" "1_000" (fun () ->
-            match Scene_file.of_string "(recursion-depth 1000)" with
+            match Helpers.of_string ~limits:!limits "(recursion-depth 1000)" with
             | Ok s -> Alcotest.(check int) __LOC__ 1000 s.depth
             | Error (`Msg m) -> Alcotest.fail m);
         with_env "RAYTRACE_MAX_PIXELS" "1e9" (fun () ->
-            match Scene_file.of_string "(canvas (width 65536) (height 8192))" with
+            match Helpers.of_string ~limits:!limits "(canvas (width 65536) (height 8192))" with
             | Ok s -> Alcotest.(check int) __LOC__ 8192 s.height
             | Error (`Msg m) -> Alcotest.fail m));
     Alcotest.test_case "a malformed bound is an error that names the variable" `Quick (fun () ->
-        with_env "RAYTRACE_MAX_DEPTH" "lots" (fun () ->
-            Alcotest.(check string) __LOC__ "t.scene:1:18: RAYTRACE_MAX_DEPTH must be a positive integer, got \"lots\""
-              (scene_error "(recursion-depth 3)")));
+        Unix.putenv "RAYTRACE_MAX_DEPTH" "lots";
+        Fun.protect
+          ~finally:(fun () -> Unix.putenv "RAYTRACE_MAX_DEPTH" "")
+          (fun () ->
+            match Limits_env.read () with
+            | Ok _ -> Alcotest.fail "accepted"
+            | Error (`Msg m) ->
+                Alcotest.(check string) __LOC__ "RAYTRACE_MAX_DEPTH must be a positive integer, got \"lots\"" m));
     Alcotest.test_case "a render that would take years is refused before it starts" `Quick (fun () ->
         (* 65536 x 4096 = 268435456 pixels x 4 rays (depth 3, reflective
            spheres) x 4 spheres x (1 + 2 shadow-casting lights) = 1.288e10
            tests: within 1e12. 1024 samples per pixel: 1.319e13, beyond. *)
         let big = Scene.with_overrides ~width:65536 ~height:4096 Scene.cgfs in
-        Alcotest.(check bool) __LOC__ true (Scene.check_work big = Ok ());
-        (match Scene.check_work ~samples:1024 big with
+        Alcotest.(check bool) __LOC__ true (Scene.check_work (Helpers.valid big) = Ok ());
+        (match Scene.check_work ~samples:1024 (Helpers.valid big) with
         | Ok () -> Alcotest.fail "1024 samples accepted"
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
@@ -182,7 +197,7 @@ let tests =
         let crowded =
           { big with depth = 64; spheres = List.concat (List.init 100 (fun _ -> Scene.cgfs.spheres)) }
         in
-        match Render.image crowded with
+        match Helpers.render crowded with
         | Ok _ -> Alcotest.fail "rendered"
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
@@ -250,8 +265,9 @@ let tests =
           }
         in
         with_env "RAYTRACE_MAX_WORK" "200000" (fun () ->
-            Alcotest.(check bool) "the estimate lets it through" true (Scene.check_work scene = Ok ());
-            let r = Progressive.create scene in
+            let valid = Helpers.valid scene in
+            Alcotest.(check bool) "the estimate lets it through" true (Scene.check_work ~limits:!limits valid = Ok ());
+            let r = Progressive.create ~limits:!limits valid in
             let rec go () = match Progressive.step ~rows:4 r with Some _ -> go () | None -> () in
             go ();
             Alcotest.(check bool) "finished" true (Progressive.finished r);
@@ -277,23 +293,24 @@ let tests =
           let out = Filename.concat dir name in
           let code, _, err = Helpers.run ~env (Helpers.raytrace ()) ([ "render"; scene; "-o"; out ] @ args) in
           Alcotest.(check int) (String.concat " " args ^ ": " ^ err) 0 code;
-          match Ppm.read_file out with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
+          match Files.read_ppm out with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
         in
         Helpers.check_images "the oracle's image is the renderer's" ~expected:(render [ "--jobs"; "1" ] "fast.ppm")
           (render [ "--literal" ] "literal.ppm"));
     Alcotest.test_case "rays per pixel have a bound that --samples meets" `Quick (fun () ->
-        Alcotest.(check (result int string)) __LOC__ (Ok 4096) (Limits.check_samples 4096);
+        let check_samples n = Result.map_error (fun (`Msg m) -> m) (Limits.check_samples Limits.default n) in
+        Alcotest.(check (result int string)) __LOC__ (Ok 4096) (check_samples 4096);
         Alcotest.(check (result int string)) __LOC__
           (Error "4097 samples per pixel are too many, more than the limit of 4096 (set RAYTRACE_MAX_SAMPLES to raise it)")
-          (Limits.check_samples 4097);
+          (check_samples 4097);
         (* --samples 8 is an 8 x 8 grid: 64 rays a pixel, beyond a bound of 50. *)
         with_env "RAYTRACE_MAX_SAMPLES" "50" (fun () ->
-            match Render.image ~samples:8 (Scene.with_overrides ~width:4 ~height:4 Scene.cgfs) with
+            match Helpers.render ~limits:!limits ~samples:8 (Scene.with_overrides ~width:4 ~height:4 Scene.cgfs) with
             | Ok _ -> Alcotest.fail "rendered"
             | Error (`Msg m) ->
                 Alcotest.(check string) __LOC__
                   "64 samples per pixel are too many, more than the limit of 50 (set RAYTRACE_MAX_SAMPLES to raise it)" m);
-        Alcotest.(check (result int string)) __LOC__ (Error "samples per pixel must be >= 1, got 0") (Limits.check_samples 0));
+        Alcotest.(check (result int string)) __LOC__ (Error "samples per pixel must be >= 1, got 0") (check_samples 0));
     Alcotest.test_case "the work estimate is the product of its factors" `Quick (fun () ->
         (* 600 * 600 pixels * 4 samples * (3 + 1) rays * 4 spheres * (1 + 2) = 69120000 *)
         Alcotest.(check (float 0.)) __LOC__ 69120000.

@@ -91,7 +91,7 @@ let tests =
         Alcotest.check Helpers.color __LOC__ (Color.v 200. 100. 0.) (trace 0));
     Alcotest.test_case "rendering visits exactly w x h pixels (section 8)" `Quick (fun () ->
         let s = { (scene [] [ Light.ambient 1. ]) with width = 7; height = 4; background = Color.v 1. 2. 3. } in
-        let img = Literal.render s in
+        let img = Literal.render (Helpers.valid s) in
         Alcotest.(check (pair int int)) __LOC__ (7, 4) (Image.width img, Image.height img);
         Alcotest.(check (triple int int int)) __LOC__ (1, 2, 3) (Image.get img 6 3));
     Alcotest.test_case "what is above the camera lands in the top rows" `Quick (fun () ->
@@ -102,7 +102,7 @@ let tests =
         let s =
           { (scene [ sphere (Vec3.v 0. 101. 10.) 100. ] [ Light.ambient 1. ]) with width = 4; height = 4 }
         in
-        let img = Literal.render s in
+        let img = Literal.render (Helpers.valid s) in
         let white = (255, 255, 255) and black = (0, 0, 0) in
         List.iter
           (fun (row, expected) ->

@@ -27,9 +27,13 @@ let png_header w h =
   Raytrace_png.Png_file.signature ^ be32 13 ^ "IHDR" ^ be32 w ^ be32 h ^ "\008\002\000\000\000" ^ be32 0
   ^ be32 0 ^ "IEND" ^ be32 0
 
+(* Runs [f] with the limits that RAYTRACE_MAX_FORM_BYTES=[value] sets, read
+   as the command line reads them. *)
 let with_env_form_bytes value f =
   Unix.putenv "RAYTRACE_MAX_FORM_BYTES" value;
-  Fun.protect ~finally:(fun () -> Unix.putenv "RAYTRACE_MAX_FORM_BYTES" "") f
+  Fun.protect
+    ~finally:(fun () -> Unix.putenv "RAYTRACE_MAX_FORM_BYTES" "")
+    (fun () -> match Limits_env.read () with Ok limits -> f limits | Error (`Msg m) -> Alcotest.fail m)
 
 let tests =
   [
@@ -66,10 +70,10 @@ let tests =
         (* 400 KB of numbers in one form: held whole, it would take about
            30 bytes of memory per byte. With the form bound at 100000
            bytes, the parser stops within a chunk of 64 KiB past it. *)
-        with_env_form_bytes "100000" (fun () ->
+        with_env_form_bytes "100000" (fun limits ->
             let text = "(canvas (width 10) (height 10))\n; a comment\n  (sphere (center " ^ String.concat "" (List.init 200_000 (fun _ -> "0 ")) ^ "))\n" in
             let before = Gc.allocated_bytes () in
-            (match Scene_file.of_string ~file:"big.scene" text with
+            (match Scene_file.of_string ~limits ~file:"big.scene" text with
             | Ok _ -> Alcotest.fail "loaded"
             | Error (`Msg m) ->
                 Alcotest.(check string) __LOC__

@@ -48,7 +48,7 @@ let measure (roots : Hard_cases.case -> float * float) cases =
 (* The roots the renderer computes: the tracer's own test, in the robust
    mode. *)
 let robust (c : Hard_cases.case) =
-  let tr = Trace.create (Prepared.prepare (Scene.v ~spheres:[ c.sphere ] ~lights:[] ())) in
+  let tr = Trace.create (Helpers.prepare (Scene.v ~spheres:[ c.sphere ] ~lights:[] ())) in
   Trace.roots tr 0 c.origin c.direction
 
 (* [Sphere.roots], the library's readable copy, is held to the same bound. *)
@@ -63,7 +63,7 @@ let cases gen = QCheck.Gen.generate ~rand:(Random.State.make [| 1121 |]) ~n:case
 (* One camera ray per pixel (as Trace builds it) toward a scene of one white
    sphere under ambient light 1: the mask of pixels that see it. *)
 let hit_mask scene =
-  let tr = Trace.create (Prepared.prepare scene) in
+  let tr = Trace.create (Helpers.prepare scene) in
   let w = scene.Scene.width and h = scene.height in
   Array.init h (fun row ->
       Array.init w (fun col ->
@@ -122,7 +122,7 @@ let tiny_far_scene ?(epsilon : float option) ?aim ?(translate = Vec3.zero) () =
   in
   let up = if aim = None then Vec3.oy else Vec3.v 0.3 1. 0.2 in
   let camera =
-    match Camera.look_at ~up ~position:translate target with Ok c -> c | Error e -> failwith e
+    match Camera.look_at ~up ~position:translate target with Ok c -> c | Error (`Msg e) -> failwith e
   in
   let scene =
     Scene.v ~width:90 ~height:90 ~viewport:vp ~camera ?epsilon ~spheres:[ sphere ]
@@ -199,7 +199,7 @@ let tests =
       (QCheck.make (List.assoc "rays from a surface point" Hard_cases.families))
       (fun c ->
         let scene = Scene.v ~spheres:[ c.sphere ] ~lights:[] () in
-        let tr = Trace.create (Prepared.prepare scene) in
+        let tr = Trace.create (Helpers.prepare scene) in
         let n = Vec3.sub c.origin c.sphere.center in
         let cos = Vec3.dot (Vec3.unit n) (Vec3.unit c.direction) in
         let hit = Trace.cast tr ~from:0 c.origin c.direction in
@@ -214,7 +214,7 @@ let tests =
             (List.filter
                (fun (hc : Hard_cases.case) ->
                  let scene = Scene.v ~epsilon:1e-12 ~spheres:[ hc.sphere ] ~lights:[] () in
-                 let tr = Trace.create (Prepared.prepare scene) in
+                 let tr = Trace.create (Helpers.prepare scene) in
                  let n = Vec3.sub hc.origin hc.sphere.center in
                  Vec3.dot n hc.direction > 0. && Trace.cast tr ~from:0 hc.origin hc.direction = 0)
                (cases c))
@@ -237,7 +237,7 @@ let tests =
             let top = Vec3.v 0. scale 0. and up = Vec3.v 0. scale 0. in
             let cast epsilon =
               let scene = Scene.v ?epsilon ~spheres:[ a; b ] ~lights:[] () in
-              Trace.cast (Trace.create (Prepared.prepare scene)) ~from:0 top up
+              Trace.cast (Trace.create (Helpers.prepare scene)) ~from:0 top up
             in
             Alcotest.(check int) (Printf.sprintf "robust, scale %g" scale) 1 (cast None);
             Alcotest.(check int) (Printf.sprintf "epsilon 0.001, scale %g" scale) (-1) (cast (Some 0.001)))
@@ -264,12 +264,12 @@ let tests =
         List.iter
           (fun name ->
             let base = small (Helpers.load_scene name) in
-            let expected = Render.image_exn (transform ~scale:1. ~translate:Vec3.zero base) in
+            let expected = Helpers.image_exn (transform ~scale:1. ~translate:Vec3.zero base) in
             List.iter
               (fun (scale, translate) ->
                 let what = Printf.sprintf "%s scaled by %g, moved by %s" name scale (Vec3.show translate) in
                 Helpers.check_images ~min_share:0.999 what ~expected
-                  (Render.image_exn (transform ~scale ~translate base)))
+                  (Helpers.image_exn (transform ~scale ~translate base)))
               [
                 (1e-6, Vec3.zero); (1e-3, Vec3.zero); (0.37, Vec3.zero); (1e3, Vec3.zero); (1e6, Vec3.zero);
                 (1., Vec3.v 1e6 0. 0.); (1., Vec3.v (-1e6) 1e6 (-1e6)); (1., Vec3.v 0. 0. 1e6);
@@ -281,7 +281,7 @@ let tests =
         List.iter
           (fun (what, spheres, lights, camera, epsilon) ->
             let scene = Scene.v ~width:33 ~height:33 ~camera ?epsilon ~spheres ~lights () in
-            let tr = Trace.create (Prepared.prepare scene) in
+            let tr = Trace.create (Helpers.prepare scene) in
             for gx = Canvas.min_x 33 to Canvas.max_x 33 do
               for gy = Canvas.min_y 33 to Canvas.max_y 33 do
                 Trace.pixel tr gx gy;

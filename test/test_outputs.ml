@@ -279,7 +279,7 @@ let every_signal_while_writing () =
           (* As the program starts: not ignored, even in a background job. *)
           Sys.set_signal signal Sys.Signal_default;
           ignore
-            (Raytrace.File_io.write_atomic (Filename.concat dir "out.ppm") (fun oc ->
+            (Raytrace_unix.File_io.write_atomic (Filename.concat dir "out.ppm") (fun oc ->
                  output_string oc "new, half written";
                  Unix.kill (Unix.getpid ()) signal;
                  output_string oc " and the rest"));

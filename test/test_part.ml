@@ -5,7 +5,7 @@ open Raytrace
 let ok = function Ok x -> x | Error (`Msg m) -> Alcotest.fail m
 let error = function Ok _ -> Alcotest.fail "expected an error" | Error (`Msg m) -> m
 let scene = Scene.with_overrides ~width:37 ~height:23 Scene.cgfs_camera
-let region_image ?jobs s r = fst (ok (Render.region_image ?jobs s r))
+let region_image ?jobs s r = fst (ok (Helpers.render_region ?jobs s r))
 
 let part ?(s = scene) ?settings (r : Region.t) =
   let settings = match settings with Some st -> st | None -> Part.settings s in
@@ -19,7 +19,7 @@ let tiles ?(s = scene) n =
 let tests =
   [
     Alcotest.test_case "a region renders as the same region of the whole image" `Quick (fun () ->
-        let whole = Render.image_exn scene in
+        let whole = Helpers.image_exn scene in
         let r = Region.{ x = 5; y = 3; w = 20; h = 11 } in
         Helpers.check_images __LOC__ ~expected:(Image.sub whole ~x:5 ~y:3 ~w:20 ~h:11) (region_image scene r);
         Helpers.check_images __LOC__ ~expected:(Image.sub whole ~x:5 ~y:3 ~w:20 ~h:11) (region_image ~jobs:3 scene r));
@@ -28,11 +28,11 @@ let tests =
       (fun ((s : Scene.t), (a, b, c, d)) ->
         let x = a mod s.width and y = b mod s.height in
         let w = 1 + (c mod (s.width - x)) and h = 1 + (d mod (s.height - y)) in
-        Image.equal (Image.sub (Render.image_exn s) ~x ~y ~w ~h) (region_image s { x; y; w; h }));
+        Image.equal (Image.sub (Helpers.image_exn s) ~x ~y ~w ~h) (region_image s { x; y; w; h }));
     Alcotest.test_case "seven tiles merge into the whole image, byte for byte" `Quick (fun () ->
-        Helpers.check_images __LOC__ ~expected:(Render.image_exn scene) (ok (Part.merge (tiles 7))));
+        Helpers.check_images __LOC__ ~expected:(Helpers.image_exn scene) (ok (Part.merge (tiles 7))));
     Alcotest.test_case "the parts may come in any order" `Quick (fun () ->
-        Helpers.check_images __LOC__ ~expected:(Render.image_exn scene) (ok (Part.merge (List.rev (tiles 5)))));
+        Helpers.check_images __LOC__ ~expected:(Helpers.image_exn scene) (ok (Part.merge (List.rev (tiles 5)))));
     Alcotest.test_case "the header records canvas, region and settings in PPM comments" `Quick (fun () ->
         let img = Image.create 2 1 in
         Image.set img 1 0 1 2 3;

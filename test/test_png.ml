@@ -6,7 +6,7 @@ module Image_file = Raytrace_png.Image_file
 
 let ok = function Ok x -> x | Error (`Msg m) -> Alcotest.fail m
 let error = function Ok _ -> Alcotest.fail "expected an error" | Error (`Msg m) -> m
-let image () = Render.image_exn (Scene.with_overrides ~width:23 ~height:17 Scene.cgfs)
+let image () = Helpers.image_exn (Scene.with_overrides ~width:23 ~height:17 Scene.cgfs)
 
 let write_string path s =
   let oc = open_out_bin path in
@@ -35,7 +35,7 @@ let tests =
         let dir = Helpers.temp_dir () in
         let ppm = Filename.concat dir "a.ppm" and png = Filename.concat dir "a.png" in
         let img = image () in
-        ok (Ppm.write_file ppm img);
+        ok (Files.write_ppm ppm img);
         let code, _, err = Helpers.run "/usr/bin/convert" [ ppm; png ] in
         Alcotest.(check int) err 0 code;
         Helpers.check_images __LOC__ ~expected:img (ok (Image_file.read_file png));
@@ -44,7 +44,7 @@ let tests =
         ok (Png_file.write_file ours img);
         let code, _, err = Helpers.run "/usr/bin/convert" [ ours; back ] in
         Alcotest.(check int) err 0 code;
-        Helpers.check_images __LOC__ ~expected:img (ok (Ppm.read_file back)));
+        Helpers.check_images __LOC__ ~expected:img (ok (Files.read_ppm back)));
     Alcotest.test_case "damaged PNG files are errors, not crashes" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let png = ok (Png_file.to_string (image ())) in

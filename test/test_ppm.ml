@@ -68,13 +68,13 @@ let tests =
     Alcotest.test_case "write_file replaces the file only when complete" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let path = Filename.concat dir "out.ppm" in
-        (match Ppm.write_file path (image_2x1 ()) with Ok () -> () | Error (`Msg m) -> Alcotest.fail m);
-        (match Ppm.read_file path with
+        (match Files.write_ppm path (image_2x1 ()) with Ok () -> () | Error (`Msg m) -> Alcotest.fail m);
+        (match Files.read_ppm path with
         | Ok img -> Alcotest.(check bool) __LOC__ true (Image.equal img (image_2x1 ()))
         | Error (`Msg m) -> Alcotest.fail m);
         Alcotest.(check (list string)) __LOC__ [ "out.ppm" ] (Array.to_list (Sys.readdir dir)));
     Alcotest.test_case "writing into a missing directory is an error that names it" `Quick (fun () ->
-        match Ppm.write_file "/nonexistent-dir/out.ppm" (image_2x1 ()) with
+        match Files.write_ppm "/nonexistent-dir/out.ppm" (image_2x1 ()) with
         | Ok () -> Alcotest.fail "wrote into a missing directory"
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
@@ -82,7 +82,7 @@ let tests =
     Alcotest.test_case "a full disk leaves no temporary file" `Quick (fun () ->
         if not (Sys.file_exists "/dev/full") then Helpers.skip "ppm: a full disk" ~why:"there is no /dev/full"
         else
-          match Ppm.write_file "/dev/full" (image_2x1 ()) with
+          match Files.write_ppm "/dev/full" (image_2x1 ()) with
           | Ok () -> Alcotest.fail "wrote to /dev/full"
           | Error (`Msg m) -> Alcotest.(check string) __LOC__ "/dev/full: No space left on device" m);
   ]

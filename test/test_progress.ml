@@ -26,7 +26,7 @@ let contains s sub =
   at 0
 
 let read_file path =
-  match Raytrace.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
+  match Raytrace_unix.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
 
 (* A progress line: "\rraytrace: 42%, 12.3 M rays/s, 2 s left". *)
 let check_progress_shown what out =
@@ -84,7 +84,8 @@ let tests =
     Alcotest.test_case "progress works with jobs, frames, tiles and adaptive sampling" `Slow
       (with_script (fun () ->
            let args =
-             [ "render"; Helpers.scene_path "orbit.scene"; "--width"; "1200"; "--height"; "1200"; "--samples"; "5";
+             (* About 2 s without other load: the line appears after 1 s. *)
+             [ "render"; Helpers.scene_path "orbit.scene"; "--width"; "1600"; "--height"; "1600"; "--samples"; "7";
                "--adaptive"; "0"; "--jobs"; "2"; "--frames"; "0:1"; "--tile"; "1/2"; "-o"; "OUT" ]
            in
            let _, progress = render_both ~what:"2 jobs, 2 frames, a tile" args [ "0.ppm"; "1.ppm" ] in

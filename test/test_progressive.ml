@@ -2,6 +2,7 @@
 open Raytrace
 
 let small (s : Scene.t) = Scene.with_overrides ~width:61 ~height:37 s
+let create ?samples ?workers s = Progressive.create ?samples ?workers (Helpers.valid s)
 
 let run_to_end r =
   let bands = ref [] in
@@ -14,7 +15,7 @@ let primary r = (Trace.counters (Progressive.tracer r)).primary
 let tests =
   [
     Alcotest.test_case "the first step traces one band of 16-pixel blocks" `Quick (fun () ->
-        let r = Progressive.create Scene.cgfs in
+        let r = create Scene.cgfs in
         (match Progressive.step r with
         | Some b -> Alcotest.(check (list int)) __LOC__ [ 16; 0; 16 ] [ b.size; b.top; b.rows ]
         | None -> Alcotest.fail "no band");
@@ -22,7 +23,7 @@ let tests =
         Alcotest.(check int) __LOC__ 38 (primary r);
         Alcotest.(check bool) __LOC__ false (Progressive.finished r));
     Alcotest.test_case "passes refine the blocks down to single pixels, band after band" `Quick (fun () ->
-        let bands = run_to_end (Progressive.create (small Scene.cgfs)) in
+        let bands = run_to_end (create (small Scene.cgfs)) in
         (* 37 rows: ceil (37 / s) bands per pass s = 16, 8, 4, 1: 3 + 5 + 10 + 37 *)
         Alcotest.(check int) __LOC__ 55 (List.length bands);
         Alcotest.(check (list int)) __LOC__ [ 16; 16; 16; 8; 8; 8; 8; 8; 4 ]
@@ -33,7 +34,7 @@ let tests =
         (* the last 16-pixel band holds rows 32 to 36 *)
         Alcotest.(check (list int)) __LOC__ [ 16; 32; 5 ] [ third.size; third.top; third.rows ]);
     Alcotest.test_case "every pixel is traced exactly once" `Quick (fun () ->
-        let r = Progressive.create (small Scene.cgfs) in
+        let r = create (small Scene.cgfs) in
         ignore (run_to_end r);
         Alcotest.(check int) __LOC__ (61 * 37) (primary r);
         Alcotest.(check bool) __LOC__ true (Progressive.finished r);
@@ -42,34 +43,34 @@ let tests =
         List.iter
           (fun name ->
             let s = small (Helpers.load_scene name) in
-            let r = Progressive.create s in
+            let r = create s in
             ignore (run_to_end r);
-            Helpers.check_images name ~expected:(Render.image_exn s) (Progressive.image r))
+            Helpers.check_images name ~expected:(Helpers.image_exn s) (Progressive.image r))
           (Helpers.scene_names ()));
     Helpers.qcheck ~count:50 "random scenes end as Render renders them" Gen_scene.arbitrary (fun s ->
-        let r = Progressive.create s in
+        let r = create s in
         ignore (run_to_end r);
-        Image.equal (Render.image_exn s) (Progressive.image r));
+        Image.equal (Helpers.image_exn s) (Progressive.image r));
     Alcotest.test_case "with antialiasing, the finished image is Antialias's" `Quick (fun () ->
         let s = small Scene.cgfs_camera in
-        let r = Progressive.create ~samples:3 s in
+        let r = create ~samples:3 s in
         (* 55 bands as without antialiasing, then 37 rows of 3 x 3 samples *)
         Alcotest.(check int) __LOC__ 92 (List.length (run_to_end r));
-        Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:3 s) (Progressive.image r));
+        Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:3 (Helpers.valid s)) (Progressive.image r));
     Alcotest.test_case "worker processes trace the same image, in bands of any height" `Quick (fun () ->
         List.iter
           (fun (jobs, rows, samples) ->
             let s = small Scene.cgfs_camera in
-            let shared = Progressive.shared ~jobs ~width:61 ~height:37 in
-            let r = Progressive.create ~samples ~shared s in
+            let shared = Progressive_workers.v ~jobs ~width:61 ~height:37 in
+            let r = create ~samples ~workers:shared s in
             let rec go () = match Progressive.step ~rows r with Some _ -> go () | None -> () in
             go ();
-            let expected = if samples = 1 then Render.image_exn s else Antialias.image ~n:samples s in
+            let expected = if samples = 1 then Helpers.image_exn s else Antialias.image ~n:samples (Helpers.valid s) in
             let what = Printf.sprintf "%d jobs, %d rows, %d samples" jobs rows samples in
             Helpers.check_images what ~expected (Progressive.image r);
             Alcotest.(check (option string)) what None (Progressive.failure r);
             (* the workers' rays are counted as one process counts them *)
-            let alone = Progressive.create ~samples s in
+            let alone = create ~samples s in
             ignore (run_to_end alone);
             let rays r =
               let c = Trace.counters (Progressive.tracer r) in
@@ -89,8 +90,8 @@ let tests =
           None
         in
         let s = small Scene.cgfs in
-        let shared = Progressive.shared ~jobs:2 ~width:61 ~height:37 in
-        let r = Progressive.create ~samples:3 ~shared s in
+        let shared = Progressive_workers.v ~jobs:2 ~width:61 ~height:37 in
+        let r = create ~samples:3 ~workers:shared s in
         Gc.Memprof.start ~sampling_rate:0.01 { Gc.Memprof.null_tracker with alloc_minor = kill_workers };
         Fun.protect ~finally:Gc.Memprof.stop (fun () ->
             let rec go () = match Progressive.step ~rows:8 r with Some _ -> go () | None -> () in
@@ -100,12 +101,12 @@ let tests =
         (match Progressive.failure r with
         | Some ("worker 1 of 2 was killed by SIGKILL" | "worker 2 of 2 was killed by SIGKILL") -> ()
         | f -> Alcotest.failf "%s: the failure is %s" __LOC__ (Option.value f ~default:"none"));
-        Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:3 s) (Progressive.image r));
+        Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:3 (Helpers.valid s)) (Progressive.image r));
     Alcotest.test_case "a shared image of another size is refused" `Quick (fun () ->
-        let shared = Progressive.shared ~jobs:2 ~width:10 ~height:10 in
-        Alcotest.check_raises __LOC__ (Invalid_argument "Progressive.create: the shared image is not of the canvas size")
-          (fun () -> ignore (Progressive.create ~shared (small Scene.cgfs))));
+        let shared = Progressive_workers.v ~jobs:2 ~width:10 ~height:10 in
+        Alcotest.check_raises __LOC__ (Invalid_argument "Progressive.create: the workers' image is not of the canvas size")
+          (fun () -> ignore (create ~workers:shared (small Scene.cgfs))));
     Alcotest.test_case "bad arguments are refused" `Quick (fun () ->
         Alcotest.check_raises __LOC__ (Invalid_argument "Progressive.create: samples < 1") (fun () ->
-            ignore (Progressive.create ~samples:0 Scene.cgfs)));
+            ignore (create ~samples:0 Scene.cgfs)));
   ]

@@ -11,7 +11,7 @@ let exe () = Helpers.raytrace ()
 let contrib name = Filename.concat (Filename.concat (Sys.getcwd ()) "../contrib") name
 
 let read path =
-  match Raytrace.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
+  match Raytrace_unix.File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
 
 let with_tools what progs f () =
   match Helpers.missing progs with

@@ -6,7 +6,7 @@
 open Raytrace
 
 let small (s : Scene.t) = Scene.with_overrides ~width:80 ~height:80 s
-let render ?jobs ?skips s = Render.image_exn ?jobs ?skips s
+let render ?jobs ?skips s = Helpers.image_exn ?jobs ?skips s
 
 (* The share of pixels within 1 of the oracle in the robust mode: 99.9%,
    but 99% for a scene with a smooth mesh, where the oracle's epsilon
@@ -18,8 +18,8 @@ let robust_share (s : Scene.t) =
 
 let check_against_oracle what (s : Scene.t) =
   match s.epsilon with
-  | Some _ -> Helpers.check_images what ~expected:(Literal.render s) (render s)
-  | None -> Helpers.check_images ~min_share:(robust_share s) what ~expected:(Literal.render s) (render s)
+  | Some _ -> Helpers.check_images what ~expected:(Literal.render (Helpers.valid s)) (render s)
+  | None -> Helpers.check_images ~min_share:(robust_share s) what ~expected:(Literal.render (Helpers.valid s)) (render s)
 
 (* Random scenes in the document's mode. *)
 let document_mode =
@@ -41,9 +41,9 @@ let tests =
               { (Scene.with_overrides ~width:120 ~height:120 (Helpers.load_scene name)) with epsilon = None })
           (Helpers.scene_names ()));
     Alcotest.test_case "the reference scene at full size matches the oracle" `Slow (fun () ->
-        Helpers.check_images "cgfs 600x600" ~expected:(Literal.render Scene.cgfs) (render Scene.cgfs));
+        Helpers.check_images "cgfs 600x600" ~expected:(Literal.render (Helpers.valid Scene.cgfs)) (render Scene.cgfs));
     Helpers.qcheck ~count:150 "random scenes in the document's mode render as the oracle does"
-      document_mode (fun s -> Image.equal (Literal.render s) (render s));
+      document_mode (fun s -> Image.equal (Literal.render (Helpers.valid s)) (render s));
     Alcotest.test_case "random scenes in the robust mode are within 1 of the oracle on 99.9% of pixels"
       `Quick (fun () ->
         let scenes = QCheck.Gen.generate ~rand:(Random.State.make [| 7 |]) ~n:300 Gen_scene.gen in
@@ -51,7 +51,7 @@ let tests =
         List.iter
           (fun (s : Scene.t) ->
             let s = { s with epsilon = None } in
-            match Image_diff.compare (Literal.render s) (render s) with
+            match Image_diff.compare (Literal.render (Helpers.valid s)) (render s) with
             | Ok d ->
                 pixels := !pixels + d.pixels;
                 off := !off + d.differing_gt1
@@ -76,7 +76,7 @@ let tests =
         let s = Scene.with_overrides ~width:5 ~height:2 Scene.cgfs in
         Helpers.check_images "8 jobs" ~expected:(render s) (render ~jobs:8 s));
     Alcotest.test_case "tracing allocates nothing per pixel" `Quick (fun () ->
-        match Render.image (Scene.with_overrides ~width:120 ~height:120 Scene.cgfs) with
+        match Helpers.render (Scene.with_overrides ~width:120 ~height:120 Scene.cgfs) with
         | Ok (_, stats) -> Alcotest.(check (float 0.)) __LOC__ 0. stats.minor_words
         | Error (`Msg m) -> Alcotest.fail m);
     Alcotest.test_case "progress counts every row of every pass and ends with the render's rays" `Quick (fun () ->
@@ -90,13 +90,13 @@ let tests =
             let adaptive = if List.mem `Adaptive how then Some 4 else None in
             let samples = if adaptive = None then 1 else 3 in
             let subsample = List.mem `Subsample how in
-            let plain = Render.image_exn ~samples ?adaptive ~subsample s in
+            let plain = Helpers.image_exn ~samples ?adaptive ~subsample s in
             List.iter
               (fun jobs ->
                 let what = Printf.sprintf "%s, %d jobs" what jobs in
                 let calls = ref [] in
                 let progress ~rows ~total ~rays = calls := (rows, total, rays) :: !calls in
-                match Render.image ~jobs ~samples ?adaptive ~subsample ~progress s with
+                match Helpers.render ~jobs ~samples ?adaptive ~subsample ~progress s with
                 | Error (`Msg m) -> Alcotest.fail m
                 | Ok (img, st) ->
                     Helpers.check_images what ~expected:plain img;
@@ -117,7 +117,7 @@ let tests =
         let progress ~rows ~total ~rays:_ = last := (rows, total) in
         List.iter
           (fun jobs ->
-            match Render.region_image ~jobs ~progress s { x = 3; y = 5; w = 20; h = 7 } with
+            match Helpers.render_region ~jobs ~progress s { x = 3; y = 5; w = 20; h = 7 } with
             | Ok _ -> Alcotest.(check (pair int int)) __LOC__ (7, 7) !last
             | Error (`Msg m) -> Alcotest.fail m)
           [ 1; 2 ]);
@@ -128,7 +128,7 @@ let tests =
         let seen = ref [] in
         let progress ~rows ~total:_ ~rays:_ = seen := rows :: !seen in
         let words ?progress jobs =
-          match Render.image ~jobs ?progress (Scene.with_overrides ~width:120 ~height:120 Scene.cgfs) with
+          match Helpers.render ~jobs ?progress (Scene.with_overrides ~width:120 ~height:120 Scene.cgfs) with
           | Ok (_, stats) -> stats.minor_words
           | Error (`Msg m) -> Alcotest.fail m
         in
@@ -137,12 +137,12 @@ let tests =
     Alcotest.test_case "the counters count the document's rays" `Quick (fun () ->
         (* The C reference reports 360000 primary, 784856 shadow and 367660
            reflection rays for this scene at 600 x 600. *)
-        match Render.image Scene.cgfs with
+        match Helpers.render Scene.cgfs with
         | Ok (_, st) ->
             Alcotest.(check (list int)) __LOC__ [ 360000; 784856; 367660 ] [ st.primary; st.shadow; st.reflection ]
         | Error (`Msg m) -> Alcotest.fail m);
     Alcotest.test_case "sample 0 of a 1 x 1 grid is the pixel itself" `Quick (fun () ->
-        let tr = Trace.create (Prepared.prepare Scene.cgfs) in
+        let tr = Trace.create (Helpers.prepare Scene.cgfs) in
         List.iter
           (fun (x, y) ->
             Trace.pixel tr x y;
@@ -154,7 +154,7 @@ let tests =
           [ (0, 0); (-300, 299); (120, -40) ]);
     Alcotest.test_case "the number of cores is what the kernel allows this process" `Quick (fun () ->
         (* /proc/self/status says e.g. "Cpus_allowed_list:\t0-1" for 2 cores *)
-        match Raytrace.File_io.read "/proc/self/status" with
+        match Raytrace_unix.File_io.read "/proc/self/status" with
         | Error _ -> ()
         | Ok text ->
             let line =
@@ -174,7 +174,7 @@ let tests =
     Helpers.qcheck ~count:1000 "below a sphere's specular threshold, cos ** s is exactly 0"
       QCheck.(pair (float_range 0. 1.) (oneofl [ 0.; 0.5; 1.; 10.; 500.; 1000.; 1e5; 1e12; 1e300 ]))
       (fun (u, specular) ->
-        let p = Prepared.prepare (Scene.v ~spheres:[ Sphere.v ~specular ~center:Vec3.oz ~radius:1. Color.white ] ~lights:[] ()) in
+        let p = Helpers.prepare (Scene.v ~spheres:[ Sphere.v ~specular ~center:Vec3.oz ~radius:1. Color.white ] ~lights:[] ()) in
         let zero = p.specular_zero.(0) in
         (* every cosine at or below the threshold, here u times it *)
         zero >= 0. && zero < 1. && (zero = 0. || Float.pow (u *. zero) specular = 0.)

@@ -1,11 +1,11 @@
 (* Rays per pixel: supersampling, adaptive supersampling and CGFS's
-   subsampling (Sampling, the sums in Trace, Render.image's options). *)
+   subsampling (Sampling, the sums in Trace, Helpers.render's options). *)
 open Raytrace
 
 let small (s : Scene.t) = Scene.with_overrides ~width:80 ~height:80 s
 
 let render ?jobs ?skips ?samples ?adaptive ?subsample s =
-  match Render.image ?jobs ?skips ?samples ?adaptive ?subsample s with
+  match Helpers.render ?jobs ?skips ?samples ?adaptive ?subsample s with
   | Ok r -> r
   | Error (`Msg m) -> Alcotest.fail m
 
@@ -14,7 +14,7 @@ let image ?jobs ?skips ?samples ?adaptive ?subsample s = fst (render ?jobs ?skip
 (* Every pixel through the averaging path with one sample: Trace.average
    ~n:1 on an averaging tracer, then store_average ~count:1. *)
 let averaged_one ?skips (scene : Scene.t) =
-  let tr = Trace.create ~averaging:true (Prepared.prepare ?skips scene) in
+  let tr = Trace.create ~averaging:true (Helpers.prepare ?skips scene) in
   let width = scene.width and height = scene.height in
   let img = Image.create width height in
   for r = 0 to height - 1 do
@@ -73,10 +73,10 @@ let faint_mirrors =
 (* Each sampling mode as optional arguments, for tables of modes. *)
 let modes =
   [
-    ("samples 3", fun ?jobs s r -> Render.region_image ?jobs ~samples:3 s r);
-    ("adaptive 3 t 4", fun ?jobs s r -> Render.region_image ?jobs ~samples:3 ~adaptive:4 s r);
-    ("adaptive 5 t 0", fun ?jobs s r -> Render.region_image ?jobs ~samples:5 ~adaptive:0 s r);
-    ("subsampling", fun ?jobs s r -> Render.region_image ?jobs ~subsample:true s r);
+    ("samples 3", fun ?jobs s r -> Helpers.render_region ?jobs ~samples:3 s r);
+    ("adaptive 3 t 4", fun ?jobs s r -> Helpers.render_region ?jobs ~samples:3 ~adaptive:4 s r);
+    ("adaptive 5 t 0", fun ?jobs s r -> Helpers.render_region ?jobs ~samples:5 ~adaptive:0 s r);
+    ("subsampling", fun ?jobs s r -> Helpers.render_region ?jobs ~subsample:true s r);
   ]
 
 let region_of render ?jobs s r = match render ?jobs s r with Ok (img, _) -> img | Error (`Msg m) -> Alcotest.fail m
@@ -87,7 +87,7 @@ let tests =
         List.iter
           (fun name ->
             let s = small (Helpers.load_scene name) in
-            let expected = Literal.render s in
+            let expected = Literal.render (Helpers.valid s) in
             (* A robust scene's differences from the oracle are those of
                test_render; the sampling paths add none. *)
             let min_share = if s.epsilon = None then Some (Test_render.robust_share s) else None in
@@ -115,7 +115,7 @@ let tests =
         List.iter
           (fun name ->
             let s = Scene.with_overrides ~width:24 ~height:18 (Helpers.load_scene name) in
-            Helpers.check_images name ~expected:(image ~samples:3 s) (Antialias.image ~n:3 s))
+            Helpers.check_images name ~expected:(image ~samples:3 s) (Antialias.image ~n:3 (Helpers.valid s)))
           (Helpers.scene_names ()));
     Alcotest.test_case "supersampling traces n x n primary rays per pixel" `Quick (fun () ->
         let _, st = render ~samples:3 (Scene.with_overrides ~width:10 ~height:7 Scene.cgfs) in
@@ -209,7 +209,7 @@ let tests =
           ]);
     Helpers.qcheck ~count:100 "a primary ray assumed to hit the sphere it hits is traced as without the assumption"
       Gen_scene.arbitrary (fun s ->
-        let tr = Trace.create (Prepared.prepare s) in
+        let tr = Trace.create (Helpers.prepare s) in
         let ok = ref true in
         for gy = Canvas.min_y s.height to Canvas.max_y s.height do
           for gx = Canvas.min_x s.width to Canvas.max_x s.width do
@@ -262,7 +262,7 @@ let tests =
           ]);
     Alcotest.test_case "summing samples needs an averaging tracer and, to reuse the centre, an odd grid" `Quick
       (fun () ->
-        let p = Prepared.prepare (Scene.with_overrides ~width:4 ~height:4 Scene.cgfs) in
+        let p = Helpers.prepare (Scene.with_overrides ~width:4 ~height:4 Scene.cgfs) in
         let plain = Trace.create p and averaging = Trace.create ~averaging:true p in
         let saved = Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout 3 in
         Alcotest.check_raises __LOC__
@@ -272,7 +272,7 @@ let tests =
           (fun () -> Trace.average_reusing averaging saved 0 0 0 ~n:4));
     Alcotest.test_case "reusing the centre ray gives the sum of the whole grid" `Quick (fun () ->
         let s = Scene.with_overrides ~width:9 ~height:9 Scene.cgfs in
-        let tr = Trace.create ~averaging:true (Prepared.prepare s) in
+        let tr = Trace.create ~averaging:true (Helpers.prepare s) in
         let saved = Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout 3 in
         let a = Image.create 1 1 and b = Image.create 1 1 in
         List.iter

@@ -3,12 +3,12 @@ open Raytrace
 let scene = Alcotest.testable Scene.pp Scene.equal
 
 let parse text =
-  match Scene_file.of_string ~file:"t.scene" text with
+  match Helpers.of_string ~file:"t.scene" text with
   | Ok s -> s
   | Error (`Msg m) -> Alcotest.failf "unexpected error: %s" m
 
 let error text =
-  match Scene_file.of_string ~file:"t.scene" text with
+  match Helpers.of_string ~file:"t.scene" text with
   | Ok _ -> Alcotest.failf "expected an error for %S" text
   | Error (`Msg m) -> m
 
@@ -92,7 +92,7 @@ let load_mesh path =
   | Some text -> Obj_file.of_string ~name:path ~max_vertices:100 ~max_triangles:100 text
   | None -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s: No such file or directory" path))
 
-let with_mesh text = Scene_file.of_string ~load_mesh ~file:"dir/t.scene" text
+let with_mesh text = Result.map Scene.of_valid (Scene_file.of_string ~load_mesh ~file:"dir/t.scene" text)
 
 let tests =
   [
@@ -138,7 +138,7 @@ let tests =
           (fun (text, _) -> Alcotest.(check bool) text false (String.contains (error text) '\n'))
           bad_inputs);
     Alcotest.test_case "a missing file is an error naming it" `Quick (fun () ->
-        match Scene_file.read "no/such.scene" with
+        match Helpers.read_scene "no/such.scene" with
         | Ok _ -> Alcotest.fail "loaded a missing file"
         | Error (`Msg m) -> Alcotest.(check string) __LOC__ "no/such.scene: No such file or directory" m);
     Alcotest.test_case "printing the reference scenes reads back equal" `Quick (fun () ->
@@ -159,7 +159,7 @@ let tests =
             Alcotest.check Helpers.vec3 __LOC__ Vec3.oy (List.hd (Camera_path.keys p)).up;
             (match Camera.look_at ~position:(Vec3.v 0. 1. (-2.)) (Vec3.v 0. 0. 4.) with
             | Ok c -> Alcotest.(check bool) __LOC__ true (Camera.equal c s.camera)
-            | Error m -> Alcotest.fail m);
+            | Error (`Msg m) -> Alcotest.fail m);
             let with_camera = parse "(camera (position 0 0 -1))\n(camera-path (key (frame 0) (position 0 0 0) (look-at 0 0 1)))" in
             Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 0. (-1.)) with_camera.camera.position);
     Alcotest.test_case "a scene with a camera path prints and parses back equal" `Quick (fun () ->
@@ -168,7 +168,7 @@ let tests =
         Alcotest.check scene __LOC__ s (parse (Scene_file.to_string s)));
     Helpers.qcheck ~count:300 "any valid scene prints and parses back equal" Gen_scene.arbitrary
       (fun s ->
-        match Scene_file.of_string (Scene_file.to_string s) with
+        match Helpers.of_string (Scene_file.to_string s) with
         | Ok s' -> Scene.equal s s'
         | Error (`Msg m) -> QCheck.Test.fail_report m);
       Alcotest.test_case "the new shapes read with their fields and defaults" `Quick (fun () ->
@@ -178,7 +178,7 @@ let tests =
              (triangle (vertices (-1 0 4) (1 0 4) (0 1.5 4)) (color 4 5 6) (specular 10))\n\
              (box (min -1 -1 3) (max 1 1 5) (color 7 8 9) (reflective 0.5))"
         in
-        match s.shapes with
+        match s.Scene.shapes with
         | [ Shape.Plane p; Shape.Triangle t; Shape.Box b ] ->
             Alcotest.(check (float 0.)) "plane normal as given" 2. p.normal.y;
             Alcotest.(check (float 0.)) "plane matte" Sphere.matte p.material.specular;
@@ -205,7 +205,7 @@ let tests =
         match with_mesh "(mesh (file \"quad.obj\") (color 1 2 3) (scale 2) (translate 10 0 0) (smooth true))" with
         | Error (`Msg m) -> Alcotest.fail m
         | Ok s -> (
-            match s.shapes with
+            match s.Scene.shapes with
             | [ Shape.Mesh m ] ->
                 Alcotest.(check string) "source as given" "quad.obj" m.source;
                 Alcotest.(check int) "fan-triangulated" 2 (Mesh.triangle_count m);

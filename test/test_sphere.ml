@@ -30,7 +30,7 @@ let tests =
         Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 0. (-1.))
           (Sphere.normal (unit_sphere_at 3.) (Vec3.v 0. 0. 2.)));
     Alcotest.test_case "invalid materials are rejected with the field's name" `Quick (fun () ->
-        let msg = function Ok _ -> "ok" | Error m -> m in
+        let msg = function Ok _ -> "ok" | Error (`Msg m) -> m in
         Alcotest.(check string) __LOC__ "sphere radius must be > 0, got -1" (msg (Sphere.check_radius (-1.)));
         Alcotest.(check string) __LOC__ "sphere reflective must lie in [0, 1], got 1.5"
           (msg (Sphere.check_reflective 1.5));

@@ -1,7 +1,7 @@
 (* The window's state and keys, without a window. *)
 open Raytrace
 
-let cgfs = View.v Scene.cgfs
+let cgfs = View.v (Helpers.valid Scene.cgfs)
 let vec = Alcotest.check (Helpers.vec3_near 1e-12)
 
 let press view keys =
@@ -45,13 +45,13 @@ let tests =
         (* CGFS camera at (3, 0, 1): its view axis M (0, 0, 1) = (-0.7071, 0,
            0.7071), unit (-1/sqrt 2, 0, 1/sqrt 2); 0.5 along it adds
            (-0.353553, 0, 0.353553) *)
-        let v, _ = press (View.v Scene.cgfs_camera) [ 'W' ] in
+        let v, _ = press (View.v (Helpers.valid Scene.cgfs_camera)) [ 'W' ] in
         let h = 0.5 /. sqrt 2. in
         vec __LOC__ (Vec3.v (3. -. h) 0. (1. +. h)) (position v);
         Alcotest.(check bool) __LOC__ true (Camera.equal_rotation v.scene.camera.rotation Scene.cgfs_camera.camera.rotation));
     Alcotest.test_case "the step scales with the scene" `Quick (fun () ->
         let big = { Scene.cgfs with viewport = Viewport.v ~width:1000. ~height:1000. ~distance:1000. } in
-        vec __LOC__ (Vec3.v 0. 0. 500.) (position (fst (press (View.v big) [ 'W' ]))));
+        vec __LOC__ (Vec3.v 0. 0. 500.) (position (fst (press (View.v (Helpers.valid big)) [ 'W' ]))));
     Alcotest.test_case "lower-case w, d and e are not moves: letters that move need Shift" `Quick (fun () ->
         vec __LOC__ Vec3.zero (position (fst (press cgfs [ 'w'; 'd'; 'e' ]))));
     Alcotest.test_case "E turns right by 5 degrees, Q back" `Quick (fun () ->
@@ -93,7 +93,7 @@ let tests =
         let v, e = press cgfs [ '-'; '-'; '-'; '-' ] in
         Alcotest.check effect __LOC__ View.Nothing e;
         Alcotest.(check int) __LOC__ 0 v.scene.depth;
-        let deep = View.v { Scene.cgfs with depth = Limits.max_depth } in
+        let deep = View.v (Helpers.valid { Scene.cgfs with depth = Limits.max_depth }) in
         Alcotest.check effect __LOC__ View.Nothing (snd (press deep [ '+' ])));
     Alcotest.test_case "a toggles antialiasing, h the help" `Quick (fun () ->
         let v, e = press cgfs [ 'a' ] in
@@ -110,7 +110,7 @@ let tests =
           [ ('r', View.Render); ('s', Save); ('q', Quit); ('\027', Quit); ('x', Nothing); (' ', Nothing) ]);
     Alcotest.test_case "a move beyond the coordinate limit is refused" `Quick (fun () ->
         let far = { Scene.cgfs with camera = Camera.v (Vec3.v Limits.max_coordinate 0. 0.) } in
-        let v, e = press (View.v far) [ 'D' ] in
+        let v, e = press (View.v (Helpers.valid far)) [ 'D' ] in
         Alcotest.check effect __LOC__ View.Nothing e;
         vec __LOC__ (Vec3.v Limits.max_coordinate 0. 0.) (position v));
     Alcotest.test_case "a wider or taller window sees more, with square pixels" `Quick (fun () ->

@@ -34,7 +34,7 @@ let session ?(view_args = "") ?(screen = "1024x768") ?(edit = Fun.id) name steps
   if code <> 0 then Alcotest.failf "%s: the window session failed (%d): %s" name code err;
   dir
 
-let read path = match Ppm.read_file path with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
+let read path = match Files.read_ppm path with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
 let shot dir name = read (Filename.concat dir (name ^ ".ppm"))
 
 let contains text s =
@@ -105,7 +105,7 @@ let tests =
             (fun name ->
               let dir = session name [ "shot:window" ] in
               Helpers.check_images ("window of " ^ name)
-                ~expected:(Render.image_exn (Helpers.load_scene name)) (shot dir "window"))
+                ~expected:(Helpers.image_exn (Helpers.load_scene name)) (shot dir "window"))
             [ "cgfs.scene"; "cgfs-camera.scene" ]);
     Alcotest.test_case "keys, the pointer and resizing change the picture as the headless render shows it" `Slow
       (fun () ->
@@ -121,12 +121,12 @@ let tests =
                 "drag:160,120,24,-16"; "shot:drag"; "save:D,s"; "shot:final";
               ]
           in
-          let start = View.v (Helpers.load_scene "cgfs.scene") in
+          let start = View.v (Helpers.valid (Helpers.load_scene "cgfs.scene")) in
           let left = views (keys [ View.arrow_left ]) start in
           let small = views [ View.Resize (320, 240) ] left in
           let moved = views (keys [ 'W'; 'E'; '+' ]) small in
           let aa = views (keys [ 'a' ]) moved in
-          let aa_image = Antialias.image ~n:(View.samples aa) aa.scene in
+          let aa_image = Antialias.image ~n:(View.samples aa) (Helpers.valid aa.scene) in
           (* xdotool moves the pointer 16 pixels up: +16 in Graphics' y *)
           let drag = views (keys [ 'a' ] @ [ View.Drag (24, 16) ]) aa in
           let final = views (keys [ 'D' ]) drag in
@@ -143,7 +143,7 @@ let tests =
                  | _ -> None)
                lines);
           let check what (view : View.t) =
-            let expected = if View.samples view = 1 then Render.image_exn view.scene else aa_image in
+            let expected = if View.samples view = 1 then Helpers.image_exn view.scene else aa_image in
             Helpers.check_images ("window after " ^ what) ~expected (shot dir what)
           in
           check "left" left;
@@ -153,7 +153,7 @@ let tests =
           check "drag" drag;
           check "final" final;
           Alcotest.(check bool) "the left arrow changed the picture" false
-            (Image.equal (Render.image_exn start.scene) (shot dir "left"));
+            (Image.equal (Helpers.image_exn start.scene) (shot dir "left"));
           Alcotest.(check (pair int int)) "the resized window's picture" (320, 240)
             (Image.width (shot dir "small"), Image.height (shot dir "small"));
           (* The help box covers the top left; below it the picture is intact. *)

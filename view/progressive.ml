@@ -1,30 +1,25 @@
-type shared = {
+type workers = {
   jobs : int;
-  shared_image : Image.t;
-  ints : (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t;  (** Counters per worker. *)
+  image : Image.t;
+  run : int -> (int -> int array) -> (int array array, [ `Msg of string ]) result;
 }
 
 type t = {
   tr : Trace.t;
   img : Image.t;
   samples : int;
-  workers : shared option;
+  workers : workers option;
   passes : (int * int) array;  (** Block size and samples per pixel of each pass. *)
   mutable pass : int;  (** Index of the current pass; [Array.length passes] once finished. *)
   mutable top : int;  (** First row of the next band. *)
   mutable failure : string option;
   mutable stopped : string option;  (** Why the render stopped before its end. *)
+  limits : Limits.t;
 }
 
 type band = { size : int; top : int; rows : int }
 
 let coarsest = 16
-let counter_fields = 6
-
-let shared ~jobs ~width ~height =
-  if jobs < 2 then invalid_arg "Progressive.shared: jobs < 2";
-  let shared_image = Image.of_buffer width height (Parallel.shared_bytes (3 * width * height)) in
-  { jobs; shared_image; ints = Parallel.shared_ints (jobs * counter_fields) }
 
 (* 2 x 2 blocks would cost as much to draw as single pixels (one request
    per block), for little preview: the pass after 4 is the full one. *)
@@ -32,20 +27,22 @@ let passes samples =
   let plain = [ (coarsest, 1); (8, 1); (4, 1); (1, 1) ] in
   Array.of_list (if samples = 1 then plain else plain @ [ (1, samples) ])
 
-let create ?(samples = 1) ?shared (scene : Scene.t) =
+let create ?(limits = Limits.default) ?(samples = 1) ?workers valid =
   if samples < 1 then invalid_arg "Progressive.create: samples < 1";
+  let scene = Scene.of_valid valid in
   (* An averaging tracer, for the antialiased pass, stops reflections
      exactly for single-sample pixels too. *)
-  let tr = Trace.create ~averaging:(samples > 1) (Prepared.prepare scene) in
+  let tr = Trace.create ~averaging:(samples > 1) (Prepared.prepare valid) in
+  Trace.set_budget tr (Limits.work_budget limits);
   let img =
-    match shared with
+    match workers with
     | None -> Image.create scene.width scene.height
-    | Some s ->
-        if Image.width s.shared_image <> scene.width || Image.height s.shared_image <> scene.height then
-          invalid_arg "Progressive.create: the shared image is not of the canvas size";
-        s.shared_image
+    | Some w ->
+        if Image.width w.image <> scene.width || Image.height w.image <> scene.height then
+          invalid_arg "Progressive.create: the workers' image is not of the canvas size";
+        w.image
   in
-  { tr; img; samples; workers = shared; passes = passes samples; pass = 0; top = 0; failure = None; stopped = None }
+  { tr; img; samples; workers; passes = passes samples; pass = 0; top = 0; failure = None; stopped = None; limits }
 
 let finished (r : t) = r.pass >= Array.length r.passes
 let image r = r.img
@@ -80,13 +77,16 @@ let trace_row (r : t) tr pass row =
   Trace.check_budget tr
 
 (* Rows [top .. top + rows - 1] of a full-resolution pass, interleaved over
-   the workers; each child's tracer is its own copy of [r.tr], whose counts
-   come back through shared memory. *)
-let trace_rows_in_workers (r : t) (s : shared) pass ~top ~rows =
-  let jobs = min s.jobs rows in
-  let work w =
+   the workers; each worker's tracer is its own copy of [r.tr], whose
+   counts it returns. *)
+let trace_rows_in_workers (r : t) (ws : workers) pass ~top ~rows =
+  let jobs = min ws.jobs rows in
+  let counts () =
     let c = Trace.counters r.tr in
-    let before = [| c.primary; c.shadow; c.reflection; c.tests; c.box_tests; c.early_stops |] in
+    [| c.primary; c.shadow; c.reflection; c.tests; c.box_tests; c.early_stops |]
+  in
+  let work w =
+    let before = counts () in
     let row = ref (top + w) in
     (* Over its budget, a worker stops; the parent sees the sum. *)
     (try
@@ -95,25 +95,21 @@ let trace_rows_in_workers (r : t) (s : shared) pass ~top ~rows =
          row := !row + jobs
        done
      with Limits.Work_exceeded _ -> ());
-    let after = [| c.primary; c.shadow; c.reflection; c.tests; c.box_tests; c.early_stops |] in
-    Array.iteri (fun i a -> s.ints.{(w * counter_fields) + i} <- Int64.of_int (a - before.(i))) after
+    Array.map2 ( - ) (counts ()) before
   in
-  Bigarray.Array1.fill s.ints 0L;
-  let result =
-    match Parallel.run jobs work with
-    | r -> r
-    | exception Unix.Unix_error (e, f, _) -> Error (`Msg (Printf.sprintf "%s: %s" f (Unix.error_message e)))
-  in
-  let c = Trace.counters r.tr in
-  let sum i = List.init jobs (fun w -> Int64.to_int s.ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in
-  c.primary <- c.primary + sum 0;
-  c.shadow <- c.shadow + sum 1;
-  c.reflection <- c.reflection + sum 2;
-  c.tests <- c.tests + sum 3;
-  c.box_tests <- c.box_tests + sum 4;
-  c.early_stops <- c.early_stops + sum 5;
-  Trace.check_budget r.tr;
-  result
+  match ws.run jobs work with
+  | Error _ as e -> e
+  | Ok deltas ->
+      let c = Trace.counters r.tr in
+      let sum i = Array.fold_left (fun acc d -> acc + d.(i)) 0 deltas in
+      c.primary <- c.primary + sum 0;
+      c.shadow <- c.shadow + sum 1;
+      c.reflection <- c.reflection + sum 2;
+      c.tests <- c.tests + sum 3;
+      c.box_tests <- c.box_tests + sum 4;
+      c.early_stops <- c.early_stops + sum 5;
+      Trace.check_budget r.tr;
+      Ok ()
 
 let step ?(rows = 1) (r : t) =
   if rows < 1 then invalid_arg "Progressive.step: rows < 1";
@@ -144,7 +140,7 @@ let step ?(rows = 1) (r : t) =
     | () -> ()
     | exception Limits.Work_exceeded n ->
         (* The band is incomplete: the render ends here. *)
-        r.stopped <- Some (Limits.work_exceeded n);
+        r.stopped <- Some (Limits.work_exceeded r.limits n);
         r.pass <- Array.length r.passes);
     let band = { size; top = r.top; rows } in
     r.top <- r.top + (if size = 1 then rows else size);

@@ -41,7 +41,7 @@ let comments p =
   :: List.map (fun (k, v) -> k ^ " " ^ v) p.settings
 
 let to_string p = Ppm.to_string ~comments:(comments p) p.image
-let write_file path p = Ppm.write_file ~comments:(comments p) path p.image
+let write_file path p = Files.write_ppm ~comments:(comments p) path p.image
 
 (* "key value" -> (key, value); the value may be empty or hold spaces. *)
 let split c =
@@ -55,8 +55,8 @@ let ints what value =
   if List.for_all decimal words then Ok (List.map int_of_string words)
   else msg "bad %s line %S in the part's header" what value
 
-let decode s =
-  let* image = Ppm.of_string s in
+let decode ~limits s =
+  let* image = Ppm.of_string ~limits s in
   match Ppm.header_comments s with
   | first :: rest when first = magic -> (
       let fields = List.map split rest in
@@ -72,9 +72,9 @@ let decode s =
       match (canvas, corners) with
       | [ width; height ], [ x0; y0; x1; y1 ] ->
           let* () =
-            match Limits.check_canvas width height with
+            match Limits.check_canvas limits width height with
             | Ok () -> Ok ()
-            | Error m -> msg "bad canvas in the part's header: %s" m
+            | Error (`Msg m) -> msg "bad canvas in the part's header: %s" m
           in
           let* region = Region.of_corners ~width ~height x0 y0 x1 y1 in
           if Image.width image <> region.w || Image.height image <> region.h then
@@ -89,11 +89,12 @@ let decode s =
         "not a part of a raytrace render (its header has no \"# %s\" line); render parts with raytrace render --tile or --region"
         magic
 
-let of_string ?(file = "<string>") s = Result.map_error (fun (`Msg m) -> `Msg (file ^ ": " ^ m)) (decode s)
+let of_string ?(limits = Limits.default) ?(file = "<string>") s =
+  Result.map_error (fun (`Msg m) -> `Msg (file ^ ": " ^ m)) (decode ~limits s)
 
-let read_file path =
-  let* s = File_io.read ~check_size:Ppm.check_file_size path in
-  of_string ~file:path s
+let read_file ?(limits = Limits.default) path =
+  let* s = File_io.read ~check_size:(Ppm.check_file_size ~limits) path in
+  of_string ~limits ~file:path s
 
 let merge parts =
   match parts with

@@ -7,7 +7,7 @@
     unless the new ones are complete. Errors are values whose message starts
     with the path. *)
 
-val read : ?check_size:(int -> (int, string) result) -> string -> (string, [> `Msg of string ]) result
+val read : ?check_size:(int -> (int, [ `Msg of string ]) result) -> string -> (string, [> `Msg of string ]) result
 (** [read ~check_size path] is the contents of the file [path], read until
     its end (so pipes and [/proc] files work too). [check_size] (default:
     accept all) is called on the file's length in bytes before anything is

@@ -5,16 +5,17 @@
     pixels: pass [s] traces the pixels whose column and row are multiples
     of [s], skipping those that an earlier pass traced; after it, the
     [s x s] block below and to the right of each such pixel can be shown in
-    its colour. Every pixel is traced once, as {!Trace.pixel} traces it, so
-    the image after these passes is {!Render.image}'s byte for byte. With
+    its colour. Every pixel is traced once, as {!Raytrace.Private.Trace.pixel} traces it, so
+    the image after these passes is {!Raytrace.Render.image}'s byte for byte. With
     antialiasing ([samples > 1]) one more pass traces every pixel with
-    {!Antialias.store}: the final image is then {!Antialias.image}'s.
+    {!Raytrace.Private.Antialias.store}: the final image is then {!Raytrace.Private.Antialias.image}'s.
 
     One {!step} traces one band of the current pass: [s] image rows of a
     coarse pass, or as many rows as asked of a full-resolution pass. Given
-    {!shared} memory, the full-resolution rows of a step are traced by
-    worker processes ({!Parallel.run}), interleaved; the image is the same
-    whatever their number. *)
+    {!workers} (worker processes of [Raytrace_unix.Progressive_workers]),
+    the full-resolution rows of a step are traced by them, interleaved;
+    the image is the same whatever their number. This module itself
+    starts no process. *)
 
 type t
 (** The type for renders in progress. *)
@@ -22,24 +23,28 @@ type t
 val coarsest : int
 (** [coarsest] is [16]: the block size of the first pass, in pixels. *)
 
-type shared
-(** The type for memory shared with worker processes: an image and their
-    work counters. One value serves frame after frame of the same size. *)
+type workers = {
+  jobs : int;  (** The most workers a step uses. *)
+  image : Image.t;
+      (** The image the workers write into (memory shared with them). *)
+  run : int -> (int -> int array) -> (int array array, [ `Msg of string ]) result;
+      (** [run n work] runs [work w] for each [w] in [\[0, n)], each in a
+          worker, and is their results in order, or [Error] if a worker
+          failed. A result is the work counters of that worker. *)
+}
+(** The type for workers that trace rows of full-resolution passes. One
+    value serves frame after frame of the same size. *)
 
-val shared : jobs:int -> width:int -> height:int -> shared
-(** [shared ~jobs ~width ~height] is memory for [jobs] workers rendering
-    [width x height] images.
-    @raise Invalid_argument if [jobs < 2].
-    @raise Failure or [Unix.Unix_error] if no shared memory can be mapped. *)
-
-val create : ?samples:int -> ?shared:shared -> Scene.t -> t
-(** [create ~samples ~shared scene] is the render of [scene] about to
+val create : ?limits:Raytrace.Limits.t -> ?samples:int -> ?workers:workers -> Scene.valid -> t
+(** [create ~limits ~samples ~workers scene] is the render of [scene] about to
     start, with [samples x samples] samples per pixel in its last pass
-    (default 1). With [shared], the image is [shared]'s (overwritten; a
-    render started later with the same [shared] overwrites it again) and
-    the full-resolution passes are traced by its workers.
-    @raise Invalid_argument if [scene] fails {!Scene.validate},
-    [samples < 1], or [shared] is not of the canvas size. *)
+    (default 1). With [workers], the image is [workers.image]
+    (overwritten; a render started later with the same [workers]
+    overwrites it again) and the full-resolution passes are traced by
+    them. The work it may do is the [`Work] bound of [limits] (default
+    {!Raytrace.Limits.default}; see {!stopped}).
+    @raise Invalid_argument if [samples < 1], or [workers.image] is not of
+    the canvas size. *)
 
 type band = {
   size : int;  (** Block size of the pass: 16, 8, 4 or 1. *)
@@ -63,12 +68,12 @@ val step : ?rows:int -> t -> band option
 
 val failure : t -> string option
 (** [failure r] is why the workers of [r] stopped being used, if they
-    did: the first worker failure ({!Parallel.run}'s message). *)
+    did: the first worker failure (the message of [run]'s [Error]). *)
 
 val stopped : t -> string option
 (** [stopped r] is why [r] ended before its last pass, if it did: the
-    message of {!Limits.work_exceeded} once the tests counted by [r]'s
-    tracer (and its workers) pass {!Limits.work_budget}, checked after each
+    message of {!Raytrace.Limits.work_exceeded} once the tests counted by [r]'s
+    tracer (and its workers) pass {!Raytrace.Limits.work_budget}, checked after each
     row. [r] is then {!finished}; its image is incomplete. With workers,
     each may do a band's share beyond the budget before the count is
     summed. *)
@@ -84,5 +89,5 @@ val samples : t -> int
 (** [samples r] is the side of the sample grid of the last pass. *)
 
 val tracer : t -> Trace.t
-(** [tracer r] is the tracer of [r], whose {!Trace.counters} count the
+(** [tracer r] is the tracer of [r], whose {!Raytrace.Private.Trace.val-counters} count the
     work done so far. *)

@@ -1,6 +1,6 @@
 (** Parts of an image rendered separately, and their assembly.
 
-    A part is a rectangle ({!Region.t}) of a canvas, rendered by one
+    A part is a rectangle ({!Raytrace.Region.t}) of a canvas, rendered by one
     process on one machine, together with every setting that changes its
     pixels: a digest of the scene, the recursion depth, the samples per
     pixel, the renderer, the frame. Parts are stored as binary PPM files
@@ -52,23 +52,26 @@ val settings :
 (** [settings ~frame ~samples ~adaptive ~subsample ~renderer scene] is the
     settings of a part of [scene]: [depth], [samples] (default [1]),
     [adaptive] (the threshold) when given, [subsample] when [true]
-    ({!Sampling.v}), [renderer] (default ["fast"]), [frame] when given,
+    ({!Raytrace.Sampling.v}), [renderer] (default ["fast"]), [frame] when given,
     and last [scene], the MD5 digest of
-    {!Scene_file.to_string}[ scene] (which covers every field of the scene,
+    {!Raytrace.Scene_file.to_string}[ scene] (which covers every field of the scene,
     the canvas and the camera of the frame included). *)
 
 val to_string : t -> string
 (** [to_string p] is [p] as a binary PPM file of the part's pixels whose
     header comments record the canvas, the region and the settings. *)
 
-val of_string : ?file:string -> string -> (t, [> `Msg of string ]) result
-(** [of_string ~file s] is the part stored in the PPM file contents [s].
+val of_string : ?limits:Limits.t -> ?file:string -> string -> (t, [> `Msg of string ]) result
+(** [of_string ~limits ~file s] is the part stored in the PPM file
+    contents [s], within [limits] (default {!Raytrace.Limits.default}).
     [Error], with a message that starts with [file] (default
     ["<string>"]), if [s] is not a PPM file, has no [raytrace-part 1]
     header, or its header is malformed or disagrees with its pixels. *)
 
-val read_file : string -> (t, [> `Msg of string ]) result
-(** [read_file path] reads the part stored in file [path]. *)
+val read_file : ?limits:Limits.t -> string -> (t, [> `Msg of string ]) result
+(** [read_file ~limits path] reads the part stored in file [path]; a file
+    too large for an image within [limits] is refused before it is read
+    ({!Raytrace.Ppm.check_file_size}). *)
 
 val write_file : string -> t -> (unit, [> `Msg of string ]) result
 (** [write_file path p] writes [to_string p] to [path] atomically

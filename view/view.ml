@@ -1,6 +1,9 @@
-type t = { base : Scene.t; scene : Scene.t; antialias : bool; help : bool }
+type t = { base : Scene.t; scene : Scene.t; valid : Scene.valid; limits : Limits.t; antialias : bool; help : bool }
 
-let v scene = { base = scene; scene; antialias = false; help = false }
+let v ?(limits = Limits.default) valid =
+  let scene = Scene.of_valid valid in
+  { base = scene; scene; valid; limits; antialias = false; help = false }
+
 let antialias_samples = 3
 let samples view = if view.antialias then antialias_samples else 1
 
@@ -61,10 +64,13 @@ let fit (base : Scene.t) ~width ~height =
 
 (* Input. *)
 
-let with_camera view camera =
-  match Camera.validate camera with
-  | Ok camera -> ({ view with scene = { view.scene with camera } }, Render)
+(* Only what changed is checked: the rest of the scene was validated. *)
+let overridden view ?width ?height ?depth ?viewport ?camera () =
+  match Scene.override ~limits:view.limits ?width ?height ?depth ?viewport ?camera view.valid with
+  | Ok valid -> ({ view with valid; scene = Scene.of_valid valid }, Render)
   | Error _ -> (view, Nothing)
+
+let with_camera view camera = overridden view ~camera ()
 
 let moved view ~right ~forward =
   let step = move_step view.scene in
@@ -74,14 +80,15 @@ let turned view ~yaw:y ~pitch:p = with_camera view (pitch p (yaw y view.scene.ca
 
 let with_depth view delta =
   let depth = view.scene.depth + delta in
-  if depth < 0 || depth > Limits.max_depth then (view, Nothing)
-  else ({ view with scene = { view.scene with depth } }, Render)
+  if depth < 0 || depth > Limits.max_depth then (view, Nothing) else overridden view ~depth ()
 
 let resized view width height =
   let scene = view.scene in
-  if (width = scene.width && height = scene.height) || Result.is_error (Limits.check_canvas width height)
-  then (view, Nothing)
-  else ({ view with scene = { scene with width; height; viewport = fit view.base ~width ~height } }, Render)
+  if width = scene.width && height = scene.height then (view, Nothing)
+  else
+    match Limits.check_canvas view.limits width height with
+    | Error _ -> (view, Nothing)
+    | Ok () -> overridden view ~width ~height ~viewport:(fit view.base ~width ~height) ()
 
 let key view c =
   if c = arrow_up || c = 'W' then moved view ~right:0. ~forward:1.

@@ -22,14 +22,17 @@ type t = private {
   scene : Scene.t;
       (** The scene shown: [base] with the current camera and depth, the
           window's size as canvas and the viewport {!fit} to it. *)
+  valid : Scene.valid;  (** [scene], validated: what the renderer takes. *)
+  limits : Limits.t;  (** The bounds the canvas and depth stay within. *)
   antialias : bool;  (** Whether pixels are averaged over {!antialias_samples}{^2} samples. *)
   help : bool;  (** Whether the help overlay is shown. *)
 }
 (** The type for views. *)
 
-val v : Scene.t -> t
-(** [v scene] is the view of [scene] as loaded: its camera, depth and
-    canvas size, no antialiasing, no help. *)
+val v : ?limits:Limits.t -> Scene.valid -> t
+(** [v ~limits scene] is the view of [scene] as loaded: its camera, depth
+    and canvas size, no antialiasing, no help. Canvas sizes and depths
+    stay within [limits] (default {!Raytrace.Limits.default}). *)
 
 val samples : t -> int
 (** [samples view] is the side of the grid of samples per pixel: [1], or
@@ -37,7 +40,7 @@ val samples : t -> int
 
 val antialias_samples : int
 (** [antialias_samples] is [3]: with antialiasing, each pixel is the mean
-    of a 3 x 3 grid of samples ({!Antialias}). *)
+    of a 3 x 3 grid of samples ({!Raytrace.Private.Antialias}). *)
 
 (** {1:input Input} *)
 
@@ -72,7 +75,7 @@ val handle : t -> input -> t * effect
       [h]: help on or off; [q] or Escape: {!Quit};
     - [Resize (w, h)]: canvas [w x h], viewport {!fit} to it.
     A move or turn that would take the camera outside
-    {!Limits.max_coordinate}, a depth beyond its bounds, a resize to the
+    {!Raytrace.Limits.max_coordinate}, a depth beyond its bounds, a resize to the
     current size or to an invalid canvas, and any other key give
     {!Nothing} and [view] unchanged. *)
 

@@ -9,7 +9,7 @@ let read_to_end ~check_size ic =
     | 0 -> Ok (Buffer.contents b)
     | k -> (
         Buffer.add_subbytes b chunk 0 k;
-        match check_size (Buffer.length b) with Ok _ -> go () | Error m -> Error m)
+        match check_size (Buffer.length b) with Ok _ -> go () | Error (`Msg m) -> Error m)
   in
   go ()
 
@@ -24,7 +24,7 @@ let read ?(check_size = fun n -> Ok n) path =
             (* The size is checked before a byte is read or allocated. *)
             match Unix.fstat (Unix.descr_of_in_channel ic) with
             | { st_kind = S_REG; st_size = n; _ } when n > 0 -> (
-                match check_size n with Error m -> Error m | Ok _ -> Ok (really_input_string ic n))
+                match check_size n with Error (`Msg m) -> Error m | Ok _ -> Ok (really_input_string ic n))
             | _ -> read_to_end ~check_size ic)
       with
       | Ok s -> Ok s

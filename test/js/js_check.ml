@@ -1,0 +1,46 @@
+(* The core library compiled to JavaScript: a scene parsed from a string,
+   rendered, encoded as PPM and decoded back, and one pixel traced alone;
+   and the window model (raytrace.view): a view turned by a key, rendered
+   coarse-first.
+   Built twice, native and JavaScript (run by node); the dune rule checks
+   that both print the same lines, so the core builds for JavaScript and
+   computes the same bytes there. *)
+
+let scene_text =
+  {|(canvas (width 48) (height 32))
+(recursion-depth 3)
+(epsilon 0.001)
+(sphere (center 0 -1 3) (radius 1) (color 255 0 0) (specular 500) (reflective 0.2))
+(sphere (center 2 0 4) (radius 1) (color 0 0 255) (specular 500) (reflective 0.3))
+(sphere (center -2 0 4) (radius 1) (color 0 255 0) (specular 10) (reflective 0.4))
+(sphere (center 0 -5001 0) (radius 5000) (color 255 255 0) (specular 1000) (reflective 0.5))
+(light ambient (intensity 0.2))
+(light point (intensity 0.6) (position 2 1 0))
+(light directional (intensity 0.2) (direction 1 4 4))
+|}
+
+let () =
+  match Raytrace.Scene_file.of_string ~file:"js.scene" scene_text with
+  | Error (`Msg m) -> failwith m
+  | Ok scene -> (
+      match Raytrace.Render.image scene with
+      | Error (`Msg m) -> failwith m
+      | Ok (img, stats) -> (
+          let ppm = Raytrace.Ppm.to_string img in
+          Printf.printf "ppm %d bytes, md5 %s\n" (String.length ppm) (Digest.to_hex (Digest.string ppm));
+          Printf.printf "primary rays %d\n" stats.primary;
+          (match Raytrace.Ppm.of_string ppm with
+          | Ok back -> Printf.printf "decoded back equal: %b\n" (Raytrace.Image.equal img back)
+          | Error (`Msg m) -> failwith m);
+          let view, _ = Raytrace_view.View.handle (Raytrace_view.View.v scene) (Raytrace_view.View.Key 'E') in
+          let r = Raytrace_view.Progressive.create view.valid in
+          let rec go bands = match Raytrace_view.Progressive.step ~rows:4 r with Some _ -> go (bands + 1) | None -> bands in
+          let bands = go 0 in
+          Printf.printf "progressive: %d bands, md5 %s\n" bands
+            (Digest.to_hex (Digest.string (Raytrace.Ppm.to_string (Raytrace_view.Progressive.image r))));
+          let c = Raytrace.Pixel.color (Raytrace.Pixel.v scene) 24 20 in
+          Printf.printf "pixel (24, 20): %d %d %d\n" (Raytrace.Color.to_byte c.r) (Raytrace.Color.to_byte c.g)
+            (Raytrace.Color.to_byte c.b);
+          match Raytrace.render_string "(canvas (width 2) (height 2)) (sphere (radius 1))" with
+          | Ok _ -> failwith "a sphere without a center was accepted"
+          | Error (`Msg m) -> print_endline m))

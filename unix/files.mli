@@ -1,0 +1,33 @@
+(** Scene and PPM files: {!Raytrace.Scene_file} and {!Raytrace.Ppm} on files, read whole
+    with a size bound and written atomically ({!File_io}). Errors start
+    with the path. *)
+
+val read_scene : ?limits:Limits.t -> string -> (Scene.valid, [> `Msg of string ]) result
+(** [read_scene ~limits path] is the scene in file [path]
+    ({!Raytrace.Scene_file.of_string} with [~file:path], its meshes read by
+    {!read_mesh}); a file larger than the
+    [`Scene_bytes] bound of [limits] (default {!Raytrace.Limits.default}) is
+    refused before it is read. *)
+
+val read_mesh : string -> (Obj_file.t, [ `Msg of string ]) result
+(** [read_mesh path] is the Wavefront OBJ mesh in file [path], read 64 KiB
+    at a time by {!Raytrace.Obj_file.feed_bytes}, with at most
+    {!Raytrace.Limits.max_triangles} vertices and triangles. {!read_scene}
+    reads a scene's meshes with it. *)
+
+val read_ppm : ?limits:Limits.t -> string -> (Image.t, [> `Msg of string ]) result
+(** [read_ppm ~limits path] reads and decodes the PPM file [path]. A file
+    larger than a binary image of the pixel bound of [limits] (default
+    {!Raytrace.Limits.default}) is refused before it is read
+    ({!Raytrace.Ppm.check_file_size}). *)
+
+val write_ppm : ?comments:string list -> string -> Image.t -> (unit, [> `Msg of string ]) result
+(** [write_ppm ~comments path img] writes [Ppm.to_string ~comments img] to
+    [path] atomically ({!File_io.write_atomic}): [path] either keeps its
+    old contents or gets the whole image. *)
+
+val render_file :
+  ?limits:Limits.t -> ?jobs:int -> string -> (Image.t, [> `Msg of string ]) result
+(** [render_file ~limits ~jobs path] is the image of the scene in file
+    [path] ({!read_scene}), one ray per pixel, rendered by [jobs] (default
+    1) processes ({!Render_jobs.image}). *)

@@ -1,0 +1,1 @@
+let read () = Limits.of_lookup Sys.getenv_opt

@@ -1,0 +1,151 @@
+let ( let* ) = Result.bind
+
+let check_memory (region : Region.t) =
+  let bytes = 3 * Region.pixels region in
+  match Parallel.available_memory () with
+  | Some available when bytes > available ->
+      let gib n = Float.of_int n /. 1073741824. in
+      Error
+        (`Msg
+          (Printf.sprintf "a %dx%d image needs %.2f GiB of memory, but only %.2f GiB are available" region.w region.h
+             (gib bytes) (gib available)))
+  | _ -> Ok ()
+
+let shared_memory =
+  {
+    Sampling.bytes = Parallel.shared_bytes;
+    floats = Parallel.shared_floats;
+    ints = Parallel.shared_ints;
+    at_row = Parallel.exit_if_orphaned;
+  }
+
+type progress_slots = (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t
+
+(* Worker [w] of [jobs] counts the rows it has finished, over every pass,
+   in slot [w] and its rays in slot [jobs + w]: writes of its own, read by
+   the parent between them. The type is known here, so that a write
+   allocates nothing. *)
+let count_row (slots : progress_slots) ~jobs w ~rays =
+  Bigarray.Array1.set slots w (Int64.succ (Bigarray.Array1.get slots w));
+  Bigarray.Array1.set slots (jobs + w) (Int64.of_int rays)
+
+let sum_slots (slots : progress_slots) lo n =
+  let s = ref 0 in
+  for k = lo to lo + n - 1 do
+    s := !s + Int64.to_int (Bigarray.Array1.get slots k)
+  done;
+  !s
+
+(* A pass starts once the previous one has finished in every worker. Its
+   rows are dealt into [classes] interleaved classes (rows c, c + classes,
+   ...), all about as costly, that the workers take from a queue as they
+   go: they finish together even if a core is slowed. *)
+let in_workers ~limits ~jobs ?skips ?progress sampling scene (region : Region.t) =
+  let s = Scene.of_valid scene in
+  match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
+  | exception Out_of_memory -> Render_work.out_of_memory region
+  | exception Failure m -> Error (`Msg m)
+  | img -> (
+      let t0 = Unix.gettimeofday () in
+      let p = Prepared.prepare ?skips scene in
+      let t1 = Unix.gettimeofday () in
+      let plan =
+        Sampling.plan ~memory:shared_memory sampling img ~canvas:(s.width, s.height) ~at:(region.x, region.y)
+      in
+      let passes = Sampling.passes plan in
+      match Parallel.shared_ints (passes * jobs * Render_work.counter_fields) with
+      | exception Out_of_memory -> Render_work.out_of_memory region
+      | exception Failure m -> Error (`Msg m)
+      | ints -> (
+          match Option.map (fun _ -> Parallel.shared_ints (2 * jobs)) progress with
+          | exception Out_of_memory -> Render_work.out_of_memory region
+          | exception Failure m -> Error (`Msg m)
+          | slots ->
+          let total = Render_work.total_rows plan in
+          let report () =
+            match (progress, slots) with
+            | Some progress, Some slots ->
+                progress ~rows:(sum_slots slots 0 jobs) ~total ~rays:(sum_slots slots jobs jobs)
+            | _ -> ()
+          in
+          let averaging = Sampling.averaging sampling in
+          let budget = Limits.work_budget limits in
+          (* Tests and box tests of every slot; a loop, since workers call it
+             between classes of rows and their allocation is measured. *)
+          let work_done (ints : Render_work.counters) =
+            let n = ref 0 in
+            for w = 0 to (passes * jobs) - 1 do
+              let k = w * Render_work.counter_fields in
+              n := !n + Int64.to_int ints.{k + 3} + Int64.to_int ints.{k + 6}
+            done;
+            !n
+          in
+          let over_budget n = Error (`Msg (Limits.work_exceeded limits n)) in
+          let classes = min Parallel.max_tasks (min region.h (32 * jobs)) in
+          let rec run i =
+            if i = passes then
+              let () = report () in
+              let t2 = Unix.gettimeofday () in
+              Ok
+                ( img,
+                  Render_work.stats ints ~slots:(passes * jobs) ~pixels:(Region.pixels region) ~jobs
+                    ~prepare_s:(t1 -. t0) ~trace_s:(t2 -. t1) )
+            else
+              let queue = Parallel.queue classes in
+              let n = Sampling.pass_rows plan i in
+              let work w =
+                let tr = Trace.create ~averaging p in
+                let slot = (i * jobs) + w in
+                let before = Gc.minor_words () in
+                let publish () = Render_work.save ints slot tr (Gc.minor_words () -. before) in
+                (* The work budget is shared: before each class of rows, a
+                   worker publishes its count and keeps for itself what the
+                   others (as last published) have left. *)
+                let rec loop () =
+                  let c = Parallel.take queue in
+                  if c >= 0 then begin
+                    publish ();
+                    Trace.set_budget tr (budget - (work_done ints - Trace.work tr));
+                    (match slots with
+                    | None -> Sampling.rows plan i tr ~first:c ~step:classes
+                    | Some slots ->
+                        (* Rays of the earlier passes, whose tracers are gone. *)
+                        let earlier = Int64.to_int (Bigarray.Array1.get slots (jobs + w)) - Render_work.rays tr in
+                        let r = ref c in
+                        while !r < n do
+                          Sampling.rows plan i tr ~first:!r ~step:n;
+                          count_row slots ~jobs w ~rays:(earlier + Render_work.rays tr);
+                          r := !r + classes
+                        done);
+                    loop ()
+                  end
+                in
+                (try loop () with Limits.Work_exceeded _ -> ());
+                publish ()
+              in
+              let tick = Option.map (fun _ -> report) progress in
+              let result = Parallel.run ?tick jobs work in
+              Parallel.close_queue queue;
+              match result with
+              | Error e -> Error e
+              | Ok () -> if work_done ints > budget then over_budget (work_done ints) else run (i + 1)
+          in
+          run 0))
+
+let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress scene
+    (region : Region.t) =
+  if jobs < 1 then invalid_arg "Render_jobs.region_image: jobs < 1";
+  Render_work.inside "Render_jobs.region_image" scene region;
+  let* sampling = Sampling.v ?samples ?adaptive ?subsample () in
+  let* () = Render_work.check ~limits scene region sampling in
+  let* () = check_memory region in
+  let jobs = min jobs region.h in
+  if jobs = 1 then
+    Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample ?progress scene region
+  else in_workers ~limits ~jobs ?skips ?progress sampling scene region
+
+let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress scene =
+  if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";
+  let s = Scene.of_valid scene in
+  region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress scene
+    (Region.full ~width:s.width ~height:s.height)
