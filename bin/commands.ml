@@ -185,6 +185,14 @@ let scene_input opts = match opts.scene with Some p -> [ ("scene", p) ] | None -
 (* The output plan ({!Io_plan}): no output is an input or another output.
    Frames without a number in their name collide, unless they go to a
    stream. *)
+(* RAYTRACE_PROGRESS_AFTER: the seconds of work before the progress line
+   appears (default 1); the tests set 0, so that they need no long render.
+   Read once, when a line is made. *)
+let progress_after =
+  match Option.map float_of_string_opt (Sys.getenv_opt "RAYTRACE_PROGRESS_AFTER") with
+  | Some (Some s) when Float.is_finite s && s >= 0. -> Some s
+  | _ -> None
+
 let check_output opts ~frames ~part output =
   (* No camera path has frames outside [0, Camera_path.max_frame]: a range
      beyond it is refused before its list of outputs is made. *)
@@ -302,7 +310,8 @@ let render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling =
      let* jobs = jobs_or_cores jobs in
      let count = match frames with None -> 1 | Some (a, b) -> b - a + 1 in
      let meter =
-       if Meter.wanted ~quiet && not literal then Some (Meter.create ~frames:count) else None
+       if Meter.wanted ~quiet && not literal then Some (Meter.create ?after:progress_after ~frames:count ())
+       else None
      in
      (* An error's message, or an interrupt, finds the line erased. *)
      Fun.protect ~finally:(fun () -> Option.iter Meter.clear meter) @@ fun () ->

@@ -1,5 +1,6 @@
 type t = {
   frames : int;
+  after : float;  (** Seconds of work before the line appears. *)
   start : float;
   mutable frame : int;  (** Frames finished. *)
   mutable rays_before : int;  (** Rays of the frames finished. *)
@@ -8,9 +9,9 @@ type t = {
   mutable width : int;  (** Characters of the line shown, 0 if none. *)
 }
 
-let create ~frames =
+let create ?(after = 1.) ~frames () =
   let start = Unix.gettimeofday () in
-  { frames = max 1 frames; start; frame = 0; rays_before = 0; rays = 0; drawn_at = start; width = 0 }
+  { frames = max 1 frames; after; start; frame = 0; rays_before = 0; rays = 0; drawn_at = start; width = 0 }
 
 let wanted ~quiet = (not quiet) && Unix.isatty Unix.stderr
 
@@ -43,7 +44,7 @@ let update m ~rows ~total ~rays =
   m.rays <- rays;
   let now = Unix.gettimeofday () in
   let elapsed = now -. m.start in
-  if elapsed >= 1. && (m.width = 0 || now -. m.drawn_at >= 0.25) then begin
+  if elapsed >= m.after && (m.width = 0 || now -. m.drawn_at >= 0.25) then begin
     let in_frame = if total > 0 then Float.of_int (min rows total) /. Float.of_int total else 0. in
     let fraction = Float.min 1. ((Float.of_int m.frame +. in_frame) /. Float.of_int m.frames) in
     draw m (line m ~fraction ~elapsed);

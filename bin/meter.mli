@@ -15,15 +15,16 @@ val wanted : quiet:bool -> bool
 (** [wanted ~quiet] is [true] iff not [quiet] and stderr is a terminal:
     whether to {!create} a line at all. *)
 
-val create : frames:int -> t
-(** [create ~frames] is a line for work of [frames] (at least 1) frames,
-    starting now. *)
+val create : ?after:float -> frames:int -> unit -> t
+(** [create ~after ~frames ()] is a line for work of [frames] (at least 1)
+    frames, starting now, that appears once the work has taken [after]
+    seconds (default 1). *)
 
 val update : t -> rows:int -> total:int -> rays:int -> unit
 (** [update m ~rows ~total ~rays] says that [rows] of the [total] rows of
     the current frame are finished, after [rays] rays in that frame (the
     arguments of {!Raytrace.Render.image}'s [progress]). It redraws the
-    line if the work started at least a second ago and the line was last
+    line if the work started at least [after] seconds ago and the line was last
     drawn at least a quarter of a second ago. *)
 
 val next_frame : t -> unit

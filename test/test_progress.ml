@@ -1,10 +1,13 @@
 (* The progress line of `raytrace render`: shown on a terminal (a
    pseudo-terminal made by util-linux's `script`), rewritten in place and
    erased at the end, with the same image as without it; absent when stderr
-   is not a terminal and with --quiet. The renders take a few seconds, since
-   the line appears only after one. *)
+   is not a terminal and with --quiet. The line appears after a fifth of a
+   second here (RAYTRACE_PROGRESS_AFTER), not after one: renders of about a
+   second are enough, on a fast machine too. *)
 
 let exe () = Helpers.raytrace ()
+
+let env () = Array.append [| "RAYTRACE_PROGRESS_AFTER=0.2" |] (Unix.environment ())
 
 (* Without `script` there is no pseudo-terminal to test on. *)
 let with_script f () =
@@ -16,7 +19,7 @@ let with_script f () =
    pseudo-terminal, and is its status and what the terminal received. *)
 let on_terminal args =
   let command = String.concat " " (List.map Filename.quote (exe () :: args)) in
-  let code, out, err = Helpers.run "script" [ "-qec"; command; "/dev/null" ] in
+  let code, out, err = Helpers.run ~env:(env ()) "script" [ "-qec"; command; "/dev/null" ] in
   if err <> "" then Alcotest.failf "script wrote on stderr: %s" err;
   (code, out)
 
@@ -53,7 +56,7 @@ let render_both ~what args outputs =
   let code, out = on_terminal (args "tty") in
   Alcotest.(check int) (what ^ ": status on a terminal") 0 code;
   let progress = check_progress_shown what out in
-  let code, stdout, stderr = Helpers.run (exe ()) (args "plain") in
+  let code, stdout, stderr = Helpers.run ~env:(env ()) (exe ()) (args "plain") in
   Alcotest.(check int) (what ^ ": status without a terminal") 0 code;
   Alcotest.(check string) (what ^ ": stdout without a terminal") "" stdout;
   (* Without a terminal, exactly what was printed before progress existed:
@@ -79,13 +82,12 @@ let tests =
   [
     Alcotest.test_case "a long render shows its progress on a terminal, and the same image" `Slow
       (with_script (fun () ->
-           let args = [ "render"; Helpers.scene_path "cgfs.scene"; "--width"; "1000"; "--height"; "1000"; "--samples"; "4"; "--jobs"; "1"; "-o"; "OUT" ] in
-           ignore (render_both ~what:"1 job, 4 x 4 samples" args [ "%d.ppm" ])));
+           let args = [ "render"; Helpers.scene_path "cgfs.scene"; "--width"; "600"; "--height"; "600"; "--samples"; "3"; "--jobs"; "1"; "-o"; "OUT" ] in
+           ignore (render_both ~what:"1 job, 3 x 3 samples" args [ "%d.ppm" ])));
     Alcotest.test_case "progress works with jobs, frames, tiles and adaptive sampling" `Slow
       (with_script (fun () ->
            let args =
-             (* About 2 s without other load: the line appears after 1 s. *)
-             [ "render"; Helpers.scene_path "orbit.scene"; "--width"; "1600"; "--height"; "1600"; "--samples"; "7";
+             [ "render"; Helpers.scene_path "orbit.scene"; "--width"; "1200"; "--height"; "1200"; "--samples"; "5";
                "--adaptive"; "0"; "--jobs"; "2"; "--frames"; "0:1"; "--tile"; "1/2"; "-o"; "OUT" ]
            in
            let _, progress = render_both ~what:"2 jobs, 2 frames, a tile" args [ "0.ppm"; "1.ppm" ] in
@@ -97,7 +99,7 @@ let tests =
            let dir = Helpers.temp_dir () in
            let out = Filename.concat dir "q.ppm" in
            let code, printed =
-             on_terminal [ "render"; "--quiet"; "--width"; "1000"; "--height"; "1000"; "--samples"; "3"; "--jobs"; "1"; "-o"; out ]
+             on_terminal [ "render"; "--quiet"; "--width"; "600"; "--height"; "600"; "--samples"; "3"; "--jobs"; "1"; "-o"; out ]
            in
            Alcotest.(check int) __LOC__ 0 code;
            Alcotest.(check string) __LOC__ "" printed;
