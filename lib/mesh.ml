@@ -47,32 +47,43 @@ let vertex m k c =
 
 let triangle m k = Triangle.v (vertex m k 0) (vertex m k 1) (vertex m k 2) m.material
 
+(* Coordinate [a] of corner [c] of triangle [k]. *)
+let[@inline] coord m k c a = m.positions.((3 * m.triangles.((3 * k) + c)) + a)
+
+(* Floats, not vectors: the kernel asks this of each of millions of
+   triangles. *)
 let degenerate m k =
-  let v0 = vertex m k 0 in
-  let n = Vec3.norm (Vec3.cross (Vec3.sub (vertex m k 1) v0) (Vec3.sub (vertex m k 2) v0)) in
+  let e1x = coord m k 1 0 -. coord m k 0 0 and e1y = coord m k 1 1 -. coord m k 0 1 and e1z = coord m k 1 2 -. coord m k 0 2 in
+  let e2x = coord m k 2 0 -. coord m k 0 0 and e2y = coord m k 2 1 -. coord m k 0 1 and e2z = coord m k 2 2 -. coord m k 0 2 in
+  let nx = (e1y *. e2z) -. (e1z *. e2y) and ny = (e1z *. e2x) -. (e1x *. e2z) and nz = (e1x *. e2y) -. (e1y *. e2x) in
+  let n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
   not (n > 0. && Float.is_finite n && Float.is_finite (1. /. n))
 
-let corner_normals m k g o =
-  m.smooth
+(* The unit normal of corner [c] of triangle [k] written to [g] at [o],
+   if it has one of a length that can be normalised. *)
+let corner_normal m k c g o =
+  let j = m.triangle_normals.((3 * k) + c) in
+  j >= 0
   &&
-  let unit c =
-    let j = m.triangle_normals.((3 * k) + c) in
-    if j < 0 then None
-    else
-      let n = Vec3.v m.normals.(3 * j) m.normals.((3 * j) + 1) m.normals.((3 * j) + 2) in
-      let l = Vec3.norm n in
-      if l > 0. && Float.is_finite l && Float.is_finite (1. /. l) then Some (Vec3.smul (1. /. l) n) else None
-  in
-  match (unit 0, unit 1, unit 2) with
-  | Some a, Some b, Some c ->
-      List.iteri
-        (fun i (n : Vec3.t) ->
-          g.(o + (3 * i)) <- n.x;
-          g.(o + (3 * i) + 1) <- n.y;
-          g.(o + (3 * i) + 2) <- n.z)
-        [ a; b; c ];
-      true
-  | _ -> false
+  let x = m.normals.(3 * j) and y = m.normals.((3 * j) + 1) and z = m.normals.((3 * j) + 2) in
+  let l = sqrt ((x *. x) +. (y *. y) +. (z *. z)) in
+  l > 0. && Float.is_finite l && Float.is_finite (1. /. l)
+  &&
+  let inv = 1. /. l in
+  g.(o) <- x *. inv;
+  g.(o + 1) <- y *. inv;
+  g.(o + 2) <- z *. inv;
+  true
+
+let corner_normals m k g o =
+  m.smooth && corner_normal m k 0 g o && corner_normal m k 1 g (o + 3) && corner_normal m k 2 g (o + 6)
+
+let bounds m k =
+  let lo a = Float.min (coord m k 0 a) (Float.min (coord m k 1 a) (coord m k 2 a)) in
+  let hi a = Float.max (coord m k 0 a) (Float.max (coord m k 1 a) (coord m k 2 a)) in
+  let x0 = lo 0 and y0 = lo 1 and z0 = lo 2 and x1 = hi 0 and y1 = hi 1 and z1 = hi 2 in
+  ( Vec3.v (0.5 *. (x0 +. x1)) (0.5 *. (y0 +. y1)) (0.5 *. (z0 +. z1)),
+    Float.max (x1 -. x0) (Float.max (y1 -. y0) (z1 -. z0)) *. 0.5 )
 
 let equal a b =
   let fa x y = Array.length x = Array.length y && Array.for_all2 Float.equal x y in

@@ -65,7 +65,12 @@ val corner_normals : t -> int -> float array -> int -> bool
 (** [corner_normals m k g o] writes the unit normals of the three corners
     of triangle [k] to [g] at [o .. o + 8] and is [true], if [m] is
     [smooth] and every corner has a normal of a length that can be
-    normalised; otherwise it writes nothing and is [false]. *)
+    normalised; otherwise it is [false] (and may have written some of
+    them). *)
+
+val bounds : t -> int -> Vec3.t * float
+(** [bounds m k] is {!Shape.bounds} of triangle [k]: the center and half
+    side of a cube that holds it. *)
 
 val equal : t -> t -> bool
 (** [equal a b] is [true] iff every field of [a] equals [b]'s, floats

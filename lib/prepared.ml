@@ -214,7 +214,7 @@ let prepare ?(skips = true) scene =
                last_mesh := Some (m, i);
                i
          in
-         let c, h = Shape.bounds (Shape.Triangle (Mesh.triangle m t)) in
+         let c, h = Mesh.bounds m t in
          let smooth = Mesh.corner_normals m t corners 0 in
          set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h));
   let materials = Array.of_list (List.rev !materials) in
