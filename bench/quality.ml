@@ -20,14 +20,16 @@ let reference_samples = 16
 let reference_depth = 10
 
 (* The documented set: name and file. Each is rendered at its own canvas
-   size (600 x 600, 600 x 600, 480 x 360, 600 x 600), or half of it with
-   --half. *)
+   size (600 x 600, 600 x 600, 480 x 360, 600 x 600, then 320 x 240 for
+   the shapes' scenes), or half of it with --half. *)
 let scenes =
   [
     ("cgfs", "scenes/cgfs.scene");
     ("cgfs-camera", "scenes/cgfs-camera.scene");
     ("sphere-grid", "scenes/sphere-grid.scene");
     ("tiny-spheres", "scenes/tiny-spheres.scene");
+    ("room", "scenes/room.scene");
+    ("boxes", "scenes/boxes.scene");
   ]
 
 type setting = {

@@ -220,6 +220,24 @@ let check_output opts ~frames ~part output =
         output
   | _ -> Ok ()
 
+(* The peak resident size of this process in kB (Linux: VmHWM of
+   /proc/self/status), if known. *)
+let peak_kb () =
+  match open_in "/proc/self/status" with
+  | exception Sys_error _ -> None
+  | ic ->
+      let rec find () =
+        match input_line ic with
+        | exception End_of_file -> None
+        | line when String.length line > 6 && String.sub line 0 6 = "VmHWM:" ->
+            (try Scanf.sscanf (String.sub line 6 (String.length line - 6)) " %d" Option.some
+             with Scanf.Scan_failure _ | Failure _ | End_of_file -> None)
+        | _ -> find ()
+      in
+      let r = find () in
+      close_in_noerr ic;
+      r
+
 (* One picture (a frame, a part, or both) rendered and written. *)
 let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~region ~output ~sampling valid =
   let scene = Scene.of_valid valid in
@@ -257,7 +275,15 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~regio
     (match st with
     | Some st -> Format.eprintf "%-24s %s@\n%a@?" "sampling" (Sampling.to_string sampling) Stats.pp_table st
     | None -> Format.eprintf "%-24s %.4f@." "time, literal oracle (s)" seconds);
-    Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" load_s "time, write (s)" (t3 -. t2)
+    Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" load_s "time, write (s)" (t3 -. t2);
+    List.iter
+      (function
+        | Shape.Mesh (m : Mesh.t) ->
+            Format.eprintf "%-24s %s: %d triangles, %d OBJ statements skipped@." "mesh" m.source
+              (Mesh.triangle_count m) m.skipped
+        | _ -> ())
+      scene.shapes;
+    Option.iter (fun kb -> Format.eprintf "%-24s %.1f@." "peak memory (MB)" (Float.of_int kb /. 1024.)) (peak_kb ())
   end;
   if output <> "-" && not quiet then begin
     let what =

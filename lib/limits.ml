@@ -8,6 +8,7 @@ let max_depth = 64
 let max_grid = 64
 let max_samples = max_grid * max_grid
 let max_spheres = 1_000_000
+let max_triangles = 4_000_000
 let max_lights = 1000
 let max_scene_bytes = 128 * 1024 * 1024
 let max_form_bytes = 16 * 1024 * 1024

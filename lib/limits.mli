@@ -21,6 +21,10 @@
 
 (** {1:fixed Fixed bounds} *)
 
+val max_triangles : int
+(** [max_triangles] is [4_000_000]: the most triangles (and vertices) of a
+    mesh file, about 290 MB of mesh once read, 580 MB while it is read. *)
+
 val max_coordinate : float
 (** [max_coordinate] is [1e12]: the largest magnitude of a coordinate, a
     radius or a viewport dimension. Squares of larger values approach the

@@ -20,6 +20,99 @@ let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
     spheres;
   match !closest with Some sphere -> Some (sphere, !closest_t) | None -> None
 
+type obj = Sphere of Sphere.t | Shape of Shape.t | Mesh_triangle of Mesh.t * int
+
+let material = function
+  | Sphere s -> Material.v ~specular:s.specular ~reflective:s.reflective s.color
+  | Shape sh -> Shape.material sh
+  | Mesh_triangle (m, _) -> m.material
+
+(* A mesh is its triangles, in order, less the degenerate ones (no ray
+   can hit them). Each object comes with its geometry as the kernel's
+   routine reads it (Shape.store), made once per list of shapes: a mesh
+   has thousands of triangles, and every ray tests them all. *)
+let objects_of_shape = function
+  | Shape.Mesh m ->
+      List.filter_map
+        (fun k -> if Mesh.degenerate m k then None else Some (Mesh_triangle (m, k), Shape.Triangle (Mesh.triangle m k)))
+        (List.init (Mesh.triangle_count m) Fun.id)
+  | sh -> [ (Shape sh, sh) ]
+
+let table shape =
+  let g = Array.make Shape.stride 0. in
+  Shape.store shape g 0;
+  g
+
+let objects_cache = ref ([], [||])
+
+let objects (shapes : Shape.t list) =
+  match !objects_cache with
+  | cached, objects when cached == shapes -> objects
+  | _ ->
+      let objects =
+        Array.of_list (List.concat_map (fun sh -> List.map (fun (o, s) -> (o, s, table s)) (objects_of_shape sh)) shapes)
+      in
+      objects_cache := (shapes, objects);
+      objects
+
+let scratch = Scratch.create ()
+
+(* The roots of [shape] (stored in [g]) by its module's routine. *)
+let roots shape g ~origin ~direction =
+  Scratch.set_ray scratch origin direction;
+  let hit =
+    match shape with
+    | Shape.Plane _ -> Plane.roots scratch g 0
+    | Shape.Triangle _ -> Triangle.roots scratch g 0
+    | Shape.Box _ -> Box.roots scratch g 0
+    | Shape.Mesh _ -> invalid_arg "Literal.roots: a mesh is its triangles"
+  in
+  if hit then (scratch.near, scratch.far) else (infinity, infinity)
+
+(* The spheres first, then the other shapes, each root compared with a
+   strict [<]: of equal roots, the first object in that order wins. *)
+let closest_hit (scene : Scene.t) ~origin ~direction ~t_min ~t_max =
+  let best =
+    match closest_intersection scene.spheres ~origin ~direction ~t_min ~t_max with
+    | Some (sphere, t) -> Some (Sphere sphere, t)
+    | None -> None
+  in
+  Array.fold_left
+    (fun best (obj, shape, g) ->
+      incr tests;
+      let near, far = roots shape g ~origin ~direction in
+      let best_t = match best with Some (_, t) -> t | None -> infinity in
+      if near < best_t && t_min < near && near < t_max then Some (obj, near)
+      else if far < best_t && t_min < far && far < t_max then Some (obj, far)
+      else best)
+    best (objects scene.shapes)
+
+(* A sphere's normal points out of it, as in the document; a plane's or a
+   triangle's, and a box's (outward), is turned toward the ray, so that
+   they are lit from the side they are seen from. *)
+let normal obj ~point ~direction =
+  match obj with
+  | Sphere sphere -> Sphere.normal sphere point
+  | Shape shape ->
+      let n = Shape.normal shape point in
+      if Vec3.dot n direction > 0. then Vec3.neg n else n
+  | Mesh_triangle (m, k) -> (
+      let tri = Mesh.triangle m k in
+      let n = Shape.normal (Shape.Triangle tri) point in
+      let flip = Vec3.dot n direction > 0. in
+      let turn n = if flip then Vec3.neg n else n in
+      (* Smooth: the corners' normals interpolated at the point, on the
+         side the ray sees. *)
+      let g = Array.make 9 0. and vn = Array.make 9 0. in
+      Triangle.store tri g 0;
+      let s = Scratch.create () in
+      s.px <- point.x;
+      s.py <- point.y;
+      s.pz <- point.z;
+      match Mesh.corner_normals m k vn 0 && Triangle.smooth_normal s g 0 vn 0 with
+      | true -> turn (Vec3.v s.nx s.ny s.nz)
+      | false -> turn n)
+
 let compute_lighting (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
   let intensity = ref 0. in
   List.iter
@@ -32,10 +125,9 @@ let compute_lighting (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
              is skipped. *)
           ()
       | Some l ->
-          (* Shadow check (7.7): is any sphere between the point and the light? *)
+          (* Shadow check (7.7): is any object between the point and the light? *)
           let shadowed =
-            closest_intersection scene.spheres ~origin:point ~direction:l ~t_min:epsilon
-              ~t_max:(Light.shadow_t_max light)
+            closest_hit scene ~origin:point ~direction:l ~t_min:epsilon ~t_max:(Light.shadow_t_max light)
             <> None
           in
           if not shadowed then begin
@@ -54,20 +146,19 @@ let compute_lighting (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
    order of the document's recursion (the same floating-point operations). *)
 let trace_ray (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~t_max ~depth =
   let rec follow levels ~origin ~direction ~t_min ~t_max ~depth =
-    match closest_intersection scene.spheres ~origin ~direction ~t_min ~t_max with
+    match closest_hit scene ~origin ~direction ~t_min ~t_max with
     | None -> (levels, scene.background)
-    | Some (sphere, t) ->
+    | Some (obj, t) ->
+        let m = material obj in
         let point = Vec3.add origin (Vec3.smul t direction) in
-        let normal = Sphere.normal sphere point in
+        let normal = normal obj ~point ~direction in
         let view = Vec3.neg direction in
-        let lighting =
-          compute_lighting scene ~epsilon ~point ~normal ~view ~specular:sphere.specular
-        in
-        let local = Color.smul lighting sphere.color in
-        if sphere.reflective <= 0. || depth <= 0 then (levels, local)
+        let lighting = compute_lighting scene ~epsilon ~point ~normal ~view ~specular:m.specular in
+        let local = Color.smul lighting m.color in
+        if m.reflective <= 0. || depth <= 0 then (levels, local)
         else
           let mirror = Shading.reflect view normal in
-          follow ((sphere.reflective, local) :: levels) ~origin:point ~direction:mirror
+          follow ((m.reflective, local) :: levels) ~origin:point ~direction:mirror
             ~t_min:epsilon ~t_max:infinity ~depth:(depth - 1)
   in
   let levels, deepest = follow [] ~origin ~direction ~t_min ~t_max ~depth in

@@ -22,12 +22,35 @@ val closest_intersection :
     ray hits nothing in that range. Of two spheres hit at the same [t], the
     first in the list wins. *)
 
+type obj =
+  | Sphere of Sphere.t
+  | Shape of Shape.t  (** A plane, a triangle or a box. *)
+  | Mesh_triangle of Mesh.t * int  (** Triangle [k] of a mesh. *)
+(** The type for the objects of a scene: a mesh is one object per
+    triangle, less its degenerate ones. *)
+
+val closest_hit :
+  Scene.t -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float -> (obj * float) option
+(** [closest_hit scene ~origin ~direction ~t_min ~t_max] is the object of
+    [scene] hit first by the ray [P = O + t D] with [t_min < t < t_max],
+    and its [t]: the spheres by {!closest_intersection}, then the other
+    shapes by {!Shape.roots}, the nearer of its two roots that is in range.
+    Of objects hit at the same [t], the first wins, spheres before shapes. *)
+
+val normal : obj -> point:Vec3.t -> direction:Vec3.t -> Vec3.t
+(** [normal obj ~point ~direction] is the unit normal of [obj] at [point]
+    for a ray along [direction]: {!Sphere.normal} for a sphere (outward, as
+    in the document), and for the other shapes {!Shape.normal} turned
+    toward the ray ([-n] when [<n, D> > 0]); a mesh's smooth triangle
+    gives its corners' normals interpolated ({!Triangle.smooth_normal}),
+    turned as its flat normal is. *)
+
 val compute_lighting :
   Scene.t -> epsilon:float -> point:Vec3.t -> normal:Vec3.t -> view:Vec3.t -> specular:float ->
   float
 (** [compute_lighting scene ~epsilon ~point ~normal ~view ~specular] is the
     total intensity [I_total] at [point] (sections 7.4 to 7.7): the ambient
-    intensities plus, for each point or directional light that no sphere
+    intensities plus, for each point or directional light that no object
     shadows, its diffuse term and (unless [specular] is {!Sphere.matte}) its
     specular term. A sphere shadows a light if it meets the shadow ray
     [P + t L] with [epsilon < t < Light.shadow_t_max]. A point light

@@ -1,8 +1,18 @@
 type t = {
   n_spheres : int;
+  n_objects : int;
+  all_spheres : bool;
+  textbook_all : bool;
   index : int array;
   slot : int array;
   bvh : Bvh.t option;
+  unbounded : int array;
+  kind : int array;
+  geom : float array;
+  vnormal : float array;
+  extent : float array;
+  n_scene_objects : int;
+  material : int array;
   cx : float array;
   cy : float array;
   cz : float array;
@@ -34,6 +44,7 @@ type t = {
   primary_ocz : float array;
   primary_k3 : float array;
   max_channel : float;
+  early_stop : bool;
   skips : bool;
 }
 
@@ -42,29 +53,52 @@ let ambient = 0
 let point = 1
 let directional = 2
 
-(* The largest channel any ray can return: background, or a sphere's colour
-   times the most light it can receive (ambient, plus each light's diffuse
-   term, at most its intensity, and specular term, likewise). Blends are
-   convex combinations, so they stay below it. The margin covers the
-   rounding of cosines and blends, each off by a few ulps at most. *)
+(* The most [cos ** s] can be: 1 for an exact cosine, but the tracer's
+   cosine, a quotient of rounded terms, may exceed 1 by a few ulps (about
+   10 u at most, u = 2^-53, by the rounding of a 3-term dot product, two
+   norms and a quotient; 6 u measured), and for a huge exponent
+   [(1 + 16 u) ** s] is far above 1 (about 7000 for s = 1e16, infinite
+   from about 1e18 on). *)
+let specular_bound s = if s = Sphere.matte then 0. else Float.pow (1. +. (8. *. epsilon_float)) s
+
+(* The largest channel any ray can return: background, or an object's
+   colour times the most light it can receive (ambient, plus each light's
+   diffuse term, at most its intensity, and specular term, at most its
+   intensity times [specular_bound]). Blends are convex combinations, so
+   they stay below it. The margin covers the rounding of cosines and
+   blends, each off by a few ulps at most. Infinite (no early stop) when a
+   specular term can be. *)
 let max_channel (scene : Scene.t) =
-  let light_bound shiny =
+  let ambient, direct =
     List.fold_left
-      (fun acc l ->
+      (fun (a, d) l ->
         match l with
-        | Light.Ambient { intensity } -> acc +. intensity
-        | Point { intensity; _ } | Directional { intensity; _ } ->
-            acc +. (intensity *. if shiny then 2. else 1.))
-      0. scene.lights
+        | Light.Ambient { intensity } -> (a +. intensity, d)
+        | Point { intensity; _ } | Directional { intensity; _ } -> (a, d +. intensity))
+      (0., 0.) scene.lights
+  in
+  (* One pow per run of equal exponents: scenes repeat a few. *)
+  let last_s = ref nan and last_bound = ref 0. in
+  let channel (c : Color.t) s =
+    if not (Float.equal s !last_s) then begin
+      last_s := s;
+      last_bound := specular_bound s
+    end;
+    Float.max c.r (Float.max c.g c.b) *. (ambient +. direct +. (direct *. !last_bound))
   in
   let bg = scene.background in
   let bound =
     List.fold_left
-      (fun acc (s : Sphere.t) ->
-        let c = s.color in
-        Float.max acc (Float.max c.r (Float.max c.g c.b) *. light_bound (not (Sphere.is_matte s))))
+      (fun acc (s : Sphere.t) -> Float.max acc (channel s.color s.specular))
       (Float.max bg.r (Float.max bg.g bg.b))
       scene.spheres
+  in
+  let bound =
+    List.fold_left
+      (fun acc sh ->
+        let m = Shape.material sh in
+        Float.max acc (channel m.color m.specular))
+      bound scene.shapes
   in
   (bound *. (1. +. 1e-6)) +. 1e-6
 
@@ -79,39 +113,199 @@ let specular_zero s =
     let x = Float.pred (Float.pred (2. ** (-1080. /. s))) in
     if x < 1. then Float.max x 0. else 0.
 
+(* The objects in scene order: the spheres, then each shape, a mesh giving
+   one object per triangle (less its degenerate ones, which no ray can
+   hit). [iter] calls [sphere k s], [single k sh] or [mesh_triangle k m t]
+   for object [k]; [material] numbers the materials alike. *)
+let iter_objects (scene : Scene.t) ~sphere ~single ~mesh_triangle =
+  let k = ref 0 in
+  List.iter
+    (fun s ->
+      sphere !k s;
+      incr k)
+    scene.spheres;
+  List.iter
+    (fun sh ->
+      match sh with
+      | Shape.Mesh m ->
+          for t = 0 to Mesh.triangle_count m - 1 do
+            if not (Mesh.degenerate m t) then begin
+              mesh_triangle !k m t;
+              incr k
+            end
+          done
+      | _ ->
+          single !k sh;
+          incr k)
+    scene.shapes;
+  !k
+
+(* Identical spheres, by the first of them in scene order. Only the first
+   gets a slot: the others have the same roots, so the first wins every
+   tie (it comes first) and blocks every shadow ray they would block; and
+   a ray leaving one leaves them all, which the robust mode's exact
+   handling of the sphere a ray leaves must see (or an identical twin,
+   with a root of about 1e-16 there, would shadow it). Other objects are
+   their own. *)
+let sphere_twins (scene : Scene.t) n =
+  let twin = Array.init n Fun.id in
+  let spheres = Array.of_list scene.spheres in
+  let key k = spheres.(k) in
+  let compare_spheres a b =
+    let (a : Sphere.t) = key a and (b : Sphere.t) = key b in
+    let c = Float.compare a.center.x b.center.x in
+    if c <> 0 then c
+    else
+      let c = Float.compare a.center.y b.center.y in
+      if c <> 0 then c
+      else
+        let c = Float.compare a.center.z b.center.z in
+        if c <> 0 then c else Float.compare a.radius b.radius
+  in
+  (* Sorted, stably: equal spheres are adjacent, the first in scene order
+     first. *)
+  let order = Array.init (Array.length spheres) Fun.id in
+  Array.stable_sort compare_spheres order;
+  for i = 1 to Array.length order - 1 do
+    if compare_spheres order.(i - 1) order.(i) = 0 then twin.(order.(i)) <- twin.(order.(i - 1))
+  done;
+  twin
+
 let prepare ?(skips = true) scene =
   let scene = Scene.of_valid scene in
-  let listed = Array.of_list scene.spheres in
-  let n = Array.length listed in
+  let n_spheres = List.length scene.spheres in
+  let n = iter_objects scene ~sphere:(fun _ _ -> ()) ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
+  (* Per object, in scene order: kind, material, and a cube around it
+     (center, half side) for the hierarchy. *)
+  let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
+  let ocx = Array.make n 0. and ocy = Array.make n 0. and ocz = Array.make n 0. and ohalf = Array.make n 0. in
+  let materials = ref [] and n_materials = ref 0 in
+  let new_material m =
+    materials := m :: !materials;
+    incr n_materials;
+    !n_materials - 1
+  in
+  let corners = Array.make 9 0. in
+  (* A mesh's triangles come in a run: one material for the run. *)
+  let last_mesh = ref None in
+  let set k kind mat (c : Vec3.t) h =
+    okind.(k) <- kind;
+    omat.(k) <- mat;
+    ocx.(k) <- c.x;
+    ocy.(k) <- c.y;
+    ocz.(k) <- c.z;
+    ohalf.(k) <- h
+  in
+  ignore
+    (iter_objects scene
+       ~sphere:(fun k (s : Sphere.t) ->
+         set k Shape.sphere
+           (new_material (Material.v ~specular:s.specular ~reflective:s.reflective s.color))
+           s.center s.radius)
+       ~single:(fun k sh ->
+         let c, h = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.) in
+         set k (Shape.kind sh) (new_material (Shape.material sh)) c h)
+       ~mesh_triangle:(fun k m t ->
+         let mat =
+           match !last_mesh with
+           | Some (m', i) when m' == m -> i
+           | _ ->
+               let i = new_material m.material in
+               last_mesh := Some (m, i);
+               i
+         in
+         let c, h = Mesh.bounds m t in
+         let smooth = Mesh.corner_normals m t corners 0 in
+         set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h));
+  let materials = Array.of_list (List.rev !materials) in
+  let twin_of = sphere_twins scene n in
+  (* Arrays, not lists: a mesh makes millions of objects. *)
+  let select keep =
+    let a = Array.make n 0 and m = ref 0 in
+    for k = 0 to n - 1 do
+      if keep k then begin
+        a.(!m) <- k;
+        incr m
+      end
+    done;
+    Array.sub a 0 !m
+  in
+  let kept k = twin_of.(k) = k in
+  let bounded = select (fun k -> kept k && okind.(k) <> Shape.plane) in
+  let unbounded = select (fun k -> kept k && okind.(k) = Shape.plane) in
+  let nb = Array.length bounded in
   let bvh =
-    if skips && n > bvh_threshold then begin
-      let cx = Array.map (fun s -> s.Sphere.center.x) listed in
-      let cy = Array.map (fun s -> s.Sphere.center.y) listed in
-      let cz = Array.map (fun s -> s.Sphere.center.z) listed in
-      let radius = Array.map (fun s -> s.Sphere.radius) listed in
+    if skips && nb > bvh_threshold then begin
+      let pick a = Array.map (fun k -> a.(k)) bounded in
+      let cx = pick ocx and cy = pick ocy and cz = pick ocz and radius = pick ohalf in
       let margin = Bvh.ray_box_margin ~cx ~cy ~cz ~radius scene.camera.position in
       Some (Bvh.build ~cx ~cy ~cz (Array.mapi (fun i r -> r +. margin.(i)) radius))
     end
     else None
   in
-  let index = match bvh with Some b -> b.order | None -> Array.init n Fun.id in
+  (* Slots: the hierarchy's leaf order, then the planes; without a
+     hierarchy, the scene's order. *)
+  let index =
+    match bvh with
+    | Some b -> Array.append (Array.map (fun k -> bounded.(k)) b.order) unbounded
+    | None -> select kept
+  in
   let slot = Array.make n 0 in
   Array.iteri (fun k i -> slot.(i) <- k) index;
-  let spheres = Array.map (fun i -> listed.(i)) index in
+  Array.iteri (fun k first -> if first <> k then slot.(k) <- slot.(first)) twin_of;
+  let n_kept = Array.length index in
+  (* Geometry and sphere data, written in slot order. *)
+  let stride = Shape.stride in
+  (* Spheres alone need no table of shapes. *)
+  let shapes_len = if scene.shapes = [] then 0 else n_kept in
+  let geom = Array.make (stride * shapes_len) 0. and extent = Array.make shapes_len 0. in
+  let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
+  let vnormal = if any_smooth then Array.make (stride * n_kept) 0. else [||] in
+  let sphere_len = if n_spheres > 0 then n_kept else 0 in
+  let cx = Array.make sphere_len 0. and cy = Array.make sphere_len 0. and cz = Array.make sphere_len 0. in
+  let radius = Array.make sphere_len 0. in
+  let extent_of i =
+    let e = ref 0. in
+    for j = stride * i to (stride * i) + stride - 1 do
+      e := Float.max !e (Float.abs geom.(j))
+    done;
+    extent.(i) <- !e
+  in
+  ignore
+    (iter_objects scene
+       ~sphere:(fun k (s : Sphere.t) ->
+         let i = slot.(k) in
+         cx.(i) <- s.center.x;
+         cy.(i) <- s.center.y;
+         cz.(i) <- s.center.z;
+         radius.(i) <- s.radius)
+       ~single:(fun k sh ->
+         let i = slot.(k) in
+         Shape.store sh geom (stride * i);
+         extent_of i)
+       ~mesh_triangle:(fun k m t ->
+         let i = slot.(k) in
+         for c = 0 to 2 do
+           let v = 3 * m.triangles.((3 * t) + c) in
+           for a = 0 to 2 do
+             geom.((stride * i) + (3 * c) + a) <- m.positions.(v + a)
+           done
+         done;
+         if any_smooth then ignore (Mesh.corner_normals m t vnormal (stride * i));
+         extent_of i));
   let lights =
     Array.of_list
       (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
   in
-  let sf f = Array.map f spheres and lf f = Array.map f lights in
+  let lf f = Array.map f lights and mf f = Array.map f materials in
   let o = scene.camera.position in
-  let cx = sf (fun s -> s.Sphere.center.x) and cy = sf (fun s -> s.center.y) in
-  let cz = sf (fun s -> s.center.z) and r2 = sf (fun s -> s.radius *. s.radius) in
+  let r2 = Array.map (fun r -> r *. r) radius in
   let primary_ocx = Array.map (fun c -> o.x -. c) cx in
   let primary_ocy = Array.map (fun c -> o.y -. c) cy in
   let primary_ocz = Array.map (fun c -> o.z -. c) cz in
   (* Same operands in the same order as the tracer's per-ray [k3]. *)
   let primary_k3 =
-    Array.init (Array.length spheres) (fun i ->
+    Array.init sphere_len (fun i ->
         let x = primary_ocx.(i) and y = primary_ocy.(i) and z = primary_ocz.(i) in
         ((x *. x) +. (y *. y) +. (z *. z)) -. r2.(i))
   in
@@ -121,22 +315,33 @@ let prepare ?(skips = true) scene =
     | Point { position; _ } -> position
     | Directional { direction; _ } -> direction
   in
+  let max_channel = max_channel scene in
   {
-    n_spheres = n;
+    n_spheres;
+    n_objects = n_kept;
+    all_spheres = scene.shapes = [];
+    textbook_all = scene.shapes = [] && bvh = None && scene.epsilon <> None;
     index;
     slot;
     bvh;
+    unbounded = Array.map (fun i -> slot.(i)) unbounded;
+    kind = Array.map (fun k -> okind.(k)) index;
+    geom;
+    vnormal;
+    extent;
+    n_scene_objects = n;
+    material = Array.map (fun k -> omat.(k)) index;
     cx;
     cy;
     cz;
-    radius = sf (fun s -> s.radius);
+    radius;
     r2;
-    red = sf (fun s -> s.color.r);
-    green = sf (fun s -> s.color.g);
-    blue = sf (fun s -> s.color.b);
-    specular = sf (fun s -> s.specular);
-    specular_zero = sf (fun s -> if skips then specular_zero s.specular else 0.);
-    reflective = sf (fun s -> s.reflective);
+    red = mf (fun m -> m.Material.color.r);
+    green = mf (fun m -> m.color.g);
+    blue = mf (fun m -> m.color.b);
+    specular = mf (fun m -> m.specular);
+    specular_zero = mf (fun m -> if skips then specular_zero m.specular else 0.);
+    reflective = mf (fun m -> m.reflective);
     n_lights = Array.length lights;
     light_kind =
       lf (function Light.Ambient _ -> ambient | Point _ -> point | Directional _ -> directional);
@@ -157,6 +362,7 @@ let prepare ?(skips = true) scene =
     primary_ocy;
     primary_ocz;
     primary_k3;
-    max_channel = max_channel scene;
+    max_channel;
+    early_stop = skips && Float.is_finite max_channel;
     skips;
   }

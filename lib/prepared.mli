@@ -9,20 +9,51 @@
     @canonical Raytrace.Private.Prepared *)
 
 type t = private {
-  n_spheres : int;
+  n_spheres : int;  (** The number of spheres. *)
+  n_objects : int;  (** The number of slots: spheres and other shapes. *)
+  all_spheres : bool;  (** Every object is a sphere: [n_spheres = n_objects]. *)
+  textbook_all : bool;
+      (** Spheres only, no hierarchy, the document's mode: the tracer's
+          fastest loop (the reference scene). *)
   index : int array;
-      (** The scene-list index of the sphere in each slot: the per-sphere
-          arrays below are in slot order (the hierarchy's leaf order). *)
-  slot : int array;  (** The inverse of [index]. *)
+      (** The index of the object in each slot, objects counted spheres
+          first, then the scene's [shapes]: the per-object arrays below are
+          in slot order (the hierarchy's leaf order, then the planes). *)
+  slot : int array;
+      (** The slot of each object: the inverse of [index], but for the
+          identical spheres of [n_scene_objects], which share a slot. *)
   bvh : Bvh.t option;
-      (** The hierarchy over the spheres, when the skips are enabled and
-          there are more than {!bvh_threshold} spheres. *)
-  cx : float array;  (** Sphere centers, x coordinates. *)
+      (** The hierarchy over the bounded objects (all but planes), when the
+          skips are enabled and there are more than {!bvh_threshold} of them;
+          its leaves hold slots [0 .. n - 1], the planes follow. *)
+  unbounded : int array;  (** The slots of the planes, in scene order. *)
+  kind : int array;  (** {!Shape.sphere}, {!Shape.plane}, ... *)
+  geom : float array;
+      (** The geometry of the object in slot [k] at [Shape.stride * k], as
+          the shape module's [store] writes it (unused for spheres). *)
+  vnormal : float array;
+      (** Smooth triangles: the unit normals of the three corners of the
+          object in slot [k] at [Shape.stride * k] (empty if the scene has
+          no smooth triangle). *)
+  extent : float array;
+      (** The largest magnitude of a coordinate of the object's geometry. *)
+  n_scene_objects : int;
+      (** The objects of the scene, [>= n_objects]: a sphere identical (same
+          center and radius) to an earlier one has no slot of its own, its
+          [slot] is the earlier one's. It would never be seen first, nor
+          block a ray the earlier one does not block, and identical spheres
+          are one surface, which a ray leaves at once. *)
+  material : int array;
+      (** The material of the object in each slot: an index into the
+          material arrays [red] to [reflective]. *)
+  cx : float array;
+      (** Sphere centers, x coordinates, by slot ([0] for other shapes;
+          empty when the scene has no sphere). *)
   cy : float array;
   cz : float array;
   radius : float array;
   r2 : float array;  (** [radius *. radius]. *)
-  red : float array;  (** Colour channels, 0-255. *)
+  red : float array;  (** Colour channels of each material, 0-255. *)
   green : float array;
   blue : float array;
   specular : float array;  (** Exponent, or {!Sphere.matte}. *)
@@ -55,7 +86,10 @@ type t = private {
   primary_k3 : float array;  (** [<CO, CO> - r^2] for the camera origin. *)
   max_channel : float;
       (** An upper bound of every colour channel a ray can return, used to
-          stop reflections that can no longer change an 8-bit value. *)
+          stop reflections that can no longer change an 8-bit value;
+          [infinity] if a huge specular exponent leaves none (the cosine,
+          rounded, may exceed 1 by a few ulps, and its power explodes). *)
+  early_stop : bool;  (** The skips are on and [max_channel] is finite. *)
   skips : bool;  (** Whether the exact skips are enabled. *)
 }
 (** The type for prepared scenes. *)

@@ -46,6 +46,10 @@ v}
     - Sections 2-3, the viewport and the scene: {!Viewport}, {!Camera},
       {!Sphere}, {!Scene}, {!Scene_file}.
     - Section 4, ray-sphere intersection: {!Sphere.roots}.
+    - Beyond the document's spheres (its chapter "Extending the
+      Raytracer"): {!Plane}, {!Triangle} (watertight), {!Box}, {!Mesh}
+      (from Wavefront OBJ files, {!Obj_file}, or generated, {!Mesh_gen}),
+      one type for them, {!Shape}, each with a {!Material}.
     - Sections 5-7, lights, diffuse and specular shading, shadows and
       reflection: {!Light}, and {!Literal}, the document's algorithm
       transcribed literally (the executable specification the fast tracer
@@ -71,6 +75,14 @@ module Viewport = Viewport
 module Camera = Camera
 module Camera_path = Camera_path
 module Sphere = Sphere
+module Material = Material
+module Plane = Plane
+module Triangle = Triangle
+module Box = Box
+module Mesh = Mesh
+module Shape = Shape
+module Obj_file = Obj_file
+module Mesh_gen = Mesh_gen
 module Light = Light
 module Scene = Scene
 module Scene_file = Scene_file
@@ -109,6 +121,8 @@ module Private : sig
   module Bvh = Bvh
   module Prepared = Prepared
   module Trace = Trace
+  module Scratch = Scratch
+  module Float_scan = Float_scan
   module Antialias = Antialias
   module Render_work = Render_work
 end

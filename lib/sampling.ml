@@ -129,7 +129,7 @@ let full pl tr cy =
 (* Per pixel, not per ray: these accesses keep their bounds checks, so that
    a wrong neighbour index fails loudly rather than reading past a mapped
    buffer. *)
-let set_hit (hits : ints) i tr = Bigarray.Array1.set hits i (Int64.of_int (Trace.hit_sphere tr))
+let set_hit (hits : ints) i tr = Bigarray.Array1.set hits i (Int64.of_int (Trace.hit_object tr))
 let hit (hits : ints) i = Int64.to_int (Bigarray.Array1.get hits i)
 
 (* Adaptive, pass 0: the first ray of each pixel of canvas row [cy] of the

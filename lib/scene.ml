@@ -7,6 +7,7 @@ type t = {
   depth : int;
   epsilon : float option;
   spheres : Sphere.t list;
+  shapes : Shape.t list;
   lights : Light.t list;
   camera_path : Camera_path.t option;
 }
@@ -15,8 +16,8 @@ type t = {
 let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
 let v ?(width = 600) ?(height = 600) ?(viewport = Viewport.default) ?(camera = Camera.default)
-    ?(background = Color.black) ?(depth = 3) ?epsilon ?camera_path ~spheres ~lights () =
-  { width; height; viewport; camera; background; depth; epsilon; spheres; lights; camera_path }
+    ?(background = Color.black) ?(depth = 3) ?epsilon ?camera_path ?(shapes = []) ~spheres ~lights () =
+  { width; height; viewport; camera; background; depth; epsilon; spheres; shapes; lights; camera_path }
 
 let document_epsilon = 0.0001
 
@@ -105,10 +106,11 @@ let validate ?(limits = Limits.default) s =
     let* _ = check_background s.background in
     let* _ = Limits.check_depth limits s.depth in
     let* _ = match s.epsilon with Some e -> check_epsilon e | None -> Ok 0. in
-    let* _ = Limits.check_count limits `Spheres (List.length s.spheres) in
+    let* _ = Limits.check_count limits `Spheres (List.length s.spheres + List.length s.shapes) in
     let* _ = Limits.check_count limits `Lights (List.length s.lights) in
     let* () = all Sphere.validate s.spheres in
-    all Light.validate s.lights
+    let* () = all Light.validate s.lights in
+    all (fun sh -> Result.map ignore (Shape.validate sh)) s.shapes
   in
   match result with Ok () -> Ok s | Error _ as e -> e
 
@@ -142,10 +144,17 @@ let at_frame (s : valid) f =
       | Error e -> Error e)
 
 let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
-  let depth = if List.exists (fun (sp : Sphere.t) -> sp.reflective > 0.) s.spheres then s.depth else 0 in
+  let depth =
+    if
+      List.exists (fun (sp : Sphere.t) -> sp.reflective > 0.) s.spheres
+      || List.exists (fun sh -> (Shape.material sh).reflective > 0.) s.shapes
+    then s.depth
+    else 0
+  in
   let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in
   match
-    Limits.check_work limits ~pixels:(Option.value pixels ~default:(s.width * s.height)) ~samples ~depth ~spheres:(List.length s.spheres) ~lights
+    Limits.check_work limits ~pixels:(Option.value pixels ~default:(s.width * s.height)) ~samples ~depth
+      ~spheres:(List.length s.spheres + List.length s.shapes) ~lights
   with
   | Ok () -> Ok ()
   | Error _ as e -> e

@@ -19,6 +19,9 @@ type t = {
           see objects at [t > e] only. [None]: the robust mode, which needs
           no scene-dependent constant. *)
   spheres : Sphere.t list;
+  shapes : Shape.t list;
+      (** The other objects (planes, triangles, boxes). For ties between
+          equal roots, objects count in the order spheres, then shapes. *)
   lights : Light.t list;
   camera_path : Camera_path.t option;
       (** The camera of each frame of an animation ({!at_frame}); [camera]
@@ -46,6 +49,7 @@ val v :
   ?depth:int ->
   ?epsilon:float ->
   ?camera_path:Camera_path.t ->
+  ?shapes:Shape.t list ->
   spheres:Sphere.t list ->
   lights:Light.t list ->
   unit ->
@@ -53,7 +57,7 @@ val v :
 (** [v ~spheres ~lights ()] is a scene with the given objects and lights,
     and otherwise the document's values: a 600 x 600 canvas,
     {!Viewport.default}, {!Camera.default}, a black background, depth 3, and
-    the robust mode (no epsilon), no camera path. The result is not
+    the robust mode (no epsilon), no camera path, no [shapes]. The result is not
     validated: see {!validate}. *)
 
 val cgfs : t

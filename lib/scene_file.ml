@@ -223,6 +223,104 @@ let sphere ~where form_node nodes =
   let reflective = Option.value ~default:0. (checked_float form fs "reflective" Sphere.check_reflective) in
   Sphere.v ~specular ~reflective ~center ~radius color
 
+(* The material fields that every shape takes, as a sphere does. *)
+let material_fields = [ "color"; "specular"; "reflective" ]
+
+let material ~form ~form_node fs =
+  let color =
+    let node, c = required ~form ~form_node fs "color" (fun _ f -> (f.node, color_field form "color" f)) in
+    check node (Material.check_color ~form c)
+  in
+  let checked name check_value =
+    Option.map
+      (fun f -> check (single form name f) (check_value (float_field form name f)))
+      (find fs name)
+  in
+  let specular = Option.value ~default:Sphere.matte (checked "specular" (Material.check_specular ~form)) in
+  let reflective = Option.value ~default:0. (checked "reflective" (Material.check_reflective ~form)) in
+  Material.v ~specular ~reflective color
+
+let point_field ~form ~form_node fs name =
+  let node, p = required ~form ~form_node fs name (fun _ f -> (f.node, vec3_field form name f)) in
+  (node, check node (Limits.check_point (field_what form name ()) p))
+
+let plane ~where form_node nodes =
+  let form = "plane" in
+  let fs = fields ~where ~form ~allowed:([ "point"; "normal" ] @ material_fields) nodes in
+  let _, point = point_field ~form ~form_node fs "point" in
+  let normal_node, normal = point_field ~form ~form_node fs "normal" in
+  let m = material ~form ~form_node fs in
+  Shape.Plane (check normal_node (Plane.validate (Plane.v ~point ~normal m)))
+
+let triangle ~where form_node nodes =
+  let form = "triangle" in
+  let fs = fields ~where ~form ~allowed:("vertices" :: material_fields) nodes in
+  let node, (v0, v1, v2) =
+    required ~form ~form_node fs "vertices" (fun what f ->
+        let vertex node =
+          match node with
+          | Sexp.List elements ->
+              let p = vec3_of_nodes (fun () -> what () ^ " vertex") node elements in
+              check node (Limits.check_point (what () ^ " vertex") p)
+          | Sexp.Atom atom ->
+              fail node "%s: expected a vertex of 3 numbers in parentheses, got %s" (what ()) (show_atom atom)
+        in
+        match f.args with
+        | [ a; b; c ] -> (f.node, (vertex a, vertex b, vertex c))
+        | args ->
+            fail f.node "%s takes 3 vertices, e.g. (-1 0 4) (1 0 4) (0 1.5 4), got %d values" (what ())
+              (List.length args))
+  in
+  let m = material ~form ~form_node fs in
+  Shape.Triangle (check node (Triangle.validate (Triangle.v v0 v1 v2 m)))
+
+let box ~where form_node nodes =
+  let form = "box" in
+  let fs = fields ~where ~form ~allowed:([ "min"; "max" ] @ material_fields) nodes in
+  let _, min = point_field ~form ~form_node fs "min" in
+  let max_node, max = point_field ~form ~form_node fs "max" in
+  let m = material ~form ~form_node fs in
+  Shape.Box (check max_node (Box.validate (Box.v ~min ~max m)))
+
+(* A mesh: its file is read by [load] (the path as the scene gives it). *)
+let mesh ~where ~load form_node nodes =
+  let form = "mesh" in
+  let fs = fields ~where ~form ~allowed:([ "file"; "scale"; "translate"; "smooth" ] @ material_fields) nodes in
+  let file_node, file =
+    required ~form ~form_node fs "file" (fun what f ->
+        match f.args with
+        | [ Sexp.Atom a ] when a <> "" -> (f.node, a)
+        | _ -> fail f.node "%s: expected a file name, e.g. (file \"models/knot.obj\")" (what ()))
+  in
+  let scale =
+    Option.value ~default:1.
+      (Option.map
+         (fun f ->
+           let x = float_field form "scale" f in
+           if x > 0. then x else fail (single form "scale" f) "mesh scale must be > 0, got %s" (Float_text.to_string x))
+         (find fs "scale"))
+  in
+  let translate =
+    match find fs "translate" with
+    | Some f -> check f.node (Limits.check_point "mesh translate" (vec3_field form "translate" f))
+    | None -> Vec3.zero
+  in
+  let smooth =
+    match find fs "smooth" with
+    | None -> false
+    | Some f -> (
+        match single form "smooth" f with
+        | Sexp.Atom "true" -> true
+        | Sexp.Atom "false" -> false
+        | node -> fail node "mesh smooth: expected true or false")
+  in
+  let m = material ~form ~form_node fs in
+  let obj = check file_node (load file) in
+  Shape.Mesh
+    (check form_node
+       (Mesh.v ~smooth ~scale ~translate ~source:file ~skipped:(Obj_file.skipped_total obj) ~positions:obj.positions
+          ~triangles:obj.triangles ~normals:obj.normals ~triangle_normals:obj.triangle_normals m))
+
 let light ~where form_node nodes =
   let kinds = [ "ambient"; "point"; "directional" ] in
   match nodes with
@@ -302,28 +400,32 @@ let value form form_node = function
   | nodes -> fail form_node "%s takes 1 value, got %d" form (List.length nodes)
 
 let top_level =
-  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "light" ]
+  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "plane"; "triangle"; "box"; "mesh"; "light" ]
 
 (* The scene being read, form by form. *)
 type builder = {
   limits : Limits.t;
   where : Sexp.t -> Positions.pos option;
+  load : string -> (Obj_file.t, [ `Msg of string ]) result;  (** Reads a mesh file. *)
   seen : (string, Positions.pos option) Hashtbl.t;
       (** Forms that may appear once, and where they first did. *)
   mutable scene : Scene.t;
   mutable spheres : Sphere.t list;  (** In reverse order. *)
+  mutable shapes : Shape.t list;  (** In reverse order. *)
   mutable lights : Light.t list;  (** In reverse order. *)
   mutable n_spheres : int;
   mutable n_lights : int;
 }
 
-let builder ~limits where =
+let builder ~limits ~load where =
   {
     limits;
     where;
+    load;
     seen = Hashtbl.create 8;
     scene = Scene.v ~spheres:[] ~lights:[] ();
     spheres = [];
+    shapes = [];
     lights = [];
     n_spheres = 0;
     n_lights = 0;
@@ -350,6 +452,16 @@ let add_form b node =
           b.n_spheres <- b.n_spheres + 1;
           ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
           b.spheres <- sphere ~where node rest :: b.spheres
+      | ("plane" | "triangle" | "box") as form ->
+          (* Shapes count against the bound of spheres: both are objects. *)
+          b.n_spheres <- b.n_spheres + 1;
+          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
+          let parse = match form with "plane" -> plane | "triangle" -> triangle | _ -> box in
+          b.shapes <- parse ~where node rest :: b.shapes
+      | "mesh" ->
+          b.n_spheres <- b.n_spheres + 1;
+          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
+          b.shapes <- mesh ~where ~load:b.load node rest :: b.shapes
       | "light" ->
           b.n_lights <- b.n_lights + 1;
           ignore (check node (Limits.check_count b.limits `Lights b.n_lights));
@@ -391,12 +503,12 @@ let finish b =
         match Camera_path.camera path (Camera_path.first_frame path) with Ok c -> c | Error _ -> b.scene.camera)
     | _ -> b.scene.camera
   in
-  { b.scene with camera; spheres = List.rev b.spheres; lights = List.rev b.lights }
+  { b.scene with camera; spheres = List.rev b.spheres; shapes = List.rev b.shapes; lights = List.rev b.lights }
 
 (* The located pass: the same conversion over a parse that kept positions. *)
 (* The located pass streams too: it keeps the positions of the form being
    converted only, so locating an error costs no more memory than loading. *)
-let locate_error ~limits text =
+let locate_error ~limits ~load text =
   let module P = Parsexp.Eager_and_positions in
   let current = ref None in
   let where node =
@@ -410,7 +522,7 @@ let locate_error ~limits text =
         | found -> Option.map (fun (r : Positions.range) -> r.start_pos) found
         | exception Stack_overflow -> None)
   in
-  let b = builder ~limits where in
+  let b = builder ~limits ~load where in
   let state =
     P.State.create (fun _ (form, positions) ->
         current := Some (form, positions);
@@ -443,7 +555,26 @@ let form_start text offset =
   done;
   Positions.{ line = !line; col = i - !bol; offset = i }
 
-let of_string ?(limits = Limits.default) ?(file = "<string>") text =
+(* Without a loader, a scene names no mesh file it can read. *)
+let no_loader path =
+  Error
+    (`Msg
+      (Printf.sprintf "cannot read mesh file %s: this scene was given as text, with no way to read files" path))
+
+let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") text =
+  (* Mesh files are named relative to the scene file; each is read once,
+     even when an error makes a second, located pass over the text. *)
+  let loaded = Hashtbl.create 4 in
+  let load path =
+    let dir = Filename.dirname file in
+    let path = if Filename.is_relative path && dir <> Filename.current_dir_name then Filename.concat dir path else path in
+    match Hashtbl.find_opt loaded path with
+    | Some r -> r
+    | None ->
+        let r = match load_mesh path with Ok m -> Ok m | Error (`Msg m) -> Error (`Msg m) in
+        Hashtbl.add loaded path r;
+        r
+  in
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
   match Limits.check_scene_bytes limits (String.length text) with
@@ -454,7 +585,7 @@ let of_string ?(limits = Limits.default) ?(file = "<string>") text =
        recorded: big scenes load in little time and memory. Only an error
        triggers a second pass that records positions, and fails on the same
        node. *)
-    let b = builder ~limits (fun _ -> None) in
+    let b = builder ~limits ~load (fun _ -> None) in
     (* The parser holds a form whole, in 30 to 50 times its text: the text
        is fed in chunks, and a form that grows past the form bound is
        refused before it can take more. *)
@@ -478,7 +609,7 @@ let of_string ?(limits = Limits.default) ?(file = "<string>") text =
     | Error (p, m) -> error p m
     | exception Parsexp.Parse_error.Parse_error e -> syntax e
     | exception Located _ -> (
-        match locate_error ~limits text with
+        match locate_error ~limits ~load text with
         | `Syntax e -> syntax e
         | `Located (pos, m) -> error (Option.value pos ~default:origin) m
         | `Not_found -> error origin "internal error: the located pass found no error")
@@ -525,6 +656,27 @@ let to_string (s : Scene.t) =
       if sp.reflective <> 0. then Buffer.add_string b (Printf.sprintf " (reflective %s)" (num sp.reflective));
       line ")")
     s.spheres;
+  List.iter
+    (fun sh ->
+      let m = Shape.material sh in
+      (match sh with
+      | Shape.Plane p ->
+          Buffer.add_string b (Printf.sprintf "(plane (point %s) (normal %s)" (vec p.point) (vec p.normal))
+      | Shape.Triangle t ->
+          Buffer.add_string b
+            (Printf.sprintf "(triangle (vertices (%s) (%s) (%s))" (vec t.v0) (vec t.v1) (vec t.v2))
+      | Shape.Box x -> Buffer.add_string b (Printf.sprintf "(box (min %s) (max %s)" (vec x.min) (vec x.max))
+      | Shape.Mesh m ->
+          (* The file's text is not kept: a mesh prints as the form that
+             reads it again. *)
+          Buffer.add_string b
+            (Printf.sprintf "(mesh (file %S) (scale %s) (translate %s)%s" m.source (num m.scale) (vec m.translate)
+               (if m.smooth then " (smooth true)" else "")));
+      Buffer.add_string b (Printf.sprintf " (color %s %s %s)" (num m.color.r) (num m.color.g) (num m.color.b));
+      if m.specular <> Sphere.matte then Buffer.add_string b (Printf.sprintf " (specular %s)" (num m.specular));
+      if m.reflective <> 0. then Buffer.add_string b (Printf.sprintf " (reflective %s)" (num m.reflective));
+      line ")")
+    s.shapes;
   List.iter
     (function
       | Light.Ambient { intensity } -> line "(light ambient (intensity %s))" (num intensity)

@@ -38,15 +38,24 @@ v}
     their domain ({!Sphere.validate}, {!Light.validate}, ...) are all
     errors. *)
 
-val of_string : ?limits:Limits.t -> ?file:string -> string -> (Scene.valid, [> `Msg of string ]) result
-(** [of_string ~limits ~file text] is the scene described by [text],
-    validated against [limits] (default {!Limits.default}). [Error] if
-    [text] is longer than its [`Scene_bytes] bound (refused before it is
+val of_string :
+  ?limits:Limits.t ->
+  ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
+  ?file:string ->
+  string ->
+  (Scene.valid, [> `Msg of string ]) result
+(** [of_string ~limits ~load_mesh ~file text] is the scene described by
+    [text], validated against [limits] (default {!Limits.default}). [Error]
+    if [text] is longer than its [`Scene_bytes] bound (refused before it is
     parsed), or one of its top-level forms longer than its [`Form_bytes]
     bound (found as the text is parsed, 64 KiB at a time, before the form
     is held whole). [file] (default ["<string>"]) names the source in error
-    messages. Never raises. ([Raytrace_unix.Files.read_scene] reads a
-    scene file.) *)
+    messages. A [(mesh (file p) ...)] form is read by [load_mesh], given
+    [p] joined to the directory of [file] when [p] is relative, once per
+    path; its error becomes the form's (the default refuses every mesh:
+    text alone names no file it can read;
+    [Raytrace_unix.Files.read_scene] reads scene files and their meshes).
+    Never raises. *)
 
 val to_string : Scene.t -> string
 (** [to_string s] is [s] in the scene-file syntax, every number written so

@@ -7,50 +7,23 @@ type counters = {
   mutable early_stops : int;
 }
 
-(* All fields are floats, so the record is stored flat and its fields are
-   read and written without boxing. *)
-type scratch = {
-  mutable ox : float;
-  mutable oy : float;
-  mutable oz : float;
-  mutable dx : float;
-  mutable dy : float;
-  mutable dz : float;
-  mutable t_min : float;
-  mutable t_max : float;
-  mutable t : float;
-  mutable near : float;  (** Roots of the last robust intersection test. *)
-  mutable far : float;
-  mutable gx : float;  (** Canvas point of the primary ray. *)
-  mutable gy : float;
-  mutable px : float;  (** Hit point. *)
-  mutable py : float;
-  mutable pz : float;
-  mutable nx : float;  (** Unit normal at the hit point. *)
-  mutable ny : float;
-  mutable nz : float;
-  mutable vx : float;  (** View vector, [-D]. *)
-  mutable vy : float;
-  mutable vz : float;
-  mutable intensity : float;
-  mutable r : float;
-  mutable g : float;
-  mutable b : float;
-  mutable acc_r : float;  (** Sum of clamped sample colours, see [accumulate]. *)
-  mutable acc_g : float;
-  mutable acc_b : float;
-}
+(* The per-ray state (ray, roots, hit point, colour) is [Scratch.t], at
+   the bottom of the kernel, so that the shapes' root routines read the ray
+   without depending on the tracer. *)
+open Scratch
 
 type t = {
   p : Prepared.t;
-  s : scratch;
+  s : Scratch.t;
   stack : float array;  (** Per reflection level: local r, g, b and reflectivity. *)
   last_blocker : int array;  (** Per light: the sphere that last shadowed it. *)
   counters : counters;
   nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
   mutable hit : int;  (** Index of the sphere found by [closest]. *)
   mutable origin_sphere : int;
-      (** The sphere the current secondary ray leaves, or [-1]. *)
+      (** The slot of the sphere the current secondary ray leaves, or
+          [-1]: in the robust mode that sphere is handled exactly. (An
+          identical sphere has no slot of its own: {!Prepared.prepare}.) *)
   mutable first_hit : int;
   averaging : bool;  (** Samples are averaged: see [settled]. *)
   mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see [primary_hit]. *)
@@ -63,38 +36,7 @@ let no_assumption = -2
 let create ?(averaging = false) (p : Prepared.t) =
   {
     p;
-    s =
-      {
-        ox = 0.;
-        oy = 0.;
-        oz = 0.;
-        dx = 0.;
-        dy = 0.;
-        dz = 0.;
-        t_min = 0.;
-        t_max = 0.;
-        t = 0.;
-        near = 0.;
-        far = 0.;
-        gx = 0.;
-        gy = 0.;
-        px = 0.;
-        py = 0.;
-        pz = 0.;
-        nx = 0.;
-        ny = 0.;
-        nz = 0.;
-        vx = 0.;
-        vy = 0.;
-        vz = 0.;
-        intensity = 0.;
-        r = 0.;
-        g = 0.;
-        b = 0.;
-        acc_r = 0.;
-        acc_g = 0.;
-        acc_b = 0.;
-      };
+    s = Scratch.create ();
     stack = Array.make (4 * (p.depth + 1)) 0.;
     last_blocker = Array.make (max 1 p.n_lights) (-1);
     counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0 };
@@ -119,7 +61,7 @@ let check_budget tr =
 let red tr = tr.s.r
 let green tr = tr.s.g
 let blue tr = tr.s.b
-let hit_sphere tr = if tr.first_hit < 0 then -1 else Array.unsafe_get tr.p.index tr.first_hit
+let hit_object tr = if tr.first_hit < 0 then -1 else Array.unsafe_get tr.p.index tr.first_hit
 
 (* [Color.to_byte], copied so that no float crosses a module boundary on the
    per-ray path: in dev builds (-opaque) such a call boxes its argument. A
@@ -238,11 +180,34 @@ let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
     else keep tr s i s.far
   end
 
-(* Tests the ray in [s] against the sphere in slot [i], keeping the better
+(* The roots of the shape (not a sphere) in slot [i], by its module's
+   routine, in [s.near] and [s.far]; [false] if it misses. *)
+let shape_roots (p : Prepared.t) s i =
+  let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
+  if k = Shape.triangle || k = Shape.smooth_triangle then Triangle.roots s p.geom o
+  else if k = Shape.plane then Plane.roots s p.geom o
+  else Box.roots s p.geom o
+
+(* Tests the ray in [s] against the shape (not a sphere) in slot [i],
+   keeping the better hit. Secondary rays of the robust mode start off
+   the surface they leave (see [trace]), so no shape is special here. *)
+let shape_test tr s i =
+  if shape_roots tr.p s i then begin
+    let near = s.near in
+    if better tr s i near && s.t_min < near && near < s.t_max then begin
+      s.t <- near;
+      tr.hit <- i
+    end
+    else keep tr s i s.far
+  end
+
+(* Tests the ray in [s] against the object in slot [i], keeping the better
    hit. From the camera ([primary]), [CO] and the textbook's [k3] are
    per-frame constants. *)
-let[@inline] test tr s i ~primary dx dy dz a inv_a two_k1 k1x4 =
+let[@inline] test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4 =
   let p = tr.p in
+  if (not spheres) && Array.unsafe_get p.kind i <> Shape.sphere then shape_test tr s i
+  else
   let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
   let fy = if primary then Array.unsafe_get p.primary_ocy i else s.oy -. Array.unsafe_get p.cy i in
   let fz = if primary then Array.unsafe_get p.primary_ocz i else s.oz -. Array.unsafe_get p.cz i in
@@ -309,7 +274,7 @@ let[@inline] closest_textbook_all tr ~primary =
   let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
   let two_k1 = 2. *. a and k1x4 = 4. *. a in
   let best = ref infinity and hit = ref (-1) in
-  let n = p.n_spheres in
+  let n = p.n_objects in
   tr.counters.tests <- tr.counters.tests + n;
   for i = 0 to n - 1 do
     let fx = if primary then Array.unsafe_get pox i else ox -. Array.unsafe_get cx i in
@@ -343,14 +308,13 @@ let[@inline] closest_textbook_all tr ~primary =
 let closest_textbook_primary tr = closest_textbook_all tr ~primary:true
 let closest_textbook_secondary tr = closest_textbook_all tr ~primary:false
 
-(* The closest sphere hit by the ray in [s], with [t_min < t < t_max]; its
-   [t] is left in [s.t] ([infinity] if none), its slot is returned. *)
-let closest_from tr ~primary =
+(* The closest object hit by the ray in [s], with [t_min < t < t_max]; its
+   [t] is left in [s.t] ([infinity] if none), its slot is returned. One
+   traversal for every kind of object; spheres alone in the document's
+   mode without a hierarchy (the reference scene) take the loop above. *)
+let[@inline] closest_from tr ~primary ~spheres =
   let p = tr.p and s = tr.s in
-  match p.bvh with
-  | None when not p.robust ->
-      if primary then closest_textbook_primary tr else closest_textbook_secondary tr
-  | bvh ->
+      let bvh = p.bvh in
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
       let inv_a = 1. /. a and two_k1 = 2. *. a and k1x4 = 4. *. a in
@@ -358,12 +322,21 @@ let closest_from tr ~primary =
       s.t <- infinity;
       (match bvh with
       | None ->
-          let n = p.n_spheres in
+          let n = p.n_objects in
           tr.counters.tests <- tr.counters.tests + n;
           for i = 0 to n - 1 do
-            test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+            test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
           done
       | Some b ->
+          (* Planes, unbounded, are outside the hierarchy. *)
+          let planes = p.unbounded in
+          let n = Array.length planes in
+          if (not spheres) && n > 0 then begin
+            tr.counters.tests <- tr.counters.tests + n;
+            for j = 0 to n - 1 do
+              shape_test tr s (Array.unsafe_get planes j)
+            done
+          end;
           let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
           let stack = tr.nodes and sp = ref 1 in
           Array.unsafe_set stack 0 0;
@@ -380,7 +353,7 @@ let closest_from tr ~primary =
                 let first = Array.unsafe_get b.first k in
                 tr.counters.tests <- tr.counters.tests + count;
                 for i = first to first + count - 1 do
-                  test tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+                  test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
                 done
               end
               else sp := push_children b stack !sp k dx dy dz
@@ -388,14 +361,39 @@ let closest_from tr ~primary =
           done);
       tr.hit
 
-let closest tr = closest_from tr ~primary:false
-let closest_primary tr = closest_from tr ~primary:true
+(* One copy of the traversal per kind of ray and per kind of scene:
+   spheres alone test no object's kind. *)
+let closest_objects tr = closest_from tr ~primary:false ~spheres:false
+let closest_primary_objects tr = closest_from tr ~primary:true ~spheres:false
 
-(* Does the sphere in slot [i] meet the ray in [s] with
-   [t_min < t < t_max]? The same roots as [closest], so a sphere blocks
+(* Spheres alone, the common case, inline where called, as before there
+   were other shapes. *)
+let[@inline] closest tr =
+  let p = tr.p in
+  if p.textbook_all then closest_textbook_secondary tr
+  else if p.all_spheres then closest_from tr ~primary:false ~spheres:true
+  else closest_objects tr
+
+let[@inline] closest_primary tr =
+  let p = tr.p in
+  if p.textbook_all then closest_textbook_primary tr
+  else if p.all_spheres then closest_from tr ~primary:true ~spheres:true
+  else closest_primary_objects tr
+
+(* Does the shape (not a sphere) in slot [i] meet the ray in [s] with
+   [t_min < t < t_max]? *)
+let shape_blocks tr i =
+  let s = tr.s in
+  shape_roots tr.p s i
+  && ((s.t_min < s.near && s.near < s.t_max) || (s.t_min < s.far && s.far < s.t_max))
+
+(* Does the object in slot [i] meet the ray in [s] with
+   [t_min < t < t_max]? The same roots as [closest], so an object blocks
    exactly when [closest] would have found it. *)
-let[@inline] blocks tr i a inv_a =
+let[@inline] blocks tr i ~spheres a inv_a =
   let p = tr.p and s = tr.s in
+  (not spheres) && Array.unsafe_get p.kind i <> Shape.sphere && shape_blocks tr i
+  || (spheres || Array.unsafe_get p.kind i = Shape.sphere) &&
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let fx = s.ox -. Array.unsafe_get p.cx i
   and fy = s.oy -. Array.unsafe_get p.cy i
@@ -456,7 +454,7 @@ let blocker_textbook_all tr last =
     last
   end
   else begin
-    let n = p.n_spheres in
+    let n = p.n_objects in
     let i = ref 0 in
     while
       !i < n
@@ -469,13 +467,13 @@ let blocker_textbook_all tr last =
   end
 
 (* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
-let first_blocker tr skip a inv_a =
+let[@inline] first_blocker_from tr ~spheres skip a inv_a =
   let p = tr.p and s = tr.s in
   match p.bvh with
   | None ->
-      let n = p.n_spheres in
+      let n = p.n_objects in
       let i = ref 0 in
-      while !i < n && (!i = skip || not (blocks tr !i a inv_a)) do
+      while !i < n && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
         incr i
       done;
       tr.counters.tests <- tr.counters.tests + !i + 1;
@@ -484,6 +482,20 @@ let first_blocker tr skip a inv_a =
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
       let stack = tr.nodes and sp = ref 1 and found = ref (-1) in
+      (* Planes first: they are outside the hierarchy. *)
+      let planes = p.unbounded in
+      let n = Array.length planes in
+      if (not spheres) && n > 0 then begin
+        let j = ref 0 in
+        while !j < n && (Array.unsafe_get planes !j = skip || not (shape_blocks tr (Array.unsafe_get planes !j))) do
+          incr j
+        done;
+        tr.counters.tests <- tr.counters.tests + (if !j < n then !j + 1 else n);
+        if !j < n then begin
+          found := Array.unsafe_get planes !j;
+          sp := 0
+        end
+      end;
       Array.unsafe_set stack 0 0;
       while !sp > 0 do
         decr sp;
@@ -493,7 +505,7 @@ let first_blocker tr skip a inv_a =
           let count = Array.unsafe_get b.count k in
           if count > 0 then begin
             let i = ref (Array.unsafe_get b.first k) and last = Array.unsafe_get b.first k + count in
-            while !i < last && (!i = skip || not (blocks tr !i a inv_a)) do
+            while !i < last && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
               incr i
             done;
             tr.counters.tests <- tr.counters.tests + count;
@@ -507,6 +519,11 @@ let first_blocker tr skip a inv_a =
       done;
       !found
 
+let first_blocker_objects tr skip a inv_a = first_blocker_from tr ~spheres:false skip a inv_a
+
+let[@inline] first_blocker tr skip a inv_a =
+  if tr.p.all_spheres then first_blocker_from tr ~spheres:true skip a inv_a else first_blocker_objects tr skip a inv_a
+
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
    searches for the closest hit as the document does. Same answer. *)
@@ -515,7 +532,7 @@ let shadowed tr l =
   tr.counters.shadow <- tr.counters.shadow + 1;
   let last = Array.unsafe_get tr.last_blocker l in
   if not p.skips then closest tr >= 0
-  else if p.bvh = None && not p.robust then begin
+  else if p.textbook_all then begin
     let blocker = blocker_textbook_all tr last in
     if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
     blocker >= 0
@@ -524,7 +541,10 @@ let shadowed tr l =
     let dx = s.dx and dy = s.dy and dz = s.dz in
     let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
     let inv_a = 1. /. a in
-    if last >= 0 && blocks tr last a inv_a then begin
+    if
+      last >= 0
+      && if p.all_spheres then blocks tr last ~spheres:true a inv_a else blocks tr last ~spheres:false a inv_a
+    then begin
       tr.counters.tests <- tr.counters.tests + 1;
       true
     end
@@ -536,7 +556,7 @@ let shadowed tr l =
 (* The total intensity at the hit point [s.px..] with unit normal [s.nx..]
    and view vector [s.vx..] (sections 7.4 to 7.7), left in [s.intensity].
    The shadow rays reuse [s]'s ray fields. *)
-let lighting tr ~shiny ~specular_of i =
+let lighting tr ~shiny ~specular_of m =
   let p = tr.p and s = tr.s in
   let px = s.px and py = s.py and pz = s.pz in
   let nx = s.nx and ny = s.ny and nz = s.nz in
@@ -583,8 +603,8 @@ let lighting tr ~shiny ~specular_of i =
             let cos = r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v) in
             (* Below the sphere's threshold, cos^s is exactly 0 and adds
                nothing: pow is not called (Prepared.specular_zero). *)
-            if cos > Array.unsafe_get p.specular_zero i then
-              s.intensity <- s.intensity +. (li *. Float.pow cos (Array.unsafe_get specular_of i))
+            if cos > Array.unsafe_get p.specular_zero m then
+              s.intensity <- s.intensity +. (li *. Float.pow cos (Array.unsafe_get specular_of m))
           end
         end
       end
@@ -642,8 +662,62 @@ let primary_hit tr =
     s.t <- infinity;
     tr.counters.tests <- tr.counters.tests + 1;
     (* The same test as [closest_primary] makes of that sphere: the same t. *)
-    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true dx dy dz a (1. /. a) (2. *. a) (4. *. a);
+    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres:false dx dy dz a (1. /. a) (2. *. a) (4. *. a);
     if tr.hit >= 0 then tr.hit else closest_primary tr
+  end
+
+(* [64 u]: the hit point [O + t D] of a plane, triangle or box lies within
+   [32 u (|O| + |P| + extent)] of the surface (the shapes' stated bounds,
+   plus the rounding of [P]); twice that leaves the secondary ray's own
+   root on the surface (error [16 u (|P| + extent)] at most) negative. *)
+let offset_bound = 32. *. epsilon_float
+
+(* The hit point [s.px, s.py, s.pz] on the shape (not a sphere) in slot
+   [i], for the ray in [s]: its normal, turned toward the ray (planes and
+   triangles are seen from both sides, and a box from inside shows its
+   walls' inner sides), and the view vector, in [s]. In the robust mode,
+   the point is then moved off the surface, along the normal toward the
+   ray's side, by a bound on its rounding error (Ray Tracing Gems,
+   chapter 6): shadow and mirror rays leave from there, and their roots on
+   this surface, or on any surface through the same point, are negative
+   whatever the angle, with no constant tied to the scene's scale. *)
+let shape_hit tr i =
+  let p = tr.p and s = tr.s in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let px = s.px and py = s.py and pz = s.pz in
+  let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
+  if k = Shape.triangle || k = Shape.smooth_triangle then Triangle.normal s p.geom o
+  else if k = Shape.plane then Plane.normal s p.geom o
+  else Box.normal s p.geom o;
+  let flip = (s.nx *. dx) +. (s.ny *. dy) +. (s.nz *. dz) > 0. in
+  if flip then begin
+    s.nx <- -.s.nx;
+    s.ny <- -.s.ny;
+    s.nz <- -.s.nz
+  end;
+  (* The geometric normal, turned toward the ray: the side to start
+     secondary rays on. *)
+  let gx = s.nx and gy = s.ny and gz = s.nz in
+  (* A smooth triangle shades with its interpolated normal, on the side
+     the ray sees. *)
+  if k = Shape.smooth_triangle && Triangle.smooth_normal s p.geom o p.vnormal o && flip then begin
+    s.nx <- -.s.nx;
+    s.ny <- -.s.ny;
+    s.nz <- -.s.nz
+  end;
+  s.vx <- -.dx;
+  s.vy <- -.dy;
+  s.vz <- -.dz;
+  tr.origin_sphere <- -1;
+  if p.robust then begin
+    let size =
+      Float.abs s.ox +. Float.abs s.oy +. Float.abs s.oz +. Float.abs px +. Float.abs py +. Float.abs pz
+      +. Array.unsafe_get p.extent i
+    in
+    let e = offset_bound *. size in
+    s.px <- px +. (e *. gx);
+    s.py <- py +. (e *. gy);
+    s.pz <- pz +. (e *. gz)
   end
 
 (* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
@@ -671,25 +745,34 @@ let trace tr =
       let t = s.t in
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let px = s.ox +. (dx *. t) and py = s.oy +. (dy *. t) and pz = s.oz +. (dz *. t) in
-      let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
-      let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
-      let nx = nx *. inv and ny = ny *. inv and nz = nz *. inv in
-      let vx = -.dx and vy = -.dy and vz = -.dz in
-      s.px <- px;
-      s.py <- py;
-      s.pz <- pz;
-      s.nx <- nx;
-      s.ny <- ny;
-      s.nz <- nz;
-      s.vx <- vx;
-      s.vy <- vy;
-      s.vz <- vz;
-      (* Shadow and mirror rays leave sphere i. *)
-      tr.origin_sphere <- i;
-      lighting tr ~shiny:(Array.unsafe_get p.specular i <> Sphere.matte) ~specular_of:p.specular i;
+      if Array.unsafe_get p.kind i = Shape.sphere then begin
+        let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
+        let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+        s.px <- px;
+        s.py <- py;
+        s.pz <- pz;
+        s.nx <- nx *. inv;
+        s.ny <- ny *. inv;
+        s.nz <- nz *. inv;
+        s.vx <- -.dx;
+        s.vy <- -.dy;
+        s.vz <- -.dz;
+        (* Shadow and mirror rays leave sphere i. *)
+        tr.origin_sphere <- i
+      end
+      else begin
+        (* The point goes in [s], not as arguments: floats passed to a
+           function that is not inlined are boxed. *)
+        s.px <- px;
+        s.py <- py;
+        s.pz <- pz;
+        shape_hit tr i
+      end;
+      let m = Array.unsafe_get p.material i in
+      lighting tr ~shiny:(Array.unsafe_get p.specular m <> Sphere.matte) ~specular_of:p.specular m;
       let light = s.intensity in
-      let lr = Array.unsafe_get p.red i *. light and lg = Array.unsafe_get p.green i *. light and lb = Array.unsafe_get p.blue i *. light in
-      let refl = Array.unsafe_get p.reflective i in
+      let lr = Array.unsafe_get p.red m *. light and lg = Array.unsafe_get p.green m *. light and lb = Array.unsafe_get p.blue m *. light in
+      let refl = Array.unsafe_get p.reflective m in
       if refl <= 0. || !levels >= p.depth then begin
         s.r <- lr;
         s.g <- lg;
@@ -707,7 +790,7 @@ let trace tr =
         (* Checking costs two folds of the stack: worth it only when what is
            left weighs less than a unit, or this colour saturates. Skipping
            the check is always exact. *)
-        if p.skips
+        if p.early_stop
            && (!weight *. p.max_channel < 1. || (lr >= 255. && lg >= 255. && lb >= 255.))
            && settled tr !levels
         then begin
@@ -719,10 +802,11 @@ let trace tr =
         end
         else begin
           (* The mirror ray R = 2 <V, N> N - V from the hit point. *)
+          let nx = s.nx and ny = s.ny and nz = s.nz and vx = s.vx and vy = s.vy and vz = s.vz in
           let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
-          s.ox <- px;
-          s.oy <- py;
-          s.oz <- pz;
+          s.ox <- s.px;
+          s.oy <- s.py;
+          s.oz <- s.pz;
           s.dx <- (nx *. k) -. vx;
           s.dy <- (ny *. k) -. vy;
           s.dz <- (nz *. k) -. vz;
@@ -792,9 +876,43 @@ let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
   s.dz <- d.z;
   s.t_min <- tr.p.epsilon;
   s.t_max <- infinity;
-  tr.origin_sphere <- (if from < 0 then -1 else tr.p.slot.(from));
+  tr.origin_sphere <-
+    (if from < 0 || tr.p.kind.(tr.p.slot.(from)) <> Shape.sphere then -1 else tr.p.slot.(from));
   let hit = closest tr in
   if hit < 0 then -1 else tr.p.index.(hit)
+
+(* The roots of object [k]'s test, by the same code as [closest] runs for a
+   secondary ray (not the camera's per-frame constants). *)
+let roots tr k (o : Vec3.t) (d : Vec3.t) =
+  let p = tr.p and s = tr.s in
+  if k < 0 || k >= p.n_scene_objects then invalid_arg "Trace.roots: no such object";
+  let i = p.slot.(k) in
+  Scratch.set_ray s o d;
+  if p.kind.(i) <> Shape.sphere then
+    if shape_roots p s i then (s.near, s.far) else (infinity, infinity)
+  else
+    let fx = s.ox -. p.cx.(i) and fy = s.oy -. p.cy.(i) and fz = s.oz -. p.cz.(i) in
+    let dx = s.dx and dy = s.dy and dz = s.dz in
+    let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+    if p.robust then
+      if robust_roots p s i fx fy fz dx dy dz a (1. /. a) then (s.near, s.far) else (infinity, infinity)
+    else begin
+      (* [consider_textbook]'s roots, kept when in range: the range is opened
+         wide, and the better of the two, then the other, read back. *)
+      s.t_min <- neg_infinity;
+      s.t_max <- infinity;
+      let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+      let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. p.r2.(i) in
+      tr.hit <- -1;
+      s.t <- infinity;
+      consider_textbook tr s i (4. *. a) (2. *. a) k2 k3;
+      if tr.hit < 0 then (infinity, infinity)
+      else
+        let near = s.t in
+        let disc = (k2 *. k2) -. (4. *. a *. k3) in
+        let far = (-.k2 +. sqrt disc) /. (2. *. a) in
+        (near, if far < near then near else far)
+    end
 
 (* Several rays per pixel. The colours are summed here, in the scratch
    record, so that no float crosses a module boundary per sample. *)
@@ -804,7 +922,7 @@ type samples = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.
 let averaging tr = tr.averaging
 
 let pixel_assuming tr gx gy k =
-  if k < -1 || k >= tr.p.n_spheres then invalid_arg "Trace.pixel_assuming: no such sphere";
+  if k < -1 || k >= tr.p.n_scene_objects then invalid_arg "Trace.pixel_assuming: no such object";
   tr.assumed <- k;
   pixel tr gx gy;
   tr.assumed <- no_assumption

@@ -16,8 +16,8 @@ type counters = {
   mutable primary : int;  (** Primary rays cast. *)
   mutable shadow : int;  (** Shadow rays cast. *)
   mutable reflection : int;  (** Mirror rays cast. *)
-  mutable tests : int;  (** Ray-sphere intersection tests. *)
-  mutable box_tests : int;  (** Ray-box tests in the sphere hierarchy. *)
+  mutable tests : int;  (** Ray-object intersection tests. *)
+  mutable box_tests : int;  (** Ray-box tests in the object hierarchy. *)
   mutable early_stops : int;  (** Reflections stopped by the weight bound. *)
 }
 (** The type for work counters. *)
@@ -95,6 +95,16 @@ val cast : t -> from:int -> Vec3.t -> Vec3.t -> int
     [from] is handled exactly: the ray can meet it only by going into it),
     or [-1] if it meets none: the test behind shadow and mirror rays. *)
 
+val roots : t -> int -> Vec3.t -> Vec3.t -> float * float
+(** [roots tr k origin direction] is [(near, far)], the roots that the
+    tracer's own intersection test computes for object [k] (objects
+    counted spheres first, then the scene's shapes) and the secondary ray
+    [origin + t direction]: the cancellation-free roots of a sphere in the
+    robust mode, the textbook roots in the document's mode, the shape
+    module's routine for the others; [(infinity, infinity)] for a miss. It
+    runs the code the renderer runs, for the tests of its accuracy.
+    @raise Invalid_argument if [k] is not an object of the scene. *)
+
 val red : t -> float
 (** [red tr] is the red channel of the last {!pixel}, unclamped. *)
 
@@ -104,9 +114,10 @@ val green : t -> float
 val blue : t -> float
 (** [blue tr] is the blue channel of the last {!pixel}, unclamped. *)
 
-val hit_sphere : t -> int
-(** [hit_sphere tr] is the index of the sphere the primary ray of the last
-    {!pixel} hit, or [-1] if it hit nothing. *)
+val hit_object : t -> int
+(** [hit_object tr] is the index of the object the primary ray of the last
+    {!pixel} hit (objects counted spheres first, then the scene's
+    [shapes]), or [-1] if it hit nothing. *)
 
 (** {1:sampling Several rays per pixel}
 

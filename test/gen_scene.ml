@@ -13,6 +13,31 @@ let sphere =
   let* reflective = oneof [ return 0.; return 1.; float_range 0. 1. ] in
   return (Sphere.v ~specular ~reflective ~center ~radius color)
 
+let material =
+  let* color = map3 Color.v channel channel channel in
+  let* specular = oneof [ return Sphere.matte; return 0.; float_range 0. 1000. ] in
+  let* reflective = oneof [ return 0.; return 1.; float_range 0. 1. ] in
+  return (Material.v ~specular ~reflective color)
+
+(* Planes through the scene's space, at any angle (often a floor or a
+   wall), triangles and boxes in front of the camera. *)
+let shape =
+  let* m = material in
+  let nonzero v = if Vec3.norm2 v < 1e-6 then Vec3.oy else v in
+  oneof
+    [
+      (let* point = map3 Vec3.v (coord (-3.) 3.) (coord (-3.) 3.) (coord 2. 12.) in
+       let* normal = oneof [ return Vec3.oy; return (Vec3.v 0. 0. (-1.)); map nonzero (vec (-1.) 1.) ] in
+       return (Shape.Plane (Plane.v ~point ~normal m)));
+      (let* v0 = map3 Vec3.v (coord (-3.) 3.) (coord (-3.) 3.) (coord 2. 9.) in
+       let* e1 = vec (-2.) 2. and* e2 = vec (-2.) 2. in
+       let tri = Triangle.v v0 (Vec3.add v0 e1) (Vec3.add v0 e2) m in
+       return (match Triangle.validate tri with Ok t -> Shape.Triangle t | Error _ -> Shape.Triangle { tri with v2 = Vec3.add v0 Vec3.oy; v1 = Vec3.add v0 Vec3.ox }));
+      (let* lo = map3 Vec3.v (coord (-3.) 3.) (coord (-3.) 3.) (coord 2. 9.) in
+       let* size = map3 Vec3.v (coord 0.05 2.) (coord 0.05 2.) (coord 0.05 2.) in
+       return (Shape.Box (Box.v ~min:lo ~max:(Vec3.add lo size) m)));
+    ]
+
 let light =
   let* intensity = oneof [ return 0.; float_range 0. 1. ] in
   oneof
@@ -44,6 +69,7 @@ let gen =
   let* background = map3 Color.v channel channel channel in
   let* spheres = list_size (int_range 0 6) sphere in
   let* lights = list_size (int_range 0 4) light in
+  let* shapes = oneof [ return []; list_size (int_range 1 4) shape ] in
   let* camera =
     oneof
       [
@@ -55,7 +81,7 @@ let gen =
   let* camera_path = oneof [ return None; camera_path ] in
   return
     {
-      (Scene.v ~width ~height ~depth ?epsilon ~background ~camera ~spheres ~lights ()) with
+      (Scene.v ~width ~height ~depth ?epsilon ~background ~camera ~spheres ~shapes ~lights ()) with
       epsilon;
       camera_path;
     }
@@ -86,12 +112,17 @@ let crowd =
     else spheres
   in
   let spheres = if around then Sphere.v ~center:Vec3.zero ~radius:0.5 Color.white :: spheres else spheres in
-  return { base with spheres }
+  (* Shapes in the hierarchy too, sometimes with a duplicate. *)
+  let* shapes = oneof [ return []; list_size (int_range 1 12) shape ] in
+  let* dup_shape = bool in
+  let shapes = match shapes with s :: rest when dup_shape -> s :: s :: rest | l -> l in
+  return { base with spheres; shapes = base.shapes @ shapes }
 
 let arbitrary =
   let shrink (s : Scene.t) =
     QCheck.Iter.(
       map (fun spheres -> { s with spheres }) (QCheck.Shrink.list s.spheres)
+      <+> map (fun shapes -> { s with shapes }) (QCheck.Shrink.list s.shapes)
       <+> map (fun lights -> { s with lights }) (QCheck.Shrink.list s.lights))
   in
   QCheck.make ~print:Scene_file.to_string ~shrink gen

@@ -3,7 +3,7 @@
 val gen : Raytrace.Scene.t QCheck.Gen.t
 (** [gen] generates scenes that satisfy {!Raytrace.Scene.validate}: small
     canvases (so that rendering them is quick), 0 to 6 spheres in front of
-    the camera, 0 to 4 lights of every kind, random materials including the
+    the camera, none or 1 to 4 planes, triangles and boxes, 0 to 4 lights of every kind, random materials including the
     edge values (matte, specular 0, reflective 0 and 1), with or without
     epsilon, with or without a camera path of 1 to 4 keys. *)
 
@@ -11,7 +11,8 @@ val crowd : Raytrace.Scene.t QCheck.Gen.t
 (** [crowd] generates scenes of 9 to 80 spheres, more than
     {!Raytrace.Prepared.bvh_threshold}, so that the tracer uses its
     hierarchy: clustered, overlapping, nested and duplicated spheres, often
-    a huge ground sphere, sometimes spheres around the camera. *)
+    a huge ground sphere, sometimes spheres around the camera; often
+    triangles and boxes among them, sometimes duplicated. *)
 
 val arbitrary : Raytrace.Scene.t QCheck.arbitrary
 (** [arbitrary] is {!gen} with a printer (the scene file) and shrinking of

@@ -27,6 +27,7 @@ let () =
       ("render", Test_render.tests);
       ("sampling", Test_sampling.tests);
       ("numerics", Test_numerics.tests);
+      ("shapes", Test_shapes.tests);
       ("bvh", Test_bvh.tests);
       ("antialias", Test_antialias.tests);
       ("progressive", Test_progressive.tests);
@@ -52,4 +53,7 @@ let () =
       ("cli_fuzz", Test_cli_fuzz.tests);
       ("skips", Test_skips.tests);
       ("memory", Test_memory.tests);
+      ("float_scan", Test_float_scan.tests);
+      ("obj_file", Test_obj_file.tests);
+      ("mesh_gen", Test_mesh_gen.tests);
     ]

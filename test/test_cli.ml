@@ -24,6 +24,10 @@ let bad_scenes =
      ":1:61: sphere reflective must lie in [0, 1], got -0.1");
     ("a NaN", "(light ambient (intensity nan))", ":1:27: light ambient intensity must be a finite number, got nan");
     ("missing light position", "(light point (intensity 0.5))", ":1:1: light point is missing its (position ...) field");
+    ("degenerate triangle", "(triangle (vertices (0 0 0) (1 1 1) (2 2 2)) (color 1 2 3))",
+     ":1:11: triangle vertices must not lie on a line");
+    ("missing mesh file", "(mesh (file \"none.obj\") (color 1 2 3))", ":1:7: cannot read mesh file: ");
+    ("bad mesh file", "(mesh (file \"bad.obj\") (color 1 2 3))", ":1:7: ");
   ]
 
 let tests =
@@ -46,6 +50,10 @@ let tests =
         List.iter
           (fun (what, text, expected) ->
             let scene = Filename.concat dir "bad.scene" and out = Filename.concat dir "bad.ppm" in
+            (* An OBJ file with a face beyond its vertices, beside the scene. *)
+            let oc = open_out_bin (Filename.concat dir "bad.obj") in
+            output_string oc "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n";
+            close_out oc;
             let oc = open_out_bin scene in
             output_string oc text;
             close_out oc;
@@ -55,6 +63,8 @@ let tests =
             no_backtrace what err;
             if not (Astring_free.contains err (scene ^ expected)) then
               Alcotest.failf "%s: expected %S in %S" what (scene ^ expected) err;
+            if what = "bad mesh file" && not (Astring_free.contains err "bad.obj:4:7: vertex index 4 is out of range") then
+              Alcotest.failf "the OBJ file's line and column: %S" err;
             Alcotest.(check bool) (what ^ ": no output file") false (Sys.file_exists out))
           bad_scenes);
     Alcotest.test_case "a missing scene file is one line and status 1" `Quick (fun () ->

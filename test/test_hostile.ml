@@ -207,7 +207,9 @@ let tests =
               m);
     Alcotest.test_case "a scene that defeats the hierarchy is stopped once its tests pass the work bound" `Slow
       (fun () ->
-        (* 20000 spheres at one place: no split separates them, and a ray
+        (* 20000 concentric spheres of radii 1 to 1.2 (identical ones would
+           share one slot of the tracer's table, Prepared.n_scene_objects):
+           no split separates them, and a ray
            that meets their box tests all 20000. The estimate: 32 x 32
            pixels x 1 ray x 16 log2 20000 = 16 x 15 spheres = 245760 tests,
            within 1e6. Done: about 130 pixels hit the sphere, 2.6e6 tests. *)
@@ -217,8 +219,9 @@ let tests =
               (camera (position 0 0 0)) (background 0 0 0) (recursion-depth 0)\n\
               (light ambient (intensity 1))\n"
             ^ String.concat ""
-                (List.init 20000 (fun _ ->
-                     "(sphere (center 0 0 5) (radius 1) (color 255 0 0) (specular -1) (reflective 0))\n")))
+                (List.init 20000 (fun i ->
+                     Printf.sprintf "(sphere (center 0 0 5) (radius %s) (color 255 0 0) (specular -1) (reflective 0))\n"
+                       (Float_text.to_string (1. +. (Float.of_int i *. 1e-5))))))
         in
         let out = Filename.concat dir "out.ppm" in
         let env = Array.append [| "RAYTRACE_MAX_WORK=1e6" |] (Unix.environment ()) in
@@ -250,14 +253,14 @@ let tests =
         let code, _, err = Helpers.run ~env (Helpers.raytrace ()) [ "render"; scene; "-o"; out; "--jobs"; "2" ] in
         Alcotest.(check int) ("a raised bound renders: " ^ err) 0 code);
     Alcotest.test_case "the progressive render stops at the work bound too" `Quick (fun () ->
-        (* 2000 coincident spheres, 16 x 16 pixels: estimate 256 x 16 x 11
+        (* 2000 concentric spheres (not identical: those share a slot), 16 x 16 pixels: estimate 256 x 16 x 11
            x (1 + 2 lights) = 135168 tests, within 2e5; a pixel that sees
            the sphere alone does 2000 x 3. *)
         let sphere = List.hd Scene.cgfs.spheres in
         let scene =
           {
             (Scene.with_overrides ~width:16 ~height:16 Scene.cgfs) with
-            spheres = List.init 2000 (fun _ -> sphere);
+            spheres = List.init 2000 (fun i -> { sphere with radius = sphere.radius +. (Float.of_int i *. 1e-5) });
             depth = 0;
           }
         in

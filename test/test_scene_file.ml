@@ -43,9 +43,9 @@ let bad_inputs =
     ("(canvas (width 65536) (height 65536))", "t.scene:1:1: canvas 65536x65536 has 4294967296 pixels, more than the limit of 268435456 (set RAYTRACE_MAX_PIXELS to raise it)");
     ("(recursion-depth -1)", "t.scene:1:18: recursion depth must be >= 0, got -1");
     ("(epsilon 0.001)\n(epsilon 0.01)", "t.scene:2:2: duplicate epsilon form (first given at 1:2); it may appear only once");
-    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere or light (did you mean sphere?)");
+    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh or light (did you mean sphere?)");
     ("sphere", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got sphere");
-    ("()", "t.scene:1:1: empty form (); expected one of canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere or light");
+    ("()", "t.scene:1:1: empty form (); expected one of canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh or light");
     ("(camera (look-at 0 0 0))", "t.scene:1:9: the camera looks at its own position");
     ("(camera (rotation (1 0 0) (1 0 0) (0 0 1)))",
      "t.scene:1:9: camera rotation must be invertible, but its rows are (nearly) linearly dependent");
@@ -78,6 +78,21 @@ let bad_inputs =
      "t.scene:3:2: at frame 1, between the keys of frames 0 and 2, the camera looks at its own position");
     ("(camera-path (frame 0))", "t.scene:1:14: camera-path: expected a keyframe (key (frame N) (position x y z) (look-at x y z))");
   ]
+
+(* Mesh files for the tests, by path: the text of each, read by Obj_file
+   as Scene_file.read_mesh would read the file. *)
+let meshes =
+  [
+    ("dir/quad.obj", "# a unit square\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\ns off\nf 1//1 2//1 3//1 4//1\n");
+    ("dir/bad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 9\n");
+  ]
+
+let load_mesh path =
+  match List.assoc_opt path meshes with
+  | Some text -> Obj_file.of_string ~name:path ~max_vertices:100 ~max_triangles:100 text
+  | None -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s: No such file or directory" path))
+
+let with_mesh text = Result.map Scene.of_valid (Scene_file.of_string ~load_mesh ~file:"dir/t.scene" text)
 
 let tests =
   [
@@ -156,4 +171,69 @@ let tests =
         match Helpers.of_string (Scene_file.to_string s) with
         | Ok s' -> Scene.equal s s'
         | Error (`Msg m) -> QCheck.Test.fail_report m);
+      Alcotest.test_case "the new shapes read with their fields and defaults" `Quick (fun () ->
+        let s =
+          parse
+            "(plane (point 0 -1 0) (normal 0 2 0) (color 1 2 3))\n\
+             (triangle (vertices (-1 0 4) (1 0 4) (0 1.5 4)) (color 4 5 6) (specular 10))\n\
+             (box (min -1 -1 3) (max 1 1 5) (color 7 8 9) (reflective 0.5))"
+        in
+        match s.Scene.shapes with
+        | [ Shape.Plane p; Shape.Triangle t; Shape.Box b ] ->
+            Alcotest.(check (float 0.)) "plane normal as given" 2. p.normal.y;
+            Alcotest.(check (float 0.)) "plane matte" Sphere.matte p.material.specular;
+            Alcotest.(check (float 0.)) "triangle vertex" 1.5 t.v2.y;
+            Alcotest.(check (float 0.)) "triangle specular" 10. t.material.specular;
+            Alcotest.(check (float 0.)) "box reflective" 0.5 b.material.reflective
+        | _ -> Alcotest.fail "expected a plane, a triangle and a box");
+    Alcotest.test_case "bad shapes get one located line" `Quick (fun () ->
+        List.iter
+          (fun (text, expected) -> Alcotest.(check string) text expected (error text))
+          [
+            ("(plane (point 0 0 0) (normal 0 0 0) (color 1 2 3))", "t.scene:1:22: plane normal must not be zero, got (0 0 0)");
+            ("(plane (point 0 0 0) (color 1 2 3))", "t.scene:1:1: plane is missing its (normal ...) field");
+            ("(triangle (vertices (0 0 0) (1 1 1) (2 2 2)) (color 1 2 3))",
+             "t.scene:1:11: triangle vertices must not lie on a line, got (0 0 0) (1 1 1) (2 2 2)");
+            ("(triangle (vertices (0 0 0) (1 1 1)) (color 1 2 3))",
+             "t.scene:1:11: triangle vertices takes 3 vertices, e.g. (-1 0 4) (1 0 4) (0 1.5 4), got 2 values");
+            ("(box (min 0 0 0) (max 1 0 1) (color 1 2 3))",
+             "t.scene:1:18: box min must be below max on every axis, got (0 0 0) and (1 0 1)");
+            ("(box (min 0 0 0) (max 1 1 1) (color 1 2 300))", "t.scene:1:30: box color channels must lie in [0, 255], got (1 2 300)");
+            ("(box (min 0 0 0) (max 1 1 1) (color 1 2 3) (reflective 2))", "t.scene:1:56: box reflective must lie in [0, 1], got 2");
+          ]);
+    Alcotest.test_case "a mesh is read relative to the scene file, placed by scale then translate" `Quick (fun () ->
+        match with_mesh "(mesh (file \"quad.obj\") (color 1 2 3) (scale 2) (translate 10 0 0) (smooth true))" with
+        | Error (`Msg m) -> Alcotest.fail m
+        | Ok s -> (
+            match s.Scene.shapes with
+            | [ Shape.Mesh m ] ->
+                Alcotest.(check string) "source as given" "quad.obj" m.source;
+                Alcotest.(check int) "fan-triangulated" 2 (Mesh.triangle_count m);
+                (* vertex 3 (1 1 0) -> 2 * (1 1 0) + (10 0 0) = (12 2 0) *)
+                Alcotest.(check (float 0.)) "x" 12. m.positions.(6);
+                Alcotest.(check (float 0.)) "y" 2. m.positions.(7);
+                Alcotest.(check int) "skipped: the comment and s" 2 m.skipped;
+                Alcotest.(check bool) "smooth" true m.smooth
+            | _ -> Alcotest.fail "expected one mesh"));
+    Alcotest.test_case "a bad mesh file or form is one located line" `Quick (fun () ->
+        List.iter
+          (fun (text, expected) ->
+            match with_mesh text with
+            | Ok _ -> Alcotest.failf "expected an error for %S" text
+            | Error (`Msg m) -> Alcotest.(check string) text expected m)
+          [
+            ("(mesh (file \"bad.obj\") (color 1 2 3))",
+             "dir/t.scene:1:7: dir/bad.obj:4:7: vertex index 9 is out of range: 3 vertices defined so far");
+            ("(mesh (file \"none.obj\") (color 1 2 3))",
+             "dir/t.scene:1:7: cannot read mesh file: dir/none.obj: No such file or directory");
+            ("(mesh (color 1 2 3))", "dir/t.scene:1:1: mesh is missing its (file ...) field");
+            ("(mesh (file \"quad.obj\") (color 1 2 3) (scale 0))", "dir/t.scene:1:46: mesh scale must be > 0, got 0");
+            ("(mesh (file \"quad.obj\") (color 1 2 3) (smooth yes))", "dir/t.scene:1:47: mesh smooth: expected true or false");
+          ];
+        (* Without a loader, text names no file it can read. *)
+        match Scene_file.of_string ~file:"t.scene" "(mesh (file \"quad.obj\") (color 1 2 3))" with
+        | Ok _ -> Alcotest.fail "a mesh without a loader"
+        | Error (`Msg m) ->
+            Alcotest.(check string) "no loader"
+              "t.scene:1:7: cannot read mesh file quad.obj: this scene was given as text, with no way to read files" m);
   ]

@@ -1,7 +1,25 @@
+(* A mesh file, 64 KiB at a time: the text is never held whole. *)
+let read_mesh path =
+  match open_in_bin path with
+  | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
+  | ic ->
+      Fun.protect
+        ~finally:(fun () -> close_in_noerr ic)
+        (fun () ->
+          let p = Obj_file.create ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
+          let chunk = Bytes.create 65536 in
+          let rec go () =
+            match input ic chunk 0 (Bytes.length chunk) with
+            | 0 -> Obj_file.finish p
+            | n -> ( match Obj_file.feed_bytes p chunk 0 n with Ok () -> go () | Error e -> Error e)
+            | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
+          in
+          go ())
+
 let read_scene ?(limits = Limits.default) path =
   match File_io.read ~check_size:(Limits.check_scene_bytes limits) path with
   | Error e -> Error e
-  | Ok text -> Scene_file.of_string ~limits ~file:path text
+  | Ok text -> Scene_file.of_string ~limits ~load_mesh:read_mesh ~file:path text
 
 let read_ppm ?(limits = Limits.default) path =
   match File_io.read ~check_size:(Ppm.check_file_size ~limits) path with

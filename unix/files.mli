@@ -4,9 +4,16 @@
 
 val read_scene : ?limits:Limits.t -> string -> (Scene.valid, [> `Msg of string ]) result
 (** [read_scene ~limits path] is the scene in file [path]
-    ({!Raytrace.Scene_file.of_string} with [~file:path]); a file larger than the
+    ({!Raytrace.Scene_file.of_string} with [~file:path], its meshes read by
+    {!read_mesh}); a file larger than the
     [`Scene_bytes] bound of [limits] (default {!Raytrace.Limits.default}) is
     refused before it is read. *)
+
+val read_mesh : string -> (Obj_file.t, [ `Msg of string ]) result
+(** [read_mesh path] is the Wavefront OBJ mesh in file [path], read 64 KiB
+    at a time by {!Raytrace.Obj_file.feed_bytes}, with at most
+    {!Raytrace.Limits.max_triangles} vertices and triangles. {!read_scene}
+    reads a scene's meshes with it. *)
 
 val read_ppm : ?limits:Limits.t -> string -> (Image.t, [> `Msg of string ]) result
 (** [read_ppm ~limits path] reads and decodes the PPM file [path]. A file

@@ -1,0 +1,55 @@
+(* How fast Obj_file reads a large OBJ file, and in how much memory: the
+   file read 64 KiB at a time, never whole, as a renderer would.
+
+   dune build --profile release bench/gen.exe bench/obj_load.exe
+   ./_build/default/bench/gen.exe knot --segments 31250 --sides 16 -o /tmp/knot.obj
+   ./_build/default/bench/obj_load.exe /tmp/knot.obj *)
+
+open Raytrace
+
+(* The peak resident memory of this process, from Linux's /proc. *)
+let peak_rss_mb () =
+  match open_in "/proc/self/status" with
+  | exception Sys_error _ -> nan
+  | ic ->
+      let rec go () =
+        match input_line ic with
+        | exception End_of_file -> nan
+        | l when String.length l > 6 && String.sub l 0 6 = "VmHWM:" ->
+            Scanf.sscanf (String.sub l 6 (String.length l - 6)) " %f kB" (fun kb -> kb /. 1024.)
+        | _ -> go ()
+      in
+      let r = go () in
+      close_in ic;
+      r
+
+let () =
+  let file = match Sys.argv with [| _; f |] -> f | _ -> prerr_endline "usage: obj_load FILE.obj"; exit 2 in
+  let ic = open_in_bin file in
+  let size = in_channel_length ic in
+  let t0 = Unix.gettimeofday () in
+  let p = Obj_file.create ~name:file ~max_vertices:max_int ~max_triangles:max_int in
+  let chunk = Bytes.create 65536 in
+  let rec read () =
+    let n = input ic chunk 0 65536 in
+    if n > 0 then
+      match Obj_file.feed_bytes p chunk 0 n with Ok () -> read () | Error (`Msg e) -> prerr_endline e; exit 1
+  in
+  read ();
+  let m = match Obj_file.finish p with Ok m -> m | Error (`Msg e) -> prerr_endline e; exit 1 in
+  let t = Unix.gettimeofday () -. t0 in
+  close_in ic;
+  let tris = Obj_file.triangle_count m in
+  let top_heap = Float.of_int ((Gc.quick_stat ()).top_heap_words * (Sys.word_size / 8)) /. 1048576. in
+  let result_mb =
+    Float.of_int
+      (8 * (Array.length m.positions + Array.length m.normals + Array.length m.triangles + Array.length m.triangle_normals))
+    /. 1048576.
+  in
+  Printf.printf "%s: %.1f MB, %d vertices, %d normals, %d triangles\n" file (Float.of_int size /. 1048576.)
+    (Obj_file.vertex_count m) (Array.length m.normals / 3) tris;
+  Printf.printf "load %.3f s (%.0f MB/s), minor words %.0f (%.1f per line)\n" t (Float.of_int size /. 1048576. /. t)
+    (Gc.minor_words ())
+    (Gc.minor_words () /. Float.of_int (Obj_file.vertex_count m + (Array.length m.normals / 3) + tris));
+  Printf.printf "mesh %.1f MB (%.1f bytes per triangle), peak heap %.1f MB, peak RSS %.1f MB\n" result_mb
+    (result_mb *. 1048576. /. Float.of_int (max 1 tris)) top_heap (peak_rss_mb ())

@@ -1,0 +1,48 @@
+(** Axis-aligned boxes.
+
+    A box is the solid [min <= P <= max], coordinate by coordinate. It is
+    closed: a ray from inside meets its walls from within. *)
+
+(** {1:boxes Boxes} *)
+
+type t = { min : Vec3.t; max : Vec3.t; material : Material.t } [@@deriving show, eq]
+(** The type for boxes: [min] and [max] are opposite corners, in world units. *)
+
+val v : min:Vec3.t -> max:Vec3.t -> Material.t -> t
+(** [v ~min ~max m] is a box, not validated. *)
+
+val validate : t -> (t, [> `Msg of string ]) result
+(** [validate b] checks the corners ({!Limits.check_point}), that
+    [min < max] on every axis, and the material. *)
+
+(** {1:kernel The kernel's routines}
+
+    A box is stored in a float array at an offset [o]: [min] at
+    [o .. o + 2], [max] at [o + 3 .. o + 5]. *)
+
+val store : t -> float array -> int -> unit
+(** [store b g o] writes [b] to [g] at offset [o] (6 floats). *)
+
+val roots : Scratch.t -> float array -> int -> bool
+(** [roots s g o] is [true] iff the line of the ray of [s] meets the box
+    stored at [o] in [g], with the parameters where it enters and leaves
+    it in [s.near <= s.far] (the slab method: for each axis
+    [(min - O) / D] and [(max - O) / D]; an axis along which [D] is [0]
+    bounds nothing if [O] lies between its planes, and misses otherwise).
+
+    Accuracy (checked by the test suite in exact rational arithmetic):
+    each slab parameter is within [2 u] of its exact value relatively
+    ([u = 2^-53]: one rounding in the difference, one in the quotient), so
+    [near] and [far] are, and a ray is reported as a hit or a miss exactly
+    when the exact parameters say so, unless the exact entry and exit lie
+    within [4 u] of each other relatively (the ray grazes an edge). *)
+
+val normal : Scratch.t -> float array -> int -> unit
+(** [normal s g o] sets [s.nx], [s.ny], [s.nz] to the outward unit normal
+    of the face of the box nearest to the hit point [s.px], [s.py],
+    [s.pz] (faces tried in the order -x, +x, -y, +y, -z, +z; the first of
+    equally near ones wins, at edges and corners). *)
+
+val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float * float
+(** [intersect b ~origin ~direction] is [(near, far)] of {!roots}, or
+    [(infinity, infinity)]. *)

@@ -1,0 +1,110 @@
+(* Powers of ten that are exact floats: 10^22 < 2^53 * 2^22 is the last
+   whose odd part 5^22 fits in 53 bits. *)
+let pow10 =
+  [| 1e0; 1e1; 1e2; 1e3; 1e4; 1e5; 1e6; 1e7; 1e8; 1e9; 1e10; 1e11; 1e12; 1e13; 1e14; 1e15;
+     1e16; 1e17; 1e18; 1e19; 1e20; 1e21; 1e22 |]
+
+let two_53 = 1 lsl 53
+
+(* A mantissa beyond 2^53 leaves the fast path, so accumulation stops
+   there: no overflow of the 63-bit int. An exponent beyond this bound is
+   far outside the float range whatever the mantissa's length (below the
+   line-length bound of any caller), and only saturates. *)
+let exponent_cap = 1_000_000
+
+let[@inline] is_digit c = c >= '0' && c <= '9'
+
+(* The correctly rounded [main + corr], given that [corr] is within
+   [2^-40 ulp(main)] of the exact correction; [nan] when that error could
+   change the rounding (the sum lies within [2^-30 ulp] of a rounding
+   boundary, or at a power of two, where the boundaries are not
+   symmetric). [err] is the exact error of [main +. corr] (Knuth's
+   TwoSum). A safety net rather than a path the tests reach: exact ties
+   come with an exact correction, and a 17-digit decimal that is not a
+   tie lies much further than 2^-30 ulp from every tie (the numerator of
+   the difference is a non-zero multiple of a large power of two). *)
+let decide main corr =
+  let r = main +. corr in
+  let bb = r -. main in
+  let err = (main -. (r -. bb)) +. (corr -. bb) in
+  let up = Float.succ r -. r and down = r -. Float.pred r in
+  if up = down && Float.abs err < up *. (0.5 -. 0x1p-30) then r else Float.nan
+
+(* [m 10^e] for [2^53 < m < 2^57] (17 digits, those of doubles printed
+   exactly) and [|e| <= 22], correctly rounded, or [nan] if undecided.
+   [m = a + b] exactly, [a] of 53 bits, [b < 16]. With [e >= 0]: [a p] is
+   exactly [p1 + e1] and [b p] is [p2 + e2] (fma), and the correction
+   [e1 + p2 + e2], below [2^5 ulp(p1)], is summed with an error below
+   [2^-47 ulp(p1)]. With [e < 0]: [q = a / p] leaves the exact remainder
+   [a - q p] (fma; the remainder of a correctly rounded division is a
+   float), and the correction [(rem + b) / p], below [2^5 ulp(q)], is
+   computed with an error below [2^-47 ulp(q)]. *)
+let seventeen_digits m e =
+  let a = Float.of_int (m land lnot 15) and b = Float.of_int (m land 15) in
+  if e >= 0 then begin
+    let p = Array.unsafe_get pow10 e in
+    let p1 = a *. p in
+    let e1 = Float.fma a p (-.p1) in
+    let p2 = b *. p in
+    let e2 = Float.fma b p (-.p2) in
+    decide p1 ((e1 +. p2) +. e2)
+  end
+  else begin
+    let p = Array.unsafe_get pow10 (-e) in
+    let q = a /. p in
+    let rem = Float.fma (-.q) p a in
+    decide q ((rem +. b) /. p)
+  end
+
+let to_float b i j =
+  if i < 0 || j > Bytes.length b || i > j then invalid_arg "Float_scan.to_float";
+  let k = ref i in
+  let neg =
+    if !k < j && Bytes.unsafe_get b !k = '-' then (incr k; true)
+    else (if !k < j && Bytes.unsafe_get b !k = '+' then incr k; false)
+  in
+  let m = ref 0 and e = ref 0 and digits = ref false and exact = ref true in
+  while !k < j && is_digit (Bytes.unsafe_get b !k) do
+    digits := true;
+    if !m <= two_53 then m := (!m * 10) + (Char.code (Bytes.unsafe_get b !k) - 48)
+    else exact := false;
+    incr k
+  done;
+  if !k < j && Bytes.unsafe_get b !k = '.' then begin
+    incr k;
+    while !k < j && is_digit (Bytes.unsafe_get b !k) do
+      digits := true;
+      if !m <= two_53 then begin
+        m := (!m * 10) + (Char.code (Bytes.unsafe_get b !k) - 48);
+        decr e
+      end
+      else exact := false;
+      incr k
+    done
+  end;
+  let ok = ref !digits in
+  if !ok && !k < j && (Bytes.unsafe_get b !k = 'e' || Bytes.unsafe_get b !k = 'E') then begin
+    incr k;
+    let eneg =
+      if !k < j && Bytes.unsafe_get b !k = '-' then (incr k; true)
+      else (if !k < j && Bytes.unsafe_get b !k = '+' then incr k; false)
+    in
+    let x = ref 0 in
+    if not (!k < j && is_digit (Bytes.unsafe_get b !k)) then ok := false;
+    while !k < j && is_digit (Bytes.unsafe_get b !k) do
+      if !x < exponent_cap then x := (!x * 10) + (Char.code (Bytes.unsafe_get b !k) - 48);
+      incr k
+    done;
+    e := if eneg then !e - !x else !e + !x
+  end;
+  if not !ok || !k <> j then Float.nan
+  else if !exact && !m <= two_53 && !e >= -22 && !e <= 22 then begin
+    let f = Float.of_int !m in
+    let r = if !e >= 0 then f *. Array.unsafe_get pow10 !e else f /. Array.unsafe_get pow10 (- !e) in
+    if neg then -.r else r
+  end
+  else
+    let r = if !exact && !e >= -22 && !e <= 22 then seventeen_digits !m !e else Float.nan in
+    if Float.is_nan r then float_of_string (Bytes.sub_string b i (j - i)) else if neg then -.r else r
+
+let of_string s = to_float (Bytes.unsafe_of_string s) 0 (String.length s)

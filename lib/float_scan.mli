@@ -1,0 +1,26 @@
+(** Decimal floats read from bytes without allocating.
+
+    The numbers of large text files (Wavefront OBJ meshes) are read here
+    rather than by [float_of_string], which needs a fresh string per
+    number. The result is always [float_of_string]'s, correctly rounded:
+    simple decimals take Clinger's exact fast path (an integer mantissa of
+    at most 2{^53} and a power of ten of at most 10{^22}, both exact
+    floats, so one correctly rounded multiplication or division gives the
+    correctly rounded result); decimals of 17 digits (doubles printed
+    exactly) with such a power of ten are the integer split in two exact
+    floats, multiplied or divided with the exact error terms of fused
+    multiply-adds, and the sum rounded once when the bound on its error
+    proves the rounding (else they fall back); any other decimal falls
+    back to [float_of_string] on a copy of its bytes. *)
+
+val to_float : Bytes.t -> int -> int -> float
+(** [to_float b i j] is the value of the decimal [b.[i] .. b.[j-1]], equal
+    to [float_of_string] of those bytes, or [nan] if they are not of the
+    form [[+-]?digits[.digits]([eE][+-]?digits)?] with at least one digit
+    in the mantissa (so ["nan"], ["inf"], hexadecimal floats and [_]
+    separators are refused). Overflow gives an infinity, underflow zero,
+    as [float_of_string]. Allocates only on the fallback path.
+    @raise Invalid_argument if [0 <= i <= j <= Bytes.length b] is false. *)
+
+val of_string : string -> float
+(** [of_string s] is {!to_float} on all of [s]. *)

@@ -1,0 +1,31 @@
+(** Materials of the shapes other than spheres (document sections 7.5
+    to 7.8): the colour, specular exponent and reflectivity that a sphere
+    carries in its own fields. *)
+
+type t = {
+  color : Color.t;  (** Channels in [\[0, 255\]]. *)
+  specular : float;  (** [s >= 0], or {!Sphere.matte} for no specular term. *)
+  reflective : float;  (** Reflectivity in [\[0, 1\]]. *)
+}
+[@@deriving show, eq]
+(** The type for materials. *)
+
+val v : ?specular:float -> ?reflective:float -> Color.t -> t
+(** [v ~specular ~reflective color] is a material; [specular] defaults to
+    {!Sphere.matte}, [reflective] to [0]. *)
+
+val check_color : form:string -> Color.t -> (Color.t, [> `Msg of string ]) result
+(** [check_color ~form c] is {!Sphere.check_color}, its message naming [form]. *)
+
+val check_specular : form:string -> float -> (float, [> `Msg of string ]) result
+(** [check_specular ~form s] is {!Sphere.check_specular}, its message naming [form]. *)
+
+val check_reflective : form:string -> float -> (float, [> `Msg of string ]) result
+(** [check_reflective ~form r] is {!Sphere.check_reflective}, its message naming [form]. *)
+
+val validate : form:string -> t -> (t, [> `Msg of string ]) result
+(** [validate ~form m] is [Ok m] if its fields pass the checks of
+    {!Sphere.check_color}, {!Sphere.check_specular} and
+    {!Sphere.check_reflective}, and otherwise the first error, with the
+    word [sphere] of their messages replaced by [form] (e.g.
+    ["plane color channels must lie in [0, 255], got ..."]). *)

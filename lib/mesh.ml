@@ -1,0 +1,98 @@
+type t = {
+  positions : float array;
+  triangles : int array;
+  normals : float array;
+  triangle_normals : int array;
+  smooth : bool;
+  material : Material.t;
+  source : string;
+  scale : float;
+  translate : Vec3.t;
+  skipped : int;
+}
+
+let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
+
+let v ?(smooth = false) ?(scale = 1.) ?(translate = Vec3.zero) ?(source = "") ?(skipped = 0) ~positions ~triangles
+    ~normals ~triangle_normals material =
+  let np = Array.length positions and nt = Array.length triangles and nn = Array.length normals in
+  let in_range n a = Array.for_all (fun i -> i >= 0 && i < n) a in
+  if np mod 3 <> 0 || nt mod 3 <> 0 || nn mod 3 <> 0 || Array.length triangle_normals <> nt then
+    error "mesh arrays have inconsistent lengths"
+  else if nt = 0 then error "mesh %s has no triangle" (if source = "" then "" else source)
+  else if not (in_range (np / 3) triangles) then error "mesh triangle refers to a vertex that does not exist"
+  else if not (Array.for_all (fun i -> i >= -1 && i < nn / 3) triangle_normals) then
+    error "mesh triangle refers to a normal that does not exist"
+  else if not (Float.is_finite scale && scale > 0.) then
+    error "mesh scale must be finite and > 0, got %s" (Float_text.to_string scale)
+  else
+    let placed = Array.make np 0. in
+    let t = [| translate.x; translate.y; translate.z |] in
+    let ok = ref true in
+    for i = 0 to np - 1 do
+      let x = (scale *. positions.(i)) +. t.(i mod 3) in
+      if not (Float.abs x <= Limits.max_coordinate) then ok := false;
+      placed.(i) <- x
+    done;
+    if not !ok then
+      error "mesh coordinates, scaled and translated, must lie within +-%s" (Float_text.to_string Limits.max_coordinate)
+    else
+      Ok { positions = placed; triangles; normals; triangle_normals; smooth; material; source; scale; translate; skipped }
+
+let triangle_count m = Array.length m.triangles / 3
+
+let vertex m k c =
+  let i = 3 * m.triangles.((3 * k) + c) in
+  Vec3.v m.positions.(i) m.positions.(i + 1) m.positions.(i + 2)
+
+let triangle m k = Triangle.v (vertex m k 0) (vertex m k 1) (vertex m k 2) m.material
+
+(* Coordinate [a] of corner [c] of triangle [k]. *)
+let[@inline] coord m k c a = m.positions.((3 * m.triangles.((3 * k) + c)) + a)
+
+(* Floats, not vectors: the kernel asks this of each of millions of
+   triangles. *)
+let degenerate m k =
+  let e1x = coord m k 1 0 -. coord m k 0 0 and e1y = coord m k 1 1 -. coord m k 0 1 and e1z = coord m k 1 2 -. coord m k 0 2 in
+  let e2x = coord m k 2 0 -. coord m k 0 0 and e2y = coord m k 2 1 -. coord m k 0 1 and e2z = coord m k 2 2 -. coord m k 0 2 in
+  let nx = (e1y *. e2z) -. (e1z *. e2y) and ny = (e1z *. e2x) -. (e1x *. e2z) and nz = (e1x *. e2y) -. (e1y *. e2x) in
+  let n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+  not (n > 0. && Float.is_finite n && Float.is_finite (1. /. n))
+
+(* The unit normal of corner [c] of triangle [k] written to [g] at [o],
+   if it has one of a length that can be normalised. *)
+let corner_normal m k c g o =
+  let j = m.triangle_normals.((3 * k) + c) in
+  j >= 0
+  &&
+  let x = m.normals.(3 * j) and y = m.normals.((3 * j) + 1) and z = m.normals.((3 * j) + 2) in
+  let l = sqrt ((x *. x) +. (y *. y) +. (z *. z)) in
+  l > 0. && Float.is_finite l && Float.is_finite (1. /. l)
+  &&
+  let inv = 1. /. l in
+  g.(o) <- x *. inv;
+  g.(o + 1) <- y *. inv;
+  g.(o + 2) <- z *. inv;
+  true
+
+let corner_normals m k g o =
+  m.smooth && corner_normal m k 0 g o && corner_normal m k 1 g (o + 3) && corner_normal m k 2 g (o + 6)
+
+let bounds m k =
+  let lo a = Float.min (coord m k 0 a) (Float.min (coord m k 1 a) (coord m k 2 a)) in
+  let hi a = Float.max (coord m k 0 a) (Float.max (coord m k 1 a) (coord m k 2 a)) in
+  let x0 = lo 0 and y0 = lo 1 and z0 = lo 2 and x1 = hi 0 and y1 = hi 1 and z1 = hi 2 in
+  ( Vec3.v (0.5 *. (x0 +. x1)) (0.5 *. (y0 +. y1)) (0.5 *. (z0 +. z1)),
+    Float.max (x1 -. x0) (Float.max (y1 -. y0) (z1 -. z0)) *. 0.5 )
+
+let equal a b =
+  let fa x y = Array.length x = Array.length y && Array.for_all2 Float.equal x y in
+  let ia x y = Array.length x = Array.length y && Array.for_all2 Int.equal x y in
+  fa a.positions b.positions && ia a.triangles b.triangles && fa a.normals b.normals
+  && ia a.triangle_normals b.triangle_normals && a.smooth = b.smooth && Material.equal a.material b.material
+  && String.equal a.source b.source && Float.equal a.scale b.scale && Vec3.equal a.translate b.translate
+  && a.skipped = b.skipped
+
+let pp ppf m =
+  Format.fprintf ppf "<mesh %S: %d triangles, scale %s, translate %a%s>" m.source (triangle_count m)
+    (Float_text.to_string m.scale) Vec3.pp m.translate (if m.smooth then ", smooth" else "")

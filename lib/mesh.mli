@@ -1,0 +1,81 @@
+(** Triangle meshes, as flat arrays.
+
+    A mesh is many triangles that share vertices, with one material, an
+    optional normal per triangle corner for smooth shading, and the
+    placement of its file in the scene ([scale], then [translate]). The
+    kernel stores each of its triangles as a {!Triangle} of its own, so
+    that meshes share the watertight test, the hierarchy and everything
+    else with the other shapes: a shared edge is computed from the same
+    floats in both triangles, and leaks no ray. *)
+
+type t = private {
+  positions : float array;  (** [x y z] per vertex, already scaled and translated. *)
+  triangles : int array;  (** Three 0-based vertex numbers per triangle. *)
+  normals : float array;  (** [x y z] per normal, as given (any length). *)
+  triangle_normals : int array;
+      (** Three 0-based normal numbers per triangle, parallel to
+          [triangles]; [-1] where a corner has none. *)
+  smooth : bool;
+      (** Shade with the normals interpolated across each triangle (where
+          all three corners have a usable one), not the flat normal. *)
+  material : Material.t;
+  source : string;  (** The file it was read from, as the scene names it; [""] if none. *)
+  scale : float;  (** The scale applied to the file's positions. *)
+  translate : Vec3.t;  (** The translation applied after the scale. *)
+  skipped : int;  (** Statements of the file that were skipped (not v, vn or f). *)
+}
+(** The type for meshes. *)
+
+val v :
+  ?smooth:bool ->
+  ?scale:float ->
+  ?translate:Vec3.t ->
+  ?source:string ->
+  ?skipped:int ->
+  positions:float array ->
+  triangles:int array ->
+  normals:float array ->
+  triangle_normals:int array ->
+  Material.t ->
+  (t, [> `Msg of string ]) result
+(** [v ~positions ~triangles ~normals ~triangle_normals m] is the mesh of
+    these arrays (positions as in the file), each position [p] placed at
+    [scale * p + translate] ([scale] defaults to [1], [translate] to zero,
+    [smooth] to [false], [source] to [""], [skipped] to [0]). It is an
+    error if the arrays are inconsistent (lengths not multiples of 3, an
+    index outside its array), if [scale] is not finite and [> 0], if a
+    placed coordinate is beyond {!Limits.max_coordinate}, or if there is
+    no triangle. Degenerate triangles (their vertices on a line) are kept
+    here and dropped by the kernel, which can never hit them. *)
+
+val triangle_count : t -> int
+(** [triangle_count m] is the number of triangles of [m]. *)
+
+val vertex : t -> int -> int -> Vec3.t
+(** [vertex m k c] is corner [c] (0 to 2) of triangle [k], placed. *)
+
+val triangle : t -> int -> Triangle.t
+(** [triangle m k] is triangle [k] of [m], with [m]'s material. *)
+
+val degenerate : t -> int -> bool
+(** [degenerate m k] is [true] iff triangle [k] has no normal: its
+    vertices lie on a line, as {!Triangle.validate} refuses. *)
+
+val corner_normals : t -> int -> float array -> int -> bool
+(** [corner_normals m k g o] writes the unit normals of the three corners
+    of triangle [k] to [g] at [o .. o + 8] and is [true], if [m] is
+    [smooth] and every corner has a normal of a length that can be
+    normalised; otherwise it is [false] (and may have written some of
+    them). *)
+
+val bounds : t -> int -> Vec3.t * float
+(** [bounds m k] is {!Shape.bounds} of triangle [k]: the center and half
+    side of a cube that holds it. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff every field of [a] equals [b]'s, floats
+    compared with [Float.equal]. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf m] prints a summary of [m]: its source, triangle count and
+    placement. *)

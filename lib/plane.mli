@@ -1,0 +1,49 @@
+(** Infinite planes.
+
+    A plane is the set of points [P] with [<P - P0, N> = 0]. It is seen
+    from both sides: shading uses the normal turned toward the incoming
+    ray. *)
+
+(** {1:planes Planes} *)
+
+type t = {
+  point : Vec3.t;  (** [P0], a point of the plane, in world units. *)
+  normal : Vec3.t;  (** [N], not zero; any length (it is normalised when used). *)
+  material : Material.t;
+}
+[@@deriving show, eq]
+(** The type for planes. *)
+
+val v : point:Vec3.t -> normal:Vec3.t -> Material.t -> t
+(** [v ~point ~normal m] is a plane, not validated. *)
+
+val validate : t -> (t, [> `Msg of string ]) result
+(** [validate p] checks the point ({!Limits.check_point}), that the normal is
+    finite and of a length that can be normalised, and the material. *)
+
+(** {1:kernel The kernel's routines}
+
+    A plane is stored in a float array at an offset [o]: [P0] at
+    [o .. o + 2], the unit normal at [o + 3 .. o + 5]. The tracer calls
+    these routines, and so do {!Literal} and the tests. *)
+
+val store : t -> float array -> int -> unit
+(** [store p g o] writes [p] to [g] at offset [o] (6 floats). *)
+
+val roots : Scratch.t -> float array -> int -> bool
+(** [roots s g o] is [true] iff the line of the ray of [s] meets the plane
+    stored at [o] in [g], at [t = <P0 - O, N> / <D, N>], left in [s.near]
+    and [s.far]; [false] (and [infinity] there) when the ray is parallel to
+    the plane.
+
+    Accuracy (checked by the test suite in exact rational arithmetic): the
+    exact point [O + t D] lies within [16 u (|P0 - O| + |t D|)] of the
+    plane ([u = 2^-53]), whatever the angle of the ray: a grazing ray's
+    root is as uncertain as its direction, along its length [|t D|]. *)
+
+val normal : Scratch.t -> float array -> int -> unit
+(** [normal s g o] sets [s.nx], [s.ny], [s.nz] to the unit normal of the
+    plane (the side it was given with). *)
+
+val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float
+(** [intersect p ~origin ~direction] is the root of {!roots}, or [infinity]. *)

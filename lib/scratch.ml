@@ -1,0 +1,48 @@
+type t = {
+  mutable ox : float;
+  mutable oy : float;
+  mutable oz : float;
+  mutable dx : float;
+  mutable dy : float;
+  mutable dz : float;
+  mutable t_min : float;
+  mutable t_max : float;
+  mutable t : float;
+  mutable near : float;
+  mutable far : float;
+  mutable gx : float;
+  mutable gy : float;
+  mutable px : float;
+  mutable py : float;
+  mutable pz : float;
+  mutable nx : float;
+  mutable ny : float;
+  mutable nz : float;
+  mutable vx : float;
+  mutable vy : float;
+  mutable vz : float;
+  mutable intensity : float;
+  mutable r : float;
+  mutable g : float;
+  mutable b : float;
+  mutable acc_r : float;
+  mutable acc_g : float;
+  mutable acc_b : float;
+  mutable offset : float;
+}
+
+let create () =
+  {
+    ox = 0.; oy = 0.; oz = 0.; dx = 0.; dy = 0.; dz = 0.; t_min = 0.; t_max = 0.; t = 0.;
+    near = 0.; far = 0.; gx = 0.; gy = 0.; px = 0.; py = 0.; pz = 0.; nx = 0.; ny = 0.;
+    nz = 0.; vx = 0.; vy = 0.; vz = 0.; intensity = 0.; r = 0.; g = 0.; b = 0.; acc_r = 0.;
+    acc_g = 0.; acc_b = 0.; offset = 0.;
+  }
+
+let set_ray s (o : Vec3.t) (d : Vec3.t) =
+  s.ox <- o.x;
+  s.oy <- o.y;
+  s.oz <- o.z;
+  s.dx <- d.x;
+  s.dy <- d.y;
+  s.dz <- d.z

@@ -1,0 +1,59 @@
+(** The per-ray state of the fast tracer.
+
+    One mutable record of floats per tracer holds the ray being traced, the
+    roots of the last intersection test, the hit point and its normal, and
+    the colour being computed. Every part of the kernel reads and writes
+    it: the traversal ({!Trace}), and the root and normal routines of each
+    shape ({!Sphere}, {!Plane}, {!Triangle}, {!Box}). It sits below them
+    all, so that none of them needs another to reach the ray.
+
+    All its fields are floats, so OCaml stores the record flat and reads
+    and writes its fields without boxing: this is how floats cross
+    function calls on the per-ray path without allocating (OCaml 4.13 has
+    no flambda, and boxes a float returned by a call that is not
+    inlined). *)
+
+type t = {
+  mutable ox : float;  (** Ray origin [O]. *)
+  mutable oy : float;
+  mutable oz : float;
+  mutable dx : float;  (** Ray direction [D], not necessarily unit length. *)
+  mutable dy : float;
+  mutable dz : float;
+  mutable t_min : float;  (** The ray sees hits with [t_min < t < t_max]. *)
+  mutable t_max : float;
+  mutable t : float;  (** Root of the best hit so far, [infinity] for none. *)
+  mutable near : float;
+      (** Roots of the last intersection test, [near <= far]; a flat shape
+          gives [near = far]. *)
+  mutable far : float;
+  mutable gx : float;  (** Canvas point of the primary ray. *)
+  mutable gy : float;
+  mutable px : float;  (** Hit point. *)
+  mutable py : float;
+  mutable pz : float;
+  mutable nx : float;  (** Unit normal at the hit point. *)
+  mutable ny : float;
+  mutable nz : float;
+  mutable vx : float;  (** View vector, [-D]. *)
+  mutable vy : float;
+  mutable vz : float;
+  mutable intensity : float;  (** Light received at the hit point. *)
+  mutable r : float;  (** Colour of the ray, unclamped. *)
+  mutable g : float;
+  mutable b : float;
+  mutable acc_r : float;  (** Sum of clamped sample colours. *)
+  mutable acc_g : float;
+  mutable acc_b : float;
+  mutable offset : float;
+      (** Robust mode: how far secondary rays start off the surface they
+          leave, along its normal (a bound on the rounding error of the
+          hit point; see {!Trace}). *)
+}
+(** The type for per-ray state. *)
+
+val create : unit -> t
+(** [create ()] is a state with every field [0.]. *)
+
+val set_ray : t -> Vec3.t -> Vec3.t -> unit
+(** [set_ray s o d] sets the ray of [s] to [O = o], [D = d]. *)

@@ -1,0 +1,88 @@
+type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t [@@deriving show, eq]
+
+let material = function
+  | Plane p -> p.material
+  | Triangle t -> t.material
+  | Box b -> b.material
+  | Mesh m -> m.material
+
+let validate s =
+  let ( let* ) = Result.bind in
+  match s with
+  | Plane p ->
+      let* p = Plane.validate p in
+      Ok (Plane p)
+  | Triangle t ->
+      let* t = Triangle.validate t in
+      Ok (Triangle t)
+  | Box b ->
+      let* b = Box.validate b in
+      Ok (Box b)
+  | Mesh m ->
+      (* Its arrays and placement were checked by [Mesh.v]. *)
+      let* _ = Material.validate ~form:"mesh" m.material in
+      Ok (Mesh m)
+
+let name = function Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh"
+let sphere = 0
+let plane = 1
+let triangle = 2
+let box = 3
+let smooth_triangle = 4
+let one fn = invalid_arg (Printf.sprintf "Shape.%s: a mesh is many objects" fn)
+let kind = function Plane _ -> plane | Triangle _ -> triangle | Box _ -> box | Mesh _ -> one "kind"
+let stride = 9
+
+let store s g o =
+  match s with
+  | Plane p -> Plane.store p g o
+  | Triangle t -> Triangle.store t g o
+  | Box b -> Box.store b g o
+  | Mesh _ -> one "store"
+
+let bounded = function Plane _ -> false | Triangle _ | Box _ | Mesh _ -> true
+
+let cube (lo : Vec3.t) (hi : Vec3.t) =
+  let c = Vec3.smul 0.5 (Vec3.add lo hi) in
+  let h = Float.max (hi.x -. lo.x) (Float.max (hi.y -. lo.y) (hi.z -. lo.z)) *. 0.5 in
+  (c, h)
+
+let bounds = function
+  | Plane _ -> invalid_arg "Shape.bounds: a plane is unbounded"
+  | Mesh _ -> one "bounds"
+  | Box b -> cube b.min b.max
+  | Triangle t ->
+      let lo = Vec3.v (Float.min t.v0.x (Float.min t.v1.x t.v2.x)) (Float.min t.v0.y (Float.min t.v1.y t.v2.y))
+          (Float.min t.v0.z (Float.min t.v1.z t.v2.z)) in
+      let hi = Vec3.v (Float.max t.v0.x (Float.max t.v1.x t.v2.x)) (Float.max t.v0.y (Float.max t.v1.y t.v2.y))
+          (Float.max t.v0.z (Float.max t.v1.z t.v2.z)) in
+      cube lo hi
+
+let with_table s f =
+  let g = Array.make stride 0. and sc = Scratch.create () in
+  store s g 0;
+  f sc g
+
+let roots s ~origin ~direction =
+  with_table s (fun sc g ->
+      Scratch.set_ray sc origin direction;
+      let hit =
+        match s with
+        | Plane _ -> Plane.roots sc g 0
+        | Triangle _ -> Triangle.roots sc g 0
+        | Box _ -> Box.roots sc g 0
+        | Mesh _ -> one "roots"
+      in
+      if hit then (sc.near, sc.far) else (infinity, infinity))
+
+let normal s (p : Vec3.t) =
+  with_table s (fun sc g ->
+      sc.px <- p.x;
+      sc.py <- p.y;
+      sc.pz <- p.z;
+      (match s with
+      | Plane _ -> Plane.normal sc g 0
+      | Triangle _ -> Triangle.normal sc g 0
+      | Box _ -> Box.normal sc g 0
+      | Mesh _ -> one "normal");
+      Vec3.v sc.nx sc.ny sc.nz)

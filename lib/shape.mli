@@ -1,0 +1,68 @@
+(** The shapes besides spheres, as one type.
+
+    The kernel ({!Prepared}, {!Trace}) stores every shape in a table: a
+    kind, and its geometry in a float array ({!stride} floats per shape,
+    written by the shape module's [store]). This module ties the kinds to
+    the shape modules, for the kernel and for {!Literal}. *)
+
+type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t [@@deriving show, eq]
+(** The type for shapes. *)
+
+val material : t -> Material.t
+(** [material s] is the material of [s]. *)
+
+val validate : t -> (t, [> `Msg of string ]) result
+(** [validate s] is the shape module's [validate]. *)
+
+val name : t -> string
+(** [name s] is the scene-file form of [s]: ["plane"], ["triangle"], ["box"] or ["mesh"]. *)
+
+(** {1:kinds Kinds} *)
+
+val sphere : int
+(** [sphere] is [0], the kind of spheres in the kernel's table. *)
+
+val plane : int
+(** [plane] is [1]. *)
+
+val triangle : int
+(** [triangle] is [2]. *)
+
+val box : int
+(** [box] is [3]. *)
+
+val smooth_triangle : int
+(** [smooth_triangle] is [4]: a mesh's triangle shaded with normals
+    interpolated from its corners ({!Triangle.smooth_normal}). *)
+
+val kind : t -> int
+(** [kind s] is the kind of [s].
+    @raise Invalid_argument on a mesh, which is many objects of kind
+    {!triangle} or {!smooth_triangle} (so are {!store}, {!bounds},
+    {!roots} and {!normal}). *)
+
+val stride : int
+(** [stride] is [9], the floats of geometry per shape in the table. *)
+
+val store : t -> float array -> int -> unit
+(** [store s g o] writes the geometry of [s] to [g] at offset [o]. *)
+
+val bounded : t -> bool
+(** [bounded s] is [false] for planes, [true] otherwise. *)
+
+val bounds : t -> Vec3.t * float
+(** [bounds s] is [(c, h)]: the cube of center [c] and half-side [h] holds
+    [s] (for the bounding volume hierarchy).
+    @raise Invalid_argument on a plane. *)
+
+(** {1:readable For the literal tracer} *)
+
+val roots : t -> origin:Vec3.t -> direction:Vec3.t -> float * float
+(** [roots s ~origin ~direction] is [(near, far)], [near <= far], the
+    roots of the ray [origin + t direction] on [s], by the kernel's
+    routine, or [(infinity, infinity)] if it misses. *)
+
+val normal : t -> Vec3.t -> Vec3.t
+(** [normal s p] is the unit normal of [s] at its point [p], by the
+    kernel's routine (outward for boxes; for planes and triangles the side
+    they were given with). *)

@@ -1,0 +1,114 @@
+type t = { v0 : Vec3.t; v1 : Vec3.t; v2 : Vec3.t; material : Material.t } [@@deriving show, eq]
+
+let v v0 v1 v2 material = { v0; v1; v2; material }
+
+let validate tri =
+  let ( let* ) = Result.bind in
+  let* _ = Limits.check_point "triangle vertex" tri.v0 in
+  let* _ = Limits.check_point "triangle vertex" tri.v1 in
+  let* _ = Limits.check_point "triangle vertex" tri.v2 in
+  let n = Vec3.norm (Vec3.cross (Vec3.sub tri.v1 tri.v0) (Vec3.sub tri.v2 tri.v0)) in
+  let* () =
+    if n > 0. && Float.is_finite n && Float.is_finite (1. /. n) then Ok ()
+    else
+      Error
+        (`Msg
+          (Format.asprintf "triangle vertices must not lie on a line, got %a %a %a" Vec3.pp tri.v0
+             Vec3.pp tri.v1 Vec3.pp tri.v2))
+  in
+  let* _ = Material.validate ~form:"triangle" tri.material in
+  Ok tri
+
+let store tri g o =
+  let put k (p : Vec3.t) =
+    g.(o + k) <- p.x;
+    g.(o + k + 1) <- p.y;
+    g.(o + k + 2) <- p.z
+  in
+  put 0 tri.v0;
+  put 3 tri.v1;
+  put 6 tri.v2
+
+(* Coordinate [axis] of vertex [v] (0 to 2) of the triangle at [o],
+   relative to the ray origin. *)
+let[@inline] rel g o v axis origin = Array.unsafe_get g (o + (3 * v) + axis) -. origin
+
+let[@inline] pick axis (x : float) y z = if axis = 0 then x else if axis = 1 then y else z
+
+(* Woop, Benthin and Wald, JCGT 2(1), 2013, section 3, in double precision
+   throughout. kz is the largest axis of D, and kx, ky follow it so that
+   the winding is kept (swapped when D.kz < 0). *)
+let[@inline never] roots (s : Scratch.t) g o =
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let ax = Float.abs dx and ay = Float.abs dy and az = Float.abs dz in
+  let kz = if ax > ay then (if ax > az then 0 else 2) else if ay > az then 1 else 2 in
+  let kx = if kz = 2 then 0 else kz + 1 in
+  let ky = if kx = 2 then 0 else kx + 1 in
+  let dkz = pick kz dx dy dz in
+  let swap = dkz < 0. in
+  let kx = if swap then ky else kx and ky = if swap then kx else ky in
+  let dkx = pick kx dx dy dz and dky = pick ky dx dy dz in
+  let sx = dkx /. dkz and sy = dky /. dkz and sz = 1. /. dkz in
+  let okx = pick kx s.ox s.oy s.oz and oky = pick ky s.ox s.oy s.oz and okz = pick kz s.ox s.oy s.oz in
+  let az_ = rel g o 0 kz okz and bz_ = rel g o 1 kz okz and cz_ = rel g o 2 kz okz in
+  let ax_ = rel g o 0 kx okx -. (sx *. az_) and ay_ = rel g o 0 ky oky -. (sy *. az_) in
+  let bx_ = rel g o 1 kx okx -. (sx *. bz_) and by_ = rel g o 1 ky oky -. (sy *. bz_) in
+  let cx_ = rel g o 2 kx okx -. (sx *. cz_) and cy_ = rel g o 2 ky oky -. (sy *. cz_) in
+  let u = (cx_ *. by_) -. (cy_ *. bx_) in
+  let v = (ax_ *. cy_) -. (ay_ *. cx_) in
+  let w = (bx_ *. ay_) -. (by_ *. ax_) in
+  let det = u +. v +. w in
+  if ((u < 0. || v < 0. || w < 0.) && (u > 0. || v > 0. || w > 0.)) || det = 0. then begin
+    s.near <- infinity;
+    s.far <- infinity;
+    false
+  end
+  else begin
+    let t = ((u *. (sz *. az_)) +. (v *. (sz *. bz_)) +. (w *. (sz *. cz_))) /. det in
+    s.near <- t;
+    s.far <- t;
+    true
+  end
+
+let[@inline never] normal (s : Scratch.t) g o =
+  let e1x = g.(o + 3) -. g.(o) and e1y = g.(o + 4) -. g.(o + 1) and e1z = g.(o + 5) -. g.(o + 2) in
+  let e2x = g.(o + 6) -. g.(o) and e2y = g.(o + 7) -. g.(o + 1) and e2z = g.(o + 8) -. g.(o + 2) in
+  let nx = (e1y *. e2z) -. (e1z *. e2y) and ny = (e1z *. e2x) -. (e1x *. e2z) and nz = (e1x *. e2y) -. (e1y *. e2x) in
+  let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+  s.nx <- nx *. inv;
+  s.ny <- ny *. inv;
+  s.nz <- nz *. inv
+
+(* Barycentric coordinates of P in the triangle by the normal equations of
+   P - v0 = b1 e1 + b2 e2; then the corners' normals weighted by them. *)
+let[@inline never] smooth_normal (s : Scratch.t) g o vn k =
+  let x0 = g.(o) and y0 = g.(o + 1) and z0 = g.(o + 2) in
+  let e1x = g.(o + 3) -. x0 and e1y = g.(o + 4) -. y0 and e1z = g.(o + 5) -. z0 in
+  let e2x = g.(o + 6) -. x0 and e2y = g.(o + 7) -. y0 and e2z = g.(o + 8) -. z0 in
+  let wx = s.px -. x0 and wy = s.py -. y0 and wz = s.pz -. z0 in
+  let d00 = (e1x *. e1x) +. (e1y *. e1y) +. (e1z *. e1z) in
+  let d01 = (e1x *. e2x) +. (e1y *. e2y) +. (e1z *. e2z) in
+  let d11 = (e2x *. e2x) +. (e2y *. e2y) +. (e2z *. e2z) in
+  let d20 = (wx *. e1x) +. (wy *. e1y) +. (wz *. e1z) in
+  let d21 = (wx *. e2x) +. (wy *. e2y) +. (wz *. e2z) in
+  let den = (d00 *. d11) -. (d01 *. d01) in
+  let b1 = ((d11 *. d20) -. (d01 *. d21)) /. den and b2 = ((d00 *. d21) -. (d01 *. d20)) /. den in
+  let b0 = 1. -. b1 -. b2 in
+  let nx = (b0 *. vn.(k)) +. (b1 *. vn.(k + 3)) +. (b2 *. vn.(k + 6)) in
+  let ny = (b0 *. vn.(k + 1)) +. (b1 *. vn.(k + 4)) +. (b2 *. vn.(k + 7)) in
+  let nz = (b0 *. vn.(k + 2)) +. (b1 *. vn.(k + 5)) +. (b2 *. vn.(k + 8)) in
+  let l = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+  if l > 0. && l < infinity then begin
+    let inv = 1. /. l in
+    s.nx <- nx *. inv;
+    s.ny <- ny *. inv;
+    s.nz <- nz *. inv;
+    true
+  end
+  else false
+
+let intersect tri ~origin ~direction =
+  let g = Array.make 9 0. and s = Scratch.create () in
+  store tri g 0;
+  Scratch.set_ray s origin direction;
+  if roots s g 0 then s.near else infinity

@@ -1,0 +1,238 @@
+open Raytrace
+
+let parse ?(max_vertices = 1000) ?(max_triangles = 1000) s =
+  Obj_file.of_string ~name:"t.obj" ~max_vertices ~max_triangles s
+
+let mesh s = match parse s with Ok m -> m | Error (`Msg e) -> Alcotest.failf "refused %S: %s" s e
+let error ?max_vertices ?max_triangles s =
+  match parse ?max_vertices ?max_triangles s with
+  | Ok _ -> Alcotest.failf "accepted %S" s
+  | Error (`Msg e) -> e
+
+let floats = Alcotest.(array (float 0.))
+let ints = Alcotest.(array int)
+
+(* [s] fed in chunks that end at the offsets [cuts] (sorted, in range). *)
+let chunked ?(max_vertices = 1000) ?(max_triangles = 1000) s cuts =
+  let p = Obj_file.create ~name:"t.obj" ~max_vertices ~max_triangles in
+  let rec go start = function
+    | [] -> (match Obj_file.feed p s start (String.length s - start) with Error _ as e -> e | Ok () -> Obj_file.finish p)
+    | c :: rest -> (match Obj_file.feed p s start (c - start) with Error _ as e -> e | Ok () -> go c rest)
+  in
+  go 0 cuts
+
+let same_result a b =
+  match (a, b) with
+  | Ok a, Ok b -> Obj_file.equal a b
+  | Error (`Msg a), Error (`Msg b) -> String.equal a b
+  | _ -> false
+
+let square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+
+(* A text with every construct: CRLF and LF, comments, skipped kinds,
+   all vertex forms, negative indices, a pentagon, a last line without a
+   line end. *)
+let rich =
+  "# a comment\r\nmtllib x.mtl\no thing\ng group\r\n"
+  ^ "v 0 0 0\nv 1.5 0 0 1\nv 1 1 0 0.5 0.25 1\nv -1e1 2.5e-1 .5\r\nv 3. -0 +7\n"
+  ^ "vt 0 0\nvt 1 0\nvn 0 0 1\nvn 0 1 0\ns off\nusemtl red\n"
+  ^ "f 1 2 3\nf 1/1 2/2 3/1\nf 1//1 2//2 3//1\r\nf 1/1/1 2/2/2 3/1/1 4/2/2 5/1/1\n"
+  ^ "f -1 -2 -3\nl 1 2\np 1\n  \t \nfoo bar\nf 1/-1/-1 2//-2 3"
+
+let tests =
+  [
+    Alcotest.test_case "a triangle keeps its positions and 0-based indices" `Quick (fun () ->
+        let m = mesh "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n" in
+        Alcotest.check floats __LOC__ [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] m.positions;
+        Alcotest.check ints __LOC__ [| 0; 1; 2 |] m.triangles;
+        Alcotest.check ints __LOC__ [| -1; -1; -1 |] m.triangle_normals;
+        Alcotest.check floats __LOC__ [||] m.normals;
+        Alcotest.(check int) __LOC__ 0 (Obj_file.skipped_total m));
+    Alcotest.test_case "a quad is two triangles and a pentagon three, fanned from the first vertex" `Quick
+      (fun () ->
+        let m = mesh (square ^ "v 0.5 2 0\nf 1 2 3 4\nf 5 4 3 2 1\n") in
+        (* 1 2 3 4 -> (1 2 3) (1 3 4); 5 4 3 2 1 -> (5 4 3) (5 3 2) (5 2 1); minus 1 each. *)
+        Alcotest.check ints __LOC__ [| 0; 1; 2; 0; 2; 3; 4; 3; 2; 4; 2; 1; 4; 1; 0 |] m.triangles;
+        Alcotest.(check int) __LOC__ 5 (Obj_file.triangle_count m));
+    Alcotest.test_case "negative indices count back from the last one defined so far" `Quick (fun () ->
+        (* After 4 vertices -1 is vertex 4 (0-based 3); after the 5th, -1 is the 5th. *)
+        let m = mesh (square ^ "f -4 -3 -1\nvn 0 0 1\nv 9 9 9\nf -1//-1 -2//1 -5//-1\n") in
+        Alcotest.check ints __LOC__ [| 0; 1; 3; 4; 3; 0 |] m.triangles;
+        Alcotest.check ints __LOC__ [| -1; -1; -1; 0; 0; 0 |] m.triangle_normals);
+    Alcotest.test_case "every vertex form, mixed in one face, gives the same triangles" `Quick (fun () ->
+        let m = mesh (square ^ "vt 0 0\nvn 0 0 1\nvn 0 0 -1\nf 1 2/1 3//2\nf 1/1/1 2/1/2 3/-1/-1\n") in
+        Alcotest.check ints __LOC__ [| 0; 1; 2; 0; 1; 2 |] m.triangles;
+        Alcotest.check ints __LOC__ [| -1; -1; 1; 0; 1; 1 |] m.triangle_normals;
+        Alcotest.check floats __LOC__ [| 0.; 0.; 1.; 0.; 0.; -1. |] m.normals;
+        Alcotest.(check (list (pair string int))) __LOC__ [ ("vt", 1) ] m.skipped);
+    Alcotest.test_case "a # word starts a comment in v, vn and f lines" `Quick (fun () ->
+        let m = mesh "v 0 0 0 # origin\nv 1 0 0 #x\nv 0 1 0\t#\nvn 0 0 1 #up\nf 1//1 2//1 3//1 # a face\n" in
+        Alcotest.check floats __LOC__ [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] m.positions;
+        Alcotest.check ints __LOC__ [| 0; 1; 2 |] m.triangles;
+        Alcotest.(check string) __LOC__ "t.obj:1:7: expected a number, found \"3#x\"" (error "v 1 2 3#x"));
+    Alcotest.test_case "v keeps x y z of v x y z w and of v x y z r g b" `Quick (fun () ->
+        let m = mesh "v 1 2 3 0.5\nv 4 5 6 1 0 0\n" in
+        Alcotest.check floats __LOC__ [| 1.; 2.; 3.; 4.; 5.; 6. |] m.positions);
+    Alcotest.test_case "every other statement is skipped and counted by kind" `Quick (fun () ->
+        let m = mesh rich in
+        Alcotest.(check (list (pair string int)))
+          __LOC__
+          [ ("#", 1); ("vt", 2); ("o", 1); ("g", 1); ("s", 1); ("usemtl", 1); ("mtllib", 1); ("l", 1); ("p", 1); ("other", 1) ]
+          m.skipped;
+        Alcotest.(check int) __LOC__ 11 (Obj_file.skipped_total m));
+    Alcotest.test_case "CRLF line ends, blank lines and a last line without line end are read" `Quick (fun () ->
+        let m = mesh rich in
+        Alcotest.check floats __LOC__ [| 0.; 0.; 0.; 1.5; 0.; 0.; 1.; 1.; 0.; -10.; 0.25; 0.5; 3.; -0.; 7. |] m.positions;
+        (* 1 2 3 three times, the pentagon 1 2 3 4 5 as (1 2 3) (1 3 4) (1 4 5), then
+           -1 -2 -3 = 5 4 3 and the last face 1 2 3 with normals -1 = 2, -2 = 1. *)
+        Alcotest.check ints __LOC__
+          [| 0; 1; 2; 0; 1; 2; 0; 1; 2; 0; 1; 2; 0; 2; 3; 0; 3; 4; 4; 3; 2; 0; 1; 2 |]
+          m.triangles;
+        Alcotest.check ints __LOC__
+          [| -1; -1; -1; -1; -1; -1; 0; 1; 0; 0; 1; 0; 0; 0; 1; 0; 1; 0; -1; -1; -1; 1; 0; -1 |]
+          m.triangle_normals;
+        Alcotest.(check bool) __LOC__ true (Float.sign_bit m.positions.(13)));
+    Alcotest.test_case "every error names file:line:column and what was expected" `Quick (fun () ->
+        let v3 = "v 0 0 0\nv 1 0 0\nv 0 1 0\n" in
+        List.iter
+          (fun (text, expected) -> Alcotest.(check string) (String.escaped text) expected (error text))
+          [
+            ("v 1 2 x", "t.obj:1:7: expected a number, found \"x\"");
+            ("v 1 2 1.5.5", "t.obj:1:7: expected a number, found \"1.5.5\"");
+            ("v 1 2 3e", "t.obj:1:7: expected a number, found \"3e\"");
+            ("\n\nv 1 nan 3", "t.obj:3:5: expected a finite number, found nan");
+            ("v 1 -inf 3", "t.obj:1:5: expected a finite number, found -inf");
+            ("v 1 2 1e400", "t.obj:1:7: number 1e400 is too large (infinite as a float)");
+            ("v 1 2", "t.obj:1:6: expected 3 numbers (v x y z), found 2");
+            ("vn 1 2\r\n", "t.obj:1:7: expected 3 numbers (vn x y z), found 2");
+            ("vn 1 2 3 4", "t.obj:1:10: expected at most 3 numbers (vn x y z), found \"4\"");
+            ("v 1 2 3 4 5", "t.obj:1:12: expected x y z [w] or x y z r g b, found 5 numbers");
+            ("v 1 2 3 4 5 6 7 8", "t.obj:1:17: expected at most 7 numbers (v x y z [w]), found \"8\"");
+            (v3 ^ "f 1 2 0", "t.obj:4:7: vertex index 0 (indices start at 1, or -1 for the last)");
+            (v3 ^ "f 1 2 4", "t.obj:4:7: vertex index 4 is out of range: 3 vertices defined so far");
+            (v3 ^ "f 1 -4 2", "t.obj:4:5: vertex index -4 is out of range: 3 vertices defined so far");
+            (v3 ^ "f 1 2 99999999999999999999999", "t.obj:4:7: vertex index 99999999999999999999999 is out of range: 3 vertices defined so far");
+            (v3 ^ "f 1 2 3/1", "t.obj:4:9: texture index 1 is out of range: 0 textures defined so far");
+            (v3 ^ "vn 0 0 1\nf 1//1 2//2 3", "t.obj:5:11: normal index 2 is out of range: 1 normal defined so far");
+            (v3 ^ "f 1 2 3x", "t.obj:4:8: expected a space or the end of the line after a face vertex, found \"x\"");
+            (v3 ^ "f a 2 3", "t.obj:4:3: expected a vertex index, found \"a\"");
+            (v3 ^ "f 1 - 3", "t.obj:4:5: expected a vertex index, found \"-\"");
+            (v3 ^ "f 1/0 2 3", "t.obj:4:5: texture index 0 (indices start at 1, or -1 for the last)");
+            (v3 ^ "  f 1 2", "t.obj:4:3: a face needs at least 3 vertices, found 2");
+            (v3 ^ "f", "t.obj:4:1: a face needs at least 3 vertices, found 0");
+          ]);
+    Alcotest.test_case "the caller's bounds on vertices, normals and triangles are errors" `Quick (fun () ->
+        Alcotest.(check string) __LOC__ "t.obj:3:1: more than 2 vertices (the limit of vertices)"
+          (error ~max_vertices:2 "v 0 0 0\nv 1 1 1\nv 2 2 2\n");
+        Alcotest.(check string) __LOC__ "t.obj:3:2: more than 2 normals (the limit of vertices)"
+          (error ~max_vertices:2 "vn 0 0 1\nvn 1 1 1\n vn 2 2 2\n");
+        Alcotest.(check string) __LOC__ "t.obj:6:1: more than 2 triangles (the limit of triangles)"
+          (error ~max_triangles:2 (square ^ "f 1 2 3\nf 1 2 3 4\n"));
+        Alcotest.(check int) __LOC__ 2 (Obj_file.triangle_count (mesh (square ^ "f 1 2 3 4\n"))));
+    Alcotest.test_case "a line longer than max_line_bytes is refused, whole or in chunks" `Quick (fun () ->
+        let long = "v 0 0 0\n#" ^ String.make Obj_file.max_line_bytes ' ' ^ "\nv 1 1 1\n" in
+        let e = error long in
+        Alcotest.(check bool) e true (String.length e > 12 && String.sub e 0 12 = "t.obj:2:1048");
+        let cuts = List.init 16 (fun k -> (k * 65536) + 3) in
+        match chunked long cuts with
+        | Ok _ -> Alcotest.fail "chunked: accepted"
+        | Error (`Msg e) -> Alcotest.(check bool) e true (String.sub e 0 8 = "t.obj:2:"));
+    Alcotest.test_case "after an error every feed and finish return it" `Quick (fun () ->
+        let p = Obj_file.create ~name:"t.obj" ~max_vertices:10 ~max_triangles:10 in
+        let first = Obj_file.feed p "v 1 2 x\n" 0 8 in
+        let later = Obj_file.feed p "v 1 2 3\n" 0 8 in
+        let last = Obj_file.finish p in
+        let msg = function Ok _ -> "ok" | Error (`Msg m) -> m in
+        Alcotest.(check string) __LOC__ "t.obj:1:7: expected a number, found \"x\"" (msg first);
+        Alcotest.(check string) __LOC__ (msg first) (msg later);
+        Alcotest.(check string) __LOC__ (msg first) (match last with Ok _ -> "ok" | Error (`Msg m) -> m));
+    Alcotest.test_case "an empty text is an empty mesh" `Quick (fun () ->
+        let m = mesh "" in
+        Alcotest.(check int) __LOC__ 0 (Obj_file.vertex_count m + Obj_file.triangle_count m));
+    Alcotest.test_case "Obj_file.v refuses arrays that do not make a mesh" `Quick (fun () ->
+        let bad f = match f () with _ -> Alcotest.fail "accepted" | exception Invalid_argument _ -> () in
+        let p = [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] in
+        bad (fun () -> Obj_file.v ~positions:p ~normals:[||] ~triangles:[| 0; 1; 3 |] ~triangle_normals:[| -1; -1; -1 |]);
+        bad (fun () -> Obj_file.v ~positions:p ~normals:[||] ~triangles:[| 0; 1; 2 |] ~triangle_normals:[| -1; -1; 0 |]);
+        bad (fun () -> Obj_file.v ~positions:p ~normals:[||] ~triangles:[| 0; 1 |] ~triangle_normals:[| -1; -1 |]);
+        bad (fun () -> Obj_file.v ~positions:p ~normals:[||] ~triangles:[| 0; 1; 2 |] ~triangle_normals:[||]));
+    Alcotest.test_case "the OBJ text of a mesh reads back equal, floats bit for bit" `Quick (fun () ->
+        let m = mesh rich in
+        let back = mesh (Obj_file.to_string m) in
+        Alcotest.(check bool) __LOC__ true (Obj_file.equal (Obj_file.v ~positions:m.positions ~normals:m.normals
+          ~triangles:m.triangles ~triangle_normals:m.triangle_normals) back);
+        let m = Obj_file.v ~positions:[| 0.1; 1. /. 3.; -1e-300; 4.9e-324; 1.7976931348623157e308; -0.; 1.; 2.; 3. |]
+            ~normals:[||] ~triangles:[| 0; 1; 2 |] ~triangle_normals:[| -1; -1; -1 |] in
+        Alcotest.(check bool) __LOC__ true (Obj_file.equal m (mesh (Obj_file.to_string m))));
+    Helpers.qcheck ~count:300 "chunks cut anywhere read as the whole text, errors included"
+      QCheck.(pair (int_range 0 3) (small_list (int_bound 10_000)))
+      (fun (variant, cuts) ->
+        let text =
+          match variant with
+          | 0 -> rich
+          | 1 -> rich ^ "\r\n"
+          | 2 -> rich ^ "\nv 1 2 3\nf 1 2 9\n"  (* an error on the last line *)
+          | _ -> String.concat "\r\n" (List.init 20 (fun k -> Printf.sprintf "v %d.25 -%de-3 %d" k k (k * 7))) ^ "\nf 1 2 3 4 5 6\r\n"
+        in
+        let n = String.length text in
+        let cuts = List.sort_uniq compare (List.map (fun c -> c mod (n + 1)) cuts) in
+        same_result (parse text) (chunked text cuts));
+    Helpers.qcheck ~count:3000 "any text, of OBJ words or of any bytes, is a mesh or a one-line error"
+      QCheck.(
+        make ~print:String.escaped
+          Gen.(
+            oneof
+              [
+                map (String.concat "")
+                  (list_size (int_bound 60)
+                     (oneofl
+                        [ "v"; "vn"; "vt"; "f"; " "; "\t"; "\n"; "\r\n"; "\r"; "/"; "//"; "-"; "1"; "2"; "-1"; "0";
+                          "3"; "1.5"; "e"; "."; "#"; "nan"; "9999999999999999999999"; "\000"; "o x"; "\255" ]));
+                string_size ~gen:char (int_bound 200);
+              ]))
+      (fun text ->
+        match parse ~max_vertices:5 ~max_triangles:5 text with
+        | Ok m -> Obj_file.vertex_count m <= 5 && Obj_file.triangle_count m <= 5
+        | Error (`Msg e) ->
+            String.length e > 6 && String.sub e 0 6 = "t.obj:" && not (String.contains e '\n' || String.contains e '\r'));
+    Alcotest.test_case "one byte at a time reads as the whole text" `Quick (fun () ->
+        List.iter
+          (fun text ->
+            let cuts = List.init (String.length text) Fun.id in
+            Alcotest.(check bool) __LOC__ true (same_result (parse text) (chunked text cuts)))
+          [ rich; rich ^ "\n"; "v 1 2 3\r"; "v 1 2 3\r\n"; square ^ "f 1 2 3 4 5" ]);
+    Alcotest.test_case "feed_bytes reads from a buffer the caller then reuses" `Quick (fun () ->
+        let p = Obj_file.create ~name:"t.obj" ~max_vertices:10 ~max_triangles:10 in
+        let buf = Bytes.create 7 in
+        let text = square ^ "f 1 2 3 4\n" in
+        let k = ref 0 in
+        while !k < String.length text do
+          let n = min 7 (String.length text - !k) in
+          Bytes.blit_string text !k buf 0 n;
+          (match Obj_file.feed_bytes p buf 0 n with Ok () -> () | Error (`Msg e) -> Alcotest.fail e);
+          Bytes.fill buf 0 7 'X';
+          k := !k + n
+        done;
+        match Obj_file.finish p with
+        | Error (`Msg e) -> Alcotest.fail e
+        | Ok m -> Alcotest.(check bool) __LOC__ true (Obj_file.equal m (mesh text)));
+    Alcotest.test_case "reading a large mesh allocates no string per number" `Quick (fun () ->
+        let lines = 20_000 in
+        let b = Buffer.create (lines * 40) in
+        for k = 1 to lines do
+          Printf.bprintf b "v %d.5 -0.%d 1e-%d\n" k k (k mod 20)
+        done;
+        Buffer.add_string b "vt 0 0\nvn 0 0 1\n";
+        for k = 3 to lines do
+          Printf.bprintf b "f %d/1 %d//1 -%d\n" k (k - 1) (k - 2)
+        done;
+        let text = Buffer.contents b in
+        let before = Gc.minor_words () in
+        let m = parse ~max_vertices:lines ~max_triangles:lines text in
+        let words = Gc.minor_words () -. before in
+        (match m with Ok m -> Alcotest.(check int) __LOC__ (lines - 2) (Obj_file.triangle_count m) | Error (`Msg e) -> Alcotest.fail e);
+        (* A string per token would be 3 words for each of the 3 numbers and
+           3 indices of a line; floats boxed between functions take 2. *)
+        let per_line = words /. Float.of_int (2 * lines) in
+        Alcotest.(check bool) (Printf.sprintf "%.2f minor words per line" per_line) true (per_line < 6.));
+  ]
