@@ -5,8 +5,17 @@
     written by the shape module's [store]). This module ties the kinds to
     the shape modules, for the kernel and for {!Literal}. *)
 
-type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t [@@deriving show, eq]
+type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t [@@deriving eq]
 (** The type for shapes. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf s] prints [s] as its form in the scene-file syntax ([plane],
+    [triangle], [box] or [mesh]; a mesh as the form that reads its file
+    again), [specular] and [reflective] only when they are not the
+    defaults. *)
+
+val show : t -> string
+(** [show s] is [s] formatted by {!pp}. *)
 
 val material : t -> Material.t
 (** [material s] is the material of [s]. *)
