@@ -87,22 +87,16 @@ let normal s (p : Vec3.t) =
       | Mesh _ -> one "normal");
       Vec3.v sc.nx sc.ny sc.nz)
 
-let pp ppf s =
-  (match s with
-  | Plane p -> Format.fprintf ppf "(plane (point %a) (normal %a)" Vec3.pp_components p.point Vec3.pp_components p.normal
-  | Triangle t ->
-      Format.fprintf ppf "(triangle (vertices (%a) (%a) (%a))" Vec3.pp_components t.v0 Vec3.pp_components t.v1
-        Vec3.pp_components t.v2
-  | Box b -> Format.fprintf ppf "(box (min %a) (max %a)" Vec3.pp_components b.min Vec3.pp_components b.max
+let pp ppf = function
+  | Plane p -> Plane.pp ppf p
+  | Triangle t -> Triangle.pp ppf t
+  | Box b -> Box.pp ppf b
   | Mesh m ->
       (* The file's text is not kept: a mesh prints as the form that reads
          it again. *)
-      Format.fprintf ppf "(mesh (file %S) (scale %s) (translate %a)%s" m.source (Float_text.to_string m.scale)
+      Format.fprintf ppf "(mesh (file %S) (scale %s) (translate %a)%s %a)" m.source (Float_text.to_string m.scale)
         Vec3.pp_components m.translate
-        (if m.smooth then " (smooth true)" else ""));
-  let m = material s in
-  Format.fprintf ppf " (color %a)" Color.pp_components m.color;
-  Sphere.pp_optional_material ppf ~specular:m.specular ~reflective:m.reflective;
-  Format.pp_print_string ppf ")"
+        (if m.smooth then " (smooth true)" else "")
+        Material.pp m.material
 
 let show s = Format.asprintf "%a" pp s

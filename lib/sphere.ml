@@ -85,9 +85,9 @@ let pp_optional_material ppf ~specular ~reflective =
   if reflective <> 0. then Format.fprintf ppf " (reflective %s)" (Float_text.to_string reflective)
 
 let pp ppf s =
-  Format.fprintf ppf "(sphere (center %a) (radius %s) (color %a)%a)" Vec3.pp_components s.center
-    (Float_text.to_string s.radius) Color.pp_components s.color
-    (fun ppf s -> pp_optional_material ppf ~specular:s.specular ~reflective:s.reflective)
-    s
+  Format.fprintf ppf "(sphere (center %a) (radius %s) (color %a)" Vec3.pp_components s.center
+    (Float_text.to_string s.radius) Color.pp_components s.color;
+  pp_optional_material ppf ~specular:s.specular ~reflective:s.reflective;
+  Format.pp_print_string ppf ")"
 
 let show s = Format.asprintf "%a" pp s
