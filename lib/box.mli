@@ -9,8 +9,8 @@ type t = { min : Vec3.t; max : Vec3.t; material : Material.t }
 (** The type for boxes: [min] and [max] are opposite corners, in world units. *)
 
 val pp : Format.formatter -> t -> unit
-(** [pp ppf x] prints [x] as its [box] form in the scene-file syntax, [specular] and
-    [reflective] only when they are not the defaults. *)
+(** [pp ppf x] prints [x] as its form in the scene-file syntax,
+    [(box (min x y z) (max x y z) ...)], the material's fields as {!Material.pp} prints them. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)

@@ -14,8 +14,8 @@ type t = {
 (** The type for planes. *)
 
 val pp : Format.formatter -> t -> unit
-(** [pp ppf x] prints [x] as its [plane] form in the scene-file syntax, [specular] and
-    [reflective] only when they are not the defaults. *)
+(** [pp ppf x] prints [x] as its form in the scene-file syntax,
+    [(plane (point x y z) (normal x y z) ...)], the material's fields as {!Material.pp} prints them. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)

@@ -20,8 +20,8 @@ type t = { v0 : Vec3.t; v1 : Vec3.t; v2 : Vec3.t; material : Material.t }
 (** The type for triangles, vertices in world units. *)
 
 val pp : Format.formatter -> t -> unit
-(** [pp ppf x] prints [x] as its [triangle] form in the scene-file syntax, [specular] and
-    [reflective] only when they are not the defaults. *)
+(** [pp ppf x] prints [x] as its form in the scene-file syntax,
+    [(triangle (vertices (x y z) (x y z) (x y z)) ...)], the material's fields as {!Material.pp} prints them. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)
