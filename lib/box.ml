@@ -1,4 +1,4 @@
-type t = { min : Vec3.t; max : Vec3.t; material : Material.t } [@@deriving show, eq]
+type t = { min : Vec3.t; max : Vec3.t; material : Material.t } [@@deriving eq]
 
 let v ~min ~max material = { min; max; material }
 
@@ -80,3 +80,9 @@ let intersect b ~origin ~direction =
   store b g 0;
   Scratch.set_ray s origin direction;
   if roots s g 0 then (s.near, s.far) else (infinity, infinity)
+
+let pp ppf b =
+  Format.fprintf ppf "(box (min %a) (max %a) %a)" Vec3.pp_components b.min Vec3.pp_components b.max Material.pp
+    b.material
+
+let show b = Format.asprintf "%a" pp b

@@ -5,8 +5,19 @@
 
 (** {1:boxes Boxes} *)
 
-type t = { min : Vec3.t; max : Vec3.t; material : Material.t } [@@deriving show, eq]
+type t = { min : Vec3.t; max : Vec3.t; material : Material.t }
 (** The type for boxes: [min] and [max] are opposite corners, in world units. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as its form in the scene-file syntax,
+    [(box (min x y z) (max x y z) ...)], the material's fields as {!Material.pp} prints them. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val v : min:Vec3.t -> max:Vec3.t -> Material.t -> t
 (** [v ~min ~max m] is a box, not validated. *)

@@ -1,5 +1,5 @@
-type rotation = { row0 : Vec3.t; row1 : Vec3.t; row2 : Vec3.t } [@@deriving show, eq]
-type t = { position : Vec3.t; rotation : rotation } [@@deriving show, eq]
+type rotation = { row0 : Vec3.t; row1 : Vec3.t; row2 : Vec3.t } [@@deriving eq]
+type t = { position : Vec3.t; rotation : rotation } [@@deriving eq]
 
 let identity = { row0 = Vec3.ox; row1 = Vec3.oy; row2 = Vec3.oz }
 let v ?(rotation = identity) position = { position; rotation }
@@ -46,3 +46,16 @@ let validate cam =
   match (check_position cam.position, check_rotation cam.rotation) with
   | Ok _, Ok _ -> Ok cam
   | (Error e, _ | _, Error e) -> Error e
+
+let pp_rotation ppf m =
+  Format.fprintf ppf "(rotation (%a) (%a) (%a))" Vec3.pp_components m.row0 Vec3.pp_components m.row1
+    Vec3.pp_components m.row2
+
+let show_rotation m = Format.asprintf "%a" pp_rotation m
+
+(* The identity is the default: a scene file leaves it out. *)
+let pp ppf c =
+  if is_identity c.rotation then Format.fprintf ppf "(camera (position %a))" Vec3.pp_components c.position
+  else Format.fprintf ppf "(camera (position %a) %a)" Vec3.pp_components c.position pp_rotation c.rotation
+
+let show c = Format.asprintf "%a" pp c

@@ -13,8 +13,8 @@ type rotation = { row0 : Vec3.t; row1 : Vec3.t; row2 : Vec3.t }
     through viewport point [v] is [(<v, row0>, <v, row1>, <v, row2>)]. *)
 
 val pp_rotation : Format.formatter -> rotation -> unit
-(** [pp_rotation ppf x] prints [x] as an OCaml value (derived), its vectors and colours
-    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+(** [pp_rotation ppf m] prints [m] as the [rotation] field of the scene-file
+    syntax: [(rotation (a b c) (d e f) (g h i))], by rows. *)
 
 val show_rotation : rotation -> string
 (** [show_rotation x] is [x] formatted by {!pp_rotation}. *)
@@ -27,8 +27,8 @@ type t = { position : Vec3.t; rotation : rotation }
 (** The type for cameras: where the camera is, and how it is turned. *)
 
 val pp : Format.formatter -> t -> unit
-(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
-    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+(** [pp ppf c] prints [c] as its [camera] form in the scene-file syntax,
+    without the rotation when it is {!identity}. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)

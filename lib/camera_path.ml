@@ -1,6 +1,6 @@
-type key = { frame : int; position : Vec3.t; look_at : Vec3.t; up : Vec3.t } [@@deriving show, eq]
+type key = { frame : int; position : Vec3.t; look_at : Vec3.t; up : Vec3.t } [@@deriving eq]
 (* An array, so that the key of a frame is found by binary search. *)
-type t = key array [@@deriving show, eq]
+type t = key array [@@deriving eq]
 
 let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let max_frame = 1_000_000
@@ -85,3 +85,19 @@ let camera p f =
   let* k = find () in
   (* Checked when the path was built: every frame in range has a camera. *)
   match look k with Ok c -> Ok c | Error (`Msg e) -> error "frame %d: %s" f e
+
+let pp_key ppf k =
+  Format.fprintf ppf "(key (frame %d) (position %a) (look-at %a)" k.frame Vec3.pp_components k.position
+    Vec3.pp_components k.look_at;
+  (* +y is the default up: a scene file leaves it out. *)
+  if not (Vec3.equal k.up Vec3.oy) then Format.fprintf ppf " (up %a)" Vec3.pp_components k.up;
+  Format.pp_print_string ppf ")"
+
+let show_key k = Format.asprintf "%a" pp_key k
+
+let pp ppf p =
+  Format.pp_print_string ppf "(camera-path";
+  Array.iter (fun k -> Format.fprintf ppf "\n %a" pp_key k) p;
+  Format.pp_print_string ppf ")"
+
+let show p = Format.asprintf "%a" pp p

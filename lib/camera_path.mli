@@ -17,8 +17,8 @@ type key = {
 (** The type for keyframes. *)
 
 val pp_key : Format.formatter -> key -> unit
-(** [pp_key ppf x] prints [x] as an OCaml value (derived), its vectors and colours
-    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+(** [pp_key ppf k] prints [k] as a [key] of the scene-file syntax's
+    [camera-path] form, without [up] when it is {!Vec3.oy}. *)
 
 val show_key : key -> string
 (** [show_key x] is [x] formatted by {!pp_key}. *)
@@ -32,8 +32,8 @@ type t
     increasing. *)
 
 val pp : Format.formatter -> t -> unit
-(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
-    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+(** [pp ppf p] prints [p] as its [camera-path] form in the scene-file
+    syntax, one key a line. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)

@@ -39,8 +39,10 @@ let compare c c' =
   | 0 -> ( match Float.compare c.g c'.g with 0 -> Float.compare c.b c'.b | n -> n)
   | n -> n
 
-let pp ppf c =
-  Format.fprintf ppf "(%s %s %s)" (Float_text.to_string c.r) (Float_text.to_string c.g)
+let pp_components ppf c =
+  Format.fprintf ppf "%s %s %s" (Float_text.to_string c.r) (Float_text.to_string c.g)
     (Float_text.to_string c.b)
+
+let pp ppf c = Format.fprintf ppf "(%a)" pp_components c
 
 let show c = Format.asprintf "%a" pp c

@@ -69,3 +69,7 @@ val pp : Format.formatter -> t -> unit
 
 val show : t -> string
 (** [show c] is [c] formatted by {!pp}. *)
+
+val pp_components : Format.formatter -> t -> unit
+(** [pp_components ppf c] prints [c] as {!pp} does, without the
+    parentheses: [r g b], as the [color] fields of scene forms write it. *)

@@ -2,7 +2,7 @@ type t =
   | Ambient of { intensity : float }
   | Point of { intensity : float; position : Vec3.t }
   | Directional of { intensity : float; direction : Vec3.t }
-[@@deriving show, eq]
+[@@deriving eq]
 
 let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let ambient intensity = Ambient { intensity }
@@ -69,3 +69,14 @@ let to_document = function
   | Point { intensity; position } -> { k = 'p'; i = intensity; v = Some (Vec3.to_tuple position) }
   | Directional { intensity; direction } ->
       { k = 'd'; i = intensity; v = Some (Vec3.to_tuple direction) }
+
+let pp ppf = function
+  | Ambient { intensity } -> Format.fprintf ppf "(light ambient (intensity %s))" (Float_text.to_string intensity)
+  | Point { intensity; position } ->
+      Format.fprintf ppf "(light point (intensity %s) (position %a))" (Float_text.to_string intensity)
+        Vec3.pp_components position
+  | Directional { intensity; direction } ->
+      Format.fprintf ppf "(light directional (intensity %s) (direction %a))" (Float_text.to_string intensity)
+        Vec3.pp_components direction
+
+let show l = Format.asprintf "%a" pp l

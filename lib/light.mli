@@ -18,8 +18,8 @@ type t =
 (** The type for lights. *)
 
 val pp : Format.formatter -> t -> unit
-(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
-    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+(** [pp ppf l] prints [l] as its [light] form in the scene-file syntax,
+    e.g. [(light point (intensity 0.6) (position 2 1 0))]. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)

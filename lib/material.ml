@@ -1,4 +1,4 @@
-type t = { color : Color.t; specular : float; reflective : float } [@@deriving show, eq]
+type t = { color : Color.t; specular : float; reflective : float } [@@deriving eq]
 
 let v ?(specular = Sphere.matte) ?(reflective = 0.) color = { color; specular; reflective }
 
@@ -21,3 +21,9 @@ let validate ~form m =
   let* _ = check_specular ~form m.specular in
   let* _ = check_reflective ~form m.reflective in
   Ok m
+
+let pp ppf m =
+  Format.fprintf ppf "(color %a)" Color.pp_components m.color;
+  Sphere.pp_optional_material ppf ~specular:m.specular ~reflective:m.reflective
+
+let show m = Format.asprintf "%a" pp m

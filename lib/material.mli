@@ -7,8 +7,19 @@ type t = {
   specular : float;  (** [s >= 0], or {!Sphere.matte} for no specular term. *)
   reflective : float;  (** Reflectivity in [\[0, 1\]]. *)
 }
-[@@deriving show, eq]
 (** The type for materials. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf m] prints [m] as the fields that give an object's material in
+    the scene-file syntax: [(color r g b)], then [(specular e)] and
+    [(reflective r)] each only when it is not the default. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val v : ?specular:float -> ?reflective:float -> Color.t -> t
 (** [v ~specular ~reflective color] is a material; [specular] defaults to

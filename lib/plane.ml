@@ -1,4 +1,4 @@
-type t = { point : Vec3.t; normal : Vec3.t; material : Material.t } [@@deriving show, eq]
+type t = { point : Vec3.t; normal : Vec3.t; material : Material.t } [@@deriving eq]
 
 let v ~point ~normal material = { point; normal; material }
 
@@ -53,3 +53,9 @@ let intersect p ~origin ~direction =
   store p g 0;
   Scratch.set_ray s origin direction;
   if roots s g 0 then s.near else infinity
+
+let pp ppf p =
+  Format.fprintf ppf "(plane (point %a) (normal %a) %a)" Vec3.pp_components p.point Vec3.pp_components p.normal
+    Material.pp p.material
+
+let show p = Format.asprintf "%a" pp p

@@ -11,8 +11,18 @@ type t = {
   normal : Vec3.t;  (** [N], not zero; any length (it is normalised when used). *)
   material : Material.t;
 }
-[@@deriving show, eq]
 (** The type for planes. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as its form in the scene-file syntax,
+    [(plane (point x y z) (normal x y z) ...)], the material's fields as {!Material.pp} prints them. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val v : point:Vec3.t -> normal:Vec3.t -> Material.t -> t
 (** [v ~point ~normal m] is a plane, not validated. *)

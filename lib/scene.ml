@@ -11,7 +11,24 @@ type t = {
   lights : Light.t list;
   camera_path : Camera_path.t option;
 }
-[@@deriving show, eq]
+[@@deriving eq]
+
+(* One form a line, in the order a scene file is usually written; the
+   parts print their own forms, so the scene and its parts print alike. *)
+let pp ppf s =
+  let line pp x = Format.fprintf ppf "%a\n" pp x in
+  Format.fprintf ppf "(canvas (width %d) (height %d))\n" s.width s.height;
+  line Viewport.pp s.viewport;
+  line Camera.pp s.camera;
+  Option.iter (line Camera_path.pp) s.camera_path;
+  Format.fprintf ppf "(background %a)\n" Color.pp_components s.background;
+  Format.fprintf ppf "(recursion-depth %d)\n" s.depth;
+  Option.iter (Format.fprintf ppf "(epsilon %s)\n") (Option.map Float_text.to_string s.epsilon);
+  List.iter (line Sphere.pp) s.spheres;
+  List.iter (line Shape.pp) s.shapes;
+  List.iter (line Light.pp) s.lights
+
+let show s = Format.asprintf "%a" pp s
 
 let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt

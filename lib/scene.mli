@@ -30,8 +30,10 @@ type t = {
 (** The type for scenes. *)
 
 val pp : Format.formatter -> t -> unit
-(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
-    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+(** [pp ppf s] prints [s] in the scene-file syntax, one form a line, every
+    number written so that it reads back as the same float:
+    {!Scene_file.of_string} reads [show s] back as a scene equal to [s]
+    (a mesh prints as its [mesh] form, which reads its file again). *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)

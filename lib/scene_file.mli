@@ -58,7 +58,7 @@ val of_string :
     Never raises. *)
 
 val to_string : Scene.t -> string
-(** [to_string s] is [s] in the scene-file syntax, every number written so
+(** [to_string s] is {!Scene.show}[ s]: [s] in the scene-file syntax, every number written so
     that it reads back as the same float: [of_string (to_string s)] is
     [Ok v] with [Scene.of_valid v = s] for every [s] that passes
     {!Scene.validate}. *)

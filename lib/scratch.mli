@@ -11,7 +11,9 @@
     and writes its fields without boxing: this is how floats cross
     function calls on the per-ray path without allocating (OCaml 4.13 has
     no flambda, and boxes a float returned by a call that is not
-    inlined). *)
+    inlined).
+
+    @canonical Raytrace.Private.Scratch *)
 
 type t = {
   mutable ox : float;  (** Ray origin [O]. *)

@@ -1,4 +1,4 @@
-type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t [@@deriving show, eq]
+type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t [@@deriving eq]
 
 let material = function
   | Plane p -> p.material
@@ -86,3 +86,17 @@ let normal s (p : Vec3.t) =
       | Box _ -> Box.normal sc g 0
       | Mesh _ -> one "normal");
       Vec3.v sc.nx sc.ny sc.nz)
+
+let pp ppf = function
+  | Plane p -> Plane.pp ppf p
+  | Triangle t -> Triangle.pp ppf t
+  | Box b -> Box.pp ppf b
+  | Mesh m ->
+      (* The file's text is not kept: a mesh prints as the form that reads
+         it again. *)
+      Format.fprintf ppf "(mesh (file %S) (scale %s) (translate %a)%s %a)" m.source (Float_text.to_string m.scale)
+        Vec3.pp_components m.translate
+        (if m.smooth then " (smooth true)" else "")
+        Material.pp m.material
+
+let show s = Format.asprintf "%a" pp s

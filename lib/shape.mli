@@ -1,12 +1,26 @@
 (** The shapes besides spheres, as one type.
 
-    The kernel ({!Prepared}, {!Trace}) stores every shape in a table: a
+    The kernel ({!Raytrace.Private.Prepared}, {!Raytrace.Private.Trace}) stores every shape in a table: a
     kind, and its geometry in a float array ({!stride} floats per shape,
     written by the shape module's [store]). This module ties the kinds to
     the shape modules, for the kernel and for {!Literal}. *)
 
-type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t [@@deriving show, eq]
+type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t
 (** The type for shapes. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are the same kind of shape with
+    equal fields ({!Plane.equal}, {!Triangle.equal}, {!Box.equal},
+    {!Mesh.equal}). *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf s] prints [s] as its form in the scene-file syntax ([plane],
+    [triangle], [box] or [mesh]; a mesh as the form that reads its file
+    again), [specular] and [reflective] only when they are not the
+    defaults. *)
+
+val show : t -> string
+(** [show s] is [s] formatted by {!pp}. *)
 
 val material : t -> Material.t
 (** [material s] is the material of [s]. *)

@@ -5,7 +5,7 @@ type t = {
   specular : float;
   reflective : float;
 }
-[@@deriving show, eq]
+[@@deriving eq]
 
 let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
@@ -77,3 +77,17 @@ let roots s ~origin ~direction:d =
 let normal s p =
   let n = Vec3.sub p s.center in
   Vec3.smul (1. /. Vec3.norm n) n
+
+(* The optional fields print only when they differ from their defaults, as
+   a scene file would write them. *)
+let pp_optional_material ppf ~specular ~reflective =
+  if specular <> matte then Format.fprintf ppf " (specular %s)" (Float_text.to_string specular);
+  if reflective <> 0. then Format.fprintf ppf " (reflective %s)" (Float_text.to_string reflective)
+
+let pp ppf s =
+  Format.fprintf ppf "(sphere (center %a) (radius %s) (color %a)" Vec3.pp_components s.center
+    (Float_text.to_string s.radius) Color.pp_components s.color;
+  pp_optional_material ppf ~specular:s.specular ~reflective:s.reflective;
+  Format.pp_print_string ppf ")"
+
+let show s = Format.asprintf "%a" pp s

@@ -17,8 +17,8 @@ type t = {
     by {!validate} and by scene loading, not by the constructor. *)
 
 val pp : Format.formatter -> t -> unit
-(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
-    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+(** [pp ppf s] prints [s] as its [sphere] form in the scene-file syntax,
+    [specular] and [reflective] only when they are not the defaults. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)
@@ -37,6 +37,12 @@ val v : ?specular:float -> ?reflective:float -> center:Vec3.t -> radius:float ->
 
 val is_matte : t -> bool
 (** [is_matte s] is [true] iff [s.specular = matte]. *)
+
+val pp_optional_material : Format.formatter -> specular:float -> reflective:float -> unit
+(** [pp_optional_material ppf ~specular ~reflective] prints the fields
+    [ (specular e)] and [ (reflective r)] of an object's form, each with
+    its leading space and only when it is not the default ({!matte},
+    [0]): the spheres' and the other shapes' forms end alike. *)
 
 (** {1:validation Validation}
 

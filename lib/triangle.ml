@@ -1,4 +1,4 @@
-type t = { v0 : Vec3.t; v1 : Vec3.t; v2 : Vec3.t; material : Material.t } [@@deriving show, eq]
+type t = { v0 : Vec3.t; v1 : Vec3.t; v2 : Vec3.t; material : Material.t } [@@deriving eq]
 
 let v v0 v1 v2 material = { v0; v1; v2; material }
 
@@ -112,3 +112,9 @@ let intersect tri ~origin ~direction =
   store tri g 0;
   Scratch.set_ray s origin direction;
   if roots s g 0 then s.near else infinity
+
+let pp ppf t =
+  Format.fprintf ppf "(triangle (vertices (%a) (%a) (%a)) %a)" Vec3.pp_components t.v0 Vec3.pp_components t.v1
+    Vec3.pp_components t.v2 Material.pp t.material
+
+let show t = Format.asprintf "%a" pp t

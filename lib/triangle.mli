@@ -16,8 +16,19 @@
 
 (** {1:triangles Triangles} *)
 
-type t = { v0 : Vec3.t; v1 : Vec3.t; v2 : Vec3.t; material : Material.t } [@@deriving show, eq]
+type t = { v0 : Vec3.t; v1 : Vec3.t; v2 : Vec3.t; material : Material.t }
 (** The type for triangles, vertices in world units. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf x] prints [x] as its form in the scene-file syntax,
+    [(triangle (vertices (x y z) (x y z) (x y z)) ...)], the material's fields as {!Material.pp} prints them. *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
+    compared with [=]. *)
 
 val v : Vec3.t -> Vec3.t -> Vec3.t -> Material.t -> t
 (** [v v0 v1 v2 m] is a triangle, not validated. *)

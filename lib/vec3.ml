@@ -37,8 +37,10 @@ let ( + ) = add
 let ( - ) = sub
 let ( * ) = smul
 
-let pp ppf a =
-  Format.fprintf ppf "(%s %s %s)" (Float_text.to_string a.x)
-    (Float_text.to_string a.y) (Float_text.to_string a.z)
+let pp_components ppf a =
+  Format.fprintf ppf "%s %s %s" (Float_text.to_string a.x) (Float_text.to_string a.y)
+    (Float_text.to_string a.z)
+
+let pp ppf a = Format.fprintf ppf "(%a)" pp_components a
 
 let show a = Format.asprintf "%a" pp a

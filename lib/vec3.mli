@@ -96,3 +96,7 @@ val pp : Format.formatter -> t -> unit
 
 val show : t -> string
 (** [show v] is [v] formatted by {!pp}. *)
+
+val pp_components : Format.formatter -> t -> unit
+(** [pp_components ppf v] prints [v] as {!pp} does, without the
+    parentheses: [x y z], as the fields of scene forms write points. *)

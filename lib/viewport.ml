@@ -1,4 +1,4 @@
-type t = { width : float; height : float; distance : float } [@@deriving show, eq]
+type t = { width : float; height : float; distance : float } [@@deriving eq]
 
 let v ~width ~height ~distance = { width; height; distance }
 let default = v ~width:1. ~height:1. ~distance:1.
@@ -20,3 +20,9 @@ let of_canvas_f vp ~canvas_width ~canvas_height gx gy =
 
 let of_canvas vp ~canvas_width ~canvas_height gx gy =
   of_canvas_f vp ~canvas_width ~canvas_height (Float.of_int gx) (Float.of_int gy)
+
+let pp ppf vp =
+  Format.fprintf ppf "(viewport (width %s) (height %s) (distance %s))" (Float_text.to_string vp.width)
+    (Float_text.to_string vp.height) (Float_text.to_string vp.distance)
+
+let show vp = Format.asprintf "%a" pp vp

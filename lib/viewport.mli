@@ -9,8 +9,8 @@ type t = { width : float; height : float; distance : float }
 (** The type for viewports: [V_w], [V_h] and [d], all positive. *)
 
 val pp : Format.formatter -> t -> unit
-(** [pp ppf x] prints [x] as an OCaml value (derived), its vectors and colours
-    as {!Vec3.pp} and {!Color.pp} print them, in the scene-file syntax. *)
+(** [pp ppf vp] prints [vp] as its [viewport] form in the scene-file
+    syntax. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)

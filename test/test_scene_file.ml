@@ -171,6 +171,35 @@ let tests =
         match Helpers.of_string (Scene_file.to_string s) with
         | Ok s' -> Scene.equal s s'
         | Error (`Msg m) -> QCheck.Test.fail_report m);
+    Helpers.qcheck ~count:300 "Scene.show of any valid scene parses back equal, as Scene_file.to_string's text"
+      Gen_scene.arbitrary (fun s ->
+        let text = Scene.show s in
+        if text <> Scene_file.to_string s then QCheck.Test.fail_report "Scene.show differs from Scene_file.to_string";
+        if text <> Format.asprintf "%a" Scene.pp s then QCheck.Test.fail_report "Scene.show differs from Scene.pp";
+        match Scene_file.of_string text with
+        | Ok v -> Scene.equal s (Scene.of_valid v)
+        | Error (`Msg m) -> QCheck.Test.fail_report m);
+    (* The parts' printers are the scene's: each part's [show] is its form
+       in the scene's text. *)
+    Helpers.qcheck ~count:300 "the parts of a scene print as their forms in Scene.show" Gen_scene.arbitrary (fun s ->
+        let text = Scene.show s in
+        let lines = String.split_on_char '\n' text in
+        let has_line what form =
+          if not (List.mem form lines) then QCheck.Test.fail_reportf "%s prints %S, not a line of:\n%s" what form text
+        in
+        has_line "Viewport.show" (Viewport.show s.viewport);
+        has_line "Camera.show" (Camera.show s.camera);
+        List.iter (fun x -> has_line "Sphere.show" (Sphere.show x)) s.spheres;
+        List.iter (fun x -> has_line "Shape.show" (Shape.show x)) s.shapes;
+        List.iter (fun x -> has_line "Light.show" (Light.show x)) s.lights;
+        Option.iter
+          (fun p ->
+            let form = Camera_path.show p in
+            let n = String.length form and t = String.length text in
+            let rec found i = i + n <= t && (String.sub text i n = form || found (i + 1)) in
+            if not (found 0) then QCheck.Test.fail_reportf "Camera_path.show prints %S, not in:\n%s" form text)
+          s.camera_path;
+        true);
       Alcotest.test_case "the new shapes read with their fields and defaults" `Quick (fun () ->
         let s =
           parse
