@@ -519,39 +519,40 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
       done;
       !found
 
-let first_blocker_objects tr skip a inv_a = first_blocker_from tr ~spheres:false skip a inv_a
+(* With skips and a hierarchy or the robust roots: light [l]'s last
+   blocker first, then the first blocker of the others. One copy per kind
+   of scene, so that spheres alone ask the kind once per shadow ray. *)
+let[@inline] blocked_from tr l ~spheres =
+  let s = tr.s in
+  let last = Array.unsafe_get tr.last_blocker l in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let inv_a = 1. /. a in
+  if last >= 0 && blocks tr last ~spheres a inv_a then begin
+    tr.counters.tests <- tr.counters.tests + 1;
+    true
+  end
+  else
+    let blocker = first_blocker_from tr ~spheres last a inv_a in
+    if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
+    blocker >= 0
 
-let[@inline] first_blocker tr skip a inv_a =
-  if tr.p.all_spheres then first_blocker_from tr ~spheres:true skip a inv_a else first_blocker_objects tr skip a inv_a
+let blocked_objects tr l = blocked_from tr l ~spheres:false
 
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
    searches for the closest hit as the document does. Same answer. *)
 let shadowed tr l =
-  let p = tr.p and s = tr.s in
+  let p = tr.p in
   tr.counters.shadow <- tr.counters.shadow + 1;
-  let last = Array.unsafe_get tr.last_blocker l in
   if not p.skips then closest tr >= 0
   else if p.textbook_all then begin
-    let blocker = blocker_textbook_all tr last in
+    let blocker = blocker_textbook_all tr (Array.unsafe_get tr.last_blocker l) in
     if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
     blocker >= 0
   end
-  else
-    let dx = s.dx and dy = s.dy and dz = s.dz in
-    let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
-    let inv_a = 1. /. a in
-    if
-      last >= 0
-      && if p.all_spheres then blocks tr last ~spheres:true a inv_a else blocks tr last ~spheres:false a inv_a
-    then begin
-      tr.counters.tests <- tr.counters.tests + 1;
-      true
-    end
-    else
-      let blocker = first_blocker tr last a inv_a in
-      if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
-      blocker >= 0
+  else if p.all_spheres then blocked_from tr l ~spheres:true
+  else blocked_objects tr l
 
 (* The total intensity at the hit point [s.px..] with unit normal [s.nx..]
    and view vector [s.vx..] (sections 7.4 to 7.7), left in [s.intensity].
