@@ -380,6 +380,18 @@ let[@inline] closest_primary tr =
   else if p.all_spheres then closest_from tr ~primary:true ~spheres:true
   else closest_primary_objects tr
 
+(* The same, where the caller knows whether the scene has spheres alone
+   (a scene with other shapes is never the textbook one). *)
+let[@inline] closest_in tr ~spheres =
+  if not spheres then closest_objects tr
+  else if tr.p.textbook_all then closest_textbook_secondary tr
+  else closest_from tr ~primary:false ~spheres:true
+
+let[@inline] closest_primary_in tr ~spheres =
+  if not spheres then closest_primary_objects tr
+  else if tr.p.textbook_all then closest_textbook_primary tr
+  else closest_from tr ~primary:true ~spheres:true
+
 (* Does the shape (not a sphere) in slot [i] meet the ray in [s] with
    [t_min < t < t_max]? *)
 let shape_blocks tr i =
@@ -650,9 +662,9 @@ let settled tr levels =
    tested against it alone (against none for [-1]); a ray that misses the
    assumed sphere falls back to the full search. Approximate: a sphere in
    front of the assumed one is not seen. *)
-let primary_hit tr =
+let[@inline] primary_hit_in tr ~spheres =
   let k = tr.assumed in
-  if k = no_assumption then closest_primary tr
+  if k = no_assumption then closest_primary_in tr ~spheres
   else if k < 0 then begin
     tr.hit <- -1;
     tr.s.t <- infinity;
@@ -666,9 +678,12 @@ let primary_hit tr =
     s.t <- infinity;
     tr.counters.tests <- tr.counters.tests + 1;
     (* The same test as [closest_primary] makes of that sphere: the same t. *)
-    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres:false dx dy dz a (1. /. a) (2. *. a) (4. *. a);
-    if tr.hit >= 0 then tr.hit else closest_primary tr
+    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres dx dy dz a (1. /. a) (2. *. a) (4. *. a);
+    if tr.hit >= 0 then tr.hit else closest_primary_in tr ~spheres
   end
+
+let[@inline never] primary_hit_spheres tr = primary_hit_in tr ~spheres:true
+let[@inline never] primary_hit_objects tr = primary_hit_in tr ~spheres:false
 
 (* [64 u]: the hit point [O + t D] of a plane, triangle or box lies within
    [32 u (|O| + |P| + extent)] of the surface (the shapes' stated bounds,
@@ -728,7 +743,7 @@ let shape_hit tr i =
    its local colour and reflectivity and continues with the mirror ray; then
    the stack is folded back from the deepest colour, blend by blend, in the
    same order as the recursion. The ray to trace is in [s]. *)
-let trace tr =
+let[@inline] trace_in tr ~spheres =
   let p = tr.p and s = tr.s in
   let levels = ref 0 and tracing = ref true in
   (* The weight of the colour still to be traced: the product of the
@@ -737,7 +752,7 @@ let trace tr =
   tr.first_hit <- -1;
   tr.origin_sphere <- -1;
   while !tracing do
-    let i = if !levels = 0 then primary_hit tr else closest tr in
+    let i = if !levels = 0 then (if spheres then primary_hit_spheres tr else primary_hit_objects tr) else closest_in tr ~spheres in
     if !levels = 0 then tr.first_hit <- i;
     if i < 0 then begin
       s.r <- p.background.r;
@@ -749,7 +764,7 @@ let trace tr =
       let t = s.t in
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let px = s.ox +. (dx *. t) and py = s.oy +. (dy *. t) and pz = s.oz +. (dz *. t) in
-      if Array.unsafe_get p.kind i = Shape.sphere then begin
+      if spheres || Array.unsafe_get p.kind i = Shape.sphere then begin
         let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
         let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
         s.px <- px;
@@ -828,6 +843,11 @@ let trace tr =
     s.g <- (Array.unsafe_get tr.stack ((4 * l) + 1) *. keep) +. (s.g *. refl);
     s.b <- (Array.unsafe_get tr.stack ((4 * l) + 2) *. keep) +. (s.b *. refl)
   done
+
+(* One copy per kind of scene: spheres alone ask no object its kind. *)
+let trace_spheres tr = trace_in tr ~spheres:true
+let trace_objects tr = trace_in tr ~spheres:false
+let[@inline] trace tr = if tr.p.all_spheres then trace_spheres tr else trace_objects tr
 
 (* The primary ray through canvas point [s.gx, s.gy]. *)
 let primary tr =
