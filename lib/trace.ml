@@ -366,22 +366,8 @@ let[@inline] closest_from tr ~primary ~spheres =
 let closest_objects tr = closest_from tr ~primary:false ~spheres:false
 let closest_primary_objects tr = closest_from tr ~primary:true ~spheres:false
 
-(* Spheres alone, the common case, inline where called, as before there
-   were other shapes. *)
-let[@inline] closest tr =
-  let p = tr.p in
-  if p.textbook_all then closest_textbook_secondary tr
-  else if p.all_spheres then closest_from tr ~primary:false ~spheres:true
-  else closest_objects tr
-
-let[@inline] closest_primary tr =
-  let p = tr.p in
-  if p.textbook_all then closest_textbook_primary tr
-  else if p.all_spheres then closest_from tr ~primary:true ~spheres:true
-  else closest_primary_objects tr
-
-(* The same, where the caller knows whether the scene has spheres alone
-   (a scene with other shapes is never the textbook one). *)
+(* The closest hit where the caller knows whether the scene has spheres
+   alone (a scene with other shapes is never the textbook one). *)
 let[@inline] closest_in tr ~spheres =
   if not spheres then closest_objects tr
   else if tr.p.textbook_all then closest_textbook_secondary tr
@@ -391,6 +377,8 @@ let[@inline] closest_primary_in tr ~spheres =
   if not spheres then closest_primary_objects tr
   else if tr.p.textbook_all then closest_textbook_primary tr
   else closest_from tr ~primary:true ~spheres:true
+
+let[@inline] closest tr = if tr.p.all_spheres then closest_in tr ~spheres:true else closest_in tr ~spheres:false
 
 (* Does the shape (not a sphere) in slot [i] meet the ray in [s] with
    [t_min < t < t_max]? *)
@@ -454,9 +442,9 @@ let[@inline] textbook_blocks cx cy cz r2 ox oy oz dx dy dz t_min t_max two_k1 k1
 (* A blocker of the ray in [s] with the textbook roots and no hierarchy:
    slot [last] first (the blocker of this light's previous shadow ray, if
    [last >= 0]), then the others in scene order; [-1] if none. Not
-   inlined: in [shadowed], beside the other paths, its loop index lost its
-   register (two more instructions per sphere tested; mirrors.scene
-   traced 9 M instructions more than the sphere-only kernel did). *)
+   inlined: inlined in [shadowed], it cost the loop of [first_blocker_from]
+   its index's register (two more instructions per sphere tested: 9 M more
+   on the robust scenes/mirrors.scene). *)
 let[@inline never] blocker_textbook_all tr last =
   let p = tr.p and s = tr.s in
   let cx = p.cx and cy = p.cy and cz = p.cz and r2 = p.r2 in
