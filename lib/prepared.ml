@@ -147,27 +147,36 @@ let iter_objects (scene : Scene.t) ~sphere ~single ~mesh_triangle =
    handling of the sphere a ray leaves must see (or an identical twin,
    with a root of about 1e-16 there, would shadow it). Other objects are
    their own. *)
-let sphere_twins (scene : Scene.t) n =
+let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
   let twin = Array.init n Fun.id in
-  let spheres = Array.of_list scene.spheres in
-  let key k = spheres.(k) in
-  let compare_spheres a b =
-    let (a : Sphere.t) = key a and (b : Sphere.t) = key b in
-    let c = Float.compare a.center.x b.center.x in
-    if c <> 0 then c
-    else
-      let c = Float.compare a.center.y b.center.y in
-      if c <> 0 then c
-      else
-        let c = Float.compare a.center.z b.center.z in
-        if c <> 0 then c else Float.compare a.radius b.radius
+  (* Equal as [Float.compare] has it: -0. is 0. (adding 0. maps it there),
+     and the scene holds no nan. *)
+  let bits x = Int64.to_int (Int64.bits_of_float (x +. 0.)) in
+  (* Coordinates such as 2.5 have only zeros in their low bits: fold the
+     high ones down before the mask takes the low ones. *)
+  let mix h x =
+    let h = h + bits x in
+    let h = (h lxor (h lsr 32)) * 0x2545f4914f6cdd1d in
+    h lxor (h lsr 29)
   in
-  (* Sorted, stably: equal spheres are adjacent, the first in scene order
-     first. *)
-  let order = Array.init (Array.length spheres) Fun.id in
-  Array.stable_sort compare_spheres order;
-  for i = 1 to Array.length order - 1 do
-    if compare_spheres order.(i - 1) order.(i) = 0 then twin.(order.(i)) <- twin.(order.(i - 1))
+  let hash k = mix (mix (mix (mix 0 cx.(k)) cy.(k)) cz.(k)) radius.(k) in
+  let same i k = cx.(i) = cx.(k) && cy.(i) = cy.(k) && cz.(i) = cz.(k) && radius.(i) = radius.(k) in
+  (* Open addressing, linear probing, in scene order: the first of equal
+     spheres is the one in the table. A hash, not a sort: most scenes have
+     no twins, and sorting ten thousand spheres cost more than the rest of
+     the preparation. *)
+  let size = ref 16 in
+  while !size < 2 * n_spheres do
+    size := 2 * !size
+  done;
+  let mask = !size - 1 in
+  let table = Array.make !size (-1) in
+  for k = 0 to n_spheres - 1 do
+    let j = ref (hash k land mask) in
+    while table.(!j) >= 0 && not (same table.(!j) k) do
+      j := (!j + 1) land mask
+    done;
+    if table.(!j) < 0 then table.(!j) <- k else twin.(k) <- table.(!j)
   done;
   twin
 
@@ -218,7 +227,7 @@ let prepare ?(skips = true) scene =
          let smooth = Mesh.corner_normals m t corners 0 in
          set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h));
   let materials = Array.of_list (List.rev !materials) in
-  let twin_of = sphere_twins scene n in
+  let twin_of = sphere_twins ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~n_spheres n in
   (* Arrays, not lists: a mesh makes millions of objects. *)
   let select keep =
     let a = Array.make n 0 and m = ref 0 in

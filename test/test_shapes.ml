@@ -413,6 +413,28 @@ let tests =
               [ ("robust", None); ("epsilon 0.001", Some 0.001) ])
           [ ("cgfs", Scene.cgfs); ("cgfs-camera", Scene.cgfs_camera); ("room", Helpers.load_scene "room.scene");
             ("boxes", Helpers.load_scene "boxes.scene") ]);
+    Alcotest.test_case "identical spheres among many, far apart in scene order, -0. as 0.: one slot each, one image"
+      `Quick (fun () ->
+        (* The preparation finds twins by a hash of centres and radii:
+           a grid's coordinates have only zeros in their low bits, and a
+           centre at -0. is the one at 0. (Float.compare has them equal). *)
+        let s = Scene.with_overrides ~width:64 ~height:64 (Scene.grid 300) in
+        let negative_zero x = if x = 0. then -0. else x in
+        let copy (sp : Sphere.t) =
+          { sp with center = Vec3.v (negative_zero sp.center.x) (negative_zero sp.center.y) (negative_zero sp.center.z) }
+        in
+        let twice = { s with spheres = s.spheres @ List.rev_map copy s.spheres } in
+        Alcotest.(check bool) "some centre has a 0 coordinate" true
+          (List.exists (fun (sp : Sphere.t) -> sp.center.x = 0. || sp.center.y = 0. || sp.center.z = 0.) s.spheres);
+        List.iter
+          (fun (mode, epsilon) ->
+            let s = { s with epsilon } and twice = { twice with epsilon } in
+            Alcotest.(check int) (mode ^ ": one slot per distinct sphere") (Helpers.prepare s).n_objects
+              (Helpers.prepare twice).n_objects;
+            Alcotest.(check int) (mode ^ ": every sphere counted") (2 * List.length s.spheres)
+              (Helpers.prepare twice).n_scene_objects;
+            Helpers.check_images (mode ^ ", every sphere twice") ~expected:(Helpers.image_exn s) (Helpers.image_exn twice))
+          [ ("robust", None); ("epsilon 0.001", Some 0.001) ]);
     Alcotest.test_case "a huge specular exponent: the document's mode still gives the oracle's bytes (defect)" `Quick
       (fun () ->
         (* The camera at the origin looks along u at a dark mirror of
