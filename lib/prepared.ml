@@ -151,15 +151,17 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
   let twin = Array.init n Fun.id in
   (* Equal as [Float.compare] has it: -0. is 0. (adding 0. maps it there),
      and the scene holds no nan. *)
-  let bits x = Int64.to_int (Int64.bits_of_float (x +. 0.)) in
+  let bits x = Int64.bits_of_float (x +. 0.) in
   (* Coordinates such as 2.5 have only zeros in their low bits: fold the
-     high ones down before the mask takes the low ones. *)
-  let mix h x =
-    let h = h + bits x in
-    let h = (h lxor (h lsr 32)) * 0x2545f4914f6cdd1d in
-    h lxor (h lsr 29)
+     high ones down before the mask takes the low ones. In Int64, not int:
+     compiled to JavaScript, ints have 32 bits, and [lsr 32] would fold
+     nothing (every such sphere would hash alike). *)
+  let[@inline] mix h x =
+    let h = Int64.add h (bits x) in
+    let h = Int64.mul (Int64.logxor h (Int64.shift_right_logical h 32)) 0x2545f4914f6cdd1dL in
+    Int64.logxor h (Int64.shift_right_logical h 29)
   in
-  let hash k = mix (mix (mix (mix 0 cx.(k)) cy.(k)) cz.(k)) radius.(k) in
+  let hash k = Int64.to_int (mix (mix (mix (mix 0L cx.(k)) cy.(k)) cz.(k)) radius.(k)) in
   let same i k = cx.(i) = cx.(k) && cy.(i) = cy.(k) && cz.(i) = cz.(k) && radius.(i) = radius.(k) in
   (* Open addressing, linear probing, in scene order: the first of equal
      spheres is the one in the table. A hash, not a sort: most scenes have
