@@ -60,15 +60,18 @@ let torus_knot ~p ~q ~radius ~tube ~segments ~sides =
   Obj_file.v ~positions ~normals ~triangles ~triangle_normals:(Array.copy triangles)
 
 (* A hash of lattice point (i, j) in octave [o] to [0, 1): integer mixing
-   (63-bit ints wrap the same way on every 64-bit platform). *)
+   in Int64, which wraps the same way everywhere, JavaScript's 32-bit ints
+   included. *)
 let lattice seed o i j =
-  let h = ref ((seed * 0x2545F491) + (o * 0x9E3779B1) + (i * 0x85EBCA6B) + (j * 0xC2B2AE35)) in
-  h := !h lxor (!h lsr 29);
-  h := !h * 0x27D4EB2F165667C5;
-  h := !h lxor (!h lsr 32);
-  h := !h * 0x165667B19E3779F9;
-  h := !h lxor (!h lsr 29);
-  Float.of_int (!h land 0xFFFFFF) /. 16777216.
+  let open Int64 in
+  let ( + ) = add and ( * ) = mul and ( lxor ) = logxor and ( lsr ) = shift_right_logical in
+  let h = (of_int seed * 0x2545F491L) + (of_int o * 0x9E3779B1L) + (of_int i * 0x85EBCA6BL) + (of_int j * 0xC2B2AE35L) in
+  let h = h lxor (h lsr 29) in
+  let h = h * 0x27D4EB2F165667C5L in
+  let h = h lxor (h lsr 32) in
+  let h = h * 0x165667B19E3779F9L in
+  let h = h lxor (h lsr 29) in
+  Stdlib.( /. ) (Float.of_int (to_int (logand h 0xFFFFFFL))) 16777216.
 
 let smooth t = t *. t *. (3. -. (2. *. t))
 

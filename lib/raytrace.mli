@@ -42,19 +42,22 @@ v}
 
     {1:document The document's sections}
 
-    - Section 1, the canvas and [plotc]: {!Image} (rows top-down).
-    - Sections 2-3, the viewport and the scene: {!Viewport}, {!Camera},
-      {!Sphere}, {!Scene}, {!Scene_file}.
-    - Section 4, ray-sphere intersection: {!Sphere.roots}.
+    - Section 1, the coordinate system and [plotc]: {!Image} (rows
+      top-down; the window's [plotc] is in the program [raytrace]).
+    - Section 2, colours and clamping: {!Color}.
+    - Section 3, the scene, the camera and the viewport: {!Scene},
+      {!Camera}, {!Viewport}, {!Scene_file} (scene text).
+    - Sections 4-6, rays, the sphere and their intersection (6.1):
+      {!Sphere}, {!Sphere.roots}.
+    - Section 7, lights, diffuse and specular shading (7.1-7.6), shadows
+      (7.7) and mirror reflection (7.8): {!Light}, and {!Literal}, the
+      document's algorithm transcribed literally (the executable
+      specification the fast tracer is tested against).
+    - Section 8, rendering: {!Render}, {!Pixel}.
     - Beyond the document's spheres (its chapter "Extending the
       Raytracer"): {!Plane}, {!Triangle} (watertight), {!Box}, {!Mesh}
       (from Wavefront OBJ files, {!Obj_file}, or generated, {!Mesh_gen}),
       one type for them, {!Shape}, each with a {!Material}.
-    - Sections 5-7, lights, diffuse and specular shading, shadows and
-      reflection: {!Light}, and {!Literal}, the document's algorithm
-      transcribed literally (the executable specification the fast tracer
-      is tested against).
-    - Section 8, the render loop: {!Render}, {!Pixel}.
     - Beyond the document: {!Sampling} (antialiasing), {!Camera_path}
       (animation), {!Region} (tiles), {!Image_diff}, {!Ppm}.
 
