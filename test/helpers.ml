@@ -146,3 +146,19 @@ let on_path prog =
     (String.split_on_char ':' (Option.value (Sys.getenv_opt "PATH") ~default:""))
 
 let missing progs = List.filter (fun p -> not (on_path p)) progs
+
+let mask_errors mask exact =
+  let wrong = ref 0 and inside = ref 0 in
+  Array.iteri
+    (fun row line ->
+      Array.iteri
+        (fun col hit ->
+          match exact.(row).(col) with
+          | `In ->
+              incr inside;
+              if not hit then incr wrong
+          | `Out -> if hit then incr wrong
+          | `Edge -> ())
+        line)
+    mask;
+  (!wrong, !inside)

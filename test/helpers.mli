@@ -117,3 +117,9 @@ val on_path : string -> bool
 
 val missing : string list -> string list
 (** [missing progs] is the programs of [progs] that are not on [PATH]. *)
+
+val mask_errors : bool array array -> [ `In | `Out | `Edge ] array array -> int * int
+(** [mask_errors mask exact] is [(wrong, inside)]: the pixels whose hit in
+    [mask] (row by row) disagrees with the exact classification [exact]
+    ([`Edge] pixels, within the error bound of an edge, are not counted),
+    and the pixels classified [`In]. *)

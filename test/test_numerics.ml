@@ -86,21 +86,6 @@ let exact_mask (scene : Scene.t) (s : Sphere.t) =
           let band = bound *. u *. (Vec3.norm (Vec3.sub origin s.center) +. s.radius) in
           if line <= s.radius -. band then `In else if line > s.radius +. band then `Out else `Edge))
 
-let mask_errors mask exact =
-  let wrong = ref 0 and inside = ref 0 in
-  Array.iteri
-    (fun row line ->
-      Array.iteri
-        (fun col hit ->
-          match exact.(row).(col) with
-          | `In ->
-              incr inside;
-              if not hit then incr wrong
-          | `Out -> if hit then incr wrong
-          | `Edge -> ())
-        line)
-    mask;
-  (!wrong, !inside)
 
 (* A sphere of radius [r] at distance [1e7 r] from the camera, seen through
    a viewport narrowed so that it covers about 30 pixels across. With
@@ -246,12 +231,12 @@ let tests =
         List.iter
           (fun (what, aim, translate) ->
             let scene, sphere = tiny_far_scene ?aim ~translate () in
-            let wrong, inside = mask_errors (hit_mask scene) (exact_mask scene sphere) in
+            let wrong, inside = Helpers.mask_errors (hit_mask scene) (exact_mask scene sphere) in
             if inside < 300 then Alcotest.failf "%s: the disk covers only %d pixels" what inside;
             Alcotest.(check int) (what ^ ": pixels off the exact shape") 0 wrong;
             (* The document's formula on the same scene: *)
             let doc, _ = tiny_far_scene ~epsilon:0.001 ?aim ~translate () in
-            let wrong_doc, _ = mask_errors (hit_mask doc) (exact_mask doc sphere) in
+            let wrong_doc, _ = Helpers.mask_errors (hit_mask doc) (exact_mask doc sphere) in
             Printf.printf "%s: %d pixels inside; robust 0 wrong, textbook %d wrong\n" what inside wrong_doc)
           [
             ("centered disk", None, Vec3.zero);

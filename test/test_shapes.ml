@@ -144,21 +144,6 @@ let tiny_far ~translate shape_of =
   let camera = match Camera.look_at ~up:(Vec3.v 0.3 1. 0.2) ~position:translate center with Ok c -> c | Error (`Msg e) -> failwith e in
   (Scene.v ~width:90 ~height:90 ~viewport:(Viewport.v ~width:6e-7 ~height:6e-7 ~distance:1.) ~camera ~spheres:[] ~shapes:[ shape ] ~lights:[ Light.ambient 1. ] (), shape)
 
-let mask_errors mask exact =
-  let wrong = ref 0 and inside = ref 0 in
-  Array.iteri
-    (fun row line ->
-      Array.iteri
-        (fun col hit ->
-          match exact.(row).(col) with
-          | `In ->
-              incr inside;
-              if not hit then incr wrong
-          | `Out -> if hit then incr wrong
-          | `Edge -> ())
-        line)
-    mask;
-  (!wrong, !inside)
 
 (* The colours of every pixel of [s], fast (skips off: the early stop
    changes floats, never bytes) and literal, equal bit for bit. *)
@@ -379,7 +364,7 @@ let tests =
         List.iter
           (fun (what, translate, shape_of, classify) ->
             let scene, shape = tiny_far ~translate shape_of in
-            let wrong, inside = mask_errors (hit_mask scene) (exact_mask scene (classify shape)) in
+            let wrong, inside = Helpers.mask_errors (hit_mask scene) (exact_mask scene (classify shape)) in
             if inside < 100 then Alcotest.failf "%s: the shape covers only %d pixels" what inside;
             Printf.printf "%s: %d pixels inside, %d wrong\n" what inside wrong;
             Alcotest.(check int) (what ^ ": pixels off the exact shape") 0 wrong)
