@@ -23,7 +23,7 @@ let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
 type obj = Sphere of Sphere.t | Shape of Shape.t | Mesh_triangle of Mesh.t * int
 
 let material = function
-  | Sphere s -> Material.v ~specular:s.specular ~reflective:s.reflective s.color
+  | Sphere s -> Material.v ~specular:s.specular ~reflective:s.reflective ?pattern:s.pattern s.color
   | Shape sh -> Shape.material sh
   | Mesh_triangle (m, _) -> m.material
 
@@ -113,6 +113,40 @@ let normal obj ~point ~direction =
       | true -> turn (Vec3.v s.nx s.ny s.nz)
       | false -> turn n)
 
+(* Where an object's pattern lies ({!Shape.pattern_frame}); a mesh's, which
+   scans every vertex, is kept for the mesh's next triangle. *)
+let last_frame = ref None
+
+let pattern_frame = function
+  | Sphere s -> (Vec3.zero, 1., Sphere.extent s)
+  | Shape sh -> Shape.pattern_frame sh
+  | Mesh_triangle (m, _) -> (
+      match !last_frame with
+      | Some (m', f) when m' == m -> f
+      | _ ->
+          let f = Shape.pattern_frame (Shape.Mesh m) in
+          last_frame := Some (m, f);
+          f)
+
+(* The colour the hit shows: the material's, or its pattern's second
+   colour, by the kernel's lookup. *)
+let local_color obj (m : Material.t) ~origin ~direction ~point ~normal =
+  match m.pattern with
+  | None -> m.color
+  | Some p ->
+      let origin', scale, extent = pattern_frame obj in
+      let table = Array.make Pattern.stride 0. in
+      Pattern.store p ~origin:origin' ~scale ~extent table 0;
+      let s = Scratch.create () in
+      Scratch.set_ray s origin direction;
+      s.px <- point.Vec3.x;
+      s.py <- point.y;
+      s.pz <- point.z;
+      s.nx <- normal.Vec3.x;
+      s.ny <- normal.y;
+      s.nz <- normal.z;
+      if Pattern.odd s table 0 then Pattern.color p else m.color
+
 let compute_lighting (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
   let intensity = ref 0. in
   List.iter
@@ -154,7 +188,7 @@ let trace_ray (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~t_max ~depth
         let normal = normal obj ~point ~direction in
         let view = Vec3.neg direction in
         let lighting = compute_lighting scene ~epsilon ~point ~normal ~view ~specular:m.specular in
-        let local = Color.smul lighting m.color in
+        let local = Color.smul lighting (local_color obj m ~origin ~direction ~point ~normal) in
         if m.reflective <= 0. || depth <= 0 then (levels, local)
         else
           let mirror = Shading.reflect view normal in

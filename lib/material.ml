@@ -1,6 +1,6 @@
-type t = { color : Color.t; specular : float; reflective : float } [@@deriving eq]
+type t = { color : Color.t; specular : float; reflective : float; pattern : Pattern.t option } [@@deriving eq]
 
-let v ?(specular = Sphere.matte) ?(reflective = 0.) color = { color; specular; reflective }
+let v ?(specular = Sphere.matte) ?(reflective = 0.) ?pattern color = { color; specular; reflective; pattern }
 
 (* The sphere's checks hold for every material; only the form they name
    differs. *)
@@ -20,10 +20,12 @@ let validate ~form m =
   let* _ = check_color ~form m.color in
   let* _ = check_specular ~form m.specular in
   let* _ = check_reflective ~form m.reflective in
+  let* _ = match m.pattern with None -> Ok None | Some p -> Result.map Option.some (Pattern.validate ~form p) in
   Ok m
 
 let pp ppf m =
   Format.fprintf ppf "(color %a)" Color.pp_components m.color;
-  Sphere.pp_optional_material ppf ~specular:m.specular ~reflective:m.reflective
+  Sphere.pp_optional_material ppf ~specular:m.specular ~reflective:m.reflective;
+  Pattern.pp_optional ppf m.pattern
 
 let show m = Format.asprintf "%a" pp m

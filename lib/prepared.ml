@@ -2,6 +2,9 @@ type t = {
   n_spheres : int;
   n_objects : int;
   all_spheres : bool;
+  patterned : bool;
+  alternate : int array;
+  pattern : float array;
   textbook_all : bool;
   index : int array;
   slot : int array;
@@ -87,9 +90,15 @@ let max_channel (scene : Scene.t) =
     Float.max c.r (Float.max c.g c.b) *. (ambient +. direct +. (direct *. !last_bound))
   in
   let bg = scene.background in
+  (* A pattern's colour is an object's colour too. *)
+  let channels color pattern s =
+    match pattern with
+    | None -> channel color s
+    | Some p -> Float.max (channel color s) (channel (Pattern.color p) s)
+  in
   let bound =
     List.fold_left
-      (fun acc (s : Sphere.t) -> Float.max acc (channel s.color s.specular))
+      (fun acc (s : Sphere.t) -> Float.max acc (channels s.color s.pattern s.specular))
       (Float.max bg.r (Float.max bg.g bg.b))
       scene.spheres
   in
@@ -97,7 +106,7 @@ let max_channel (scene : Scene.t) =
     List.fold_left
       (fun acc sh ->
         let m = Shape.material sh in
-        Float.max acc (channel m.color m.specular))
+        Float.max acc (channels m.color m.pattern m.specular))
       bound scene.shapes
   in
   (bound *. (1. +. 1e-6)) +. 1e-6
@@ -191,8 +200,13 @@ let prepare ?(skips = true) scene =
   let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
   let ocx = Array.make n 0. and ocy = Array.make n 0. and ocz = Array.make n 0. and ohalf = Array.make n 0. in
   let materials = ref [] and n_materials = ref 0 in
-  let new_material m =
+  (* With each patterned material, where its pattern lies: [frame ()] is
+     the object's [Shape.pattern_frame], asked only then (a mesh's scans
+     every vertex). *)
+  let frames = ref [] in
+  let new_material (m : Material.t) frame =
     materials := m :: !materials;
+    (match m.pattern with Some p -> frames := (!n_materials, p, frame ()) :: !frames | None -> ());
     incr n_materials;
     !n_materials - 1
   in
@@ -211,17 +225,19 @@ let prepare ?(skips = true) scene =
     (iter_objects scene
        ~sphere:(fun k (s : Sphere.t) ->
          set k Shape.sphere
-           (new_material (Material.v ~specular:s.specular ~reflective:s.reflective s.color))
+           (new_material
+              (Material.v ~specular:s.specular ~reflective:s.reflective ?pattern:s.pattern s.color)
+              (fun () -> (Vec3.zero, 1., Sphere.extent s)))
            s.center s.radius)
        ~single:(fun k sh ->
          let c, h = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.) in
-         set k (Shape.kind sh) (new_material (Shape.material sh)) c h)
+         set k (Shape.kind sh) (new_material (Shape.material sh) (fun () -> Shape.pattern_frame sh)) c h)
        ~mesh_triangle:(fun k m t ->
          let mat =
            match !last_mesh with
            | Some (m', i) when m' == m -> i
            | _ ->
-               let i = new_material m.material in
+               let i = new_material m.material (fun () -> Shape.pattern_frame (Shape.Mesh m)) in
                last_mesh := Some (m, i);
                i
          in
@@ -229,6 +245,22 @@ let prepare ?(skips = true) scene =
          let smooth = Mesh.corner_normals m t corners 0 in
          set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h));
   let materials = Array.of_list (List.rev !materials) in
+  (* A patterned material's second colour is a material of its own, after
+     the scene's: the tracer picks one of the two indices, so that the
+     colour channels stay in the arrays they are read from. *)
+  let n_own = Array.length materials in
+  let alternate = if !frames = [] then [||] else Array.make n_own (-1) in
+  let pattern = Array.make (if !frames = [] then 0 else Pattern.stride * n_own) 0. in
+  let extra =
+    List.rev_map
+      (fun (i, p, (origin, scale, extent)) -> (i, p, origin, scale, extent))
+      !frames
+    |> List.mapi (fun j (i, p, origin, scale, extent) ->
+           alternate.(i) <- n_own + j;
+           Pattern.store p ~origin ~scale ~extent pattern (Pattern.stride * i);
+           { (materials.(i)) with Material.color = Pattern.color p; pattern = None })
+  in
+  let materials = Array.append materials (Array.of_list extra) in
   let twin_of = sphere_twins ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~n_spheres n in
   (* Arrays, not lists: a mesh makes millions of objects. *)
   let select keep =
@@ -330,7 +362,10 @@ let prepare ?(skips = true) scene =
   {
     n_spheres;
     n_objects = n_kept;
-    all_spheres = scene.shapes = [];
+    all_spheres = scene.shapes = [] && alternate = [||];
+    patterned = alternate <> [||];
+    alternate;
+    pattern;
     textbook_all = scene.shapes = [] && bvh = None && scene.epsilon <> None;
     index;
     slot;

@@ -11,7 +11,24 @@
 type t = private {
   n_spheres : int;  (** The number of spheres. *)
   n_objects : int;  (** The number of slots: spheres and other shapes. *)
-  all_spheres : bool;  (** Every object is a sphere: [n_spheres = n_objects]. *)
+  all_spheres : bool;
+      (** Every object is a sphere ([n_spheres = n_objects]) and none has a
+          pattern: the tracer's loops for spheres alone, which ask no
+          object its kind nor its pattern. *)
+  patterned : bool;
+      (** Some material has a {!Pattern}: the tracer's loop that looks
+          patterns up (the others never do). *)
+  alternate : int array;
+      (** Per material: the material (an index into [red] to [reflective])
+          of its pattern's second colour, or [-1] if it has no pattern;
+          empty when no material has one. The second colours' materials
+          follow the scene's, each a copy of its own with the pattern's
+          colour. *)
+  pattern : float array;
+      (** Per material [m], at [Pattern.stride * m], its pattern as
+          {!Pattern.store} writes it, on its object's {!Shape.pattern_frame}
+          (zeros where [alternate] is [-1]; empty when no material has a
+          pattern). *)
   textbook_all : bool;
       (** Spheres only, no hierarchy, the document's mode: the tracer's
           fastest loop (the reference scene). *)

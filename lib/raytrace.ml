@@ -4,6 +4,7 @@ module Viewport = Viewport
 module Camera = Camera
 module Camera_path = Camera_path
 module Sphere = Sphere
+module Pattern = Pattern
 module Material = Material
 module Plane = Plane
 module Triangle = Triangle

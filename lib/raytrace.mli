@@ -57,7 +57,8 @@ v}
     - Beyond the document's spheres (its chapter "Extending the
       Raytracer"): {!Plane}, {!Triangle} (watertight), {!Box}, {!Mesh}
       (from Wavefront OBJ files, {!Obj_file}, or generated, {!Mesh_gen}),
-      one type for them, {!Shape}, each with a {!Material}.
+      one type for them, {!Shape}, each with a {!Material}, which may
+      carry a {!Pattern} (a checkerboard).
     - Beyond the document: {!Sampling} (antialiasing), {!Camera_path}
       (animation), {!Region} (tiles), {!Image_diff}, {!Ppm}.
 
@@ -78,6 +79,7 @@ module Viewport = Viewport
 module Camera = Camera
 module Camera_path = Camera_path
 module Sphere = Sphere
+module Pattern = Pattern
 module Material = Material
 module Plane = Plane
 module Triangle = Triangle

@@ -206,9 +206,33 @@ let camera ~where nodes =
       | Error (`Msg m) -> fail node "%s" m)
   | None, None, _ -> Camera.v position
 
+(* [(pattern checker (color r g b) (size s))], the optional field of
+   every object's material. *)
+let pattern ~where ~form fs =
+  Option.map
+    (fun f ->
+      let kinds = [ "checker" ] in
+      match f.args with
+      | Sexp.Atom "checker" :: rest ->
+          let pform = form ^ " pattern checker" in
+          let pfs = fields ~where ~form:pform ~allowed:[ "color"; "size" ] rest in
+          let color =
+            let node, c = required ~form:pform ~form_node:f.node pfs "color" (fun _ f -> (f.node, color_field pform "color" f)) in
+            check node (Material.check_color ~form:(form ^ " pattern") c)
+          in
+          let size =
+            let node, x = required ~form:pform ~form_node:f.node pfs "size" (fun _ f -> (single pform "size" f, float_field pform "size" f)) in
+            check node (Pattern.check_size ~form x)
+          in
+          Pattern.checker ~size color
+      | (Sexp.Atom kind as node) :: _ ->
+          fail node "unknown %s pattern %s; expected %s%s" form (show_atom kind) (one_of kinds) (suggestion kind kinds)
+      | _ -> fail f.node "%s pattern: expected a kind, e.g. (pattern checker (color 20 20 20) (size 1))" form)
+    (find fs "pattern")
+
 let sphere ~where form_node nodes =
   let form = "sphere" in
-  let fs = fields ~where ~form ~allowed:[ "center"; "radius"; "color"; "specular"; "reflective" ] nodes in
+  let fs = fields ~where ~form ~allowed:[ "center"; "radius"; "color"; "specular"; "reflective"; "pattern" ] nodes in
   let node_and parse name = required ~form ~form_node fs name (fun _ f -> (f.node, parse f)) in
   let center =
     let node, c = node_and (vec3_field form "center") "center" in
@@ -221,12 +245,13 @@ let sphere ~where form_node nodes =
   in
   let specular = Option.value ~default:Sphere.matte (checked_float form fs "specular" Sphere.check_specular) in
   let reflective = Option.value ~default:0. (checked_float form fs "reflective" Sphere.check_reflective) in
-  Sphere.v ~specular ~reflective ~center ~radius color
+  let pattern = pattern ~where ~form fs in
+  Sphere.v ~specular ~reflective ?pattern ~center ~radius color
 
 (* The material fields that every shape takes, as a sphere does. *)
-let material_fields = [ "color"; "specular"; "reflective" ]
+let material_fields = [ "color"; "specular"; "reflective"; "pattern" ]
 
-let material ~form ~form_node fs =
+let material ~where ~form ~form_node fs =
   let color =
     let node, c = required ~form ~form_node fs "color" (fun _ f -> (f.node, color_field form "color" f)) in
     check node (Material.check_color ~form c)
@@ -238,7 +263,8 @@ let material ~form ~form_node fs =
   in
   let specular = Option.value ~default:Sphere.matte (checked "specular" (Material.check_specular ~form)) in
   let reflective = Option.value ~default:0. (checked "reflective" (Material.check_reflective ~form)) in
-  Material.v ~specular ~reflective color
+  let pattern = pattern ~where ~form fs in
+  Material.v ~specular ~reflective ?pattern color
 
 let point_field ~form ~form_node fs name =
   let node, p = required ~form ~form_node fs name (fun _ f -> (f.node, vec3_field form name f)) in
@@ -249,7 +275,7 @@ let plane ~where form_node nodes =
   let fs = fields ~where ~form ~allowed:([ "point"; "normal" ] @ material_fields) nodes in
   let _, point = point_field ~form ~form_node fs "point" in
   let normal_node, normal = point_field ~form ~form_node fs "normal" in
-  let m = material ~form ~form_node fs in
+  let m = material ~where ~form ~form_node fs in
   Shape.Plane (check normal_node (Plane.validate (Plane.v ~point ~normal m)))
 
 let triangle ~where form_node nodes =
@@ -271,7 +297,7 @@ let triangle ~where form_node nodes =
             fail f.node "%s takes 3 vertices, e.g. (-1 0 4) (1 0 4) (0 1.5 4), got %d values" (what ())
               (List.length args))
   in
-  let m = material ~form ~form_node fs in
+  let m = material ~where ~form ~form_node fs in
   Shape.Triangle (check node (Triangle.validate (Triangle.v v0 v1 v2 m)))
 
 let box ~where form_node nodes =
@@ -279,7 +305,7 @@ let box ~where form_node nodes =
   let fs = fields ~where ~form ~allowed:([ "min"; "max" ] @ material_fields) nodes in
   let _, min = point_field ~form ~form_node fs "min" in
   let max_node, max = point_field ~form ~form_node fs "max" in
-  let m = material ~form ~form_node fs in
+  let m = material ~where ~form ~form_node fs in
   Shape.Box (check max_node (Box.validate (Box.v ~min ~max m)))
 
 (* A mesh: its file is read by [load] (the path as the scene gives it). *)
@@ -314,7 +340,7 @@ let mesh ~where ~load form_node nodes =
         | Sexp.Atom "false" -> false
         | node -> fail node "mesh smooth: expected true or false")
   in
-  let m = material ~form ~form_node fs in
+  let m = material ~where ~form ~form_node fs in
   let obj = check file_node (load file) in
   Shape.Mesh
     (check form_node

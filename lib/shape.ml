@@ -100,3 +100,15 @@ let pp ppf = function
         Material.pp m.material
 
 let show s = Format.asprintf "%a" pp s
+
+(* The largest coordinate of the stored geometry, as {!Prepared} bounds a
+   shape's hit point's rounding. *)
+let stored_extent sh =
+  let g = Array.make stride 0. in
+  store sh g 0;
+  Array.fold_left (fun e x -> Float.max e (Float.abs x)) 0. g
+
+let pattern_frame = function
+  | (Plane _ | Triangle _) as sh -> (Vec3.zero, 1., stored_extent sh)
+  | Box b as sh -> (b.min, 1., stored_extent sh)
+  | Mesh m -> (m.translate, m.scale, Array.fold_left (fun e x -> Float.max e (Float.abs x)) 0. m.positions)

@@ -69,6 +69,13 @@ val bounds : t -> Vec3.t * float
     [s] (for the bounding volume hierarchy).
     @raise Invalid_argument on a plane. *)
 
+val pattern_frame : t -> Vec3.t * float * float
+(** [pattern_frame s] is [(origin, scale, extent)] for {!Pattern.store}:
+    the world origin and scale of the coordinates a pattern on [s] uses
+    (world coordinates for planes and triangles; the [min] corner for
+    boxes; the mesh's [translate] and [scale] for meshes), and the
+    largest magnitude of a coordinate of [s]'s geometry. *)
+
 (** {1:readable For the literal tracer} *)
 
 val roots : t -> origin:Vec3.t -> direction:Vec3.t -> float * float

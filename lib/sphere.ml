@@ -4,6 +4,7 @@ type t = {
   color : Color.t;
   specular : float;
   reflective : float;
+  pattern : Pattern.t option;
 }
 [@@deriving eq]
 
@@ -11,8 +12,8 @@ let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
 let matte = -1.
 
-let v ?(specular = matte) ?(reflective = 0.) ~center ~radius color =
-  { center; radius; color; specular; reflective }
+let v ?(specular = matte) ?(reflective = 0.) ?pattern ~center ~radius color =
+  { center; radius; color; specular; reflective; pattern }
 
 let is_matte s = s.specular = matte
 let num = Float_text.to_string
@@ -32,6 +33,10 @@ let check_reflective r =
   if r >= 0. && r <= 1. then Ok r
   else (error "sphere reflective must lie in [0, 1], got %s" (num r))
 
+let check_pattern = function
+  | None -> Ok None
+  | Some p -> Result.map Option.some (Pattern.validate ~form:"sphere" p)
+
 let validate s =
   let ( let* ) = Result.bind in
   let* _ = check_center s.center in
@@ -39,7 +44,10 @@ let validate s =
   let* _ = check_color s.color in
   let* _ = check_specular s.specular in
   let* _ = check_reflective s.reflective in
+  let* _ = check_pattern s.pattern in
   Ok s
+
+let extent s = Float.max (Float.abs s.center.x) (Float.max (Float.abs s.center.y) (Float.abs s.center.z)) +. s.radius
 
 let quadratic s ~origin ~direction =
   let co = Vec3.sub origin s.center in
@@ -88,6 +96,7 @@ let pp ppf s =
   Format.fprintf ppf "(sphere (center %a) (radius %s) (color %a)" Vec3.pp_components s.center
     (Float_text.to_string s.radius) Color.pp_components s.color;
   pp_optional_material ppf ~specular:s.specular ~reflective:s.reflective;
+  Pattern.pp_optional ppf s.pattern;
   Format.pp_print_string ppf ")"
 
 let show s = Format.asprintf "%a" pp s

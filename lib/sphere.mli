@@ -12,13 +12,17 @@ type t = {
   color : Color.t;  (** Channels in [\[0, 255\]]. *)
   specular : float;  (** [s >= 0], or {!matte} for no specular term. *)
   reflective : float;  (** Reflectivity in [\[0, 1\]]; [0] is no mirror. *)
+  pattern : Pattern.t option;
+      (** A second colour laid over [color] in world coordinates, or
+          [None] (the default). *)
 }
 (** The type for spheres. The invariants in the field comments are checked
     by {!validate} and by scene loading, not by the constructor. *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf s] prints [s] as its [sphere] form in the scene-file syntax,
-    [specular] and [reflective] only when they are not the defaults. *)
+    [specular], [reflective] and [pattern] only when they are not the
+    defaults. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)
@@ -31,9 +35,11 @@ val matte : float
 (** [matte] is [-1.], the specular exponent that means "no specular term"
     (as in CGFS). An exponent of [0] is not matte. *)
 
-val v : ?specular:float -> ?reflective:float -> center:Vec3.t -> radius:float -> Color.t -> t
-(** [v ~specular ~reflective ~center ~radius color] is a sphere. [specular]
-    defaults to {!matte}, [reflective] to [0]. *)
+val v :
+  ?specular:float -> ?reflective:float -> ?pattern:Pattern.t -> center:Vec3.t -> radius:float -> Color.t -> t
+(** [v ~specular ~reflective ~pattern ~center ~radius color] is a sphere.
+    [specular] defaults to {!matte}, [reflective] to [0], [pattern] to
+    none. *)
 
 val is_matte : t -> bool
 (** [is_matte s] is [true] iff [s.specular = matte]. *)
@@ -63,6 +69,13 @@ val check_specular : float -> (float, [> `Msg of string ]) result
 
 val check_reflective : float -> (float, [> `Msg of string ]) result
 (** [check_reflective r] checks [0 <= r <= 1]. *)
+
+val check_pattern : Pattern.t option -> (Pattern.t option, [> `Msg of string ]) result
+(** [check_pattern p] checks {!Pattern.validate} on [p] if it is some. *)
+
+val extent : t -> float
+(** [extent s] is [max |c_x| |c_y| |c_z| + r]: no coordinate of a point
+    of [s] is larger in magnitude (for {!Pattern.store}). *)
 
 val validate : t -> (t, [> `Msg of string ]) result
 (** [validate s] is [Ok s] if every field passes its check, and otherwise

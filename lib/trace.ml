@@ -727,11 +727,32 @@ let shape_hit tr i =
     s.pz <- pz +. (e *. gz)
   end
 
+(* The material whose colour the hit in [s] shows: [m], or the material
+   of its pattern's second colour. [px, py, pz] is the hit point as
+   computed, before the robust mode moves it off a shape ({!Pattern.odd}
+   moves it its own way), put in [s] for the call and taken back out. *)
+let[@inline] local_material tr m px py pz =
+  let p = tr.p in
+  let alt = Array.unsafe_get p.alternate m in
+  if alt < 0 then m
+  else begin
+    let s = tr.s in
+    let sx = s.px and sy = s.py and sz = s.pz in
+    s.px <- px;
+    s.py <- py;
+    s.pz <- pz;
+    let odd = Pattern.odd s p.pattern (Pattern.stride * m) in
+    s.px <- sx;
+    s.py <- sy;
+    s.pz <- sz;
+    if odd then alt else m
+  end
+
 (* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
    its local colour and reflectivity and continues with the mirror ray; then
    the stack is folded back from the deepest colour, blend by blend, in the
    same order as the recursion. The ray to trace is in [s]. *)
-let[@inline] trace_in tr ~spheres =
+let[@inline] trace_in tr ~spheres ~patterns =
   let p = tr.p and s = tr.s in
   let levels = ref 0 and tracing = ref true in
   (* The weight of the colour still to be traced: the product of the
@@ -776,9 +797,11 @@ let[@inline] trace_in tr ~spheres =
         shape_hit tr i
       end;
       let m = Array.unsafe_get p.material i in
+      (* Before the lighting, whose shadow rays reuse [s]'s ray. *)
+      let c = if patterns then local_material tr m px py pz else m in
       lighting tr ~shiny:(Array.unsafe_get p.specular m <> Sphere.matte) ~specular_of:p.specular m;
       let light = s.intensity in
-      let lr = Array.unsafe_get p.red m *. light and lg = Array.unsafe_get p.green m *. light and lb = Array.unsafe_get p.blue m *. light in
+      let lr = Array.unsafe_get p.red c *. light and lg = Array.unsafe_get p.green c *. light and lb = Array.unsafe_get p.blue c *. light in
       let refl = Array.unsafe_get p.reflective m in
       if refl <= 0. || !levels >= p.depth then begin
         s.r <- lr;
@@ -832,10 +855,15 @@ let[@inline] trace_in tr ~spheres =
     s.b <- (Array.unsafe_get tr.stack ((4 * l) + 2) *. keep) +. (s.b *. refl)
   done
 
-(* One copy per kind of scene: spheres alone ask no object its kind. *)
-let trace_spheres tr = trace_in tr ~spheres:true
-let trace_objects tr = trace_in tr ~spheres:false
-let[@inline] trace tr = if tr.p.all_spheres then trace_spheres tr else trace_objects tr
+(* One copy per kind of scene: spheres alone ask no object its kind, and
+   only scenes with patterns look them up. *)
+let trace_spheres tr = trace_in tr ~spheres:true ~patterns:false
+let trace_objects tr = trace_in tr ~spheres:false ~patterns:false
+let trace_patterned tr = trace_in tr ~spheres:false ~patterns:true
+
+let[@inline] trace tr =
+  let p = tr.p in
+  if p.all_spheres then trace_spheres tr else if p.patterned then trace_patterned tr else trace_objects tr
 
 (* The primary ray through canvas point [s.gx, s.gy]. *)
 let primary tr =

@@ -126,3 +126,26 @@ let arbitrary =
       <+> map (fun lights -> { s with lights }) (QCheck.Shrink.list s.lights))
   in
   QCheck.make ~print:Scene_file.to_string ~shrink gen
+
+(* A checker on about half the objects, drawn from [rand] (not QCheck's
+   generator: the scenes of [gen] stay what they were). *)
+let with_patterns rand (s : Scene.t) =
+  let pattern () =
+    if Random.State.bool rand then None
+    else
+      let channel () = Float.of_int (Random.State.int rand 256) in
+      let size = 0.05 +. Random.State.float rand 2. in
+      Some (Pattern.checker ~size (Color.v (channel ()) (channel ()) (channel ())))
+  in
+  let material (m : Material.t) = { m with pattern = pattern () } in
+  let shape = function
+    | Shape.Plane p -> Shape.Plane { p with material = material p.material }
+    | Triangle t -> Triangle { t with material = material t.material }
+    | Box b -> Box { b with material = material b.material }
+    | Mesh _ as m -> m
+  in
+  {
+    s with
+    spheres = List.map (fun (sp : Sphere.t) -> { sp with pattern = pattern () }) s.spheres;
+    shapes = List.map shape s.shapes;
+  }

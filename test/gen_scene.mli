@@ -17,3 +17,8 @@ val crowd : Raytrace.Scene.t QCheck.Gen.t
 val arbitrary : Raytrace.Scene.t QCheck.arbitrary
 (** [arbitrary] is {!gen} with a printer (the scene file) and shrinking of
     the sphere and light lists. *)
+
+val with_patterns : Random.State.t -> Raytrace.Scene.t -> Raytrace.Scene.t
+(** [with_patterns rand s] is [s] with a checker of a random colour and
+    size (0.05 to 2.05) on about half of its spheres, planes, triangles
+    and boxes, drawn from [rand]. *)

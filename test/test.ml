@@ -21,6 +21,7 @@ let () =
       ("light", Test_light.tests);
       ("shading", Test_shading.tests);
       ("literal", Test_literal.tests);
+      ("pattern", Test_pattern.tests);
       ("scene_file", Test_scene_file.tests);
       ("ppm", Test_ppm.tests);
       ("image_diff", Test_image_diff.tests);
