@@ -118,6 +118,13 @@ let tiny_far_scene ?(epsilon : float option) ?aim ?(translate = Vec3.zero) () =
 (* Every scene of scenes/ in the robust mode, scaled or translated. *)
 let transform ~scale ~translate (s : Scene.t) =
   let p (v : Vec3.t) = Vec3.add (Vec3.smul scale v) translate in
+  (* A checker's cells scale with the scene. In world coordinates they do
+     not move with it: the scenes' cells divide the translations (1e6) an
+     even number of times, so that the picture stays. (A mesh is placed
+     anew at scale 1: its cells would be the world's; no scene has a
+     patterned mesh.) *)
+  let pattern = Option.map (fun (Pattern.Checker c) -> Pattern.checker ~size:(scale *. c.size) c.color) in
+  let material (m : Material.t) = { m with pattern = pattern m.pattern } in
   {
     s with
     epsilon = None;
@@ -125,13 +132,13 @@ let transform ~scale ~translate (s : Scene.t) =
       Viewport.v ~width:(scale *. s.viewport.width) ~height:(scale *. s.viewport.height)
         ~distance:(scale *. s.viewport.distance);
     camera = { s.camera with position = p s.camera.position };
-    spheres = List.map (fun (sp : Sphere.t) -> { sp with center = p sp.center; radius = scale *. sp.radius }) s.spheres;
+    spheres = List.map (fun (sp : Sphere.t) -> { sp with center = p sp.center; radius = scale *. sp.radius; pattern = pattern sp.pattern }) s.spheres;
     shapes =
       List.map
         (function
-          | Shape.Plane pl -> Shape.Plane { pl with point = p pl.point }
-          | Shape.Triangle t -> Shape.Triangle { t with v0 = p t.v0; v1 = p t.v1; v2 = p t.v2 }
-          | Shape.Box b -> Shape.Box { b with min = p b.min; max = p b.max }
+          | Shape.Plane pl -> Shape.Plane { pl with point = p pl.point; material = material pl.material }
+          | Shape.Triangle t -> Shape.Triangle { v0 = p t.v0; v1 = p t.v1; v2 = p t.v2; material = material t.material }
+          | Shape.Box b -> Shape.Box { min = p b.min; max = p b.max; material = material b.material }
           | Shape.Mesh m ->
               let positions = Array.copy m.positions in
               for i = 0 to (Array.length positions / 3) - 1 do
@@ -142,7 +149,7 @@ let transform ~scale ~translate (s : Scene.t) =
               done;
               match
                 Mesh.v ~smooth:m.smooth ~positions ~triangles:m.triangles ~normals:m.normals
-                  ~triangle_normals:m.triangle_normals m.material
+                  ~triangle_normals:m.triangle_normals (material m.material)
               with
               | Ok m -> Shape.Mesh m
               | Error (`Msg e) -> Alcotest.fail e)
