@@ -19,9 +19,11 @@ open Raytrace
 let reference_samples = 16
 let reference_depth = 10
 
-(* The documented set: name and file. Each is rendered at its own canvas
-   size (600 x 600, 600 x 600, 480 x 360, 600 x 600, then 320 x 240 for
-   the shapes' scenes), or half of it with --half. *)
+(* The documented set: name and file, one line per scene (the plot makes
+   a panel for each). Each is rendered at its own canvas size (600 x 600,
+   600 x 600, 480 x 360, 600 x 600, then 320 x 240 for the shapes' scenes,
+   240 x 180 for the checker), or half of it with --half. The glass and
+   CSG scenes of issue 14 join as lines here when they land. *)
 let scenes =
   [
     ("cgfs", "scenes/cgfs.scene");
@@ -30,7 +32,13 @@ let scenes =
     ("tiny-spheres", "scenes/tiny-spheres.scene");
     ("room", "scenes/room.scene");
     ("boxes", "scenes/boxes.scene");
+    ("checker", "scenes/checker.scene");
   ]
+
+(* The depths of the table of error against depth, each against one ray
+   per pixel at [reference_depth]: the error that the depth alone
+   causes, with the aliasing of one ray per pixel on both sides. *)
+let table_depths = [ 0; 1; 2; 3; 4; 5; 6; 8 ]
 
 type setting = {
   family : string;  (** depth, full, adaptive, subsample *)
@@ -68,13 +76,13 @@ let options s =
          (if s.subsample then [ "--subsample" ] else []);
        ])
 
-(* Depth 0-5 with one ray per pixel; full N x N, N = 2-8, adaptive N = 3, 5,
+(* Depth 0-6 and 8 with one ray per pixel; full N x N, N = 2-8, adaptive N = 3, 5,
    7 with thresholds 1-32, all at the scene's depth; then the same deeper;
    subsampling at depth 0-5. *)
 let settings ~depth =
   let one = { family = "depth"; depth; samples = 1; adaptive = None; subsample = false } in
   let adaptive ?(depth = depth) n th = { one with family = "adaptive"; depth; samples = n; adaptive = Some th } in
-  List.init 6 (fun d -> { one with depth = d })
+  List.map (fun d -> { one with depth = d }) table_depths
   @ List.init 7 (fun i -> { one with family = "full"; samples = i + 2 })
   @ List.concat_map (fun n -> List.map (adaptive n) [ 2; 3; 4; 8; 32 ]) [ 3; 5; 7 ]
   @ (if depth >= 5 then []
@@ -94,6 +102,8 @@ type row = {
   primary_pp : float;  (** Primary rays per pixel. *)
   rays_pp : float;  (** All rays per pixel. *)
   diff : Image_diff.t;
+  depth_diff : Image_diff.t option;
+      (** One ray per pixel: against one ray per pixel at [reference_depth]. *)
   mutable pareto : bool;
 }
 
@@ -144,11 +154,11 @@ let mark_pareto rows =
 let psnr_text p = if p = Float.infinity then "inf" else Printf.sprintf "%.2f" p
 
 let csv_header =
-  "scene,setting,family,depth,samples,adaptive,subsample,cpu_s,cpu_min_s,cpu_max_s,wall_s,runs,primary_per_pixel,rays_per_pixel,mean_abs,max_abs,psnr_db,share_gt1,pareto"
+  "scene,setting,family,depth,samples,adaptive,subsample,cpu_s,cpu_min_s,cpu_max_s,wall_s,runs,primary_per_pixel,rays_per_pixel,mean_abs,max_abs,psnr_db,share_gt1,pareto,depth_mean_abs"
 
 let csv_line r =
   let s = r.setting in
-  Printf.sprintf "%s,%s,%s,%d,%d,%s,%b,%.6f,%.6f,%.6f,%.6f,%d,%.4f,%.4f,%.6f,%d,%s,%.6f,%b" r.scene (label s) s.family
+  Printf.sprintf "%s,%s,%s,%d,%d,%s,%b,%.6f,%.6f,%.6f,%.6f,%d,%.4f,%.4f,%.6f,%d,%s,%.6f,%b,%s" r.scene (label s) s.family
     s.depth s.samples
     (match s.adaptive with Some th -> string_of_int th | None -> "")
     s.subsample (time_of r) (List.hd r.times)
@@ -156,13 +166,14 @@ let csv_line r =
     r.wall (List.length r.times) r.primary_pp r.rays_pp r.diff.mean_abs r.diff.max_abs (psnr_text r.diff.psnr)
     (Float.of_int r.diff.differing_gt1 /. Float.of_int r.diff.pixels)
     r.pareto
+    (match r.depth_diff with Some d -> Printf.sprintf "%.6f" d.mean_abs | None -> "")
 
 let write path f =
   match File_io.write_atomic path f with Ok () -> print_endline ("wrote " ^ path) | Error (`Msg m) -> failwith m
 
 let families =
   [
-    ("depth", "depth 0-5, 1 ray per pixel", "7", "#1f77b4");
+    ("depth", "depth 0-6 and 8, 1 ray per pixel", "7", "#1f77b4");
     ("full", "full N x N, N = 2-8", "5", "#2ca02c");
     ("adaptive", "adaptive (a) N = 3,5,7; t = 2-32", "9", "#d62728");
     ("subsample", "subsampling (sub), depth 0-5", "13", "#9467bd");
@@ -194,9 +205,12 @@ let gnuplot_script ~png ~runs scenes rows =
       |> List.iter (fun r -> pr "%.6f %.6f \"%s\"\n" (time_of r) (floor_err r.diff.mean_abs) (short r.setting));
       pr "EOD\n")
     scenes;
-  pr "set terminal pngcairo size 1600,1200 font 'sans,11' background rgb 'white'\n";
+  (* Three panels a row. *)
+  let rows = (List.length scenes + 2) / 3 in
+  pr "set terminal pngcairo size 1800,%d font 'sans,11' background rgb 'white'\n" (560 * rows);
   pr "set output '%s'\n" png;
-  pr "set multiplot layout 2,2 title 'raytrace: run time against error (median CPU time of >= %d runs, 1 process; error against %dx%d samples, depth %d)'\n"
+  pr "set multiplot layout %d,%d title" rows (min 3 (List.length scenes));
+  pr " 'raytrace: run time against error (median CPU time of >= %d runs, 1 process; error against %dx%d samples, depth %d)'\n"
     runs reference_samples reference_samples reference_depth;
   pr "set logscale xy\nset grid\nset xlabel 'CPU time (s)'\nset ylabel 'mean absolute error (0-255 per channel)'\n";
   pr "set key top right font ',10'\n";
@@ -236,6 +250,24 @@ let summary ~runs scenes rows =
     (fun (name, _, _, _) ->
       let scene_rows = List.filter (fun r -> r.scene = name) rows in
       List.iter (fun r -> if key r.setting || r.pareto then pr "%s\n" (summary_line r)) scene_rows)
+    scenes;
+  (* Depth alone: one ray per pixel at each depth against one ray per
+     pixel at the reference depth. *)
+  pr "\nError against depth: mean absolute error of one ray per pixel at each depth against one ray per pixel at depth %d (the error that the depth alone causes), and CPU time (s).\n\n"
+    reference_depth;
+  pr "| scene |%s\n|---|%s\n"
+    (String.concat "" (List.map (fun d -> Printf.sprintf " depth %d |" d) table_depths))
+    (String.concat "" (List.map (fun _ -> "---|") table_depths));
+  List.iter
+    (fun (name, _, _, _) ->
+      pr "| %s |" name;
+      List.iter
+        (fun d ->
+          match find rows name (fun s -> s.family = "depth" && s.depth = d) with
+          | Some ({ depth_diff = Some dd; _ } as r) -> pr " %.3f (%.3f s) |" dd.mean_abs (time_of r)
+          | _ -> pr " |")
+        table_depths;
+      pr "\n")
     scenes;
   (* The issue's criterion: adaptive sampling reaching the error of full
      4 x 4 sampling on the reference scene in at most half its time. *)
@@ -294,10 +326,15 @@ let () =
           render scene { family = "ref"; depth = reference_depth; samples = reference_samples; adaptive = None; subsample = false }
         in
         Printf.printf " %.1f s\n%!" t;
+        let depth_reference, _, _, _ =
+          render scene { family = "ref"; depth = reference_depth; samples = 1; adaptive = None; subsample = false }
+        in
         List.map
           (fun s ->
             let img, (stats : Stats.t), times, wall = measure ~runs:!runs scene s in
-            let diff = match Image_diff.compare reference img with Ok d -> d | Error (`Msg m) -> failwith m in
+            let compare a = match Image_diff.compare a img with Ok d -> d | Error (`Msg m) -> failwith m in
+            let diff = compare reference in
+            let depth_diff = if s.family = "depth" then Some (compare depth_reference) else None in
             let px = Float.of_int stats.pixels in
             let r =
               {
@@ -308,6 +345,7 @@ let () =
                 primary_pp = Float.of_int stats.primary /. px;
                 rays_pp = Float.of_int (Stats.rays stats) /. px;
                 diff;
+                depth_diff;
                 pareto = false;
               }
             in

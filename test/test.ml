@@ -41,6 +41,7 @@ let () =
       ("camera_path", Test_camera_path.tests);
       ("png", Test_png.tests);
       ("cli_parts", Test_cli_parts.tests);
+      ("new_scenes", Test_new_scenes.tests);
       ("recipes", Test_recipes.tests);
       ("window", Test_window.tests);
       ("web_session", Test_web_session.tests);

@@ -26,6 +26,7 @@ let session ?(view_args = "") ?(screen = "1024x768") ?(edit = Fun.id) name steps
       output_string oc (edit text);
       close_out oc
   | Error (`Msg m) -> Alcotest.fail m);
+  New_scenes.copy_models dir;
   let env = Array.append [| "VIEW_ARGS=" ^ view_args |] (Unix.environment ()) in
   let code, _, err =
     Helpers.run ~env "xvfb-run"
@@ -106,7 +107,7 @@ let tests =
               let dir = session name [ "shot:window" ] in
               Helpers.check_images ("window of " ^ name)
                 ~expected:(Helpers.image_exn (Helpers.load_scene name)) (shot dir "window"))
-            [ "cgfs.scene"; "cgfs-camera.scene" ]);
+            ([ "cgfs.scene"; "cgfs-camera.scene" ] @ New_scenes.names));
     Alcotest.test_case "keys, the pointer and resizing change the picture as the headless render shows it" `Slow
       (fun () ->
         if available () then begin
