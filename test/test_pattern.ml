@@ -188,6 +188,32 @@ let tests =
             let expected = Literal.render (Helpers.valid s) in
             Helpers.check_images (Printf.sprintf "scene %d:\n%s" i (Scene.show s)) ~expected (Helpers.image_exn s))
           scenes);
+    Alcotest.test_case "with patterns, switching the skips off changes no byte" `Quick (fun () ->
+        (* The early stop of reflections bounds every colour a ray can
+           return: the patterns' second colours count. *)
+        let rand = Random.State.make [| 41 |] in
+        let scenes = QCheck.Gen.generate ~rand ~n:60 Gen_scene.gen in
+        List.iteri
+          (fun i (s : Scene.t) ->
+            let s = Gen_scene.with_patterns rand s in
+            Helpers.check_images (Printf.sprintf "scene %d:\n%s" i (Scene.show s))
+              ~expected:(Helpers.image_exn ~skips:false s) (Helpers.image_exn s))
+          scenes);
+    Alcotest.test_case "a faint mirror shows a black wall's white cells: the early stop counts them" `Quick
+      (fun () ->
+        (* Behind the camera, the wall z = -1, black with white cells, seen
+           only in a mirror of reflectivity 0.02: 0.02 * 255 = 5.1 per
+           channel, which an early stop that took the wall's colour for the
+           brightest would drop. *)
+        let s =
+          scene_exn
+            "(canvas (width 48) (height 48)) (sphere (center 0 0 3) (radius 1) (color 0 0 0) (reflective 0.02))\n\
+             (plane (point 0 0 -1) (normal 0 0 1) (color 0 0 0) (pattern checker (color 255 255 255) (size 0.5)))\n\
+             (light ambient (intensity 1))"
+        in
+        let img = Helpers.image_exn s in
+        Alcotest.(check bool) "the white cells are seen" true (Hashtbl.mem (colours img) (5, 5, 5));
+        Helpers.check_images "skips on and off" ~expected:(Helpers.image_exn ~skips:false s) img);
     Alcotest.test_case "tracing a patterned scene allocates nothing per pixel" `Quick (fun () ->
         List.iter
           (fun epsilon ->
