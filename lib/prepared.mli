@@ -16,8 +16,9 @@ type t = private {
           pattern: the tracer's loops for spheres alone, which ask no
           object its kind nor its pattern. *)
   patterned : bool;
-      (** Some material has a {!Pattern}: the tracer's loop that looks
-          patterns up (the others never do). *)
+      (** Some material has a {!Pattern}: the tracer looks it up at each
+          hit (the loop for spheres alone never asks; the other asks this
+          field once per hit). *)
   alternate : int array;
       (** Per material: the material (an index into [red] to [reflective])
           of its pattern's second colour, or [-1] if it has no pattern;

@@ -727,16 +727,21 @@ let shape_hit tr i =
     s.pz <- pz +. (e *. gz)
   end
 
-(* The material whose colour the hit in [s] shows: [m], or the material
-   of its pattern's second colour. [px, py, pz] is the hit point as
-   computed, before the robust mode moves it off a shape ({!Pattern.odd}
-   moves it its own way), put in [s] for the call and taken back out. *)
-let[@inline] local_material tr m px py pz =
+(* The material whose colour the hit of the ray in [s] at [s.t] shows:
+   [m], or the material of its pattern's second colour. {!Pattern.odd}
+   reads the hit point as [trace_in] computed it, before the robust mode
+   moved it off a shape (the pattern moves it its own way): recomputed
+   here with the same operations, put in [s] for the call, and the moved
+   point put back. Not inlined: its code would make [trace_objects] too
+   big for OCaml to inline into the render loop. *)
+let[@inline never] local_material tr m =
   let p = tr.p in
   let alt = Array.unsafe_get p.alternate m in
   if alt < 0 then m
   else begin
     let s = tr.s in
+    let t = s.t in
+    let px = s.ox +. (s.dx *. t) and py = s.oy +. (s.dy *. t) and pz = s.oz +. (s.dz *. t) in
     let sx = s.px and sy = s.py and sz = s.pz in
     s.px <- px;
     s.py <- py;
@@ -752,7 +757,7 @@ let[@inline] local_material tr m px py pz =
    its local colour and reflectivity and continues with the mirror ray; then
    the stack is folded back from the deepest colour, blend by blend, in the
    same order as the recursion. The ray to trace is in [s]. *)
-let[@inline] trace_in tr ~spheres ~patterns =
+let[@inline] trace_in tr ~spheres =
   let p = tr.p and s = tr.s in
   let levels = ref 0 and tracing = ref true in
   (* The weight of the colour still to be traced: the product of the
@@ -800,7 +805,7 @@ let[@inline] trace_in tr ~spheres ~patterns =
          object's in its colour alone. Looked up before the lighting, whose
          shadow rays reuse [s]'s ray. *)
       let m =
-        if patterns then local_material tr (Array.unsafe_get p.material i) px py pz
+        if (not spheres) && p.patterned then local_material tr (Array.unsafe_get p.material i)
         else Array.unsafe_get p.material i
       in
       lighting tr ~shiny:(Array.unsafe_get p.specular m <> Sphere.matte) ~specular_of:p.specular m;
@@ -859,15 +864,14 @@ let[@inline] trace_in tr ~spheres ~patterns =
     s.b <- (Array.unsafe_get tr.stack ((4 * l) + 2) *. keep) +. (s.b *. refl)
   done
 
-(* One copy per kind of scene: spheres alone ask no object its kind, and
-   only scenes with patterns look them up. *)
-let trace_spheres tr = trace_in tr ~spheres:true ~patterns:false
-
-(* The test of [patterned] here, not in [trace]: inlined where [trace] is,
-   it would grow [primary] past what OCaml inlines into the render loop
-   (2 M more instructions on the reference scene). *)
-let trace_objects tr =
-  if tr.p.patterned then trace_in tr ~spheres:false ~patterns:true else trace_in tr ~spheres:false ~patterns:false
+(* One copy per kind of scene: spheres alone ask no object its kind, nor
+   its pattern ({!Prepared.all_spheres}); the other scenes test per hit
+   whether any material has a pattern. (A copy of the loop for patterns
+   made [trace_objects] too big for OCaml to inline into the render loop
+   it is called from, which cost more than the test: 13 instructions per
+   pixel on scenes/boxes.scene.) *)
+let trace_spheres tr = trace_in tr ~spheres:true
+let trace_objects tr = trace_in tr ~spheres:false
 
 let[@inline] trace tr = if tr.p.all_spheres then trace_spheres tr else trace_objects tr
 
