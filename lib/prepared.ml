@@ -252,13 +252,12 @@ let prepare ?(skips = true) scene =
   let alternate = if !frames = [] then [||] else Array.make n_own (-1) in
   let pattern = Array.make (if !frames = [] then 0 else Pattern.stride * n_own) 0. in
   let extra =
-    List.rev_map
-      (fun (i, p, (origin, scale, extent)) -> (i, p, origin, scale, extent))
-      !frames
-    |> List.mapi (fun j (i, p, origin, scale, extent) ->
-           alternate.(i) <- n_own + j;
-           Pattern.store p ~origin ~scale ~extent pattern (Pattern.stride * i);
-           { (materials.(i)) with Material.color = Pattern.color p; pattern = None })
+    List.mapi
+      (fun j (i, p, (origin, scale, extent)) ->
+        alternate.(i) <- n_own + j;
+        Pattern.store p ~origin ~scale ~extent pattern (Pattern.stride * i);
+        { (materials.(i)) with Material.color = Pattern.color p; pattern = None })
+      (List.rev !frames)
   in
   let materials = Array.append materials (Array.of_list extra) in
   let twin_of = sphere_twins ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~n_spheres n in
