@@ -11,6 +11,7 @@ type t = {
   geom : float array;
   vnormal : float array;
   extent : float array;
+  csg : Csg.table;
   n_scene_objects : int;
   material : int array;
   cx : float array;
@@ -96,8 +97,7 @@ let max_channel (scene : Scene.t) =
   let bound =
     List.fold_left
       (fun acc sh ->
-        let m = Shape.material sh in
-        Float.max acc (channel m.color m.specular))
+        List.fold_left (fun acc (m : Material.t) -> Float.max acc (channel m.color m.specular)) acc (Shape.materials sh))
       bound scene.shapes
   in
   (bound *. (1. +. 1e-6)) +. 1e-6
@@ -199,6 +199,19 @@ let prepare ?(skips = true) scene =
   let corners = Array.make 9 0. in
   (* A mesh's triangles come in a run: one material for the run. *)
   let last_mesh = ref None in
+  (* CSG solids go to their own table: the root node of object [k]'s. Each
+     leaf has its material; the object's is its first leaf's. *)
+  let csg = Csg.builder () and csg_root = Hashtbl.create 8 in
+  let add_csg k c =
+    let first = ref (-1) in
+    let material m =
+      let i = new_material m in
+      if !first < 0 then first := i;
+      i
+    in
+    Hashtbl.replace csg_root k (Csg.add csg ~material c);
+    !first
+  in
   let set k kind mat (c : Vec3.t) h =
     okind.(k) <- kind;
     omat.(k) <- mat;
@@ -215,7 +228,8 @@ let prepare ?(skips = true) scene =
            s.center s.radius)
        ~single:(fun k sh ->
          let c, h = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.) in
-         set k (Shape.kind sh) (new_material (Shape.material sh)) c h)
+         let mat = match sh with Shape.Csg c -> add_csg k c | _ -> new_material (Shape.material sh) in
+         set k (Shape.kind sh) mat c h)
        ~mesh_triangle:(fun k m t ->
          let mat =
            match !last_mesh with
@@ -292,8 +306,13 @@ let prepare ?(skips = true) scene =
          radius.(i) <- s.radius)
        ~single:(fun k sh ->
          let i = slot.(k) in
-         Shape.store sh geom (stride * i);
-         extent_of i)
+         match sh with
+         | Shape.Csg c ->
+             geom.(stride * i) <- Float.of_int (Hashtbl.find csg_root k);
+             extent.(i) <- Csg.extent c
+         | _ ->
+             Shape.store sh geom (stride * i);
+             extent_of i)
        ~mesh_triangle:(fun k m t ->
          let i = slot.(k) in
          for c = 0 to 2 do
@@ -340,6 +359,7 @@ let prepare ?(skips = true) scene =
     geom;
     vnormal;
     extent;
+    csg = Csg.table csg;
     n_scene_objects = n;
     material = Array.map (fun k -> omat.(k)) index;
     cx;
