@@ -57,7 +57,8 @@ v}
     - Beyond the document's spheres (its chapter "Extending the
       Raytracer"): {!Plane}, {!Triangle} (watertight), {!Box}, {!Mesh}
       (from Wavefront OBJ files, {!Obj_file}, or generated, {!Mesh_gen}),
-      one type for them, {!Shape}, each with a {!Material}.
+      one type for them, {!Shape}, each with a {!Material}; constructive
+      solid geometry of the closed ones, {!Csg}.
     - Beyond the document: {!Sampling} (antialiasing), {!Camera_path}
       (animation), {!Region} (tiles), {!Image_diff}, {!Ppm}.
 

@@ -917,8 +917,11 @@ let roots tr k (o : Vec3.t) (d : Vec3.t) =
   if k < 0 || k >= p.n_scene_objects then invalid_arg "Trace.roots: no such object";
   let i = p.slot.(k) in
   Scratch.set_ray s o d;
-  if p.kind.(i) <> Shape.sphere then
+  if p.kind.(i) <> Shape.sphere then begin
+    (* A CSG solid's root is its first crossing beyond [t_min]: all of them. *)
+    s.t_min <- neg_infinity;
     if shape_roots tr s i then (s.near, s.far) else (infinity, infinity)
+  end
   else
     let fx = s.ox -. p.cx.(i) and fy = s.oy -. p.cy.(i) and fz = s.oz -. p.cz.(i) in
     let dx = s.dx and dy = s.dy and dz = s.dz in

@@ -276,6 +276,30 @@ let tests =
           (match Scene.validate s with Error (`Msg m) -> Alcotest.failf "scene %d invalid: %s" i m | Ok _ -> ());
           if not (same_floats s) then Alcotest.failf "scene %d differs:\n%s" i (Scene_file.to_string s)
         done);
+    Alcotest.test_case "many CSG solids: the hierarchy over their bounds gives the bytes of testing every one" `Quick
+      (fun () ->
+        let rand = Random.State.make [| 41 |] in
+        for i = 1 to 12 do
+          (* A row of solids, each of every kind of operation, spread
+             along x so that the hierarchy prunes. *)
+          let shapes =
+            List.init 12 (fun k ->
+                let c = random_csg rand 1 in
+                let shift = Vec3.v (Float.of_int (k - 6) *. 1.5) 0. (Float.of_int (k mod 3)) in
+                let move = Test_numerics.transform ~scale:1. ~translate:shift in
+                match move (Scene.v ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[] ()) with
+                | { shapes = [ sh ]; _ } -> sh
+                | _ -> assert false)
+          in
+          List.iter
+            (fun epsilon ->
+              let camera = match Camera.look_at ~position:(Vec3.v 0. 3. (-6.)) (Vec3.v 0. 0. 4.) with Ok c -> c | Error (`Msg e) -> failwith e in
+              let s = scene ?epsilon ~width:48 ~height:48 ~camera (floor :: shapes) in
+              if (Helpers.prepare s).bvh = None then Alcotest.fail "no hierarchy";
+              if not (Image.equal (Helpers.image_exn ~skips:false s) (Helpers.image_exn ~skips:true s)) then
+                Alcotest.failf "scene %d: the hierarchy changes the image:\n%s" i (Scene_file.to_string s))
+            [ None; Some 0.001 ]
+        done);
     Alcotest.test_case "a sphere minus a box, 1e7 times smaller than its distance, is its exact shape" `Quick
       (fun () ->
         List.iter
