@@ -326,10 +326,14 @@ let mesh_intervals tb w (s : Scratch.t) node base =
    tracking whether the ray is inside each child, that records where the
    operation's answer changes. An interval that opens where the last one
    closed extends it (touching solids make one), one that closes where it
-   opened is dropped (a ray that only touches). *)
+   opened is dropped (a ray that only touches). Of two ends at the same
+   [t], [a]'s is taken first, and the point belongs to the surface of the
+   lower number, the leaf further left, whichever end changes the answer
+   (as in {!literal_hit}, which takes the first crossing at that [t]). *)
 let merge w op node base na nb ba bb =
   let ca = 2 * Array.unsafe_get w.count na and cb = 2 * Array.unsafe_get w.count nb in
   let ia = ref 0 and ib = ref 0 and in_a = ref false and in_b = ref false and inside = ref false and n = ref 0 in
+  let tie_t = ref nan and tie_sf = ref 0 in
   while !ia < ca || !ib < cb do
     let ta =
       if !ia >= ca then infinity
@@ -349,6 +353,10 @@ let merge w op node base na nb ba bb =
       else if !ib land 1 = 0 then Array.unsafe_get w.s_in (bb + (!ib lsr 1))
       else Array.unsafe_get w.s_out (bb + (!ib lsr 1))
     in
+    (* Each list's ends strictly increase: a tie is one end of each. *)
+    let sf = if t = !tie_t && !tie_sf < sf then !tie_sf else sf in
+    tie_t := t;
+    tie_sf := sf;
     if from_a then begin
       in_a := not !in_a;
       incr ia
