@@ -280,6 +280,21 @@ let tests =
                nest 40),
               "csg nested deeper than 32 levels" );
           ]);
+    Alcotest.test_case "raytrace render refuses a bad csg form: one located line, status 1, no output file" `Quick
+      (fun () ->
+        let dir = Helpers.temp_dir () in
+        let scene = Filename.concat dir "bad.scene" and out = Filename.concat dir "out.ppm" in
+        let oc = open_out scene in
+        output_string oc
+          "(canvas (width 8) (height 8))\n(csg union (sphere (center 0 0 4) (radius 1) (color 1 1 1))\n  (plane (point 0 0 0) (normal 0 1 0) (color 1 1 1)))\n";
+        close_out oc;
+        let code, stdout, stderr = Helpers.run (Helpers.raytrace ()) [ "render"; scene; "-o"; out ] in
+        Alcotest.(check int) "exit status" 1 code;
+        Alcotest.(check string) "nothing on stdout" "" stdout;
+        Alcotest.(check string) "one line"
+          (Printf.sprintf "raytrace: %s:3:3: csg: a plane is not a closed solid; an operand is a sphere, box, closed mesh or csg\n" scene)
+          stderr;
+        Alcotest.(check bool) "no output file" false (Sys.file_exists out));
     Alcotest.test_case "random CSG scenes: the kernel's colours are the literal algorithm's, bit for bit" `Quick
       (fun () ->
         let rand = Random.State.make [| 14 |] in
