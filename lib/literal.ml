@@ -20,12 +20,15 @@ let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
     spheres;
   match !closest with Some sphere -> Some (sphere, !closest_t) | None -> None
 
-type obj = Sphere of Sphere.t | Shape of Shape.t | Mesh_triangle of Mesh.t * int
+(* A CSG solid's hit is a point of one of its leaves: its material, and
+   the solid's outward normal there. *)
+type obj = Sphere of Sphere.t | Shape of Shape.t | Mesh_triangle of Mesh.t * int | Csg_surface of Csg.solid * Vec3.t
 
 let material = function
   | Sphere s -> Material.v ~specular:s.specular ~reflective:s.reflective ?pattern:s.pattern s.color
   | Shape sh -> Shape.material sh
   | Mesh_triangle (m, _) -> m.material
+  | Csg_surface (l, _) -> Csg.leaf_material l
 
 (* A mesh is its triangles, in order, less the degenerate ones (no ray
    can hit them). Each object comes with its geometry as the kernel's
@@ -40,7 +43,7 @@ let objects_of_shape = function
 
 let table shape =
   let g = Array.make Shape.stride 0. in
-  Shape.store shape g 0;
+  (match shape with Shape.Csg _ -> () | _ -> Shape.store shape g 0);
   g
 
 let objects_cache = ref ([], [||])
@@ -66,6 +69,7 @@ let roots shape g ~origin ~direction =
     | Shape.Triangle _ -> Triangle.roots scratch g 0
     | Shape.Box _ -> Box.roots scratch g 0
     | Shape.Mesh _ -> invalid_arg "Literal.roots: a mesh is its triangles"
+    | Shape.Csg _ -> invalid_arg "Literal.roots: a CSG solid has its own literal algorithm"
   in
   if hit then (scratch.near, scratch.far) else (infinity, infinity)
 
@@ -80,11 +84,17 @@ let closest_hit (scene : Scene.t) ~origin ~direction ~t_min ~t_max =
   Array.fold_left
     (fun best (obj, shape, g) ->
       incr tests;
-      let near, far = roots shape g ~origin ~direction in
       let best_t = match best with Some (_, t) -> t | None -> infinity in
-      if near < best_t && t_min < near && near < t_max then Some (obj, near)
-      else if far < best_t && t_min < far && far < t_max then Some (obj, far)
-      else best)
+      match shape with
+      | Shape.Csg c -> (
+          match Csg.literal_hit c ~origin ~direction ~t_min ~t_max with
+          | Some (t, l, n) when t < best_t -> Some (Csg_surface (l, n), t)
+          | _ -> best)
+      | _ ->
+          let near, far = roots shape g ~origin ~direction in
+          if near < best_t && t_min < near && near < t_max then Some (obj, near)
+          else if far < best_t && t_min < far && far < t_max then Some (obj, far)
+          else best)
     best (objects scene.shapes)
 
 (* A sphere's normal points out of it, as in the document; a plane's or a
@@ -96,6 +106,7 @@ let normal obj ~point ~direction =
   | Shape shape ->
       let n = Shape.normal shape point in
       if Vec3.dot n direction > 0. then Vec3.neg n else n
+  | Csg_surface (_, n) -> if Vec3.dot n direction > 0. then Vec3.neg n else n
   | Mesh_triangle (m, k) -> (
       let tri = Mesh.triangle m k in
       let n = Shape.normal (Shape.Triangle tri) point in
@@ -118,8 +129,9 @@ let normal obj ~point ~direction =
 let last_frame = ref None
 
 let pattern_frame = function
-  | Sphere s -> (Vec3.zero, 1., Sphere.extent s)
+  | Sphere s -> Shape.leaf_pattern_frame (Csg.Sphere s)
   | Shape sh -> Shape.pattern_frame sh
+  | Csg_surface (l, _) -> Shape.leaf_pattern_frame l
   | Mesh_triangle (m, _) -> (
       match !last_frame with
       | Some (m', f) when m' == m -> f

@@ -26,6 +26,9 @@ type obj =
   | Sphere of Sphere.t
   | Shape of Shape.t  (** A plane, a triangle or a box. *)
   | Mesh_triangle of Mesh.t * int  (** Triangle [k] of a mesh. *)
+  | Csg_surface of Csg.solid * Vec3.t
+      (** The point hit on a CSG solid: the leaf whose surface it is and the
+          solid's outward normal there ({!Csg.literal_hit}). *)
 (** The type for the objects of a scene: a mesh is one object per
     triangle, less its degenerate ones. *)
 
@@ -34,7 +37,8 @@ val closest_hit :
 (** [closest_hit scene ~origin ~direction ~t_min ~t_max] is the object of
     [scene] hit first by the ray [P = O + t D] with [t_min < t < t_max],
     and its [t]: the spheres by {!closest_intersection}, then the other
-    shapes by {!Shape.roots}, the nearer of its two roots that is in range.
+    shapes by {!Shape.roots}, the nearer of its two roots that is in range,
+    a CSG solid by {!Csg.literal_hit}.
     Of objects hit at the same [t], the first wins, spheres before shapes. *)
 
 val normal : obj -> point:Vec3.t -> direction:Vec3.t -> Vec3.t

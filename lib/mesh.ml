@@ -96,3 +96,11 @@ let equal a b =
 let pp ppf m =
   Format.fprintf ppf "<mesh %S: %d triangles, scale %s, translate %a%s>" m.source (triangle_count m)
     (Float_text.to_string m.scale) Vec3.pp m.translate (if m.smooth then ", smooth" else "")
+
+(* The file's text is not kept: a mesh prints as the form that reads it
+   again. *)
+let pp_form ppf m =
+  Format.fprintf ppf "(mesh (file %S) (scale %s) (translate %a)%s %a)" m.source (Float_text.to_string m.scale)
+    Vec3.pp_components m.translate
+    (if m.smooth then " (smooth true)" else "")
+    Material.pp m.material

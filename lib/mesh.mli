@@ -79,3 +79,8 @@ val equal : t -> t -> bool
 val pp : Format.formatter -> t -> unit
 (** [pp ppf m] prints a summary of [m]: its source, triangle count and
     placement. *)
+
+val pp_form : Format.formatter -> t -> unit
+(** [pp_form ppf m] prints [m] as its form in the scene-file syntax: the
+    form that reads its file again ([file], [scale], [translate],
+    [smooth] when true, the material's fields). *)

@@ -14,6 +14,7 @@ type t = {
   geom : float array;
   vnormal : float array;
   extent : float array;
+  csg : Csg.table;
   n_scene_objects : int;
   material : int array;
   cx : float array;
@@ -105,8 +106,7 @@ let max_channel (scene : Scene.t) =
   let bound =
     List.fold_left
       (fun acc sh ->
-        let m = Shape.material sh in
-        Float.max acc (channels m.color m.pattern m.specular))
+        List.fold_left (fun acc (m : Material.t) -> Float.max acc (channels m.color m.pattern m.specular)) acc (Shape.materials sh))
       bound scene.shapes
   in
   (bound *. (1. +. 1e-6)) +. 1e-6
@@ -213,6 +213,21 @@ let prepare ?(skips = true) scene =
   let corners = Array.make 9 0. in
   (* A mesh's triangles come in a run: one material for the run. *)
   let last_mesh = ref None in
+  (* CSG solids go to their own table: the root node of object [k]'s. Each
+     leaf has its material; the object's is its first leaf's. *)
+  let csg = Csg.builder () and csg_root = Hashtbl.create 8 in
+  (* A leaf's pattern lies where the leaf's would as an object of its own. *)
+
+  let add_csg k c =
+    let first = ref (-1) in
+    let material leaf =
+      let i = new_material (Csg.leaf_material leaf) (fun () -> Shape.leaf_pattern_frame leaf) in
+      if !first < 0 then first := i;
+      i
+    in
+    Hashtbl.replace csg_root k (Csg.add csg ~material c);
+    !first
+  in
   let set k kind mat (c : Vec3.t) h =
     okind.(k) <- kind;
     omat.(k) <- mat;
@@ -227,11 +242,12 @@ let prepare ?(skips = true) scene =
          set k Shape.sphere
            (new_material
               (Material.v ~specular:s.specular ~reflective:s.reflective ?pattern:s.pattern s.color)
-              (fun () -> (Vec3.zero, 1., Sphere.extent s)))
+              (fun () -> Shape.leaf_pattern_frame (Csg.Sphere s)))
            s.center s.radius)
        ~single:(fun k sh ->
          let c, h = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.) in
-         set k (Shape.kind sh) (new_material (Shape.material sh) (fun () -> Shape.pattern_frame sh)) c h)
+         let mat = match sh with Shape.Csg c -> add_csg k c | _ -> new_material (Shape.material sh) (fun () -> Shape.pattern_frame sh) in
+         set k (Shape.kind sh) mat c h)
        ~mesh_triangle:(fun k m t ->
          let mat =
            match !last_mesh with
@@ -323,8 +339,13 @@ let prepare ?(skips = true) scene =
          radius.(i) <- s.radius)
        ~single:(fun k sh ->
          let i = slot.(k) in
-         Shape.store sh geom (stride * i);
-         extent_of i)
+         match sh with
+         | Shape.Csg c ->
+             geom.(stride * i) <- Float.of_int (Hashtbl.find csg_root k);
+             extent.(i) <- Csg.extent c
+         | _ ->
+             Shape.store sh geom (stride * i);
+             extent_of i)
        ~mesh_triangle:(fun k m t ->
          let i = slot.(k) in
          for c = 0 to 2 do
@@ -374,6 +395,7 @@ let prepare ?(skips = true) scene =
     geom;
     vnormal;
     extent;
+    csg = Csg.table csg;
     n_scene_objects = n;
     material = Array.map (fun k -> omat.(k)) index;
     cx;

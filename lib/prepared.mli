@@ -55,6 +55,9 @@ type t = private {
           no smooth triangle). *)
   extent : float array;
       (** The largest magnitude of a coordinate of the object's geometry. *)
+  csg : Csg.table;
+      (** The CSG solids: the [geom] of a slot of kind {!Shape.csg} holds
+          the number of its root node in this table. *)
   n_scene_objects : int;
       (** The objects of the scene, [>= n_objects]: a sphere identical (same
           center and radius) to an earlier one has no slot of its own, its

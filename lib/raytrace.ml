@@ -10,6 +10,7 @@ module Plane = Plane
 module Triangle = Triangle
 module Box = Box
 module Mesh = Mesh
+module Csg = Csg
 module Shape = Shape
 module Obj_file = Obj_file
 module Mesh_gen = Mesh_gen

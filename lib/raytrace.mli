@@ -58,7 +58,8 @@ v}
       Raytracer"): {!Plane}, {!Triangle} (watertight), {!Box}, {!Mesh}
       (from Wavefront OBJ files, {!Obj_file}, or generated, {!Mesh_gen}),
       one type for them, {!Shape}, each with a {!Material}, which may
-      carry a {!Pattern} (a checkerboard).
+      carry a {!Pattern} (a checkerboard); constructive solid geometry of
+      the closed ones, {!Csg}.
     - Beyond the document: {!Sampling} (antialiasing), {!Camera_path}
       (animation), {!Region} (tiles), {!Image_diff}, {!Ppm}.
 
@@ -85,6 +86,7 @@ module Plane = Plane
 module Triangle = Triangle
 module Box = Box
 module Mesh = Mesh
+module Csg = Csg
 module Shape = Shape
 module Obj_file = Obj_file
 module Mesh_gen = Mesh_gen

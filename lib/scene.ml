@@ -164,7 +164,7 @@ let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
   let depth =
     if
       List.exists (fun (sp : Sphere.t) -> sp.reflective > 0.) s.spheres
-      || List.exists (fun sh -> (Shape.material sh).reflective > 0.) s.shapes
+      || List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.reflective > 0.) (Shape.materials sh)) s.shapes
     then s.depth
     else 0
   in

@@ -300,16 +300,18 @@ let triangle ~where form_node nodes =
   let m = material ~where ~form ~form_node fs in
   Shape.Triangle (check node (Triangle.validate (Triangle.v v0 v1 v2 m)))
 
-let box ~where form_node nodes =
+let box_solid ~where form_node nodes =
   let form = "box" in
   let fs = fields ~where ~form ~allowed:([ "min"; "max" ] @ material_fields) nodes in
   let _, min = point_field ~form ~form_node fs "min" in
   let max_node, max = point_field ~form ~form_node fs "max" in
   let m = material ~where ~form ~form_node fs in
-  Shape.Box (check max_node (Box.validate (Box.v ~min ~max m)))
+  check max_node (Box.validate (Box.v ~min ~max m))
+
+let box ~where form_node nodes = Shape.Box (box_solid ~where form_node nodes)
 
 (* A mesh: its file is read by [load] (the path as the scene gives it). *)
-let mesh ~where ~load form_node nodes =
+let mesh_solid ~where ~load form_node nodes =
   let form = "mesh" in
   let fs = fields ~where ~form ~allowed:([ "file"; "scale"; "translate"; "smooth" ] @ material_fields) nodes in
   let file_node, file =
@@ -342,10 +344,48 @@ let mesh ~where ~load form_node nodes =
   in
   let m = material ~where ~form ~form_node fs in
   let obj = check file_node (load file) in
-  Shape.Mesh
-    (check form_node
-       (Mesh.v ~smooth ~scale ~translate ~source:file ~skipped:(Obj_file.skipped_total obj) ~positions:obj.positions
-          ~triangles:obj.triangles ~normals:obj.normals ~triangle_normals:obj.triangle_normals m))
+  check form_node
+    (Mesh.v ~smooth ~scale ~translate ~source:file ~skipped:(Obj_file.skipped_total obj) ~positions:obj.positions
+       ~triangles:obj.triangles ~normals:obj.normals ~triangle_normals:obj.triangle_normals m)
+
+let mesh ~where ~load form_node nodes = Shape.Mesh (mesh_solid ~where ~load form_node nodes)
+
+let csg_ops = [ "union"; "intersection"; "difference" ]
+
+(* A CSG form [(csg op A B)], nested [depth] deep: each operand is a
+   closed solid's form. *)
+let rec csg ~where ~load ~depth form_node nodes =
+  if depth > Csg.max_depth then fail form_node "csg nested deeper than %d levels" Csg.max_depth;
+  match nodes with
+  | Sexp.Atom name :: rest as all -> (
+      let op =
+        match Csg.op_of_string name with
+        | Some op -> op
+        | None ->
+            fail (List.hd all) "unknown csg operation %s; expected %s%s" (show_atom name) (one_of csg_ops)
+              (suggestion name csg_ops)
+      in
+      match rest with
+      | [ a; b ] -> Csg.v op (csg_operand ~where ~load ~depth a) (csg_operand ~where ~load ~depth b)
+      | _ -> fail form_node "csg %s takes 2 solids, got %d" name (List.length rest))
+  | _ ->
+      fail form_node "csg: expected an operation first, e.g. (csg difference (sphere ...) (box ...)); operations are %s"
+        (one_of csg_ops)
+
+and csg_operand ~where ~load ~depth node =
+  match node with
+  | Sexp.List (Sexp.Atom "sphere" :: rest) -> Csg.Sphere (sphere ~where node rest)
+  | Sexp.List (Sexp.Atom "box" :: rest) -> Csg.Box (box_solid ~where node rest)
+  | Sexp.List (Sexp.Atom "mesh" :: rest) ->
+      let m = mesh_solid ~where ~load node rest in
+      check node (Csg.check_closed m);
+      Csg.Mesh m
+  | Sexp.List (Sexp.Atom "csg" :: rest) -> Csg.Csg (csg ~where ~load ~depth:(depth + 1) node rest)
+  | Sexp.List (Sexp.Atom ("plane" | "triangle" as kw) :: _) ->
+      fail node "csg: a %s is not a closed solid; an operand is a sphere, box, closed mesh or csg" kw
+  | Sexp.List (Sexp.Atom kw :: _) ->
+      fail node "csg: unknown solid %s; an operand is a sphere, box, closed mesh or csg" (show_atom kw)
+  | _ -> fail node "csg: expected a solid in parentheses, e.g. (sphere ...), (box ...), (mesh ...) or (csg ...)"
 
 let light ~where form_node nodes =
   let kinds = [ "ambient"; "point"; "directional" ] in
@@ -426,7 +466,7 @@ let value form form_node = function
   | nodes -> fail form_node "%s takes 1 value, got %d" form (List.length nodes)
 
 let top_level =
-  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "plane"; "triangle"; "box"; "mesh"; "light" ]
+  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "plane"; "triangle"; "box"; "mesh"; "csg"; "light" ]
 
 (* The scene being read, form by form. *)
 type builder = {
@@ -488,6 +528,10 @@ let add_form b node =
           b.n_spheres <- b.n_spheres + 1;
           ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
           b.shapes <- mesh ~where ~load:b.load node rest :: b.shapes
+      | "csg" ->
+          b.n_spheres <- b.n_spheres + 1;
+          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
+          b.shapes <- Shape.Csg (csg ~where ~load:b.load ~depth:1 node rest) :: b.shapes
       | "light" ->
           b.n_lights <- b.n_lights + 1;
           ignore (check node (Limits.check_count b.limits `Lights b.n_lights));

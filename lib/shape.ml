@@ -1,10 +1,13 @@
-type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t [@@deriving eq]
+type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t [@@deriving eq]
 
 let material = function
   | Plane p -> p.material
   | Triangle t -> t.material
   | Box b -> b.material
   | Mesh m -> m.material
+  | Csg c -> List.hd (Csg.materials c)
+
+let materials = function Csg c -> Csg.materials c | s -> [ material s ]
 
 let validate s =
   let ( let* ) = Result.bind in
@@ -22,15 +25,20 @@ let validate s =
       (* Its arrays and placement were checked by [Mesh.v]. *)
       let* _ = Material.validate ~form:"mesh" m.material in
       Ok (Mesh m)
+  | Csg c ->
+      let* c = Csg.validate c in
+      Ok (Csg c)
 
-let name = function Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh"
+let name = function Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg"
 let sphere = 0
 let plane = 1
 let triangle = 2
 let box = 3
 let smooth_triangle = 4
+let csg = 5
 let one fn = invalid_arg (Printf.sprintf "Shape.%s: a mesh is many objects" fn)
-let kind = function Plane _ -> plane | Triangle _ -> triangle | Box _ -> box | Mesh _ -> one "kind"
+let own fn = invalid_arg (Printf.sprintf "Shape.%s: a CSG solid is in the kernel's CSG table" fn)
+let kind = function Plane _ -> plane | Triangle _ -> triangle | Box _ -> box | Mesh _ -> one "kind" | Csg _ -> csg
 let stride = 9
 
 let store s g o =
@@ -39,8 +47,9 @@ let store s g o =
   | Triangle t -> Triangle.store t g o
   | Box b -> Box.store b g o
   | Mesh _ -> one "store"
+  | Csg _ -> own "store"
 
-let bounded = function Plane _ -> false | Triangle _ | Box _ | Mesh _ -> true
+let bounded = function Plane _ -> false | Triangle _ | Box _ | Mesh _ | Csg _ -> true
 
 let cube (lo : Vec3.t) (hi : Vec3.t) =
   let c = Vec3.smul 0.5 (Vec3.add lo hi) in
@@ -51,6 +60,9 @@ let bounds = function
   | Plane _ -> invalid_arg "Shape.bounds: a plane is unbounded"
   | Mesh _ -> one "bounds"
   | Box b -> cube b.min b.max
+  | Csg c ->
+      let lo, hi = Csg.bounds c in
+      cube lo hi
   | Triangle t ->
       let lo = Vec3.v (Float.min t.v0.x (Float.min t.v1.x t.v2.x)) (Float.min t.v0.y (Float.min t.v1.y t.v2.y))
           (Float.min t.v0.z (Float.min t.v1.z t.v2.z)) in
@@ -72,6 +84,7 @@ let roots s ~origin ~direction =
         | Triangle _ -> Triangle.roots sc g 0
         | Box _ -> Box.roots sc g 0
         | Mesh _ -> one "roots"
+        | Csg _ -> own "roots"
       in
       if hit then (sc.near, sc.far) else (infinity, infinity))
 
@@ -84,20 +97,16 @@ let normal s (p : Vec3.t) =
       | Plane _ -> Plane.normal sc g 0
       | Triangle _ -> Triangle.normal sc g 0
       | Box _ -> Box.normal sc g 0
-      | Mesh _ -> one "normal");
+      | Mesh _ -> one "normal"
+      | Csg _ -> own "normal");
       Vec3.v sc.nx sc.ny sc.nz)
 
 let pp ppf = function
   | Plane p -> Plane.pp ppf p
   | Triangle t -> Triangle.pp ppf t
   | Box b -> Box.pp ppf b
-  | Mesh m ->
-      (* The file's text is not kept: a mesh prints as the form that reads
-         it again. *)
-      Format.fprintf ppf "(mesh (file %S) (scale %s) (translate %a)%s %a)" m.source (Float_text.to_string m.scale)
-        Vec3.pp_components m.translate
-        (if m.smooth then " (smooth true)" else "")
-        Material.pp m.material
+  | Mesh m -> Mesh.pp_form ppf m
+  | Csg c -> Csg.pp ppf c
 
 let show s = Format.asprintf "%a" pp s
 
@@ -112,3 +121,10 @@ let pattern_frame = function
   | (Plane _ | Triangle _) as sh -> (Vec3.zero, 1., stored_extent sh)
   | Box b as sh -> (b.min, 1., stored_extent sh)
   | Mesh m -> (m.translate, m.scale, Array.fold_left (fun e x -> Float.max e (Float.abs x)) 0. m.positions)
+  | Csg _ -> invalid_arg "Shape.pattern_frame: a CSG solid's patterns are its leaves' (Shape.leaf_pattern_frame)"
+
+let leaf_pattern_frame = function
+  | Csg.Sphere s -> (Vec3.zero, 1., Sphere.extent s)
+  | Csg.Box b -> pattern_frame (Box b)
+  | Csg.Mesh m -> pattern_frame (Mesh m)
+  | Csg.Csg _ -> invalid_arg "Shape.leaf_pattern_frame: a CSG node is not a leaf"

@@ -5,31 +5,36 @@
     written by the shape module's [store]). This module ties the kinds to
     the shape modules, for the kernel and for {!Literal}. *)
 
-type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t
+type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t
 (** The type for shapes. *)
 
 val equal : t -> t -> bool
 (** [equal a b] is [true] iff [a] and [b] are the same kind of shape with
     equal fields ({!Plane.equal}, {!Triangle.equal}, {!Box.equal},
-    {!Mesh.equal}). *)
+    {!Mesh.equal}, {!Csg.equal}). *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf s] prints [s] as its form in the scene-file syntax ([plane],
-    [triangle], [box] or [mesh]; a mesh as the form that reads its file
-    again), [specular] and [reflective] only when they are not the
+    [triangle], [box], [mesh] or [csg]; a mesh as the form that reads its
+    file again), [specular] and [reflective] only when they are not the
     defaults. *)
 
 val show : t -> string
 (** [show s] is [s] formatted by {!pp}. *)
 
 val material : t -> Material.t
-(** [material s] is the material of [s]. *)
+(** [material s] is the material of [s]; of a CSG solid, its first leaf's
+    (each of its leaves has its own: {!materials}). *)
+
+val materials : t -> Material.t list
+(** [materials s] is [[material s]], or the materials of a CSG solid's
+    leaves ({!Csg.materials}). *)
 
 val validate : t -> (t, [> `Msg of string ]) result
 (** [validate s] is the shape module's [validate]. *)
 
 val name : t -> string
-(** [name s] is the scene-file form of [s]: ["plane"], ["triangle"], ["box"] or ["mesh"]. *)
+(** [name s] is the scene-file form of [s]: ["plane"], ["triangle"], ["box"], ["mesh"] or ["csg"]. *)
 
 (** {1:kinds Kinds} *)
 
@@ -49,11 +54,16 @@ val smooth_triangle : int
 (** [smooth_triangle] is [4]: a mesh's triangle shaded with normals
     interpolated from its corners ({!Triangle.smooth_normal}). *)
 
+val csg : int
+(** [csg] is [5]: a CSG solid, whose geometry is the number of its root
+    node in the kernel's {!Csg.table} (see {!Raytrace.Private.Prepared}). *)
+
 val kind : t -> int
 (** [kind s] is the kind of [s].
     @raise Invalid_argument on a mesh, which is many objects of kind
     {!triangle} or {!smooth_triangle} (so are {!store}, {!bounds},
-    {!roots} and {!normal}). *)
+    {!roots} and {!normal}); {!store}, {!roots} and {!normal} raise it
+    on a CSG solid too, which the kernel traces from its own table. *)
 
 val stride : int
 (** [stride] is [9], the floats of geometry per shape in the table. *)
@@ -74,7 +84,14 @@ val pattern_frame : t -> Vec3.t * float * float
     the world origin and scale of the coordinates a pattern on [s] uses
     (world coordinates for planes and triangles; the [min] corner for
     boxes; the mesh's [translate] and [scale] for meshes), and the
-    largest magnitude of a coordinate of [s]'s geometry. *)
+    largest magnitude of a coordinate of [s]'s geometry. A CSG solid's
+    patterns are its leaves' ({!leaf_pattern_frame}).
+    @raise Invalid_argument if [s] is a [Csg]. *)
+
+val leaf_pattern_frame : Csg.solid -> Vec3.t * float * float
+(** [leaf_pattern_frame l] is {!pattern_frame} of the CSG leaf [l] as an
+    object of its own (a sphere's pattern uses world coordinates).
+    @raise Invalid_argument if [l] is a [Csg] node. *)
 
 (** {1:readable For the literal tracer} *)
 

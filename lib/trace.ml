@@ -19,6 +19,7 @@ type t = {
   last_blocker : int array;  (** Per light: the sphere that last shadowed it. *)
   counters : counters;
   nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
+  csg : Csg.work;  (** Room for the intervals of the CSG solids. *)
   mutable hit : int;  (** Index of the sphere found by [closest]. *)
   mutable origin_sphere : int;
       (** The slot of the sphere the current secondary ray leaves, or
@@ -42,6 +43,7 @@ let create ?(averaging = false) (p : Prepared.t) =
     counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0 };
     nodes =
       Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0;
+    csg = Csg.work p.csg;
     hit = -1;
     origin_sphere = -1;
     first_hit = -1;
@@ -181,18 +183,21 @@ let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
   end
 
 (* The roots of the shape (not a sphere) in slot [i], by its module's
-   routine, in [s.near] and [s.far]; [false] if it misses. *)
-let shape_roots (p : Prepared.t) s i =
+   routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
+   gives its first crossing beyond [s.t_min] as both. *)
+let shape_roots tr s i =
+  let p = tr.p in
   let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
   if k = Shape.triangle || k = Shape.smooth_triangle then Triangle.roots s p.geom o
   else if k = Shape.plane then Plane.roots s p.geom o
-  else Box.roots s p.geom o
+  else if k = Shape.box then Box.roots s p.geom o
+  else Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o))
 
 (* Tests the ray in [s] against the shape (not a sphere) in slot [i],
    keeping the better hit. Secondary rays of the robust mode start off
    the surface they leave (see [trace]), so no shape is special here. *)
 let shape_test tr s i =
-  if shape_roots tr.p s i then begin
+  if shape_roots tr s i then begin
     let near = s.near in
     if better tr s i near && s.t_min < near && near < s.t_max then begin
       s.t <- near;
@@ -384,7 +389,7 @@ let[@inline] closest tr = if tr.p.all_spheres then closest_in tr ~spheres:true e
    [t_min < t < t_max]? *)
 let shape_blocks tr i =
   let s = tr.s in
-  shape_roots tr.p s i
+  shape_roots tr s i
   && ((s.t_min < s.near && s.near < s.t_max) || (s.t_min < s.far && s.far < s.t_max))
 
 (* Does the object in slot [i] meet the ray in [s] with
@@ -687,7 +692,9 @@ let offset_bound = 32. *. epsilon_float
    ray's side, by a bound on its rounding error (Ray Tracing Gems,
    chapter 6): shadow and mirror rays leave from there, and their roots on
    this surface, or on any surface through the same point, are negative
-   whatever the angle, with no constant tied to the scene's scale. *)
+   whatever the angle, with no constant tied to the scene's scale. The
+   material's number of the point is returned: a CSG solid's is its
+   leaf's. *)
 let shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
@@ -695,7 +702,14 @@ let shape_hit tr i =
   let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
   if k = Shape.triangle || k = Shape.smooth_triangle then Triangle.normal s p.geom o
   else if k = Shape.plane then Plane.normal s p.geom o
-  else Box.normal s p.geom o;
+  else if k = Shape.box then Box.normal s p.geom o
+  else begin
+    (* The surface hit, found again for the ray still in [s]: the same
+       first crossing that [closest] kept. The normal is the solid's
+       outward one, as a box's, before it is turned toward the ray. *)
+    ignore (Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o)));
+    Csg.normal p.csg tr.csg s
+  end;
   let flip = (s.nx *. dx) +. (s.ny *. dy) +. (s.nz *. dz) > 0. in
   if flip then begin
     s.nx <- -.s.nx;
@@ -725,7 +739,8 @@ let shape_hit tr i =
     s.px <- px +. (e *. gx);
     s.py <- py +. (e *. gy);
     s.pz <- pz +. (e *. gz)
-  end
+  end;
+  if k = Shape.csg then Csg.material p.csg tr.csg else Array.unsafe_get p.material i
 
 (* The material whose colour the hit of the ray in [s] at [s.t] shows:
    [m], or the material of its pattern's second colour. {!Pattern.odd}
@@ -778,6 +793,7 @@ let[@inline] trace_in tr ~spheres =
       let t = s.t in
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let px = s.ox +. (dx *. t) and py = s.oy +. (dy *. t) and pz = s.oz +. (dz *. t) in
+      let m =
       if spheres || Array.unsafe_get p.kind i = Shape.sphere then begin
         let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
         let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
@@ -791,7 +807,8 @@ let[@inline] trace_in tr ~spheres =
         s.vy <- -.dy;
         s.vz <- -.dz;
         (* Shadow and mirror rays leave sphere i. *)
-        tr.origin_sphere <- i
+        tr.origin_sphere <- i;
+        Array.unsafe_get p.material i
       end
       else begin
         (* The point goes in [s], not as arguments: floats passed to a
@@ -800,13 +817,12 @@ let[@inline] trace_in tr ~spheres =
         s.py <- py;
         s.pz <- pz;
         shape_hit tr i
-      end;
+      end
+      in
       (* A pattern's second colour is a material that differs from the
          object's in its colour alone. Looked up before the lighting, whose
          shadow rays reuse [s]'s ray. *)
-      let m =
-        if (not spheres) && p.patterned then local_material tr (Array.unsafe_get p.material i)
-        else Array.unsafe_get p.material i
+      let m = if (not spheres) && p.patterned then local_material tr m else m
       in
       lighting tr ~shiny:(Array.unsafe_get p.specular m <> Sphere.matte) ~specular_of:p.specular m;
       let light = s.intensity in
@@ -938,8 +954,11 @@ let roots tr k (o : Vec3.t) (d : Vec3.t) =
   if k < 0 || k >= p.n_scene_objects then invalid_arg "Trace.roots: no such object";
   let i = p.slot.(k) in
   Scratch.set_ray s o d;
-  if p.kind.(i) <> Shape.sphere then
-    if shape_roots p s i then (s.near, s.far) else (infinity, infinity)
+  if p.kind.(i) <> Shape.sphere then begin
+    (* A CSG solid's root is its first crossing beyond [t_min]: all of them. *)
+    s.t_min <- neg_infinity;
+    if shape_roots tr s i then (s.near, s.far) else (infinity, infinity)
+  end
   else
     let fx = s.ox -. p.cx.(i) and fy = s.oy -. p.cy.(i) and fz = s.oz -. p.cz.(i) in
     let dx = s.dx and dy = s.dy and dz = s.dz in

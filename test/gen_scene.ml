@@ -142,7 +142,7 @@ let with_patterns rand (s : Scene.t) =
     | Shape.Plane p -> Shape.Plane { p with material = material p.material }
     | Triangle t -> Triangle { t with material = material t.material }
     | Box b -> Box { b with material = material b.material }
-    | Mesh _ as m -> m
+    | (Mesh _ | Csg _) as m -> m
   in
   {
     s with

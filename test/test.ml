@@ -29,6 +29,7 @@ let () =
       ("sampling", Test_sampling.tests);
       ("numerics", Test_numerics.tests);
       ("shapes", Test_shapes.tests);
+      ("csg", Test_csg.tests);
       ("bvh", Test_bvh.tests);
       ("antialias", Test_antialias.tests);
       ("progressive", Test_progressive.tests);

@@ -134,26 +134,39 @@ let transform ~scale ~translate (s : Scene.t) =
     camera = { s.camera with position = p s.camera.position };
     spheres = List.map (fun (sp : Sphere.t) -> { sp with center = p sp.center; radius = scale *. sp.radius; pattern = pattern sp.pattern }) s.spheres;
     shapes =
-      List.map
-        (function
-          | Shape.Plane pl -> Shape.Plane { pl with point = p pl.point; material = material pl.material }
-          | Shape.Triangle t -> Shape.Triangle { v0 = p t.v0; v1 = p t.v1; v2 = p t.v2; material = material t.material }
-          | Shape.Box b -> Shape.Box { min = p b.min; max = p b.max; material = material b.material }
-          | Shape.Mesh m ->
-              let positions = Array.copy m.positions in
-              for i = 0 to (Array.length positions / 3) - 1 do
-                let v = p (Vec3.v positions.(3 * i) positions.((3 * i) + 1) positions.((3 * i) + 2)) in
-                positions.(3 * i) <- v.x;
-                positions.((3 * i) + 1) <- v.y;
-                positions.((3 * i) + 2) <- v.z
-              done;
-              match
-                Mesh.v ~smooth:m.smooth ~positions ~triangles:m.triangles ~normals:m.normals
-                  ~triangle_normals:m.triangle_normals (material m.material)
-              with
-              | Ok m -> Shape.Mesh m
-              | Error (`Msg e) -> Alcotest.fail e)
-        s.shapes;
+      (let mesh (m : Mesh.t) =
+         let positions = Array.copy m.positions in
+         for i = 0 to (Array.length positions / 3) - 1 do
+           let v = p (Vec3.v positions.(3 * i) positions.((3 * i) + 1) positions.((3 * i) + 2)) in
+           positions.(3 * i) <- v.x;
+           positions.((3 * i) + 1) <- v.y;
+           positions.((3 * i) + 2) <- v.z
+         done;
+         match
+           Mesh.v ~smooth:m.smooth ~positions ~triangles:m.triangles ~normals:m.normals
+             ~triangle_normals:m.triangle_normals (material m.material)
+         with
+         | Ok m -> m
+         | Error (`Msg e) -> Alcotest.fail e
+       in
+       let box (b : Box.t) : Box.t = { min = p b.min; max = p b.max; material = material b.material } in
+       let rec csg (c : Csg.t) =
+         let solid = function
+           | Csg.Sphere sp -> Csg.Sphere { sp with center = p sp.center; radius = scale *. sp.radius; pattern = pattern sp.pattern }
+           | Csg.Box b -> Csg.Box (box b)
+           | Csg.Mesh m -> Csg.Mesh (mesh m)
+           | Csg.Csg c -> Csg.Csg (csg c)
+         in
+         { c with a = solid c.a; b = solid c.b }
+       in
+       List.map
+         (function
+           | Shape.Plane pl -> Shape.Plane { pl with point = p pl.point; material = material pl.material }
+           | Shape.Triangle t -> Shape.Triangle { v0 = p t.v0; v1 = p t.v1; v2 = p t.v2; material = material t.material }
+           | Shape.Box b -> Shape.Box (box b)
+           | Shape.Mesh m -> Shape.Mesh (mesh m)
+           | Shape.Csg c -> Shape.Csg (csg c))
+         s.shapes);
     lights =
       List.map
         (function

@@ -43,9 +43,9 @@ let bad_inputs =
     ("(canvas (width 65536) (height 65536))", "t.scene:1:1: canvas 65536x65536 has 4294967296 pixels, more than the limit of 268435456 (set RAYTRACE_MAX_PIXELS to raise it)");
     ("(recursion-depth -1)", "t.scene:1:18: recursion depth must be >= 0, got -1");
     ("(epsilon 0.001)\n(epsilon 0.01)", "t.scene:2:2: duplicate epsilon form (first given at 1:2); it may appear only once");
-    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh or light (did you mean sphere?)");
+    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light (did you mean sphere?)");
     ("sphere", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got sphere");
-    ("()", "t.scene:1:1: empty form (); expected one of canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh or light");
+    ("()", "t.scene:1:1: empty form (); expected one of canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light");
     ("(camera (look-at 0 0 0))", "t.scene:1:9: the camera looks at its own position");
     ("(camera (rotation (1 0 0) (1 0 0) (0 0 1)))",
      "t.scene:1:9: camera rotation must be invertible, but its rows are (nearly) linearly dependent");

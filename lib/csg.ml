@@ -1,0 +1,560 @@
+type op = Union | Intersection | Difference [@@deriving eq]
+
+type t = { op : op; a : solid; b : solid } [@@deriving eq]
+and solid = Sphere of Sphere.t | Box of Box.t | Mesh of Mesh.t | Csg of t
+
+let v op a b = { op; a; b }
+let ops = [ ("union", Union); ("intersection", Intersection); ("difference", Difference) ]
+let op_name op = fst (List.find (fun (_, o) -> o = op) ops)
+let op_of_string s = List.assoc_opt s ops
+let max_depth = 32
+
+let sphere_material (s : Sphere.t) = Material.v ~specular:s.specular ~reflective:s.reflective ?pattern:s.pattern s.color
+
+let rec fold_solids f acc = function
+  | Csg c -> fold_solids f (fold_solids f acc c.a) c.b
+  | leaf -> f acc leaf
+
+let leaves c = List.rev (fold_solids (fun acc l -> l :: acc) [] (Csg c))
+
+let leaf_material = function
+  | Sphere s -> sphere_material s
+  | Box b -> b.material
+  | Mesh m -> m.material
+  | Csg _ -> invalid_arg "Csg.leaf_material: not a leaf"
+
+let materials c = List.map leaf_material (leaves c)
+
+let rec depth = function Csg c -> 1 + max (depth c.a) (depth c.b) | _ -> 0
+
+(* Every edge of a closed mesh borders exactly two of its triangles.
+   Edges are keyed by their endpoints' coordinates, not by vertex numbers,
+   so that a file that repeats a vertex (one per face, as some exporters
+   do) is still closed. Degenerate triangles are left out: no ray can hit
+   them, the kernel drops them. *)
+let check_closed (m : Mesh.t) =
+  let edges = Hashtbl.create 64 in
+  let corner k c = Vec3.to_tuple (Mesh.vertex m k c) in
+  for k = 0 to Mesh.triangle_count m - 1 do
+    if not (Mesh.degenerate m k) then
+      for c = 0 to 2 do
+        let p = corner k c and q = corner k ((c + 1) mod 3) in
+        let key = if compare p q <= 0 then (p, q) else (q, p) in
+        Hashtbl.replace edges key (1 + Option.value ~default:0 (Hashtbl.find_opt edges key))
+      done
+  done;
+  let bad = Hashtbl.fold (fun key n acc -> if n <> 2 && acc = None then Some (key, n) else acc) edges None in
+  match bad with
+  | None -> Ok ()
+  | Some (((ax, ay, az), (bx, by, bz)), n) ->
+      let num = Float_text.to_string in
+      Error
+        (`Msg
+          (Printf.sprintf
+             "csg: mesh %S is not a closed solid: its edge from (%s %s %s) to (%s %s %s) borders %d triangle%s, not 2"
+             m.source (num ax) (num ay) (num az) (num bx) (num by) (num bz) n (if n = 1 then "" else "s")))
+
+let rec validate c =
+  let ( let* ) = Result.bind in
+  let* () =
+    if depth (Csg c) > max_depth then Error (`Msg (Printf.sprintf "csg nested deeper than %d levels" max_depth))
+    else Ok ()
+  in
+  let child = function
+    | Sphere s -> Result.map (fun s -> Sphere s) (Sphere.validate s)
+    | Box b -> Result.map (fun b -> Box b) (Box.validate b)
+    | Mesh m ->
+        let* _ = Material.validate ~form:"mesh" m.material in
+        let* () = check_closed m in
+        Ok (Mesh m)
+    | Csg c -> Result.map (fun c -> Csg c) (validate c)
+  in
+  let* a = child c.a in
+  let* b = child c.b in
+  Ok { c with a; b }
+
+(* Bounds as [lo, hi] corners. *)
+let rec solid_box = function
+  | Sphere s ->
+      let r = Vec3.v s.radius s.radius s.radius in
+      (Vec3.sub s.center r, Vec3.add s.center r)
+  | Box b -> (b.min, b.max)
+  | Mesh m ->
+      let lo = Array.make 3 infinity and hi = Array.make 3 neg_infinity in
+      Array.iteri
+        (fun i x ->
+          lo.(i mod 3) <- Float.min lo.(i mod 3) x;
+          hi.(i mod 3) <- Float.max hi.(i mod 3) x)
+        m.positions;
+      (Vec3.v lo.(0) lo.(1) lo.(2), Vec3.v hi.(0) hi.(1) hi.(2))
+  | Csg c -> (
+      let (alo : Vec3.t), (ahi : Vec3.t) = solid_box c.a and (blo : Vec3.t), (bhi : Vec3.t) = solid_box c.b in
+      let map2 f (p : Vec3.t) (q : Vec3.t) = Vec3.v (f p.x q.x) (f p.y q.y) (f p.z q.z) in
+      match c.op with
+      | Union -> (map2 Float.min alo blo, map2 Float.max ahi bhi)
+      | Difference -> (alo, ahi)
+      | Intersection ->
+          let lo = map2 Float.max alo blo in
+          (* Disjoint boxes: an empty solid, bounded by a point. *)
+          (lo, map2 Float.max lo (map2 Float.min ahi bhi)))
+
+let bounds c = solid_box (Csg c)
+
+let extent c =
+  let ext (p : Vec3.t) = Float.max (Float.abs p.x) (Float.max (Float.abs p.y) (Float.abs p.z)) in
+  fold_solids
+    (fun acc l ->
+      let lo, hi = solid_box l in
+      Float.max acc (Float.max (ext lo) (ext hi)))
+    0. (Csg c)
+
+let rec pp ppf c =
+  let solid ppf = function
+    | Sphere s -> Sphere.pp ppf s
+    | Box b -> Box.pp ppf b
+    | Mesh m -> Mesh.pp_form ppf m
+    | Csg c -> pp ppf c
+  in
+  Format.fprintf ppf "(csg %s %a %a)" (op_name c.op) solid c.a solid c.b
+
+let show c = Format.asprintf "%a" pp c
+
+(* {1 The kernel's table} *)
+
+let stride = 9
+let union = 0
+let intersection = 1
+let difference = 2
+let leaf_sphere = 3
+let leaf_box = 4
+let leaf_mesh = 5
+
+(* Surfaces: a sphere [cx cy cz r], a box as {!Box.store} writes it, a
+   mesh's triangle as {!Triangle.store} does. *)
+let surface_sphere = 0
+let surface_box = 1
+let surface_triangle = 2
+
+type table = {
+  node_kind : int array;
+  left : int array;  (** An operation's first child; a leaf's first surface. *)
+  right : int array;  (** An operation's second child; a leaf's last surface, plus one. *)
+  base : int array;  (** A node's first interval in the work arrays. *)
+  surface_kind : int array;
+  geom : float array;  (** [stride] floats per surface. *)
+  surface_material : int array;
+  intervals : int;
+  crossings : int;  (** The most triangles of a mesh leaf. *)
+}
+
+type builder = {
+  mutable nodes : (int * int * int * int) list;  (** kind, left, right, base; reversed. *)
+  mutable n_nodes : int;
+  mutable surfaces : (int * float array * int) list;  (** Reversed. *)
+  mutable n_surfaces : int;
+  mutable n_intervals : int;
+  mutable max_crossings : int;
+}
+
+let builder () = { nodes = []; n_nodes = 0; surfaces = []; n_surfaces = 0; n_intervals = 0; max_crossings = 0 }
+
+let add_surface b kind g mat =
+  b.surfaces <- (kind, g, mat) :: b.surfaces;
+  b.n_surfaces <- b.n_surfaces + 1
+
+(* A node with room for [cap] intervals; its number. *)
+let add_node b kind left right cap =
+  b.nodes <- (kind, left, right, b.n_intervals) :: b.nodes;
+  b.n_intervals <- b.n_intervals + cap;
+  b.n_nodes <- b.n_nodes + 1;
+  b.n_nodes - 1
+
+(* Adds [s] with its leaves' materials numbered by [material] (given the
+   leaf); its node
+   and its capacity in intervals. *)
+let rec add_solid b ~material s =
+  match s with
+  | Sphere sp ->
+      let first = b.n_surfaces in
+      add_surface b surface_sphere [| sp.center.x; sp.center.y; sp.center.z; sp.radius |] (material s);
+      (add_node b leaf_sphere first (first + 1) 1, 1)
+  | Box bx ->
+      let first = b.n_surfaces in
+      let g = Array.make stride 0. in
+      Box.store bx g 0;
+      add_surface b surface_box g (material s);
+      (add_node b leaf_box first (first + 1) 1, 1)
+  | Mesh m ->
+      let first = b.n_surfaces and mat = material s in
+      for k = 0 to Mesh.triangle_count m - 1 do
+        if not (Mesh.degenerate m k) then begin
+          let g = Array.make stride 0. in
+          Triangle.store (Mesh.triangle m k) g 0;
+          add_surface b surface_triangle g mat
+        end
+      done;
+      let n = b.n_surfaces - first in
+      b.max_crossings <- max b.max_crossings n;
+      let cap = (n / 2) + 1 in
+      (add_node b leaf_mesh first b.n_surfaces cap, cap)
+  | Csg c ->
+      let a, ca = add_solid b ~material c.a in
+      let bn, cb = add_solid b ~material c.b in
+      let kind = match c.op with Union -> union | Intersection -> intersection | Difference -> difference in
+      (add_node b kind a bn (ca + cb), ca + cb)
+
+let add b ~material c = fst (add_solid b ~material (Csg c))
+
+let table b =
+  let nodes = Array.of_list (List.rev b.nodes) and surfaces = Array.of_list (List.rev b.surfaces) in
+  let geom = Array.make (stride * Array.length surfaces) 0. in
+  Array.iteri (fun i (_, g, _) -> Array.blit g 0 geom (stride * i) (Array.length g)) surfaces;
+  {
+    node_kind = Array.map (fun (k, _, _, _) -> k) nodes;
+    left = Array.map (fun (_, l, _, _) -> l) nodes;
+    right = Array.map (fun (_, _, r, _) -> r) nodes;
+    base = Array.map (fun (_, _, _, o) -> o) nodes;
+    surface_kind = Array.map (fun (k, _, _) -> k) surfaces;
+    geom;
+    surface_material = Array.map (fun (_, _, m) -> m) surfaces;
+    intervals = b.n_intervals;
+    crossings = b.max_crossings;
+  }
+
+let empty = table (builder ())
+
+type work = {
+  t_in : float array;
+  t_out : float array;
+  s_in : int array;
+  s_out : int array;
+  count : int array;
+  xt : float array;
+  xs : int array;
+  mutable surface : int;
+  mutable entering : bool;
+}
+
+let work tb =
+  let n = max 1 tb.intervals and x = max 1 tb.crossings in
+  {
+    t_in = Array.make n 0.;
+    t_out = Array.make n 0.;
+    s_in = Array.make n 0;
+    s_out = Array.make n 0;
+    count = Array.make (max 1 (Array.length tb.node_kind)) 0;
+    xt = Array.make x 0.;
+    xs = Array.make x 0;
+    surface = -1;
+    entering = true;
+  }
+
+(* The sphere at [o] in [g]: {!Sphere.roots}'s cancellation-free roots,
+   the same operations on floats of the scratch record. *)
+let[@inline] sphere_roots (s : Scratch.t) g o =
+  let fx = s.ox -. Array.unsafe_get g o and fy = s.oy -. Array.unsafe_get g (o + 1) and fz = s.oz -. Array.unsafe_get g (o + 2) in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let radius = Array.unsafe_get g (o + 3) in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+  let k = b *. (1. /. a) in
+  let lx = fx -. (k *. dx) and ly = fy -. (k *. dy) and lz = fz -. (k *. dz) in
+  let l2 = (lx *. lx) +. (ly *. ly) +. (lz *. lz) and r2 = radius *. radius in
+  if l2 > r2 then false
+  else begin
+    let len = sqrt l2 in
+    let sq = sqrt (a *. ((radius -. len) *. (radius +. len))) in
+    let q = -.(b +. Float.copy_sign sq b) in
+    if q = 0. then begin
+      s.near <- 0.;
+      s.far <- 0.
+    end
+    else begin
+      let t0 = (((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. r2) /. q and t1 = q /. a in
+      s.near <- (if t0 <= t1 then t0 else t1);
+      s.far <- (if t0 <= t1 then t1 else t0)
+    end;
+    true
+  end
+
+(* One interval [near, far] of a sphere or box leaf, if it has a length:
+   a ray that only touches the solid does not go in. *)
+let[@inline] leaf_interval w (s : Scratch.t) node base sf hit =
+  if hit && s.near < s.far then begin
+    Array.unsafe_set w.t_in base s.near;
+    Array.unsafe_set w.t_out base s.far;
+    Array.unsafe_set w.s_in base sf;
+    Array.unsafe_set w.s_out base sf;
+    Array.unsafe_set w.count node 1
+  end
+  else Array.unsafe_set w.count node 0
+
+(* A closed mesh: its crossings along the line, sorted (insertion: a ray
+   crosses few triangles), paired as in, out, in, out... An odd count (a
+   ray through an edge, counted by both triangles) drops the last. *)
+let mesh_intervals tb w (s : Scratch.t) node base =
+  let xt = w.xt and xs = w.xs in
+  let n = ref 0 in
+  for sf = Array.unsafe_get tb.left node to Array.unsafe_get tb.right node - 1 do
+    if Triangle.roots s tb.geom (stride * sf) then begin
+      let t = s.near in
+      let j = ref !n in
+      while !j > 0 && Array.unsafe_get xt (!j - 1) > t do
+        Array.unsafe_set xt !j (Array.unsafe_get xt (!j - 1));
+        Array.unsafe_set xs !j (Array.unsafe_get xs (!j - 1));
+        decr j
+      done;
+      Array.unsafe_set xt !j t;
+      Array.unsafe_set xs !j sf;
+      incr n
+    end
+  done;
+  let m = ref 0 in
+  for j = 0 to (!n / 2) - 1 do
+    let t0 = Array.unsafe_get xt (2 * j) and t1 = Array.unsafe_get xt ((2 * j) + 1) in
+    if t0 < t1 then begin
+      Array.unsafe_set w.t_in (base + !m) t0;
+      Array.unsafe_set w.t_out (base + !m) t1;
+      Array.unsafe_set w.s_in (base + !m) (Array.unsafe_get xs (2 * j));
+      Array.unsafe_set w.s_out (base + !m) (Array.unsafe_get xs ((2 * j) + 1));
+      incr m
+    end
+  done;
+  Array.unsafe_set w.count node !m
+
+(* The intervals of node [node], operation [op] on children [na] and [nb]
+   (their intervals computed): a sweep over both lists' ends in order,
+   tracking whether the ray is inside each child, that records where the
+   operation's answer changes. An interval that opens where the last one
+   closed extends it (touching solids make one), one that closes where it
+   opened is dropped (a ray that only touches). Of two ends at the same
+   [t], [a]'s is taken first, and the point belongs to the surface of the
+   lower number, the leaf further left, whichever end changes the answer
+   (as in {!literal_hit}, which takes the first crossing at that [t]). *)
+let merge w op node base na nb ba bb =
+  let ca = 2 * Array.unsafe_get w.count na and cb = 2 * Array.unsafe_get w.count nb in
+  let ia = ref 0 and ib = ref 0 and in_a = ref false and in_b = ref false and inside = ref false and n = ref 0 in
+  let tie_t = ref nan and tie_sf = ref 0 in
+  while !ia < ca || !ib < cb do
+    let ta =
+      if !ia >= ca then infinity
+      else if !ia land 1 = 0 then Array.unsafe_get w.t_in (ba + (!ia lsr 1))
+      else Array.unsafe_get w.t_out (ba + (!ia lsr 1))
+    in
+    let tb =
+      if !ib >= cb then infinity
+      else if !ib land 1 = 0 then Array.unsafe_get w.t_in (bb + (!ib lsr 1))
+      else Array.unsafe_get w.t_out (bb + (!ib lsr 1))
+    in
+    let from_a = !ib >= cb || (!ia < ca && ta <= tb) in
+    let t = if from_a then ta else tb in
+    let sf =
+      if from_a then
+        if !ia land 1 = 0 then Array.unsafe_get w.s_in (ba + (!ia lsr 1)) else Array.unsafe_get w.s_out (ba + (!ia lsr 1))
+      else if !ib land 1 = 0 then Array.unsafe_get w.s_in (bb + (!ib lsr 1))
+      else Array.unsafe_get w.s_out (bb + (!ib lsr 1))
+    in
+    (* Each list's ends strictly increase: a tie is one end of each. *)
+    let sf = if t = !tie_t && !tie_sf < sf then !tie_sf else sf in
+    tie_t := t;
+    tie_sf := sf;
+    if from_a then begin
+      in_a := not !in_a;
+      incr ia
+    end
+    else begin
+      in_b := not !in_b;
+      incr ib
+    end;
+    let r =
+      if op = union then !in_a || !in_b else if op = intersection then !in_a && !in_b else !in_a && not !in_b
+    in
+    if r <> !inside then begin
+      inside := r;
+      let k = base + !n in
+      if r then begin
+        if !n > 0 && Array.unsafe_get w.t_out (k - 1) = t then decr n
+        else begin
+          Array.unsafe_set w.t_in k t;
+          Array.unsafe_set w.s_in k sf
+        end
+      end
+      else if Array.unsafe_get w.t_in k < t then begin
+        Array.unsafe_set w.t_out k t;
+        Array.unsafe_set w.s_out k sf;
+        incr n
+      end
+    end
+  done;
+  Array.unsafe_set w.count node !n
+
+let rec eval tb w (s : Scratch.t) node =
+  let k = Array.unsafe_get tb.node_kind node and base = Array.unsafe_get tb.base node in
+  if k = leaf_sphere then begin
+    let sf = Array.unsafe_get tb.left node in
+    leaf_interval w s node base sf (sphere_roots s tb.geom (stride * sf))
+  end
+  else if k = leaf_box then begin
+    let sf = Array.unsafe_get tb.left node in
+    leaf_interval w s node base sf (Box.roots s tb.geom (stride * sf))
+  end
+  else if k = leaf_mesh then mesh_intervals tb w s node base
+  else begin
+    let na = Array.unsafe_get tb.left node and nb = Array.unsafe_get tb.right node in
+    eval tb w s na;
+    (* An intersection or difference with nothing of its first child is
+       empty: its second child need not be tested. *)
+    if Array.unsafe_get w.count na = 0 && k <> union then Array.unsafe_set w.count node 0
+    else begin
+      eval tb w s nb;
+      merge w k node base na nb (Array.unsafe_get tb.base na) (Array.unsafe_get tb.base nb)
+    end
+  end
+
+let roots tb w (s : Scratch.t) root =
+  eval tb w s root;
+  let base = Array.unsafe_get tb.base root and n = Array.unsafe_get w.count root in
+  let t_min = s.t_min in
+  let i = ref 0 and found = ref false in
+  while (not !found) && !i < n do
+    let k = base + !i in
+    let t_in = Array.unsafe_get w.t_in k in
+    if t_in > t_min then begin
+      s.near <- t_in;
+      w.surface <- Array.unsafe_get w.s_in k;
+      w.entering <- true;
+      found := true
+    end
+    else begin
+      let t_out = Array.unsafe_get w.t_out k in
+      if t_out > t_min then begin
+        s.near <- t_out;
+        w.surface <- Array.unsafe_get w.s_out k;
+        w.entering <- false;
+        found := true
+      end
+      else incr i
+    end
+  done;
+  if not !found then s.near <- infinity;
+  s.far <- s.near;
+  !found
+
+let normal tb w (s : Scratch.t) =
+  let sf = w.surface in
+  let k = Array.unsafe_get tb.surface_kind sf and o = stride * sf in
+  if k = surface_sphere then begin
+    let g = tb.geom in
+    let nx = s.px -. Array.unsafe_get g o and ny = s.py -. Array.unsafe_get g (o + 1) and nz = s.pz -. Array.unsafe_get g (o + 2) in
+    let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+    s.nx <- nx *. inv;
+    s.ny <- ny *. inv;
+    s.nz <- nz *. inv
+  end
+  else if k = surface_box then Box.normal s tb.geom o
+  else Triangle.normal s tb.geom o;
+  (* Outward from the solid: against the ray where it enters, along it
+     where it leaves. This turns a subtracted solid's normal around. *)
+  let along = (s.nx *. s.dx) +. (s.ny *. s.dy) +. (s.nz *. s.dz) > 0. in
+  if along <> not w.entering then begin
+    s.nx <- -.s.nx;
+    s.ny <- -.s.ny;
+    s.nz <- -.s.nz
+  end
+
+let material tb w = Array.unsafe_get tb.surface_material w.surface
+let entering w = w.entering
+
+(* {1 The literal algorithm} *)
+
+type tree = Leaf of int | Node of op * tree * tree
+
+let literal_hit c ~origin ~direction ~t_min ~t_max =
+  let leaves = Array.of_list (leaves c) in
+  let rec tree next = function
+    | Csg c ->
+        let a, next = tree next c.a in
+        let b, next = tree next c.b in
+        (Node (c.op, a, b), next)
+    | _ -> (Leaf next, next + 1)
+  in
+  let tree, _ = tree 0 (Csg c) in
+  (* Every crossing of every leaf's surface with the line: (t, leaf,
+     triangle), by the primitives' own routines. *)
+  let crossings =
+    Array.mapi
+      (fun i leaf ->
+        match leaf with
+        | Sphere s ->
+            let near, far = Sphere.roots s ~origin ~direction in
+            if near < far then [ (near, i, -1); (far, i, -1) ] else []
+        | Box b ->
+            let near, far = Box.intersect b ~origin ~direction in
+            if near < far then [ (near, i, -1); (far, i, -1) ] else []
+        | Mesh m ->
+            let xs =
+              List.filter_map
+                (fun k ->
+                  if Mesh.degenerate m k then None
+                  else
+                    let t = Triangle.intersect (Mesh.triangle m k) ~origin ~direction in
+                    if t < infinity then Some (t, i, k) else None)
+                (List.init (Mesh.triangle_count m) Fun.id)
+            in
+            let xs = List.stable_sort (fun (a, _, _) (b, _, _) -> Float.compare a b) xs in
+            (* An odd count: the last crossing does not count. *)
+            if List.length xs mod 2 = 1 then List.filteri (fun j _ -> j < List.length xs - 1) xs else xs
+        | Csg _ -> assert false)
+      leaves
+  in
+  (* Is parameter [t] inside leaf [i], just before it or just after? *)
+  let inside_leaf i ~after t =
+    match crossings.(i) with
+    | [] -> false
+    | xs -> (
+        match leaves.(i) with
+        | Mesh _ ->
+            let n = List.length (List.filter (fun (x, _, _) -> if after then x <= t else x < t) xs) in
+            n mod 2 = 1
+        | _ ->
+            let near, _, _ = List.hd xs and far, _, _ = List.nth xs 1 in
+            if after then near <= t && t < far else near < t && t <= far)
+  in
+  let rec inside ~after t = function
+    | Leaf i -> inside_leaf i ~after t
+    | Node (op, a, b) -> (
+        let a = inside ~after t a and b = inside ~after t b in
+        match op with Union -> a || b | Intersection -> a && b | Difference -> a && not b)
+  in
+  let all = List.stable_sort (fun (a, _, _) (b, _, _) -> Float.compare a b) (List.concat (Array.to_list crossings)) in
+  let boundary =
+    List.find_opt
+      (fun (t, _, _) -> t > t_min && inside ~after:false t tree <> inside ~after:true t tree)
+      all
+  in
+  match boundary with
+  | Some (t, i, k) when t < t_max ->
+      let entering = inside ~after:true t tree in
+      let point = Vec3.add origin (Vec3.smul t direction) in
+      let sc = Scratch.create () in
+      sc.px <- point.x;
+      sc.py <- point.y;
+      sc.pz <- point.z;
+      let g = Array.make stride 0. in
+      let n =
+        match leaves.(i) with
+        | Sphere s -> Sphere.normal s point
+        | Box b ->
+            Box.store b g 0;
+            Box.normal sc g 0;
+            Vec3.v sc.nx sc.ny sc.nz
+        | Mesh m ->
+            Triangle.store (Mesh.triangle m k) g 0;
+            Triangle.normal sc g 0;
+            Vec3.v sc.nx sc.ny sc.nz
+        | Csg _ -> assert false
+      in
+      let along = Vec3.dot n direction > 0. in
+      let n = if along <> not entering then Vec3.neg n else n in
+      Some (t, leaves.(i), n)
+  | _ -> None

@@ -1,0 +1,154 @@
+(** Constructive solid geometry: union, intersection and difference of
+    closed solids.
+
+    A CSG solid combines two closed solids (spheres, boxes, closed meshes,
+    or CSG solids themselves) by a boolean operation on their insides.
+    Each point of its surface lies on the surface of one of its leaves and
+    shows that leaf's material; its outward normal is the leaf's outward
+    normal, reversed where the leaf is subtracted (the inside of a cavity
+    faces into the cavity).
+
+    The kernel traces it by the interval method: along a ray, each leaf
+    is a list of [entry, exit] intervals of the line; an operation merges
+    its children's lists into its own (one sweep over both lists' ends in
+    order); the first end of the solid's list beyond [t_min] is the hit.
+    Every list has room reserved once per tracer ({!work}), so that a ray
+    allocates nothing. {!literal_hit} is the oracle: it classifies every
+    crossing of every leaf by evaluating the boolean expression just before
+    and just after it. *)
+
+(** {1:solids Solids} *)
+
+type op = Union | Intersection | Difference  (** The type for operations. *)
+
+type t = { op : op; a : solid; b : solid }
+(** The type for CSG solids: [a op b]. *)
+
+and solid = Sphere of Sphere.t | Box of Box.t | Mesh of Mesh.t | Csg of t
+(** The type for the operands. A mesh must be closed ({!check_closed}). *)
+
+val v : op -> solid -> solid -> t
+(** [v op a b] is [a op b], not validated. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] are the same operation on equal
+    operands ({!Sphere.equal}, {!Box.equal}, {!Mesh.equal}). *)
+
+val equal_solid : solid -> solid -> bool
+(** [equal_solid a b] is {!equal} for operands. *)
+
+val op_name : op -> string
+(** [op_name op] is ["union"], ["intersection"] or ["difference"]. *)
+
+val op_of_string : string -> op option
+(** [op_of_string s] is the operation that {!op_name} names [s], if any. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf c] prints [c] as its form in the scene-file syntax,
+    [(csg union A B)], each operand as its own form. *)
+
+val show : t -> string
+(** [show c] is [c] formatted by {!pp}. *)
+
+val max_depth : int
+(** [max_depth] is [32], the most CSG forms nested in one another. *)
+
+val check_closed : Mesh.t -> (unit, [> `Msg of string ]) result
+(** [check_closed m] is [Ok ()] iff every edge of [m]'s non-degenerate
+    triangles borders exactly two of them; edges are compared by their
+    endpoints' coordinates, so that a vertex repeated in the file is one
+    vertex. The error names one edge that does not. *)
+
+val validate : t -> (t, [> `Msg of string ]) result
+(** [validate c] checks every operand as its module's [validate] does,
+    that every mesh is closed ({!check_closed}), and that [c] nests at most
+    {!max_depth} levels deep. *)
+
+val leaf_material : solid -> Material.t
+(** [leaf_material l] is the material of the leaf [l] (a sphere's own
+    fields as a material, pattern included).
+    @raise Invalid_argument if [l] is a [Csg] node. *)
+
+val materials : t -> Material.t list
+(** [materials c] is the materials of [c]'s leaves (spheres, boxes and
+    meshes), left to right. *)
+
+val bounds : t -> Vec3.t * Vec3.t
+(** [bounds c] is [(lo, hi)], a box that holds [c]: for a union the box
+    around both operands' boxes, for an intersection their common part (a
+    point if they are disjoint), for a difference the first operand's. *)
+
+val extent : t -> float
+(** [extent c] is the largest magnitude of a coordinate of the boxes of
+    [c]'s leaves, the scale of its geometry for the error-bound offsets of
+    secondary rays. *)
+
+(** {1:kernel The kernel's table}
+
+    The CSG solids of a prepared scene are stored in one table of nodes
+    (operations and leaves) and surfaces (a sphere, a box, or one triangle
+    of a mesh, each with its material's number). *)
+
+type table
+(** The type for tables of CSG solids. *)
+
+type builder
+(** The type for tables being built. *)
+
+val builder : unit -> builder
+(** [builder ()] is an empty table being built. *)
+
+val add : builder -> material:(solid -> int) -> t -> int
+(** [add b ~material c] adds [c] to [b], numbering its leaves' materials
+    by [material] (called once per leaf, given the leaf, left to right);
+    the number of its root node, for {!roots}. *)
+
+val table : builder -> table
+(** [table b] is the table built by [b]. *)
+
+val empty : table
+(** [empty] is the table of no solid. *)
+
+type work
+(** The type for the per-tracer room of the interval lists, and the
+    surface of the last hit found by {!roots}. *)
+
+val work : table -> work
+(** [work tb] is room for tracing the solids of [tb], allocated once. *)
+
+val roots : table -> work -> Scratch.t -> int -> bool
+(** [roots tb w s root] is [true] iff the ray of [s] crosses the surface
+    of the solid of root node [root] at some [t > s.t_min]; then the first
+    such [t] is in both [s.near] and [s.far], and [w] remembers the
+    surface crossed there and whether the ray enters or leaves the solid
+    ({!entering}). Otherwise [s.near] and [s.far] are [infinity]. Leaves'
+    roots are their modules' kernel routines ({!Box.roots},
+    {!Triangle.roots}, {!Sphere.roots}'s arithmetic), so a CSG silhouette
+    is exactly its leaves' silhouettes, combined. Allocates nothing. *)
+
+val normal : table -> work -> Scratch.t -> unit
+(** [normal tb w s] sets [s.nx], [s.ny], [s.nz] to the outward unit
+    normal of the solid at the hit point [s.px], [s.py], [s.pz] found by
+    the last {!roots} with [w] for the ray still in [s]: against the ray
+    where it enters the solid, along it where it leaves. *)
+
+val material : table -> work -> int
+(** [material tb w] is the material's number of the surface of the last
+    hit found by {!roots} with [w]. *)
+
+val entering : work -> bool
+(** [entering w] is [true] iff the last hit found by {!roots} with [w] is
+    where the ray enters the solid, [false] where it leaves it. *)
+
+(** {1:literal The literal algorithm} *)
+
+val literal_hit :
+  t -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float -> (float * solid * Vec3.t) option
+(** [literal_hit c ~origin ~direction ~t_min ~t_max] is [Some (t, l, n)]
+    for the first crossing [t] of the surface of [c] with
+    [t_min < t < t_max], the leaf [l] whose surface is crossed (its
+    material is {!leaf_material}[ l]) and [c]'s outward normal [n] there; [None] if there is none.
+    The straightforward algorithm: every crossing of every leaf's surface,
+    in order, each classified by evaluating [c]'s boolean expression on
+    its leaves just before and just after it (a leaf is inside between
+    its entry and exit; a mesh after an odd number of crossings). *)

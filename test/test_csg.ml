@@ -1,0 +1,432 @@
+(* Constructive solid geometry: the (csg ...) form read, printed back and
+   refused with its position; the kernel's interval method against the
+   literal algorithm (Csg.literal_hit, through Literal) colour float by
+   colour float on random scenes; silhouettes of small far CSG solids
+   against exact rational arithmetic; the subtracted solid's normals;
+   shadows through holes; no self-shadowing at any scale; no allocation
+   per pixel. The golden images and the scale and translation invariance
+   of scenes/lens.scene and scenes/die.scene are in Test_golden and
+   Test_numerics, with every scene. *)
+open Raytrace
+
+let white = Color.white
+let u = epsilon_float /. 2.
+let sphere ?(color = white) ?specular ?reflective c r = Csg.Sphere (Sphere.v ?specular ?reflective ~center:c ~radius:r color)
+let box ?(color = white) ?specular ?reflective lo hi = Csg.Box (Box.v ~min:lo ~max:hi (Material.v ?specular ?reflective color))
+
+(* A closed octahedron of half-diagonal [r] around [c], as a mesh. *)
+let octahedron_arrays (c : Vec3.t) r =
+  let positions =
+    Array.concat
+      (List.map
+         (fun (x, y, z) -> [| c.x +. (r *. x); c.y +. (r *. y); c.z +. (r *. z) |])
+         [ (1., 0., 0.); (-1., 0., 0.); (0., 1., 0.); (0., -1., 0.); (0., 0., 1.); (0., 0., -1.) ])
+  in
+  let triangles = [| 0; 2; 4; 2; 1; 4; 1; 3; 4; 3; 0; 4; 2; 0; 5; 1; 2; 5; 3; 1; 5; 0; 3; 5 |] in
+  (positions, triangles)
+
+let octahedron ?(color = white) c r =
+  let positions, triangles = octahedron_arrays c r in
+  match
+    Mesh.v ~positions ~triangles ~normals:[||] ~triangle_normals:(Array.make (Array.length triangles) (-1))
+      (Material.v color)
+  with
+  | Ok m -> Csg.Mesh m
+  | Error (`Msg e) -> Alcotest.fail e
+
+let scene ?epsilon ?(width = 32) ?(height = 32) ?camera ?(spheres = []) shapes =
+  Scene.v ~width ~height ?camera ?epsilon ~spheres ~shapes
+    ~lights:[ Light.ambient 0.2; Light.point 0.6 (Vec3.v 2. 3. 0.); Light.directional 0.2 (Vec3.v 1. 4. (-4.)) ]
+    ()
+
+let floor = Shape.Plane (Plane.v ~point:(Vec3.v 0. (-1.2) 0.) ~normal:Vec3.oy (Material.v (Color.v 200. 200. 200.)))
+
+(* {1 Random scenes} *)
+
+let random_color rand = Color.v (Random.State.float rand 255.) (Random.State.float rand 255.) (Random.State.float rand 255.)
+
+let random_point rand =
+  Vec3.v (Random.State.float rand 2.4 -. 1.2) (Random.State.float rand 2.4 -. 1.2) (4. +. Random.State.float rand 2.4 -. 1.2)
+
+let rec random_solid rand depth =
+  if depth > 0 && Random.State.int rand 3 > 0 then Csg.Csg (random_csg rand (depth - 1))
+  else
+    let color = random_color rand in
+    let specular = if Random.State.bool rand then Some (Random.State.float rand 500.) else None in
+    let reflective = if Random.State.int rand 3 = 0 then Some (Random.State.float rand 0.6) else None in
+    match Random.State.int rand 5 with
+    | 0 | 1 -> sphere ~color ?specular ?reflective (random_point rand) (0.3 +. Random.State.float rand 0.9)
+    | 2 | 3 ->
+        let lo = random_point rand in
+        let size () = 0.2 +. Random.State.float rand 1.5 in
+        box ~color ?specular ?reflective lo (Vec3.add lo (Vec3.v (size ()) (size ()) (size ())))
+    | _ -> octahedron ~color (random_point rand) (0.4 +. Random.State.float rand 1.)
+
+and random_csg rand depth =
+  let op = match Random.State.int rand 3 with 0 -> Csg.Union | 1 -> Csg.Intersection | _ -> Csg.Difference in
+  Csg.v op (random_solid rand depth) (random_solid rand depth)
+
+let random_scene ?epsilon rand =
+  let n = 1 + Random.State.int rand 2 in
+  let shapes = List.init n (fun _ -> Shape.Csg (random_csg rand 2)) in
+  let spheres =
+    if Random.State.bool rand then [ Sphere.v ~center:(random_point rand) ~radius:0.4 ~reflective:0.3 (random_color rand) ]
+    else []
+  in
+  scene ?epsilon ~width:24 ~height:24 ~spheres (floor :: shapes)
+
+(* The colours of every pixel of [s], fast (skips off) and literal, equal
+   bit for bit; the first difference printed. *)
+let same_floats (s : Scene.t) =
+  let tr = Trace.create (Helpers.prepare ~skips:false s) in
+  let ok = ref true in
+  for gx = Canvas.min_x s.width to Canvas.max_x s.width do
+    for gy = Canvas.min_y s.height to Canvas.max_y s.height do
+      Trace.pixel tr gx gy;
+      let c = Literal.pixel s gx gy in
+      let same a b = Int64.equal (Int64.bits_of_float a) (Int64.bits_of_float b) in
+      if not (same c.r (Trace.red tr) && same c.g (Trace.green tr) && same c.b (Trace.blue tr)) then begin
+        if !ok then
+          Printf.printf "pixel (%d, %d): literal %h %h %h, fast %h %h %h\n" gx gy c.r c.g c.b (Trace.red tr)
+            (Trace.green tr) (Trace.blue tr);
+        ok := false
+      end
+    done
+  done;
+  !ok
+
+(* {1 Exact silhouettes} *)
+
+let q = Q.of_float
+let qv (v : Vec3.t) = (q v.x, q v.y, q v.z)
+let dot (ax, ay, az) (bx, by, bz) = Q.(add (add (mul ax bx) (mul ay by)) (mul az bz))
+let qsub (ax, ay, az) (bx, by, bz) = Q.(sub ax bx, sub ay by, sub az bz)
+
+(* The exact [t] interval of the line [origin + t direction] in box [b]
+   (empty when [lo >= hi]). *)
+let box_interval (b : Box.t) ~(origin : Vec3.t) ~(direction : Vec3.t) =
+  let axis lo hi o d =
+    let t0 = Q.(div (sub (q lo) (q o)) (q d)) and t1 = Q.(div (sub (q hi) (q o)) (q d)) in
+    (Q.min t0 t1, Q.max t0 t1)
+  in
+  let slabs =
+    [ axis b.min.x b.max.x origin.x direction.x; axis b.min.y b.max.y origin.y direction.y; axis b.min.z b.max.z origin.z direction.z ]
+  in
+  ( List.fold_left (fun acc (a, _) -> Q.max acc a) (fst (List.hd slabs)) slabs,
+    List.fold_left (fun acc (_, c) -> Q.min acc c) (snd (List.hd slabs)) slabs )
+
+(* `In, `Out or `Edge for the exact line of a ray and the solid [s op b]:
+   the line's sphere interval [s0, s1] (irrational ends, compared through
+   f(t) = |O + t D - C|^2 - r^2, which is a ((t - t_mid)^2 - h^2)) and the
+   box's [b0, b1]. Less the box it is empty iff b0 <= s0 and s1 <= b1;
+   their intersection is empty iff b1 <= s0 or s1 <= b0; their union iff
+   both are. `Edge where a comparison is within [64 u] of the larger
+   parameter (the roots' stated bounds are a few u). *)
+let sphere_box_class op (s : Sphere.t) (b : Box.t) ~origin ~direction =
+  let o = qv origin and d = qv direction and c = qv s.center in
+  let f = qsub o c in
+  let a = dot d d and bb = dot f d and cc = Q.(sub (dot f f) (mul (q s.radius) (q s.radius))) in
+  let fq t = Q.(add (add (mul a (mul t t)) (mul (of_int 2) (mul bb t))) cc) in
+  let t_mid = Q.(neg (div bb a)) in
+  let h2 = Q.(div (sub (mul bb bb) (mul a cc)) (mul a a)) in
+  let b0, b1 = box_interval b ~origin ~direction in
+  let h = sqrt (Float.max 0. (Q.to_float h2)) and tm = Q.to_float t_mid in
+  let s0 = tm -. h and s1 = tm +. h in
+  let band = 64. *. u *. Float.max (Float.abs s1) (Float.max (Float.abs (Q.to_float b0)) (Float.abs (Q.to_float b1))) in
+  let near x y = Float.abs (x -. y) <= band in
+  let fb0 = Q.to_float b0 and fb1 = Q.to_float b1 in
+  let sphere = Q.gt h2 Q.zero and box = Q.lt b0 b1 in
+  (* The line grazes the sphere: r^2 - dist^2 = a h^2 within the rounding
+     of the distance from the center, [64 u |f|] (as the sphere's own
+     exact-disk test has it). *)
+  let graze = Float.abs (Q.to_float (Q.mul a h2)) <= 128. *. u *. s.radius *. sqrt (Q.to_float (dot f f)) in
+  if graze || near fb0 fb1 || (sphere && box && (near fb0 s0 || near fb1 s1 || near fb0 s1 || near fb1 s0)) then `Edge
+  else
+    (* s0 >= x iff x <= t_mid and f(x) >= 0; s1 <= x iff x >= t_mid and f(x) >= 0. *)
+    let below_s0 x = Q.leq x t_mid && Q.geq (fq x) Q.zero and above_s1 x = Q.geq x t_mid && Q.geq (fq x) Q.zero in
+    let hit =
+      match op with
+      | Csg.Difference -> sphere && not (box && below_s0 b0 && above_s1 b1)
+      | Csg.Intersection -> sphere && box && (not (below_s0 b1)) && not (above_s1 b0)
+      | Csg.Union -> sphere || box
+    in
+    if hit then `In else `Out
+
+(* Sphere of radius [r] at 1e7 r from the camera, minus a box that cuts
+   off part of it, through a viewport that makes it about 30 pixels
+   wide, translated by [translate]. *)
+let tiny_far ~op ~translate =
+  let r = 1e-3 in
+  let dist = 1e7 *. r in
+  let center = Vec3.add translate (Vec3.v (0.3 *. dist) (-0.2 *. dist) dist) in
+  let s = Sphere.v ~center ~radius:r white in
+  let b =
+    Box.v ~min:(Vec3.add center (Vec3.v (0.25 *. r) (-0.4 *. r) (-2. *. r))) ~max:(Vec3.add center (Vec3.v (2. *. r) (2. *. r) (2. *. r)))
+      (Material.v white)
+  in
+  let camera =
+    match Camera.look_at ~up:(Vec3.v 0.3 1. 0.2) ~position:translate center with Ok c -> c | Error (`Msg e) -> failwith e
+  in
+  let scene =
+    Scene.v ~width:90 ~height:90 ~viewport:(Viewport.v ~width:6e-7 ~height:6e-7 ~distance:1.) ~camera ~spheres:[]
+      ~shapes:[ Shape.Csg (Csg.v op (Csg.Sphere s) (Csg.Box b)) ]
+      ~lights:[ Light.ambient 1. ] ()
+  in
+  (scene, s, b)
+
+let exact_mask (scene : Scene.t) classify =
+  let w = scene.width and h = scene.height in
+  Array.init h (fun row ->
+      Array.init w (fun col ->
+          let v =
+            Viewport.of_canvas scene.viewport ~canvas_width:w ~canvas_height:h (Canvas.x_of_column ~width:w col)
+              (Canvas.y_of_row ~height:h row)
+          in
+          classify ~origin:scene.camera.position ~direction:(Camera.direction scene.camera v)))
+
+(* {1 The kernel on one ray} *)
+
+(* The kernel's hit on [c] for one ray: [t], the outward normal and
+   whether the ray enters, by the routines the tracer runs. *)
+let kernel_hit c ~origin ~direction =
+  let b = Csg.builder () in
+  let root = Csg.add b ~material:(fun _ -> 0) c in
+  let tb = Csg.table b in
+  let w = Csg.work tb and s = Private.Scratch.create () in
+  Private.Scratch.set_ray s origin direction;
+  s.t_min <- 0.;
+  if not (Csg.roots tb w s root) then None
+  else begin
+    let t = s.near in
+    s.px <- origin.Vec3.x +. (t *. direction.Vec3.x);
+    s.py <- origin.y +. (t *. direction.y);
+    s.pz <- origin.z +. (t *. direction.z);
+    Csg.normal tb w s;
+    Some (t, Vec3.v s.nx s.ny s.nz, Csg.entering w)
+  end
+
+let stats (s : Scene.t) = match Helpers.render s with Ok (_, st) -> st | Error (`Msg m) -> Alcotest.fail m
+let load_octahedron _ =
+  let positions, triangles = octahedron_arrays (Vec3.v 0. 0. 0.) 1. in
+  Ok (Obj_file.v ~positions ~normals:[||] ~triangles ~triangle_normals:(Array.make (Array.length triangles) (-1)))
+
+let open_mesh _ =
+  Ok
+    (Obj_file.v ~positions:[| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1. |] ~normals:[||]
+       ~triangles:[| 0; 1; 2; 0; 1; 3; 0; 2; 3 |] ~triangle_normals:(Array.make 9 (-1)))
+
+let parse ?(load_mesh = load_octahedron) text = Scene_file.of_string ~load_mesh ~file:"t.scene" text
+
+let tests =
+  [
+    Alcotest.test_case "csg forms of every kind read, print back and read again as the same scene" `Quick (fun () ->
+        let text =
+          {|(csg difference (sphere (center 0 0 4) (radius 1) (color 255 0 0))
+                (box (min 0 0 3) (max 2 2 5) (color 0 255 0)))
+            (csg union (csg intersection (sphere (center 0 0 4) (radius 1.5) (color 1 2 3) (specular 10))
+                                          (mesh (file "octa.obj") (scale 2) (translate 0 0 4) (color 9 9 9) (reflective 0.5)))
+                       (box (min -3 -3 3) (max -2 -2 4) (color 4 5 6)))|}
+        in
+        match parse text with
+        | Error (`Msg m) -> Alcotest.fail m
+        | Ok v -> (
+            let s = Scene.of_valid v in
+            Alcotest.(check int) "two shapes" 2 (List.length s.shapes);
+            (match s.shapes with
+            | Shape.Csg { op = Csg.Difference; a = Csg.Sphere sp; b = Csg.Box bx } :: _ ->
+                Alcotest.(check (float 0.)) "sphere radius" 1. sp.radius;
+                Alcotest.(check (float 0.)) "box's green" 255. bx.material.color.g
+            | _ -> Alcotest.fail "the first csg is not (difference sphere box)");
+            let printed = Scene_file.to_string s in
+            match parse printed with
+            | Error (`Msg m) -> Alcotest.failf "the printed scene does not read back: %s\n%s" m printed
+            | Ok v' ->
+                if not (List.equal Shape.equal s.shapes (Scene.of_valid v').shapes) then
+                  Alcotest.failf "the printed scene reads back different:\n%s" printed));
+    Alcotest.test_case "bad csg forms are refused with their file:line:column" `Quick (fun () ->
+        List.iter
+          (fun (what, load_mesh, text, expected) ->
+            match parse ~load_mesh text with
+            | Ok _ -> Alcotest.failf "%s: accepted" what
+            | Error (`Msg m) ->
+                let contains sub =
+                  let n = String.length sub in
+                  let rec go i = i + n <= String.length m && (String.sub m i n = sub || go (i + 1)) in
+                  go 0
+                in
+                if not (contains expected) then Alcotest.failf "%s: %S does not contain %S" what m expected)
+          [
+            ( "a plane operand", load_octahedron,
+              "(csg union (sphere (center 0 0 4) (radius 1) (color 1 1 1))\n (plane (point 0 0 0) (normal 0 1 0) (color 1 1 1)))",
+              "t.scene:2:2: csg: a plane is not a closed solid" );
+            ( "a triangle operand", load_octahedron,
+              "(csg union (triangle (vertices (0 0 4) (1 0 4) (0 1 4)) (color 1 1 1)) (sphere (center 0 0 4) (radius 1) (color 1 1 1)))",
+              "t.scene:1:12: csg: a triangle is not a closed solid" );
+            ( "an unknown operation", load_octahedron,
+              "(csg unoin (sphere (center 0 0 4) (radius 1) (color 1 1 1)) (sphere (center 0 0 4) (radius 1) (color 1 1 1)))",
+              "t.scene:1:6: unknown csg operation unoin" );
+            ("one operand", load_octahedron, "(csg union (sphere (center 0 0 4) (radius 1) (color 1 1 1)))", "t.scene:1:1: csg union takes 2 solids, got 1");
+            ("no operation", load_octahedron, "(csg)", "t.scene:1:1: csg: expected an operation first");
+            ( "an open mesh", open_mesh,
+              "(csg difference (sphere (center 0 0 4) (radius 1) (color 1 1 1))\n   (mesh (file \"open.obj\") (color 1 1 1)))",
+              "t.scene:2:4: csg: mesh \"open.obj\" is not a closed solid" );
+            ( "a bad operand's field", load_octahedron,
+              "(csg union (sphere (center 0 0 4) (radius -1) (color 1 1 1)) (sphere (center 0 0 4) (radius 1) (color 1 1 1)))",
+              "t.scene:1:" );
+            ( "too deep",
+              load_octahedron,
+              (let leaf = "(sphere (center 0 0 4) (radius 1) (color 1 1 1))" in
+               let rec nest n = if n = 0 then leaf else Printf.sprintf "(csg union %s %s)" (nest (n - 1)) leaf in
+               nest 40),
+              "csg nested deeper than 32 levels" );
+          ]);
+    Alcotest.test_case "raytrace render refuses a bad csg form: one located line, status 1, no output file" `Quick
+      (fun () ->
+        let dir = Helpers.temp_dir () in
+        let scene = Filename.concat dir "bad.scene" and out = Filename.concat dir "out.ppm" in
+        let oc = open_out scene in
+        output_string oc
+          "(canvas (width 8) (height 8))\n(csg union (sphere (center 0 0 4) (radius 1) (color 1 1 1))\n  (plane (point 0 0 0) (normal 0 1 0) (color 1 1 1)))\n";
+        close_out oc;
+        let code, stdout, stderr = Helpers.run (Helpers.raytrace ()) [ "render"; scene; "-o"; out ] in
+        Alcotest.(check int) "exit status" 1 code;
+        Alcotest.(check string) "nothing on stdout" "" stdout;
+        Alcotest.(check string) "one line"
+          (Printf.sprintf "raytrace: %s:3:3: csg: a plane is not a closed solid; an operand is a sphere, box, closed mesh or csg\n" scene)
+          stderr;
+        Alcotest.(check bool) "no output file" false (Sys.file_exists out));
+    Alcotest.test_case "random CSG scenes: the kernel's colours are the literal algorithm's, bit for bit" `Quick
+      (fun () ->
+        let rand = Random.State.make [| 14 |] in
+        for i = 1 to 120 do
+          let s = random_scene ~epsilon:0.001 rand in
+          (match Scene.validate s with Error (`Msg m) -> Alcotest.failf "scene %d invalid: %s" i m | Ok _ -> ());
+          if not (same_floats s) then Alcotest.failf "scene %d differs:\n%s" i (Scene_file.to_string s)
+        done;
+        (* The lens's rim, where both spheres are crossed at the same t:
+           the point is the first sphere's in both. *)
+        List.iter
+          (fun name ->
+            let s = Scene.with_overrides ~width:40 ~height:40 (Helpers.load_scene name) in
+            if not (same_floats { s with epsilon = Some 0.001 }) then Alcotest.failf "%s differs" name)
+          [ "lens.scene"; "die.scene" ]);
+    Alcotest.test_case "many CSG solids: the hierarchy over their bounds gives the bytes of testing every one" `Quick
+      (fun () ->
+        let rand = Random.State.make [| 41 |] in
+        for i = 1 to 12 do
+          (* A row of solids, each of every kind of operation, spread
+             along x so that the hierarchy prunes. *)
+          let shapes =
+            List.init 12 (fun k ->
+                let c = random_csg rand 1 in
+                let shift = Vec3.v (Float.of_int (k - 6) *. 1.5) 0. (Float.of_int (k mod 3)) in
+                let move = Test_numerics.transform ~scale:1. ~translate:shift in
+                match move (Scene.v ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[] ()) with
+                | { shapes = [ sh ]; _ } -> sh
+                | _ -> assert false)
+          in
+          List.iter
+            (fun epsilon ->
+              let camera = match Camera.look_at ~position:(Vec3.v 0. 3. (-6.)) (Vec3.v 0. 0. 4.) with Ok c -> c | Error (`Msg e) -> failwith e in
+              let s = scene ?epsilon ~width:48 ~height:48 ~camera (floor :: shapes) in
+              if (Helpers.prepare s).bvh = None then Alcotest.fail "no hierarchy";
+              if not (Image.equal (Helpers.image_exn ~skips:false s) (Helpers.image_exn ~skips:true s)) then
+                Alcotest.failf "scene %d: the hierarchy changes the image:\n%s" i (Scene_file.to_string s))
+            [ None; Some 0.001 ]
+        done);
+    Alcotest.test_case "a sphere and a box combined, 1e7 times smaller than their distance, are their exact shape" `Quick
+      (fun () ->
+        List.iter
+          (fun (op, translate) ->
+            let scene, s, b = tiny_far ~op ~translate in
+            let exact = exact_mask scene (sphere_box_class op s b) in
+            let wrong, inside = Helpers.mask_errors (Test_numerics.hit_mask scene) exact in
+            let edges = Array.fold_left (Array.fold_left (fun n c -> if c = `Edge then n + 1 else n)) 0 exact in
+            (* The band is a few u wide: a pixel's ray lands in it by chance only. *)
+            if edges > 2 then Alcotest.failf "%d pixels within the error band" edges;
+            let what = Csg.op_name op ^ ", translated by " ^ Vec3.show translate in
+            if inside < 100 then Alcotest.failf "%s: the shape covers only %d pixels" what inside;
+            Printf.printf "%s: %d pixels inside, %d in the error band, %d wrong\n" what inside edges wrong;
+            Alcotest.(check int) (what ^ ": pixels off the exact shape") 0 wrong)
+          (List.concat_map
+             (fun op -> [ (op, Vec3.zero); (op, Vec3.v 1e6 (-1e6) 1e6) ])
+             [ Csg.Difference; Csg.Intersection; Csg.Union ]));
+    Alcotest.test_case "the surface of a subtracted solid faces into the cavity; hits say whether they enter" `Quick
+      (fun () ->
+        let o = Vec3.zero and d = Vec3.oz in
+        let c = Csg.v Csg.Difference (box (Vec3.v (-1.) (-1.) 3.) (Vec3.v 1. 1. 5.)) (sphere (Vec3.v 0. 0. 3.) 0.5) in
+        (match kernel_hit c ~origin:o ~direction:d with
+        | Some (t, n, entering) ->
+            Alcotest.(check (float 1e-12)) "enters the box at the cavity's far wall" 3.5 t;
+            Alcotest.(check Helpers.vec3) "the cavity's wall faces the cavity (toward -z)" (Vec3.v 0. 0. (-1.)) n;
+            Alcotest.(check bool) "entering" true entering
+        | None -> Alcotest.fail "no hit");
+        (* From inside the solid: the ray leaves it through the cavity's wall. *)
+        (match kernel_hit c ~origin:(Vec3.v 0. 0. 4.5) ~direction:(Vec3.neg d) with
+        | Some (t, n, entering) ->
+            Alcotest.(check (float 1e-12)) "leaves at the cavity's wall" 1. t;
+            Alcotest.(check Helpers.vec3) "outward: into the cavity, along the ray" (Vec3.v 0. 0. (-1.)) n;
+            Alcotest.(check bool) "leaving" false entering
+        | None -> Alcotest.fail "no hit from inside");
+        (* The literal algorithm says the same. *)
+        match Csg.literal_hit c ~origin:o ~direction:d ~t_min:0. ~t_max:infinity with
+        | Some (t, _, n) ->
+            Alcotest.(check (float 1e-12)) "literal t" 3.5 t;
+            Alcotest.(check Helpers.vec3) "literal normal" (Vec3.v 0. 0. (-1.)) n
+        | None -> Alcotest.fail "literal: no hit");
+    Alcotest.test_case "each surface point shows the material of the solid it belongs to" `Quick (fun () ->
+        let red = Color.v 255. 0. 0. and green = Color.v 0. 255. 0. in
+        let c = Csg.v Csg.Difference (sphere ~color:red (Vec3.v 0. 0. 4.) 1.) (box ~color:green (Vec3.v 0. (-2.) 2.) (Vec3.v 2. 2. 3.8)) in
+        let s = Scene.v ~width:21 ~height:21 ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[ Light.ambient 1. ] () in
+        let tr = Trace.create (Helpers.prepare s) in
+        (* Left of center: the sphere's own surface; right of it, where the
+           box took the front away: the cut, the box's far face. *)
+        Trace.pixel tr (-5) 0;
+        Alcotest.(check (list (float 0.))) "the sphere's part is red" [ 255.; 0.; 0. ] [ Trace.red tr; Trace.green tr; Trace.blue tr ];
+        Trace.pixel tr 3 0;
+        Alcotest.(check (list (float 0.))) "the cut is green" [ 0.; 255.; 0. ] [ Trace.red tr; Trace.green tr; Trace.blue tr ];
+        Trace.pixel tr 9 9;
+        Alcotest.(check (list (float 0.))) "beyond: the background" [ 0.; 0.; 0. ] [ Trace.red tr; Trace.green tr; Trace.blue tr ]);
+    Alcotest.test_case "shadows: a slab with a hole casts a shadow with a lit hole in it, in both modes" `Quick
+      (fun () ->
+        let slab = box (Vec3.v (-2.) 0. (-2.)) (Vec3.v 2. 0.2 2.) and hole = sphere (Vec3.v 0. 0.1 0.) 0.6 in
+        let floor = Shape.Plane (Plane.v ~point:(Vec3.v 0. (-1.) 0.) ~normal:Vec3.oy (Material.v white)) in
+        let camera = match Camera.look_at ~position:(Vec3.v 0. (-0.5) (-3.)) (Vec3.v 0. (-1.) 0.) with Ok c -> c | Error (`Msg e) -> failwith e in
+        List.iter
+          (fun epsilon ->
+            let s =
+              Scene.v ~width:41 ~height:41 ?epsilon ~camera ~spheres:[]
+                ~shapes:[ floor; Shape.Csg (Csg.v Csg.Difference slab hole) ]
+                ~lights:[ Light.directional 1. Vec3.oy ] ()
+            in
+            let tr = Trace.create (Helpers.prepare s) in
+            (* The floor point right under the hole, and one under the slab. *)
+            let lit = Trace.cast tr ~from:(-1) (Vec3.v 0. (-1.) 0.) Vec3.oy in
+            let dark = Trace.cast tr ~from:(-1) (Vec3.v 1.5 (-1.) 0.) Vec3.oy in
+            Alcotest.(check int) "through the hole: nothing" (-1) lit;
+            Alcotest.(check int) "under the slab: the csg" 1 dark;
+            if epsilon <> None && not (same_floats s) then Alcotest.fail "the oracle disagrees")
+          [ None; Some 0.001 ]);
+    Alcotest.test_case "no acne: a CSG sphere renders as the plain sphere, robust, scaled 1e-6 to 1e6 and moved by 1e6"
+      `Quick (fun () ->
+        let ball = Sphere.v ~center:(Vec3.v 0. 0. 4.) ~radius:1. ~specular:100. ~reflective:0.3 (Color.v 200. 100. 50.) in
+        (* The union with a sphere out of sight, under the floor, leaves the
+           ball's surface. *)
+        let far = Csg.Sphere (Sphere.v ~center:(Vec3.v 0. (-60.) 4.) ~radius:0.1 white) in
+        List.iter
+          (fun (scale, translate) ->
+            let t s = Test_numerics.transform ~scale ~translate s in
+            let plain = t (scene ~width:48 ~height:48 ~spheres:[ ball ] [ floor ]) in
+            let csg = t (scene ~width:48 ~height:48 [ floor; Shape.Csg (Csg.v Csg.Union (Csg.Sphere ball) far) ]) in
+            Helpers.check_images ~max_abs:1
+              (Printf.sprintf "scale %g, moved by %s" scale (Vec3.show translate))
+              ~expected:(Helpers.image_exn plain) (Helpers.image_exn csg))
+          [ (1., Vec3.zero); (1e-6, Vec3.zero); (1e6, Vec3.zero); (1., Vec3.v 1e6 (-1e6) 1e6) ]);
+    Alcotest.test_case "a CSG scene allocates nothing per pixel, in both modes" `Quick (fun () ->
+        let s = Helpers.load_scene "die.scene" in
+        List.iter
+          (fun epsilon ->
+            let s = Scene.with_overrides ~width:64 ~height:64 { s with Scene.epsilon } in
+            Alcotest.(check (float 0.)) "minor words" 0. (stats s).minor_words)
+          [ None; Some 0.001 ]);
+  ]
