@@ -162,6 +162,10 @@ let write_channel path oc f =
   | () -> Ok ()
   | exception Sys_error e -> error path e
 
+let replaces path =
+  standard_channel path = None
+  && match resolve path with Ok path -> not (is_special path) | Error _ -> true
+
 let write_atomic path f =
   match (standard_channel path, resolve path) with
   | Some oc, _ -> write_channel path oc f

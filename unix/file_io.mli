@@ -29,6 +29,11 @@ val write_atomic : string -> (out_channel -> unit) -> (unit, [> `Msg of string ]
     [Sys_error] and [Unix.Unix_error] raised by [f] are re-raised after the
     temporary file is removed. *)
 
+val replaces : string -> bool
+(** [replaces path] is [true] iff {!write_atomic} [path] writes a temporary
+    file that it renames to [path] (or fails before it calls its function):
+    [path] is not the file of a standard channel nor a special file. *)
+
 val standard_channel : string -> out_channel option
 (** [standard_channel path] is [Some stdout] (or [Some stderr]) if [path]
     names the file that standard output (error) writes to: the same device
