@@ -242,9 +242,11 @@ let peak_kb () =
 let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~region ~output ~sampling valid =
   let scene = Scene.of_valid valid in
   (* A whole image to a PPM file is written while the workers trace
-     (Ppm_stream): with several jobs, little of the writing is left when the
-     last row is done. *)
-  let streamed = region = None && (not literal) && output <> "-" && Image_file.format_of_path output = Ppm in
+     (Ppm_stream): little of the writing is left when the last row is done.
+     One job has no idle parent to write meanwhile. *)
+  let streamed =
+    jobs > 1 && region = None && (not literal) && output <> "-" && Image_file.format_of_path output = Ppm
+  in
   let* (st, seconds), write_s =
     if streamed then
       Ppm_stream.render_to output (fun ~rows_done ->

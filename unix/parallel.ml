@@ -107,8 +107,13 @@ let describe_status = function
    0 outside workers. *)
 let parent = ref 0
 
+(* The parent's temporary files (a file it was writing while the workers
+   traced) are removed: a parent killed outright cannot. *)
 let exit_if_orphaned () =
-  if !parent <> 0 && Unix.getppid () <> !parent then Unix._exit 3
+  if !parent <> 0 && Unix.getppid () <> !parent then begin
+    File_io.remove_temporaries ();
+    Unix._exit 3
+  end
 
 let read_message fd =
   let b = Bytes.create 512 in

@@ -60,8 +60,9 @@ val run :
 val exit_if_orphaned : unit -> unit
 (** [exit_if_orphaned ()], called by [work] now and then (once per image
     row), ends the worker process at once if the parent that forked it has
-    died; outside a worker of {!run} it does nothing. It allocates
-    nothing. *)
+    died, after removing the parent's temporary files of
+    {!File_io.remove_temporaries}; outside a worker of {!run} it does
+    nothing. It allocates nothing. *)
 
 (** {1:queue Task queues}
 
