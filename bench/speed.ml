@@ -272,10 +272,11 @@ let () =
     Printf.printf "%-38s %14s %9s\n" "instructions (callgrind), cgfs 600x600" "whole process" "vs cfast";
     let base = Option.map (fun exe -> fst (instructions dir (c exe))) cfast in
     let row ?(compared = true) label n =
-      Printf.printf "%-38s %14s %9s\n%!" label (m n)
-        (match base with
-        | Some b when compared -> Printf.sprintf "%.2fx" (Float.of_int n /. Float.of_int b)
-        | _ -> "")
+      Printf.printf "%-38s %14s" label (m n);
+      (match base with
+      | Some b when compared -> Printf.printf " %9s" (Printf.sprintf "%.2fx" (Float.of_int n /. Float.of_int b))
+      | _ -> ());
+      Printf.printf "\n%!"
     in
     let j1, _ = instructions dir (ours 1) in
     row "ours -j1" j1;

@@ -51,6 +51,8 @@ val region_image :
 val bands : jobs:int -> int -> int array
 (** [bands ~jobs n] is how a pass of [n] rows is cut for [jobs] workers:
     band [b] is the rows [s.(b)] to [s.(b + 1) - 1] of [s = bands ~jobs n],
-    [s.(0) = 0], the last element is [n], at most {!Parallel.max_tasks}
-    bands, each an eighth of the rows left per job (guided scheduling), so
-    that the last bands are single rows. *)
+    [s.(0) = 0], the last element is [n]. Band [b] has
+    [max 1 (left / (8 * jobs))] rows, where [left] is the number of rows in
+    no earlier band (guided scheduling): large bands first, single rows
+    last. Where that would make more than {!Parallel.max_tasks} bands, the
+    least band is 2, 4, ... rows instead of 1. *)
