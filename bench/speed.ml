@@ -94,7 +94,9 @@ let build_c ~flags source dir =
    [fn] in the callgrind output [file] (callgrind_annotate), if any. *)
 let inclusive file fn =
   let out = Filename.temp_file "bench" ".txt" in
-  let cmd = Printf.sprintf "callgrind_annotate --inclusive=yes %s > %s 2>/dev/null" (Filename.quote file) (Filename.quote out) in
+  let cmd =
+    Printf.sprintf "callgrind_annotate --inclusive=yes %s > %s 2>/dev/null" (Filename.quote file) (Filename.quote out)
+  in
   let text = if Sys.command cmd = 0 then match File_io.read out with Ok t -> t | Error _ -> "" else "" in
   Sys.remove out;
   List.find_map
@@ -127,7 +129,8 @@ let instructions dir argv =
     | Error (`Msg m) -> failwith m
   in
   let own f = Option.value (inclusive (Filename.concat out f) "Parallel__child_") ~default:(count f) in
-  let others = List.filter (fun p -> p <> !first) (List.filter_map int_of_string_opt (Array.to_list (Sys.readdir out))) in
+  let pids = List.filter_map int_of_string_opt (Array.to_list (Sys.readdir out)) in
+  let others = List.filter (fun p -> p <> !first) pids in
   (count (string_of_int !first), List.map (fun p -> own (string_of_int p)) (List.sort compare others))
 
 let has_valgrind () = Sys.command "valgrind --version >/dev/null 2>&1" = 0
@@ -183,7 +186,13 @@ let () =
       (match File_io.write_atomic file (fun oc -> output_string oc (Scene_file.to_string c.scene)) with
       | Ok () -> ()
       | Error (`Msg m) -> failwith m);
-      let image p = Filename.concat dir (Printf.sprintf "%s-%s.ppm" c.label (match p with Ours j -> Printf.sprintf "j%d" j | C -> "c" | Cfast -> "cfast" | Literal -> "literal")) in
+      let suffix = function
+        | Ours j -> Printf.sprintf "j%d" j
+        | C -> "c"
+        | Cfast -> "cfast"
+        | Literal -> "literal"
+      in
+      let image p = Filename.concat dir (Printf.sprintf "%s-%s.ppm" c.label (suffix p)) in
       let argv p =
         match p with
         | Ours j -> [| !raytrace; "render"; file; "-o"; image p; "--jobs"; string_of_int j; "--stats" |]
@@ -292,7 +301,9 @@ let () =
     let total = List.fold_left ( + ) parent workers in
     row "ours -j2, all processes" total;
     row ~compared:false "ours -j2, parent (all of it)" parent;
-    List.iteri (fun i w -> row ~compared:false (Printf.sprintf "ours -j2, worker %d (after the fork)" (i + 1)) w) workers;
+    List.iteri
+      (fun i w -> row ~compared:false (Printf.sprintf "ours -j2, worker %d (after the fork)" (i + 1)) w)
+      workers;
     let shared = Float.of_int (total - parent) /. Float.of_int (List.length workers) in
     Printf.printf "%-38s %14s\n%!" "-j2 speedup, parent + workers/2"
       (Printf.sprintf "%.2fx" (Float.of_int j1 /. (Float.of_int parent +. shared)))

@@ -39,7 +39,8 @@ let tests =
           let out = Filename.concat dir (Printf.sprintf "j%d.ppm" jobs) in
           let code, _, err =
             run (exe ())
-              [ "render"; Helpers.scene_path "cgfs.scene"; "--width"; "700"; "--height"; "900"; "--jobs"; string_of_int jobs; "-o"; out ]
+              [ "render"; Helpers.scene_path "cgfs.scene"; "--width"; "700"; "--height"; "900"; "--jobs";
+                string_of_int jobs; "-o"; out ]
           in
           Alcotest.(check int) err 0 code;
           match Raytrace_unix.File_io.read out with Ok s -> s | Error (`Msg m) -> Alcotest.fail m

@@ -234,7 +234,10 @@ let tests =
             done;
             if n > 0 && jobs <= 16 && n <= 100_000 then Alcotest.(check int) where 1 (b.(count) - b.(count - 1));
             if n >= 64 * jobs && count < 8 * jobs then Alcotest.failf "%s: only %d bands" where count)
-          [ (0, 2); (1, 2); (7, 2); (100, 1); (100, 2); (1920, 2); (1920, 3); (50_000, 16); (1_000_000, 1024); (3, 1024) ]);
+          [
+            (0, 2); (1, 2); (7, 2); (100, 1); (100, 2); (1920, 2); (1920, 3); (50_000, 16); (1_000_000, 1024);
+            (3, 1024);
+          ]);
     Alcotest.test_case "with two jobs, rows_done tells of final rows from the top while the workers trace" `Quick
       (fun () ->
         let scene = Scene.with_overrides ~width:90 ~height:160 Scene.cgfs in
@@ -265,7 +268,8 @@ let tests =
               List.iter
                 (fun (r, b) ->
                   for k = 0 to (r * row) - 1 do
-                    if Char.code (Bytes.get b k) <> final.{k} then Alcotest.failf "byte %d changed after row %d was final" k r
+                    if Char.code (Bytes.get b k) <> final.{k} then
+                      Alcotest.failf "byte %d changed after row %d was final" k r
                   done)
                 seen;
               img

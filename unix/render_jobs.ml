@@ -41,7 +41,9 @@ let sum_slots (slots : progress_slots) lo n =
    large (few tasks), the last ones a row: the workers finish within about
    a row of each other, whatever the rows cost. *)
 let bands_from ~least ~jobs n =
-  let rec go acc r = if r >= n then Array.of_list (List.rev (n :: acc)) else go (r :: acc) (r + max least ((n - r) / (8 * jobs))) in
+  let rec go acc r =
+    if r >= n then Array.of_list (List.rev (n :: acc)) else go (r :: acc) (r + max least ((n - r) / (8 * jobs)))
+  in
   go [] 0
 
 let bands ~jobs n =
@@ -137,11 +139,15 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
                     Trace.set_budget tr (budget - (work_done ints - Trace.work tr));
                     (* Rays of the earlier passes, whose tracers are gone. *)
                     let earlier =
-                      match slots with Some slots -> Int64.to_int (Bigarray.Array1.get slots (jobs + w)) - Render_work.rays tr | None -> 0
+                      match slots with
+                      | Some slots -> Int64.to_int (Bigarray.Array1.get slots (jobs + w)) - Render_work.rays tr
+                      | None -> 0
                     in
                     for r = bands.(b) to bands.(b + 1) - 1 do
                       Sampling.rows plan i tr ~first:r ~step:n;
-                      match slots with Some slots -> count_row slots ~jobs w ~rays:(earlier + Render_work.rays tr) | None -> ()
+                      match slots with
+                      | Some slots -> count_row slots ~jobs w ~rays:(earlier + Render_work.rays tr)
+                      | None -> ()
                     done;
                     Parallel.report reports b;
                     loop ()
