@@ -1,9 +1,13 @@
 (* The speed benchmark: whole-process run time and rays per second of
    `raytrace render` on the reference scene and on grid:N, with 1 and 2
-   jobs, against the C reference (../shared/reference/cref.c, gcc -O2) and
-   the literal oracle. Runs alternate between programs; each figure is the
-   median of --runs runs. Every image is checked: ours with 1 and 2 jobs
-   must be identical, and the table says how ours differs from C's.
+   jobs, against the C reference (../shared/reference/cref.c, gcc -O2), the
+   C program with every exact skip (cfast.c beside it, gcc -std=c99 -O2) and
+   the literal oracle. Runs alternate between programs; each time is the
+   median of --runs runs, the speedup of 2 jobs the median of the ratios of
+   paired runs. Every image is checked: ours with 1 and 2 jobs must be
+   identical, and the table says how ours differs from C's. Then the
+   instructions that callgrind counts (when valgrind is installed): ours,
+   cref and cfast on cgfs at 600 x 600, and ours with 2 jobs per process.
 
    make bench   (or: dune build --profile release bench/speed.exe bin/main.exe &&
                  ./_build/default/bench/speed.exe --help) *)
@@ -11,12 +15,10 @@
 open Raytrace
 
 let usage =
-  "speed [--runs N] [--quick] [--raytrace EXE] [--cref SOURCE] [--out DIR]\n\
+  "speed [--runs N] [--quick] [--raytrace EXE] [--cref SOURCE] [--cfast SOURCE] [--out DIR]\n\
    Prints a table of run times; --quick uses smaller sizes and fewer scenes."
 
-type program = Ours of int | C | Literal
-
-let name = function Ours j -> Printf.sprintf "ours -j%d" j | C -> "C -O2" | Literal -> "literal"
+type program = Ours of int | C | Cfast | Literal
 
 let median l =
   let a = Array.of_list l in
@@ -24,13 +26,15 @@ let median l =
   let n = Array.length a in
   if n = 0 then nan else if n mod 2 = 1 then a.(n / 2) else (a.((n / 2) - 1) +. a.(n / 2)) /. 2.
 
-(* Runs [argv], returns wall seconds and stderr; fails loudly on errors. *)
-let run argv =
+(* Runs [argv], returns wall seconds and stderr; fails loudly on errors.
+   [started] gets the process id. *)
+let run ?(started = ignore) argv =
   let err = Filename.temp_file "bench" ".err" in
   let fd = Unix.openfile err [ O_WRONLY; O_TRUNC ] 0o600 in
   let null = Unix.openfile "/dev/null" [ O_WRONLY ] 0 in
   let t0 = Unix.gettimeofday () in
   let pid = Unix.create_process argv.(0) argv Unix.stdin null fd in
+  started pid;
   let _, status = Unix.waitpid [] pid in
   let t = Unix.gettimeofday () -. t0 in
   Unix.close fd;
@@ -71,22 +75,78 @@ let line_after key text =
   in
   from 0
 
-let build_cref source dir =
-  let exe = Filename.concat dir "cref" in
-  let cmd = Printf.sprintf "gcc -O2 -o %s %s -lm" (Filename.quote exe) (Filename.quote source) in
-  if Sys.file_exists source && Sys.command cmd = 0 then Some exe else None
+(* The C program [source] built with gcc [flags] in [dir], or [None] with a
+   line that says why. *)
+let build_c ~flags source dir =
+  let exe = Filename.concat dir (Filename.remove_extension (Filename.basename source)) in
+  let cmd = Printf.sprintf "gcc %s -o %s %s -lm" flags (Filename.quote exe) (Filename.quote source) in
+  if not (Sys.file_exists source) then begin
+    Printf.printf "(no %s: its column is left out)\n" source;
+    None
+  end
+  else if Sys.command cmd <> 0 then begin
+    Printf.printf "(%s failed: its column is left out)\n" cmd;
+    None
+  end
+  else Some exe
+
+(* The inclusive instructions of the first function whose name contains
+   [fn] in the callgrind output [file] (callgrind_annotate), if any. *)
+let inclusive file fn =
+  let out = Filename.temp_file "bench" ".txt" in
+  let cmd =
+    Printf.sprintf "callgrind_annotate --inclusive=yes %s > %s 2>/dev/null" (Filename.quote file) (Filename.quote out)
+  in
+  let text = if Sys.command cmd = 0 then match File_io.read out with Ok t -> t | Error _ -> "" else "" in
+  Sys.remove out;
+  List.find_map
+    (fun line ->
+      match String.index_opt line '(' with
+      | Some i when line_after fn line <> None ->
+          int_of_string_opt (String.concat "" (String.split_on_char ',' (String.trim (String.sub line 0 i))))
+      | _ -> None)
+    (String.split_on_char '\n' text)
+
+(* The instructions of every process of [argv] (callgrind, following
+   forked children): the process's count, then its children's, in the
+   order of their process ids. A forked child's count starts with its
+   parent's up to the fork: only what it ran in [Parallel]'s worker
+   function counts, where callgrind_annotate can tell it. *)
+let instructions dir argv =
+  let out = Filename.concat dir "callgrind" in
+  if Sys.file_exists out then Array.iter (fun f -> Sys.remove (Filename.concat out f)) (Sys.readdir out)
+  else Unix.mkdir out 0o755;
+  let argv =
+    Array.append
+      [| "valgrind"; "--tool=callgrind"; "--trace-children=yes"; "--callgrind-out-file=" ^ Filename.concat out "%p" |]
+      argv
+  in
+  let first = ref 0 in
+  let _ = run ~started:(fun pid -> first := pid) argv in
+  let count f =
+    match File_io.read (Filename.concat out f) with
+    | Ok text -> ( match find_int "\nsummary:" text with Some n -> n | None -> failwith ("no count in " ^ f))
+    | Error (`Msg m) -> failwith m
+  in
+  let own f = Option.value (inclusive (Filename.concat out f) "Parallel__child_") ~default:(count f) in
+  let pids = List.filter_map int_of_string_opt (Array.to_list (Sys.readdir out)) in
+  let others = List.filter (fun p -> p <> !first) pids in
+  (count (string_of_int !first), List.map (fun p -> own (string_of_int p)) (List.sort compare others))
+
+let has_valgrind () = Sys.command "valgrind --version >/dev/null 2>&1" = 0
 
 type case = { label : string; scene : Scene.t; cref_name : string; literal : bool }
 
 let () =
   let runs = ref 5 and quick = ref false and out = ref "" in
-  let raytrace = ref "_build/default/bin/main.exe" and cref = ref "../shared/reference/cref.c" in
+  let raytrace = ref "_build/default/bin/main.exe" and cref = ref "../shared/reference/cref.c" and cfast = ref "" in
   Arg.parse
     [
       ("--runs", Arg.Set_int runs, "N  runs per figure (median)");
       ("--quick", Arg.Set quick, " smaller sizes, fewer scenes");
       ("--raytrace", Arg.Set_string raytrace, "EXE  the raytrace binary (release build)");
       ("--cref", Arg.Set_string cref, "SOURCE  the C reference to compile with gcc -O2");
+      ("--cfast", Arg.Set_string cfast, "SOURCE  the C with every exact skip (default: cfast.c beside cref)");
       ("--out", Arg.Set_string out, "DIR  keep the images there");
     ]
     (fun a -> raise (Arg.Bad ("unexpected argument " ^ a)))
@@ -99,7 +159,9 @@ let () =
       d
   in
   if not (Sys.file_exists dir) then Unix.mkdir dir 0o755;
-  let cref = build_cref !cref dir in
+  let cfast_source = if !cfast <> "" then !cfast else Filename.concat (Filename.dirname !cref) "cfast.c" in
+  let cref = build_c ~flags:"-O2" !cref dir in
+  let cfast = build_c ~flags:"-std=c99 -O2" cfast_source dir in
   let size = if !quick then 600 else 1920 in
   let grid_size = if !quick then 400 else 800 in
   let cases =
@@ -115,38 +177,46 @@ let () =
            })
          (if !quick then [ 100; 10000 ] else [ 100; 1000; 10000; 100000 ])
   in
-  Printf.printf "raytrace speed benchmark: whole process, median of %d alternating runs%s\n" !runs
-    (match cref with Some _ -> "" | None -> " (no C reference: ../shared/reference/cref.c or gcc missing)");
-  Printf.printf "%-12s %-10s %12s %9s %9s %8s %9s %8s %9s %9s  %s\n" "scene" "size" "rays" "-j1 (s)"
-    "rays/s" "-j2 (s)" "speedup" "C (s)" "ours/C" "literal" "image vs C";
+  Printf.printf "raytrace speed benchmark: whole process, median of %d alternating runs\n" !runs;
+  Printf.printf "%-12s %-10s %10s %8s %7s %8s %8s %8s %7s %8s %7s %8s  %s\n" "scene" "size" "rays" "-j1 (s)"
+    "rays/s" "-j2 (s)" "speedup" "cref (s)" "ours/C" "cfast(s)" "ours/cf" "literal" "image vs C";
   List.iter
     (fun c ->
       let file = Filename.concat dir (c.label ^ ".scene") in
       (match File_io.write_atomic file (fun oc -> output_string oc (Scene_file.to_string c.scene)) with
       | Ok () -> ()
       | Error (`Msg m) -> failwith m);
-      let image p = Filename.concat dir (Printf.sprintf "%s-%s.ppm" c.label (match p with Ours j -> Printf.sprintf "j%d" j | C -> "c" | Literal -> "literal")) in
+      let suffix = function
+        | Ours j -> Printf.sprintf "j%d" j
+        | C -> "c"
+        | Cfast -> "cfast"
+        | Literal -> "literal"
+      in
+      let image p = Filename.concat dir (Printf.sprintf "%s-%s.ppm" c.label (suffix p)) in
       let argv p =
         match p with
         | Ours j -> [| !raytrace; "render"; file; "-o"; image p; "--jobs"; string_of_int j; "--stats" |]
         | Literal -> [| !raytrace; "render"; file; "-o"; image p; "--literal" |]
-        | C -> (
-            match cref with
+        | C | Cfast -> (
+            (* The same command line for both. *)
+            match if p = C then cref else cfast with
             | Some exe ->
                 let w = string_of_int c.scene.width and h = string_of_int c.scene.height in
                 [| exe; c.cref_name; w; h; string_of_int c.scene.depth; image p |]
             | None -> [||])
       in
       let n_spheres = List.length c.scene.spheres in
-      (* The C reference tests every sphere for every ray: grid:100000 would
-         take about 9 minutes, so it stops at grid:10000 (51 s). *)
+      (* The C programs test every sphere for most rays: they stop at
+         grid:1000 (5 s; grid:10000 would take about a minute, and 9 for
+         grid:100000). *)
       let programs =
         [ Ours 1; Ours 2 ]
-        @ (if cref <> None && n_spheres <= 10001 then [ C ] else [])
+        @ (if cref <> None && n_spheres <= 1001 then [ C ] else [])
+        @ (if cfast <> None && n_spheres <= 1001 then [ Cfast ] else [])
         @ if c.literal then [ Literal ] else []
       in
       (* Programs that take many seconds run once; ours run every time. *)
-      let once p = match p with Ours _ -> false | Literal -> true | C -> n_spheres > 200 in
+      let once p = match p with Ours _ -> false | Literal -> true | C | Cfast -> n_spheres > 200 in
       let times = Hashtbl.create 4 and rays = ref 0 in
       for r = 1 to !runs do
         List.iter
@@ -159,6 +229,13 @@ let () =
           programs
       done;
       let time p = match Hashtbl.find_opt times p with Some l -> median l | None -> nan in
+      (* Runs r of -j1 and -j2 ran one after the other: their ratio is
+         less noisy than the ratio of the medians on a shared machine. *)
+      let speedup =
+        match (Hashtbl.find_opt times (Ours 1), Hashtbl.find_opt times (Ours 2)) with
+        | Some a, Some b -> median (List.map2 ( /. ) a b)
+        | _ -> nan
+      in
       let read p = match Files.read_ppm (image p) with Ok i -> Some i | Error _ -> None in
       let same =
         match (read (Ours 1), read (Ours 2)) with Some a, Some b -> Image.equal a b | _ -> false
@@ -175,13 +252,62 @@ let () =
       in
       let s x = if Float.is_nan x then "-" else Printf.sprintf "%.3f" x in
       let ratio x = if Float.is_nan x then "-" else Printf.sprintf "%.2fx" x in
-      let t1 = time (Ours 1) and t2 = time (Ours 2) and tc = time C in
-      Printf.printf "%-12s %-10s %12d %9s %8.1fM %8s %9s %8s %9s %9s  %s\n%!" c.label
+      let t1 = time (Ours 1) and t2 = time (Ours 2) and tc = time C and tf = time Cfast in
+      let same_as_c =
+        match (read C, if List.mem Cfast programs then read Cfast else None) with
+        | Some a, Some b when not (Image.equal a b) -> " (cfast differs from cref!)"
+        | _ -> ""
+      in
+      Printf.printf "%-12s %-10s %10d %8s %6.1fM %8s %8s %8s %7s %8s %7s %8s  %s%s\n%!" c.label
         (Printf.sprintf "%dx%d" c.scene.width c.scene.height)
         !rays (s t1)
         (Float.of_int !rays /. t1 /. 1e6)
-        (s t2) (ratio (t1 /. t2)) (s tc) (ratio (t1 /. tc)) (s (time Literal)) vs_c)
+        (s t2) (ratio speedup) (s tc) (ratio (t1 /. tc)) (s tf) (ratio (t1 /. tf)) (s (time Literal)) vs_c same_as_c)
     cases;
+  (* Instructions: steadier than times on a shared machine. The same
+     command lines as above, on cgfs at 600 x 600. *)
+  Printf.printf "\n";
+  if not (has_valgrind ()) then Printf.printf "(no valgrind: the instruction counts are left out)\n"
+  else begin
+    let file = Filename.concat dir "cgfs-600.scene" in
+    let scene = Scene.with_overrides ~width:600 ~height:600 Scene.cgfs in
+    (match File_io.write_atomic file (fun oc -> output_string oc (Scene_file.to_string scene)) with
+    | Ok () -> ()
+    | Error (`Msg m) -> failwith m);
+    let ppm = Filename.concat dir "cgfs-600.ppm" in
+    let ours j = [| !raytrace; "render"; file; "-o"; ppm; "--jobs"; string_of_int j |] in
+    let c exe = [| exe; "gambetta"; "600"; "600"; "3"; ppm |] in
+    let m n = Printf.sprintf "%.1f M" (Float.of_int n /. 1e6) in
+    Printf.printf "%-38s %14s %9s\n" "instructions (callgrind), cgfs 600x600" "whole process" "vs cfast";
+    let base = Option.map (fun exe -> fst (instructions dir (c exe))) cfast in
+    let row ?(compared = true) label n =
+      Printf.printf "%-38s %14s" label (m n);
+      (match base with
+      | Some b when compared -> Printf.printf " %9s" (Printf.sprintf "%.2fx" (Float.of_int n /. Float.of_int b))
+      | _ -> ());
+      Printf.printf "\n%!"
+    in
+    let j1, _ = instructions dir (ours 1) in
+    row "ours -j1" j1;
+    Option.iter (fun exe -> row "cref" (fst (instructions dir (c exe)))) cref;
+    Option.iter (row "cfast") base;
+    (* With 2 jobs: the parent's count (start, load, prepare, fork, and the
+       writing, most of it while the workers trace), the workers' after the
+       fork. The critical path is at most the parent's plus the larger
+       worker's; the workers take rows as they go, so that each does about
+       half of the work whatever the speed of its core (under callgrind,
+       which runs them at different speeds, the halves are uneven). *)
+    let parent, workers = instructions dir (ours 2) in
+    let total = List.fold_left ( + ) parent workers in
+    row "ours -j2, all processes" total;
+    row ~compared:false "ours -j2, parent (all of it)" parent;
+    List.iteri
+      (fun i w -> row ~compared:false (Printf.sprintf "ours -j2, worker %d (after the fork)" (i + 1)) w)
+      workers;
+    let shared = Float.of_int (total - parent) /. Float.of_int (List.length workers) in
+    Printf.printf "%-38s %14s\n%!" "-j2 speedup, parent + workers/2"
+      (Printf.sprintf "%.2fx" (Float.of_int j1 /. (Float.of_int parent +. shared)))
+  end;
   (* A mesh of a million triangles (a torus knot, written as OBJ with 9
      digits) on a mirror floor, 400 x 300: load, build, trace and peak
      memory from --stats, and the wall time of the whole process. *)

@@ -68,7 +68,7 @@ let sampling_of (o : sampling_options) =
 let progress meter = match meter with None -> None | Some m -> Some (Meter.update m)
 
 (* The image, its statistics (none for the oracle) and its tracing time. *)
-let render_image ~limits ~sampling ~literal ~jobs ~meter valid =
+let render_image ?rows_done ~limits ~sampling ~literal ~jobs ~meter valid =
   let scene = Scene.of_valid valid in
   if literal then
     if not (Sampling.is_one sampling) then
@@ -84,7 +84,7 @@ let render_image ~limits ~sampling ~literal ~jobs ~meter valid =
   else
     let* img, stats =
       Render_jobs.image ~limits ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
-        ~subsample:sampling.subsample ?progress:(progress meter) valid
+        ~subsample:sampling.subsample ?progress:(progress meter) ?rows_done valid
     in
     Ok (img, Some stats, stats.trace_s)
 
@@ -241,41 +241,55 @@ let peak_kb () =
 (* One picture (a frame, a part, or both) rendered and written. *)
 let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~region ~output ~sampling valid =
   let scene = Scene.of_valid valid in
-  let* img, st, seconds =
-    match region with
-    | None -> render_image ~limits ~sampling ~literal ~jobs ~meter valid
-    | Some (r : Region.t) when literal ->
-        let* img, st, seconds = render_image ~limits ~sampling ~literal ~jobs ~meter valid in
-        Ok (Image.sub img ~x:r.x ~y:r.y ~w:r.w ~h:r.h, st, seconds)
-    | Some r ->
-        let* img, st =
-          Render_jobs.region_image ~limits ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
-            ~subsample:sampling.subsample ?progress:(progress meter) valid r
-        in
-        Ok (img, Some st, st.trace_s)
+  (* A whole image to a PPM file is written while the workers trace
+     (Ppm_stream): little of the writing is left when the last row is done.
+     One job has no idle parent to write meanwhile. *)
+  let streamed =
+    jobs > 1 && region = None && (not literal) && output <> "-" && Image_file.format_of_path output = Ppm
   in
-  Option.iter Meter.clear meter;
-  let t2 = Unix.gettimeofday () in
-  let* () =
-    match region with
-    | None -> write output img
-    | Some region ->
-        let renderer = if literal then "literal" else "fast" in
-        let part =
-          Part.v ~canvas_width:scene.width ~canvas_height:scene.height ~region
-            ~settings:
-              (Part.settings ?frame ~samples:sampling.samples ?adaptive:sampling.adaptive
-                 ~subsample:sampling.subsample ~renderer scene)
-            img
-        in
-        if output = "-" then to_stdout (Part.to_string part) else Part.write_file output part
+  let* (st, seconds), write_s =
+    if streamed then
+      Ppm_stream.render_to output (fun ~rows_done ->
+          let* _, st, seconds = render_image ~rows_done ~limits ~sampling ~literal ~jobs ~meter valid in
+          Option.iter Meter.clear meter;
+          Ok (st, seconds))
+    else
+      let* img, st, seconds =
+        match region with
+        | None -> render_image ~limits ~sampling ~literal ~jobs ~meter valid
+        | Some (r : Region.t) when literal ->
+            let* img, st, seconds = render_image ~limits ~sampling ~literal ~jobs ~meter valid in
+            Ok (Image.sub img ~x:r.x ~y:r.y ~w:r.w ~h:r.h, st, seconds)
+        | Some r ->
+            let* img, st =
+              Render_jobs.region_image ~limits ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
+                ~subsample:sampling.subsample ?progress:(progress meter) valid r
+            in
+            Ok (img, Some st, st.trace_s)
+      in
+      Option.iter Meter.clear meter;
+      let t2 = Unix.gettimeofday () in
+      let* () =
+        match region with
+        | None -> write output img
+        | Some region ->
+            let renderer = if literal then "literal" else "fast" in
+            let part =
+              Part.v ~canvas_width:scene.width ~canvas_height:scene.height ~region
+                ~settings:
+                  (Part.settings ?frame ~samples:sampling.samples ?adaptive:sampling.adaptive
+                     ~subsample:sampling.subsample ~renderer scene)
+                img
+            in
+            if output = "-" then to_stdout (Part.to_string part) else Part.write_file output part
+      in
+      Ok ((st, seconds), Unix.gettimeofday () -. t2)
   in
-  let t3 = Unix.gettimeofday () in
   if stats then begin
     (match st with
     | Some st -> Format.eprintf "%-24s %s@\n%a@?" "sampling" (Sampling.to_string sampling) Stats.pp_table st
     | None -> Format.eprintf "%-24s %.4f@." "time, literal oracle (s)" seconds);
-    Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" load_s "time, write (s)" (t3 -. t2);
+    Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" load_s "time, write (s)" write_s;
     List.iter
       (function
         | Shape.Mesh (m : Mesh.t) ->

@@ -36,18 +36,22 @@ let to_string ?comments img =
   Bytes.unsafe_to_string b
 
 (* In chunks: writing a large image costs 64 KiB, not a copy of it. *)
-let output ?comments oc img =
-  let data = Image.buffer img in
-  output_string oc (header ?comments img);
-  let n = Bigarray.Array1.dim data in
-  let chunk = Bytes.create (min n 65536) in
-  let k = ref 0 in
+let output_rows oc img ~first ~stop =
+  if first < 0 || stop > Image.height img || first > stop then invalid_arg "Ppm.output_rows";
+  let data = Image.buffer img and row = 3 * Image.width img in
+  let n = stop * row in
+  let chunk = Bytes.create (min (n - (first * row)) 65536) in
+  let k = ref (first * row) in
   while !k < n do
     let len = min (Bytes.length chunk) (n - !k) in
     copy data !k chunk 0 len;
     output oc chunk 0 len;
     k := !k + len
   done
+
+let output ?comments oc img =
+  output_string oc (header ?comments img);
+  output_rows oc img ~first:0 ~stop:(Image.height img)
 
 exception Bad of string
 

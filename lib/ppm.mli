@@ -15,6 +15,18 @@ val output : ?comments:string list -> out_channel -> Image.t -> unit
 (** [output ~comments oc img] writes [to_string ~comments img] to [oc],
     through a 64 KiB buffer rather than a copy of the image. *)
 
+val header : ?comments:string list -> Image.t -> string
+(** [header ~comments img] is the start of [to_string ~comments img], up to
+    its first pixel.
+    @raise Invalid_argument if a comment contains a line break. *)
+
+val output_rows : out_channel -> Image.t -> first:int -> stop:int -> unit
+(** [output_rows oc img ~first ~stop] writes the bytes of rows [first] to
+    [stop - 1] of [img] to [oc], as {!output} writes them after the
+    {!header}: an image can be written in parts while it is being made.
+    @raise Invalid_argument if [0 <= first <= stop <= Image.height img]
+    does not hold. *)
+
 val of_string : ?limits:Limits.t -> string -> (Image.t, [> `Msg of string ]) result
 (** [of_string ~limits s] is the image in the PPM file contents [s]. [Error] says
     what is wrong and where (byte offset): not a PPM, a bad or missing

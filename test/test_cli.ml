@@ -32,6 +32,25 @@ let bad_scenes =
 
 let tests =
   [
+    Alcotest.test_case "render with 2 or 3 jobs writes the file while it traces, byte for byte as 1 job" `Quick
+      (fun () ->
+        let dir = Helpers.temp_dir () in
+        let render jobs =
+          let out = Filename.concat dir (Printf.sprintf "j%d.ppm" jobs) in
+          let code, _, err =
+            run (exe ())
+              [ "render"; Helpers.scene_path "cgfs.scene"; "--width"; "700"; "--height"; "900"; "--jobs";
+                string_of_int jobs; "-o"; out ]
+          in
+          Alcotest.(check int) err 0 code;
+          match Raytrace_unix.File_io.read out with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
+        in
+        let one = render 1 in
+        Alcotest.(check bool) "2 jobs" true (String.equal one (render 2));
+        Alcotest.(check bool) "3 jobs" true (String.equal one (render 3));
+        (* No temporary file is left beside them. *)
+        Alcotest.(check (list string)) __LOC__ [ "j1.ppm"; "j2.ppm"; "j3.ppm" ]
+          (List.sort compare (Array.to_list (Sys.readdir dir))));
     Alcotest.test_case "render writes a P6 image of the canvas size" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let out = Filename.concat dir "x.ppm" in

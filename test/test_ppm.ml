@@ -36,7 +36,22 @@ let tests =
             close_out oc;
             let written = match File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m in
             Sys.remove path;
-            Alcotest.(check bool) (what ^ " output") true (String.equal expected written))
+            Alcotest.(check bool) (what ^ " output") true (String.equal expected written);
+            (* In parts, as a render writes it while it traces: the header,
+               then rows 0, 1 to h/2, the rest, and nothing. *)
+            let oc = open_out_bin path in
+            output_string oc (Ppm.header img);
+            let mid = max 1 (h / 2) in
+            List.iter
+              (fun (first, stop) -> Ppm.output_rows oc img ~first ~stop)
+              [ (0, 1); (1, mid); (mid, h); (h, h) ];
+            close_out oc;
+            let written = match File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m in
+            Sys.remove path;
+            Alcotest.(check bool) (what ^ " output_rows") true (String.equal expected written);
+            match Ppm.output_rows stdout img ~first:1 ~stop:0 with
+            | () -> Alcotest.fail "rows 1 to 0 written"
+            | exception Invalid_argument _ -> ())
           [ (1, 1); (2, 1); (3, 1); (8, 3); (21845, 1); (21846, 1); (21848, 1); (97, 61) ]);
     Alcotest.test_case "P3 with comments and odd spacing reads" `Quick (fun () ->
         let img = decode "P3 # plain\n2 1\n# max\n255\n255 0 10\t1 2\n3\n" in

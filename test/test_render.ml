@@ -198,6 +198,87 @@ let tests =
         for t = 0 to m - 1 do
           if taken.{t} <> 1L then Alcotest.failf "task %d taken %Ld times" t taken.{t}
         done);
+    Alcotest.test_case "every reported task reaches the parent once, before the workers are waited for" `Quick
+      (fun () ->
+        let m = 3000 in
+        let q = Parallel.queue m and r = Parallel.reports () in
+        let seen = Array.make m 0 in
+        let work _ =
+          let rec loop () =
+            let t = Parallel.take q in
+            if t >= 0 then begin
+              Parallel.report r t;
+              loop ()
+            end
+          in
+          loop ()
+        in
+        (match Parallel.run ~reports:(r, fun t -> seen.(t) <- seen.(t) + 1) 3 work with
+        | Ok () -> ()
+        | Error (`Msg e) -> Alcotest.fail e);
+        Parallel.close_queue q;
+        Parallel.close_reports r;
+        Array.iteri (fun t k -> if k <> 1 then Alcotest.failf "task %d reported %d times" t k) seen);
+    Alcotest.test_case "bands cover the rows in order, shrinking to single rows" `Quick (fun () ->
+        List.iter
+          (fun (n, jobs) ->
+            let b = Render_jobs.bands ~jobs n in
+            let count = Array.length b - 1 in
+            let where = Printf.sprintf "%d rows, %d jobs" n jobs in
+            Alcotest.(check int) where 0 b.(0);
+            Alcotest.(check int) where n b.(count);
+            if count > Parallel.max_tasks then Alcotest.failf "%s: %d bands" where count;
+            for k = 0 to count - 1 do
+              if b.(k + 1) <= b.(k) then Alcotest.failf "%s: band %d is empty" where k;
+              if k > 0 && b.(k + 1) - b.(k) > b.(k) - b.(k - 1) then Alcotest.failf "%s: band %d grows" where k
+            done;
+            if n > 0 && jobs <= 16 && n <= 100_000 then Alcotest.(check int) where 1 (b.(count) - b.(count - 1));
+            if n >= 64 * jobs && count < 8 * jobs then Alcotest.failf "%s: only %d bands" where count)
+          [
+            (0, 2); (1, 2); (7, 2); (100, 1); (100, 2); (1920, 2); (1920, 3); (50_000, 16); (1_000_000, 1024);
+            (3, 1024);
+          ]);
+    Alcotest.test_case "with two jobs, rows_done tells of final rows from the top while the workers trace" `Quick
+      (fun () ->
+        let scene = Scene.with_overrides ~width:90 ~height:160 Scene.cgfs in
+        let expected = Helpers.image_exn ~jobs:1 scene in
+        let row = 3 * 90 in
+        let check ?samples ?adaptive ~jobs ~calls () =
+          let seen = ref [] in
+          let rows_done img r =
+            (* The prefix as it is when told, compared once the image is done. *)
+            let b = Bytes.create (r * row) in
+            for k = 0 to (r * row) - 1 do
+              Bytes.set b k (Char.chr (Image.buffer img).{k})
+            done;
+            seen := (r, b) :: !seen
+          in
+          match Result.bind (Scene.validate scene) (Render_jobs.image ~jobs ?samples ?adaptive ~rows_done) with
+          | Error (`Msg m) -> Alcotest.fail m
+          | Ok (img, _) ->
+              let seen = List.rev !seen in
+              let rs = List.map fst seen in
+              Alcotest.(check int) "the last call has every row" 160 (List.nth rs (List.length rs - 1));
+              if not (calls (List.length rs)) then Alcotest.failf "%d calls" (List.length rs);
+              ignore
+                (List.fold_left
+                   (fun prev r -> if r <= prev then Alcotest.failf "rows %d after %d" r prev else r)
+                   0 rs);
+              let final = Image.buffer img in
+              List.iter
+                (fun (r, b) ->
+                  for k = 0 to (r * row) - 1 do
+                    if Char.code (Bytes.get b k) <> final.{k} then
+                      Alcotest.failf "byte %d changed after row %d was final" k r
+                  done)
+                seen;
+              img
+        in
+        let img = check ~jobs:2 ~calls:(fun n -> n > 1) () in
+        Alcotest.(check bool) "same image as one job" true (Image.equal expected img);
+        ignore (check ~jobs:1 ~calls:(fun n -> n = 1) ());
+        (* Two passes: the image is final only after the second. *)
+        ignore (check ~jobs:2 ~samples:3 ~adaptive:8 ~calls:(fun n -> n = 1) ()));
     Alcotest.test_case "a worker that dies fails the render" `Quick (fun () ->
         match Parallel.run 3 (fun w -> if w = 1 then Unix.kill (Unix.getpid ()) Sys.sigkill) with
         | Ok () -> Alcotest.fail "a killed worker went unnoticed"

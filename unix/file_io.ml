@@ -100,7 +100,17 @@ let sync_directory dir =
       Unix.close fd
   | exception Unix.Unix_error _ -> ()
 
-let write_temporary path f =
+type atomic = { target : string; tmp : string; channel : out_channel }
+
+let channel a = a.channel
+
+let discard a =
+  close_out_noerr a.channel;
+  (try Sys.remove a.tmp with Sys_error _ -> ());
+  Hashtbl.remove temporaries a.tmp
+
+(* The temporary file beside [path], registered for [remove_temporaries]. *)
+let open_temporary_channel path =
   match open_temporary path 0 with
   | exception Unix.Unix_error (e, _, _) ->
       error path ("cannot create a file in its directory: " ^ Unix.error_message e)
@@ -108,34 +118,49 @@ let write_temporary path f =
       Hashtbl.replace temporaries tmp ();
       let oc = Unix.out_channel_of_descr fd in
       set_binary_mode_out oc true;
-      let cleanup () =
-        close_out_noerr oc;
-        (try Sys.remove tmp with Sys_error _ -> ());
-        Hashtbl.remove temporaries tmp
-      in
-      match
-        (* The replaced file's permissions carry over to the new one. *)
-        (match Unix.stat path with
-        | st -> Unix.fchmod fd (st.st_perm land 0o7777)
-        | exception Unix.Unix_error _ -> ());
-        f oc;
-        flush oc;
-        Unix.fsync fd;
-        close_out oc;
-        Unix.rename tmp path
-      with
-      | () ->
-          Hashtbl.remove temporaries tmp;
-          sync_directory (Filename.dirname path);
-          Ok ()
+      let a = { target = path; tmp; channel = oc } in
+      (* The replaced file's permissions carry over to the new one. *)
+      match Unix.stat path with
+      | st -> (
+          match Unix.fchmod fd (st.st_perm land 0o7777) with
+          | () -> Ok a
+          | exception Unix.Unix_error (e, _, _) ->
+              discard a;
+              error path (Unix.error_message e))
+      | exception Unix.Unix_error _ -> Ok a)
+
+let commit a =
+  match
+    flush a.channel;
+    Unix.fsync (Unix.descr_of_out_channel a.channel);
+    close_out a.channel;
+    Unix.rename a.tmp a.target
+  with
+  | () ->
+      Hashtbl.remove temporaries a.tmp;
+      sync_directory (Filename.dirname a.target);
+      Ok ()
+  | exception Sys_error e ->
+      discard a;
+      error a.target e
+  | exception Unix.Unix_error (e, _, _) ->
+      discard a;
+      error a.target (Unix.error_message e)
+
+let write_temporary path f =
+  match open_temporary_channel path with
+  | Error e -> Error e
+  | Ok a -> (
+      match f a.channel with
+      | () -> commit a
       | exception Sys_error e ->
-          cleanup ();
+          discard a;
           error path e
       | exception Unix.Unix_error (e, _, _) ->
-          cleanup ();
+          discard a;
           error path (Unix.error_message e)
       | exception ex ->
-          cleanup ();
+          discard a;
           raise ex)
 
 (* Standard output or error, when [path] names the very file it writes to
@@ -161,6 +186,22 @@ let write_channel path oc f =
   with
   | () -> Ok ()
   | exception Sys_error e -> error path e
+
+let replaces path =
+  standard_channel path = None
+  && match resolve path with Ok path -> not (is_special path) | Error _ -> true
+
+(* The checks of [write_atomic] before it writes a temporary file. *)
+let replaceable path k =
+  match resolve path with
+  | Error e -> Error e
+  | Ok path -> (
+      if Sys.file_exists path && Sys.is_directory path then error path "is a directory"
+      else match check_writable path with Error e -> Error e | Ok () -> k path)
+
+let open_atomic path =
+  if not (replaces path) then invalid_arg "File_io.open_atomic: not a file that a rename replaces";
+  replaceable path (fun path -> Signals.without_sigxfsz (fun () -> open_temporary_channel path))
 
 let write_atomic path f =
   match (standard_channel path, resolve path) with

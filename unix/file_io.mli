@@ -29,6 +29,36 @@ val write_atomic : string -> (out_channel -> unit) -> (unit, [> `Msg of string ]
     [Sys_error] and [Unix.Unix_error] raised by [f] are re-raised after the
     temporary file is removed. *)
 
+val replaces : string -> bool
+(** [replaces path] is [true] iff {!write_atomic} [path] writes a temporary
+    file that it renames to [path] (or fails before it calls its function):
+    [path] is not the file of a standard channel nor a special file. *)
+
+(** {1:atomic Atomic writes in steps}
+
+    What {!write_atomic} does, for a caller that writes the file a part at
+    a time while it does other work (and handles signals meanwhile, with
+    {!Signals.protect} and {!remove_temporaries}). *)
+
+type atomic
+(** The type for files being written beside the path they will replace. *)
+
+val open_atomic : string -> (atomic, [> `Msg of string ]) result
+(** [open_atomic path] is a new temporary file beside [path], with the
+    errors of {!write_atomic} before it writes.
+    @raise Invalid_argument if [replaces path] is [false]. *)
+
+val channel : atomic -> out_channel
+(** [channel a] is the channel to [a]'s temporary file (binary). *)
+
+val commit : atomic -> (unit, [> `Msg of string ]) result
+(** [commit a] flushes [a] to disk and renames it to its path. [Error] as
+    for {!write_atomic}: then the temporary file is removed. *)
+
+val discard : atomic -> unit
+(** [discard a] closes and removes [a]'s temporary file: its path is left
+    as it was. *)
+
 val standard_channel : string -> out_channel option
 (** [standard_channel path] is [Some stdout] (or [Some stderr]) if [path]
     names the file that standard output (error) writes to: the same device

@@ -107,8 +107,13 @@ let describe_status = function
    0 outside workers. *)
 let parent = ref 0
 
+(* The parent's temporary files (a file it was writing while the workers
+   traced) are removed: a parent killed outright cannot. *)
 let exit_if_orphaned () =
-  if !parent <> 0 && Unix.getppid () <> !parent then Unix._exit 3
+  if !parent <> 0 && Unix.getppid () <> !parent then begin
+    File_io.remove_temporaries ();
+    Unix._exit 3
+  end
 
 let read_message fd =
   let b = Bytes.create 512 in
@@ -135,7 +140,44 @@ let child work w me (fds : (Unix.file_descr * Unix.file_descr) array) =
   in
   Unix._exit code
 
-let run ?tick n work =
+(* Workers report finished tasks on a pipe, 4 bytes a task: writes of
+   fewer than PIPE_BUF bytes are atomic, so the pipe always holds whole
+   indices. A read or write is a system call, which orders memory: what a
+   worker wrote before reporting a task is visible to the parent once it has
+   read the index. The parent keeps the write end open, so the read end
+   never reads as ended; it is non-blocking, to be drained. *)
+type reports = { from_workers : Unix.file_descr; to_parent : Unix.file_descr; index : Bytes.t; read_buffer : Bytes.t }
+
+let reports () =
+  let r, w = Unix.pipe ~cloexec:true () in
+  Unix.set_nonblock r;
+  { from_workers = r; to_parent = w; index = Bytes.create 4; read_buffer = Bytes.create 4096 }
+
+(* Byte by byte: a boxed [Int32] would be an allocation per task. *)
+let rec report t task =
+  for k = 0 to 3 do
+    Bytes.unsafe_set t.index k (Char.unsafe_chr ((task lsr (8 * k)) land 0xff))
+  done;
+  match Unix.write t.to_parent t.index 0 4 with
+  | _ -> ()
+  | exception Unix.Unix_error (EINTR, _, _) -> report t task
+
+let rec drain t f =
+  match Unix.read t.from_workers t.read_buffer 0 (Bytes.length t.read_buffer) with
+  | n when n > 0 ->
+      for k = 0 to (n / 4) - 1 do
+        f (Int32.to_int (Bytes.get_int32_le t.read_buffer (4 * k)))
+      done;
+      drain t f
+  | _ -> ()
+  | exception Unix.Unix_error ((EAGAIN | EWOULDBLOCK), _, _) -> ()
+  | exception Unix.Unix_error (EINTR, _, _) -> drain t f
+
+let close_reports t =
+  close_quietly t.from_workers;
+  close_quietly t.to_parent
+
+let run ?tick ?reports n work =
   flush stdout;
   flush stderr;
   let me = Unix.getpid () in
@@ -212,6 +254,7 @@ let run ?tick n work =
         if Array.exists not done_ then begin
           if not !progress then begin
             let live = List.filter_map (fun w -> if done_.(w) then None else Some (fst fds.(w))) (List.init n Fun.id) in
+            let live = match reports with Some (t, _) -> t.from_workers :: live | None -> live in
             (* [select] takes descriptors below 1024 only: with more than 256
                workers (two descriptors each while they start), poll. *)
             (* With a [tick], wake up often enough to call it a few
@@ -220,9 +263,13 @@ let run ?tick n work =
             try if n <= 256 then ignore (Unix.select live [] [] timeout) else Unix.sleepf 0.005
             with Unix.Unix_error (EINTR, _, _) -> ()
           end;
+          Option.iter (fun (t, f) -> drain t f) reports;
           Option.iter (fun tick -> tick ()) tick;
           wait ()
         end
+        else
+          (* What the workers reported before they exited. *)
+          Option.iter (fun (t, f) -> drain t f) reports
       in
       Fun.protect ~finally:close_pipes wait);
   match !first_error with None -> Ok () | Some m -> Error (`Msg m)

@@ -30,11 +30,19 @@ val shared_floats : int -> (float, Bigarray.float64_elt, Bigarray.c_layout) Biga
 (** [shared_floats n] is [n] zeroed 64-bit floats shared like
     {!shared_bytes}. *)
 
-val run : ?tick:(unit -> unit) -> int -> (int -> unit) -> (unit, [> `Msg of string ]) result
-(** [run ~tick n work] runs [work 0], ..., [work (n - 1)], each in a forked child
+type reports
+(** The type for the channel on which the workers of a {!run} tell the
+    parent which tasks they have finished. *)
+
+val run :
+  ?tick:(unit -> unit) -> ?reports:reports * (int -> unit) -> int -> (int -> unit) -> (unit, [> `Msg of string ]) result
+(** [run ~tick ~reports:(r, finished) n work] runs [work 0], ..., [work (n - 1)], each in a forked child
     process, and waits for all of them, calling [tick ()] in the parent
     about ten times a second meanwhile (e.g. to report progress that the
-    workers count in shared memory); [tick] must not raise. [Error] names the first worker that
+    workers count in shared memory), and [finished t] in the parent as soon as
+    it can for each task [t] that a worker passed to {!report} [r] (all of
+    them before [run] returns, in the order of the reports); [tick] and
+    [finished] must not raise. [Error] names the first worker that
     raised (with the exception), exited with a non-zero status or was
     killed by a signal ([worker 2 of 4 was killed by SIGKILL]), noticed as
     soon as it happens; the others are then killed. [Error] too if the
@@ -52,8 +60,9 @@ val run : ?tick:(unit -> unit) -> int -> (int -> unit) -> (unit, [> `Msg of stri
 val exit_if_orphaned : unit -> unit
 (** [exit_if_orphaned ()], called by [work] now and then (once per image
     row), ends the worker process at once if the parent that forked it has
-    died; outside a worker of {!run} it does nothing. It allocates
-    nothing. *)
+    died, after removing the parent's temporary files of
+    {!File_io.remove_temporaries}; outside a worker of {!run} it does
+    nothing. It allocates nothing. *)
 
 (** {1:queue Task queues}
 
@@ -77,6 +86,19 @@ val take : queue -> int
 (** [take q] is the next task of [q], or [-1] when none is left. Each task
     is taken by exactly one process, whatever the number of processes that
     take from [q]. *)
+
+val reports : unit -> reports
+(** [reports ()] is a new channel for the {!run} that it is passed to.
+    @raise Unix.Unix_error if no pipe can be made. *)
+
+val report : reports -> int -> unit
+(** [report r t], in a worker, tells the parent that task [t] is finished:
+    whatever the worker wrote to shared memory before is visible to the
+    parent when it is told. It allocates nothing. *)
+
+val close_reports : reports -> unit
+(** [close_reports r] releases [r]'s descriptors (in the parent, after
+    {!run}). *)
 
 val close_queue : queue -> unit
 (** [close_queue q] releases [q]'s descriptors (in the parent, after

@@ -21,6 +21,7 @@ module Files = Files
 module Io_plan = Io_plan
 module Parallel = Parallel
 module Render_jobs = Render_jobs
+module Ppm_stream = Ppm_stream
 module Progressive_workers = Progressive_workers
 module Signals = Signals
 module Part = Part

@@ -36,11 +36,30 @@ let sum_slots (slots : progress_slots) lo n =
   done;
   !s
 
+(* Guided scheduling: bands of consecutive rows, each an eighth of the
+   rows still to hand out per job, down to [least] rows. The first bands are
+   large (few tasks), the last ones a row: the workers finish within about
+   a row of each other, whatever the rows cost. *)
+let bands_from ~least ~jobs n =
+  let rec go acc r =
+    if r >= n then Array.of_list (List.rev (n :: acc)) else go (r :: acc) (r + max least ((n - r) / (8 * jobs)))
+  in
+  go [] 0
+
+let bands ~jobs n =
+  let rec fit least =
+    let b = bands_from ~least ~jobs n in
+    if Array.length b - 1 <= Parallel.max_tasks then b else fit (2 * least)
+  in
+  fit 1
+
 (* A pass starts once the previous one has finished in every worker. Its
-   rows are dealt into [classes] interleaved classes (rows c, c + classes,
-   ...), all about as costly, that the workers take from a queue as they
-   go: they finish together even if a core is slowed. *)
-let in_workers ~limits ~jobs ?skips ?progress sampling scene (region : Region.t) =
+   rows are cut into {!bands} that the workers take from a queue in order
+   as they go: they finish together even if a core is slowed or some rows
+   cost more, and the image is complete from the top down as the bands
+   come back (the parent is told of each on {!Parallel.reports}), so that
+   [rows_done] can write it while the workers still trace. *)
+let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region : Region.t) =
   let s = Scene.of_valid scene in
   match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
   | exception Out_of_memory -> Render_work.out_of_memory region
@@ -71,7 +90,7 @@ let in_workers ~limits ~jobs ?skips ?progress sampling scene (region : Region.t)
           let averaging = Sampling.averaging sampling in
           let budget = Limits.work_budget limits in
           (* Tests and box tests of every slot; a loop, since workers call it
-             between classes of rows and their allocation is measured. *)
+             between bands and their allocation is measured. *)
           let work_done (ints : Render_work.counters) =
             let n = ref 0 in
             for w = 0 to (passes * jobs) - 1 do
@@ -81,7 +100,6 @@ let in_workers ~limits ~jobs ?skips ?progress sampling scene (region : Region.t)
             !n
           in
           let over_budget n = Error (`Msg (Limits.work_exceeded limits n)) in
-          let classes = min Parallel.max_tasks (min region.h (32 * jobs)) in
           let rec run i =
             if i = passes then
               let () = report () in
@@ -91,32 +109,47 @@ let in_workers ~limits ~jobs ?skips ?progress sampling scene (region : Region.t)
                   Render_work.stats ints ~slots:(passes * jobs) ~pixels:(Region.pixels region) ~jobs
                     ~prepare_s:(t1 -. t0) ~trace_s:(t2 -. t1) )
             else
-              let queue = Parallel.queue classes in
               let n = Sampling.pass_rows plan i in
+              let bands = bands ~jobs n in
+              let count = Array.length bands - 1 in
+              let queue = Parallel.queue count in
+              let reports = Parallel.reports () in
+              (* Rows of the image are final as their bands come back only
+                 in a single pass, whose rows are the image's. *)
+              let streamed = passes = 1 && n = region.h in
+              let finished = Array.make count false and complete = ref 0 in
+              let band_done b =
+                finished.(b) <- true;
+                let before = !complete in
+                while !complete < count && finished.(!complete) do incr complete done;
+                if streamed && !complete > before then Option.iter (fun f -> f img bands.(!complete)) rows_done
+              in
               let work w =
                 let tr = Trace.create ~averaging p in
                 let slot = (i * jobs) + w in
                 let before = Gc.minor_words () in
                 let publish () = Render_work.save ints slot tr (Gc.minor_words () -. before) in
-                (* The work budget is shared: before each class of rows, a
-                   worker publishes its count and keeps for itself what the
-                   others (as last published) have left. *)
+                (* The work budget is shared: before each band, a worker
+                   publishes its count and keeps for itself what the others
+                   (as last published) have left. *)
                 let rec loop () =
-                  let c = Parallel.take queue in
-                  if c >= 0 then begin
+                  let b = Parallel.take queue in
+                  if b >= 0 then begin
                     publish ();
                     Trace.set_budget tr (budget - (work_done ints - Trace.work tr));
-                    (match slots with
-                    | None -> Sampling.rows plan i tr ~first:c ~step:classes
-                    | Some slots ->
-                        (* Rays of the earlier passes, whose tracers are gone. *)
-                        let earlier = Int64.to_int (Bigarray.Array1.get slots (jobs + w)) - Render_work.rays tr in
-                        let r = ref c in
-                        while !r < n do
-                          Sampling.rows plan i tr ~first:!r ~step:n;
-                          count_row slots ~jobs w ~rays:(earlier + Render_work.rays tr);
-                          r := !r + classes
-                        done);
+                    (* Rays of the earlier passes, whose tracers are gone. *)
+                    let earlier =
+                      match slots with
+                      | Some slots -> Int64.to_int (Bigarray.Array1.get slots (jobs + w)) - Render_work.rays tr
+                      | None -> 0
+                    in
+                    for r = bands.(b) to bands.(b + 1) - 1 do
+                      Sampling.rows plan i tr ~first:r ~step:n;
+                      match slots with
+                      | Some slots -> count_row slots ~jobs w ~rays:(earlier + Render_work.rays tr)
+                      | None -> ()
+                    done;
+                    Parallel.report reports b;
                     loop ()
                   end
                 in
@@ -124,16 +157,22 @@ let in_workers ~limits ~jobs ?skips ?progress sampling scene (region : Region.t)
                 publish ()
               in
               let tick = Option.map (fun _ -> report) progress in
-              let result = Parallel.run ?tick jobs work in
+              let result = Parallel.run ?tick ~reports:(reports, band_done) jobs work in
               Parallel.close_queue queue;
+              Parallel.close_reports reports;
               match result with
               | Error e -> Error e
-              | Ok () -> if work_done ints > budget then over_budget (work_done ints) else run (i + 1)
+              | Ok () ->
+                  if work_done ints > budget then over_budget (work_done ints)
+                  else begin
+                    if i = passes - 1 && not streamed then Option.iter (fun f -> f img region.h) rows_done;
+                    run (i + 1)
+                  end
           in
           run 0))
 
-let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress scene
-    (region : Region.t) =
+let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress ?rows_done
+    scene (region : Region.t) =
   if jobs < 1 then invalid_arg "Render_jobs.region_image: jobs < 1";
   Render_work.inside "Render_jobs.region_image" scene region;
   let* sampling = Sampling.v ?samples ?adaptive ?subsample () in
@@ -141,11 +180,15 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptiv
   let* () = check_memory region in
   let jobs = min jobs region.h in
   if jobs = 1 then
-    Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample ?progress scene region
-  else in_workers ~limits ~jobs ?skips ?progress sampling scene region
+    let* img, stats =
+      Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample ?progress scene region
+    in
+    Option.iter (fun f -> f img region.h) rows_done;
+    Ok (img, stats)
+  else in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene region
 
-let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress scene =
+let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene =
   if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";
   let s = Scene.of_valid scene in
-  region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress scene
+  region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene
     (Region.full ~width:s.width ~height:s.height)

@@ -1,6 +1,6 @@
 (** Rendering in several processes: {!Raytrace.Render} with [jobs] worker
-    processes that trace interleaved rows into shared memory
-    ({!Parallel}). The image is the same, byte for byte, whatever the
+    processes that trace bands of rows into shared memory
+    ({!Parallel}), taking them from a queue as they go. The image is the same, byte for byte, whatever the
     number of jobs: each pixel is traced alone, by the same code. *)
 
 val image :
@@ -11,13 +11,20 @@ val image :
   ?adaptive:int ->
   ?subsample:bool ->
   ?progress:(rows:int -> total:int -> rays:int -> unit) ->
+  ?rows_done:(Image.t -> int -> unit) ->
   Scene.valid ->
   (Image.t * Stats.t, [> `Msg of string ]) result
-(** [image ~limits ~jobs ~skips ~samples ~adaptive ~subsample ~progress scene] is
+(** [image ~limits ~jobs ~skips ~samples ~adaptive ~subsample ~progress ~rows_done scene] is
     {!Raytrace.Render.image} traced by [jobs] processes (default 1: this one), timed
     by the wall clock. With several jobs, [progress] is called about ten
     times a second by this process (the workers count their rows in shared
-    memory), with the meaning it has for {!Raytrace.Render.image}. Besides {!Raytrace.Render.image}'s errors, [Error] before
+    memory), with the meaning it has for {!Raytrace.Render.image}.
+    [rows_done img r] is called by this process whenever the first [r]
+    rows of [img], the image being rendered, are final, with [r]
+    increasing and last the image's height, before [image] returns [Ok img]:
+    with several jobs and a single pass ({!Sampling.passes}), while the
+    workers trace the rest (to write the image as it is made); otherwise
+    once, at the end. It must not raise. Besides {!Raytrace.Render.image}'s errors, [Error] before
     anything is allocated if the image needs more memory than the system
     has available, and [Error] if no shared memory can be had or a worker
     process dies.
@@ -31,11 +38,21 @@ val region_image :
   ?adaptive:int ->
   ?subsample:bool ->
   ?progress:(rows:int -> total:int -> rays:int -> unit) ->
+  ?rows_done:(Image.t -> int -> unit) ->
   Scene.valid ->
   Region.t ->
   (Image.t * Stats.t, [> `Msg of string ]) result
-(** [region_image ~limits ~jobs ~skips ~samples ~adaptive ~subsample ~progress scene r]
+(** [region_image ~limits ~jobs ~skips ~samples ~adaptive ~subsample ~progress ~rows_done scene r]
     is {!Raytrace.Render.region_image} traced by [jobs] processes, with the errors
     of {!image}.
     @raise Invalid_argument if [jobs < 1] or [r] is not inside the
     canvas. *)
+
+val bands : jobs:int -> int -> int array
+(** [bands ~jobs n] is how a pass of [n] rows is cut for [jobs] workers:
+    band [b] is the rows [s.(b)] to [s.(b + 1) - 1] of [s = bands ~jobs n],
+    [s.(0) = 0], the last element is [n]. Band [b] has
+    [max 1 (left / (8 * jobs))] rows, where [left] is the number of rows in
+    no earlier band (guided scheduling): large bands first, single rows
+    last. Where that would make more than {!Parallel.max_tasks} bands, the
+    least band is 2, 4, ... rows instead of 1. *)
