@@ -23,7 +23,7 @@ let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
 type obj = Sphere of Sphere.t | Shape of Shape.t | Mesh_triangle of Mesh.t * int
 
 let material = function
-  | Sphere s -> Material.v ~specular:s.specular ~reflective:s.reflective s.color
+  | Sphere s -> Material.of_sphere s
   | Shape sh -> Shape.material sh
   | Mesh_triangle (m, _) -> m.material
 

@@ -6,13 +6,17 @@ type t = {
   color : Color.t;  (** Channels in [\[0, 255\]]. *)
   specular : float;  (** [s >= 0], or {!Sphere.matte} for no specular term. *)
   reflective : float;  (** Reflectivity in [\[0, 1\]]. *)
+  transparency : float;  (** Transparency in [\[0, 1\]], [reflective + transparency <= 1]. *)
+  refractive_index : float;  (** Index of refraction, [> 0] and finite. *)
+  fresnel : bool;  (** Schlick's approximation splits the transparency. *)
 }
 (** The type for materials. *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf m] prints [m] as the fields that give an object's material in
-    the scene-file syntax: [(color r g b)], then [(specular e)] and
-    [(reflective r)] each only when it is not the default. *)
+    the scene-file syntax: [(color r g b)], then [(specular e)],
+    [(reflective r)], [(transparency t)], [(refractive-index n)] and
+    [(fresnel true)], each only when it is not the default. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)
@@ -21,9 +25,15 @@ val equal : t -> t -> bool
 (** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
     compared with [=]. *)
 
-val v : ?specular:float -> ?reflective:float -> Color.t -> t
-(** [v ~specular ~reflective color] is a material; [specular] defaults to
-    {!Sphere.matte}, [reflective] to [0]. *)
+val v :
+  ?specular:float -> ?reflective:float -> ?transparency:float -> ?refractive_index:float -> ?fresnel:bool -> Color.t -> t
+(** [v ~specular ~reflective ~transparency ~refractive_index ~fresnel color]
+    is a material; [specular] defaults to {!Sphere.matte}, [reflective]
+    and [transparency] to [0], [refractive_index] to [1], [fresnel] to
+    [false] (the fields of {!Sphere.t}). *)
+
+val of_sphere : Sphere.t -> t
+(** [of_sphere s] is the material of sphere [s]. *)
 
 val check_color : form:string -> Color.t -> (Color.t, [> `Msg of string ]) result
 (** [check_color ~form c] is {!Sphere.check_color}, its message naming [form]. *)
@@ -34,9 +44,20 @@ val check_specular : form:string -> float -> (float, [> `Msg of string ]) result
 val check_reflective : form:string -> float -> (float, [> `Msg of string ]) result
 (** [check_reflective ~form r] is {!Sphere.check_reflective}, its message naming [form]. *)
 
+val check_transparency : form:string -> float -> (float, [> `Msg of string ]) result
+(** [check_transparency ~form t] is {!Sphere.check_transparency}, its message naming [form]. *)
+
+val check_refractive_index : form:string -> float -> (float, [> `Msg of string ]) result
+(** [check_refractive_index ~form n] is {!Sphere.check_refractive_index}, its message naming [form]. *)
+
+val check_split :
+  form:string -> reflective:float -> transparency:float -> (unit, [> `Msg of string ]) result
+(** [check_split ~form ~reflective ~transparency] is {!Sphere.check_split}, its message naming [form]. *)
+
 val validate : form:string -> t -> (t, [> `Msg of string ]) result
 (** [validate ~form m] is [Ok m] if its fields pass the checks of
     {!Sphere.check_color}, {!Sphere.check_specular} and
-    {!Sphere.check_reflective}, and otherwise the first error, with the
+    {!Sphere.check_reflective}, {!Sphere.check_transparency},
+    {!Sphere.check_refractive_index} and {!Sphere.check_split}, and otherwise the first error, with the
     word [sphere] of their messages replaced by [form] (e.g.
     ["plane color channels must lie in [0, 255], got ..."]). *)
