@@ -97,6 +97,10 @@ let split (io : float array) ~fresnel =
     io.(11) <- 0.
   end
   else begin
+    (* Scaled by its largest coordinate first, so that no square
+       underflows or overflows, whatever the scene's scale. *)
+    let big = Float.max (Float.abs dx) (Float.max (Float.abs dy) (Float.abs dz)) in
+    let dx = dx /. big and dy = dy /. big and dz = dz /. big in
     let len = sqrt ((dx *. dx) +. (dy *. dy) +. (dz *. dz)) in
     let inv = 1. /. len in
     let c = -.((dx *. nx) +. (dy *. ny) +. (dz *. nz)) *. inv in

@@ -21,7 +21,7 @@ let bad_inputs =
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 1.5))",
      "t.scene:1:61: sphere reflective must lie in [0, 1], got 1.5");
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflectiv 0.5))",
-     "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, color, specular or reflective (did you mean reflective?)");
+     "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, color, specular, reflective, transparency, refractive-index or fresnel (did you mean reflective?)");
     ("(sphere (center 0 nan 3) (radius 1) (color 1 2 3))", "t.scene:1:19: sphere center must be a finite number, got nan");
     ("(sphere (center 0 0 3) (radius inf) (color 1 2 3))", "t.scene:1:32: sphere radius must be a finite number, got inf");
     ("(sphere (center 0 0) (radius 1) (color 1 2 3))", "t.scene:1:9: sphere center takes 3 numbers (x y z), got 2 values");
