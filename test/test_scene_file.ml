@@ -22,6 +22,18 @@ let bad_inputs =
      "t.scene:1:61: sphere reflective must lie in [0, 1], got 1.5");
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflectiv 0.5))",
      "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, color, specular, reflective, transparency, refractive-index or fresnel (did you mean reflective?)");
+    ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (transparency 1.5))",
+     "t.scene:1:63: sphere transparency must lie in [0, 1], got 1.5");
+    ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 0.6) (transparency 0.5))",
+     "t.scene:1:80: sphere reflective + transparency must be <= 1, got 0.6 + 0.5");
+    ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (refractive-index 0))",
+     "t.scene:1:67: sphere refractive-index must be > 0 and finite, got 0");
+    ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (fresnel yes))",
+     "t.scene:1:58: sphere fresnel: expected true or false");
+    ("(box (min 0 0 3) (max 1 1 4) (color 1 2 3) (transparency 0.7) (reflective 0.7))",
+     "t.scene:1:58: box reflective + transparency must be <= 1, got 0.7 + 0.7");
+    ("(plane (point 0 0 0) (normal 0 1 0) (color 1 2 3) (refractive-index -1.5))",
+     "t.scene:1:69: plane refractive-index must be > 0 and finite, got -1.5");
     ("(sphere (center 0 nan 3) (radius 1) (color 1 2 3))", "t.scene:1:19: sphere center must be a finite number, got nan");
     ("(sphere (center 0 0 3) (radius inf) (color 1 2 3))", "t.scene:1:32: sphere radius must be a finite number, got inf");
     ("(sphere (center 0 0) (radius 1) (color 1 2 3))", "t.scene:1:9: sphere center takes 3 numbers (x y z), got 2 values");
