@@ -2,6 +2,9 @@
    the work bound after each column of the canvas. *)
 let tests = ref 0
 
+(* The work bound of the [render] under way, for the ray tree. *)
+let tree_budget = ref max_int
+
 let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
   tests := !tests + List.length spheres;
   let closest = ref None and closest_t = ref infinity in
@@ -218,6 +221,9 @@ let cross media ~id ~index =
    crossed on the same ray, without a bounce. At [level = depth], or
    without either ray, the local colour alone (section 7.8). *)
 let rec shade (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~level ~media =
+  (* A tree of 64 levels may have 2^64 rays: the work bound is checked at
+     every hit, not only after each column. *)
+  if !tests > !tree_budget then raise (Limits.Work_exceeded !tests);
   match closest_numbered scene ~origin ~direction ~t_min ~t_max:infinity with
   | None -> scene.background
   | Some (obj, id, t) ->
@@ -284,6 +290,9 @@ let render ?(limits = Limits.default) valid =
   let scene = Scene.of_valid valid in
   let budget = Limits.work_budget limits in
   tests := 0;
+  (* Checked after each column, and by the ray tree at every hit. *)
+  Fun.protect ~finally:(fun () -> tree_budget := max_int) @@ fun () ->
+  tree_budget := budget;
   let img = Image.create scene.width scene.height in
   for gx = Canvas.min_x scene.width to Canvas.max_x scene.width do
     for gy = Canvas.min_y scene.height to Canvas.max_y scene.height do

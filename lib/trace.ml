@@ -773,6 +773,19 @@ let shape_hit tr i =
     s.pz <- pz +. (e *. gz)
   end
 
+(* The mirror ray R = 2 <V, N> N - V from the hit point, in [s]. *)
+let[@inline] mirror_ray (p : Prepared.t) s =
+  let nx = s.nx and ny = s.ny and nz = s.nz and vx = s.vx and vy = s.vy and vz = s.vz in
+  let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
+  s.ox <- s.px;
+  s.oy <- s.py;
+  s.oz <- s.pz;
+  s.dx <- (nx *. k) -. vx;
+  s.dy <- (ny *. k) -. vy;
+  s.dz <- (nz *. k) -. vz;
+  s.t_min <- p.epsilon;
+  s.t_max <- infinity
+
 (* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
    its local colour and reflectivity and continues with the mirror ray; then
    the stack is folded back from the deepest colour, blend by blend, in the
@@ -854,17 +867,7 @@ let[@inline] trace_in tr ~spheres =
           tracing := false
         end
         else begin
-          (* The mirror ray R = 2 <V, N> N - V from the hit point. *)
-          let nx = s.nx and ny = s.ny and nz = s.nz and vx = s.vx and vy = s.vy and vz = s.vz in
-          let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
-          s.ox <- s.px;
-          s.oy <- s.py;
-          s.oz <- s.pz;
-          s.dx <- (nx *. k) -. vx;
-          s.dy <- (ny *. k) -. vy;
-          s.dz <- (nz *. k) -. vz;
-          s.t_min <- p.epsilon;
-          s.t_max <- infinity;
+          mirror_ray p s;
           tr.counters.reflection <- tr.counters.reflection + 1
         end
       end
@@ -957,6 +960,9 @@ let[@inline] skip_child tr l w =
 (* The ray of level [l] is in [s] (range, [tr.origin_sphere]), its medium
    stack in [tree.media] at level [l]; its colour is left in [s.r..]. *)
 let rec shade tr l =
+  (* Without the early stop, a tree of depth 64 may have 2^64 rays: the
+     work bound is checked at every hit, not only after each column. *)
+  check_budget tr;
   let p = tr.p and s = tr.s and tree = tr.tree in
   let base = Ray_tree.media_cap * l in
   let media = tree.media and index = p.refractive_index and io = tree.optics in
@@ -1095,18 +1101,8 @@ let rec shade tr l =
       if wr > 0. then begin
         Array.unsafe_set tree.tracing l 0;
         if not (skip_child tr l wr) then begin
-          (* The mirror ray R = 2 <V, N> N - V from the hit point, in the
-             same medium. *)
-          let nx = s.nx and ny = s.ny and nz = s.nz and vx = s.vx and vy = s.vy and vz = s.vz in
-          let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
-          s.ox <- s.px;
-          s.oy <- s.py;
-          s.oz <- s.pz;
-          s.dx <- (nx *. k) -. vx;
-          s.dy <- (ny *. k) -. vy;
-          s.dz <- (nz *. k) -. vz;
-          s.t_min <- p.epsilon;
-          s.t_max <- infinity;
+          (* In the same medium. *)
+          mirror_ray p s;
           tr.origin_sphere <- (if sphere then i else -1);
           Ray_tree.copy_media media base n media cbase;
           Array.unsafe_set tree.n_media child n;

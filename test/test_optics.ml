@@ -32,42 +32,27 @@ let has_glass (s : Scene.t) =
   List.exists (fun (sp : Sphere.t) -> sp.transparency > 0.) s.spheres
   || List.exists (fun sh -> (Shape.material sh).transparency > 0.) s.shapes
 
+(* [s] with [f] applied to every material. *)
+let map_materials ~sphere ~material (s : Scene.t) =
+  let shape = function
+    | Shape.Plane p -> Shape.Plane { p with material = material p.material }
+    | Shape.Triangle t -> Shape.Triangle { t with material = material t.material }
+    | Shape.Box b -> Shape.Box { b with material = material b.material }
+    | Shape.Mesh _ as sh -> sh (* no mesh in the scenes changed here *)
+  in
+  { s with spheres = List.map sphere s.spheres; shapes = List.map shape s.shapes }
+
 let opaque_material (m : Material.t) = { m with transparency = 0. }
 
 (* [s] without its glass: every transparency 0. *)
-let opaque (s : Scene.t) =
-  {
-    s with
-    spheres = List.map (fun (sp : Sphere.t) -> { sp with transparency = 0. }) s.spheres;
-    shapes =
-      List.map
-        (function
-          | Shape.Plane p -> Shape.Plane { p with material = opaque_material p.material }
-          | Shape.Triangle t -> Shape.Triangle { t with material = opaque_material t.material }
-          | Shape.Box b -> Shape.Box { b with material = opaque_material b.material }
-          | Shape.Mesh _ as sh -> sh (* no mesh in the scenes made opaque here *))
-        s.shapes;
-  }
+let opaque = map_materials ~sphere:(fun sp -> { sp with transparency = 0. }) ~material:opaque_material
 
 (* Every object of [s] glass: transparency as the reflectivity allows. *)
-let all_glass (s : Scene.t) =
+let all_glass =
   let glass r t = if r +. t > 1. then 1. -. r else t in
-  let mat (m : Material.t) = { m with transparency = glass m.reflective 0.8; refractive_index = 1.5 } in
-  {
-    s with
-    spheres =
-      List.map
-        (fun (sp : Sphere.t) -> { sp with transparency = glass sp.reflective 0.8; refractive_index = 1.33 })
-        s.spheres;
-    shapes =
-      List.map
-        (function
-          | Shape.Plane p -> Shape.Plane { p with material = mat p.material }
-          | Shape.Triangle t -> Shape.Triangle { t with material = mat t.material }
-          | Shape.Box b -> Shape.Box { b with material = mat b.material }
-          | Shape.Mesh _ as sh -> sh (* random scenes have no mesh *))
-        s.shapes;
-  }
+  map_materials
+    ~sphere:(fun sp -> { sp with transparency = glass sp.reflective 0.8; refractive_index = 1.33 })
+    ~material:(fun m -> { m with transparency = glass m.reflective 0.8; refractive_index = 1.5 })
 
 let glass_scenes = QCheck.map ~rev:Fun.id all_glass Gen_scene.arbitrary
 
