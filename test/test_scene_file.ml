@@ -129,6 +129,26 @@ let tests =
             Alcotest.(check (float 0.)) __LOC__ (-1.) sp.specular;
             Alcotest.(check (float 0.)) __LOC__ 0. sp.reflective
         | _ -> Alcotest.fail "one sphere expected");
+    Alcotest.test_case "the optical fields default to opaque, index 1, no Fresnel, and print only when set" `Quick
+      (fun () ->
+        let plain = "(sphere (center 0 0 3) (radius 1) (color 1 2 3))" in
+        (match (parse plain).spheres with
+        | [ sp ] ->
+            Alcotest.(check (float 0.)) __LOC__ 0. sp.transparency;
+            Alcotest.(check (float 0.)) __LOC__ 1. sp.refractive_index;
+            Alcotest.(check bool) __LOC__ false sp.fresnel;
+            Alcotest.(check string) "a sphere without them prints as before" plain (Sphere.show sp)
+        | _ -> Alcotest.fail "one sphere expected");
+        let glass =
+          "(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 0.1) (transparency 0.9) (refractive-index 1.5) (fresnel true))"
+        in
+        (match (parse glass).spheres with
+        | [ sp ] -> Alcotest.(check string) "a glass sphere prints its fields" glass (Sphere.show sp)
+        | _ -> Alcotest.fail "one sphere expected");
+        let box = "(box (min 0 0 3) (max 1 1 4) (color 1 2 3) (transparency 1) (refractive-index 1.33))" in
+        match (parse box).shapes with
+        | [ sh ] -> Alcotest.(check string) "a glass box prints its fields" box (Shape.show sh)
+        | _ -> Alcotest.fail "one shape expected");
     Alcotest.test_case "comments of every kind are ignored" `Quick (fun () ->
         let s =
           parse
