@@ -773,6 +773,22 @@ let shape_hit tr i =
     s.pz <- pz +. (e *. gz)
   end
 
+(* The hit point [px, py, pz] (already in [s]) on the sphere in slot
+   [i], for a ray of direction [dx, dy, dz]: its outward normal and the
+   view vector, in [s]. *)
+let[@inline] sphere_hit tr i px py pz dx dy dz =
+  let p = tr.p and s = tr.s in
+  let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
+  let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+  s.nx <- nx *. inv;
+  s.ny <- ny *. inv;
+  s.nz <- nz *. inv;
+  s.vx <- -.dx;
+  s.vy <- -.dy;
+  s.vz <- -.dz;
+  (* Shadow and mirror rays leave sphere i. *)
+  tr.origin_sphere <- i
+
 (* The mirror ray R = 2 <V, N> N - V from the hit point, in [s]. *)
 let[@inline] mirror_ray (p : Prepared.t) s =
   let nx = s.nx and ny = s.ny and nz = s.nz and vx = s.vx and vy = s.vy and vz = s.vz in
@@ -812,19 +828,10 @@ let[@inline] trace_in tr ~spheres =
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let px = s.ox +. (dx *. t) and py = s.oy +. (dy *. t) and pz = s.oz +. (dz *. t) in
       if spheres || Array.unsafe_get p.kind i = Shape.sphere then begin
-        let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
-        let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
         s.px <- px;
         s.py <- py;
         s.pz <- pz;
-        s.nx <- nx *. inv;
-        s.ny <- ny *. inv;
-        s.nz <- nz *. inv;
-        s.vx <- -.dx;
-        s.vy <- -.dy;
-        s.vz <- -.dz;
-        (* Shadow and mirror rays leave sphere i. *)
-        tr.origin_sphere <- i
+        sphere_hit tr i px py pz dx dy dz
       end
       else begin
         (* The point goes in [s], not as arguments: floats passed to a
@@ -1008,18 +1015,7 @@ let rec shade tr l =
     s.py <- py;
     s.pz <- pz;
     let sphere = p.all_spheres || Array.unsafe_get p.kind i = Shape.sphere in
-    if sphere then begin
-      let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
-      let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
-      s.nx <- nx *. inv;
-      s.ny <- ny *. inv;
-      s.nz <- nz *. inv;
-      s.vx <- -.dx;
-      s.vy <- -.dy;
-      s.vz <- -.dz;
-      tr.origin_sphere <- i
-    end
-    else shape_hit tr i;
+    if sphere then sphere_hit tr i px py pz dx dy dz else shape_hit tr i;
     let m = Array.unsafe_get p.material i in
     let refl = Array.unsafe_get p.reflective m and tt = Array.unsafe_get p.transparency m in
     let keep = 1. -. refl -. tt in
