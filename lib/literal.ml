@@ -241,6 +241,21 @@ let rec shade (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~level ~media
             List.iteri (fun i x -> optics.(i) <- x)
               [ near; far; direction.x; direction.y; direction.z; facing.x; facing.y; facing.z ];
             Ray_tree.split optics ~fresnel:m.fresnel;
+            (* A smooth triangle's normal may send the ray back to the side
+               it came from: then its flat normal, turned toward the ray. *)
+            (match obj with
+            | Mesh_triangle (mesh, k) when mesh.smooth && optics.(11) < 1. ->
+                let g = Shape.normal (Shape.Triangle (Mesh.triangle mesh k)) point in
+                let t = Vec3.v optics.(8) optics.(9) optics.(10) in
+                let g_dot_d = Vec3.dot g direction and g_dot_t = Vec3.dot g t in
+                if not ((g_dot_d > 0. && g_dot_t > 0.) || (g_dot_d < 0. && g_dot_t < 0.)) then begin
+                  let g = if g_dot_d > 0. then Vec3.neg g else g in
+                  optics.(5) <- g.x;
+                  optics.(6) <- g.y;
+                  optics.(7) <- g.z;
+                  Ray_tree.split optics ~fresnel:m.fresnel
+                end
+            | _ -> ());
             optics.(11)
           end
           else 0.

@@ -1035,7 +1035,29 @@ let rec shade tr l =
         Array.unsafe_set io 5 nx;
         Array.unsafe_set io 6 ny;
         Array.unsafe_set io 7 nz;
-        Ray_tree.split io ~fresnel:(Array.unsafe_get p.fresnel m);
+        let fresnel = Array.unsafe_get p.fresnel m in
+        Ray_tree.split io ~fresnel;
+        (* A smooth triangle's interpolated normal may bend the ray back
+           to the side it came from, which it would not cross: then the
+           flat normal, turned toward the ray, decides. *)
+        if (not sphere) && Array.unsafe_get p.kind i = Shape.smooth_triangle && Array.unsafe_get io 11 < 1. then begin
+          let snx = s.nx and sny = s.ny and snz = s.nz in
+          Triangle.normal s p.geom (Shape.stride * i);
+          let gx = s.nx and gy = s.ny and gz = s.nz in
+          s.nx <- snx;
+          s.ny <- sny;
+          s.nz <- snz;
+          let g_dot_d = (gx *. dx) +. (gy *. dy) +. (gz *. dz) in
+          let g_dot_t = (gx *. Array.unsafe_get io 8) +. (gy *. Array.unsafe_get io 9) +. (gz *. Array.unsafe_get io 10) in
+          (* Crossing: the two directions on the same side of the flat surface. *)
+          if not ((g_dot_d > 0. && g_dot_t > 0.) || (g_dot_d < 0. && g_dot_t < 0.)) then begin
+            let flip = g_dot_d > 0. in
+            Array.unsafe_set io 5 (if flip then -.gx else gx);
+            Array.unsafe_set io 6 (if flip then -.gy else gy);
+            Array.unsafe_set io 7 (if flip then -.gz else gz);
+            Ray_tree.split io ~fresnel
+          end
+        end;
         Array.unsafe_set tree.pending (o + 3) (Array.unsafe_get io 8);
         Array.unsafe_set tree.pending (o + 4) (Array.unsafe_get io 9);
         Array.unsafe_set tree.pending (o + 5) (Array.unsafe_get io 10);

@@ -239,6 +239,15 @@ let tests =
       (fun s ->
         let s = { s with epsilon = Some 0.001 } in
         Image.equal (Literal.render (Helpers.valid s)) (Helpers.image_exn s));
+    Alcotest.test_case "the glass scenes in the document's mode render as the oracle does, byte for byte" `Quick
+      (fun () ->
+        (* Smooth glass included: where a corner-interpolated normal would
+           bend the ray back, both take the flat normal. *)
+        List.iter
+          (fun name ->
+            let s = { (Scene.with_overrides ~width:48 ~height:36 (Helpers.load_scene name)) with epsilon = Some 0.001 } in
+            same name ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
+          [ "glass.scene"; "glass-knot.scene" ]);
     Alcotest.test_case "the tree stops early: deep glass traces fewer rays with the skips, for the same bytes"
       `Quick (fun () ->
         (* A ball that reflects 0.4 and lets through 0.4 between mirror
