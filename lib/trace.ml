@@ -1157,7 +1157,7 @@ let rec shade tr l =
           tr_b := s.b
         end
       end;
-      (* The blend, in the order [check_tree] bounds it. *)
+      (* The blend, in the order [settled_tree] bounds it. *)
       let r = ref (Array.unsafe_get node no) and g = ref (Array.unsafe_get node (no + 1)) and b = ref (Array.unsafe_get node (no + 2)) in
       if wr > 0. then begin
         r := !r +. (Array.unsafe_get node (no + 5) *. wr);
