@@ -26,8 +26,8 @@ type obj =
   | Sphere of Sphere.t
   | Shape of Shape.t  (** A plane, a triangle or a box. *)
   | Mesh_triangle of Mesh.t * int  (** Triangle [k] of a mesh. *)
-  | Csg_surface of Csg.solid * Vec3.t
-      (** The point hit on a CSG solid: the leaf whose surface it is and the
+  | Csg_surface of Csg.t * Csg.solid * Vec3.t
+      (** The point hit on a CSG solid: the solid, the leaf whose surface it is and the
           solid's outward normal there ({!Csg.literal_hit}). *)
 (** The type for the objects of a scene: a mesh is one object per
     triangle, less its degenerate ones. *)
@@ -73,7 +73,19 @@ val trace_ray :
 val pixel : Scene.t -> int -> int -> Color.t
 (** [pixel scene gx gy] is the unclamped colour of canvas pixel [(gx, gy)]
     (centered coordinates, {!Raytrace.Private.Canvas}): the primary ray from the camera
-    through the viewport point of the pixel, [t > 1] (section 8). *)
+    through the viewport point of the pixel, [t > 1] (section 8), by
+    {!trace_ray}; or, when some object has [transparency > 0], by the
+    ray tree of the book's chapter "Extending the Raytracer", as a
+    recursion: at each hit [local (1 - r - t) + reflected wr +
+    refracted wt] with [wr = r + t R], [wt = t (1 - R)] and the reflectance
+    [R] and refracted direction of {!Raytrace.Private.Ray_tree.split}
+    (Snell's law; [R = 1] on total internal reflection; Schlick's when
+    [fresnel]), the indices those of the media the ray is in and enters
+    (the objects it is inside, innermost first), one depth for both kinds
+    of ray; shadow rays scaled by the transparency of every surface they
+    cross, nearest first; a surface of transparency 1 between equal
+    indices crossed on the same ray. docs/scene-format.md states the
+    rules. *)
 
 val render : ?limits:Limits.t -> Scene.valid -> Image.t
 (** [render ~limits scene] is the image of [scene]: every pixel of the canvas
@@ -82,4 +94,5 @@ val render : ?limits:Limits.t -> Scene.valid -> Image.t
     memory grows with the reflections of one ray (a few words a level).
     @raise Limits.Work_exceeded once the ray-sphere tests counted so far
     pass the work bound of [limits] (default {!Limits.default};
-    {!Limits.work_budget}), checked after each column of pixels. *)
+    {!Limits.work_budget}), checked after each column of pixels, and at
+    every hit of a ray tree (a scene with transparency). *)

@@ -2,7 +2,11 @@ type t = { scene : Scene.valid; tr : Trace.t; width : int; height : int }
 
 let v ?skips scene =
   let s = Scene.of_valid scene in
-  { scene; tr = Trace.create (Prepared.prepare ?skips scene); width = s.width; height = s.height }
+  let tr = Trace.create (Prepared.prepare ?skips scene) in
+  (* One pixel at a time, for as long as the caller likes: no work bound
+     across calls (the ray tree of glass checks one at every hit). *)
+  Trace.set_budget tr max_int;
+  { scene; tr; width = s.width; height = s.height }
 
 let scene p = p.scene
 

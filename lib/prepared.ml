@@ -50,6 +50,10 @@ type t = {
   max_channel : float;
   early_stop : bool;
   skips : bool;
+  transparency : float array;
+  refractive_index : float array;
+  fresnel : bool array;
+  transparent : bool;
 }
 
 let bvh_threshold = 8
@@ -240,9 +244,7 @@ let prepare ?(skips = true) scene =
     (iter_objects scene
        ~sphere:(fun k (s : Sphere.t) ->
          set k Shape.sphere
-           (new_material
-              (Material.v ~specular:s.specular ~reflective:s.reflective ?pattern:s.pattern s.color)
-              (fun () -> Shape.leaf_pattern_frame (Csg.Sphere s)))
+           (new_material (Material.of_sphere s) (fun () -> Shape.leaf_pattern_frame (Csg.Sphere s)))
            s.center s.radius)
        ~single:(fun k sh ->
          let c, h = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.) in
@@ -432,4 +434,8 @@ let prepare ?(skips = true) scene =
     max_channel;
     early_stop = skips && Float.is_finite max_channel;
     skips;
+    transparency = mf (fun m -> m.transparency);
+    refractive_index = mf (fun m -> m.refractive_index);
+    fresnel = mf (fun m -> m.fresnel);
+    transparent = Array.exists (fun (m : Material.t) -> m.transparency > 0.) materials;
   }

@@ -112,6 +112,13 @@ type t = private {
           rounded, may exceed 1 by a few ulps, and its power explodes). *)
   early_stop : bool;  (** The skips are on and [max_channel] is finite. *)
   skips : bool;  (** Whether the exact skips are enabled. *)
+  transparency : float array;  (** Per material, in [\[0, 1\]]. *)
+  refractive_index : float array;  (** Per material, [> 0]. *)
+  fresnel : bool array;  (** Per material: Schlick's approximation splits the transparency. *)
+  transparent : bool;
+      (** Some material has [transparency > 0]: the tracer follows the ray
+          tree (reflected and refracted rays) instead of the reflection
+          chain, and shadow rays pass through transparent objects. *)
 }
 (** The type for prepared scenes. *)
 

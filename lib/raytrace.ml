@@ -43,6 +43,7 @@ module Private = struct
   module Prepared = Prepared
   module Trace = Trace
   module Scratch = Scratch
+  module Ray_tree = Ray_tree
   module Float_scan = Float_scan
   module Antialias = Antialias
   module Render_work = Render_work

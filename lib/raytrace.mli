@@ -129,6 +129,7 @@ module Private : sig
   module Prepared = Prepared
   module Trace = Trace
   module Scratch = Scratch
+  module Ray_tree = Ray_tree
   module Float_scan = Float_scan
   module Antialias = Antialias
   module Render_work = Render_work

@@ -230,9 +230,39 @@ let pattern ~where ~form fs =
       | _ -> fail f.node "%s pattern: expected a kind, e.g. (pattern checker (color 20 20 20) (size 1))" form)
     (find fs "pattern")
 
+(* A field [(name true)] or [(name false)]. *)
+let bool_field form name f =
+  match single form name f with
+  | Sexp.Atom "true" -> true
+  | Sexp.Atom "false" -> false
+  | node -> fail node "%s: expected true or false" (field_what form name ())
+
+(* The optical fields of every object: transparency, refractive index,
+   Fresnel; the split [reflective + transparency <= 1] is reported at the
+   transparency. *)
+let optics_fields = [ "transparency"; "refractive-index"; "fresnel" ]
+
+let optics ~form fs ~reflective =
+  let checked name check_value =
+    Option.map (fun f -> check (single form name f) (check_value (float_field form name f))) (find fs name)
+  in
+  let transparency = Option.value ~default:0. (checked "transparency" (Material.check_transparency ~form)) in
+  let refractive_index =
+    Option.value ~default:1. (checked "refractive-index" (Material.check_refractive_index ~form))
+  in
+  let fresnel = Option.fold ~none:false ~some:(bool_field form "fresnel") (find fs "fresnel") in
+  (match find fs "transparency" with
+  | Some f -> ignore (check (single form "transparency" f) (Material.check_split ~form ~reflective ~transparency))
+  | None -> ());
+  (transparency, refractive_index, fresnel)
+
 let sphere ~where form_node nodes =
   let form = "sphere" in
-  let fs = fields ~where ~form ~allowed:[ "center"; "radius"; "color"; "specular"; "reflective"; "pattern" ] nodes in
+  let fs =
+    fields ~where ~form
+      ~allowed:([ "center"; "radius"; "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern" ])
+      nodes
+  in
   let node_and parse name = required ~form ~form_node fs name (fun _ f -> (f.node, parse f)) in
   let center =
     let node, c = node_and (vec3_field form "center") "center" in
@@ -245,11 +275,12 @@ let sphere ~where form_node nodes =
   in
   let specular = Option.value ~default:Sphere.matte (checked_float form fs "specular" Sphere.check_specular) in
   let reflective = Option.value ~default:0. (checked_float form fs "reflective" Sphere.check_reflective) in
+  let transparency, refractive_index, fresnel = optics ~form fs ~reflective in
   let pattern = pattern ~where ~form fs in
-  Sphere.v ~specular ~reflective ?pattern ~center ~radius color
+  Sphere.v ~specular ~reflective ~transparency ~refractive_index ~fresnel ?pattern ~center ~radius color
 
 (* The material fields that every shape takes, as a sphere does. *)
-let material_fields = [ "color"; "specular"; "reflective"; "pattern" ]
+let material_fields = [ "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern" ]
 
 let material ~where ~form ~form_node fs =
   let color =
@@ -263,8 +294,9 @@ let material ~where ~form ~form_node fs =
   in
   let specular = Option.value ~default:Sphere.matte (checked "specular" (Material.check_specular ~form)) in
   let reflective = Option.value ~default:0. (checked "reflective" (Material.check_reflective ~form)) in
+  let transparency, refractive_index, fresnel = optics ~form fs ~reflective in
   let pattern = pattern ~where ~form fs in
-  Material.v ~specular ~reflective ?pattern color
+  Material.v ~specular ~reflective ~transparency ~refractive_index ~fresnel ?pattern color
 
 let point_field ~form ~form_node fs name =
   let node, p = required ~form ~form_node fs name (fun _ f -> (f.node, vec3_field form name f)) in
@@ -333,15 +365,7 @@ let mesh_solid ~where ~load form_node nodes =
     | Some f -> check f.node (Limits.check_point "mesh translate" (vec3_field form "translate" f))
     | None -> Vec3.zero
   in
-  let smooth =
-    match find fs "smooth" with
-    | None -> false
-    | Some f -> (
-        match single form "smooth" f with
-        | Sexp.Atom "true" -> true
-        | Sexp.Atom "false" -> false
-        | node -> fail node "mesh smooth: expected true or false")
-  in
+  let smooth = Option.fold ~none:false ~some:(bool_field form "smooth") (find fs "smooth") in
   let m = material ~where ~form ~form_node fs in
   let obj = check file_node (load file) in
   check form_node

@@ -4,6 +4,9 @@ type t = {
   color : Color.t;
   specular : float;
   reflective : float;
+  transparency : float;
+  refractive_index : float;
+  fresnel : bool;
   pattern : Pattern.t option;
 }
 [@@deriving eq]
@@ -12,8 +15,9 @@ let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
 let matte = -1.
 
-let v ?(specular = matte) ?(reflective = 0.) ?pattern ~center ~radius color =
-  { center; radius; color; specular; reflective; pattern }
+let v ?(specular = matte) ?(reflective = 0.) ?(transparency = 0.) ?(refractive_index = 1.) ?(fresnel = false)
+    ?pattern ~center ~radius color =
+  { center; radius; color; specular; reflective; transparency; refractive_index; fresnel; pattern }
 
 let is_matte s = s.specular = matte
 let num = Float_text.to_string
@@ -36,6 +40,19 @@ let check_reflective r =
 let check_pattern = function
   | None -> Ok None
   | Some p -> Result.map Option.some (Pattern.validate ~form:"sphere" p)
+let check_transparency x =
+  if x >= 0. && x <= 1. then Ok x
+  else (error "sphere transparency must lie in [0, 1], got %s" (num x))
+
+let check_refractive_index n =
+  if n > 0. && Float.is_finite n then Ok n
+  else (error "sphere refractive-index must be > 0 and finite, got %s" (num n))
+
+(* Each part of a hit's colour has its own weight (local 1 - r - t): the
+   sum may not exceed 1. *)
+let check_split ~reflective ~transparency =
+  if reflective +. transparency <= 1. then Ok ()
+  else (error "sphere reflective + transparency must be <= 1, got %s + %s" (num reflective) (num transparency))
 
 let validate s =
   let ( let* ) = Result.bind in
@@ -44,6 +61,9 @@ let validate s =
   let* _ = check_color s.color in
   let* _ = check_specular s.specular in
   let* _ = check_reflective s.reflective in
+  let* _ = check_transparency s.transparency in
+  let* _ = check_refractive_index s.refractive_index in
+  let* () = check_split ~reflective:s.reflective ~transparency:s.transparency in
   let* _ = check_pattern s.pattern in
   Ok s
 
@@ -88,14 +108,19 @@ let normal s p =
 
 (* The optional fields print only when they differ from their defaults, as
    a scene file would write them. *)
-let pp_optional_material ppf ~specular ~reflective =
+let pp_optional_material ?(transparency = 0.) ?(refractive_index = 1.) ?(fresnel = false) ppf ~specular ~reflective =
   if specular <> matte then Format.fprintf ppf " (specular %s)" (Float_text.to_string specular);
-  if reflective <> 0. then Format.fprintf ppf " (reflective %s)" (Float_text.to_string reflective)
+  if reflective <> 0. then Format.fprintf ppf " (reflective %s)" (Float_text.to_string reflective);
+  if transparency <> 0. then Format.fprintf ppf " (transparency %s)" (Float_text.to_string transparency);
+  if refractive_index <> 1. then
+    Format.fprintf ppf " (refractive-index %s)" (Float_text.to_string refractive_index);
+  if fresnel then Format.pp_print_string ppf " (fresnel true)"
 
 let pp ppf s =
   Format.fprintf ppf "(sphere (center %a) (radius %s) (color %a)" Vec3.pp_components s.center
     (Float_text.to_string s.radius) Color.pp_components s.color;
-  pp_optional_material ppf ~specular:s.specular ~reflective:s.reflective;
+  pp_optional_material ~transparency:s.transparency ~refractive_index:s.refractive_index ~fresnel:s.fresnel ppf
+    ~specular:s.specular ~reflective:s.reflective;
   Pattern.pp_optional ppf s.pattern;
   Format.pp_print_string ppf ")"
 

@@ -12,6 +12,12 @@ type t = {
   color : Color.t;  (** Channels in [\[0, 255\]]. *)
   specular : float;  (** [s >= 0], or {!matte} for no specular term. *)
   reflective : float;  (** Reflectivity in [\[0, 1\]]; [0] is no mirror. *)
+  transparency : float;
+      (** Transparency in [\[0, 1\]]; [0] is opaque; [reflective + transparency <= 1]. *)
+  refractive_index : float;  (** Index of refraction, [> 0] and finite; [1] is air's. *)
+  fresnel : bool;
+      (** [true]: the reflected and refracted parts of the transparency
+          follow Schlick's approximation of Fresnel's equations. *)
   pattern : Pattern.t option;
       (** A second colour laid over [color] in world coordinates, or
           [None] (the default). *)
@@ -36,19 +42,39 @@ val matte : float
     (as in CGFS). An exponent of [0] is not matte. *)
 
 val v :
-  ?specular:float -> ?reflective:float -> ?pattern:Pattern.t -> center:Vec3.t -> radius:float -> Color.t -> t
-(** [v ~specular ~reflective ~pattern ~center ~radius color] is a sphere.
-    [specular] defaults to {!matte}, [reflective] to [0], [pattern] to
-    none. *)
+  ?specular:float ->
+  ?reflective:float ->
+  ?transparency:float ->
+  ?refractive_index:float ->
+  ?fresnel:bool ->
+  ?pattern:Pattern.t ->
+  center:Vec3.t ->
+  radius:float ->
+  Color.t ->
+  t
+(** [v ~specular ~reflective ~transparency ~refractive_index ~fresnel ~pattern ~center ~radius color]
+    is a sphere. [specular] defaults to {!matte}, [reflective] and
+    [transparency] to [0], [refractive_index] to [1], [fresnel] to [false],
+    [pattern] to none. *)
 
 val is_matte : t -> bool
 (** [is_matte s] is [true] iff [s.specular = matte]. *)
 
-val pp_optional_material : Format.formatter -> specular:float -> reflective:float -> unit
-(** [pp_optional_material ppf ~specular ~reflective] prints the fields
-    [ (specular e)] and [ (reflective r)] of an object's form, each with
-    its leading space and only when it is not the default ({!matte},
-    [0]): the spheres' and the other shapes' forms end alike. *)
+val pp_optional_material :
+  ?transparency:float ->
+  ?refractive_index:float ->
+  ?fresnel:bool ->
+  Format.formatter ->
+  specular:float ->
+  reflective:float ->
+  unit
+(** [pp_optional_material ~transparency ~refractive_index ~fresnel ppf ~specular ~reflective]
+    prints the fields [ (specular e)], [ (reflective r)],
+    [ (transparency t)], [ (refractive-index n)] and [ (fresnel true)] of an
+    object's form, each with its leading space and only when it is not the
+    default ({!matte}, [0], [0], [1], [false]): the spheres' and the other
+    shapes' forms end alike, and a scene without the optical fields prints
+    as it did before they existed. *)
 
 (** {1:validation Validation}
 
@@ -76,6 +102,16 @@ val check_pattern : Pattern.t option -> (Pattern.t option, [> `Msg of string ]) 
 val extent : t -> float
 (** [extent s] is [max |c_x| |c_y| |c_z| + r]: no coordinate of a point
     of [s] is larger in magnitude (for {!Pattern.store}). *)
+val check_transparency : float -> (float, [> `Msg of string ]) result
+(** [check_transparency t] checks [0 <= t <= 1]. *)
+
+val check_refractive_index : float -> (float, [> `Msg of string ]) result
+(** [check_refractive_index n] checks that [n] is finite and [> 0]. *)
+
+val check_split : reflective:float -> transparency:float -> (unit, [> `Msg of string ]) result
+(** [check_split ~reflective ~transparency] checks
+    [reflective + transparency <= 1]: the local colour's weight
+    [1 - reflective - transparency] is not negative. *)
 
 val validate : t -> (t, [> `Msg of string ]) result
 (** [validate s] is [Ok s] if every field passes its check, and otherwise

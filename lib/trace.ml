@@ -29,7 +29,14 @@ type t = {
   averaging : bool;  (** Samples are averaged: see [settled]. *)
   mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see [primary_hit]. *)
   mutable budget : int;  (** Most tests [check_budget] accepts. *)
+  tracer : int;  (** The loop of [trace]: [spheres_chain], [objects_chain] or [tree]. *)
+  tree : Ray_tree.t;  (** The ray tree's levels: transparent scenes only. *)
 }
+
+(* The tracing loops, chosen once per tracer. *)
+let spheres_chain = 0
+let objects_chain = 1
+let tree = 2
 
 (* [assumed] when the primary ray searches every sphere. *)
 let no_assumption = -2
@@ -50,6 +57,8 @@ let create ?(averaging = false) (p : Prepared.t) =
     averaging;
     assumed = no_assumption;
     budget = Limits.work_budget Limits.default;
+    tracer = (if p.transparent then tree else if p.all_spheres then spheres_chain else objects_chain);
+    tree = (if p.transparent then Ray_tree.create ~depth:p.depth else Ray_tree.empty);
   }
 
 let prepared tr = tr.p
@@ -562,10 +571,56 @@ let shadowed tr l =
   else if p.all_spheres then blocked_from tr l ~spheres:true
   else blocked_objects tr l
 
+(* Light through transparent objects: the shadow ray in [s] (its range
+   set by [lighting]) is followed from surface to surface, nearest first
+   (the same order for every traversal, so the product rounds alike),
+   and the light it carries is scaled by the transparency of each surface
+   it crosses: twice through a ball, once out of the one it starts in; an
+   opaque one stops it. The factor is left in [tr.tree.attenuation.(0)]
+   (a float returned by a call is boxed). *)
+let[@inline never] transmit tr =
+  let p = tr.p and s = tr.s in
+  tr.counters.shadow <- tr.counters.shadow + 1;
+  let f = ref 1. and go = ref true in
+  while !go do
+    let i = closest tr in
+    if i < 0 then go := false
+    else begin
+      f := !f *. Array.unsafe_get p.transparency (Array.unsafe_get p.material i);
+      if !f > 0. then s.t_min <- s.t else go := false
+    end
+  done;
+  Array.unsafe_set tr.tree.attenuation 0 !f
+
+(* Adds light [l]'s diffuse and specular terms, of intensity [li] and
+   unnormalised direction [s.dx..], to [s.intensity]. *)
+let[@inline] add_light (p : Prepared.t) s ~shiny ~specular_of m li nx ny nz vx vy vz length_n length_v =
+  let lx = s.dx and ly = s.dy and lz = s.dz in
+  let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
+  if n_dot_l > 0. then
+    s.intensity <-
+      s.intensity
+      +. (li *. n_dot_l /. (length_n *. sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz))));
+  if shiny then begin
+    (* R = 2 <L, N> N - L (section 7.6). *)
+    let k = 2. *. ((lx *. nx) +. (ly *. ny) +. (lz *. nz)) in
+    let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
+    let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
+    if r_dot_v > 0. then begin
+      let cos = r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v) in
+      (* Below the sphere's threshold, cos^s is exactly 0 and adds
+         nothing: pow is not called (Prepared.specular_zero). *)
+      if cos > Array.unsafe_get p.specular_zero m then
+        s.intensity <- s.intensity +. (li *. Float.pow cos (Array.unsafe_get specular_of m))
+    end
+  end
+
 (* The total intensity at the hit point [s.px..] with unit normal [s.nx..]
    and view vector [s.vx..] (sections 7.4 to 7.7), left in [s.intensity].
-   The shadow rays reuse [s]'s ray fields. *)
-let lighting tr ~shiny ~specular_of m =
+   The shadow rays reuse [s]'s ray fields. [through]: shadow rays pass
+   through transparent objects ([transmit]); otherwise any object stops
+   them. *)
+let[@inline] lighting_with tr ~through ~shiny ~specular_of m =
   let p = tr.p and s = tr.s in
   let px = s.px and py = s.py and pz = s.pz in
   let nx = s.nx and ny = s.ny and nz = s.nz in
@@ -596,29 +651,20 @@ let lighting tr ~shiny ~specular_of m =
       s.t_min <- p.epsilon;
       (* A point light on the lit point itself gives no direction, L = 0:
          it is skipped (as Literal does), not divided by zero. *)
-      if ((not point) || s.dx <> 0. || s.dy <> 0. || s.dz <> 0.) && not (shadowed tr l) then begin
-        let lx = s.dx and ly = s.dy and lz = s.dz in
-        let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
-        if n_dot_l > 0. then
-          s.intensity <-
-            s.intensity
-            +. (li *. n_dot_l /. (length_n *. sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz))));
-        if shiny then begin
-          (* R = 2 <L, N> N - L (section 7.6). *)
-          let k = 2. *. ((lx *. nx) +. (ly *. ny) +. (lz *. nz)) in
-          let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
-          let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
-          if r_dot_v > 0. then begin
-            let cos = r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v) in
-            (* Below the sphere's threshold, cos^s is exactly 0 and adds
-               nothing: pow is not called (Prepared.specular_zero). *)
-            if cos > Array.unsafe_get p.specular_zero m then
-              s.intensity <- s.intensity +. (li *. Float.pow cos (Array.unsafe_get specular_of m))
-          end
+      if (not point) || s.dx <> 0. || s.dy <> 0. || s.dz <> 0. then begin
+        if through then begin
+          (* [transmit] moves [s.t_min]; the direction stays. *)
+          transmit tr;
+          let f = Array.unsafe_get tr.tree.attenuation 0 in
+          if f > 0. then add_light p s ~shiny ~specular_of m (li *. f) nx ny nz vx vy vz length_n length_v
         end
+        else if not (shadowed tr l) then add_light p s ~shiny ~specular_of m li nx ny nz vx vy vz length_n length_v
       end
     end
   done
+
+let lighting tr ~shiny ~specular_of m = lighting_with tr ~through:false ~shiny ~specular_of m
+let lighting_through tr ~shiny ~specular_of m = lighting_with tr ~through:true ~shiny ~specular_of m
 
 (* When samples are averaged, a pixel is the mean of the samples' clamped
    floats, not of their bytes: a reflection may stop only if it cannot
@@ -768,6 +814,35 @@ let[@inline never] local_material tr m =
     if odd then alt else m
   end
 
+(* The hit point [px, py, pz] (already in [s]) on the sphere in slot
+   [i], for a ray of direction [dx, dy, dz]: its outward normal and the
+   view vector, in [s]. *)
+let[@inline] sphere_hit tr i px py pz dx dy dz =
+  let p = tr.p and s = tr.s in
+  let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
+  let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+  s.nx <- nx *. inv;
+  s.ny <- ny *. inv;
+  s.nz <- nz *. inv;
+  s.vx <- -.dx;
+  s.vy <- -.dy;
+  s.vz <- -.dz;
+  (* Shadow and mirror rays leave sphere i. *)
+  tr.origin_sphere <- i
+
+(* The mirror ray R = 2 <V, N> N - V from the hit point, in [s]. *)
+let[@inline] mirror_ray (p : Prepared.t) s =
+  let nx = s.nx and ny = s.ny and nz = s.nz and vx = s.vx and vy = s.vy and vz = s.vz in
+  let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
+  s.ox <- s.px;
+  s.oy <- s.py;
+  s.oz <- s.pz;
+  s.dx <- (nx *. k) -. vx;
+  s.dy <- (ny *. k) -. vy;
+  s.dz <- (nz *. k) -. vz;
+  s.t_min <- p.epsilon;
+  s.t_max <- infinity
+
 (* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
    its local colour and reflectivity and continues with the mirror ray; then
    the stack is folded back from the deepest colour, blend by blend, in the
@@ -795,19 +870,10 @@ let[@inline] trace_in tr ~spheres =
       let px = s.ox +. (dx *. t) and py = s.oy +. (dy *. t) and pz = s.oz +. (dz *. t) in
       let m =
       if spheres || Array.unsafe_get p.kind i = Shape.sphere then begin
-        let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
-        let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
         s.px <- px;
         s.py <- py;
         s.pz <- pz;
-        s.nx <- nx *. inv;
-        s.ny <- ny *. inv;
-        s.nz <- nz *. inv;
-        s.vx <- -.dx;
-        s.vy <- -.dy;
-        s.vz <- -.dz;
-        (* Shadow and mirror rays leave sphere i. *)
-        tr.origin_sphere <- i;
+        sphere_hit tr i px py pz dx dy dz;
         Array.unsafe_get p.material i
       end
       else begin
@@ -856,17 +922,7 @@ let[@inline] trace_in tr ~spheres =
           tracing := false
         end
         else begin
-          (* The mirror ray R = 2 <V, N> N - V from the hit point. *)
-          let nx = s.nx and ny = s.ny and nz = s.nz and vx = s.vx and vy = s.vy and vz = s.vz in
-          let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
-          s.ox <- s.px;
-          s.oy <- s.py;
-          s.oz <- s.pz;
-          s.dx <- (nx *. k) -. vx;
-          s.dy <- (ny *. k) -. vy;
-          s.dz <- (nz *. k) -. vz;
-          s.t_min <- p.epsilon;
-          s.t_max <- infinity;
+          mirror_ray p s;
           tr.counters.reflection <- tr.counters.reflection + 1
         end
       end
@@ -889,7 +945,305 @@ let[@inline] trace_in tr ~spheres =
 let trace_spheres tr = trace_in tr ~spheres:true
 let trace_objects tr = trace_in tr ~spheres:false
 
-let[@inline] trace tr = if tr.p.all_spheres then trace_spheres tr else trace_objects tr
+(* The ray tree (scenes with transparency; Ray_tree describes its
+   storage). A hit's colour is [local (1 - r - t) + reflected wr +
+   refracted wt]: [wr = r + t R] and [wt = t (1 - R)], [R] the
+   reflectance ([0] without Fresnel, [1] on total internal reflection, so
+   that it folds into the reflected part). Opaque hits ([t = 0]) take the
+   same floating-point operations as [trace_in], so a transparent object
+   changes nothing where it is not seen. *)
+
+(* Byte-exact early stop in the tree: before level [l] traces the child
+   [tree.tracing.(l)] names, the pixel is a non-decreasing function of the
+   colours still unknown (that child, and the refracted children still
+   pending on the way up), each in [\[0, max_channel\]], evaluated with the
+   operations of [shade]: if both extremes give the same bytes, so does the
+   truth, whatever the children are (the argument of [settled]). *)
+let settled_tree tr l =
+  let tree = tr.tree and hi = tr.p.max_channel in
+  let node = tree.node in
+  let lo_r = ref 0. and lo_g = ref 0. and lo_b = ref 0. in
+  let hi_r = ref hi and hi_g = ref hi and hi_b = ref hi in
+  for k = l downto 0 do
+    let o = Ray_tree.node_stride * k in
+    let lr = Array.unsafe_get node o and lg = Array.unsafe_get node (o + 1) and lb = Array.unsafe_get node (o + 2) in
+    let wr = Array.unsafe_get node (o + 3) and wt = Array.unsafe_get node (o + 4) in
+    if Array.unsafe_get tree.tracing k = 0 then begin
+      (* The reflected child is the unknown one; the refracted one, if
+         any, is still to come: 0 at least, max_channel at most. *)
+      lo_r := lr +. (!lo_r *. wr);
+      lo_g := lg +. (!lo_g *. wr);
+      lo_b := lb +. (!lo_b *. wr);
+      hi_r := lr +. (!hi_r *. wr);
+      hi_g := lg +. (!hi_g *. wr);
+      hi_b := lb +. (!hi_b *. wr);
+      if wt > 0. then begin
+        lo_r := !lo_r +. (0. *. wt);
+        lo_g := !lo_g +. (0. *. wt);
+        lo_b := !lo_b +. (0. *. wt);
+        hi_r := !hi_r +. (hi *. wt);
+        hi_g := !hi_g +. (hi *. wt);
+        hi_b := !hi_b +. (hi *. wt)
+      end
+    end
+    else begin
+      let br = ref lr and bg = ref lg and bb = ref lb in
+      if wr > 0. then begin
+        br := lr +. (Array.unsafe_get node (o + 5) *. wr);
+        bg := lg +. (Array.unsafe_get node (o + 6) *. wr);
+        bb := lb +. (Array.unsafe_get node (o + 7) *. wr)
+      end;
+      lo_r := !br +. (!lo_r *. wt);
+      lo_g := !bg +. (!lo_g *. wt);
+      lo_b := !bb +. (!lo_b *. wt);
+      hi_r := !br +. (!hi_r *. wt);
+      hi_g := !bg +. (!hi_g *. wt);
+      hi_b := !bb +. (!hi_b *. wt)
+    end
+  done;
+  if tr.averaging then same_clamped !lo_r !hi_r && same_clamped !lo_g !hi_g && same_clamped !lo_b !hi_b
+  else to_byte !lo_r = to_byte !hi_r && to_byte !lo_g = to_byte !hi_g && to_byte !lo_b = to_byte !hi_b
+
+(* May level [l] skip its child of weight [w] ([tree.tracing.(l)] set)?
+   Checking costs a walk up the tree: worth it only when the child weighs
+   less than a unit. *)
+let[@inline] skip_child tr l w =
+  let p = tr.p in
+  p.early_stop
+  && Array.unsafe_get tr.tree.weight l *. w *. p.max_channel < 1.
+  && settled_tree tr l
+  && begin
+       tr.counters.early_stops <- tr.counters.early_stops + 1;
+       true
+     end
+
+(* The ray of level [l] is in [s] (range, [tr.origin_sphere]), its medium
+   stack in [tree.media] at level [l]; its colour is left in [s.r..]. *)
+let rec shade tr l =
+  (* Without the early stop, a tree of depth 64 may have 2^64 rays: the
+     work bound is checked at every hit, not only after each column. *)
+  check_budget tr;
+  let p = tr.p and s = tr.s and tree = tr.tree in
+  let base = Ray_tree.media_cap * l in
+  let media = tree.media and index = p.refractive_index and io = tree.optics in
+  (* Surfaces that change nothing (transparency 1, the same index on both
+     sides) are crossed on the same ray: no bounce, no rounding. *)
+  let searching = ref true and hit = ref (-1) and first = ref (l = 0) in
+  while !searching do
+    let i =
+      if !first then if p.all_spheres then primary_hit_spheres tr else primary_hit_objects tr else closest tr
+    in
+    first := false;
+    if i < 0 then searching := false
+    else begin
+      let m = Array.unsafe_get p.material i in
+      let n = Array.unsafe_get tree.n_media l in
+      if Array.unsafe_get p.transparency m = 1.
+         && begin
+              Ray_tree.indices index media base n m io;
+              Array.unsafe_get io 0 = Array.unsafe_get io 1
+            end
+      then begin
+        Array.unsafe_set tree.n_media l (Ray_tree.cross media base n m);
+        s.t_min <- s.t
+      end
+      else begin
+        hit := i;
+        searching := false
+      end
+    end
+  done;
+  let i = !hit in
+  if l = 0 then tr.first_hit <- i;
+  if i < 0 then begin
+    s.r <- p.background.r;
+    s.g <- p.background.g;
+    s.b <- p.background.b
+  end
+  else begin
+    let t = s.t in
+    let dx = s.dx and dy = s.dy and dz = s.dz in
+    let px = s.ox +. (dx *. t) and py = s.oy +. (dy *. t) and pz = s.oz +. (dz *. t) in
+    s.px <- px;
+    s.py <- py;
+    s.pz <- pz;
+    let sphere = p.all_spheres || Array.unsafe_get p.kind i = Shape.sphere in
+    (* The surface's material (a CSG solid's: the leaf hit), which a
+       pattern may change to its second colour's; and the medium the
+       surface bounds, the object's (a CSG solid is one medium, its first
+       operand's: Literal.medium_material). *)
+    let m = if sphere then (sphere_hit tr i px py pz dx dy dz; Array.unsafe_get p.material i) else shape_hit tr i in
+    let m = if p.patterned then local_material tr m else m in
+    let medium = Array.unsafe_get p.material i in
+    let refl = Array.unsafe_get p.reflective m and tt = Array.unsafe_get p.transparency m in
+    let keep = 1. -. refl -. tt in
+    let o = Ray_tree.pending_stride * l in
+    let n = Array.unsafe_get tree.n_media l in
+    (* The refracted ray, set aside while the reflected one is traced:
+       Snell's law with the normal turned toward the ray. *)
+    let reflectance =
+      if tt > 0. then begin
+        let nx = s.nx and ny = s.ny and nz = s.nz in
+        let facing = (nx *. dx) +. (ny *. dy) +. (nz *. dz) <= 0. in
+        let nx = if facing then nx else -.nx and ny = if facing then ny else -.ny and nz = if facing then nz else -.nz in
+        Ray_tree.indices index media base n medium io;
+        Array.unsafe_set io 2 dx;
+        Array.unsafe_set io 3 dy;
+        Array.unsafe_set io 4 dz;
+        Array.unsafe_set io 5 nx;
+        Array.unsafe_set io 6 ny;
+        Array.unsafe_set io 7 nz;
+        let fresnel = Array.unsafe_get p.fresnel m in
+        Ray_tree.split io ~fresnel;
+        (* A smooth triangle's interpolated normal may bend the ray back
+           to the side it came from, which it would not cross: then the
+           flat normal, turned toward the ray, decides. *)
+        if (not sphere) && Array.unsafe_get p.kind i = Shape.smooth_triangle && Array.unsafe_get io 11 < 1. then begin
+          let snx = s.nx and sny = s.ny and snz = s.nz in
+          Triangle.normal s p.geom (Shape.stride * i);
+          let gx = s.nx and gy = s.ny and gz = s.nz in
+          s.nx <- snx;
+          s.ny <- sny;
+          s.nz <- snz;
+          let g_dot_d = (gx *. dx) +. (gy *. dy) +. (gz *. dz) in
+          let g_dot_t = (gx *. Array.unsafe_get io 8) +. (gy *. Array.unsafe_get io 9) +. (gz *. Array.unsafe_get io 10) in
+          (* Crossing: the two directions on the same side of the flat surface. *)
+          if not ((g_dot_d > 0. && g_dot_t > 0.) || (g_dot_d < 0. && g_dot_t < 0.)) then begin
+            let flip = g_dot_d > 0. in
+            Array.unsafe_set io 5 (if flip then -.gx else gx);
+            Array.unsafe_set io 6 (if flip then -.gy else gy);
+            Array.unsafe_set io 7 (if flip then -.gz else gz);
+            Ray_tree.split io ~fresnel
+          end
+        end;
+        Array.unsafe_set tree.pending (o + 3) (Array.unsafe_get io 8);
+        Array.unsafe_set tree.pending (o + 4) (Array.unsafe_get io 9);
+        Array.unsafe_set tree.pending (o + 5) (Array.unsafe_get io 10);
+        Array.unsafe_get io 11
+      end
+      else 0.
+    in
+    let wr = refl +. (tt *. reflectance) and wt = tt *. (1. -. reflectance) in
+    if l >= p.depth || (wr <= 0. && wt <= 0.) then begin
+      lighting_through tr ~shiny:(Array.unsafe_get p.specular m <> Sphere.matte) ~specular_of:p.specular m;
+      let light = s.intensity in
+      s.r <- Array.unsafe_get p.red m *. light;
+      s.g <- Array.unsafe_get p.green m *. light;
+      s.b <- Array.unsafe_get p.blue m *. light
+    end
+    else begin
+      if wt > 0. then begin
+        (* Its origin: the hit point, on the far side of the surface. A
+           sphere is left exactly (its slot), another shape from the
+           point [shape_hit] moved toward the ray, mirrored through the
+           surface. *)
+        if sphere then begin
+          Array.unsafe_set tree.pending o s.px;
+          Array.unsafe_set tree.pending (o + 1) s.py;
+          Array.unsafe_set tree.pending (o + 2) s.pz;
+          Array.unsafe_set tree.pending_leaving l i
+        end
+        else begin
+          Array.unsafe_set tree.pending o (px -. (s.px -. px));
+          Array.unsafe_set tree.pending (o + 1) (py -. (s.py -. py));
+          Array.unsafe_set tree.pending (o + 2) (pz -. (s.pz -. pz));
+          Array.unsafe_set tree.pending_leaving l (-1)
+        end;
+        let pbase = Ray_tree.media_cap * l in
+        Ray_tree.copy_media media base n tree.pending_media pbase;
+        Array.unsafe_set tree.pending_n_media l (Ray_tree.cross tree.pending_media pbase n medium)
+      end;
+      let no = Ray_tree.node_stride * l in
+      let node = tree.node in
+      if keep > 0. then begin
+        lighting_through tr ~shiny:(Array.unsafe_get p.specular m <> Sphere.matte) ~specular_of:p.specular m;
+        let light = s.intensity in
+        Array.unsafe_set node no (Array.unsafe_get p.red m *. light *. keep);
+        Array.unsafe_set node (no + 1) (Array.unsafe_get p.green m *. light *. keep);
+        Array.unsafe_set node (no + 2) (Array.unsafe_get p.blue m *. light *. keep)
+      end
+      else begin
+        Array.unsafe_set node no 0.;
+        Array.unsafe_set node (no + 1) 0.;
+        Array.unsafe_set node (no + 2) 0.
+      end;
+      Array.unsafe_set node (no + 3) wr;
+      Array.unsafe_set node (no + 4) wt;
+      Array.unsafe_set node (no + 5) 0.;
+      Array.unsafe_set node (no + 6) 0.;
+      Array.unsafe_set node (no + 7) 0.;
+      let weight = Array.unsafe_get tree.weight l in
+      let child = l + 1 and cbase = Ray_tree.media_cap * (l + 1) in
+      if wr > 0. then begin
+        Array.unsafe_set tree.tracing l 0;
+        if not (skip_child tr l wr) then begin
+          (* In the same medium. *)
+          mirror_ray p s;
+          tr.origin_sphere <- (if sphere then i else -1);
+          Ray_tree.copy_media media base n media cbase;
+          Array.unsafe_set tree.n_media child n;
+          Array.unsafe_set tree.weight child (weight *. wr);
+          tr.counters.reflection <- tr.counters.reflection + 1;
+          shade tr child;
+          Array.unsafe_set node (no + 5) s.r;
+          Array.unsafe_set node (no + 6) s.g;
+          Array.unsafe_set node (no + 7) s.b
+        end
+      end;
+      let tr_r = ref 0. and tr_g = ref 0. and tr_b = ref 0. in
+      if wt > 0. then begin
+        Array.unsafe_set tree.tracing l 1;
+        if not (skip_child tr l wt) then begin
+          let pending = tree.pending in
+          s.ox <- Array.unsafe_get pending o;
+          s.oy <- Array.unsafe_get pending (o + 1);
+          s.oz <- Array.unsafe_get pending (o + 2);
+          s.dx <- Array.unsafe_get pending (o + 3);
+          s.dy <- Array.unsafe_get pending (o + 4);
+          s.dz <- Array.unsafe_get pending (o + 5);
+          s.t_min <- p.epsilon;
+          s.t_max <- infinity;
+          tr.origin_sphere <- Array.unsafe_get tree.pending_leaving l;
+          let pn = Array.unsafe_get tree.pending_n_media l in
+          Ray_tree.copy_media tree.pending_media base pn media cbase;
+          Array.unsafe_set tree.n_media child pn;
+          Array.unsafe_set tree.weight child (weight *. wt);
+          tr.counters.reflection <- tr.counters.reflection + 1;
+          shade tr child;
+          tr_r := s.r;
+          tr_g := s.g;
+          tr_b := s.b
+        end
+      end;
+      (* The blend, in the order [settled_tree] bounds it. *)
+      let r = ref (Array.unsafe_get node no) and g = ref (Array.unsafe_get node (no + 1)) and b = ref (Array.unsafe_get node (no + 2)) in
+      if wr > 0. then begin
+        r := !r +. (Array.unsafe_get node (no + 5) *. wr);
+        g := !g +. (Array.unsafe_get node (no + 6) *. wr);
+        b := !b +. (Array.unsafe_get node (no + 7) *. wr)
+      end;
+      if wt > 0. then begin
+        r := !r +. (!tr_r *. wt);
+        g := !g +. (!tr_g *. wt);
+        b := !b +. (!tr_b *. wt)
+      end;
+      s.r <- !r;
+      s.g <- !g;
+      s.b <- !b
+    end
+  end
+
+let trace_tree tr =
+  let tree = tr.tree in
+  tr.first_hit <- -1;
+  tr.origin_sphere <- -1;
+  Array.unsafe_set tree.n_media 0 0;
+  Array.unsafe_set tree.weight 0 1.;
+  shade tr 0
+
+let[@inline] trace tr =
+  let k = tr.tracer in
+  if k = spheres_chain then trace_spheres tr else if k = objects_chain then trace_objects tr else trace_tree tr
 
 (* The primary ray through canvas point [s.gx, s.gy]. *)
 let primary tr =

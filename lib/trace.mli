@@ -10,15 +10,23 @@
     in OCaml 4.13 without flambda a float crossing a function call that is
     not inlined is boxed.
 
+    Scenes with transparency (some material with [transparency > 0]) are
+    traced by the ray tree instead, chosen once by {!create}: each hit may
+    spawn a reflected and a refracted ray, followed by a recursion over
+    levels whose arguments are ints only, the floats in the per-level
+    arrays of {!Raytrace.Private.Ray_tree}; shadow rays pass through
+    transparent objects. Scenes without transparency keep the reflection
+    loop, instruction for instruction.
+
     @canonical Raytrace.Private.Trace *)
 
 type counters = {
   mutable primary : int;  (** Primary rays cast. *)
   mutable shadow : int;  (** Shadow rays cast. *)
-  mutable reflection : int;  (** Mirror rays cast. *)
+  mutable reflection : int;  (** Mirror rays cast, and refracted rays. *)
   mutable tests : int;  (** Ray-object intersection tests. *)
   mutable box_tests : int;  (** Ray-box tests in the object hierarchy. *)
-  mutable early_stops : int;  (** Reflections stopped by the weight bound. *)
+  mutable early_stops : int;  (** Reflections (and refractions) stopped by the weight bound. *)
 }
 (** The type for work counters. *)
 
@@ -69,7 +77,12 @@ val pixel : t -> int -> int -> unit
 (** [pixel tr gx gy] traces the primary ray through canvas pixel
     [(gx, gy)] (centered coordinates, {!Raytrace.Private.Canvas}) from the camera, [t > 1],
     with the scene's recursion depth (section 8). The unclamped colour is
-    then in {!red}, {!green} and {!blue}, and {!store} writes it. *)
+    then in {!red}, {!green} and {!blue}, and {!store} writes it.
+    @raise Limits.Work_exceeded in a scene with transparency, once the
+    work counted ({!work}) passes the budget ({!set_budget}): a ray tree
+    may have [2^depth] rays, so the tree checks at every hit (so do
+    {!sample}, {!average} and {!average_reusing}, which trace rays
+    alike). *)
 
 val sample : t -> int -> int -> i:int -> j:int -> n:int -> unit
 (** [sample tr gx gy ~i ~j ~n] is {!pixel} for the point

@@ -5,19 +5,36 @@ let coord lo hi = float_range lo hi
 let vec lo hi = map3 Vec3.v (coord lo hi) (coord lo hi) (coord lo hi)
 let channel = oneof [ return 0.; return 255.; float_range 0. 255. ]
 
+(* Glass on one object in three: transparency up to what the
+   reflectivity leaves (the edge values 1 - r and, with r = 0, 1), indices
+   below and above air's, Fresnel or not. *)
+let optics reflective =
+  let* glass = frequencyl [ (2, false); (1, true) ] in
+  if not glass then return (0., 1., false)
+  else
+    let room = 1. -. reflective in
+    let* transparency = oneof [ return room; float_range 0. room ] in
+    let* index = oneof [ return 1.; return 1.5; float_range 0.5 2.5 ] in
+    let* fresnel = bool in
+    (* [r + (1 - r)] may round above 1. *)
+    let transparency = if reflective +. transparency > 1. then Float.pred transparency else transparency in
+    return (Float.max transparency 0., index, fresnel)
+
 let sphere =
   let* center = map3 Vec3.v (coord (-3.) 3.) (coord (-3.) 3.) (coord 2. 9.) in
   let* radius = oneof [ float_range 0.05 2.; return 1. ] in
   let* color = map3 Color.v channel channel channel in
   let* specular = oneof [ return Sphere.matte; return 0.; float_range 0. 1000. ] in
   let* reflective = oneof [ return 0.; return 1.; float_range 0. 1. ] in
-  return (Sphere.v ~specular ~reflective ~center ~radius color)
+  let* transparency, refractive_index, fresnel = optics reflective in
+  return (Sphere.v ~specular ~reflective ~transparency ~refractive_index ~fresnel ~center ~radius color)
 
 let material =
   let* color = map3 Color.v channel channel channel in
   let* specular = oneof [ return Sphere.matte; return 0.; float_range 0. 1000. ] in
   let* reflective = oneof [ return 0.; return 1.; float_range 0. 1. ] in
-  return (Material.v ~specular ~reflective color)
+  let* transparency, refractive_index, fresnel = optics reflective in
+  return (Material.v ~specular ~reflective ~transparency ~refractive_index ~fresnel color)
 
 (* Planes through the scene's space, at any angle (often a floor or a
    wall), triangles and boxes in front of the camera. *)

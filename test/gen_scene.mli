@@ -4,7 +4,9 @@ val gen : Raytrace.Scene.t QCheck.Gen.t
 (** [gen] generates scenes that satisfy {!Raytrace.Scene.validate}: small
     canvases (so that rendering them is quick), 0 to 6 spheres in front of
     the camera, none or 1 to 4 planes, triangles and boxes, 0 to 4 lights of every kind, random materials including the
-    edge values (matte, specular 0, reflective 0 and 1), with or without
+    edge values (matte, specular 0, reflective 0 and 1), glass on one
+    object in three (transparency up to [1 - reflective], its edge value
+    included, index 1, 1.5 or in [\[0.5, 2.5\]], Fresnel or not), with or without
     epsilon, with or without a camera path of 1 to 4 keys. *)
 
 val crowd : Raytrace.Scene.t QCheck.Gen.t

@@ -59,4 +59,5 @@ let () =
       ("float_scan", Test_float_scan.tests);
       ("obj_file", Test_obj_file.tests);
       ("mesh_gen", Test_mesh_gen.tests);
+      ("optics", Test_optics.tests);
     ]

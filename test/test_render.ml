@@ -14,7 +14,13 @@ let render ?jobs ?skips s = Helpers.image_exn ?jobs ?skips s
    neighbouring triangle just past it) that the robust mode does not have:
    0.4% of the pixels of scenes/mesh.scene, each darker in the oracle. *)
 let robust_share (s : Scene.t) =
-  if List.exists (function Shape.Mesh m -> m.smooth | _ -> false) s.shapes then 0.99 else 0.999
+  if List.exists (function Shape.Mesh m -> m.smooth && m.material.transparency > 0. | _ -> false) s.shapes then
+    (* Seen through glass, each such speck is seen again, bent: 1.0% of
+       the pixels of scenes/glass-knot.scene at 80 x 80, 0.95% at 120 x 120
+       (in the document's mode the two are equal byte for byte). *)
+    0.98
+  else if List.exists (function Shape.Mesh m -> m.smooth | _ -> false) s.shapes then 0.99
+  else 0.999
 
 let check_against_oracle what (s : Scene.t) =
   match s.epsilon with

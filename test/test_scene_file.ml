@@ -21,7 +21,19 @@ let bad_inputs =
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 1.5))",
      "t.scene:1:61: sphere reflective must lie in [0, 1], got 1.5");
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflectiv 0.5))",
-     "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, color, specular, reflective or pattern (did you mean reflective?)");
+     "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, color, specular, reflective, transparency, refractive-index, fresnel or pattern (did you mean reflective?)");
+     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (transparency 1.5))",
+      "t.scene:1:63: sphere transparency must lie in [0, 1], got 1.5");
+     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 0.6) (transparency 0.5))",
+      "t.scene:1:80: sphere reflective + transparency must be <= 1, got 0.6 + 0.5");
+     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (refractive-index 0))",
+      "t.scene:1:67: sphere refractive-index must be > 0 and finite, got 0");
+     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (fresnel yes))",
+      "t.scene:1:58: sphere fresnel: expected true or false");
+     ("(box (min 0 0 3) (max 1 1 4) (color 1 2 3) (transparency 0.7) (reflective 0.7))",
+      "t.scene:1:58: box reflective + transparency must be <= 1, got 0.7 + 0.7");
+     ("(plane (point 0 0 0) (normal 0 1 0) (color 1 2 3) (refractive-index -1.5))",
+      "t.scene:1:69: plane refractive-index must be > 0 and finite, got -1.5");
     ("(sphere (center 0 nan 3) (radius 1) (color 1 2 3))", "t.scene:1:19: sphere center must be a finite number, got nan");
     ("(sphere (center 0 0 3) (radius inf) (color 1 2 3))", "t.scene:1:32: sphere radius must be a finite number, got inf");
     ("(sphere (center 0 0) (radius 1) (color 1 2 3))", "t.scene:1:9: sphere center takes 3 numbers (x y z), got 2 values");
@@ -117,6 +129,26 @@ let tests =
             Alcotest.(check (float 0.)) __LOC__ (-1.) sp.specular;
             Alcotest.(check (float 0.)) __LOC__ 0. sp.reflective
         | _ -> Alcotest.fail "one sphere expected");
+    Alcotest.test_case "the optical fields default to opaque, index 1, no Fresnel, and print only when set" `Quick
+      (fun () ->
+        let plain = "(sphere (center 0 0 3) (radius 1) (color 1 2 3))" in
+        (match (parse plain).spheres with
+        | [ sp ] ->
+            Alcotest.(check (float 0.)) __LOC__ 0. sp.transparency;
+            Alcotest.(check (float 0.)) __LOC__ 1. sp.refractive_index;
+            Alcotest.(check bool) __LOC__ false sp.fresnel;
+            Alcotest.(check string) "a sphere without them prints as before" plain (Sphere.show sp)
+        | _ -> Alcotest.fail "one sphere expected");
+        let glass =
+          "(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 0.1) (transparency 0.9) (refractive-index 1.5) (fresnel true))"
+        in
+        (match (parse glass).spheres with
+        | [ sp ] -> Alcotest.(check string) "a glass sphere prints its fields" glass (Sphere.show sp)
+        | _ -> Alcotest.fail "one sphere expected");
+        let box = "(box (min 0 0 3) (max 1 1 4) (color 1 2 3) (transparency 1) (refractive-index 1.33))" in
+        match (parse box).shapes with
+        | [ sh ] -> Alcotest.(check string) "a glass box prints its fields" box (Shape.show sh)
+        | _ -> Alcotest.fail "one shape expected");
     Alcotest.test_case "comments of every kind are ignored" `Quick (fun () ->
         let s =
           parse
