@@ -46,6 +46,12 @@ type t = {
   max_channel : float;
   early_stop : bool;
   skips : bool;
+  behind : bool;
+  shadow_skip : bool;
+  cull : bool;
+  light_length : float array;
+  column_vx : float array;
+  row_vy : float array;
 }
 
 let bvh_threshold = 8
@@ -376,4 +382,17 @@ let prepare ?(skips = true) scene =
     max_channel;
     early_stop = skips && Float.is_finite max_channel;
     skips;
+    behind = skips;
+    shadow_skip = skips;
+    cull = skips;
+    (* The same expression as the tracer's |L| of a point light's L. *)
+    light_length = lf (fun l -> let v = vector l in sqrt ((v.x *. v.x) +. (v.y *. v.y) +. (v.z *. v.z)));
+    (* The viewport coordinates of each column and row of pixel centres,
+       by the operations [Trace]'s primary ray does for any point. *)
+    column_vx =
+      Array.init scene.width (fun c ->
+          Float.of_int (Canvas.x_of_column ~width:scene.width c) *. scene.viewport.width /. Float.of_int scene.width);
+    row_vy =
+      Array.init scene.height (fun r ->
+          Float.of_int (r - (scene.height / 2)) *. scene.viewport.height /. Float.of_int scene.height);
   }

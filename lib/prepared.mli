@@ -91,6 +91,21 @@ type t = private {
           rounded, may exceed 1 by a few ulps, and its power explodes). *)
   early_stop : bool;  (** The skips are on and [max_channel] is finite. *)
   skips : bool;  (** Whether the exact skips are enabled. *)
+  behind : bool;
+      (** The skips are on: the document's kernel rejects a sphere whose
+          two roots are certainly [<= 0] ([k2 > 0] and [k3 > 0]) without
+          computing them. *)
+  shadow_skip : bool;
+      (** The skips are on: the document's kernel casts a shadow ray only
+          when the light would add a term. *)
+  cull : bool;
+      (** The skips are on: the document's kernel tests a camera ray only
+          against the spheres that can meet some ray of its 8 x 8 tile. *)
+  light_length : float array;  (** [|L|] of each light's vector (directional lights use it). *)
+  column_vx : float array;
+      (** The viewport x of the pixel centres of each canvas column, left to right. *)
+  row_vy : float array;
+      (** The viewport y of the pixel centres whose [gy] is [r - height / 2], for [r] from [0]. *)
 }
 (** The type for prepared scenes. *)
 

@@ -28,10 +28,25 @@ type t = {
   averaging : bool;  (** Samples are averaged: see [settled]. *)
   mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see [primary_hit]. *)
   mutable budget : int;  (** Most tests [check_budget] accepts. *)
+  cand : int array;
+      (** The document's kernel: per tile column, the spheres (slots, in
+          scene order) that the camera rays of its current tile may meet,
+          [n_objects] places each; then every slot, for rays of no tile. *)
+  tile_row : int array;  (** Per tile column: the tile row [cand] holds, or [-1]. *)
+  tile_count : int array;  (** Per tile column: how many spheres [cand] holds. *)
+  corners : float array;  (** Scratch: the four corner directions of a tile. *)
+  mutable cand_first : int;  (** The next camera ray tests [cand] from here on... *)
+  mutable cand_count : int;  (** ...this many spheres. *)
 }
 
 (* [assumed] when the primary ray searches every sphere. *)
 let no_assumption = -2
+
+(* Camera rays are culled by square tiles of this many pixels a side. *)
+let tile = 8
+
+(* The tile columns of the canvas, where culling applies. *)
+let tiles_across (p : Prepared.t) = if p.cull && p.textbook_all then (p.width + tile - 1) / tile else 0
 
 let create ?(averaging = false) (p : Prepared.t) =
   {
@@ -48,6 +63,13 @@ let create ?(averaging = false) (p : Prepared.t) =
     averaging;
     assumed = no_assumption;
     budget = Limits.work_budget Limits.default;
+    cand = (let n = p.n_objects and tiles = if p.cull && p.textbook_all then tiles_across p else 0 in
+            Array.init ((tiles * n) + n) (fun k -> if k >= tiles * n then k - (tiles * n) else 0));
+    tile_row = Array.make (tiles_across p) (-1);
+    tile_count = Array.make (tiles_across p) 0;
+    corners = Array.make 12 0.;
+    cand_first = (if p.cull && p.textbook_all then tiles_across p * p.n_objects else 0);
+    cand_count = p.n_objects;
   }
 
 let prepared tr = tr.p
@@ -727,6 +749,346 @@ let shape_hit tr i =
     s.pz <- pz +. (e *. gz)
   end
 
+(* The document's kernel: spheres alone, the textbook roots, no hierarchy
+   (the reference scene), with the skips on. The whole ray tree of a pixel
+   is one loop over local variables: rays, hit points, normals and light
+   vectors stay in registers or on the stack, never in memory the
+   shadow test must read back, and nothing is called per ray but [pow]
+   and, rarely, [settled]. Every value that reaches a pixel is computed
+   with the operands and the order of [trace_in] (the reference path, which
+   [~skips:false] runs), so the bytes are the same; the skips below only
+   leave out work whose result cannot matter.
+
+   Both roots behind ([behind]): when k2 > 0 and k3 > 0, disc =
+   fl(fl(k2^2) - fl(4 k1 k3)) <= fl(k2^2), since fl(4 k1 k3) >= 0 and
+   rounding is monotonic, and sqrt (fl (k2^2)) = k2 exactly (a theorem of
+   binary floating point; an overflow gives infinity either way), so
+   -k2 + sq <= 0 and both roots, divided by 2 k1 >= 0, are <= 0 or NaN:
+   never in (t_min, t_max) with t_min >= 0 (1 for the camera, the scene's
+   epsilon, validated >= 0, for the others). Such a sphere is rejected
+   without the square root and the two divisions. [behind_k3] is 0 with
+   the skip and infinity without: [k3 > infinity] is never true. *)
+let[@inline] textbook_blocks cx cy cz r2 ox oy oz dx dy dz t_min t_max two_k1 k1x4 behind_k3 i =
+  let fx = ox -. Array.unsafe_get cx i
+  and fy = oy -. Array.unsafe_get cy i
+  and fz = oz -. Array.unsafe_get cz i in
+  let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+  let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get r2 i in
+  (not (k2 > 0. && k3 > behind_k3))
+  &&
+  let disc = (k2 *. k2) -. (k1x4 *. k3) in
+  disc >= 0.
+  &&
+  let sq = sqrt disc in
+  let t2 = (-.k2 -. sq) /. two_k1 in
+  (t_min < t2 && t2 < t_max)
+  ||
+  let t1 = (-.k2 +. sq) /. two_k1 in
+  t_min < t1 && t1 < t_max
+
+(* The camera rays of a tile: their directions are affine in the pixel's
+   (gx, gy) (to within the rounding of the viewport mapping, about an ulp),
+   so they lie in the convex hull of the four corner rays, hence in the cone
+   around the corners' mean direction whose half-angle theta is the largest
+   corner angle (cones of half-angle below pi / 2 are convex). A sphere of
+   radius r at distance dist from the camera is seen within the angle
+   alpha = asin (re / dist) of its centre's direction, with re = r (1 +
+   1e-6) + 1e-6 dist; if that direction is more than theta + alpha + 1e-6
+   from the axis, every ray of the tile passes the centre at a distance
+   over re + 1e-6 dist cos alpha: the true discriminant
+   4 k1 ((dist^2 - dist^2 sin^2) ...) is negative by at least
+   4 k1 1e-12 dist^2, some thousand times the rounding of the textbook's
+   k2^2 - 4 k1 k3 (a few ulps of 4 k1 dist^2) and of these angles (acos
+   near 1 loses at most sqrt u, 1e-8 rad). So the textbook test of the
+   culled spheres gives disc < 0 for every ray of the tile: a culled sphere
+   is one the ray would have missed. Spheres near or around the camera
+   (dist <= 2 re), wide tiles (theta > 1 rad) and anything NaN keep every
+   sphere. The kept spheres stay in scene order, so equal roots keep the
+   first sphere, as the full loop does. *)
+let[@inline never] tile_candidates tr tx ty =
+  let p = tr.p and c = tr.corners in
+  let n = p.n_objects and vz = p.viewport.distance and m = p.camera.rotation in
+  let col0 = tx * tile and row0 = ty * tile in
+  let col1 = min (p.width - 1) (col0 + tile - 1) and row1 = min (p.height - 1) (row0 + tile - 1) in
+  for k = 0 to 3 do
+    let vx = Array.unsafe_get p.column_vx (if k land 1 = 0 then col0 else col1) in
+    let vy = Array.unsafe_get p.row_vy (if k land 2 = 0 then row0 else row1) in
+    let x = (vx *. m.row0.x) +. (vy *. m.row0.y) +. (vz *. m.row0.z) in
+    let y = (vx *. m.row1.x) +. (vy *. m.row1.y) +. (vz *. m.row1.z) in
+    let z = (vx *. m.row2.x) +. (vy *. m.row2.y) +. (vz *. m.row2.z) in
+    let len = sqrt ((x *. x) +. (y *. y) +. (z *. z)) in
+    c.(3 * k) <- x /. len;
+    c.((3 * k) + 1) <- y /. len;
+    c.((3 * k) + 2) <- z /. len
+  done;
+  let ax = c.(0) +. c.(3) +. c.(6) +. c.(9) in
+  let ay = c.(1) +. c.(4) +. c.(7) +. c.(10) in
+  let az = c.(2) +. c.(5) +. c.(8) +. c.(11) in
+  let al = sqrt ((ax *. ax) +. (ay *. ay) +. (az *. az)) in
+  let ax = ax /. al and ay = ay /. al and az = az /. al in
+  let cos_min = ref 1. in
+  for k = 0 to 3 do
+    let cs = (ax *. c.(3 * k)) +. (ay *. c.((3 * k) + 1)) +. (az *. c.((3 * k) + 2)) in
+    if not (cs >= !cos_min) then cos_min := cs
+  done;
+  let theta = Float.acos (Float.min 1. (Float.max (-1.) !cos_min)) in
+  let margin = 1e-6 in
+  let base = tx * n and count = ref 0 in
+  for i = 0 to n - 1 do
+    let qx = -.Array.unsafe_get p.primary_ocx i
+    and qy = -.Array.unsafe_get p.primary_ocy i
+    and qz = -.Array.unsafe_get p.primary_ocz i in
+    let dist = sqrt ((qx *. qx) +. (qy *. qy) +. (qz *. qz)) in
+    let re = (Array.unsafe_get p.radius i *. (1. +. margin)) +. (margin *. dist) in
+    let keep =
+      (not (dist > 2. *. re && theta <= 1.))
+      ||
+      let alpha = Float.asin (re /. dist) in
+      let beta = Float.acos (Float.min 1. (Float.max (-1.) (((ax *. qx) +. (ay *. qy) +. (az *. qz)) /. dist))) in
+      not (beta > theta +. alpha +. margin)
+    in
+    if keep then begin
+      Array.unsafe_set tr.cand (base + !count) i;
+      incr count
+    end
+  done;
+  tr.tile_row.(tx) <- ty;
+  tr.tile_count.(tx) <- !count
+
+let[@inline never] trace_textbook tr =
+  let p = tr.p and s = tr.s in
+  let cx = p.cx and cy = p.cy and cz = p.cz and r2 = p.r2 in
+  let n = p.n_objects and eps = p.epsilon in
+  let behind_k3 = if p.behind then 0. else infinity in
+  let n_lights = p.n_lights and light_kind = p.light_kind and light_intensity = p.light_intensity in
+  let lxa = p.lx and lya = p.ly and lza = p.lz and light_length = p.light_length in
+  let last_blocker = tr.last_blocker and shadow_skip = p.shadow_skip in
+  let tests = ref 0 and levels = ref 0 and tracing = ref true in
+  (* The weight of the colour still to be traced: the product of the
+     reflectivities on the stack. *)
+  let weight = ref 1. in
+  let ox = ref s.ox and oy = ref s.oy and oz = ref s.oz in
+  let dx = ref s.dx and dy = ref s.dy and dz = ref s.dz in
+  let t_min = ref s.t_min in
+  tr.first_hit <- -1;
+  tr.origin_sphere <- -1;
+  while !tracing do
+    let ox' = !ox and oy' = !oy and oz' = !oz and dx' = !dx and dy' = !dy and dz' = !dz in
+    let t_min' = !t_min in
+    let a = (dx' *. dx') +. (dy' *. dy') +. (dz' *. dz') in
+    let two_k1 = 2. *. a and k1x4 = 4. *. a in
+    (* The closest hit, as [closest_textbook_all] finds it: the t_max of
+       camera and mirror rays is infinity, which [t < best] already
+       implies. *)
+    let best = ref infinity and hit = ref (-1) in
+    if !levels > 0 then begin
+      tests := !tests + n;
+      for i = 0 to n - 1 do
+        let fx = ox' -. Array.unsafe_get cx i and fy = oy' -. Array.unsafe_get cy i and fz = oz' -. Array.unsafe_get cz i in
+        let k2 = 2. *. ((fx *. dx') +. (fy *. dy') +. (fz *. dz')) in
+        let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get r2 i in
+        if not (k2 > 0. && k3 > behind_k3) then begin
+          let disc = (k2 *. k2) -. (k1x4 *. k3) in
+          if disc >= 0. then begin
+            let sq = sqrt disc in
+            let t2 = (-.k2 -. sq) /. two_k1 in
+            if t2 < !best && t_min' < t2 then begin
+              best := t2;
+              hit := i
+            end
+            else
+              let t1 = (-.k2 +. sq) /. two_k1 in
+              if t1 < !best && t_min' < t1 then begin
+                best := t1;
+                hit := i
+              end
+          end
+        end
+      done
+    end
+    else if tr.assumed <> no_assumption then begin
+      hit := primary_hit_spheres tr;
+      best := s.t
+    end
+    else begin
+      (* From the camera, CO and k3 are per-frame constants; only the
+         tile's spheres are tested. *)
+      let pox = p.primary_ocx and poy = p.primary_ocy and poz = p.primary_ocz and pk3 = p.primary_k3 in
+      let cand = tr.cand and first = tr.cand_first and count = tr.cand_count in
+      tests := !tests + count;
+      for j = first to first + count - 1 do
+        let i = Array.unsafe_get cand j in
+        let fx = Array.unsafe_get pox i and fy = Array.unsafe_get poy i and fz = Array.unsafe_get poz i in
+        let k2 = 2. *. ((fx *. dx') +. (fy *. dy') +. (fz *. dz')) in
+        let k3 = Array.unsafe_get pk3 i in
+        if not (k2 > 0. && k3 > behind_k3) then begin
+          let disc = (k2 *. k2) -. (k1x4 *. k3) in
+          if disc >= 0. then begin
+            let sq = sqrt disc in
+            let t2 = (-.k2 -. sq) /. two_k1 in
+            if t2 < !best && t_min' < t2 then begin
+              best := t2;
+              hit := i
+            end
+            else
+              let t1 = (-.k2 +. sq) /. two_k1 in
+              if t1 < !best && t_min' < t1 then begin
+                best := t1;
+                hit := i
+              end
+          end
+        end
+      done
+    end;
+    let i = !hit in
+    if !levels = 0 then tr.first_hit <- i;
+    if i < 0 then begin
+      s.r <- p.background.r;
+      s.g <- p.background.g;
+      s.b <- p.background.b;
+      tracing := false
+    end
+    else begin
+      let t = !best in
+      let px = ox' +. (dx' *. t) and py = oy' +. (dy' *. t) and pz = oz' +. (dz' *. t) in
+      let nx = px -. Array.unsafe_get cx i and ny = py -. Array.unsafe_get cy i and nz = pz -. Array.unsafe_get cz i in
+      let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+      let nx = nx *. inv and ny = ny *. inv and nz = nz *. inv in
+      let vx = -.dx' and vy = -.dy' and vz = -.dz' in
+      let m = Array.unsafe_get p.material i in
+      (* [lighting], with the shadow ray inlined. *)
+      let specular = Array.unsafe_get p.specular m and zero = Array.unsafe_get p.specular_zero m in
+      let shiny = specular <> Sphere.matte in
+      let intensity = ref 0. in
+      let length_n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+      let length_v = sqrt ((vx *. vx) +. (vy *. vy) +. (vz *. vz)) in
+      for l = 0 to n_lights - 1 do
+        let li = Array.unsafe_get light_intensity l and kind = Array.unsafe_get light_kind l in
+        if kind = Prepared.ambient then intensity := !intensity +. li
+        else begin
+          let point = kind = Prepared.point in
+          let lx = ref 0. and ly = ref 0. and lz = ref 0. and t_max = ref infinity in
+          if point then begin
+            lx := Array.unsafe_get lxa l -. px;
+            ly := Array.unsafe_get lya l -. py;
+            lz := Array.unsafe_get lza l -. pz;
+            t_max := 1.
+          end
+          else begin
+            lx := Array.unsafe_get lxa l;
+            ly := Array.unsafe_get lya l;
+            lz := Array.unsafe_get lza l
+          end;
+          let lx = !lx and ly = !ly and lz = !lz and t_max = !t_max in
+          let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
+          let add_diffuse = n_dot_l > 0. in
+          (* The specular term's cosine, as [lighting] computes it
+             (2 <L, N> is 2 n_dot_l: the same products). *)
+          let cos = ref 0. in
+          if shiny then begin
+            let k = 2. *. ((lx *. nx) +. (ly *. ny) +. (lz *. nz)) in
+            let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
+            let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
+            if r_dot_v > 0. then cos := r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v)
+          end;
+          let cos = !cos in
+          (* Below the sphere's threshold (0 without skips), cos^s is
+             exactly 0 and adds nothing (Prepared.specular_zero). *)
+          let add_specular = shiny && cos > zero in
+          (* The shadow ray only matters if a term would be added: a light
+             that adds nothing leaves the sum as it is, lit or not. (A
+             point light on the point itself, L = 0, adds nothing:
+             n_dot_l = 0 and R = 0. Without the skip it is left out, as
+             [lighting] does.) *)
+          if
+            (if shadow_skip then add_diffuse || add_specular else (not point) || lx <> 0. || ly <> 0. || lz <> 0.)
+            &&
+            (* [shadowed] with the skips: this light's last blocker first,
+               then the first blocker of the others, in scene order. *)
+            let a = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
+            let two_k1 = 2. *. a and k1x4 = 4. *. a in
+            tr.counters.shadow <- tr.counters.shadow + 1;
+            let last = Array.unsafe_get last_blocker l in
+            if last >= 0 && textbook_blocks cx cy cz r2 px py pz lx ly lz eps t_max two_k1 k1x4 behind_k3 last then begin
+              incr tests;
+              false
+            end
+            else begin
+              let j = ref 0 in
+              while
+                !j < n
+                && (!j = last || not (textbook_blocks cx cy cz r2 px py pz lx ly lz eps t_max two_k1 k1x4 behind_k3 !j))
+              do
+                incr j
+              done;
+              tests := !tests + !j + if last >= 0 then 1 else 0;
+              if !j < n then begin
+                Array.unsafe_set last_blocker l !j;
+                false
+              end
+              else true
+            end
+          then begin
+            if add_diffuse then begin
+              let len = if point then sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz)) else Array.unsafe_get light_length l in
+              intensity := !intensity +. (li *. n_dot_l /. (length_n *. len))
+            end;
+            if add_specular then intensity := !intensity +. (li *. Float.pow cos specular)
+          end
+        end
+      done;
+      let light = !intensity in
+      let lr = Array.unsafe_get p.red m *. light and lg = Array.unsafe_get p.green m *. light and lb = Array.unsafe_get p.blue m *. light in
+      let refl = Array.unsafe_get p.reflective m in
+      if refl <= 0. || !levels >= p.depth then begin
+        s.r <- lr;
+        s.g <- lg;
+        s.b <- lb;
+        tracing := false
+      end
+      else begin
+        let k = 4 * !levels in
+        Array.unsafe_set tr.stack k lr;
+        Array.unsafe_set tr.stack (k + 1) lg;
+        Array.unsafe_set tr.stack (k + 2) lb;
+        Array.unsafe_set tr.stack (k + 3) refl;
+        incr levels;
+        weight := !weight *. refl;
+        (* As in [trace_in]. *)
+        if p.early_stop
+           && (!weight *. p.max_channel < 1. || (lr >= 255. && lg >= 255. && lb >= 255.))
+           && settled tr !levels
+        then begin
+          tr.counters.early_stops <- tr.counters.early_stops + 1;
+          s.r <- 0.;
+          s.g <- 0.;
+          s.b <- 0.;
+          tracing := false
+        end
+        else begin
+          (* The mirror ray R = 2 <V, N> N - V from the hit point. *)
+          let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
+          ox := px;
+          oy := py;
+          oz := pz;
+          dx := (nx *. k) -. vx;
+          dy := (ny *. k) -. vy;
+          dz := (nz *. k) -. vz;
+          t_min := eps;
+          tr.counters.reflection <- tr.counters.reflection + 1
+        end
+      end
+    end
+  done;
+  tr.counters.tests <- tr.counters.tests + !tests;
+  for l = !levels - 1 downto 0 do
+    let refl = Array.unsafe_get tr.stack ((4 * l) + 3) in
+    let keep = 1. -. refl in
+    s.r <- (Array.unsafe_get tr.stack (4 * l) *. keep) +. (s.r *. refl);
+    s.g <- (Array.unsafe_get tr.stack ((4 * l) + 1) *. keep) +. (s.g *. refl);
+    s.b <- (Array.unsafe_get tr.stack ((4 * l) + 2) *. keep) +. (s.b *. refl)
+  done
+
 (* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
    its local colour and reflectivity and continues with the mirror ray; then
    the stack is folded back from the deepest colour, blend by blend, in the
@@ -835,17 +1197,16 @@ let[@inline] trace_in tr ~spheres =
 (* One copy per kind of scene: spheres alone ask no object its kind. *)
 let trace_spheres tr = trace_in tr ~spheres:true
 let trace_objects tr = trace_in tr ~spheres:false
-let[@inline] trace tr = if tr.p.all_spheres then trace_spheres tr else trace_objects tr
+let[@inline] trace tr =
+  let p = tr.p in
+  if p.textbook_all && p.skips then trace_textbook tr
+  else if p.all_spheres then trace_spheres tr
+  else trace_objects tr
 
-(* The primary ray through canvas point [s.gx, s.gy]. *)
-let primary tr =
+(* The camera ray through viewport point [(vx, vy, d)]. *)
+let[@inline] primary_through tr vx vy =
   let p = tr.p and s = tr.s in
-  let gx = s.gx and gy = s.gy in
-  let vp = p.viewport in
-  (* Viewport point (section 3), multiplied before dividing as written. *)
-  let vx = gx *. vp.width /. Float.of_int p.width in
-  let vy = gy *. vp.height /. Float.of_int p.height in
-  let vz = vp.distance in
+  let vz = p.viewport.distance in
   let cam = p.camera in
   if p.identity_rotation then begin
     s.dx <- vx;
@@ -866,10 +1227,41 @@ let primary tr =
   tr.counters.primary <- tr.counters.primary + 1;
   trace tr
 
+(* The camera ray of no tile tests every sphere. *)
+let[@inline] untiled tr =
+  tr.cand_first <- Array.length tr.cand - tr.p.n_objects;
+  tr.cand_count <- tr.p.n_objects
+
+(* The primary ray through canvas point [s.gx, s.gy]. *)
+let primary tr =
+  let p = tr.p and s = tr.s in
+  let gx = s.gx and gy = s.gy in
+  let vp = p.viewport in
+  untiled tr;
+  (* Viewport point (section 3), multiplied before dividing as written. *)
+  let vx = gx *. vp.width /. Float.of_int p.width in
+  let vy = gy *. vp.height /. Float.of_int p.height in
+  primary_through tr vx vy
+
+(* A pixel's centre: its viewport point is the frame's (the same
+   operations as [primary]'s), and its tile's spheres are the candidates. *)
 let pixel tr gx gy =
-  tr.s.gx <- Float.of_int gx;
-  tr.s.gy <- Float.of_int gy;
-  primary tr
+  let p = tr.p in
+  let col = gx + (p.width / 2) and row = gy + (p.height / 2) in
+  if col >= 0 && col < p.width && row >= 0 && row < p.height then begin
+    if p.cull && p.textbook_all then begin
+      let tx = col / tile and ty = row / tile in
+      if Array.unsafe_get tr.tile_row tx <> ty then tile_candidates tr tx ty;
+      tr.cand_first <- tx * p.n_objects;
+      tr.cand_count <- Array.unsafe_get tr.tile_count tx
+    end;
+    primary_through tr (Array.unsafe_get p.column_vx col) (Array.unsafe_get p.row_vy row)
+  end
+  else begin
+    tr.s.gx <- Float.of_int gx;
+    tr.s.gy <- Float.of_int gy;
+    primary tr
+  end
 
 let sample tr gx gy ~i ~j ~n =
   let n = Float.of_int n in
