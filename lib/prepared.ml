@@ -49,7 +49,10 @@ type t = {
   behind : bool;
   shadow_skip : bool;
   cull : bool;
-  light_length : float array;
+  specular_cut : float array;
+  sphere4 : float array;
+  primary4 : float array;
+  light6 : float array;
   column_vx : float array;
   row_vy : float array;
 }
@@ -118,6 +121,42 @@ let specular_zero s =
   else
     let x = Float.pred (Float.pred (2. ** (-1080. /. s))) in
     if x < 1. then Float.max x 0. else 0.
+
+(* The cosine at or below which a specular term [li cos^s] cannot change
+   an intensity of at least [before] > 0: for [cos <= z], [z^s <= t], a
+   quarter of [ulp before / 2] over [li]; pow is within an ulp of
+   [cos^s] and the product within one of [li pow], so the term added is
+   below half an ulp of the sum, which rounds back to the sum (terms are
+   never negative: intensities are >= 0, so the sum only grows, and its
+   ulp with it). [z] itself: [t ** (1 / s)] is within a few ulps of the
+   true root, which [z^s] turns into a relative error about [2 u s],
+   below 1e-9 for [s <= 1e6] (larger exponents get no cut); two ulps lower
+   for good measure. *)
+let negligible_cos ~before ~li s =
+  if not (s > 0. && s <= 1e6 && before > 0. && li > 0.) then 0.
+  else
+    let _, e = Float.frexp before in
+    (* [before] is in [2^(e-1), 2^e): its ulp is 2^(e-53). *)
+    let t = Float.ldexp 1. (e - 53) /. 2. /. 4. /. li in
+    let z = Float.pred (Float.pred (t ** (1. /. s))) in
+    if z < 1. then Float.max z 0. else 0.
+
+(* Per material [m] and light [l], at [m * n_lights + l]: the cosine at or
+   below which the document's kernel adds no specular term of [l]: [cos^s]
+   is 0 ([specular_zero]), or too small to change the intensity, which is
+   at least the sum of the ambient lights before [l]. *)
+let specular_cut ~skips (materials : Material.t array) (lights : Light.t array) =
+  let n_lights = Array.length lights in
+  let before = Array.make n_lights 0. in
+  for l = 1 to n_lights - 1 do
+    before.(l) <- (match lights.(l - 1) with Light.Ambient { intensity } -> before.(l - 1) +. intensity | _ -> before.(l - 1))
+  done;
+  Array.init
+    (Array.length materials * n_lights)
+    (fun k ->
+      let s = materials.(k / n_lights).specular and l = k mod n_lights in
+      if not skips then 0.
+      else Float.max (specular_zero s) (negligible_cos ~before:before.(l) ~li:(Light.intensity lights.(l)) s))
 
 (* The objects in scene order: the spheres, then each shape, a mesh giving
    one object per triangle (less its degenerate ones, which no ray can
@@ -333,11 +372,12 @@ let prepare ?(skips = true) scene =
     | Directional { direction; _ } -> direction
   in
   let max_channel = max_channel scene in
+  let textbook_all = scene.shapes = [] && bvh = None && scene.epsilon <> None in
   {
     n_spheres;
     n_objects = n_kept;
     all_spheres = scene.shapes = [];
-    textbook_all = scene.shapes = [] && bvh = None && scene.epsilon <> None;
+    textbook_all;
     index;
     slot;
     bvh;
@@ -385,10 +425,37 @@ let prepare ?(skips = true) scene =
     behind = skips;
     shadow_skip = skips;
     cull = skips;
-    (* The same expression as the tracer's |L| of a point light's L. *)
-    light_length = lf (fun l -> let v = vector l in sqrt ((v.x *. v.x) +. (v.y *. v.y) +. (v.z *. v.z)));
     (* The viewport coordinates of each column and row of pixel centres,
        by the operations [Trace]'s primary ray does for any point. *)
+    (* The document's kernel reads a sphere, a camera ray's constants and a
+       light from one array each: fewer pointers to keep in registers. *)
+    specular_cut = specular_cut ~skips materials lights;
+    sphere4 =
+      (if textbook_all then
+         Array.init (4 * n_kept) (fun k ->
+             let i = k / 4 in
+             match k mod 4 with 0 -> cx.(i) | 1 -> cy.(i) | 2 -> cz.(i) | _ -> r2.(i))
+       else [||]);
+    primary4 =
+      (if textbook_all then
+         Array.init (4 * n_kept) (fun k ->
+             let i = k / 4 in
+             match k mod 4 with 0 -> primary_ocx.(i) | 1 -> primary_ocy.(i) | 2 -> primary_ocz.(i) | _ -> primary_k3.(i))
+       else [||]);
+    light6 =
+      Array.concat
+        (List.map
+           (fun l ->
+             let v = vector l in
+             [|
+               (match l with Light.Ambient _ -> 0. | Point _ -> 1. | Directional _ -> 2.);
+               Light.intensity l;
+               v.x;
+               v.y;
+               v.z;
+               sqrt ((v.x *. v.x) +. (v.y *. v.y) +. (v.z *. v.z));
+             |])
+           (Array.to_list lights));
     column_vx =
       Array.init scene.width (fun c ->
           Float.of_int (Canvas.x_of_column ~width:scene.width c) *. scene.viewport.width /. Float.of_int scene.width);

@@ -101,7 +101,22 @@ type t = private {
   cull : bool;
       (** The skips are on: the document's kernel tests a camera ray only
           against the spheres that can meet some ray of its 8 x 8 tile. *)
-  light_length : float array;  (** [|L|] of each light's vector (directional lights use it). *)
+  specular_cut : float array;
+      (** With the skips, per material [m] and light [l] at
+          [m * n_lights + l]: the cosine at or below which the specular
+          term of [l] adds nothing to the intensity it joins, because
+          [cos ** s] is 0 ([specular_zero]) or below half an ulp of the
+          intensity already summed (at least the ambient lights listed
+          before [l]); [0.] without the skips. *)
+  sphere4 : float array;
+      (** With [textbook_all]: per slot [i], [cx, cy, cz, r2] at [4 i] to
+          [4 i + 3]; otherwise empty. *)
+  primary4 : float array;
+      (** With [textbook_all]: per slot [i], [primary_ocx, primary_ocy,
+          primary_ocz, primary_k3] at [4 i] to [4 i + 3]; otherwise empty. *)
+  light6 : float array;
+      (** Per light [l], at [6 l] to [6 l + 5]: its kind ([0.] ambient, [1.]
+          point, [2.] directional), intensity, vector x, y, z and [|L|]. *)
   column_vx : float array;
       (** The viewport x of the pixel centres of each canvas column, left to right. *)
   row_vy : float array;

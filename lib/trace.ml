@@ -92,9 +92,9 @@ let to_byte x =
   if not (x > 0.) then 0
   else if x >= 255. then 255
   else
-    let n = truncate x in
-    let frac = x -. Float.of_int n in
-    if frac > 0.5 then n + 1 else if frac < 0.5 then n else n + (n land 1)
+    (* In [2^52, 2^53) the floats are the integers: adding 2^52 rounds
+       [x] to an integer, half to even (the default rounding), exactly. *)
+    truncate ((x +. 0x1p52) -. 0x1p52)
 [@@inline]
 
 let store tr (buffer : Image.buffer) k =
@@ -766,15 +766,14 @@ let shape_hit tr i =
    -k2 + sq <= 0 and both roots, divided by 2 k1 >= 0, are <= 0 or NaN:
    never in (t_min, t_max) with t_min >= 0 (1 for the camera, the scene's
    epsilon, validated >= 0, for the others). Such a sphere is rejected
-   without the square root and the two divisions. [behind_k3] is 0 with
-   the skip and infinity without: [k3 > infinity] is never true. *)
-let[@inline] textbook_blocks cx cy cz r2 ox oy oz dx dy dz t_min t_max two_k1 k1x4 behind_k3 i =
-  let fx = ox -. Array.unsafe_get cx i
-  and fy = oy -. Array.unsafe_get cy i
-  and fz = oz -. Array.unsafe_get cz i in
+   without the square root and the two divisions. *)
+let[@inline] blocks_unless_behind sph ox oy oz dx dy dz t_min t_max two_k1 k1x4 ~behind k =
+  let fx = ox -. Array.unsafe_get sph k
+  and fy = oy -. Array.unsafe_get sph (k + 1)
+  and fz = oz -. Array.unsafe_get sph (k + 2) in
   let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
-  let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get r2 i in
-  (not (k2 > 0. && k3 > behind_k3))
+  let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (k + 3) in
+  (not (behind && k2 > 0. && k3 > 0.))
   &&
   let disc = (k2 *. k2) -. (k1x4 *. k3) in
   disc >= 0.
@@ -855,13 +854,12 @@ let[@inline never] tile_candidates tr tx ty =
   tr.tile_row.(tx) <- ty;
   tr.tile_count.(tx) <- !count
 
-let[@inline never] trace_textbook tr =
+let[@inline] textbook_kernel tr ~behind =
   let p = tr.p and s = tr.s in
-  let cx = p.cx and cy = p.cy and cz = p.cz and r2 = p.r2 in
+  let sph = p.sphere4 in
   let n = p.n_objects and eps = p.epsilon in
-  let behind_k3 = if p.behind then 0. else infinity in
-  let n_lights = p.n_lights and light_kind = p.light_kind and light_intensity = p.light_intensity in
-  let lxa = p.lx and lya = p.ly and lza = p.lz and light_length = p.light_length in
+  let n4 = 4 * n in
+  let n_lights = p.n_lights and light6 = p.light6 in
   let last_blocker = tr.last_blocker and shadow_skip = p.shadow_skip in
   let tests = ref 0 and levels = ref 0 and tracing = ref true in
   (* The weight of the colour still to be traced: the product of the
@@ -883,11 +881,13 @@ let[@inline never] trace_textbook tr =
     let best = ref infinity and hit = ref (-1) in
     if !levels > 0 then begin
       tests := !tests + n;
-      for i = 0 to n - 1 do
-        let fx = ox' -. Array.unsafe_get cx i and fy = oy' -. Array.unsafe_get cy i and fz = oz' -. Array.unsafe_get cz i in
+      let k = ref 0 in
+      while !k < n4 do
+        let i = !k in
+        let fx = ox' -. Array.unsafe_get sph i and fy = oy' -. Array.unsafe_get sph (i + 1) and fz = oz' -. Array.unsafe_get sph (i + 2) in
         let k2 = 2. *. ((fx *. dx') +. (fy *. dy') +. (fz *. dz')) in
-        let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get r2 i in
-        if not (k2 > 0. && k3 > behind_k3) then begin
+        let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (i + 3) in
+        if not (behind && k2 > 0. && k3 > 0.) then begin
           let disc = (k2 *. k2) -. (k1x4 *. k3) in
           if disc >= 0. then begin
             let sq = sqrt disc in
@@ -903,8 +903,11 @@ let[@inline never] trace_textbook tr =
                 hit := i
               end
           end
-        end
-      done
+        end;
+        k := i + 4
+      done;
+      (* Slots, not places in [sph]. *)
+      if !hit >= 0 then hit := !hit / 4
     end
     else if tr.assumed <> no_assumption then begin
       hit := primary_hit_spheres tr;
@@ -913,15 +916,16 @@ let[@inline never] trace_textbook tr =
     else begin
       (* From the camera, CO and k3 are per-frame constants; only the
          tile's spheres are tested. *)
-      let pox = p.primary_ocx and poy = p.primary_ocy and poz = p.primary_ocz and pk3 = p.primary_k3 in
+      let pr = p.primary4 in
       let cand = tr.cand and first = tr.cand_first and count = tr.cand_count in
       tests := !tests + count;
       for j = first to first + count - 1 do
         let i = Array.unsafe_get cand j in
-        let fx = Array.unsafe_get pox i and fy = Array.unsafe_get poy i and fz = Array.unsafe_get poz i in
+        let k = 4 * i in
+        let fx = Array.unsafe_get pr k and fy = Array.unsafe_get pr (k + 1) and fz = Array.unsafe_get pr (k + 2) in
         let k2 = 2. *. ((fx *. dx') +. (fy *. dy') +. (fz *. dz')) in
-        let k3 = Array.unsafe_get pk3 i in
-        if not (k2 > 0. && k3 > behind_k3) then begin
+        let k3 = Array.unsafe_get pr (k + 3) in
+        if not (behind && k2 > 0. && k3 > 0.) then begin
           let disc = (k2 *. k2) -. (k1x4 *. k3) in
           if disc >= 0. then begin
             let sq = sqrt disc in
@@ -951,33 +955,34 @@ let[@inline never] trace_textbook tr =
     else begin
       let t = !best in
       let px = ox' +. (dx' *. t) and py = oy' +. (dy' *. t) and pz = oz' +. (dz' *. t) in
-      let nx = px -. Array.unsafe_get cx i and ny = py -. Array.unsafe_get cy i and nz = pz -. Array.unsafe_get cz i in
+      let nx = px -. Array.unsafe_get sph (4 * i) and ny = py -. Array.unsafe_get sph ((4 * i) + 1) and nz = pz -. Array.unsafe_get sph ((4 * i) + 2) in
       let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
       let nx = nx *. inv and ny = ny *. inv and nz = nz *. inv in
       let vx = -.dx' and vy = -.dy' and vz = -.dz' in
       let m = Array.unsafe_get p.material i in
       (* [lighting], with the shadow ray inlined. *)
-      let specular = Array.unsafe_get p.specular m and zero = Array.unsafe_get p.specular_zero m in
+      let specular = Array.unsafe_get p.specular m and cut = p.specular_cut and mo = m * n_lights in
       let shiny = specular <> Sphere.matte in
       let intensity = ref 0. in
       let length_n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
       let length_v = sqrt ((vx *. vx) +. (vy *. vy) +. (vz *. vz)) in
       for l = 0 to n_lights - 1 do
-        let li = Array.unsafe_get light_intensity l and kind = Array.unsafe_get light_kind l in
-        if kind = Prepared.ambient then intensity := !intensity +. li
+        let o = 6 * l in
+        let kind = Array.unsafe_get light6 o and li = Array.unsafe_get light6 (o + 1) in
+        if kind = 0. then intensity := !intensity +. li
         else begin
-          let point = kind = Prepared.point in
+          let point = kind = 1. in
           let lx = ref 0. and ly = ref 0. and lz = ref 0. and t_max = ref infinity in
           if point then begin
-            lx := Array.unsafe_get lxa l -. px;
-            ly := Array.unsafe_get lya l -. py;
-            lz := Array.unsafe_get lza l -. pz;
+            lx := Array.unsafe_get light6 (o + 2) -. px;
+            ly := Array.unsafe_get light6 (o + 3) -. py;
+            lz := Array.unsafe_get light6 (o + 4) -. pz;
             t_max := 1.
           end
           else begin
-            lx := Array.unsafe_get lxa l;
-            ly := Array.unsafe_get lya l;
-            lz := Array.unsafe_get lza l
+            lx := Array.unsafe_get light6 (o + 2);
+            ly := Array.unsafe_get light6 (o + 3);
+            lz := Array.unsafe_get light6 (o + 4)
           end;
           let lx = !lx and ly = !ly and lz = !lz and t_max = !t_max in
           let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
@@ -992,9 +997,10 @@ let[@inline never] trace_textbook tr =
             if r_dot_v > 0. then cos := r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v)
           end;
           let cos = !cos in
-          (* Below the sphere's threshold (0 without skips), cos^s is
-             exactly 0 and adds nothing (Prepared.specular_zero). *)
-          let add_specular = shiny && cos > zero in
+          (* At or below the cut, li cos^s is 0 or too small to change
+             the sum (Prepared.specular_cut): the sum is what it would be
+             with the term, and pow is not called. *)
+          let add_specular = shiny && cos > Array.unsafe_get cut (mo + l) in
           (* The shadow ray only matters if a term would be added: a light
              that adds nothing leaves the sum as it is, lit or not. (A
              point light on the point itself, L = 0, adds nothing:
@@ -1009,7 +1015,7 @@ let[@inline never] trace_textbook tr =
             let two_k1 = 2. *. a and k1x4 = 4. *. a in
             tr.counters.shadow <- tr.counters.shadow + 1;
             let last = Array.unsafe_get last_blocker l in
-            if last >= 0 && textbook_blocks cx cy cz r2 px py pz lx ly lz eps t_max two_k1 k1x4 behind_k3 last then begin
+            if last >= 0 && blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * last) then begin
               incr tests;
               false
             end
@@ -1017,7 +1023,7 @@ let[@inline never] trace_textbook tr =
               let j = ref 0 in
               while
                 !j < n
-                && (!j = last || not (textbook_blocks cx cy cz r2 px py pz lx ly lz eps t_max two_k1 k1x4 behind_k3 !j))
+                && (!j = last || not (blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * !j)))
               do
                 incr j
               done;
@@ -1030,7 +1036,7 @@ let[@inline never] trace_textbook tr =
             end
           then begin
             if add_diffuse then begin
-              let len = if point then sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz)) else Array.unsafe_get light_length l in
+              let len = if point then sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz)) else Array.unsafe_get light6 (o + 5) in
               intensity := !intensity +. (li *. n_dot_l /. (length_n *. len))
             end;
             if add_specular then intensity := !intensity +. (li *. Float.pow cos specular)
@@ -1088,6 +1094,11 @@ let[@inline never] trace_textbook tr =
     s.g <- (Array.unsafe_get tr.stack ((4 * l) + 1) *. keep) +. (s.g *. refl);
     s.b <- (Array.unsafe_get tr.stack ((4 * l) + 2) *. keep) +. (s.b *. refl)
   done
+
+(* One copy with the rejection of spheres behind, one without (for the
+   tests of its exactness). *)
+let[@inline never] trace_textbook_behind tr = textbook_kernel tr ~behind:true
+let[@inline never] trace_textbook_all_roots tr = textbook_kernel tr ~behind:false
 
 (* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
    its local colour and reflectivity and continues with the mirror ray; then
@@ -1199,7 +1210,7 @@ let trace_spheres tr = trace_in tr ~spheres:true
 let trace_objects tr = trace_in tr ~spheres:false
 let[@inline] trace tr =
   let p = tr.p in
-  if p.textbook_all && p.skips then trace_textbook tr
+  if p.textbook_all && p.skips then (if p.behind then trace_textbook_behind tr else trace_textbook_all_roots tr)
   else if p.all_spheres then trace_spheres tr
   else trace_objects tr
 
@@ -1245,7 +1256,7 @@ let primary tr =
 
 (* A pixel's centre: its viewport point is the frame's (the same
    operations as [primary]'s), and its tile's spheres are the candidates. *)
-let pixel tr gx gy =
+let[@inline] pixel tr gx gy =
   let p = tr.p in
   let col = gx + (p.width / 2) and row = gy + (p.height / 2) in
   if col >= 0 && col < p.width && row >= 0 && row < p.height then begin
@@ -1262,6 +1273,31 @@ let pixel tr gx gy =
     tr.s.gy <- Float.of_int gy;
     primary tr
   end
+
+let row tr buffer k gx gy count =
+  let p = tr.p in
+  let col0 = gx + (p.width / 2) and r = gy + (p.height / 2) in
+  if p.textbook_all && p.skips && r >= 0 && r < p.height && col0 >= 0 && count >= 0 && col0 + count <= p.width
+  then begin
+    (* [pixel], with what is constant along the row read once. *)
+    let vy = Array.unsafe_get p.row_vy r and ty = r / tile and n = p.n_objects in
+    let cull = p.cull and vx = p.column_vx in
+    for col = col0 to col0 + count - 1 do
+      if cull && (col = col0 || col land (tile - 1) = 0) then begin
+        let tx = col / tile in
+        if Array.unsafe_get tr.tile_row tx <> ty then tile_candidates tr tx ty;
+        tr.cand_first <- tx * n;
+        tr.cand_count <- Array.unsafe_get tr.tile_count tx
+      end;
+      primary_through tr (Array.unsafe_get vx col) vy;
+      store tr buffer (k + (3 * (col - col0)))
+    done
+  end
+  else
+    for c = 0 to count - 1 do
+      pixel tr (gx + c) gy;
+      store tr buffer (k + (3 * c))
+    done
 
 let sample tr gx gy ~i ~j ~n =
   let n = Float.of_int n in
