@@ -50,6 +50,8 @@ type t = {
   shadow_skip : bool;
   cull : bool;
   specular_cut : float array;
+  ambient_lead : float;
+  first_light : int;
   sphere4 : float array;
   primary4 : float array;
   light6 : float array;
@@ -157,6 +159,16 @@ let specular_cut ~skips (materials : Material.t array) (lights : Light.t array) 
       let s = materials.(k / n_lights).specular and l = k mod n_lights in
       if not skips then 0.
       else Float.max (specular_zero s) (negligible_cos ~before:before.(l) ~li:(Light.intensity lights.(l)) s))
+
+(* The sum of the ambient lights that come first, added from 0 in order
+   as the tracer adds them, and the index of the first other light. *)
+let ambient_lead (lights : Light.t array) =
+  let sum = ref 0. and l = ref 0 in
+  while !l < Array.length lights && (match lights.(!l) with Light.Ambient _ -> true | _ -> false) do
+    sum := !sum +. Light.intensity lights.(!l);
+    incr l
+  done;
+  (!sum, !l)
 
 (* The objects in scene order: the spheres, then each shape, a mesh giving
    one object per triangle (less its degenerate ones, which no ray can
@@ -430,6 +442,8 @@ let prepare ?(skips = true) scene =
     (* The document's kernel reads a sphere, a camera ray's constants and a
        light from one array each: fewer pointers to keep in registers. *)
     specular_cut = specular_cut ~skips materials lights;
+    ambient_lead = fst (ambient_lead lights);
+    first_light = snd (ambient_lead lights);
     sphere4 =
       (if textbook_all then
          Array.init (4 * n_kept) (fun k ->

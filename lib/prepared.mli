@@ -108,6 +108,10 @@ type t = private {
           [cos ** s] is 0 ([specular_zero]) or below half an ulp of the
           intensity already summed (at least the ambient lights listed
           before [l]); [0.] without the skips. *)
+  ambient_lead : float;
+      (** The sum of the ambient lights that come first in [light_kind],
+          added from [0.] in order. *)
+  first_light : int;  (** The index of the first light that is not one of those. *)
   sphere4 : float array;
       (** With [textbook_all]: per slot [i], [cx, cy, cz, r2] at [4 i] to
           [4 i + 3]; otherwise empty. *)

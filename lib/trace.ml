@@ -865,14 +865,12 @@ let[@inline] textbook_kernel tr ~behind =
   (* The weight of the colour still to be traced: the product of the
      reflectivities on the stack. *)
   let weight = ref 1. in
-  let ox = ref s.ox and oy = ref s.oy and oz = ref s.oz in
-  let dx = ref s.dx and dy = ref s.dy and dz = ref s.dz in
-  let t_min = ref s.t_min in
   tr.first_hit <- -1;
   tr.origin_sphere <- -1;
   while !tracing do
-    let ox' = !ox and oy' = !oy and oz' = !oz and dx' = !dx and dy' = !dy and dz' = !dz in
-    let t_min' = !t_min in
+    (* The ray of this level is in [s]: read once, into registers. *)
+    let ox' = s.ox and oy' = s.oy and oz' = s.oz and dx' = s.dx and dy' = s.dy and dz' = s.dz in
+    let t_min' = s.t_min in
     let a = (dx' *. dx') +. (dy' *. dy') +. (dz' *. dz') in
     let two_k1 = 2. *. a and k1x4 = 4. *. a in
     (* The closest hit, as [closest_textbook_all] finds it: the t_max of
@@ -963,10 +961,13 @@ let[@inline] textbook_kernel tr ~behind =
       (* [lighting], with the shadow ray inlined. *)
       let specular = Array.unsafe_get p.specular m and cut = p.specular_cut and mo = m * n_lights in
       let shiny = specular <> Sphere.matte in
-      let intensity = ref 0. in
+      (* The ambient lights that come first add up to the same sum in any
+         case: it starts from their total (Prepared.ambient_lead). *)
+      let intensity = ref p.ambient_lead in
       let length_n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
-      let length_v = sqrt ((vx *. vx) +. (vy *. vy) +. (vz *. vz)) in
-      for l = 0 to n_lights - 1 do
+      (* |V| = |D|: negating changes no square, [a] sums them alike. *)
+      let length_v = sqrt a in
+      for l = p.first_light to n_lights - 1 do
         let o = 6 * l in
         let kind = Array.unsafe_get light6 o and li = Array.unsafe_get light6 (o + 1) in
         if kind = 0. then intensity := !intensity +. li
@@ -988,10 +989,11 @@ let[@inline] textbook_kernel tr ~behind =
           let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
           let add_diffuse = n_dot_l > 0. in
           (* The specular term's cosine, as [lighting] computes it
-             (2 <L, N> is 2 n_dot_l: the same products). *)
+             (its 2 <L, N> is 2 n_dot_l: the same products, summed in the
+             same order). *)
           let cos = ref 0. in
           if shiny then begin
-            let k = 2. *. ((lx *. nx) +. (ly *. ny) +. (lz *. nz)) in
+            let k = 2. *. n_dot_l in
             let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
             let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
             if r_dot_v > 0. then cos := r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v)
@@ -1074,13 +1076,13 @@ let[@inline] textbook_kernel tr ~behind =
         else begin
           (* The mirror ray R = 2 <V, N> N - V from the hit point. *)
           let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
-          ox := px;
-          oy := py;
-          oz := pz;
-          dx := (nx *. k) -. vx;
-          dy := (ny *. k) -. vy;
-          dz := (nz *. k) -. vz;
-          t_min := eps;
+          s.ox <- px;
+          s.oy <- py;
+          s.oz <- pz;
+          s.dx <- (nx *. k) -. vx;
+          s.dy <- (ny *. k) -. vy;
+          s.dz <- (nz *. k) -. vz;
+          s.t_min <- eps;
           tr.counters.reflection <- tr.counters.reflection + 1
         end
       end
