@@ -477,3 +477,13 @@ let prepare ?(skips = true) scene =
       Array.init scene.height (fun r ->
           Float.of_int (r - (scene.height / 2)) *. scene.viewport.height /. Float.of_int scene.height);
   }
+
+type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms
+
+let without k p =
+  match k with
+  | Behind -> { p with behind = false }
+  | Shadow_rays -> { p with shadow_skip = false }
+  | Culling -> { p with cull = false }
+  | Negligible_terms ->
+      { p with specular_cut = Array.mapi (fun k _ -> p.specular_zero.(k / max 1 p.n_lights)) p.specular_cut }

@@ -151,3 +151,15 @@ val prepare : ?skips:bool -> Scene.valid -> t
     {!Raytrace.Private.Bvh.ray_box_margin}) boxes they meet. With
     [~skips:false] it does everything the document does, for tests that
     prove the skips exact. *)
+
+(** The skips of the tracer's kernel for the document's scenes (spheres
+    alone, an epsilon, no hierarchy), each exact on its own. *)
+type kernel_skip =
+  | Behind  (** [behind]: no roots computed for a sphere behind the ray. *)
+  | Shadow_rays  (** [shadow_skip]: no shadow ray for a light that adds nothing. *)
+  | Culling  (** [cull]: camera rays test only their tile's spheres. *)
+  | Negligible_terms  (** [specular_cut]: no specular term too small to count. *)
+
+val without : kernel_skip -> t -> t
+(** [without k p] is [p] with the skip [k] off and the others as they
+    are: for the tests that show each skip exact. *)
