@@ -441,7 +441,8 @@ let prepare ?(skips = true) scene =
        by the operations [Trace]'s primary ray does for any point. *)
     (* The document's kernel reads a sphere, a camera ray's constants and a
        light from one array each: fewer pointers to keep in registers. *)
-    specular_cut = specular_cut ~skips materials lights;
+    (* Only the document's kernel reads it: no pow per material elsewhere. *)
+    specular_cut = (if textbook_all then specular_cut ~skips materials lights else [||]);
     ambient_lead = fst (ambient_lead lights);
     first_light = snd (ambient_lead lights);
     sphere4 =

@@ -102,8 +102,8 @@ type t = private {
       (** The skips are on: the document's kernel tests a camera ray only
           against the spheres that can meet some ray of its 8 x 8 tile. *)
   specular_cut : float array;
-      (** With the skips, per material [m] and light [l] at
-          [m * n_lights + l]: the cosine at or below which the specular
+      (** With [textbook_all] (otherwise empty) and the skips, per
+          material [m] and light [l] at [m * n_lights + l]: the cosine at or below which the specular
           term of [l] adds nothing to the intensity it joins, because
           [cos ** s] is 0 ([specular_zero]) or below half an ulp of the
           intensity already summed (at least the ambient lights listed

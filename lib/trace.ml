@@ -1216,22 +1216,26 @@ let[@inline] trace tr =
   else if p.all_spheres then trace_spheres tr
   else trace_objects tr
 
-(* The camera ray through viewport point [(vx, vy, d)]. *)
-let[@inline] primary_through tr vx vy =
-  let p = tr.p and s = tr.s in
-  let vz = p.viewport.distance in
-  let cam = p.camera in
-  if p.identity_rotation then begin
+(* The direction of the camera ray through viewport point [(vx, vy, vz)],
+   turned by the camera's matrix [m] unless it is the identity. *)
+let[@inline] set_direction s identity (m : Camera.rotation) vx vy vz =
+  if identity then begin
     s.dx <- vx;
     s.dy <- vy;
     s.dz <- vz
   end
   else begin
-    let m = cam.rotation in
     s.dx <- (vx *. m.row0.x) +. (vy *. m.row0.y) +. (vz *. m.row0.z);
     s.dy <- (vx *. m.row1.x) +. (vy *. m.row1.y) +. (vz *. m.row1.z);
     s.dz <- (vx *. m.row2.x) +. (vy *. m.row2.y) +. (vz *. m.row2.z)
-  end;
+  end
+
+(* The camera ray through viewport point [(vx, vy, d)]. *)
+let[@inline] primary_through tr vx vy =
+  let p = tr.p and s = tr.s in
+  let vz = p.viewport.distance in
+  let cam = p.camera in
+  set_direction s p.identity_rotation cam.rotation vx vy vz;
   s.ox <- cam.position.x;
   s.oy <- cam.position.y;
   s.oz <- cam.position.z;
@@ -1281,9 +1285,13 @@ let row tr buffer k gx gy count =
   let col0 = gx + (p.width / 2) and r = gy + (p.height / 2) in
   if p.textbook_all && p.skips && r >= 0 && r < p.height && col0 >= 0 && count >= 0 && col0 + count <= p.width
   then begin
-    (* [pixel], with what is constant along the row read once. *)
+    (* [pixel], with what is constant along the row read once, and the
+       kernel called directly. *)
+    let s = tr.s and c = tr.counters in
     let vy = Array.unsafe_get p.row_vy r and ty = r / tile and n = p.n_objects in
-    let cull = p.cull and vx = p.column_vx in
+    let cull = p.cull and vx = p.column_vx and behind = p.behind in
+    let vz = p.viewport.distance and m = p.camera.rotation and o = p.camera.position in
+    let identity = p.identity_rotation in
     for col = col0 to col0 + count - 1 do
       if cull && (col = col0 || col land (tile - 1) = 0) then begin
         let tx = col / tile in
@@ -1291,7 +1299,14 @@ let row tr buffer k gx gy count =
         tr.cand_first <- tx * n;
         tr.cand_count <- Array.unsafe_get tr.tile_count tx
       end;
-      primary_through tr (Array.unsafe_get vx col) vy;
+      set_direction s identity m (Array.unsafe_get vx col) vy vz;
+      s.ox <- o.x;
+      s.oy <- o.y;
+      s.oz <- o.z;
+      s.t_min <- 1.;
+      s.t_max <- infinity;
+      c.primary <- c.primary + 1;
+      if behind then trace_textbook_behind tr else trace_textbook_all_roots tr;
       store tr buffer (k + (3 * (col - col0)))
     done
   end
