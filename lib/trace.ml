@@ -1283,13 +1283,13 @@ let[@inline] pixel tr gx gy =
 let row tr buffer k gx gy count =
   let p = tr.p in
   let col0 = gx + (p.width / 2) and r = gy + (p.height / 2) in
-  if p.textbook_all && p.skips && r >= 0 && r < p.height && col0 >= 0 && count >= 0 && col0 + count <= p.width
-  then begin
+  if r >= 0 && r < p.height && col0 >= 0 && count >= 0 && col0 + count <= p.width then begin
     (* [pixel], with what is constant along the row read once, and the
-       kernel called directly. *)
+       document's kernel called directly. *)
     let s = tr.s and c = tr.counters in
     let vy = Array.unsafe_get p.row_vy r and ty = r / tile and n = p.n_objects in
-    let cull = p.cull and vx = p.column_vx and behind = p.behind in
+    let kernel = p.textbook_all && p.skips in
+    let cull = kernel && p.cull and vx = p.column_vx and behind = p.behind in
     let vz = p.viewport.distance and m = p.camera.rotation and o = p.camera.position in
     let identity = p.identity_rotation in
     for col = col0 to col0 + count - 1 do
@@ -1306,7 +1306,9 @@ let row tr buffer k gx gy count =
       s.t_min <- 1.;
       s.t_max <- infinity;
       c.primary <- c.primary + 1;
-      if behind then trace_textbook_behind tr else trace_textbook_all_roots tr;
+      if not kernel then trace tr
+      else if behind then trace_textbook_behind tr
+      else trace_textbook_all_roots tr;
       store tr buffer (k + (3 * (col - col0)))
     done
   end
