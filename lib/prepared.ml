@@ -54,6 +54,17 @@ type t = {
   refractive_index : float array;
   fresnel : bool array;
   transparent : bool;
+  behind : bool;
+  shadow_skip : bool;
+  cull : bool;
+  specular_cut : float array;
+  ambient_lead : float;
+  first_light : int;
+  sphere4 : float array;
+  primary4 : float array;
+  light6 : float array;
+  column_vx : float array;
+  row_vy : float array;
 }
 
 let bvh_threshold = 8
@@ -125,6 +136,52 @@ let specular_zero s =
   else
     let x = Float.pred (Float.pred (2. ** (-1080. /. s))) in
     if x < 1. then Float.max x 0. else 0.
+
+(* The cosine at or below which a specular term [li cos^s] cannot change
+   an intensity of at least [before] > 0: for [cos <= z], [z^s <= t], a
+   quarter of [ulp before / 2] over [li]; pow is within an ulp of
+   [cos^s] and the product within one of [li pow], so the term added is
+   below half an ulp of the sum, which rounds back to the sum (terms are
+   never negative: intensities are >= 0, so the sum only grows, and its
+   ulp with it). [z] itself: [t ** (1 / s)] is within a few ulps of the
+   true root, which [z^s] turns into a relative error about [2 u s],
+   below 1e-9 for [s <= 1e6] (larger exponents get no cut); two ulps lower
+   for good measure. *)
+let negligible_cos ~before ~li s =
+  if not (s > 0. && s <= 1e6 && before > 0. && li > 0.) then 0.
+  else
+    let _, e = Float.frexp before in
+    (* [before] is in [2^(e-1), 2^e): its ulp is 2^(e-53). *)
+    let t = Float.ldexp 1. (e - 53) /. 2. /. 4. /. li in
+    let z = Float.pred (Float.pred (t ** (1. /. s))) in
+    if z < 1. then Float.max z 0. else 0.
+
+(* Per material [m] and light [l], at [m * n_lights + l]: the cosine at or
+   below which the document's kernel adds no specular term of [l]: [cos^s]
+   is 0 ([specular_zero]), or too small to change the intensity, which is
+   at least the sum of the ambient lights before [l]. *)
+let specular_cut ~skips (materials : Material.t array) (lights : Light.t array) =
+  let n_lights = Array.length lights in
+  let before = Array.make n_lights 0. in
+  for l = 1 to n_lights - 1 do
+    before.(l) <- (match lights.(l - 1) with Light.Ambient { intensity } -> before.(l - 1) +. intensity | _ -> before.(l - 1))
+  done;
+  Array.init
+    (Array.length materials * n_lights)
+    (fun k ->
+      let s = materials.(k / n_lights).specular and l = k mod n_lights in
+      if not skips then 0.
+      else Float.max (specular_zero s) (negligible_cos ~before:before.(l) ~li:(Light.intensity lights.(l)) s))
+
+(* The sum of the ambient lights that come first, added from 0 in order
+   as the tracer adds them, and the index of the first other light. *)
+let ambient_lead (lights : Light.t array) =
+  let sum = ref 0. and l = ref 0 in
+  while !l < Array.length lights && (match lights.(!l) with Light.Ambient _ -> true | _ -> false) do
+    sum := !sum +. Light.intensity lights.(!l);
+    incr l
+  done;
+  (!sum, !l)
 
 (* The objects in scene order: the spheres, then each shape, a mesh giving
    one object per triangle (less its degenerate ones, which no ray can
@@ -381,6 +438,10 @@ let prepare ?(skips = true) scene =
     | Directional { direction; _ } -> direction
   in
   let max_channel = max_channel scene in
+  let transparent = Array.exists (fun (m : Material.t) -> m.transparency > 0.) materials in
+  (* The document's own scenes: spheres of plain materials (no pattern, no
+     glass), few enough for no hierarchy, in the document's mode. *)
+  let textbook_all = scene.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None in
   {
     n_spheres;
     n_objects = n_kept;
@@ -388,7 +449,7 @@ let prepare ?(skips = true) scene =
     patterned = alternate <> [||];
     alternate;
     pattern;
-    textbook_all = scene.shapes = [] && bvh = None && scene.epsilon <> None;
+    textbook_all;
     index;
     slot;
     bvh;
@@ -437,5 +498,58 @@ let prepare ?(skips = true) scene =
     transparency = mf (fun m -> m.transparency);
     refractive_index = mf (fun m -> m.refractive_index);
     fresnel = mf (fun m -> m.fresnel);
-    transparent = Array.exists (fun (m : Material.t) -> m.transparency > 0.) materials;
+    transparent;
+    behind = skips;
+    shadow_skip = skips;
+    cull = skips;
+    (* The viewport coordinates of each column and row of pixel centres,
+       by the operations [Trace]'s primary ray does for any point. *)
+    (* The document's kernel reads a sphere, a camera ray's constants and a
+       light from one array each: fewer pointers to keep in registers. *)
+    (* Only the document's kernel reads it: no pow per material elsewhere. *)
+    specular_cut = (if textbook_all then specular_cut ~skips materials lights else [||]);
+    ambient_lead = fst (ambient_lead lights);
+    first_light = snd (ambient_lead lights);
+    sphere4 =
+      (if textbook_all then
+         Array.init (4 * n_kept) (fun k ->
+             let i = k / 4 in
+             match k mod 4 with 0 -> cx.(i) | 1 -> cy.(i) | 2 -> cz.(i) | _ -> r2.(i))
+       else [||]);
+    primary4 =
+      (if textbook_all then
+         Array.init (4 * n_kept) (fun k ->
+             let i = k / 4 in
+             match k mod 4 with 0 -> primary_ocx.(i) | 1 -> primary_ocy.(i) | 2 -> primary_ocz.(i) | _ -> primary_k3.(i))
+       else [||]);
+    light6 =
+      Array.concat
+        (List.map
+           (fun l ->
+             let v = vector l in
+             [|
+               (match l with Light.Ambient _ -> 0. | Point _ -> 1. | Directional _ -> 2.);
+               Light.intensity l;
+               v.x;
+               v.y;
+               v.z;
+               sqrt ((v.x *. v.x) +. (v.y *. v.y) +. (v.z *. v.z));
+             |])
+           (Array.to_list lights));
+    column_vx =
+      Array.init scene.width (fun c ->
+          Float.of_int (Canvas.x_of_column ~width:scene.width c) *. scene.viewport.width /. Float.of_int scene.width);
+    row_vy =
+      Array.init scene.height (fun r ->
+          Float.of_int (r - (scene.height / 2)) *. scene.viewport.height /. Float.of_int scene.height);
   }
+
+type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms
+
+let without k p =
+  match k with
+  | Behind -> { p with behind = false }
+  | Shadow_rays -> { p with shadow_skip = false }
+  | Culling -> { p with cull = false }
+  | Negligible_terms ->
+      { p with specular_cut = Array.mapi (fun k _ -> p.specular_zero.(k / max 1 p.n_lights)) p.specular_cut }

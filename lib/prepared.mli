@@ -31,8 +31,9 @@ type t = private {
           (zeros where [alternate] is [-1]; empty when no material has a
           pattern). *)
   textbook_all : bool;
-      (** Spheres only, no hierarchy, the document's mode: the tracer's
-          fastest loop (the reference scene). *)
+      (** Spheres only, of plain materials (no pattern, no transparency),
+          no hierarchy, the document's mode: the tracer's fastest loop
+          (the reference scene). *)
   index : int array;
       (** The index of the object in each slot, objects counted spheres
           first, then the scene's [shapes]: the per-object arrays below are
@@ -119,6 +120,40 @@ type t = private {
       (** Some material has [transparency > 0]: the tracer follows the ray
           tree (reflected and refracted rays) instead of the reflection
           chain, and shadow rays pass through transparent objects. *)
+  behind : bool;
+      (** The skips are on: the document's kernel rejects a sphere whose
+          two roots are certainly [<= 0] ([k2 > 0] and [k3 > 0]) without
+          computing them. *)
+  shadow_skip : bool;
+      (** The skips are on: the document's kernel casts a shadow ray only
+          when the light would add a term. *)
+  cull : bool;
+      (** The skips are on: the document's kernel tests a camera ray only
+          against the spheres that can meet some ray of its 8 x 8 tile. *)
+  specular_cut : float array;
+      (** With [textbook_all] (otherwise empty) and the skips, per
+          material [m] and light [l] at [m * n_lights + l]: the cosine at or below which the specular
+          term of [l] adds nothing to the intensity it joins, because
+          [cos ** s] is 0 ([specular_zero]) or below half an ulp of the
+          intensity already summed (at least the ambient lights listed
+          before [l]); [0.] without the skips. *)
+  ambient_lead : float;
+      (** The sum of the ambient lights that come first in [light_kind],
+          added from [0.] in order. *)
+  first_light : int;  (** The index of the first light that is not one of those. *)
+  sphere4 : float array;
+      (** With [textbook_all]: per slot [i], [cx, cy, cz, r2] at [4 i] to
+          [4 i + 3]; otherwise empty. *)
+  primary4 : float array;
+      (** With [textbook_all]: per slot [i], [primary_ocx, primary_ocy,
+          primary_ocz, primary_k3] at [4 i] to [4 i + 3]; otherwise empty. *)
+  light6 : float array;
+      (** Per light [l], at [6 l] to [6 l + 5]: its kind ([0.] ambient, [1.]
+          point, [2.] directional), intensity, vector x, y, z and [|L|]. *)
+  column_vx : float array;
+      (** The viewport x of the pixel centres of each canvas column, left to right. *)
+  row_vy : float array;
+      (** The viewport y of the pixel centres whose [gy] is [r - height / 2], for [r] from [0]. *)
 }
 (** The type for prepared scenes. *)
 
@@ -145,3 +180,15 @@ val prepare : ?skips:bool -> Scene.valid -> t
     {!Raytrace.Private.Bvh.ray_box_margin}) boxes they meet. With
     [~skips:false] it does everything the document does, for tests that
     prove the skips exact. *)
+
+(** The skips of the tracer's kernel for the document's scenes (spheres
+    alone, an epsilon, no hierarchy), each exact on its own. *)
+type kernel_skip =
+  | Behind  (** [behind]: no roots computed for a sphere behind the ray. *)
+  | Shadow_rays  (** [shadow_skip]: no shadow ray for a light that adds nothing. *)
+  | Culling  (** [cull]: camera rays test only their tile's spheres. *)
+  | Negligible_terms  (** [specular_cut]: no specular term too small to count. *)
+
+val without : kernel_skip -> t -> t
+(** [without k p] is [p] with the skip [k] off and the others as they
+    are: for the tests that show each skip exact. *)

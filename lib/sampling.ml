@@ -114,17 +114,12 @@ let[@inline] gy pl cy = Canvas.y_of_row ~height:pl.ch cy
 let full pl tr cy =
   let buffer = Image.buffer pl.img and n = pl.s.samples in
   let gy = gy pl cy in
-  for cx = pl.x to pl.x + pl.w - 1 do
-    let gx = gx pl cx and k = 3 * out pl cx cy in
-    if n = 1 then begin
-      Trace.pixel tr gx gy;
-      Trace.store tr buffer k
-    end
-    else begin
-      Trace.average tr gx gy ~n;
-      Trace.store_average tr buffer k ~count:(n * n)
-    end
-  done
+  if n = 1 then Trace.row tr buffer (3 * out pl pl.x cy) (gx pl pl.x) gy pl.w
+  else
+    for cx = pl.x to pl.x + pl.w - 1 do
+      Trace.average tr (gx pl cx) gy ~n;
+      Trace.store_average tr buffer (3 * out pl cx cy) ~count:(n * n)
+    done
 
 (* Per pixel, not per ray: these accesses keep their bounds checks, so that
    a wrong neighbour index fails loudly rather than reading past a mapped

@@ -31,6 +31,15 @@ type t = {
   mutable budget : int;  (** Most tests [check_budget] accepts. *)
   tracer : int;  (** The loop of [trace]: [spheres_chain], [objects_chain] or [tree]. *)
   tree : Ray_tree.t;  (** The ray tree's levels: transparent scenes only. *)
+  cand : int array;
+      (** The document's kernel: per tile column, the spheres (slots, in
+          scene order) that the camera rays of its current tile may meet,
+          [n_objects] places each; then every slot, for rays of no tile. *)
+  tile_row : int array;  (** Per tile column: the tile row [cand] holds, or [-1]. *)
+  tile_count : int array;  (** Per tile column: how many spheres [cand] holds. *)
+  corners : float array;  (** Scratch: the four corner directions of a tile. *)
+  mutable cand_first : int;  (** The next camera ray tests [cand] from here on... *)
+  mutable cand_count : int;  (** ...this many spheres. *)
 }
 
 (* The tracing loops, chosen once per tracer. *)
@@ -40,6 +49,12 @@ let tree = 2
 
 (* [assumed] when the primary ray searches every sphere. *)
 let no_assumption = -2
+
+(* Camera rays are culled by square tiles of this many pixels a side. *)
+let tile = 8
+
+(* The tile columns of the canvas, where culling applies. *)
+let tiles_across (p : Prepared.t) = if p.cull && p.textbook_all then (p.width + tile - 1) / tile else 0
 
 let create ?(averaging = false) (p : Prepared.t) =
   {
@@ -59,6 +74,13 @@ let create ?(averaging = false) (p : Prepared.t) =
     budget = Limits.work_budget Limits.default;
     tracer = (if p.transparent then tree else if p.all_spheres then spheres_chain else objects_chain);
     tree = (if p.transparent then Ray_tree.create ~depth:p.depth else Ray_tree.empty);
+    cand = (let n = p.n_objects and tiles = if p.cull && p.textbook_all then tiles_across p else 0 in
+            Array.init ((tiles * n) + n) (fun k -> if k >= tiles * n then k - (tiles * n) else 0));
+    tile_row = Array.make (tiles_across p) (-1);
+    tile_count = Array.make (tiles_across p) 0;
+    corners = Array.make 12 0.;
+    cand_first = (if p.cull && p.textbook_all then tiles_across p * p.n_objects else 0);
+    cand_count = p.n_objects;
   }
 
 let prepared tr = tr.p
@@ -81,9 +103,9 @@ let to_byte x =
   if not (x > 0.) then 0
   else if x >= 255. then 255
   else
-    let n = truncate x in
-    let frac = x -. Float.of_int n in
-    if frac > 0.5 then n + 1 else if frac < 0.5 then n else n + (n land 1)
+    (* In [2^52, 2^53) the floats are the integers: adding 2^52 rounds
+       [x] to an integer, half to even (the default rounding), exactly. *)
+    truncate ((x +. 0x1p52) -. 0x1p52)
 [@@inline]
 
 let store tr (buffer : Image.buffer) k =
@@ -842,6 +864,358 @@ let[@inline] mirror_ray (p : Prepared.t) s =
   s.dz <- (nz *. k) -. vz;
   s.t_min <- p.epsilon;
   s.t_max <- infinity
+(* The document's kernel: spheres alone, the textbook roots, no hierarchy
+   (the reference scene), with the skips on. The whole ray tree of a pixel
+   is one loop over local variables: rays, hit points, normals and light
+   vectors stay in registers or on the stack, never in memory the
+   shadow test must read back, and nothing is called per ray but [pow]
+   and, rarely, [settled]. Every value that reaches a pixel is computed
+   with the operands and the order of [trace_in] (the reference path, which
+   [~skips:false] runs), so the bytes are the same; the skips below only
+   leave out work whose result cannot matter.
+
+   Both roots behind ([behind]): when k2 > 0 and k3 > 0, disc =
+   fl(fl(k2^2) - fl(4 k1 k3)) <= fl(k2^2), since fl(4 k1 k3) >= 0 and
+   rounding is monotonic, and sqrt (fl (k2^2)) = k2 exactly (a theorem of
+   binary floating point; an overflow gives infinity either way), so
+   -k2 + sq <= 0 and both roots, divided by 2 k1 >= 0, are <= 0 or NaN:
+   never in (t_min, t_max) with t_min >= 0 (1 for the camera, the scene's
+   epsilon, validated >= 0, for the others). Such a sphere is rejected
+   without the square root and the two divisions. *)
+let[@inline] blocks_unless_behind sph ox oy oz dx dy dz t_min t_max two_k1 k1x4 ~behind k =
+  let fx = ox -. Array.unsafe_get sph k
+  and fy = oy -. Array.unsafe_get sph (k + 1)
+  and fz = oz -. Array.unsafe_get sph (k + 2) in
+  let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+  let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (k + 3) in
+  (not (behind && k2 > 0. && k3 > 0.))
+  &&
+  let disc = (k2 *. k2) -. (k1x4 *. k3) in
+  disc >= 0.
+  &&
+  let sq = sqrt disc in
+  let t2 = (-.k2 -. sq) /. two_k1 in
+  (t_min < t2 && t2 < t_max)
+  ||
+  let t1 = (-.k2 +. sq) /. two_k1 in
+  t_min < t1 && t1 < t_max
+
+(* The camera rays of a tile: their directions are affine in the pixel's
+   (gx, gy) (to within the rounding of the viewport mapping, about an ulp),
+   so they lie in the convex hull of the four corner rays, hence in the cone
+   around the corners' mean direction whose half-angle theta is the largest
+   corner angle (cones of half-angle below pi / 2 are convex). A sphere of
+   radius r at distance dist from the camera is seen within the angle
+   alpha = asin (re / dist) of its centre's direction, with re = r (1 +
+   1e-6) + 1e-6 dist; if that direction is more than theta + alpha + 1e-6
+   from the axis, every ray of the tile passes the centre at a distance
+   over re + 1e-6 dist cos alpha: the true discriminant
+   4 k1 ((dist^2 - dist^2 sin^2) ...) is negative by at least
+   4 k1 1e-12 dist^2, some thousand times the rounding of the textbook's
+   k2^2 - 4 k1 k3 (a few ulps of 4 k1 dist^2) and of these angles (acos
+   near 1 loses at most sqrt u, 1e-8 rad). So the textbook test of the
+   culled spheres gives disc < 0 for every ray of the tile: a culled sphere
+   is one the ray would have missed. Spheres near or around the camera
+   (dist <= 2 re), wide tiles (theta > 1 rad) and anything NaN keep every
+   sphere. The kept spheres stay in scene order, so equal roots keep the
+   first sphere, as the full loop does. *)
+let[@inline never] tile_candidates tr tx ty =
+  let p = tr.p and c = tr.corners in
+  let n = p.n_objects and vz = p.viewport.distance and m = p.camera.rotation in
+  let col0 = tx * tile and row0 = ty * tile in
+  let col1 = min (p.width - 1) (col0 + tile - 1) and row1 = min (p.height - 1) (row0 + tile - 1) in
+  for k = 0 to 3 do
+    let vx = Array.unsafe_get p.column_vx (if k land 1 = 0 then col0 else col1) in
+    let vy = Array.unsafe_get p.row_vy (if k land 2 = 0 then row0 else row1) in
+    let x = (vx *. m.row0.x) +. (vy *. m.row0.y) +. (vz *. m.row0.z) in
+    let y = (vx *. m.row1.x) +. (vy *. m.row1.y) +. (vz *. m.row1.z) in
+    let z = (vx *. m.row2.x) +. (vy *. m.row2.y) +. (vz *. m.row2.z) in
+    let len = sqrt ((x *. x) +. (y *. y) +. (z *. z)) in
+    c.(3 * k) <- x /. len;
+    c.((3 * k) + 1) <- y /. len;
+    c.((3 * k) + 2) <- z /. len
+  done;
+  let ax = c.(0) +. c.(3) +. c.(6) +. c.(9) in
+  let ay = c.(1) +. c.(4) +. c.(7) +. c.(10) in
+  let az = c.(2) +. c.(5) +. c.(8) +. c.(11) in
+  let al = sqrt ((ax *. ax) +. (ay *. ay) +. (az *. az)) in
+  let ax = ax /. al and ay = ay /. al and az = az /. al in
+  let cos_min = ref 1. in
+  for k = 0 to 3 do
+    let cs = (ax *. c.(3 * k)) +. (ay *. c.((3 * k) + 1)) +. (az *. c.((3 * k) + 2)) in
+    if not (cs >= !cos_min) then cos_min := cs
+  done;
+  let theta = Float.acos (Float.min 1. (Float.max (-1.) !cos_min)) in
+  let margin = 1e-6 in
+  let base = tx * n and count = ref 0 in
+  for i = 0 to n - 1 do
+    let qx = -.Array.unsafe_get p.primary_ocx i
+    and qy = -.Array.unsafe_get p.primary_ocy i
+    and qz = -.Array.unsafe_get p.primary_ocz i in
+    let dist = sqrt ((qx *. qx) +. (qy *. qy) +. (qz *. qz)) in
+    let re = (Array.unsafe_get p.radius i *. (1. +. margin)) +. (margin *. dist) in
+    let keep =
+      (not (dist > 2. *. re && theta <= 1.))
+      ||
+      let alpha = Float.asin (re /. dist) in
+      let beta = Float.acos (Float.min 1. (Float.max (-1.) (((ax *. qx) +. (ay *. qy) +. (az *. qz)) /. dist))) in
+      not (beta > theta +. alpha +. margin)
+    in
+    if keep then begin
+      Array.unsafe_set tr.cand (base + !count) i;
+      incr count
+    end
+  done;
+  tr.tile_row.(tx) <- ty;
+  tr.tile_count.(tx) <- !count
+
+let[@inline] textbook_kernel tr ~behind =
+  let p = tr.p and s = tr.s in
+  let sph = p.sphere4 in
+  let n = p.n_objects and eps = p.epsilon in
+  let n4 = 4 * n in
+  let n_lights = p.n_lights and light6 = p.light6 in
+  let last_blocker = tr.last_blocker and shadow_skip = p.shadow_skip in
+  let tests = ref 0 and levels = ref 0 and tracing = ref true in
+  (* The weight of the colour still to be traced: the product of the
+     reflectivities on the stack. *)
+  let weight = ref 1. in
+  tr.first_hit <- -1;
+  tr.origin_sphere <- -1;
+  while !tracing do
+    (* The ray of this level is in [s]: read once, into registers. *)
+    let ox' = s.ox and oy' = s.oy and oz' = s.oz and dx' = s.dx and dy' = s.dy and dz' = s.dz in
+    let t_min' = s.t_min in
+    let a = (dx' *. dx') +. (dy' *. dy') +. (dz' *. dz') in
+    let two_k1 = 2. *. a and k1x4 = 4. *. a in
+    (* The closest hit, as [closest_textbook_all] finds it: the t_max of
+       camera and mirror rays is infinity, which [t < best] already
+       implies. *)
+    let best = ref infinity and hit = ref (-1) in
+    if !levels > 0 then begin
+      tests := !tests + n;
+      let k = ref 0 in
+      while !k < n4 do
+        let i = !k in
+        let fx = ox' -. Array.unsafe_get sph i and fy = oy' -. Array.unsafe_get sph (i + 1) and fz = oz' -. Array.unsafe_get sph (i + 2) in
+        let k2 = 2. *. ((fx *. dx') +. (fy *. dy') +. (fz *. dz')) in
+        let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (i + 3) in
+        if not (behind && k2 > 0. && k3 > 0.) then begin
+          let disc = (k2 *. k2) -. (k1x4 *. k3) in
+          if disc >= 0. then begin
+            let sq = sqrt disc in
+            let t2 = (-.k2 -. sq) /. two_k1 in
+            if t2 < !best && t_min' < t2 then begin
+              best := t2;
+              hit := i
+            end
+            else
+              let t1 = (-.k2 +. sq) /. two_k1 in
+              if t1 < !best && t_min' < t1 then begin
+                best := t1;
+                hit := i
+              end
+          end
+        end;
+        k := i + 4
+      done;
+      (* Slots, not places in [sph]. *)
+      if !hit >= 0 then hit := !hit / 4
+    end
+    else if tr.assumed <> no_assumption then begin
+      hit := primary_hit_spheres tr;
+      best := s.t
+    end
+    else begin
+      (* From the camera, CO and k3 are per-frame constants; only the
+         tile's spheres are tested. *)
+      let pr = p.primary4 in
+      let cand = tr.cand and first = tr.cand_first and count = tr.cand_count in
+      tests := !tests + count;
+      for j = first to first + count - 1 do
+        let i = Array.unsafe_get cand j in
+        let k = 4 * i in
+        let fx = Array.unsafe_get pr k and fy = Array.unsafe_get pr (k + 1) and fz = Array.unsafe_get pr (k + 2) in
+        let k2 = 2. *. ((fx *. dx') +. (fy *. dy') +. (fz *. dz')) in
+        let k3 = Array.unsafe_get pr (k + 3) in
+        if not (behind && k2 > 0. && k3 > 0.) then begin
+          let disc = (k2 *. k2) -. (k1x4 *. k3) in
+          if disc >= 0. then begin
+            let sq = sqrt disc in
+            let t2 = (-.k2 -. sq) /. two_k1 in
+            if t2 < !best && t_min' < t2 then begin
+              best := t2;
+              hit := i
+            end
+            else
+              let t1 = (-.k2 +. sq) /. two_k1 in
+              if t1 < !best && t_min' < t1 then begin
+                best := t1;
+                hit := i
+              end
+          end
+        end
+      done
+    end;
+    let i = !hit in
+    if !levels = 0 then tr.first_hit <- i;
+    if i < 0 then begin
+      s.r <- p.background.r;
+      s.g <- p.background.g;
+      s.b <- p.background.b;
+      tracing := false
+    end
+    else begin
+      let t = !best in
+      let px = ox' +. (dx' *. t) and py = oy' +. (dy' *. t) and pz = oz' +. (dz' *. t) in
+      let nx = px -. Array.unsafe_get sph (4 * i) and ny = py -. Array.unsafe_get sph ((4 * i) + 1) and nz = pz -. Array.unsafe_get sph ((4 * i) + 2) in
+      let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+      let nx = nx *. inv and ny = ny *. inv and nz = nz *. inv in
+      let vx = -.dx' and vy = -.dy' and vz = -.dz' in
+      let m = Array.unsafe_get p.material i in
+      (* [lighting], with the shadow ray inlined. *)
+      let specular = Array.unsafe_get p.specular m and cut = p.specular_cut and mo = m * n_lights in
+      let shiny = specular <> Sphere.matte in
+      (* The ambient lights that come first add up to the same sum in any
+         case: it starts from their total (Prepared.ambient_lead). *)
+      let intensity = ref p.ambient_lead in
+      let length_n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+      (* |V| = |D|: negating changes no square, [a] sums them alike. *)
+      let length_v = sqrt a in
+      for l = p.first_light to n_lights - 1 do
+        let o = 6 * l in
+        let kind = Array.unsafe_get light6 o and li = Array.unsafe_get light6 (o + 1) in
+        if kind = 0. then intensity := !intensity +. li
+        else begin
+          let point = kind = 1. in
+          let lx = ref 0. and ly = ref 0. and lz = ref 0. and t_max = ref infinity in
+          if point then begin
+            lx := Array.unsafe_get light6 (o + 2) -. px;
+            ly := Array.unsafe_get light6 (o + 3) -. py;
+            lz := Array.unsafe_get light6 (o + 4) -. pz;
+            t_max := 1.
+          end
+          else begin
+            lx := Array.unsafe_get light6 (o + 2);
+            ly := Array.unsafe_get light6 (o + 3);
+            lz := Array.unsafe_get light6 (o + 4)
+          end;
+          let lx = !lx and ly = !ly and lz = !lz and t_max = !t_max in
+          let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
+          let add_diffuse = n_dot_l > 0. in
+          (* The specular term's cosine, as [lighting] computes it
+             (its 2 <L, N> is 2 n_dot_l: the same products, summed in the
+             same order). *)
+          let cos = ref 0. in
+          if shiny then begin
+            let k = 2. *. n_dot_l in
+            let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
+            let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
+            if r_dot_v > 0. then cos := r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v)
+          end;
+          let cos = !cos in
+          (* At or below the cut, li cos^s is 0 or too small to change
+             the sum (Prepared.specular_cut): the sum is what it would be
+             with the term, and pow is not called. *)
+          let add_specular = shiny && cos > Array.unsafe_get cut (mo + l) in
+          (* The shadow ray only matters if a term would be added: a light
+             that adds nothing leaves the sum as it is, lit or not. (A
+             point light on the point itself, L = 0, adds nothing:
+             n_dot_l = 0 and R = 0. Without the skip it is left out, as
+             [lighting] does.) *)
+          if
+            (if shadow_skip then add_diffuse || add_specular else (not point) || lx <> 0. || ly <> 0. || lz <> 0.)
+            &&
+            (* [shadowed] with the skips: this light's last blocker first,
+               then the first blocker of the others, in scene order. *)
+            let a = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
+            let two_k1 = 2. *. a and k1x4 = 4. *. a in
+            tr.counters.shadow <- tr.counters.shadow + 1;
+            let last = Array.unsafe_get last_blocker l in
+            if last >= 0 && blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * last) then begin
+              incr tests;
+              false
+            end
+            else begin
+              let j = ref 0 in
+              while
+                !j < n
+                && (!j = last || not (blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * !j)))
+              do
+                incr j
+              done;
+              tests := !tests + !j + if last >= 0 then 1 else 0;
+              if !j < n then begin
+                Array.unsafe_set last_blocker l !j;
+                false
+              end
+              else true
+            end
+          then begin
+            if add_diffuse then begin
+              let len = if point then sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz)) else Array.unsafe_get light6 (o + 5) in
+              intensity := !intensity +. (li *. n_dot_l /. (length_n *. len))
+            end;
+            if add_specular then intensity := !intensity +. (li *. Float.pow cos specular)
+          end
+        end
+      done;
+      let light = !intensity in
+      let lr = Array.unsafe_get p.red m *. light and lg = Array.unsafe_get p.green m *. light and lb = Array.unsafe_get p.blue m *. light in
+      let refl = Array.unsafe_get p.reflective m in
+      if refl <= 0. || !levels >= p.depth then begin
+        s.r <- lr;
+        s.g <- lg;
+        s.b <- lb;
+        tracing := false
+      end
+      else begin
+        let k = 4 * !levels in
+        Array.unsafe_set tr.stack k lr;
+        Array.unsafe_set tr.stack (k + 1) lg;
+        Array.unsafe_set tr.stack (k + 2) lb;
+        Array.unsafe_set tr.stack (k + 3) refl;
+        incr levels;
+        weight := !weight *. refl;
+        (* As in [trace_in]. *)
+        if p.early_stop
+           && (!weight *. p.max_channel < 1. || (lr >= 255. && lg >= 255. && lb >= 255.))
+           && settled tr !levels
+        then begin
+          tr.counters.early_stops <- tr.counters.early_stops + 1;
+          s.r <- 0.;
+          s.g <- 0.;
+          s.b <- 0.;
+          tracing := false
+        end
+        else begin
+          (* The mirror ray R = 2 <V, N> N - V from the hit point. *)
+          let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
+          s.ox <- px;
+          s.oy <- py;
+          s.oz <- pz;
+          s.dx <- (nx *. k) -. vx;
+          s.dy <- (ny *. k) -. vy;
+          s.dz <- (nz *. k) -. vz;
+          s.t_min <- eps;
+          tr.counters.reflection <- tr.counters.reflection + 1
+        end
+      end
+    end
+  done;
+  tr.counters.tests <- tr.counters.tests + !tests;
+  for l = !levels - 1 downto 0 do
+    let refl = Array.unsafe_get tr.stack ((4 * l) + 3) in
+    let keep = 1. -. refl in
+    s.r <- (Array.unsafe_get tr.stack (4 * l) *. keep) +. (s.r *. refl);
+    s.g <- (Array.unsafe_get tr.stack ((4 * l) + 1) *. keep) +. (s.g *. refl);
+    s.b <- (Array.unsafe_get tr.stack ((4 * l) + 2) *. keep) +. (s.b *. refl)
+  done
+
+(* One copy with the rejection of spheres behind, one without (for the
+   tests of its exactness). *)
+let[@inline never] trace_textbook_behind tr = textbook_kernel tr ~behind:true
+let[@inline never] trace_textbook_all_roots tr = textbook_kernel tr ~behind:false
 
 (* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
    its local colour and reflectivity and continues with the mirror ray; then
@@ -1242,30 +1616,32 @@ let trace_tree tr =
   shade tr 0
 
 let[@inline] trace tr =
-  let k = tr.tracer in
-  if k = spheres_chain then trace_spheres tr else if k = objects_chain then trace_objects tr else trace_tree tr
+  let p = tr.p in
+  if p.textbook_all && p.skips then (if p.behind then trace_textbook_behind tr else trace_textbook_all_roots tr)
+  else
+    let k = tr.tracer in
+    if k = spheres_chain then trace_spheres tr else if k = objects_chain then trace_objects tr else trace_tree tr
 
-(* The primary ray through canvas point [s.gx, s.gy]. *)
-let primary tr =
-  let p = tr.p and s = tr.s in
-  let gx = s.gx and gy = s.gy in
-  let vp = p.viewport in
-  (* Viewport point (section 3), multiplied before dividing as written. *)
-  let vx = gx *. vp.width /. Float.of_int p.width in
-  let vy = gy *. vp.height /. Float.of_int p.height in
-  let vz = vp.distance in
-  let cam = p.camera in
-  if p.identity_rotation then begin
+(* The direction of the camera ray through viewport point [(vx, vy, vz)],
+   turned by the camera's matrix [m] unless it is the identity. *)
+let[@inline] set_direction s identity (m : Camera.rotation) vx vy vz =
+  if identity then begin
     s.dx <- vx;
     s.dy <- vy;
     s.dz <- vz
   end
   else begin
-    let m = cam.rotation in
     s.dx <- (vx *. m.row0.x) +. (vy *. m.row0.y) +. (vz *. m.row0.z);
     s.dy <- (vx *. m.row1.x) +. (vy *. m.row1.y) +. (vz *. m.row1.z);
     s.dz <- (vx *. m.row2.x) +. (vy *. m.row2.y) +. (vz *. m.row2.z)
-  end;
+  end
+
+(* The camera ray through viewport point [(vx, vy, d)]. *)
+let[@inline] primary_through tr vx vy =
+  let p = tr.p and s = tr.s in
+  let vz = p.viewport.distance in
+  let cam = p.camera in
+  set_direction s p.identity_rotation cam.rotation vx vy vz;
   s.ox <- cam.position.x;
   s.oy <- cam.position.y;
   s.oz <- cam.position.z;
@@ -1274,10 +1650,79 @@ let primary tr =
   tr.counters.primary <- tr.counters.primary + 1;
   trace tr
 
-let pixel tr gx gy =
-  tr.s.gx <- Float.of_int gx;
-  tr.s.gy <- Float.of_int gy;
-  primary tr
+(* The camera ray of no tile tests every sphere. *)
+let[@inline] untiled tr =
+  tr.cand_first <- Array.length tr.cand - tr.p.n_objects;
+  tr.cand_count <- tr.p.n_objects
+
+(* The primary ray through canvas point [s.gx, s.gy]. *)
+let primary tr =
+  let p = tr.p and s = tr.s in
+  let gx = s.gx and gy = s.gy in
+  let vp = p.viewport in
+  untiled tr;
+  (* Viewport point (section 3), multiplied before dividing as written. *)
+  let vx = gx *. vp.width /. Float.of_int p.width in
+  let vy = gy *. vp.height /. Float.of_int p.height in
+  primary_through tr vx vy
+
+(* A pixel's centre: its viewport point is the frame's (the same
+   operations as [primary]'s), and its tile's spheres are the candidates. *)
+let[@inline] pixel tr gx gy =
+  let p = tr.p in
+  let col = gx + (p.width / 2) and row = gy + (p.height / 2) in
+  if col >= 0 && col < p.width && row >= 0 && row < p.height then begin
+    if p.cull && p.textbook_all then begin
+      let tx = col / tile and ty = row / tile in
+      if Array.unsafe_get tr.tile_row tx <> ty then tile_candidates tr tx ty;
+      tr.cand_first <- tx * p.n_objects;
+      tr.cand_count <- Array.unsafe_get tr.tile_count tx
+    end;
+    primary_through tr (Array.unsafe_get p.column_vx col) (Array.unsafe_get p.row_vy row)
+  end
+  else begin
+    tr.s.gx <- Float.of_int gx;
+    tr.s.gy <- Float.of_int gy;
+    primary tr
+  end
+
+let row tr buffer k gx gy count =
+  let p = tr.p in
+  let col0 = gx + (p.width / 2) and r = gy + (p.height / 2) in
+  if r >= 0 && r < p.height && col0 >= 0 && count >= 0 && col0 + count <= p.width then begin
+    (* [pixel], with what is constant along the row read once, and the
+       document's kernel called directly. *)
+    let s = tr.s and c = tr.counters in
+    let vy = Array.unsafe_get p.row_vy r and ty = r / tile and n = p.n_objects in
+    let kernel = p.textbook_all && p.skips in
+    let cull = kernel && p.cull and vx = p.column_vx and behind = p.behind in
+    let vz = p.viewport.distance and m = p.camera.rotation and o = p.camera.position in
+    let identity = p.identity_rotation in
+    for col = col0 to col0 + count - 1 do
+      if cull && (col = col0 || col land (tile - 1) = 0) then begin
+        let tx = col / tile in
+        if Array.unsafe_get tr.tile_row tx <> ty then tile_candidates tr tx ty;
+        tr.cand_first <- tx * n;
+        tr.cand_count <- Array.unsafe_get tr.tile_count tx
+      end;
+      set_direction s identity m (Array.unsafe_get vx col) vy vz;
+      s.ox <- o.x;
+      s.oy <- o.y;
+      s.oz <- o.z;
+      s.t_min <- 1.;
+      s.t_max <- infinity;
+      c.primary <- c.primary + 1;
+      if not kernel then trace tr
+      else if behind then trace_textbook_behind tr
+      else trace_textbook_all_roots tr;
+      store tr buffer (k + (3 * (col - col0)))
+    done
+  end
+  else
+    for c = 0 to count - 1 do
+      pixel tr (gx + c) gy;
+      store tr buffer (k + (3 * c))
+    done
 
 let sample tr gx gy ~i ~j ~n =
   let n = Float.of_int n in

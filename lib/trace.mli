@@ -84,6 +84,11 @@ val pixel : t -> int -> int -> unit
     {!sample}, {!average} and {!average_reusing}, which trace rays
     alike). *)
 
+val row : t -> Image.buffer -> int -> int -> int -> int -> unit
+(** [row tr buf k gx gy n] is {!pixel} then {!store} for the [n] pixels
+    [(gx, gy)] to [(gx + n - 1, gy)], stored from byte [k] of [buf] on,
+    three bytes apart. *)
+
 val sample : t -> int -> int -> i:int -> j:int -> n:int -> unit
 (** [sample tr gx gy ~i ~j ~n] is {!pixel} for the point
     [(gx + (i + 1/2) / n - 1/2, gy + (j + 1/2) / n - 1/2)], sample [(i, j)]
