@@ -182,6 +182,19 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
   done;
   twin
 
+(* Materials equal bit for bit. *)
+module Materials = Hashtbl.Make (struct
+  type t = Material.t
+
+  let same x y = Int64.equal (Int64.bits_of_float x) (Int64.bits_of_float y)
+
+  let equal (a : t) (b : t) =
+    same a.color.r b.color.r && same a.color.g b.color.g && same a.color.b b.color.b && same a.specular b.specular
+    && same a.reflective b.reflective
+
+  let hash = Hashtbl.hash
+end)
+
 let prepare ?(skips = true) scene =
   let scene = Scene.of_valid scene in
   let n_spheres = List.length scene.spheres in
@@ -190,11 +203,24 @@ let prepare ?(skips = true) scene =
      (center, half side) for the hierarchy. *)
   let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
   let ocx = Array.make n 0. and ocy = Array.make n 0. and ocz = Array.make n 0. and ohalf = Array.make n 0. in
+  (* Half the box of each object along each axis: a mesh's triangles are
+     slivers, far thinner than their cube along two axes. *)
+  let any_mesh = List.exists (function Shape.Mesh _ -> true | _ -> false) scene.shapes in
+  let oex = if any_mesh then Array.make n 0. else ohalf in
+  let oey = if any_mesh then Array.make n 0. else ohalf in
+  let oez = if any_mesh then Array.make n 0. else ohalf in
   let materials = ref [] and n_materials = ref 0 in
+  (* Equal materials share one: a million spheres use a dozen. Equal bit
+     for bit, so that sharing changes no arithmetic. *)
+  let known = Materials.create 64 in
   let new_material m =
-    materials := m :: !materials;
-    incr n_materials;
-    !n_materials - 1
+    match Materials.find_opt known m with
+    | Some i -> i
+    | None ->
+        materials := m :: !materials;
+        incr n_materials;
+        Materials.add known m (!n_materials - 1);
+        !n_materials - 1
   in
   let corners = Array.make 9 0. in
   (* A mesh's triangles come in a run: one material for the run. *)
@@ -205,7 +231,12 @@ let prepare ?(skips = true) scene =
     ocx.(k) <- c.x;
     ocy.(k) <- c.y;
     ocz.(k) <- c.z;
-    ohalf.(k) <- h
+    ohalf.(k) <- h;
+    if any_mesh then begin
+      oex.(k) <- h;
+      oey.(k) <- h;
+      oez.(k) <- h
+    end
   in
   ignore
     (iter_objects scene
@@ -227,7 +258,14 @@ let prepare ?(skips = true) scene =
          in
          let c, h = Mesh.bounds m t in
          let smooth = Mesh.corner_normals m t corners 0 in
-         set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h));
+         set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h;
+         let half a =
+           let v c = m.positions.((3 * m.triangles.((3 * t) + c)) + a) in
+           0.5 *. (Float.max (v 0) (Float.max (v 1) (v 2)) -. Float.min (v 0) (Float.min (v 1) (v 2)))
+         in
+         oex.(k) <- half 0;
+         oey.(k) <- half 1;
+         oez.(k) <- half 2));
   let materials = Array.of_list (List.rev !materials) in
   let twin_of = sphere_twins ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~n_spheres n in
   (* Arrays, not lists: a mesh makes millions of objects. *)
@@ -248,9 +286,15 @@ let prepare ?(skips = true) scene =
   let bvh =
     if skips && nb > bvh_threshold then begin
       let pick a = Array.map (fun k -> a.(k)) bounded in
-      let cx = pick ocx and cy = pick ocy and cz = pick ocz and radius = pick ohalf in
-      let margin = Bvh.ray_box_margin ~cx ~cy ~cz ~radius scene.camera.position in
-      Some (Bvh.build ~cx ~cy ~cz (Array.mapi (fun i r -> r +. margin.(i)) radius))
+      let margin =
+        Bvh.ray_box_margin ~cx:(pick ocx) ~cy:(pick ocy) ~cz:(pick ocz) ~radius:(pick ohalf) scene.camera.position
+      in
+      (* Each box padded by its margin: [build_boxes] takes these arrays. *)
+      let lo c e = Array.mapi (fun i k -> c.(k) -. (e.(k) +. margin.(i))) bounded in
+      let hi c e = Array.mapi (fun i k -> c.(k) +. (e.(k) +. margin.(i))) bounded in
+      Some
+        (Bvh.build_boxes ~x0:(lo ocx oex) ~y0:(lo ocy oey) ~z0:(lo ocz oez) ~x1:(hi ocx oex) ~y1:(hi ocy oey)
+           ~z1:(hi ocz oez) ())
     end
     else None
   in

@@ -42,6 +42,7 @@ module Private = struct
   module Trace = Trace
   module Scratch = Scratch
   module Float_scan = Float_scan
+  module Sexp_scan = Sexp_scan
   module Antialias = Antialias
   module Render_work = Render_work
 end

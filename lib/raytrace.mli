@@ -126,6 +126,7 @@ module Private : sig
   module Trace = Trace
   module Scratch = Scratch
   module Float_scan = Float_scan
+  module Sexp_scan = Sexp_scan
   module Antialias = Antialias
   module Render_work = Render_work
 end
