@@ -25,6 +25,10 @@ let[@inline] half_area x0 y0 z0 x1 y1 z1 =
 
 let bins = 16
 
+(* [a.(i)] lowered to [v], raised to [v]. *)
+let[@inline] lower (a : float array) i v = Array.unsafe_set a i (fmin (Array.unsafe_get a i) v)
+let[@inline] higher (a : float array) i v = Array.unsafe_set a i (fmax (Array.unsafe_get a i) v)
+
 (* The node arrays, grown as the tree is: a mesh's leaves hold about two
    objects, so the tree has fewer than [n] nodes, not the [2n - 1] of the
    worst case. *)
@@ -54,6 +58,27 @@ let resize t cap =
   t.nhi_x <- f t.nhi_x; t.nhi_y <- f t.nhi_y; t.nhi_z <- f t.nhi_z;
   t.nright <- i (-1) t.nright; t.nfirst <- i 0 t.nfirst; t.ncount <- i 0 t.ncount; t.naxis <- i 0 t.naxis
 
+let[@inline] swap_float (a : float array) i j =
+  let x = Array.unsafe_get a i in
+  Array.unsafe_set a i (Array.unsafe_get a j);
+  Array.unsafe_set a j x
+
+let[@inline] swap_int (a : int array) i j =
+  let x = Array.unsafe_get a i in
+  Array.unsafe_set a i (Array.unsafe_get a j);
+  Array.unsafe_set a j x
+
+(* Exchanges slots [i] and [j]: their boxes move with them. *)
+let[@inline] swap_slots x0 y0 z0 x1 y1 z1 order bin i j =
+  swap_float x0 i j;
+  swap_float y0 i j;
+  swap_float z0 i j;
+  swap_float x1 i j;
+  swap_float y1 i j;
+  swap_float z1 i j;
+  swap_int order i j;
+  swap_int bin i j
+
 let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let n = Array.length x0 in
   if n = 0 then invalid_arg "Bvh.build_boxes: no boxes";
@@ -66,26 +91,7 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let t = nodes (n + 16) in
   (* The boxes move with their slots, so that every pass over a node's
      objects reads memory in order. *)
-  let swap i j =
-    let[@inline] sf (a : float array) i j =
-      let x = Array.unsafe_get a i in
-      Array.unsafe_set a i (Array.unsafe_get a j);
-      Array.unsafe_set a j x
-    in
-    let[@inline] si (a : int array) i j =
-      let x = Array.unsafe_get a i in
-      Array.unsafe_set a i (Array.unsafe_get a j);
-      Array.unsafe_set a j x
-    in
-    sf x0 i j;
-    sf y0 i j;
-    sf z0 i j;
-    sf x1 i j;
-    sf y1 i j;
-    sf z1 i j;
-    si order i j;
-    si bin i j
-  in
+  let[@inline] swap i j = swap_slots x0 y0 z0 x1 y1 z1 order bin i j in
   (* Hoare's selection on the (doubled) centers [ka + kb]: the slot of
      rank [k] at [k], smaller ones before, larger after. *)
   let select (ka : float array) (kb : float array) lo hi k =
@@ -139,17 +145,25 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let bin_box = Array.make (12 * bins) 0. in
   let left_area = Array.make bins 0. in
   let acc = Array.make 12 0. in
-  let reset () =
-    for c = 0 to 11 do
-      Array.unsafe_set acc c (if c mod 6 < 3 then infinity else neg_infinity)
-    done
-  in
+  (* Empty bounds, copied over [acc] and the bins to reset them. *)
+  let empty = Array.init (12 * bins) (fun c -> if c mod 6 < 3 then infinity else neg_infinity) in
+  let reset () = Array.blit empty 0 acc 0 12 in
   let grow b =
-    if Array.unsafe_get bin_n b > 0 then
-      for c = 0 to 11 do
-        let v = Array.unsafe_get bin_box ((12 * b) + c) in
-        Array.unsafe_set acc c (if c mod 6 < 3 then fmin (Array.unsafe_get acc c) v else fmax (Array.unsafe_get acc c) v)
-      done
+    if Array.unsafe_get bin_n b > 0 then begin
+      let o = 12 * b in
+      lower acc 0 (Array.unsafe_get bin_box o);
+      lower acc 1 (Array.unsafe_get bin_box (o + 1));
+      lower acc 2 (Array.unsafe_get bin_box (o + 2));
+      higher acc 3 (Array.unsafe_get bin_box (o + 3));
+      higher acc 4 (Array.unsafe_get bin_box (o + 4));
+      higher acc 5 (Array.unsafe_get bin_box (o + 5));
+      lower acc 6 (Array.unsafe_get bin_box (o + 6));
+      lower acc 7 (Array.unsafe_get bin_box (o + 7));
+      lower acc 8 (Array.unsafe_get bin_box (o + 8));
+      higher acc 9 (Array.unsafe_get bin_box (o + 9));
+      higher acc 10 (Array.unsafe_get bin_box (o + 10));
+      higher acc 11 (Array.unsafe_get bin_box (o + 11))
+    end
   in
   let acc_area () = half_area acc.(0) acc.(1) acc.(2) acc.(3) acc.(4) acc.(5) in
   let depth = ref 0 and split_bin = ref 0 in
@@ -188,34 +202,28 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
         let bins = if n < bins then n else bins in
         let scale = Float.of_int bins /. ext in
         Array.fill bin_n 0 bins 0;
-        for b = 0 to bins - 1 do
-          for c = 0 to 11 do
-            Array.unsafe_set bin_box ((12 * b) + c) (if c mod 6 < 3 then infinity else neg_infinity)
-          done
-        done;
+        Array.blit empty 0 bin_box 0 (12 * bins);
         for s = lo to hi - 1 do
           let b = truncate (((Array.unsafe_get ka s +. Array.unsafe_get kb s) -. c0) *. scale) in
           let b = if b < 0 then 0 else if b >= bins then bins - 1 else b in
           Array.unsafe_set bin s b;
           Array.unsafe_set bin_n b (Array.unsafe_get bin_n b + 1);
           let o = 12 * b in
-          let[@inline] low c v = Array.unsafe_set bin_box (o + c) (fmin (Array.unsafe_get bin_box (o + c)) v) in
-          let[@inline] high c v = Array.unsafe_set bin_box (o + c) (fmax (Array.unsafe_get bin_box (o + c)) v) in
           let u = Array.unsafe_get x0 s and v = Array.unsafe_get x1 s in
-          low 0 u;
-          high 3 v;
-          low 6 (u +. v);
-          high 9 (u +. v);
+          lower bin_box o u;
+          higher bin_box (o + 3) v;
+          lower bin_box (o + 6) (u +. v);
+          higher bin_box (o + 9) (u +. v);
           let u = Array.unsafe_get y0 s and v = Array.unsafe_get y1 s in
-          low 1 u;
-          high 4 v;
-          low 7 (u +. v);
-          high 10 (u +. v);
+          lower bin_box (o + 1) u;
+          higher bin_box (o + 4) v;
+          lower bin_box (o + 7) (u +. v);
+          higher bin_box (o + 10) (u +. v);
           let u = Array.unsafe_get z0 s and v = Array.unsafe_get z1 s in
-          low 2 u;
-          high 5 v;
-          low 8 (u +. v);
-          high 11 (u +. v)
+          lower bin_box (o + 2) u;
+          higher bin_box (o + 5) v;
+          lower bin_box (o + 8) (u +. v);
+          higher bin_box (o + 11) (u +. v)
         done;
         reset ();
         for b = 0 to bins - 2 do
@@ -251,7 +259,7 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
           while !i <= !j do
             if Array.unsafe_get bin !i <= best then incr i
             else begin
-              swap !i !j;
+              swap_slots x0 y0 z0 x1 y1 z1 order bin !i !j;
               decr j
             end
           done;
