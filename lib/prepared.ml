@@ -270,14 +270,20 @@ let prepare ?(skips = true) scene =
   let twin_of = sphere_twins ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~n_spheres n in
   (* Arrays, not lists: a mesh makes millions of objects. *)
   let select keep =
-    let a = Array.make n 0 and m = ref 0 in
+    (* Counted first: no array of [n] for the few planes. *)
+    let m = ref 0 in
+    for k = 0 to n - 1 do
+      if keep k then incr m
+    done;
+    let a = Array.make !m 0 in
+    m := 0;
     for k = 0 to n - 1 do
       if keep k then begin
         a.(!m) <- k;
         incr m
       end
     done;
-    Array.sub a 0 !m
+    a
   in
   let kept k = twin_of.(k) = k in
   let bounded = select (fun k -> kept k && okind.(k) <> Shape.plane) in
@@ -302,7 +308,9 @@ let prepare ?(skips = true) scene =
      hierarchy, the scene's order. *)
   let index =
     match bvh with
-    | Some b -> Array.append (Array.map (fun k -> bounded.(k)) b.order) unbounded
+    | Some b ->
+        let nb = Array.length b.order in
+        Array.init (nb + Array.length unbounded) (fun i -> if i < nb then bounded.(b.order.(i)) else unbounded.(i - nb))
     | None -> select kept
   in
   let slot = Array.make n 0 in

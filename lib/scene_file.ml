@@ -585,21 +585,20 @@ let line_counter text =
     at := p;
     Positions.{ line = !line; col = p - !bol; offset = p }
 
-(* A sphere's fields as numbers, and the values the last spheres shared:
-   the grid layout repeats a few colours, radii and materials, and one
-   value (one boxed float, one colour) for all of them takes a million
-   spheres from 184 to 104 bytes each. *)
+(* A sphere's fields as numbers, and recent spheres as prototypes: the
+   grid layout repeats a dozen radii and materials, and a sphere made as
+   [{ proto with center }] shares its prototype's colour and boxed floats,
+   which takes a million spheres from 184 to 104 bytes each. *)
 type fast = {
   values : float array;  (** center x y z, radius, color r g b, specular, reflective. *)
   mutable seen : int;  (** The fields read, one bit each, in [sphere_field] order. *)
-  mutable color : Color.t;
-  mutable radius : float;
-  mutable specular : float;
-  mutable reflective : float;
+  protos : Sphere.t array;  (** Recent spheres, by a hash of all but their center. *)
 }
 
+let n_protos = 64
+
 let fast_state () =
-  { values = Array.make 9 0.; seen = 0; color = Color.black; radius = 1.; specular = Sphere.matte; reflective = 0. }
+  { values = Array.make 9 0.; seen = 0; protos = Array.make n_protos (Sphere.v ~center:Vec3.zero ~radius:nan Color.black) }
 
 let sphere_arity = [| 3; 1; 3; 1; 1 |]
 let sphere_value = [| 0; 3; 4; 7; 8 |]
@@ -675,20 +674,31 @@ let add_sphere b f =
   ignore (ok (Limits.check_count b.limits `Spheres (b.n_spheres + 1)));
   let center = ok (Sphere.check_center (Vec3.v v.(0) v.(1) v.(2))) in
   let radius = ok (Sphere.check_radius v.(3)) in
-  let c = f.color in
-  let color =
-    if same_float v.(4) c.r && same_float v.(5) c.g && same_float v.(6) c.b then c
-    else ok (Sphere.check_color (Color.v v.(4) v.(5) v.(6)))
-  in
   let specular = if f.seen land 8 = 0 then Sphere.matte else ok (Sphere.check_specular v.(7)) in
   let reflective = if f.seen land 16 = 0 then 0. else ok (Sphere.check_reflective v.(8)) in
-  (* The fields keep their boxed floats when the value repeats. *)
-  f.color <- color;
-  if not (same_float radius f.radius) then f.radius <- radius;
-  if not (same_float specular f.specular) then f.specular <- specular;
-  if not (same_float reflective f.reflective) then f.reflective <- reflective;
+  let r = v.(4) and g = v.(5) and bl = v.(6) in
+  (* Any hash will do; [truncate] is defined for every finite float here
+     (checked above, or garbage but harmless for a colour out of range). *)
+  let k =
+    ((truncate (radius *. 1024.) * 31)
+    + (truncate r * 7) + (truncate g * 5) + (truncate bl * 3) + (truncate specular * 11)
+    + truncate (reflective *. 64.))
+    land (n_protos - 1)
+  in
+  let p = f.protos.(k) in
+  let sphere =
+    if same_float p.radius radius && same_float p.color.r r && same_float p.color.g g && same_float p.color.b bl
+       && same_float p.specular specular && same_float p.reflective reflective
+    then { p with center }
+    else begin
+      let color = ok (Sphere.check_color (Color.v r g bl)) in
+      let s = Sphere.v ~specular ~reflective ~center ~radius color in
+      f.protos.(k) <- s;
+      s
+    end
+  in
   b.n_spheres <- b.n_spheres + 1;
-  b.spheres <- Sphere.v ~specular:f.specular ~reflective:f.reflective ~center ~radius:f.radius color :: b.spheres
+  b.spheres <- sphere :: b.spheres
 
 (* Without a loader, a scene names no mesh file it can read. *)
 let no_loader path =
@@ -696,7 +706,7 @@ let no_loader path =
     (`Msg
       (Printf.sprintf "cannot read mesh file %s: this scene was given as text, with no way to read files" path))
 
-let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") text =
+let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast) text =
   (* Mesh files are named relative to the scene file; each is read once,
      even when an error makes a second, located pass over the text. *)
   let loaded = Hashtbl.create 4 in
@@ -780,6 +790,8 @@ let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
       in
       go p Parsexp.Eager.Stack.empty
     and fast_from p =
+      if reader = `Parsexp then if p >= n then check_below (n + 1) else slow_from p
+      else
       match Sexp_scan.skip_blank text p with
       | i when i >= n -> check_below (n + 1)
       | i -> (
