@@ -30,8 +30,8 @@ let[@inline] lower (a : float array) i v = Array.unsafe_set a i (fmin (Array.uns
 let[@inline] higher (a : float array) i v = Array.unsafe_set a i (fmax (Array.unsafe_get a i) v)
 
 (* The node arrays, grown as the tree is: a mesh's leaves hold about two
-   objects, so the tree has fewer than [n] nodes, not the [2n - 1] of the
-   worst case. *)
+   objects, so the tree has about [n] nodes (1.04 n for a wall of spheres,
+   0.6 n for a mesh), not the [2n - 1] of the worst case. *)
 type nodes = {
   mutable size : int;
   mutable nlo_x : float array;
@@ -88,7 +88,7 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let order = Array.init n Fun.id in
   (* The bin of each slot, from binning to partitioning. *)
   let bin = Array.make n 0 in
-  let t = nodes (n + 16) in
+  let t = nodes (n + (n / 4) + 16) in
   (* The boxes move with their slots, so that every pass over a node's
      objects reads memory in order. *)
   let[@inline] swap i j = swap_slots x0 y0 z0 x1 y1 z1 order bin i j in
@@ -165,11 +165,23 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       higher acc 11 (Array.unsafe_get bin_box (o + 11))
     end
   in
+  (* The box alone, for the sweeps that price the splits. *)
+  let grow_box b =
+    if Array.unsafe_get bin_n b > 0 then begin
+      let o = 12 * b in
+      lower acc 0 (Array.unsafe_get bin_box o);
+      lower acc 1 (Array.unsafe_get bin_box (o + 1));
+      lower acc 2 (Array.unsafe_get bin_box (o + 2));
+      higher acc 3 (Array.unsafe_get bin_box (o + 3));
+      higher acc 4 (Array.unsafe_get bin_box (o + 4));
+      higher acc 5 (Array.unsafe_get bin_box (o + 5))
+    end
+  in
   let acc_area () = half_area acc.(0) acc.(1) acc.(2) acc.(3) acc.(4) acc.(5) in
   let depth = ref 0 and split_bin = ref 0 in
   (* [bounds] is [bounds_of lo hi], from the parent's bins. *)
   let rec node lo hi level (bounds : float array) =
-    if t.size = Array.length t.nlo_x then resize t (2 * t.size);
+    if t.size = Array.length t.nlo_x then resize t (t.size + (t.size / 2));
     let k = t.size in
     t.size <- k + 1;
     if level > !depth then depth := level;
@@ -227,13 +239,13 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
         done;
         reset ();
         for b = 0 to bins - 2 do
-          grow b;
+          grow_box b;
           left_area.(b) <- acc_area ()
         done;
         reset ();
         let best = ref (-1) and best_cost = ref infinity and right_n = ref 0 and left_n = ref n in
         for b = bins - 1 downto 1 do
-          grow b;
+          grow_box b;
           right_n := !right_n + bin_n.(b);
           left_n := !left_n - bin_n.(b);
           if !left_n > 0 && !right_n > 0 then begin

@@ -671,7 +671,8 @@ let[@inline] same_float x y = x = y && Float.sign_bit x = Float.sign_bit y
 let add_sphere b f =
   let ok = function Ok x -> x | Error _ -> raise Sexp_scan.Unusual in
   let v = f.values in
-  ignore (ok (Limits.check_count b.limits `Spheres (b.n_spheres + 1)));
+  (* [Limits.check_count]'s test, without building its messages. *)
+  if not (Float.of_int (b.n_spheres + 1) <= Limits.bound b.limits `Spheres) then raise Sexp_scan.Unusual;
   let center = ok (Sphere.check_center (Vec3.v v.(0) v.(1) v.(2))) in
   let radius = ok (Sphere.check_radius v.(3)) in
   let specular = if f.seen land 8 = 0 then Sphere.matte else ok (Sphere.check_specular v.(7)) in
