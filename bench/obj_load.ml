@@ -7,22 +7,6 @@
 
 open Raytrace
 
-(* The peak resident memory of this process, from Linux's /proc. *)
-let peak_rss_mb () =
-  match open_in "/proc/self/status" with
-  | exception Sys_error _ -> nan
-  | ic ->
-      let rec go () =
-        match input_line ic with
-        | exception End_of_file -> nan
-        | l when String.length l > 6 && String.sub l 0 6 = "VmHWM:" ->
-            Scanf.sscanf (String.sub l 6 (String.length l - 6)) " %f kB" (fun kb -> kb /. 1024.)
-        | _ -> go ()
-      in
-      let r = go () in
-      close_in ic;
-      r
-
 let () =
   let file = match Sys.argv with [| _; f |] -> f | _ -> prerr_endline "usage: obj_load FILE.obj"; exit 2 in
   let ic = open_in_bin file in
@@ -52,4 +36,4 @@ let () =
     (Gc.minor_words ())
     (Gc.minor_words () /. Float.of_int (Obj_file.vertex_count m + (Array.length m.normals / 3) + tris));
   Printf.printf "mesh %.1f MB (%.1f bytes per triangle), peak heap %.1f MB, peak RSS %.1f MB\n" result_mb
-    (result_mb *. 1048576. /. Float.of_int (max 1 tris)) top_heap (peak_rss_mb ())
+    (result_mb *. 1048576. /. Float.of_int (max 1 tris)) top_heap (Peak_rss.mb ())

@@ -14,28 +14,6 @@ type t = {
   depth : int;
 }
 
-(* Rearranges [order.(lo .. hi - 1)] so that the element of rank [k] (by
-   [key]) is at [k], smaller ones before, larger ones after: Hoare's
-   selection, linear on average. *)
-let select order (key : float array) lo hi k =
-  let lo = ref lo and hi = ref (hi - 1) in
-  while !lo < !hi do
-    let pivot = key.(order.((!lo + !hi) / 2)) in
-    let i = ref !lo and j = ref !hi in
-    while !i <= !j do
-      while key.(order.(!i)) < pivot do incr i done;
-      while key.(order.(!j)) > pivot do decr j done;
-      if !i <= !j then begin
-        let x = order.(!i) in
-        order.(!i) <- order.(!j);
-        order.(!j) <- x;
-        incr i;
-        decr j
-      end
-    done;
-    if k <= !j then hi := !j else if k >= !i then lo := !i else lo := !hi
-  done
-
 let[@inline] fmin (a : float) b = if a < b then a else b
 let[@inline] fmax (a : float) b = if a > b then a else b
 
@@ -47,186 +25,320 @@ let[@inline] half_area x0 y0 z0 x1 y1 z1 =
 
 let bins = 16
 
-let build ?(leaf_size = 4) ~cx ~cy ~cz extent =
-  let n = Array.length cx in
-  if n = 0 then invalid_arg "Bvh.build: no spheres";
-  if Array.length cy <> n || Array.length cz <> n || Array.length extent <> n then
-    invalid_arg "Bvh.build: arrays of different lengths";
+(* [a.(i)] lowered to [v], raised to [v]. *)
+let[@inline] lower (a : float array) i v = Array.unsafe_set a i (fmin (Array.unsafe_get a i) v)
+let[@inline] higher (a : float array) i v = Array.unsafe_set a i (fmax (Array.unsafe_get a i) v)
+
+(* The node arrays, grown as the tree is: a mesh's leaves hold about two
+   objects, so the tree has about [n] nodes (1.04 n for a wall of spheres,
+   0.6 n for a mesh), not the [2n - 1] of the worst case. *)
+type nodes = {
+  mutable size : int;
+  mutable nlo_x : float array;
+  mutable nlo_y : float array;
+  mutable nlo_z : float array;
+  mutable nhi_x : float array;
+  mutable nhi_y : float array;
+  mutable nhi_z : float array;
+  mutable nright : int array;
+  mutable nfirst : int array;
+  mutable ncount : int array;
+  mutable naxis : int array;
+}
+
+let nodes cap =
+  let f () = Array.make cap 0. and i v = Array.make cap v in
+  { size = 0; nlo_x = f (); nlo_y = f (); nlo_z = f (); nhi_x = f (); nhi_y = f (); nhi_z = f ();
+    nright = i (-1); nfirst = i 0; ncount = i 0; naxis = i 0 }
+
+let resize t cap =
+  let f a = let b = Array.make cap 0. in Array.blit a 0 b 0 t.size; b in
+  let i v a = let b = Array.make cap v in Array.blit a 0 b 0 t.size; b in
+  t.nlo_x <- f t.nlo_x; t.nlo_y <- f t.nlo_y; t.nlo_z <- f t.nlo_z;
+  t.nhi_x <- f t.nhi_x; t.nhi_y <- f t.nhi_y; t.nhi_z <- f t.nhi_z;
+  t.nright <- i (-1) t.nright; t.nfirst <- i 0 t.nfirst; t.ncount <- i 0 t.ncount; t.naxis <- i 0 t.naxis
+
+let[@inline] swap_float (a : float array) i j =
+  let x = Array.unsafe_get a i in
+  Array.unsafe_set a i (Array.unsafe_get a j);
+  Array.unsafe_set a j x
+
+let[@inline] swap_int (a : int array) i j =
+  let x = Array.unsafe_get a i in
+  Array.unsafe_set a i (Array.unsafe_get a j);
+  Array.unsafe_set a j x
+
+(* Exchanges slots [i] and [j]: their boxes move with them. *)
+let[@inline] swap_slots x0 y0 z0 x1 y1 z1 order bin i j =
+  swap_float x0 i j;
+  swap_float y0 i j;
+  swap_float z0 i j;
+  swap_float x1 i j;
+  swap_float y1 i j;
+  swap_float z1 i j;
+  swap_int order i j;
+  swap_int bin i j
+
+let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
+  let n = Array.length x0 in
+  if n = 0 then invalid_arg "Bvh.build_boxes: no boxes";
+  if Array.exists (fun a -> Array.length a <> n) [| y0; z0; x1; y1; z1 |] then
+    invalid_arg "Bvh.build_boxes: arrays of different lengths";
   let leaf_size = max 1 leaf_size in
   let order = Array.init n Fun.id in
-  (* A binary tree with leaves of >= 1 sphere has < 2n nodes. *)
-  let cap = 2 * n in
-  let lo_x = Array.make cap 0. and lo_y = Array.make cap 0. and lo_z = Array.make cap 0. in
-  let hi_x = Array.make cap 0. and hi_y = Array.make cap 0. and hi_z = Array.make cap 0. in
-  let right = Array.make cap (-1) and first = Array.make cap 0 and count = Array.make cap 0 in
-  let axis = Array.make cap 0 in
-  (* Per bin: count and bounds; reused by every node. *)
-  let bin_n = Array.make bins 0 in
-  let bin_box = Array.init 6 (fun _ -> Array.make bins 0.) in
-  let left_area = Array.make bins 0. in
-  let acc = Array.make 6 0. in
-  let next = ref 0 and depth = ref 0 in
-  let bin_of key c0 scale i =
-    let b = truncate ((key.(i) -. c0) *. scale) in
-    if b < 0 then 0 else if b >= bins then bins - 1 else b
-  in
-  let rec node lo hi level =
-    let k = !next in
-    incr next;
-    if level > !depth then depth := level;
-    let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
-    let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
-    let mx0 = ref infinity and my0 = ref infinity and mz0 = ref infinity in
-    let mx1 = ref neg_infinity and my1 = ref neg_infinity and mz1 = ref neg_infinity in
-    for s = lo to hi - 1 do
-      let i = order.(s) in
-      let e = extent.(i) in
-      bx0 := fmin !bx0 (cx.(i) -. e);
-      by0 := fmin !by0 (cy.(i) -. e);
-      bz0 := fmin !bz0 (cz.(i) -. e);
-      bx1 := fmax !bx1 (cx.(i) +. e);
-      by1 := fmax !by1 (cy.(i) +. e);
-      bz1 := fmax !bz1 (cz.(i) +. e);
-      mx0 := fmin !mx0 cx.(i);
-      my0 := fmin !my0 cy.(i);
-      mz0 := fmin !mz0 cz.(i);
-      mx1 := fmax !mx1 cx.(i);
-      my1 := fmax !my1 cy.(i);
-      mz1 := fmax !mz1 cz.(i)
-    done;
-    lo_x.(k) <- !bx0;
-    lo_y.(k) <- !by0;
-    lo_z.(k) <- !bz0;
-    hi_x.(k) <- !bx1;
-    hi_y.(k) <- !by1;
-    hi_z.(k) <- !bz1;
-    let leaf () =
-      first.(k) <- lo;
-      count.(k) <- hi - lo
-    in
-    let n = hi - lo in
-    let ex = !mx1 -. !mx0 and ey = !my1 -. !my0 and ez = !mz1 -. !mz0 in
-    let a = if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2 in
-    let key = match a with 0 -> cx | 1 -> cy | _ -> cz in
-    let c0 = match a with 0 -> !mx0 | 1 -> !my0 | _ -> !mz0 in
-    let ext = match a with 0 -> ex | 1 -> ey | _ -> ez in
-    if n <= 1 then leaf ()
-    else begin
-      (* The split between bins that minimises the SAH cost
-         A_left n_left + A_right n_right (in units of this box's area). *)
-      let split =
-        if ext > 0. then begin
-          let scale = Float.of_int bins /. ext in
-          Array.fill bin_n 0 bins 0;
-          Array.iteri (fun c b -> Array.fill b 0 bins (if c < 3 then infinity else neg_infinity)) bin_box;
-          for s = lo to hi - 1 do
-            let i = order.(s) in
-            let b = bin_of key c0 scale i in
-            let e = extent.(i) in
-            bin_n.(b) <- bin_n.(b) + 1;
-            bin_box.(0).(b) <- fmin bin_box.(0).(b) (cx.(i) -. e);
-            bin_box.(1).(b) <- fmin bin_box.(1).(b) (cy.(i) -. e);
-            bin_box.(2).(b) <- fmin bin_box.(2).(b) (cz.(i) -. e);
-            bin_box.(3).(b) <- fmax bin_box.(3).(b) (cx.(i) +. e);
-            bin_box.(4).(b) <- fmax bin_box.(4).(b) (cy.(i) +. e);
-            bin_box.(5).(b) <- fmax bin_box.(5).(b) (cz.(i) +. e)
-          done;
-          (* The growing box of bins, in a float array rather than float
-             refs that a closure would box at every update. *)
-          let reset () =
-            for c = 0 to 5 do
-              acc.(c) <- (if c < 3 then infinity else neg_infinity)
-            done
-          in
-          let grow b =
-            if bin_n.(b) > 0 then
-              for c = 0 to 5 do
-                let v = bin_box.(c).(b) in
-                acc.(c) <- (if c < 3 then fmin acc.(c) v else fmax acc.(c) v)
-              done
-          in
-          let acc_area () = half_area acc.(0) acc.(1) acc.(2) acc.(3) acc.(4) acc.(5) in
-          reset ();
-          for b = 0 to bins - 2 do
-            grow b;
-            left_area.(b) <- acc_area ()
-          done;
-          reset ();
-          let best = ref (-1) and best_cost = ref infinity and right_n = ref 0 and left_n = ref n in
-          for b = bins - 1 downto 1 do
-            grow b;
-            right_n := !right_n + bin_n.(b);
-            left_n := !left_n - bin_n.(b);
-            if !left_n > 0 && !right_n > 0 then begin
-              let cost =
-                (left_area.(b - 1) *. Float.of_int !left_n)
-                +. (acc_area () *. Float.of_int !right_n)
-              in
-              if cost < !best_cost then begin
-                best_cost := cost;
-                best := b - 1
-              end
-            end
-          done;
-          let parent = half_area !bx0 !by0 !bz0 !bx1 !by1 !bz1 in
-          (* A leaf costs n sphere tests; a split, one box test plus the
-             expected tests below it (areas relative to this box's). *)
-          if !best < 0 then if n <= leaf_size then `Leaf else `Median
-          else if n <= leaf_size && Float.of_int n *. parent <= parent +. !best_cost then `Leaf
-          else begin
-            (* Partition the slots: bins <= best first. *)
-            let i = ref lo and j = ref (hi - 1) in
-            while !i <= !j do
-              if bin_of key c0 scale order.(!i) <= !best then incr i
-              else begin
-                let x = order.(!i) in
-                order.(!i) <- order.(!j);
-                order.(!j) <- x;
-                decr j
-              end
-            done;
-            `At !i
-          end
+  (* The bin of each slot, from binning to partitioning. *)
+  let bin = Array.make n 0 in
+  let t = nodes (n + (n / 4) + 16) in
+  (* The boxes move with their slots, so that every pass over a node's
+     objects reads memory in order. *)
+  let[@inline] swap i j = swap_slots x0 y0 z0 x1 y1 z1 order bin i j in
+  (* Hoare's selection on the (doubled) centers [ka + kb]: the slot of
+     rank [k] at [k], smaller ones before, larger after. *)
+  let select (ka : float array) (kb : float array) lo hi k =
+    let key s = Array.unsafe_get ka s +. Array.unsafe_get kb s in
+    let lo = ref lo and hi = ref (hi - 1) in
+    while !lo < !hi do
+      let pivot = key ((!lo + !hi) / 2) in
+      let i = ref !lo and j = ref !hi in
+      while !i <= !j do
+        while key !i < pivot do incr i done;
+        while key !j > pivot do decr j done;
+        if !i <= !j then begin
+          swap !i !j;
+          incr i;
+          decr j
         end
-        else if n <= leaf_size then `Leaf
-        else `Median
-      in
-      match split with
-      | `Leaf -> leaf ()
-      | (`Median | `At _) as split ->
-        (* Centers all together, in one bin: split at the median. *)
-        let mid =
-          match split with
-          | `At mid when mid > lo && mid < hi -> mid
-          | _ ->
-              let m = (lo + hi) / 2 in
-              select order key lo hi m;
-              m
-        in
-        axis.(k) <- a;
-        node lo mid (level + 1);
-        right.(k) <- !next;
-        node mid hi (level + 1)
+      done;
+      if k <= !j then hi := !j else if k >= !i then lo := !i else lo := !hi
+    done
+  in
+  (* The bounds of a node's objects, 12 floats: their box (lower corner,
+     upper corner), then the box of their doubled centers [lo + hi]. *)
+  let bounds_of lo hi =
+    let r = Array.make 12 0. in
+    for c = 0 to 5 do
+      r.(c) <- (if c < 3 then infinity else neg_infinity);
+      r.(c + 6) <- (if c < 3 then infinity else neg_infinity)
+    done;
+    let lows = [| x0; y0; z0 |] and highs = [| x1; y1; z1 |] in
+    for a = 0 to 2 do
+      let l = lows.(a) and h = highs.(a) in
+      let b0 = ref infinity and b1 = ref neg_infinity and m0 = ref infinity and m1 = ref neg_infinity in
+      for s = lo to hi - 1 do
+        let x = Array.unsafe_get l s and y = Array.unsafe_get h s in
+        b0 := fmin !b0 x;
+        b1 := fmax !b1 y;
+        let c = x +. y in
+        m0 := fmin !m0 c;
+        m1 := fmax !m1 c
+      done;
+      r.(a) <- !b0;
+      r.(a + 3) <- !b1;
+      r.(a + 6) <- !m0;
+      r.(a + 9) <- !m1
+    done;
+    r
+  in
+  (* Per bin: count and bounds (12 floats at [12 b], as [bounds_of]);
+     reused by every node. *)
+  let bin_n = Array.make bins 0 in
+  let bin_box = Array.make (12 * bins) 0. in
+  let left_area = Array.make bins 0. in
+  let acc = Array.make 12 0. in
+  (* Empty bounds, copied over [acc] and the bins to reset them. *)
+  let empty = Array.init (12 * bins) (fun c -> if c mod 6 < 3 then infinity else neg_infinity) in
+  let reset () = Array.blit empty 0 acc 0 12 in
+  let grow b =
+    if Array.unsafe_get bin_n b > 0 then begin
+      let o = 12 * b in
+      lower acc 0 (Array.unsafe_get bin_box o);
+      lower acc 1 (Array.unsafe_get bin_box (o + 1));
+      lower acc 2 (Array.unsafe_get bin_box (o + 2));
+      higher acc 3 (Array.unsafe_get bin_box (o + 3));
+      higher acc 4 (Array.unsafe_get bin_box (o + 4));
+      higher acc 5 (Array.unsafe_get bin_box (o + 5));
+      lower acc 6 (Array.unsafe_get bin_box (o + 6));
+      lower acc 7 (Array.unsafe_get bin_box (o + 7));
+      lower acc 8 (Array.unsafe_get bin_box (o + 8));
+      higher acc 9 (Array.unsafe_get bin_box (o + 9));
+      higher acc 10 (Array.unsafe_get bin_box (o + 10));
+      higher acc 11 (Array.unsafe_get bin_box (o + 11))
     end
   in
-  node 0 n 1;
-  let n_nodes = !next in
+  (* The box alone, for the sweeps that price the splits. *)
+  let grow_box b =
+    if Array.unsafe_get bin_n b > 0 then begin
+      let o = 12 * b in
+      lower acc 0 (Array.unsafe_get bin_box o);
+      lower acc 1 (Array.unsafe_get bin_box (o + 1));
+      lower acc 2 (Array.unsafe_get bin_box (o + 2));
+      higher acc 3 (Array.unsafe_get bin_box (o + 3));
+      higher acc 4 (Array.unsafe_get bin_box (o + 4));
+      higher acc 5 (Array.unsafe_get bin_box (o + 5))
+    end
+  in
+  let acc_area () = half_area acc.(0) acc.(1) acc.(2) acc.(3) acc.(4) acc.(5) in
+  let depth = ref 0 and split_bin = ref 0 in
+  (* [bounds] is [bounds_of lo hi], from the parent's bins. *)
+  let rec node lo hi level (bounds : float array) =
+    if t.size = Array.length t.nlo_x then resize t (t.size + (t.size / 2));
+    let k = t.size in
+    t.size <- k + 1;
+    if level > !depth then depth := level;
+    let bx0 = bounds.(0) and by0 = bounds.(1) and bz0 = bounds.(2) in
+    let bx1 = bounds.(3) and by1 = bounds.(4) and bz1 = bounds.(5) in
+    let mx0 = bounds.(6) and my0 = bounds.(7) and mz0 = bounds.(8) in
+    let mx1 = bounds.(9) and my1 = bounds.(10) and mz1 = bounds.(11) in
+    t.nlo_x.(k) <- bx0;
+    t.nlo_y.(k) <- by0;
+    t.nlo_z.(k) <- bz0;
+    t.nhi_x.(k) <- bx1;
+    t.nhi_y.(k) <- by1;
+    t.nhi_z.(k) <- bz1;
+    let n = hi - lo in
+    let ex = mx1 -. mx0 and ey = my1 -. my0 and ez = mz1 -. mz0 in
+    let a = if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2 in
+    let ka = match a with 0 -> x0 | 1 -> y0 | _ -> z0 in
+    let kb = match a with 0 -> x1 | 1 -> y1 | _ -> z1 in
+    let c0 = match a with 0 -> mx0 | 1 -> my0 | _ -> mz0 in
+    let ext = match a with 0 -> ex | 1 -> ey | _ -> ez in
+    (* The split between bins that minimises the SAH cost
+       A_left n_left + A_right n_right (in units of this box's area): [-2]
+       a leaf, [-1] the median, else the first slot of the right child
+       (the last bin on the left is then in [split_bin]). *)
+    let split =
+      if n <= 1 then -2
+      else if ext > 0. then begin
+        (* Fewer bins for fewer objects: the bins' fixed cost would
+           otherwise dominate the many small nodes near the leaves. *)
+        let bins = if n < bins then n else bins in
+        let scale = Float.of_int bins /. ext in
+        Array.fill bin_n 0 bins 0;
+        Array.blit empty 0 bin_box 0 (12 * bins);
+        for s = lo to hi - 1 do
+          let b = truncate (((Array.unsafe_get ka s +. Array.unsafe_get kb s) -. c0) *. scale) in
+          let b = if b < 0 then 0 else if b >= bins then bins - 1 else b in
+          Array.unsafe_set bin s b;
+          Array.unsafe_set bin_n b (Array.unsafe_get bin_n b + 1);
+          let o = 12 * b in
+          let u = Array.unsafe_get x0 s and v = Array.unsafe_get x1 s in
+          lower bin_box o u;
+          higher bin_box (o + 3) v;
+          lower bin_box (o + 6) (u +. v);
+          higher bin_box (o + 9) (u +. v);
+          let u = Array.unsafe_get y0 s and v = Array.unsafe_get y1 s in
+          lower bin_box (o + 1) u;
+          higher bin_box (o + 4) v;
+          lower bin_box (o + 7) (u +. v);
+          higher bin_box (o + 10) (u +. v);
+          let u = Array.unsafe_get z0 s and v = Array.unsafe_get z1 s in
+          lower bin_box (o + 2) u;
+          higher bin_box (o + 5) v;
+          lower bin_box (o + 8) (u +. v);
+          higher bin_box (o + 11) (u +. v)
+        done;
+        reset ();
+        for b = 0 to bins - 2 do
+          grow_box b;
+          left_area.(b) <- acc_area ()
+        done;
+        reset ();
+        let best = ref (-1) and best_cost = ref infinity and right_n = ref 0 and left_n = ref n in
+        for b = bins - 1 downto 1 do
+          grow_box b;
+          right_n := !right_n + bin_n.(b);
+          left_n := !left_n - bin_n.(b);
+          if !left_n > 0 && !right_n > 0 then begin
+            let cost =
+              (left_area.(b - 1) *. Float.of_int !left_n) +. (acc_area () *. Float.of_int !right_n)
+            in
+            if cost < !best_cost then begin
+              best_cost := cost;
+              best := b - 1
+            end
+          end
+        done;
+        let parent = half_area bx0 by0 bz0 bx1 by1 bz1 in
+        (* A leaf costs n tests; a split, one box test plus the expected
+           tests below it (areas relative to this box's). *)
+        if !best < 0 then if n <= leaf_size then -2 else -1
+        else if n <= leaf_size && Float.of_int n *. parent <= parent +. !best_cost then -2
+        else begin
+          (* Partition the slots: bins <= best first. *)
+          let best = !best in
+          split_bin := best;
+          let i = ref lo and j = ref (hi - 1) in
+          while !i <= !j do
+            if Array.unsafe_get bin !i <= best then incr i
+            else begin
+              swap_slots x0 y0 z0 x1 y1 z1 order bin !i !j;
+              decr j
+            end
+          done;
+          !i
+        end
+      end
+      else if n <= leaf_size then -2
+      else -1
+    in
+    if split = -2 then begin
+      t.nfirst.(k) <- lo;
+      t.ncount.(k) <- hi - lo
+    end
+    else begin
+      t.naxis.(k) <- a;
+      if split > lo && split < hi then begin
+        (* The children's bounds, from the bins on each side. *)
+        let bins = if n < bins then n else bins in
+        let best = !split_bin in
+        let side b0 b1 =
+          reset ();
+          for b = b0 to b1 do
+            grow b
+          done;
+          Array.copy acc
+        in
+        let left = side 0 best and right = side (best + 1) (bins - 1) in
+        node lo split (level + 1) left;
+        t.nright.(k) <- t.size;
+        node split hi (level + 1) right
+      end
+      else begin
+        (* Centers all together, in one bin: split at the median. *)
+        let m = (lo + hi) / 2 in
+        select ka kb lo hi m;
+        node lo m (level + 1) (bounds_of lo m);
+        t.nright.(k) <- t.size;
+        node m hi (level + 1) (bounds_of m hi)
+      end
+    end
+  in
+  node 0 n 1 (bounds_of 0 n);
+  let n_nodes = t.size in
   let sub a = Array.sub a 0 n_nodes in
   {
     order;
     n_nodes;
-    lo_x = sub lo_x;
-    lo_y = sub lo_y;
-    lo_z = sub lo_z;
-    hi_x = sub hi_x;
-    hi_y = sub hi_y;
-    hi_z = sub hi_z;
-    right = sub right;
-    first = sub first;
-    count = sub count;
-    axis = sub axis;
+    lo_x = sub t.nlo_x;
+    lo_y = sub t.nlo_y;
+    lo_z = sub t.nlo_z;
+    hi_x = sub t.nhi_x;
+    hi_y = sub t.nhi_y;
+    hi_z = sub t.nhi_z;
+    right = sub t.nright;
+    first = sub t.nfirst;
+    count = sub t.ncount;
+    axis = sub t.naxis;
     depth = !depth;
   }
+
+let build ?leaf_size ~cx ~cy ~cz extent =
+  let n = Array.length cx in
+  if n = 0 then invalid_arg "Bvh.build: no spheres";
+  if Array.length cy <> n || Array.length cz <> n || Array.length extent <> n then
+    invalid_arg "Bvh.build: arrays of different lengths";
+  let lo c = Array.mapi (fun i x -> x -. extent.(i)) c and hi c = Array.mapi (fun i x -> x +. extent.(i)) c in
+  build_boxes ?leaf_size ~x0:(lo cx) ~y0:(lo cy) ~z0:(lo cz) ~x1:(hi cx) ~y1:(hi cy) ~z1:(hi cz) ()
 
 let ray_box_margin ~cx ~cy ~cz ~radius (camera : Vec3.t) =
   let n = Array.length cx in

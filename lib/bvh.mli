@@ -39,6 +39,28 @@ val build : ?leaf_size:int -> cx:float array -> cy:float array -> cz:float array
     @raise Invalid_argument if the arrays are empty or of different
     lengths. *)
 
+val build_boxes :
+  ?leaf_size:int ->
+  x0:float array ->
+  y0:float array ->
+  z0:float array ->
+  x1:float array ->
+  y1:float array ->
+  z1:float array ->
+  unit ->
+  t
+(** [build_boxes ~leaf_size ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ()] is a hierarchy over
+    the objects whose boxes have lower corners [(x0.(i), y0.(i), z0.(i))]
+    and upper corners [(x1.(i), y1.(i), z1.(i))], split by the surface area
+    heuristic over 16 bins of their centers along the longest axis (at the
+    median when their centers coincide). Leaves hold at most [leaf_size]
+    (default 4) objects. The six arrays are reordered in place into slot
+    order: afterwards [x0.(slot)] is the box of object [order.(slot)]
+    (the boxes move with the objects, so that each pass over a node reads
+    memory in order).
+    @raise Invalid_argument if the arrays are empty or of different
+    lengths. *)
+
 val ray_box_margin :
   cx:float array -> cy:float array -> cz:float array -> radius:float array -> Vec3.t -> float array
 (** [ray_box_margin ~cx ~cy ~cz ~radius camera] is, for each sphere, how much

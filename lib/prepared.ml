@@ -252,6 +252,20 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
   done;
   twin
 
+(* Materials equal bit for bit. *)
+module Materials = Hashtbl.Make (struct
+  type t = Material.t
+
+  let same x y = Int64.equal (Int64.bits_of_float x) (Int64.bits_of_float y)
+
+  let equal (a : t) (b : t) =
+    same a.color.r b.color.r && same a.color.g b.color.g && same a.color.b b.color.b && same a.specular b.specular
+    && same a.reflective b.reflective && same a.transparency b.transparency
+    && same a.refractive_index b.refractive_index && a.fresnel = b.fresnel && a.pattern = None && b.pattern = None
+
+  let hash = Hashtbl.hash
+end)
+
 let prepare ?(skips = true) scene =
   let scene = Scene.of_valid scene in
   let n_spheres = List.length scene.spheres in
@@ -260,16 +274,37 @@ let prepare ?(skips = true) scene =
      (center, half side) for the hierarchy. *)
   let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
   let ocx = Array.make n 0. and ocy = Array.make n 0. and ocz = Array.make n 0. and ohalf = Array.make n 0. in
+  (* Half the box of each object along each axis: a mesh's triangles are
+     slivers, far thinner than their cube along two axes. *)
+  let any_mesh = List.exists (function Shape.Mesh _ -> true | _ -> false) scene.shapes in
+  let oex = if any_mesh then Array.make n 0. else ohalf in
+  let oey = if any_mesh then Array.make n 0. else ohalf in
+  let oez = if any_mesh then Array.make n 0. else ohalf in
   let materials = ref [] and n_materials = ref 0 in
   (* With each patterned material, where its pattern lies: [frame ()] is
      the object's [Shape.pattern_frame], asked only then (a mesh's scans
      every vertex). *)
   let frames = ref [] in
-  let new_material (m : Material.t) frame =
+  let add_material (m : Material.t) frame =
     materials := m :: !materials;
     (match m.pattern with Some p -> frames := (!n_materials, p, frame ()) :: !frames | None -> ());
     incr n_materials;
     !n_materials - 1
+  in
+  (* Equal materials share one: a million spheres use a dozen. Equal bit
+     for bit, so that sharing changes no arithmetic. Plain ones only: a
+     pattern lies in its object's frame, and a transparent material names
+     its object's medium (Ray_tree). *)
+  let known = Materials.create 64 in
+  let new_material (m : Material.t) frame =
+    if Option.is_some m.pattern || m.transparency > 0. then add_material m frame
+    else
+      match Materials.find_opt known m with
+      | Some i -> i
+      | None ->
+          let i = add_material m frame in
+          Materials.add known m i;
+          i
   in
   let corners = Array.make 9 0. in
   (* A mesh's triangles come in a run: one material for the run. *)
@@ -282,7 +317,8 @@ let prepare ?(skips = true) scene =
   let add_csg k c =
     let first = ref (-1) in
     let material leaf =
-      let i = new_material (Csg.leaf_material leaf) (fun () -> Shape.leaf_pattern_frame leaf) in
+      (* Not shared: the first leaf's number names the solid's medium. *)
+      let i = add_material (Csg.leaf_material leaf) (fun () -> Shape.leaf_pattern_frame leaf) in
       if !first < 0 then first := i;
       i
     in
@@ -295,7 +331,12 @@ let prepare ?(skips = true) scene =
     ocx.(k) <- c.x;
     ocy.(k) <- c.y;
     ocz.(k) <- c.z;
-    ohalf.(k) <- h
+    ohalf.(k) <- h;
+    if any_mesh then begin
+      oex.(k) <- h;
+      oey.(k) <- h;
+      oez.(k) <- h
+    end
   in
   ignore
     (iter_objects scene
@@ -318,7 +359,14 @@ let prepare ?(skips = true) scene =
          in
          let c, h = Mesh.bounds m t in
          let smooth = Mesh.corner_normals m t corners 0 in
-         set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h));
+         set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h;
+         let half a =
+           let v c = m.positions.((3 * m.triangles.((3 * t) + c)) + a) in
+           0.5 *. (Float.max (v 0) (Float.max (v 1) (v 2)) -. Float.min (v 0) (Float.min (v 1) (v 2)))
+         in
+         oex.(k) <- half 0;
+         oey.(k) <- half 1;
+         oez.(k) <- half 2));
   let materials = Array.of_list (List.rev !materials) in
   (* A patterned material's second colour is a material of its own, after
      the scene's: the tracer picks one of the two indices, so that the
@@ -338,14 +386,20 @@ let prepare ?(skips = true) scene =
   let twin_of = sphere_twins ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~n_spheres n in
   (* Arrays, not lists: a mesh makes millions of objects. *)
   let select keep =
-    let a = Array.make n 0 and m = ref 0 in
+    (* Counted first: no array of [n] for the few planes. *)
+    let m = ref 0 in
+    for k = 0 to n - 1 do
+      if keep k then incr m
+    done;
+    let a = Array.make !m 0 in
+    m := 0;
     for k = 0 to n - 1 do
       if keep k then begin
         a.(!m) <- k;
         incr m
       end
     done;
-    Array.sub a 0 !m
+    a
   in
   let kept k = twin_of.(k) = k in
   let bounded = select (fun k -> kept k && okind.(k) <> Shape.plane) in
@@ -354,9 +408,15 @@ let prepare ?(skips = true) scene =
   let bvh =
     if skips && nb > bvh_threshold then begin
       let pick a = Array.map (fun k -> a.(k)) bounded in
-      let cx = pick ocx and cy = pick ocy and cz = pick ocz and radius = pick ohalf in
-      let margin = Bvh.ray_box_margin ~cx ~cy ~cz ~radius scene.camera.position in
-      Some (Bvh.build ~cx ~cy ~cz (Array.mapi (fun i r -> r +. margin.(i)) radius))
+      let margin =
+        Bvh.ray_box_margin ~cx:(pick ocx) ~cy:(pick ocy) ~cz:(pick ocz) ~radius:(pick ohalf) scene.camera.position
+      in
+      (* Each box padded by its margin: [build_boxes] takes these arrays. *)
+      let lo c e = Array.mapi (fun i k -> c.(k) -. (e.(k) +. margin.(i))) bounded in
+      let hi c e = Array.mapi (fun i k -> c.(k) +. (e.(k) +. margin.(i))) bounded in
+      Some
+        (Bvh.build_boxes ~x0:(lo ocx oex) ~y0:(lo ocy oey) ~z0:(lo ocz oez) ~x1:(hi ocx oex) ~y1:(hi ocy oey)
+           ~z1:(hi ocz oez) ())
     end
     else None
   in
@@ -364,7 +424,9 @@ let prepare ?(skips = true) scene =
      hierarchy, the scene's order. *)
   let index =
     match bvh with
-    | Some b -> Array.append (Array.map (fun k -> bounded.(k)) b.order) unbounded
+    | Some b ->
+        let nb = Array.length b.order in
+        Array.init (nb + Array.length unbounded) (fun i -> if i < nb then bounded.(b.order.(i)) else unbounded.(i - nb))
     | None -> select kept
   in
   let slot = Array.make n 0 in

@@ -131,6 +131,7 @@ module Private : sig
   module Scratch = Scratch
   module Ray_tree = Ray_tree
   module Float_scan = Float_scan
+  module Sexp_scan = Sexp_scan
   module Antialias = Antialias
   module Render_work = Render_work
 end

@@ -649,13 +649,159 @@ let form_start text offset =
   done;
   Positions.{ line = !line; col = i - !bol; offset = i }
 
+(* Fast reading. Most forms are plain text (parentheses, plain atoms,
+   blanks, line comments): [Sexp_scan] reads those, and spheres straight
+   into their values, with no tree; anything else goes to parsexp. Both
+   accept and refuse the same texts, and every error is reported by the
+   located pass, so the messages are parsexp's and the converters'. *)
+
+(* parsexp holds a form whole, in 30 to 50 times its text: the text is fed
+   to it in chunks, and a form that grows past the form bound is refused
+   before it can take more. *)
+let chunk = 65536
+
+(* Longer plain forms go to parsexp, which bounds their memory. *)
+let simple_form_bytes = 16384
+
+exception Form_too_long of string
+
+(* [line_at p] is the position of offset [p]; offsets only grow from call
+   to call, so counting lines costs one pass over the text in all. *)
+let line_counter text =
+  let at = ref 0 and line = ref 1 and bol = ref 0 in
+  fun p ->
+    for k = !at to p - 1 do
+      if String.unsafe_get text k = '\n' then begin
+        incr line;
+        bol := k + 1
+      end
+    done;
+    at := p;
+    Positions.{ line = !line; col = p - !bol; offset = p }
+
+(* A sphere's fields as numbers, and recent spheres as prototypes: the
+   grid layout repeats a dozen radii and materials, and a sphere made as
+   [{ proto with center }] shares its prototype's colour and boxed floats,
+   which takes a million spheres from 184 to 104 bytes each. *)
+type fast = {
+  values : float array;  (** center x y z, radius, color r g b, specular, reflective. *)
+  mutable seen : int;  (** The fields read, one bit each, in [sphere_field] order. *)
+  protos : Sphere.t array;  (** Recent spheres, by a hash of all but their center. *)
+}
+
+let n_protos = 64
+
+let fast_state () =
+  { values = Array.make 9 0.; seen = 0; protos = Array.make n_protos (Sphere.v ~center:Vec3.zero ~radius:nan Color.black) }
+
+let sphere_arity = [| 3; 1; 3; 1; 1 |]
+let sphere_value = [| 0; 3; 4; 7; 8 |]
+
+(* Is [s.[i] .. s.[j - 1]] the word [w]? *)
+let is_word s i j w =
+  j - i = String.length w
+  &&
+  let k = ref 0 in
+  while !k < j - i && String.unsafe_get s (i + !k) = String.unsafe_get w !k do
+    incr k
+  done;
+  !k = j - i
+
+(* The field of a sphere named [s.[a] .. s.[e - 1]], numbered center,
+   radius, color, specular, reflective; [-1] if none. *)
+let sphere_field s a e =
+  match e - a with
+  | 6 -> if is_word s a e "center" then 0 else if is_word s a e "radius" then 1 else -1
+  | 5 -> if is_word s a e "color" then 2 else -1
+  | 8 -> if is_word s a e "specular" then 3 else -1
+  | 10 -> if is_word s a e "reflective" then 4 else -1
+  | _ -> -1
+
+(* Reads the plain sphere form at [s.[i] = '('] into [f] and is the index
+   past it: each field once, numbers that [Float_scan] reads as finite
+   floats (the same as [Float_text.of_string]), [center], [radius] and
+   [color] given. @raise Sexp_scan.Unusual otherwise. *)
+let sphere_fields f s i =
+  let open Sexp_scan in
+  let n = String.length s in
+  let bytes = Bytes.unsafe_of_string s in
+  let j = skip_blank s (i + 1) in
+  let k = atom_end s j in
+  if not (is_word s j k "sphere") then raise Unusual;
+  f.seen <- 0;
+  let rec fields p =
+    let p = skip_blank s p in
+    if p >= n then raise Unusual;
+    match String.unsafe_get s p with
+    | ')' -> p + 1
+    | '(' ->
+        let a = skip_blank s (p + 1) in
+        let e = atom_end s a in
+        let c = sphere_field s a e in
+        if c < 0 || f.seen land (1 lsl c) <> 0 then raise Unusual;
+        f.seen <- f.seen lor (1 lsl c);
+        let q = ref e in
+        for v = 0 to sphere_arity.(c) - 1 do
+          let a = skip_blank s !q in
+          let e = atom_end s a in
+          let x = if e > a then Float_scan.to_float bytes a e else nan in
+          if not (Float.is_finite x) then raise Unusual;
+          f.values.(sphere_value.(c) + v) <- x;
+          q := e
+        done;
+        let q = skip_blank s !q in
+        if q >= n || String.unsafe_get s q <> ')' then raise Unusual;
+        fields (q + 1)
+    | _ -> raise Unusual
+  in
+  let e = fields k in
+  if f.seen land 7 <> 7 then raise Unusual;
+  e
+
+let[@inline] same_float x y = x = y && Float.sign_bit x = Float.sign_bit y
+
+(* Adds the sphere read by [sphere_fields], checked as [sphere] checks it.
+   @raise Sexp_scan.Unusual if a check fails: [sphere] then reports it. *)
+let add_sphere b f =
+  let ok = function Ok x -> x | Error _ -> raise Sexp_scan.Unusual in
+  let v = f.values in
+  (* [Limits.check_count]'s test, without building its messages. *)
+  if not (Float.of_int (b.n_spheres + 1) <= Limits.bound b.limits `Spheres) then raise Sexp_scan.Unusual;
+  let center = ok (Sphere.check_center (Vec3.v v.(0) v.(1) v.(2))) in
+  let radius = ok (Sphere.check_radius v.(3)) in
+  let specular = if f.seen land 8 = 0 then Sphere.matte else ok (Sphere.check_specular v.(7)) in
+  let reflective = if f.seen land 16 = 0 then 0. else ok (Sphere.check_reflective v.(8)) in
+  let r = v.(4) and g = v.(5) and bl = v.(6) in
+  (* Any hash will do; [truncate] is defined for every finite float here
+     (checked above, or garbage but harmless for a colour out of range). *)
+  let k =
+    ((truncate (radius *. 1024.) * 31)
+    + (truncate r * 7) + (truncate g * 5) + (truncate bl * 3) + (truncate specular * 11)
+    + truncate (reflective *. 64.))
+    land (n_protos - 1)
+  in
+  let p = f.protos.(k) in
+  let sphere =
+    if same_float p.radius radius && same_float p.color.r r && same_float p.color.g g && same_float p.color.b bl
+       && same_float p.specular specular && same_float p.reflective reflective
+    then { p with center }
+    else begin
+      let color = ok (Sphere.check_color (Color.v r g bl)) in
+      let s = Sphere.v ~specular ~reflective ~center ~radius color in
+      f.protos.(k) <- s;
+      s
+    end
+  in
+  b.n_spheres <- b.n_spheres + 1;
+  b.spheres <- sphere :: b.spheres
+
 (* Without a loader, a scene names no mesh file it can read. *)
 let no_loader path =
   Error
     (`Msg
       (Printf.sprintf "cannot read mesh file %s: this scene was given as text, with no way to read files" path))
 
-let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") text =
+let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast) text =
   (* Mesh files are named relative to the scene file; each is read once,
      even when an error makes a second, located pass over the text. *)
   let loaded = Hashtbl.create 4 in
@@ -675,42 +821,94 @@ let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
   | Error (`Msg m) -> Error (`Msg (Printf.sprintf "%s: %s" file m))
   | Ok _ -> (
     let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
-    (* Each form is converted as soon as it is parsed, and positions are not
+    (* Each form is converted as soon as it is read, and positions are not
        recorded: big scenes load in little time and memory. Only an error
        triggers a second pass that records positions, and fails on the same
        node. *)
     let b = builder ~limits ~load (fun _ -> None) in
-    (* The parser holds a form whole, in 30 to 50 times its text: the text
-       is fed in chunks, and a form that grows past the form bound is
-       refused before it can take more. *)
-    let form_end = ref 0 in
-    let state =
-      Parsexp.Eager.State.create (fun ro form ->
-          form_end := Parsexp.Eager.State.Read_only.offset ro;
-          add_form b form)
+    let fast = fast_state () in
+    let n = String.length text in
+    (* [!form_end] is where the last form read ended. The form bound is
+       checked as it was when parsexp read the whole text 64 KiB at a time:
+       at each multiple of 64 KiB (and at the end), the bytes since the
+       last form's end, counted before the form that straddles that point
+       is converted. [!boundary] is the next point to check. *)
+    let form_end = ref 0 and boundary = ref (min chunk n) in
+    let check_below e =
+      while !boundary < e do
+        (match Limits.check_form_bytes limits (!boundary - !form_end) with
+        | Ok _ -> ()
+        | Error (`Msg m) -> raise (Form_too_long m));
+        boundary := if !boundary >= n then max_int else min (!boundary + chunk) n
+      done
     in
-    let chunk = 65536 and n = String.length text in
-    let rec feed stack pos =
-      if pos >= n then Ok (Parsexp.Eager.feed_eoi state stack)
+    let line_at = line_counter text in
+    (* A plain form, read by [Sexp_scan] and converted; spheres are read
+       straight into their values. *)
+    let simple i =
+      let form, e = Sexp_scan.form text i ~max_bytes:simple_form_bytes in
+      check_below e;
+      add_form b form;
+      e
+    in
+    let fast_form i =
+      match sphere_fields fast text i with
+      | e -> (
+          check_below e;
+          match add_sphere b fast with () -> e | exception Sexp_scan.Unusual -> simple i)
+      | exception Sexp_scan.Unusual -> simple i
+    in
+    (* Anything else, from [p] (the end of the last form) to the end of the
+       next form, goes to parsexp, fed up to the next closing parenthesis
+       at a time so that it stops where that form does. *)
+    let rec slow_from p =
+      let completed = ref false in
+      let state =
+        Parsexp.Eager.State.create ~pos:(line_at p) (fun _ form ->
+            completed := true;
+            add_form b form)
+      in
+      let rec go p stack =
+        if p >= n then Parsexp.Eager.feed_eoi state stack
+        else begin
+          let stop = min !boundary n in
+          let q = ref p in
+          while !q < stop && String.unsafe_get text !q <> ')' do
+            incr q
+          done;
+          let q = if !q < stop then !q + 1 else stop in
+          let stack = Parsexp.Eager.feed_substring state text ~pos:p ~len:(q - p) stack in
+          if !completed then form_end := q;
+          check_below (q + 1);
+          if !completed then fast_from q else go q stack
+        end
+      in
+      go p Parsexp.Eager.Stack.empty
+    and fast_from p =
+      if reader = `Parsexp then if p >= n then check_below (n + 1) else slow_from p
       else
-        let len = min chunk (n - pos) in
-        let stack = Parsexp.Eager.feed_substring state text ~pos ~len stack in
-        match Limits.check_form_bytes limits (pos + len - !form_end) with
-        | Ok _ -> feed stack (pos + len)
-        | Error (`Msg m) -> Error (form_start text !form_end, m)
+      match Sexp_scan.skip_blank text p with
+      | i when i >= n -> check_below (n + 1)
+      | i -> (
+          match fast_form i with
+          | e ->
+              form_end := e;
+              fast_from e
+          | exception Sexp_scan.Unusual -> slow_from p)
+      | exception Sexp_scan.Unusual -> slow_from p
     in
-    match feed Parsexp.Eager.Stack.empty 0 with
-    | Error (p, m) -> error p m
+    match fast_from 0 with
+    | () -> (
+        (* Every field was checked where it was read; this is a net. *)
+        match Scene.validate ~limits (finish b) with
+        | Ok s -> Ok s
+        | Error (`Msg m) -> error origin m)
+    | exception Form_too_long m -> error (form_start text !form_end) m
     | exception Parsexp.Parse_error.Parse_error e -> syntax e
     | exception Located _ -> (
         match locate_error ~limits ~load text with
         | `Syntax e -> syntax e
         | `Located (pos, m) -> error (Option.value pos ~default:origin) m
-        | `Not_found -> error origin "internal error: the located pass found no error")
-    | Ok () -> (
-        (* Every field was checked where it was read; this is a net. *)
-        match Scene.validate ~limits (finish b) with
-        | Ok s -> Ok s
-        | Error (`Msg m) -> error origin m))
+        | `Not_found -> error origin "internal error: the located pass found no error"))
 
 let to_string = Scene.show

@@ -42,9 +42,10 @@ val of_string :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
   ?file:string ->
+  ?reader:[ `Fast | `Parsexp ] ->
   string ->
   (Scene.valid, [> `Msg of string ]) result
-(** [of_string ~limits ~load_mesh ~file text] is the scene described by
+(** [of_string ~limits ~load_mesh ~file ~reader text] is the scene described by
     [text], validated against [limits] (default {!Limits.default}). [Error]
     if [text] is longer than its [`Scene_bytes] bound (refused before it is
     parsed), or one of its top-level forms longer than its [`Form_bytes]
@@ -55,7 +56,11 @@ val of_string :
     path; its error becomes the form's (the default refuses every mesh:
     text alone names no file it can read;
     [Raytrace_unix.Files.read_scene] reads scene files and their meshes).
-    Never raises. *)
+    Plain forms (parentheses, plain atoms, blanks and line comments) are
+    read without parsexp, spheres straight into their values, unless
+    [reader] (default [`Fast]) is [`Parsexp], which reads every form with
+    parsexp: the same scenes and the same errors, slower (the tests
+    compare the two). Never raises. *)
 
 val to_string : Scene.t -> string
 (** [to_string s] is {!Scene.show}[ s]: [s] in the scene-file syntax, every number written so

@@ -23,6 +23,7 @@ let () =
       ("literal", Test_literal.tests);
       ("pattern", Test_pattern.tests);
       ("scene_file", Test_scene_file.tests);
+      ("sexp_scan", Test_sexp_scan.tests);
       ("ppm", Test_ppm.tests);
       ("image_diff", Test_image_diff.tests);
       ("render", Test_render.tests);

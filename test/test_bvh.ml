@@ -13,6 +13,21 @@ let inside (b : Bvh.t) k x y z e =
   && b.lo_y.(k) <= y -. e && y +. e <= b.hi_y.(k)
   && b.lo_z.(k) <= z -. e && z +. e <= b.hi_z.(k)
 
+(* Calls [f leaf slot path] for every slot of [b], with its leaf and the
+   nodes from that leaf up to the root. *)
+let iter_slots (b : Bvh.t) f =
+  let rec walk k path =
+    if b.count.(k) > 0 then
+      for slot = b.first.(k) to b.first.(k) + b.count.(k) - 1 do
+        f k slot (k :: path)
+      done
+    else begin
+      walk (k + 1) (k :: path);
+      walk b.right.(k) (k :: path)
+    end
+  in
+  walk 0 []
+
 let tests =
   [
     Alcotest.test_case "every sphere sits in exactly one leaf, inside every box above it" `Quick (fun () ->
@@ -21,30 +36,53 @@ let tests =
             let cx, cy, cz, e = random_spheres n n in
             let b = Bvh.build ~cx ~cy ~cz e in
             let seen = Array.make n 0 in
-            (* Walk the tree, carrying the path of boxes. *)
-            let rec walk k path =
-              if b.count.(k) > 0 then begin
+            iter_slots b (fun k slot path ->
                 if b.count.(k) > 4 then Alcotest.failf "leaf %d holds %d spheres" k b.count.(k);
-                for slot = b.first.(k) to b.first.(k) + b.count.(k) - 1 do
-                  let i = b.order.(slot) in
-                  seen.(i) <- seen.(i) + 1;
-                  List.iter
-                    (fun j ->
-                      if not (inside b j cx.(i) cy.(i) cz.(i) e.(i)) then
-                        Alcotest.failf "sphere %d sticks out of box %d" i j)
-                    (k :: path)
-                done
-              end
-              else begin
-                walk (k + 1) (k :: path);
-                walk b.right.(k) (k :: path)
-              end
-            in
-            walk 0 [];
+                let i = b.order.(slot) in
+                seen.(i) <- seen.(i) + 1;
+                List.iter
+                  (fun j ->
+                    if not (inside b j cx.(i) cy.(i) cz.(i) e.(i)) then
+                      Alcotest.failf "sphere %d sticks out of box %d" i j)
+                  path);
             Alcotest.(check (array int)) (Printf.sprintf "%d spheres each once" n) (Array.make n 1) seen;
             Alcotest.(check int) "order is a permutation" n
               (List.length (List.sort_uniq compare (Array.to_list b.order))))
           [ 1; 2; 5; 9; 100; 1000 ]);
+    Alcotest.test_case "boxes of any shape each sit in one leaf, inside every box above it" `Quick (fun () ->
+        (* Slivers, as a mesh's triangles are: thin along a random axis. *)
+        let n = 2000 in
+        let rand = Random.State.make [| 7 |] in
+        let f lo hi = lo +. Random.State.float rand (hi -. lo) in
+        let lo = Array.init 3 (fun _ -> Array.make n 0.) and hi = Array.init 3 (fun _ -> Array.make n 0.) in
+        for i = 0 to n - 1 do
+          let thin = Random.State.int rand 3 in
+          for a = 0 to 2 do
+            let c = f (-10.) 10. and h = if a = thin then 0. else f 0. 0.5 in
+            lo.(a).(i) <- c -. h;
+            hi.(a).(i) <- c +. h
+          done
+        done;
+        let copy = Array.map Array.copy in
+        let l = copy lo and h = copy hi in
+        let b = Bvh.build_boxes ~x0:l.(0) ~y0:l.(1) ~z0:l.(2) ~x1:h.(0) ~y1:h.(1) ~z1:h.(2) () in
+        let seen = Array.make n 0 in
+        iter_slots b (fun _ slot path ->
+            let i = b.order.(slot) in
+            seen.(i) <- seen.(i) + 1;
+            (* The arrays were reordered into slot order. *)
+            if l.(0).(slot) <> lo.(0).(i) || h.(2).(slot) <> hi.(2).(i) then
+              Alcotest.failf "slot %d does not hold the box of object %d" slot i;
+            List.iter
+              (fun j ->
+                let inside =
+                  b.lo_x.(j) <= lo.(0).(i) && hi.(0).(i) <= b.hi_x.(j)
+                  && b.lo_y.(j) <= lo.(1).(i) && hi.(1).(i) <= b.hi_y.(j)
+                  && b.lo_z.(j) <= lo.(2).(i) && hi.(2).(i) <= b.hi_z.(j)
+                in
+                if not inside then Alcotest.failf "box %d sticks out of node %d" i j)
+              path);
+        Alcotest.(check (array int)) "each box once" (Array.make n 1) seen);
     Alcotest.test_case "the tree of grid:10000 is shallow" `Quick (fun () ->
         let p = Helpers.prepare (Scene.grid 10000) in
         match p.bvh with
