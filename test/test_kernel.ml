@@ -42,15 +42,24 @@ let variants (p : Prepared.t) =
     ("no negligible specular terms", Prepared.without Negligible_terms p);
   ]
 
-(* Random scenes in the kernel's reach: spheres alone, the document's mode,
-   canvases of a few tiles, the camera often turned. *)
+(* Random scenes in the kernel's reach: spheres alone, of plain materials
+   (no glass, no pattern), the document's mode, canvases of a few tiles,
+   the camera often turned. *)
 let textbook =
   let open QCheck.Gen in
   let gen =
     let* s = Gen_scene.gen in
     let* width = int_range 1 40 and* height = int_range 1 40 in
     let* epsilon = oneof [ return 0.001; float_range 0. 0.01 ] in
-    return { (Scene.with_overrides ~width ~height s) with shapes = []; epsilon = Some epsilon; camera_path = None }
+    let plain (sp : Sphere.t) = { sp with transparency = 0.; refractive_index = 1.; fresnel = false; pattern = None } in
+    return
+      {
+        (Scene.with_overrides ~width ~height s) with
+        spheres = List.map plain s.spheres;
+        shapes = [];
+        epsilon = Some epsilon;
+        camera_path = None;
+      }
   in
   QCheck.make ~print:Scene_file.to_string gen
 
