@@ -576,7 +576,7 @@ let[@inline] blocked_from tr l ~spheres =
     if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
     blocker >= 0
 
-let blocked_objects tr l = blocked_from tr l ~spheres:false
+let[@inline] blocked_objects tr l = blocked_from tr l ~spheres:false
 
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
