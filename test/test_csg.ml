@@ -341,15 +341,17 @@ let tests =
     Alcotest.test_case "random CSG scenes with glass and checkered leaves: the kernel's colours are the literal algorithm's"
       `Quick (fun () ->
         let rand = Random.State.make [| 1414 |] in
-        let glassy = ref 0 in
+        let glassy = ref 0 and checkered = ref 0 in
+        let count n (s : Scene.t) p = if List.exists (fun sh -> List.exists p (Shape.materials sh)) s.shapes then incr n in
         for i = 1 to 120 do
           let s = random_scene ~glass:true ~epsilon:0.001 rand in
           (match Scene.validate s with Error (`Msg m) -> Alcotest.failf "scene %d invalid: %s" i m | Ok _ -> ());
-          if List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.transparency > 0.) (Shape.materials sh)) s.shapes
-          then incr glassy;
+          count glassy s (fun m -> m.transparency > 0.);
+          count checkered s (fun m -> m.pattern <> None);
           if not (same_floats s) then Alcotest.failf "scene %d differs:\n%s" i (Scene_file.to_string s)
         done;
-        if !glassy < 60 then Alcotest.failf "only %d scenes of 120 have glass" !glassy;
+        if !glassy < 60 || !checkered < 60 then
+          Alcotest.failf "of 120 scenes, only %d have glass and %d a checker" !glassy !checkered;
         (* The glass lens: rays cross both faces, the floor's cells seen
            through it. *)
         let s = Scene.with_overrides ~width:48 ~height:36 (Helpers.load_scene "glass-lens.scene") in
