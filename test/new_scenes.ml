@@ -4,6 +4,11 @@ let all =
     ("boxes.scene", "boxes, a triangle, a plane");
     ("mesh.scene", "an OBJ mesh, smooth shading");
     ("checker.scene", "checker patterns on a plane, spheres and a box");
+    ("lens.scene", "a CSG intersection of two spheres");
+    ("die.scene", "a CSG difference of a cube and spheres");
+    ("glass.scene", "a glass ball over a checkered floor");
+    ("glass-lens.scene", "a glass CSG lens over a checkered floor");
+    ("glass-knot.scene", "a glass mesh");
   ]
 
 let names = List.map fst all

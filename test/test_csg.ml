@@ -4,7 +4,9 @@
    colour float on random scenes; silhouettes of small far CSG solids
    against exact rational arithmetic; the subtracted solid's normals;
    shadows through holes; no self-shadowing at any scale; no allocation
-   per pixel. The golden images and the scale and translation invariance
+   per pixel; the same with glass and checkered leaves (the solid one
+   medium, its first leaf's; each surface point its own leaf's material
+   and pattern frame). The golden images and the scale and translation invariance
    of scenes/lens.scene and scenes/die.scene are in Test_golden and
    Test_numerics, with every scene. *)
 open Raytrace
@@ -25,11 +27,11 @@ let octahedron_arrays (c : Vec3.t) r =
   let triangles = [| 0; 2; 4; 2; 1; 4; 1; 3; 4; 3; 0; 4; 2; 0; 5; 1; 2; 5; 3; 1; 5; 0; 3; 5 |] in
   (positions, triangles)
 
-let octahedron ?(color = white) c r =
+let octahedron ?(color = white) ?(material = Fun.id) c r =
   let positions, triangles = octahedron_arrays c r in
   match
     Mesh.v ~positions ~triangles ~normals:[||] ~triangle_normals:(Array.make (Array.length triangles) (-1))
-      (Material.v color)
+      (material (Material.v color))
   with
   | Ok m -> Csg.Mesh m
   | Error (`Msg e) -> Alcotest.fail e
@@ -48,27 +50,53 @@ let random_color rand = Color.v (Random.State.float rand 255.) (Random.State.flo
 let random_point rand =
   Vec3.v (Random.State.float rand 2.4 -. 1.2) (Random.State.float rand 2.4 -. 1.2) (4. +. Random.State.float rand 2.4 -. 1.2)
 
-let rec random_solid rand depth =
-  if depth > 0 && Random.State.int rand 3 > 0 then Csg.Csg (random_csg rand (depth - 1))
+(* With [~glass], a leaf in two is transparent (up to [1 - reflective],
+   index 1, 1.5 or in [0.5, 2.5], Fresnel or not) and a leaf in two
+   (sphere or box) has a checker: the draws of the plain generator come
+   first and unchanged, so that its scenes stay what they were. *)
+let rec random_solid ?(glass = false) rand depth =
+  if depth > 0 && Random.State.int rand 3 > 0 then Csg.Csg (random_csg ~glass rand (depth - 1))
   else
     let color = random_color rand in
     let specular = if Random.State.bool rand then Some (Random.State.float rand 500.) else None in
     let reflective = if Random.State.int rand 3 = 0 then Some (Random.State.float rand 0.6) else None in
+    let material (m : Material.t) = if glass then random_glass rand m else m in
     match Random.State.int rand 5 with
-    | 0 | 1 -> sphere ~color ?specular ?reflective (random_point rand) (0.3 +. Random.State.float rand 0.9)
-    | 2 | 3 ->
+    | 0 | 1 -> (
+        match sphere ~color ?specular ?reflective (random_point rand) (0.3 +. Random.State.float rand 0.9) with
+        | Csg.Sphere s ->
+            let m = material (Material.of_sphere s) in
+            Csg.Sphere
+              { s with transparency = m.transparency; refractive_index = m.refractive_index; fresnel = m.fresnel; pattern = m.pattern }
+        | solid -> solid)
+    | 2 | 3 -> (
         let lo = random_point rand in
         let size () = 0.2 +. Random.State.float rand 1.5 in
-        box ~color ?specular ?reflective lo (Vec3.add lo (Vec3.v (size ()) (size ()) (size ())))
-    | _ -> octahedron ~color (random_point rand) (0.4 +. Random.State.float rand 1.)
+        match box ~color ?specular ?reflective lo (Vec3.add lo (Vec3.v (size ()) (size ()) (size ()))) with
+        | Csg.Box b -> Csg.Box { b with material = material b.material }
+        | solid -> solid)
+    | _ -> octahedron ~color ~material (random_point rand) (0.4 +. Random.State.float rand 1.)
 
-and random_csg rand depth =
+and random_glass rand (m : Material.t) =
+  let m =
+    if Random.State.bool rand then m
+    else
+      let transparency = Float.min (1. -. m.reflective) (Random.State.float rand 1.1) in
+      let refractive_index =
+        match Random.State.int rand 3 with 0 -> 1. | 1 -> 1.5 | _ -> 0.5 +. Random.State.float rand 2.
+      in
+      { m with transparency; refractive_index; fresnel = Random.State.bool rand }
+  in
+  if Random.State.bool rand then m
+  else { m with pattern = Some (Pattern.checker ~size:(0.05 +. Random.State.float rand 1.) (random_color rand)) }
+
+and random_csg ?glass rand depth =
   let op = match Random.State.int rand 3 with 0 -> Csg.Union | 1 -> Csg.Intersection | _ -> Csg.Difference in
-  Csg.v op (random_solid rand depth) (random_solid rand depth)
+  Csg.v op (random_solid ?glass rand depth) (random_solid ?glass rand depth)
 
-let random_scene ?epsilon rand =
+let random_scene ?glass ?epsilon rand =
   let n = 1 + Random.State.int rand 2 in
-  let shapes = List.init n (fun _ -> Shape.Csg (random_csg rand 2)) in
+  let shapes = List.init n (fun _ -> Shape.Csg (random_csg ?glass rand 2)) in
   let spheres =
     if Random.State.bool rand then [ Sphere.v ~center:(random_point rand) ~radius:0.4 ~reflective:0.3 (random_color rand) ]
     else []
@@ -310,6 +338,67 @@ let tests =
             let s = Scene.with_overrides ~width:40 ~height:40 (Helpers.load_scene name) in
             if not (same_floats { s with epsilon = Some 0.001 }) then Alcotest.failf "%s differs" name)
           [ "lens.scene"; "die.scene" ]);
+    Alcotest.test_case "random CSG scenes with glass and checkered leaves: the kernel's colours are the literal algorithm's"
+      `Quick (fun () ->
+        let rand = Random.State.make [| 1414 |] in
+        let glassy = ref 0 and checkered = ref 0 in
+        let count n (s : Scene.t) p = if List.exists (fun sh -> List.exists p (Shape.materials sh)) s.shapes then incr n in
+        for i = 1 to 120 do
+          let s = random_scene ~glass:true ~epsilon:0.001 rand in
+          (match Scene.validate s with Error (`Msg m) -> Alcotest.failf "scene %d invalid: %s" i m | Ok _ -> ());
+          count glassy s (fun m -> m.transparency > 0.);
+          count checkered s (fun m -> m.pattern <> None);
+          if not (same_floats s) then Alcotest.failf "scene %d differs:\n%s" i (Scene_file.to_string s)
+        done;
+        if !glassy < 60 || !checkered < 60 then
+          Alcotest.failf "of 120 scenes, only %d have glass and %d a checker" !glassy !checkered;
+        (* The glass lens: rays cross both faces, the floor's cells seen
+           through it. *)
+        let s = Scene.with_overrides ~width:48 ~height:36 (Helpers.load_scene "glass-lens.scene") in
+        if not (same_floats { s with epsilon = Some 0.001 }) then Alcotest.fail "glass-lens.scene differs");
+    Alcotest.test_case "random CSG scenes with glass and checkered leaves: skips on and off give the same bytes" `Quick
+      (fun () ->
+        let rand = Random.State.make [| 4114 |] in
+        for i = 1 to 60 do
+          let epsilon = if Random.State.bool rand then Some 0.001 else None in
+          let s = random_scene ~glass:true ?epsilon rand in
+          if not (Image.equal (Helpers.image_exn ~skips:false s) (Helpers.image_exn ~skips:true s)) then
+            Alcotest.failf "scene %d: the skips change the image:\n%s" i (Scene_file.to_string s)
+        done;
+        List.iter
+          (fun name ->
+            let s = Scene.with_overrides ~width:80 ~height:60 (Helpers.load_scene name) in
+            Helpers.check_images name ~expected:(Helpers.image_exn ~skips:false s) (Helpers.image_exn ~skips:true s))
+          [ "glass-lens.scene"; "glass.scene" ]);
+    Alcotest.test_case "a checker on a CSG leaf (sphere, box) lies where the leaf alone shows it" `Quick (fun () ->
+        let checker = Some (Pattern.checker ~size:0.3 (Color.v 20. 40. 200.)) in
+        let ball =
+          { (Sphere.v ~center:(Vec3.v (-0.8) 0. 4.) ~radius:0.9 ~specular:100. ~reflective:0.2 (Color.v 230. 200. 60.)) with pattern = checker }
+        in
+        (* No pixel's ray passes exactly through one of the cube's edges:
+           there the box alone has a hit of zero length, which the CSG
+           solid's intervals drop. *)
+        let cube = Box.v ~min:(Vec3.v 0.35 (-0.95) 3.5) ~max:(Vec3.v 1.6 0.4 4.8) { (Material.v ~specular:10. (Color.v 60. 180. 90.)) with pattern = checker } in
+        (* The union with a sphere out of sight, under the floor, and the
+           intersection with a sphere that holds the leaf, leave the leaf's
+           surface and its pattern's frame as they are. *)
+        let far = Csg.Sphere (Sphere.v ~center:(Vec3.v 0. (-60.) 4.) ~radius:0.1 white) in
+        let around = Csg.Sphere (Sphere.v ~center:(Vec3.v 0. 0. 4.) ~radius:5. (Color.v 255. 0. 0.)) in
+        List.iter
+          (fun epsilon ->
+            List.iter
+              (fun (what, alone, leaf) ->
+                List.iter
+                  (fun (how, c) ->
+                    let img shapes spheres = Helpers.image_exn (scene ?epsilon ~width:64 ~height:64 ~spheres (floor :: shapes)) in
+                    let expected = match alone with `Sphere s -> img [] [ s ] | `Shape sh -> img [ sh ] [] in
+                    let actual = img [ Shape.Csg c ] [] in
+                    Helpers.check_images ~max_abs:1
+                      (Printf.sprintf "%s, %s, %s" what how (if epsilon = None then "robust" else "epsilon"))
+                      ~expected actual)
+                  [ ("in a union", Csg.v Csg.Union leaf far); ("in an intersection", Csg.v Csg.Intersection leaf around) ])
+              [ ("a sphere", `Sphere ball, Csg.Sphere ball); ("a box", `Shape (Shape.Box cube), Csg.Box cube) ])
+          [ None; Some 0.001 ]);
     Alcotest.test_case "many CSG solids: the hierarchy over their bounds gives the bytes of testing every one" `Quick
       (fun () ->
         let rand = Random.State.make [| 41 |] in
@@ -422,11 +511,14 @@ let tests =
               (Printf.sprintf "scale %g, moved by %s" scale (Vec3.show translate))
               ~expected:(Helpers.image_exn plain) (Helpers.image_exn csg))
           [ (1., Vec3.zero); (1e-6, Vec3.zero); (1e6, Vec3.zero); (1., Vec3.v 1e6 (-1e6) 1e6) ]);
-    Alcotest.test_case "a CSG scene allocates nothing per pixel, in both modes" `Quick (fun () ->
-        let s = Helpers.load_scene "die.scene" in
+    Alcotest.test_case "a CSG scene, opaque or glass, allocates nothing per pixel, in both modes" `Quick (fun () ->
         List.iter
-          (fun epsilon ->
-            let s = Scene.with_overrides ~width:64 ~height:64 { s with Scene.epsilon } in
-            Alcotest.(check (float 0.)) "minor words" 0. (stats s).minor_words)
-          [ None; Some 0.001 ]);
+          (fun name ->
+            let s = Helpers.load_scene name in
+            List.iter
+              (fun epsilon ->
+                let s = Scene.with_overrides ~width:64 ~height:48 { s with Scene.epsilon } in
+                Alcotest.(check (float 0.)) (name ^ ": minor words") 0. (stats s).minor_words)
+              [ None; Some 0.001 ])
+          [ "die.scene"; "glass-lens.scene" ]);
   ]

@@ -1,5 +1,5 @@
 (* The farm (tiles, regions, merge, frames, docs/farm.md) on the scenes
-   with planes, boxes, meshes and patterns (New_scenes): the same bytes as
+   with planes, boxes, meshes, patterns, CSG and glass (New_scenes): the same bytes as
    a plain render. (The window's test takes the same table.) *)
 
 (* Run in separate processes at the same time, as on a farm. *)

@@ -247,7 +247,7 @@ let tests =
           (fun name ->
             let s = { (Scene.with_overrides ~width:48 ~height:36 (Helpers.load_scene name)) with epsilon = Some 0.001 } in
             same name ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
-          [ "glass.scene"; "glass-knot.scene" ]);
+          [ "glass.scene"; "glass-knot.scene"; "glass-lens.scene" ]);
     Alcotest.test_case "the tree stops early: deep glass traces fewer rays with the skips, for the same bytes"
       `Quick (fun () ->
         (* A ball that reflects 0.4 and lets through 0.4 between mirror
@@ -275,7 +275,7 @@ let tests =
                 | Ok (_, st) -> Alcotest.(check (float 0.)) name 0. st.minor_words
                 | Error (`Msg m) -> Alcotest.fail m)
               [ None; Some 0.001 ])
-          [ "glass.scene"; "glass-knot.scene" ]);
+          [ "glass.scene"; "glass-knot.scene"; "glass-lens.scene" ]);
     Alcotest.test_case "rays grazing glass and rays past the critical angle give finite colours" `Quick (fun () ->
         (* Pixel column 0 of the canvas looks along x = 0: tangent to the
            balls of center x = +-1, radius 1, and along the face x = 0 of
