@@ -972,7 +972,10 @@ let[@inline never] tile_candidates tr tx ty =
 let[@inline] textbook_kernel tr ~behind =
   let p = tr.p and s = tr.s in
   let sph = p.sphere4 in
-  let n = p.n_objects and eps = p.epsilon in
+  (* Floats computed, not read: a float field or [infinity] bound as is
+     stays a pointer to a boxed float, read through once more at every use
+     (eps >= 0, so adding 0. changes no comparison). *)
+  let n = p.n_objects and eps = p.epsilon +. 0. and inf = 1. /. 0. in
   let n4 = 4 * n in
   let n_lights = p.n_lights and light6 = p.light6 in
   let last_blocker = tr.last_blocker and shadow_skip = p.shadow_skip in
@@ -991,7 +994,7 @@ let[@inline] textbook_kernel tr ~behind =
     (* The closest hit, as [closest_textbook_all] finds it: the t_max of
        camera and mirror rays is infinity, which [t < best] already
        implies. *)
-    let best = ref infinity and hit = ref (-1) in
+    let best = ref inf and hit = ref (-1) in
     if !levels > 0 then begin
       tests := !tests + n;
       let k = ref 0 in
@@ -1088,7 +1091,7 @@ let[@inline] textbook_kernel tr ~behind =
         if kind = 0. then intensity := !intensity +. li
         else begin
           let point = kind = 1. in
-          let lx = ref 0. and ly = ref 0. and lz = ref 0. and t_max = ref infinity in
+          let lx = ref 0. and ly = ref 0. and lz = ref 0. and t_max = ref inf in
           if point then begin
             lx := Array.unsafe_get light6 (o + 2) -. px;
             ly := Array.unsafe_get light6 (o + 3) -. py;
