@@ -1036,6 +1036,9 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
       let best = ref inf and hit = ref (-1) in
       if !levels > 0 then begin
         tests := !tests + n;
+        (* Fresh names for what the loop reads: values live across the calls
+           (pow, settled) stay on the stack, reloaded at every use otherwise. *)
+        let sph = Sys.opaque_identity sph and n4 = Sys.opaque_identity n4 in
         let k = ref 0 in
         while !k < n4 do
           let i = !k in
