@@ -903,7 +903,8 @@ let[@inline] blocks_unless_behind sph ox oy oz dx dy dz t_min t_max two_k1 k1x4 
   let fx = ox -. Array.unsafe_get sph k
   and fy = oy -. Array.unsafe_get sph (k + 1)
   and fz = oz -. Array.unsafe_get sph (k + 2) in
-  let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+  let h = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+  let k2 = h +. h in
   let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (k + 3) in
   (not (behind && k2 > 0. && k3 > 0.))
   &&
@@ -1025,11 +1026,13 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
     tr.first_hit <- -1;
     tr.origin_sphere <- -1;
     while !tracing do
-      (* The ray of this level is in [s]: read once, into registers. *)
+      (* The ray of this level is in [s]: read once, into registers.
+         Doublings are written [x +. x]: the same bits as [2. *. x] (both
+         exact, or both infinite), one instruction, no constant to load. *)
       let ox' = s.ox and oy' = s.oy and oz' = s.oz and dx' = s.dx and dy' = s.dy and dz' = s.dz in
       let t_min' = s.t_min in
       let a = (dx' *. dx') +. (dy' *. dy') +. (dz' *. dz') in
-      let two_k1 = 2. *. a and k1x4 = 4. *. a in
+      let two_k1 = a +. a and k1x4 = 4. *. a in
       (* The closest hit, as [closest_textbook_all] finds it: the t_max of
          camera and mirror rays is infinity, which [t < best] already
          implies. *)
@@ -1043,7 +1046,8 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
         while !k < n4 do
           let i = !k in
           let fx = ox' -. Array.unsafe_get sph i and fy = oy' -. Array.unsafe_get sph (i + 1) and fz = oz' -. Array.unsafe_get sph (i + 2) in
-          let k2 = 2. *. ((fx *. dx') +. (fy *. dy') +. (fz *. dz')) in
+          let h = (fx *. dx') +. (fy *. dy') +. (fz *. dz') in
+          let k2 = h +. h in
           let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (i + 3) in
           if not (behind && k2 > 0. && k3 > 0.) then begin
             let disc = (k2 *. k2) -. (k1x4 *. k3) in
@@ -1081,7 +1085,8 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
           let i = Array.unsafe_get cand j in
           let k = 4 * i in
           let fx = Array.unsafe_get pr k and fy = Array.unsafe_get pr (k + 1) and fz = Array.unsafe_get pr (k + 2) in
-          let k2 = 2. *. ((fx *. dx') +. (fy *. dy') +. (fz *. dz')) in
+          let h = (fx *. dx') +. (fy *. dy') +. (fz *. dz') in
+          let k2 = h +. h in
           let k3 = Array.unsafe_get pr (k + 3) in
           if not (behind && k2 > 0. && k3 > 0.) then begin
             let disc = (k2 *. k2) -. (k1x4 *. k3) in
@@ -1153,7 +1158,7 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
                same order). *)
             let cos = ref 0. in
             if shiny then begin
-              let k = 2. *. n_dot_l in
+              let k = n_dot_l +. n_dot_l in
               let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
               let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
               if r_dot_v > 0. then cos := r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v)
@@ -1174,7 +1179,7 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
               (* [shadowed] with the skips: this light's last blocker first,
                  then the first blocker of the others, in scene order. *)
               let a = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
-              let two_k1 = 2. *. a and k1x4 = 4. *. a in
+              let two_k1 = a +. a and k1x4 = 4. *. a in
               tr.counters.shadow <- tr.counters.shadow + 1;
               let last = Array.unsafe_get last_blocker l in
               if last >= 0 && blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * last) then begin
@@ -1235,7 +1240,8 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
           end
           else begin
             (* The mirror ray R = 2 <V, N> N - V from the hit point. *)
-            let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
+            let h = (vx *. nx) +. (vy *. ny) +. (vz *. nz) in
+            let k = h +. h in
             s.ox <- px;
             s.oy <- py;
             s.oz <- pz;
