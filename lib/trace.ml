@@ -864,6 +864,7 @@ let[@inline] mirror_ray (p : Prepared.t) s =
   s.dz <- (nz *. k) -. vz;
   s.t_min <- p.epsilon;
   s.t_max <- infinity
+
 (* The direction of the camera ray through viewport point [(vx, vy, vz)],
    turned by the camera's matrix [m] unless it is the identity. *)
 let[@inline] set_direction s identity (m : Camera.rotation) vx vy vz =
@@ -997,8 +998,11 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
   let n4 = 4 * n in
   let n_lights = p.n_lights and light6 = p.light6 in
   let last_blocker = tr.last_blocker and shadow_skip = p.shadow_skip in
-  (* A row of camera rays ([row]: as [row] sets them up, with what is
-  constant along the row read once), or the one ray in [s]. *)
+  (* With [row], the camera rays of columns [col0] to [col0 + count - 1] of
+     canvas row [r], set up as [row] would, with what is constant along the
+     row read once, and each pixel stored at [k0 + 3 (col - col0)];
+     without, the one ray in [s] ([count] = 1). Its setup is then once per
+     row, not once per pixel. *)
   let c = tr.counters and ty = r / tile and vx = p.column_vx and cull = row && p.cull in
   let vy = if row then Array.unsafe_get p.row_vy r else 0. in
   let vz = p.viewport.distance and m = p.camera.rotation and o = p.camera.position in
