@@ -864,6 +864,24 @@ let[@inline] mirror_ray (p : Prepared.t) s =
   s.dz <- (nz *. k) -. vz;
   s.t_min <- p.epsilon;
   s.t_max <- infinity
+
+(* The direction of the camera ray through viewport point [(vx, vy, vz)],
+   turned by the camera's matrix [m] unless it is the identity. *)
+let[@inline] set_direction s identity (m : Camera.rotation) vx vy vz =
+  if identity then begin
+    s.dx <- vx;
+    s.dy <- vy;
+    s.dz <- vz
+  end
+  else begin
+    s.dx <- (vx *. m.row0.x) +. (vy *. m.row0.y) +. (vz *. m.row0.z);
+    s.dy <- (vx *. m.row1.x) +. (vy *. m.row1.y) +. (vz *. m.row1.z);
+    s.dz <- (vx *. m.row2.x) +. (vy *. m.row2.y) +. (vz *. m.row2.z)
+  end
+
+(* The buffer of the kernel's one-ray copies, which store nothing. *)
+let no_buffer : Image.buffer = Bigarray.Array1.create Bigarray.int8_unsigned Bigarray.c_layout 0
+
 (* The document's kernel: spheres alone, the textbook roots, no hierarchy
    (the reference scene), with the skips on. The whole ray tree of a pixel
    is one loop over local variables: rays, hit points, normals and light
@@ -886,7 +904,8 @@ let[@inline] blocks_unless_behind sph ox oy oz dx dy dz t_min t_max two_k1 k1x4 
   let fx = ox -. Array.unsafe_get sph k
   and fy = oy -. Array.unsafe_get sph (k + 1)
   and fz = oz -. Array.unsafe_get sph (k + 2) in
-  let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+  let h = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+  let k2 = h +. h in
   let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (k + 3) in
   (not (behind && k2 > 0. && k3 > 0.))
   &&
@@ -969,253 +988,293 @@ let[@inline never] tile_candidates tr tx ty =
   tr.tile_row.(tx) <- ty;
   tr.tile_count.(tx) <- !count
 
-let[@inline] textbook_kernel tr ~behind =
+let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 count r =
   let p = tr.p and s = tr.s in
   let sph = p.sphere4 in
-  let n = p.n_objects and eps = p.epsilon in
+  (* Floats computed, not read: a float field or [infinity] bound as is
+     stays a pointer to a boxed float, read through once more at every use
+     (eps >= 0, so adding 0. changes no comparison). *)
+  let n = p.n_objects and eps = p.epsilon +. 0. and inf = 1. /. 0. in
   let n4 = 4 * n in
   let n_lights = p.n_lights and light6 = p.light6 in
   let last_blocker = tr.last_blocker and shadow_skip = p.shadow_skip in
-  let tests = ref 0 and levels = ref 0 and tracing = ref true in
-  (* The weight of the colour still to be traced: the product of the
-     reflectivities on the stack. *)
-  let weight = ref 1. in
-  tr.first_hit <- -1;
-  tr.origin_sphere <- -1;
-  while !tracing do
-    (* The ray of this level is in [s]: read once, into registers. *)
-    let ox' = s.ox and oy' = s.oy and oz' = s.oz and dx' = s.dx and dy' = s.dy and dz' = s.dz in
-    let t_min' = s.t_min in
-    let a = (dx' *. dx') +. (dy' *. dy') +. (dz' *. dz') in
-    let two_k1 = 2. *. a and k1x4 = 4. *. a in
-    (* The closest hit, as [closest_textbook_all] finds it: the t_max of
-       camera and mirror rays is infinity, which [t < best] already
-       implies. *)
-    let best = ref infinity and hit = ref (-1) in
-    if !levels > 0 then begin
-      tests := !tests + n;
-      let k = ref 0 in
-      while !k < n4 do
-        let i = !k in
-        let fx = ox' -. Array.unsafe_get sph i and fy = oy' -. Array.unsafe_get sph (i + 1) and fz = oz' -. Array.unsafe_get sph (i + 2) in
-        let k2 = 2. *. ((fx *. dx') +. (fy *. dy') +. (fz *. dz')) in
-        let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (i + 3) in
-        if not (behind && k2 > 0. && k3 > 0.) then begin
-          let disc = (k2 *. k2) -. (k1x4 *. k3) in
-          if disc >= 0. then begin
-            let sq = sqrt disc in
-            let t2 = (-.k2 -. sq) /. two_k1 in
-            if t2 < !best && t_min' < t2 then begin
-              best := t2;
-              hit := i
-            end
-            else
-              let t1 = (-.k2 +. sq) /. two_k1 in
-              if t1 < !best && t_min' < t1 then begin
-                best := t1;
-                hit := i
-              end
-          end
-        end;
-        k := i + 4
-      done;
-      (* Slots, not places in [sph]. *)
-      if !hit >= 0 then hit := !hit / 4
-    end
-    else if tr.assumed <> no_assumption then begin
-      hit := primary_hit_spheres tr;
-      best := s.t
-    end
-    else begin
-      (* From the camera, CO and k3 are per-frame constants; only the
-         tile's spheres are tested. *)
-      let pr = p.primary4 in
-      let cand = tr.cand and first = tr.cand_first and count = tr.cand_count in
-      tests := !tests + count;
-      for j = first to first + count - 1 do
-        let i = Array.unsafe_get cand j in
-        let k = 4 * i in
-        let fx = Array.unsafe_get pr k and fy = Array.unsafe_get pr (k + 1) and fz = Array.unsafe_get pr (k + 2) in
-        let k2 = 2. *. ((fx *. dx') +. (fy *. dy') +. (fz *. dz')) in
-        let k3 = Array.unsafe_get pr (k + 3) in
-        if not (behind && k2 > 0. && k3 > 0.) then begin
-          let disc = (k2 *. k2) -. (k1x4 *. k3) in
-          if disc >= 0. then begin
-            let sq = sqrt disc in
-            let t2 = (-.k2 -. sq) /. two_k1 in
-            if t2 < !best && t_min' < t2 then begin
-              best := t2;
-              hit := i
-            end
-            else
-              let t1 = (-.k2 +. sq) /. two_k1 in
-              if t1 < !best && t_min' < t1 then begin
-                best := t1;
-                hit := i
-              end
-          end
-        end
-      done
+  (* With [row], the camera rays of columns [col0] to [col0 + count - 1] of
+     canvas row [r], set up as [row] would, with what is constant along the
+     row read once, and each pixel stored at [k0 + 3 (col - col0)];
+     without, the one ray in [s] ([count] = 1). Its setup is then once per
+     row, not once per pixel. *)
+  let c = tr.counters and ty = r / tile and vx = p.column_vx and cull = row && p.cull in
+  let vy = if row then Array.unsafe_get p.row_vy r else 0. in
+  let vz = p.viewport.distance and m = p.camera.rotation and o = p.camera.position in
+  let identity = p.identity_rotation in
+  for col = col0 to col0 + count - 1 do
+    if row then begin
+      if cull && (col = col0 || col land (tile - 1) = 0) then begin
+        let tx = col / tile in
+        if Array.unsafe_get tr.tile_row tx <> ty then tile_candidates tr tx ty;
+        tr.cand_first <- tx * n;
+        tr.cand_count <- Array.unsafe_get tr.tile_count tx
+      end;
+      set_direction s identity m (Array.unsafe_get vx col) vy vz;
+      s.ox <- o.x;
+      s.oy <- o.y;
+      s.oz <- o.z;
+      s.t_min <- 1.;
+      s.t_max <- inf;
+      c.primary <- c.primary + 1
     end;
-    let i = !hit in
-    if !levels = 0 then tr.first_hit <- i;
-    if i < 0 then begin
-      s.r <- p.background.r;
-      s.g <- p.background.g;
-      s.b <- p.background.b;
-      tracing := false
-    end
-    else begin
-      let t = !best in
-      let px = ox' +. (dx' *. t) and py = oy' +. (dy' *. t) and pz = oz' +. (dz' *. t) in
-      let nx = px -. Array.unsafe_get sph (4 * i) and ny = py -. Array.unsafe_get sph ((4 * i) + 1) and nz = pz -. Array.unsafe_get sph ((4 * i) + 2) in
-      let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
-      let nx = nx *. inv and ny = ny *. inv and nz = nz *. inv in
-      let vx = -.dx' and vy = -.dy' and vz = -.dz' in
-      let m = Array.unsafe_get p.material i in
-      (* [lighting], with the shadow ray inlined. *)
-      let specular = Array.unsafe_get p.specular m and cut = p.specular_cut and mo = m * n_lights in
-      let shiny = specular <> Sphere.matte in
-      (* The ambient lights that come first add up to the same sum in any
-         case: it starts from their total (Prepared.ambient_lead). *)
-      let intensity = ref p.ambient_lead in
-      let length_n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
-      (* |V| = |D|: negating changes no square, [a] sums them alike. *)
-      let length_v = sqrt a in
-      for l = p.first_light to n_lights - 1 do
-        let o = 6 * l in
-        let kind = Array.unsafe_get light6 o and li = Array.unsafe_get light6 (o + 1) in
-        if kind = 0. then intensity := !intensity +. li
-        else begin
-          let point = kind = 1. in
-          let lx = ref 0. and ly = ref 0. and lz = ref 0. and t_max = ref infinity in
-          if point then begin
-            lx := Array.unsafe_get light6 (o + 2) -. px;
-            ly := Array.unsafe_get light6 (o + 3) -. py;
-            lz := Array.unsafe_get light6 (o + 4) -. pz;
-            t_max := 1.
-          end
-          else begin
-            lx := Array.unsafe_get light6 (o + 2);
-            ly := Array.unsafe_get light6 (o + 3);
-            lz := Array.unsafe_get light6 (o + 4)
-          end;
-          let lx = !lx and ly = !ly and lz = !lz and t_max = !t_max in
-          let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
-          let add_diffuse = n_dot_l > 0. in
-          (* The specular term's cosine, as [lighting] computes it
-             (its 2 <L, N> is 2 n_dot_l: the same products, summed in the
-             same order). *)
-          let cos = ref 0. in
-          if shiny then begin
-            let k = 2. *. n_dot_l in
-            let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
-            let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
-            if r_dot_v > 0. then cos := r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v)
-          end;
-          let cos = !cos in
-          (* At or below the cut, li cos^s is 0 or too small to change
-             the sum (Prepared.specular_cut): the sum is what it would be
-             with the term, and pow is not called. *)
-          let add_specular = shiny && cos > Array.unsafe_get cut (mo + l) in
-          (* The shadow ray only matters if a term would be added: a light
-             that adds nothing leaves the sum as it is, lit or not. (A
-             point light on the point itself, L = 0, adds nothing:
-             n_dot_l = 0 and R = 0. Without the skip it is left out, as
-             [lighting] does.) *)
-          if
-            (if shadow_skip then add_diffuse || add_specular else (not point) || lx <> 0. || ly <> 0. || lz <> 0.)
-            &&
-            (* [shadowed] with the skips: this light's last blocker first,
-               then the first blocker of the others, in scene order. *)
-            let a = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
-            let two_k1 = 2. *. a and k1x4 = 4. *. a in
-            tr.counters.shadow <- tr.counters.shadow + 1;
-            let last = Array.unsafe_get last_blocker l in
-            if last >= 0 && blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * last) then begin
-              incr tests;
-              false
-            end
-            else begin
-              let j = ref 0 in
-              while
-                !j < n
-                && (!j = last || not (blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * !j)))
-              do
-                incr j
-              done;
-              tests := !tests + !j + if last >= 0 then 1 else 0;
-              if !j < n then begin
-                Array.unsafe_set last_blocker l !j;
-                false
+    let tests = ref 0 and levels = ref 0 and tracing = ref true in
+    (* The weight of the colour still to be traced: the product of the
+       reflectivities on the stack. *)
+    let weight = ref 1. in
+    tr.first_hit <- -1;
+    tr.origin_sphere <- -1;
+    while !tracing do
+      (* The ray of this level is in [s]: read once, into registers.
+         Doublings are written [x +. x]: the same bits as [2. *. x] (both
+         exact, or both infinite), one instruction, no constant to load. *)
+      let ox' = s.ox and oy' = s.oy and oz' = s.oz and dx' = s.dx and dy' = s.dy and dz' = s.dz in
+      let t_min' = s.t_min in
+      let a = (dx' *. dx') +. (dy' *. dy') +. (dz' *. dz') in
+      let two_k1 = a +. a and k1x4 = 4. *. a in
+      (* The closest hit, as [closest_textbook_all] finds it: the t_max of
+         camera and mirror rays is infinity, which [t < best] already
+         implies. *)
+      let best = ref inf and hit = ref (-1) in
+      if !levels > 0 then begin
+        tests := !tests + n;
+        (* Fresh names for what the loop reads: values live across the calls
+           (pow, settled) stay on the stack, reloaded at every use otherwise. *)
+        let sph = Sys.opaque_identity sph and n4 = Sys.opaque_identity n4 in
+        let k = ref 0 in
+        while !k < n4 do
+          let i = !k in
+          let fx = ox' -. Array.unsafe_get sph i and fy = oy' -. Array.unsafe_get sph (i + 1) and fz = oz' -. Array.unsafe_get sph (i + 2) in
+          let h = (fx *. dx') +. (fy *. dy') +. (fz *. dz') in
+          let k2 = h +. h in
+          let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (i + 3) in
+          if not (behind && k2 > 0. && k3 > 0.) then begin
+            let disc = (k2 *. k2) -. (k1x4 *. k3) in
+            if disc >= 0. then begin
+              let sq = sqrt disc in
+              let t2 = (-.k2 -. sq) /. two_k1 in
+              if t2 < !best && t_min' < t2 then begin
+                best := t2;
+                hit := i
               end
-              else true
+              else
+                let t1 = (-.k2 +. sq) /. two_k1 in
+                if t1 < !best && t_min' < t1 then begin
+                  best := t1;
+                  hit := i
+                end
             end
-          then begin
-            if add_diffuse then begin
-              let len = if point then sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz)) else Array.unsafe_get light6 (o + 5) in
-              intensity := !intensity +. (li *. n_dot_l /. (length_n *. len))
-            end;
-            if add_specular then intensity := !intensity +. (li *. Float.pow cos specular)
+          end;
+          k := i + 4
+        done;
+        (* Slots, not places in [sph]. *)
+        if !hit >= 0 then hit := !hit / 4
+      end
+      else if tr.assumed <> no_assumption then begin
+        hit := primary_hit_spheres tr;
+        best := s.t
+      end
+      else begin
+        (* From the camera, CO and k3 are per-frame constants; only the
+           tile's spheres are tested. *)
+        let pr = p.primary4 in
+        let cand = tr.cand and first = tr.cand_first and count = tr.cand_count in
+        tests := !tests + count;
+        for j = first to first + count - 1 do
+          let i = Array.unsafe_get cand j in
+          let k = 4 * i in
+          let fx = Array.unsafe_get pr k and fy = Array.unsafe_get pr (k + 1) and fz = Array.unsafe_get pr (k + 2) in
+          let h = (fx *. dx') +. (fy *. dy') +. (fz *. dz') in
+          let k2 = h +. h in
+          let k3 = Array.unsafe_get pr (k + 3) in
+          if not (behind && k2 > 0. && k3 > 0.) then begin
+            let disc = (k2 *. k2) -. (k1x4 *. k3) in
+            if disc >= 0. then begin
+              let sq = sqrt disc in
+              let t2 = (-.k2 -. sq) /. two_k1 in
+              if t2 < !best && t_min' < t2 then begin
+                best := t2;
+                hit := i
+              end
+              else
+                let t1 = (-.k2 +. sq) /. two_k1 in
+                if t1 < !best && t_min' < t1 then begin
+                  best := t1;
+                  hit := i
+                end
+            end
           end
-        end
-      done;
-      let light = !intensity in
-      let lr = Array.unsafe_get p.red m *. light and lg = Array.unsafe_get p.green m *. light and lb = Array.unsafe_get p.blue m *. light in
-      let refl = Array.unsafe_get p.reflective m in
-      if refl <= 0. || !levels >= p.depth then begin
-        s.r <- lr;
-        s.g <- lg;
-        s.b <- lb;
+        done
+      end;
+      let i = !hit in
+      if !levels = 0 then tr.first_hit <- i;
+      if i < 0 then begin
+        s.r <- p.background.r;
+        s.g <- p.background.g;
+        s.b <- p.background.b;
         tracing := false
       end
       else begin
-        let k = 4 * !levels in
-        Array.unsafe_set tr.stack k lr;
-        Array.unsafe_set tr.stack (k + 1) lg;
-        Array.unsafe_set tr.stack (k + 2) lb;
-        Array.unsafe_set tr.stack (k + 3) refl;
-        incr levels;
-        weight := !weight *. refl;
-        (* As in [trace_in]. *)
-        if p.early_stop
-           && (!weight *. p.max_channel < 1. || (lr >= 255. && lg >= 255. && lb >= 255.))
-           && settled tr !levels
-        then begin
-          tr.counters.early_stops <- tr.counters.early_stops + 1;
-          s.r <- 0.;
-          s.g <- 0.;
-          s.b <- 0.;
+        let t = !best in
+        let px = ox' +. (dx' *. t) and py = oy' +. (dy' *. t) and pz = oz' +. (dz' *. t) in
+        let nx = px -. Array.unsafe_get sph (4 * i) and ny = py -. Array.unsafe_get sph ((4 * i) + 1) and nz = pz -. Array.unsafe_get sph ((4 * i) + 2) in
+        let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+        let nx = nx *. inv and ny = ny *. inv and nz = nz *. inv in
+        let vx = -.dx' and vy = -.dy' and vz = -.dz' in
+        let m = Array.unsafe_get p.material i in
+        (* [lighting], with the shadow ray inlined. *)
+        let specular = Array.unsafe_get p.specular m and cut = p.specular_cut and mo = m * n_lights in
+        let shiny = specular <> Sphere.matte in
+        (* The ambient lights that come first add up to the same sum in any
+           case: it starts from their total (Prepared.ambient_lead). *)
+        let intensity = ref p.ambient_lead in
+        let length_n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+        (* |V| = |D|: negating changes no square, [a] sums them alike. *)
+        let length_v = sqrt a in
+        for l = p.first_light to n_lights - 1 do
+          let o = 6 * l in
+          let kind = Array.unsafe_get light6 o and li = Array.unsafe_get light6 (o + 1) in
+          if kind = 0. then intensity := !intensity +. li
+          else begin
+            let point = kind = 1. in
+            let lx = ref 0. and ly = ref 0. and lz = ref 0. and t_max = ref inf in
+            if point then begin
+              lx := Array.unsafe_get light6 (o + 2) -. px;
+              ly := Array.unsafe_get light6 (o + 3) -. py;
+              lz := Array.unsafe_get light6 (o + 4) -. pz;
+              t_max := 1.
+            end
+            else begin
+              lx := Array.unsafe_get light6 (o + 2);
+              ly := Array.unsafe_get light6 (o + 3);
+              lz := Array.unsafe_get light6 (o + 4)
+            end;
+            let lx = !lx and ly = !ly and lz = !lz and t_max = !t_max in
+            let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
+            let add_diffuse = n_dot_l > 0. in
+            (* The specular term's cosine, as [lighting] computes it
+               (its 2 <L, N> is 2 n_dot_l: the same products, summed in the
+               same order). *)
+            let cos = ref 0. in
+            if shiny then begin
+              let k = n_dot_l +. n_dot_l in
+              let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
+              let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
+              if r_dot_v > 0. then cos := r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v)
+            end;
+            let cos = !cos in
+            (* At or below the cut, li cos^s is 0 or too small to change
+               the sum (Prepared.specular_cut): the sum is what it would be
+               with the term, and pow is not called. *)
+            let add_specular = shiny && cos > Array.unsafe_get cut (mo + l) in
+            (* The shadow ray only matters if a term would be added: a light
+               that adds nothing leaves the sum as it is, lit or not. (A
+               point light on the point itself, L = 0, adds nothing:
+               n_dot_l = 0 and R = 0. Without the skip it is left out, as
+               [lighting] does.) *)
+            if
+              (if shadow_skip then add_diffuse || add_specular else (not point) || lx <> 0. || ly <> 0. || lz <> 0.)
+              &&
+              (* [shadowed] with the skips: this light's last blocker first,
+                 then the first blocker of the others, in scene order. *)
+              let a = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
+              let two_k1 = a +. a and k1x4 = 4. *. a in
+              tr.counters.shadow <- tr.counters.shadow + 1;
+              let last = Array.unsafe_get last_blocker l in
+              if last >= 0 && blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * last) then begin
+                incr tests;
+                false
+              end
+              else begin
+                let j = ref 0 in
+                while
+                  !j < n
+                  && (!j = last || not (blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * !j)))
+                do
+                  incr j
+                done;
+                tests := !tests + !j + if last >= 0 then 1 else 0;
+                if !j < n then begin
+                  Array.unsafe_set last_blocker l !j;
+                  false
+                end
+                else true
+              end
+            then begin
+              if add_diffuse then begin
+                let len = if point then sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz)) else Array.unsafe_get light6 (o + 5) in
+                intensity := !intensity +. (li *. n_dot_l /. (length_n *. len))
+              end;
+              if add_specular then intensity := !intensity +. (li *. Float.pow cos specular)
+            end
+          end
+        done;
+        let light = !intensity in
+        let lr = Array.unsafe_get p.red m *. light and lg = Array.unsafe_get p.green m *. light and lb = Array.unsafe_get p.blue m *. light in
+        let refl = Array.unsafe_get p.reflective m in
+        if refl <= 0. || !levels >= p.depth then begin
+          s.r <- lr;
+          s.g <- lg;
+          s.b <- lb;
           tracing := false
         end
         else begin
-          (* The mirror ray R = 2 <V, N> N - V from the hit point. *)
-          let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
-          s.ox <- px;
-          s.oy <- py;
-          s.oz <- pz;
-          s.dx <- (nx *. k) -. vx;
-          s.dy <- (ny *. k) -. vy;
-          s.dz <- (nz *. k) -. vz;
-          s.t_min <- eps;
-          tr.counters.reflection <- tr.counters.reflection + 1
+          let k = 4 * !levels in
+          Array.unsafe_set tr.stack k lr;
+          Array.unsafe_set tr.stack (k + 1) lg;
+          Array.unsafe_set tr.stack (k + 2) lb;
+          Array.unsafe_set tr.stack (k + 3) refl;
+          incr levels;
+          weight := !weight *. refl;
+          (* As in [trace_in]. *)
+          if p.early_stop
+             && (!weight *. p.max_channel < 1. || (lr >= 255. && lg >= 255. && lb >= 255.))
+             && settled tr !levels
+          then begin
+            tr.counters.early_stops <- tr.counters.early_stops + 1;
+            s.r <- 0.;
+            s.g <- 0.;
+            s.b <- 0.;
+            tracing := false
+          end
+          else begin
+            (* The mirror ray R = 2 <V, N> N - V from the hit point. *)
+            let h = (vx *. nx) +. (vy *. ny) +. (vz *. nz) in
+            let k = h +. h in
+            s.ox <- px;
+            s.oy <- py;
+            s.oz <- pz;
+            s.dx <- (nx *. k) -. vx;
+            s.dy <- (ny *. k) -. vy;
+            s.dz <- (nz *. k) -. vz;
+            s.t_min <- eps;
+            tr.counters.reflection <- tr.counters.reflection + 1
+          end
         end
       end
-    end
-  done;
-  tr.counters.tests <- tr.counters.tests + !tests;
-  for l = !levels - 1 downto 0 do
-    let refl = Array.unsafe_get tr.stack ((4 * l) + 3) in
-    let keep = 1. -. refl in
-    s.r <- (Array.unsafe_get tr.stack (4 * l) *. keep) +. (s.r *. refl);
-    s.g <- (Array.unsafe_get tr.stack ((4 * l) + 1) *. keep) +. (s.g *. refl);
-    s.b <- (Array.unsafe_get tr.stack ((4 * l) + 2) *. keep) +. (s.b *. refl)
+    done;
+    tr.counters.tests <- tr.counters.tests + !tests;
+    for l = !levels - 1 downto 0 do
+      let refl = Array.unsafe_get tr.stack ((4 * l) + 3) in
+      let keep = 1. -. refl in
+      s.r <- (Array.unsafe_get tr.stack (4 * l) *. keep) +. (s.r *. refl);
+      s.g <- (Array.unsafe_get tr.stack ((4 * l) + 1) *. keep) +. (s.g *. refl);
+      s.b <- (Array.unsafe_get tr.stack ((4 * l) + 2) *. keep) +. (s.b *. refl)
+    done;
+    if row then store tr buffer (k0 + (3 * (col - col0)))
   done
 
 (* One copy with the rejection of spheres behind, one without (for the
-   tests of its exactness). *)
-let[@inline never] trace_textbook_behind tr = textbook_kernel tr ~behind:true
-let[@inline never] trace_textbook_all_roots tr = textbook_kernel tr ~behind:false
+   tests of its exactness); each for one ray and for a row of camera rays. *)
+let[@inline never] trace_textbook_behind tr = textbook_kernel tr ~behind:true ~row:false no_buffer 0 0 1 0
+let[@inline never] trace_textbook_all_roots tr = textbook_kernel tr ~behind:false ~row:false no_buffer 0 0 1 0
+let[@inline never] row_textbook_behind tr buffer k col0 count r = textbook_kernel tr ~behind:true ~row:true buffer k col0 count r
+let[@inline never] row_textbook_all_roots tr buffer k col0 count r = textbook_kernel tr ~behind:false ~row:true buffer k col0 count r
 
 (* Section 7.8 as a loop: each level traces one ray; a reflective hit pushes
    its local colour and reflectivity and continues with the mirror ray; then
@@ -1622,20 +1681,6 @@ let[@inline] trace tr =
     let k = tr.tracer in
     if k = spheres_chain then trace_spheres tr else if k = objects_chain then trace_objects tr else trace_tree tr
 
-(* The direction of the camera ray through viewport point [(vx, vy, vz)],
-   turned by the camera's matrix [m] unless it is the identity. *)
-let[@inline] set_direction s identity (m : Camera.rotation) vx vy vz =
-  if identity then begin
-    s.dx <- vx;
-    s.dy <- vy;
-    s.dz <- vz
-  end
-  else begin
-    s.dx <- (vx *. m.row0.x) +. (vy *. m.row0.y) +. (vz *. m.row0.z);
-    s.dy <- (vx *. m.row1.x) +. (vy *. m.row1.y) +. (vz *. m.row1.z);
-    s.dz <- (vx *. m.row2.x) +. (vy *. m.row2.y) +. (vz *. m.row2.z)
-  end
-
 (* The camera ray through viewport point [(vx, vy, d)]. *)
 let[@inline] primary_through tr vx vy =
   let p = tr.p and s = tr.s in
@@ -1690,33 +1735,27 @@ let row tr buffer k gx gy count =
   let p = tr.p in
   let col0 = gx + (p.width / 2) and r = gy + (p.height / 2) in
   if r >= 0 && r < p.height && col0 >= 0 && count >= 0 && col0 + count <= p.width then begin
-    (* [pixel], with what is constant along the row read once, and the
-       document's kernel called directly. *)
-    let s = tr.s and c = tr.counters in
-    let vy = Array.unsafe_get p.row_vy r and ty = r / tile and n = p.n_objects in
-    let kernel = p.textbook_all && p.skips in
-    let cull = kernel && p.cull and vx = p.column_vx and behind = p.behind in
-    let vz = p.viewport.distance and m = p.camera.rotation and o = p.camera.position in
-    let identity = p.identity_rotation in
-    for col = col0 to col0 + count - 1 do
-      if cull && (col = col0 || col land (tile - 1) = 0) then begin
-        let tx = col / tile in
-        if Array.unsafe_get tr.tile_row tx <> ty then tile_candidates tr tx ty;
-        tr.cand_first <- tx * n;
-        tr.cand_count <- Array.unsafe_get tr.tile_count tx
-      end;
-      set_direction s identity m (Array.unsafe_get vx col) vy vz;
-      s.ox <- o.x;
-      s.oy <- o.y;
-      s.oz <- o.z;
-      s.t_min <- 1.;
-      s.t_max <- infinity;
-      c.primary <- c.primary + 1;
-      if not kernel then trace tr
-      else if behind then trace_textbook_behind tr
-      else trace_textbook_all_roots tr;
-      store tr buffer (k + (3 * (col - col0)))
-    done
+    (* [pixel], with what is constant along the row read once; the
+       document's kernel takes the whole row. *)
+    if p.textbook_all && p.skips then begin
+      if p.behind then row_textbook_behind tr buffer k col0 count r else row_textbook_all_roots tr buffer k col0 count r
+    end
+    else
+      let s = tr.s and c = tr.counters in
+      let vy = Array.unsafe_get p.row_vy r and vx = p.column_vx in
+      let vz = p.viewport.distance and m = p.camera.rotation and o = p.camera.position in
+      let identity = p.identity_rotation in
+      for col = col0 to col0 + count - 1 do
+        set_direction s identity m (Array.unsafe_get vx col) vy vz;
+        s.ox <- o.x;
+        s.oy <- o.y;
+        s.oz <- o.z;
+        s.t_min <- 1.;
+        s.t_max <- infinity;
+        c.primary <- c.primary + 1;
+        trace tr;
+        store tr buffer (k + (3 * (col - col0)))
+      done
   end
   else
     for c = 0 to count - 1 do
