@@ -407,10 +407,8 @@ let prepare ?(skips = true) scene =
   let nb = Array.length bounded in
   let bvh =
     if skips && nb > bvh_threshold then begin
-      let pick a = Array.map (fun k -> a.(k)) bounded in
-      let margin =
-        Bvh.ray_box_margin ~cx:(pick ocx) ~cy:(pick ocy) ~cz:(pick ocz) ~radius:(pick ohalf) scene.camera.position
-      in
+      (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
+      let margin = Bvh.ray_box_margin ~among:bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position in
       (* Each box padded by its margin: [build_boxes] takes these arrays. *)
       let lo c e = Array.mapi (fun i k -> c.(k) -. (e.(k) +. margin.(i))) bounded in
       let hi c e = Array.mapi (fun i k -> c.(k) +. (e.(k) +. margin.(i))) bounded in
@@ -452,12 +450,7 @@ let prepare ?(skips = true) scene =
   in
   ignore
     (iter_objects scene
-       ~sphere:(fun k (s : Sphere.t) ->
-         let i = slot.(k) in
-         cx.(i) <- s.center.x;
-         cy.(i) <- s.center.y;
-         cz.(i) <- s.center.z;
-         radius.(i) <- s.radius)
+       ~sphere:(fun _ _ -> ())
        ~single:(fun k sh ->
          let i = slot.(k) in
          match sh with
@@ -477,6 +470,17 @@ let prepare ?(skips = true) scene =
          done;
          if any_smooth then ignore (Mesh.corner_normals m t vnormal (stride * i));
          extent_of i));
+  (* The spheres' [set] wrote their centers and radii in scene order:
+     into slot order by [index], with no second walk of the scene. *)
+  for i = 0 to sphere_len - 1 do
+    let k = index.(i) in
+    if okind.(k) = Shape.sphere then begin
+      cx.(i) <- ocx.(k);
+      cy.(i) <- ocy.(k);
+      cz.(i) <- ocz.(k);
+      radius.(i) <- ohalf.(k)
+    end
+  done;
   let lights =
     Array.of_list
       (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
