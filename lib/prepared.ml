@@ -68,7 +68,6 @@ type t = {
 }
 
 let bvh_threshold = 8
-let primary_constants_limit = 65536
 let ambient = 0
 let point = 1
 let directional = 2
@@ -539,15 +538,12 @@ let prepare ?(skips = true) scene =
   let lf f = Array.map f lights and mf f = Array.map f materials in
   let o = scene.camera.position in
   let r2 = Array.map (fun r -> r *. r) radius in
-  (* A big scene's camera rays are few beside its objects: 32 bytes an
-     object would cost more memory than the constants save time. *)
-  let constants c = if n_kept > primary_constants_limit && bvh <> None then [||] else c in
-  let primary_ocx = Array.map (fun c -> o.x -. c) (constants cx) in
-  let primary_ocy = Array.map (fun c -> o.y -. c) (constants cy) in
-  let primary_ocz = Array.map (fun c -> o.z -. c) (constants cz) in
+  let primary_ocx = Array.map (fun c -> o.x -. c) cx in
+  let primary_ocy = Array.map (fun c -> o.y -. c) cy in
+  let primary_ocz = Array.map (fun c -> o.z -. c) cz in
   (* Same operands in the same order as the tracer's per-ray [k3]. *)
   let primary_k3 =
-    Array.init (Array.length primary_ocx) (fun i ->
+    Array.init sphere_len (fun i ->
         let x = primary_ocx.(i) and y = primary_ocy.(i) and z = primary_ocz.(i) in
         ((x *. x) +. (y *. y) +. (z *. z)) -. r2.(i))
   in

@@ -102,11 +102,7 @@ type t = private {
   camera : Camera.t;
   identity_rotation : bool;  (** The camera matrix is exactly the identity. *)
   background : Color.t;
-  primary_ocx : float array;
-      (** [camera - center], per sphere; empty for a scene of more than
-          {!primary_constants_limit} objects in a hierarchy (never one of
-          [textbook_all]), whose camera rays compute
-          these four as other rays do (the same bits). *)
+  primary_ocx : float array;  (** [camera - center], per sphere. *)
   primary_ocy : float array;
   primary_ocz : float array;
   primary_k3 : float array;  (** [<CO, CO> - r^2] for the camera origin. *)
@@ -164,11 +160,6 @@ type t = private {
 val bvh_threshold : int
 (** [bvh_threshold] is [8]: with at most this many spheres, testing every
     one is cheaper than walking a hierarchy. *)
-
-val primary_constants_limit : int
-(** [primary_constants_limit] is [65536]: a scene with more objects, in
-    a hierarchy, has no per-sphere camera constants ([primary_ocx] to [primary_k3]), 32
-    bytes an object. *)
 
 val ambient : int
 (** [ambient] is the [light_kind] of ambient lights. *)

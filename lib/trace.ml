@@ -409,14 +409,10 @@ let[@inline] closest_in tr ~spheres =
   else if tr.p.textbook_all then closest_textbook_secondary tr
   else closest_from tr ~primary:false ~spheres:true
 
-(* A big scene has no per-frame constants ([Prepared.primary_ocx] empty):
-   its camera rays compute them as other rays do, to the same bits. *)
 let[@inline] closest_primary_in tr ~spheres =
-  let constants = Array.length tr.p.primary_k3 > 0 in
-  if not spheres then if constants then closest_primary_objects tr else closest_objects tr
+  if not spheres then closest_primary_objects tr
   else if tr.p.textbook_all then closest_textbook_primary tr
-  else if constants then closest_from tr ~primary:true ~spheres:true
-  else closest_from tr ~primary:false ~spheres:true
+  else closest_from tr ~primary:true ~spheres:true
 
 let[@inline] closest tr = if tr.p.all_spheres then closest_in tr ~spheres:true else closest_in tr ~spheres:false
 
@@ -743,9 +739,7 @@ let[@inline] primary_hit_in tr ~spheres =
     s.t <- infinity;
     tr.counters.tests <- tr.counters.tests + 1;
     (* The same test as [closest_primary] makes of that sphere: the same t. *)
-    let i = Array.unsafe_get tr.p.slot k in
-    if Array.length tr.p.primary_k3 > 0 then test tr s i ~primary:true ~spheres dx dy dz a (1. /. a) (2. *. a) (4. *. a)
-    else test tr s i ~primary:false ~spheres dx dy dz a (1. /. a) (2. *. a) (4. *. a);
+    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres dx dy dz a (1. /. a) (2. *. a) (4. *. a);
     if tr.hit >= 0 then tr.hit else closest_primary_in tr ~spheres
   end
 
