@@ -478,16 +478,16 @@ let prepare ?(skips = true) scene =
   let geom = Array.make (stride * shapes_len) 0. and extent = Array.make shapes_len 0. in
   let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
   let vnormal = if any_smooth then Array.make (stride * n_kept) 0. else [||] in
-  (* Without twins, [index] orders every object: the per-object arrays
-     are put in slot order where they are, and those of a scene of spheres
-     alone are the tracer's (no second array of a million). *)
-  let in_place = n_kept = n in
+  (* Spheres alone, without twins: [index] orders every object, and the
+     per-object arrays, put in slot order where they are, are the
+     tracer's (no second array of a million). Not for meshes: their slot
+     order is far from the scene's, and moving in place along its cycles
+     cost more than the copies. *)
+  let in_place = n_kept = n && scene.shapes = [] in
   let sphere_len = if n_spheres > 0 then n_kept else 0 in
-  let spheres_only = in_place && scene.shapes = [] in
-  if in_place then
-    gather_in_place index ~floats:(if spheres_only then [| ocx; ocy; ocz; ohalf |] else [||]) ~ints:[| okind; omat |];
+  if in_place then gather_in_place index ~floats:[| ocx; ocy; ocz; ohalf |] ~ints:[| okind; omat |];
   let cx, cy, cz, radius =
-    if spheres_only then (ocx, ocy, ocz, ohalf)
+    if in_place then (ocx, ocy, ocz, ohalf)
     else (Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0.)
   in
   let extent_of i =
@@ -521,10 +521,10 @@ let prepare ?(skips = true) scene =
          extent_of i));
   (* The spheres' [set] wrote their centers and radii in scene order:
      into slot order by [index], with no second walk of the scene. *)
-  if not spheres_only then
+  if not in_place then
   for i = 0 to sphere_len - 1 do
     let k = index.(i) in
-    if (if in_place then okind.(i) else okind.(k)) = Shape.sphere then begin
+    if okind.(k) = Shape.sphere then begin
       cx.(i) <- ocx.(k);
       cy.(i) <- ocy.(k);
       cz.(i) <- ocz.(k);
