@@ -17,6 +17,8 @@
 type t = private {
   order : int array;  (** Input index of the sphere in each slot. *)
   n_nodes : int;
+      (** The number of nodes: the node arrays below may be longer, by at
+          most an eighth, their last elements unused. *)
   lo_x : float array;  (** Box of each node: lower corner. *)
   lo_y : float array;
   lo_z : float array;
@@ -62,8 +64,9 @@ val build_boxes :
     lengths. *)
 
 val ray_box_margin :
-  cx:float array -> cy:float array -> cz:float array -> radius:float array -> Vec3.t -> float array
-(** [ray_box_margin ~cx ~cy ~cz ~radius camera] is, for each sphere, how much
+  ?among:int array -> cx:float array -> cy:float array -> cz:float array -> radius:float array -> Vec3.t -> float array
+(** [ray_box_margin ~among ~cx ~cy ~cz ~radius camera] is, for each sphere
+    [among.(j)] (default: all of them, in order), at [j], how much
     to grow its box beyond its radius so that no intersection test of the
     tracer can report a hit outside the box through rounding: rays start at
     [camera] or on a sphere, so with [D] the diameter and [M] the largest

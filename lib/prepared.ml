@@ -252,6 +252,46 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
   done;
   twin
 
+(* [a.(i) <- a.(index.(i))] for every [i] and every array [a] of
+   [floats] and [ints], in place, cycle by cycle: [index] is a permutation
+   of [0 .. length a - 1]. *)
+let gather_in_place index ~(floats : float array array) ~(ints : int array array) =
+  let n = Array.length index and nf = Array.length floats and ni = Array.length ints in
+  let seen = Bytes.make n '\000' in
+  let first_f = Array.make nf 0. and first_i = Array.make ni 0 in
+  let move j k =
+    for c = 0 to nf - 1 do
+      floats.(c).(j) <- floats.(c).(k)
+    done;
+    for c = 0 to ni - 1 do
+      ints.(c).(j) <- ints.(c).(k)
+    done
+  in
+  for start = 0 to n - 1 do
+    if Bytes.get seen start = '\000' then begin
+      for c = 0 to nf - 1 do
+        first_f.(c) <- floats.(c).(start)
+      done;
+      for c = 0 to ni - 1 do
+        first_i.(c) <- ints.(c).(start)
+      done;
+      let j = ref start and k = ref index.(start) in
+      Bytes.set seen start '\001';
+      while !k <> start do
+        move !j !k;
+        Bytes.set seen !k '\001';
+        j := !k;
+        k := index.(!k)
+      done;
+      for c = 0 to nf - 1 do
+        floats.(c).(!j) <- first_f.(c)
+      done;
+      for c = 0 to ni - 1 do
+        ints.(c).(!j) <- first_i.(c)
+      done
+    end
+  done
+
 (* Materials equal bit for bit. *)
 module Materials = Hashtbl.Make (struct
   type t = Material.t
@@ -407,10 +447,8 @@ let prepare ?(skips = true) scene =
   let nb = Array.length bounded in
   let bvh =
     if skips && nb > bvh_threshold then begin
-      let pick a = Array.map (fun k -> a.(k)) bounded in
-      let margin =
-        Bvh.ray_box_margin ~cx:(pick ocx) ~cy:(pick ocy) ~cz:(pick ocz) ~radius:(pick ohalf) scene.camera.position
-      in
+      (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
+      let margin = Bvh.ray_box_margin ~among:bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position in
       (* Each box padded by its margin: [build_boxes] takes these arrays. *)
       let lo c e = Array.mapi (fun i k -> c.(k) -. (e.(k) +. margin.(i))) bounded in
       let hi c e = Array.mapi (fun i k -> c.(k) +. (e.(k) +. margin.(i))) bounded in
@@ -440,9 +478,18 @@ let prepare ?(skips = true) scene =
   let geom = Array.make (stride * shapes_len) 0. and extent = Array.make shapes_len 0. in
   let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
   let vnormal = if any_smooth then Array.make (stride * n_kept) 0. else [||] in
+  (* Spheres alone, without twins: [index] orders every object, and the
+     per-object arrays, put in slot order where they are, are the
+     tracer's (no second array of a million). Not for meshes: their slot
+     order is far from the scene's, and moving in place along its cycles
+     cost more than the copies. *)
+  let in_place = n_kept = n && scene.shapes = [] in
   let sphere_len = if n_spheres > 0 then n_kept else 0 in
-  let cx = Array.make sphere_len 0. and cy = Array.make sphere_len 0. and cz = Array.make sphere_len 0. in
-  let radius = Array.make sphere_len 0. in
+  if in_place then gather_in_place index ~floats:[| ocx; ocy; ocz; ohalf |] ~ints:[| okind; omat |];
+  let cx, cy, cz, radius =
+    if in_place then (ocx, ocy, ocz, ohalf)
+    else (Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0.)
+  in
   let extent_of i =
     let e = ref 0. in
     for j = stride * i to (stride * i) + stride - 1 do
@@ -452,12 +499,7 @@ let prepare ?(skips = true) scene =
   in
   ignore
     (iter_objects scene
-       ~sphere:(fun k (s : Sphere.t) ->
-         let i = slot.(k) in
-         cx.(i) <- s.center.x;
-         cy.(i) <- s.center.y;
-         cz.(i) <- s.center.z;
-         radius.(i) <- s.radius)
+       ~sphere:(fun _ _ -> ())
        ~single:(fun k sh ->
          let i = slot.(k) in
          match sh with
@@ -477,6 +519,18 @@ let prepare ?(skips = true) scene =
          done;
          if any_smooth then ignore (Mesh.corner_normals m t vnormal (stride * i));
          extent_of i));
+  (* The spheres' [set] wrote their centers and radii in scene order:
+     into slot order by [index], with no second walk of the scene. *)
+  if not in_place then
+  for i = 0 to sphere_len - 1 do
+    let k = index.(i) in
+    if okind.(k) = Shape.sphere then begin
+      cx.(i) <- ocx.(k);
+      cy.(i) <- ocy.(k);
+      cz.(i) <- ocz.(k);
+      radius.(i) <- ohalf.(k)
+    end
+  done;
   let lights =
     Array.of_list
       (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
@@ -516,13 +570,13 @@ let prepare ?(skips = true) scene =
     slot;
     bvh;
     unbounded = Array.map (fun i -> slot.(i)) unbounded;
-    kind = Array.map (fun k -> okind.(k)) index;
+    kind = (if in_place then okind else Array.map (fun k -> okind.(k)) index);
     geom;
     vnormal;
     extent;
     csg = Csg.table csg;
     n_scene_objects = n;
-    material = Array.map (fun k -> omat.(k)) index;
+    material = (if in_place then omat else Array.map (fun k -> omat.(k)) index);
     cx;
     cy;
     cz;
