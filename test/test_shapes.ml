@@ -145,26 +145,6 @@ let tiny_far ~translate shape_of =
   (Scene.v ~width:90 ~height:90 ~viewport:(Viewport.v ~width:6e-7 ~height:6e-7 ~distance:1.) ~camera ~spheres:[] ~shapes:[ shape ] ~lights:[ Light.ambient 1. ] (), shape)
 
 
-(* The colours of every pixel of [s], fast (skips off: the early stop
-   changes floats, never bytes) and literal, equal bit for bit. *)
-let same_floats (s : Scene.t) =
-  let tr = Trace.create (Helpers.prepare ~skips:false s) in
-  let ok = ref true in
-  for gx = Canvas.min_x s.width to Canvas.max_x s.width do
-    for gy = Canvas.min_y s.height to Canvas.max_y s.height do
-      Trace.pixel tr gx gy;
-      let c = Literal.pixel s gx gy in
-      let same a b = Int64.equal (Int64.bits_of_float a) (Int64.bits_of_float b) in
-      if not (same c.r (Trace.red tr) && same c.g (Trace.green tr) && same c.b (Trace.blue tr)) then begin
-        if !ok then
-          Printf.printf "pixel (%d, %d): literal %h %h %h, fast %h %h %h\n" gx gy c.r c.g c.b (Trace.red tr)
-            (Trace.green tr) (Trace.blue tr);
-        ok := false
-      end
-    done
-  done;
-  !ok
-
 let document_mode =
   QCheck.map ~rev:Fun.id
     (fun (s : Scene.t) -> if s.epsilon = None then { s with epsilon = Some 0.001 } else s)
@@ -383,7 +363,7 @@ let tests =
                ])
              [ Vec3.zero; Vec3.v 1e6 (-1e6) 1e6 ]));
     Helpers.qcheck ~count:150 "random scenes in the document's mode: the fast colours are the oracle's, bit for bit"
-      document_mode same_floats;
+      document_mode Helpers.same_floats;
     Alcotest.test_case "two identical spheres render as one, in both modes (defect: acne in the robust mode)" `Quick
       (fun () ->
         List.iter
@@ -479,7 +459,7 @@ let tests =
             ~shapes:[ Shape.Plane (Plane.v ~point:(Vec3.v 0. 0. 1.) ~normal:(Vec3.v 0. 0. (-1.)) (Material.v (Color.v 255. 0. 0.))) ]
             ~lights:[ Light.ambient 1. ] ()
         in
-        Alcotest.(check bool) "the plane at t = 1: floats as the oracle's" true (same_floats s);
+        Alcotest.(check bool) "the plane at t = 1: floats as the oracle's" true (Helpers.same_floats s);
         let c = Literal.pixel s 0 0 in
         Alcotest.(check (float 0.)) "the sphere behind shows" 255. c.g);
     Alcotest.test_case "coincident shapes of different colours: the first wins, as in the oracle" `Quick (fun () ->
@@ -494,7 +474,7 @@ let tests =
               Scene.v ~epsilon:0.001 ~width:40 ~height:40 ~spheres ~shapes
                 ~lights:[ Light.ambient 0.3; Light.point 0.6 (Vec3.v 2. 3. 0.); Light.directional 0.2 (Vec3.v 1. 4. 4.) ] ()
             in
-            if not (same_floats s) then Alcotest.failf "%s: the fast colours differ from the oracle's" what;
+            if not (Helpers.same_floats s) then Alcotest.failf "%s: the fast colours differ from the oracle's" what;
             Helpers.check_images (what ^ ": bytes, with the skips") ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
           [
             ("two floors", [], [ floor red; floor blue ]);
@@ -553,8 +533,8 @@ let tests =
         let flat = mesh false and mesh = mesh true in
         ignore tris;
         let doc = Scene.with_overrides ~width:40 ~height:40 { Scene.cgfs with shapes = [ Shape.Mesh mesh ] } in
-        if not (same_floats doc) then Alcotest.fail "a smooth mesh: the fast colours differ from the oracle's";
-        if not (same_floats { doc with shapes = [ Shape.Mesh flat ] }) then
+        if not (Helpers.same_floats doc) then Alcotest.fail "a smooth mesh: the fast colours differ from the oracle's";
+        if not (Helpers.same_floats { doc with shapes = [ Shape.Mesh flat ] }) then
           Alcotest.fail "a flat mesh: the fast colours differ from the oracle's";
         List.iter
           (fun (what, s) ->
