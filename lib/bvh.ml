@@ -148,23 +148,6 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   (* Empty bounds, copied over [acc] and the bins to reset them. *)
   let empty = Array.init (12 * bins) (fun c -> if c mod 6 < 3 then infinity else neg_infinity) in
   let reset () = Array.blit empty 0 acc 0 12 in
-  let grow b =
-    if Array.unsafe_get bin_n b > 0 then begin
-      let o = 12 * b in
-      lower acc 0 (Array.unsafe_get bin_box o);
-      lower acc 1 (Array.unsafe_get bin_box (o + 1));
-      lower acc 2 (Array.unsafe_get bin_box (o + 2));
-      higher acc 3 (Array.unsafe_get bin_box (o + 3));
-      higher acc 4 (Array.unsafe_get bin_box (o + 4));
-      higher acc 5 (Array.unsafe_get bin_box (o + 5));
-      lower acc 6 (Array.unsafe_get bin_box (o + 6));
-      lower acc 7 (Array.unsafe_get bin_box (o + 7));
-      lower acc 8 (Array.unsafe_get bin_box (o + 8));
-      higher acc 9 (Array.unsafe_get bin_box (o + 9));
-      higher acc 10 (Array.unsafe_get bin_box (o + 10));
-      higher acc 11 (Array.unsafe_get bin_box (o + 11))
-    end
-  in
   (* The box alone, for the sweeps that price the splits. *)
   let grow_box b =
     if Array.unsafe_get bin_n b > 0 then begin
@@ -175,6 +158,19 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       higher acc 3 (Array.unsafe_get bin_box (o + 3));
       higher acc 4 (Array.unsafe_get bin_box (o + 4));
       higher acc 5 (Array.unsafe_get bin_box (o + 5))
+    end
+  in
+  (* The box and the centres' bounds. *)
+  let grow b =
+    grow_box b;
+    if Array.unsafe_get bin_n b > 0 then begin
+      let o = 12 * b in
+      lower acc 6 (Array.unsafe_get bin_box (o + 6));
+      lower acc 7 (Array.unsafe_get bin_box (o + 7));
+      lower acc 8 (Array.unsafe_get bin_box (o + 8));
+      higher acc 9 (Array.unsafe_get bin_box (o + 9));
+      higher acc 10 (Array.unsafe_get bin_box (o + 10));
+      higher acc 11 (Array.unsafe_get bin_box (o + 11))
     end
   in
   let acc_area () = half_area acc.(0) acc.(1) acc.(2) acc.(3) acc.(4) acc.(5) in
