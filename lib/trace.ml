@@ -17,6 +17,10 @@ type t = {
   s : Scratch.t;
   stack : float array;  (** Per reflection level: local r, g, b and reflectivity. *)
   last_blocker : int array;  (** Per light: the sphere that last shadowed it. *)
+  blockers : int array;
+      (** The document's kernel: per light [l], at [l n] to [l n + n - 1]
+          ([n] = [n_objects]), the places in [sphere4] of every slot, in
+          the order its shadow rays try them: the last blocker found first. *)
   counters : counters;
   nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
   csg : Csg.work;  (** Room for the intervals of the CSG solids. *)
@@ -62,6 +66,7 @@ let create ?(averaging = false) (p : Prepared.t) =
     s = Scratch.create ();
     stack = Array.make (4 * (p.depth + 1)) 0.;
     last_blocker = Array.make (max 1 p.n_lights) (-1);
+    blockers = Array.init (p.n_lights * p.n_objects) (fun k -> 4 * (k mod p.n_objects));
     counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0 };
     nodes =
       Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0;
@@ -900,17 +905,17 @@ let no_buffer : Image.buffer = Bigarray.Array1.create Bigarray.int8_unsigned Big
    never in (t_min, t_max) with t_min >= 0 (1 for the camera, the scene's
    epsilon, validated >= 0, for the others). Such a sphere is rejected
    without the square root and the two divisions. *)
-let[@inline] blocks_unless_behind sph ox oy oz dx dy dz t_min t_max two_k1 k1x4 ~behind k =
+let[@inline] blocks_unless_behind sph ox oy oz dx dy dz t_min t_max two_k1 k1x4 zero ~behind k =
   let fx = ox -. Array.unsafe_get sph k
   and fy = oy -. Array.unsafe_get sph (k + 1)
   and fz = oz -. Array.unsafe_get sph (k + 2) in
   let h = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
   let k2 = h +. h in
   let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (k + 3) in
-  (not (behind && k2 > 0. && k3 > 0.))
+  (not (behind && k2 > zero && k3 > zero))
   &&
   let disc = (k2 *. k2) -. (k1x4 *. k3) in
-  disc >= 0.
+  disc >= zero
   &&
   let sq = sqrt disc in
   let t2 = (-.k2 -. sq) /. two_k1 in
@@ -995,9 +1000,12 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
      stays a pointer to a boxed float, read through once more at every use
      (eps >= 0, so adding 0. changes no comparison). *)
   let n = p.n_objects and eps = p.epsilon +. 0. and inf = 1. /. 0. in
+  (* A zero the compiler does not know: compared in a register (or the
+     stack), not made afresh with an instruction before every test. *)
+  let zero = Float.of_int (Sys.opaque_identity 0) in
   let n4 = 4 * n in
-  let n_lights = p.n_lights and light6 = p.light6 in
-  let last_blocker = tr.last_blocker and shadow_skip = p.shadow_skip in
+  let n_lights = p.n_lights and light6 = p.light6 and kinds = p.light_kind in
+  let blockers = tr.blockers and shadow_skip = p.shadow_skip in
   (* With [row], the camera rays of columns [col0] to [col0 + count - 1] of
      canvas row [r], set up as [row] would, with what is constant along the
      row read once, and each pixel stored at [k0 + 3 (col - col0)];
@@ -1053,9 +1061,9 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
           let h = (fx *. dx') +. (fy *. dy') +. (fz *. dz') in
           let k2 = h +. h in
           let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (i + 3) in
-          if not (behind && k2 > 0. && k3 > 0.) then begin
+          if not (behind && k2 > zero && k3 > zero) then begin
             let disc = (k2 *. k2) -. (k1x4 *. k3) in
-            if disc >= 0. then begin
+            if disc >= zero then begin
               let sq = sqrt disc in
               let t2 = (-.k2 -. sq) /. two_k1 in
               if t2 < !best && t_min' < t2 then begin
@@ -1075,7 +1083,10 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
         (* Slots, not places in [sph]. *)
         if !hit >= 0 then hit := !hit / 4
       end
-      else if tr.assumed <> no_assumption then begin
+      else if (not row) && tr.assumed <> no_assumption then begin
+        (* Not in a row: [row] leaves an assumed sphere to [pixel], so the
+           row's copy calls nothing here, and the ray's values need not be
+           saved on the stack around a call at every level. *)
         hit := primary_hit_spheres tr;
         best := s.t
       end
@@ -1092,9 +1103,9 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
           let h = (fx *. dx') +. (fy *. dy') +. (fz *. dz') in
           let k2 = h +. h in
           let k3 = Array.unsafe_get pr (k + 3) in
-          if not (behind && k2 > 0. && k3 > 0.) then begin
+          if not (behind && k2 > zero && k3 > zero) then begin
             let disc = (k2 *. k2) -. (k1x4 *. k3) in
-            if disc >= 0. then begin
+            if disc >= zero then begin
               let sq = sqrt disc in
               let t2 = (-.k2 -. sq) /. two_k1 in
               if t2 < !best && t_min' < t2 then begin
@@ -1129,7 +1140,6 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
         let m = Array.unsafe_get p.material i in
         (* [lighting], with the shadow ray inlined. *)
         let specular = Array.unsafe_get p.specular m and cut = p.specular_cut and mo = m * n_lights in
-        let shiny = specular <> Sphere.matte in
         (* The ambient lights that come first add up to the same sum in any
            case: it starts from their total (Prepared.ambient_lead). *)
         let intensity = ref p.ambient_lead in
@@ -1138,76 +1148,72 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
         let length_v = sqrt a in
         for l = p.first_light to n_lights - 1 do
           let o = 6 * l in
-          let kind = Array.unsafe_get light6 o and li = Array.unsafe_get light6 (o + 1) in
-          if kind = 0. then intensity := !intensity +. li
+          let kind = Array.unsafe_get kinds l and li = Array.unsafe_get light6 (o + 1) in
+          if kind = Prepared.ambient then intensity := !intensity +. li
           else begin
-            let point = kind = 1. in
-            let lx = ref 0. and ly = ref 0. and lz = ref 0. and t_max = ref inf in
-            if point then begin
-              lx := Array.unsafe_get light6 (o + 2) -. px;
-              ly := Array.unsafe_get light6 (o + 3) -. py;
-              lz := Array.unsafe_get light6 (o + 4) -. pz;
-              t_max := 1.
-            end
-            else begin
-              lx := Array.unsafe_get light6 (o + 2);
-              ly := Array.unsafe_get light6 (o + 3);
-              lz := Array.unsafe_get light6 (o + 4)
+            let lx = ref (Array.unsafe_get light6 (o + 2))
+            and ly = ref (Array.unsafe_get light6 (o + 3))
+            and lz = ref (Array.unsafe_get light6 (o + 4)) in
+            if kind = Prepared.point then begin
+              lx := !lx -. px;
+              ly := !ly -. py;
+              lz := !lz -. pz
             end;
-            let lx = !lx and ly = !ly and lz = !lz and t_max = !t_max in
+            let lx = !lx and ly = !ly and lz = !lz in
             let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
-            let add_diffuse = n_dot_l > 0. in
+            let add_diffuse = n_dot_l > zero in
             (* The specular term's cosine, as [lighting] computes it
                (its 2 <L, N> is 2 n_dot_l: the same products, summed in the
-               same order). *)
-            let cos = ref 0. in
-            if shiny then begin
-              let k = n_dot_l +. n_dot_l in
-              let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
-              let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
-              if r_dot_v > 0. then cos := r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v)
-            end;
-            let cos = !cos in
+               same order); computed for matte spheres too, whose cut is
+               infinite, rather than asking the material at every light. *)
+            let k = n_dot_l +. n_dot_l in
+            let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
+            let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
+            let cos = if r_dot_v > zero then r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v) else zero in
             (* At or below the cut, li cos^s is 0 or too small to change
                the sum (Prepared.specular_cut): the sum is what it would be
                with the term, and pow is not called. *)
-            let add_specular = shiny && cos > Array.unsafe_get cut (mo + l) in
+            let add_specular = cos > Array.unsafe_get cut (mo + l) in
             (* The shadow ray only matters if a term would be added: a light
                that adds nothing leaves the sum as it is, lit or not. (A
                point light on the point itself, L = 0, adds nothing:
                n_dot_l = 0 and R = 0. Without the skip it is left out, as
                [lighting] does.) *)
             if
-              (if shadow_skip then add_diffuse || add_specular else (not point) || lx <> 0. || ly <> 0. || lz <> 0.)
+              (if shadow_skip then add_diffuse || add_specular
+               else kind <> Prepared.point || lx <> 0. || ly <> 0. || lz <> 0.)
               &&
-              (* [shadowed] with the skips: this light's last blocker first,
-                 then the first blocker of the others, in scene order. *)
+              (* [shadowed] with the skips: any blocker will do, so the
+                 spheres are tried in this light's order of [blockers],
+                 where the last one found was moved to the front. *)
               let a = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
               let two_k1 = a +. a and k1x4 = 4. *. a in
               tr.counters.shadow <- tr.counters.shadow + 1;
-              let last = Array.unsafe_get last_blocker l in
-              if last >= 0 && blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * last) then begin
-                incr tests;
+              let first = l * n in
+              let stop = first + n in
+              let q = ref first in
+              (* Its range: 1 for a point light, infinity for a directional one. *)
+              let t_max = Array.unsafe_get light6 o in
+              while !q < stop && not (blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 zero ~behind (Array.unsafe_get blockers !q)) do
+                incr q
+              done;
+              let q = !q in
+              if q < stop then begin
+                tests := !tests + (q - first) + 1;
+                if q > first then begin
+                  let k = Array.unsafe_get blockers q in
+                  Array.unsafe_set blockers q (Array.unsafe_get blockers first);
+                  Array.unsafe_set blockers first k
+                end;
                 false
               end
               else begin
-                let j = ref 0 in
-                while
-                  !j < n
-                  && (!j = last || not (blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * !j)))
-                do
-                  incr j
-                done;
-                tests := !tests + !j + if last >= 0 then 1 else 0;
-                if !j < n then begin
-                  Array.unsafe_set last_blocker l !j;
-                  false
-                end
-                else true
+                tests := !tests + n;
+                true
               end
             then begin
               if add_diffuse then begin
-                let len = if point then sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz)) else Array.unsafe_get light6 (o + 5) in
+                let len = if kind = Prepared.point then sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz)) else Array.unsafe_get light6 (o + 5) in
                 intensity := !intensity +. (li *. n_dot_l /. (length_n *. len))
               end;
               if add_specular then intensity := !intensity +. (li *. Float.pow cos specular)
@@ -1737,7 +1743,8 @@ let row tr buffer k gx gy count =
   if r >= 0 && r < p.height && col0 >= 0 && count >= 0 && col0 + count <= p.width then begin
     (* [pixel], with what is constant along the row read once; the
        document's kernel takes the whole row. *)
-    if p.textbook_all && p.skips then begin
+    (* The kernel's row copy takes no assumed sphere (see [textbook_kernel]). *)
+    if p.textbook_all && p.skips && tr.assumed = no_assumption then begin
       if p.behind then row_textbook_behind tr buffer k col0 count r else row_textbook_all_roots tr buffer k col0 count r
     end
     else
