@@ -21,6 +21,7 @@ type t = {
       (** The document's kernel: per light [l], at [l n] to [l n + n - 1]
           ([n] = [n_objects]), the places in [sphere4] of every slot, in
           the order its shadow rays try them: the last blocker found first. *)
+  blockers_first : int array;  (** Per light [l]: [l n], read rather than multiplied per shadow ray. *)
   counters : counters;
   nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
   csg : Csg.work;  (** Room for the intervals of the CSG solids. *)
@@ -67,6 +68,7 @@ let create ?(averaging = false) (p : Prepared.t) =
     stack = Array.make (4 * (p.depth + 1)) 0.;
     last_blocker = Array.make (max 1 p.n_lights) (-1);
     blockers = Array.init (p.n_lights * p.n_objects) (fun k -> 4 * (k mod p.n_objects));
+    blockers_first = Array.init p.n_lights (fun l -> l * p.n_objects);
     counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0 };
     nodes =
       Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0;
@@ -1005,7 +1007,7 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
   let zero = Float.of_int (Sys.opaque_identity 0) in
   let n4 = 4 * n in
   let n_lights = p.n_lights and light6 = p.light6 and kinds = p.light_kind in
-  let blockers = tr.blockers and shadow_skip = p.shadow_skip in
+  let blockers = tr.blockers and blockers_first = tr.blockers_first and shadow_skip = p.shadow_skip in
   (* With [row], the camera rays of columns [col0] to [col0 + count - 1] of
      canvas row [r], set up as [row] would, with what is constant along the
      row read once, and each pixel stored at [k0 + 3 (col - col0)];
@@ -1015,6 +1017,9 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
   let vy = if row then Array.unsafe_get p.row_vy r else 0. in
   let vz = p.viewport.distance and m = p.camera.rotation and o = p.camera.position in
   let identity = p.identity_rotation in
+  (* The counts of the whole row, added to the counters once. *)
+  let tests = ref 0 in
+  tr.origin_sphere <- -1;
   for col = col0 to col0 + count - 1 do
     if row then begin
       if cull && (col = col0 || col land (tile - 1) = 0) then begin
@@ -1028,15 +1033,12 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
       s.oy <- o.y;
       s.oz <- o.z;
       s.t_min <- 1.;
-      s.t_max <- inf;
-      c.primary <- c.primary + 1
+      s.t_max <- inf
     end;
-    let tests = ref 0 and levels = ref 0 and tracing = ref true in
+    let levels = ref 0 and tracing = ref true in
     (* The weight of the colour still to be traced: the product of the
        reflectivities on the stack. *)
     let weight = ref 1. in
-    tr.first_hit <- -1;
-    tr.origin_sphere <- -1;
     while !tracing do
       (* The ray of this level is in [s]: read once, into registers.
          Doublings are written [x +. x]: the same bits as [2. *. x] (both
@@ -1088,7 +1090,8 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
            row's copy calls nothing here, and the ray's values need not be
            saved on the stack around a call at every level. *)
         hit := primary_hit_spheres tr;
-        best := s.t
+        best := s.t;
+        tr.first_hit <- !hit
       end
       else begin
         (* From the camera, CO and k3 are per-frame constants; only the
@@ -1120,10 +1123,10 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
                 end
             end
           end
-        done
+        done;
+        tr.first_hit <- !hit
       end;
       let i = !hit in
-      if !levels = 0 then tr.first_hit <- i;
       if i < 0 then begin
         s.r <- p.background.r;
         s.g <- p.background.g;
@@ -1189,7 +1192,7 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
               let a = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
               let two_k1 = a +. a and k1x4 = 4. *. a in
               tr.counters.shadow <- tr.counters.shadow + 1;
-              let first = l * n in
+              let first = Array.unsafe_get blockers_first l in
               let stop = first + n in
               let q = ref first in
               (* Its range: 1 for a point light, infinity for a directional one. *)
@@ -1264,7 +1267,6 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
         end
       end
     done;
-    tr.counters.tests <- tr.counters.tests + !tests;
     for l = !levels - 1 downto 0 do
       let refl = Array.unsafe_get tr.stack ((4 * l) + 3) in
       let keep = 1. -. refl in
@@ -1273,7 +1275,9 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
       s.b <- (Array.unsafe_get tr.stack ((4 * l) + 2) *. keep) +. (s.b *. refl)
     done;
     if row then store tr buffer (k0 + (3 * (col - col0)))
-  done
+  done;
+  if row then c.primary <- c.primary + count;
+  c.tests <- c.tests + !tests
 
 (* One copy with the rejection of spheres behind, one without (for the
    tests of its exactness); each for one ray and for a row of camera rays. *)
