@@ -949,7 +949,7 @@ let[@inline never] tile_candidates tr tx ty =
   let p = tr.p and c = tr.corners in
   let n = p.n_objects and vz = p.viewport.distance and m = p.camera.rotation in
   let col0 = tx * tile and row0 = ty * tile in
-  let col1 = min (p.width - 1) (col0 + tile - 1) and row1 = min (p.height - 1) (row0 + tile - 1) in
+  let col1 = Int.min (p.width - 1) (col0 + tile - 1) and row1 = Int.min (p.height - 1) (row0 + tile - 1) in
   for k = 0 to 3 do
     let vx = Array.unsafe_get p.column_vx (if k land 1 = 0 then col0 else col1) in
     let vy = Array.unsafe_get p.row_vy (if k land 2 = 0 then row0 else row1) in
