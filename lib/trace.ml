@@ -17,11 +17,12 @@ type t = {
   s : Scratch.t;
   stack : float array;  (** Per reflection level: local r, g, b and reflectivity. *)
   last_blocker : int array;  (** Per light: the sphere that last shadowed it. *)
-  blockers : int array;
-      (** The document's kernel: per light [l], at [l n] to [l n + n - 1]
-          ([n] = [n_objects]), the places in [sphere4] of every slot, in
-          the order its shadow rays try them: the last blocker found first. *)
-  blockers_first : int array;  (** Per light [l]: [l n], read rather than multiplied per shadow ray. *)
+  blockers : float array;
+      (** The document's kernel: per light [l], from [4 n l] on ([n] =
+          [n_objects]), a copy of [sphere4] in the order its shadow rays
+          try the spheres: the last blocker found first. One array read per
+          sphere, not an index then the sphere. *)
+  blockers_first : int array;  (** Per light [l]: [4 n l], read rather than multiplied per shadow ray. *)
   counters : counters;
   nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
   csg : Csg.work;  (** Room for the intervals of the CSG solids. *)
@@ -67,8 +68,10 @@ let create ?(averaging = false) (p : Prepared.t) =
     s = Scratch.create ();
     stack = Array.make (4 * (p.depth + 1)) 0.;
     last_blocker = Array.make (max 1 p.n_lights) (-1);
-    blockers = Array.init (p.n_lights * p.n_objects) (fun k -> 4 * (k mod p.n_objects));
-    blockers_first = Array.init p.n_lights (fun l -> l * p.n_objects);
+    blockers =
+      (let n4 = Array.length p.sphere4 in
+       Array.init (p.n_lights * n4) (fun k -> p.sphere4.(k mod n4)));
+    blockers_first = Array.init p.n_lights (fun l -> l * Array.length p.sphere4);
     counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0 };
     nodes =
       Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0;
@@ -1188,26 +1191,27 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
               &&
               (* [shadowed] with the skips: any blocker will do, so the
                  spheres are tried in this light's order of [blockers],
-                 where the last one found was moved to the front. *)
+                 where the last one found was swapped to the front. *)
               let a = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
               let two_k1 = a +. a and k1x4 = 4. *. a in
               tr.counters.shadow <- tr.counters.shadow + 1;
               let first = Array.unsafe_get blockers_first l in
-              let stop = first + n in
+              let stop = first + n4 in
               let q = ref first in
               (* Its range: 1 for a point light, infinity for a directional one. *)
               let t_max = Array.unsafe_get light6 o in
-              while !q < stop && not (blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 zero ~behind (Array.unsafe_get blockers !q)) do
-                incr q
+              while !q < stop && not (blocks_unless_behind blockers px py pz lx ly lz eps t_max two_k1 k1x4 zero ~behind !q) do
+                q := !q + 4
               done;
               let q = !q in
               if q < stop then begin
-                tests := !tests + (q - first) + 1;
-                if q > first then begin
-                  let k = Array.unsafe_get blockers q in
-                  Array.unsafe_set blockers q (Array.unsafe_get blockers first);
-                  Array.unsafe_set blockers first k
-                end;
+                tests := !tests + ((q - first) / 4) + 1;
+                if q > first then
+                  for c = 0 to 3 do
+                    let x = Array.unsafe_get blockers (q + c) in
+                    Array.unsafe_set blockers (q + c) (Array.unsafe_get blockers (first + c));
+                    Array.unsafe_set blockers (first + c) x
+                  done;
                 false
               end
               else begin
