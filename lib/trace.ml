@@ -1021,7 +1021,7 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
   let vz = p.viewport.distance and m = p.camera.rotation and o = p.camera.position in
   let identity = p.identity_rotation in
   (* The counts of the whole row, added to the counters once. *)
-  let tests = ref 0 in
+  let tests = ref 0 and shadows = ref 0 and reflections = ref 0 in
   tr.origin_sphere <- -1;
   for col = col0 to col0 + count - 1 do
     if row then begin
@@ -1035,8 +1035,8 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
       s.ox <- o.x;
       s.oy <- o.y;
       s.oz <- o.z;
-      s.t_min <- 1.;
-      s.t_max <- inf
+      (* The kernel reads no [t_max]: camera and mirror rays have none. *)
+      s.t_min <- 1.
     end;
     let levels = ref 0 and tracing = ref true in
     (* The weight of the colour still to be traced: the product of the
@@ -1194,7 +1194,7 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
                  where the last one found was swapped to the front. *)
               let a = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
               let two_k1 = a +. a and k1x4 = 4. *. a in
-              tr.counters.shadow <- tr.counters.shadow + 1;
+              incr shadows;
               let first = Array.unsafe_get blockers_first l in
               let stop = first + n4 in
               let q = ref first in
@@ -1266,7 +1266,7 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
             s.dy <- (ny *. k) -. vy;
             s.dz <- (nz *. k) -. vz;
             s.t_min <- eps;
-            tr.counters.reflection <- tr.counters.reflection + 1
+            incr reflections
           end
         end
       end
@@ -1281,7 +1281,9 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
     if row then store tr buffer (k0 + (3 * (col - col0)))
   done;
   if row then c.primary <- c.primary + count;
-  c.tests <- c.tests + !tests
+  c.tests <- c.tests + !tests;
+  c.shadow <- c.shadow + !shadows;
+  c.reflection <- c.reflection + !reflections
 
 (* One copy with the rejection of spheres behind, one without (for the
    tests of its exactness); each for one ray and for a row of camera rays. *)
