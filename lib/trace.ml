@@ -1035,7 +1035,8 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
       s.ox <- o.x;
       s.oy <- o.y;
       s.oz <- o.z;
-      (* The kernel reads no [t_max]: camera and mirror rays have none. *)
+      (* No [t_max]: the kernel's camera and mirror rays reach infinity,
+         which [t < best] already implies, and it reads none. *)
       s.t_min <- 1.
     end;
     let levels = ref 0 and tracing = ref true in
