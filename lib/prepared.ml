@@ -170,7 +170,8 @@ let specular_cut ~skips (materials : Material.t array) (lights : Light.t array) 
     (Array.length materials * n_lights)
     (fun k ->
       let s = materials.(k / n_lights).specular and l = k mod n_lights in
-      if not skips then 0.
+      if s = Sphere.matte then infinity
+      else if not skips then 0.
       else Float.max (specular_zero s) (negligible_cos ~before:before.(l) ~li:(Light.intensity lights.(l)) s))
 
 (* The sum of the ambient lights that come first, added from 0 in order
@@ -644,7 +645,7 @@ let prepare ?(skips = true) scene =
            (fun l ->
              let v = vector l in
              [|
-               (match l with Light.Ambient _ -> 0. | Point _ -> 1. | Directional _ -> 2.);
+               (match l with Light.Ambient _ -> 0. | Point _ -> 1. | Directional _ -> infinity);
                Light.intensity l;
                v.x;
                v.y;
@@ -668,4 +669,10 @@ let without k p =
   | Shadow_rays -> { p with shadow_skip = false }
   | Culling -> { p with cull = false }
   | Negligible_terms ->
-      { p with specular_cut = Array.mapi (fun k _ -> p.specular_zero.(k / max 1 p.n_lights)) p.specular_cut }
+      {
+        p with
+        specular_cut =
+          Array.mapi
+            (fun k cut -> if p.specular.(k / max 1 p.n_lights) = Sphere.matte then cut else p.specular_zero.(k / max 1 p.n_lights))
+            p.specular_cut;
+      }

@@ -136,7 +136,8 @@ type t = private {
           term of [l] adds nothing to the intensity it joins, because
           [cos ** s] is 0 ([specular_zero]) or below half an ulp of the
           intensity already summed (at least the ambient lights listed
-          before [l]); [0.] without the skips. *)
+          before [l]); [0.] without the skips; [infinity] for a matte
+          material, which has no specular term. *)
   ambient_lead : float;
       (** The sum of the ambient lights that come first in [light_kind],
           added from [0.] in order. *)
@@ -148,8 +149,9 @@ type t = private {
       (** With [textbook_all]: per slot [i], [primary_ocx, primary_ocy,
           primary_ocz, primary_k3] at [4 i] to [4 i + 3]; otherwise empty. *)
   light6 : float array;
-      (** Per light [l], at [6 l] to [6 l + 5]: its kind ([0.] ambient, [1.]
-          point, [2.] directional), intensity, vector x, y, z and [|L|]. *)
+      (** Per light [l], at [6 l] to [6 l + 5]: the range of its shadow
+          rays ([1.] point, [infinity] directional, [0.] ambient),
+          intensity, vector x, y, z and [|L|]. *)
   column_vx : float array;
       (** The viewport x of the pixel centres of each canvas column, left to right. *)
   row_vy : float array;

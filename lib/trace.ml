@@ -17,6 +17,12 @@ type t = {
   s : Scratch.t;
   stack : float array;  (** Per reflection level: local r, g, b and reflectivity. *)
   last_blocker : int array;  (** Per light: the sphere that last shadowed it. *)
+  blockers : float array;
+      (** The document's kernel: per light [l], from [4 n l] on ([n] =
+          [n_objects]), a copy of [sphere4] in the order its shadow rays
+          try the spheres: the last blocker found first. One array read per
+          sphere, not an index then the sphere. *)
+  blockers_first : int array;  (** Per light [l]: [4 n l], read rather than multiplied per shadow ray. *)
   counters : counters;
   nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
   csg : Csg.work;  (** Room for the intervals of the CSG solids. *)
@@ -62,6 +68,10 @@ let create ?(averaging = false) (p : Prepared.t) =
     s = Scratch.create ();
     stack = Array.make (4 * (p.depth + 1)) 0.;
     last_blocker = Array.make (max 1 p.n_lights) (-1);
+    blockers =
+      (let n4 = Array.length p.sphere4 in
+       Array.init (p.n_lights * n4) (fun k -> p.sphere4.(k mod n4)));
+    blockers_first = Array.init p.n_lights (fun l -> l * Array.length p.sphere4);
     counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0 };
     nodes =
       Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0;
@@ -900,17 +910,17 @@ let no_buffer : Image.buffer = Bigarray.Array1.create Bigarray.int8_unsigned Big
    never in (t_min, t_max) with t_min >= 0 (1 for the camera, the scene's
    epsilon, validated >= 0, for the others). Such a sphere is rejected
    without the square root and the two divisions. *)
-let[@inline] blocks_unless_behind sph ox oy oz dx dy dz t_min t_max two_k1 k1x4 ~behind k =
+let[@inline] blocks_unless_behind sph ox oy oz dx dy dz t_min t_max two_k1 k1x4 zero ~behind k =
   let fx = ox -. Array.unsafe_get sph k
   and fy = oy -. Array.unsafe_get sph (k + 1)
   and fz = oz -. Array.unsafe_get sph (k + 2) in
   let h = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
   let k2 = h +. h in
   let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (k + 3) in
-  (not (behind && k2 > 0. && k3 > 0.))
+  (not (behind && k2 > zero && k3 > zero))
   &&
   let disc = (k2 *. k2) -. (k1x4 *. k3) in
-  disc >= 0.
+  disc >= zero
   &&
   let sq = sqrt disc in
   let t2 = (-.k2 -. sq) /. two_k1 in
@@ -942,7 +952,7 @@ let[@inline never] tile_candidates tr tx ty =
   let p = tr.p and c = tr.corners in
   let n = p.n_objects and vz = p.viewport.distance and m = p.camera.rotation in
   let col0 = tx * tile and row0 = ty * tile in
-  let col1 = min (p.width - 1) (col0 + tile - 1) and row1 = min (p.height - 1) (row0 + tile - 1) in
+  let col1 = Int.min (p.width - 1) (col0 + tile - 1) and row1 = Int.min (p.height - 1) (row0 + tile - 1) in
   for k = 0 to 3 do
     let vx = Array.unsafe_get p.column_vx (if k land 1 = 0 then col0 else col1) in
     let vy = Array.unsafe_get p.row_vy (if k land 2 = 0 then row0 else row1) in
@@ -995,9 +1005,12 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
      stays a pointer to a boxed float, read through once more at every use
      (eps >= 0, so adding 0. changes no comparison). *)
   let n = p.n_objects and eps = p.epsilon +. 0. and inf = 1. /. 0. in
+  (* A zero the compiler does not know: compared in a register (or the
+     stack), not made afresh with an instruction before every test. *)
+  let zero = Float.of_int (Sys.opaque_identity 0) in
   let n4 = 4 * n in
-  let n_lights = p.n_lights and light6 = p.light6 in
-  let last_blocker = tr.last_blocker and shadow_skip = p.shadow_skip in
+  let n_lights = p.n_lights and light6 = p.light6 and kinds = p.light_kind in
+  let blockers = tr.blockers and blockers_first = tr.blockers_first and shadow_skip = p.shadow_skip in
   (* With [row], the camera rays of columns [col0] to [col0 + count - 1] of
      canvas row [r], set up as [row] would, with what is constant along the
      row read once, and each pixel stored at [k0 + 3 (col - col0)];
@@ -1007,6 +1020,9 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
   let vy = if row then Array.unsafe_get p.row_vy r else 0. in
   let vz = p.viewport.distance and m = p.camera.rotation and o = p.camera.position in
   let identity = p.identity_rotation in
+  (* The counts of the whole row, added to the counters once. *)
+  let tests = ref 0 and shadows = ref 0 and reflections = ref 0 in
+  tr.origin_sphere <- -1;
   for col = col0 to col0 + count - 1 do
     if row then begin
       if cull && (col = col0 || col land (tile - 1) = 0) then begin
@@ -1019,16 +1035,14 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
       s.ox <- o.x;
       s.oy <- o.y;
       s.oz <- o.z;
-      s.t_min <- 1.;
-      s.t_max <- inf;
-      c.primary <- c.primary + 1
+      (* No [t_max]: the kernel's camera and mirror rays reach infinity,
+         which [t < best] already implies, and it reads none. *)
+      s.t_min <- 1.
     end;
-    let tests = ref 0 and levels = ref 0 and tracing = ref true in
+    let levels = ref 0 and tracing = ref true in
     (* The weight of the colour still to be traced: the product of the
        reflectivities on the stack. *)
     let weight = ref 1. in
-    tr.first_hit <- -1;
-    tr.origin_sphere <- -1;
     while !tracing do
       (* The ray of this level is in [s]: read once, into registers.
          Doublings are written [x +. x]: the same bits as [2. *. x] (both
@@ -1053,9 +1067,9 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
           let h = (fx *. dx') +. (fy *. dy') +. (fz *. dz') in
           let k2 = h +. h in
           let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get sph (i + 3) in
-          if not (behind && k2 > 0. && k3 > 0.) then begin
+          if not (behind && k2 > zero && k3 > zero) then begin
             let disc = (k2 *. k2) -. (k1x4 *. k3) in
-            if disc >= 0. then begin
+            if disc >= zero then begin
               let sq = sqrt disc in
               let t2 = (-.k2 -. sq) /. two_k1 in
               if t2 < !best && t_min' < t2 then begin
@@ -1075,9 +1089,13 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
         (* Slots, not places in [sph]. *)
         if !hit >= 0 then hit := !hit / 4
       end
-      else if tr.assumed <> no_assumption then begin
+      else if (not row) && tr.assumed <> no_assumption then begin
+        (* Not in a row: [row] leaves an assumed sphere to [pixel], so the
+           row's copy calls nothing here, and the ray's values need not be
+           saved on the stack around a call at every level. *)
         hit := primary_hit_spheres tr;
-        best := s.t
+        best := s.t;
+        tr.first_hit <- !hit
       end
       else begin
         (* From the camera, CO and k3 are per-frame constants; only the
@@ -1092,9 +1110,9 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
           let h = (fx *. dx') +. (fy *. dy') +. (fz *. dz') in
           let k2 = h +. h in
           let k3 = Array.unsafe_get pr (k + 3) in
-          if not (behind && k2 > 0. && k3 > 0.) then begin
+          if not (behind && k2 > zero && k3 > zero) then begin
             let disc = (k2 *. k2) -. (k1x4 *. k3) in
-            if disc >= 0. then begin
+            if disc >= zero then begin
               let sq = sqrt disc in
               let t2 = (-.k2 -. sq) /. two_k1 in
               if t2 < !best && t_min' < t2 then begin
@@ -1109,10 +1127,10 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
                 end
             end
           end
-        done
+        done;
+        tr.first_hit <- !hit
       end;
       let i = !hit in
-      if !levels = 0 then tr.first_hit <- i;
       if i < 0 then begin
         s.r <- p.background.r;
         s.g <- p.background.g;
@@ -1129,7 +1147,6 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
         let m = Array.unsafe_get p.material i in
         (* [lighting], with the shadow ray inlined. *)
         let specular = Array.unsafe_get p.specular m and cut = p.specular_cut and mo = m * n_lights in
-        let shiny = specular <> Sphere.matte in
         (* The ambient lights that come first add up to the same sum in any
            case: it starts from their total (Prepared.ambient_lead). *)
         let intensity = ref p.ambient_lead in
@@ -1138,76 +1155,73 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
         let length_v = sqrt a in
         for l = p.first_light to n_lights - 1 do
           let o = 6 * l in
-          let kind = Array.unsafe_get light6 o and li = Array.unsafe_get light6 (o + 1) in
-          if kind = 0. then intensity := !intensity +. li
+          let kind = Array.unsafe_get kinds l and li = Array.unsafe_get light6 (o + 1) in
+          if kind = Prepared.ambient then intensity := !intensity +. li
           else begin
-            let point = kind = 1. in
-            let lx = ref 0. and ly = ref 0. and lz = ref 0. and t_max = ref inf in
-            if point then begin
-              lx := Array.unsafe_get light6 (o + 2) -. px;
-              ly := Array.unsafe_get light6 (o + 3) -. py;
-              lz := Array.unsafe_get light6 (o + 4) -. pz;
-              t_max := 1.
-            end
-            else begin
-              lx := Array.unsafe_get light6 (o + 2);
-              ly := Array.unsafe_get light6 (o + 3);
-              lz := Array.unsafe_get light6 (o + 4)
+            let lx = ref (Array.unsafe_get light6 (o + 2))
+            and ly = ref (Array.unsafe_get light6 (o + 3))
+            and lz = ref (Array.unsafe_get light6 (o + 4)) in
+            if kind = Prepared.point then begin
+              lx := !lx -. px;
+              ly := !ly -. py;
+              lz := !lz -. pz
             end;
-            let lx = !lx and ly = !ly and lz = !lz and t_max = !t_max in
+            let lx = !lx and ly = !ly and lz = !lz in
             let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
-            let add_diffuse = n_dot_l > 0. in
+            let add_diffuse = n_dot_l > zero in
             (* The specular term's cosine, as [lighting] computes it
                (its 2 <L, N> is 2 n_dot_l: the same products, summed in the
-               same order). *)
-            let cos = ref 0. in
-            if shiny then begin
-              let k = n_dot_l +. n_dot_l in
-              let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
-              let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
-              if r_dot_v > 0. then cos := r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v)
-            end;
-            let cos = !cos in
+               same order); computed for matte spheres too, whose cut is
+               infinite, rather than asking the material at every light. *)
+            let k = n_dot_l +. n_dot_l in
+            let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
+            let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
+            let cos = if r_dot_v > zero then r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v) else zero in
             (* At or below the cut, li cos^s is 0 or too small to change
                the sum (Prepared.specular_cut): the sum is what it would be
                with the term, and pow is not called. *)
-            let add_specular = shiny && cos > Array.unsafe_get cut (mo + l) in
+            let add_specular = cos > Array.unsafe_get cut (mo + l) in
             (* The shadow ray only matters if a term would be added: a light
                that adds nothing leaves the sum as it is, lit or not. (A
                point light on the point itself, L = 0, adds nothing:
                n_dot_l = 0 and R = 0. Without the skip it is left out, as
                [lighting] does.) *)
             if
-              (if shadow_skip then add_diffuse || add_specular else (not point) || lx <> 0. || ly <> 0. || lz <> 0.)
+              (if shadow_skip then add_diffuse || add_specular
+               else kind <> Prepared.point || lx <> 0. || ly <> 0. || lz <> 0.)
               &&
-              (* [shadowed] with the skips: this light's last blocker first,
-                 then the first blocker of the others, in scene order. *)
+              (* [shadowed] with the skips: any blocker will do, so the
+                 spheres are tried in this light's order of [blockers],
+                 where the last one found was swapped to the front. *)
               let a = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
               let two_k1 = a +. a and k1x4 = 4. *. a in
-              tr.counters.shadow <- tr.counters.shadow + 1;
-              let last = Array.unsafe_get last_blocker l in
-              if last >= 0 && blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * last) then begin
-                incr tests;
+              incr shadows;
+              let first = Array.unsafe_get blockers_first l in
+              let stop = first + n4 in
+              let q = ref first in
+              (* Its range: 1 for a point light, infinity for a directional one. *)
+              let t_max = Array.unsafe_get light6 o in
+              while !q < stop && not (blocks_unless_behind blockers px py pz lx ly lz eps t_max two_k1 k1x4 zero ~behind !q) do
+                q := !q + 4
+              done;
+              let q = !q in
+              if q < stop then begin
+                tests := !tests + ((q - first) / 4) + 1;
+                if q > first then
+                  for c = 0 to 3 do
+                    let x = Array.unsafe_get blockers (q + c) in
+                    Array.unsafe_set blockers (q + c) (Array.unsafe_get blockers (first + c));
+                    Array.unsafe_set blockers (first + c) x
+                  done;
                 false
               end
               else begin
-                let j = ref 0 in
-                while
-                  !j < n
-                  && (!j = last || not (blocks_unless_behind sph px py pz lx ly lz eps t_max two_k1 k1x4 ~behind (4 * !j)))
-                do
-                  incr j
-                done;
-                tests := !tests + !j + if last >= 0 then 1 else 0;
-                if !j < n then begin
-                  Array.unsafe_set last_blocker l !j;
-                  false
-                end
-                else true
+                tests := !tests + n;
+                true
               end
             then begin
               if add_diffuse then begin
-                let len = if point then sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz)) else Array.unsafe_get light6 (o + 5) in
+                let len = if kind = Prepared.point then sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz)) else Array.unsafe_get light6 (o + 5) in
                 intensity := !intensity +. (li *. n_dot_l /. (length_n *. len))
               end;
               if add_specular then intensity := !intensity +. (li *. Float.pow cos specular)
@@ -1253,12 +1267,11 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
             s.dy <- (ny *. k) -. vy;
             s.dz <- (nz *. k) -. vz;
             s.t_min <- eps;
-            tr.counters.reflection <- tr.counters.reflection + 1
+            incr reflections
           end
         end
       end
     done;
-    tr.counters.tests <- tr.counters.tests + !tests;
     for l = !levels - 1 downto 0 do
       let refl = Array.unsafe_get tr.stack ((4 * l) + 3) in
       let keep = 1. -. refl in
@@ -1267,7 +1280,11 @@ let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 cou
       s.b <- (Array.unsafe_get tr.stack ((4 * l) + 2) *. keep) +. (s.b *. refl)
     done;
     if row then store tr buffer (k0 + (3 * (col - col0)))
-  done
+  done;
+  if row then c.primary <- c.primary + count;
+  c.tests <- c.tests + !tests;
+  c.shadow <- c.shadow + !shadows;
+  c.reflection <- c.reflection + !reflections
 
 (* One copy with the rejection of spheres behind, one without (for the
    tests of its exactness); each for one ray and for a row of camera rays. *)
@@ -1737,7 +1754,8 @@ let row tr buffer k gx gy count =
   if r >= 0 && r < p.height && col0 >= 0 && count >= 0 && col0 + count <= p.width then begin
     (* [pixel], with what is constant along the row read once; the
        document's kernel takes the whole row. *)
-    if p.textbook_all && p.skips then begin
+    (* The kernel's row copy takes no assumed sphere (see [textbook_kernel]). *)
+    if p.textbook_all && p.skips && tr.assumed = no_assumption then begin
       if p.behind then row_textbook_behind tr buffer k col0 count r else row_textbook_all_roots tr buffer k col0 count r
     end
     else
