@@ -16,9 +16,7 @@
 
 type t = private {
   order : int array;  (** Input index of the sphere in each slot. *)
-  n_nodes : int;
-      (** The number of nodes: the node arrays below may be longer, by at
-          most an eighth, their last elements unused. *)
+  n_nodes : int;  (** The number of nodes, the length of the node arrays below. *)
   lo_x : float array;  (** Box of each node: lower corner. *)
   lo_y : float array;
   lo_z : float array;
