@@ -78,12 +78,19 @@ let corner_normal m k c g o =
 let corner_normals m k g o =
   m.smooth && corner_normal m k 0 g o && corner_normal m k 1 g (o + 3) && corner_normal m k 2 g (o + 6)
 
-let bounds m k =
-  let lo a = Float.min (coord m k 0 a) (Float.min (coord m k 1 a) (coord m k 2 a)) in
-  let hi a = Float.max (coord m k 0 a) (Float.max (coord m k 1 a) (coord m k 2 a)) in
-  let x0 = lo 0 and y0 = lo 1 and z0 = lo 2 and x1 = hi 0 and y1 = hi 1 and z1 = hi 2 in
-  ( Vec3.v (0.5 *. (x0 +. x1)) (0.5 *. (y0 +. y1)) (0.5 *. (z0 +. z1)),
-    Float.max (x1 -. x0) (Float.max (y1 -. y0) (z1 -. z0)) *. 0.5 )
+let[@inline] fmin (a : float) b = if a < b then a else b
+let[@inline] fmax (a : float) b = if a > b then a else b
+
+(* Floats written, not vectors returned: the kernel asks this of each of
+   millions of triangles. *)
+let box m k b =
+  let i0 = 3 * m.triangles.(3 * k) and i1 = 3 * m.triangles.((3 * k) + 1) and i2 = 3 * m.triangles.((3 * k) + 2) in
+  let p = m.positions in
+  for a = 0 to 2 do
+    let u = p.(i0 + a) and v = p.(i1 + a) and w = p.(i2 + a) in
+    b.(a) <- fmin u (fmin v w);
+    b.(a + 3) <- fmax u (fmax v w)
+  done
 
 let equal a b =
   let fa x y = Array.length x = Array.length y && Array.for_all2 Float.equal x y in

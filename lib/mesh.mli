@@ -68,9 +68,9 @@ val corner_normals : t -> int -> float array -> int -> bool
     normalised; otherwise it is [false] (and may have written some of
     them). *)
 
-val bounds : t -> int -> Vec3.t * float
-(** [bounds m k] is {!Shape.bounds} of triangle [k]: the center and half
-    side of a cube that holds it. *)
+val box : t -> int -> float array -> unit
+(** [box m k b] writes the box of triangle [k] to [b]: its lower corner
+    [x y z] at [0 .. 2], its upper corner at [3 .. 5]. *)
 
 val equal : t -> t -> bool
 (** [equal a b] is [true] iff every field of [a] equals [b]'s, floats

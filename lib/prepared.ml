@@ -68,6 +68,8 @@ type t = {
 }
 
 let bvh_threshold = 8
+
+let[@inline] fmax (a : float) b = if a > b then a else b
 let ambient = 0
 let point = 1
 let directional = 2
@@ -346,7 +348,7 @@ let prepare ?(skips = true) scene =
           Materials.add known m i;
           i
   in
-  let corners = Array.make 9 0. in
+  let corners = Array.make 9 0. and box = Array.make 6 0. in
   (* A mesh's triangles come in a run: one material for the run. *)
   let last_mesh = ref None in
   (* CSG solids go to their own table: the root node of object [k]'s. Each
@@ -397,16 +399,19 @@ let prepare ?(skips = true) scene =
                last_mesh := Some (m, i);
                i
          in
-         let c, h = Mesh.bounds m t in
-         let smooth = Mesh.corner_normals m t corners 0 in
-         set k (if smooth then Shape.smooth_triangle else Shape.triangle) mat c h;
-         let half a =
-           let v c = m.positions.((3 * m.triangles.((3 * t) + c)) + a) in
-           0.5 *. (Float.max (v 0) (Float.max (v 1) (v 2)) -. Float.min (v 0) (Float.min (v 1) (v 2)))
-         in
-         oex.(k) <- half 0;
-         oey.(k) <- half 1;
-         oez.(k) <- half 2));
+         Mesh.box m t box;
+         let dx = box.(3) -. box.(0) and dy = box.(4) -. box.(1) and dz = box.(5) -. box.(2) in
+         (* [set]'s arrays, written here without a vector: a mesh has millions. *)
+         okind.(k) <- (if Mesh.corner_normals m t corners 0 then Shape.smooth_triangle else Shape.triangle);
+         omat.(k) <- mat;
+         ocx.(k) <- 0.5 *. (box.(0) +. box.(3));
+         ocy.(k) <- 0.5 *. (box.(1) +. box.(4));
+         ocz.(k) <- 0.5 *. (box.(2) +. box.(5));
+         ohalf.(k) <- fmax dx (fmax dy dz) *. 0.5;
+         (* Half the box along each axis: triangles are slivers. *)
+         oex.(k) <- 0.5 *. dx;
+         oey.(k) <- 0.5 *. dy;
+         oez.(k) <- 0.5 *. dz));
   let materials = Array.of_list (List.rev !materials) in
   (* A patterned material's second colour is a material of its own, after
      the scene's: the tracer picks one of the two indices, so that the
@@ -493,7 +498,7 @@ let prepare ?(skips = true) scene =
   let extent_of i =
     let e = ref 0. in
     for j = stride * i to (stride * i) + stride - 1 do
-      e := Float.max !e (Float.abs geom.(j))
+      e := fmax !e (Float.abs geom.(j))
     done;
     extent.(i) <- !e
   in
