@@ -59,12 +59,7 @@ let degenerate m k =
   let n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
   not (n > 0. && Float.is_finite n && Float.is_finite (1. /. n))
 
-(* The unit normal of corner [c] of triangle [k] written to [g] at [o],
-   if it has one of a length that can be normalised. *)
-let corner_normal m k c g o =
-  let j = m.triangle_normals.((3 * k) + c) in
-  j >= 0
-  &&
+let unit_normal m j g o =
   let x = m.normals.(3 * j) and y = m.normals.((3 * j) + 1) and z = m.normals.((3 * j) + 2) in
   let l = sqrt ((x *. x) +. (y *. y) +. (z *. z)) in
   l > 0. && Float.is_finite l && Float.is_finite (1. /. l)
@@ -74,6 +69,12 @@ let corner_normal m k c g o =
   g.(o + 1) <- y *. inv;
   g.(o + 2) <- z *. inv;
   true
+
+(* The unit normal of corner [c] of triangle [k] written to [g] at [o],
+   if it has one of a length that can be normalised. *)
+let corner_normal m k c g o =
+  let j = m.triangle_normals.((3 * k) + c) in
+  j >= 0 && unit_normal m j g o
 
 let corner_normals m k g o =
   m.smooth && corner_normal m k 0 g o && corner_normal m k 1 g (o + 3) && corner_normal m k 2 g (o + 6)

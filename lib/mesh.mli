@@ -61,6 +61,12 @@ val degenerate : t -> int -> bool
 (** [degenerate m k] is [true] iff triangle [k] has no normal: its
     vertices lie on a line, as {!Triangle.validate} refuses. *)
 
+val unit_normal : t -> int -> float array -> int -> bool
+(** [unit_normal m j g o] writes normal [j] of [m], divided by its length,
+    to [g] at [o .. o + 2] and is [true], if its length can be normalised
+    (it is [> 0], finite, and so is its inverse); otherwise it is [false]
+    and [g] is unchanged. *)
+
 val corner_normals : t -> int -> float array -> int -> bool
 (** [corner_normals m k g o] writes the unit normals of the three corners
     of triangle [k] to [g] at [o .. o + 8] and is [true], if [m] is
