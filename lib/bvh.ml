@@ -113,14 +113,7 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
   done;
   { order; n_nodes; lo_x; lo_y; lo_z; hi_x; hi_y; hi_z; right; first; count; axis; depth }
 
-type fork = { fork : 'a. (unit -> 'a) -> unit -> 'a }
-
-let sequential = { fork = (fun f -> let v = f () in fun () -> v) }
-
-(* Below this many objects, a second process costs more than it saves. *)
-let fork_least = 65536
-
-let build_boxes ?(leaf_size = 4) ?fork ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
+let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let n = Array.length x0 in
   if n = 0 then invalid_arg "Bvh.build_boxes: no boxes";
   if Array.exists (fun a -> Array.length a <> n) [| y0; z0; x1; y1; z1 |] then
@@ -128,8 +121,7 @@ let build_boxes ?(leaf_size = 4) ?fork ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let leaf_size = max 1 leaf_size in
   let order = Array.init n Fun.id in
   (* About [n / 2] nodes for leaves of two to four objects. *)
-  let shape () = { size = 0; link = Array.make ((n / 2) + 16) 0; tag = Array.make ((n / 2) + 16) 0 } in
-  let t = shape () in
+  let t = { size = 0; link = Array.make ((n / 2) + 16) 0; tag = Array.make ((n / 2) + 16) 0 } in
   (* The boxes move with their slots, so that every pass over a node's
      objects reads memory in order. *)
   let[@inline] swap i j = swap_slots x0 y0 z0 x1 y1 z1 order i j in
@@ -224,7 +216,7 @@ let build_boxes ?(leaf_size = 4) ?fork ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let acc_area () = half_area acc.(0) acc.(1) acc.(2) acc.(3) acc.(4) acc.(5) in
   let depth = ref 0 and split_bin = ref 0 in
   (* The node over slots [lo .. hi - 1], whose bounds are in [bounds] at [o]. *)
-  let rec node t lo hi level (bounds : float array) o =
+  let rec node lo hi level (bounds : float array) o =
     let k = add_node t in
     if level > !depth then depth := level;
     let bx0 = bounds.(o) and by0 = bounds.(o + 1) and bz0 = bounds.(o + 2) in
@@ -347,47 +339,15 @@ let build_boxes ?(leaf_size = 4) ?fork ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
           m
         end
       in
-      match fork with
-      | Some fork when level = 1 && n >= fork_least -> both fork t k lo split hi f
-      | _ ->
-          node t lo split (level + 1) !frames f;
-          t.link.(k) <- t.size;
-          (* [frames] may have grown (and moved) meanwhile. *)
-          node t split hi (level + 1) !frames (f + 12)
+      node lo split (level + 1) !frames f;
+      t.link.(k) <- t.size;
+      (* [frames] may have grown (and moved) meanwhile. *)
+      node split hi (level + 1) !frames (f + 12)
     end
-  (* The root's two subtrees at once: the right one by [fork], in a tree
-     of its own whose nodes, slots and boxes are then copied in after the
-     left one's. The two touch disjoint slots, and [fork]'s work starts
-     from copies of the bins and frames, whose levels above are intact. *)
-  and both fork t k lo split hi f =
-    let right =
-      fork.fork (fun () ->
-          let t' = shape () in
-          node t' split hi 2 !frames (f + 12);
-          let part a = Array.sub a split (hi - split) in
-          ( Array.sub t'.link 0 t'.size,
-            Array.sub t'.tag 0 t'.size,
-            !depth,
-            part order,
-            [| part x0; part y0; part z0; part x1; part y1; part z1 |] ))
-    in
-    node t lo split 2 !frames f;
-    let base = t.size in
-    t.link.(k) <- base;
-    let link, tag, d, o, boxes = right () in
-    if d > !depth then depth := d;
-    Array.blit o 0 order split (hi - split);
-    Array.iteri (fun i a -> Array.blit a 0 [| x0; y0; z0; x1; y1; z1 |].(i) split (hi - split)) boxes;
-    Array.iteri
-      (fun j l ->
-        let k = add_node t in
-        t.tag.(k) <- tag.(j);
-        t.link.(k) <- (if tag.(j) < 0 then l else l + base))
-      link
   in
   let root = Array.make 12 0. in
   bounds_of 0 n root 0;
-  node t 0 n 1 root 0;
+  node 0 n 1 root 0;
   finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order !depth
 
 let build ?leaf_size ~cx ~cy ~cz extent =

@@ -39,18 +39,8 @@ val build : ?leaf_size:int -> cx:float array -> cy:float array -> cz:float array
     @raise Invalid_argument if the arrays are empty or of different
     lengths. *)
 
-type fork = { fork : 'a. (unit -> 'a) -> unit -> 'a }
-(** The type for ways to compute in parallel: [fork.fork f] starts
-    computing [f ()] and is a function that waits for its result, which
-    [f]'s side effects, if any, may not outlive (in a forked process, with
-    the result sent back, they do not). *)
-
-val sequential : fork
-(** [sequential] computes [f ()] at once, in the caller. *)
-
 val build_boxes :
   ?leaf_size:int ->
-  ?fork:fork ->
   x0:float array ->
   y0:float array ->
   z0:float array ->
@@ -64,9 +54,7 @@ val build_boxes :
     and upper corners [(x1.(i), y1.(i), z1.(i))], split by the surface area
     heuristic over 16 bins of their centers along the longest axis (at the
     median when their centers coincide). Leaves hold at most [leaf_size]
-    (default 4) objects. With [fork], the root's two subtrees are built
-    at once, the right one by [fork], when there are enough objects for it
-    to pay; the tree is the same. The six arrays are reordered in place into slot
+    (default 4) objects. The six arrays are reordered in place into slot
     order: afterwards [x0.(slot)] is the box of object [order.(slot)]
     (the boxes move with the objects, so that each pass over a node reads
     memory in order).

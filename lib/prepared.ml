@@ -321,7 +321,7 @@ module Materials = Hashtbl.Make (struct
   let hash = Hashtbl.hash
 end)
 
-let prepare ?(skips = true) ?fork scene =
+let prepare ?(skips = true) scene =
   let scene = Scene.of_valid scene in
   let n_spheres = List.length scene.spheres in
   let degenerate = ref [] in
@@ -495,7 +495,7 @@ let prepare ?(skips = true) ?fork scene =
       let lo c e = Array.mapi (fun i k -> c.(k) -. (e.(k) +. margin.(i))) bounded in
       let hi c e = Array.mapi (fun i k -> c.(k) +. (e.(k) +. margin.(i))) bounded in
       Some
-        (Bvh.build_boxes ?fork ~x0:(lo ocx oex) ~y0:(lo ocy oey) ~z0:(lo ocz oez) ~x1:(hi ocx oex) ~y1:(hi ocy oey)
+        (Bvh.build_boxes ~x0:(lo ocx oex) ~y0:(lo ocy oey) ~z0:(lo ocz oez) ~x1:(hi ocx oex) ~y1:(hi ocy oey)
            ~z1:(hi ocz oez) ())
     end
     else None

@@ -176,7 +176,7 @@ val point : int
 val directional : int
 (** [directional] is the [light_kind] of directional lights. *)
 
-val prepare : ?skips:bool -> ?fork:Bvh.fork -> Scene.valid -> t
+val prepare : ?skips:bool -> Scene.valid -> t
 (** [prepare ~skips scene] is [scene] prepared for {!Raytrace.Private.Trace}. With [skips]
     (default [true]) the tracer skips work that provably cannot change an
     output byte: lights of zero intensity are dropped here, shadow rays stop
@@ -185,8 +185,7 @@ val prepare : ?skips:bool -> ?fork:Bvh.fork -> Scene.valid -> t
     rays are tested only against spheres whose (conservatively padded,
     {!Raytrace.Private.Bvh.ray_box_margin}) boxes they meet. With
     [~skips:false] it does everything the document does, for tests that
-    prove the skips exact. With [fork], half of a big
-    hierarchy is built at once with the other half ({!Bvh.build_boxes}). *)
+    prove the skips exact. *)
 
 (** The skips of the tracer's kernel for the document's scenes (spheres
     alone, an epsilon, no hierarchy), each exact on its own. *)

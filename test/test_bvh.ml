@@ -83,44 +83,6 @@ let tests =
                 if not inside then Alcotest.failf "box %d sticks out of node %d" i j)
               path);
         Alcotest.(check (array int)) "each box once" (Array.make n 1) seen);
-    Alcotest.test_case "built by two processes, or by the fallback, the tree is the one process's" `Quick (fun () ->
-        (* Enough boxes for the build to split its root's work
-           ([Bvh.fork_least] is 65536), slivers and cubes mixed. *)
-        let n = 70_000 in
-        let rand = Random.State.make [| 11 |] in
-        let f lo hi = lo +. Random.State.float rand (hi -. lo) in
-        let lo = Array.init 3 (fun _ -> Array.make n 0.) and hi = Array.init 3 (fun _ -> Array.make n 0.) in
-        for i = 0 to n - 1 do
-          let thin = Random.State.int rand 4 in
-          for a = 0 to 2 do
-            let c = f (-100.) 100. and h = if a = thin then 0. else f 0. 2. in
-            lo.(a).(i) <- c -. h;
-            hi.(a).(i) <- c +. h
-          done
-        done;
-        let build fork =
-          let l = Array.map Array.copy lo and h = Array.map Array.copy hi in
-          let b = Bvh.build_boxes ?fork ~x0:l.(0) ~y0:l.(1) ~z0:l.(2) ~x1:h.(0) ~y1:h.(1) ~z1:h.(2) () in
-          (b, Array.append l h)
-        in
-        let one, boxes = build None in
-        if one.n_nodes < 1000 then Alcotest.failf "only %d nodes" one.n_nodes;
-        List.iter
-          (fun (name, fork) ->
-            let b, bx = build (Some fork) in
-            let floats what x y = Alcotest.(check (array (float 0.))) (name ^ ": " ^ what) x y in
-            let ints what x y = Alcotest.(check (array int)) (name ^ ": " ^ what) x y in
-            Alcotest.(check int) (name ^ ": nodes") one.n_nodes b.n_nodes;
-            Alcotest.(check int) (name ^ ": depth") one.depth b.depth;
-            ints "order" one.order b.order;
-            ints "right" one.right b.right;
-            ints "first" one.first b.first;
-            ints "count" one.count b.count;
-            ints "axis" one.axis b.axis;
-            floats "lo_x" one.lo_x b.lo_x;
-            floats "hi_z" one.hi_z b.hi_z;
-            Array.iteri (fun i a -> floats (Printf.sprintf "boxes in slot order (%d)" i) a bx.(i)) boxes)
-          [ ("sequential", Bvh.sequential); ("forked", Parallel.fork) ]);
     Alcotest.test_case "the tree of grid:10000 is shallow" `Quick (fun () ->
         let p = Helpers.prepare (Scene.grid 10000) in
         match p.bvh with

@@ -140,41 +140,6 @@ let child work w me (fds : (Unix.file_descr * Unix.file_descr) array) =
   in
   Unix._exit code
 
-(* The child sends its result on a pipe, marshalled; if it cannot start,
-   or dies before its result is read whole, the work is done here, as
-   [Bvh.sequential] would (what the child did is lost with it). *)
-let fork_value f =
-  match Unix.pipe ~cloexec:true () with
-  | exception Unix.Unix_error _ -> Bvh.sequential.fork f
-  | r, w -> (
-      match Unix.fork () with
-      | exception Unix.Unix_error _ ->
-          close_quietly r;
-          close_quietly w;
-          Bvh.sequential.fork f
-      | 0 ->
-          Signals.reset_in_child ();
-          close_quietly r;
-          let code =
-            try
-              let oc = Unix.out_channel_of_descr w in
-              Marshal.to_channel oc (f ()) [ Marshal.No_sharing ];
-              close_out oc;
-              0
-            with _ -> 2
-          in
-          Unix._exit code
-      | pid ->
-          close_quietly w;
-          fun () ->
-            let ic = Unix.in_channel_of_descr r in
-            let v = try Some (Marshal.from_channel ic) with _ -> None in
-            close_in_noerr ic;
-            (try ignore (Unix.waitpid [] pid) with Unix.Unix_error _ -> ());
-            match v with Some v -> v | None -> f ())
-
-let fork = { Bvh.fork = fork_value }
-
 (* Workers report finished tasks on a pipe, 4 bytes a task: writes of
    fewer than PIPE_BUF bytes are atomic, so the pipe always holds whole
    indices. A read or write is a system call, which orders memory: what a

@@ -57,11 +57,6 @@ val run :
     ({!Signals.protect}); a worker whose parent died anyway (SIGKILL) ends
     at its next {!exit_if_orphaned}. *)
 
-val fork : Bvh.fork
-(** [fork] computes in a forked child process, which sends its result
-    back on a pipe ({!Marshal}); where no child can start or the child
-    fails, the caller computes it instead, when it asks for the result. *)
-
 val exit_if_orphaned : unit -> unit
 (** [exit_if_orphaned ()], called by [work] now and then (once per image
     row), ends the worker process at once if the parent that forked it has

@@ -66,9 +66,7 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
   | exception Failure m -> Error (`Msg m)
   | img -> (
       let t0 = Unix.gettimeofday () in
-      (* The jobs' cores build the hierarchy too. *)
-      let fork = if jobs > 1 then Some Parallel.fork else None in
-      let p = Prepared.prepare ?skips ?fork scene in
+      let p = Prepared.prepare ?skips scene in
       let t1 = Unix.gettimeofday () in
       let plan =
         Sampling.plan ~memory:shared_memory sampling img ~canvas:(s.width, s.height) ~at:(region.x, region.y)
