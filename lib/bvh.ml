@@ -179,38 +179,28 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       r.(o + a + 9) <- !m1
     done
   in
-  (* Per bin: count and bounds (12 floats at [12 b], as [bounds_of]);
-     reused by every node. *)
+  (* Per bin: count and box (6 floats at [6 b]); reused by every node.
+     The bounds of the centers are not kept per bin: the partition finds
+     the children's as it moves each object to its side. *)
   let bin_n = Array.make bins 0 in
-  let bin_box = Array.make (12 * bins) 0. in
+  let bin_box = Array.make (6 * bins) 0. in
   let left_area = Array.make bins 0. in
-  let acc = Array.make 12 0. in
-  (* Empty bounds, copied over [acc] and the bins to reset them. *)
-  let empty = Array.init (12 * bins) (fun c -> if c mod 6 < 3 then infinity else neg_infinity) in
-  let reset () = Array.blit empty 0 acc 0 12 in
-  (* The box alone, for the sweeps that price the splits. *)
+  let acc = Array.make 6 0. in
+  (* The children's bounds of centers from the last partition: left's,
+     then right's, lower corner then upper, as in [bounds_of]. *)
+  let centers = Array.make 12 0. in
+  (* Empty boxes, copied over [acc] and the bins to reset them. *)
+  let empty = Array.init (6 * bins) (fun c -> if c mod 6 < 3 then infinity else neg_infinity) in
+  let reset () = Array.blit empty 0 acc 0 6 in
   let grow_box b =
     if Array.unsafe_get bin_n b > 0 then begin
-      let o = 12 * b in
+      let o = 6 * b in
       lower acc 0 (Array.unsafe_get bin_box o);
       lower acc 1 (Array.unsafe_get bin_box (o + 1));
       lower acc 2 (Array.unsafe_get bin_box (o + 2));
       higher acc 3 (Array.unsafe_get bin_box (o + 3));
       higher acc 4 (Array.unsafe_get bin_box (o + 4));
       higher acc 5 (Array.unsafe_get bin_box (o + 5))
-    end
-  in
-  (* The box and the centres' bounds. *)
-  let grow b =
-    grow_box b;
-    if Array.unsafe_get bin_n b > 0 then begin
-      let o = 12 * b in
-      lower acc 6 (Array.unsafe_get bin_box (o + 6));
-      lower acc 7 (Array.unsafe_get bin_box (o + 7));
-      lower acc 8 (Array.unsafe_get bin_box (o + 8));
-      higher acc 9 (Array.unsafe_get bin_box (o + 9));
-      higher acc 10 (Array.unsafe_get bin_box (o + 10));
-      higher acc 11 (Array.unsafe_get bin_box (o + 11))
     end
   in
   let acc_area () = half_area acc.(0) acc.(1) acc.(2) acc.(3) acc.(4) acc.(5) in
@@ -242,26 +232,17 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       else if ext > 0. then begin
         let scale = Float.of_int bins /. ext in
         Array.fill bin_n 0 bins 0;
-        Array.blit empty 0 bin_box 0 (12 * bins);
+        Array.blit empty 0 bin_box 0 (6 * bins);
         for s = lo to hi - 1 do
           let b = bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins in
           Array.unsafe_set bin_n b (Array.unsafe_get bin_n b + 1);
-          let o = 12 * b in
-          let u = Array.unsafe_get x0 s and v = Array.unsafe_get x1 s in
-          lower bin_box o u;
-          higher bin_box (o + 3) v;
-          lower bin_box (o + 6) (u +. v);
-          higher bin_box (o + 9) (u +. v);
-          let u = Array.unsafe_get y0 s and v = Array.unsafe_get y1 s in
-          lower bin_box (o + 1) u;
-          higher bin_box (o + 4) v;
-          lower bin_box (o + 7) (u +. v);
-          higher bin_box (o + 10) (u +. v);
-          let u = Array.unsafe_get z0 s and v = Array.unsafe_get z1 s in
-          lower bin_box (o + 2) u;
-          higher bin_box (o + 5) v;
-          lower bin_box (o + 8) (u +. v);
-          higher bin_box (o + 11) (u +. v)
+          let o = 6 * b in
+          lower bin_box o (Array.unsafe_get x0 s);
+          lower bin_box (o + 1) (Array.unsafe_get y0 s);
+          lower bin_box (o + 2) (Array.unsafe_get z0 s);
+          higher bin_box (o + 3) (Array.unsafe_get x1 s);
+          higher bin_box (o + 4) (Array.unsafe_get y1 s);
+          higher bin_box (o + 5) (Array.unsafe_get z1 s)
         done;
         reset ();
         for b = 0 to bins - 2 do
@@ -295,13 +276,47 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
           let best = !best in
           split_bin := best;
           let i = ref lo and j = ref (hi - 1) in
+          let lx0 = ref infinity and ly0 = ref infinity and lz0 = ref infinity in
+          let lx1 = ref neg_infinity and ly1 = ref neg_infinity and lz1 = ref neg_infinity in
+          let rx0 = ref infinity and ry0 = ref infinity and rz0 = ref infinity in
+          let rx1 = ref neg_infinity and ry1 = ref neg_infinity and rz1 = ref neg_infinity in
           while !i <= !j do
-            if bin_of (Array.unsafe_get ka !i +. Array.unsafe_get kb !i) c0 scale bins <= best then incr i
+            let s = !i in
+            let cx = Array.unsafe_get x0 s +. Array.unsafe_get x1 s in
+            let cy = Array.unsafe_get y0 s +. Array.unsafe_get y1 s in
+            let cz = Array.unsafe_get z0 s +. Array.unsafe_get z1 s in
+            if bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins <= best then begin
+              lx0 := fmin !lx0 cx;
+              ly0 := fmin !ly0 cy;
+              lz0 := fmin !lz0 cz;
+              lx1 := fmax !lx1 cx;
+              ly1 := fmax !ly1 cy;
+              lz1 := fmax !lz1 cz;
+              incr i
+            end
             else begin
-              swap !i !j;
+              rx0 := fmin !rx0 cx;
+              ry0 := fmin !ry0 cy;
+              rz0 := fmin !rz0 cz;
+              rx1 := fmax !rx1 cx;
+              ry1 := fmax !ry1 cy;
+              rz1 := fmax !rz1 cz;
+              swap s !j;
               decr j
             end
           done;
+          centers.(0) <- !lx0;
+          centers.(1) <- !ly0;
+          centers.(2) <- !lz0;
+          centers.(3) <- !lx1;
+          centers.(4) <- !ly1;
+          centers.(5) <- !lz1;
+          centers.(6) <- !rx0;
+          centers.(7) <- !ry0;
+          centers.(8) <- !rz0;
+          centers.(9) <- !rx1;
+          centers.(10) <- !ry1;
+          centers.(11) <- !rz1;
           !i
         end
       end
@@ -317,17 +332,19 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       let f = frame level in
       let split =
         if split > lo && split < hi then begin
-          (* The children's bounds, from the bins on each side. *)
+          (* The children's boxes, from the bins on each side, and their
+             centers' bounds, from the partition. *)
           let best = !split_bin in
-          let side b0 b1 o =
+          let side b0 b1 o c =
             reset ();
             for b = b0 to b1 do
-              grow b
+              grow_box b
             done;
-            Array.blit acc 0 !frames o 12
+            Array.blit acc 0 !frames o 6;
+            Array.blit centers c !frames (o + 6) 6
           in
-          side 0 best f;
-          side (best + 1) (bins - 1) (f + 12);
+          side 0 best f 0;
+          side (best + 1) (bins - 1) (f + 12) 6;
           split
         end
         else begin
