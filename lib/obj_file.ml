@@ -182,10 +182,18 @@ let[@inline] skip_spaces b k j =
   while !k < j && is_space (Bytes.unsafe_get b !k) do incr k done;
   !k
 
-(* The end of the token at [k]: the next space or [j]. *)
+(* The end of the token at [k]: the next space or [j]. The bytes of
+   numbers and keywords are all above ' ', which one comparison tells. *)
 let[@inline] token_end b k j =
   let k = ref k in
-  while !k < j && not (is_space (Bytes.unsafe_get b !k)) do incr k done;
+  while
+    !k < j
+    &&
+    let c = Bytes.unsafe_get b !k in
+    c > ' ' || not (is_space c)
+  do
+    incr k
+  done;
   !k
 
 let shown b k e =
