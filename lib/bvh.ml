@@ -69,19 +69,23 @@ let[@inline] bin_of c c0 scale bins =
   if b < 0 then 0 else if b >= bins then bins - 1 else b
 
 (* The node arrays of the tree [t] over the slots' boxes, the boxes from
-   the leaves up: children come after their parent. *)
+   the leaves up: children come after their parent. The shape's arrays
+   become [right] and [axis] in place, each node read before it is
+   written: for a million spheres, 16 MB less than new arrays. *)
 let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
   let n_nodes = t.size in
   (* Every element is written below. *)
   let f () = Array.create_float n_nodes in
   let lo_x = f () and lo_y = f () and lo_z = f () and hi_x = f () and hi_y = f () and hi_z = f () in
-  let right = Array.make n_nodes (-1) and first = Array.make n_nodes 0 in
-  let count = Array.make n_nodes 0 and axis = Array.make n_nodes 0 in
+  let right = t.link and axis = t.tag in
+  let first = Array.make n_nodes 0 and count = Array.make n_nodes 0 in
   for k = n_nodes - 1 downto 0 do
     let link = t.link.(k) and tag = t.tag.(k) in
     if tag < 0 then begin
       first.(k) <- link;
       count.(k) <- -tag;
+      right.(k) <- -1;
+      axis.(k) <- 0;
       let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
       let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
       for s = link to link - tag - 1 do
@@ -100,8 +104,7 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
       hi_z.(k) <- !bz1
     end
     else begin
-      right.(k) <- link;
-      axis.(k) <- tag;
+      (* [right.(k)] is [link], [axis.(k)] is [tag]. *)
       let l = k + 1 in
       lo_x.(k) <- fmin lo_x.(l) lo_x.(link);
       lo_y.(k) <- fmin lo_y.(l) lo_y.(link);

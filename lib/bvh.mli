@@ -16,7 +16,10 @@
 
 type t = private {
   order : int array;  (** Input index of the sphere in each slot. *)
-  n_nodes : int;  (** The number of nodes, the length of the node arrays below. *)
+  n_nodes : int;
+      (** The number of nodes: the length of the node arrays below, but for
+          [right] and [axis], which may be longer, their last elements
+          unused. *)
   lo_x : float array;  (** Box of each node: lower corner. *)
   lo_y : float array;
   lo_z : float array;
