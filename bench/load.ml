@@ -25,15 +25,15 @@ let () =
     let text = or_exit (File_io.read file) in
     let t1 = Sys.time () in
     let scene = or_exit (Scene_file.of_string ~limits ~load_mesh:Files.read_mesh ~file text) in
-    let t2 = Sys.time () and w2 = Unix.gettimeofday () in
+    let t2 = Sys.time () in
     let p = Prepared.prepare scene in
-    let t3 = Sys.time () and w3 = Unix.gettimeofday () in
+    let t3 = Sys.time () in
     if sizes then begin
       let mb x = Float.of_int (Obj.reachable_words (Obj.repr x) * (Sys.word_size / 8)) /. 1048576. in
       Printf.printf "scene %.1f MB, prepared %.1f MB (what it shares with the scene included)\n" (mb scene) (mb p)
     end;
     let nodes, depth = match p.bvh with Some b -> (b.n_nodes, b.depth) | None -> (0, 0) in
-    Printf.printf "%s: %d objects, %d nodes of depth %d; cpu s: read %.3f, scene %.3f, prepare %.3f (wall %.3f), total %.3f\n%!"
-      file p.n_scene_objects nodes depth (t1 -. t0) (t2 -. t1) (t3 -. t2) (w3 -. w2) (t3 -. t0)
+    Printf.printf "%s: %d objects, %d nodes of depth %d; cpu s: read %.3f, scene %.3f, prepare %.3f, total %.3f\n%!"
+      file p.n_scene_objects nodes depth (t1 -. t0) (t2 -. t1) (t3 -. t2) (t3 -. t0)
   done;
   Printf.printf "peak RSS %.1f MB\n" (Peak_rss.mb ())

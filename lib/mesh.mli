@@ -23,6 +23,10 @@ type t = private {
   scale : float;  (** The scale applied to the file's positions. *)
   translate : Vec3.t;  (** The translation applied after the scale. *)
   skipped : int;  (** Statements of the file that were skipped (not v, vn or f). *)
+  flat : Bytes.t;
+      (** Per triangle, ['\001'] if it is degenerate ({!degenerate}),
+          ['\000'] if not: found once, when the mesh is made, for the
+          kernel that asks it of each triangle several times. *)
 }
 (** The type for meshes. *)
 

@@ -69,8 +69,6 @@ type t = {
 }
 
 let bvh_threshold = 8
-
-let[@inline] fmax (a : float) b = if a > b then a else b
 let ambient = 0
 let point = 1
 let directional = 2
@@ -186,15 +184,11 @@ let ambient_lead (lights : Light.t array) =
   done;
   (!sum, !l)
 
-(* The degenerate triangles of each mesh walked so far, a byte each: the
-   objects are walked three times, and the test costs a square root. *)
-type degenerate = (Mesh.t * Bytes.t) list ref
-
 (* The objects in scene order: the spheres, then each shape, a mesh giving
    one object per triangle (less its degenerate ones, which no ray can
    hit). [iter] calls [sphere k s], [single k sh] or [mesh_triangle k m t]
    for object [k]; [material] numbers the materials alike. *)
-let iter_objects (degenerate : degenerate) (scene : Scene.t) ~sphere ~single ~mesh_triangle =
+let iter_objects (scene : Scene.t) ~sphere ~single ~mesh_triangle =
   let k = ref 0 in
   List.iter
     (fun s ->
@@ -205,16 +199,8 @@ let iter_objects (degenerate : degenerate) (scene : Scene.t) ~sphere ~single ~me
     (fun sh ->
       match sh with
       | Shape.Mesh m ->
-          let flat =
-            match List.assq_opt m !degenerate with
-            | Some f -> f
-            | None ->
-                let f = Bytes.init (Mesh.triangle_count m) (fun t -> if Mesh.degenerate m t then '\001' else '\000') in
-                degenerate := (m, f) :: !degenerate;
-                f
-          in
           for t = 0 to Mesh.triangle_count m - 1 do
-            if Bytes.unsafe_get flat t = '\000' then begin
+            if not (Mesh.degenerate m t) then begin
               mesh_triangle !k m t;
               incr k
             end
@@ -324,8 +310,7 @@ end)
 let prepare ?(skips = true) scene =
   let scene = Scene.of_valid scene in
   let n_spheres = List.length scene.spheres in
-  let degenerate = ref [] in
-  let n = iter_objects degenerate scene ~sphere:(fun _ _ -> ()) ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
+  let n = iter_objects scene ~sphere:(fun _ _ -> ()) ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
   (* Per object, in scene order: kind, material, and a cube around it
      (center, half side) for the hierarchy. *)
   let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
@@ -363,6 +348,7 @@ let prepare ?(skips = true) scene =
           i
   in
   let box = Array.make 6 0. in
+  let[@inline] fmax (a : float) b = if a > b then a else b in
   (* The smooth meshes' normals, divided by their lengths once for all
      the corners that share them. *)
   let vnormal =
@@ -404,7 +390,7 @@ let prepare ?(skips = true) scene =
     end
   in
   ignore
-    (iter_objects degenerate scene
+    (iter_objects scene
        ~sphere:(fun k (s : Sphere.t) ->
          set k Shape.sphere
            (new_material (Material.of_sphere s) (fun () -> Shape.leaf_pattern_frame (Csg.Sphere s)))
@@ -502,10 +488,10 @@ let prepare ?(skips = true) scene =
   in
   (* A big hierarchy leaves its inputs behind (six arrays of boxes, the
      margins, the tree's shape): collected now, their memory takes the
-     slot arrays below instead of the heap growing by as much (53 MB less
+     slot arrays below instead of the heap growing by as much (60 MB less
      at the peak for a million triangles, 0.04 s). Not for many spheres:
      the collection would mark each sphere's record in the scene (0.27 s
-     for a million, for the same 53 MB). *)
+     for a million, for 53 MB). *)
   if nb >= 100_000 && n_spheres <= nb / 8 && Option.is_some bvh then Gc.full_major ();
   (* Slots: the hierarchy's leaf order, then the planes; without a
      hierarchy, the scene's order. *)
@@ -549,7 +535,7 @@ let prepare ?(skips = true) scene =
     extent.(i) <- !e
   in
   ignore
-    (iter_objects degenerate scene
+    (iter_objects scene
        ~sphere:(fun _ _ -> ())
        ~single:(fun k sh ->
          let i = slot.(k) in
