@@ -25,11 +25,8 @@ let () =
   close_in ic;
   let tris = Obj_file.triangle_count m in
   let top_heap = Float.of_int ((Gc.quick_stat ()).top_heap_words * (Sys.word_size / 8)) /. 1048576. in
-  let result_mb =
-    Float.of_int
-      (8 * (Array.length m.positions + Array.length m.normals + Array.length m.triangles + Array.length m.triangle_normals))
-    /. 1048576.
-  in
+  (* What the mesh holds: its normal numbers may be its vertex numbers. *)
+  let result_mb = Float.of_int (Obj.reachable_words (Obj.repr m) * (Sys.word_size / 8)) /. 1048576. in
   Printf.printf "%s: %.1f MB, %d vertices, %d normals, %d triangles\n" file (Float.of_int size /. 1048576.)
     (Obj_file.vertex_count m) (Array.length m.normals / 3) tris;
   Printf.printf "load %.3f s (%.0f MB/s), minor words %.0f (%.1f per line)\n" t (Float.of_int size /. 1048576. /. t)

@@ -2,9 +2,11 @@
 
     A binary tree of axis-aligned boxes, each leaf holding a few spheres,
     so that a ray is tested only against the spheres whose boxes it meets:
-    about [log n] boxes per ray instead of [n] spheres. Built top-down by
-    splitting each node's spheres at the median of their centers along the
-    longest axis (a linear-time selection, so building is [O(n log n)]).
+    about [log n] boxes per ray instead of [n] spheres. Built top-down
+    ({!build_boxes}): each node's objects binned by their centers along the
+    longest axis of the centers' bounds and split where the surface area
+    heuristic is lowest (at the median when the centers coincide), in a
+    few passes over the node's objects, so building is [O(n log n)].
 
     Nodes are stored depth-first in flat arrays: the left child of inner
     node [k] is [k + 1], the right child is [right.(k)]. Spheres are
@@ -17,8 +19,9 @@
 type t = private {
   order : int array;  (** Input index of the sphere in each slot. *)
   n_nodes : int;
-      (** The number of nodes: the node arrays below may be longer, by at
-          most an eighth, their last elements unused. *)
+      (** The number of nodes: the length of the node arrays below, but for
+          [right] and [axis], which may be longer, their last elements
+          unused. *)
   lo_x : float array;  (** Box of each node: lower corner. *)
   lo_y : float array;
   lo_z : float array;

@@ -144,7 +144,7 @@ let normal obj ~point ~direction =
       s.px <- point.x;
       s.py <- point.y;
       s.pz <- point.z;
-      match Mesh.corner_normals m k vn 0 && Triangle.smooth_normal s g 0 vn 0 with
+      match Mesh.corner_normals m k vn 0 && Triangle.smooth_normal s g 0 vn 0 3 6 with
       | true -> turn (Vec3.v s.nx s.ny s.nz)
       | false -> turn n)
 

@@ -9,7 +9,19 @@ type t = {
   scale : float;
   translate : Vec3.t;
   skipped : int;
+  flat : Bytes.t;
 }
+
+(* Whether triangle [k] of these arrays has no normal, in floats, not
+   vectors: asked once for each of millions of triangles, when the mesh is
+   made. *)
+let flat_triangle (positions : float array) (triangles : int array) k =
+  let coord c a = positions.((3 * triangles.((3 * k) + c)) + a) in
+  let e1x = coord 1 0 -. coord 0 0 and e1y = coord 1 1 -. coord 0 1 and e1z = coord 1 2 -. coord 0 2 in
+  let e2x = coord 2 0 -. coord 0 0 and e2y = coord 2 1 -. coord 0 1 and e2z = coord 2 2 -. coord 0 2 in
+  let nx = (e1y *. e2z) -. (e1z *. e2y) and ny = (e1z *. e2x) -. (e1x *. e2z) and nz = (e1x *. e2y) -. (e1y *. e2x) in
+  let n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+  not (n > 0. && Float.is_finite n && Float.is_finite (1. /. n))
 
 let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 
@@ -37,7 +49,8 @@ let v ?(smooth = false) ?(scale = 1.) ?(translate = Vec3.zero) ?(source = "") ?(
     if not !ok then
       error "mesh coordinates, scaled and translated, must lie within +-%s" (Float_text.to_string Limits.max_coordinate)
     else
-      Ok { positions = placed; triangles; normals; triangle_normals; smooth; material; source; scale; translate; skipped }
+      let flat = Bytes.init (nt / 3) (fun k -> if flat_triangle placed triangles k then '\001' else '\000') in
+      Ok { positions = placed; triangles; normals; triangle_normals; smooth; material; source; scale; translate; skipped; flat }
 
 let triangle_count m = Array.length m.triangles / 3
 
@@ -47,24 +60,10 @@ let vertex m k c =
 
 let triangle m k = Triangle.v (vertex m k 0) (vertex m k 1) (vertex m k 2) m.material
 
-(* Coordinate [a] of corner [c] of triangle [k]. *)
-let[@inline] coord m k c a = m.positions.((3 * m.triangles.((3 * k) + c)) + a)
+let degenerate m k = Bytes.unsafe_get m.flat k <> '\000'
 
-(* Floats, not vectors: the kernel asks this of each of millions of
-   triangles. *)
-let degenerate m k =
-  let e1x = coord m k 1 0 -. coord m k 0 0 and e1y = coord m k 1 1 -. coord m k 0 1 and e1z = coord m k 1 2 -. coord m k 0 2 in
-  let e2x = coord m k 2 0 -. coord m k 0 0 and e2y = coord m k 2 1 -. coord m k 0 1 and e2z = coord m k 2 2 -. coord m k 0 2 in
-  let nx = (e1y *. e2z) -. (e1z *. e2y) and ny = (e1z *. e2x) -. (e1x *. e2z) and nz = (e1x *. e2y) -. (e1y *. e2x) in
-  let n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
-  not (n > 0. && Float.is_finite n && Float.is_finite (1. /. n))
 
-(* The unit normal of corner [c] of triangle [k] written to [g] at [o],
-   if it has one of a length that can be normalised. *)
-let corner_normal m k c g o =
-  let j = m.triangle_normals.((3 * k) + c) in
-  j >= 0
-  &&
+let unit_normal m j g o =
   let x = m.normals.(3 * j) and y = m.normals.((3 * j) + 1) and z = m.normals.((3 * j) + 2) in
   let l = sqrt ((x *. x) +. (y *. y) +. (z *. z)) in
   l > 0. && Float.is_finite l && Float.is_finite (1. /. l)
@@ -75,15 +74,28 @@ let corner_normal m k c g o =
   g.(o + 2) <- z *. inv;
   true
 
+(* The unit normal of corner [c] of triangle [k] written to [g] at [o],
+   if it has one of a length that can be normalised. *)
+let corner_normal m k c g o =
+  let j = m.triangle_normals.((3 * k) + c) in
+  j >= 0 && unit_normal m j g o
+
 let corner_normals m k g o =
   m.smooth && corner_normal m k 0 g o && corner_normal m k 1 g (o + 3) && corner_normal m k 2 g (o + 6)
 
-let bounds m k =
-  let lo a = Float.min (coord m k 0 a) (Float.min (coord m k 1 a) (coord m k 2 a)) in
-  let hi a = Float.max (coord m k 0 a) (Float.max (coord m k 1 a) (coord m k 2 a)) in
-  let x0 = lo 0 and y0 = lo 1 and z0 = lo 2 and x1 = hi 0 and y1 = hi 1 and z1 = hi 2 in
-  ( Vec3.v (0.5 *. (x0 +. x1)) (0.5 *. (y0 +. y1)) (0.5 *. (z0 +. z1)),
-    Float.max (x1 -. x0) (Float.max (y1 -. y0) (z1 -. z0)) *. 0.5 )
+let[@inline] fmin (a : float) b = if a < b then a else b
+let[@inline] fmax (a : float) b = if a > b then a else b
+
+(* Floats written, not vectors returned: the kernel asks this of each of
+   millions of triangles. *)
+let box m k b =
+  let i0 = 3 * m.triangles.(3 * k) and i1 = 3 * m.triangles.((3 * k) + 1) and i2 = 3 * m.triangles.((3 * k) + 2) in
+  let p = m.positions in
+  for a = 0 to 2 do
+    let u = p.(i0 + a) and v = p.(i1 + a) and w = p.(i2 + a) in
+    b.(a) <- fmin u (fmin v w);
+    b.(a + 3) <- fmax u (fmax v w)
+  done
 
 let equal a b =
   let fa x y = Array.length x = Array.length y && Array.for_all2 Float.equal x y in

@@ -23,6 +23,10 @@ type t = private {
   scale : float;  (** The scale applied to the file's positions. *)
   translate : Vec3.t;  (** The translation applied after the scale. *)
   skipped : int;  (** Statements of the file that were skipped (not v, vn or f). *)
+  flat : Bytes.t;
+      (** Per triangle, ['\001'] if it is degenerate ({!degenerate}),
+          ['\000'] if not: found once, when the mesh is made, for the
+          kernel that asks it of each triangle several times. *)
 }
 (** The type for meshes. *)
 
@@ -61,6 +65,12 @@ val degenerate : t -> int -> bool
 (** [degenerate m k] is [true] iff triangle [k] has no normal: its
     vertices lie on a line, as {!Triangle.validate} refuses. *)
 
+val unit_normal : t -> int -> float array -> int -> bool
+(** [unit_normal m j g o] writes normal [j] of [m], divided by its length,
+    to [g] at [o .. o + 2] and is [true], if its length can be normalised
+    (it is [> 0], finite, and so is its inverse); otherwise it is [false]
+    and [g] is unchanged. *)
+
 val corner_normals : t -> int -> float array -> int -> bool
 (** [corner_normals m k g o] writes the unit normals of the three corners
     of triangle [k] to [g] at [o .. o + 8] and is [true], if [m] is
@@ -68,9 +78,9 @@ val corner_normals : t -> int -> float array -> int -> bool
     normalised; otherwise it is [false] (and may have written some of
     them). *)
 
-val bounds : t -> int -> Vec3.t * float
-(** [bounds m k] is {!Shape.bounds} of triangle [k]: the center and half
-    side of a cube that holds it. *)
+val box : t -> int -> float array -> unit
+(** [box m k b] writes the box of triangle [k] to [b]: its lower corner
+    [x y z] at [0 .. 2], its upper corner at [3 .. 5]. *)
 
 val equal : t -> t -> bool
 (** [equal a b] is [true] iff every field of [a] equals [b]'s, floats

@@ -114,6 +114,20 @@ let int_array g =
   g.icur <- [||];
   a
 
+(* Whether store [g] holds the elements of [a], in order. *)
+let holds g (a : int array) =
+  int_length g = Array.length a
+  &&
+  let same = ref true in
+  let check (b : int array) at len =
+    for k = 0 to len - 1 do
+      if Array.unsafe_get b k <> Array.unsafe_get a (at + k) then same := false
+    done
+  in
+  check g.icur g.ifull g.inn;
+  List.iteri (fun k b -> if !same then check b (g.ifull - ((k + 1) * block)) block) g.iblocks;
+  !same
+
 (* A face's vertices: a growable array, reused from face to face. *)
 type face = { mutable fa : int array; mutable len : int }
 
@@ -168,10 +182,18 @@ let[@inline] skip_spaces b k j =
   while !k < j && is_space (Bytes.unsafe_get b !k) do incr k done;
   !k
 
-(* The end of the token at [k]: the next space or [j]. *)
+(* The end of the token at [k]: the next space or [j]. The bytes of
+   numbers and keywords are all above ' ', which one comparison tells. *)
 let[@inline] token_end b k j =
   let k = ref k in
-  while !k < j && not (is_space (Bytes.unsafe_get b !k)) do incr k done;
+  while
+    !k < j
+    &&
+    let c = Bytes.unsafe_get b !k in
+    c > ' ' || not (is_space c)
+  do
+    incr k
+  done;
   !k
 
 let shown b k e =
@@ -390,7 +412,9 @@ let finish p =
         let positions = float_array p.pos in
         let normals = float_array p.nrm in
         let triangles = int_array p.tris in
-        let triangle_normals = int_array p.tri_nrm in
+        (* Exporters mostly number a corner's normal as its vertex
+           ([f 1//1 2//2 3//3]): then one array serves both. *)
+        let triangle_normals = if holds p.tri_nrm triangles then triangles else int_array p.tri_nrm in
         Ok { positions; normals; triangles; triangle_normals; skipped = !skipped }
       with Error_at m -> Error (`Msg m))
 

@@ -51,9 +51,15 @@ type t = private {
       (** The geometry of the object in slot [k] at [Shape.stride * k], as
           the shape module's [store] writes it (unused for spheres). *)
   vnormal : float array;
-      (** Smooth triangles: the unit normals of the three corners of the
-          object in slot [k] at [Shape.stride * k] (empty if the scene has
-          no smooth triangle). *)
+      (** The normals of the smooth meshes, 3 floats each, each divided by
+          its length ({!Mesh.unit_normal}; [nan] for one that cannot be,
+          which no smooth triangle uses): a corner's normal once, however
+          many triangles share it (empty if the scene has no smooth
+          triangle). *)
+  vcorner : int array;
+      (** Smooth triangles: the offsets in [vnormal] of the normals of the
+          three corners of the object in slot [k], at [3 k] to [3 k + 2]
+          (empty if the scene has no smooth triangle). *)
   extent : float array;
       (** The largest magnitude of a coordinate of the object's geometry. *)
   csg : Csg.table;

@@ -799,7 +799,9 @@ let shape_hit tr i =
   let gx = s.nx and gy = s.ny and gz = s.nz in
   (* A smooth triangle shades with its interpolated normal, on the side
      the ray sees. *)
-  if k = Shape.smooth_triangle && Triangle.smooth_normal s p.geom o p.vnormal o && flip then begin
+  if k = Shape.smooth_triangle && Triangle.smooth_normal s p.geom o p.vnormal
+       (Array.unsafe_get p.vcorner (3 * i)) (Array.unsafe_get p.vcorner ((3 * i) + 1)) (Array.unsafe_get p.vcorner ((3 * i) + 2))
+     && flip then begin
     s.nx <- -.s.nx;
     s.ny <- -.s.ny;
     s.nz <- -.s.nz

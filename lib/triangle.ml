@@ -81,7 +81,7 @@ let[@inline never] normal (s : Scratch.t) g o =
 
 (* Barycentric coordinates of P in the triangle by the normal equations of
    P - v0 = b1 e1 + b2 e2; then the corners' normals weighted by them. *)
-let[@inline never] smooth_normal (s : Scratch.t) g o vn k =
+let[@inline never] smooth_normal (s : Scratch.t) g o vn k0 k1 k2 =
   let x0 = g.(o) and y0 = g.(o + 1) and z0 = g.(o + 2) in
   let e1x = g.(o + 3) -. x0 and e1y = g.(o + 4) -. y0 and e1z = g.(o + 5) -. z0 in
   let e2x = g.(o + 6) -. x0 and e2y = g.(o + 7) -. y0 and e2z = g.(o + 8) -. z0 in
@@ -94,9 +94,9 @@ let[@inline never] smooth_normal (s : Scratch.t) g o vn k =
   let den = (d00 *. d11) -. (d01 *. d01) in
   let b1 = ((d11 *. d20) -. (d01 *. d21)) /. den and b2 = ((d00 *. d21) -. (d01 *. d20)) /. den in
   let b0 = 1. -. b1 -. b2 in
-  let nx = (b0 *. vn.(k)) +. (b1 *. vn.(k + 3)) +. (b2 *. vn.(k + 6)) in
-  let ny = (b0 *. vn.(k + 1)) +. (b1 *. vn.(k + 4)) +. (b2 *. vn.(k + 7)) in
-  let nz = (b0 *. vn.(k + 2)) +. (b1 *. vn.(k + 5)) +. (b2 *. vn.(k + 8)) in
+  let nx = (b0 *. vn.(k0)) +. (b1 *. vn.(k1)) +. (b2 *. vn.(k2)) in
+  let ny = (b0 *. vn.(k0 + 1)) +. (b1 *. vn.(k1 + 1)) +. (b2 *. vn.(k2 + 1)) in
+  let nz = (b0 *. vn.(k0 + 2)) +. (b1 *. vn.(k1 + 2)) +. (b2 *. vn.(k2 + 2)) in
   let l = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
   if l > 0. && l < infinity then begin
     let inv = 1. /. l in

@@ -67,12 +67,13 @@ val normal : Scratch.t -> float array -> int -> unit
 (** [normal s g o] sets [s.nx], [s.ny], [s.nz] to the unit normal
     [(v1 - v0) x (v2 - v0) / |(v1 - v0) x (v2 - v0)|] of the triangle. *)
 
-val smooth_normal : Scratch.t -> float array -> int -> float array -> int -> bool
-(** [smooth_normal s g o vn k] is [true] after setting [s.nx], [s.ny],
+val smooth_normal : Scratch.t -> float array -> int -> float array -> int -> int -> int -> bool
+(** [smooth_normal s g o vn k0 k1 k2] is [true] after setting [s.nx], [s.ny],
     [s.nz] to the unit normal at the point [s.px], [s.py], [s.pz] of the
     triangle stored at [o] in [g], interpolated from the unit normals of
-    its corners stored in [vn] at [k .. k + 8] (in the order of the
-    vertices) with the point's barycentric coordinates; [false], and [s]
+    its corners stored in [vn] at [k0 .. k0 + 2], [k1 .. k1 + 2] and
+    [k2 .. k2 + 2] (in the order of the vertices) with the point's
+    barycentric coordinates (corners may share a normal); [false], and [s]
     unchanged, if the interpolated normal is zero or not finite. *)
 
 val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float

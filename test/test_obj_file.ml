@@ -65,6 +65,26 @@ let tests =
         Alcotest.check ints __LOC__ [| -1; -1; 1; 0; 1; 1 |] m.triangle_normals;
         Alcotest.check floats __LOC__ [| 0.; 0.; 1.; 0.; 0.; -1. |] m.normals;
         Alcotest.(check (list (pair string int))) __LOC__ [ ("vt", 1) ] m.skipped);
+    Alcotest.test_case "normals numbered as the vertices share the vertices' array, and only then" `Quick (fun () ->
+        let normals = "vn 0 0 1\nvn 0 1 0\nvn 1 0 0\nvn 0 0 -1\n" in
+        (* Over more than one of the reader's blocks of numbers. *)
+        let faces n f = String.concat "" (List.init n (fun k -> f (k mod 2))) in
+        let mesh s = match parse ~max_triangles:100_000 s with Ok m -> m | Error (`Msg e) -> Alcotest.fail e in
+        let same = mesh (square ^ normals ^ faces 40_000 (fun k -> if k = 0 then "f 1//1 2//2 3//3\n" else "f 1//1 3//3 4//4\n")) in
+        if not (same.triangle_normals == same.triangles) then Alcotest.fail "two arrays for one numbering";
+        Alcotest.(check int) __LOC__ 120_000 (Array.length same.triangles);
+        (* One corner differs, in the last block, or in the first. *)
+        List.iter
+          (fun last ->
+            let text = square ^ normals ^ faces 40_000 (fun _ -> "f 1//1 2//2 3//3\n") in
+            let text = if last then text ^ "f 1//1 2//2 3//4\n" else square ^ normals ^ "f 1//1 2//2 3//4\n" ^ faces 40_000 (fun _ -> "f 1//1 2//2 3//3\n") in
+            let m = mesh text in
+            if m.triangle_normals == m.triangles then Alcotest.fail "one array for two numberings";
+            Alcotest.(check int) __LOC__ 3 (if last then m.triangle_normals.(Array.length m.triangles - 1) else m.triangle_normals.(2)))
+          [ true; false ];
+        (* No normals: [-1] each, never the vertices. *)
+        let m = mesh (square ^ "f 1 2 3\n") in
+        Alcotest.check ints __LOC__ [| -1; -1; -1 |] m.triangle_normals);
     Alcotest.test_case "a # word starts a comment in v, vn and f lines" `Quick (fun () ->
         let m = mesh "v 0 0 0 # origin\nv 1 0 0 #x\nv 0 1 0\t#\nvn 0 0 1 #up\nf 1//1 2//1 3//1 # a face\n" in
         Alcotest.check floats __LOC__ [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] m.positions;
