@@ -113,10 +113,11 @@ let max_channel (scene : Scene.t) =
     | Some p -> Float.max (channel color s) (channel (Pattern.color p) s)
   in
   let bound =
-    List.fold_left
-      (fun acc (s : Sphere.t) -> Float.max acc (channels s.color s.pattern s.specular))
+    (* Every material of the spheres' table is some sphere's. *)
+    Array.fold_left
+      (fun acc (m : Material.t) -> Float.max acc (channels m.color m.pattern m.specular))
       (Float.max bg.r (Float.max bg.g bg.b))
-      scene.spheres
+      (Spheres.materials scene.spheres)
   in
   let bound =
     List.fold_left
@@ -185,15 +186,11 @@ let ambient_lead (lights : Light.t array) =
 
 (* The objects in scene order: the spheres, then each shape, a mesh giving
    one object per triangle (less its degenerate ones, which no ray can
-   hit). [iter] calls [sphere k s], [single k sh] or [mesh_triangle k m t]
-   for object [k]; [material] numbers the materials alike. *)
-let iter_objects (scene : Scene.t) ~sphere ~single ~mesh_triangle =
-  let k = ref 0 in
-  List.iter
-    (fun s ->
-      sphere !k s;
-      incr k)
-    scene.spheres;
+   hit). [iter] calls [single k sh] or [mesh_triangle k m t] for the
+   shapes' objects [k]; the spheres are objects [0] to
+   [Spheres.length scene.spheres - 1], read from the scene's arrays. *)
+let iter_objects (scene : Scene.t) ~single ~mesh_triangle =
+  let k = ref (Spheres.length scene.spheres) in
   List.iter
     (fun sh ->
       match sh with
@@ -292,24 +289,12 @@ let gather_in_place index ~(floats : float array array) ~(ints : int array array
     end
   done
 
-(* Materials equal bit for bit. *)
-module Materials = Hashtbl.Make (struct
-  type t = Material.t
-
-  let same x y = Int64.equal (Int64.bits_of_float x) (Int64.bits_of_float y)
-
-  let equal (a : t) (b : t) =
-    same a.color.r b.color.r && same a.color.g b.color.g && same a.color.b b.color.b && same a.specular b.specular
-    && same a.reflective b.reflective && same a.transparency b.transparency
-    && same a.refractive_index b.refractive_index && a.fresnel = b.fresnel && a.pattern = None && b.pattern = None
-
-  let hash = Hashtbl.hash
-end)
+module Materials = Material.Plain
 
 let prepare ?(skips = true) scene =
   let scene = Scene.of_valid scene in
-  let n_spheres = List.length scene.spheres in
-  let n = iter_objects scene ~sphere:(fun _ _ -> ()) ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
+  let n_spheres = Spheres.length scene.spheres in
+  let n = iter_objects scene ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
   (* Per object, in scene order: kind, material, and a cube around it
      (center, half side) for the hierarchy. *)
   let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
@@ -365,12 +350,12 @@ let prepare ?(skips = true) scene =
     Hashtbl.replace csg_root k (Csg.add csg ~material c);
     !first
   in
-  let set k kind mat (c : Vec3.t) h =
+  let set_fields k kind mat x y z h =
     okind.(k) <- kind;
     omat.(k) <- mat;
-    ocx.(k) <- c.x;
-    ocy.(k) <- c.y;
-    ocz.(k) <- c.z;
+    ocx.(k) <- x;
+    ocy.(k) <- y;
+    ocz.(k) <- z;
     ohalf.(k) <- h;
     if any_mesh then begin
       oex.(k) <- h;
@@ -378,12 +363,28 @@ let prepare ?(skips = true) scene =
       oez.(k) <- h
     end
   in
+  let set k kind mat (c : Vec3.t) h = set_fields k kind mat c.x c.y c.z h in
+  (* The spheres' plain materials are distinct in their table: the first
+     sphere of each finds or makes the prepared material, the others
+     reuse its number (what [new_material] would find). *)
+  let spheres = scene.spheres in
+  let sphere_materials = Spheres.materials spheres in
+  let shared = Array.make (Array.length sphere_materials) (-1) in
+  for k = 0 to n_spheres - 1 do
+    let j = Spheres.material_index spheres k in
+    let mat =
+      if shared.(j) >= 0 then shared.(j)
+      else
+        let m = sphere_materials.(j) in
+        let i = new_material m (fun () -> Shape.leaf_pattern_frame (Csg.Sphere (Spheres.get spheres k))) in
+        if Option.is_none m.pattern && not (m.transparency > 0.) then shared.(j) <- i;
+        i
+    in
+    set_fields k Shape.sphere mat (Spheres.center_x spheres k) (Spheres.center_y spheres k)
+      (Spheres.center_z spheres k) (Spheres.radius spheres k)
+  done;
   ignore
     (iter_objects scene
-       ~sphere:(fun k (s : Sphere.t) ->
-         set k Shape.sphere
-           (new_material (Material.of_sphere s) (fun () -> Shape.leaf_pattern_frame (Csg.Sphere s)))
-           s.center s.radius)
        ~single:(fun k sh ->
          let c, h = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.) in
          let mat = match sh with Shape.Csg c -> add_csg k c | _ -> new_material (Shape.material sh) (fun () -> Shape.pattern_frame sh) in
@@ -499,7 +500,6 @@ let prepare ?(skips = true) scene =
   in
   ignore
     (iter_objects scene
-       ~sphere:(fun _ _ -> ())
        ~single:(fun k sh ->
          let i = slot.(k) in
          match sh with

@@ -500,7 +500,7 @@ type builder = {
   seen : (string, Positions.pos option) Hashtbl.t;
       (** Forms that may appear once, and where they first did. *)
   mutable scene : Scene.t;
-  mutable spheres : Sphere.t list;  (** In reverse order. *)
+  spheres : Spheres.builder;
   mutable shapes : Shape.t list;  (** In reverse order. *)
   mutable lights : Light.t list;  (** In reverse order. *)
   mutable n_spheres : int;
@@ -514,7 +514,7 @@ let builder ~limits ~load where =
     load;
     seen = Hashtbl.create 8;
     scene = Scene.v ~spheres:[] ~lights:[] ();
-    spheres = [];
+    spheres = Spheres.builder ();
     shapes = [];
     lights = [];
     n_spheres = 0;
@@ -541,7 +541,7 @@ let add_form b node =
       | "sphere" ->
           b.n_spheres <- b.n_spheres + 1;
           ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
-          b.spheres <- sphere ~where node rest :: b.spheres
+          Spheres.add b.spheres (sphere ~where node rest)
       | ("plane" | "triangle" | "box") as form ->
           (* Shapes count against the bound of spheres: both are objects. *)
           b.n_spheres <- b.n_spheres + 1;
@@ -597,7 +597,7 @@ let finish b =
         match Camera_path.camera path (Camera_path.first_frame path) with Ok c -> c | Error _ -> b.scene.camera)
     | _ -> b.scene.camera
   in
-  { b.scene with camera; spheres = List.rev b.spheres; shapes = List.rev b.shapes; lights = List.rev b.lights }
+  { b.scene with camera; spheres = Spheres.build b.spheres; shapes = List.rev b.shapes; lights = List.rev b.lights }
 
 (* The located pass: the same conversion over a parse that kept positions. *)
 (* The located pass streams too: it keeps the positions of the form being
@@ -679,20 +679,27 @@ let line_counter text =
     at := p;
     Positions.{ line = !line; col = p - !bol; offset = p }
 
-(* A sphere's fields as numbers, and recent spheres as prototypes: the
-   grid layout repeats a dozen radii and materials, and a sphere made as
-   [{ proto with center }] shares its prototype's colour and boxed floats,
-   which takes a million spheres from 184 to 104 bytes each. *)
+(* A sphere's fields as numbers, and the materials of recent spheres: the
+   grid layout repeats a dozen materials, and a sphere whose material is
+   one of those is added without making a [Material.t] to find it. *)
 type fast = {
   values : float array;  (** center x y z, radius, color r g b, specular, reflective. *)
   mutable seen : int;  (** The fields read, one bit each, in [sphere_field] order. *)
-  protos : Sphere.t array;  (** Recent spheres, by a hash of all but their center. *)
+  recent : float array;  (** Per slot [k] of a hash, at [4 k]: color r g b, specular. *)
+  recent_reflective : float array;  (** Per slot, the reflective of its material. *)
+  recent_index : int array;  (** Per slot, its material's index in the spheres' table, or [-1]. *)
 }
 
-let n_protos = 64
+let n_recent = 64
 
 let fast_state () =
-  { values = Array.make 9 0.; seen = 0; protos = Array.make n_protos (Sphere.v ~center:Vec3.zero ~radius:nan Color.black) }
+  {
+    values = Array.make 9 0.;
+    seen = 0;
+    recent = Array.make (4 * n_recent) 0.;
+    recent_reflective = Array.make n_recent 0.;
+    recent_index = Array.make n_recent (-1);
+  }
 
 let sphere_arity = [| 3; 1; 3; 1; 1 |]
 let sphere_value = [| 0; 3; 4; 7; 8 |]
@@ -758,7 +765,7 @@ let sphere_fields f s i =
   if f.seen land 7 <> 7 then raise Unusual;
   e
 
-let[@inline] same_float x y = x = y && Float.sign_bit x = Float.sign_bit y
+let[@inline] same_float x y = Int64.equal (Int64.bits_of_float x) (Int64.bits_of_float y)
 
 (* Adds the sphere read by [sphere_fields], checked as [sphere] checks it.
    @raise Sexp_scan.Unusual if a check fails: [sphere] then reports it. *)
@@ -767,7 +774,8 @@ let add_sphere b f =
   let v = f.values in
   (* [Limits.check_count]'s test, without building its messages. *)
   if not (Float.of_int (b.n_spheres + 1) <= Limits.bound b.limits `Spheres) then raise Sexp_scan.Unusual;
-  let center = ok (Sphere.check_center (Vec3.v v.(0) v.(1) v.(2))) in
+  let x = v.(0) and y = v.(1) and z = v.(2) in
+  ignore (ok (Sphere.check_center (Vec3.v x y z)));
   let radius = ok (Sphere.check_radius v.(3)) in
   let specular = if f.seen land 8 = 0 then Sphere.matte else ok (Sphere.check_specular v.(7)) in
   let reflective = if f.seen land 16 = 0 then 0. else ok (Sphere.check_reflective v.(8)) in
@@ -775,25 +783,30 @@ let add_sphere b f =
   (* Any hash will do; [truncate] is defined for every finite float here
      (checked above, or garbage but harmless for a colour out of range). *)
   let k =
-    ((truncate (radius *. 1024.) * 31)
-    + (truncate r * 7) + (truncate g * 5) + (truncate bl * 3) + (truncate specular * 11)
+    ((truncate r * 7) + (truncate g * 5) + (truncate bl * 3) + (truncate specular * 11)
     + truncate (reflective *. 64.))
-    land (n_protos - 1)
+    land (n_recent - 1)
   in
-  let p = f.protos.(k) in
-  let sphere =
-    if same_float p.radius radius && same_float p.color.r r && same_float p.color.g g && same_float p.color.b bl
-       && same_float p.specular specular && same_float p.reflective reflective
-    then { p with center }
+  let c = f.recent in
+  let m =
+    let i = f.recent_index.(k) in
+    if i >= 0 && same_float c.(4 * k) r && same_float c.((4 * k) + 1) g && same_float c.((4 * k) + 2) bl
+       && same_float c.((4 * k) + 3) specular && same_float f.recent_reflective.(k) reflective
+    then i
     else begin
       let color = ok (Sphere.check_color (Color.v r g bl)) in
-      let s = Sphere.v ~specular ~reflective ~center ~radius color in
-      f.protos.(k) <- s;
-      s
+      let i = Spheres.material b.spheres (Material.v ~specular ~reflective color) in
+      c.(4 * k) <- r;
+      c.((4 * k) + 1) <- g;
+      c.((4 * k) + 2) <- bl;
+      c.((4 * k) + 3) <- specular;
+      f.recent_reflective.(k) <- reflective;
+      f.recent_index.(k) <- i;
+      i
     end
   in
   b.n_spheres <- b.n_spheres + 1;
-  b.spheres <- sphere :: b.spheres
+  Spheres.add_fields b.spheres ~x ~y ~z ~radius m
 
 (* Without a loader, a scene names no mesh file it can read. *)
 let no_loader path =
