@@ -599,10 +599,42 @@ let finish b =
   in
   { b.scene with camera; spheres = Spheres.build b.spheres; shapes = List.rev b.shapes; lights = List.rev b.lights }
 
+(* Where the text comes from: [open_text ()] reads it from its start, a
+   few bytes at a time ([read buf pos len] is how many it put in [buf] at
+   [pos], [0] at the end), as often as an error needs another pass. *)
+type source = unit -> reader
+
+and reader = { read : Bytes.t -> int -> int -> int; close : unit -> unit }
+
+let string_source text () =
+  let at = ref 0 in
+  let read buf pos len =
+    let k = min len (String.length text - !at) in
+    Bytes.blit_string text !at buf pos k;
+    at := !at + k;
+    k
+  in
+  { read; close = ignore }
+
+(* [each_chunk src f] calls [f bytes len] on the text of [src], 64 KiB at a
+   time, in order. *)
+let each_chunk (src : source) f =
+  let r = src () in
+  let buf = Bytes.create 65536 in
+  Fun.protect ~finally:r.close (fun () ->
+      let rec go () =
+        match r.read buf 0 (Bytes.length buf) with
+        | 0 -> ()
+        | k ->
+            f buf k;
+            go ()
+      in
+      go ())
+
 (* The located pass: the same conversion over a parse that kept positions. *)
 (* The located pass streams too: it keeps the positions of the form being
    converted only, so locating an error costs no more memory than loading. *)
-let locate_error ~limits ~load text =
+let locate_error ~limits ~load (src : source) =
   let module P = Parsexp.Eager_and_positions in
   let current = ref None in
   let where node =
@@ -622,31 +654,43 @@ let locate_error ~limits ~load text =
         current := Some (form, positions);
         add_form b form)
   in
-  match P.feed_eoi state (P.feed_string state text P.Stack.empty) with
+  let stack = ref P.Stack.empty in
+  match
+    each_chunk src (fun buf k -> stack := P.feed_subbytes state buf ~pos:0 ~len:k !stack);
+    P.feed_eoi state !stack
+  with
   | () -> `Not_found
   | exception Parsexp.Parse_error.Parse_error e -> `Syntax e
   | exception Located (node, m) -> `Located (where node, m)
 
-(* The position of the first character after [offset] in [text] that is
-   neither blank nor in a line comment: where the next form starts. *)
-let form_start text offset =
-  let n = String.length text in
-  let rec skip i =
-    if i >= n then i
-    else
-      match text.[i] with
-      | ' ' | '\t' | '\n' | '\r' | '\012' -> skip (i + 1)
-      | ';' -> ( match String.index_from_opt text i '\n' with Some j -> skip (j + 1) | None -> n)
-      | _ -> i
-  in
-  let i = skip offset in
-  let line = ref 1 and bol = ref 0 in
-  for k = 0 to i - 1 do
-    if text.[k] = '\n' then begin
-      incr line;
-      bol := k + 1
-    end
-  done;
+(* The position of the first character at or after [offset] of the text
+   that is neither blank nor in a line comment: where the next form
+   starts. *)
+let form_start (src : source) offset =
+  let line = ref 1 and bol = ref 0 and at = ref 0 and comment = ref false in
+  let found = ref None in
+  (try
+     each_chunk src (fun buf k ->
+         for j = 0 to k - 1 do
+           let i = !at + j in
+           let c = Bytes.unsafe_get buf j in
+           if i >= offset && !found = None then begin
+             if !comment then (if c = '\n' then comment := false)
+             else
+               match c with
+               | ' ' | '\t' | '\n' | '\r' | '\012' -> ()
+               | ';' -> comment := true
+               | _ -> found := Some i
+           end;
+           if !found = None && c = '\n' then begin
+             incr line;
+             bol := i + 1
+           end
+         done;
+         at := !at + k;
+         if !found <> None then raise Exit)
+   with Exit -> ());
+  let i = Option.value !found ~default:!at in
   Positions.{ line = !line; col = i - !bol; offset = i }
 
 (* Fast reading. Most forms are plain text (parentheses, plain atoms,
@@ -664,20 +708,33 @@ let chunk = 65536
 let simple_form_bytes = 16384
 
 exception Form_too_long of string
+exception Too_big of string
 
-(* [line_at p] is the position of offset [p]; offsets only grow from call
-   to call, so counting lines costs one pass over the text in all. *)
-let line_counter text =
+(* The text is read a window at a time: [text] holds the bytes from
+   offset [base] of the whole text; [eof] says whether they run to its
+   end. Offsets within a window are relative to it, those kept across
+   windows ([form_end], the form bound's points, positions) absolute. *)
+type window = { mutable text : string; mutable base : int; mutable eof : bool }
+
+(* [line_at w p] is the position of absolute offset [p], which must be in
+   the window or at its end; offsets only grow from call to call, so
+   counting lines costs one pass over the text in all. *)
+let line_counter (w : window) =
   let at = ref 0 and line = ref 1 and bol = ref 0 in
   fun p ->
     for k = !at to p - 1 do
-      if String.unsafe_get text k = '\n' then begin
+      if String.unsafe_get w.text (k - w.base) = '\n' then begin
         incr line;
         bol := k + 1
       end
     done;
-    at := p;
+    at := max !at p;
     Positions.{ line = !line; col = p - !bol; offset = p }
+
+(* Fast reads look this far past a form's start (twice [simple_form_bytes])
+   before they trust a failure: what they refuse within it, they refuse
+   whatever follows. *)
+let lookahead = 2 * simple_form_bytes
 
 (* A sphere's fields as numbers, and the materials of recent spheres: the
    grid layout repeats a dozen materials, and a sphere whose material is
@@ -814,7 +871,8 @@ let no_loader path =
     (`Msg
       (Printf.sprintf "cannot read mesh file %s: this scene was given as text, with no way to read files" path))
 
-let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast) text =
+let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast)
+    ?(window_bytes = 1 lsl 20) (src : source) =
   (* Mesh files are named relative to the scene file; each is read once,
      even when an error makes a second, located pass over the text. *)
   let loaded = Hashtbl.create 4 in
@@ -830,98 +888,160 @@ let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
   in
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
-  match Limits.check_scene_bytes limits (String.length text) with
-  | Error (`Msg m) -> Error (`Msg (Printf.sprintf "%s: %s" file m))
-  | Ok _ -> (
-    let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
-    (* Each form is converted as soon as it is read, and positions are not
-       recorded: big scenes load in little time and memory. Only an error
-       triggers a second pass that records positions, and fails on the same
-       node. *)
-    let b = builder ~limits ~load (fun _ -> None) in
-    let fast = fast_state () in
-    let n = String.length text in
-    (* [!form_end] is where the last form read ended. The form bound is
-       checked as it was when parsexp read the whole text 64 KiB at a time:
-       at each multiple of 64 KiB (and at the end), the bytes since the
-       last form's end, counted before the form that straddles that point
-       is converted. [!boundary] is the next point to check. *)
-    let form_end = ref 0 and boundary = ref (min chunk n) in
-    let check_below e =
-      while !boundary < e do
-        (match Limits.check_form_bytes limits (!boundary - !form_end) with
+  let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
+  (* Each form is converted as soon as it is read, and positions are not
+     recorded: big scenes load in little time and memory. Only an error
+     triggers a second pass that records positions, and fails on the same
+     node. *)
+  let b = builder ~limits ~load (fun _ -> None) in
+  let fast = fast_state () in
+  let r = src () in
+  let w = { text = ""; base = 0; eof = false } in
+  let window_bytes = max 1 window_bytes in
+  (* The next window: the text from [keep] (relative) on, then at least
+     [want] bytes more if there are, and [window_bytes] at least. *)
+  let refill line_at ~keep ~want =
+    let kept = String.length w.text - keep in
+    ignore (line_at (w.base + keep));
+    let size = kept + max want window_bytes in
+    let next = Bytes.create size in
+    Bytes.blit_string w.text keep next 0 kept;
+    let rec fill k =
+      if k >= size then k
+      else match r.read next k (size - k) with 0 -> w.eof <- true; k | n -> fill (k + n)
+    in
+    let k = fill kept in
+    w.text <- (if k = size then Bytes.unsafe_to_string next else Bytes.sub_string next 0 k);
+    w.base <- w.base + keep;
+    match Limits.check_scene_bytes limits (w.base + k) with Ok _ -> () | Error (`Msg m) -> raise (Too_big m)
+  in
+  let line_at = line_counter w in
+  (* [!form_end] is where the last form read ended. The form bound is
+     checked as it was when parsexp read the whole text 64 KiB at a time:
+     at each multiple of 64 KiB (and at the end), the bytes since the
+     last form's end, counted before the form that straddles that point
+     is converted. [!boundary] is the next multiple to check; the end of
+     the text is checked once it is known. *)
+  let form_end = ref 0 and boundary = ref chunk in
+  let check_below e =
+    let rec go () =
+      let total = if w.eof then w.base + String.length w.text else max_int in
+      let at = min !boundary total in
+      if !boundary < max_int && at < e then begin
+        (match Limits.check_form_bytes limits (at - !form_end) with
         | Ok _ -> ()
         | Error (`Msg m) -> raise (Form_too_long m));
-        boundary := if !boundary >= n then max_int else min (!boundary + chunk) n
-      done
+        boundary := if at >= total then max_int else !boundary + chunk;
+        go ()
+      end
     in
-    let line_at = line_counter text in
-    (* A plain form, read by [Sexp_scan] and converted; spheres are read
-       straight into their values. *)
-    let simple i =
-      let form, e = Sexp_scan.form text i ~max_bytes:simple_form_bytes in
-      check_below e;
-      add_form b form;
-      e
+    go ()
+  in
+  (* A plain form, read by [Sexp_scan] and converted; spheres are read
+     straight into their values. *)
+  let simple i =
+    let form, e = Sexp_scan.form w.text i ~max_bytes:simple_form_bytes in
+    check_below (w.base + e);
+    add_form b form;
+    e
+  in
+  let fast_form i =
+    match sphere_fields fast w.text i with
+    | e -> (
+        check_below (w.base + e);
+        match add_sphere b fast with () -> e | exception Sexp_scan.Unusual -> simple i)
+    | exception Sexp_scan.Unusual -> simple i
+  in
+  (* Anything else, from [p] (the end of the last form) to the end of the
+     next form, goes to parsexp, fed up to the next closing parenthesis
+     at a time so that it stops where that form does. *)
+  let rec slow_from p =
+    let completed = ref false in
+    let state =
+      Parsexp.Eager.State.create ~pos:(line_at (w.base + p)) (fun _ form ->
+          completed := true;
+          add_form b form)
     in
-    let fast_form i =
-      match sphere_fields fast text i with
-      | e -> (
-          check_below e;
-          match add_sphere b fast with () -> e | exception Sexp_scan.Unusual -> simple i)
-      | exception Sexp_scan.Unusual -> simple i
+    let rec go p stack =
+      let n = String.length w.text in
+      if p >= n && w.eof then Parsexp.Eager.feed_eoi state stack
+      else if p >= n then begin
+        (* parsexp holds what it was fed: nothing of this window is needed. *)
+        refill line_at ~keep:n ~want:window_bytes;
+        go 0 stack
+      end
+      else begin
+        let stop = min (!boundary - w.base) n in
+        let q = ref p in
+        while !q < stop && String.unsafe_get w.text !q <> ')' do
+          incr q
+        done;
+        let q = if !q < stop then !q + 1 else stop in
+        let stack = Parsexp.Eager.feed_substring state w.text ~pos:p ~len:(q - p) stack in
+        if !completed then form_end := w.base + q;
+        check_below (w.base + q + 1);
+        if !completed then fast_from q else go q stack
+      end
     in
-    (* Anything else, from [p] (the end of the last form) to the end of the
-       next form, goes to parsexp, fed up to the next closing parenthesis
-       at a time so that it stops where that form does. *)
-    let rec slow_from p =
-      let completed = ref false in
-      let state =
-        Parsexp.Eager.State.create ~pos:(line_at p) (fun _ form ->
-            completed := true;
-            add_form b form)
-      in
-      let rec go p stack =
-        if p >= n then Parsexp.Eager.feed_eoi state stack
-        else begin
-          let stop = min !boundary n in
-          let q = ref p in
-          while !q < stop && String.unsafe_get text !q <> ')' do
-            incr q
-          done;
-          let q = if !q < stop then !q + 1 else stop in
-          let stack = Parsexp.Eager.feed_substring state text ~pos:p ~len:(q - p) stack in
-          if !completed then form_end := q;
-          check_below (q + 1);
-          if !completed then fast_from q else go q stack
-        end
-      in
-      go p Parsexp.Eager.Stack.empty
-    and fast_from p =
-      if reader = `Parsexp then if p >= n then check_below (n + 1) else slow_from p
-      else
-      match Sexp_scan.skip_blank text p with
-      | i when i >= n -> check_below (n + 1)
+    go p Parsexp.Eager.Stack.empty
+  and fast_from p =
+    let n = String.length w.text in
+    if reader = `Parsexp then
+      if p >= n && w.eof then check_below (w.base + n + 1)
+      else if p >= n then begin
+        refill line_at ~keep:n ~want:window_bytes;
+        fast_from 0
+      end
+      else slow_from p
+    else
+      match Sexp_scan.skip_blank w.text p with
+      | i when i >= n && w.eof -> check_below (w.base + n + 1)
+      | i when i >= n ->
+          (* Blanks to the end of the window, maybe in a comment: the next
+             window starts at the last line's start, outside any. *)
+          let keep = match String.rindex_from_opt w.text (n - 1) '\n' with Some j when j >= p -> j + 1 | _ -> p in
+          refill line_at ~keep ~want:lookahead;
+          fast_from 0
+      | i when n - i < lookahead && not w.eof ->
+          refill line_at ~keep:i ~want:lookahead;
+          fast_from 0
       | i -> (
           match fast_form i with
           | e ->
-              form_end := e;
+              form_end := w.base + e;
               fast_from e
           | exception Sexp_scan.Unusual -> slow_from p)
       | exception Sexp_scan.Unusual -> slow_from p
-    in
-    match fast_from 0 with
-    | () -> (
-        (* Every field was checked where it was read; this is a net. *)
-        match Scene.validate ~limits (finish b) with
-        | Ok s -> Ok s
-        | Error (`Msg m) -> error origin m)
-    | exception Form_too_long m -> error (form_start text !form_end) m
-    | exception Parsexp.Parse_error.Parse_error e -> syntax e
-    | exception Located _ -> (
-        match locate_error ~limits ~load text with
-        | `Syntax e -> syntax e
-        | `Located (pos, m) -> error (Option.value pos ~default:origin) m
-        | `Not_found -> error origin "internal error: the located pass found no error"))
+  in
+  let result =
+    Fun.protect ~finally:r.close (fun () ->
+        match
+          refill line_at ~keep:0 ~want:window_bytes;
+          fast_from 0
+        with
+        | () -> (
+            (* Every field was checked where it was read; this is a net. *)
+            match Scene.validate ~limits (finish b) with
+            | Ok s -> `Done (Ok s)
+            | Error (`Msg m) -> `Done (error origin m))
+        | exception Too_big m -> `Done (Error (`Msg (Printf.sprintf "%s: %s" file m)))
+        | exception Form_too_long m -> `Form_too_long m
+        | exception Parsexp.Parse_error.Parse_error e -> `Done (syntax e)
+        | exception Located _ -> `Locate)
+  in
+  (* The error passes read the text again from its start. *)
+  match result with
+  | `Done r -> r
+  | `Form_too_long m -> error (form_start src !form_end) m
+  | `Locate -> (
+      match locate_error ~limits ~load src with
+      | `Syntax e -> syntax e
+      | `Located (pos, m) -> error (Option.value pos ~default:origin) m
+      | `Not_found -> error origin "internal error: the located pass found no error")
+
+let of_string ?(limits = Limits.default) ?load_mesh ?(file = "<string>") ?reader text =
+  match Limits.check_scene_bytes limits (String.length text) with
+  | Error (`Msg m) -> Error (`Msg (Printf.sprintf "%s: %s" file m))
+  | Ok _ -> of_source ~limits ?load_mesh ~file ?reader (string_source text)
 
 let to_string = Scene.show
