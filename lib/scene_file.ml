@@ -710,6 +710,16 @@ let simple_form_bytes = 16384
 exception Form_too_long of string
 exception Too_big of string
 
+(* The number of bytes ['\n'] in [x]: those of [x lxor 0x0a0a...] that
+   are zero, whose high bit stays clear when [0x7f] is added to their low
+   bits (no carry crosses a byte), then counted by a multiplication. *)
+let newlines x =
+  let x = Int64.logxor x 0x0a0a0a0a0a0a0a0aL in
+  let low = 0x7f7f7f7f7f7f7f7fL in
+  let t = Int64.logor (Int64.add (Int64.logand x low) low) x in
+  let zero = Int64.logand (Int64.lognot t) 0x8080808080808080L in
+  Int64.to_int (Int64.shift_right_logical (Int64.mul (Int64.shift_right_logical zero 7) 0x0101010101010101L) 56)
+
 (* The text is read a window at a time: [text] holds the bytes from
    offset [base] of the whole text; [eof] says whether they run to its
    end. Offsets within a window are relative to it, those kept across
@@ -722,12 +732,21 @@ type window = { mutable text : string; mutable base : int; mutable eof : bool }
 let line_counter (w : window) =
   let at = ref 0 and line = ref 1 and bol = ref 0 in
   fun p ->
-    for k = !at to p - 1 do
-      if String.unsafe_get w.text (k - w.base) = '\n' then begin
-        incr line;
-        bol := k + 1
-      end
-    done;
+    if p > !at then begin
+      let text = w.text and from = !at - w.base and upto = p - w.base in
+      (* Eight bytes at a time: every window passes here once. *)
+      let k = ref from in
+      while !k + 8 <= upto do
+        line := !line + newlines (String.get_int64_le text !k);
+        k := !k + 8
+      done;
+      for j = !k to upto - 1 do
+        if String.unsafe_get text j = '\n' then incr line
+      done;
+      match String.rindex_from_opt text (upto - 1) '\n' with
+      | Some j when j >= from -> bol := w.base + j + 1
+      | _ -> ()
+    end;
     at := max !at p;
     Positions.{ line = !line; col = p - !bol; offset = p }
 

@@ -27,6 +27,21 @@ let radius s i = check s i "radius"; s.r.(i lsr bits).(i land mask)
 let material_index s i = check s i "material_index"; s.m.(i lsr bits).(i land mask)
 let materials s = Array.copy s.table
 
+let blit_fields s ~x ~y ~z ~radius ~material =
+  let n = s.length in
+  if Array.length x < n || Array.length y < n || Array.length z < n || Array.length radius < n
+     || Array.length material < n
+  then invalid_arg "Spheres.blit_fields: an array is too short";
+  Array.iteri
+    (fun b xs ->
+      let at = b lsl bits and len = Array.length xs in
+      Array.blit xs 0 x at len;
+      Array.blit s.y.(b) 0 y at len;
+      Array.blit s.z.(b) 0 z at len;
+      Array.blit s.r.(b) 0 radius at len;
+      Array.blit s.m.(b) 0 material at len)
+    s.x
+
 let get s i =
   check s i "get";
   let b = i lsr bits and k = i land mask in

@@ -69,6 +69,13 @@ val material_index : t -> int -> int
 (** [material_index s i] is the index in [materials s] of the material of
     sphere [i]. *)
 
+val blit_fields :
+  t -> x:float array -> y:float array -> z:float array -> radius:float array -> material:int array -> unit
+(** [blit_fields s ~x ~y ~z ~radius ~material] writes the center, radius
+    and {!material_index} of each sphere [i] of [s] at index [i] of the
+    arrays, a block at a time.
+    @raise Invalid_argument if an array is shorter than [length s]. *)
+
 val materials : t -> Material.t array
 (** [materials s] is the table of the materials of [s] (a copy): distinct
     bit for bit, but for patterned materials, which are kept as given. *)
