@@ -98,12 +98,16 @@ type builder = {
   mutable n_mats : int;
 }
 
-let new_block b =
-  b.cur_x <- Array.make block 0.;
-  b.cur_y <- Array.make block 0.;
-  b.cur_z <- Array.make block 0.;
-  b.cur_r <- Array.make block 0.;
-  b.cur_m <- Array.make block 0
+(* The first block grows from 16 spheres by doubling (a scene of four
+   spheres allocates 16 of each array, not a block); the next ones are
+   made whole. *)
+let new_block b size =
+  let grow a zero = Array.init size (fun i -> if i < Array.length a then Array.unsafe_get a i else zero) in
+  b.cur_x <- grow b.cur_x 0.;
+  b.cur_y <- grow b.cur_y 0.;
+  b.cur_z <- grow b.cur_z 0.;
+  b.cur_r <- grow b.cur_r 0.;
+  b.cur_m <- grow b.cur_m 0
 
 let builder () =
   {
@@ -139,10 +143,16 @@ let material b (m : Material.t) =
 let add_fields b ~x ~y ~z ~radius m =
   if m < 0 || m >= b.n_mats then invalid_arg "Spheres.add_fields: no such material";
   let k = b.n land mask in
-  if k = 0 then begin
-    if b.n > 0 then b.full <- (b.cur_x, b.cur_y, b.cur_z, b.cur_r, b.cur_m) :: b.full;
-    new_block b
-  end;
+  if k = 0 && b.n > 0 then begin
+    b.full <- (b.cur_x, b.cur_y, b.cur_z, b.cur_r, b.cur_m) :: b.full;
+    b.cur_x <- [||];
+    b.cur_y <- [||];
+    b.cur_z <- [||];
+    b.cur_r <- [||];
+    b.cur_m <- [||];
+    new_block b block
+  end
+  else if k >= Array.length b.cur_x then new_block b (max 16 (2 * k));
   b.cur_x.(k) <- x;
   b.cur_y.(k) <- y;
   b.cur_z.(k) <- z;
