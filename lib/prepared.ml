@@ -261,44 +261,28 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
   if !twins then twin else [||]
 
 (* [a.(i) <- a.(index.(i))] for every [i] and every array [a] of
-   [floats] and [ints], in place, cycle by cycle: [index] is a permutation
-   of [0 .. length a - 1]. *)
+   [floats] and [ints], [index] a permutation of [0 .. length a - 1]: each
+   array gathered into one scratch array, then copied back. The loads are
+   independent: following the permutation's cycles in place made each wait
+   for the one before, 4 times slower for a million spheres. *)
 let gather_in_place index ~(floats : float array array) ~(ints : int array array) =
-  let n = Array.length index and nf = Array.length floats and ni = Array.length ints in
-  let seen = Bytes.make n '\000' in
-  let first_f = Array.make nf 0. and first_i = Array.make ni 0 in
-  let move j k =
-    for c = 0 to nf - 1 do
-      floats.(c).(j) <- floats.(c).(k)
-    done;
-    for c = 0 to ni - 1 do
-      ints.(c).(j) <- ints.(c).(k)
-    done
-  in
-  for start = 0 to n - 1 do
-    if Bytes.get seen start = '\000' then begin
-      for c = 0 to nf - 1 do
-        first_f.(c) <- floats.(c).(start)
+  let n = Array.length index in
+  let fs = Array.make (if Array.length floats = 0 then 0 else n) 0. in
+  Array.iter
+    (fun (a : float array) ->
+      for i = 0 to n - 1 do
+        Array.unsafe_set fs i a.(index.(i))
       done;
-      for c = 0 to ni - 1 do
-        first_i.(c) <- ints.(c).(start)
+      Array.blit fs 0 a 0 n)
+    floats;
+  let is = Array.make (if Array.length ints = 0 then 0 else n) 0 in
+  Array.iter
+    (fun (a : int array) ->
+      for i = 0 to n - 1 do
+        Array.unsafe_set is i a.(index.(i))
       done;
-      let j = ref start and k = ref index.(start) in
-      Bytes.set seen start '\001';
-      while !k <> start do
-        move !j !k;
-        Bytes.set seen !k '\001';
-        j := !k;
-        k := index.(!k)
-      done;
-      for c = 0 to nf - 1 do
-        floats.(c).(!j) <- first_f.(c)
-      done;
-      for c = 0 to ni - 1 do
-        ints.(c).(!j) <- first_i.(c)
-      done
-    end
-  done
+      Array.blit is 0 a 0 n)
+    ints
 
 module Materials = Material.Plain
 
