@@ -1,7 +1,8 @@
 (* Where the time of loading a big scene goes, in CPU seconds (steady on a
-   shared machine, unlike wall time): reading the file, converting it
-   (Scene_file), preparing it for the tracer (Prepared), then the peak
-   resident memory.
+   shared machine, unlike wall time): reading and converting the file
+   (Files.read_scene, a window of text at a time, as the render command
+   does), preparing it for the tracer (Prepared), then the peak resident
+   memory.
 
    dune build --profile release bench/load.exe
    ./_build/default/bench/load.exe SCENE [REPEATS] [--sizes]
@@ -22,9 +23,7 @@ let () =
   let limits = or_exit (Limits_env.read ()) in
   for _ = 1 to repeats do
     let t0 = Sys.time () in
-    let text = or_exit (File_io.read file) in
-    let t1 = Sys.time () in
-    let scene = or_exit (Scene_file.of_string ~limits ~load_mesh:Files.read_mesh ~file text) in
+    let scene = or_exit (Files.read_scene ~limits file) in
     let t2 = Sys.time () in
     let p = Prepared.prepare scene in
     let t3 = Sys.time () in
@@ -33,7 +32,7 @@ let () =
       Printf.printf "scene %.1f MB, prepared %.1f MB (what it shares with the scene included)\n" (mb scene) (mb p)
     end;
     let nodes, depth = match p.bvh with Some b -> (b.n_nodes, b.depth) | None -> (0, 0) in
-    Printf.printf "%s: %d objects, %d nodes of depth %d; cpu s: read %.3f, scene %.3f, prepare %.3f, total %.3f\n%!"
-      file p.n_scene_objects nodes depth (t1 -. t0) (t2 -. t1) (t3 -. t2) (t3 -. t0)
+    Printf.printf "%s: %d objects, %d nodes of depth %d; cpu s: load %.3f, prepare %.3f, total %.3f\n%!"
+      file p.n_scene_objects nodes depth (t2 -. t0) (t3 -. t2) (t3 -. t0)
   done;
   Printf.printf "peak RSS %.1f MB\n" (Peak_rss.mb ())

@@ -205,7 +205,7 @@ let () =
                 [| exe; c.cref_name; w; h; string_of_int c.scene.depth; image p |]
             | None -> [||])
       in
-      let n_spheres = List.length c.scene.spheres in
+      let n_spheres = Spheres.length c.scene.spheres in
       (* The C programs test every sphere for most rays: they stop at
          grid:1000 (5 s; grid:10000 would take about a minute, and 9 for
          grid:100000). *)

@@ -247,12 +247,26 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~regio
   let streamed =
     jobs > 1 && region = None && (not literal) && output <> "-" && Image_file.format_of_path output = Ppm
   in
+  (* What the report needs, taken now: a whole picture's render holds the
+     scene no longer than preparing it needs (Prepared.prepare lets the
+     spheres go as it builds the hierarchy). *)
+  let width = scene.width and height = scene.height in
+  let meshes =
+    List.filter_map
+      (function Shape.Mesh (m : Mesh.t) -> Some (m.source, Mesh.triangle_count m, m.skipped) | _ -> None)
+      scene.shapes
+  in
   let* (st, seconds), write_s =
-    if streamed then
-      Ppm_stream.render_to output (fun ~rows_done ->
-          let* _, st, seconds = render_image ~rows_done ~limits ~sampling ~literal ~jobs ~meter valid in
-          Option.iter Meter.clear meter;
-          Ok (st, seconds))
+    if streamed then begin
+      (* The closure uses nothing of its own after the render. *)
+      let r =
+        Ppm_stream.render_to output (fun ~rows_done ->
+            let* _, st, seconds = render_image ~rows_done ~limits ~sampling ~literal ~jobs ~meter valid in
+            Ok (st, seconds))
+      in
+      Option.iter Meter.clear meter;
+      r
+    end
     else
       let* img, st, seconds =
         match region with
@@ -291,19 +305,16 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~regio
     | None -> Format.eprintf "%-24s %.4f@." "time, literal oracle (s)" seconds);
     Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" load_s "time, write (s)" write_s;
     List.iter
-      (function
-        | Shape.Mesh (m : Mesh.t) ->
-            Format.eprintf "%-24s %s: %d triangles, %d OBJ statements skipped@." "mesh" m.source
-              (Mesh.triangle_count m) m.skipped
-        | _ -> ())
-      scene.shapes;
+      (fun (source, triangles, skipped) ->
+        Format.eprintf "%-24s %s: %d triangles, %d OBJ statements skipped@." "mesh" source triangles skipped)
+      meshes;
     Option.iter (fun kb -> Format.eprintf "%-24s %.1f@." "peak memory (MB)" (Float.of_int kb /. 1024.)) (peak_kb ())
   end;
   if output <> "-" && not quiet then begin
     let what =
       match region with
-      | None -> Printf.sprintf "%dx%d" scene.width scene.height
-      | Some r -> Format.asprintf "region %a of %dx%d" Region.pp_corners r scene.width scene.height
+      | None -> Printf.sprintf "%dx%d" width height
+      | Some r -> Format.asprintf "region %a of %dx%d" Region.pp_corners r width height
     in
     say (Printf.sprintf "wrote %s (%s, %.3f s)" output what seconds)
   end;

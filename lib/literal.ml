@@ -95,13 +95,28 @@ let position x l =
 (* The closest hit with its object's number: the spheres in order, then
    the shapes, a mesh one number (the numbers of the kernel's materials,
    which name the media a ray is in). *)
+(* The oracle reads spheres as the document's list. The scene's compact
+   spheres are listed once per scene, not once per ray: the last list is
+   kept, with the spheres it lists. *)
+let last_listed = ref (Spheres.empty, [])
+
+let sphere_list spheres =
+  let from, l = !last_listed in
+  if from == spheres then l
+  else begin
+    let l = Spheres.to_list spheres in
+    last_listed := (spheres, l);
+    l
+  end
+
 let closest_numbered (scene : Scene.t) ~origin ~direction ~t_min ~t_max =
+  let spheres = sphere_list scene.spheres in
   let best =
-    match closest_intersection scene.spheres ~origin ~direction ~t_min ~t_max with
-    | Some (sphere, t) -> Some (Sphere sphere, position sphere scene.spheres, t)
+    match closest_intersection spheres ~origin ~direction ~t_min ~t_max with
+    | Some (sphere, t) -> Some (Sphere sphere, position sphere spheres, t)
     | None -> None
   in
-  let n_spheres = List.length scene.spheres in
+  let n_spheres = Spheres.length scene.spheres in
   Array.fold_left
     (fun best (obj, shape, g, k) ->
       incr tests;
@@ -339,7 +354,7 @@ let rec shade (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~level ~media
           else c
 
 let transparent (scene : Scene.t) =
-  List.exists (fun (s : Sphere.t) -> s.transparency > 0.) scene.spheres
+  Spheres.exists (fun (s : Sphere.t) -> s.transparency > 0.) scene.spheres
   || List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.transparency > 0.) (Shape.materials sh)) scene.shapes
 
 let pixel (scene : Scene.t) gx gy =

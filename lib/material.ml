@@ -13,6 +13,19 @@ let v ?(specular = Sphere.matte) ?(reflective = 0.) ?(transparency = 0.) ?(refra
     ?pattern color =
   { color; specular; reflective; transparency; refractive_index; fresnel; pattern }
 
+let same_plain a b =
+  let same x y = Int64.equal (Int64.bits_of_float x) (Int64.bits_of_float y) in
+  same a.color.r b.color.r && same a.color.g b.color.g && same a.color.b b.color.b && same a.specular b.specular
+  && same a.reflective b.reflective && same a.transparency b.transparency
+  && same a.refractive_index b.refractive_index && a.fresnel = b.fresnel && a.pattern = None && b.pattern = None
+
+module Plain = Hashtbl.Make (struct
+  type nonrec t = t
+
+  let equal = same_plain
+  let hash = Hashtbl.hash
+end)
+
 let of_sphere (s : Sphere.t) =
   v ~specular:s.specular ~reflective:s.reflective ~transparency:s.transparency ~refractive_index:s.refractive_index
     ~fresnel:s.fresnel ?pattern:s.pattern s.color

@@ -28,6 +28,16 @@ val equal : t -> t -> bool
 (** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
     compared with [=]. *)
 
+val same_plain : t -> t -> bool
+(** [same_plain a b] is [true] iff neither [a] nor [b] has a pattern and
+    their fields are equal bit for bit (so [0.] and [-0.] differ): two
+    objects can share such materials without changing one bit of
+    arithmetic. *)
+
+module Plain : Hashtbl.S with type key = t
+(** Hash tables keyed by materials compared with {!same_plain}: a table
+    finds only materials without a pattern. *)
+
 val v :
   ?specular:float ->
   ?reflective:float ->

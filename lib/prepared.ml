@@ -69,6 +69,12 @@ type t = {
 }
 
 let bvh_threshold = 8
+
+(* Above this many objects, preparing collects its garbage at two points
+   (see [prepare]): each costs a marking of the live heap, 6% of the
+   instructions of loading and preparing grid:100000, where it saves
+   little. *)
+let big_scene = 1 lsl 18
 let ambient = 0
 let point = 1
 let directional = 2
@@ -114,10 +120,11 @@ let max_channel (scene : Scene.t) =
     | Some p -> Float.max (channel color s) (channel (Pattern.color p) s)
   in
   let bound =
-    List.fold_left
-      (fun acc (s : Sphere.t) -> Float.max acc (channels s.color s.pattern s.specular))
+    (* Every material of the spheres' table is some sphere's. *)
+    Array.fold_left
+      (fun acc (m : Material.t) -> Float.max acc (channels m.color m.pattern m.specular))
       (Float.max bg.r (Float.max bg.g bg.b))
-      scene.spheres
+      (Spheres.materials scene.spheres)
   in
   let bound =
     List.fold_left
@@ -187,15 +194,11 @@ let ambient_lead (lights : Light.t array) =
 
 (* The objects in scene order: the spheres, then each shape, a mesh giving
    one object per triangle (less its degenerate ones, which no ray can
-   hit). [iter] calls [sphere k s], [single k sh] or [mesh_triangle k m t]
-   for object [k]; [material] numbers the materials alike. *)
-let iter_objects (scene : Scene.t) ~sphere ~single ~mesh_triangle =
-  let k = ref 0 in
-  List.iter
-    (fun s ->
-      sphere !k s;
-      incr k)
-    scene.spheres;
+   hit). [iter] calls [single k sh] or [mesh_triangle k m t] for the
+   shapes' objects [k]; the spheres are objects [0] to [n_spheres - 1],
+   read from the scene's arrays. *)
+let iter_objects ~n_spheres (scene : Scene.t) ~single ~mesh_triangle =
+  let k = ref n_spheres in
   List.iter
     (fun sh ->
       match sh with
@@ -218,7 +221,8 @@ let iter_objects (scene : Scene.t) ~sphere ~single ~mesh_triangle =
    a ray leaving one leaves them all, which the robust mode's exact
    handling of the sphere a ray leaves must see (or an identical twin,
    with a root of about 1e-16 there, would shadow it). Other objects are
-   their own. *)
+   their own. The result is empty if no sphere has a twin: a million
+   spheres leave 8 MB more for the hierarchy. *)
 let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
   let twin = Array.init n Fun.id in
   (* Equal as [Float.compare] has it: -0. is 0. (adding 0. maps it there),
@@ -244,74 +248,50 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
     size := 2 * !size
   done;
   let mask = !size - 1 in
-  let table = Array.make !size (-1) in
+  let table = Array.make !size (-1) and twins = ref false in
   for k = 0 to n_spheres - 1 do
     let j = ref (hash k land mask) in
     while table.(!j) >= 0 && not (same table.(!j) k) do
       j := (!j + 1) land mask
     done;
-    if table.(!j) < 0 then table.(!j) <- k else twin.(k) <- table.(!j)
+    if table.(!j) < 0 then table.(!j) <- k
+    else begin
+      twin.(k) <- table.(!j);
+      twins := true
+    end
   done;
-  twin
+  if !twins then twin else [||]
 
 (* [a.(i) <- a.(index.(i))] for every [i] and every array [a] of
-   [floats] and [ints], in place, cycle by cycle: [index] is a permutation
-   of [0 .. length a - 1]. *)
+   [floats] and [ints], [index] a permutation of [0 .. length a - 1]: each
+   array gathered into one scratch array, then copied back. The loads are
+   independent: following the permutation's cycles in place made each wait
+   for the one before, 4 times slower for a million spheres. *)
 let gather_in_place index ~(floats : float array array) ~(ints : int array array) =
-  let n = Array.length index and nf = Array.length floats and ni = Array.length ints in
-  let seen = Bytes.make n '\000' in
-  let first_f = Array.make nf 0. and first_i = Array.make ni 0 in
-  let move j k =
-    for c = 0 to nf - 1 do
-      floats.(c).(j) <- floats.(c).(k)
-    done;
-    for c = 0 to ni - 1 do
-      ints.(c).(j) <- ints.(c).(k)
-    done
-  in
-  for start = 0 to n - 1 do
-    if Bytes.get seen start = '\000' then begin
-      for c = 0 to nf - 1 do
-        first_f.(c) <- floats.(c).(start)
+  let n = Array.length index in
+  let fs = Array.make (if Array.length floats = 0 then 0 else n) 0. in
+  Array.iter
+    (fun (a : float array) ->
+      for i = 0 to n - 1 do
+        Array.unsafe_set fs i a.(index.(i))
       done;
-      for c = 0 to ni - 1 do
-        first_i.(c) <- ints.(c).(start)
+      Array.blit fs 0 a 0 n)
+    floats;
+  let is = Array.make (if Array.length ints = 0 then 0 else n) 0 in
+  Array.iter
+    (fun (a : int array) ->
+      for i = 0 to n - 1 do
+        Array.unsafe_set is i a.(index.(i))
       done;
-      let j = ref start and k = ref index.(start) in
-      Bytes.set seen start '\001';
-      while !k <> start do
-        move !j !k;
-        Bytes.set seen !k '\001';
-        j := !k;
-        k := index.(!k)
-      done;
-      for c = 0 to nf - 1 do
-        floats.(c).(!j) <- first_f.(c)
-      done;
-      for c = 0 to ni - 1 do
-        ints.(c).(!j) <- first_i.(c)
-      done
-    end
-  done
+      Array.blit is 0 a 0 n)
+    ints
 
-(* Materials equal bit for bit. *)
-module Materials = Hashtbl.Make (struct
-  type t = Material.t
-
-  let same x y = Int64.equal (Int64.bits_of_float x) (Int64.bits_of_float y)
-
-  let equal (a : t) (b : t) =
-    same a.color.r b.color.r && same a.color.g b.color.g && same a.color.b b.color.b && same a.specular b.specular
-    && same a.reflective b.reflective && same a.transparency b.transparency
-    && same a.refractive_index b.refractive_index && a.fresnel = b.fresnel && a.pattern = None && b.pattern = None
-
-  let hash = Hashtbl.hash
-end)
+module Materials = Material.Plain
 
 let prepare ?(skips = true) scene =
   let scene = Scene.of_valid scene in
-  let n_spheres = List.length scene.spheres in
-  let n = iter_objects scene ~sphere:(fun _ _ -> ()) ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
+  let n_spheres = Spheres.length scene.spheres in
+  let n = iter_objects ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
   (* Per object, in scene order: kind, material, and a cube around it
      (center, half side) for the hierarchy. *)
   let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
@@ -390,12 +370,37 @@ let prepare ?(skips = true) scene =
       oez.(k) <- h
     end
   in
+  (* The spheres' plain materials are distinct in their table: the first
+     sphere of each finds or makes the prepared material, the others
+     reuse its number (what [new_material] would find). *)
+  let spheres = scene.spheres in
+  let sphere_materials = Spheres.materials spheres in
+  let shared = Array.make (Array.length sphere_materials) (-1) in
+  (* Each sphere's material, first as its index in the spheres' table. *)
+  Spheres.blit_fields spheres ~x:ocx ~y:ocy ~z:ocz ~radius:ohalf ~material:omat;
+  for k = 0 to n_spheres - 1 do
+    let j = omat.(k) in
+    omat.(k) <-
+      (if shared.(j) >= 0 then shared.(j)
+       else
+         let m = sphere_materials.(j) in
+         let i = new_material m (fun () -> Shape.leaf_pattern_frame (Csg.Sphere (Spheres.get spheres k))) in
+         if Option.is_none m.pattern && not (m.transparency > 0.) then shared.(j) <- i;
+         i);
+    if any_mesh then begin
+      oex.(k) <- ohalf.(k);
+      oey.(k) <- ohalf.(k);
+      oez.(k) <- ohalf.(k)
+    end
+  done;
+  let max_channel = max_channel scene in
+  (* The spheres are copied: from here on [prepare] holds none of the
+     scene's, and a caller that holds the scene no longer either (the
+     renderers) lets them go while the hierarchy is built (40 MB for a
+     million spheres). *)
+  let scene = { scene with spheres = Spheres.empty } in
   ignore
-    (iter_objects scene
-       ~sphere:(fun k (s : Sphere.t) ->
-         set k Shape.sphere
-           (new_material (Material.of_sphere s) (fun () -> Shape.leaf_pattern_frame (Csg.Sphere s)))
-           s.center s.radius)
+    (iter_objects ~n_spheres scene
        ~single:(fun k sh ->
          let c, h = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.) in
          let mat = match sh with Shape.Csg c -> add_csg k c | _ -> new_material (Shape.material sh) (fun () -> Shape.pattern_frame sh) in
@@ -470,10 +475,26 @@ let prepare ?(skips = true) scene =
     done;
     a
   in
-  let kept k = twin_of.(k) = k in
+  let no_twins = Array.length twin_of = 0 in
+  let kept k = no_twins || twin_of.(k) = k in
   let bounded = select (fun k -> kept k && okind.(k) <> Shape.plane) in
   let unbounded = select (fun k -> kept k && okind.(k) = Shape.plane) in
   let nb = Array.length bounded in
+  (* A big scene's loading left garbage in pieces (the text's windows, the
+     spheres' blocks, which the caller no longer holds: see below), too
+     small for the hierarchy's arrays of a million: compacted now, the heap
+     does not grow past them; after the hierarchy, a collection lets the
+     slot-order arrays reuse its build's arrays. For a million spheres the
+     render's peak goes from 293 to 235 MB, for 5% of the time of loading
+     and preparing. *)
+  let collections = ref 0 in
+  let collect () =
+    if n > big_scene then begin
+      if !collections = 0 then Gc.compact () else Gc.full_major ();
+      incr collections
+    end
+  in
+  collect ();
   let bvh =
     if skips && nb > bvh_threshold then begin
       (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
@@ -496,6 +517,7 @@ let prepare ?(skips = true) scene =
   if nb >= 100_000 && n_spheres <= nb / 8 && Option.is_some bvh then Gc.full_major ();
   (* Slots: the hierarchy's leaf order, then the planes; without a
      hierarchy, the scene's order. *)
+  collect ();
   let index =
     match bvh with
     | Some b ->
@@ -536,8 +558,7 @@ let prepare ?(skips = true) scene =
     extent.(i) <- !e
   in
   ignore
-    (iter_objects scene
-       ~sphere:(fun _ _ -> ())
+    (iter_objects ~n_spheres scene
        ~single:(fun k sh ->
          let i = slot.(k) in
          match sh with
@@ -603,7 +624,6 @@ let prepare ?(skips = true) scene =
     | Point { position; _ } -> position
     | Directional { direction; _ } -> direction
   in
-  let max_channel = max_channel scene in
   let transparent = Array.exists (fun (m : Material.t) -> m.transparency > 0.) materials in
   (* The document's own scenes: spheres of plain materials (no pattern, no
      glass), few enough for no hierarchy, in the document's mode. *)

@@ -14,6 +14,7 @@ module Csg = Csg
 module Shape = Shape
 module Obj_file = Obj_file
 module Mesh_gen = Mesh_gen
+module Spheres = Spheres
 module Light = Light
 module Scene = Scene
 module Scene_file = Scene_file

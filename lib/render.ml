@@ -5,14 +5,16 @@ let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples 
   Render_work.inside "Render.region_image" scene region;
   let* sampling = Sampling.v ?samples ?adaptive ?subsample () in
   let* () = Render_work.check ~limits scene region sampling in
-  let s = Scene.of_valid scene in
+  (* Nothing here holds the scene past [Prepared.prepare], which lets its
+     spheres go as it builds the hierarchy. *)
+  let canvas = (let s = Scene.of_valid scene in (s.width, s.height)) in
   match Image.create region.w region.h with
   | exception Out_of_memory -> Render_work.out_of_memory region
   | img ->
       let t0 = clock () in
       let p = Prepared.prepare ?skips scene in
       let t1 = clock () in
-      let plan = Sampling.plan sampling img ~canvas:(s.width, s.height) ~at:(region.x, region.y) in
+      let plan = Sampling.plan sampling img ~canvas ~at:(region.x, region.y) in
       let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout Render_work.counter_fields in
       (* One tracer for every pass. *)
       let tr = Trace.create ~averaging:(Sampling.averaging sampling) p in

@@ -6,7 +6,7 @@ type t = {
   background : Color.t;
   depth : int;
   epsilon : float option;
-  spheres : Sphere.t list;
+  spheres : Spheres.t;
   shapes : Shape.t list;
   lights : Light.t list;
   camera_path : Camera_path.t option;
@@ -24,7 +24,7 @@ let pp ppf s =
   Format.fprintf ppf "(background %a)\n" Color.pp_components s.background;
   Format.fprintf ppf "(recursion-depth %d)\n" s.depth;
   Option.iter (Format.fprintf ppf "(epsilon %s)\n") (Option.map Float_text.to_string s.epsilon);
-  List.iter (line Sphere.pp) s.spheres;
+  Spheres.pp ppf s.spheres;
   List.iter (line Shape.pp) s.shapes;
   List.iter (line Light.pp) s.lights
 
@@ -34,7 +34,7 @@ let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
 let v ?(width = 600) ?(height = 600) ?(viewport = Viewport.default) ?(camera = Camera.default)
     ?(background = Color.black) ?(depth = 3) ?epsilon ?camera_path ?(shapes = []) ~spheres ~lights () =
-  { width; height; viewport; camera; background; depth; epsilon; spheres; shapes; lights; camera_path }
+  { width; height; viewport; camera; background; depth; epsilon; spheres = Spheres.of_list spheres; shapes; lights; camera_path }
 
 let document_epsilon = 0.0001
 
@@ -83,18 +83,17 @@ let grid n =
        Color.v 0. 255. 255.; Color.v 255. 0. 255. |]
   in
   let specular = [| -1.; 10.; 500.; 1000. |] and reflective = [| 0.; 0.2; 0.4 |] in
-  let wall =
-    List.init n (fun i ->
-        let col = i mod k and row = i / k in
-        let center =
-          Vec3.v (Float.of_int col -. (Float.of_int (k - 1) /. 2.)) (Float.of_int row -. 0.6) (2. *. Float.of_int k)
-        in
-        Sphere.v ~specular:specular.(i mod 4) ~reflective:reflective.(i mod 3) ~center ~radius:0.4
-          palette.(i mod 6))
-  in
-  let ground = List.nth cgfs.spheres 3 in
-  (* Not [wall @ [ ground ]]: (@) recurses as deep as the list is long. *)
-  { cgfs with width = 800; height = 800; spheres = List.rev (ground :: List.rev wall) }
+  let b = Spheres.builder () in
+  for i = 0 to n - 1 do
+    let col = i mod k and row = i / k in
+    let center =
+      Vec3.v (Float.of_int col -. (Float.of_int (k - 1) /. 2.)) (Float.of_int row -. 0.6) (2. *. Float.of_int k)
+    in
+    Spheres.add b
+      (Sphere.v ~specular:specular.(i mod 4) ~reflective:reflective.(i mod 3) ~center ~radius:0.4 palette.(i mod 6))
+  done;
+  Spheres.add b (Spheres.get cgfs.spheres 3);
+  { cgfs with width = 800; height = 800; spheres = Spheres.build b }
 
 let check_epsilon e =
   if Float.is_finite e && e >= 0. then Ok e
@@ -107,6 +106,31 @@ let check_background c =
 type valid = t
 
 let of_valid v = v
+
+(* Sphere by sphere, the first error first, as [Sphere.validate] finds it;
+   each material is checked once, not once per sphere. *)
+let valid_spheres spheres =
+  let materials = Spheres.materials spheres in
+  (* A sphere at the origin of radius 1 passes the other checks. *)
+  let checked =
+    Array.map
+      (fun (m : Material.t) ->
+        Sphere.validate
+          (Sphere.v ~specular:m.specular ~reflective:m.reflective ~transparency:m.transparency
+             ~refractive_index:m.refractive_index ~fresnel:m.fresnel ?pattern:m.pattern ~center:Vec3.zero ~radius:1.
+             m.color))
+      materials
+  in
+  let rec go i =
+    if i >= Spheres.length spheres then Ok ()
+    else
+      let center = Vec3.v (Spheres.center_x spheres i) (Spheres.center_y spheres i) (Spheres.center_z spheres i) in
+      match (Sphere.check_center center, Sphere.check_radius (Spheres.radius spheres i)) with
+      | Error e, _ | _, Error e -> Error e
+      | Ok _, Ok _ -> (
+          match checked.(Spheres.material_index spheres i) with Ok _ -> go (i + 1) | Error e -> Error e)
+  in
+  go 0
 
 let validate ?(limits = Limits.default) s =
   let ( let* ) = Result.bind in
@@ -123,9 +147,9 @@ let validate ?(limits = Limits.default) s =
     let* _ = check_background s.background in
     let* _ = Limits.check_depth limits s.depth in
     let* _ = match s.epsilon with Some e -> check_epsilon e | None -> Ok 0. in
-    let* _ = Limits.check_count limits `Spheres (List.length s.spheres + List.length s.shapes) in
+    let* _ = Limits.check_count limits `Spheres (Spheres.length s.spheres + List.length s.shapes) in
     let* _ = Limits.check_count limits `Lights (List.length s.lights) in
-    let* () = all Sphere.validate s.spheres in
+    let* () = valid_spheres s.spheres in
     let* () = all Light.validate s.lights in
     all (fun sh -> Result.map ignore (Shape.validate sh)) s.shapes
   in
@@ -163,7 +187,7 @@ let at_frame (s : valid) f =
 let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
   let depth =
     if
-      List.exists (fun (sp : Sphere.t) -> sp.reflective > 0.) s.spheres
+      Array.exists (fun (m : Material.t) -> m.reflective > 0.) (Spheres.materials s.spheres)
       || List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.reflective > 0.) (Shape.materials sh)) s.shapes
     then s.depth
     else 0
@@ -171,7 +195,7 @@ let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
   let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in
   match
     Limits.check_work limits ~pixels:(Option.value pixels ~default:(s.width * s.height)) ~samples ~depth
-      ~spheres:(List.length s.spheres + List.length s.shapes) ~lights
+      ~spheres:(Spheres.length s.spheres + List.length s.shapes) ~lights
   with
   | Ok () -> Ok ()
   | Error _ as e -> e

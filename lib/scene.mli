@@ -18,7 +18,10 @@ type t = {
       (** [Some e]: the document's semantics, shadow and reflection rays
           see objects at [t > e] only. [None]: the robust mode, which needs
           no scene-dependent constant. *)
-  spheres : Sphere.t list;
+  spheres : Spheres.t;
+      (** A {!Spheres.t} since issue 15.3 (it was a
+          [Sphere.t list]): {!Spheres.to_list} and {!Spheres.of_list}
+          convert ({!v} still takes a list). *)
   shapes : Shape.t list;
       (** The other objects (planes, triangles, boxes). For ties between
           equal roots, objects count in the order spheres, then shapes. *)

@@ -500,7 +500,7 @@ type builder = {
   seen : (string, Positions.pos option) Hashtbl.t;
       (** Forms that may appear once, and where they first did. *)
   mutable scene : Scene.t;
-  mutable spheres : Sphere.t list;  (** In reverse order. *)
+  spheres : Spheres.builder;
   mutable shapes : Shape.t list;  (** In reverse order. *)
   mutable lights : Light.t list;  (** In reverse order. *)
   mutable n_spheres : int;
@@ -514,7 +514,7 @@ let builder ~limits ~load where =
     load;
     seen = Hashtbl.create 8;
     scene = Scene.v ~spheres:[] ~lights:[] ();
-    spheres = [];
+    spheres = Spheres.builder ();
     shapes = [];
     lights = [];
     n_spheres = 0;
@@ -541,7 +541,7 @@ let add_form b node =
       | "sphere" ->
           b.n_spheres <- b.n_spheres + 1;
           ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
-          b.spheres <- sphere ~where node rest :: b.spheres
+          Spheres.add b.spheres (sphere ~where node rest)
       | ("plane" | "triangle" | "box") as form ->
           (* Shapes count against the bound of spheres: both are objects. *)
           b.n_spheres <- b.n_spheres + 1;
@@ -597,12 +597,44 @@ let finish b =
         match Camera_path.camera path (Camera_path.first_frame path) with Ok c -> c | Error _ -> b.scene.camera)
     | _ -> b.scene.camera
   in
-  { b.scene with camera; spheres = List.rev b.spheres; shapes = List.rev b.shapes; lights = List.rev b.lights }
+  { b.scene with camera; spheres = Spheres.build b.spheres; shapes = List.rev b.shapes; lights = List.rev b.lights }
+
+(* Where the text comes from: [open_text ()] reads it from its start, a
+   few bytes at a time ([read buf pos len] is how many it put in [buf] at
+   [pos], [0] at the end), as often as an error needs another pass. *)
+type source = unit -> reader
+
+and reader = { read : Bytes.t -> int -> int -> int; close : unit -> unit }
+
+let string_source text () =
+  let at = ref 0 in
+  let read buf pos len =
+    let k = min len (String.length text - !at) in
+    Bytes.blit_string text !at buf pos k;
+    at := !at + k;
+    k
+  in
+  { read; close = ignore }
+
+(* [each_chunk src f] calls [f bytes len] on the text of [src], 64 KiB at a
+   time, in order. *)
+let each_chunk (src : source) f =
+  let r = src () in
+  let buf = Bytes.create 65536 in
+  Fun.protect ~finally:r.close (fun () ->
+      let rec go () =
+        match r.read buf 0 (Bytes.length buf) with
+        | 0 -> ()
+        | k ->
+            f buf k;
+            go ()
+      in
+      go ())
 
 (* The located pass: the same conversion over a parse that kept positions. *)
 (* The located pass streams too: it keeps the positions of the form being
    converted only, so locating an error costs no more memory than loading. *)
-let locate_error ~limits ~load text =
+let locate_error ~limits ~load (src : source) =
   let module P = Parsexp.Eager_and_positions in
   let current = ref None in
   let where node =
@@ -622,31 +654,43 @@ let locate_error ~limits ~load text =
         current := Some (form, positions);
         add_form b form)
   in
-  match P.feed_eoi state (P.feed_string state text P.Stack.empty) with
+  let stack = ref P.Stack.empty in
+  match
+    each_chunk src (fun buf k -> stack := P.feed_subbytes state buf ~pos:0 ~len:k !stack);
+    P.feed_eoi state !stack
+  with
   | () -> `Not_found
   | exception Parsexp.Parse_error.Parse_error e -> `Syntax e
   | exception Located (node, m) -> `Located (where node, m)
 
-(* The position of the first character after [offset] in [text] that is
-   neither blank nor in a line comment: where the next form starts. *)
-let form_start text offset =
-  let n = String.length text in
-  let rec skip i =
-    if i >= n then i
-    else
-      match text.[i] with
-      | ' ' | '\t' | '\n' | '\r' | '\012' -> skip (i + 1)
-      | ';' -> ( match String.index_from_opt text i '\n' with Some j -> skip (j + 1) | None -> n)
-      | _ -> i
-  in
-  let i = skip offset in
-  let line = ref 1 and bol = ref 0 in
-  for k = 0 to i - 1 do
-    if text.[k] = '\n' then begin
-      incr line;
-      bol := k + 1
-    end
-  done;
+(* The position of the first character at or after [offset] of the text
+   that is neither blank nor in a line comment: where the next form
+   starts. *)
+let form_start (src : source) offset =
+  let line = ref 1 and bol = ref 0 and at = ref 0 and comment = ref false in
+  let found = ref None in
+  (try
+     each_chunk src (fun buf k ->
+         for j = 0 to k - 1 do
+           let i = !at + j in
+           let c = Bytes.unsafe_get buf j in
+           if i >= offset && !found = None then begin
+             if !comment then (if c = '\n' then comment := false)
+             else
+               match c with
+               | ' ' | '\t' | '\n' | '\r' | '\012' -> ()
+               | ';' -> comment := true
+               | _ -> found := Some i
+           end;
+           if !found = None && c = '\n' then begin
+             incr line;
+             bol := i + 1
+           end
+         done;
+         at := !at + k;
+         if !found <> None then raise Exit)
+   with Exit -> ());
+  let i = Option.value !found ~default:!at in
   Positions.{ line = !line; col = i - !bol; offset = i }
 
 (* Fast reading. Most forms are plain text (parentheses, plain atoms,
@@ -664,35 +708,74 @@ let chunk = 65536
 let simple_form_bytes = 16384
 
 exception Form_too_long of string
+exception Too_big of string
 
-(* [line_at p] is the position of offset [p]; offsets only grow from call
-   to call, so counting lines costs one pass over the text in all. *)
-let line_counter text =
+(* The number of bytes ['\n'] in [x]: those of [x lxor 0x0a0a...] that
+   are zero, whose high bit stays clear when [0x7f] is added to their low
+   bits (no carry crosses a byte), then counted by a multiplication. *)
+let newlines x =
+  let x = Int64.logxor x 0x0a0a0a0a0a0a0a0aL in
+  let low = 0x7f7f7f7f7f7f7f7fL in
+  let t = Int64.logor (Int64.add (Int64.logand x low) low) x in
+  let zero = Int64.logand (Int64.lognot t) 0x8080808080808080L in
+  Int64.to_int (Int64.shift_right_logical (Int64.mul (Int64.shift_right_logical zero 7) 0x0101010101010101L) 56)
+
+(* The text is read a window at a time: [text] holds the bytes from
+   offset [base] of the whole text; [eof] says whether they run to its
+   end. Offsets within a window are relative to it, those kept across
+   windows ([form_end], the form bound's points, positions) absolute. *)
+type window = { mutable text : string; mutable base : int; mutable eof : bool }
+
+(* [line_at w p] is the position of absolute offset [p], which must be in
+   the window or at its end; offsets only grow from call to call, so
+   counting lines costs one pass over the text in all. *)
+let line_counter (w : window) =
   let at = ref 0 and line = ref 1 and bol = ref 0 in
   fun p ->
-    for k = !at to p - 1 do
-      if String.unsafe_get text k = '\n' then begin
-        incr line;
-        bol := k + 1
-      end
-    done;
-    at := p;
+    if p > !at then begin
+      let text = w.text and from = !at - w.base and upto = p - w.base in
+      (* Eight bytes at a time: every window passes here once. *)
+      let k = ref from in
+      while !k + 8 <= upto do
+        line := !line + newlines (String.get_int64_le text !k);
+        k := !k + 8
+      done;
+      for j = !k to upto - 1 do
+        if String.unsafe_get text j = '\n' then incr line
+      done;
+      match String.rindex_from_opt text (upto - 1) '\n' with
+      | Some j when j >= from -> bol := w.base + j + 1
+      | _ -> ()
+    end;
+    at := max !at p;
     Positions.{ line = !line; col = p - !bol; offset = p }
 
-(* A sphere's fields as numbers, and recent spheres as prototypes: the
-   grid layout repeats a dozen radii and materials, and a sphere made as
-   [{ proto with center }] shares its prototype's colour and boxed floats,
-   which takes a million spheres from 184 to 104 bytes each. *)
+(* Fast reads look this far past a form's start (twice [simple_form_bytes])
+   before they trust a failure: what they refuse within it, they refuse
+   whatever follows. *)
+let lookahead = 2 * simple_form_bytes
+
+(* A sphere's fields as numbers, and the materials of recent spheres: the
+   grid layout repeats a dozen materials, and a sphere whose material is
+   one of those is added without making a [Material.t] to find it. *)
 type fast = {
   values : float array;  (** center x y z, radius, color r g b, specular, reflective. *)
   mutable seen : int;  (** The fields read, one bit each, in [sphere_field] order. *)
-  protos : Sphere.t array;  (** Recent spheres, by a hash of all but their center. *)
+  recent : float array;  (** Per slot [k] of a hash, at [4 k]: color r g b, specular. *)
+  recent_reflective : float array;  (** Per slot, the reflective of its material. *)
+  recent_index : int array;  (** Per slot, its material's index in the spheres' table, or [-1]. *)
 }
 
-let n_protos = 64
+let n_recent = 64
 
 let fast_state () =
-  { values = Array.make 9 0.; seen = 0; protos = Array.make n_protos (Sphere.v ~center:Vec3.zero ~radius:nan Color.black) }
+  {
+    values = Array.make 9 0.;
+    seen = 0;
+    recent = Array.make (4 * n_recent) 0.;
+    recent_reflective = Array.make n_recent 0.;
+    recent_index = Array.make n_recent (-1);
+  }
 
 let sphere_arity = [| 3; 1; 3; 1; 1 |]
 let sphere_value = [| 0; 3; 4; 7; 8 |]
@@ -758,7 +841,7 @@ let sphere_fields f s i =
   if f.seen land 7 <> 7 then raise Unusual;
   e
 
-let[@inline] same_float x y = x = y && Float.sign_bit x = Float.sign_bit y
+let[@inline] same_float x y = Int64.equal (Int64.bits_of_float x) (Int64.bits_of_float y)
 
 (* Adds the sphere read by [sphere_fields], checked as [sphere] checks it.
    @raise Sexp_scan.Unusual if a check fails: [sphere] then reports it. *)
@@ -767,7 +850,8 @@ let add_sphere b f =
   let v = f.values in
   (* [Limits.check_count]'s test, without building its messages. *)
   if not (Float.of_int (b.n_spheres + 1) <= Limits.bound b.limits `Spheres) then raise Sexp_scan.Unusual;
-  let center = ok (Sphere.check_center (Vec3.v v.(0) v.(1) v.(2))) in
+  let x = v.(0) and y = v.(1) and z = v.(2) in
+  ignore (ok (Sphere.check_center (Vec3.v x y z)));
   let radius = ok (Sphere.check_radius v.(3)) in
   let specular = if f.seen land 8 = 0 then Sphere.matte else ok (Sphere.check_specular v.(7)) in
   let reflective = if f.seen land 16 = 0 then 0. else ok (Sphere.check_reflective v.(8)) in
@@ -775,25 +859,30 @@ let add_sphere b f =
   (* Any hash will do; [truncate] is defined for every finite float here
      (checked above, or garbage but harmless for a colour out of range). *)
   let k =
-    ((truncate (radius *. 1024.) * 31)
-    + (truncate r * 7) + (truncate g * 5) + (truncate bl * 3) + (truncate specular * 11)
+    ((truncate r * 7) + (truncate g * 5) + (truncate bl * 3) + (truncate specular * 11)
     + truncate (reflective *. 64.))
-    land (n_protos - 1)
+    land (n_recent - 1)
   in
-  let p = f.protos.(k) in
-  let sphere =
-    if same_float p.radius radius && same_float p.color.r r && same_float p.color.g g && same_float p.color.b bl
-       && same_float p.specular specular && same_float p.reflective reflective
-    then { p with center }
+  let c = f.recent in
+  let m =
+    let i = f.recent_index.(k) in
+    if i >= 0 && same_float c.(4 * k) r && same_float c.((4 * k) + 1) g && same_float c.((4 * k) + 2) bl
+       && same_float c.((4 * k) + 3) specular && same_float f.recent_reflective.(k) reflective
+    then i
     else begin
       let color = ok (Sphere.check_color (Color.v r g bl)) in
-      let s = Sphere.v ~specular ~reflective ~center ~radius color in
-      f.protos.(k) <- s;
-      s
+      let i = Spheres.material b.spheres (Material.v ~specular ~reflective color) in
+      c.(4 * k) <- r;
+      c.((4 * k) + 1) <- g;
+      c.((4 * k) + 2) <- bl;
+      c.((4 * k) + 3) <- specular;
+      f.recent_reflective.(k) <- reflective;
+      f.recent_index.(k) <- i;
+      i
     end
   in
   b.n_spheres <- b.n_spheres + 1;
-  b.spheres <- sphere :: b.spheres
+  Spheres.add_fields b.spheres ~x ~y ~z ~radius m
 
 (* Without a loader, a scene names no mesh file it can read. *)
 let no_loader path =
@@ -801,7 +890,8 @@ let no_loader path =
     (`Msg
       (Printf.sprintf "cannot read mesh file %s: this scene was given as text, with no way to read files" path))
 
-let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast) text =
+let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast)
+    ?(window_bytes = 1 lsl 20) (src : source) =
   (* Mesh files are named relative to the scene file; each is read once,
      even when an error makes a second, located pass over the text. *)
   let loaded = Hashtbl.create 4 in
@@ -817,98 +907,165 @@ let of_string ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
   in
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
-  match Limits.check_scene_bytes limits (String.length text) with
-  | Error (`Msg m) -> Error (`Msg (Printf.sprintf "%s: %s" file m))
-  | Ok _ -> (
-    let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
-    (* Each form is converted as soon as it is read, and positions are not
-       recorded: big scenes load in little time and memory. Only an error
-       triggers a second pass that records positions, and fails on the same
-       node. *)
-    let b = builder ~limits ~load (fun _ -> None) in
-    let fast = fast_state () in
-    let n = String.length text in
-    (* [!form_end] is where the last form read ended. The form bound is
-       checked as it was when parsexp read the whole text 64 KiB at a time:
-       at each multiple of 64 KiB (and at the end), the bytes since the
-       last form's end, counted before the form that straddles that point
-       is converted. [!boundary] is the next point to check. *)
-    let form_end = ref 0 and boundary = ref (min chunk n) in
-    let check_below e =
-      while !boundary < e do
-        (match Limits.check_form_bytes limits (!boundary - !form_end) with
+  let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
+  (* Each form is converted as soon as it is read, and positions are not
+     recorded: big scenes load in little time and memory. Only an error
+     triggers a second pass that records positions, and fails on the same
+     node. *)
+  let b = builder ~limits ~load (fun _ -> None) in
+  let fast = fast_state () in
+  let r = src () in
+  let w = { text = ""; base = 0; eof = false } in
+  let window_bytes = max 1 window_bytes in
+  (* Windows grow from 4 KiB to [window_bytes] by doubling: a small scene
+     costs no big buffer (its allocation made the garbage collector work
+     0.6% of rendering the reference scene). *)
+  let reading = ref (min 4096 window_bytes) in
+  (* The next window: the text from [keep] (relative) on, then at least
+     [want] bytes more if there are, and [!reading] at least. *)
+  let refill line_at ~keep ~want =
+    let kept = String.length w.text - keep in
+    ignore (line_at (w.base + keep));
+    let size = kept + max want !reading in
+    reading := min window_bytes (2 * !reading);
+    let next = Bytes.create size in
+    Bytes.blit_string w.text keep next 0 kept;
+    let rec fill k =
+      if k >= size then k
+      else match r.read next k (size - k) with 0 -> w.eof <- true; k | n -> fill (k + n)
+    in
+    let k = fill kept in
+    w.text <- (if k = size then Bytes.unsafe_to_string next else Bytes.sub_string next 0 k);
+    w.base <- w.base + keep;
+    match Limits.check_scene_bytes limits (w.base + k) with Ok _ -> () | Error (`Msg m) -> raise (Too_big m)
+  in
+  let line_at = line_counter w in
+  (* [!form_end] is where the last form read ended. The form bound is
+     checked as it was when parsexp read the whole text 64 KiB at a time:
+     at each multiple of 64 KiB (and at the end), the bytes since the
+     last form's end, counted before the form that straddles that point
+     is converted. [!boundary] is the next multiple to check; the end of
+     the text is checked once it is known. *)
+  let form_end = ref 0 and boundary = ref chunk in
+  let check_below e =
+    let rec go () =
+      let total = if w.eof then w.base + String.length w.text else max_int in
+      let at = min !boundary total in
+      if !boundary < max_int && at < e then begin
+        (match Limits.check_form_bytes limits (at - !form_end) with
         | Ok _ -> ()
         | Error (`Msg m) -> raise (Form_too_long m));
-        boundary := if !boundary >= n then max_int else min (!boundary + chunk) n
-      done
+        boundary := if at >= total then max_int else !boundary + chunk;
+        go ()
+      end
     in
-    let line_at = line_counter text in
-    (* A plain form, read by [Sexp_scan] and converted; spheres are read
-       straight into their values. *)
-    let simple i =
-      let form, e = Sexp_scan.form text i ~max_bytes:simple_form_bytes in
-      check_below e;
-      add_form b form;
-      e
+    go ()
+  in
+  (* A plain form, read by [Sexp_scan] and converted; spheres are read
+     straight into their values. *)
+  let simple i =
+    let form, e = Sexp_scan.form w.text i ~max_bytes:simple_form_bytes in
+    check_below (w.base + e);
+    add_form b form;
+    e
+  in
+  let fast_form i =
+    match sphere_fields fast w.text i with
+    | e -> (
+        check_below (w.base + e);
+        match add_sphere b fast with () -> e | exception Sexp_scan.Unusual -> simple i)
+    | exception Sexp_scan.Unusual -> simple i
+  in
+  (* Anything else, from [p] (the end of the last form) to the end of the
+     next form, goes to parsexp, fed up to the next closing parenthesis
+     at a time so that it stops where that form does. *)
+  let rec slow_from p =
+    let completed = ref false in
+    let state =
+      Parsexp.Eager.State.create ~pos:(line_at (w.base + p)) (fun _ form ->
+          completed := true;
+          add_form b form)
     in
-    let fast_form i =
-      match sphere_fields fast text i with
-      | e -> (
-          check_below e;
-          match add_sphere b fast with () -> e | exception Sexp_scan.Unusual -> simple i)
-      | exception Sexp_scan.Unusual -> simple i
+    let rec go p stack =
+      let n = String.length w.text in
+      if p >= n && w.eof then Parsexp.Eager.feed_eoi state stack
+      else if p >= n then begin
+        (* parsexp holds what it was fed: nothing of this window is needed. *)
+        refill line_at ~keep:n ~want:0;
+        go 0 stack
+      end
+      else begin
+        let stop = min (!boundary - w.base) n in
+        let q = ref p in
+        while !q < stop && String.unsafe_get w.text !q <> ')' do
+          incr q
+        done;
+        let q = if !q < stop then !q + 1 else stop in
+        let stack = Parsexp.Eager.feed_substring state w.text ~pos:p ~len:(q - p) stack in
+        if !completed then form_end := w.base + q;
+        check_below (w.base + q + 1);
+        if !completed then fast_from q else go q stack
+      end
     in
-    (* Anything else, from [p] (the end of the last form) to the end of the
-       next form, goes to parsexp, fed up to the next closing parenthesis
-       at a time so that it stops where that form does. *)
-    let rec slow_from p =
-      let completed = ref false in
-      let state =
-        Parsexp.Eager.State.create ~pos:(line_at p) (fun _ form ->
-            completed := true;
-            add_form b form)
-      in
-      let rec go p stack =
-        if p >= n then Parsexp.Eager.feed_eoi state stack
-        else begin
-          let stop = min !boundary n in
-          let q = ref p in
-          while !q < stop && String.unsafe_get text !q <> ')' do
-            incr q
-          done;
-          let q = if !q < stop then !q + 1 else stop in
-          let stack = Parsexp.Eager.feed_substring state text ~pos:p ~len:(q - p) stack in
-          if !completed then form_end := q;
-          check_below (q + 1);
-          if !completed then fast_from q else go q stack
-        end
-      in
-      go p Parsexp.Eager.Stack.empty
-    and fast_from p =
-      if reader = `Parsexp then if p >= n then check_below (n + 1) else slow_from p
-      else
-      match Sexp_scan.skip_blank text p with
-      | i when i >= n -> check_below (n + 1)
+    go p Parsexp.Eager.Stack.empty
+  and fast_from p =
+    let n = String.length w.text in
+    if reader = `Parsexp then
+      if p >= n && w.eof then check_below (w.base + n + 1)
+      else if p >= n then begin
+        refill line_at ~keep:n ~want:0;
+        fast_from 0
+      end
+      else slow_from p
+    else
+      match Sexp_scan.skip_blank w.text p with
+      | i when i >= n && w.eof -> check_below (w.base + n + 1)
+      | i when i >= n ->
+          (* Blanks to the end of the window, maybe in a comment: the next
+             window starts at the last line's start, outside any. *)
+          let keep = match String.rindex_from_opt w.text (n - 1) '\n' with Some j when j >= p -> j + 1 | _ -> p in
+          refill line_at ~keep ~want:lookahead;
+          fast_from 0
+      | i when n - i < lookahead && not w.eof ->
+          refill line_at ~keep:i ~want:lookahead;
+          fast_from 0
       | i -> (
           match fast_form i with
           | e ->
-              form_end := e;
+              form_end := w.base + e;
               fast_from e
           | exception Sexp_scan.Unusual -> slow_from p)
       | exception Sexp_scan.Unusual -> slow_from p
-    in
-    match fast_from 0 with
-    | () -> (
-        (* Every field was checked where it was read; this is a net. *)
-        match Scene.validate ~limits (finish b) with
-        | Ok s -> Ok s
-        | Error (`Msg m) -> error origin m)
-    | exception Form_too_long m -> error (form_start text !form_end) m
-    | exception Parsexp.Parse_error.Parse_error e -> syntax e
-    | exception Located _ -> (
-        match locate_error ~limits ~load text with
-        | `Syntax e -> syntax e
-        | `Located (pos, m) -> error (Option.value pos ~default:origin) m
-        | `Not_found -> error origin "internal error: the located pass found no error"))
+  in
+  let result =
+    Fun.protect ~finally:r.close (fun () ->
+        match
+          refill line_at ~keep:0 ~want:0;
+          fast_from 0
+        with
+        | () -> (
+            (* Every field was checked where it was read; this is a net. *)
+            match Scene.validate ~limits (finish b) with
+            | Ok s -> `Done (Ok s)
+            | Error (`Msg m) -> `Done (error origin m))
+        | exception Too_big m -> `Done (Error (`Msg (Printf.sprintf "%s: %s" file m)))
+        | exception Form_too_long m -> `Form_too_long m
+        | exception Parsexp.Parse_error.Parse_error e -> `Done (syntax e)
+        | exception Located _ -> `Locate)
+  in
+  (* The error passes read the text again from its start. *)
+  match result with
+  | `Done r -> r
+  | `Form_too_long m -> error (form_start src !form_end) m
+  | `Locate -> (
+      match locate_error ~limits ~load src with
+      | `Syntax e -> syntax e
+      | `Located (pos, m) -> error (Option.value pos ~default:origin) m
+      | `Not_found -> error origin "internal error: the located pass found no error")
+
+let of_string ?(limits = Limits.default) ?load_mesh ?(file = "<string>") ?reader text =
+  match Limits.check_scene_bytes limits (String.length text) with
+  | Error (`Msg m) -> Error (`Msg (Printf.sprintf "%s: %s" file m))
+  | Ok _ -> of_source ~limits ?load_mesh ~file ?reader (string_source text)
 
 let to_string = Scene.show

@@ -62,6 +62,39 @@ val of_string :
     parsexp: the same scenes and the same errors, slower (the tests
     compare the two). Never raises. *)
 
+(** {1:streams Reading a text a window at a time} *)
+
+type reader = { read : Bytes.t -> int -> int -> int; close : unit -> unit }
+(** The type for texts being read: [read buf pos len] puts at most [len]
+    bytes of the text, the next ones, in [buf] from [pos] and is how many,
+    [0] at the end only (as [input] does); [close ()] is called once
+    reading is done, or has failed. *)
+
+type source = unit -> reader
+(** The type for texts that can be read again: each call reads the text
+    from its start (a failed load reads it a second time, to locate its
+    error). *)
+
+val string_source : string -> source
+(** [string_source s] reads [s]. *)
+
+val of_source :
+  ?limits:Limits.t ->
+  ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
+  ?file:string ->
+  ?reader:[ `Fast | `Parsexp ] ->
+  ?window_bytes:int ->
+  source ->
+  (Scene.valid, [> `Msg of string ]) result
+(** [of_source ~limits ~load_mesh ~file ~reader ~window_bytes src] is
+    {!of_string} on the text of [src], read [window_bytes] (default 1 MiB;
+    tests use a few) at a time: a big scene is never held whole as text,
+    only its current window (more for a form longer than one). The same
+    scenes, the same errors, positions included. The text's size is
+    checked against its [`Scene_bytes] bound as it is read; a caller that
+    knows it (a file's) checks it first. Exceptions of [src]'s functions
+    ([Sys_error]) are not caught. *)
+
 val to_string : Scene.t -> string
 (** [to_string s] is {!Scene.show}[ s]: [s] in the scene-file syntax, every number written so
     that it reads back as the same float: [of_string (to_string s)] is

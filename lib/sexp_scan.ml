@@ -2,13 +2,22 @@ module Sexp = Sexplib0.Sexp
 
 exception Unusual
 
-let[@inline] is_atom_char c =
+let is_atom_char c =
   match c with 'a' .. 'z' | 'A' .. 'Z' | '0' .. '9' | '.' | '+' | '-' | '_' -> true | _ -> false
+
+(* [is_atom_char] as a table: one load a character where the scanner
+   spends most of its time. *)
+let atom_table = String.init 256 (fun i -> if is_atom_char (Char.chr i) then '\001' else '\000')
+let[@inline] is_atom_byte c = String.unsafe_get atom_table (Char.code c) = '\001'
 
 (* parsexp refuses a carriage return that no newline follows, in a comment
    too: such text goes to parsexp for its error. *)
 let skip_blank s i =
   let n = String.length s in
+  (* Most calls skip one space, or none. *)
+  let i = if i < n && String.unsafe_get s i = ' ' then i + 1 else i in
+  if i < n && (String.unsafe_get s i > ' ' && String.unsafe_get s i <> ';') then i
+  else
   let i = ref i in
   let continue = ref true in
   while !continue && !i < n do
@@ -28,7 +37,7 @@ let skip_blank s i =
 let atom_end s i =
   let n = String.length s in
   let i = ref i in
-  while !i < n && is_atom_char (String.unsafe_get s !i) do
+  while !i < n && is_atom_byte (String.unsafe_get s !i) do
     incr i
   done;
   !i
@@ -48,7 +57,7 @@ let form s i ~max_bytes =
         if depth >= max_depth then raise Unusual;
         let x, j = list (depth + 1) (i + 1) [] in
         list depth j (x :: acc)
-    | c when is_atom_char c ->
+    | c when is_atom_byte c ->
         let j = atom_end s i in
         if j >= limit then raise Unusual;
         list depth j (Sexp.Atom (String.sub s i (j - i)) :: acc)

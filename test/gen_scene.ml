@@ -133,12 +133,12 @@ let crowd =
   let* shapes = oneof [ return []; list_size (int_range 1 12) shape ] in
   let* dup_shape = bool in
   let shapes = match shapes with s :: rest when dup_shape -> s :: s :: rest | l -> l in
-  return { base with spheres; shapes = base.shapes @ shapes }
+  return { base with spheres = Spheres.of_list spheres; shapes = base.shapes @ shapes }
 
 let arbitrary =
   let shrink (s : Scene.t) =
     QCheck.Iter.(
-      map (fun spheres -> { s with spheres }) (QCheck.Shrink.list s.spheres)
+      map (fun spheres -> { s with spheres = Spheres.of_list spheres }) (QCheck.Shrink.list (Spheres.to_list s.spheres))
       <+> map (fun shapes -> { s with shapes }) (QCheck.Shrink.list s.shapes)
       <+> map (fun lights -> { s with lights }) (QCheck.Shrink.list s.lights))
   in
@@ -163,6 +163,6 @@ let with_patterns rand (s : Scene.t) =
   in
   {
     s with
-    spheres = List.map (fun (sp : Sphere.t) -> { sp with pattern = pattern () }) s.spheres;
+    spheres = Spheres.of_list (List.map (fun (sp : Sphere.t) -> { sp with pattern = pattern () }) (Spheres.to_list s.spheres));
     shapes = List.map shape s.shapes;
   }

@@ -18,6 +18,7 @@ let () =
       ("viewport", Test_viewport.tests);
       ("camera", Test_camera.tests);
       ("sphere", Test_sphere.tests);
+      ("spheres", Test_spheres.tests);
       ("light", Test_light.tests);
       ("shading", Test_shading.tests);
       ("literal", Test_literal.tests);

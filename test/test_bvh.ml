@@ -105,7 +105,7 @@ let tests =
            10000 x 10002 x 10000: D^2 = 3.0004e8; largest coordinate 10001;
            smallest radius 1: 64 u (3.0004e8 + 1e4) = 2.13e-6 *)
         let s = Scene.cgfs in
-        let arr f = Array.of_list (List.map f s.spheres) in
+        let arr f = Array.of_list (List.map f (Spheres.to_list s.spheres)) in
         let m =
           Bvh.ray_box_margin ~cx:(arr (fun s -> s.center.x)) ~cy:(arr (fun s -> s.center.y))
             ~cz:(arr (fun s -> s.center.z)) ~radius:(arr (fun s -> s.radius)) s.camera.position

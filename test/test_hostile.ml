@@ -195,7 +195,7 @@ let tests =
            16 x 9 = 144 spheres per ray; depth 64: 65 rays.
            268435456 x 65 x 144 x 3 = 7.54e12. *)
         let crowded =
-          { big with depth = 64; spheres = List.concat (List.init 100 (fun _ -> Scene.cgfs.spheres)) }
+          { big with depth = 64; spheres = Spheres.of_list (List.concat (List.init 100 (fun _ -> Spheres.to_list Scene.cgfs.spheres))) }
         in
         match Helpers.render crowded with
         | Ok _ -> Alcotest.fail "rendered"
@@ -256,11 +256,11 @@ let tests =
         (* 2000 concentric spheres (not identical: those share a slot), 16 x 16 pixels: estimate 256 x 16 x 11
            x (1 + 2 lights) = 135168 tests, within 2e5; a pixel that sees
            the sphere alone does 2000 x 3. *)
-        let sphere = List.hd Scene.cgfs.spheres in
+        let sphere = Spheres.get Scene.cgfs.spheres 0 in
         let scene =
           {
             (Scene.with_overrides ~width:16 ~height:16 Scene.cgfs) with
-            spheres = List.init 2000 (fun i -> { sphere with radius = sphere.radius +. (Float.of_int i *. 1e-5) });
+            spheres = Spheres.of_list (List.init 2000 (fun i -> { sphere with radius = sphere.radius +. (Float.of_int i *. 1e-5) }));
             depth = 0;
           }
         in

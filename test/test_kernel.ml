@@ -55,7 +55,7 @@ let textbook =
     return
       {
         (Scene.with_overrides ~width ~height s) with
-        spheres = List.map plain s.spheres;
+        spheres = Spheres.of_list (List.map plain (Spheres.to_list s.spheres));
         shapes = [];
         epsilon = Some epsilon;
         camera_path = None;

@@ -132,7 +132,7 @@ let transform ~scale ~translate (s : Scene.t) =
       Viewport.v ~width:(scale *. s.viewport.width) ~height:(scale *. s.viewport.height)
         ~distance:(scale *. s.viewport.distance);
     camera = { s.camera with position = p s.camera.position };
-    spheres = List.map (fun (sp : Sphere.t) -> { sp with center = p sp.center; radius = scale *. sp.radius; pattern = pattern sp.pattern }) s.spheres;
+    spheres = List.map (fun (sp : Sphere.t) -> { sp with center = p sp.center; radius = scale *. sp.radius; pattern = pattern sp.pattern }) (Spheres.to_list s.spheres) |> Spheres.of_list;
     shapes =
       (let mesh (m : Mesh.t) =
          let positions = Array.copy m.positions in

@@ -29,7 +29,7 @@ let small (s : Scene.t) = Scene.with_overrides ~width:64 ~height:48 s
 let forward (c : Camera.t) = Camera.direction c (Vec3.v 0. 0. 1.)
 
 let has_glass (s : Scene.t) =
-  List.exists (fun (sp : Sphere.t) -> sp.transparency > 0.) s.spheres
+  Spheres.exists (fun (sp : Sphere.t) -> sp.transparency > 0.) s.spheres
   || List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.transparency > 0.) (Shape.materials sh)) s.shapes
 
 (* [s] with [f] applied to every material. *)
@@ -40,7 +40,7 @@ let map_materials ~sphere ~material (s : Scene.t) =
     | Shape.Box b -> Shape.Box { b with material = material b.material }
     | (Shape.Mesh _ | Shape.Csg _) as sh -> sh (* no mesh or CSG in the scenes changed here *)
   in
-  { s with spheres = List.map sphere s.spheres; shapes = List.map shape s.shapes }
+  { s with spheres = Spheres.of_list (List.map sphere (Spheres.to_list s.spheres)); shapes = List.map shape s.shapes }
 
 let opaque_material (m : Material.t) = { m with transparency = 0. }
 
@@ -145,12 +145,12 @@ let tests =
             (* Glass scenes: a small ball near the camera, in the air; the
                others: a ball, a box and a plane through everything. *)
             let extra =
-              if has_glass s then { s with spheres = invisible_ball (at 1.6) 0.4 :: s.spheres }
+              if has_glass s then { s with spheres = Spheres.of_list (invisible_ball (at 1.6) 0.4 :: Spheres.to_list s.spheres) }
               else
                 let c = at 4. in
                 {
                   s with
-                  spheres = s.spheres @ [ invisible_ball c 1.2 ];
+                  spheres = Spheres.of_list (Spheres.to_list s.spheres @ [ invisible_ball c 1.2 ]);
                   shapes =
                     Shape.Box (Box.v ~min:(Vec3.sub c (Vec3.v 2. 0.5 0.5)) ~max:(Vec3.add c (Vec3.v 0. 1. 3.)) (invisible Color.white))
                     :: Shape.Plane (Plane.v ~point:c ~normal:(Vec3.v 1. 2. 0.5) (invisible Color.white))
@@ -176,7 +176,7 @@ let tests =
         let extra =
           {
             s with
-            spheres = invisible_ball c 1. :: s.spheres;
+            spheres = Spheres.of_list (invisible_ball c 1. :: Spheres.to_list s.spheres);
             shapes = s.shapes @ [ Shape.Plane (Plane.v ~point:c ~normal:(Vec3.v 0.3 1. (-0.2)) (invisible Color.white)) ];
           }
         in
@@ -193,7 +193,7 @@ let tests =
                 s.shapes;
           }
         in
-        let extra = { s with spheres = s.spheres @ [ invisible_ball s.camera.position 1000. ] } in
+        let extra = { s with spheres = Spheres.of_list (Spheres.to_list s.spheres @ [ invisible_ball s.camera.position 1000. ]) } in
         Image.equal (Helpers.image_exn s) (Helpers.image_exn extra));
     Alcotest.test_case "a glass ball lets through t^2 of the light, one t per surface" `Quick (fun () ->
         (* The camera looks down at the origin of a white floor lit from
@@ -259,7 +259,7 @@ let tests =
           | sh -> sh
         in
         let glass (b : Sphere.t) = if b.transparency > 0. then { b with transparency = 0.4; reflective = 0.4 } else b in
-        let s = { s with depth = 24; spheres = List.map glass s.spheres; shapes = List.map mirror s.shapes } in
+        let s = { s with depth = 24; spheres = Spheres.of_list (List.map glass (Spheres.to_list s.spheres)); shapes = List.map mirror s.shapes } in
         let stats skips = match Helpers.render ~skips s with Ok (img, st) -> (img, st) | Error (`Msg m) -> Alcotest.fail m in
         let img, st = stats true and img_off, st_off = stats false in
         same "bytes" ~expected:img_off img;

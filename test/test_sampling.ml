@@ -64,7 +64,7 @@ let faint_mirrors =
     {
       s with
       depth = max 2 s.depth;
-      spheres = List.map (fun (sp : Sphere.t) -> { sp with reflective = sp.reflective *. 0.01 }) s.spheres;
+      spheres = Spheres.of_list (List.map (fun (sp : Sphere.t) -> { sp with reflective = sp.reflective *. 0.01 }) (Spheres.to_list s.spheres));
       lights = Light.ambient 0.3 :: s.lights;
     }
   in

@@ -124,7 +124,7 @@ let tests =
         Alcotest.check Helpers.color __LOC__ Color.black s.background);
     Alcotest.test_case "specular and reflective default to matte and 0" `Quick (fun () ->
         let s = parse "(sphere (center 0 0 3) (radius 1) (color 1 2 3))" in
-        match s.spheres with
+        match Spheres.to_list s.spheres with
         | [ sp ] ->
             Alcotest.(check (float 0.)) __LOC__ (-1.) sp.specular;
             Alcotest.(check (float 0.)) __LOC__ 0. sp.reflective
@@ -132,7 +132,7 @@ let tests =
     Alcotest.test_case "the optical fields default to opaque, index 1, no Fresnel, and print only when set" `Quick
       (fun () ->
         let plain = "(sphere (center 0 0 3) (radius 1) (color 1 2 3))" in
-        (match (parse plain).spheres with
+        (match Spheres.to_list (parse plain).spheres with
         | [ sp ] ->
             Alcotest.(check (float 0.)) __LOC__ 0. sp.transparency;
             Alcotest.(check (float 0.)) __LOC__ 1. sp.refractive_index;
@@ -142,7 +142,7 @@ let tests =
         let glass =
           "(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 0.1) (transparency 0.9) (refractive-index 1.5) (fresnel true))"
         in
-        (match (parse glass).spheres with
+        (match Spheres.to_list (parse glass).spheres with
         | [ sp ] -> Alcotest.(check string) "a glass sphere prints its fields" glass (Sphere.show sp)
         | _ -> Alcotest.fail "one sphere expected");
         let box = "(box (min 0 0 3) (max 1 1 4) (color 1 2 3) (transparency 1) (refractive-index 1.33))" in
@@ -155,7 +155,7 @@ let tests =
             "; line\n#| block |#\n#;(sphere (center 0 0 0))\n(recursion-depth 2) ; trailing\n"
         in
         Alcotest.(check int) __LOC__ 2 s.depth;
-        Alcotest.(check int) __LOC__ 0 (List.length s.spheres));
+        Alcotest.(check int) __LOC__ 0 (Spheres.length s.spheres));
     Alcotest.test_case "look-at builds the camera" `Quick (fun () ->
         let s = parse "(camera (position 3 0 1) (look-at 2 0 2) (up 0 1 0))" in
         let d = Camera.direction s.camera Vec3.oz in
@@ -221,7 +221,7 @@ let tests =
         in
         has_line "Viewport.show" (Viewport.show s.viewport);
         has_line "Camera.show" (Camera.show s.camera);
-        List.iter (fun x -> has_line "Sphere.show" (Sphere.show x)) s.spheres;
+        Spheres.iter (fun x -> has_line "Sphere.show" (Sphere.show x)) s.spheres;
         List.iter (fun x -> has_line "Shape.show" (Shape.show x)) s.shapes;
         List.iter (fun x -> has_line "Light.show" (Light.show x)) s.lights;
         Option.iter

@@ -372,7 +372,7 @@ let tests =
             List.iter
               (fun (mode, epsilon) ->
                 let s = { s with epsilon } in
-                let twice = { s with spheres = List.concat_map (fun sp -> [ sp; sp ]) s.spheres; shapes = List.concat_map (fun sh -> [ sh; sh ]) s.shapes } in
+                let twice = { s with spheres = Spheres.of_list (List.concat_map (fun sp -> [ sp; sp ]) (Spheres.to_list s.spheres)); shapes = List.concat_map (fun sh -> [ sh; sh ]) s.shapes } in
                 Helpers.check_images (what ^ ", " ^ mode ^ ", every object twice") ~expected:(Helpers.image_exn s)
                   (Helpers.image_exn twice))
               [ ("robust", None); ("epsilon 0.001", Some 0.001) ])
@@ -388,15 +388,15 @@ let tests =
         let copy (sp : Sphere.t) =
           { sp with center = Vec3.v (negative_zero sp.center.x) (negative_zero sp.center.y) (negative_zero sp.center.z) }
         in
-        let twice = { s with spheres = s.spheres @ List.rev_map copy s.spheres } in
+        let twice = { s with spheres = Spheres.of_list (Spheres.to_list s.spheres @ List.rev_map copy (Spheres.to_list s.spheres)) } in
         Alcotest.(check bool) "some centre has a 0 coordinate" true
-          (List.exists (fun (sp : Sphere.t) -> sp.center.x = 0. || sp.center.y = 0. || sp.center.z = 0.) s.spheres);
+          (List.exists (fun (sp : Sphere.t) -> sp.center.x = 0. || sp.center.y = 0. || sp.center.z = 0.) (Spheres.to_list s.spheres));
         List.iter
           (fun (mode, epsilon) ->
             let s = { s with epsilon } and twice = { twice with epsilon } in
             Alcotest.(check int) (mode ^ ": one slot per distinct sphere") (Helpers.prepare s).n_objects
               (Helpers.prepare twice).n_objects;
-            Alcotest.(check int) (mode ^ ": every sphere counted") (2 * List.length s.spheres)
+            Alcotest.(check int) (mode ^ ": every sphere counted") (2 * Spheres.length s.spheres)
               (Helpers.prepare twice).n_scene_objects;
             Helpers.check_images (mode ^ ", every sphere twice") ~expected:(Helpers.image_exn s) (Helpers.image_exn twice))
           [ ("robust", None); ("epsilon 0.001", Some 0.001) ]);
@@ -436,7 +436,7 @@ let tests =
         List.iter
           (fun exponent ->
             let s = Scene.with_overrides ~width:64 ~height:64 Scene.cgfs in
-            let s = { s with spheres = List.map (fun (sp : Sphere.t) -> { sp with specular = exponent }) s.spheres } in
+            let s = { s with spheres = List.map (fun (sp : Sphere.t) -> { sp with specular = exponent }) (Spheres.to_list s.spheres) |> Spheres.of_list } in
             Helpers.check_images (Printf.sprintf "cgfs, specular %g" exponent) ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
           [ 1e16; 1e300 ]);
     Alcotest.test_case "roots exactly at t_min are not seen, just above they are, as in the oracle" `Quick (fun () ->

@@ -16,10 +16,46 @@ let read_mesh path =
           in
           go ())
 
+(* A regular file is read a window at a time (Scene_file.of_source): the
+   text of a million spheres (88 MB) is never held whole. Other files
+   (pipes, /proc files), whose text cannot be read a second time to
+   locate an error, are read whole. The errors are File_io.read's. *)
 let read_scene ?(limits = Limits.default) path =
-  match File_io.read ~check_size:(Limits.check_scene_bytes limits) path with
-  | Error e -> Error e
-  | Ok text -> Scene_file.of_string ~limits ~load_mesh:read_mesh ~file:path text
+  let whole () =
+    match File_io.read ~check_size:(Limits.check_scene_bytes limits) path with
+    | Error e -> Error e
+    | Ok text -> Scene_file.of_string ~limits ~load_mesh:read_mesh ~file:path text
+  in
+  match open_in_bin path with
+  | exception Sys_error e -> Error (`Msg e)
+  | ic -> (
+      match Unix.fstat (Unix.descr_of_in_channel ic) with
+      | exception Unix.Unix_error _ ->
+          close_in_noerr ic;
+          whole ()
+      | { st_kind = S_REG; st_size = n; _ } when n > 0 -> (
+          match Limits.check_scene_bytes limits n with
+          | Error (`Msg m) ->
+              close_in_noerr ic;
+              Error (`Msg (Printf.sprintf "%s: %s" path m))
+          | Ok _ -> (
+              (* The first pass reads the channel opened here; an error's
+                 pass opens the file again. *)
+              let first = ref (Some ic) in
+              let source () =
+                let ic = match !first with Some ic -> first := None; ic | None -> open_in_bin path in
+                { Scene_file.read = input ic; close = (fun () -> close_in_noerr ic) }
+              in
+              match Scene_file.of_source ~limits ~load_mesh:read_mesh ~file:path source with
+              | r ->
+                  Option.iter close_in_noerr !first;
+                  r
+              | exception Sys_error e ->
+                  Option.iter close_in_noerr !first;
+                  Error (`Msg (Printf.sprintf "%s: %s" path e))))
+      | _ ->
+          close_in_noerr ic;
+          whole ())
 
 let read_ppm ?(limits = Limits.default) path =
   match File_io.read ~check_size:(Ppm.check_file_size ~limits) path with

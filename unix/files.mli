@@ -7,7 +7,9 @@ val read_scene : ?limits:Limits.t -> string -> (Scene.valid, [> `Msg of string ]
     ({!Raytrace.Scene_file.of_string} with [~file:path], its meshes read by
     {!read_mesh}); a file larger than the
     [`Scene_bytes] bound of [limits] (default {!Raytrace.Limits.default}) is
-    refused before it is read. *)
+    refused before it is read. A regular file is read a window at a time
+    ({!Raytrace.Scene_file.of_source}, the file opened again to locate an
+    error), never held whole; others (pipes) are read whole. *)
 
 val read_mesh : string -> (Obj_file.t, [ `Msg of string ]) result
 (** [read_mesh path] is the Wavefront OBJ mesh in file [path], read 64 KiB

@@ -60,7 +60,9 @@ let bands ~jobs n =
    come back (the parent is told of each on {!Parallel.reports}), so that
    [rows_done] can write it while the workers still trace. *)
 let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region : Region.t) =
-  let s = Scene.of_valid scene in
+  (* Nothing here holds the scene past [Prepared.prepare], which lets its
+     spheres go as it builds the hierarchy. *)
+  let canvas = (let s = Scene.of_valid scene in (s.width, s.height)) in
   match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
   | exception Out_of_memory -> Render_work.out_of_memory region
   | exception Failure m -> Error (`Msg m)
@@ -69,7 +71,7 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
       let p = Prepared.prepare ?skips scene in
       let t1 = Unix.gettimeofday () in
       let plan =
-        Sampling.plan ~memory:shared_memory sampling img ~canvas:(s.width, s.height) ~at:(region.x, region.y)
+        Sampling.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y)
       in
       let passes = Sampling.passes plan in
       match Parallel.shared_ints (passes * jobs * Render_work.counter_fields) with

@@ -1,0 +1,60 @@
+open Raytrace
+
+(* Sphere [i] of [n]: one of 7 materials (a pattern every 5th, which is
+   never shared), centers all different. *)
+let sphere i =
+  let pattern = if i mod 5 = 0 then Some (Pattern.checker ~size:1. (Color.v 1. 2. 3.)) else None in
+  Sphere.v ?pattern ~specular:(Float.of_int (i mod 7)) ~reflective:0.25
+    ~center:(Vec3.v (Float.of_int i) (-.Float.of_int i) 0.5) ~radius:(1. +. Float.of_int (i mod 3))
+    (Color.v 10. 20. 30.)
+
+let tests =
+  [
+    Alcotest.test_case "of_list then to_list is the list, across blocks of spheres" `Quick (fun () ->
+        (* 40000 spheres fill two blocks of 16384 and part of a third. *)
+        List.iter
+          (fun n ->
+            let l = List.init n sphere in
+            let s = Spheres.of_list l in
+            Alcotest.(check int) __LOC__ n (Spheres.length s);
+            if not (List.equal Sphere.equal l (Spheres.to_list s)) then Alcotest.failf "%d spheres differ" n;
+            List.iteri
+              (fun i (sp : Sphere.t) ->
+                if Spheres.center_x s i <> sp.center.x || Spheres.radius s i <> sp.radius then
+                  Alcotest.failf "sphere %d of %d: fields differ" i n)
+              l)
+          [ 0; 1; 16383; 16384; 16385; 40000 ]);
+    Alcotest.test_case "equal materials are stored once, patterned ones each time" `Quick (fun () ->
+        (* 100 spheres: 20 patterned (i mod 5 = 0) get one entry each; the
+           other 80 share the 7 exponents. *)
+        let s = Spheres.of_list (List.init 100 sphere) in
+        Alcotest.(check int) __LOC__ (20 + 7) (Array.length (Spheres.materials s)));
+    Alcotest.test_case "0 and -0 are different materials: sharing changes no bit" `Quick (fun () ->
+        let a = Sphere.v ~reflective:0. ~center:Vec3.zero ~radius:1. Color.white in
+        let b = { a with reflective = -0. } in
+        let s = Spheres.of_list [ a; b; a ] in
+        Alcotest.(check int) __LOC__ 2 (Array.length (Spheres.materials s));
+        Alcotest.(check bool) __LOC__ true (Float.sign_bit (Spheres.get s 1).reflective));
+    Alcotest.test_case "get outside the spheres raises Invalid_argument" `Quick (fun () ->
+        let s = Spheres.of_list [ sphere 1 ] in
+        List.iter
+          (fun i ->
+            match Spheres.get s i with
+            | _ -> Alcotest.failf "get %d returned" i
+            | exception Invalid_argument _ -> ())
+          [ -1; 1 ]);
+    Alcotest.test_case "add_fields refuses a material the builder did not give" `Quick (fun () ->
+        let b = Spheres.builder () in
+        match Spheres.add_fields b ~x:0. ~y:0. ~z:0. ~radius:1. 0 with
+        | () -> Alcotest.fail "added"
+        | exception Invalid_argument _ -> ());
+    Alcotest.test_case "equal compares spheres, not how their materials are numbered" `Quick (fun () ->
+        let a = sphere 1 and b = sphere 2 in
+        let b1 = Spheres.builder () and b2 = Spheres.builder () in
+        (* b2 numbers b's material first. *)
+        ignore (Spheres.material b2 (Material.of_sphere b));
+        List.iter (Spheres.add b1) [ a; b ];
+        List.iter (Spheres.add b2) [ a; b ];
+        Alcotest.(check bool) __LOC__ true (Spheres.equal (Spheres.build b1) (Spheres.build b2));
+        Alcotest.(check bool) __LOC__ false (Spheres.equal (Spheres.of_list [ a; b ]) (Spheres.of_list [ b; a ])));
+  ]
