@@ -486,11 +486,13 @@ let prepare ?(skips = true) scene =
      does not grow past them; after the hierarchy, a collection lets the
      slot-order arrays reuse its build's arrays. For a million spheres the
      render's peak goes from 293 to 235 MB, for 5% of the time of loading
-     and preparing. *)
+     and preparing. A mesh's scene is its OBJ arrays, big and few: there a
+     compaction only moves them (the 1M-triangle knot peaks at 410 MB with
+     it, 376 MB with a plain collection). *)
   let collections = ref 0 in
   let collect () =
     if n > big_scene then begin
-      if !collections = 0 then Gc.compact () else Gc.full_major ();
+      if !collections = 0 && n_spheres > n / 2 then Gc.compact () else Gc.full_major ();
       incr collections
     end
   in
@@ -508,13 +510,6 @@ let prepare ?(skips = true) scene =
     end
     else None
   in
-  (* A big hierarchy leaves its inputs behind (six arrays of boxes, the
-     margins, the tree's shape): collected now, their memory takes the
-     slot arrays below instead of the heap growing by as much (60 MB less
-     at the peak for a million triangles, 0.04 s). Not for many spheres:
-     the collection would mark each sphere's record in the scene (0.27 s
-     for a million, for 53 MB). *)
-  if nb >= 100_000 && n_spheres <= nb / 8 && Option.is_some bvh then Gc.full_major ();
   (* Slots: the hierarchy's leaf order, then the planes; without a
      hierarchy, the scene's order. *)
   collect ();
