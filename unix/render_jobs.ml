@@ -1,5 +1,3 @@
-let ( let* ) = Result.bind
-
 let check_memory (region : Region.t) =
   let bytes = 3 * Region.pixels region in
   match Parallel.available_memory () with
@@ -177,17 +175,28 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptiv
     scene (region : Region.t) =
   if jobs < 1 then invalid_arg "Render_jobs.region_image: jobs < 1";
   Render_work.inside "Render_jobs.region_image" scene region;
-  let* sampling = Sampling.v ?samples ?adaptive ?subsample () in
-  let* () = Render_work.check ~limits scene region sampling in
-  let* () = check_memory region in
-  let jobs = min jobs region.h in
-  if jobs = 1 then
-    let* img, stats =
-      Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample ?progress scene region
-    in
-    Option.iter (fun f -> f img region.h) rows_done;
-    Ok (img, stats)
-  else in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene region
+  (* Matches, not [let*]: a closure would hold [scene] through the render
+     with [rows_done] (see [Render.region_image]). *)
+  match Sampling.v ?samples ?adaptive ?subsample () with
+  | Error _ as e -> e
+  | Ok sampling -> (
+      match Render_work.check ~limits scene region sampling with
+      | Error _ as e -> e
+      | Ok () -> (
+          match check_memory region with
+          | Error _ as e -> e
+          | Ok () -> (
+              let jobs = min jobs region.h in
+              if jobs > 1 then in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene region
+              else
+                match
+                  Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample ?progress
+                    scene region
+                with
+                | Error _ as e -> e
+                | Ok (img, stats) ->
+                    Option.iter (fun f -> f img region.h) rows_done;
+                    Ok (img, stats))))
 
 let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene =
   if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";
