@@ -9,10 +9,9 @@
     few passes over the node's objects, so building is [O(n log n)].
 
     Nodes are stored depth-first in flat arrays: the left child of inner
-    node [k] is [k + 1], the right child is [right.(k)]. Spheres are
-    referred to by slot: leaf [k] holds slots [first.(k)] to
-    [first.(k) + count.(k) - 1], and [order.(slot)] is the sphere's index
-    in the input.
+    node [k] is [k + 1], the right child is [link.(k)]. Spheres are
+    referred to by slot: leaf [k] holds [tag.(k)] slots from [link.(k)],
+    and [order.(slot)] is the sphere's index in the input.
 
     @canonical Raytrace.Private.Bvh *)
 
@@ -20,7 +19,7 @@ type t = private {
   order : int array;  (** Input index of the sphere in each slot. *)
   n_nodes : int;
       (** The number of nodes: the length of the node arrays below, but for
-          [right] and [axis], which may be longer, their last elements
+          [link] and [tag], which may be longer, their last elements
           unused. *)
   lo_x : float array;  (** Box of each node: lower corner. *)
   lo_y : float array;
@@ -28,10 +27,11 @@ type t = private {
   hi_x : float array;  (** Upper corner. *)
   hi_y : float array;
   hi_z : float array;
-  right : int array;  (** Inner node: index of the right child; leaf: [-1]. *)
-  first : int array;  (** Leaf: first slot; inner node: unused. *)
-  count : int array;  (** Leaf: number of slots, [>= 1]; inner node: [0]. *)
-  axis : int array;  (** Inner node: the axis its children are split along, 0 to 2. *)
+  link : int array;  (** Inner node: index of the right child; leaf: its first slot. *)
+  tag : int array;
+      (** Leaf: its number of slots, [>= 1]; inner node: [-1 - a], [a] the
+          axis 0 to 2 its children are split along. One pair of int arrays
+          for both kinds of node: 16 bytes a node less than four. *)
   depth : int;  (** Largest number of nodes on a path from the root. *)
 }
 (** The type for hierarchies. *)

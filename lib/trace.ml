@@ -290,9 +290,9 @@ let[@inline] meets_box (b : Bvh.t) s k ix iy iz limit =
 (* Pushes the children of inner node [k] on [stack] above [sp], so that the
    nearer along the ray is popped first; the new stack pointer. *)
 let[@inline] push_children (b : Bvh.t) stack sp k dx dy dz =
-  let right = Array.unsafe_get b.right k in
-  let axis = Array.unsafe_get b.axis k in
-  let d = if axis = 0 then dx else if axis = 1 then dy else dz in
+  let right = Array.unsafe_get b.link k in
+  let tag = Array.unsafe_get b.tag k in
+  let d = if tag = -1 then dx else if tag = -2 then dy else dz in
   if d >= 0. then begin
     Array.unsafe_set stack sp right;
     Array.unsafe_set stack (sp + 1) (k + 1)
@@ -394,9 +394,9 @@ let[@inline] closest_from tr ~primary ~spheres =
                one (its spheres' hit points lie inside it, rounding
                included); one entered exactly there may hold an equal one. *)
             if meets_box b s k ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
-              let count = Array.unsafe_get b.count k in
+              let count = Array.unsafe_get b.tag k in
               if count > 0 then begin
-                let first = Array.unsafe_get b.first k in
+                let first = Array.unsafe_get b.link k in
                 tr.counters.tests <- tr.counters.tests + count;
                 for i = first to first + count - 1 do
                   test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
@@ -551,9 +551,9 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
         let k = Array.unsafe_get stack !sp in
         tr.counters.box_tests <- tr.counters.box_tests + 1;
         if meets_box b s k ix iy iz s.t_max then begin
-          let count = Array.unsafe_get b.count k in
+          let count = Array.unsafe_get b.tag k in
           if count > 0 then begin
-            let i = ref (Array.unsafe_get b.first k) and last = Array.unsafe_get b.first k + count in
+            let i = ref (Array.unsafe_get b.link k) and last = Array.unsafe_get b.link k + count in
             while !i < last && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
               incr i
             done;

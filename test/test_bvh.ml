@@ -17,13 +17,14 @@ let inside (b : Bvh.t) k x y z e =
    nodes from that leaf up to the root. *)
 let iter_slots (b : Bvh.t) f =
   let rec walk k path =
-    if b.count.(k) > 0 then
-      for slot = b.first.(k) to b.first.(k) + b.count.(k) - 1 do
+    if b.tag.(k) > 0 then
+      for slot = b.link.(k) to b.link.(k) + b.tag.(k) - 1 do
         f k slot (k :: path)
       done
     else begin
+      if b.tag.(k) < -3 then Alcotest.failf "inner node %d has the tag %d, not an axis" k b.tag.(k);
       walk (k + 1) (k :: path);
-      walk b.right.(k) (k :: path)
+      walk b.link.(k) (k :: path)
     end
   in
   walk 0 []
@@ -37,7 +38,7 @@ let tests =
             let b = Bvh.build ~cx ~cy ~cz e in
             let seen = Array.make n 0 in
             iter_slots b (fun k slot path ->
-                if b.count.(k) > 4 then Alcotest.failf "leaf %d holds %d spheres" k b.count.(k);
+                if b.tag.(k) > 4 then Alcotest.failf "leaf %d holds %d spheres" k b.tag.(k);
                 let i = b.order.(slot) in
                 seen.(i) <- seen.(i) + 1;
                 List.iter
