@@ -191,6 +191,33 @@ let tests =
         (* every cosine at or below the threshold, here u times it *)
         zero >= 0. && zero < 1. && (zero = 0. || Float.pow (u *. zero) specular = 0.)
         && Float.pow zero specular = (if zero = 0. then Float.pow 0. specular else 0.));
+    Alcotest.test_case "beside computes in another process what the caller would" `Quick (fun () ->
+        let me = Unix.getpid () in
+        let f () = (Unix.getpid (), Array.init 1_000_000 (fun i -> Float.of_int i *. 0.5)) in
+        let wait = Parallel.beside f in
+        let mine = Array.init 1000 Float.of_int in
+        match wait () with
+        | Ok (pid, a) ->
+            Alcotest.(check bool) "computed in a child" true (pid <> me);
+            Alcotest.(check bool) "the same values" true (a = snd (f ()));
+            Alcotest.(check int) __LOC__ 1000 (Array.length mine)
+        | Error (`Msg m) -> Alcotest.fail m);
+    Alcotest.test_case "beside reports a child that raised, sent a function or was killed" `Quick (fun () ->
+        let error_of wait = match wait () with Ok _ -> Alcotest.fail "expected an error" | Error (`Msg m) -> m in
+        let contains m sub =
+          let n = String.length sub in
+          let rec at i = i + n <= String.length m && (String.sub m i n = sub || at (i + 1)) in
+          if not (at 0) then Alcotest.failf "%S does not contain %S" m sub
+        in
+        contains (error_of (Parallel.beside (fun () -> failwith "boom"))) "raised Failure(\"boom\")";
+        contains (error_of (Parallel.beside (fun () -> fun x -> x + 1))) "could not send its result";
+        contains
+          (error_of (Parallel.beside (fun () -> Unix.kill (Unix.getpid ()) Sys.sigkill; Unix.sleepf 5.; 0)))
+          "was killed by SIGKILL";
+        (* Each child is reaped: none is left for a later wait. *)
+        match Unix.waitpid [ WNOHANG ] (-1) with
+        | exception Unix.Unix_error (ECHILD, _, _) -> ()
+        | pid, _ -> Alcotest.failf "a child was left: %d" pid);
     Alcotest.test_case "a task queue hands every task to exactly one worker" `Quick (fun () ->
         let m = 5000 in
         let taken = Parallel.shared_ints m in

@@ -140,6 +140,56 @@ let child work w me (fds : (Unix.file_descr * Unix.file_descr) array) =
   in
   Unix._exit code
 
+(* The child sends [Ok v] or [Error message]; a child killed before it
+   has sent all of it leaves the parent at the end of the pipe. *)
+let beside f =
+  flush stdout;
+  flush stderr;
+  match Unix.pipe ~cloexec:true () with
+  | exception Unix.Unix_error _ -> fun () -> ( match f () with v -> Ok v | exception e -> Error (`Msg (Printexc.to_string e)))
+  | r, w -> (
+      match Unix.fork () with
+      | exception Unix.Unix_error _ ->
+          close_quietly r;
+          close_quietly w;
+          fun () -> ( match f () with v -> Ok v | exception e -> Error (`Msg (Printexc.to_string e)))
+      | 0 ->
+          Signals.reset_in_child ();
+          close_quietly r;
+          let oc = Unix.out_channel_of_descr w in
+          let result = match f () with v -> Ok v | exception e -> Error ("raised " ^ Printexc.to_string e) in
+          let code =
+            match Marshal.to_channel oc result []; flush oc with
+            | () -> 0
+            | exception Invalid_argument m ->
+                (* A function in the result: nothing of it was written. *)
+                (match Marshal.to_channel oc (Error ("could not send its result: " ^ m) : (unit, string) result) []; flush oc with
+                | () -> 0
+                | exception _ -> 2)
+            | exception _ -> 2
+          in
+          Unix._exit code
+      | pid ->
+          close_quietly w;
+          let waited = ref false in
+          fun () ->
+            if !waited then invalid_arg "Parallel.beside: waited for twice";
+            waited := true;
+            let ic = Unix.in_channel_of_descr r in
+            let sent = match Marshal.from_channel ic with v -> Some v | exception (End_of_file | Failure _) -> None in
+            close_in_noerr ic;
+            let rec reap () =
+              match Unix.waitpid [] pid with
+              | _, status -> status
+              | exception Unix.Unix_error (EINTR, _, _) -> reap ()
+            in
+            let status = match reap () with s -> Some s | exception Unix.Unix_error _ -> None in
+            match (sent, status) with
+            | Some (Ok v), _ -> Ok v
+            | Some (Error m), _ -> Error (`Msg ("the child process " ^ m))
+            | None, Some (Unix.WEXITED 0) | None, None -> Error (`Msg "the child process sent no result")
+            | None, Some s -> Error (`Msg ("the child process " ^ describe_status s)))
+
 (* Workers report finished tasks on a pipe, 4 bytes a task: writes of
    fewer than PIPE_BUF bytes are atomic, so the pipe always holds whole
    indices. A read or write is a system call, which orders memory: what a

@@ -64,6 +64,23 @@ val exit_if_orphaned : unit -> unit
     {!File_io.remove_temporaries}; outside a worker of {!run} it does
     nothing. It allocates nothing. *)
 
+val beside : (unit -> 'a) -> unit -> ('a, [> `Msg of string ]) result
+(** [beside f] starts computing [f ()] in a forked child process and is
+    [wait]: [wait ()] waits for the child and is its result, sent back on
+    a pipe with [Marshal] (so [f]'s result must hold no functions). The
+    caller works meanwhile: [let wait = beside f in let a = g () in
+    (a, wait ())] computes [f ()] and [g ()] on two cores. [wait] is
+    [Error] if [f] raised (with the exception), if the result could not be
+    sent (it held a function), or if the child ended without sending it
+    (killed by a signal: [the child process was killed by SIGKILL]). If
+    no process can be forked, [f ()] is computed by [wait] itself, in the
+    caller. [wait] must be called once: until then the child may wait,
+    blocked on a full pipe; a child whose parent ended dies on that
+    pipe ([SIGPIPE]). The child leaves with [Unix._exit], never running
+    the parent's [at_exit] handlers or flushing its buffers; it allocates
+    in its own copy of the heap, so a big result costs the parent its
+    size once more while it is read. *)
+
 (** {1:queue Task queues}
 
     Workers that take tasks as they go, rather than a fixed share each,
