@@ -224,7 +224,6 @@ let iter_objects ~n_spheres (scene : Scene.t) ~single ~mesh_triangle =
    their own. The result is empty if no sphere has a twin: a million
    spheres leave 8 MB more for the hierarchy. *)
 let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
-  let twin = Array.init n Fun.id in
   (* Equal as [Float.compare] has it: -0. is 0. (adding 0. maps it there),
      and the scene holds no nan. *)
   let bits x = Int64.bits_of_float (x +. 0.) in
@@ -239,28 +238,75 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
   in
   let hash k = Int64.to_int (mix (mix (mix (mix 0L cx.(k)) cy.(k)) cz.(k)) radius.(k)) in
   let same i k = cx.(i) = cx.(k) && cy.(i) = cy.(k) && cz.(i) = cz.(k) && radius.(i) = radius.(k) in
-  (* Open addressing, linear probing, in scene order: the first of equal
-     spheres is the one in the table. A hash, not a sort: most scenes have
-     no twins, and sorting ten thousand spheres cost more than the rest of
-     the preparation. *)
+  (* A hash, not a sort: most scenes have no twins, and sorting ten
+     thousand spheres cost more than the rest of the preparation. One
+     table over a million spheres made every look-up a cache and TLB miss
+     (0.15 s): the spheres are first sorted by the hash's low bits into
+     buckets of about a thousand (two passes in order, a counting sort),
+     then each bucket goes through a table that stays in the cache,
+     keeping each entry's whole hash, so that only equal hashes compare
+     spheres. Counting sorts are stable: a bucket keeps scene order, and
+     the first of equal spheres is the one in the table. *)
+  let bucket_bits = ref 0 in
+  while n_spheres lsr !bucket_bits > 1024 do
+    incr bucket_bits
+  done;
+  let bucket_bits = !bucket_bits in
+  let buckets = 1 lsl bucket_bits in
+  let start = Array.make (buckets + 1) 0 in
+  for k = 0 to n_spheres - 1 do
+    let b = (hash k land (buckets - 1)) + 1 in
+    start.(b) <- start.(b) + 1
+  done;
+  let largest = ref 0 in
+  for b = 1 to buckets do
+    largest := max !largest start.(b);
+    start.(b) <- start.(b) + start.(b - 1)
+  done;
+  let next = Array.sub start 0 buckets in
+  let sorted = Array.make n_spheres 0 and sorted_hash = Array.make n_spheres 0 in
+  for k = 0 to n_spheres - 1 do
+    let h = hash k in
+    let b = h land (buckets - 1) in
+    let p = next.(b) in
+    sorted.(p) <- k;
+    sorted_hash.(p) <- h;
+    next.(b) <- p + 1
+  done;
+  (* Open addressing, linear probing, on the hash's bits above the
+     bucket's; emptied after each bucket by the slots it took. *)
   let size = ref 16 in
-  while !size < 2 * n_spheres do
+  while !size < 2 * !largest do
     size := 2 * !size
   done;
   let mask = !size - 1 in
-  let table = Array.make !size (-1) and twins = ref false in
-  for k = 0 to n_spheres - 1 do
-    let j = ref (hash k land mask) in
-    while table.(!j) >= 0 && not (same table.(!j) k) do
-      j := (!j + 1) land mask
+  let entry = Array.make !size (-1) and entry_hash = Array.make !size 0 in
+  let taken = Array.make !largest 0 in
+  let twin = ref [||] in
+  for b = 0 to buckets - 1 do
+    let n_taken = ref 0 in
+    for p = start.(b) to start.(b + 1) - 1 do
+      let k = sorted.(p) and h = sorted_hash.(p) in
+      let j = ref ((h lsr bucket_bits) land mask) in
+      while entry.(!j) >= 0 && not (entry_hash.(!j) = h && same entry.(!j) k) do
+        j := (!j + 1) land mask
+      done;
+      if entry.(!j) < 0 then begin
+        entry.(!j) <- k;
+        entry_hash.(!j) <- h;
+        taken.(!n_taken) <- !j;
+        incr n_taken
+      end
+      else begin
+        if !twin = [||] then twin := Array.init n Fun.id;
+        !twin.(k) <- entry.(!j)
+      end
     done;
-    if table.(!j) < 0 then table.(!j) <- k
-    else begin
-      twin.(k) <- table.(!j);
-      twins := true
-    end
+    for i = 0 to !n_taken - 1 do
+      entry.(taken.(i)) <- -1
+    done
   done;
-  if !twins then twin else [||]
+  !twin
 
 (* [a.(i) <- a.(index.(i))] for every [i] and every array [a] of
    [floats] and [ints], [index] a permutation of [0 .. length a - 1]: each
@@ -603,16 +649,23 @@ let prepare ?(skips = true) scene =
   in
   let lf f = Array.map f lights and mf f = Array.map f materials in
   let o = scene.camera.position in
-  let r2 = Array.map (fun r -> r *. r) radius in
-  let primary_ocx = Array.map (fun c -> o.x -. c) cx in
-  let primary_ocy = Array.map (fun c -> o.y -. c) cy in
-  let primary_ocz = Array.map (fun c -> o.z -. c) cz in
-  (* Same operands in the same order as the tracer's per-ray [k3]. *)
-  let primary_k3 =
-    Array.init sphere_len (fun i ->
-        let x = primary_ocx.(i) and y = primary_ocy.(i) and z = primary_ocz.(i) in
-        ((x *. x) +. (y *. y) +. (z *. z)) -. r2.(i))
-  in
+  (* Loops, not [Array.map]: its function returns each float boxed, 10
+     million words for a million spheres. *)
+  let r2 = Array.create_float sphere_len in
+  let primary_ocx = Array.create_float sphere_len in
+  let primary_ocy = Array.create_float sphere_len in
+  let primary_ocz = Array.create_float sphere_len in
+  let primary_k3 = Array.create_float sphere_len in
+  for i = 0 to sphere_len - 1 do
+    let r = radius.(i) in
+    r2.(i) <- r *. r;
+    let x = o.x -. cx.(i) and y = o.y -. cy.(i) and z = o.z -. cz.(i) in
+    primary_ocx.(i) <- x;
+    primary_ocy.(i) <- y;
+    primary_ocz.(i) <- z;
+    (* Same operands in the same order as the tracer's per-ray [k3]. *)
+    primary_k3.(i) <- ((x *. x) +. (y *. y) +. (z *. z)) -. (r *. r)
+  done;
   let vector l =
     match l with
     | Light.Ambient _ -> Vec3.zero
