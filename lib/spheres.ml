@@ -163,6 +163,16 @@ let add_fields b ~x ~y ~z ~radius m =
 let add b (s : Sphere.t) =
   add_fields b ~x:s.center.x ~y:s.center.y ~z:s.center.z ~radius:s.radius (material b (Material.of_sphere s))
 
+let append b s =
+  let index = Array.map (material b) s.table in
+  Array.iteri
+    (fun k xs ->
+      let ys = s.y.(k) and zs = s.z.(k) and rs = s.r.(k) and ms = s.m.(k) in
+      for j = 0 to Array.length xs - 1 do
+        add_fields b ~x:xs.(j) ~y:ys.(j) ~z:zs.(j) ~radius:rs.(j) index.(ms.(j))
+      done)
+    s.x
+
 let build b =
   (* The last block cut to its spheres: a small scene takes no more than
      its own. *)

@@ -107,6 +107,13 @@ val add_fields : builder -> x:float -> y:float -> z:float -> radius:float -> int
     {!material} returned for [b].
     @raise Invalid_argument if [m] is not such an index. *)
 
+val append : builder -> t -> unit
+(** [append b s] appends the spheres of [s] to [b], in order, after
+    adding the materials of [s]'s table to [b]'s ({!material}) in the
+    order of that table: spheres read in two halves and appended give the
+    sequence and the table that one sequential read gives, when [s]'s
+    table is in the order of first use (as {!build} makes it). *)
+
 val build : builder -> t
 (** [build b] is the spheres added to [b], in order. [b] must not be
     used afterwards. *)

@@ -16,11 +16,59 @@ let read_mesh path =
           in
           go ())
 
+let split_bytes = 4 lsl 20
+
+(* The first line start at or after the middle of the [n] bytes of file
+   [path], if one comes within 64 KiB. *)
+let middle_line path n =
+  match open_in_bin path with
+  | exception Sys_error _ -> None
+  | ic ->
+      Fun.protect
+        ~finally:(fun () -> close_in_noerr ic)
+        (fun () ->
+          match
+            seek_in ic (n / 2);
+            let buf = Bytes.create 65536 in
+            let k = input ic buf 0 (Bytes.length buf) in
+            Bytes.index_opt (Bytes.sub buf 0 k) '\n'
+          with
+          | Some j -> Some ((n / 2) + j + 1)
+          | None | (exception (Sys_error _ | End_of_file)) -> None)
+
+(* The second half of a big file, read by a child process
+   (Parallel.beside) from a line start near the middle while the caller
+   reads the first; [ic] is the caller's channel, which skips past what
+   the child read. A child that fails, or whose part is not what the
+   sequential read would have read, costs only its time. *)
+let beside ~limits ~on_part path ic n =
+  match middle_line path n with
+  | None -> None
+  | Some split when split >= n -> None
+  | Some split ->
+      let read () =
+        let ic = open_in_bin path in
+        Fun.protect
+          ~finally:(fun () -> close_in_noerr ic)
+          (fun () ->
+            seek_in ic split;
+            Scene_file.read_part ~limits { Scene_file.read = input ic; close = ignore } ~from:split)
+      in
+      let wait = Parallel.beside read in
+      let wait () =
+        match wait () with
+        | Ok part ->
+            on_part (Scene_file.part_length part);
+            Some part
+        | Error _ -> None
+      in
+      Some { Scene_file.split; wait; seek = seek_in ic }
+
 (* A regular file is read a window at a time (Scene_file.of_source): the
    text of a million spheres (88 MB) is never held whole. Other files
    (pipes, /proc files), whose text cannot be read a second time to
    locate an error, are read whole. The errors are File_io.read's. *)
-let read_scene ?(limits = Limits.default) path =
+let read_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = ignore) path =
   let whole () =
     match File_io.read ~check_size:(Limits.check_scene_bytes limits) path with
     | Error e -> Error e
@@ -46,7 +94,8 @@ let read_scene ?(limits = Limits.default) path =
                 let ic = match !first with Some ic -> first := None; ic | None -> open_in_bin path in
                 { Scene_file.read = input ic; close = (fun () -> close_in_noerr ic) }
               in
-              match Scene_file.of_source ~limits ~load_mesh:read_mesh ~file:path source with
+              let beside = if jobs > 1 && n >= split_bytes then beside ~limits ~on_part path ic n else None in
+              match Scene_file.of_source ~limits ~load_mesh:read_mesh ~file:path ?beside source with
               | r ->
                   Option.iter close_in_noerr !first;
                   r
