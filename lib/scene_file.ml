@@ -956,10 +956,16 @@ type part = {
   stop : int;
   lines : int;
   stop_bol : int;
+  count : int;
+  materials : Material.t array;
   spheres : Spheres.t;
 }
 
-let part_length p = Spheres.length p.spheres
+let part_length p = p.count
+let part_materials p = Array.copy p.materials
+let part_spheres p = p.spheres
+let part_header p = { p with spheres = Spheres.empty }
+let append_part b p = Spheres.append b p.spheres
 
 (* What the sequential read does from the first sphere at or after [from]
    on, for as long as it reads plain spheres on the fast path: the same
@@ -1030,6 +1036,7 @@ let read_part ?(limits = Limits.default) ?(window_bytes = 1 lsl 20) (r : reader)
    with Too_big _ | Sys_error _ | End_of_file -> ());
   mark ();
   let s = !stop_pos in
+  let spheres = Spheres.build b.spheres in
   {
     from;
     first = !first;
@@ -1037,10 +1044,17 @@ let read_part ?(limits = Limits.default) ?(window_bytes = 1 lsl 20) (r : reader)
     stop = !stop;
     lines = (if !first < 0 then 0 else s.line - !first_line);
     stop_bol = s.offset - s.col;
-    spheres = Spheres.build b.spheres;
+    count = b.n_spheres;
+    materials = Spheres.materials spheres;
+    spheres;
   }
 
-type beside = { split : int; wait : unit -> part option; seek : int -> unit }
+type beside = {
+  split : int;
+  wait : unit -> part option;
+  append : Spheres.builder -> part -> unit;
+  seek : int -> unit;
+}
 
 let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast)
     ?(window_bytes = 1 lsl 20) ?beside (src : source) =
@@ -1133,7 +1147,7 @@ let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
   let skip_part i (p : part) =
     check_below p.first_end;
     ignore (line_at st (w.base + i));
-    Spheres.append b.spheres p.spheres;
+    (match beside with Some bs -> bs.append b.spheres p | None -> ());
     b.n_spheres <- b.n_spheres + part_length p;
     form_end := p.stop;
     boundary := max !boundary (next_boundary p.stop);

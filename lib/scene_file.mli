@@ -107,10 +107,30 @@ val read_part : ?limits:Limits.t -> ?window_bytes:int -> reader -> from:int -> p
 val part_length : part -> int
 (** [part_length p] is the number of spheres of [p]. *)
 
+val part_spheres : part -> Spheres.t
+(** [part_spheres p] is the spheres of [p], in order, their material
+    table {!part_materials}; {!Spheres.empty} for a {!part_header}. *)
+
+val part_materials : part -> Material.t array
+(** [part_materials p] is the table of the materials of [p]'s spheres, in
+    the order of first use. *)
+
+val part_header : part -> part
+(** [part_header p] is [p] without its spheres' fields ({!part_spheres} is
+    empty), its length and materials kept: what a process that sends the
+    fields another way sends by [Marshal]. *)
+
+val append_part : Spheres.builder -> part -> unit
+(** [append_part b p] is {!Spheres.append}[ b (part_spheres p)]. *)
+
 type beside = {
   split : int;  (** The absolute offset, a line start, of the part's [from]. *)
   wait : unit -> part option;
       (** Waits for the part ([None] if it could not be read), once. *)
+  append : Spheres.builder -> part -> unit;
+      (** [append b p] appends the spheres of the part [p] that [wait] gave
+          to [b], materials first, as {!append_part} does: [wait] may give a
+          {!part_header} whose fields [append] reads from elsewhere. *)
   seek : int -> unit;
       (** [seek o] makes the next read of the source's first reader start at
           absolute offset [o]. *)

@@ -164,33 +164,37 @@ let add b (s : Sphere.t) =
   add_fields b ~x:s.center.x ~y:s.center.y ~z:s.center.z ~radius:s.radius (material b (Material.of_sphere s))
 
 (* A block at a time where it can: appending the half million spheres of
-   a file's second half took 35 ms a sphere at a time. *)
+   a file's second half took 35 ms a sphere at a time. The sphere that
+   [add_fields] puts in opens a block if need be; as many as fit follow
+   it. *)
+let append_fields b ~x ~y ~z ~radius ~material n =
+  if Array.length x < n || Array.length y < n || Array.length z < n || Array.length radius < n
+     || Array.length material < n
+  then invalid_arg "Spheres.append_fields: an array is too short";
+  for i = 0 to n - 1 do
+    if material.(i) < 0 || material.(i) >= b.n_mats then invalid_arg "Spheres.append_fields: no such material"
+  done;
+  let at = ref 0 in
+  while !at < n do
+    let j = !at in
+    add_fields b ~x:x.(j) ~y:y.(j) ~z:z.(j) ~radius:radius.(j) material.(j);
+    let c = b.n land mask in
+    let room = if c = 0 || Array.length b.cur_x < block then 0 else min (block - c) (n - j - 1) in
+    Array.blit x (j + 1) b.cur_x c room;
+    Array.blit y (j + 1) b.cur_y c room;
+    Array.blit z (j + 1) b.cur_z c room;
+    Array.blit radius (j + 1) b.cur_r c room;
+    Array.blit material (j + 1) b.cur_m c room;
+    b.n <- b.n + room;
+    at := j + 1 + room
+  done
+
 let append b s =
   let index = Array.map (material b) s.table in
-  let same = Array.for_all (fun x -> x) (Array.mapi (fun i j -> i = j) index) in
   Array.iteri
     (fun k xs ->
-      let len = Array.length xs in
-      let at = ref 0 in
-      while !at < len do
-        (* Room for one sphere made by [add_fields], then as many as fit. *)
-        let j = !at in
-        add_fields b ~x:xs.(j) ~y:s.y.(k).(j) ~z:s.z.(k).(j) ~radius:s.r.(k).(j) index.(s.m.(k).(j));
-        let c = b.n land mask in
-        let room = if c = 0 then 0 else min (Array.length b.cur_x - c) (len - j - 1) in
-        let room = if room > 0 && Array.length b.cur_x < block then 0 else room in
-        Array.blit xs (j + 1) b.cur_x c room;
-        Array.blit s.y.(k) (j + 1) b.cur_y c room;
-        Array.blit s.z.(k) (j + 1) b.cur_z c room;
-        Array.blit s.r.(k) (j + 1) b.cur_r c room;
-        if same then Array.blit s.m.(k) (j + 1) b.cur_m c room
-        else
-          for q = 0 to room - 1 do
-            b.cur_m.(c + q) <- index.(s.m.(k).(j + 1 + q))
-          done;
-        b.n <- b.n + room;
-        at := j + 1 + room
-      done)
+      let n = Array.length xs in
+      append_fields b ~x:xs ~y:s.y.(k) ~z:s.z.(k) ~radius:s.r.(k) ~material:(Array.map (Array.get index) s.m.(k)) n)
     s.x
 
 let build b =

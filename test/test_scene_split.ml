@@ -70,7 +70,7 @@ let two ?limits ?(load_mesh = Raytrace_unix.Files.read_mesh) ?(file = "t.scene")
   let p = match given with Some p -> p | None -> part ?limits ~window text split in
   let source, seek, seeks = seekable text in
   let waited = ref 0 in
-  let beside = { Scene_file.split; wait = (fun () -> incr waited; Some p); seek } in
+  let beside = { Scene_file.split; wait = (fun () -> incr waited; Some p); append = Scene_file.append_part; seek } in
   let r = Scene_file.of_source ?limits ~load_mesh ~file ~window_bytes:window ~beside source in
   if !waited <> 1 then Alcotest.failf "split at %d: the part waited for %d times, not once" split !waited;
   (r, !seeks > 0)
