@@ -35,7 +35,7 @@ let () =
     let t2 = Sys.time () in
     (* With --jobs 2 a child reads half the file: its CPU time is not this
        process's, the wall time shows the gain. *)
-    if jobs > 1 then Printf.printf "load wall %.3f s\n" (Unix.gettimeofday () -. wall);
+    Printf.printf "load wall %.3f s (%d jobs)\n" (Unix.gettimeofday () -. wall) jobs;
     let p = Prepared.prepare scene in
     let t3 = Sys.time () in
     if sizes then begin

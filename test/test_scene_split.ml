@@ -171,6 +171,20 @@ let tests =
         | (Ok a, true), Ok b -> same_spheres "the other text's spheres" (Scene.of_valid b).spheres (Scene.of_valid a).spheres
         | (_, false), _ -> Alcotest.fail "the part was not used"
         | (Error (`Msg m), _), _ | _, Error (`Msg m) -> Alcotest.fail m);
+    Alcotest.test_case "without the part (its process failed or died), the read is one core's" `Quick (fun () ->
+        List.iter
+          (fun (what, text) ->
+            let window = 1 lsl 20 in
+            let expected = one ~window text in
+            List.iter
+              (fun split ->
+                let source, seek, seeks = seekable text in
+                let beside = { Scene_file.split; wait = (fun () -> None); append = Scene_file.append_part; seek } in
+                let r = Scene_file.of_source ~load_mesh:Raytrace_unix.Files.read_mesh ~file:"t.scene" ~window_bytes:window ~beside source in
+                if !seeks > 0 then Alcotest.failf "%s: a seek without a part" what;
+                same_result (Printf.sprintf "%s, split at %d, no part" what split) expected r)
+              (line_starts text))
+          crafted);
     Alcotest.test_case "the sphere bound crossed in the second half is one core's error" `Quick (fun () ->
         let text = header ^ spheres 30 in
         List.iter
