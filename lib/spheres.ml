@@ -102,7 +102,13 @@ type builder = {
    spheres allocates 16 of each array, not a block); the next ones are
    made whole. *)
 let new_block b size =
-  let grow a zero = Array.init size (fun i -> if i < Array.length a then Array.unsafe_get a i else zero) in
+  (* Not [Array.init] with a closure: 36 instructions an element, 2% of
+     loading a big scene. *)
+  let grow a zero =
+    let a' = Array.make size zero in
+    Array.blit a 0 a' 0 (min size (Array.length a));
+    a'
+  in
   b.cur_x <- grow b.cur_x 0.;
   b.cur_y <- grow b.cur_y 0.;
   b.cur_z <- grow b.cur_z 0.;
