@@ -46,9 +46,11 @@ let report = function
 (* The one scene validation of a command: a file's, or the built-in
    scene's. Overrides come from the command line: checked like a file's
    values, and only they. *)
-let load ~limits opts =
+let load ~limits ~jobs opts =
   let* scene =
-    match opts.scene with None -> Scene.validate ~limits Scene.cgfs | Some path -> Files.read_scene ~limits path
+    match opts.scene with
+    | None -> Scene.validate ~limits Scene.cgfs
+    | Some path -> Files.read_scene ~limits ~jobs path
   in
   Scene.override ~limits ?width:opts.width ?height:opts.height ?depth:opts.depth scene
 
@@ -92,7 +94,7 @@ let view opts ~jobs =
   report
     (let* limits = Limits_env.read () in
      let* jobs = jobs_or_cores jobs in
-     let* scene = load ~limits opts in
+     let* scene = load ~limits ~jobs opts in
      match Window.run ~limits ~name:(scene_name opts) ~scene_file:opts.scene ~jobs scene with
      | Ok () -> Ok exit_ok
      | Error (`Msg _ as e) -> Error e
@@ -332,7 +334,9 @@ let render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling =
      let* sampling = sampling_of sampling in
      let* limits = Limits_env.read () in
      let t0 = Unix.gettimeofday () in
-     let* scene = load ~limits opts in
+     (* The reader uses the jobs too; a bad --jobs is reported after the
+        scene's errors, as before. *)
+     let* scene = load ~limits ~jobs:(Result.value (jobs_or_cores jobs) ~default:1) opts in
      let load_s = Unix.gettimeofday () -. t0 in
      let* region = part_region (Scene.of_valid scene) part in
      let* jobs = jobs_or_cores jobs in

@@ -726,29 +726,84 @@ let newlines x =
    windows ([form_end], the form bound's points, positions) absolute. *)
 type window = { mutable text : string; mutable base : int; mutable eof : bool }
 
-(* [line_at w p] is the position of absolute offset [p], which must be in
-   the window or at its end; offsets only grow from call to call, so
-   counting lines costs one pass over the text in all. *)
-let line_counter (w : window) =
-  let at = ref 0 and line = ref 1 and bol = ref 0 in
-  fun p ->
-    if p > !at then begin
-      let text = w.text and from = !at - w.base and upto = p - w.base in
-      (* Eight bytes at a time: every window passes here once. *)
-      let k = ref from in
-      while !k + 8 <= upto do
-        line := !line + newlines (String.get_int64_le text !k);
-        k := !k + 8
-      done;
-      for j = !k to upto - 1 do
-        if String.unsafe_get text j = '\n' then incr line
-      done;
-      match String.rindex_from_opt text (upto - 1) '\n' with
-      | Some j when j >= from -> bol := w.base + j + 1
-      | _ -> ()
-    end;
-    at := max !at p;
-    Positions.{ line = !line; col = p - !bol; offset = p }
+(* A text being read: its window, the line count up to absolute offset
+   [at] ([line], and [bol] the start of that line), and the size of the
+   next window, which grows from 4 KiB to [window_bytes] by doubling: a
+   small scene costs no big buffer (its allocation made the garbage
+   collector work 0.6% of rendering the reference scene). *)
+type stream = {
+  r : reader;
+  w : window;
+  mutable at : int;
+  mutable line : int;
+  mutable bol : int;
+  mutable reading : int;
+  window_bytes : int;
+  scene_limits : Limits.t;
+}
+
+let stream ~limits ~window_bytes r ~from =
+  let window_bytes = max 1 window_bytes in
+  {
+    r;
+    w = { text = ""; base = from; eof = false };
+    at = from;
+    line = 1;
+    bol = from;
+    reading = min 4096 window_bytes;
+    window_bytes;
+    scene_limits = limits;
+  }
+
+(* [line_at st p] is the position of absolute offset [p], which must be in
+   the window or at its end (an offset before [st.at] is not counted
+   again: it is placed on [st.at]'s line); offsets only grow from call to
+   call, so counting lines costs one pass over the text in all. *)
+let line_at st p =
+  let w = st.w in
+  if p > st.at then begin
+    let text = w.text and from = st.at - w.base and upto = p - w.base in
+    (* Eight bytes at a time: every window passes here once. *)
+    let k = ref from and line = ref st.line in
+    while !k + 8 <= upto do
+      line := !line + newlines (String.get_int64_le text !k);
+      k := !k + 8
+    done;
+    for j = !k to upto - 1 do
+      if String.unsafe_get text j = '\n' then incr line
+    done;
+    st.line <- !line;
+    match String.rindex_from_opt text (upto - 1) '\n' with
+    | Some j when j >= from -> st.bol <- w.base + j + 1
+    | _ -> ()
+  end;
+  st.at <- max st.at p;
+  Positions.{ line = st.line; col = p - st.bol; offset = p }
+
+(* The next window: the text from [keep] (relative) on, then at least
+   [want] bytes more if there are, and [st.reading] at least. *)
+let refill st ~keep ~want =
+  let w = st.w in
+  let kept = String.length w.text - keep in
+  ignore (line_at st (w.base + keep));
+  let size = kept + max want st.reading in
+  st.reading <- min st.window_bytes (2 * st.reading);
+  let next = Bytes.create size in
+  Bytes.blit_string w.text keep next 0 kept;
+  let rec fill k =
+    if k >= size then k
+    else match st.r.read next k (size - k) with 0 -> w.eof <- true; k | n -> fill (k + n)
+  in
+  let k = fill kept in
+  w.text <- (if k = size then Bytes.unsafe_to_string next else Bytes.sub_string next 0 k);
+  w.base <- w.base + keep;
+  match Limits.check_scene_bytes st.scene_limits (w.base + k) with Ok _ -> () | Error (`Msg m) -> raise (Too_big m)
+
+(* Where to go on reading after blanks that run to the end of the window,
+   maybe in a comment: the last line's start, outside any. *)
+let blank_keep w p =
+  let n = String.length w.text in
+  match String.rindex_from_opt w.text (n - 1) '\n' with Some j when j >= p -> j + 1 | _ -> p
 
 (* Fast reads look this far past a form's start (twice [simple_form_bytes])
    before they trust a failure: what they refuse within it, they refuse
@@ -890,8 +945,119 @@ let no_loader path =
     (`Msg
       (Printf.sprintf "cannot read mesh file %s: this scene was given as text, with no way to read files" path))
 
+(* The smallest multiple of [chunk] at or after [e]: the next point where
+   the form bound is checked once a form has ended at [e]. *)
+let next_boundary e = (e + chunk - 1) / chunk * chunk
+
+type part = {
+  from : int;
+  first : int;
+  first_end : int;
+  stop : int;
+  lines : int;
+  stop_bol : int;
+  count : int;
+  materials : Material.t array;
+  spheres : Spheres.t;
+}
+
+let part_length p = p.count
+let part_materials p = Array.copy p.materials
+let part_spheres p = p.spheres
+let part_header p = { p with spheres = Spheres.empty }
+let append_part b p = Spheres.append b p.spheres
+
+(* What the sequential read does from the first sphere at or after [from]
+   on, for as long as it reads plain spheres on the fast path: the same
+   windows, the same [sphere_fields] and [add_sphere], and the form
+   bound's checks between spheres (those before the first sphere depend
+   on what precedes [from], and are left to the reader that knows it).
+   It stops at anything else, before the form that is not such a sphere:
+   the sequential read takes over there and meets what it would have
+   met, errors included. *)
+let read_part ?(limits = Limits.default) ?(window_bytes = 1 lsl 20) (r : reader) ~from =
+  let st = stream ~limits ~window_bytes r ~from in
+  let w = st.w in
+  let b = builder ~limits ~load:no_loader (fun _ -> None) in
+  let fast = fast_state () in
+  let first = ref (-1) and first_end = ref (-1) and first_line = ref 1 in
+  let stop = ref from and stop_pos = ref (line_at st from) in
+  let boundary = ref max_int in
+  (* The position of [!stop], taken before a refill moves past it. *)
+  let mark () = if !stop >= st.at then stop_pos := line_at st !stop in
+  (* The form bound's checks that the sequential read makes before adding
+     a sphere that ends at [e]. *)
+  let fits e =
+    let ok = ref true in
+    while !ok && !boundary < e do
+      match Limits.check_form_bytes limits (!boundary - !stop) with
+      | Ok _ -> boundary := !boundary + chunk
+      | Error _ -> ok := false
+    done;
+    !ok
+  in
+  let rec go p =
+    let n = String.length w.text in
+    match Sexp_scan.skip_blank w.text p with
+    | i when i >= n && w.eof -> ()
+    | i when i >= n ->
+        mark ();
+        refill st ~keep:(blank_keep w p) ~want:lookahead;
+        go 0
+    | i when n - i < lookahead && not w.eof ->
+        mark ();
+        refill st ~keep:i ~want:lookahead;
+        go 0
+    | i -> (
+        match sphere_fields fast w.text i with
+        | exception Sexp_scan.Unusual -> ()
+        | e ->
+            let e_abs = w.base + e in
+            if !first >= 0 && not (fits e_abs) then ()
+            else
+              match add_sphere b fast with
+              | exception Sexp_scan.Unusual -> ()
+              | () ->
+                  if !first < 0 then begin
+                    first := w.base + i;
+                    first_end := e_abs;
+                    first_line := (line_at st !first).line;
+                    boundary := next_boundary e_abs
+                  end;
+                  stop := e_abs;
+                  go e)
+    | exception Sexp_scan.Unusual -> ()
+  in
+  (* A failed read (the file cut short under it) ends the part where it
+     got to, as anything unusual does. *)
+  (try
+     refill st ~keep:0 ~want:0;
+     go 0
+   with Too_big _ | Sys_error _ | End_of_file -> ());
+  mark ();
+  let s = !stop_pos in
+  let spheres = Spheres.build b.spheres in
+  {
+    from;
+    first = !first;
+    first_end = !first_end;
+    stop = !stop;
+    lines = (if !first < 0 then 0 else s.line - !first_line);
+    stop_bol = s.offset - s.col;
+    count = b.n_spheres;
+    materials = Spheres.materials spheres;
+    spheres;
+  }
+
+type beside = {
+  split : int;
+  wait : unit -> part option;
+  append : Spheres.builder -> part -> unit;
+  seek : int -> unit;
+}
+
 let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast)
-    ?(window_bytes = 1 lsl 20) (src : source) =
+    ?(window_bytes = 1 lsl 20) ?beside (src : source) =
   (* Mesh files are named relative to the scene file; each is read once,
      even when an error makes a second, located pass over the text. *)
   let loaded = Hashtbl.create 4 in
@@ -914,32 +1080,8 @@ let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
      node. *)
   let b = builder ~limits ~load (fun _ -> None) in
   let fast = fast_state () in
-  let r = src () in
-  let w = { text = ""; base = 0; eof = false } in
-  let window_bytes = max 1 window_bytes in
-  (* Windows grow from 4 KiB to [window_bytes] by doubling: a small scene
-     costs no big buffer (its allocation made the garbage collector work
-     0.6% of rendering the reference scene). *)
-  let reading = ref (min 4096 window_bytes) in
-  (* The next window: the text from [keep] (relative) on, then at least
-     [want] bytes more if there are, and [!reading] at least. *)
-  let refill line_at ~keep ~want =
-    let kept = String.length w.text - keep in
-    ignore (line_at (w.base + keep));
-    let size = kept + max want !reading in
-    reading := min window_bytes (2 * !reading);
-    let next = Bytes.create size in
-    Bytes.blit_string w.text keep next 0 kept;
-    let rec fill k =
-      if k >= size then k
-      else match r.read next k (size - k) with 0 -> w.eof <- true; k | n -> fill (k + n)
-    in
-    let k = fill kept in
-    w.text <- (if k = size then Bytes.unsafe_to_string next else Bytes.sub_string next 0 k);
-    w.base <- w.base + keep;
-    match Limits.check_scene_bytes limits (w.base + k) with Ok _ -> () | Error (`Msg m) -> raise (Too_big m)
-  in
-  let line_at = line_counter w in
+  let st = stream ~limits ~window_bytes (src ()) ~from:0 in
+  let w = st.w in
   (* [!form_end] is where the last form read ended. The form bound is
      checked as it was when parsexp read the whole text 64 KiB at a time:
      at each multiple of 64 KiB (and at the end), the bytes since the
@@ -976,13 +1118,55 @@ let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
         match add_sphere b fast with () -> e | exception Sexp_scan.Unusual -> simple i)
     | exception Sexp_scan.Unusual -> simple i
   in
+  (* The part read beside, waited for when the read gets to its split:
+     [!split] is that offset until then, [max_int] after. *)
+  let split = ref (match beside with Some bs when reader = `Fast -> bs.split | _ -> max_int) in
+  let pending = ref (Option.is_some beside) in
+  let take_part () =
+    split := max_int;
+    match beside with
+    | Some bs when !pending ->
+        pending := false;
+        bs.wait ()
+    | _ -> None
+  in
+  (* The part is what this read would read from [i] (relative) on if its
+     first sphere starts there, where this read's next form starts: from
+     there on, both read the same text the same way (whatever the part's
+     reader made of the text before, where the split may be in a form, a
+     string or a comment), and the part stops where this read would leave
+     its fast path for spheres. Its spheres must also keep within the
+     bound, which this read checks one by one. *)
+  let use_part i (p : part) =
+    p.first >= 0 && p.first = w.base + i
+    && Float.of_int (b.n_spheres + part_length p) <= Limits.bound limits `Spheres
+  in
+  (* Goes on after the part's last sphere as the sequential read would:
+     the form bound checked before its first sphere, its spheres and
+     materials appended in order, the lines counted past them. *)
+  let skip_part i (p : part) =
+    check_below p.first_end;
+    ignore (line_at st (w.base + i));
+    (match beside with Some bs -> bs.append b.spheres p | None -> ());
+    b.n_spheres <- b.n_spheres + part_length p;
+    form_end := p.stop;
+    boundary := max !boundary (next_boundary p.stop);
+    st.at <- p.stop;
+    st.line <- st.line + p.lines;
+    if p.lines > 0 then st.bol <- p.stop_bol;
+    (match beside with Some bs -> bs.seek p.stop | None -> ());
+    w.text <- "";
+    w.base <- p.stop;
+    w.eof <- false;
+    refill st ~keep:0 ~want:0
+  in
   (* Anything else, from [p] (the end of the last form) to the end of the
      next form, goes to parsexp, fed up to the next closing parenthesis
      at a time so that it stops where that form does. *)
   let rec slow_from p =
     let completed = ref false in
     let state =
-      Parsexp.Eager.State.create ~pos:(line_at (w.base + p)) (fun _ form ->
+      Parsexp.Eager.State.create ~pos:(line_at st (w.base + p)) (fun _ form ->
           completed := true;
           add_form b form)
     in
@@ -991,7 +1175,7 @@ let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
       if p >= n && w.eof then Parsexp.Eager.feed_eoi state stack
       else if p >= n then begin
         (* parsexp holds what it was fed: nothing of this window is needed. *)
-        refill line_at ~keep:n ~want:0;
+        refill st ~keep:n ~want:0;
         go 0 stack
       end
       else begin
@@ -1013,7 +1197,7 @@ let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
     if reader = `Parsexp then
       if p >= n && w.eof then check_below (w.base + n + 1)
       else if p >= n then begin
-        refill line_at ~keep:n ~want:0;
+        refill st ~keep:n ~want:0;
         fast_from 0
       end
       else slow_from p
@@ -1021,14 +1205,17 @@ let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
       match Sexp_scan.skip_blank w.text p with
       | i when i >= n && w.eof -> check_below (w.base + n + 1)
       | i when i >= n ->
-          (* Blanks to the end of the window, maybe in a comment: the next
-             window starts at the last line's start, outside any. *)
-          let keep = match String.rindex_from_opt w.text (n - 1) '\n' with Some j when j >= p -> j + 1 | _ -> p in
-          refill line_at ~keep ~want:lookahead;
+          refill st ~keep:(blank_keep w p) ~want:lookahead;
           fast_from 0
       | i when n - i < lookahead && not w.eof ->
-          refill line_at ~keep:i ~want:lookahead;
+          refill st ~keep:i ~want:lookahead;
           fast_from 0
+      | i when w.base + i >= !split -> (
+          match take_part () with
+          | Some part when use_part i part ->
+              skip_part i part;
+              fast_from 0
+          | _ -> fast_from p)
       | i -> (
           match fast_form i with
           | e ->
@@ -1038,9 +1225,15 @@ let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
       | exception Sexp_scan.Unusual -> slow_from p
   in
   let result =
-    Fun.protect ~finally:r.close (fun () ->
+    Fun.protect
+      ~finally:(fun () ->
+        (* A part still being read is waited for, so that no process is
+           left behind: the read ended before its split. *)
+        if !pending then ignore (take_part ());
+        st.r.close ())
+      (fun () ->
         match
-          refill line_at ~keep:0 ~want:0;
+          refill st ~keep:0 ~want:0;
           fast_from 0
         with
         | () -> (

@@ -107,6 +107,22 @@ val add_fields : builder -> x:float -> y:float -> z:float -> radius:float -> int
     {!material} returned for [b].
     @raise Invalid_argument if [m] is not such an index. *)
 
+val append : builder -> t -> unit
+(** [append b s] appends the spheres of [s] to [b], in order, after
+    adding the materials of [s]'s table to [b]'s ({!material}) in the
+    order of that table: spheres read in two halves and appended give the
+    sequence and the table that one sequential read gives, when [s]'s
+    table is in the order of first use (as {!build} makes it). *)
+
+val append_fields :
+  builder -> x:float array -> y:float array -> z:float array -> radius:float array -> material:int array -> int -> unit
+(** [append_fields b ~x ~y ~z ~radius ~material n] appends to [b] the [n]
+    spheres [i] of center [(x.(i), y.(i), z.(i))], radius [radius.(i)] and
+    material [material.(i)], an index that {!material} returned for [b],
+    in order, a block at a time.
+    @raise Invalid_argument if an array is shorter than [n] or a material
+    is not such an index (then nothing is appended). *)
+
 val build : builder -> t
 (** [build b] is the spheres added to [b], in order. [b] must not be
     used afterwards. *)

@@ -57,4 +57,32 @@ let tests =
         List.iter (Spheres.add b2) [ a; b ];
         Alcotest.(check bool) __LOC__ true (Spheres.equal (Spheres.build b1) (Spheres.build b2));
         Alcotest.(check bool) __LOC__ false (Spheres.equal (Spheres.of_list [ a; b ]) (Spheres.of_list [ b; a ])));
+    Alcotest.test_case "spheres appended are the spheres added one by one, materials in the same order" `Quick
+      (fun () ->
+        (* Across the blocks of either side, with the appended spheres'
+           materials numbered alike (copied whole) or not (renumbered);
+           sphere [i + 3] shares the material of [i], so a tail starting
+           at 3 meets old materials first. *)
+        let same what a b =
+          let n = Spheres.length a in
+          Alcotest.(check int) (what ^ ": length") n (Spheres.length b);
+          for i = 0 to n - 1 do
+            if not (Sphere.equal (Spheres.get a i) (Spheres.get b i))
+               || Spheres.material_index a i <> Spheres.material_index b i
+            then Alcotest.failf "%s: sphere %d differs" what i
+          done;
+          if not (Array.for_all2 Material.equal (Spheres.materials a) (Spheres.materials b)) then
+            Alcotest.failf "%s: the material tables differ" what
+        in
+        List.iter
+          (fun (n1, n2, offset) ->
+            let head = List.init n1 sphere and tail = List.init n2 (fun i -> sphere (i + offset)) in
+            let b = Spheres.builder () in
+            List.iter (Spheres.add b) head;
+            Spheres.append b (Spheres.of_list tail);
+            same (Printf.sprintf "%d then %d from %d" n1 n2 offset) (Spheres.of_list (head @ tail)) (Spheres.build b))
+          [
+            (0, 0, 0); (0, 5, 0); (5, 0, 0); (3, 20, 1); (16384, 16384, 1); (16385, 40000, 3); (20000, 40000, 0);
+            (40000, 16383, 7); (16383, 2, 2); (17, 70000, 3);
+          ]);
   ]

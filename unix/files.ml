@@ -16,11 +16,153 @@ let read_mesh path =
           in
           go ())
 
+let split_bytes = 4 lsl 20
+
+(* The first line start at or after the middle of the [n] bytes of file
+   [path], if one comes within 64 KiB. *)
+let middle_line path n =
+  match open_in_bin path with
+  | exception Sys_error _ -> None
+  | ic ->
+      Fun.protect
+        ~finally:(fun () -> close_in_noerr ic)
+        (fun () ->
+          match
+            seek_in ic (n / 2);
+            let buf = Bytes.create 65536 in
+            let k = input ic buf 0 (Bytes.length buf) in
+            Bytes.index_opt (Bytes.sub buf 0 k) '\n'
+          with
+          | Some j -> Some ((n / 2) + j + 1)
+          | None | (exception (Sys_error _ | End_of_file)) -> None)
+
+(* The fields of the child's spheres (40 bytes each: center, radius as
+   floats, the material as an integer) travel through a temporary file,
+   unlinked as soon as it is made, a block of spheres at a time: sent by
+   Marshal they took the parent a buffer and a copy of their size (18 MB
+   for grid:1000000), which raised the render's peak by 9 MB. *)
+let block = 16384
+let sphere_bytes = 40
+
+let rec write_all fd buf off len =
+  if len > 0 then
+    let k = Unix.write fd buf off len in
+    write_all fd buf (off + k) (len - k)
+
+let rec read_all fd buf off len =
+  if len > 0 then
+    match Unix.read fd buf off len with
+    | 0 -> raise End_of_file
+    | k -> read_all fd buf (off + k) (len - k)
+
+(* Top-level and inlined, so that the floats are not boxed. *)
+let[@inline] put_float buf at x = Bytes.set_int64_le buf at (Int64.bits_of_float x)
+let[@inline] get_float buf at = Int64.float_of_bits (Bytes.get_int64_le buf at)
+
+(* Block after block: the [len] x, then y, z, radius and material. *)
+let write_spheres fd s =
+  let n = Spheres.length s in
+  let buf = Bytes.create (block * sphere_bytes) in
+  let at = ref 0 in
+  while !at < n do
+    let len = min block (n - !at) in
+    for i = 0 to len - 1 do
+      let k = !at + i in
+      put_float buf (8 * i) (Spheres.center_x s k);
+      put_float buf (8 * (len + i)) (Spheres.center_y s k);
+      put_float buf (8 * ((2 * len) + i)) (Spheres.center_z s k);
+      put_float buf (8 * ((3 * len) + i)) (Spheres.radius s k);
+      Bytes.set_int64_le buf (8 * ((4 * len) + i)) (Int64.of_int (Spheres.material_index s k))
+    done;
+    write_all fd buf 0 (sphere_bytes * len);
+    at := !at + len
+  done
+
+(* The part's spheres, read back into [b] with its materials mapped to
+   [b]'s table. Its size was checked: a failure here is the system's. *)
+let append_spheres fd b part =
+  let n = Scene_file.part_length part in
+  let index = Array.map (Spheres.material b) (Scene_file.part_materials part) in
+  let buf = Bytes.create (block * sphere_bytes) in
+  let x = Array.make block 0. and y = Array.make block 0. and z = Array.make block 0. in
+  let r = Array.make block 0. and m = Array.make block 0 in
+  match
+    ignore (Unix.lseek fd 0 SEEK_SET);
+    let at = ref 0 in
+    while !at < n do
+      let len = min block (n - !at) in
+      read_all fd buf 0 (sphere_bytes * len);
+      for i = 0 to len - 1 do
+        x.(i) <- get_float buf (8 * i);
+        y.(i) <- get_float buf (8 * (len + i));
+        z.(i) <- get_float buf (8 * ((2 * len) + i));
+        r.(i) <- get_float buf (8 * ((3 * len) + i));
+        let k = Int64.to_int (Bytes.get_int64_le buf (8 * ((4 * len) + i))) in
+        m.(i) <- (if k >= 0 && k < Array.length index then index.(k) else -1)
+      done;
+      Spheres.append_fields b ~x ~y ~z ~radius:r ~material:m len;
+      at := !at + len
+    done
+  with
+  | () -> ()
+  | exception Unix.Unix_error (e, _, _) -> raise (Sys_error (Unix.error_message e))
+  | exception End_of_file -> raise (Sys_error "a temporary file was cut short")
+
+(* The second half of a big file, read by a child process
+   (Parallel.beside) from a line start near the middle while the caller
+   reads the first; [ic] is the caller's channel, which skips past what
+   the child read. A child that fails, or whose part is not what the
+   sequential read would have read, costs only its time. [None], and
+   nothing to close, where no temporary file can be made. *)
+let beside ~limits ~on_part path ic n =
+  let temporary () =
+    let dir = if Sys.file_exists "/dev/shm" then "/dev/shm" else Filename.get_temp_dir_name () in
+    match Filename.temp_file ~temp_dir:dir "raytrace" ".part" with
+    | exception Sys_error _ -> None
+    | name -> (
+        match Unix.openfile name [ O_RDWR; O_CLOEXEC ] 0o600 with
+        | fd ->
+            Sys.remove name;
+            Some fd
+        | exception Unix.Unix_error _ ->
+            (try Sys.remove name with Sys_error _ -> ());
+            None)
+  in
+  match middle_line path n with
+  | None -> None
+  | Some split when split >= n -> None
+  | Some split -> (
+      match temporary () with
+      | None -> None
+      | Some fd ->
+          let read () =
+            let ic = open_in_bin path in
+            let part =
+              Fun.protect
+                ~finally:(fun () -> close_in_noerr ic)
+                (fun () ->
+                  seek_in ic split;
+                  Scene_file.read_part ~limits { Scene_file.read = input ic; close = ignore } ~from:split)
+            in
+            write_spheres fd (Scene_file.part_spheres part);
+            Scene_file.part_header part
+          in
+          let wait = Parallel.beside read in
+          let wait () =
+            match wait () with
+            | Ok part when (Unix.fstat fd).st_size = sphere_bytes * Scene_file.part_length part ->
+                on_part (Scene_file.part_length part);
+                Some part
+            | Ok _ | Error _ -> None
+            | exception Unix.Unix_error _ -> None
+          in
+          Some ({ Scene_file.split; wait; append = append_spheres fd; seek = seek_in ic }, fd))
+
 (* A regular file is read a window at a time (Scene_file.of_source): the
    text of a million spheres (88 MB) is never held whole. Other files
    (pipes, /proc files), whose text cannot be read a second time to
    locate an error, are read whole. The errors are File_io.read's. *)
-let read_scene ?(limits = Limits.default) path =
+let read_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = ignore) path =
   let whole () =
     match File_io.read ~check_size:(Limits.check_scene_bytes limits) path with
     | Error e -> Error e
@@ -46,12 +188,17 @@ let read_scene ?(limits = Limits.default) path =
                 let ic = match !first with Some ic -> first := None; ic | None -> open_in_bin path in
                 { Scene_file.read = input ic; close = (fun () -> close_in_noerr ic) }
               in
-              match Scene_file.of_source ~limits ~load_mesh:read_mesh ~file:path source with
+              let beside = if jobs > 1 && n >= split_bytes then beside ~limits ~on_part path ic n else None in
+              let close () =
+                Option.iter close_in_noerr !first;
+                Option.iter (fun (_, fd) -> try Unix.close fd with Unix.Unix_error _ -> ()) beside
+              in
+              match Scene_file.of_source ~limits ~load_mesh:read_mesh ~file:path ?beside:(Option.map fst beside) source with
               | r ->
-                  Option.iter close_in_noerr !first;
+                  close ();
                   r
               | exception Sys_error e ->
-                  Option.iter close_in_noerr !first;
+                  close ();
                   Error (`Msg (Printf.sprintf "%s: %s" path e))))
       | _ ->
           close_in_noerr ic;

@@ -2,14 +2,34 @@
     with a size bound and written atomically ({!File_io}). Errors start
     with the path. *)
 
-val read_scene : ?limits:Limits.t -> string -> (Scene.valid, [> `Msg of string ]) result
-(** [read_scene ~limits path] is the scene in file [path]
-    ({!Raytrace.Scene_file.of_string} with [~file:path], its meshes read by
-    {!read_mesh}); a file larger than the
-    [`Scene_bytes] bound of [limits] (default {!Raytrace.Limits.default}) is
-    refused before it is read. A regular file is read a window at a time
+val read_scene :
+  ?limits:Limits.t ->
+  ?jobs:int ->
+  ?split_bytes:int ->
+  ?on_part:(int -> unit) ->
+  string ->
+  (Scene.valid, [> `Msg of string ]) result
+(** [read_scene ~limits ~jobs ~split_bytes ~on_part path] is the scene in
+    file [path] ({!Raytrace.Scene_file.of_string} with [~file:path], its
+    meshes read by {!read_mesh}); a file larger than the [`Scene_bytes]
+    bound of [limits] (default {!Raytrace.Limits.default}) is refused
+    before it is read. A regular file is read a window at a time
     ({!Raytrace.Scene_file.of_source}, the file opened again to locate an
-    error), never held whole; others (pipes) are read whole. *)
+    error), never held whole; others (pipes) are read whole.
+
+    With [jobs > 1] (default [1]), a regular file of [split_bytes] bytes
+    or more (default {!split_bytes}; tests use less) is read on two cores:
+    a child process ({!Parallel.beside}) reads the spheres of its second
+    half ({!Raytrace.Scene_file.read_part}), from a line start near the
+    middle, while this one reads the first half. The scene and the errors
+    are those of a read on one core, whatever the file holds; the child's
+    spheres are simply not used when they are not exactly what that read
+    would read. [on_part k] is called with the number [k] of spheres the
+    child read, once it sent them. *)
+
+val split_bytes : int
+(** [split_bytes] is 4 MiB: the smallest file {!read_scene} reads on two
+    cores by default. *)
 
 val read_mesh : string -> (Obj_file.t, [ `Msg of string ]) result
 (** [read_mesh path] is the Wavefront OBJ mesh in file [path], read 64 KiB
