@@ -104,8 +104,11 @@ let check_jobs n =
     (error "--jobs must lie in [1, %d], got %d" max_jobs n)
   else Ok n
 
+let coordinate_ok x = Float.is_finite x && Float.abs x <= max_coordinate
+let size_ok x = x >= min_size && coordinate_ok x
+
 let check_coordinate what x =
-  if Float.is_finite x && Float.abs x <= max_coordinate then Ok x
+  if coordinate_ok x then Ok x
   else (error "%s must be finite and at most 1e12 in magnitude, got %s" what (num x))
 
 let check_size what x =

@@ -132,6 +132,14 @@ val max_jobs : int
 val check_jobs : int -> (int, [> `Msg of string ]) result
 (** [check_jobs n] is [Ok n] if [1 <= n <= max_jobs]. *)
 
+val coordinate_ok : float -> bool
+(** [coordinate_ok x] is [true] iff {!check_coordinate} accepts [x]; it
+    allocates nothing (a million spheres are checked with it). *)
+
+val size_ok : float -> bool
+(** [size_ok x] is [true] iff {!check_size} accepts [x]; it allocates
+    nothing. *)
+
 val check_coordinate : string -> float -> (float, [> `Msg of string ]) result
 (** [check_coordinate what x] is [Ok x] if [x] is finite with
     [|x| <= max_coordinate], and otherwise [Error] naming [what]. *)

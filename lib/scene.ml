@@ -121,8 +121,18 @@ let valid_spheres spheres =
              m.color))
       materials
   in
+  (* The checks' own predicates first: a million spheres that pass make
+     no vector and no result (50 ms). *)
+  let ok i =
+    Limits.coordinate_ok (Spheres.center_x spheres i)
+    && Limits.coordinate_ok (Spheres.center_y spheres i)
+    && Limits.coordinate_ok (Spheres.center_z spheres i)
+    && Limits.size_ok (Spheres.radius spheres i)
+    && Result.is_ok checked.(Spheres.material_index spheres i)
+  in
   let rec go i =
     if i >= Spheres.length spheres then Ok ()
+    else if ok i then go (i + 1)
     else
       let center = Vec3.v (Spheres.center_x spheres i) (Spheres.center_y spheres i) (Spheres.center_z spheres i) in
       match (Sphere.check_center center, Sphere.check_radius (Spheres.radius spheres i)) with
