@@ -12,6 +12,8 @@ type t = {
   unbounded : int array;
   kind : int array;
   geom : float array;
+  vertex : float array;
+  at : int array;
   vnormal : float array;
   vcorner : int array;
   extent : float array;
@@ -332,8 +334,36 @@ let prepare ?(skips = true) scene =
   let[@inline] fmax (a : float) b = if a > b then a else b in
   (* The smooth meshes' normals, divided by their lengths once for all
      the corners that share them. *)
+  (* The triangles' vertices, in one array: each mesh's placed positions
+     at its base, then the lone triangles, 9 floats each. *)
+  let mesh_bases, n_vertex =
+    List.fold_left
+      (fun (bases, n) sh -> match sh with Shape.Mesh m -> ((m, n) :: bases, n + Array.length m.positions) | _ -> (bases, n))
+      ([], 0) scene.shapes
+  in
+  let n_lone = List.length (List.filter (function Shape.Triangle _ -> true | _ -> false) scene.shapes) in
+  let vertex =
+    match mesh_bases with
+    | [ (m, _) ] when n_lone = 0 -> m.positions
+    | _ ->
+        let v = Array.make (n_vertex + (9 * n_lone)) 0. in
+        List.iter (fun ((m : Mesh.t), b) -> Array.blit m.positions 0 v b (Array.length m.positions)) mesh_bases;
+        v
+  in
+  let vertex_base m = List.assq m mesh_bases in
+  (* Where each smooth mesh's corners name their normals by their vertices'
+     numbers (an OBJ file's [f 1//1 2//2 3//3]), the unit normals lie
+     parallel to [vertex], and a corner's normal is where its vertex is:
+     no table of the corners' normals. *)
+  let follow =
+    List.for_all (function Shape.Mesh m when m.smooth -> m.triangle_normals = m.triangles | _ -> true) scene.shapes
+  in
   let vnormal =
-    Array.make (List.fold_left (fun a sh -> match sh with Shape.Mesh m when m.smooth -> a + Array.length m.normals | _ -> a) 0 scene.shapes) nan
+    Array.make
+      (if follow then
+         if List.exists (function Shape.Mesh m -> m.smooth | _ -> false) scene.shapes then Array.length vertex else 0
+       else List.fold_left (fun a sh -> match sh with Shape.Mesh m when m.smooth -> a + Array.length m.normals | _ -> a) 0 scene.shapes)
+      nan
   in
   let next_normal = ref 0 in
   (* The offset in [vnormal] of the normals of the mesh whose run of
@@ -411,9 +441,11 @@ let prepare ?(skips = true) scene =
            | Some (m', i, base) when m' == m -> (i, base)
            | _ ->
                let i = new_material m.material (fun () -> Shape.pattern_frame (Shape.Mesh m)) in
-               let base = !next_normal in
+               let base = if follow then vertex_base m else !next_normal in
                if m.smooth then begin
-                 for j = 0 to (Array.length m.normals / 3) - 1 do
+                 (* Parallel to [vertex], the normals that no vertex number names are not needed. *)
+                 let nn = Array.length m.normals / 3 in
+                 for j = 0 to (if follow then min nn (Array.length m.positions / 3) else nn) - 1 do
                    ignore (Mesh.unit_normal m j vnormal (base + (3 * j)))
                  done;
                  next_normal := base + Array.length m.normals;
@@ -528,10 +560,16 @@ let prepare ?(skips = true) scene =
   let stride = Shape.stride in
   (* Spheres alone need no table of shapes. *)
   let shapes_len = if scene.shapes = [] then 0 else n_kept in
-  let geom = Array.make (stride * shapes_len) 0. and extent = Array.make shapes_len 0. in
+  (* Triangles are read from [vertex]; the other shapes, few, have [geom]. *)
+  let n_geom =
+    List.length (List.filter (function Shape.Triangle _ | Shape.Mesh _ -> false | _ -> true) scene.shapes)
+  in
+  let geom = Array.make (stride * n_geom) 0. and extent = Array.make n_geom 0. in
+  let at = Array.make (3 * shapes_len) 0 in
+  let next_geom = ref 0 and next_lone = ref n_vertex in
   let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
   let vnormal = if any_smooth then vnormal else [||] in
-  let vcorner = if any_smooth then Array.make (3 * n_kept) 0 else [||] in
+  let vcorner = if any_smooth && not follow then Array.make (3 * n_kept) 0 else [||] in
   let run = ref None in
   (* Spheres alone, without twins: [index] orders every object, and the
      per-object arrays, put in slot order where they are, are the
@@ -552,26 +590,44 @@ let prepare ?(skips = true) scene =
     done;
     extent.(i) <- !e
   in
+  let vrun = ref None in
   ignore
     (iter_objects ~n_spheres scene
        ~single:(fun k sh ->
          let i = slot.(k) in
          match sh with
-         | Shape.Csg c ->
-             geom.(stride * i) <- Float.of_int (Hashtbl.find csg_root k);
-             extent.(i) <- Csg.extent c
-         | _ ->
-             Shape.store sh geom (stride * i);
-             extent_of i)
+         | Shape.Triangle tri ->
+             let o = !next_lone in
+             Triangle.store tri vertex o;
+             at.(3 * i) <- o;
+             at.((3 * i) + 1) <- o + 3;
+             at.((3 * i) + 2) <- o + 6;
+             next_lone := o + 9
+         | _ -> (
+             let g = !next_geom in
+             incr next_geom;
+             at.(3 * i) <- g;
+             match sh with
+             | Shape.Csg c ->
+                 geom.(stride * g) <- Float.of_int (Hashtbl.find csg_root k);
+                 extent.(g) <- Csg.extent c
+             | _ ->
+                 Shape.store sh geom (stride * g);
+                 extent_of g))
        ~mesh_triangle:(fun k m t ->
          let i = slot.(k) in
+         let vb =
+           match !vrun with
+           | Some (m', vb) when m' == m -> vb
+           | _ ->
+               let vb = vertex_base m in
+               vrun := Some (m, vb);
+               vb
+         in
          for c = 0 to 2 do
-           let v = 3 * m.triangles.((3 * t) + c) in
-           for a = 0 to 2 do
-             geom.((stride * i) + (3 * c) + a) <- m.positions.(v + a)
-           done
+           at.((3 * i) + c) <- vb + (3 * m.triangles.((3 * t) + c))
          done;
-         if any_smooth then begin
+         if any_smooth && not follow then begin
            let base =
              match !run with
              | Some (m', base) when m' == m -> base
@@ -583,8 +639,7 @@ let prepare ?(skips = true) scene =
            for c = 0 to 2 do
              vcorner.((3 * i) + c) <- base + (3 * max 0 m.triangle_normals.((3 * t) + c))
            done
-         end;
-         extent_of i));
+         end));
   (* The spheres' [set] wrote their centers and radii in scene order:
      into slot order by [index], with no second walk of the scene. *)
   if not in_place then
@@ -637,6 +692,8 @@ let prepare ?(skips = true) scene =
     unbounded = Array.map (fun i -> slot.(i)) unbounded;
     kind = (if in_place then okind else Array.map (fun k -> okind.(k)) index);
     geom;
+    vertex;
+    at;
     vnormal;
     vcorner;
     extent;

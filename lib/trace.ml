@@ -228,9 +228,12 @@ let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
    gives its first crossing beyond [s.t_min] as both. *)
 let shape_roots tr s i =
   let p = tr.p in
-  let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
-  if k = Shape.triangle || k = Shape.smooth_triangle then Triangle.roots s p.geom o
-  else if k = Shape.plane then Plane.roots s p.geom o
+  let k = Array.unsafe_get p.kind i and at = p.at and j = 3 * i in
+  if k = Shape.triangle || k = Shape.smooth_triangle then
+    Triangle.roots_at s p.vertex (Array.unsafe_get at j) (Array.unsafe_get at (j + 1)) (Array.unsafe_get at (j + 2))
+  else
+  let o = Shape.stride * Array.unsafe_get at j in
+  if k = Shape.plane then Plane.roots s p.geom o
   else if k = Shape.box then Box.roots s p.geom o
   else Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o))
 
@@ -777,8 +780,13 @@ let shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let px = s.px and py = s.py and pz = s.pz in
-  let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
-  if k = Shape.triangle || k = Shape.smooth_triangle then Triangle.normal s p.geom o
+  let k = Array.unsafe_get p.kind i and at = p.at and j = 3 * i in
+  let triangle = k = Shape.triangle || k = Shape.smooth_triangle in
+  (* A triangle's corners in [p.vertex], or the shape's number in [p.geom]. *)
+  let o0 = Array.unsafe_get at j in
+  let o1 = if triangle then Array.unsafe_get at (j + 1) else 0 and o2 = if triangle then Array.unsafe_get at (j + 2) else 0 in
+  let o = Shape.stride * o0 in
+  if triangle then Triangle.normal_at s p.vertex o0 o1 o2
   else if k = Shape.plane then Plane.normal s p.geom o
   else if k = Shape.box then Box.normal s p.geom o
   else begin
@@ -799,8 +807,10 @@ let shape_hit tr i =
   let gx = s.nx and gy = s.ny and gz = s.nz in
   (* A smooth triangle shades with its interpolated normal, on the side
      the ray sees. *)
-  if k = Shape.smooth_triangle && Triangle.smooth_normal s p.geom o p.vnormal
-       (Array.unsafe_get p.vcorner (3 * i)) (Array.unsafe_get p.vcorner ((3 * i) + 1)) (Array.unsafe_get p.vcorner ((3 * i) + 2))
+  if k = Shape.smooth_triangle
+     && (let normals = if Array.length p.vcorner = 0 then at else p.vcorner in
+         Triangle.smooth_normal_at s p.vertex o0 o1 o2 p.vnormal (Array.unsafe_get normals j)
+           (Array.unsafe_get normals (j + 1)) (Array.unsafe_get normals (j + 2)))
      && flip then begin
     s.nx <- -.s.nx;
     s.ny <- -.s.ny;
@@ -811,9 +821,18 @@ let shape_hit tr i =
   s.vz <- -.dz;
   tr.origin_sphere <- -1;
   if p.robust then begin
+    (* A triangle's extent from its corners, [fmax] of their magnitudes as
+       [Prepared] finds a shape's: no array of them per triangle. *)
+    let extent = ref 0. in
+    if triangle then
+      for a = 0 to 8 do
+        let x = Float.abs (Array.unsafe_get p.vertex ((if a < 3 then o0 else if a < 6 then o1 - 3 else o2 - 6) + a)) in
+        if x > !extent then extent := x
+      done
+    else extent := Array.unsafe_get p.extent o0;
     let size =
       Float.abs s.ox +. Float.abs s.oy +. Float.abs s.oz +. Float.abs px +. Float.abs py +. Float.abs pz
-      +. Array.unsafe_get p.extent i
+      +. !extent
     in
     let e = offset_bound *. size in
     s.px <- px +. (e *. gx);
@@ -1552,7 +1571,8 @@ let rec shade tr l =
            flat normal, turned toward the ray, decides. *)
         if (not sphere) && Array.unsafe_get p.kind i = Shape.smooth_triangle && Array.unsafe_get io 11 < 1. then begin
           let snx = s.nx and sny = s.ny and snz = s.nz in
-          Triangle.normal s p.geom (Shape.stride * i);
+          let j = 3 * i in
+          Triangle.normal_at s p.vertex (Array.unsafe_get p.at j) (Array.unsafe_get p.at (j + 1)) (Array.unsafe_get p.at (j + 2));
           let gx = s.nx and gy = s.ny and gz = s.nz in
           s.nx <- snx;
           s.ny <- sny;

@@ -46,6 +46,13 @@ val validate : t -> (t, [> `Msg of string ]) result
 val store : t -> float array -> int -> unit
 (** [store tri g o] writes [tri] to [g] at offset [o] (9 floats). *)
 
+val roots_at : Scratch.t -> float array -> int -> int -> int -> bool
+(** [roots_at s g o0 o1 o2] is {!roots} for the triangle whose vertices
+    [v0], [v1], [v2] are stored at [o0], [o1], [o2] in [g] (3 floats each):
+    a mesh's triangle, read where its vertices are, shared with the
+    triangles around it, with the arithmetic of {!roots}, which is
+    [roots_at s g o (o + 3) (o + 6)]. *)
+
 val roots : Scratch.t -> float array -> int -> bool
 (** [roots s g o] is [true] iff the line of the ray of [s] meets the
     triangle stored at [o] in [g] (edges and vertices included), with its
@@ -67,6 +74,10 @@ val normal : Scratch.t -> float array -> int -> unit
 (** [normal s g o] sets [s.nx], [s.ny], [s.nz] to the unit normal
     [(v1 - v0) x (v2 - v0) / |(v1 - v0) x (v2 - v0)|] of the triangle. *)
 
+val normal_at : Scratch.t -> float array -> int -> int -> int -> unit
+(** [normal_at s g o0 o1 o2] is {!normal} for the triangle with vertices
+    at [o0], [o1], [o2] in [g] (see {!roots_at}). *)
+
 val smooth_normal : Scratch.t -> float array -> int -> float array -> int -> int -> int -> bool
 (** [smooth_normal s g o vn k0 k1 k2] is [true] after setting [s.nx], [s.ny],
     [s.nz] to the unit normal at the point [s.px], [s.py], [s.pz] of the
@@ -75,6 +86,11 @@ val smooth_normal : Scratch.t -> float array -> int -> float array -> int -> int
     [k2 .. k2 + 2] (in the order of the vertices) with the point's
     barycentric coordinates (corners may share a normal); [false], and [s]
     unchanged, if the interpolated normal is zero or not finite. *)
+
+val smooth_normal_at : Scratch.t -> float array -> int -> int -> int -> float array -> int -> int -> int -> bool
+(** [smooth_normal_at s g o0 o1 o2 vn k0 k1 k2] is {!smooth_normal} for
+    the triangle with vertices at [o0], [o1], [o2] in [g] (see
+    {!roots_at}). *)
 
 val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float
 (** [intersect tri ~origin ~direction] is the root of {!roots}, or [infinity]. *)
