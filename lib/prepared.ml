@@ -290,20 +290,96 @@ let gather_in_place index ~(floats : float array array) ~(ints : int array array
 
 module Materials = Material.Plain
 
+let[@inline] fmax (a : float) b = if a > b then a else b
+
+(* The cube around a shape (not a sphere): its center and half side. *)
+let single_bounds sh = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.)
+
+(* For a scene with a mesh: the boxes of the objects [bounded] (increasing
+   object numbers), as [build_boxes] takes them, each padded by its
+   [Bvh.ray_box_margin]. A sphere's is its cube (its center and radius
+   in [cx] to [radius], by object); another shape's its cube too, found
+   again; a mesh's triangle's is its box (half of it along each axis:
+   triangles are slivers, far thinner than their cube along two), found
+   from its corners twice, for the margin, then for the box, with no
+   array of centers or half sides of a million triangles between. *)
+let mesh_boxes ~n_spheres (scene : Scene.t) ~bounded ~cx ~cy ~cz ~radius =
+  let nb = Array.length bounded in
+  let x0 = Array.make nb 0. and y0 = Array.make nb 0. and z0 = Array.make nb 0. in
+  let x1 = Array.make nb 0. and y1 = Array.make nb 0. and z1 = Array.make nb 0. in
+  (* [b]: center x y z, half the box along x y z, half side of the cube. *)
+  let b = Array.make 7 0. and box = Array.make 6 0. in
+  let each f =
+    let pos = ref 0 in
+    let next k = !pos < nb && bounded.(!pos) = k in
+    let cube (c : Vec3.t) h =
+      b.(0) <- c.x;
+      b.(1) <- c.y;
+      b.(2) <- c.z;
+      b.(3) <- h;
+      b.(4) <- h;
+      b.(5) <- h;
+      b.(6) <- h;
+      f !pos;
+      incr pos
+    in
+    for k = 0 to n_spheres - 1 do
+      if next k then cube (Vec3.v cx.(k) cy.(k) cz.(k)) radius.(k)
+    done;
+    ignore
+      (iter_objects ~n_spheres scene
+         ~single:(fun k sh -> if next k then (let c, h = single_bounds sh in cube c h))
+         ~mesh_triangle:(fun k m t ->
+           if next k then begin
+             Mesh.box m t box;
+             let dx = box.(3) -. box.(0) and dy = box.(4) -. box.(1) and dz = box.(5) -. box.(2) in
+             b.(0) <- 0.5 *. (box.(0) +. box.(3));
+             b.(1) <- 0.5 *. (box.(1) +. box.(4));
+             b.(2) <- 0.5 *. (box.(2) +. box.(5));
+             b.(3) <- 0.5 *. dx;
+             b.(4) <- 0.5 *. dy;
+             b.(5) <- 0.5 *. dz;
+             b.(6) <- fmax dx (fmax dy dz) *. 0.5;
+             f !pos;
+             incr pos
+           end))
+  in
+  (* The centers and half sides, where the boxes will be, for the margin. *)
+  each (fun i ->
+      x0.(i) <- b.(0);
+      y0.(i) <- b.(1);
+      z0.(i) <- b.(2);
+      x1.(i) <- b.(6));
+  let margin = Bvh.ray_box_margin ~cx:x0 ~cy:y0 ~cz:z0 ~radius:x1 scene.camera.position in
+  each (fun i ->
+      let m = margin.(i) in
+      x0.(i) <- b.(0) -. (b.(3) +. m);
+      y0.(i) <- b.(1) -. (b.(4) +. m);
+      z0.(i) <- b.(2) -. (b.(5) +. m);
+      x1.(i) <- b.(0) +. (b.(3) +. m);
+      y1.(i) <- b.(1) +. (b.(4) +. m);
+      z1.(i) <- b.(2) +. (b.(5) +. m));
+  (x0, y0, z0, x1, y1, z1)
+
 let prepare ?(skips = true) scene =
   let scene = Scene.of_valid scene in
   let n_spheres = Spheres.length scene.spheres in
   let n = iter_objects ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
   (* Per object, in scene order: kind, material, and a cube around it
      (center, half side) for the hierarchy. *)
-  let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
-  let ocx = Array.make n 0. and ocy = Array.make n 0. and ocz = Array.make n 0. and ohalf = Array.make n 0. in
-  (* Half the box of each object along each axis: a mesh's triangles are
-     slivers, far thinner than their cube along two axes. *)
   let any_mesh = List.exists (function Shape.Mesh _ -> true | _ -> false) scene.shapes in
-  let oex = if any_mesh then Array.make n 0. else ohalf in
-  let oey = if any_mesh then Array.make n 0. else ohalf in
-  let oez = if any_mesh then Array.make n 0. else ohalf in
+  (* A big mesh's loading left garbage (the OBJ reader's blocks, the
+     positions before their placement) as big as the mesh, in pieces the
+     arrays below do not fit in: compacted now, the heap is the mesh's
+     arrays and grows from there (the 1M-triangle knot's peak goes from
+     275 to 235 MB, for 40 ms). *)
+  if any_mesh && n > big_scene then Gc.compact ();
+  let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
+  (* A scene with a mesh has these for its spheres alone: the boxes of
+     its shapes, found again from their geometry when the hierarchy is
+     built ([mesh_boxes]), take no 56 bytes a triangle meanwhile. *)
+  let nc = if any_mesh then n_spheres else n in
+  let ocx = Array.make nc 0. and ocy = Array.make nc 0. and ocz = Array.make nc 0. and ohalf = Array.make nc 0. in
   let materials = ref [] and n_materials = ref 0 in
   (* With each patterned material, where its pattern lies: [frame ()] is
      the object's [Shape.pattern_frame], asked only then (a mesh's scans
@@ -330,8 +406,6 @@ let prepare ?(skips = true) scene =
           Materials.add known m i;
           i
   in
-  let box = Array.make 6 0. in
-  let[@inline] fmax (a : float) b = if a > b then a else b in
   (* The smooth meshes' normals, divided by their lengths once for all
      the corners that share them. *)
   (* The triangles' vertices, in one array: each mesh's placed positions
@@ -390,14 +464,11 @@ let prepare ?(skips = true) scene =
   let set k kind mat (c : Vec3.t) h =
     okind.(k) <- kind;
     omat.(k) <- mat;
-    ocx.(k) <- c.x;
-    ocy.(k) <- c.y;
-    ocz.(k) <- c.z;
-    ohalf.(k) <- h;
-    if any_mesh then begin
-      oex.(k) <- h;
-      oey.(k) <- h;
-      oez.(k) <- h
+    if k < nc then begin
+      ocx.(k) <- c.x;
+      ocy.(k) <- c.y;
+      ocz.(k) <- c.z;
+      ohalf.(k) <- h
     end
   in
   (* The spheres' plain materials are distinct in their table: the first
@@ -416,12 +487,7 @@ let prepare ?(skips = true) scene =
          let m = sphere_materials.(j) in
          let i = new_material m (fun () -> Shape.leaf_pattern_frame (Csg.Sphere (Spheres.get spheres k))) in
          if Option.is_none m.pattern && not (m.transparency > 0.) then shared.(j) <- i;
-         i);
-    if any_mesh then begin
-      oex.(k) <- ohalf.(k);
-      oey.(k) <- ohalf.(k);
-      oez.(k) <- ohalf.(k)
-    end
+         i)
   done;
   let max_channel = max_channel scene in
   (* The spheres are copied: from here on [prepare] holds none of the
@@ -432,7 +498,7 @@ let prepare ?(skips = true) scene =
   ignore
     (iter_objects ~n_spheres scene
        ~single:(fun k sh ->
-         let c, h = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.) in
+         let c, h = single_bounds sh in
          let mat = match sh with Shape.Csg c -> add_csg k c | _ -> new_material (Shape.material sh) (fun () -> Shape.pattern_frame sh) in
          set k (Shape.kind sh) mat c h)
        ~mesh_triangle:(fun k m t ->
@@ -460,19 +526,9 @@ let prepare ?(skips = true) scene =
            let j = m.triangle_normals.((3 * t) + c) in
            j >= 0 && not (Float.is_nan vnormal.(base + (3 * j)))
          in
-         Mesh.box m t box;
-         let dx = box.(3) -. box.(0) and dy = box.(4) -. box.(1) and dz = box.(5) -. box.(2) in
          (* [set]'s arrays, written here without a vector: a mesh has millions. *)
          okind.(k) <- (if m.smooth && usable 0 && usable 1 && usable 2 then Shape.smooth_triangle else Shape.triangle);
-         omat.(k) <- mat;
-         ocx.(k) <- 0.5 *. (box.(0) +. box.(3));
-         ocy.(k) <- 0.5 *. (box.(1) +. box.(4));
-         ocz.(k) <- 0.5 *. (box.(2) +. box.(5));
-         ohalf.(k) <- fmax dx (fmax dy dz) *. 0.5;
-         (* Half the box along each axis: triangles are slivers. *)
-         oex.(k) <- 0.5 *. dx;
-         oey.(k) <- 0.5 *. dy;
-         oez.(k) <- 0.5 *. dz));
+         omat.(k) <- mat));
   let materials = Array.of_list (List.rev !materials) in
   (* A patterned material's second colour is a material of its own, after
      the scene's: the tracer picks one of the two indices, so that the
@@ -518,9 +574,8 @@ let prepare ?(skips = true) scene =
      does not grow past them; after the hierarchy, a collection lets the
      slot-order arrays reuse its build's arrays. For a million spheres the
      render's peak goes from 293 to 235 MB, for 5% of the time of loading
-     and preparing. A mesh's scene is its OBJ arrays, big and few: there a
-     compaction only moves them (the 1M-triangle knot peaks at 410 MB with
-     it, 376 MB with a plain collection). *)
+     and preparing. A mesh's scene was compacted above, before the
+     per-object arrays: here a compaction would only move them. *)
   let collections = ref 0 in
   let collect () =
     if n > big_scene then begin
@@ -532,13 +587,16 @@ let prepare ?(skips = true) scene =
   let bvh =
     if skips && nb > bvh_threshold then begin
       (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
-      let margin = Bvh.ray_box_margin ~among:bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position in
-      (* Each box padded by its margin: [build_boxes] takes these arrays. *)
-      let lo c e = Array.mapi (fun i k -> c.(k) -. (e.(k) +. margin.(i))) bounded in
-      let hi c e = Array.mapi (fun i k -> c.(k) +. (e.(k) +. margin.(i))) bounded in
-      Some
-        (Bvh.build_boxes ~x0:(lo ocx oex) ~y0:(lo ocy oey) ~z0:(lo ocz oez) ~x1:(hi ocx oex) ~y1:(hi ocy oey)
-           ~z1:(hi ocz oez) ())
+      let x0, y0, z0, x1, y1, z1 =
+        if any_mesh then mesh_boxes ~n_spheres scene ~bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf
+        else
+          let margin = Bvh.ray_box_margin ~among:bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position in
+          (* Each box padded by its margin: [build_boxes] takes these arrays. *)
+          let lo c = Array.mapi (fun i k -> c.(k) -. (ohalf.(k) +. margin.(i))) bounded in
+          let hi c = Array.mapi (fun i k -> c.(k) +. (ohalf.(k) +. margin.(i))) bounded in
+          (lo ocx, lo ocy, lo ocz, hi ocx, hi ocy, hi ocz)
+      in
+      Some (Bvh.build_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ())
     end
     else None
   in
