@@ -32,6 +32,12 @@ type t = {
           [-1]: in the robust mode that sphere is handled exactly. (An
           identical sphere has no slot of its own: {!Prepared.prepare}.) *)
   mutable first_hit : int;
+  mutable kx : int;
+      (** The axes of the ray in [s] for the triangle test
+          ({!Triangle.shear}), [kz = -1] until a traversal's first triangle
+          finds them: once a ray, not once a triangle. *)
+  mutable ky : int;
+  mutable kz : int;
   averaging : bool;  (** Samples are averaged: see [settled]. *)
   mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see [primary_hit]. *)
   mutable budget : int;  (** Most tests [check_budget] accepts. *)
@@ -79,6 +85,9 @@ let create ?(averaging = false) (p : Prepared.t) =
     hit = -1;
     origin_sphere = -1;
     first_hit = -1;
+    kx = 0;
+    ky = 0;
+    kz = -1;
     averaging;
     assumed = no_assumption;
     budget = Limits.work_budget Limits.default;
@@ -225,12 +234,23 @@ let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
 
 (* The roots of the shape (not a sphere) in slot [i], by its module's
    routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
-   gives its first crossing beyond [s.t_min] as both. *)
+   gives its first crossing beyond [s.t_min] as both. A triangle's test
+   reads the ray's [Triangle.shear], found at the first triangle a ray
+   meets, not at each: a traversal over shapes sets [tr.kz] to [-1] (not
+   found yet) before its first test. *)
 let shape_roots tr s i =
   let p = tr.p in
   let k = Array.unsafe_get p.kind i and at = p.at and j = 3 * i in
-  if k = Shape.triangle || k = Shape.smooth_triangle then
-    Triangle.roots_at s p.vertex (Array.unsafe_get at j) (Array.unsafe_get at (j + 1)) (Array.unsafe_get at (j + 2))
+  if k = Shape.triangle || k = Shape.smooth_triangle then begin
+    if tr.kz < 0 then begin
+      let axes = Triangle.shear s in
+      tr.kx <- Triangle.axis_x axes;
+      tr.ky <- Triangle.axis_y axes;
+      tr.kz <- Triangle.axis_z axes
+    end;
+    Triangle.roots_at s p.vertex (Array.unsafe_get at j) (Array.unsafe_get at (j + 1)) (Array.unsafe_get at (j + 2)) tr.kx
+      tr.ky tr.kz
+  end
   else
   let o = Shape.stride * Array.unsafe_get at j in
   if k = Shape.plane then Plane.roots s p.geom o
@@ -363,6 +383,7 @@ let closest_textbook_secondary tr = closest_textbook_all tr ~primary:false
    mode without a hierarchy (the reference scene) take the loop above. *)
 let[@inline] closest_from tr ~primary ~spheres =
   let p = tr.p and s = tr.s in
+      if not spheres then tr.kz <- -1;
       let bvh = p.bvh in
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
@@ -576,6 +597,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
    of scene, so that spheres alone ask the kind once per shadow ray. *)
 let[@inline] blocked_from tr l ~spheres =
   let s = tr.s in
+  if not spheres then tr.kz <- -1;
   let last = Array.unsafe_get tr.last_blocker l in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
@@ -751,6 +773,7 @@ let[@inline] primary_hit_in tr ~spheres =
     tr.hit <- -1;
     s.t <- infinity;
     tr.counters.tests <- tr.counters.tests + 1;
+    if not spheres then tr.kz <- -1;
     (* The same test as [closest_primary] makes of that sphere: the same t. *)
     test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres dx dy dz a (1. /. a) (2. *. a) (4. *. a);
     if tr.hit >= 0 then tr.hit else closest_primary_in tr ~spheres
@@ -776,6 +799,10 @@ let offset_bound = 32. *. epsilon_float
    whatever the angle, with no constant tied to the scene's scale. The
    material's number of the point is returned: a CSG solid's is its
    leaf's. *)
+let[@inline] fmax_abs (e : float) x =
+  let x = Float.abs x in
+  if x > e then x else e
+
 let shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
@@ -823,16 +850,23 @@ let shape_hit tr i =
   if p.robust then begin
     (* A triangle's extent from its corners, [fmax] of their magnitudes as
        [Prepared] finds a shape's: no array of them per triangle. *)
-    let extent = ref 0. in
-    if triangle then
-      for a = 0 to 8 do
-        let x = Float.abs (Array.unsafe_get p.vertex ((if a < 3 then o0 else if a < 6 then o1 - 3 else o2 - 6) + a)) in
-        if x > !extent then extent := x
-      done
-    else extent := Array.unsafe_get p.extent o0;
+    let extent =
+      if triangle then
+        let v = p.vertex in
+        let e = fmax_abs 0. (Array.unsafe_get v o0) in
+        let e = fmax_abs e (Array.unsafe_get v (o0 + 1)) in
+        let e = fmax_abs e (Array.unsafe_get v (o0 + 2)) in
+        let e = fmax_abs e (Array.unsafe_get v o1) in
+        let e = fmax_abs e (Array.unsafe_get v (o1 + 1)) in
+        let e = fmax_abs e (Array.unsafe_get v (o1 + 2)) in
+        let e = fmax_abs e (Array.unsafe_get v o2) in
+        let e = fmax_abs e (Array.unsafe_get v (o2 + 1)) in
+        fmax_abs e (Array.unsafe_get v (o2 + 2))
+      else Array.unsafe_get p.extent o0
+    in
     let size =
       Float.abs s.ox +. Float.abs s.oy +. Float.abs s.oz +. Float.abs px +. Float.abs py +. Float.abs pz
-      +. !extent
+      +. extent
     in
     let e = offset_bound *. size in
     s.px <- px +. (e *. gx);
@@ -1835,6 +1869,7 @@ let roots tr k (o : Vec3.t) (d : Vec3.t) =
   if p.kind.(i) <> Shape.sphere then begin
     (* A CSG solid's root is its first crossing beyond [t_min]: all of them. *)
     s.t_min <- neg_infinity;
+    tr.kz <- -1;
     if shape_roots tr s i then (s.near, s.far) else (infinity, infinity)
   end
   else

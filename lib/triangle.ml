@@ -32,23 +32,59 @@ let store tri g o =
 (* Coordinate [axis] of the vertex at [o], relative to the ray origin. *)
 let[@inline] rel g o axis origin = Array.unsafe_get g (o + axis) -. origin
 
-let[@inline] pick axis (x : float) y z = if axis = 0 then x else if axis = 1 then y else z
+(* The shear of the ray whose direction's coordinates on the axes kx, ky,
+   kz are [dkx], [dky], [dkz], and its origin's. *)
+let[@inline] put (s : Scratch.t) dkx dky dkz okx oky okz =
+  s.sx <- dkx /. dkz;
+  s.sy <- dky /. dkz;
+  s.sz <- 1. /. dkz;
+  s.okx <- okx;
+  s.oky <- oky;
+  s.okz <- okz
+
+let[@inline] axes ~kx ~ky ~kz = kz lor (kx lsl 2) lor (ky lsl 4)
 
 (* Woop, Benthin and Wald, JCGT 2(1), 2013, section 3, in double precision
    throughout. kz is the largest axis of D, and kx, ky follow it so that
-   the winding is kept (swapped when D.kz < 0). *)
-let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 =
+   the winding is kept (swapped when D.kz < 0): the six cases written
+   out. *)
+let[@inline never] shear (s : Scratch.t) =
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let ax = Float.abs dx and ay = Float.abs dy and az = Float.abs dz in
-  let kz = if ax > ay then (if ax > az then 0 else 2) else if ay > az then 1 else 2 in
-  let kx = if kz = 2 then 0 else kz + 1 in
-  let ky = if kx = 2 then 0 else kx + 1 in
-  let dkz = pick kz dx dy dz in
-  let swap = dkz < 0. in
-  let kx = if swap then ky else kx and ky = if swap then kx else ky in
-  let dkx = pick kx dx dy dz and dky = pick ky dx dy dz in
-  let sx = dkx /. dkz and sy = dky /. dkz and sz = 1. /. dkz in
-  let okx = pick kx s.ox s.oy s.oz and oky = pick ky s.ox s.oy s.oz and okz = pick kz s.ox s.oy s.oz in
+  if ax > ay && ax > az then
+    if dx < 0. then begin
+      put s dz dy dx s.oz s.oy s.ox;
+      axes ~kx:2 ~ky:1 ~kz:0
+    end
+    else begin
+      put s dy dz dx s.oy s.oz s.ox;
+      axes ~kx:1 ~ky:2 ~kz:0
+    end
+  else if (not (ax > ay)) && ay > az then
+    if dy < 0. then begin
+      put s dx dz dy s.ox s.oz s.oy;
+      axes ~kx:0 ~ky:2 ~kz:1
+    end
+    else begin
+      put s dz dx dy s.oz s.ox s.oy;
+      axes ~kx:2 ~ky:0 ~kz:1
+    end
+  else if dz < 0. then begin
+    put s dy dx dz s.oy s.ox s.oz;
+    axes ~kx:1 ~ky:0 ~kz:2
+  end
+  else begin
+    put s dx dy dz s.ox s.oy s.oz;
+    axes ~kx:0 ~ky:1 ~kz:2
+  end
+
+let axis_x axes = (axes lsr 2) land 3
+let axis_y axes = axes lsr 4
+let axis_z axes = axes land 3
+
+let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
+  let sx = s.sx and sy = s.sy and sz = s.sz in
+  let okx = s.okx and oky = s.oky and okz = s.okz in
   let az_ = rel g o0 kz okz and bz_ = rel g o1 kz okz and cz_ = rel g o2 kz okz in
   let ax_ = rel g o0 kx okx -. (sx *. az_) and ay_ = rel g o0 ky oky -. (sy *. az_) in
   let bx_ = rel g o1 kx okx -. (sx *. bz_) and by_ = rel g o1 ky oky -. (sy *. bz_) in
@@ -69,7 +105,9 @@ let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 =
     true
   end
 
-let roots s g o = roots_at s g o (o + 3) (o + 6)
+let roots s g o =
+  let axes = shear s in
+  roots_at s g o (o + 3) (o + 6) (axis_x axes) (axis_y axes) (axis_z axes)
 
 let[@inline never] normal_at (s : Scratch.t) g o0 o1 o2 =
   let e1x = g.(o1) -. g.(o0) and e1y = g.(o1 + 1) -. g.(o0 + 1) and e1z = g.(o1 + 2) -. g.(o0 + 2) in

@@ -46,12 +46,28 @@ val validate : t -> (t, [> `Msg of string ]) result
 val store : t -> float array -> int -> unit
 (** [store tri g o] writes [tri] to [g] at offset [o] (9 floats). *)
 
-val roots_at : Scratch.t -> float array -> int -> int -> int -> bool
-(** [roots_at s g o0 o1 o2] is {!roots} for the triangle whose vertices
-    [v0], [v1], [v2] are stored at [o0], [o1], [o2] in [g] (3 floats each):
-    a mesh's triangle, read where its vertices are, shared with the
-    triangles around it, with the arithmetic of {!roots}, which is
-    [roots_at s g o (o + 3) (o + 6)]. *)
+val shear : Scratch.t -> int
+(** [shear s] writes to [s.sx] .. [s.okz] the ray of [s] in the frame of
+    the triangle test and is its axes, packed ({!axis_x}, {!axis_y},
+    {!axis_z}): what {!roots_at} reads, found once for all the triangles
+    a ray is tested against. *)
+
+val axis_x : int -> int
+(** [axis_x a] is the axis (0 to 2) of the test's x in the axes [a] of {!shear}. *)
+
+val axis_y : int -> int
+(** [axis_y a] is the axis of the test's y. *)
+
+val axis_z : int -> int
+(** [axis_z a] is the axis of the test's z: the largest coordinate of the ray's direction. *)
+
+val roots_at : Scratch.t -> float array -> int -> int -> int -> int -> int -> int -> bool
+(** [roots_at s g o0 o1 o2 kx ky kz] is {!roots} for the triangle whose
+    vertices [v0], [v1], [v2] are stored at [o0], [o1], [o2] in [g] (3
+    floats each): a mesh's triangle, read where its vertices are, shared
+    with the triangles around it, with the arithmetic of {!roots}. [s.sx]
+    .. [s.okz] and [kx], [ky], [kz] must be {!shear}'s for the ray of [s]:
+    {!roots} is [roots_at s g o (o + 3) (o + 6) kx ky kz] with those. *)
 
 val roots : Scratch.t -> float array -> int -> bool
 (** [roots s g o] is [true] iff the line of the ray of [s] meets the
