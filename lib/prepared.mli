@@ -50,18 +50,19 @@ type t = private {
   geom : float array;
       (** The geometry of the shapes other than spheres and triangles:
           shape [g]'s at [Shape.stride * g], as the shape module's [store]
-          writes it; a slot's [g] is in [at]. *)
+          writes it; a slot's [g] is in [at0]. *)
   vertex : float array;
       (** The triangles' vertices, 3 floats each: each mesh's placed
           positions (a scene's one mesh's own array, not a copy), then the
           lone triangles' corners. A vertex is stored once, however many
           triangles share it. *)
-  at : int array;
-      (** Per slot [k] of a shape (empty when the scene has spheres
-          alone), at [3 k] to [3 k + 2]: a triangle's three corners, as
-          offsets in [vertex]; another shape's number [g] in [geom] and
-          [extent] at [3 k]. 24 bytes a triangle where its 9 floats
-          were 72. *)
+  at0 : int array;
+      (** Per slot of a shape (empty when the scene has spheres alone): a
+          triangle's first corner, as its offset in [vertex]; another
+          shape's number [g] in [geom] and [extent]. With [at1] and
+          [at2], 24 bytes a triangle where its 9 floats were 72. *)
+  at1 : int array;  (** Per slot: a triangle's second corner in [vertex]. *)
+  at2 : int array;  (** Per slot: a triangle's third corner in [vertex]. *)
   vnormal : float array;
       (** The normals of the smooth meshes, 3 floats each, each divided by
           its length ({!Mesh.unit_normal}; [nan] for one that cannot be,
@@ -69,8 +70,7 @@ type t = private {
           many triangles share it (empty if the scene has no smooth
           triangle). When every smooth mesh names its corners' normals by
           their vertices' numbers ([vcorner] empty), parallel to [vertex]:
-          the normal of the corner at [at.(3 k + c)] is at the same
-          offset. *)
+          the normal of a corner is at its offset in [vertex]. *)
   vcorner : int array;
       (** Smooth triangles whose corners' normals are not their vertices'
           numbers: the offsets in [vnormal] of the normals of the three

@@ -240,7 +240,7 @@ let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
    found yet) before its first test. *)
 let shape_roots tr s i =
   let p = tr.p in
-  let k = Array.unsafe_get p.kind i and at = p.at and j = 3 * i in
+  let k = Array.unsafe_get p.kind i in
   if k = Shape.triangle || k = Shape.smooth_triangle then begin
     if tr.kz < 0 then begin
       let axes = Triangle.shear s in
@@ -248,11 +248,11 @@ let shape_roots tr s i =
       tr.ky <- Triangle.axis_y axes;
       tr.kz <- Triangle.axis_z axes
     end;
-    Triangle.roots_at s p.vertex (Array.unsafe_get at j) (Array.unsafe_get at (j + 1)) (Array.unsafe_get at (j + 2)) tr.kx
+    Triangle.roots_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i) tr.kx
       tr.ky tr.kz
   end
   else
-  let o = Shape.stride * Array.unsafe_get at j in
+  let o = Shape.stride * Array.unsafe_get p.at0 i in
   if k = Shape.plane then Plane.roots s p.geom o
   else if k = Shape.box then Box.roots s p.geom o
   else Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o))
@@ -807,11 +807,11 @@ let shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let px = s.px and py = s.py and pz = s.pz in
-  let k = Array.unsafe_get p.kind i and at = p.at and j = 3 * i in
+  let k = Array.unsafe_get p.kind i in
   let triangle = k = Shape.triangle || k = Shape.smooth_triangle in
   (* A triangle's corners in [p.vertex], or the shape's number in [p.geom]. *)
-  let o0 = Array.unsafe_get at j in
-  let o1 = if triangle then Array.unsafe_get at (j + 1) else 0 and o2 = if triangle then Array.unsafe_get at (j + 2) else 0 in
+  let o0 = Array.unsafe_get p.at0 i in
+  let o1 = if triangle then Array.unsafe_get p.at1 i else 0 and o2 = if triangle then Array.unsafe_get p.at2 i else 0 in
   let o = Shape.stride * o0 in
   if triangle then Triangle.normal_at s p.vertex o0 o1 o2
   else if k = Shape.plane then Plane.normal s p.geom o
@@ -835,9 +835,11 @@ let shape_hit tr i =
   (* A smooth triangle shades with its interpolated normal, on the side
      the ray sees. *)
   if k = Shape.smooth_triangle
-     && (let normals = if Array.length p.vcorner = 0 then at else p.vcorner in
-         Triangle.smooth_normal_at s p.vertex o0 o1 o2 p.vnormal (Array.unsafe_get normals j)
-           (Array.unsafe_get normals (j + 1)) (Array.unsafe_get normals (j + 2)))
+     && (let follow = Array.length p.vcorner = 0 and j = 3 * i in
+         Triangle.smooth_normal_at s p.vertex o0 o1 o2 p.vnormal
+           (if follow then o0 else Array.unsafe_get p.vcorner j)
+           (if follow then o1 else Array.unsafe_get p.vcorner (j + 1))
+           (if follow then o2 else Array.unsafe_get p.vcorner (j + 2)))
      && flip then begin
     s.nx <- -.s.nx;
     s.ny <- -.s.ny;
@@ -1605,8 +1607,7 @@ let rec shade tr l =
            flat normal, turned toward the ray, decides. *)
         if (not sphere) && Array.unsafe_get p.kind i = Shape.smooth_triangle && Array.unsafe_get io 11 < 1. then begin
           let snx = s.nx and sny = s.ny and snz = s.nz in
-          let j = 3 * i in
-          Triangle.normal_at s p.vertex (Array.unsafe_get p.at j) (Array.unsafe_get p.at (j + 1)) (Array.unsafe_get p.at (j + 2));
+          Triangle.normal_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i);
           let gx = s.nx and gy = s.ny and gz = s.nz in
           s.nx <- snx;
           s.ny <- sny;
