@@ -44,39 +44,27 @@ let[@inline] put (s : Scratch.t) dkx dky dkz okx oky okz =
 
 let[@inline] axes ~kx ~ky ~kz = kz lor (kx lsl 2) lor (ky lsl 4)
 
+(* The ray's shear on the axes kx, ky, kz, its direction's coordinates on
+   them [dkx], [dky], [dkz] and its origin's: kx and ky swapped when
+   D.kz < 0, so that the winding is kept. *)
+let[@inline] on_axes s ~kx ~ky ~kz dkx dky dkz okx oky okz =
+  if dkz < 0. then begin
+    put s dky dkx dkz oky okx okz;
+    axes ~kx:ky ~ky:kx ~kz
+  end
+  else begin
+    put s dkx dky dkz okx oky okz;
+    axes ~kx ~ky ~kz
+  end
+
 (* Woop, Benthin and Wald, JCGT 2(1), 2013, section 3, in double precision
-   throughout. kz is the largest axis of D, and kx, ky follow it so that
-   the winding is kept (swapped when D.kz < 0): the six cases written
-   out. *)
+   throughout. kz is the largest axis of D, and kx, ky follow it. *)
 let[@inline never] shear (s : Scratch.t) =
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let ax = Float.abs dx and ay = Float.abs dy and az = Float.abs dz in
-  if ax > ay && ax > az then
-    if dx < 0. then begin
-      put s dz dy dx s.oz s.oy s.ox;
-      axes ~kx:2 ~ky:1 ~kz:0
-    end
-    else begin
-      put s dy dz dx s.oy s.oz s.ox;
-      axes ~kx:1 ~ky:2 ~kz:0
-    end
-  else if (not (ax > ay)) && ay > az then
-    if dy < 0. then begin
-      put s dx dz dy s.ox s.oz s.oy;
-      axes ~kx:0 ~ky:2 ~kz:1
-    end
-    else begin
-      put s dz dx dy s.oz s.ox s.oy;
-      axes ~kx:2 ~ky:0 ~kz:1
-    end
-  else if dz < 0. then begin
-    put s dy dx dz s.oy s.ox s.oz;
-    axes ~kx:1 ~ky:0 ~kz:2
-  end
-  else begin
-    put s dx dy dz s.ox s.oy s.oz;
-    axes ~kx:0 ~ky:1 ~kz:2
-  end
+  if ax > ay && ax > az then on_axes s ~kx:1 ~ky:2 ~kz:0 dy dz dx s.oy s.oz s.ox
+  else if (not (ax > ay)) && ay > az then on_axes s ~kx:2 ~ky:0 ~kz:1 dz dx dy s.oz s.ox s.oy
+  else on_axes s ~kx:0 ~ky:1 ~kz:2 dx dy dz s.ox s.oy s.oz
 
 let axis_x axes = (axes lsr 2) land 3
 let axis_y axes = axes lsr 4
