@@ -432,7 +432,9 @@ let prepare ?(skips = true) scene =
      parallel to [vertex], and a corner's normal is where its vertex is:
      no table of the corners' normals. *)
   let follow =
-    List.for_all (function Shape.Mesh m when m.smooth -> m.triangle_normals = m.triangles | _ -> true) scene.shapes
+    List.for_all
+      (function Shape.Mesh m when m.smooth -> m.triangle_normals == m.triangles || m.triangle_normals = m.triangles | _ -> true)
+      scene.shapes
   in
   let vnormal =
     Array.make
@@ -581,7 +583,7 @@ let prepare ?(skips = true) scene =
   let collections = ref 0 in
   let collect () =
     if n > big_scene then begin
-      if !collections = 0 && n_spheres > n / 2 then Gc.compact () else Gc.full_major ();
+      if !collections = 0 && n_spheres > n / 2 && not any_mesh then Gc.compact () else Gc.full_major ();
       incr collections
     end
   in
