@@ -2,11 +2,13 @@
 
     A mesh is many triangles that share vertices, with one material, an
     optional normal per triangle corner for smooth shading, and the
-    placement of its file in the scene ([scale], then [translate]). The
-    kernel stores each of its triangles as a {!Triangle} of its own, so
-    that meshes share the watertight test, the hierarchy and everything
-    else with the other shapes: a shared edge is computed from the same
-    floats in both triangles, and leaks no ray. *)
+    placement of its file in the scene ([scale], then [translate]). Each
+    of its triangles is an object of the kernel of its own, so that meshes
+    share the watertight test ({!Triangle.roots_at}), the hierarchy and
+    everything else with the other shapes; the kernel reads its corners
+    in [positions], where neighbouring triangles read them too: a shared
+    edge is computed from the same floats in both triangles, and leaks no
+    ray. *)
 
 type t = private {
   positions : float array;  (** [x y z] per vertex, already scaled and translated. *)

@@ -12,6 +12,10 @@ type t = {
   unbounded : int array;
   kind : int array;
   geom : float array;
+  vertex : float array;
+  at0 : int array;
+  at1 : int array;
+  at2 : int array;
   vnormal : float array;
   vcorner : int array;
   extent : float array;
@@ -334,20 +338,96 @@ let gather_in_place index ~(floats : float array array) ~(ints : int array array
 
 module Materials = Material.Plain
 
+let[@inline] fmax (a : float) b = if a > b then a else b
+
+(* The cube around a shape (not a sphere): its center and half side. *)
+let single_bounds sh = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.)
+
+(* For a scene with a mesh: the boxes of the objects [bounded] (increasing
+   object numbers), as [build_boxes] takes them, each padded by its
+   [Bvh.ray_box_margin]. A sphere's is its cube (its center and radius
+   in [cx] to [radius], by object); another shape's its cube too, found
+   again; a mesh's triangle's is its box (half of it along each axis:
+   triangles are slivers, far thinner than their cube along two), found
+   from its corners twice, for the margin, then for the box, with no
+   array of centers or half sides of a million triangles between. *)
+let mesh_boxes ~n_spheres (scene : Scene.t) ~bounded ~cx ~cy ~cz ~radius =
+  let nb = Array.length bounded in
+  let x0 = Array.make nb 0. and y0 = Array.make nb 0. and z0 = Array.make nb 0. in
+  let x1 = Array.make nb 0. and y1 = Array.make nb 0. and z1 = Array.make nb 0. in
+  (* [b]: center x y z, half the box along x y z, half side of the cube. *)
+  let b = Array.make 7 0. and box = Array.make 6 0. in
+  let each f =
+    let pos = ref 0 in
+    let next k = !pos < nb && bounded.(!pos) = k in
+    let cube (c : Vec3.t) h =
+      b.(0) <- c.x;
+      b.(1) <- c.y;
+      b.(2) <- c.z;
+      b.(3) <- h;
+      b.(4) <- h;
+      b.(5) <- h;
+      b.(6) <- h;
+      f !pos;
+      incr pos
+    in
+    for k = 0 to n_spheres - 1 do
+      if next k then cube (Vec3.v cx.(k) cy.(k) cz.(k)) radius.(k)
+    done;
+    ignore
+      (iter_objects ~n_spheres scene
+         ~single:(fun k sh -> if next k then (let c, h = single_bounds sh in cube c h))
+         ~mesh_triangle:(fun k m t ->
+           if next k then begin
+             Mesh.box m t box;
+             let dx = box.(3) -. box.(0) and dy = box.(4) -. box.(1) and dz = box.(5) -. box.(2) in
+             b.(0) <- 0.5 *. (box.(0) +. box.(3));
+             b.(1) <- 0.5 *. (box.(1) +. box.(4));
+             b.(2) <- 0.5 *. (box.(2) +. box.(5));
+             b.(3) <- 0.5 *. dx;
+             b.(4) <- 0.5 *. dy;
+             b.(5) <- 0.5 *. dz;
+             b.(6) <- fmax dx (fmax dy dz) *. 0.5;
+             f !pos;
+             incr pos
+           end))
+  in
+  (* The centers and half sides, where the boxes will be, for the margin. *)
+  each (fun i ->
+      x0.(i) <- b.(0);
+      y0.(i) <- b.(1);
+      z0.(i) <- b.(2);
+      x1.(i) <- b.(6));
+  let margin = Bvh.ray_box_margin ~cx:x0 ~cy:y0 ~cz:z0 ~radius:x1 scene.camera.position in
+  each (fun i ->
+      let m = margin.(i) in
+      x0.(i) <- b.(0) -. (b.(3) +. m);
+      y0.(i) <- b.(1) -. (b.(4) +. m);
+      z0.(i) <- b.(2) -. (b.(5) +. m);
+      x1.(i) <- b.(0) +. (b.(3) +. m);
+      y1.(i) <- b.(1) +. (b.(4) +. m);
+      z1.(i) <- b.(2) +. (b.(5) +. m));
+  (x0, y0, z0, x1, y1, z1)
+
 let prepare ?(skips = true) scene =
   let scene = Scene.of_valid scene in
   let n_spheres = Spheres.length scene.spheres in
   let n = iter_objects ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
   (* Per object, in scene order: kind, material, and a cube around it
      (center, half side) for the hierarchy. *)
-  let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
-  let ocx = Array.make n 0. and ocy = Array.make n 0. and ocz = Array.make n 0. and ohalf = Array.make n 0. in
-  (* Half the box of each object along each axis: a mesh's triangles are
-     slivers, far thinner than their cube along two axes. *)
   let any_mesh = List.exists (function Shape.Mesh _ -> true | _ -> false) scene.shapes in
-  let oex = if any_mesh then Array.make n 0. else ohalf in
-  let oey = if any_mesh then Array.make n 0. else ohalf in
-  let oez = if any_mesh then Array.make n 0. else ohalf in
+  (* A big mesh's loading left garbage (the OBJ reader's blocks, the
+     positions before their placement) as big as the mesh, in pieces the
+     arrays below do not fit in: compacted now, the heap is the mesh's
+     arrays and grows from there (the 1M-triangle knot's peak goes from
+     275 to 235 MB, for 40 ms). *)
+  if any_mesh && n > big_scene then Gc.compact ();
+  let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
+  (* A scene with a mesh has these for its spheres alone: the boxes of
+     its shapes, found again from their geometry when the hierarchy is
+     built ([mesh_boxes]), take no 56 bytes a triangle meanwhile. *)
+  let nc = if any_mesh then n_spheres else n in
+  let ocx = Array.make nc 0. and ocy = Array.make nc 0. and ocz = Array.make nc 0. and ohalf = Array.make nc 0. in
   let materials = ref [] and n_materials = ref 0 in
   (* With each patterned material, where its pattern lies: [frame ()] is
      the object's [Shape.pattern_frame], asked only then (a mesh's scans
@@ -374,12 +454,40 @@ let prepare ?(skips = true) scene =
           Materials.add known m i;
           i
   in
-  let box = Array.make 6 0. in
-  let[@inline] fmax (a : float) b = if a > b then a else b in
   (* The smooth meshes' normals, divided by their lengths once for all
      the corners that share them. *)
+  (* The triangles' vertices, in one array: each mesh's placed positions
+     at its base, then the lone triangles, 9 floats each. *)
+  let mesh_bases, n_vertex =
+    List.fold_left
+      (fun (bases, n) sh -> match sh with Shape.Mesh m -> ((m, n) :: bases, n + Array.length m.positions) | _ -> (bases, n))
+      ([], 0) scene.shapes
+  in
+  let n_lone = List.length (List.filter (function Shape.Triangle _ -> true | _ -> false) scene.shapes) in
+  let vertex =
+    match mesh_bases with
+    | [ (m, _) ] when n_lone = 0 -> m.positions
+    | _ ->
+        let v = Array.make (n_vertex + (9 * n_lone)) 0. in
+        List.iter (fun ((m : Mesh.t), b) -> Array.blit m.positions 0 v b (Array.length m.positions)) mesh_bases;
+        v
+  in
+  let vertex_base m = List.assq m mesh_bases in
+  (* Where each smooth mesh's corners name their normals by their vertices'
+     numbers (an OBJ file's [f 1//1 2//2 3//3]), the unit normals lie
+     parallel to [vertex], and a corner's normal is where its vertex is:
+     no table of the corners' normals. *)
+  let follow =
+    List.for_all
+      (function Shape.Mesh m when m.smooth -> m.triangle_normals == m.triangles || m.triangle_normals = m.triangles | _ -> true)
+      scene.shapes
+  in
   let vnormal =
-    Array.make (List.fold_left (fun a sh -> match sh with Shape.Mesh m when m.smooth -> a + Array.length m.normals | _ -> a) 0 scene.shapes) nan
+    Array.make
+      (if follow then
+         if List.exists (function Shape.Mesh m -> m.smooth | _ -> false) scene.shapes then Array.length vertex else 0
+       else List.fold_left (fun a sh -> match sh with Shape.Mesh m when m.smooth -> a + Array.length m.normals | _ -> a) 0 scene.shapes)
+      nan
   in
   let next_normal = ref 0 in
   (* The offset in [vnormal] of the normals of the mesh whose run of
@@ -406,14 +514,11 @@ let prepare ?(skips = true) scene =
   let set k kind mat (c : Vec3.t) h =
     okind.(k) <- kind;
     omat.(k) <- mat;
-    ocx.(k) <- c.x;
-    ocy.(k) <- c.y;
-    ocz.(k) <- c.z;
-    ohalf.(k) <- h;
-    if any_mesh then begin
-      oex.(k) <- h;
-      oey.(k) <- h;
-      oez.(k) <- h
+    if k < nc then begin
+      ocx.(k) <- c.x;
+      ocy.(k) <- c.y;
+      ocz.(k) <- c.z;
+      ohalf.(k) <- h
     end
   in
   (* The spheres' plain materials are distinct in their table: the first
@@ -432,12 +537,7 @@ let prepare ?(skips = true) scene =
          let m = sphere_materials.(j) in
          let i = new_material m (fun () -> Shape.leaf_pattern_frame (Csg.Sphere (Spheres.get spheres k))) in
          if Option.is_none m.pattern && not (m.transparency > 0.) then shared.(j) <- i;
-         i);
-    if any_mesh then begin
-      oex.(k) <- ohalf.(k);
-      oey.(k) <- ohalf.(k);
-      oez.(k) <- ohalf.(k)
-    end
+         i)
   done;
   let max_channel = max_channel scene in
   (* The spheres are copied: from here on [prepare] holds none of the
@@ -448,7 +548,7 @@ let prepare ?(skips = true) scene =
   ignore
     (iter_objects ~n_spheres scene
        ~single:(fun k sh ->
-         let c, h = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.) in
+         let c, h = single_bounds sh in
          let mat = match sh with Shape.Csg c -> add_csg k c | _ -> new_material (Shape.material sh) (fun () -> Shape.pattern_frame sh) in
          set k (Shape.kind sh) mat c h)
        ~mesh_triangle:(fun k m t ->
@@ -457,9 +557,11 @@ let prepare ?(skips = true) scene =
            | Some (m', i, base) when m' == m -> (i, base)
            | _ ->
                let i = new_material m.material (fun () -> Shape.pattern_frame (Shape.Mesh m)) in
-               let base = !next_normal in
+               let base = if follow then vertex_base m else !next_normal in
                if m.smooth then begin
-                 for j = 0 to (Array.length m.normals / 3) - 1 do
+                 (* Parallel to [vertex], the normals that no vertex number names are not needed. *)
+                 let nn = Array.length m.normals / 3 in
+                 for j = 0 to (if follow then min nn (Array.length m.positions / 3) else nn) - 1 do
                    ignore (Mesh.unit_normal m j vnormal (base + (3 * j)))
                  done;
                  next_normal := base + Array.length m.normals;
@@ -474,19 +576,9 @@ let prepare ?(skips = true) scene =
            let j = m.triangle_normals.((3 * t) + c) in
            j >= 0 && not (Float.is_nan vnormal.(base + (3 * j)))
          in
-         Mesh.box m t box;
-         let dx = box.(3) -. box.(0) and dy = box.(4) -. box.(1) and dz = box.(5) -. box.(2) in
          (* [set]'s arrays, written here without a vector: a mesh has millions. *)
          okind.(k) <- (if m.smooth && usable 0 && usable 1 && usable 2 then Shape.smooth_triangle else Shape.triangle);
-         omat.(k) <- mat;
-         ocx.(k) <- 0.5 *. (box.(0) +. box.(3));
-         ocy.(k) <- 0.5 *. (box.(1) +. box.(4));
-         ocz.(k) <- 0.5 *. (box.(2) +. box.(5));
-         ohalf.(k) <- fmax dx (fmax dy dz) *. 0.5;
-         (* Half the box along each axis: triangles are slivers. *)
-         oex.(k) <- 0.5 *. dx;
-         oey.(k) <- 0.5 *. dy;
-         oez.(k) <- 0.5 *. dz));
+         omat.(k) <- mat));
   let materials = Array.of_list (List.rev !materials) in
   (* A patterned material's second colour is a material of its own, after
      the scene's: the tracer picks one of the two indices, so that the
@@ -532,13 +624,12 @@ let prepare ?(skips = true) scene =
      does not grow past them; after the hierarchy, a collection lets the
      slot-order arrays reuse its build's arrays. For a million spheres the
      render's peak goes from 293 to 235 MB, for 5% of the time of loading
-     and preparing. A mesh's scene is its OBJ arrays, big and few: there a
-     compaction only moves them (the 1M-triangle knot peaks at 410 MB with
-     it, 376 MB with a plain collection). *)
+     and preparing. A mesh's scene was compacted above, before the
+     per-object arrays: here a compaction would only move them. *)
   let collections = ref 0 in
   let collect () =
     if n > big_scene then begin
-      if !collections = 0 && n_spheres > n / 2 then Gc.compact () else Gc.full_major ();
+      if !collections = 0 && n_spheres > n / 2 && not any_mesh then Gc.compact () else Gc.full_major ();
       incr collections
     end
   in
@@ -546,13 +637,16 @@ let prepare ?(skips = true) scene =
   let bvh =
     if skips && nb > bvh_threshold then begin
       (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
-      let margin = Bvh.ray_box_margin ~among:bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position in
-      (* Each box padded by its margin: [build_boxes] takes these arrays. *)
-      let lo c e = Array.mapi (fun i k -> c.(k) -. (e.(k) +. margin.(i))) bounded in
-      let hi c e = Array.mapi (fun i k -> c.(k) +. (e.(k) +. margin.(i))) bounded in
-      Some
-        (Bvh.build_boxes ~x0:(lo ocx oex) ~y0:(lo ocy oey) ~z0:(lo ocz oez) ~x1:(hi ocx oex) ~y1:(hi ocy oey)
-           ~z1:(hi ocz oez) ())
+      let x0, y0, z0, x1, y1, z1 =
+        if any_mesh then mesh_boxes ~n_spheres scene ~bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf
+        else
+          let margin = Bvh.ray_box_margin ~among:bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position in
+          (* Each box padded by its margin: [build_boxes] takes these arrays. *)
+          let lo c = Array.mapi (fun i k -> c.(k) -. (ohalf.(k) +. margin.(i))) bounded in
+          let hi c = Array.mapi (fun i k -> c.(k) +. (ohalf.(k) +. margin.(i))) bounded in
+          (lo ocx, lo ocy, lo ocz, hi ocx, hi ocy, hi ocz)
+      in
+      Some (Bvh.build_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ())
     end
     else None
   in
@@ -574,10 +668,19 @@ let prepare ?(skips = true) scene =
   let stride = Shape.stride in
   (* Spheres alone need no table of shapes. *)
   let shapes_len = if scene.shapes = [] then 0 else n_kept in
-  let geom = Array.make (stride * shapes_len) 0. and extent = Array.make shapes_len 0. in
+  (* Triangles are read from [vertex]; the other shapes, few, have [geom]. *)
+  let n_geom =
+    List.length (List.filter (function Shape.Triangle _ | Shape.Mesh _ -> false | _ -> true) scene.shapes)
+  in
+  let geom = Array.make (stride * n_geom) 0. and extent = Array.make n_geom 0. in
+  (* Three arrays, not one of three ints a slot: made after the
+     hierarchy, each fits where one of its build's arrays was (the
+     1M-triangle knot peaks 24 MB lower). *)
+  let at0 = Array.make shapes_len 0 and at1 = Array.make shapes_len 0 and at2 = Array.make shapes_len 0 in
+  let next_geom = ref 0 and next_lone = ref n_vertex in
   let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
   let vnormal = if any_smooth then vnormal else [||] in
-  let vcorner = if any_smooth then Array.make (3 * n_kept) 0 else [||] in
+  let vcorner = if any_smooth && not follow then Array.make (3 * n_kept) 0 else [||] in
   let run = ref None in
   (* Spheres alone, without twins: [index] orders every object, and the
      per-object arrays, put in slot order where they are, are the
@@ -598,26 +701,44 @@ let prepare ?(skips = true) scene =
     done;
     extent.(i) <- !e
   in
+  let vrun = ref None in
   ignore
     (iter_objects ~n_spheres scene
        ~single:(fun k sh ->
          let i = slot.(k) in
          match sh with
-         | Shape.Csg c ->
-             geom.(stride * i) <- Float.of_int (Hashtbl.find csg_root k);
-             extent.(i) <- Csg.extent c
-         | _ ->
-             Shape.store sh geom (stride * i);
-             extent_of i)
+         | Shape.Triangle tri ->
+             let o = !next_lone in
+             Triangle.store tri vertex o;
+             at0.(i) <- o;
+             at1.(i) <- o + 3;
+             at2.(i) <- o + 6;
+             next_lone := o + 9
+         | _ -> (
+             let g = !next_geom in
+             incr next_geom;
+             at0.(i) <- g;
+             match sh with
+             | Shape.Csg c ->
+                 geom.(stride * g) <- Float.of_int (Hashtbl.find csg_root k);
+                 extent.(g) <- Csg.extent c
+             | _ ->
+                 Shape.store sh geom (stride * g);
+                 extent_of g))
        ~mesh_triangle:(fun k m t ->
          let i = slot.(k) in
-         for c = 0 to 2 do
-           let v = 3 * m.triangles.((3 * t) + c) in
-           for a = 0 to 2 do
-             geom.((stride * i) + (3 * c) + a) <- m.positions.(v + a)
-           done
-         done;
-         if any_smooth then begin
+         let vb =
+           match !vrun with
+           | Some (m', vb) when m' == m -> vb
+           | _ ->
+               let vb = vertex_base m in
+               vrun := Some (m, vb);
+               vb
+         in
+         at0.(i) <- vb + (3 * m.triangles.(3 * t));
+         at1.(i) <- vb + (3 * m.triangles.((3 * t) + 1));
+         at2.(i) <- vb + (3 * m.triangles.((3 * t) + 2));
+         if any_smooth && not follow then begin
            let base =
              match !run with
              | Some (m', base) when m' == m -> base
@@ -629,8 +750,7 @@ let prepare ?(skips = true) scene =
            for c = 0 to 2 do
              vcorner.((3 * i) + c) <- base + (3 * max 0 m.triangle_normals.((3 * t) + c))
            done
-         end;
-         extent_of i));
+         end));
   (* The spheres' [set] wrote their centers and radii in scene order:
      into slot order by [index], with no second walk of the scene. *)
   if not in_place then
@@ -690,6 +810,10 @@ let prepare ?(skips = true) scene =
     unbounded = Array.map (fun i -> slot.(i)) unbounded;
     kind = (if in_place then okind else Array.map (fun k -> okind.(k)) index);
     geom;
+    vertex;
+    at0;
+    at1;
+    at2;
     vnormal;
     vcorner;
     extent;

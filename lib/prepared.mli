@@ -48,20 +48,38 @@ type t = private {
   unbounded : int array;  (** The slots of the planes, in scene order. *)
   kind : int array;  (** {!Shape.sphere}, {!Shape.plane}, ... *)
   geom : float array;
-      (** The geometry of the object in slot [k] at [Shape.stride * k], as
-          the shape module's [store] writes it (unused for spheres). *)
+      (** The geometry of the shapes other than spheres and triangles:
+          shape [g]'s at [Shape.stride * g], as the shape module's [store]
+          writes it; a slot's [g] is in [at0]. *)
+  vertex : float array;
+      (** The triangles' vertices, 3 floats each: each mesh's placed
+          positions (a scene's one mesh's own array, not a copy), then the
+          lone triangles' corners. A vertex is stored once, however many
+          triangles share it. *)
+  at0 : int array;
+      (** Per slot of a shape (empty when the scene has spheres alone): a
+          triangle's first corner, as its offset in [vertex]; another
+          shape's number [g] in [geom] and [extent]. With [at1] and
+          [at2], 24 bytes a triangle where its 9 floats were 72. *)
+  at1 : int array;  (** Per slot: a triangle's second corner in [vertex]. *)
+  at2 : int array;  (** Per slot: a triangle's third corner in [vertex]. *)
   vnormal : float array;
       (** The normals of the smooth meshes, 3 floats each, each divided by
           its length ({!Mesh.unit_normal}; [nan] for one that cannot be,
           which no smooth triangle uses): a corner's normal once, however
           many triangles share it (empty if the scene has no smooth
-          triangle). *)
+          triangle). When every smooth mesh names its corners' normals by
+          their vertices' numbers ([vcorner] empty), parallel to [vertex]:
+          the normal of a corner is at its offset in [vertex]. *)
   vcorner : int array;
-      (** Smooth triangles: the offsets in [vnormal] of the normals of the
-          three corners of the object in slot [k], at [3 k] to [3 k + 2]
-          (empty if the scene has no smooth triangle). *)
+      (** Smooth triangles whose corners' normals are not their vertices'
+          numbers: the offsets in [vnormal] of the normals of the three
+          corners of the object in slot [k], at [3 k] to [3 k + 2] (empty
+          if the scene has no smooth triangle, or none of those). *)
   extent : float array;
-      (** The largest magnitude of a coordinate of the object's geometry. *)
+      (** Per shape [g] of [geom], the largest magnitude of a coordinate of
+          its geometry (a triangle's is found from its corners when a hit
+          needs it). *)
   csg : Csg.table;
       (** The CSG solids: the [geom] of a slot of kind {!Shape.csg} holds
           the number of its root node in this table. *)

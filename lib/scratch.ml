@@ -29,6 +29,12 @@ type t = {
   mutable acc_g : float;
   mutable acc_b : float;
   mutable offset : float;
+  mutable sx : float;
+  mutable sy : float;
+  mutable sz : float;
+  mutable okx : float;
+  mutable oky : float;
+  mutable okz : float;
 }
 
 let create () =
@@ -36,7 +42,8 @@ let create () =
     ox = 0.; oy = 0.; oz = 0.; dx = 0.; dy = 0.; dz = 0.; t_min = 0.; t_max = 0.; t = 0.;
     near = 0.; far = 0.; gx = 0.; gy = 0.; px = 0.; py = 0.; pz = 0.; nx = 0.; ny = 0.;
     nz = 0.; vx = 0.; vy = 0.; vz = 0.; intensity = 0.; r = 0.; g = 0.; b = 0.; acc_r = 0.;
-    acc_g = 0.; acc_b = 0.; offset = 0.;
+    acc_g = 0.; acc_b = 0.; offset = 0.; sx = 0.; sy = 0.; sz = 0.;
+    okx = 0.; oky = 0.; okz = 0.;
   }
 
 let set_ray s (o : Vec3.t) (d : Vec3.t) =

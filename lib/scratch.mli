@@ -51,6 +51,16 @@ type t = {
       (** Robust mode: how far secondary rays start off the surface they
           leave, along its normal (a bound on the rounding error of the
           hit point; see {!Trace}). *)
+  mutable sx : float;
+      (** The ray in the frame of the triangle test ({!Triangle.shear}):
+          the shear [sx], [sy], [sz] and the origin's coordinates [okx],
+          [oky], [okz] on its axes. Found once per ray, not per
+          triangle. *)
+  mutable sy : float;
+  mutable sz : float;
+  mutable okx : float;
+  mutable oky : float;
+  mutable okz : float;
 }
 (** The type for per-ray state. *)
 

@@ -2,8 +2,10 @@
 
     The kernel ({!Raytrace.Private.Prepared}, {!Raytrace.Private.Trace}) stores every shape in a table: a
     kind, and its geometry in a float array ({!stride} floats per shape,
-    written by the shape module's [store]). This module ties the kinds to
-    the shape modules, for the kernel and for {!Literal}. *)
+    written by the shape module's [store]; a triangle's three corners in
+    an array of vertices, a mesh's shared by its triangles). This module
+    ties the kinds to the shape modules, for the kernel and for
+    {!Literal}. *)
 
 type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t
 (** The type for shapes. *)

@@ -32,6 +32,12 @@ type t = {
           [-1]: in the robust mode that sphere is handled exactly. (An
           identical sphere has no slot of its own: {!Prepared.prepare}.) *)
   mutable first_hit : int;
+  mutable kx : int;
+      (** The axes of the ray in [s] for the triangle test
+          ({!Triangle.shear}), [kz = -1] until a traversal's first triangle
+          finds them: once a ray, not once a triangle. *)
+  mutable ky : int;
+  mutable kz : int;
   averaging : bool;  (** Samples are averaged: see [settled]. *)
   mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see [primary_hit]. *)
   mutable budget : int;  (** Most tests [check_budget] accepts. *)
@@ -79,6 +85,9 @@ let create ?(averaging = false) (p : Prepared.t) =
     hit = -1;
     origin_sphere = -1;
     first_hit = -1;
+    kx = 0;
+    ky = 0;
+    kz = -1;
     averaging;
     assumed = no_assumption;
     budget = Limits.work_budget Limits.default;
@@ -225,12 +234,26 @@ let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
 
 (* The roots of the shape (not a sphere) in slot [i], by its module's
    routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
-   gives its first crossing beyond [s.t_min] as both. *)
+   gives its first crossing beyond [s.t_min] as both. A triangle's test
+   reads the ray's [Triangle.shear], found at the first triangle a ray
+   meets, not at each: a traversal over shapes sets [tr.kz] to [-1] (not
+   found yet) before its first test. *)
 let shape_roots tr s i =
   let p = tr.p in
-  let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
-  if k = Shape.triangle || k = Shape.smooth_triangle then Triangle.roots s p.geom o
-  else if k = Shape.plane then Plane.roots s p.geom o
+  let k = Array.unsafe_get p.kind i in
+  if k = Shape.triangle || k = Shape.smooth_triangle then begin
+    if tr.kz < 0 then begin
+      let axes = Triangle.shear s in
+      tr.kx <- Triangle.axis_x axes;
+      tr.ky <- Triangle.axis_y axes;
+      tr.kz <- Triangle.axis_z axes
+    end;
+    Triangle.roots_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i) tr.kx
+      tr.ky tr.kz
+  end
+  else
+  let o = Shape.stride * Array.unsafe_get p.at0 i in
+  if k = Shape.plane then Plane.roots s p.geom o
   else if k = Shape.box then Box.roots s p.geom o
   else Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o))
 
@@ -360,6 +383,7 @@ let closest_textbook_secondary tr = closest_textbook_all tr ~primary:false
    mode without a hierarchy (the reference scene) take the loop above. *)
 let[@inline] closest_from tr ~primary ~spheres =
   let p = tr.p and s = tr.s in
+      if not spheres then tr.kz <- -1;
       let bvh = p.bvh in
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
@@ -573,6 +597,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
    of scene, so that spheres alone ask the kind once per shadow ray. *)
 let[@inline] blocked_from tr l ~spheres =
   let s = tr.s in
+  if not spheres then tr.kz <- -1;
   let last = Array.unsafe_get tr.last_blocker l in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
@@ -748,6 +773,7 @@ let[@inline] primary_hit_in tr ~spheres =
     tr.hit <- -1;
     s.t <- infinity;
     tr.counters.tests <- tr.counters.tests + 1;
+    if not spheres then tr.kz <- -1;
     (* The same test as [closest_primary] makes of that sphere: the same t. *)
     test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres dx dy dz a (1. /. a) (2. *. a) (4. *. a);
     if tr.hit >= 0 then tr.hit else closest_primary_in tr ~spheres
@@ -773,12 +799,21 @@ let offset_bound = 32. *. epsilon_float
    whatever the angle, with no constant tied to the scene's scale. The
    material's number of the point is returned: a CSG solid's is its
    leaf's. *)
+let[@inline] fmax_abs (e : float) x =
+  let x = Float.abs x in
+  if x > e then x else e
+
 let shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let px = s.px and py = s.py and pz = s.pz in
-  let k = Array.unsafe_get p.kind i and o = Shape.stride * i in
-  if k = Shape.triangle || k = Shape.smooth_triangle then Triangle.normal s p.geom o
+  let k = Array.unsafe_get p.kind i in
+  let triangle = k = Shape.triangle || k = Shape.smooth_triangle in
+  (* A triangle's corners in [p.vertex], or the shape's number in [p.geom]. *)
+  let o0 = Array.unsafe_get p.at0 i in
+  let o1 = if triangle then Array.unsafe_get p.at1 i else 0 and o2 = if triangle then Array.unsafe_get p.at2 i else 0 in
+  let o = Shape.stride * o0 in
+  if triangle then Triangle.normal_at s p.vertex o0 o1 o2
   else if k = Shape.plane then Plane.normal s p.geom o
   else if k = Shape.box then Box.normal s p.geom o
   else begin
@@ -799,8 +834,12 @@ let shape_hit tr i =
   let gx = s.nx and gy = s.ny and gz = s.nz in
   (* A smooth triangle shades with its interpolated normal, on the side
      the ray sees. *)
-  if k = Shape.smooth_triangle && Triangle.smooth_normal s p.geom o p.vnormal
-       (Array.unsafe_get p.vcorner (3 * i)) (Array.unsafe_get p.vcorner ((3 * i) + 1)) (Array.unsafe_get p.vcorner ((3 * i) + 2))
+  if k = Shape.smooth_triangle
+     && (let follow = Array.length p.vcorner = 0 and j = 3 * i in
+         Triangle.smooth_normal_at s p.vertex o0 o1 o2 p.vnormal
+           (if follow then o0 else Array.unsafe_get p.vcorner j)
+           (if follow then o1 else Array.unsafe_get p.vcorner (j + 1))
+           (if follow then o2 else Array.unsafe_get p.vcorner (j + 2)))
      && flip then begin
     s.nx <- -.s.nx;
     s.ny <- -.s.ny;
@@ -811,9 +850,25 @@ let shape_hit tr i =
   s.vz <- -.dz;
   tr.origin_sphere <- -1;
   if p.robust then begin
+    (* A triangle's extent from its corners, [fmax] of their magnitudes as
+       [Prepared] finds a shape's: no array of them per triangle. *)
+    let extent =
+      if triangle then
+        let v = p.vertex in
+        let e = fmax_abs 0. (Array.unsafe_get v o0) in
+        let e = fmax_abs e (Array.unsafe_get v (o0 + 1)) in
+        let e = fmax_abs e (Array.unsafe_get v (o0 + 2)) in
+        let e = fmax_abs e (Array.unsafe_get v o1) in
+        let e = fmax_abs e (Array.unsafe_get v (o1 + 1)) in
+        let e = fmax_abs e (Array.unsafe_get v (o1 + 2)) in
+        let e = fmax_abs e (Array.unsafe_get v o2) in
+        let e = fmax_abs e (Array.unsafe_get v (o2 + 1)) in
+        fmax_abs e (Array.unsafe_get v (o2 + 2))
+      else Array.unsafe_get p.extent o0
+    in
     let size =
       Float.abs s.ox +. Float.abs s.oy +. Float.abs s.oz +. Float.abs px +. Float.abs py +. Float.abs pz
-      +. Array.unsafe_get p.extent i
+      +. extent
     in
     let e = offset_bound *. size in
     s.px <- px +. (e *. gx);
@@ -1552,7 +1607,7 @@ let rec shade tr l =
            flat normal, turned toward the ray, decides. *)
         if (not sphere) && Array.unsafe_get p.kind i = Shape.smooth_triangle && Array.unsafe_get io 11 < 1. then begin
           let snx = s.nx and sny = s.ny and snz = s.nz in
-          Triangle.normal s p.geom (Shape.stride * i);
+          Triangle.normal_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i);
           let gx = s.nx and gy = s.ny and gz = s.nz in
           s.nx <- snx;
           s.ny <- sny;
@@ -1815,6 +1870,7 @@ let roots tr k (o : Vec3.t) (d : Vec3.t) =
   if p.kind.(i) <> Shape.sphere then begin
     (* A CSG solid's root is its first crossing beyond [t_min]: all of them. *)
     s.t_min <- neg_infinity;
+    tr.kz <- -1;
     if shape_roots tr s i then (s.near, s.far) else (infinity, infinity)
   end
   else

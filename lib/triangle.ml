@@ -29,31 +29,54 @@ let store tri g o =
   put 3 tri.v1;
   put 6 tri.v2
 
-(* Coordinate [axis] of vertex [v] (0 to 2) of the triangle at [o],
-   relative to the ray origin. *)
-let[@inline] rel g o v axis origin = Array.unsafe_get g (o + (3 * v) + axis) -. origin
+(* Coordinate [axis] of the vertex at [o], relative to the ray origin. *)
+let[@inline] rel g o axis origin = Array.unsafe_get g (o + axis) -. origin
 
-let[@inline] pick axis (x : float) y z = if axis = 0 then x else if axis = 1 then y else z
+(* The shear of the ray whose direction's coordinates on the axes kx, ky,
+   kz are [dkx], [dky], [dkz], and its origin's. *)
+let[@inline] put (s : Scratch.t) dkx dky dkz okx oky okz =
+  s.sx <- dkx /. dkz;
+  s.sy <- dky /. dkz;
+  s.sz <- 1. /. dkz;
+  s.okx <- okx;
+  s.oky <- oky;
+  s.okz <- okz
+
+let[@inline] axes ~kx ~ky ~kz = kz lor (kx lsl 2) lor (ky lsl 4)
+
+(* The ray's shear on the axes kx, ky, kz, its direction's coordinates on
+   them [dkx], [dky], [dkz] and its origin's: kx and ky swapped when
+   D.kz < 0, so that the winding is kept. *)
+let[@inline] on_axes s ~kx ~ky ~kz dkx dky dkz okx oky okz =
+  if dkz < 0. then begin
+    put s dky dkx dkz oky okx okz;
+    axes ~kx:ky ~ky:kx ~kz
+  end
+  else begin
+    put s dkx dky dkz okx oky okz;
+    axes ~kx ~ky ~kz
+  end
 
 (* Woop, Benthin and Wald, JCGT 2(1), 2013, section 3, in double precision
-   throughout. kz is the largest axis of D, and kx, ky follow it so that
-   the winding is kept (swapped when D.kz < 0). *)
-let[@inline never] roots (s : Scratch.t) g o =
+   throughout. kz is the largest axis of D, and kx, ky follow it. *)
+let[@inline never] shear (s : Scratch.t) =
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let ax = Float.abs dx and ay = Float.abs dy and az = Float.abs dz in
-  let kz = if ax > ay then (if ax > az then 0 else 2) else if ay > az then 1 else 2 in
-  let kx = if kz = 2 then 0 else kz + 1 in
-  let ky = if kx = 2 then 0 else kx + 1 in
-  let dkz = pick kz dx dy dz in
-  let swap = dkz < 0. in
-  let kx = if swap then ky else kx and ky = if swap then kx else ky in
-  let dkx = pick kx dx dy dz and dky = pick ky dx dy dz in
-  let sx = dkx /. dkz and sy = dky /. dkz and sz = 1. /. dkz in
-  let okx = pick kx s.ox s.oy s.oz and oky = pick ky s.ox s.oy s.oz and okz = pick kz s.ox s.oy s.oz in
-  let az_ = rel g o 0 kz okz and bz_ = rel g o 1 kz okz and cz_ = rel g o 2 kz okz in
-  let ax_ = rel g o 0 kx okx -. (sx *. az_) and ay_ = rel g o 0 ky oky -. (sy *. az_) in
-  let bx_ = rel g o 1 kx okx -. (sx *. bz_) and by_ = rel g o 1 ky oky -. (sy *. bz_) in
-  let cx_ = rel g o 2 kx okx -. (sx *. cz_) and cy_ = rel g o 2 ky oky -. (sy *. cz_) in
+  if ax > ay && ax > az then on_axes s ~kx:1 ~ky:2 ~kz:0 dy dz dx s.oy s.oz s.ox
+  else if (not (ax > ay)) && ay > az then on_axes s ~kx:2 ~ky:0 ~kz:1 dz dx dy s.oz s.ox s.oy
+  else on_axes s ~kx:0 ~ky:1 ~kz:2 dx dy dz s.ox s.oy s.oz
+
+let axis_x axes = (axes lsr 2) land 3
+let axis_y axes = axes lsr 4
+let axis_z axes = axes land 3
+
+let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
+  let sx = s.sx and sy = s.sy and sz = s.sz in
+  let okx = s.okx and oky = s.oky and okz = s.okz in
+  let az_ = rel g o0 kz okz and bz_ = rel g o1 kz okz and cz_ = rel g o2 kz okz in
+  let ax_ = rel g o0 kx okx -. (sx *. az_) and ay_ = rel g o0 ky oky -. (sy *. az_) in
+  let bx_ = rel g o1 kx okx -. (sx *. bz_) and by_ = rel g o1 ky oky -. (sy *. bz_) in
+  let cx_ = rel g o2 kx okx -. (sx *. cz_) and cy_ = rel g o2 ky oky -. (sy *. cz_) in
   let u = (cx_ *. by_) -. (cy_ *. bx_) in
   let v = (ax_ *. cy_) -. (ay_ *. cx_) in
   let w = (bx_ *. ay_) -. (by_ *. ax_) in
@@ -70,9 +93,13 @@ let[@inline never] roots (s : Scratch.t) g o =
     true
   end
 
-let[@inline never] normal (s : Scratch.t) g o =
-  let e1x = g.(o + 3) -. g.(o) and e1y = g.(o + 4) -. g.(o + 1) and e1z = g.(o + 5) -. g.(o + 2) in
-  let e2x = g.(o + 6) -. g.(o) and e2y = g.(o + 7) -. g.(o + 1) and e2z = g.(o + 8) -. g.(o + 2) in
+let roots s g o =
+  let axes = shear s in
+  roots_at s g o (o + 3) (o + 6) (axis_x axes) (axis_y axes) (axis_z axes)
+
+let[@inline never] normal_at (s : Scratch.t) g o0 o1 o2 =
+  let e1x = g.(o1) -. g.(o0) and e1y = g.(o1 + 1) -. g.(o0 + 1) and e1z = g.(o1 + 2) -. g.(o0 + 2) in
+  let e2x = g.(o2) -. g.(o0) and e2y = g.(o2 + 1) -. g.(o0 + 1) and e2z = g.(o2 + 2) -. g.(o0 + 2) in
   let nx = (e1y *. e2z) -. (e1z *. e2y) and ny = (e1z *. e2x) -. (e1x *. e2z) and nz = (e1x *. e2y) -. (e1y *. e2x) in
   let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
   s.nx <- nx *. inv;
@@ -81,10 +108,12 @@ let[@inline never] normal (s : Scratch.t) g o =
 
 (* Barycentric coordinates of P in the triangle by the normal equations of
    P - v0 = b1 e1 + b2 e2; then the corners' normals weighted by them. *)
-let[@inline never] smooth_normal (s : Scratch.t) g o vn k0 k1 k2 =
-  let x0 = g.(o) and y0 = g.(o + 1) and z0 = g.(o + 2) in
-  let e1x = g.(o + 3) -. x0 and e1y = g.(o + 4) -. y0 and e1z = g.(o + 5) -. z0 in
-  let e2x = g.(o + 6) -. x0 and e2y = g.(o + 7) -. y0 and e2z = g.(o + 8) -. z0 in
+let normal s g o = normal_at s g o (o + 3) (o + 6)
+
+let[@inline never] smooth_normal_at (s : Scratch.t) g o0 o1 o2 vn k0 k1 k2 =
+  let x0 = g.(o0) and y0 = g.(o0 + 1) and z0 = g.(o0 + 2) in
+  let e1x = g.(o1) -. x0 and e1y = g.(o1 + 1) -. y0 and e1z = g.(o1 + 2) -. z0 in
+  let e2x = g.(o2) -. x0 and e2y = g.(o2 + 1) -. y0 and e2z = g.(o2 + 2) -. z0 in
   let wx = s.px -. x0 and wy = s.py -. y0 and wz = s.pz -. z0 in
   let d00 = (e1x *. e1x) +. (e1y *. e1y) +. (e1z *. e1z) in
   let d01 = (e1x *. e2x) +. (e1y *. e2y) +. (e1z *. e2z) in
@@ -106,6 +135,8 @@ let[@inline never] smooth_normal (s : Scratch.t) g o vn k0 k1 k2 =
     true
   end
   else false
+
+let smooth_normal s g o vn k0 k1 k2 = smooth_normal_at s g o (o + 3) (o + 6) vn k0 k1 k2
 
 let intersect tri ~origin ~direction =
   let g = Array.make 9 0. and s = Scratch.create () in

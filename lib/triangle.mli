@@ -46,6 +46,29 @@ val validate : t -> (t, [> `Msg of string ]) result
 val store : t -> float array -> int -> unit
 (** [store tri g o] writes [tri] to [g] at offset [o] (9 floats). *)
 
+val shear : Scratch.t -> int
+(** [shear s] writes to [s.sx] .. [s.okz] the ray of [s] in the frame of
+    the triangle test and is its axes, packed ({!axis_x}, {!axis_y},
+    {!axis_z}): what {!roots_at} reads, found once for all the triangles
+    a ray is tested against. *)
+
+val axis_x : int -> int
+(** [axis_x a] is the axis (0 to 2) of the test's x in the axes [a] of {!shear}. *)
+
+val axis_y : int -> int
+(** [axis_y a] is the axis of the test's y. *)
+
+val axis_z : int -> int
+(** [axis_z a] is the axis of the test's z: the largest coordinate of the ray's direction. *)
+
+val roots_at : Scratch.t -> float array -> int -> int -> int -> int -> int -> int -> bool
+(** [roots_at s g o0 o1 o2 kx ky kz] is {!roots} for the triangle whose
+    vertices [v0], [v1], [v2] are stored at [o0], [o1], [o2] in [g] (3
+    floats each): a mesh's triangle, read where its vertices are, shared
+    with the triangles around it, with the arithmetic of {!roots}. [s.sx]
+    .. [s.okz] and [kx], [ky], [kz] must be {!shear}'s for the ray of [s]:
+    {!roots} is [roots_at s g o (o + 3) (o + 6) kx ky kz] with those. *)
+
 val roots : Scratch.t -> float array -> int -> bool
 (** [roots s g o] is [true] iff the line of the ray of [s] meets the
     triangle stored at [o] in [g] (edges and vertices included), with its
@@ -67,6 +90,10 @@ val normal : Scratch.t -> float array -> int -> unit
 (** [normal s g o] sets [s.nx], [s.ny], [s.nz] to the unit normal
     [(v1 - v0) x (v2 - v0) / |(v1 - v0) x (v2 - v0)|] of the triangle. *)
 
+val normal_at : Scratch.t -> float array -> int -> int -> int -> unit
+(** [normal_at s g o0 o1 o2] is {!normal} for the triangle with vertices
+    at [o0], [o1], [o2] in [g] (see {!roots_at}). *)
+
 val smooth_normal : Scratch.t -> float array -> int -> float array -> int -> int -> int -> bool
 (** [smooth_normal s g o vn k0 k1 k2] is [true] after setting [s.nx], [s.ny],
     [s.nz] to the unit normal at the point [s.px], [s.py], [s.pz] of the
@@ -75,6 +102,11 @@ val smooth_normal : Scratch.t -> float array -> int -> float array -> int -> int
     [k2 .. k2 + 2] (in the order of the vertices) with the point's
     barycentric coordinates (corners may share a normal); [false], and [s]
     unchanged, if the interpolated normal is zero or not finite. *)
+
+val smooth_normal_at : Scratch.t -> float array -> int -> int -> int -> float array -> int -> int -> int -> bool
+(** [smooth_normal_at s g o0 o1 o2 vn k0 k1 k2] is {!smooth_normal} for
+    the triangle with vertices at [o0], [o1], [o2] in [g] (see
+    {!roots_at}). *)
 
 val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float
 (** [intersect tri ~origin ~direction] is the root of {!roots}, or [infinity]. *)

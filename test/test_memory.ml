@@ -59,6 +59,34 @@ let spheres_gone_while_tracing render =
   render ~progress valid;
   !gone
 
+(* A torus knot of [2 * segments * 16] triangles, smooth, on a plane, as
+   the scene [Scene.cgfs] lights: the million-triangle case of
+   docs/performance.md, smaller. *)
+let knot_obj segments = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments ~sides:16
+
+let knot_mesh segments =
+  let o = knot_obj segments in
+  match
+    Mesh.v ~smooth:true ~translate:(Vec3.v 0. 1.45 3.) ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
+      ~triangle_normals:o.triangle_normals (Material.v ~specular:300. (Color.v 230. 150. 40.))
+  with
+  | Ok m -> m
+  | Error (`Msg m) -> Alcotest.fail m
+
+(* The words reachable from [p] but not from the mesh [m] (its placed
+   positions, which [p] shares), per triangle of [m]. *)
+let prepared_bytes_per_triangle (p : Prepared.t) (m : Mesh.t) =
+  let words = Obj.reachable_words (Obj.repr p) - Obj.reachable_words (Obj.repr m.positions) in
+  Float.of_int (8 * words) /. Float.of_int (Mesh.triangle_count m)
+
+let peak_mb err =
+  List.find_map
+    (fun line ->
+      match Scanf.sscanf line "peak memory (MB) %f" Fun.id with
+      | mb -> Some mb
+      | exception (Scanf.Scan_failure _ | Failure _ | End_of_file) -> None)
+    (String.split_on_char '\n' err)
+
 let tests =
   [
     Alcotest.test_case "a render lets the scene's spheres go once it has prepared them" `Quick (fun () ->
@@ -158,4 +186,50 @@ let tests =
           && String.sub err 0 (String.length prefix) = prefix
           && List.length (String.split_on_char '\n' err) = 2);
         Alcotest.(check bool) "no output" false (Sys.file_exists (Filename.concat dir "out.ppm")));
+    Alcotest.test_case "a mesh's prepared scene holds no copy of its triangles' geometry" `Quick (fun () ->
+        (* 100,000 triangles. The tracer reads a triangle's corners in the
+           mesh's own placed positions, by three offsets a slot, and a
+           smooth corner's normal where its vertex is: 9 floats of
+           geometry, 3 normal offsets and an extent per triangle (104
+           bytes) are gone, 24 bytes of offsets came. *)
+        let m = knot_mesh 3125 in
+        let floor = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy (Material.v (Color.v 120. 120. 130.))) in
+        let s = Scene.with_overrides ~width:8 ~height:8 { Scene.cgfs with spheres = Spheres.empty; shapes = [ floor; Shape.Mesh m ] } in
+        let p = Helpers.prepare s in
+        let n = Mesh.triangle_count m in
+        Alcotest.(check int) "triangles" 100_000 n;
+        Alcotest.(check bool) "the mesh's positions are the tracer's vertices, not a copy" true (p.vertex == m.positions);
+        Alcotest.(check int) "geometry: the plane's alone" Shape.stride (Array.length p.geom);
+        Alcotest.(check int) "extents: the plane's alone" 1 (Array.length p.extent);
+        Alcotest.(check int) "an offset a slot, in each of three arrays" (n + 1) (Array.length p.at0);
+        Alcotest.(check int) "no table of the corners' normals" 0 (Array.length p.vcorner);
+        (* What is left a triangle: its offsets (24), kind, material, index
+           and slot (32), a share of the hierarchy (about 40 with its
+           order) and of the unit normals (12 a triangle here). Main had
+           geom, vcorner and extent besides: 104 bytes more. *)
+        let bytes = prepared_bytes_per_triangle p m in
+        Alcotest.(check bool) (Printf.sprintf "%.1f bytes a triangle, at most 150" bytes) true (bytes <= 150.));
+    Alcotest.test_case "a 500,000-triangle mesh renders within 150 MB, with one job and two" `Slow (fun () ->
+        (* Its OBJ text is 42 MB; main before this round peaked at 198 MB
+           with either, now 124 MB. The 1M-triangle knot: 382 -> 235 MB. *)
+        let dir = Helpers.temp_dir () in
+        write (Filename.concat dir "knot.obj") (Obj_file.to_string (knot_obj 15625));
+        let scene = Filename.concat dir "knot.scene" in
+        write scene
+          "(canvas (width 40) (height 30)) (camera (position 0 2.2 -4.5) (look-at 0 0.9 3))\n\
+           (plane (point 0 0 0) (normal 0 1 0) (color 120 120 130) (reflective 0.35))\n\
+           (mesh (file \"knot.obj\") (color 230 150 40) (specular 300) (translate 0 1.45 3) (smooth true))\n\
+           (light ambient (intensity 0.2)) (light point (intensity 0.6) (position -2 4 0))\n";
+        List.iter
+          (fun jobs ->
+            let code, _, err =
+              Helpers.run (Helpers.raytrace ())
+                [ "render"; scene; "--stats"; "--jobs"; jobs; "-o"; Filename.concat dir "knot.ppm" ]
+            in
+            Alcotest.(check int) ("exit status: " ^ err) 0 code;
+            match peak_mb err with
+            | None -> Helpers.skip "the peak of a 500,000-triangle render" ~why:"no peak memory in --stats (not Linux)"
+            | Some mb ->
+                Alcotest.(check bool) (Printf.sprintf "--jobs %s: peak %.1f MB, at most 150" jobs mb) true (mb <= 150.))
+          [ "1"; "2" ]);
   ]

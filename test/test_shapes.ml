@@ -544,6 +544,44 @@ let tests =
         if not (Helpers.same_floats doc) then Alcotest.fail "a smooth mesh: the fast colours differ from the oracle's";
         if not (Helpers.same_floats { doc with shapes = [ Shape.Mesh flat ] }) then
           Alcotest.fail "a flat mesh: the fast colours differ from the oracle's";
+        (* The kernel reads a corner's normal where its vertex is when the
+           corners name their normals by their vertices' numbers (above),
+           from a table of the corners' normals when not: the normals
+           listed backwards, named so. *)
+        let nn = Array.length normals / 3 in
+        let backwards =
+          match
+            Mesh.v ~smooth:true ~translate:(Vec3.v 1.5 0. 1.) ~positions ~triangles
+              ~normals:(Array.init (3 * nn) (fun i -> normals.((3 * (nn - 1 - (i / 3))) + (i mod 3))))
+              ~triangle_normals:(Array.map (fun j -> nn - 1 - j) triangles)
+              (Material.v ~specular:50. ~reflective:0.3 Color.white)
+          with
+          | Ok m -> m
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        if not (Helpers.same_floats { doc with shapes = [ Shape.Mesh backwards ] }) then
+          Alcotest.fail "a smooth mesh whose normals are not named by its vertices' numbers: the colours differ";
+        if Helpers.image_exn { doc with shapes = [ Shape.Mesh backwards ] } <> Helpers.image_exn doc then
+          Alcotest.fail "the same normals named two ways give two images";
+        (* Two meshes and lone triangles: their vertices in one array. *)
+        let lone =
+          Shape.Triangle
+            (Triangle.v (Vec3.v (-2.) (-1.) 5.) (Vec3.v (-1.) 1. 6.) (Vec3.v (-2.5) 1. 4.) (Material.v (Color.v 0. 200. 50.)))
+        in
+        let lone2 =
+          Shape.Triangle
+            (Triangle.v (Vec3.v 0. (-1.) 7.) (Vec3.v 2. (-1.) 7.) (Vec3.v 1. 1.5 7.) (Material.v ~reflective:0.5 (Color.v 90. 90. 250.)))
+        in
+        let moved =
+          match
+            Mesh.v ~translate:(Vec3.v (-1.) 0.5 2.) ~positions ~triangles ~normals ~triangle_normals:triangles
+              (Material.v (Color.v 250. 20. 20.))
+          with
+          | Ok m -> m
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        if not (Helpers.same_floats { doc with shapes = [ lone; Shape.Mesh mesh; Shape.Mesh moved; lone2 ] })
+        then Alcotest.fail "two meshes and lone triangles: the fast colours differ from the oracle's";
         List.iter
           (fun (what, s) ->
             List.iter
