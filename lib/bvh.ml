@@ -416,12 +416,12 @@ let build ?leaf_size ~cx ~cy ~cz extent =
   let lo c = Array.mapi (fun i x -> x -. extent.(i)) c and hi c = Array.mapi (fun i x -> x +. extent.(i)) c in
   build_boxes ?leaf_size ~x0:(lo cx) ~y0:(lo cy) ~z0:(lo cz) ~x1:(hi cx) ~y1:(hi cy) ~z1:(hi cz) ()
 
-let ray_box_margin ?among ~cx ~cy ~cz ~radius (camera : Vec3.t) =
-  let among = match among with Some a -> a | None -> Array.init (Array.length cx) Fun.id in
+type margin = { d2 : float; m : float }
+
+let margin_terms ?among ~cx ~cy ~cz ~radius (camera : Vec3.t) =
   let x0 = ref camera.x and y0 = ref camera.y and z0 = ref camera.z in
   let x1 = ref camera.x and y1 = ref camera.y and z1 = ref camera.z in
-  for j = 0 to Array.length among - 1 do
-    let i = among.(j) in
+  let each i =
     let r = radius.(i) in
     x0 := fmin !x0 (cx.(i) -. r);
     y0 := fmin !y0 (cy.(i) -. r);
@@ -429,11 +429,25 @@ let ray_box_margin ?among ~cx ~cy ~cz ~radius (camera : Vec3.t) =
     x1 := fmax !x1 (cx.(i) +. r);
     y1 := fmax !y1 (cy.(i) +. r);
     z1 := fmax !z1 (cz.(i) +. r)
-  done;
+  in
+  (match among with
+  | Some among -> Array.iter each among
+  | None ->
+      for i = 0 to Array.length cx - 1 do
+        each i
+      done);
   let dx = !x1 -. !x0 and dy = !y1 -. !y0 and dz = !z1 -. !z0 in
   let d2 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
   let m =
     List.fold_left (fun acc v -> fmax acc (Float.abs v)) 0. [ !x0; !y0; !z0; !x1; !y1; !z1 ]
   in
+  { d2; m }
+
+let[@inline] margin t r =
   let u = epsilon_float /. 2. in
-  Array.map (fun i -> 64. *. u *. ((d2 /. radius.(i)) +. m)) among
+  64. *. u *. ((t.d2 /. r) +. t.m)
+
+let ray_box_margin ?among ~cx ~cy ~cz ~radius camera =
+  let t = margin_terms ?among ~cx ~cy ~cz ~radius camera in
+  let among = match among with Some a -> a | None -> Array.init (Array.length cx) Fun.id in
+  Array.map (fun i -> margin t radius.(i)) among

@@ -78,3 +78,17 @@ val ray_box_margin :
     [u M]; the margin is [64 u (D^2 / r + M)] ([u = 2^-53]), a safety
     factor of 20 over the worst error measured on the hard cases of the
     test suite. For the reference scene it is about 2e-6. *)
+
+type margin = private { d2 : float; m : float }
+(** The type for the terms of {!ray_box_margin} common to all the
+    spheres: [D^2] and [M]. *)
+
+val margin_terms :
+  ?among:int array -> cx:float array -> cy:float array -> cz:float array -> radius:float array -> Vec3.t -> margin
+(** [margin_terms ~among ~cx ~cy ~cz ~radius camera] is [D^2] and [M] of
+    {!ray_box_margin} for the same arguments. *)
+
+val margin : margin -> float -> float
+(** [margin t r] is the margin of {!ray_box_margin} of a sphere of radius
+    [r] among those of [t], bit for bit: with {!margin_terms}, a million
+    boxes are padded with no array of margins. *)

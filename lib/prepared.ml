@@ -314,12 +314,12 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
 
 (* [a.(i) <- a.(index.(i))] for every [i] and every array [a] of
    [floats] and [ints], [index] a permutation of [0 .. length a - 1]: each
-   array gathered into one scratch array, then copied back. The loads are
+   array gathered into a scratch array ([scratch] for the floats, of at
+   least as many), then copied back. The loads are
    independent: following the permutation's cycles in place made each wait
    for the one before, 4 times slower for a million spheres. *)
-let gather_in_place index ~(floats : float array array) ~(ints : int array array) =
+let gather_in_place index ~scratch:fs ~(floats : float array array) ~(ints : int array array) =
   let n = Array.length index in
-  let fs = Array.make (if Array.length floats = 0 then 0 else n) 0. in
   Array.iter
     (fun (a : float array) ->
       for i = 0 to n - 1 do
@@ -409,7 +409,7 @@ let mesh_boxes ~n_spheres (scene : Scene.t) ~bounded ~cx ~cy ~cz ~radius =
       z1.(i) <- b.(2) +. (b.(5) +. m));
   (x0, y0, z0, x1, y1, z1)
 
-let prepare ?(skips = true) scene =
+let prepare_scene ~skips scene =
   let scene = Scene.of_valid scene in
   let n_spheres = Spheres.length scene.spheres in
   let n = iter_objects ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
@@ -634,21 +634,52 @@ let prepare ?(skips = true) scene =
     end
   in
   collect ();
+  (* The build's six arrays of boxes, which it leaves in slot order and
+     does not keep: arrays of floats of their length made below are made
+     in their memory, not taken from the system once more (a million
+     spheres peak 40 MB lower than with new arrays, the garbage
+     collector finding no room for them among the freed ones). *)
+  let spare = ref [] in
   let bvh =
     if skips && nb > bvh_threshold then begin
-      (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
       let x0, y0, z0, x1, y1, z1 =
         if any_mesh then mesh_boxes ~n_spheres scene ~bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf
-        else
-          let margin = Bvh.ray_box_margin ~among:bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position in
-          (* Each box padded by its margin: [build_boxes] takes these arrays. *)
-          let lo c = Array.mapi (fun i k -> c.(k) -. (ohalf.(k) +. margin.(i))) bounded in
-          let hi c = Array.mapi (fun i k -> c.(k) +. (ohalf.(k) +. margin.(i))) bounded in
-          (lo ocx, lo ocy, lo ocz, hi ocx, hi ocy, hi ocz)
+        else begin
+          (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
+          let terms = Bvh.margin_terms ~among:bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position in
+          (* Each box padded by its margin, in a loop: [Array.mapi]'s
+             function would return each float boxed. *)
+          let f () = Array.create_float nb in
+          let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
+          for i = 0 to nb - 1 do
+            let k = bounded.(i) in
+            let e = ohalf.(k) +. Bvh.margin terms ohalf.(k) in
+            x0.(i) <- ocx.(k) -. e;
+            y0.(i) <- ocy.(k) -. e;
+            z0.(i) <- ocz.(k) -. e;
+            x1.(i) <- ocx.(k) +. e;
+            y1.(i) <- ocy.(k) +. e;
+            z1.(i) <- ocz.(k) +. e
+          done;
+          (x0, y0, z0, x1, y1, z1)
+        end
       in
-      Some (Bvh.build_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ())
+      let b = Bvh.build_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
+      (* Spheres alone, each with a slot: below, [floats] asks for arrays
+         of their number. Otherwise the build's arrays are let go, for
+         the arrays of other lengths made below. *)
+      if scene.shapes = [] && nb = n then spare := [ x0; y0; z0; x1; y1; z1 ];
+      Some b
     end
     else None
+  in
+  (* An array of [len] floats, every one of which the caller writes. *)
+  let floats len =
+    match !spare with
+    | a :: rest when Array.length a = len ->
+        spare := rest;
+        a
+    | _ -> Array.create_float len
   in
   (* Slots: the hierarchy's leaf order, then the planes; without a
      hierarchy, the scene's order. *)
@@ -689,7 +720,7 @@ let prepare ?(skips = true) scene =
      cost more than the copies. *)
   let in_place = n_kept = n && scene.shapes = [] in
   let sphere_len = if n_spheres > 0 then n_kept else 0 in
-  if in_place then gather_in_place index ~floats:[| ocx; ocy; ocz; ohalf |] ~ints:[| okind; omat |];
+  if in_place then gather_in_place index ~scratch:(floats n_kept) ~floats:[| ocx; ocy; ocz; ohalf |] ~ints:[| okind; omat |];
   let cx, cy, cz, radius =
     if in_place then (ocx, ocy, ocz, ohalf)
     else (Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0.)
@@ -771,11 +802,12 @@ let prepare ?(skips = true) scene =
   let o = scene.camera.position in
   (* Loops, not [Array.map]: its function returns each float boxed, 10
      million words for a million spheres. *)
-  let r2 = Array.create_float sphere_len in
-  let primary_ocx = Array.create_float sphere_len in
-  let primary_ocy = Array.create_float sphere_len in
-  let primary_ocz = Array.create_float sphere_len in
-  let primary_k3 = Array.create_float sphere_len in
+  let r2 = floats sphere_len in
+  let primary_ocx = floats sphere_len in
+  let primary_ocy = floats sphere_len in
+  let primary_ocz = floats sphere_len in
+  let primary_k3 = floats sphere_len in
+  spare := [];
   for i = 0 to sphere_len - 1 do
     let r = radius.(i) in
     r2.(i) <- r *. r;
@@ -902,6 +934,29 @@ let prepare ?(skips = true) scene =
       Array.init scene.height (fun r ->
           Float.of_int (r - (scene.height / 2)) *. scene.viewport.height /. Float.of_int scene.height);
   }
+
+(* The major heap grows by 256 MB of address space at a time while a big
+   scene is prepared, not by 15% of its size: the pieces freed between
+   the default's many chunks are each smaller than an array of a million
+   floats, so that every such array took new memory (grid:1000000 peaked
+   at 247 MB, 208 MB with this). A chunk costs memory only where it is
+   written. *)
+let big_increment = 32 * 1024 * 1024
+
+let prepare ?(skips = true) scene =
+  let s = Scene.of_valid scene in
+  let objects =
+    List.fold_left
+      (fun a sh -> match sh with Shape.Mesh m -> a + Mesh.triangle_count m | _ -> a + 1)
+      (Spheres.length s.spheres) s.shapes
+  in
+  if objects <= big_scene then prepare_scene ~skips scene
+  else begin
+    let gc = Gc.get () in
+    Gc.set { gc with major_heap_increment = big_increment };
+    Fun.protect ~finally:(fun () -> Gc.set { (Gc.get ()) with major_heap_increment = gc.major_heap_increment })
+      (fun () -> prepare_scene ~skips scene)
+  end
 
 type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms
 
