@@ -66,6 +66,68 @@ let[@inline] bin_of c c0 scale bins =
   let b = truncate ((c -. c0) *. scale) in
   if b < 0 then 0 else if b >= bins then bins - 1 else b
 
+(* [merge box o ...] grows the box of 6 floats at [o] in [box] by the box given. *)
+let[@inline] merge (box : float array) o x0 y0 z0 x1 y1 z1 =
+  lower box o x0;
+  lower box (o + 1) y0;
+  lower box (o + 2) z0;
+  higher box (o + 3) x1;
+  higher box (o + 4) y1;
+  higher box (o + 5) z1
+
+(* Bins slots [lo .. hi - 1] by their doubled centers [ka + kb] among
+   [bins] over [c0 .. c0 + bins / scale] ([c0] and [scale] at 0 and 1 of
+   [p]): counts in [bin_n], boxes in [bin_box] (6 floats a bin; both
+   reset first), each slot's bin in [bin_at]. Consecutive slots mostly
+   fall in the same bin: the current bin's box is grown in registers and
+   merged into its bin when the bin changes, rather than each object
+   updating the bin in memory, whose next update would wait on that
+   store. Min and max are exact in any order: the bins are the same. *)
+let bin_slots (ka : float array) (kb : float array) (x0 : float array) (y0 : float array) (z0 : float array)
+    (x1 : float array) (y1 : float array) (z1 : float array) (p : float array) bins (bin_n : int array)
+    (bin_box : float array) bin_at lo hi =
+  let c0 = Array.unsafe_get p 0 and scale = Array.unsafe_get p 1 in
+  Array.fill bin_n 0 bins 0;
+  for o = 0 to bins - 1 do
+    let o = 6 * o in
+    Array.unsafe_set bin_box o infinity;
+    Array.unsafe_set bin_box (o + 1) infinity;
+    Array.unsafe_set bin_box (o + 2) infinity;
+    Array.unsafe_set bin_box (o + 3) neg_infinity;
+    Array.unsafe_set bin_box (o + 4) neg_infinity;
+    Array.unsafe_set bin_box (o + 5) neg_infinity
+  done;
+  let cur = ref (bin_of (Array.unsafe_get ka lo +. Array.unsafe_get kb lo) c0 scale bins) and count = ref 0 in
+  let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
+  let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
+  for s = lo to hi - 1 do
+    let b = bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins in
+    Bytes.unsafe_set bin_at s (Char.unsafe_chr b);
+    if b <> !cur then begin
+      let c = !cur in
+      Array.unsafe_set bin_n c (Array.unsafe_get bin_n c + !count);
+      merge bin_box (6 * c) !bx0 !by0 !bz0 !bx1 !by1 !bz1;
+      cur := b;
+      count := 0;
+      bx0 := infinity;
+      by0 := infinity;
+      bz0 := infinity;
+      bx1 := neg_infinity;
+      by1 := neg_infinity;
+      bz1 := neg_infinity
+    end;
+    incr count;
+    bx0 := fmin !bx0 (Array.unsafe_get x0 s);
+    by0 := fmin !by0 (Array.unsafe_get y0 s);
+    bz0 := fmin !bz0 (Array.unsafe_get z0 s);
+    bx1 := fmax !bx1 (Array.unsafe_get x1 s);
+    by1 := fmax !by1 (Array.unsafe_get y1 s);
+    bz1 := fmax !bz1 (Array.unsafe_get z1 s)
+  done;
+  let c = !cur in
+  Array.unsafe_set bin_n c (Array.unsafe_get bin_n c + !count);
+  merge bin_box (6 * c) !bx0 !by0 !bz0 !bx1 !by1 !bz1
+
 (* The node arrays of the tree [t] over the slots' boxes, the boxes from
    the leaves up: children come after their parent. The shape's arrays
    become the tree's [link] and [tag] in place, each node read before it
@@ -113,7 +175,22 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
   done;
   { order; n_nodes; lo_x; lo_y; lo_z; hi_x; hi_y; hi_z; link; tag; depth }
 
-let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
+type beside = { beside : 'a. (unit -> 'a) -> unit -> 'a option; min_objects : int }
+
+(* What a subtree built beside sends back: the slots' order in its range,
+   as positions in that range before it was built; its nodes' links and
+   tags, numbered from [first]; the deepest level it reached. *)
+type part = { perm : int array; links : int array; tags : int array; first : int; part_depth : int }
+
+(* [gather a lo perm tmp] puts [a.(lo + perm.(j))] at [lo + j], for every [j]. *)
+let gather (a : float array) lo (perm : int array) (tmp : float array) =
+  let m = Array.length perm in
+  for j = 0 to m - 1 do
+    Array.unsafe_set tmp j (Array.unsafe_get a (lo + Array.unsafe_get perm j))
+  done;
+  Array.blit tmp 0 a lo m
+
+let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let n = Array.length x0 in
   if n = 0 then invalid_arg "Bvh.build_boxes: no boxes";
   if Array.exists (fun a -> Array.length a <> n) [| y0; z0; x1; y1; z1 |] then
@@ -185,6 +262,10 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
      The bounds of the centers are not kept per bin: the partition finds
      the children's as it moves each object to its side. *)
   let bin_n = Array.make bins 0 in
+  let params = Array.make 2 0. in
+  (* Each slot's bin, from the binning to the partition that follows;
+     it moves with the slot. *)
+  let bin_at = Bytes.create n in
   let bin_box = Array.make (6 * bins) 0. in
   let left_area = Array.make bins 0. in
   let acc = Array.make 6 0. in
@@ -229,8 +310,9 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
     centers.(o + 4) <- !y1';
     centers.(o + 5) <- !z1'
   in
-  let depth = ref 0 and split_bin = ref 0 in
+  let depth = ref 0 and split_bin = ref 0 and alone = ref true and built_here = ref false in
   (* The node over slots [lo .. hi - 1], whose bounds are in [bounds] at [o]. *)
+  let n_all = n in
   let rec node lo hi level (bounds : float array) o =
     let k = add_node t in
     if level > !depth then depth := level;
@@ -256,19 +338,9 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       if n <= 1 then -2
       else if ext > 0. then begin
         let scale = Float.of_int bins /. ext in
-        Array.fill bin_n 0 bins 0;
-        Array.blit empty 0 bin_box 0 (6 * bins);
-        for s = lo to hi - 1 do
-          let b = bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins in
-          Array.unsafe_set bin_n b (Array.unsafe_get bin_n b + 1);
-          let o = 6 * b in
-          lower bin_box o (Array.unsafe_get x0 s);
-          lower bin_box (o + 1) (Array.unsafe_get y0 s);
-          lower bin_box (o + 2) (Array.unsafe_get z0 s);
-          higher bin_box (o + 3) (Array.unsafe_get x1 s);
-          higher bin_box (o + 4) (Array.unsafe_get y1 s);
-          higher bin_box (o + 5) (Array.unsafe_get z1 s)
-        done;
+        params.(0) <- c0;
+        params.(1) <- scale;
+        bin_slots ka kb x0 y0 z0 x1 y1 z1 params bins bin_n bin_box bin_at lo hi;
         reset ();
         for b = 0 to bins - 2 do
           grow_box b;
@@ -306,9 +378,10 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
                side's centers from slots still in the cache, cheaper than
                the accumulators' setup below. *)
             while !i <= !j do
-              if bin_of (Array.unsafe_get ka !i +. Array.unsafe_get kb !i) c0 scale bins <= best then incr i
+              if Char.code (Bytes.unsafe_get bin_at !i) <= best then incr i
               else begin
                 swap !i !j;
+                Bytes.unsafe_set bin_at !i (Bytes.unsafe_get bin_at !j);
                 decr j
               end
             done;
@@ -326,7 +399,7 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
             let cx = Array.unsafe_get x0 s +. Array.unsafe_get x1 s in
             let cy = Array.unsafe_get y0 s +. Array.unsafe_get y1 s in
             let cz = Array.unsafe_get z0 s +. Array.unsafe_get z1 s in
-            if bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins <= best then begin
+            if Char.code (Bytes.unsafe_get bin_at s) <= best then begin
               lx0 := fmin !lx0 cx;
               ly0 := fmin !ly0 cy;
               lz0 := fmin !lz0 cz;
@@ -343,6 +416,7 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
               ry1 := fmax !ry1 cy;
               rz1 := fmax !rz1 cz;
               swap s !j;
+              Bytes.unsafe_set bin_at s (Bytes.unsafe_get bin_at !j);
               decr j
             end
           done;
@@ -397,11 +471,60 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
           m
         end
       in
-      node lo split (level + 1) !frames f;
-      t.link.(k) <- t.size;
-      (* [frames] may have grown (and moved) meanwhile. *)
-      node split hi (level + 1) !frames (f + 12)
+      match beside with
+      | Some b when !alone && hi - split >= b.min_objects && 4 * (hi - split) >= n_all && 4 * (split - lo) >= n_all ->
+          (* The right subtree built beside, once, while this process
+             builds the left one; it goes after the left's nodes. Two
+             children of a quarter of the objects or more: neither
+             process has much more to do than the other. *)
+          alone := false;
+          let right = Array.sub !frames (f + 12) 12 in
+          let wait = b.beside (fun () -> part split hi (level + 1) right) in
+          node lo split (level + 1) !frames f;
+          t.link.(k) <- t.size;
+          (match wait () with
+          | Some _ when !built_here -> (* [beside] ran [part] here: the tree is complete. *) ()
+          | Some p -> graft split p
+          | None -> node split hi (level + 1) !frames (f + 12))
+      | _ ->
+          node lo split (level + 1) !frames f;
+          t.link.(k) <- t.size;
+          (* [frames] may have grown (and moved) meanwhile. *)
+          node split hi (level + 1) !frames (f + 12)
     end
+  (* The subtree over slots [lo .. hi - 1] and what [graft] needs of it:
+     run beside (in a copy of this process), after [node lo split] there
+     has moved nothing in [lo .. hi - 1]. *)
+  and part lo hi level bounds =
+    built_here := true;
+    let ids = Array.sub order lo (hi - lo) in
+    for s = lo to hi - 1 do
+      order.(s) <- s - lo
+    done;
+    let first = t.size in
+    node lo hi level bounds 0;
+    let m = t.size - first in
+    let perm = Array.sub order lo (hi - lo) in
+    (* As [node] would have left them, should this be this process. *)
+    Array.iteri (fun j p -> order.(lo + j) <- ids.(p)) perm;
+    { perm; links = Array.sub t.link first m; tags = Array.sub t.tag first m; first; part_depth = !depth }
+  (* Appends the nodes of the part over slots from [lo] and moves the slots
+     (boxes and order) as that part's build did: the same tree as if it
+     had been built here. *)
+  and graft lo p =
+    let shift = t.size - p.first in
+    for c = 0 to Array.length p.tags - 1 do
+      let k = add_node t and g = p.tags.(c) in
+      t.tag.(k) <- g;
+      (* An inner node's link is a node, renumbered; a leaf's a slot. *)
+      t.link.(k) <- (if g >= 0 then p.links.(c) + shift else p.links.(c))
+    done;
+    if p.part_depth > !depth then depth := p.part_depth;
+    let m = Array.length p.perm in
+    let tmp = Array.create_float m in
+    List.iter (fun a -> gather a lo p.perm tmp) [ x0; y0; z0; x1; y1; z1 ];
+    let ids = Array.init m (fun j -> order.(lo + p.perm.(j))) in
+    Array.blit ids 0 order lo m
   in
   let root = Array.make 12 0. in
   bounds_of 0 n root 0;

@@ -288,7 +288,7 @@ let gather_in_place index ~(floats : float array array) ~(ints : int array array
 
 module Materials = Material.Plain
 
-let prepare ?(skips = true) scene =
+let prepare ?(skips = true) ?beside scene =
   let scene = Scene.of_valid scene in
   let n_spheres = Spheres.length scene.spheres in
   let n = iter_objects ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
@@ -505,7 +505,7 @@ let prepare ?(skips = true) scene =
       let lo c e = Array.mapi (fun i k -> c.(k) -. (e.(k) +. margin.(i))) bounded in
       let hi c e = Array.mapi (fun i k -> c.(k) +. (e.(k) +. margin.(i))) bounded in
       Some
-        (Bvh.build_boxes ~x0:(lo ocx oex) ~y0:(lo ocy oey) ~z0:(lo ocz oez) ~x1:(hi ocx oex) ~y1:(hi ocy oey)
+        (Bvh.build_boxes ?beside ~x0:(lo ocx oex) ~y0:(lo ocy oey) ~z0:(lo ocz oez) ~x1:(hi ocx oex) ~y1:(hi ocy oey)
            ~z1:(hi ocz oez) ())
     end
     else None

@@ -57,6 +57,13 @@ let bands ~jobs n =
    cost more, and the image is complete from the top down as the bands
    come back (the parent is told of each on {!Parallel.reports}), so that
    [rows_done] can write it while the workers still trace. *)
+let bvh_beside ?(min_objects = 1 lsl 16) () =
+  let beside f =
+    let wait = Parallel.beside f in
+    fun () -> Result.to_option (wait ())
+  in
+  { Bvh.beside; min_objects }
+
 let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region : Region.t) =
   (* Nothing here holds the scene past [Prepared.prepare], which lets its
      spheres go as it builds the hierarchy. *)
@@ -66,7 +73,7 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
   | exception Failure m -> Error (`Msg m)
   | img -> (
       let t0 = Unix.gettimeofday () in
-      let p = Prepared.prepare ?skips scene in
+      let p = Prepared.prepare ?skips ~beside:(bvh_beside ()) scene in
       let t1 = Unix.gettimeofday () in
       let plan =
         Sampling.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y)
