@@ -128,6 +128,32 @@ let bin_slots (ka : float array) (kb : float array) (x0 : float array) (y0 : flo
   Array.unsafe_set bin_n c (Array.unsafe_get bin_n c + !count);
   merge bin_box (6 * c) !bx0 !by0 !bz0 !bx1 !by1 !bz1
 
+(* [running_boxes bin_n bin_box b0 b1 out] writes at [6 b] in [out], for
+   each [b] from [b0] to [b1] (downwards if [b1 < b0]), the box of the
+   bins from [b0] to [b]: grown in registers, each bin's box read once. *)
+let running_boxes (bin_n : int array) (bin_box : float array) b0 b1 (out : float array) =
+  let step = if b1 >= b0 then 1 else -1 in
+  let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
+  let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
+  for i = 0 to abs (b1 - b0) do
+    let b = b0 + (step * i) in
+    let o = 6 * b in
+    if Array.unsafe_get bin_n b > 0 then begin
+      bx0 := fmin !bx0 (Array.unsafe_get bin_box o);
+      by0 := fmin !by0 (Array.unsafe_get bin_box (o + 1));
+      bz0 := fmin !bz0 (Array.unsafe_get bin_box (o + 2));
+      bx1 := fmax !bx1 (Array.unsafe_get bin_box (o + 3));
+      by1 := fmax !by1 (Array.unsafe_get bin_box (o + 4));
+      bz1 := fmax !bz1 (Array.unsafe_get bin_box (o + 5))
+    end;
+    Array.unsafe_set out o !bx0;
+    Array.unsafe_set out (o + 1) !by0;
+    Array.unsafe_set out (o + 2) !bz0;
+    Array.unsafe_set out (o + 3) !bx1;
+    Array.unsafe_set out (o + 4) !by1;
+    Array.unsafe_set out (o + 5) !bz1
+  done
+
 (* The node arrays of the tree [t] over the slots' boxes, the boxes from
    the leaves up: children come after their parent. The shape's arrays
    become the tree's [link] and [tag] in place, each node read before it
@@ -267,26 +293,16 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
      it moves with the slot. *)
   let bin_at = Bytes.create n in
   let bin_box = Array.make (6 * bins) 0. in
-  let left_area = Array.make bins 0. in
-  let acc = Array.make 6 0. in
+  (* The boxes of bins [0 .. b] and of bins [b .. bins - 1], at [6 b]. *)
+  let prefix = Array.make (6 * bins) 0. and suffix = Array.make (6 * bins) 0. in
   (* The children's bounds of centers from the last partition: left's,
      then right's, lower corner then upper, as in [bounds_of]. *)
   let centers = Array.make 12 0. in
-  (* Empty boxes, copied over [acc] and the bins to reset them. *)
-  let empty = Array.init (6 * bins) (fun c -> if c mod 6 < 3 then infinity else neg_infinity) in
-  let reset () = Array.blit empty 0 acc 0 6 in
-  let grow_box b =
-    if Array.unsafe_get bin_n b > 0 then begin
-      let o = 6 * b in
-      lower acc 0 (Array.unsafe_get bin_box o);
-      lower acc 1 (Array.unsafe_get bin_box (o + 1));
-      lower acc 2 (Array.unsafe_get bin_box (o + 2));
-      higher acc 3 (Array.unsafe_get bin_box (o + 3));
-      higher acc 4 (Array.unsafe_get bin_box (o + 4));
-      higher acc 5 (Array.unsafe_get bin_box (o + 5))
-    end
+  let area (a : float array) b =
+    let o = 6 * b in
+    half_area (Array.unsafe_get a o) (Array.unsafe_get a (o + 1)) (Array.unsafe_get a (o + 2))
+      (Array.unsafe_get a (o + 3)) (Array.unsafe_get a (o + 4)) (Array.unsafe_get a (o + 5))
   in
-  let acc_area () = half_area acc.(0) acc.(1) acc.(2) acc.(3) acc.(4) acc.(5) in
   (* [centers_of lo hi o] writes the bounds of the centers of slots
      [lo .. hi - 1] to [centers] at [o]. *)
   let centers_of lo hi o =
@@ -341,21 +357,14 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
         params.(0) <- c0;
         params.(1) <- scale;
         bin_slots ka kb x0 y0 z0 x1 y1 z1 params bins bin_n bin_box bin_at lo hi;
-        reset ();
-        for b = 0 to bins - 2 do
-          grow_box b;
-          left_area.(b) <- acc_area ()
-        done;
-        reset ();
+        running_boxes bin_n bin_box 0 (bins - 2) prefix;
+        running_boxes bin_n bin_box (bins - 1) 1 suffix;
         let best = ref (-1) and best_cost = ref infinity and right_n = ref 0 and left_n = ref n in
         for b = bins - 1 downto 1 do
-          grow_box b;
           right_n := !right_n + bin_n.(b);
           left_n := !left_n - bin_n.(b);
           if !left_n > 0 && !right_n > 0 then begin
-            let cost =
-              (left_area.(b - 1) *. Float.of_int !left_n) +. (acc_area () *. Float.of_int !right_n)
-            in
+            let cost = (area prefix (b - 1) *. Float.of_int !left_n) +. (area suffix b *. Float.of_int !right_n) in
             if cost < !best_cost then begin
               best_cost := cost;
               best := b - 1
@@ -368,8 +377,7 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
         if !best < 0 then if n <= leaf_size then -2 else -1
         else if n <= leaf_size && Float.of_int n *. parent <= parent +. !best_cost then -2
         else begin
-          (* Partition the slots: bins <= best first (the bin computed
-             again, the same way: cheaper than keeping it per slot). *)
+          (* Partition the slots: bins <= best first. *)
           let best = !best in
           split_bin := best;
           let i = ref lo and j = ref (hi - 1) in
@@ -450,16 +458,10 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
           (* The children's boxes, from the bins on each side, and their
              centers' bounds, from the partition. *)
           let best = !split_bin in
-          let side b0 b1 o c =
-            reset ();
-            for b = b0 to b1 do
-              grow_box b
-            done;
-            Array.blit acc 0 !frames o 6;
-            Array.blit centers c !frames (o + 6) 6
-          in
-          side 0 best f 0;
-          side (best + 1) (bins - 1) (f + 12) 6;
+          Array.blit prefix (6 * best) !frames f 6;
+          Array.blit centers 0 !frames (f + 6) 6;
+          Array.blit suffix (6 * (best + 1)) !frames (f + 12) 6;
+          Array.blit centers 6 !frames (f + 18) 6;
           split
         end
         else begin
