@@ -203,18 +203,12 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
 
 type beside = { beside : 'a. (unit -> 'a) -> unit -> 'a option; min_objects : int }
 
-(* What a subtree built beside sends back: the slots' order in its range,
-   as positions in that range before it was built; its nodes' links and
-   tags, numbered from [first]; the deepest level it reached. *)
-type part = { perm : int array; links : int array; tags : int array; first : int; part_depth : int }
-
-(* [gather a lo perm tmp] puts [a.(lo + perm.(j))] at [lo + j], for every [j]. *)
-let gather (a : float array) lo (perm : int array) (tmp : float array) =
-  let m = Array.length perm in
-  for j = 0 to m - 1 do
-    Array.unsafe_set tmp j (Array.unsafe_get a (lo + Array.unsafe_get perm j))
-  done;
-  Array.blit tmp 0 a lo m
+(* What a subtree built beside sends back, small (3 MB for half a million
+   objects) for the pipe and the caller's heap: the slots' order in its
+   range as positions in that range before it was built (4 bytes each),
+   its nodes' tags (a byte each: their links follow from the tags), the
+   deepest level it reached. *)
+type part = { perm : Bytes.t; tags : Bytes.t; part_depth : int }
 
 let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let n = Array.length x0 in
@@ -474,7 +468,9 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
         end
       in
       match beside with
-      | Some b when !alone && hi - split >= b.min_objects && 4 * (hi - split) >= n_all && 4 * (split - lo) >= n_all ->
+      | Some b
+        when !alone && hi - split >= b.min_objects && 4 * (hi - split) >= n_all && 4 * (split - lo) >= n_all
+             && leaf_size <= 127 && hi - split <= 0x7fff_ffff ->
           (* The right subtree built beside, once, while this process
              builds the left one; it goes after the left's nodes. Two
              children of a quarter of the objects or more: neither
@@ -499,34 +495,90 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
      has moved nothing in [lo .. hi - 1]. *)
   and part lo hi level bounds =
     built_here := true;
-    let ids = Array.sub order lo (hi - lo) in
+    let m = hi - lo in
+    let ids = Array.sub order lo m in
     for s = lo to hi - 1 do
       order.(s) <- s - lo
     done;
     let first = t.size in
     node lo hi level bounds 0;
-    let m = t.size - first in
-    let perm = Array.sub order lo (hi - lo) in
-    (* As [node] would have left them, should this be this process. *)
-    Array.iteri (fun j p -> order.(lo + j) <- ids.(p)) perm;
-    { perm; links = Array.sub t.link first m; tags = Array.sub t.tag first m; first; part_depth = !depth }
+    let perm = Bytes.create (4 * m) in
+    for j = 0 to m - 1 do
+      let p = order.(lo + j) in
+      Bytes.set_int32_le perm (4 * j) (Int32.of_int p);
+      (* As [node] would have left it, should this be this process. *)
+      order.(lo + j) <- ids.(p)
+    done;
+    let tags = Bytes.create (t.size - first) in
+    for c = 0 to t.size - first - 1 do
+      Bytes.set_int8 tags c t.tag.(first + c)
+    done;
+    { perm; tags; part_depth = !depth }
   (* Appends the nodes of the part over slots from [lo] and moves the slots
      (boxes and order) as that part's build did: the same tree as if it
      had been built here. *)
   and graft lo p =
-    let shift = t.size - p.first in
-    for c = 0 to Array.length p.tags - 1 do
-      let k = add_node t and g = p.tags.(c) in
-      t.tag.(k) <- g;
-      (* An inner node's link is a node, renumbered; a leaf's a slot. *)
-      t.link.(k) <- (if g >= 0 then p.links.(c) + shift else p.links.(c))
+    let first = t.size and nodes = Bytes.length p.tags in
+    for c = 0 to nodes - 1 do
+      t.tag.(add_node t) <- Bytes.get_int8 p.tags c
+    done;
+    let link = t.link and tag = t.tag in
+    (* The nodes are depth first: each subtree's size from the last node
+       back (children after their parent), in [link]; then the links,
+       in order, an inner node's from its left child's size, not yet
+       overwritten, a leaf's from the slots of the leaves before it. *)
+    for k = first + nodes - 1 downto first do
+      if tag.(k) < 0 then link.(k) <- 1
+      else
+        let l = link.(k + 1) in
+        link.(k) <- 1 + l + link.(k + 1 + l)
+    done;
+    let slot = ref lo in
+    for k = first to first + nodes - 1 do
+      if tag.(k) < 0 then begin
+        link.(k) <- !slot;
+        slot := !slot - tag.(k)
+      end
+      else link.(k) <- k + 1 + link.(k + 1)
     done;
     if p.part_depth > !depth then depth := p.part_depth;
-    let m = Array.length p.perm in
-    let tmp = Array.create_float m in
-    List.iter (fun a -> gather a lo p.perm tmp) [ x0; y0; z0; x1; y1; z1 ];
-    let ids = Array.init m (fun j -> order.(lo + p.perm.(j))) in
-    Array.blit ids 0 order lo m
+    (* The slots moved in place along the permutation's cycles, each
+       position marked done (-1) as it is filled: no copy of the range. *)
+    let perm = p.perm in
+    let from j = Int32.to_int (Bytes.get_int32_le perm (4 * j)) in
+    for j0 = 0 to (Bytes.length perm / 4) - 1 do
+      if from j0 >= 0 then begin
+        let s0 = lo + j0 in
+        let a = x0.(s0) and b = y0.(s0) and c = z0.(s0) and d = x1.(s0) and e = y1.(s0) and f = z1.(s0) in
+        let o = order.(s0) in
+        let j = ref j0 in
+        while !j >= 0 do
+          let k = from !j and s = lo + !j in
+          Bytes.set_int32_le perm (4 * !j) (-1l);
+          if k = j0 then begin
+            x0.(s) <- a;
+            y0.(s) <- b;
+            z0.(s) <- c;
+            x1.(s) <- d;
+            y1.(s) <- e;
+            z1.(s) <- f;
+            order.(s) <- o;
+            j := -1
+          end
+          else begin
+            let r = lo + k in
+            x0.(s) <- x0.(r);
+            y0.(s) <- y0.(r);
+            z0.(s) <- z0.(r);
+            x1.(s) <- x1.(r);
+            y1.(s) <- y1.(r);
+            z1.(s) <- z1.(r);
+            order.(s) <- order.(r);
+            j := k
+          end
+        done
+      end
+    done
   in
   let root = Array.make 12 0. in
   bounds_of 0 n root 0;

@@ -81,8 +81,8 @@ val build_boxes :
 
     With [beside], the right subtree of the first node (depth first) whose
     children each hold at least a quarter of all the objects, the right
-    one at least [beside.min_objects], is built beside while this process
-    builds the rest:
+    one at least [beside.min_objects], is built beside (if [leaf_size <=
+    127]) while this process builds the rest:
     the same tree, node for node and bit for bit, as without.
     @raise Invalid_argument if the arrays are empty or of different
     lengths. *)

@@ -31,9 +31,9 @@ let iter_slots (b : Bvh.t) f =
 
 (* [build ?beside boxes] is the hierarchy over copies of [boxes] (lower
    corners, then upper), and the copies, reordered into slot order. *)
-let build ?beside boxes =
+let build ?leaf_size ?beside boxes =
   let b = Array.map Array.copy boxes in
-  let t = Bvh.build_boxes ?beside ~x0:b.(0) ~y0:b.(1) ~z0:b.(2) ~x1:b.(3) ~y1:b.(4) ~z1:b.(5) () in
+  let t = Bvh.build_boxes ?leaf_size ?beside ~x0:b.(0) ~y0:b.(1) ~z0:b.(2) ~x1:b.(3) ~y1:b.(4) ~z1:b.(5) () in
   (t, b)
 
 (* [beside] of the renderer with [min_objects], counting in [built] the
@@ -108,6 +108,11 @@ let tests =
         let built = ref 0 in
         check_same "threshold above n" one (build ~beside:(counting ~min_objects:3000 built) b);
         Alcotest.(check int) "no part beside" 0 !built;
+        (* Leaves of more than 127 objects: tags that a byte cannot send. *)
+        check_same "leaves of 200" (build ~leaf_size:200 b) (build ~leaf_size:200 ~beside:(counting ~min_objects:10 built) b);
+        Alcotest.(check int) "no part beside for leaves of 200" 0 !built;
+        check_same "leaves of 127" (build ~leaf_size:127 b) (build ~leaf_size:127 ~beside:(counting ~min_objects:10 built) b);
+        Alcotest.(check int) "a part beside for leaves of 127" 1 !built;
         let calls = ref 0 in
         let failing = { Bvh.beside = (fun _ () -> incr calls; None); min_objects = 10 } in
         check_same "a beside that fails" one (build ~beside:failing b);
