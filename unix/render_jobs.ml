@@ -73,7 +73,9 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
   | exception Failure m -> Error (`Msg m)
   | img -> (
       let t0 = Unix.gettimeofday () in
-      let p = Prepared.prepare ?skips ~beside:(bvh_beside ()) scene in
+      (* Without [bvh_beside]: on the shared 2-core machine the child
+         found no idle core and prepare took longer (docs/performance.md). *)
+      let p = Prepared.prepare ?skips scene in
       let t1 = Unix.gettimeofday () in
       let plan =
         Sampling.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y)

@@ -51,10 +51,12 @@ val region_image :
 val bvh_beside : ?min_objects:int -> unit -> Bvh.beside
 (** [bvh_beside ~min_objects ()] builds the right subtree of a hierarchy's
     node of at least [min_objects] (default [2^16]) objects in a child
-    process ({!Parallel.beside}) while this one builds the rest: what
-    {!image} prepares with when it has several jobs. Below [2^16] objects
-    the fork costs more than it saves. A child that fails (killed, out
-    of memory) costs the time it took: its part is built here. *)
+    process ({!Parallel.beside}) while this one builds the rest. A child
+    that fails (killed, out of memory) costs the time it took: its part
+    is built here. {!image} does not use it: measured on a loaded 2-core
+    machine, the fork, its copy-on-write faults and the graft cost more
+    than the second core gave (docs/performance.md); [bench/load.exe
+    --jobs 2] measures it. *)
 
 val bands : jobs:int -> int -> int array
 (** [bands ~jobs n] is how a pass of [n] rows is cut for [jobs] workers:
