@@ -542,43 +542,21 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       else link.(k) <- k + 1 + link.(k + 1)
     done;
     if p.part_depth > !depth then depth := p.part_depth;
-    (* The slots moved in place along the permutation's cycles, each
-       position marked done (-1) as it is filled: no copy of the range. *)
-    let perm = p.perm in
-    let from j = Int32.to_int (Bytes.get_int32_le perm (4 * j)) in
-    for j0 = 0 to (Bytes.length perm / 4) - 1 do
-      if from j0 >= 0 then begin
-        let s0 = lo + j0 in
-        let a = x0.(s0) and b = y0.(s0) and c = z0.(s0) and d = x1.(s0) and e = y1.(s0) and f = z1.(s0) in
-        let o = order.(s0) in
-        let j = ref j0 in
-        while !j >= 0 do
-          let k = from !j and s = lo + !j in
-          Bytes.set_int32_le perm (4 * !j) (-1l);
-          if k = j0 then begin
-            x0.(s) <- a;
-            y0.(s) <- b;
-            z0.(s) <- c;
-            x1.(s) <- d;
-            y1.(s) <- e;
-            z1.(s) <- f;
-            order.(s) <- o;
-            j := -1
-          end
-          else begin
-            let r = lo + k in
-            x0.(s) <- x0.(r);
-            y0.(s) <- y0.(r);
-            z0.(s) <- z0.(r);
-            x1.(s) <- x1.(r);
-            y1.(s) <- y1.(r);
-            z1.(s) <- z1.(r);
-            order.(s) <- order.(r);
-            j := k
-          end
-        done
-      end
-    done
+    (* The slots gathered through a scratch array, one array at a time:
+       reads nearby, writes in order (following the permutation's cycles
+       in place misses the cache at every step). *)
+    let m = Bytes.length p.perm / 4 in
+    let from j = lo + Int32.to_int (Bytes.get_int32_le p.perm (4 * j)) in
+    let tmp = Array.create_float m in
+    List.iter
+      (fun (a : float array) ->
+        for j = 0 to m - 1 do
+          Array.unsafe_set tmp j a.(from j)
+        done;
+        Array.blit tmp 0 a lo m)
+      [ x0; y0; z0; x1; y1; z1 ];
+    let ids = Array.init m (fun j -> order.(from j)) in
+    Array.blit ids 0 order lo m
   in
   let root = Array.make 12 0. in
   bounds_of 0 n root 0;
