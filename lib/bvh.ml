@@ -82,12 +82,16 @@ let[@inline] merge (box : float array) o x0 y0 z0 x1 y1 z1 =
    fall in the same bin: the current bin's box is grown in registers and
    merged into its bin when the bin changes, rather than each object
    updating the bin in memory, whose next update would wait on that
-   store. Min and max are exact in any order: the bins are the same. *)
+   store; but in small nodes, near the leaves, the bin changes at nearly
+   every object, and updating it directly costs less. Min and max are
+   exact in any order: the bins are the same. *)
 let bin_slots (ka : float array) (kb : float array) (x0 : float array) (y0 : float array) (z0 : float array)
     (x1 : float array) (y1 : float array) (z1 : float array) (p : float array) bins (bin_n : int array)
     (bin_box : float array) bin_at lo hi =
   let c0 = Array.unsafe_get p 0 and scale = Array.unsafe_get p 1 in
-  Array.fill bin_n 0 bins 0;
+  for b = 0 to bins - 1 do
+    Array.unsafe_set bin_n b 0
+  done;
   for o = 0 to bins - 1 do
     let o = 6 * o in
     Array.unsafe_set bin_box o infinity;
@@ -97,6 +101,15 @@ let bin_slots (ka : float array) (kb : float array) (x0 : float array) (y0 : flo
     Array.unsafe_set bin_box (o + 4) neg_infinity;
     Array.unsafe_set bin_box (o + 5) neg_infinity
   done;
+  if hi - lo < 32 then
+    for s = lo to hi - 1 do
+      let b = bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins in
+      Bytes.unsafe_set bin_at s (Char.unsafe_chr b);
+      Array.unsafe_set bin_n b (Array.unsafe_get bin_n b + 1);
+      merge bin_box (6 * b) (Array.unsafe_get x0 s) (Array.unsafe_get y0 s) (Array.unsafe_get z0 s)
+        (Array.unsafe_get x1 s) (Array.unsafe_get y1 s) (Array.unsafe_get z1 s)
+    done
+  else
   let cur = ref (bin_of (Array.unsafe_get ka lo +. Array.unsafe_get kb lo) c0 scale bins) and count = ref 0 in
   let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
   let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
@@ -127,6 +140,13 @@ let bin_slots (ka : float array) (kb : float array) (x0 : float array) (y0 : flo
   let c = !cur in
   Array.unsafe_set bin_n c (Array.unsafe_get bin_n c + !count);
   merge bin_box (6 * c) !bx0 !by0 !bz0 !bx1 !by1 !bz1
+
+(* [copy6 a i b j] copies [a.(i) .. a.(i + 5)] to [b.(j) .. b.(j + 5)],
+   in place of [Array.blit], a call into C, for the 4 boxes of every node. *)
+let[@inline] copy6 (a : float array) i (b : float array) j =
+  for k = 0 to 5 do
+    b.(j + k) <- a.(i + k)
+  done
 
 (* [running_boxes bin_n bin_box b0 b1 out] writes at [6 b] in [out], for
    each [b] from [b0] to [b1] (downwards if [b1 < b0]), the box of the
@@ -452,10 +472,11 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
           (* The children's boxes, from the bins on each side, and their
              centers' bounds, from the partition. *)
           let best = !split_bin in
-          Array.blit prefix (6 * best) !frames f 6;
-          Array.blit centers 0 !frames (f + 6) 6;
-          Array.blit suffix (6 * (best + 1)) !frames (f + 12) 6;
-          Array.blit centers 6 !frames (f + 18) 6;
+          let fr = !frames in
+          copy6 prefix (6 * best) fr f;
+          copy6 centers 0 fr (f + 6);
+          copy6 suffix (6 * (best + 1)) fr (f + 12);
+          copy6 centers 6 fr (f + 18);
           split
         end
         else begin
