@@ -70,8 +70,9 @@ let check_same what ((a : Bvh.t), sa) ((b : Bvh.t), sb) =
     [ b.lo_x; b.lo_y; b.lo_z; b.hi_x; b.hi_y; b.hi_z ];
   Array.iteri (fun i x -> Alcotest.(check (array int64)) (what ^ ": slot boxes") (bits x) (bits sb.(i))) sa
 
-(* [n] boxes: [kind] `Random, `Same_center (every center the same),
-   `One_bin (centers spread over a 1e-9 of the boxes' extent). *)
+(* [n] boxes: [kind] `Random, `Same_center (every center the same: one
+   bin, split at the median), `One_bin (centers within 1e-9 of each
+   other, boxes a million times wider: bins of rounding). *)
 let boxes kind n seed =
   let rand = Random.State.make [| seed |] in
   let f lo hi = lo +. Random.State.float rand (hi -. lo) in
@@ -99,8 +100,8 @@ let tests =
           [
             ("random boxes", `Random, 5000, 1000);
             ("a million-like threshold, n just above", `Random, 2 * 65536 + 20, 65536);
-            ("every center the same (median splits)", `Same_center, 3000, 100);
-            ("centers all in one bin", `One_bin, 3000, 100);
+            ("every center the same (one bin, median splits)", `Same_center, 3000, 100);
+            ("centers within 1e-9", `One_bin, 3000, 100);
           ]);
     Alcotest.test_case "no part beside below the threshold, or where the beside fails" `Quick (fun () ->
         let b = boxes `Random 3000 3 in
