@@ -66,6 +66,114 @@ let[@inline] bin_of c c0 scale bins =
   let b = truncate ((c -. c0) *. scale) in
   if b < 0 then 0 else if b >= bins then bins - 1 else b
 
+(* [merge box o ...] grows the box of 6 floats at [o] in [box] by the box given. *)
+let[@inline] merge (box : float array) o x0 y0 z0 x1 y1 z1 =
+  lower box o x0;
+  lower box (o + 1) y0;
+  lower box (o + 2) z0;
+  higher box (o + 3) x1;
+  higher box (o + 4) y1;
+  higher box (o + 5) z1
+
+(* Bins slots [lo .. hi - 1] by their doubled centers [ka + kb] among
+   [bins] over [c0 .. c0 + bins / scale] ([c0] and [scale] at 0 and 1 of
+   [p]): counts in [bin_n], boxes in [bin_box] (6 floats a bin; both
+   reset first), each slot's bin in [bin_at]. Consecutive slots mostly
+   fall in the same bin: the current bin's box is grown in registers and
+   merged into its bin when the bin changes, rather than each object
+   updating the bin in memory, whose next update would wait on that
+   store; but in small nodes, near the leaves, the bin changes at nearly
+   every object, and updating it directly costs less. Min and max are
+   exact in any order: the bins are the same. *)
+let bin_slots (ka : float array) (kb : float array) (x0 : float array) (y0 : float array) (z0 : float array)
+    (x1 : float array) (y1 : float array) (z1 : float array) (p : float array) bins (bin_n : int array)
+    (bin_box : float array) bin_at lo hi =
+  let c0 = Array.unsafe_get p 0 and scale = Array.unsafe_get p 1 in
+  for b = 0 to bins - 1 do
+    Array.unsafe_set bin_n b 0
+  done;
+  for o = 0 to bins - 1 do
+    let o = 6 * o in
+    Array.unsafe_set bin_box o infinity;
+    Array.unsafe_set bin_box (o + 1) infinity;
+    Array.unsafe_set bin_box (o + 2) infinity;
+    Array.unsafe_set bin_box (o + 3) neg_infinity;
+    Array.unsafe_set bin_box (o + 4) neg_infinity;
+    Array.unsafe_set bin_box (o + 5) neg_infinity
+  done;
+  if hi - lo < 32 then
+    for s = lo to hi - 1 do
+      let b = bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins in
+      Bytes.unsafe_set bin_at s (Char.unsafe_chr b);
+      Array.unsafe_set bin_n b (Array.unsafe_get bin_n b + 1);
+      merge bin_box (6 * b) (Array.unsafe_get x0 s) (Array.unsafe_get y0 s) (Array.unsafe_get z0 s)
+        (Array.unsafe_get x1 s) (Array.unsafe_get y1 s) (Array.unsafe_get z1 s)
+    done
+  else
+  let cur = ref (bin_of (Array.unsafe_get ka lo +. Array.unsafe_get kb lo) c0 scale bins) and count = ref 0 in
+  let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
+  let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
+  for s = lo to hi - 1 do
+    let b = bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins in
+    Bytes.unsafe_set bin_at s (Char.unsafe_chr b);
+    if b <> !cur then begin
+      let c = !cur in
+      Array.unsafe_set bin_n c (Array.unsafe_get bin_n c + !count);
+      merge bin_box (6 * c) !bx0 !by0 !bz0 !bx1 !by1 !bz1;
+      cur := b;
+      count := 0;
+      bx0 := infinity;
+      by0 := infinity;
+      bz0 := infinity;
+      bx1 := neg_infinity;
+      by1 := neg_infinity;
+      bz1 := neg_infinity
+    end;
+    incr count;
+    bx0 := fmin !bx0 (Array.unsafe_get x0 s);
+    by0 := fmin !by0 (Array.unsafe_get y0 s);
+    bz0 := fmin !bz0 (Array.unsafe_get z0 s);
+    bx1 := fmax !bx1 (Array.unsafe_get x1 s);
+    by1 := fmax !by1 (Array.unsafe_get y1 s);
+    bz1 := fmax !bz1 (Array.unsafe_get z1 s)
+  done;
+  let c = !cur in
+  Array.unsafe_set bin_n c (Array.unsafe_get bin_n c + !count);
+  merge bin_box (6 * c) !bx0 !by0 !bz0 !bx1 !by1 !bz1
+
+(* [copy6 a i b j] copies [a.(i) .. a.(i + 5)] to [b.(j) .. b.(j + 5)],
+   in place of [Array.blit], a call into C, for the 4 boxes of every node. *)
+let[@inline] copy6 (a : float array) i (b : float array) j =
+  for k = 0 to 5 do
+    b.(j + k) <- a.(i + k)
+  done
+
+(* [running_boxes bin_n bin_box b0 b1 out] writes at [6 b] in [out], for
+   each [b] from [b0] to [b1] (downwards if [b1 < b0]), the box of the
+   bins from [b0] to [b]: grown in registers, each bin's box read once. *)
+let running_boxes (bin_n : int array) (bin_box : float array) b0 b1 (out : float array) =
+  let step = if b1 >= b0 then 1 else -1 in
+  let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
+  let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
+  for i = 0 to abs (b1 - b0) do
+    let b = b0 + (step * i) in
+    let o = 6 * b in
+    if Array.unsafe_get bin_n b > 0 then begin
+      bx0 := fmin !bx0 (Array.unsafe_get bin_box o);
+      by0 := fmin !by0 (Array.unsafe_get bin_box (o + 1));
+      bz0 := fmin !bz0 (Array.unsafe_get bin_box (o + 2));
+      bx1 := fmax !bx1 (Array.unsafe_get bin_box (o + 3));
+      by1 := fmax !by1 (Array.unsafe_get bin_box (o + 4));
+      bz1 := fmax !bz1 (Array.unsafe_get bin_box (o + 5))
+    end;
+    Array.unsafe_set out o !bx0;
+    Array.unsafe_set out (o + 1) !by0;
+    Array.unsafe_set out (o + 2) !bz0;
+    Array.unsafe_set out (o + 3) !bx1;
+    Array.unsafe_set out (o + 4) !by1;
+    Array.unsafe_set out (o + 5) !bz1
+  done
+
 (* The node arrays of the tree [t] over the slots' boxes, the boxes from
    the leaves up: children come after their parent. The shape's arrays
    become the tree's [link] and [tag] in place, each node read before it
@@ -113,7 +221,16 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
   done;
   { order; n_nodes; lo_x; lo_y; lo_z; hi_x; hi_y; hi_z; link; tag; depth }
 
-let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
+type beside = { beside : 'a. (unit -> 'a) -> unit -> 'a option; min_objects : int }
+
+(* What a subtree built beside sends back, small (3 MB for half a million
+   objects) for the pipe and the caller's heap: the slots' order in its
+   range as positions in that range before it was built (4 bytes each),
+   its nodes' tags (a byte each: their links follow from the tags), the
+   deepest level it reached. *)
+type part = { perm : Bytes.t; tags : Bytes.t; part_depth : int }
+
+let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let n = Array.length x0 in
   if n = 0 then invalid_arg "Bvh.build_boxes: no boxes";
   if Array.exists (fun a -> Array.length a <> n) [| y0; z0; x1; y1; z1 |] then
@@ -185,27 +302,21 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
      The bounds of the centers are not kept per bin: the partition finds
      the children's as it moves each object to its side. *)
   let bin_n = Array.make bins 0 in
+  let params = Array.make 2 0. in
+  (* Each slot's bin, from the binning to the partition that follows;
+     it moves with the slot. *)
+  let bin_at = Bytes.create n in
   let bin_box = Array.make (6 * bins) 0. in
-  let left_area = Array.make bins 0. in
-  let acc = Array.make 6 0. in
+  (* The boxes of bins [0 .. b] and of bins [b .. bins - 1], at [6 b]. *)
+  let prefix = Array.make (6 * bins) 0. and suffix = Array.make (6 * bins) 0. in
   (* The children's bounds of centers from the last partition: left's,
      then right's, lower corner then upper, as in [bounds_of]. *)
   let centers = Array.make 12 0. in
-  (* Empty boxes, copied over [acc] and the bins to reset them. *)
-  let empty = Array.init (6 * bins) (fun c -> if c mod 6 < 3 then infinity else neg_infinity) in
-  let reset () = Array.blit empty 0 acc 0 6 in
-  let grow_box b =
-    if Array.unsafe_get bin_n b > 0 then begin
-      let o = 6 * b in
-      lower acc 0 (Array.unsafe_get bin_box o);
-      lower acc 1 (Array.unsafe_get bin_box (o + 1));
-      lower acc 2 (Array.unsafe_get bin_box (o + 2));
-      higher acc 3 (Array.unsafe_get bin_box (o + 3));
-      higher acc 4 (Array.unsafe_get bin_box (o + 4));
-      higher acc 5 (Array.unsafe_get bin_box (o + 5))
-    end
+  let area (a : float array) b =
+    let o = 6 * b in
+    half_area (Array.unsafe_get a o) (Array.unsafe_get a (o + 1)) (Array.unsafe_get a (o + 2))
+      (Array.unsafe_get a (o + 3)) (Array.unsafe_get a (o + 4)) (Array.unsafe_get a (o + 5))
   in
-  let acc_area () = half_area acc.(0) acc.(1) acc.(2) acc.(3) acc.(4) acc.(5) in
   (* [centers_of lo hi o] writes the bounds of the centers of slots
      [lo .. hi - 1] to [centers] at [o]. *)
   let centers_of lo hi o =
@@ -229,8 +340,9 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
     centers.(o + 4) <- !y1';
     centers.(o + 5) <- !z1'
   in
-  let depth = ref 0 and split_bin = ref 0 in
+  let depth = ref 0 and split_bin = ref 0 and alone = ref true and built_here = ref false in
   (* The node over slots [lo .. hi - 1], whose bounds are in [bounds] at [o]. *)
+  let n_all = n in
   let rec node lo hi level (bounds : float array) o =
     let k = add_node t in
     if level > !depth then depth := level;
@@ -256,34 +368,17 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       if n <= 1 then -2
       else if ext > 0. then begin
         let scale = Float.of_int bins /. ext in
-        Array.fill bin_n 0 bins 0;
-        Array.blit empty 0 bin_box 0 (6 * bins);
-        for s = lo to hi - 1 do
-          let b = bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins in
-          Array.unsafe_set bin_n b (Array.unsafe_get bin_n b + 1);
-          let o = 6 * b in
-          lower bin_box o (Array.unsafe_get x0 s);
-          lower bin_box (o + 1) (Array.unsafe_get y0 s);
-          lower bin_box (o + 2) (Array.unsafe_get z0 s);
-          higher bin_box (o + 3) (Array.unsafe_get x1 s);
-          higher bin_box (o + 4) (Array.unsafe_get y1 s);
-          higher bin_box (o + 5) (Array.unsafe_get z1 s)
-        done;
-        reset ();
-        for b = 0 to bins - 2 do
-          grow_box b;
-          left_area.(b) <- acc_area ()
-        done;
-        reset ();
+        params.(0) <- c0;
+        params.(1) <- scale;
+        bin_slots ka kb x0 y0 z0 x1 y1 z1 params bins bin_n bin_box bin_at lo hi;
+        running_boxes bin_n bin_box 0 (bins - 2) prefix;
+        running_boxes bin_n bin_box (bins - 1) 1 suffix;
         let best = ref (-1) and best_cost = ref infinity and right_n = ref 0 and left_n = ref n in
         for b = bins - 1 downto 1 do
-          grow_box b;
           right_n := !right_n + bin_n.(b);
           left_n := !left_n - bin_n.(b);
           if !left_n > 0 && !right_n > 0 then begin
-            let cost =
-              (left_area.(b - 1) *. Float.of_int !left_n) +. (acc_area () *. Float.of_int !right_n)
-            in
+            let cost = (area prefix (b - 1) *. Float.of_int !left_n) +. (area suffix b *. Float.of_int !right_n) in
             if cost < !best_cost then begin
               best_cost := cost;
               best := b - 1
@@ -296,8 +391,7 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
         if !best < 0 then if n <= leaf_size then -2 else -1
         else if n <= leaf_size && Float.of_int n *. parent <= parent +. !best_cost then -2
         else begin
-          (* Partition the slots: bins <= best first (the bin computed
-             again, the same way: cheaper than keeping it per slot). *)
+          (* Partition the slots: bins <= best first. *)
           let best = !best in
           split_bin := best;
           let i = ref lo and j = ref (hi - 1) in
@@ -306,9 +400,10 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
                side's centers from slots still in the cache, cheaper than
                the accumulators' setup below. *)
             while !i <= !j do
-              if bin_of (Array.unsafe_get ka !i +. Array.unsafe_get kb !i) c0 scale bins <= best then incr i
+              if Char.code (Bytes.unsafe_get bin_at !i) <= best then incr i
               else begin
                 swap !i !j;
+                Bytes.unsafe_set bin_at !i (Bytes.unsafe_get bin_at !j);
                 decr j
               end
             done;
@@ -326,7 +421,7 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
             let cx = Array.unsafe_get x0 s +. Array.unsafe_get x1 s in
             let cy = Array.unsafe_get y0 s +. Array.unsafe_get y1 s in
             let cz = Array.unsafe_get z0 s +. Array.unsafe_get z1 s in
-            if bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins <= best then begin
+            if Char.code (Bytes.unsafe_get bin_at s) <= best then begin
               lx0 := fmin !lx0 cx;
               ly0 := fmin !ly0 cy;
               lz0 := fmin !lz0 cz;
@@ -343,6 +438,7 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
               ry1 := fmax !ry1 cy;
               rz1 := fmax !rz1 cz;
               swap s !j;
+              Bytes.unsafe_set bin_at s (Bytes.unsafe_get bin_at !j);
               decr j
             end
           done;
@@ -376,16 +472,11 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
           (* The children's boxes, from the bins on each side, and their
              centers' bounds, from the partition. *)
           let best = !split_bin in
-          let side b0 b1 o c =
-            reset ();
-            for b = b0 to b1 do
-              grow_box b
-            done;
-            Array.blit acc 0 !frames o 6;
-            Array.blit centers c !frames (o + 6) 6
-          in
-          side 0 best f 0;
-          side (best + 1) (bins - 1) (f + 12) 6;
+          let fr = !frames in
+          copy6 prefix (6 * best) fr f;
+          copy6 centers 0 fr (f + 6);
+          copy6 suffix (6 * (best + 1)) fr (f + 12);
+          copy6 centers 6 fr (f + 18);
           split
         end
         else begin
@@ -397,11 +488,96 @@ let build_boxes ?(leaf_size = 4) ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
           m
         end
       in
-      node lo split (level + 1) !frames f;
-      t.link.(k) <- t.size;
-      (* [frames] may have grown (and moved) meanwhile. *)
-      node split hi (level + 1) !frames (f + 12)
+      match beside with
+      | Some b
+        when !alone && hi - split >= b.min_objects && 4 * (hi - split) >= n_all && 4 * (split - lo) >= n_all
+             && leaf_size <= 127 && hi - split <= 0x7fff_ffff ->
+          (* The right subtree built beside, once, while this process
+             builds the left one; it goes after the left's nodes. Two
+             children of a quarter of the objects or more: neither
+             process has much more to do than the other. *)
+          alone := false;
+          let right = Array.sub !frames (f + 12) 12 in
+          let wait = b.beside (fun () -> part split hi (level + 1) right) in
+          node lo split (level + 1) !frames f;
+          t.link.(k) <- t.size;
+          (match wait () with
+          | Some _ when !built_here -> (* [beside] ran [part] here: the tree is complete. *) ()
+          | Some p -> graft split p
+          | None -> node split hi (level + 1) !frames (f + 12))
+      | _ ->
+          node lo split (level + 1) !frames f;
+          t.link.(k) <- t.size;
+          (* [frames] may have grown (and moved) meanwhile. *)
+          node split hi (level + 1) !frames (f + 12)
     end
+  (* The subtree over slots [lo .. hi - 1] and what [graft] needs of it:
+     run beside (in a copy of this process), after [node lo split] there
+     has moved nothing in [lo .. hi - 1]. *)
+  and part lo hi level bounds =
+    built_here := true;
+    let m = hi - lo in
+    let ids = Array.sub order lo m in
+    for s = lo to hi - 1 do
+      order.(s) <- s - lo
+    done;
+    let first = t.size in
+    node lo hi level bounds 0;
+    let perm = Bytes.create (4 * m) in
+    for j = 0 to m - 1 do
+      let p = order.(lo + j) in
+      Bytes.set_int32_le perm (4 * j) (Int32.of_int p);
+      (* As [node] would have left it, should this be this process. *)
+      order.(lo + j) <- ids.(p)
+    done;
+    let tags = Bytes.create (t.size - first) in
+    for c = 0 to t.size - first - 1 do
+      Bytes.set_int8 tags c t.tag.(first + c)
+    done;
+    { perm; tags; part_depth = !depth }
+  (* Appends the nodes of the part over slots from [lo] and moves the slots
+     (boxes and order) as that part's build did: the same tree as if it
+     had been built here. *)
+  and graft lo p =
+    let first = t.size and nodes = Bytes.length p.tags in
+    for c = 0 to nodes - 1 do
+      t.tag.(add_node t) <- Bytes.get_int8 p.tags c
+    done;
+    let link = t.link and tag = t.tag in
+    (* The nodes are depth first: each subtree's size from the last node
+       back (children after their parent), in [link]; then the links,
+       in order, an inner node's from its left child's size, not yet
+       overwritten, a leaf's from the slots of the leaves before it. *)
+    for k = first + nodes - 1 downto first do
+      if tag.(k) < 0 then link.(k) <- 1
+      else
+        let l = link.(k + 1) in
+        link.(k) <- 1 + l + link.(k + 1 + l)
+    done;
+    let slot = ref lo in
+    for k = first to first + nodes - 1 do
+      if tag.(k) < 0 then begin
+        link.(k) <- !slot;
+        slot := !slot - tag.(k)
+      end
+      else link.(k) <- k + 1 + link.(k + 1)
+    done;
+    if p.part_depth > !depth then depth := p.part_depth;
+    (* The slots gathered through a scratch array, one array at a time:
+       reads nearby, writes in order (following the permutation's cycles
+       in place misses the cache at every step). *)
+    let m = Bytes.length p.perm / 4 in
+    let from j = lo + Int32.to_int (Bytes.get_int32_le p.perm (4 * j)) in
+    let tmp = Array.create_float m in
+    List.iter
+      (fun (a : float array) ->
+        for j = 0 to m - 1 do
+          Array.unsafe_set tmp j a.(from j)
+        done;
+        Array.blit tmp 0 a lo m)
+      [ x0; y0; z0; x1; y1; z1 ];
+    let ids = Array.init m (fun j -> order.(from j)) in
+    Array.blit ids 0 order lo m
   in
   let root = Array.make 12 0. in
   bounds_of 0 n root 0;

@@ -44,8 +44,23 @@ val build : ?leaf_size:int -> cx:float array -> cy:float array -> cz:float array
     @raise Invalid_argument if the arrays are empty or of different
     lengths. *)
 
+type beside = {
+  beside : 'a. (unit -> 'a) -> unit -> 'a option;
+      (** [beside f] starts computing [f ()] on another core (in a copy
+          of this process) and is [wait]: [wait ()], called once, is
+          [Some (f ())], or [None] if it could not be had (the caller then
+          computes it). Where no process can be started, [wait] may
+          compute [f ()] itself, in this process; never [beside]. [f ()]
+          holds no functions. *)
+  min_objects : int;  (** The fewest objects of a subtree built beside. *)
+}
+(** The type for ways to build a part of a hierarchy on another core. The
+    core library forks nothing: a caller that can gives {!build_boxes} a
+    [beside]. *)
+
 val build_boxes :
   ?leaf_size:int ->
+  ?beside:beside ->
   x0:float array ->
   y0:float array ->
   z0:float array ->
@@ -54,7 +69,7 @@ val build_boxes :
   z1:float array ->
   unit ->
   t
-(** [build_boxes ~leaf_size ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ()] is a hierarchy over
+(** [build_boxes ~leaf_size ~beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ()] is a hierarchy over
     the objects whose boxes have lower corners [(x0.(i), y0.(i), z0.(i))]
     and upper corners [(x1.(i), y1.(i), z1.(i))], split by the surface area
     heuristic over 16 bins of their centers along the longest axis (at the
@@ -63,6 +78,12 @@ val build_boxes :
     order: afterwards [x0.(slot)] is the box of object [order.(slot)]
     (the boxes move with the objects, so that each pass over a node reads
     memory in order).
+
+    With [beside], the right subtree of the first node (depth first) whose
+    children each hold at least a quarter of all the objects, the right
+    one at least [beside.min_objects], is built beside (if [leaf_size <=
+    127]) while this process builds the rest:
+    the same tree, node for node and bit for bit, as without.
     @raise Invalid_argument if the arrays are empty or of different
     lengths. *)
 

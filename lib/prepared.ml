@@ -409,7 +409,7 @@ let mesh_boxes ~n_spheres (scene : Scene.t) ~bounded ~cx ~cy ~cz ~radius =
       z1.(i) <- b.(2) +. (b.(5) +. m));
   (x0, y0, z0, x1, y1, z1)
 
-let prepare_scene ~skips scene =
+let prepare_scene ~skips ?beside scene =
   let scene = Scene.of_valid scene in
   let n_spheres = Spheres.length scene.spheres in
   let n = iter_objects ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
@@ -664,7 +664,7 @@ let prepare_scene ~skips scene =
           (x0, y0, z0, x1, y1, z1)
         end
       in
-      let b = Bvh.build_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
+      let b = Bvh.build_boxes ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
       (* Spheres alone, each with a slot: below, [floats] asks for arrays
          of their number. Otherwise the build's arrays are let go, for
          the arrays of other lengths made below. *)
@@ -943,19 +943,19 @@ let prepare_scene ~skips scene =
    written. *)
 let big_increment = 32 * 1024 * 1024
 
-let prepare ?(skips = true) scene =
+let prepare ?(skips = true) ?beside scene =
   let s = Scene.of_valid scene in
   let objects =
     List.fold_left
       (fun a sh -> match sh with Shape.Mesh m -> a + Mesh.triangle_count m | _ -> a + 1)
       (Spheres.length s.spheres) s.shapes
   in
-  if objects <= big_scene then prepare_scene ~skips scene
+  if objects <= big_scene then prepare_scene ~skips ?beside scene
   else begin
     let gc = Gc.get () in
     Gc.set { gc with major_heap_increment = big_increment };
     Fun.protect ~finally:(fun () -> Gc.set { (Gc.get ()) with major_heap_increment = gc.major_heap_increment })
-      (fun () -> prepare_scene ~skips scene)
+      (fun () -> prepare_scene ~skips ?beside scene)
   end
 
 type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms

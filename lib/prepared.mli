@@ -196,8 +196,8 @@ val point : int
 val directional : int
 (** [directional] is the [light_kind] of directional lights. *)
 
-val prepare : ?skips:bool -> Scene.valid -> t
-(** [prepare ~skips scene] is [scene] prepared for {!Raytrace.Private.Trace}. With [skips]
+val prepare : ?skips:bool -> ?beside:Bvh.beside -> Scene.valid -> t
+(** [prepare ~skips ~beside scene] is [scene] prepared for {!Raytrace.Private.Trace}. With [skips]
     (default [true]) the tracer skips work that provably cannot change an
     output byte: lights of zero intensity are dropped here, shadow rays stop
     at the first blocker and try the last blocker first, and reflections
@@ -205,7 +205,8 @@ val prepare : ?skips:bool -> Scene.valid -> t
     rays are tested only against spheres whose (conservatively padded,
     {!Raytrace.Private.Bvh.ray_box_margin}) boxes they meet. With
     [~skips:false] it does everything the document does, for tests that
-    prove the skips exact. *)
+    prove the skips exact. [beside] builds a part of the hierarchy on
+    another core ({!Raytrace.Private.Bvh.build_boxes}): the same result. *)
 
 (** The skips of the tracer's kernel for the document's scenes (spheres
     alone, an epsilon, no hierarchy), each exact on its own. *)

@@ -29,8 +29,124 @@ let iter_slots (b : Bvh.t) f =
   in
   walk 0 []
 
+(* [build ?beside boxes] is the hierarchy over copies of [boxes] (lower
+   corners, then upper), and the copies, reordered into slot order. *)
+let build ?leaf_size ?beside boxes =
+  let b = Array.map Array.copy boxes in
+  let t = Bvh.build_boxes ?leaf_size ?beside ~x0:b.(0) ~y0:b.(1) ~z0:b.(2) ~x1:b.(3) ~y1:b.(4) ~z1:b.(5) () in
+  (t, b)
+
+(* [beside] of the renderer with [min_objects], counting in [built] the
+   parts that another process built. *)
+let counting ~min_objects built =
+  let b = Render_jobs.bvh_beside ~min_objects () in
+  let me = Unix.getpid () in
+  let beside f =
+    let wait = b.beside (fun () -> (Unix.getpid (), f ())) in
+    fun () ->
+      Option.map
+        (fun (pid, x) ->
+          if pid <> me then incr built;
+          x)
+        (wait ())
+  in
+  { Bvh.beside; min_objects }
+
+let bits = Array.map Int64.bits_of_float
+
+(* Fails unless [a] and [b] are the same tree over the same slots, field
+   by field, every float bit for bit. *)
+let check_same what ((a : Bvh.t), sa) ((b : Bvh.t), sb) =
+  let n = a.n_nodes in
+  Alcotest.(check int) (what ^ ": nodes") n b.n_nodes;
+  Alcotest.(check int) (what ^ ": depth") a.depth b.depth;
+  Alcotest.(check (array int)) (what ^ ": order") a.order b.order;
+  let nodes x = Array.sub x 0 n in
+  Alcotest.(check (array int)) (what ^ ": links") (nodes a.link) (nodes b.link);
+  Alcotest.(check (array int)) (what ^ ": tags") (nodes a.tag) (nodes b.tag);
+  List.iter2
+    (fun (f, x) y -> Alcotest.(check (array int64)) (what ^ ": " ^ f) (bits x) (bits y))
+    [ ("lo_x", a.lo_x); ("lo_y", a.lo_y); ("lo_z", a.lo_z); ("hi_x", a.hi_x); ("hi_y", a.hi_y); ("hi_z", a.hi_z) ]
+    [ b.lo_x; b.lo_y; b.lo_z; b.hi_x; b.hi_y; b.hi_z ];
+  Array.iteri (fun i x -> Alcotest.(check (array int64)) (what ^ ": slot boxes") (bits x) (bits sb.(i))) sa
+
+(* [n] boxes: [kind] `Random, `Same_center (every center the same: one
+   bin, split at the median), `One_bin (centers within 1e-9 of each
+   other, boxes a million times wider: bins of rounding). *)
+let boxes kind n seed =
+  let rand = Random.State.make [| seed |] in
+  let f lo hi = lo +. Random.State.float rand (hi -. lo) in
+  let b = Array.init 6 (fun _ -> Array.make n 0.) in
+  for i = 0 to n - 1 do
+    for a = 0 to 2 do
+      let c = match kind with `Random -> f (-100.) 100. | `Same_center -> 1.5 | `One_bin -> 1. +. f 0. 1e-9 in
+      let h = match kind with `Random -> f 0. 2. | _ -> 0.5 +. f 0. 0.25 in
+      b.(a).(i) <- c -. h;
+      b.(a + 3).(i) <- c +. h
+    done
+  done;
+  b
+
 let tests =
   [
+    Alcotest.test_case "a part built in another process: the same tree, field by field" `Quick (fun () ->
+        List.iter
+          (fun (what, kind, n, min_objects) ->
+            let one = build (boxes kind n n) in
+            let built = ref 0 in
+            let two = build ~beside:(counting ~min_objects built) (boxes kind n n) in
+            check_same what one two;
+            Alcotest.(check int) (what ^ ": parts built by another process") 1 !built)
+          [
+            ("random boxes", `Random, 5000, 1000);
+            ("a million-like threshold, n just above", `Random, 2 * 65536 + 20, 65536);
+            ("every center the same (one bin, median splits)", `Same_center, 3000, 100);
+            ("centers within 1e-9", `One_bin, 3000, 100);
+          ]);
+    Alcotest.test_case "no part beside below the threshold, or where the beside fails" `Quick (fun () ->
+        let b = boxes `Random 3000 3 in
+        let one = build b in
+        let built = ref 0 in
+        check_same "threshold above n" one (build ~beside:(counting ~min_objects:3000 built) b);
+        Alcotest.(check int) "no part beside" 0 !built;
+        (* Leaves of more than 127 objects: tags that a byte cannot send. *)
+        check_same "leaves of 200" (build ~leaf_size:200 b) (build ~leaf_size:200 ~beside:(counting ~min_objects:10 built) b);
+        Alcotest.(check int) "no part beside for leaves of 200" 0 !built;
+        check_same "leaves of 127" (build ~leaf_size:127 b) (build ~leaf_size:127 ~beside:(counting ~min_objects:10 built) b);
+        Alcotest.(check int) "a part beside for leaves of 127" 1 !built;
+        let calls = ref 0 in
+        let failing = { Bvh.beside = (fun _ () -> incr calls; None); min_objects = 10 } in
+        check_same "a beside that fails" one (build ~beside:failing b);
+        Alcotest.(check int) "asked once" 1 !calls;
+        (* Parallel.beside computes [f] in the caller when it cannot fork. *)
+        let here = { Bvh.beside = (fun f () -> Some (f ())); min_objects = 10 } in
+        check_same "a beside that computes here" one (build ~beside:here b));
+    Alcotest.test_case "grid:140000, above the threshold of 2^16: a part beside, the same tree and pixels" `Slow
+      (fun () ->
+        let s = { (Scene.grid 140_000) with width = 48; height = 48 } in
+        let tree (p : Prepared.t) = match p.bvh with Some b -> b | None -> Alcotest.fail "no hierarchy" in
+        let built = ref 0 in
+        let two = Prepared.prepare ~beside:(counting ~min_objects:(1 lsl 16) built) (Helpers.valid s) in
+        Alcotest.(check int) "parts built by another process" 1 !built;
+        let one = Helpers.prepare s in
+        check_same "grid:140000" (tree one, [||]) (tree two, [||]);
+        (* The images of the two prepared scenes. *)
+        let img p =
+          let tr = Trace.create p in
+          let w = s.width and h = s.height in
+          Array.init (w * h) (fun i ->
+              Trace.pixel tr ((i mod w) - (w / 2)) ((h / 2) - (i / w));
+              (Trace.red tr, Trace.green tr, Trace.blue tr))
+        in
+        Alcotest.(check bool) "the same pixels" true (img one = img two));
+    Helpers.qcheck ~count:30 "random box sets: the same tree with a part beside"
+      QCheck.(pair (int_range 20 600) (int_range 0 1000))
+      (fun (n, seed) ->
+        let kind = match seed mod 3 with 0 -> `Random | 1 -> `Same_center | _ -> `One_bin in
+        let b = boxes kind n seed in
+        let built = ref 0 in
+        check_same "random" (build b) (build ~beside:(counting ~min_objects:2 built) b);
+        true);
     Alcotest.test_case "every sphere sits in exactly one leaf, inside every box above it" `Quick (fun () ->
         List.iter
           (fun n ->

@@ -57,6 +57,13 @@ let bands ~jobs n =
    cost more, and the image is complete from the top down as the bands
    come back (the parent is told of each on {!Parallel.reports}), so that
    [rows_done] can write it while the workers still trace. *)
+let bvh_beside ?(min_objects = 1 lsl 16) () =
+  let beside f =
+    let wait = Parallel.beside f in
+    fun () -> Result.to_option (wait ())
+  in
+  { Bvh.beside; min_objects }
+
 let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region : Region.t) =
   (* Nothing here holds the scene past [Prepared.prepare], which lets its
      spheres go as it builds the hierarchy. *)
@@ -66,6 +73,8 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
   | exception Failure m -> Error (`Msg m)
   | img -> (
       let t0 = Unix.gettimeofday () in
+      (* Without [bvh_beside]: on the shared 2-core machine the child
+         found no idle core and prepare took longer (docs/performance.md). *)
       let p = Prepared.prepare ?skips scene in
       let t1 = Unix.gettimeofday () in
       let plan =

@@ -48,6 +48,16 @@ val region_image :
     @raise Invalid_argument if [jobs < 1] or [r] is not inside the
     canvas. *)
 
+val bvh_beside : ?min_objects:int -> unit -> Bvh.beside
+(** [bvh_beside ~min_objects ()] builds the right subtree of a hierarchy's
+    node of at least [min_objects] (default [2^16]) objects in a child
+    process ({!Parallel.beside}) while this one builds the rest. A child
+    that fails (killed, out of memory) costs the time it took: its part
+    is built here. {!image} does not use it: measured on a loaded 2-core
+    machine, the fork, its copy-on-write faults and the graft cost more
+    than the second core gave (docs/performance.md); [bench/load.exe
+    --jobs 2] measures it. *)
+
 val bands : jobs:int -> int -> int array
 (** [bands ~jobs n] is how a pass of [n] rows is cut for [jobs] workers:
     band [b] is the rows [s.(b)] to [s.(b + 1) - 1] of [s = bands ~jobs n],
