@@ -73,9 +73,13 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
   | exception Failure m -> Error (`Msg m)
   | img -> (
       let t0 = Unix.gettimeofday () in
-      (* Without [bvh_beside]: on the shared 2-core machine the child
-         found no idle core and prepare took longer (docs/performance.md). *)
-      let p = Prepared.prepare ?skips scene in
+      (* A part of a big hierarchy is built by a child process meanwhile
+         (grid:1000000 with two jobs, alternating runs on a quiet 2-core
+         machine: 2.66 -> 2.39 s, its peak 209 -> 214 MB). On a machine
+         whose cores are all busy the child waits for one, and preparing
+         takes longer (docs/performance.md). *)
+      let beside = if jobs > 1 then Some (bvh_beside ()) else None in
+      let p = Prepared.prepare ?skips ?beside scene in
       let t1 = Unix.gettimeofday () in
       let plan =
         Sampling.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y)
