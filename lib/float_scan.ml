@@ -56,8 +56,8 @@ let seventeen_digits m e =
     decide q ((rem +. b) /. p)
   end
 
-let to_float b i j =
-  if i < 0 || j > Bytes.length b || i > j then invalid_arg "Float_scan.to_float";
+let into b i j (dst : float array) d =
+  if i < 0 || j > Bytes.length b || i > j || d < 0 || d >= Array.length dst then invalid_arg "Float_scan.into";
   let k = ref i in
   let neg =
     if !k < j && Bytes.unsafe_get b !k = '-' then (incr k; true)
@@ -97,14 +97,23 @@ let to_float b i j =
     done;
     e := if eneg then !e - !x else !e + !x
   end;
-  if not !ok || !k <> j then Float.nan
+  (* Each branch stores its own result: a float returned from a function
+     that is not inlined is boxed, two words a number. *)
+  if not !ok || !k <> j then Array.unsafe_set dst d Float.nan
   else if !exact && !m <= two_53 && !e >= -22 && !e <= 22 then begin
     let f = Float.of_int !m in
     let r = if !e >= 0 then f *. Array.unsafe_get pow10 !e else f /. Array.unsafe_get pow10 (- !e) in
-    if neg then -.r else r
+    Array.unsafe_set dst d (if neg then -.r else r)
   end
   else
     let r = if !exact && !e >= -22 && !e <= 22 then seventeen_digits !m !e else Float.nan in
-    if Float.is_nan r then float_of_string (Bytes.sub_string b i (j - i)) else if neg then -.r else r
+    if Float.is_nan r then Array.unsafe_set dst d (float_of_string (Bytes.sub_string b i (j - i)))
+    else Array.unsafe_set dst d (if neg then -.r else r)
+
+let to_float b i j =
+  if i < 0 || j > Bytes.length b || i > j then invalid_arg "Float_scan.to_float";
+  let r = [| 0. |] in
+  into b i j r 0;
+  r.(0)
 
 let of_string s = to_float (Bytes.unsafe_of_string s) 0 (String.length s)

@@ -19,8 +19,16 @@ val to_float : Bytes.t -> int -> int -> float
     form [[+-]?digits[.digits]([eE][+-]?digits)?] with at least one digit
     in the mantissa (so ["nan"], ["inf"], hexadecimal floats and [_]
     separators are refused). Overflow gives an infinity, underflow zero,
-    as [float_of_string]. Allocates only on the fallback path.
+    as [float_of_string].
     @raise Invalid_argument if [0 <= i <= j <= Bytes.length b] is false. *)
+
+val into : Bytes.t -> int -> int -> float array -> int -> unit
+(** [into b i j dst d] stores {!to_float}[ b i j] in [dst.(d)]. Unlike
+    {!to_float}, whose result a caller receives boxed unless it is
+    inlined, it allocates only on the fallback path: big scene files read
+    their numbers with it.
+    @raise Invalid_argument if [0 <= i <= j <= Bytes.length b] or
+    [0 <= d < Array.length dst] is false. *)
 
 val of_string : string -> float
 (** [of_string s] is {!to_float} on all of [s]. *)

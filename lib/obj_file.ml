@@ -56,7 +56,9 @@ let ints () = { iblocks = []; icur = Array.make 256 0; inn = 0; ifull = 0 }
 let float_length g = g.ffull + g.fn
 let int_length g = g.ifull + g.inn
 
-let push_float g x =
+(* Pushes [src.(0)]: read from an array, not passed, since a float
+   argument of a function that is not inlined is boxed. *)
+let push_float g (src : float array) =
   if g.fn = Array.length g.fcur then
     if g.fn < block then begin
       let a = Array.make (2 * g.fn) 0. in
@@ -69,7 +71,7 @@ let push_float g x =
       g.fcur <- Array.make block 0.;
       g.fn <- 0
     end;
-  Array.unsafe_set g.fcur g.fn x;
+  Array.unsafe_set g.fcur g.fn src.(0);
   g.fn <- g.fn + 1
 
 (* [Array.blit] on ints goes through the write barrier, element by
@@ -157,6 +159,7 @@ type parser = {
   mutable carry_len : int;
   mutable error : string option;
   mutable finished : bool;
+  num : float array;  (* the number just read, unboxed *)
 }
 
 exception Error_at of string
@@ -168,7 +171,7 @@ let create ~name ~max_vertices ~max_triangles =
     face_v = { fa = Array.make 16 0; len = 0 }; face_n = { fa = Array.make 16 0; len = 0 };
     counts = Array.make (Array.length kinds) 0;
     texcoords = 0; line = 1; carry = Bytes.create 256; carry_len = 0;
-    error = None; finished = false;
+    error = None; finished = false; num = [| 0. |];
   }
 
 (* Errors: [i] is the byte where the line starts, [k] the offending byte. *)
@@ -200,9 +203,11 @@ let shown b k e =
   let s = Bytes.sub_string b k (min (e - k) 24) in
   if e - k > 24 then s ^ "..." else s
 
+(* The number at [k .. e - 1] into [p.num.(0)]. *)
 let number p b i k e =
-  let x = Float_scan.to_float b k e in
-  if Float.is_finite x then x
+  Float_scan.into b k e p.num 0;
+  let x = p.num.(0) in
+  if Float.is_finite x then ()
   else if Float.is_nan x then begin
     let s = String.lowercase_ascii (Bytes.sub_string b k (e - k)) in
     let s = if s <> "" && (s.[0] = '-' || s.[0] = '+') then String.sub s 1 (String.length s - 1) else s in
@@ -227,8 +232,8 @@ let vertex p b i kw k j ~normal =
     if !n >= most then
       fail p i !k "expected at most %d numbers (%s), found %S" most
         (if normal then "vn x y z" else "v x y z [w]") (shown b !k e);
-    let x = number p b i !k e in
-    if !n < 3 then push_float g x;
+    number p b i !k e;
+    if !n < 3 then push_float g p.num;
     incr n;
     k := skip_spaces b e j
   done;

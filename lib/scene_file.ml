@@ -855,44 +855,47 @@ let sphere_field s a e =
   | 10 -> if is_word s a e "reflective" then 4 else -1
   | _ -> -1
 
+(* The fields of a plain sphere form from [s.[p]] on, to its closing
+   parenthesis: a function of its own, not a closure made per sphere. *)
+let rec sphere_field_list f s p =
+  let open Sexp_scan in
+  let p = skip_blank s p in
+  if p >= String.length s then raise Unusual;
+  match String.unsafe_get s p with
+  | ')' -> p + 1
+  | '(' ->
+      let a = skip_blank s (p + 1) in
+      let e = atom_end s a in
+      let c = sphere_field s a e in
+      if c < 0 || f.seen land (1 lsl c) <> 0 then raise Unusual;
+      f.seen <- f.seen lor (1 lsl c);
+      let q = ref e in
+      for v = 0 to sphere_arity.(c) - 1 do
+        let a = skip_blank s !q in
+        let e = atom_end s a in
+        let d = sphere_value.(c) + v in
+        if e = a then raise Unusual;
+        (* Stored, not returned: a returned float would be boxed. *)
+        Float_scan.into (Bytes.unsafe_of_string s) a e f.values d;
+        if not (Float.is_finite f.values.(d)) then raise Unusual;
+        q := e
+      done;
+      let q = skip_blank s !q in
+      if q >= String.length s || String.unsafe_get s q <> ')' then raise Unusual;
+      sphere_field_list f s (q + 1)
+  | _ -> raise Unusual
+
 (* Reads the plain sphere form at [s.[i] = '('] into [f] and is the index
    past it: each field once, numbers that [Float_scan] reads as finite
    floats (the same as [Float_text.of_string]), [center], [radius] and
    [color] given. @raise Sexp_scan.Unusual otherwise. *)
 let sphere_fields f s i =
   let open Sexp_scan in
-  let n = String.length s in
-  let bytes = Bytes.unsafe_of_string s in
   let j = skip_blank s (i + 1) in
   let k = atom_end s j in
   if not (is_word s j k "sphere") then raise Unusual;
   f.seen <- 0;
-  let rec fields p =
-    let p = skip_blank s p in
-    if p >= n then raise Unusual;
-    match String.unsafe_get s p with
-    | ')' -> p + 1
-    | '(' ->
-        let a = skip_blank s (p + 1) in
-        let e = atom_end s a in
-        let c = sphere_field s a e in
-        if c < 0 || f.seen land (1 lsl c) <> 0 then raise Unusual;
-        f.seen <- f.seen lor (1 lsl c);
-        let q = ref e in
-        for v = 0 to sphere_arity.(c) - 1 do
-          let a = skip_blank s !q in
-          let e = atom_end s a in
-          let x = if e > a then Float_scan.to_float bytes a e else nan in
-          if not (Float.is_finite x) then raise Unusual;
-          f.values.(sphere_value.(c) + v) <- x;
-          q := e
-        done;
-        let q = skip_blank s !q in
-        if q >= n || String.unsafe_get s q <> ')' then raise Unusual;
-        fields (q + 1)
-    | _ -> raise Unusual
-  in
-  let e = fields k in
+  let e = sphere_field_list f s k in
   if f.seen land 7 <> 7 then raise Unusual;
   e
 
@@ -906,10 +909,14 @@ let add_sphere b f =
   (* [Limits.check_count]'s test, without building its messages. *)
   if not (Float.of_int (b.n_spheres + 1) <= Limits.bound b.limits `Spheres) then raise Sexp_scan.Unusual;
   let x = v.(0) and y = v.(1) and z = v.(2) in
-  ignore (ok (Sphere.check_center (Vec3.v x y z)));
-  let radius = ok (Sphere.check_radius v.(3)) in
-  let specular = if f.seen land 8 = 0 then Sphere.matte else ok (Sphere.check_specular v.(7)) in
-  let reflective = if f.seen land 16 = 0 then 0. else ok (Sphere.check_reflective v.(8)) in
+  (* The checks' predicates: the checks' results would be boxed. *)
+  if not (Limits.coordinate_ok x && Limits.coordinate_ok y && Limits.coordinate_ok z) then raise Sexp_scan.Unusual;
+  let radius = v.(3) in
+  if not (Limits.size_ok radius) then raise Sexp_scan.Unusual;
+  let specular = if f.seen land 8 = 0 then Sphere.matte else v.(7) in
+  if not (Sphere.specular_ok specular) then raise Sexp_scan.Unusual;
+  let reflective = if f.seen land 16 = 0 then 0. else v.(8) in
+  if not (Sphere.reflective_ok reflective) then raise Sexp_scan.Unusual;
   let r = v.(4) and g = v.(5) and bl = v.(6) in
   (* Any hash will do; [truncate] is defined for every finite float here
      (checked above, or garbage but harmless for a colour out of range). *)

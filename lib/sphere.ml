@@ -29,12 +29,16 @@ let check_color c =
   if Color.in_gamut c then Ok c
   else (error_pp "sphere color channels must lie in [0, 255], got %a" Color.pp c)
 
+let specular_ok s = Float.is_finite s && (s = matte || s >= 0.)
+
 let check_specular s =
-  if Float.is_finite s && (s = matte || s >= 0.) then Ok s
+  if specular_ok s then Ok s
   else (error "sphere specular must be -1 (matte) or >= 0, got %s" (num s))
 
+let reflective_ok r = r >= 0. && r <= 1.
+
 let check_reflective r =
-  if r >= 0. && r <= 1. then Ok r
+  if reflective_ok r then Ok r
   else (error "sphere reflective must lie in [0, 1], got %s" (num r))
 
 let check_pattern = function

@@ -90,6 +90,14 @@ val check_radius : float -> (float, [> `Msg of string ]) result
 val check_color : Color.t -> (Color.t, [> `Msg of string ]) result
 (** [check_color c] checks {!Color.in_gamut}. *)
 
+val specular_ok : float -> bool
+(** [specular_ok s] is [true] iff {!check_specular} accepts [s]; it
+    allocates nothing. *)
+
+val reflective_ok : float -> bool
+(** [reflective_ok r] is [true] iff {!check_reflective} accepts [r]; it
+    allocates nothing. *)
+
 val check_specular : float -> (float, [> `Msg of string ]) result
 (** [check_specular s] checks that [s] is finite and [-1] or [>= 0]. *)
 

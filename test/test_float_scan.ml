@@ -96,4 +96,25 @@ let tests =
         match Float_scan.to_float b 5 20 with
         | _ -> Alcotest.fail "out of bounds accepted"
         | exception Invalid_argument _ -> ());
+    Alcotest.test_case "into stores the number at its index, and allocates nothing for a simple decimal" `Quick
+      (fun () ->
+        let b = Bytes.of_string "-0.4 2000 12.5e1 0.30000000000000004" in
+        let a = Array.make 3 7. in
+        Float_scan.into b 10 16 a 1;
+        Alcotest.(check (list (float 0.))) __LOC__ [ 7.; 125.; 7. ] (Array.to_list a);
+        Float_scan.into b 17 36 a 2;
+        Alcotest.(check bool) __LOC__ true (Int64.equal (Int64.bits_of_float a.(2)) (Int64.bits_of_float 0.30000000000000004));
+        (match Float_scan.into b 0 4 a 3 with
+        | () -> Alcotest.fail "an index out of the array accepted"
+        | exception Invalid_argument _ -> ());
+        (* The reader's fast path reads every coordinate of a million
+           spheres this way: no word per number. *)
+        let before = Gc.minor_words () in
+        for _ = 1 to 1000 do
+          Float_scan.into b 0 4 a 0;
+          Float_scan.into b 5 9 a 1
+        done;
+        let words = Gc.minor_words () -. before in
+        Alcotest.(check (list (float 0.))) __LOC__ [ -0.4; 2000. ] [ a.(0); a.(1) ];
+        if words > 100. then Alcotest.failf "2000 numbers read allocated %.0f words" words);
   ]
