@@ -206,7 +206,11 @@ val prepare : ?skips:bool -> ?beside:Bvh.beside -> Scene.valid -> t
     {!Raytrace.Private.Bvh.ray_box_margin}) boxes they meet. With
     [~skips:false] it does everything the document does, for tests that
     prove the skips exact. [beside] builds a part of the hierarchy on
-    another core ({!Raytrace.Private.Bvh.build_boxes}): the same result. *)
+    another core ({!Raytrace.Private.Bvh.build_boxes}): the same result.
+    For a scene of more than 2{^18} objects, the garbage collector's
+    [major_heap_increment] is 256 MB while it runs (then set back): the
+    heap's free pieces between the default's smaller chunks do not fit
+    arrays of a million floats. *)
 
 (** The skips of the tracer's kernel for the document's scenes (spheres
     alone, an epsilon, no hierarchy), each exact on its own. *)
