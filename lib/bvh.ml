@@ -597,7 +597,11 @@ type margin = { d2 : float; m : float }
 let margin_terms ?among ~cx ~cy ~cz ~radius (camera : Vec3.t) =
   let x0 = ref camera.x and y0 = ref camera.y and z0 = ref camera.z in
   let x1 = ref camera.x and y1 = ref camera.y and z1 = ref camera.z in
-  let each i =
+  (* A loop, not a function over [among]: the refs would be captured,
+     and each float boxed as it changes. *)
+  let n = match among with Some a -> Array.length a | None -> Array.length cx in
+  for j = 0 to n - 1 do
+    let i = match among with Some a -> a.(j) | None -> j in
     let r = radius.(i) in
     x0 := fmin !x0 (cx.(i) -. r);
     y0 := fmin !y0 (cy.(i) -. r);
@@ -605,13 +609,7 @@ let margin_terms ?among ~cx ~cy ~cz ~radius (camera : Vec3.t) =
     x1 := fmax !x1 (cx.(i) +. r);
     y1 := fmax !y1 (cy.(i) +. r);
     z1 := fmax !z1 (cz.(i) +. r)
-  in
-  (match among with
-  | Some among -> Array.iter each among
-  | None ->
-      for i = 0 to Array.length cx - 1 do
-        each i
-      done);
+  done;
   let dx = !x1 -. !x0 and dy = !y1 -. !y0 and dz = !z1 -. !z0 in
   let d2 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
   let m =

@@ -720,7 +720,8 @@ let prepare_scene ~skips ?beside scene =
      cost more than the copies. *)
   let in_place = n_kept = n && scene.shapes = [] in
   let sphere_len = if n_spheres > 0 then n_kept else 0 in
-  if in_place then gather_in_place index ~scratch:(floats n_kept) ~floats:[| ocx; ocy; ocz; ohalf |] ~ints:[| okind; omat |];
+  (* [okind] is all spheres here: no need to gather it. *)
+  if in_place then gather_in_place index ~scratch:(floats n_kept) ~floats:[| ocx; ocy; ocz; ohalf |] ~ints:[| omat |];
   let cx, cy, cz, radius =
     if in_place then (ocx, ocy, ocz, ohalf)
     else (Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0.)
