@@ -901,6 +901,13 @@ let sphere_fields f s i =
 
 let[@inline] same_float x y = Int64.equal (Int64.bits_of_float x) (Int64.bits_of_float y)
 
+(* Does recent slot [k] hold this material? *)
+let[@inline] holds f k r g bl specular reflective =
+  let c = f.recent in
+  f.recent_index.(k) >= 0
+  && same_float c.(4 * k) r && same_float c.((4 * k) + 1) g && same_float c.((4 * k) + 2) bl
+  && same_float c.((4 * k) + 3) specular && same_float f.recent_reflective.(k) reflective
+
 (* Adds the sphere read by [sphere_fields], checked as [sphere] checks it.
    @raise Sexp_scan.Unusual if a check fails: [sphere] then reports it. *)
 let add_sphere b f =
@@ -925,15 +932,21 @@ let add_sphere b f =
     + truncate (reflective *. 64.))
     land (n_recent - 1)
   in
-  let c = f.recent in
+  let k' = k lxor 1 in
   let m =
-    let i = f.recent_index.(k) in
-    if i >= 0 && same_float c.(4 * k) r && same_float c.((4 * k) + 1) g && same_float c.((4 * k) + 2) bl
-       && same_float c.((4 * k) + 3) specular && same_float f.recent_reflective.(k) reflective
-    then i
+    if holds f k r g bl specular reflective then f.recent_index.(k)
+    else if holds f k' r g bl specular reflective then f.recent_index.(k')
     else begin
       let color = ok (Sphere.check_color (Color.v r g bl)) in
       let i = Spheres.material b.spheres (Material.v ~specular ~reflective color) in
+      (* Two ways: the slot's last material moves to its pair, so that
+         two materials of one hash both stay (the grid's 12 have a pair). *)
+      if f.recent_index.(k) >= 0 then begin
+        Array.blit f.recent (4 * k) f.recent (4 * k') 4;
+        f.recent_reflective.(k') <- f.recent_reflective.(k);
+        f.recent_index.(k') <- f.recent_index.(k)
+      end;
+      let c = f.recent in
       c.(4 * k) <- r;
       c.((4 * k) + 1) <- g;
       c.((4 * k) + 2) <- bl;
