@@ -66,6 +66,27 @@ let tests =
         let cases = corpus () in
         List.iter (fun (f, text) -> same f text) cases;
         Alcotest.(check bool) "the corpus is there" true (List.length cases > 100));
+    Alcotest.test_case "materials that share the fast reader's recent slots read alike" `Quick (fun () ->
+        (* Reds 0, 64 and 128 hash to one slot of the reader's recent
+           materials (and its pair): with a fourth material in between,
+           each lookup hits either way, or misses, or evicts. *)
+        let colors = [| "0 0 0"; "64 0 0"; "128 0 0"; "0 0 0"; "1 2 3"; "64 0 0"; "64 0 0"; "128 0 0" |] in
+        let text =
+          String.concat "\n"
+            (List.init 64 (fun i ->
+                 Printf.sprintf "(sphere (center %d 0 3) (radius 0.5) (color %s) (specular 10))" i
+                   colors.(i mod Array.length colors)))
+        in
+        same "colliding materials" text;
+        match read `Fast text with
+        | Error m -> Alcotest.fail m
+        | Ok scene ->
+            Alcotest.(check int) "spheres" 64 (Spheres.length scene.Scene.spheres);
+            Spheres.iteri
+              (fun i (s : Sphere.t) ->
+                let c = Printf.sprintf "%g %g %g" s.color.r s.color.g s.color.b in
+                Alcotest.(check string) (Printf.sprintf "sphere %d's color" i) colors.(i mod Array.length colors) c)
+              scene.Scene.spheres);
     Alcotest.test_case "text the fast path leaves to parsexp reads alike" `Quick (fun () ->
         List.iter
           (fun (what, text) -> same what text)
