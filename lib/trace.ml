@@ -232,22 +232,36 @@ let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
     else keep tr s i s.far
   end
 
+(* The ray's axes for the triangle test ({!Triangle.shear}), found at the
+   first triangle a ray meets, not at each: a traversal over shapes sets
+   [tr.kz] to [-1] (not found yet) before its first test. *)
+let[@inline] shear_once tr s =
+  if tr.kz < 0 then begin
+    let axes = Triangle.shear s in
+    tr.kx <- Triangle.axis_x axes;
+    tr.ky <- Triangle.axis_y axes;
+    tr.kz <- Triangle.axis_z axes
+  end
+
+let[@inline] is_triangle k = k = Shape.triangle || k = Shape.smooth_triangle
+
+(* The root of the triangle in slot [i] for the ray in [s], or [infinity]
+   for a miss: {!Triangle.hit} inlined, the root in a register, not
+   written to [s.near] and [s.far] and read back. *)
+let[@inline] triangle_hit tr s i =
+  let p = tr.p in
+  shear_once tr s;
+  Triangle.hit s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i) tr.kx
+    tr.ky tr.kz
+
 (* The roots of the shape (not a sphere) in slot [i], by its module's
    routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
-   gives its first crossing beyond [s.t_min] as both. A triangle's test
-   reads the ray's [Triangle.shear], found at the first triangle a ray
-   meets, not at each: a traversal over shapes sets [tr.kz] to [-1] (not
-   found yet) before its first test. *)
+   gives its first crossing beyond [s.t_min] as both. *)
 let shape_roots tr s i =
   let p = tr.p in
   let k = Array.unsafe_get p.kind i in
-  if k = Shape.triangle || k = Shape.smooth_triangle then begin
-    if tr.kz < 0 then begin
-      let axes = Triangle.shear s in
-      tr.kx <- Triangle.axis_x axes;
-      tr.ky <- Triangle.axis_y axes;
-      tr.kz <- Triangle.axis_z axes
-    end;
+  if is_triangle k then begin
+    shear_once tr s;
     Triangle.roots_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i) tr.kx
       tr.ky tr.kz
   end
@@ -275,7 +289,11 @@ let shape_test tr s i =
    per-frame constants. *)
 let[@inline] test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4 =
   let p = tr.p in
-  if (not spheres) && Array.unsafe_get p.kind i <> Shape.sphere then shape_test tr s i
+  let k = if spheres then Shape.sphere else Array.unsafe_get p.kind i in
+  (* A triangle's one root is its near and far: [keep] once is
+     [shape_test]'s two tries. *)
+  if is_triangle k then keep tr s i (triangle_hit tr s i)
+  else if k <> Shape.sphere then shape_test tr s i
   else
   let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
   let fy = if primary then Array.unsafe_get p.primary_ocy i else s.oy -. Array.unsafe_get p.cy i in
@@ -462,8 +480,12 @@ let shape_blocks tr i =
    exactly when [closest] would have found it. *)
 let[@inline] blocks tr i ~spheres a inv_a =
   let p = tr.p and s = tr.s in
-  (not spheres) && Array.unsafe_get p.kind i <> Shape.sphere && shape_blocks tr i
-  || (spheres || Array.unsafe_get p.kind i = Shape.sphere) &&
+  let k = if spheres then Shape.sphere else Array.unsafe_get p.kind i in
+  if is_triangle k then
+    let t = triangle_hit tr s i in
+    s.t_min < t && t < s.t_max
+  else if k <> Shape.sphere then shape_blocks tr i
+  else
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let fx = s.ox -. Array.unsafe_get p.cx i
   and fy = s.oy -. Array.unsafe_get p.cy i

@@ -70,8 +70,14 @@ let axis_x axes = (axes lsr 2) land 3
 let axis_y axes = axes lsr 4
 let axis_z axes = axes land 3
 
-let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
-  let sx = s.sx and sy = s.sy and sz = s.sz in
+(* [infinity] as a literal: a float constant that the compiler knows, so
+   that [hit] inlined into a loop returns its root unboxed from either
+   branch (a read of [Stdlib.infinity] is a boxed value, and would box the
+   root of the other branch too). *)
+let miss = 1e400
+
+let[@inline] hit (s : Scratch.t) g o0 o1 o2 kx ky kz =
+  let sx = s.sx and sy = s.sy in
   let okx = s.okx and oky = s.oky and okz = s.okz in
   let az_ = rel g o0 kz okz and bz_ = rel g o1 kz okz and cz_ = rel g o2 kz okz in
   let ax_ = rel g o0 kx okx -. (sx *. az_) and ay_ = rel g o0 ky oky -. (sy *. az_) in
@@ -79,19 +85,22 @@ let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
   let cx_ = rel g o2 kx okx -. (sx *. cz_) and cy_ = rel g o2 ky oky -. (sy *. cz_) in
   let u = (cx_ *. by_) -. (cy_ *. bx_) in
   let v = (ax_ *. cy_) -. (ay_ *. cx_) in
-  let w = (bx_ *. ay_) -. (by_ *. ax_) in
-  let det = u +. v +. w in
-  if ((u < 0. || v < 0. || w < 0.) && (u > 0. || v > 0. || w > 0.)) || det = 0. then begin
-    s.near <- infinity;
-    s.far <- infinity;
-    false
-  end
-  else begin
-    let t = ((u *. (sz *. az_)) +. (v *. (sz *. bz_)) +. (w *. (sz *. cz_))) /. det in
-    s.near <- t;
-    s.far <- t;
-    true
-  end
+  (* Two edge functions of opposite signs already decide a miss: the
+     test below would find one below 0 and one above, whatever [w]. *)
+  if (u < 0. && v > 0.) || (u > 0. && v < 0.) then miss
+  else
+    let w = (bx_ *. ay_) -. (by_ *. ax_) in
+    let det = u +. v +. w in
+    if ((u < 0. || v < 0. || w < 0.) && (u > 0. || v > 0. || w > 0.)) || det = 0. then miss
+    else
+      let sz = s.sz in
+      ((u *. (sz *. az_)) +. (v *. (sz *. bz_)) +. (w *. (sz *. cz_))) /. det
+
+let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
+  let t = hit s g o0 o1 o2 kx ky kz in
+  s.near <- t;
+  s.far <- t;
+  t <> miss
 
 let roots s g o =
   let axes = shear s in
