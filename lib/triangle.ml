@@ -86,15 +86,19 @@ let[@inline] hit (s : Scratch.t) g o0 o1 o2 kx ky kz =
   let u = (cx_ *. by_) -. (cy_ *. bx_) in
   let v = (ax_ *. cy_) -. (ay_ *. cx_) in
   (* Two edge functions of opposite signs already decide a miss: the
-     test below would find one below 0 and one above, whatever [w]. *)
-  if (u < 0. && v > 0.) || (u > 0. && v < 0.) then miss
+     test below would find one below 0 and one above, whatever [w]. A
+     product below 0 has factors of opposite signs, neither 0 nor NaN (one
+     that underflows to 0 leaves the decision to the test below). *)
+  if u *. v < 0. then miss
   else
     let w = (bx_ *. ay_) -. (by_ *. ax_) in
-    let det = u +. v +. w in
-    if ((u < 0. || v < 0. || w < 0.) && (u > 0. || v > 0. || w > 0.)) || det = 0. then miss
+    if (u < 0. || v < 0. || w < 0.) && (u > 0. || v > 0. || w > 0.) then miss
     else
-      let sz = s.sz in
-      ((u *. (sz *. az_)) +. (v *. (sz *. bz_)) +. (w *. (sz *. cz_))) /. det
+      let det = u +. v +. w in
+      if det = 0. then miss
+      else
+        let sz = s.sz in
+        ((u *. (sz *. az_)) +. (v *. (sz *. bz_)) +. (w *. (sz *. cz_))) /. det
 
 let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
   let t = hit s g o0 o1 o2 kx ky kz in
