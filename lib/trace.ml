@@ -251,9 +251,10 @@ let[@inline] shear_once tr s =
 
 let[@inline] is_triangle k = k = Shape.triangle || k = Shape.smooth_triangle
 
-(* The root of the triangle in slot [i] for the ray in [s], or [infinity]
-   for a miss: {!Triangle.hit} inlined, the root in a register, not
-   written to [s.near] and [s.far] and read back. *)
+(* Whether the ray in [s] meets the triangle in slot [i], its root then in
+   [s.near]: {!Triangle.hit} inlined, nothing written for a miss. (Not a
+   float returned: without cross-module inlining, as in the dev profile,
+   it would be boxed.) *)
 let[@inline] triangle_hit tr s i =
   let p = tr.p in
   shear_once tr s;
@@ -310,7 +311,7 @@ let[@inline] test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4 =
   let k = if spheres then Shape.sphere else Array.unsafe_get p.kind i in
   (* A triangle's one root is its near and far: [keep] once is
      [shape_test]'s two tries. *)
-  if is_triangle k then keep tr s i (triangle_hit tr s i)
+  if is_triangle k then (if triangle_hit tr s i then keep tr s i s.near)
   else if k <> Shape.sphere then shape_test tr s i
   else
   let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
@@ -500,7 +501,9 @@ let[@inline] blocks tr i ~spheres a inv_a =
   let p = tr.p and s = tr.s in
   let k = if spheres then Shape.sphere else Array.unsafe_get p.kind i in
   if is_triangle k then
-    let t = triangle_hit tr s i in
+    triangle_hit tr s i
+    &&
+    let t = s.near in
     s.t_min < t && t < s.t_max
   else if k <> Shape.sphere then shape_blocks tr i
   else

@@ -70,12 +70,6 @@ let axis_x axes = (axes lsr 2) land 3
 let axis_y axes = axes lsr 4
 let axis_z axes = axes land 3
 
-(* [infinity] as a literal: a float constant that the compiler knows, so
-   that [hit] inlined into a loop returns its root unboxed from either
-   branch (a read of [Stdlib.infinity] is a boxed value, and would box the
-   root of the other branch too). *)
-let miss = 1e400
-
 let[@inline] hit (s : Scratch.t) g o0 o1 o2 kx ky kz =
   let sx = s.sx and sy = s.sy in
   let okx = s.okx and oky = s.oky and okz = s.okz in
@@ -89,22 +83,29 @@ let[@inline] hit (s : Scratch.t) g o0 o1 o2 kx ky kz =
      test below would find one below 0 and one above, whatever [w]. A
      product below 0 has factors of opposite signs, neither 0 nor NaN (one
      that underflows to 0 leaves the decision to the test below). *)
-  if u *. v < 0. then miss
-  else
-    let w = (bx_ *. ay_) -. (by_ *. ax_) in
-    if (u < 0. || v < 0. || w < 0.) && (u > 0. || v > 0. || w > 0.) then miss
-    else
-      let det = u +. v +. w in
-      if det = 0. then miss
-      else
-        let sz = s.sz in
-        ((u *. (sz *. az_)) +. (v *. (sz *. bz_)) +. (w *. (sz *. cz_))) /. det
+  (not (u *. v < 0.))
+  &&
+  let w = (bx_ *. ay_) -. (by_ *. ax_) in
+  (not ((u < 0. || v < 0. || w < 0.) && (u > 0. || v > 0. || w > 0.)))
+  &&
+  let det = u +. v +. w in
+  (not (det = 0.))
+  && begin
+       let sz = s.sz in
+       s.near <- ((u *. (sz *. az_)) +. (v *. (sz *. bz_)) +. (w *. (sz *. cz_))) /. det;
+       true
+     end
 
 let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
-  let t = hit s g o0 o1 o2 kx ky kz in
-  s.near <- t;
-  s.far <- t;
-  t <> miss
+  if hit s g o0 o1 o2 kx ky kz then begin
+    s.far <- s.near;
+    true
+  end
+  else begin
+    s.near <- infinity;
+    s.far <- infinity;
+    false
+  end
 
 let roots s g o =
   let axes = shear s in
