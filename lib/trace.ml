@@ -310,9 +310,10 @@ let[@inline] test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4 =
   let p = tr.p in
   let k = if spheres then Shape.sphere else Array.unsafe_get p.kind i in
   (* A triangle's one root is its near and far: [keep] once is
-     [shape_test]'s two tries. *)
-  if is_triangle k then (if triangle_hit tr s i then keep tr s i s.near)
-  else if k <> Shape.sphere then shape_test tr s i
+     [shape_test]'s two tries. ([not spheres] first: the copy for spheres
+     alone then holds no triangle test.) *)
+  if (not spheres) && is_triangle k then (if triangle_hit tr s i then keep tr s i s.near)
+  else if (not spheres) && k <> Shape.sphere then shape_test tr s i
   else
   let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
   let fy = if primary then Array.unsafe_get p.primary_ocy i else s.oy -. Array.unsafe_get p.cy i in
@@ -500,12 +501,12 @@ let shape_blocks tr i =
 let[@inline] blocks tr i ~spheres a inv_a =
   let p = tr.p and s = tr.s in
   let k = if spheres then Shape.sphere else Array.unsafe_get p.kind i in
-  if is_triangle k then
+  if (not spheres) && is_triangle k then
     triangle_hit tr s i
     &&
     let t = s.near in
     s.t_min < t && t < s.t_max
-  else if k <> Shape.sphere then shape_blocks tr i
+  else if (not spheres) && k <> Shape.sphere then shape_blocks tr i
   else
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let fx = s.ox -. Array.unsafe_get p.cx i

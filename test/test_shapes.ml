@@ -300,16 +300,31 @@ let tests =
                   if Int64.bits_of_float t <> Int64.bits_of_float expected || t <> t' then
                     Alcotest.failf "Trace.roots gives %h (%h), the paper's arithmetic %h, order %d" t t' expected order;
                   if Float.is_finite t then incr hits else incr misses;
-                  (* The traversal's copy: it sees the hit at [t] beyond
-                     [epsilon = pred t], not beyond [epsilon = t]. *)
-                  let sees epsilon = Trace.cast (tracer ~epsilon [ Shape.Triangle tri ]) ~from:(-1) origin direction >= 0 in
-                  if t > 0. && Float.is_finite t then begin
-                    incr pinned;
-                    if not (sees (Float.pred t)) then Alcotest.failf "the traversal misses the root %h (order %d)" t order;
-                    if sees t then Alcotest.failf "the traversal sees a root beyond %h (order %d)" t order
-                  end
-                  else if sees Float.min_float then
-                    Alcotest.failf "the traversal hits where the paper's arithmetic does not (order %d)" order
+                  (* The traversal's copies, without a hierarchy and in
+                     a leaf of one (the triangle among small ones behind
+                     the ray's origin, which it never sees): each sees
+                     the hit at [t] beyond [epsilon = pred t], not beyond
+                     [epsilon = t]. *)
+                  let behind k =
+                    let c = Vec3.add origin (Vec3.smul (-3. -. float k) direction) in
+                    Shape.Triangle (Triangle.v c (Vec3.add c (Vec3.smul sc Vec3.ox)) (Vec3.add c (Vec3.smul sc Vec3.oy)) white)
+                  in
+                  let crowd = Shape.Triangle tri :: List.init 9 behind in
+                  List.iter
+                    (fun (where, shapes) ->
+                      let sees epsilon =
+                        let tr = tracer ~epsilon shapes in
+                        if List.length shapes > 1 && (Trace.prepared tr).bvh = None then Alcotest.fail "no hierarchy";
+                        Trace.cast tr ~from:(-1) origin direction >= 0
+                      in
+                      if t > 0. && Float.is_finite t then begin
+                        if not (sees (Float.pred t)) then Alcotest.failf "%s: the traversal misses the root %h (order %d)" where t order;
+                        if sees t then Alcotest.failf "%s: the traversal sees a root beyond %h (order %d)" where t order
+                      end
+                      else if sees Float.min_float then
+                        Alcotest.failf "%s: the traversal hits where the paper's arithmetic does not (order %d)" where order)
+                    [ ("alone", [ Shape.Triangle tri ]); ("in a hierarchy", crowd) ];
+                  if t > 0. && Float.is_finite t then incr pinned
                 done);
         Printf.printf "triangles: %d hits (%d pinned in the traversal), %d misses; rays by order of the axes: %s\n" !hits
           !pinned !misses (String.concat " " (Array.to_list (Array.map string_of_int orders)));
