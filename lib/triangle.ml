@@ -70,8 +70,8 @@ let axis_x axes = (axes lsr 2) land 3
 let axis_y axes = axes lsr 4
 let axis_z axes = axes land 3
 
-let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
-  let sx = s.sx and sy = s.sy and sz = s.sz in
+let[@inline] hit (s : Scratch.t) g o0 o1 o2 kx ky kz =
+  let sx = s.sx and sy = s.sy in
   let okx = s.okx and oky = s.oky and okz = s.okz in
   let az_ = rel g o0 kz okz and bz_ = rel g o1 kz okz and cz_ = rel g o2 kz okz in
   let ax_ = rel g o0 kx okx -. (sx *. az_) and ay_ = rel g o0 ky oky -. (sy *. az_) in
@@ -79,18 +79,32 @@ let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
   let cx_ = rel g o2 kx okx -. (sx *. cz_) and cy_ = rel g o2 ky oky -. (sy *. cz_) in
   let u = (cx_ *. by_) -. (cy_ *. bx_) in
   let v = (ax_ *. cy_) -. (ay_ *. cx_) in
+  (* Two edge functions of opposite signs already decide a miss: the
+     test below would find one below 0 and one above, whatever [w]. A
+     product below 0 has factors of opposite signs, neither 0 nor NaN (one
+     that underflows to 0 leaves the decision to the test below). *)
+  (not (u *. v < 0.))
+  &&
   let w = (bx_ *. ay_) -. (by_ *. ax_) in
+  (not ((u < 0. || v < 0. || w < 0.) && (u > 0. || v > 0. || w > 0.)))
+  &&
   let det = u +. v +. w in
-  if ((u < 0. || v < 0. || w < 0.) && (u > 0. || v > 0. || w > 0.)) || det = 0. then begin
+  (not (det = 0.))
+  && begin
+       let sz = s.sz in
+       s.near <- ((u *. (sz *. az_)) +. (v *. (sz *. bz_)) +. (w *. (sz *. cz_))) /. det;
+       true
+     end
+
+let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
+  if hit s g o0 o1 o2 kx ky kz then begin
+    s.far <- s.near;
+    true
+  end
+  else begin
     s.near <- infinity;
     s.far <- infinity;
     false
-  end
-  else begin
-    let t = ((u *. (sz *. az_)) +. (v *. (sz *. bz_)) +. (w *. (sz *. cz_))) /. det in
-    s.near <- t;
-    s.far <- t;
-    true
   end
 
 let roots s g o =

@@ -61,13 +61,23 @@ val axis_y : int -> int
 val axis_z : int -> int
 (** [axis_z a] is the axis of the test's z: the largest coordinate of the ray's direction. *)
 
+val hit : Scratch.t -> float array -> int -> int -> int -> int -> int -> int -> bool
+(** [hit s g o0 o1 o2 kx ky kz] is [true] iff the line of the ray of [s]
+    meets the triangle whose vertices [v0], [v1], [v2] are stored at [o0],
+    [o1], [o2] in [g] (3 floats each), with its root then in [s.near]
+    ([s] unchanged on a miss): the tracer's test, inlined into its loops
+    with its axes as constants. The arithmetic is {!roots}'s, operation
+    for operation, and its bits are the same; a miss is decided from two
+    edge functions of opposite signs before the third is computed.
+    [s.sx] .. [s.okz] and [kx], [ky], [kz] must be {!shear}'s for the ray
+    of [s]. *)
+
 val roots_at : Scratch.t -> float array -> int -> int -> int -> int -> int -> int -> bool
-(** [roots_at s g o0 o1 o2 kx ky kz] is {!roots} for the triangle whose
-    vertices [v0], [v1], [v2] are stored at [o0], [o1], [o2] in [g] (3
-    floats each): a mesh's triangle, read where its vertices are, shared
-    with the triangles around it, with the arithmetic of {!roots}. [s.sx]
-    .. [s.okz] and [kx], [ky], [kz] must be {!shear}'s for the ray of [s]:
-    {!roots} is [roots_at s g o (o + 3) (o + 6) kx ky kz] with those. *)
+(** [roots_at s g o0 o1 o2 kx ky kz] is {!hit}, with its root in [s.near]
+    and [s.far] ([infinity] in both for a miss): {!roots} for a mesh's
+    triangle, read where its vertices are, shared with the triangles
+    around it. {!roots} is [roots_at s g o (o + 3) (o + 6) kx ky kz] with
+    {!shear}'s axes. *)
 
 val roots : Scratch.t -> float array -> int -> bool
 (** [roots s g o] is [true] iff the line of the ray of [s] meets the

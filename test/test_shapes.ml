@@ -123,6 +123,51 @@ let triangle_class (tri : Triangle.t) ~origin ~direction =
   else if List.exists (fun (x, m) -> x > m) edges && List.exists (fun (x, m) -> x < -.m) edges then `Out
   else `Edge
 
+(* The watertight test as Woop, Benthin and Wald write it (JCGT 2013,
+   section 3): the vertices moved into the ray's frame, the three edge
+   functions, then the decision on all three and the determinant. The
+   reference for the kernel's {!Triangle.hit}, which decides some misses
+   from two edge functions and reads the vertices by one copy per order
+   of the axes. The ray's frame is {!Triangle.shear}'s. *)
+let woop_root (tri : Triangle.t) ~origin ~direction =
+  let s = Scratch.create () in
+  Scratch.set_ray s origin direction;
+  let axes = Triangle.shear s in
+  let kx = Triangle.axis_x axes and ky = Triangle.axis_y axes and kz = Triangle.axis_z axes in
+  let c (v : Vec3.t) k = if k = 0 then v.x else if k = 1 then v.y else v.z in
+  let frame v =
+    let z = c v kz -. s.okz in
+    (c v kx -. s.okx -. (s.sx *. z), c v ky -. s.oky -. (s.sy *. z), z)
+  in
+  let ax, ay, az = frame tri.v0 and bx, by, bz = frame tri.v1 and cx, cy, cz = frame tri.v2 in
+  let u = (cx *. by) -. (cy *. bx) and v = (ax *. cy) -. (ay *. cx) and w = (bx *. ay) -. (by *. ax) in
+  let det = u +. v +. w in
+  if ((u < 0. || v < 0. || w < 0.) && (u > 0. || v > 0. || w > 0.)) || det = 0. then infinity
+  else ((u *. (s.sz *. az)) +. (v *. (s.sz *. bz)) +. (w *. (s.sz *. cz))) /. det
+
+(* The order of the axes of a ray's triangle tests, 0 to 5: its largest
+   direction coordinate's axis, and that coordinate's sign. *)
+let axis_order (d : Vec3.t) =
+  let ax = Float.abs d.x and ay = Float.abs d.y and az = Float.abs d.z in
+  let k, dk = if ax > ay && ax > az then (0, d.x) else if ay > az then (1, d.y) else (2, d.z) in
+  (2 * k) + if dk < 0. then 1 else 0
+
+(* A ray's direction from [origin] at triangle [tri]: toward one of its
+   vertices exactly, a point of an edge as floats give it, or a point
+   near the triangle, inside or out. *)
+let aim rand (tri : Triangle.t) ~origin =
+  let target =
+    match Random.State.int rand 4 with
+    | 0 -> List.nth [ tri.v0; tri.v1; tri.v2 ] (Random.State.int rand 3)
+    | 1 ->
+        let a, b = List.nth [ (tri.v0, tri.v1); (tri.v1, tri.v2); (tri.v2, tri.v0) ] (Random.State.int rand 3) in
+        Vec3.add a (Vec3.smul (Random.State.float rand 1.) (Vec3.sub b a))
+    | _ ->
+        let a = Random.State.float rand 1.4 -. 0.2 and b = Random.State.float rand 1.4 -. 0.2 in
+        Vec3.add tri.v0 (Vec3.add (Vec3.smul a (Vec3.sub tri.v1 tri.v0)) (Vec3.smul b (Vec3.sub tri.v2 tri.v0)))
+  in
+  Vec3.sub target origin
+
 let box_class (b : Box.t) ~(origin : Vec3.t) ~(direction : Vec3.t) =
   let axis lo hi o d =
     let t0 = Q.(div (sub (q lo) (q o)) (q d)) and t1 = Q.(div (sub (q hi) (q o)) (q d)) in
@@ -227,6 +272,64 @@ let tests =
         Printf.printf "triangles: %d hits, %d misses, worst root %.3g u sum |v - O|\n" !hits !misses !worst;
         if !hits < 1000 || !misses < 1000 then Alcotest.failf "too few hits (%d) or misses (%d)" !hits !misses;
         if !worst > triangle_bound then Alcotest.failf "triangle root error %.3g > %g" !worst triangle_bound);
+    Alcotest.test_case
+      "the tracer's triangle test gives the paper's root bit for bit, in every order of the axes, through vertices and \
+       edges: Trace.roots, and the traversal's own copies (its hit pinned by the range t > epsilon)"
+      `Quick (fun () ->
+        let orders = Array.make 6 0 and hits = ref 0 and misses = ref 0 and pinned = ref 0 in
+        for_cases 40 (fun rand sc off ->
+            let c = Vec3.add off (random_point rand (sc *. 5.)) in
+            let corner () = Vec3.add c (random_point rand sc) in
+            let v0 = corner () in
+            let v1 = corner () in
+            let tri = Triangle.v v0 v1 (corner ()) white in
+            match Triangle.validate tri with
+            | Error _ -> ()
+            | Ok tri ->
+                (* From each of the six sides, so that each axis is the
+                   largest of a direction, with either sign. *)
+                for side = 0 to 5 do
+                  let axis = List.nth [ Vec3.ox; Vec3.oy; Vec3.oz ] (side / 2) in
+                  let away = Vec3.smul (if side land 1 = 0 then -.sc *. 20. else sc *. 20.) axis in
+                  let origin = Vec3.add (Vec3.add c away) (random_point rand sc) in
+                  let direction = aim rand tri ~origin in
+                  let order = axis_order direction in
+                  orders.(order) <- orders.(order) + 1;
+                  let expected = woop_root tri ~origin ~direction in
+                  let t, t' = Trace.roots (tracer [ Shape.Triangle tri ]) 0 origin direction in
+                  if Int64.bits_of_float t <> Int64.bits_of_float expected || t <> t' then
+                    Alcotest.failf "Trace.roots gives %h (%h), the paper's arithmetic %h, order %d" t t' expected order;
+                  if Float.is_finite t then incr hits else incr misses;
+                  (* The traversal's copies, without a hierarchy and in
+                     a leaf of one (the triangle among small ones behind
+                     the ray's origin, which it never sees): each sees
+                     the hit at [t] beyond [epsilon = pred t], not beyond
+                     [epsilon = t]. *)
+                  let behind k =
+                    let c = Vec3.add origin (Vec3.smul (-3. -. float k) direction) in
+                    Shape.Triangle (Triangle.v c (Vec3.add c (Vec3.smul sc Vec3.ox)) (Vec3.add c (Vec3.smul sc Vec3.oy)) white)
+                  in
+                  let crowd = Shape.Triangle tri :: List.init 9 behind in
+                  List.iter
+                    (fun (where, shapes) ->
+                      let sees epsilon =
+                        let tr = tracer ~epsilon shapes in
+                        if List.length shapes > 1 && (Trace.prepared tr).bvh = None then Alcotest.fail "no hierarchy";
+                        Trace.cast tr ~from:(-1) origin direction >= 0
+                      in
+                      if t > 0. && Float.is_finite t then begin
+                        if not (sees (Float.pred t)) then Alcotest.failf "%s: the traversal misses the root %h (order %d)" where t order;
+                        if sees t then Alcotest.failf "%s: the traversal sees a root beyond %h (order %d)" where t order
+                      end
+                      else if sees Float.min_float then
+                        Alcotest.failf "%s: the traversal hits where the paper's arithmetic does not (order %d)" where order)
+                    [ ("alone", [ Shape.Triangle tri ]); ("in a hierarchy", crowd) ];
+                  if t > 0. && Float.is_finite t then incr pinned
+                done);
+        Printf.printf "triangles: %d hits (%d pinned in the traversal), %d misses; rays by order of the axes: %s\n" !hits
+          !pinned !misses (String.concat " " (Array.to_list (Array.map string_of_int orders)));
+        Array.iteri (fun k n -> if n < 100 then Alcotest.failf "order %d of the axes: only %d rays" k n) orders;
+        if !hits < 1000 || !misses < 1000 then Alcotest.failf "too few hits (%d) or misses (%d)" !hits !misses);
     Alcotest.test_case "a box's entry and exit are within 2 u of the exact slab parameters, and hit or miss as they say"
       `Quick (fun () ->
         let worst = ref 0. and hits = ref 0 and misses = ref 0 in
