@@ -594,6 +594,15 @@ let build ?leaf_size ~cx ~cy ~cz extent =
 
 type margin = { d2 : float; m : float }
 
+let margin_of_bounds (b : float array) =
+  let dx = b.(3) -. b.(0) and dy = b.(4) -. b.(1) and dz = b.(5) -. b.(2) in
+  let d2 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let m = ref 0. in
+  for i = 0 to 5 do
+    m := fmax !m (Float.abs b.(i))
+  done;
+  { d2; m = !m }
+
 let margin_terms ?among ~cx ~cy ~cz ~radius (camera : Vec3.t) =
   let x0 = ref camera.x and y0 = ref camera.y and z0 = ref camera.z in
   let x1 = ref camera.x and y1 = ref camera.y and z1 = ref camera.z in
@@ -610,12 +619,7 @@ let margin_terms ?among ~cx ~cy ~cz ~radius (camera : Vec3.t) =
     y1 := fmax !y1 (cy.(i) +. r);
     z1 := fmax !z1 (cz.(i) +. r)
   done;
-  let dx = !x1 -. !x0 and dy = !y1 -. !y0 and dz = !z1 -. !z0 in
-  let d2 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
-  let m =
-    List.fold_left (fun acc v -> fmax acc (Float.abs v)) 0. [ !x0; !y0; !z0; !x1; !y1; !z1 ]
-  in
-  { d2; m }
+  margin_of_bounds [| !x0; !y0; !z0; !x1; !y1; !z1 |]
 
 let[@inline] margin t r =
   let u = epsilon_float /. 2. in

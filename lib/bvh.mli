@@ -109,6 +109,14 @@ val margin_terms :
 (** [margin_terms ~among ~cx ~cy ~cz ~radius camera] is [D^2] and [M] of
     {!ray_box_margin} for the same arguments. *)
 
+val margin_of_bounds : float array -> margin
+(** [margin_of_bounds b] is [D^2] and [M] of {!ray_box_margin} for the
+    spheres and camera whose bounds have lower corner [(b.(0), b.(1),
+    b.(2))] and upper corner [(b.(3), b.(4), b.(5))]: a caller that finds
+    the bounds as it makes the boxes needs no arrays of centers and radii
+    for {!margin_terms}.
+    @raise Invalid_argument if [b] has fewer than 6 elements. *)
+
 val margin : margin -> float -> float
 (** [margin t r] is the margin of {!ray_box_margin} of a sphere of radius
     [r] among those of [t], bit for bit: with {!margin_terms}, a million
