@@ -44,6 +44,9 @@ val build : ?leaf_size:int -> cx:float array -> cy:float array -> cz:float array
     @raise Invalid_argument if the arrays are empty or of different
     lengths. *)
 
+type floats = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t
+(** The type for floats that a process shares with its copies. *)
+
 type beside = {
   beside : 'a. (unit -> 'a) -> unit -> 'a option;
       (** [beside f] starts computing [f ()] on another core (in a copy
@@ -53,6 +56,14 @@ type beside = {
           compute [f ()] itself, in this process; never [beside]. [f ()]
           holds no functions. *)
   min_objects : int;  (** The fewest objects of a subtree built beside. *)
+  floats : int -> floats;
+      (** [floats n] is at least [n] floats that a computation started by
+          a later [beside] writes and this process reads (memory shared
+          with the copy; in this process's own memory where [beside]
+          computes here). The subtree built beside leaves its objects'
+          boxes and numbers there (56 bytes an object), for this process
+          to copy in order. It may raise [Failure] or [Out_of_memory]: the
+          subtree is then built here. *)
 }
 (** The type for ways to build a part of a hierarchy on another core. The
     core library forks nothing: a caller that can gives {!build_boxes} a
