@@ -144,9 +144,13 @@ let bin_slots (ka : float array) (kb : float array) (x0 : float array) (y0 : flo
 (* [copy6 a i b j] copies [a.(i) .. a.(i + 5)] to [b.(j) .. b.(j + 5)],
    in place of [Array.blit], a call into C, for the 4 boxes of every node. *)
 let[@inline] copy6 (a : float array) i (b : float array) j =
-  for k = 0 to 5 do
-    b.(j + k) <- a.(i + k)
-  done
+  if i < 0 || j < 0 || i + 6 > Array.length a || j + 6 > Array.length b then invalid_arg "Bvh.copy6";
+  Array.unsafe_set b j (Array.unsafe_get a i);
+  Array.unsafe_set b (j + 1) (Array.unsafe_get a (i + 1));
+  Array.unsafe_set b (j + 2) (Array.unsafe_get a (i + 2));
+  Array.unsafe_set b (j + 3) (Array.unsafe_get a (i + 3));
+  Array.unsafe_set b (j + 4) (Array.unsafe_get a (i + 4));
+  Array.unsafe_set b (j + 5) (Array.unsafe_get a (i + 5))
 
 (* [running_boxes bin_n bin_box b0 b1 out] writes at [6 b] in [out], for
    each [b] from [b0] to [b1] (downwards if [b1 < b0]), the box of the
@@ -354,10 +358,14 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let rec node lo hi level (bounds : float array) o =
     let k = add_node t in
     if level > !depth then depth := level;
-    let bx0 = bounds.(o) and by0 = bounds.(o + 1) and bz0 = bounds.(o + 2) in
-    let bx1 = bounds.(o + 3) and by1 = bounds.(o + 4) and bz1 = bounds.(o + 5) in
-    let mx0 = bounds.(o + 6) and my0 = bounds.(o + 7) and mz0 = bounds.(o + 8) in
-    let mx1 = bounds.(o + 9) and my1 = bounds.(o + 10) and mz1 = bounds.(o + 11) in
+    (* One check for the twelve reads, at every node. *)
+    if o < 0 || o + 12 > Array.length bounds then invalid_arg "Bvh.build_boxes: bounds";
+    let bx0 = Array.unsafe_get bounds o and by0 = Array.unsafe_get bounds (o + 1) in
+    let bz0 = Array.unsafe_get bounds (o + 2) and bx1 = Array.unsafe_get bounds (o + 3) in
+    let by1 = Array.unsafe_get bounds (o + 4) and bz1 = Array.unsafe_get bounds (o + 5) in
+    let mx0 = Array.unsafe_get bounds (o + 6) and my0 = Array.unsafe_get bounds (o + 7) in
+    let mz0 = Array.unsafe_get bounds (o + 8) and mx1 = Array.unsafe_get bounds (o + 9) in
+    let my1 = Array.unsafe_get bounds (o + 10) and mz1 = Array.unsafe_get bounds (o + 11) in
     let n = hi - lo in
     let ex = mx1 -. mx0 and ey = my1 -. my0 and ez = mz1 -. mz0 in
     let a = if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2 in
@@ -383,8 +391,9 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
         running_boxes bin_n bin_box (bins - 1) 1 suffix;
         let best = ref (-1) and best_cost = ref infinity and right_n = ref 0 and left_n = ref n in
         for b = bins - 1 downto 1 do
-          right_n := !right_n + bin_n.(b);
-          left_n := !left_n - bin_n.(b);
+          (* [b < bins <= 16], the length of [bin_n]. *)
+          right_n := !right_n + Array.unsafe_get bin_n b;
+          left_n := !left_n - Array.unsafe_get bin_n b;
           if !left_n > 0 && !right_n > 0 then begin
             let cost = (area prefix (b - 1) *. Float.of_int !left_n) +. (area suffix b *. Float.of_int !right_n) in
             if cost < !best_cost then begin
