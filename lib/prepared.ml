@@ -314,12 +314,15 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
 
 (* [a.(i) <- a.(index.(i))] for every [i] and every array [a] of
    [floats] and [ints], [index] a permutation of [0 .. length a - 1]: each
-   array gathered into a scratch array ([scratch] for the floats, of at
-   least as many), then copied back. The loads are
-   independent: following the permutation's cycles in place made each wait
-   for the one before, 4 times slower for a million spheres. *)
+   array gathered into [scratch], of at least as many floats, then copied
+   back. The loads are independent: following the permutation's cycles in
+   place made each wait for the one before, 4 times slower for a million
+   spheres. The ints (below 2^53: exact as floats) go through the same
+   scratch: an int array of a million more would raise the peak by 8 MB,
+   and its making (filled twice) start a slice of the major collection. *)
 let gather_in_place index ~scratch:fs ~(floats : float array array) ~(ints : int array array) =
   let n = Array.length index in
+  if Array.length fs < n then invalid_arg "Prepared.gather_in_place: scratch";
   Array.iter
     (fun (a : float array) ->
       for i = 0 to n - 1 do
@@ -327,13 +330,14 @@ let gather_in_place index ~scratch:fs ~(floats : float array array) ~(ints : int
       done;
       Array.blit fs 0 a 0 n)
     floats;
-  let is = Array.make (if Array.length ints = 0 then 0 else n) 0 in
   Array.iter
     (fun (a : int array) ->
       for i = 0 to n - 1 do
-        Array.unsafe_set is i a.(index.(i))
+        Array.unsafe_set fs i (Float.of_int a.(index.(i)))
       done;
-      Array.blit is 0 a 0 n)
+      for i = 0 to n - 1 do
+        a.(i) <- Float.to_int (Array.unsafe_get fs i)
+      done)
     ints
 
 module Materials = Material.Plain
