@@ -239,6 +239,32 @@ let tests =
         in
         Alcotest.(check (float 1e-8)) "radius 1" 2.132e-6 m.(0);
         Array.iter (fun x -> if not (x > 0. && x < 3e-6) then Alcotest.failf "margin %g" x) m);
+    Alcotest.test_case "the margin from the bounds of spheres and camera is the margin from the spheres, bit for bit"
+      `Quick (fun () ->
+        (* Prepared.mesh_boxes finds the bounds as it makes the boxes. *)
+        let cx, cy, cz, r = random_spheres 500 7 in
+        let camera = Vec3.v 3. (-2.) (-60.) in
+        let b = [| camera.x; camera.y; camera.z; camera.x; camera.y; camera.z |] in
+        Array.iteri
+          (fun i x ->
+            b.(0) <- Float.min b.(0) (x -. r.(i));
+            b.(1) <- Float.min b.(1) (cy.(i) -. r.(i));
+            b.(2) <- Float.min b.(2) (cz.(i) -. r.(i));
+            b.(3) <- Float.max b.(3) (x +. r.(i));
+            b.(4) <- Float.max b.(4) (cy.(i) +. r.(i));
+            b.(5) <- Float.max b.(5) (cz.(i) +. r.(i)))
+          cx;
+        let terms = Bvh.margin_of_bounds b in
+        let margins = Bvh.ray_box_margin ~cx ~cy ~cz ~radius:r camera in
+        Array.iteri
+          (fun i m ->
+            Alcotest.(check int64) (Printf.sprintf "sphere %d" i) (Int64.bits_of_float m)
+              (Int64.bits_of_float (Bvh.margin terms r.(i))))
+          margins;
+        (* The terms themselves: D^2 of the box, M its largest magnitude. *)
+        let from = Bvh.margin_terms ~cx ~cy ~cz ~radius:r camera in
+        Alcotest.(check (float 0.)) "D^2" from.d2 terms.d2;
+        Alcotest.(check (float 0.)) "M" from.m terms.m);
     Helpers.qcheck ~count:150 "crowded scenes: the hierarchy gives the brute force's bytes"
       (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
       (fun s ->
