@@ -144,9 +144,13 @@ let bin_slots (ka : float array) (kb : float array) (x0 : float array) (y0 : flo
 (* [copy6 a i b j] copies [a.(i) .. a.(i + 5)] to [b.(j) .. b.(j + 5)],
    in place of [Array.blit], a call into C, for the 4 boxes of every node. *)
 let[@inline] copy6 (a : float array) i (b : float array) j =
-  for k = 0 to 5 do
-    b.(j + k) <- a.(i + k)
-  done
+  if i < 0 || j < 0 || i + 6 > Array.length a || j + 6 > Array.length b then invalid_arg "Bvh.copy6";
+  Array.unsafe_set b j (Array.unsafe_get a i);
+  Array.unsafe_set b (j + 1) (Array.unsafe_get a (i + 1));
+  Array.unsafe_set b (j + 2) (Array.unsafe_get a (i + 2));
+  Array.unsafe_set b (j + 3) (Array.unsafe_get a (i + 3));
+  Array.unsafe_set b (j + 4) (Array.unsafe_get a (i + 4));
+  Array.unsafe_set b (j + 5) (Array.unsafe_get a (i + 5))
 
 (* [running_boxes bin_n bin_box b0 b1 out] writes at [6 b] in [out], for
    each [b] from [b0] to [b1] (downwards if [b1 < b0]), the box of the
@@ -221,14 +225,22 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
   done;
   { order; n_nodes; lo_x; lo_y; lo_z; hi_x; hi_y; hi_z; link; tag; depth }
 
-type beside = { beside : 'a. (unit -> 'a) -> unit -> 'a option; min_objects : int }
+type floats = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t
 
-(* What a subtree built beside sends back, small (3 MB for half a million
-   objects) for the pipe and the caller's heap: the slots' order in its
-   range as positions in that range before it was built (4 bytes each),
-   its nodes' tags (a byte each: their links follow from the tags), the
-   deepest level it reached. *)
-type part = { perm : Bytes.t; tags : Bytes.t; part_depth : int }
+type beside = {
+  beside : 'a. (unit -> 'a) -> unit -> 'a option;
+  min_objects : int;
+  floats : int -> floats;
+}
+
+(* What a subtree built beside sends back on the pipe, small (half a MB
+   for half a million objects): its nodes' tags (a byte each: their links
+   follow from the tags), the deepest level it reached. Its slots' boxes
+   and objects, in the order it left them, come in the floats shared with
+   the caller ([beside.floats]): copied in order from there, where the
+   caller once followed a permutation through 7 arrays, a cache miss at
+   nearly every step (70 ms for half a million objects). *)
+type part = { tags : Bytes.t; part_depth : int }
 
 let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let n = Array.length x0 in
@@ -346,10 +358,14 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let rec node lo hi level (bounds : float array) o =
     let k = add_node t in
     if level > !depth then depth := level;
-    let bx0 = bounds.(o) and by0 = bounds.(o + 1) and bz0 = bounds.(o + 2) in
-    let bx1 = bounds.(o + 3) and by1 = bounds.(o + 4) and bz1 = bounds.(o + 5) in
-    let mx0 = bounds.(o + 6) and my0 = bounds.(o + 7) and mz0 = bounds.(o + 8) in
-    let mx1 = bounds.(o + 9) and my1 = bounds.(o + 10) and mz1 = bounds.(o + 11) in
+    (* One check for the twelve reads, at every node. *)
+    if o < 0 || o + 12 > Array.length bounds then invalid_arg "Bvh.build_boxes: bounds";
+    let bx0 = Array.unsafe_get bounds o and by0 = Array.unsafe_get bounds (o + 1) in
+    let bz0 = Array.unsafe_get bounds (o + 2) and bx1 = Array.unsafe_get bounds (o + 3) in
+    let by1 = Array.unsafe_get bounds (o + 4) and bz1 = Array.unsafe_get bounds (o + 5) in
+    let mx0 = Array.unsafe_get bounds (o + 6) and my0 = Array.unsafe_get bounds (o + 7) in
+    let mz0 = Array.unsafe_get bounds (o + 8) and mx1 = Array.unsafe_get bounds (o + 9) in
+    let my1 = Array.unsafe_get bounds (o + 10) and mz1 = Array.unsafe_get bounds (o + 11) in
     let n = hi - lo in
     let ex = mx1 -. mx0 and ey = my1 -. my0 and ez = mz1 -. mz0 in
     let a = if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2 in
@@ -375,8 +391,9 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
         running_boxes bin_n bin_box (bins - 1) 1 suffix;
         let best = ref (-1) and best_cost = ref infinity and right_n = ref 0 and left_n = ref n in
         for b = bins - 1 downto 1 do
-          right_n := !right_n + bin_n.(b);
-          left_n := !left_n - bin_n.(b);
+          (* [b < bins <= 16], the length of [bin_n]. *)
+          right_n := !right_n + Array.unsafe_get bin_n b;
+          left_n := !left_n - Array.unsafe_get bin_n b;
           if !left_n > 0 && !right_n > 0 then begin
             let cost = (area prefix (b - 1) *. Float.of_int !left_n) +. (area suffix b *. Float.of_int !right_n) in
             if cost < !best_cost then begin
@@ -488,24 +505,32 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
           m
         end
       in
-      match beside with
-      | Some b
-        when !alone && hi - split >= b.min_objects && 4 * (hi - split) >= n_all && 4 * (split - lo) >= n_all
-             && leaf_size <= 127 && hi - split <= 0x7fff_ffff ->
-          (* The right subtree built beside, once, while this process
-             builds the left one; it goes after the left's nodes. Two
-             children of a quarter of the objects or more: neither
-             process has much more to do than the other. *)
-          alone := false;
+      (* The right subtree built beside, once, while this process
+         builds the left one; it goes after the left's nodes. Two
+         children of a quarter of the objects or more: neither process
+         has much more to do than the other. *)
+      let shared =
+        match beside with
+        | Some b
+          when !alone && hi - split >= b.min_objects && 4 * (hi - split) >= n_all && 4 * (split - lo) >= n_all
+               && leaf_size <= 127 && hi - split <= 0x7fff_ffff -> (
+            alone := false;
+            match b.floats (7 * (hi - split)) with
+            | sh -> Some (b, sh)
+            | exception (Failure _ | Out_of_memory) -> (* Built here, as without [beside]. *) None)
+        | _ -> None
+      in
+      match shared with
+      | Some (b, sh) ->
           let right = Array.sub !frames (f + 12) 12 in
-          let wait = b.beside (fun () -> part split hi (level + 1) right) in
+          let wait = b.beside (fun () -> part split hi (level + 1) right sh) in
           node lo split (level + 1) !frames f;
           t.link.(k) <- t.size;
           (match wait () with
           | Some _ when !built_here -> (* [beside] ran [part] here: the tree is complete. *) ()
-          | Some p -> graft split p
+          | Some p -> graft split hi p sh
           | None -> node split hi (level + 1) !frames (f + 12))
-      | _ ->
+      | None ->
           node lo split (level + 1) !frames f;
           t.link.(k) <- t.size;
           (* [frames] may have grown (and moved) meanwhile. *)
@@ -513,32 +538,32 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
     end
   (* The subtree over slots [lo .. hi - 1] and what [graft] needs of it:
      run beside (in a copy of this process), after [node lo split] there
-     has moved nothing in [lo .. hi - 1]. *)
-  and part lo hi level bounds =
+     has moved nothing in [lo .. hi - 1]. The slots' boxes and objects
+     go to [sh]: the [m] lower x, then y, z, upper x, y, z, then the
+     objects' numbers (exact as floats: [m < 2^31]). *)
+  and part lo hi level bounds (sh : floats) =
     built_here := true;
     let m = hi - lo in
-    let ids = Array.sub order lo m in
-    for s = lo to hi - 1 do
-      order.(s) <- s - lo
-    done;
     let first = t.size in
     node lo hi level bounds 0;
-    let perm = Bytes.create (4 * m) in
+    List.iteri
+      (fun a (x : float array) ->
+        for j = 0 to m - 1 do
+          Bigarray.Array1.unsafe_set sh ((a * m) + j) (Array.unsafe_get x (lo + j))
+        done)
+      [ x0; y0; z0; x1; y1; z1 ];
     for j = 0 to m - 1 do
-      let p = order.(lo + j) in
-      Bytes.set_int32_le perm (4 * j) (Int32.of_int p);
-      (* As [node] would have left it, should this be this process. *)
-      order.(lo + j) <- ids.(p)
+      Bigarray.Array1.unsafe_set sh ((6 * m) + j) (Float.of_int (Array.unsafe_get order (lo + j)))
     done;
     let tags = Bytes.create (t.size - first) in
     for c = 0 to t.size - first - 1 do
       Bytes.set_int8 tags c t.tag.(first + c)
     done;
-    { perm; tags; part_depth = !depth }
-  (* Appends the nodes of the part over slots from [lo] and moves the slots
-     (boxes and order) as that part's build did: the same tree as if it
-     had been built here. *)
-  and graft lo p =
+    { tags; part_depth = !depth }
+  (* Appends the nodes of the part over slots [lo .. hi - 1] and moves
+     the slots (boxes and order) as that part's build did, from [sh]: the
+     same tree as if it had been built here. *)
+  and graft lo hi p (sh : floats) =
     let first = t.size and nodes = Bytes.length p.tags in
     for c = 0 to nodes - 1 do
       t.tag.(add_node t) <- Bytes.get_int8 p.tags c
@@ -563,21 +588,17 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       else link.(k) <- k + 1 + link.(k + 1)
     done;
     if p.part_depth > !depth then depth := p.part_depth;
-    (* The slots gathered through a scratch array, one array at a time:
-       reads nearby, writes in order (following the permutation's cycles
-       in place misses the cache at every step). *)
-    let m = Bytes.length p.perm / 4 in
-    let from j = lo + Int32.to_int (Bytes.get_int32_le p.perm (4 * j)) in
-    let tmp = Array.create_float m in
-    List.iter
-      (fun (a : float array) ->
+    let m = hi - lo in
+    if Bigarray.Array1.dim sh < 7 * m then invalid_arg "Bvh.build_boxes: beside.floats gave too few floats";
+    List.iteri
+      (fun a (x : float array) ->
         for j = 0 to m - 1 do
-          Array.unsafe_set tmp j a.(from j)
-        done;
-        Array.blit tmp 0 a lo m)
+          Array.unsafe_set x (lo + j) (Bigarray.Array1.unsafe_get sh ((a * m) + j))
+        done)
       [ x0; y0; z0; x1; y1; z1 ];
-    let ids = Array.init m (fun j -> order.(from j)) in
-    Array.blit ids 0 order lo m
+    for j = 0 to m - 1 do
+      Array.unsafe_set order (lo + j) (Float.to_int (Bigarray.Array1.unsafe_get sh ((6 * m) + j)))
+    done
   in
   let root = Array.make 12 0. in
   bounds_of 0 n root 0;
@@ -593,6 +614,15 @@ let build ?leaf_size ~cx ~cy ~cz extent =
   build_boxes ?leaf_size ~x0:(lo cx) ~y0:(lo cy) ~z0:(lo cz) ~x1:(hi cx) ~y1:(hi cy) ~z1:(hi cz) ()
 
 type margin = { d2 : float; m : float }
+
+let margin_of_bounds (b : float array) =
+  let dx = b.(3) -. b.(0) and dy = b.(4) -. b.(1) and dz = b.(5) -. b.(2) in
+  let d2 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let m = ref 0. in
+  for i = 0 to 5 do
+    m := fmax !m (Float.abs b.(i))
+  done;
+  { d2; m = !m }
 
 let margin_terms ?among ~cx ~cy ~cz ~radius (camera : Vec3.t) =
   let x0 = ref camera.x and y0 = ref camera.y and z0 = ref camera.z in
@@ -610,12 +640,7 @@ let margin_terms ?among ~cx ~cy ~cz ~radius (camera : Vec3.t) =
     y1 := fmax !y1 (cy.(i) +. r);
     z1 := fmax !z1 (cz.(i) +. r)
   done;
-  let dx = !x1 -. !x0 and dy = !y1 -. !y0 and dz = !z1 -. !z0 in
-  let d2 = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
-  let m =
-    List.fold_left (fun acc v -> fmax acc (Float.abs v)) 0. [ !x0; !y0; !z0; !x1; !y1; !z1 ]
-  in
-  { d2; m }
+  margin_of_bounds [| !x0; !y0; !z0; !x1; !y1; !z1 |]
 
 let[@inline] margin t r =
   let u = epsilon_float /. 2. in

@@ -44,6 +44,9 @@ val build : ?leaf_size:int -> cx:float array -> cy:float array -> cz:float array
     @raise Invalid_argument if the arrays are empty or of different
     lengths. *)
 
+type floats = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t
+(** The type for floats that a process shares with its copies. *)
+
 type beside = {
   beside : 'a. (unit -> 'a) -> unit -> 'a option;
       (** [beside f] starts computing [f ()] on another core (in a copy
@@ -53,6 +56,14 @@ type beside = {
           compute [f ()] itself, in this process; never [beside]. [f ()]
           holds no functions. *)
   min_objects : int;  (** The fewest objects of a subtree built beside. *)
+  floats : int -> floats;
+      (** [floats n] is at least [n] floats that a computation started by
+          a later [beside] writes and this process reads (memory shared
+          with the copy; in this process's own memory where [beside]
+          computes here). The subtree built beside leaves its objects'
+          boxes and numbers there (56 bytes an object), for this process
+          to copy in order. It may raise [Failure] or [Out_of_memory]: the
+          subtree is then built here. *)
 }
 (** The type for ways to build a part of a hierarchy on another core. The
     core library forks nothing: a caller that can gives {!build_boxes} a
@@ -108,6 +119,14 @@ val margin_terms :
   ?among:int array -> cx:float array -> cy:float array -> cz:float array -> radius:float array -> Vec3.t -> margin
 (** [margin_terms ~among ~cx ~cy ~cz ~radius camera] is [D^2] and [M] of
     {!ray_box_margin} for the same arguments. *)
+
+val margin_of_bounds : float array -> margin
+(** [margin_of_bounds b] is [D^2] and [M] of {!ray_box_margin} for the
+    spheres and camera whose bounds have lower corner [(b.(0), b.(1),
+    b.(2))] and upper corner [(b.(3), b.(4), b.(5))]: a caller that finds
+    the bounds as it makes the boxes needs no arrays of centers and radii
+    for {!margin_terms}.
+    @raise Invalid_argument if [b] has fewer than 6 elements. *)
 
 val margin : margin -> float -> float
 (** [margin t r] is the margin of {!ray_box_margin} of a sphere of radius

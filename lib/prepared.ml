@@ -314,12 +314,15 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
 
 (* [a.(i) <- a.(index.(i))] for every [i] and every array [a] of
    [floats] and [ints], [index] a permutation of [0 .. length a - 1]: each
-   array gathered into a scratch array ([scratch] for the floats, of at
-   least as many), then copied back. The loads are
-   independent: following the permutation's cycles in place made each wait
-   for the one before, 4 times slower for a million spheres. *)
+   array gathered into [scratch], of at least as many floats, then copied
+   back. The loads are independent: following the permutation's cycles in
+   place made each wait for the one before, 4 times slower for a million
+   spheres. The ints (below 2^53: exact as floats) go through the same
+   scratch: an int array of a million more would raise the peak by 8 MB,
+   and its making (filled twice) start a slice of the major collection. *)
 let gather_in_place index ~scratch:fs ~(floats : float array array) ~(ints : int array array) =
   let n = Array.length index in
+  if Array.length fs < n then invalid_arg "Prepared.gather_in_place: scratch";
   Array.iter
     (fun (a : float array) ->
       for i = 0 to n - 1 do
@@ -327,21 +330,43 @@ let gather_in_place index ~scratch:fs ~(floats : float array array) ~(ints : int
       done;
       Array.blit fs 0 a 0 n)
     floats;
-  let is = Array.make (if Array.length ints = 0 then 0 else n) 0 in
   Array.iter
     (fun (a : int array) ->
       for i = 0 to n - 1 do
-        Array.unsafe_set is i a.(index.(i))
+        Array.unsafe_set fs i (Float.of_int a.(index.(i)))
       done;
-      Array.blit is 0 a 0 n)
+      for i = 0 to n - 1 do
+        a.(i) <- Float.to_int (Array.unsafe_get fs i)
+      done)
     ints
 
 module Materials = Material.Plain
 
 let[@inline] fmax (a : float) b = if a > b then a else b
+let[@inline] fmin (a : float) b = if a < b then a else b
 
 (* The cube around a shape (not a sphere): its center and half side. *)
 let single_bounds sh = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.)
+
+(* [half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds i cx cy cz hx hy hz] writes
+   at [i] the center [(cx, cy, cz)] to [x0], [y0], [z0] and the half sides
+   [(hx, hy, hz)] to [x1], [y1], [z1] of a box, and grows [bounds] by the
+   cube around it (its half side the largest of [hx], [hy], [hz]), as
+   {!Bvh.margin_terms} grows its bounds by each sphere. *)
+let[@inline] half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) i cx cy cz hx hy hz =
+  Array.unsafe_set x0 i cx;
+  Array.unsafe_set y0 i cy;
+  Array.unsafe_set z0 i cz;
+  Array.unsafe_set x1 i hx;
+  Array.unsafe_set y1 i hy;
+  Array.unsafe_set z1 i hz;
+  let r = fmax hx (fmax hy hz) in
+  bounds.(0) <- fmin bounds.(0) (cx -. r);
+  bounds.(1) <- fmin bounds.(1) (cy -. r);
+  bounds.(2) <- fmin bounds.(2) (cz -. r);
+  bounds.(3) <- fmax bounds.(3) (cx +. r);
+  bounds.(4) <- fmax bounds.(4) (cy +. r);
+  bounds.(5) <- fmax bounds.(5) (cz +. r)
 
 (* For a scene with a mesh: the boxes of the objects [bounded] (increasing
    object numbers), as [build_boxes] takes them, each padded by its
@@ -349,64 +374,60 @@ let single_bounds sh = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero,
    in [cx] to [radius], by object); another shape's its cube too, found
    again; a mesh's triangle's is its box (half of it along each axis:
    triangles are slivers, far thinner than their cube along two), found
-   from its corners twice, for the margin, then for the box, with no
-   array of centers or half sides of a million triangles between. *)
+   from its corners once: its center and half sides are written where
+   its box will be, and the margin's terms found meanwhile, from the
+   cubes around the boxes (the largest half side, [0.5 dx] or another:
+   halving is exact, and the largest of the halves is half the largest);
+   then each box is padded where it is, with no array of margins, centers
+   or half sides of a million triangles between, and no second reading
+   of the corners. *)
 let mesh_boxes ~n_spheres (scene : Scene.t) ~bounded ~cx ~cy ~cz ~radius =
   let nb = Array.length bounded in
-  let x0 = Array.make nb 0. and y0 = Array.make nb 0. and z0 = Array.make nb 0. in
-  let x1 = Array.make nb 0. and y1 = Array.make nb 0. and z1 = Array.make nb 0. in
-  (* [b]: center x y z, half the box along x y z, half side of the cube. *)
-  let b = Array.make 7 0. and box = Array.make 6 0. in
-  let each f =
-    let pos = ref 0 in
-    let next k = !pos < nb && bounded.(!pos) = k in
-    let cube (c : Vec3.t) h =
-      b.(0) <- c.x;
-      b.(1) <- c.y;
-      b.(2) <- c.z;
-      b.(3) <- h;
-      b.(4) <- h;
-      b.(5) <- h;
-      b.(6) <- h;
-      f !pos;
+  (* Every element is written below. *)
+  let f () = Array.create_float nb in
+  let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
+  let p = scene.camera.position in
+  let bounds = [| p.x; p.y; p.z; p.x; p.y; p.z |] and box = Array.make 6 0. in
+  let pos = ref 0 in
+  let next k = !pos < nb && bounded.(!pos) = k in
+  for k = 0 to n_spheres - 1 do
+    if next k then begin
+      let h = radius.(k) in
+      half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos cx.(k) cy.(k) cz.(k) h h h;
       incr pos
-    in
-    for k = 0 to n_spheres - 1 do
-      if next k then cube (Vec3.v cx.(k) cy.(k) cz.(k)) radius.(k)
-    done;
-    ignore
-      (iter_objects ~n_spheres scene
-         ~single:(fun k sh -> if next k then (let c, h = single_bounds sh in cube c h))
-         ~mesh_triangle:(fun k m t ->
-           if next k then begin
-             Mesh.box m t box;
-             let dx = box.(3) -. box.(0) and dy = box.(4) -. box.(1) and dz = box.(5) -. box.(2) in
-             b.(0) <- 0.5 *. (box.(0) +. box.(3));
-             b.(1) <- 0.5 *. (box.(1) +. box.(4));
-             b.(2) <- 0.5 *. (box.(2) +. box.(5));
-             b.(3) <- 0.5 *. dx;
-             b.(4) <- 0.5 *. dy;
-             b.(5) <- 0.5 *. dz;
-             b.(6) <- fmax dx (fmax dy dz) *. 0.5;
-             f !pos;
-             incr pos
-           end))
-  in
-  (* The centers and half sides, where the boxes will be, for the margin. *)
-  each (fun i ->
-      x0.(i) <- b.(0);
-      y0.(i) <- b.(1);
-      z0.(i) <- b.(2);
-      x1.(i) <- b.(6));
-  let margin = Bvh.ray_box_margin ~cx:x0 ~cy:y0 ~cz:z0 ~radius:x1 scene.camera.position in
-  each (fun i ->
-      let m = margin.(i) in
-      x0.(i) <- b.(0) -. (b.(3) +. m);
-      y0.(i) <- b.(1) -. (b.(4) +. m);
-      z0.(i) <- b.(2) -. (b.(5) +. m);
-      x1.(i) <- b.(0) +. (b.(3) +. m);
-      y1.(i) <- b.(1) +. (b.(4) +. m);
-      z1.(i) <- b.(2) +. (b.(5) +. m));
+    end
+  done;
+  ignore
+    (iter_objects ~n_spheres scene
+       ~single:(fun k sh ->
+         if next k then begin
+           let (c : Vec3.t), h = single_bounds sh in
+           half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos c.x c.y c.z h h h;
+           incr pos
+         end)
+       ~mesh_triangle:(fun k m t ->
+         if next k then begin
+           Mesh.box m t box;
+           let dx = box.(3) -. box.(0) and dy = box.(4) -. box.(1) and dz = box.(5) -. box.(2) in
+           half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos
+             (0.5 *. (box.(0) +. box.(3)))
+             (0.5 *. (box.(1) +. box.(4)))
+             (0.5 *. (box.(2) +. box.(5)))
+             (0.5 *. dx) (0.5 *. dy) (0.5 *. dz);
+           incr pos
+         end));
+  let terms = Bvh.margin_of_bounds bounds in
+  for i = 0 to nb - 1 do
+    let hx = x1.(i) and hy = y1.(i) and hz = z1.(i) in
+    let m = Bvh.margin terms (fmax hx (fmax hy hz)) in
+    let cx = x0.(i) and cy = y0.(i) and cz = z0.(i) in
+    x0.(i) <- cx -. (hx +. m);
+    y0.(i) <- cy -. (hy +. m);
+    z0.(i) <- cz -. (hz +. m);
+    x1.(i) <- cx +. (hx +. m);
+    y1.(i) <- cy +. (hy +. m);
+    z1.(i) <- cz +. (hz +. m)
+  done;
   (x0, y0, z0, x1, y1, z1)
 
 let prepare_scene ~skips ?beside scene =

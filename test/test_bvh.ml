@@ -50,7 +50,10 @@ let counting ~min_objects built =
           x)
         (wait ())
   in
-  { Bvh.beside; min_objects }
+  { b with Bvh.beside }
+
+(* Floats of this process's own memory, for a [beside] that computes here. *)
+let own n = Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout n
 
 let bits = Array.map Int64.bits_of_float
 
@@ -115,12 +118,19 @@ let tests =
         check_same "leaves of 127" (build ~leaf_size:127 b) (build ~leaf_size:127 ~beside:(counting ~min_objects:10 built) b);
         Alcotest.(check int) "a part beside for leaves of 127" 1 !built;
         let calls = ref 0 in
-        let failing = { Bvh.beside = (fun _ () -> incr calls; None); min_objects = 10 } in
+        let failing = { Bvh.beside = (fun _ () -> incr calls; None); min_objects = 10; floats = own } in
         check_same "a beside that fails" one (build ~beside:failing b);
         Alcotest.(check int) "asked once" 1 !calls;
         (* Parallel.beside computes [f] in the caller when it cannot fork. *)
-        let here = { Bvh.beside = (fun f () -> Some (f ())); min_objects = 10 } in
-        check_same "a beside that computes here" one (build ~beside:here b));
+        let here = { Bvh.beside = (fun f () -> Some (f ())); min_objects = 10; floats = own } in
+        check_same "a beside that computes here" one (build ~beside:here b);
+        (* No shared memory (a full /dev/shm): built here, nothing started. *)
+        let calls = ref 0 in
+        let no_memory =
+          { Bvh.beside = (fun f () -> incr calls; Some (f ())); min_objects = 10; floats = (fun _ -> failwith "no memory") }
+        in
+        check_same "no shared memory" one (build ~beside:no_memory b);
+        Alcotest.(check int) "nothing built beside without shared memory" 0 !calls);
     Alcotest.test_case "grid:140000, above the threshold of 2^16: a part beside, the same tree and pixels" `Slow
       (fun () ->
         let s = { (Scene.grid 140_000) with width = 48; height = 48 } in
@@ -229,6 +239,32 @@ let tests =
         in
         Alcotest.(check (float 1e-8)) "radius 1" 2.132e-6 m.(0);
         Array.iter (fun x -> if not (x > 0. && x < 3e-6) then Alcotest.failf "margin %g" x) m);
+    Alcotest.test_case "the margin from the bounds of spheres and camera is the margin from the spheres, bit for bit"
+      `Quick (fun () ->
+        (* Prepared.mesh_boxes finds the bounds as it makes the boxes. *)
+        let cx, cy, cz, r = random_spheres 500 7 in
+        let camera = Vec3.v 3. (-2.) (-60.) in
+        let b = [| camera.x; camera.y; camera.z; camera.x; camera.y; camera.z |] in
+        Array.iteri
+          (fun i x ->
+            b.(0) <- Float.min b.(0) (x -. r.(i));
+            b.(1) <- Float.min b.(1) (cy.(i) -. r.(i));
+            b.(2) <- Float.min b.(2) (cz.(i) -. r.(i));
+            b.(3) <- Float.max b.(3) (x +. r.(i));
+            b.(4) <- Float.max b.(4) (cy.(i) +. r.(i));
+            b.(5) <- Float.max b.(5) (cz.(i) +. r.(i)))
+          cx;
+        let terms = Bvh.margin_of_bounds b in
+        let margins = Bvh.ray_box_margin ~cx ~cy ~cz ~radius:r camera in
+        Array.iteri
+          (fun i m ->
+            Alcotest.(check int64) (Printf.sprintf "sphere %d" i) (Int64.bits_of_float m)
+              (Int64.bits_of_float (Bvh.margin terms r.(i))))
+          margins;
+        (* The terms themselves: D^2 of the box, M its largest magnitude. *)
+        let from = Bvh.margin_terms ~cx ~cy ~cz ~radius:r camera in
+        Alcotest.(check (float 0.)) "D^2" from.d2 terms.d2;
+        Alcotest.(check (float 0.)) "M" from.m terms.m);
     Helpers.qcheck ~count:150 "crowded scenes: the hierarchy gives the brute force's bytes"
       (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
       (fun s ->

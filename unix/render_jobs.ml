@@ -62,7 +62,9 @@ let bvh_beside ?(min_objects = 1 lsl 16) () =
     let wait = Parallel.beside f in
     fun () -> Result.to_option (wait ())
   in
-  { Bvh.beside; min_objects }
+  (* The floats in memory shared with the child: its part's boxes come
+     back in order, no permutation followed through them here. *)
+  { Bvh.beside; min_objects; floats = Parallel.shared_floats }
 
 let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region : Region.t) =
   (* Nothing here holds the scene past [Prepared.prepare], which lets its
