@@ -294,13 +294,13 @@ let[@inline] test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4 =
    [0 * inv] is 0, never NaN (rays only look at t >= 0). *)
 let[@inline] slab_inverse d = if d = 0. then 1e300 else 1. /. d
 
-(* Does the ray in [s] (with slab inverses [ix, iy, iz]) meet box [k] of
-   [b] at some t in [t_min, limit]? *)
-let[@inline] meets_box (b : Bvh.t) s k ix iy iz limit =
+(* Does the ray in [s] (with slab inverses [ix, iy, iz]) meet the box of
+   the node at offset [o] of [nodes] at some t in [t_min, limit]? *)
+let[@inline] meets_box nodes s o ix iy iz limit =
   let ox = s.ox and oy = s.oy and oz = s.oz in
-  let x0 = (Array.unsafe_get b.lo_x k -. ox) *. ix and x1 = (Array.unsafe_get b.hi_x k -. ox) *. ix in
-  let y0 = (Array.unsafe_get b.lo_y k -. oy) *. iy and y1 = (Array.unsafe_get b.hi_y k -. oy) *. iy in
-  let z0 = (Array.unsafe_get b.lo_z k -. oz) *. iz and z1 = (Array.unsafe_get b.hi_z k -. oz) *. iz in
+  let x0 = (Bvh.lo_at nodes o 0 -. ox) *. ix and x1 = (Bvh.hi_at nodes o 0 -. ox) *. ix in
+  let y0 = (Bvh.lo_at nodes o 1 -. oy) *. iy and y1 = (Bvh.hi_at nodes o 1 -. oy) *. iy in
+  let z0 = (Bvh.lo_at nodes o 2 -. oz) *. iz and z1 = (Bvh.hi_at nodes o 2 -. oz) *. iz in
   let enter_x = if x0 < x1 then x0 else x1 and exit_x = if x0 < x1 then x1 else x0 in
   let enter_y = if y0 < y1 then y0 else y1 and exit_y = if y0 < y1 then y1 else y0 in
   let enter_z = if z0 < z1 then z0 else z1 and exit_z = if z0 < z1 then z1 else z0 in
@@ -310,11 +310,12 @@ let[@inline] meets_box (b : Bvh.t) s k ix iy iz limit =
   let exit = if exit < exit_z then exit else exit_z in
   enter <= exit && exit >= s.t_min && enter <= limit
 
-(* Pushes the children of inner node [k] on [stack] above [sp], so that the
-   nearer along the ray is popped first; the new stack pointer. *)
-let[@inline] push_children (b : Bvh.t) stack sp k dx dy dz =
-  let right = Array.unsafe_get b.link k in
-  let tag = Array.unsafe_get b.tag k in
+(* Pushes the children of inner node [k], at offset [o] of [nodes], on
+   [stack] above [sp], so that the nearer along the ray is popped first;
+   the new stack pointer. *)
+let[@inline] push_children nodes stack sp k o dx dy dz =
+  let right = Bvh.link_at nodes o in
+  let tag = Bvh.tag_at nodes o in
   let d = if tag = -1 then dx else if tag = -2 then dy else dz in
   if d >= 0. then begin
     Array.unsafe_set stack sp right;
@@ -408,25 +409,26 @@ let[@inline] closest_from tr ~primary ~spheres =
             done
           end;
           let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
-          let stack = tr.nodes and sp = ref 1 in
+          let nodes = b.nodes and stack = tr.nodes and sp = ref 1 in
           Array.unsafe_set stack 0 0;
           while !sp > 0 do
             decr sp;
             let k = Array.unsafe_get stack !sp in
+            let o = Bvh.offset k in
             tr.counters.box_tests <- tr.counters.box_tests + 1;
             (* A box entered beyond the best hit so far cannot hold a better
                one (its spheres' hit points lie inside it, rounding
                included); one entered exactly there may hold an equal one. *)
-            if meets_box b s k ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
-              let count = Array.unsafe_get b.tag k in
+            if meets_box nodes s o ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
+              let count = Bvh.tag_at nodes o in
               if count > 0 then begin
-                let first = Array.unsafe_get b.link k in
+                let first = Bvh.link_at nodes o in
                 tr.counters.tests <- tr.counters.tests + count;
                 for i = first to first + count - 1 do
                   test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
                 done
               end
-              else sp := push_children b stack !sp k dx dy dz
+              else sp := push_children nodes stack !sp k o dx dy dz
             end
           done);
       tr.hit
@@ -554,7 +556,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
   | Some b ->
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
-      let stack = tr.nodes and sp = ref 1 and found = ref (-1) in
+      let nodes = b.nodes and stack = tr.nodes and sp = ref 1 and found = ref (-1) in
       (* Planes first: they are outside the hierarchy. *)
       let planes = p.unbounded in
       let n = Array.length planes in
@@ -573,11 +575,13 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
       while !sp > 0 do
         decr sp;
         let k = Array.unsafe_get stack !sp in
+        let o = Bvh.offset k in
         tr.counters.box_tests <- tr.counters.box_tests + 1;
-        if meets_box b s k ix iy iz s.t_max then begin
-          let count = Array.unsafe_get b.tag k in
+        if meets_box nodes s o ix iy iz s.t_max then begin
+          let count = Bvh.tag_at nodes o in
           if count > 0 then begin
-            let i = ref (Array.unsafe_get b.link k) and last = Array.unsafe_get b.link k + count in
+            let first = Bvh.link_at nodes o in
+            let i = ref first and last = first + count in
             while !i < last && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
               incr i
             done;
@@ -587,7 +591,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
               sp := 0
             end
           end
-          else sp := push_children b stack !sp k dx dy dz
+          else sp := push_children nodes stack !sp k o dx dy dz
         end
       done;
       !found
