@@ -230,11 +230,14 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
     else begin
       (* An inner node: its axis [g] becomes [-1 - g]; [l] is its right child. *)
       nodes.(o + 7) <- Float.of_int (-1 - g);
+      (* Both children come after [k], already written. *)
       let c = offset (k + 1) and r = offset l in
-      for a = 0 to 2 do
-        nodes.(o + a) <- fmin nodes.(c + a) nodes.(r + a);
-        nodes.(o + 3 + a) <- fmax nodes.(c + 3 + a) nodes.(r + 3 + a)
-      done
+      Array.unsafe_set nodes o (fmin (Array.unsafe_get nodes c) (Array.unsafe_get nodes r));
+      Array.unsafe_set nodes (o + 1) (fmin (Array.unsafe_get nodes (c + 1)) (Array.unsafe_get nodes (r + 1)));
+      Array.unsafe_set nodes (o + 2) (fmin (Array.unsafe_get nodes (c + 2)) (Array.unsafe_get nodes (r + 2)));
+      Array.unsafe_set nodes (o + 3) (fmax (Array.unsafe_get nodes (c + 3)) (Array.unsafe_get nodes (r + 3)));
+      Array.unsafe_set nodes (o + 4) (fmax (Array.unsafe_get nodes (c + 4)) (Array.unsafe_get nodes (r + 4)));
+      Array.unsafe_set nodes (o + 5) (fmax (Array.unsafe_get nodes (c + 5)) (Array.unsafe_get nodes (r + 5)))
     end
   done;
   { order; n_nodes; nodes; depth }
