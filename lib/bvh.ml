@@ -206,7 +206,9 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
   for k = n_nodes - 1 downto 0 do
     let o = offset k in
     let l = link.(k) and g = tag.(k) in
-    nodes.(o + 6) <- Float.of_int l;
+    (* An inner node's link is its right child's offset: the tracer's
+       stack holds offsets, not indices to multiply. *)
+    nodes.(o + 6) <- Float.of_int (if g < 0 then l else offset l);
     if g < 0 then begin
       (* A leaf: its count, [-g], becomes its tag. *)
       nodes.(o + 7) <- Float.of_int (-g);

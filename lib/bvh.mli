@@ -10,7 +10,8 @@
 
     Nodes are stored depth-first, 8 floats each in one array, so that the
     tracer reads a node from one 64-byte block: the left child of inner
-    node [k] is [k + 1], the right child is its [link]. Spheres are
+    node [k] is [k + 1], the right child is at the offset its [link]
+    gives. Spheres are
     referred to by slot: leaf [k] holds [tag] slots from its [link], and
     [order.(slot)] is the sphere's index in the input.
 
@@ -23,8 +24,8 @@ type t = private {
       (** Node [k] at [8 k], [node_floats] floats: the lower corner of its
           box (x, y, z), the upper corner, its link, its tag. Link and tag
           are integers held as floats (exactly: they are below [2^53]).
-          Link: of an inner node, the index of its right child; of a leaf,
-          its first slot. Tag: of a leaf, its number of slots, [>= 1]; of
+          Link: of an inner node, the offset in [nodes] of its right child
+          ([8] times its index); of a leaf, its first slot. Tag: of a leaf, its number of slots, [>= 1]; of
           an inner node, [-1 - a], [a] the axis 0 to 2 its children are
           split along. *)
   depth : int;  (** Largest number of nodes on a path from the root. *)
@@ -51,8 +52,8 @@ val hi_at : float array -> int -> int -> float
     the box of the node at offset [o]. Unchecked. *)
 
 val link_at : float array -> int -> int
-(** [link_at nodes o] is the link of the node at offset [o]: the right
-    child of an inner node, the first slot of a leaf. Unchecked. *)
+(** [link_at nodes o] is the link of the node at offset [o]: the offset
+    of an inner node's right child, a leaf's first slot. Unchecked. *)
 
 val tag_at : float array -> int -> int
 (** [tag_at nodes o] is the tag of the node at offset [o]: a leaf's

@@ -24,7 +24,7 @@ type t = {
           sphere, not an index then the sphere. *)
   blockers_first : int array;  (** Per light [l]: [4 n l], read rather than multiplied per shadow ray. *)
   counters : counters;
-  nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
+  nodes : int array;  (** Stack of hierarchy nodes still to visit: their offsets in [Bvh.t]'s [nodes]. *)
   csg : Csg.work;  (** Room for the intervals of the CSG solids. *)
   mutable hit : int;  (** Index of the sphere found by [closest]. *)
   mutable origin_sphere : int;
@@ -310,19 +310,20 @@ let[@inline] meets_box nodes s o ix iy iz limit =
   let exit = if exit < exit_z then exit else exit_z in
   enter <= exit && exit >= s.t_min && enter <= limit
 
-(* Pushes the children of inner node [k], at offset [o] of [nodes], on
+(* Pushes the children of the inner node at offset [o] of [nodes] on
    [stack] above [sp], so that the nearer along the ray is popped first;
-   the new stack pointer. *)
-let[@inline] push_children nodes stack sp k o dx dy dz =
-  let right = Bvh.link_at nodes o in
+   the new stack pointer. The stack holds nodes' offsets: the left child
+   follows its parent, the right one is at the parent's link. *)
+let[@inline] push_children nodes stack sp o dx dy dz =
+  let right = Bvh.link_at nodes o and left = o + Bvh.node_floats in
   let tag = Bvh.tag_at nodes o in
   let d = if tag = -1 then dx else if tag = -2 then dy else dz in
   if d >= 0. then begin
     Array.unsafe_set stack sp right;
-    Array.unsafe_set stack (sp + 1) (k + 1)
+    Array.unsafe_set stack (sp + 1) left
   end
   else begin
-    Array.unsafe_set stack sp (k + 1);
+    Array.unsafe_set stack sp left;
     Array.unsafe_set stack (sp + 1) right
   end;
   sp + 2
@@ -410,11 +411,11 @@ let[@inline] closest_from tr ~primary ~spheres =
           end;
           let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
           let nodes = b.nodes and stack = tr.nodes and sp = ref 1 in
+          (* The root, at offset 0. *)
           Array.unsafe_set stack 0 0;
           while !sp > 0 do
             decr sp;
-            let k = Array.unsafe_get stack !sp in
-            let o = Bvh.offset k in
+            let o = Array.unsafe_get stack !sp in
             tr.counters.box_tests <- tr.counters.box_tests + 1;
             (* A box entered beyond the best hit so far cannot hold a better
                one (its spheres' hit points lie inside it, rounding
@@ -428,7 +429,7 @@ let[@inline] closest_from tr ~primary ~spheres =
                   test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
                 done
               end
-              else sp := push_children nodes stack !sp k o dx dy dz
+              else sp := push_children nodes stack !sp o dx dy dz
             end
           done);
       tr.hit
@@ -571,11 +572,11 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
           sp := 0
         end
       end;
+      (* The root, at offset 0. *)
       Array.unsafe_set stack 0 0;
       while !sp > 0 do
         decr sp;
-        let k = Array.unsafe_get stack !sp in
-        let o = Bvh.offset k in
+        let o = Array.unsafe_get stack !sp in
         tr.counters.box_tests <- tr.counters.box_tests + 1;
         if meets_box nodes s o ix iy iz s.t_max then begin
           let count = Bvh.tag_at nodes o in
@@ -591,7 +592,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
               sp := 0
             end
           end
-          else sp := push_children nodes stack !sp k o dx dy dz
+          else sp := push_children nodes stack !sp o dx dy dz
         end
       done;
       !found

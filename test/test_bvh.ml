@@ -25,7 +25,7 @@ let iter_slots (b : Bvh.t) f =
     else begin
       if tag < -3 then Alcotest.failf "inner node %d has the tag %d, not an axis" k tag;
       walk (k + 1) (k :: path);
-      walk link (k :: path)
+      walk (link / Bvh.node_floats) (k :: path)
     end
   in
   walk 0 []
@@ -234,7 +234,7 @@ let tests =
             end
             else
               let child c = if a < 3 then Bvh.lo b c a else Bvh.hi b c (a - 3) in
-              f (child (k + 1)) (child link)
+              f (child (k + 1)) (child (link / 8))
           in
           (* Of equal bounds (0. and -0.), the later one. *)
           let fmin x y = if x < y then x else y and fmax x y = if x > y then x else y in
@@ -247,8 +247,8 @@ let tests =
             Alcotest.(check int) "a leaf's first slot" !slots link;
             slots := !slots + tag
           end
-          else if tag < -3 || link <= k + 1 || link >= b.n_nodes then
-            Alcotest.failf "inner node %d: tag %d, right child %d" k tag link
+          else if tag < -3 || link mod 8 <> 0 || link / 8 <= k + 1 || link / 8 >= b.n_nodes then
+            Alcotest.failf "inner node %d: tag %d, right child at offset %d" k tag link
         done;
         Alcotest.(check int) "every slot in a leaf" n !slots;
         let raises what f = match f () with _ -> Alcotest.failf "%s: no exception" what | exception Invalid_argument _ -> () in
