@@ -1,11 +1,29 @@
-type t = { order : int array; n_nodes : int; nodes : float array; depth : int }
+type t = { order : int array; n_nodes : int; nodes : float array; root : int; depth : int }
 
-(* A node's 8 floats, at [8 k]: lower corner, upper corner, link, tag. A
-   node visit of the tracer reads one 64-byte block, not 8 arrays (8
-   cache lines); link and tag as floats are exact (below 2^53) and
+(* A node's 8 floats, at [root + 8 k]: lower corner, upper corner, link,
+   tag. A node visit of the tracer reads one 64-byte block, not 8 arrays
+   (8 cache lines); link and tag as floats are exact (below 2^53) and
    converted by one instruction each. *)
 let node_floats = 8
-let[@inline] offset k = k lsl 3
+
+(* The address of [a]'s first float modulo 64, read from the pointer that
+   [a] is: [Obj.magic a] as an int is [(p - 1) / 2] in OCaml's tagged
+   arithmetic, so that [2 v + 1] is [p] (every intermediate word odd, a
+   valid int for the collector). Where there is no address (JavaScript),
+   any number: it only places the nodes. *)
+let line_offset (a : float array) = (((Obj.magic a : int) * 2) + 1) land 63
+
+(* The offset in [a] of its first float on a 64-byte boundary, from 0 to
+   7, where node 0 goes so that every node is one cache line: a big
+   array's data starts 8 bytes after a header, wherever its chunk of the
+   heap put it (16 and 48 bytes past a line for grid:1000000 and the
+   1M-triangle knot). The collector does not move it afterwards unless it
+   compacts the heap, which costs speed then, not correctness. *)
+let aligned_root (a : float array) = ((64 - line_offset a) / 8) land 7
+
+(* The offset of node [k] where node 0 is at [root]. *)
+let[@inline] at root k = root + (k lsl 3)
+let[@inline] offset t k = at t.root k
 let[@inline] lo_at (nodes : float array) o a = Array.unsafe_get nodes (o + a)
 let[@inline] hi_at (nodes : float array) o a = Array.unsafe_get nodes (o + 3 + a)
 let[@inline] link_at (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 6))
@@ -17,20 +35,22 @@ let check_node t k =
 let lo t k a =
   check_node t k;
   if a < 0 || a > 2 then invalid_arg "Bvh.lo: axis";
-  lo_at t.nodes (offset k) a
+  lo_at t.nodes (offset t k) a
 
 let hi t k a =
   check_node t k;
   if a < 0 || a > 2 then invalid_arg "Bvh.hi: axis";
-  hi_at t.nodes (offset k) a
+  hi_at t.nodes (offset t k) a
 
 let link t k =
   check_node t k;
-  link_at t.nodes (offset k)
+  let o = offset t k in
+  let l = link_at t.nodes o in
+  if tag_at t.nodes o > 0 then l else (l - t.root) / node_floats
 
 let tag t k =
   check_node t k;
-  tag_at t.nodes (offset k)
+  tag_at t.nodes (offset t k)
 
 let[@inline] fmin (a : float) b = if a < b then a else b
 let[@inline] fmax (a : float) b = if a > b then a else b
@@ -201,14 +221,15 @@ let running_boxes (bin_n : int array) (bin_box : float array) b0 b1 (out : float
 let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
   let n_nodes = t.size in
   (* Every element is written below. *)
-  let nodes = Array.create_float (node_floats * n_nodes) in
+  let nodes = Array.create_float ((node_floats * n_nodes) + node_floats - 1) in
+  let root = aligned_root nodes in
   let link = t.link and tag = t.tag in
   for k = n_nodes - 1 downto 0 do
-    let o = offset k in
+    let o = at root k in
     let l = link.(k) and g = tag.(k) in
     (* An inner node's link is its right child's offset: the tracer's
        stack holds offsets, not indices to multiply. *)
-    nodes.(o + 6) <- Float.of_int (if g < 0 then l else offset l);
+    nodes.(o + 6) <- Float.of_int (if g < 0 then l else at root l);
     if g < 0 then begin
       (* A leaf: its count, [-g], becomes its tag. *)
       nodes.(o + 7) <- Float.of_int (-g);
@@ -233,7 +254,7 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
       (* An inner node: its axis [g] becomes [-1 - g]; [l] is its right child. *)
       nodes.(o + 7) <- Float.of_int (-1 - g);
       (* Both children come after [k], already written. *)
-      let c = offset (k + 1) and r = offset l in
+      let c = at root (k + 1) and r = at root l in
       Array.unsafe_set nodes o (fmin (Array.unsafe_get nodes c) (Array.unsafe_get nodes r));
       Array.unsafe_set nodes (o + 1) (fmin (Array.unsafe_get nodes (c + 1)) (Array.unsafe_get nodes (r + 1)));
       Array.unsafe_set nodes (o + 2) (fmin (Array.unsafe_get nodes (c + 2)) (Array.unsafe_get nodes (r + 2)));
@@ -242,7 +263,7 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
       Array.unsafe_set nodes (o + 5) (fmax (Array.unsafe_get nodes (c + 5)) (Array.unsafe_get nodes (r + 5)))
     end
   done;
-  { order; n_nodes; nodes; depth }
+  { order; n_nodes; nodes; root; depth }
 
 type beside = { beside : 'a. (unit -> 'a) -> unit -> 'a option; min_objects : int }
 

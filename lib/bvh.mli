@@ -9,10 +9,9 @@
     few passes over the node's objects, so building is [O(n log n)].
 
     Nodes are stored depth-first, 8 floats each in one array, so that the
-    tracer reads a node from one 64-byte block: the left child of inner
-    node [k] is [k + 1], the right child is at the offset its [link]
-    gives. Spheres are
-    referred to by slot: leaf [k] holds [tag] slots from its [link], and
+    tracer reads a node from one cache line: the left child of inner node
+    [k] is [k + 1], the right child is its [link]. Spheres are referred
+    to by slot: leaf [k] holds [tag] slots from its [link], and
     [order.(slot)] is the sphere's index in the input.
 
     @canonical Raytrace.Private.Bvh *)
@@ -21,13 +20,19 @@ type t = private {
   order : int array;  (** Input index of the sphere in each slot. *)
   n_nodes : int;  (** The number of nodes. *)
   nodes : float array;
-      (** Node [k] at [8 k], [node_floats] floats: the lower corner of its
-          box (x, y, z), the upper corner, its link, its tag. Link and tag
-          are integers held as floats (exactly: they are below [2^53]).
-          Link: of an inner node, the offset in [nodes] of its right child
-          ([8] times its index); of a leaf, its first slot. Tag: of a leaf, its number of slots, [>= 1]; of
-          an inner node, [-1 - a], [a] the axis 0 to 2 its children are
-          split along. *)
+      (** Node [k] at offset [root + 8 k] ({!offset}), [node_floats]
+          floats: the lower corner of its box (x, y, z), the upper corner,
+          its link, its tag. Link and tag are integers held as floats
+          (exactly: they are below [2^53]). Link: of an inner node, the
+          offset of its right child; of a leaf, its first slot. Tag: of a
+          leaf, its number of slots, [>= 1]; of an inner node, [-1 - a],
+          [a] the axis 0 to 2 its children are split along. The array
+          holds [8 n_nodes + 7] floats: the [root] unused ones before the
+          nodes, the others after. *)
+  root : int;
+      (** The offset of node 0 in [nodes], from 0 to 7: where the nodes
+          start on a 64-byte boundary in memory, so that each node is one
+          cache line (if the collector has not moved the array since). *)
   depth : int;  (** Largest number of nodes on a path from the root. *)
 }
 (** The type for hierarchies. *)
@@ -40,8 +45,8 @@ type t = private {
 val node_floats : int
 (** [node_floats] is 8, the number of floats a node takes in [nodes]. *)
 
-val offset : int -> int
-(** [offset k] is [8 k], the offset of node [k] in [nodes]. *)
+val offset : t -> int -> int
+(** [offset t k] is [t.root + 8 k], the offset of node [k] in [t.nodes]. *)
 
 val lo_at : float array -> int -> int -> float
 (** [lo_at nodes o a] is the lower bound along axis [a] (0 to 2) of
@@ -68,7 +73,9 @@ val hi : t -> int -> int -> float
     @raise Invalid_argument if [k] is not a node or [a] not in 0 to 2. *)
 
 val link : t -> int -> int
-(** [link t k] is node [k]'s link (see {!t}).
+(** [link t k] is node [k]'s link as an index: of an inner node, the index
+    of its right child (not its offset, as in {!t}); of a leaf, its first
+    slot.
     @raise Invalid_argument if [k] is not a node. *)
 
 val tag : t -> int -> int

@@ -411,8 +411,7 @@ let[@inline] closest_from tr ~primary ~spheres =
           end;
           let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
           let nodes = b.nodes and stack = tr.nodes and sp = ref 1 in
-          (* The root, at offset 0. *)
-          Array.unsafe_set stack 0 0;
+          Array.unsafe_set stack 0 b.root;
           while !sp > 0 do
             decr sp;
             let o = Array.unsafe_get stack !sp in
@@ -572,8 +571,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
           sp := 0
         end
       end;
-      (* The root, at offset 0. *)
-      Array.unsafe_set stack 0 0;
+      Array.unsafe_set stack 0 b.root;
       while !sp > 0 do
         decr sp;
         let o = Array.unsafe_get stack !sp in

@@ -25,7 +25,7 @@ let iter_slots (b : Bvh.t) f =
     else begin
       if tag < -3 then Alcotest.failf "inner node %d has the tag %d, not an axis" k tag;
       walk (k + 1) (k :: path);
-      walk (link / Bvh.node_floats) (k :: path)
+      walk link (k :: path)
     end
   in
   walk 0 []
@@ -62,8 +62,16 @@ let check_same what ((a : Bvh.t), sa) ((b : Bvh.t), sb) =
   Alcotest.(check int) (what ^ ": nodes") n b.n_nodes;
   Alcotest.(check int) (what ^ ": depth") a.depth b.depth;
   Alcotest.(check (array int)) (what ^ ": order") a.order b.order;
-  (* Boxes, links and tags, all in [nodes]. *)
-  Alcotest.(check (array int64)) (what ^ ": nodes") (bits a.nodes) (bits b.nodes);
+  (* Boxes, links and tags, node by node: the nodes may start at another
+     offset of their array in each. *)
+  let node (t : Bvh.t) k =
+    List.map Int64.bits_of_float
+      [ Bvh.lo t k 0; Bvh.lo t k 1; Bvh.lo t k 2; Bvh.hi t k 0; Bvh.hi t k 1; Bvh.hi t k 2 ]
+    @ [ Int64.of_int (Bvh.link t k); Int64.of_int (Bvh.tag t k) ]
+  in
+  for k = 0 to n - 1 do
+    Alcotest.(check (list int64)) (Printf.sprintf "%s: node %d" what k) (node a k) (node b k)
+  done;
   Array.iteri (fun i x -> Alcotest.(check (array int64)) (what ^ ": slot boxes") (bits x) (bits sb.(i))) sa
 
 (* [n] boxes: [kind] `Random, `Same_center (every center the same: one
@@ -201,15 +209,20 @@ let tests =
         let n = 3000 in
         let boxes = boxes `Random n 11 in
         let b, slot_boxes = build boxes in
-        Alcotest.(check int) __LOC__ (8 * b.n_nodes) (Array.length b.nodes);
+        Alcotest.(check int) __LOC__ ((8 * b.n_nodes) + 7) (Array.length b.nodes);
         Alcotest.(check int) __LOC__ 8 Bvh.node_floats;
+        if b.root < 0 || b.root > 7 then Alcotest.failf "node 0 at offset %d" b.root;
+        (* The address of the nodes' first float: the array as an int is
+           half its pointer, less one half, in tagged arithmetic. *)
+        let address = ((Obj.magic b.nodes : int) * 2) + 1 + (8 * b.root) in
+        Alcotest.(check int) "node 0 starts a cache line" 0 (address land 63);
         let same what x y =
           if Int64.bits_of_float x <> Int64.bits_of_float y then Alcotest.failf "%s: %h, not %h" what x y
         in
         let slots = ref 0 in
         for k = 0 to b.n_nodes - 1 do
-          let o = 8 * k in
-          Alcotest.(check int) __LOC__ o (Bvh.offset k);
+          let o = b.root + (8 * k) in
+          Alcotest.(check int) __LOC__ o (Bvh.offset b k);
           (* The tracer's unchecked reads and the checked ones agree with
              the layout, float for float. *)
           for a = 0 to 2 do
@@ -219,9 +232,11 @@ let tests =
             same "hi_at" (Bvh.hi_at b.nodes o a) (Bvh.hi b k a)
           done;
           let link = Bvh.link b k and tag = Bvh.tag b k in
-          same "link" b.nodes.(o + 6) (Float.of_int link);
+          (* An inner node's link in [nodes] is its right child's offset. *)
+          let raw = if tag > 0 then link else Bvh.offset b link in
+          same "link" b.nodes.(o + 6) (Float.of_int raw);
           same "tag" b.nodes.(o + 7) (Float.of_int tag);
-          Alcotest.(check int) __LOC__ link (Bvh.link_at b.nodes o);
+          Alcotest.(check int) __LOC__ raw (Bvh.link_at b.nodes o);
           Alcotest.(check int) __LOC__ tag (Bvh.tag_at b.nodes o);
           (* Each box the min and max of what it holds, bit for bit. *)
           let expect a f =
@@ -234,7 +249,7 @@ let tests =
             end
             else
               let child c = if a < 3 then Bvh.lo b c a else Bvh.hi b c (a - 3) in
-              f (child (k + 1)) (child (link / 8))
+              f (child (k + 1)) (child link)
           in
           (* Of equal bounds (0. and -0.), the later one. *)
           let fmin x y = if x < y then x else y and fmax x y = if x > y then x else y in
@@ -247,8 +262,8 @@ let tests =
             Alcotest.(check int) "a leaf's first slot" !slots link;
             slots := !slots + tag
           end
-          else if tag < -3 || link mod 8 <> 0 || link / 8 <= k + 1 || link / 8 >= b.n_nodes then
-            Alcotest.failf "inner node %d: tag %d, right child at offset %d" k tag link
+          else if tag < -3 || link <= k + 1 || link >= b.n_nodes then
+            Alcotest.failf "inner node %d: tag %d, right child %d" k tag link
         done;
         Alcotest.(check int) "every slot in a leaf" n !slots;
         let raises what f = match f () with _ -> Alcotest.failf "%s: no exception" what | exception Invalid_argument _ -> () in
