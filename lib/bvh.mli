@@ -39,30 +39,15 @@ type t = private {
 
 (** {1:nodes Nodes}
 
-    The tracer reads [nodes] through the [_at] functions, which take a
-    node's offset and check nothing; the others check their arguments. *)
+    The tracer reads [nodes] directly, with the array's primitives (a
+    float returned by a function of another module may be boxed); these
+    read a node of the layout of {!t}, checked. *)
 
 val node_floats : int
 (** [node_floats] is 8, the number of floats a node takes in [nodes]. *)
 
 val offset : t -> int -> int
 (** [offset t k] is [t.root + 8 k], the offset of node [k] in [t.nodes]. *)
-
-val lo_at : float array -> int -> int -> float
-(** [lo_at nodes o a] is the lower bound along axis [a] (0 to 2) of
-    the box of the node at offset [o] of [nodes]. Unchecked. *)
-
-val hi_at : float array -> int -> int -> float
-(** [hi_at nodes o a] is the upper bound along axis [a] (0 to 2) of
-    the box of the node at offset [o]. Unchecked. *)
-
-val link_at : float array -> int -> int
-(** [link_at nodes o] is the link of the node at offset [o]: the offset
-    of an inner node's right child, a leaf's first slot. Unchecked. *)
-
-val tag_at : float array -> int -> int
-(** [tag_at nodes o] is the tag of the node at offset [o]: a leaf's
-    number of slots ([>= 1]), an inner node's [-1 - axis]. Unchecked. *)
 
 val lo : t -> int -> int -> float
 (** [lo t k a] is the lower bound along axis [a] of node [k]'s box.

@@ -294,13 +294,21 @@ let[@inline] test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4 =
    [0 * inv] is 0, never NaN (rays only look at t >= 0). *)
 let[@inline] slab_inverse d = if d = 0. then 1e300 else 1. /. d
 
+(* A node of the hierarchy at offset [o] of [nodes] (the layout of
+   {!Bvh.t}): its box's lower corner at [o], its upper corner at [o + 3],
+   its link at [o + 6], its tag at [o + 7]. Read here with the array's
+   own primitives: a float returned by a function of another module is
+   boxed where that module's code is not inlined (the dev profile). *)
+let[@inline] node_link (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 6))
+let[@inline] node_tag (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 7))
+
 (* Does the ray in [s] (with slab inverses [ix, iy, iz]) meet the box of
    the node at offset [o] of [nodes] at some t in [t_min, limit]? *)
-let[@inline] meets_box nodes s o ix iy iz limit =
+let[@inline] meets_box (nodes : float array) s o ix iy iz limit =
   let ox = s.ox and oy = s.oy and oz = s.oz in
-  let x0 = (Bvh.lo_at nodes o 0 -. ox) *. ix and x1 = (Bvh.hi_at nodes o 0 -. ox) *. ix in
-  let y0 = (Bvh.lo_at nodes o 1 -. oy) *. iy and y1 = (Bvh.hi_at nodes o 1 -. oy) *. iy in
-  let z0 = (Bvh.lo_at nodes o 2 -. oz) *. iz and z1 = (Bvh.hi_at nodes o 2 -. oz) *. iz in
+  let x0 = (Array.unsafe_get nodes o -. ox) *. ix and x1 = (Array.unsafe_get nodes (o + 3) -. ox) *. ix in
+  let y0 = (Array.unsafe_get nodes (o + 1) -. oy) *. iy and y1 = (Array.unsafe_get nodes (o + 4) -. oy) *. iy in
+  let z0 = (Array.unsafe_get nodes (o + 2) -. oz) *. iz and z1 = (Array.unsafe_get nodes (o + 5) -. oz) *. iz in
   let enter_x = if x0 < x1 then x0 else x1 and exit_x = if x0 < x1 then x1 else x0 in
   let enter_y = if y0 < y1 then y0 else y1 and exit_y = if y0 < y1 then y1 else y0 in
   let enter_z = if z0 < z1 then z0 else z1 and exit_z = if z0 < z1 then z1 else z0 in
@@ -313,10 +321,10 @@ let[@inline] meets_box nodes s o ix iy iz limit =
 (* Pushes the children of the inner node at offset [o] of [nodes] on
    [stack] above [sp], so that the nearer along the ray is popped first;
    the new stack pointer. The stack holds nodes' offsets: the left child
-   follows its parent, the right one is at the parent's link. *)
+   follows its parent (8 floats on), the right one is at its link. *)
 let[@inline] push_children nodes stack sp o dx dy dz =
-  let right = Bvh.link_at nodes o and left = o + Bvh.node_floats in
-  let tag = Bvh.tag_at nodes o in
+  let right = node_link nodes o and left = o + 8 in
+  let tag = node_tag nodes o in
   let d = if tag = -1 then dx else if tag = -2 then dy else dz in
   if d >= 0. then begin
     Array.unsafe_set stack sp right;
@@ -420,9 +428,9 @@ let[@inline] closest_from tr ~primary ~spheres =
                one (its spheres' hit points lie inside it, rounding
                included); one entered exactly there may hold an equal one. *)
             if meets_box nodes s o ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
-              let count = Bvh.tag_at nodes o in
+              let count = node_tag nodes o in
               if count > 0 then begin
-                let first = Bvh.link_at nodes o in
+                let first = node_link nodes o in
                 tr.counters.tests <- tr.counters.tests + count;
                 for i = first to first + count - 1 do
                   test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
@@ -577,9 +585,9 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
         let o = Array.unsafe_get stack !sp in
         tr.counters.box_tests <- tr.counters.box_tests + 1;
         if meets_box nodes s o ix iy iz s.t_max then begin
-          let count = Bvh.tag_at nodes o in
+          let count = node_tag nodes o in
           if count > 0 then begin
-            let first = Bvh.link_at nodes o in
+            let first = node_link nodes o in
             let i = ref first and last = first + count in
             while !i < last && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
               incr i
