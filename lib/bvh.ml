@@ -1,16 +1,56 @@
-type t = {
-  order : int array;
-  n_nodes : int;
-  lo_x : float array;
-  lo_y : float array;
-  lo_z : float array;
-  hi_x : float array;
-  hi_y : float array;
-  hi_z : float array;
-  link : int array;
-  tag : int array;
-  depth : int;
-}
+type t = { order : int array; n_nodes : int; nodes : float array; root : int; depth : int }
+
+(* A node's 8 floats, at [root + 8 k]: lower corner, upper corner, link,
+   tag. A node visit of the tracer reads one 64-byte block, not 8 arrays
+   (8 cache lines); link and tag as floats are exact (below 2^53) and
+   converted by one instruction each. *)
+let node_floats = 8
+
+(* The address of [a]'s first float modulo 64, read from the pointer that
+   [a] is: [Obj.magic a] as an int is [(p - 1) / 2] in OCaml's tagged
+   arithmetic, so that [2 v + 1] is [p] (every intermediate word odd, a
+   valid int for the collector). Where there is no address (JavaScript),
+   any number: it only places the nodes. *)
+let line_offset (a : float array) = (((Obj.magic a : int) * 2) + 1) land 63
+
+(* The offset in [a] of its first float on a 64-byte boundary, from 0 to
+   7, where node 0 goes so that every node is one cache line: a big
+   array's data starts 8 bytes after a header, wherever its chunk of the
+   heap put it (16 and 48 bytes past a line for grid:1000000 and the
+   1M-triangle knot). The collector does not move it afterwards unless it
+   compacts the heap, which costs speed then, not correctness. *)
+let aligned_root (a : float array) = ((64 - line_offset a) / 8) land 7
+
+(* The offset of node [k] where node 0 is at [root]. *)
+let[@inline] at root k = root + (k lsl 3)
+let[@inline] offset t k = at t.root k
+let[@inline] lo_at (nodes : float array) o a = Array.unsafe_get nodes (o + a)
+let[@inline] hi_at (nodes : float array) o a = Array.unsafe_get nodes (o + 3 + a)
+let[@inline] link_at (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 6))
+let[@inline] tag_at (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 7))
+
+let check_node t k =
+  if k < 0 || k >= t.n_nodes then invalid_arg (Printf.sprintf "Bvh: node %d of %d" k t.n_nodes)
+
+let lo t k a =
+  check_node t k;
+  if a < 0 || a > 2 then invalid_arg "Bvh.lo: axis";
+  lo_at t.nodes (offset t k) a
+
+let hi t k a =
+  check_node t k;
+  if a < 0 || a > 2 then invalid_arg "Bvh.hi: axis";
+  hi_at t.nodes (offset t k) a
+
+let link t k =
+  check_node t k;
+  let o = offset t k in
+  let l = link_at t.nodes o in
+  if tag_at t.nodes o > 0 then l else (l - t.root) / node_floats
+
+let tag t k =
+  check_node t k;
+  tag_at t.nodes (offset t k)
 
 let[@inline] fmin (a : float) b = if a < b then a else b
 let[@inline] fmax (a : float) b = if a > b then a else b
@@ -178,22 +218,25 @@ let running_boxes (bin_n : int array) (bin_box : float array) b0 b1 (out : float
     Array.unsafe_set out (o + 5) !bz1
   done
 
-(* The node arrays of the tree [t] over the slots' boxes, the boxes from
-   the leaves up: children come after their parent. The shape's arrays
-   become the tree's [link] and [tag] in place, each node read before it
-   is written: no other int array per node (for a million spheres, 16 MB
-   less at the peak than [right], [first], [count] and [axis] were). *)
+(* The nodes of the tree [t] over the slots' boxes, the boxes from the
+   leaves up: children come after their parent. The shape's arrays (16
+   bytes a node) are garbage once read: the nodes (64 bytes a node) are
+   the only copy made. *)
 let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
   let n_nodes = t.size in
   (* Every element is written below. *)
-  let f () = Array.create_float n_nodes in
-  let lo_x = f () and lo_y = f () and lo_z = f () and hi_x = f () and hi_y = f () and hi_z = f () in
+  let nodes = Array.create_float ((node_floats * n_nodes) + node_floats - 1) in
+  let root = aligned_root nodes in
   let link = t.link and tag = t.tag in
   for k = n_nodes - 1 downto 0 do
+    let o = at root k in
     let l = link.(k) and g = tag.(k) in
+    (* An inner node's link is its right child's offset: the tracer's
+       stack holds offsets, not indices to multiply. *)
+    nodes.(o + 6) <- Float.of_int (if g < 0 then l else at root l);
     if g < 0 then begin
       (* A leaf: its count, [-g], becomes its tag. *)
-      tag.(k) <- -g;
+      nodes.(o + 7) <- Float.of_int (-g);
       let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
       let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
       for s = l to l - g - 1 do
@@ -204,26 +247,27 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
         by1 := fmax !by1 (Array.unsafe_get y1 s);
         bz1 := fmax !bz1 (Array.unsafe_get z1 s)
       done;
-      lo_x.(k) <- !bx0;
-      lo_y.(k) <- !by0;
-      lo_z.(k) <- !bz0;
-      hi_x.(k) <- !bx1;
-      hi_y.(k) <- !by1;
-      hi_z.(k) <- !bz1
+      nodes.(o) <- !bx0;
+      nodes.(o + 1) <- !by0;
+      nodes.(o + 2) <- !bz0;
+      nodes.(o + 3) <- !bx1;
+      nodes.(o + 4) <- !by1;
+      nodes.(o + 5) <- !bz1
     end
     else begin
       (* An inner node: its axis [g] becomes [-1 - g]; [l] is its right child. *)
-      tag.(k) <- -1 - g;
-      let c = k + 1 in
-      lo_x.(k) <- fmin lo_x.(c) lo_x.(l);
-      lo_y.(k) <- fmin lo_y.(c) lo_y.(l);
-      lo_z.(k) <- fmin lo_z.(c) lo_z.(l);
-      hi_x.(k) <- fmax hi_x.(c) hi_x.(l);
-      hi_y.(k) <- fmax hi_y.(c) hi_y.(l);
-      hi_z.(k) <- fmax hi_z.(c) hi_z.(l)
+      nodes.(o + 7) <- Float.of_int (-1 - g);
+      (* Both children come after [k], already written. *)
+      let c = at root (k + 1) and r = at root l in
+      Array.unsafe_set nodes o (fmin (Array.unsafe_get nodes c) (Array.unsafe_get nodes r));
+      Array.unsafe_set nodes (o + 1) (fmin (Array.unsafe_get nodes (c + 1)) (Array.unsafe_get nodes (r + 1)));
+      Array.unsafe_set nodes (o + 2) (fmin (Array.unsafe_get nodes (c + 2)) (Array.unsafe_get nodes (r + 2)));
+      Array.unsafe_set nodes (o + 3) (fmax (Array.unsafe_get nodes (c + 3)) (Array.unsafe_get nodes (r + 3)));
+      Array.unsafe_set nodes (o + 4) (fmax (Array.unsafe_get nodes (c + 4)) (Array.unsafe_get nodes (r + 4)));
+      Array.unsafe_set nodes (o + 5) (fmax (Array.unsafe_get nodes (c + 5)) (Array.unsafe_get nodes (r + 5)))
     end
   done;
-  { order; n_nodes; lo_x; lo_y; lo_z; hi_x; hi_y; hi_z; link; tag; depth }
+  { order; n_nodes; nodes; root; depth }
 
 type floats = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t
 

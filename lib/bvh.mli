@@ -8,33 +8,66 @@
     heuristic is lowest (at the median when the centers coincide), in a
     few passes over the node's objects, so building is [O(n log n)].
 
-    Nodes are stored depth-first in flat arrays: the left child of inner
-    node [k] is [k + 1], the right child is [link.(k)]. Spheres are
-    referred to by slot: leaf [k] holds [tag.(k)] slots from [link.(k)],
-    and [order.(slot)] is the sphere's index in the input.
+    Nodes are stored depth-first, 8 floats each in one array, so that the
+    tracer reads a node from one cache line: the left child of inner node
+    [k] is [k + 1], the right child is its [link]. Spheres are referred
+    to by slot: leaf [k] holds [tag] slots from its [link], and
+    [order.(slot)] is the sphere's index in the input.
 
     @canonical Raytrace.Private.Bvh *)
 
 type t = private {
   order : int array;  (** Input index of the sphere in each slot. *)
-  n_nodes : int;
-      (** The number of nodes: the length of the node arrays below, but for
-          [link] and [tag], which may be longer, their last elements
-          unused. *)
-  lo_x : float array;  (** Box of each node: lower corner. *)
-  lo_y : float array;
-  lo_z : float array;
-  hi_x : float array;  (** Upper corner. *)
-  hi_y : float array;
-  hi_z : float array;
-  link : int array;  (** Inner node: index of the right child; leaf: its first slot. *)
-  tag : int array;
-      (** Leaf: its number of slots, [>= 1]; inner node: [-1 - a], [a] the
-          axis 0 to 2 its children are split along. One pair of int arrays
-          for both kinds of node: 16 bytes a node less than four. *)
+  n_nodes : int;  (** The number of nodes. *)
+  nodes : float array;
+      (** Node [k] at offset [root + 8 k] ({!offset}), [node_floats]
+          floats: the lower corner of its box (x, y, z), the upper corner,
+          its link, its tag. Link and tag are integers held as floats
+          (exactly: they are below [2^53]). Link: of an inner node, the
+          offset of its right child; of a leaf, its first slot. Tag: of a
+          leaf, its number of slots, [>= 1]; of an inner node, [-1 - a],
+          [a] the axis 0 to 2 its children are split along. The array
+          holds [8 n_nodes + 7] floats: the [root] unused ones before the
+          nodes, the others after. *)
+  root : int;
+      (** The offset of node 0 in [nodes], from 0 to 7: where the nodes
+          start on a 64-byte boundary in memory, so that each node is one
+          cache line (if the collector has not moved the array since). *)
   depth : int;  (** Largest number of nodes on a path from the root. *)
 }
 (** The type for hierarchies. *)
+
+(** {1:nodes Nodes}
+
+    The tracer reads [nodes] directly, with the array's primitives (a
+    float returned by a function of another module may be boxed); these
+    read a node of the layout of {!t}, checked. *)
+
+val node_floats : int
+(** [node_floats] is 8, the number of floats a node takes in [nodes]. *)
+
+val offset : t -> int -> int
+(** [offset t k] is [t.root + 8 k], the offset of node [k] in [t.nodes]. *)
+
+val lo : t -> int -> int -> float
+(** [lo t k a] is the lower bound along axis [a] of node [k]'s box.
+    @raise Invalid_argument if [k] is not a node or [a] not in 0 to 2. *)
+
+val hi : t -> int -> int -> float
+(** [hi t k a] is the upper bound along axis [a] of node [k]'s box.
+    @raise Invalid_argument if [k] is not a node or [a] not in 0 to 2. *)
+
+val link : t -> int -> int
+(** [link t k] is node [k]'s link as an index: of an inner node, the index
+    of its right child (not its offset, as in {!t}); of a leaf, its first
+    slot.
+    @raise Invalid_argument if [k] is not a node. *)
+
+val tag : t -> int -> int
+(** [tag t k] is node [k]'s tag (see {!t}).
+    @raise Invalid_argument if [k] is not a node. *)
+
+(** {1:build Building} *)
 
 val build : ?leaf_size:int -> cx:float array -> cy:float array -> cz:float array -> float array -> t
 (** [build ~leaf_size ~cx ~cy ~cz extent] is a hierarchy over the spheres

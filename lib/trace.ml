@@ -24,7 +24,7 @@ type t = {
           sphere, not an index then the sphere. *)
   blockers_first : int array;  (** Per light [l]: [4 n l], read rather than multiplied per shadow ray. *)
   counters : counters;
-  nodes : int array;  (** Stack of hierarchy nodes still to visit. *)
+  nodes : int array;  (** Stack of hierarchy nodes still to visit: their offsets in [Bvh.t]'s [nodes]. *)
   csg : Csg.work;  (** Room for the intervals of the CSG solids. *)
   mutable hit : int;  (** Index of the sphere found by [closest]. *)
   mutable origin_sphere : int;
@@ -332,13 +332,21 @@ let[@inline] test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4 =
    [0 * inv] is 0, never NaN (rays only look at t >= 0). *)
 let[@inline] slab_inverse d = if d = 0. then 1e300 else 1. /. d
 
-(* Does the ray in [s] (with slab inverses [ix, iy, iz]) meet box [k] of
-   [b] at some t in [t_min, limit]? *)
-let[@inline] meets_box (b : Bvh.t) s k ix iy iz limit =
+(* A node of the hierarchy at offset [o] of [nodes] (the layout of
+   {!Bvh.t}): its box's lower corner at [o], its upper corner at [o + 3],
+   its link at [o + 6], its tag at [o + 7]. Read here with the array's
+   own primitives: a float returned by a function of another module is
+   boxed where that module's code is not inlined (the dev profile). *)
+let[@inline] node_link (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 6))
+let[@inline] node_tag (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 7))
+
+(* Does the ray in [s] (with slab inverses [ix, iy, iz]) meet the box of
+   the node at offset [o] of [nodes] at some t in [t_min, limit]? *)
+let[@inline] meets_box (nodes : float array) s o ix iy iz limit =
   let ox = s.ox and oy = s.oy and oz = s.oz in
-  let x0 = (Array.unsafe_get b.lo_x k -. ox) *. ix and x1 = (Array.unsafe_get b.hi_x k -. ox) *. ix in
-  let y0 = (Array.unsafe_get b.lo_y k -. oy) *. iy and y1 = (Array.unsafe_get b.hi_y k -. oy) *. iy in
-  let z0 = (Array.unsafe_get b.lo_z k -. oz) *. iz and z1 = (Array.unsafe_get b.hi_z k -. oz) *. iz in
+  let x0 = (Array.unsafe_get nodes o -. ox) *. ix and x1 = (Array.unsafe_get nodes (o + 3) -. ox) *. ix in
+  let y0 = (Array.unsafe_get nodes (o + 1) -. oy) *. iy and y1 = (Array.unsafe_get nodes (o + 4) -. oy) *. iy in
+  let z0 = (Array.unsafe_get nodes (o + 2) -. oz) *. iz and z1 = (Array.unsafe_get nodes (o + 5) -. oz) *. iz in
   let enter_x = if x0 < x1 then x0 else x1 and exit_x = if x0 < x1 then x1 else x0 in
   let enter_y = if y0 < y1 then y0 else y1 and exit_y = if y0 < y1 then y1 else y0 in
   let enter_z = if z0 < z1 then z0 else z1 and exit_z = if z0 < z1 then z1 else z0 in
@@ -348,18 +356,20 @@ let[@inline] meets_box (b : Bvh.t) s k ix iy iz limit =
   let exit = if exit < exit_z then exit else exit_z in
   enter <= exit && exit >= s.t_min && enter <= limit
 
-(* Pushes the children of inner node [k] on [stack] above [sp], so that the
-   nearer along the ray is popped first; the new stack pointer. *)
-let[@inline] push_children (b : Bvh.t) stack sp k dx dy dz =
-  let right = Array.unsafe_get b.link k in
-  let tag = Array.unsafe_get b.tag k in
+(* Pushes the children of the inner node at offset [o] of [nodes] on
+   [stack] above [sp], so that the nearer along the ray is popped first;
+   the new stack pointer. The stack holds nodes' offsets: the left child
+   follows its parent (8 floats on), the right one is at its link. *)
+let[@inline] push_children nodes stack sp o dx dy dz =
+  let right = node_link nodes o and left = o + 8 in
+  let tag = node_tag nodes o in
   let d = if tag = -1 then dx else if tag = -2 then dy else dz in
   if d >= 0. then begin
     Array.unsafe_set stack sp right;
-    Array.unsafe_set stack (sp + 1) (k + 1)
+    Array.unsafe_set stack (sp + 1) left
   end
   else begin
-    Array.unsafe_set stack sp (k + 1);
+    Array.unsafe_set stack sp left;
     Array.unsafe_set stack (sp + 1) right
   end;
   sp + 2
@@ -446,25 +456,25 @@ let[@inline] closest_from tr ~primary ~spheres =
             done
           end;
           let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
-          let stack = tr.nodes and sp = ref 1 in
-          Array.unsafe_set stack 0 0;
+          let nodes = b.nodes and stack = tr.nodes and sp = ref 1 in
+          Array.unsafe_set stack 0 b.root;
           while !sp > 0 do
             decr sp;
-            let k = Array.unsafe_get stack !sp in
+            let o = Array.unsafe_get stack !sp in
             tr.counters.box_tests <- tr.counters.box_tests + 1;
             (* A box entered beyond the best hit so far cannot hold a better
                one (its spheres' hit points lie inside it, rounding
                included); one entered exactly there may hold an equal one. *)
-            if meets_box b s k ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
-              let count = Array.unsafe_get b.tag k in
+            if meets_box nodes s o ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
+              let count = node_tag nodes o in
               if count > 0 then begin
-                let first = Array.unsafe_get b.link k in
+                let first = node_link nodes o in
                 tr.counters.tests <- tr.counters.tests + count;
                 for i = first to first + count - 1 do
                   test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
                 done
               end
-              else sp := push_children b stack !sp k dx dy dz
+              else sp := push_children nodes stack !sp o dx dy dz
             end
           done);
       tr.hit
@@ -598,7 +608,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
   | Some b ->
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
-      let stack = tr.nodes and sp = ref 1 and found = ref (-1) in
+      let nodes = b.nodes and stack = tr.nodes and sp = ref 1 and found = ref (-1) in
       (* Planes first: they are outside the hierarchy. *)
       let planes = p.unbounded in
       let n = Array.length planes in
@@ -613,15 +623,16 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
           sp := 0
         end
       end;
-      Array.unsafe_set stack 0 0;
+      Array.unsafe_set stack 0 b.root;
       while !sp > 0 do
         decr sp;
-        let k = Array.unsafe_get stack !sp in
+        let o = Array.unsafe_get stack !sp in
         tr.counters.box_tests <- tr.counters.box_tests + 1;
-        if meets_box b s k ix iy iz s.t_max then begin
-          let count = Array.unsafe_get b.tag k in
+        if meets_box nodes s o ix iy iz s.t_max then begin
+          let count = node_tag nodes o in
           if count > 0 then begin
-            let i = ref (Array.unsafe_get b.link k) and last = Array.unsafe_get b.link k + count in
+            let first = node_link nodes o in
+            let i = ref first and last = first + count in
             while !i < last && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
               incr i
             done;
@@ -631,7 +642,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
               sp := 0
             end
           end
-          else sp := push_children b stack !sp k dx dy dz
+          else sp := push_children nodes stack !sp o dx dy dz
         end
       done;
       !found

@@ -9,22 +9,23 @@ let random_spheres n seed =
     Array.init n (fun i -> if i = 0 then 5000. else f 0.01 3.) )
 
 let inside (b : Bvh.t) k x y z e =
-  b.lo_x.(k) <= x -. e && x +. e <= b.hi_x.(k)
-  && b.lo_y.(k) <= y -. e && y +. e <= b.hi_y.(k)
-  && b.lo_z.(k) <= z -. e && z +. e <= b.hi_z.(k)
+  Bvh.lo b k 0 <= x -. e && x +. e <= Bvh.hi b k 0
+  && Bvh.lo b k 1 <= y -. e && y +. e <= Bvh.hi b k 1
+  && Bvh.lo b k 2 <= z -. e && z +. e <= Bvh.hi b k 2
 
 (* Calls [f leaf slot path] for every slot of [b], with its leaf and the
    nodes from that leaf up to the root. *)
 let iter_slots (b : Bvh.t) f =
   let rec walk k path =
-    if b.tag.(k) > 0 then
-      for slot = b.link.(k) to b.link.(k) + b.tag.(k) - 1 do
+    let tag = Bvh.tag b k and link = Bvh.link b k in
+    if tag > 0 then
+      for slot = link to link + tag - 1 do
         f k slot (k :: path)
       done
     else begin
-      if b.tag.(k) < -3 then Alcotest.failf "inner node %d has the tag %d, not an axis" k b.tag.(k);
+      if tag < -3 then Alcotest.failf "inner node %d has the tag %d, not an axis" k tag;
       walk (k + 1) (k :: path);
-      walk b.link.(k) (k :: path)
+      walk link (k :: path)
     end
   in
   walk 0 []
@@ -64,13 +65,16 @@ let check_same what ((a : Bvh.t), sa) ((b : Bvh.t), sb) =
   Alcotest.(check int) (what ^ ": nodes") n b.n_nodes;
   Alcotest.(check int) (what ^ ": depth") a.depth b.depth;
   Alcotest.(check (array int)) (what ^ ": order") a.order b.order;
-  let nodes x = Array.sub x 0 n in
-  Alcotest.(check (array int)) (what ^ ": links") (nodes a.link) (nodes b.link);
-  Alcotest.(check (array int)) (what ^ ": tags") (nodes a.tag) (nodes b.tag);
-  List.iter2
-    (fun (f, x) y -> Alcotest.(check (array int64)) (what ^ ": " ^ f) (bits x) (bits y))
-    [ ("lo_x", a.lo_x); ("lo_y", a.lo_y); ("lo_z", a.lo_z); ("hi_x", a.hi_x); ("hi_y", a.hi_y); ("hi_z", a.hi_z) ]
-    [ b.lo_x; b.lo_y; b.lo_z; b.hi_x; b.hi_y; b.hi_z ];
+  (* Boxes, links and tags, node by node: the nodes may start at another
+     offset of their array in each. *)
+  let node (t : Bvh.t) k =
+    List.map Int64.bits_of_float
+      [ Bvh.lo t k 0; Bvh.lo t k 1; Bvh.lo t k 2; Bvh.hi t k 0; Bvh.hi t k 1; Bvh.hi t k 2 ]
+    @ [ Int64.of_int (Bvh.link t k); Int64.of_int (Bvh.tag t k) ]
+  in
+  for k = 0 to n - 1 do
+    Alcotest.(check (list int64)) (Printf.sprintf "%s: node %d" what k) (node a k) (node b k)
+  done;
   Array.iteri (fun i x -> Alcotest.(check (array int64)) (what ^ ": slot boxes") (bits x) (bits sb.(i))) sa
 
 (* [n] boxes: [kind] `Random, `Same_center (every center the same: one
@@ -164,7 +168,7 @@ let tests =
             let b = Bvh.build ~cx ~cy ~cz e in
             let seen = Array.make n 0 in
             iter_slots b (fun k slot path ->
-                if b.tag.(k) > 4 then Alcotest.failf "leaf %d holds %d spheres" k b.tag.(k);
+                if Bvh.tag b k > 4 then Alcotest.failf "leaf %d holds %d spheres" k (Bvh.tag b k);
                 let i = b.order.(slot) in
                 seen.(i) <- seen.(i) + 1;
                 List.iter
@@ -203,13 +207,75 @@ let tests =
             List.iter
               (fun j ->
                 let inside =
-                  b.lo_x.(j) <= lo.(0).(i) && hi.(0).(i) <= b.hi_x.(j)
-                  && b.lo_y.(j) <= lo.(1).(i) && hi.(1).(i) <= b.hi_y.(j)
-                  && b.lo_z.(j) <= lo.(2).(i) && hi.(2).(i) <= b.hi_z.(j)
+                  Bvh.lo b j 0 <= lo.(0).(i) && hi.(0).(i) <= Bvh.hi b j 0
+                  && Bvh.lo b j 1 <= lo.(1).(i) && hi.(1).(i) <= Bvh.hi b j 1
+                  && Bvh.lo b j 2 <= lo.(2).(i) && hi.(2).(i) <= Bvh.hi b j 2
                 in
                 if not inside then Alcotest.failf "box %d sticks out of node %d" i j)
               path);
         Alcotest.(check (array int)) "each box once" (Array.make n 1) seen);
+    Alcotest.test_case "a node is one block of 8 floats: its box, link and tag, the box its contents'" `Quick
+      (fun () ->
+        let n = 3000 in
+        let boxes = boxes `Random n 11 in
+        let b, slot_boxes = build boxes in
+        Alcotest.(check int) __LOC__ ((8 * b.n_nodes) + 7) (Array.length b.nodes);
+        Alcotest.(check int) __LOC__ 8 Bvh.node_floats;
+        if b.root < 0 || b.root > 7 then Alcotest.failf "node 0 at offset %d" b.root;
+        (* The address of the nodes' first float: the array as an int is
+           half its pointer, less one half, in tagged arithmetic. *)
+        let address = ((Obj.magic b.nodes : int) * 2) + 1 + (8 * b.root) in
+        Alcotest.(check int) "node 0 starts a cache line" 0 (address land 63);
+        let same what x y =
+          if Int64.bits_of_float x <> Int64.bits_of_float y then Alcotest.failf "%s: %h, not %h" what x y
+        in
+        let slots = ref 0 in
+        for k = 0 to b.n_nodes - 1 do
+          let o = b.root + (8 * k) in
+          Alcotest.(check int) __LOC__ o (Bvh.offset b k);
+          (* The layout that the tracer reads, float for float. *)
+          for a = 0 to 2 do
+            same "lower" b.nodes.(o + a) (Bvh.lo b k a);
+            same "upper" b.nodes.(o + 3 + a) (Bvh.hi b k a)
+          done;
+          let link = Bvh.link b k and tag = Bvh.tag b k in
+          (* An inner node's link in [nodes] is its right child's offset. *)
+          let raw = if tag > 0 then link else Bvh.offset b link in
+          same "link" b.nodes.(o + 6) (Float.of_int raw);
+          same "tag" b.nodes.(o + 7) (Float.of_int tag);
+          (* Each box the min and max of what it holds, bit for bit. *)
+          let expect a f =
+            if tag > 0 then begin
+              let m = ref slot_boxes.(a).(link) in
+              for s = link + 1 to link + tag - 1 do
+                m := f !m slot_boxes.(a).(s)
+              done;
+              !m
+            end
+            else
+              let child c = if a < 3 then Bvh.lo b c a else Bvh.hi b c (a - 3) in
+              f (child (k + 1)) (child link)
+          in
+          (* Of equal bounds (0. and -0.), the later one. *)
+          let fmin x y = if x < y then x else y and fmax x y = if x > y then x else y in
+          for a = 0 to 2 do
+            same "leaf or union, lower" (Bvh.lo b k a) (expect a fmin);
+            same "leaf or union, upper" (Bvh.hi b k a) (expect (a + 3) fmax)
+          done;
+          if tag > 0 then begin
+            (* Leaves in depth-first order take the slots in order. *)
+            Alcotest.(check int) "a leaf's first slot" !slots link;
+            slots := !slots + tag
+          end
+          else if tag < -3 || link <= k + 1 || link >= b.n_nodes then
+            Alcotest.failf "inner node %d: tag %d, right child %d" k tag link
+        done;
+        Alcotest.(check int) "every slot in a leaf" n !slots;
+        let raises what f = match f () with _ -> Alcotest.failf "%s: no exception" what | exception Invalid_argument _ -> () in
+        raises "node -1" (fun () -> Bvh.link b (-1));
+        raises "node n_nodes" (fun () -> Bvh.tag b b.n_nodes);
+        raises "axis 3" (fun () -> Bvh.lo b 0 3);
+        raises "axis -1" (fun () -> Bvh.hi b 0 (-1)));
     Alcotest.test_case "the tree of grid:10000 is shallow" `Quick (fun () ->
         let p = Helpers.prepare (Scene.grid 10000) in
         match p.bvh with
