@@ -1,21 +1,3 @@
-(* A mesh file, 64 KiB at a time: the text is never held whole. *)
-let read_mesh path =
-  match open_in_bin path with
-  | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
-  | ic ->
-      Fun.protect
-        ~finally:(fun () -> close_in_noerr ic)
-        (fun () ->
-          let p = Obj_file.create ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
-          let chunk = Bytes.create 65536 in
-          let rec go () =
-            match input ic chunk 0 (Bytes.length chunk) with
-            | 0 -> Obj_file.finish p
-            | n -> ( match Obj_file.feed_bytes p chunk 0 n with Ok () -> go () | Error e -> Error e)
-            | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
-          in
-          go ())
-
 let split_bytes = 4 lsl 20
 
 (* The first line start at or after the middle of the [n] bytes of file
@@ -35,6 +17,78 @@ let middle_line path n =
           with
           | Some j -> Some ((n / 2) + j + 1)
           | None | (exception (Sys_error _ | End_of_file)) -> None)
+
+(* Feeds [p] the bytes of [ic] until [stop] bytes were read from [start]
+   (or the end). *)
+let feed_mesh p ic ~start ~stop =
+  let chunk = Bytes.create 65536 in
+  let rec go at =
+    if at >= stop then Ok ()
+    else
+      match input ic chunk 0 (min (Bytes.length chunk) (stop - at)) with
+      | 0 -> Ok ()
+      | n -> ( match Obj_file.feed_bytes p chunk 0 n with Ok () -> go (at + n) | Error e -> Error e)
+      | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
+  in
+  go start
+
+(* The mesh from line start [split] of file [path] to its end, read in a
+   child process (Parallel.beside), and the process's id; [wait ()] is
+   [None] where the child failed, whatever the reason: the caller then
+   reads that part itself. *)
+let mesh_part path split =
+  let read () =
+    let ic = open_in_bin path in
+    Fun.protect
+      ~finally:(fun () -> close_in_noerr ic)
+      (fun () ->
+        seek_in ic split;
+        let p = Obj_file.create_part ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
+        match feed_mesh p ic ~start:split ~stop:max_int with
+        | Error _ -> None
+        | Ok () -> (
+            match Obj_file.finish_part p with Ok part -> Some (Unix.getpid (), part) | Error _ -> None))
+  in
+  let wait = Parallel.beside read in
+  fun () -> match wait () with Ok part -> part | Error _ -> None
+
+(* A mesh file, 64 KiB at a time: the text is never held whole. With two
+   jobs, a child reads the second half of a big regular file meanwhile. *)
+let read_mesh ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = fun ~pid:_ _ -> ()) path =
+  match open_in_bin path with
+  | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
+  | ic ->
+      Fun.protect
+        ~finally:(fun () -> close_in_noerr ic)
+        (fun () ->
+          let p = Obj_file.create ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
+          let split =
+            if jobs <= 1 then None
+            else
+              match Unix.fstat (Unix.descr_of_in_channel ic) with
+              | { st_kind = S_REG; st_size = n; _ } when n >= split_bytes && n > 0 -> (
+                  match middle_line path n with Some split when split < n -> Some split | Some _ | None -> None)
+              | _ | (exception Unix.Unix_error _) -> None
+          in
+          let rest at = match feed_mesh p ic ~start:at ~stop:max_int with Ok () -> Obj_file.finish p | Error e -> Error e in
+          match split with
+          | None -> rest 0
+          | Some split -> (
+              let wait = mesh_part path split in
+              let first = feed_mesh p ic ~start:0 ~stop:split in
+              (* Waited for even after an error, so that no child is left. *)
+              let part = wait () in
+              match first with
+              | Error e -> Error e
+              | Ok () -> (
+                  match part with
+                  | None -> rest split
+                  | Some (pid, part) -> (
+                      match Obj_file.join p part with
+                      | Some m ->
+                          on_part ~pid (Obj_file.part_triangle_count part);
+                          Ok m
+                      | None -> rest split))))
 
 (* The fields of the child's spheres (40 bytes each: center, radius as
    floats, the material as an integer) travel through a temporary file,
@@ -166,7 +220,7 @@ let read_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_byte
   let whole () =
     match File_io.read ~check_size:(Limits.check_scene_bytes limits) path with
     | Error e -> Error e
-    | Ok text -> Scene_file.of_string ~limits ~load_mesh:read_mesh ~file:path text
+    | Ok text -> Scene_file.of_string ~limits ~load_mesh:(read_mesh ~jobs ~split_bytes) ~file:path text
   in
   match open_in_bin path with
   | exception Sys_error e -> Error (`Msg e)
@@ -193,7 +247,7 @@ let read_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_byte
                 Option.iter close_in_noerr !first;
                 Option.iter (fun (_, fd) -> try Unix.close fd with Unix.Unix_error _ -> ()) beside
               in
-              match Scene_file.of_source ~limits ~load_mesh:read_mesh ~file:path ?beside:(Option.map fst beside) source with
+              match Scene_file.of_source ~limits ~load_mesh:(read_mesh ~jobs ~split_bytes) ~file:path ?beside:(Option.map fst beside) source with
               | r ->
                   close ();
                   r
@@ -213,6 +267,6 @@ let read_ppm ?(limits = Limits.default) path =
 let write_ppm ?comments path img = File_io.write_atomic path (fun oc -> Ppm.output ?comments oc img)
 
 let render_file ?limits ?jobs path =
-  match read_scene ?limits path with
+  match read_scene ?limits ?jobs path with
   | Error _ as e -> e
   | Ok scene -> ( match Render_jobs.image ?limits ?jobs scene with Ok (img, _) -> Ok img | Error _ as e -> e)
