@@ -114,7 +114,7 @@ let push_int g x =
    store is emptied, so that its blocks can be collected while the next
    store is concatenated. *)
 let float_array ?(tail = [||]) g =
-  let a = Array.make (float_length g + Array.length tail) 0. in
+  let a = Array.create_float (float_length g + Array.length tail) in
   Array.blit g.fcur 0 a g.ffull g.fn;
   List.iteri (fun k b -> Array.blit b 0 a (g.ffull - ((k + 1) * block)) block) g.fblocks;
   Array.blit tail 0 a (float_length g) (Array.length tail);
@@ -122,16 +122,35 @@ let float_array ?(tail = [||]) g =
   g.fcur <- [||];
   a
 
-(* The same for numbers, [tail]'s read as a part's (see [part_offset]):
-   those resolved from a negative index are re-based on the count
-   [before] of the text before the part. *)
-let int_array ?(tail = [||]) ?(before = 0) g =
-  let n = int_length g in
-  let a = Array.make (n + Array.length tail) 0 in
+(* A part's numbers travel as bytes, 8 a number: an [int array] is
+   marshalled number by number (each in 1 to 9 bytes, a branch each), 30
+   instructions a number to write and as many to read back, where bytes
+   are copied whole. In the machine's byte order: a part is read and
+   joined by processes of one program. *)
+external get64 : Bytes.t -> int -> int64 = "%caml_bytes_get64u"
+external set64 : Bytes.t -> int -> int64 -> unit = "%caml_bytes_set64u"
+
+let bytes_of_ints (a : int array) =
+  let b = Bytes.create (8 * Array.length a) in
+  for k = 0 to Array.length a - 1 do
+    set64 b (8 * k) (Int64.of_int (Array.unsafe_get a k))
+  done;
+  b
+
+(* Number [k] of [b], which holds at least [k + 1]: callers loop below
+   [Bytes.length b / 8]. *)
+let[@inline] int_at b k = Int64.to_int (get64 b (8 * k))
+
+(* The same for numbers, then [tail]'s, a part's numbers as bytes (see
+   [part_offset]): those resolved from a negative index are re-based on
+   the count [before] of the text before the part. *)
+let int_array ?(tail = Bytes.empty) ?(before = 0) g =
+  let n = int_length g and m = Bytes.length tail / 8 in
+  let a = Array.make (n + m) 0 in
   blit_ints g.icur a g.ifull g.inn;
   List.iteri (fun k b -> blit_ints b a (g.ifull - ((k + 1) * block)) block) g.iblocks;
-  for k = 0 to Array.length tail - 1 do
-    Array.unsafe_set a (n + k) (rebased (Array.unsafe_get tail k) before)
+  for k = 0 to m - 1 do
+    Array.unsafe_set a (n + k) (rebased (int_at tail k) before)
   done;
   g.iblocks <- [];
   g.icur <- [||];
@@ -455,7 +474,10 @@ let feed_bytes p b off len =
 let feed p s off len = feed_bytes p (Bytes.unsafe_of_string s) off len
 
 type part = {
-  mesh : t;  (* with a negative index's numbers not yet re-based *)
+  part_positions : float array;
+  part_normals : float array;
+  part_triangles : Bytes.t;  (* with a negative index's numbers not yet re-based *)
+  part_triangle_normals : Bytes.t;  (* [== part_triangles] where they are equal *)
   part_counts : int array;
   part_needs : int array;
 }
@@ -496,17 +518,26 @@ let finish p =
 
 let finish_part p =
   if p.offset = 0 then invalid_arg "Obj_file.finish_part: not a part";
-  Result.map (fun mesh -> { mesh; part_counts = p.counts; part_needs = p.needs }) (finish p)
+  Result.map
+    (fun m ->
+      let part_triangles = bytes_of_ints m.triangles in
+      let part_triangle_normals =
+        if m.triangle_normals == m.triangles then part_triangles else bytes_of_ints m.triangle_normals
+      in
+      { part_positions = m.positions; part_normals = m.normals; part_triangles; part_triangle_normals;
+        part_counts = p.counts; part_needs = p.needs })
+    (finish p)
 
-let part_triangle_count part = Array.length part.mesh.triangles / 3
+let part_triangle_count part = Bytes.length part.part_triangles / 24
 
-(* Whether [a.(at + k)] is the re-based [tail.(k)] for every [k]. *)
-let holds_rebased (tail : int array) before (a : int array) at =
-  Array.length a - at = Array.length tail
+(* Whether [a.(at + k)] is the re-based number [k] of [tail] for every
+   [k]. *)
+let holds_rebased tail before (a : int array) at =
+  Array.length a - at = Bytes.length tail / 8
   &&
   let same = ref true in
-  for k = 0 to Array.length tail - 1 do
-    if Array.unsafe_get a (at + k) <> rebased (Array.unsafe_get tail k) before then same := false
+  for k = 0 to (Bytes.length tail / 8) - 1 do
+    if Array.unsafe_get a (at + k) <> rebased (int_at tail k) before then same := false
   done;
   !same
 
@@ -517,19 +548,19 @@ let join p part =
   else if
     not
       (fits need_vertex nv && fits need_normal nn && fits need_texture p.texcoords
-      && nv + (Array.length part.mesh.positions / 3) <= p.max_vertices
-      && nn + (Array.length part.mesh.normals / 3) <= p.max_vertices
+      && nv + (Array.length part.part_positions / 3) <= p.max_vertices
+      && nn + (Array.length part.part_normals / 3) <= p.max_vertices
       && (int_length p.tris / 3) + part_triangle_count part <= p.max_triangles)
   then None
   else begin
     p.finished <- true;
     let at = int_length p.tri_nrm in
-    let positions = float_array ~tail:part.mesh.positions p.pos in
-    let normals = float_array ~tail:part.mesh.normals p.nrm in
-    let triangles = int_array ~tail:part.mesh.triangles ~before:nv p.tris in
+    let positions = float_array ~tail:part.part_positions p.pos in
+    let normals = float_array ~tail:part.part_normals p.nrm in
+    let triangles = int_array ~tail:part.part_triangles ~before:nv p.tris in
     let triangle_normals =
-      if holds_prefix p.tri_nrm triangles && holds_rebased part.mesh.triangle_normals nn triangles at then triangles
-      else int_array ~tail:part.mesh.triangle_normals ~before:nn p.tri_nrm
+      if holds_prefix p.tri_nrm triangles && holds_rebased part.part_triangle_normals nn triangles at then triangles
+      else int_array ~tail:part.part_triangle_normals ~before:nn p.tri_nrm
     in
     let counts = Array.map2 ( + ) p.counts part.part_counts in
     Some { positions; normals; triangles; triangle_normals; skipped = skipped_of counts }
