@@ -203,4 +203,41 @@ let tests =
                 if not (String.length m > String.length at && String.sub m 0 (String.length at) = at) then
                   Alcotest.failf "the error %S is not at %s" m at)
           [ "v 1 2 x\n"; "f 1 2 999\n"; "f -999 1 2\n"; "f 1 0 2\n"; "f 1//1 2//2 3//9999\n"; "f 1/1 2 3\n" ]);
+    Alcotest.test_case "render --jobs 2 of a big mesh: the image of one job, or its one-line error and no image" `Quick
+      (fun () ->
+        let dir = Helpers.temp_dir () in
+        let file name = Filename.concat dir name in
+        let write name text =
+          let oc = open_out_bin (file name) in
+          output_string oc text;
+          close_out oc
+        in
+        let big = Obj_file.to_string (Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.2 ~segments:400 ~sides:64) in
+        (* Big enough for render to read it on two cores. *)
+        if String.length big < Raytrace_unix.Files.split_bytes then Alcotest.failf "the mesh has only %d bytes" (String.length big);
+        write "t.scene"
+          "(canvas (width 24) (height 18)) (camera (position 0 0 -4))\n\
+           (mesh (file \"t.obj\") (color 230 150 40) (smooth true))\n(light ambient (intensity 1))\n";
+        let render jobs out = Helpers.run (Helpers.raytrace ()) [ "render"; file "t.scene"; "--jobs"; jobs; "-o"; file out ] in
+        let read name = In_channel_free.read (file name) in
+        Fun.protect ~finally:(fun () ->
+            Array.iter (fun f -> Sys.remove (file f)) (Sys.readdir dir);
+            Unix.rmdir dir) @@ fun () ->
+        write "t.obj" big;
+        let code1, _, err1 = render "1" "one.ppm" and code2, _, err2 = render "2" "two.ppm" in
+        Alcotest.(check (pair int int)) (err1 ^ err2) (0, 0) (code1, code2);
+        Alcotest.(check bool) "the same image" true (read "one.ppm" = read "two.ppm");
+        let line = List.length (String.split_on_char '\n' big) in
+        List.iter
+          (fun bad ->
+            write "t.obj" (big ^ bad);
+            let code1, _, err1 = render "1" "bad1.ppm" and code2, _, err2 = render "2" "bad2.ppm" in
+            Alcotest.(check string) bad err1 err2;
+            Alcotest.(check int) bad code1 code2;
+            if code2 = 0 then Alcotest.failf "%S rendered" bad;
+            let at = Printf.sprintf "t.obj:%d:" line in
+            if not (Astring_free.contains err2 at) then Alcotest.failf "the error %S is not at %s" err2 at;
+            if List.length (String.split_on_char '\n' (String.trim err2)) <> 1 then Alcotest.failf "not one line: %S" err2;
+            Alcotest.(check bool) "no image" false (Sys.file_exists (file "bad2.ppm")))
+          [ "f 1 2 0\n"; "f 1 2 99999\n"; "v 1 2 x\n" ]);
   ]
