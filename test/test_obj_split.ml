@@ -202,7 +202,14 @@ let tests =
                 let at = Printf.sprintf "%s:%d:" path lines in
                 if not (String.length m > String.length at && String.sub m 0 (String.length at) = at) then
                   Alcotest.failf "the error %S is not at %s" m at)
-          [ "v 1 2 x\n"; "f 1 2 999\n"; "f -999 1 2\n"; "f 1 0 2\n"; "f 1//1 2//2 3//9999\n"; "f 1/1 2 3\n" ]);
+          [ "v 1 2 x\n"; "f 1 2 999\n"; "f -999 1 2\n"; "f 1 0 2\n"; "f 1//1 2//2 3//9999\n"; "f 1/1 2 3\n" ];
+        (* An error in the first half: the child's part is waited for, then dropped. *)
+        write ("v 1 2\n" ^ big);
+        match read ~jobs:2 () with
+        | Ok _ -> Alcotest.fail "v 1 2 read"
+        | Error (`Msg m) as e ->
+            same "an error on the first line" (read ~jobs:1 ()) e;
+            Alcotest.(check string) __LOC__ (path ^ ":1:6: expected 3 numbers (v x y z), found 2") m);
     Alcotest.test_case "render --jobs 2 of a big mesh: the image of one job, or its one-line error and no image" `Quick
       (fun () ->
         let dir = Helpers.temp_dir () in
