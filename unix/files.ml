@@ -1,8 +1,8 @@
 let split_bytes = 4 lsl 20
 
-(* The first line start at or after the middle of the [n] bytes of file
-   [path], if one comes within 64 KiB. *)
-let middle_line path n =
+(* The first line start at or after byte [at] of file [path], if one
+   comes within 64 KiB. *)
+let line_after path at =
   match open_in_bin path with
   | exception Sys_error _ -> None
   | ic ->
@@ -10,13 +10,28 @@ let middle_line path n =
         ~finally:(fun () -> close_in_noerr ic)
         (fun () ->
           match
-            seek_in ic (n / 2);
+            seek_in ic at;
             let buf = Bytes.create 65536 in
             let k = input ic buf 0 (Bytes.length buf) in
             Bytes.index_opt (Bytes.sub buf 0 k) '\n'
           with
-          | Some j -> Some ((n / 2) + j + 1)
+          | Some j -> Some (at + j + 1)
           | None | (exception (Sys_error _ | End_of_file)) -> None)
+
+(* A temporary file for a child's result, in memory where /dev/shm is,
+   unlinked as soon as it is made; [None] where none can be made. *)
+let temporary () =
+  let dir = if Sys.file_exists "/dev/shm" then "/dev/shm" else Filename.get_temp_dir_name () in
+  match Filename.temp_file ~temp_dir:dir "raytrace" ".part" with
+  | exception Sys_error _ -> None
+  | name -> (
+      match Unix.openfile name [ O_RDWR; O_CLOEXEC ] 0o600 with
+      | fd ->
+          Sys.remove name;
+          Some fd
+      | exception Unix.Unix_error _ ->
+          (try Sys.remove name with Sys_error _ -> ());
+          None)
 
 (* Feeds [p] the bytes of [ic] until [stop] bytes were read from [start]
    (or the end). *)
@@ -35,22 +50,53 @@ let feed_mesh p ic ~start ~stop =
 (* The mesh from line start [split] of file [path] to its end, read in a
    child process (Parallel.beside), and the process's id; [wait ()] is
    [None] where the child failed, whatever the reason: the caller then
-   reads that part itself. *)
+   reads that part itself. The part (25 MB for half of a million
+   triangles) travels through a temporary file, written whole by the child
+   and read once it has ended: through the pipe, each 64 KiB needs the
+   other process to run, and on a busy machine the two would wait for
+   each other some 400 times. *)
 let mesh_part path split =
-  let read () =
-    let ic = open_in_bin path in
-    Fun.protect
-      ~finally:(fun () -> close_in_noerr ic)
-      (fun () ->
-        seek_in ic split;
-        let p = Obj_file.create_part ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
-        match feed_mesh p ic ~start:split ~stop:max_int with
-        | Error _ -> None
-        | Ok () -> (
-            match Obj_file.finish_part p with Ok part -> Some (Unix.getpid (), part) | Error _ -> None))
-  in
-  let wait = Parallel.beside read in
-  fun () -> match wait () with Ok part -> part | Error _ -> None
+  match temporary () with
+  | None -> fun () -> None
+  | Some fd ->
+      let read () =
+        let ic = open_in_bin path in
+        Fun.protect
+          ~finally:(fun () -> close_in_noerr ic)
+          (fun () ->
+            seek_in ic split;
+            let p = Obj_file.create_part ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
+            match Result.bind (feed_mesh p ic ~start:split ~stop:max_int) (fun () -> Obj_file.finish_part p) with
+            | Error _ -> None
+            | Ok part ->
+                let oc = Unix.out_channel_of_descr fd in
+                Marshal.to_channel oc part [];
+                flush oc;
+                Some (Unix.getpid ()))
+      in
+      let wait = Parallel.beside read in
+      fun () ->
+        let part =
+          match wait () with
+          | Ok (Some pid) -> (
+              match
+                ignore (Unix.lseek fd 0 SEEK_SET);
+                (Marshal.from_channel (Unix.in_channel_of_descr fd) : Obj_file.part)
+              with
+              | part -> Some (pid, part)
+              | exception (Unix.Unix_error _ | Sys_error _ | End_of_file | Failure _) -> None)
+          | Ok None | Error _ -> None
+        in
+        (try Unix.close fd with Unix.Unix_error _ -> ());
+        part
+
+(* Where the child's part of a mesh file starts, in percent of the file:
+   past the middle, since the child also sends its part (finish_part and
+   Marshal: 7% of its reading) before the parent can join it (9% of its
+   reading). On the knot of 100,000 triangles (callgrind, instructions on
+   the longer path: the longer reading, then the join) 50% gives 251.7 M,
+   52% about 240 M, 54% 248.6 M, one core 429.5 M. *)
+let mesh_split_percent = 52
 
 (* A mesh file, 64 KiB at a time: the text is never held whole. With two
    jobs, a child reads the second half of a big regular file meanwhile. *)
@@ -67,7 +113,7 @@ let read_mesh ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = fun ~pid:_ _ 
             else
               match Unix.fstat (Unix.descr_of_in_channel ic) with
               | { st_kind = S_REG; st_size = n; _ } when n >= split_bytes && n > 0 -> (
-                  match middle_line path n with Some split when split < n -> Some split | Some _ | None -> None)
+                  match line_after path (n / 100 * mesh_split_percent) with Some split when split < n -> Some split | Some _ | None -> None)
               | _ | (exception Unix.Unix_error _) -> None
           in
           let rest at = match feed_mesh p ic ~start:at ~stop:max_int with Ok () -> Obj_file.finish p | Error e -> Error e in
@@ -169,20 +215,7 @@ let append_spheres fd b part =
    sequential read would have read, costs only its time. [None], and
    nothing to close, where no temporary file can be made. *)
 let beside ~limits ~on_part path ic n =
-  let temporary () =
-    let dir = if Sys.file_exists "/dev/shm" then "/dev/shm" else Filename.get_temp_dir_name () in
-    match Filename.temp_file ~temp_dir:dir "raytrace" ".part" with
-    | exception Sys_error _ -> None
-    | name -> (
-        match Unix.openfile name [ O_RDWR; O_CLOEXEC ] 0o600 with
-        | fd ->
-            Sys.remove name;
-            Some fd
-        | exception Unix.Unix_error _ ->
-            (try Sys.remove name with Sys_error _ -> ());
-            None)
-  in
-  match middle_line path n with
+  match line_after path (n / 2) with
   | None -> None
   | Some split when split >= n -> None
   | Some split -> (
