@@ -110,40 +110,37 @@ let push_int g x =
   Array.unsafe_set g.icur g.inn x;
   g.inn <- g.inn + 1
 
-(* The elements of store [g], then those of [tail], as one array; the
-   store is emptied, so that its blocks can be collected while the next
-   store is concatenated. *)
-let float_array ?(tail = [||]) g =
-  let a = Array.create_float (float_length g + Array.length tail) in
+(* A part's floats and numbers travel as bytes, 8 each, in the machine's
+   byte order (a part is read and joined by processes of one program):
+   written from the reader's blocks, sent as they are ({!output_part})
+   and read into the joined arrays. Marshalled, an [int array] takes 30
+   instructions a number each way, and the part two more copies. *)
+external get64 : Bytes.t -> int -> int64 = "%caml_bytes_get64u"
+external set64 : Bytes.t -> int -> int64 -> unit = "%caml_bytes_set64u"
+
+(* Element [k] of [b], which holds at least [k + 1]: callers loop below
+   [Bytes.length b / 8]. *)
+let[@inline] float_at b k = Int64.float_of_bits (get64 b (8 * k))
+let[@inline] int_at b k = Int64.to_int (get64 b (8 * k))
+
+(* The elements of store [g], then those of the bytes [tail], as one
+   array; the store is emptied, so that its blocks can be collected while
+   the next store is concatenated. *)
+let float_array ?(tail = Bytes.empty) g =
+  let n = float_length g and m = Bytes.length tail / 8 in
+  let a = Array.create_float (n + m) in
   Array.blit g.fcur 0 a g.ffull g.fn;
   List.iteri (fun k b -> Array.blit b 0 a (g.ffull - ((k + 1) * block)) block) g.fblocks;
-  Array.blit tail 0 a (float_length g) (Array.length tail);
+  for k = 0 to m - 1 do
+    Array.unsafe_set a (n + k) (float_at tail k)
+  done;
   g.fblocks <- [];
   g.fcur <- [||];
   a
 
-(* A part's numbers travel as bytes, 8 a number: an [int array] is
-   marshalled number by number (each in 1 to 9 bytes, a branch each), 30
-   instructions a number to write and as many to read back, where bytes
-   are copied whole. In the machine's byte order: a part is read and
-   joined by processes of one program. *)
-external get64 : Bytes.t -> int -> int64 = "%caml_bytes_get64u"
-external set64 : Bytes.t -> int -> int64 -> unit = "%caml_bytes_set64u"
-
-let bytes_of_ints (a : int array) =
-  let b = Bytes.create (8 * Array.length a) in
-  for k = 0 to Array.length a - 1 do
-    set64 b (8 * k) (Int64.of_int (Array.unsafe_get a k))
-  done;
-  b
-
-(* Number [k] of [b], which holds at least [k + 1]: callers loop below
-   [Bytes.length b / 8]. *)
-let[@inline] int_at b k = Int64.to_int (get64 b (8 * k))
-
-(* The same for numbers, then [tail]'s, a part's numbers as bytes (see
-   [part_offset]): those resolved from a negative index are re-based on
-   the count [before] of the text before the part. *)
+(* The same for numbers, [tail]'s a part's (see [part_offset]): those
+   resolved from a negative index are re-based on the count [before] of
+   the text before the part. *)
 let int_array ?(tail = Bytes.empty) ?(before = 0) g =
   let n = int_length g and m = Bytes.length tail / 8 in
   let a = Array.make (n + m) 0 in
@@ -156,19 +153,40 @@ let int_array ?(tail = Bytes.empty) ?(before = 0) g =
   g.icur <- [||];
   a
 
-(* Whether store [g] holds the first elements of [a], in order. *)
-let holds_prefix g (a : int array) =
-  int_length g <= Array.length a
-  &&
-  let same = ref true in
-  let check (b : int array) at len =
+(* The elements of a store as bytes. *)
+let float_bytes g =
+  let b = Bytes.create (8 * float_length g) in
+  let put (a : float array) at len =
     for k = 0 to len - 1 do
-      if Array.unsafe_get b k <> Array.unsafe_get a (at + k) then same := false
+      set64 b (8 * (at + k)) (Int64.bits_of_float (Array.unsafe_get a k))
     done
   in
-  check g.icur g.ifull g.inn;
-  List.iteri (fun k b -> if !same then check b (g.ifull - ((k + 1) * block)) block) g.iblocks;
-  !same
+  put g.fcur g.ffull g.fn;
+  List.iteri (fun k a -> put a (g.ffull - ((k + 1) * block)) block) g.fblocks;
+  b
+
+let int_bytes g =
+  let b = Bytes.create (8 * int_length g) in
+  let put (a : int array) at len =
+    for k = 0 to len - 1 do
+      set64 b (8 * (at + k)) (Int64.of_int (Array.unsafe_get a k))
+    done
+  in
+  put g.icur g.ifull g.inn;
+  List.iteri (fun k a -> put a (g.ifull - ((k + 1) * block)) block) g.iblocks;
+  b
+
+(* Whether stores [g] and [h], filled in step (a push to one is a push
+   to the other), hold the same elements. *)
+let same_stores g h =
+  let same (a : int array) (b : int array) len =
+    let r = ref true in
+    for k = 0 to len - 1 do
+      if Array.unsafe_get a k <> Array.unsafe_get b k then r := false
+    done;
+    !r
+  in
+  int_length g = int_length h && same g.icur h.icur g.inn && List.for_all2 (fun a b -> same a b block) g.iblocks h.iblocks
 
 (* A face's vertices: a growable array, reused from face to face. *)
 type face = { mutable fa : int array; mutable len : int }
@@ -474,8 +492,8 @@ let feed_bytes p b off len =
 let feed p s off len = feed_bytes p (Bytes.unsafe_of_string s) off len
 
 type part = {
-  part_positions : float array;
-  part_normals : float array;
+  part_positions : Bytes.t;
+  part_normals : Bytes.t;
   part_triangles : Bytes.t;  (* with a negative index's numbers not yet re-based *)
   part_triangle_normals : Bytes.t;  (* [== part_triangles] where they are equal *)
   part_counts : int array;
@@ -504,7 +522,6 @@ let last_line p =
 
 (* Exporters mostly number a corner's normal as its vertex
    ([f 1//1 2//2 3//3]): then one array serves both. *)
-let triangle_normals p triangles = if holds_prefix p.tri_nrm triangles then triangles else int_array p.tri_nrm
 
 let finish p =
   match last_line p with
@@ -512,21 +529,22 @@ let finish p =
   | () ->
       let positions = float_array p.pos in
       let normals = float_array p.nrm in
+      let same = same_stores p.tri_nrm p.tris in
       let triangles = int_array p.tris in
-      let triangle_normals = triangle_normals p triangles in
+      let triangle_normals = if same then triangles else int_array p.tri_nrm in
       Ok { positions; normals; triangles; triangle_normals; skipped = skipped_of p.counts }
 
 let finish_part p =
   if p.offset = 0 then invalid_arg "Obj_file.finish_part: not a part";
-  Result.map
-    (fun m ->
-      let part_triangles = bytes_of_ints m.triangles in
-      let part_triangle_normals =
-        if m.triangle_normals == m.triangles then part_triangles else bytes_of_ints m.triangle_normals
-      in
-      { part_positions = m.positions; part_normals = m.normals; part_triangles; part_triangle_normals;
-        part_counts = p.counts; part_needs = p.needs })
-    (finish p)
+  match last_line p with
+  | exception Error_at m -> Error (`Msg m)
+  | () ->
+      let same = same_stores p.tri_nrm p.tris in
+      let part_triangles = int_bytes p.tris in
+      let part_triangle_normals = if same then part_triangles else int_bytes p.tri_nrm in
+      Ok
+        { part_positions = float_bytes p.pos; part_normals = float_bytes p.nrm; part_triangles; part_triangle_normals;
+          part_counts = p.counts; part_needs = p.needs }
 
 let part_triangle_count part = Bytes.length part.part_triangles / 24
 
@@ -548,8 +566,8 @@ let join p part =
   else if
     not
       (fits need_vertex nv && fits need_normal nn && fits need_texture p.texcoords
-      && nv + (Array.length part.part_positions / 3) <= p.max_vertices
-      && nn + (Array.length part.part_normals / 3) <= p.max_vertices
+      && nv + (Bytes.length part.part_positions / 24) <= p.max_vertices
+      && nn + (Bytes.length part.part_normals / 24) <= p.max_vertices
       && (int_length p.tris / 3) + part_triangle_count part <= p.max_triangles)
   then None
   else begin
@@ -557,14 +575,48 @@ let join p part =
     let at = int_length p.tri_nrm in
     let positions = float_array ~tail:part.part_positions p.pos in
     let normals = float_array ~tail:part.part_normals p.nrm in
+    let same = same_stores p.tri_nrm p.tris in
     let triangles = int_array ~tail:part.part_triangles ~before:nv p.tris in
     let triangle_normals =
-      if holds_prefix p.tri_nrm triangles && holds_rebased part.part_triangle_normals nn triangles at then triangles
+      if same && holds_rebased part.part_triangle_normals nn triangles at then triangles
       else int_array ~tail:part.part_triangle_normals ~before:nn p.tri_nrm
     in
     let counts = Array.map2 ( + ) p.counts part.part_counts in
     Some { positions; normals; triangles; triangle_normals; skipped = skipped_of counts }
   end
+
+(* The part's bytes follow a header: its length (8 bytes), then the
+   counts, the needs and the lengths of the four byte strings, marshalled
+   (0 for the triangles' normals where they are the triangles'). *)
+let output_part write part =
+  let shared = part.part_triangle_normals == part.part_triangles in
+  let blobs = [ part.part_positions; part.part_normals; part.part_triangles ] in
+  let blobs = if shared then blobs else blobs @ [ part.part_triangle_normals ] in
+  let lengths = Array.of_list (List.map Bytes.length blobs @ if shared then [ 0 ] else []) in
+  let header = Marshal.to_bytes (part.part_counts, part.part_needs, lengths) [] in
+  let size = Bytes.create 8 in
+  set64 size 0 (Int64.of_int (Bytes.length header));
+  write size 0 8;
+  write header 0 (Bytes.length header);
+  List.iter (fun b -> write b 0 (Bytes.length b)) blobs
+
+let input_part read =
+  let bytes n =
+    let b = Bytes.create n in
+    read b 0 n;
+    b
+  in
+  let size = int_at (bytes 8) 0 in
+  if size <= 0 || size > 4096 then failwith "Obj_file.input_part: not a part";
+  let part_counts, part_needs, lengths = (Marshal.from_bytes (bytes size) 0 : int array * int array * int array) in
+  if Array.length part_counts <> Array.length kinds || Array.length part_needs <> 6 || Array.length lengths <> 4
+     || Array.exists (fun n -> n < 0 || n mod 24 <> 0) lengths
+  then failwith "Obj_file.input_part: not a part";
+  let part_positions = bytes lengths.(0) in
+  let part_normals = bytes lengths.(1) in
+  let part_triangles = bytes lengths.(2) in
+  let part_triangle_normals = if lengths.(3) = 0 then part_triangles else bytes lengths.(3) in
+  { part_positions; part_normals; part_triangles; part_triangle_normals; part_counts; part_needs }
 
 let of_string ~name ~max_vertices ~max_triangles s =
   let p = create ~name ~max_vertices ~max_triangles in

@@ -126,8 +126,7 @@ val of_string : name:string -> max_vertices:int -> max_triangles:int -> string -
 
 type part
 (** The type for meshes read from a line start of a text on, without the
-    text before; the type holds no function, so a part can be sent with
-    [Marshal]. *)
+    text before. *)
 
 val create_part : name:string -> max_vertices:int -> max_triangles:int -> parser
 (** [create_part ~name ~max_vertices ~max_triangles] is a reader, fed
@@ -148,6 +147,21 @@ val finish_part : parser -> (part, [> `Msg of string ]) result
 
 val part_triangle_count : part -> int
 (** [part_triangle_count part] is the number of triangles of [part]. *)
+
+val output_part : (Bytes.t -> int -> int -> unit) -> part -> unit
+(** [output_part write part] sends [part] as bytes by calls [write b off
+    len], each of which must write all of [b.[off] .. b.[off+len-1]]
+    (e.g. to a file) before it returns: a header, then the part's floats
+    and numbers as they are held (8 bytes each, in the machine's byte
+    order), no copy made. *)
+
+val input_part : (Bytes.t -> int -> int -> unit) -> part
+(** [input_part read] is the part that {!output_part} sent, by calls
+    [read b off len], each of which must fill [b.[off] .. b.[off+len-1]]
+    or raise. The bytes must be those {!output_part} sent, by the same
+    program on the same machine: like [Marshal], this is not a reader of
+    untrusted input.
+    @raise Failure if the header is not a part's. *)
 
 val join : parser -> part -> t option
 (** [join p part] is [Some m] where [p] (from {!create}) was fed a text

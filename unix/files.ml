@@ -33,6 +33,17 @@ let temporary () =
           (try Sys.remove name with Sys_error _ -> ());
           None)
 
+let rec write_all fd buf off len =
+  if len > 0 then
+    let k = Unix.write fd buf off len in
+    write_all fd buf (off + k) (len - k)
+
+let rec read_all fd buf off len =
+  if len > 0 then
+    match Unix.read fd buf off len with
+    | 0 -> raise End_of_file
+    | k -> read_all fd buf (off + k) (len - k)
+
 (* Feeds [p] the bytes of [ic] until [stop] bytes were read from [start]
    (or the end). *)
 let feed_mesh p ic ~start ~stop =
@@ -69,9 +80,7 @@ let mesh_part path split =
             match Result.bind (feed_mesh p ic ~start:split ~stop:max_int) (fun () -> Obj_file.finish_part p) with
             | Error _ -> None
             | Ok part ->
-                let oc = Unix.out_channel_of_descr fd in
-                Marshal.to_channel oc part [];
-                flush oc;
+                Obj_file.output_part (write_all fd) part;
                 Some (Unix.getpid ()))
       in
       let wait = Parallel.beside read in
@@ -81,10 +90,10 @@ let mesh_part path split =
           | Ok (Some pid) -> (
               match
                 ignore (Unix.lseek fd 0 SEEK_SET);
-                (Marshal.from_channel (Unix.in_channel_of_descr fd) : Obj_file.part)
+                Obj_file.input_part (read_all fd)
               with
               | part -> Some (pid, part)
-              | exception (Unix.Unix_error _ | Sys_error _ | End_of_file | Failure _) -> None)
+              | exception (Unix.Unix_error _ | End_of_file | Failure _ | Invalid_argument _ | Out_of_memory) -> None)
           | Ok None | Error _ -> None
         in
         (try Unix.close fd with Unix.Unix_error _ -> ());
@@ -143,17 +152,6 @@ let read_mesh ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = fun ~pid:_ _ 
    for grid:1000000), which raised the render's peak by 9 MB. *)
 let block = 16384
 let sphere_bytes = 40
-
-let rec write_all fd buf off len =
-  if len > 0 then
-    let k = Unix.write fd buf off len in
-    write_all fd buf (off + k) (len - k)
-
-let rec read_all fd buf off len =
-  if len > 0 then
-    match Unix.read fd buf off len with
-    | 0 -> raise End_of_file
-    | k -> read_all fd buf (off + k) (len - k)
 
 (* Top-level and inlined, so that the floats are not boxed. *)
 let[@inline] put_float buf at x = Bytes.set_int64_le buf at (Int64.bits_of_float x)
