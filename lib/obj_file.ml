@@ -245,7 +245,10 @@ let make ~offset ~name ~max_vertices ~max_triangles =
   }
 
 let create = make ~offset:0
-let create_part = make ~offset:part_offset
+let create_part ~name ~max_vertices ~max_triangles =
+  (* [part_offset] is 2^61: JavaScript's 32-bit integers cannot hold it. *)
+  if Sys.int_size < 63 then invalid_arg "Obj_file.create_part: needs 63-bit integers";
+  make ~offset:part_offset ~name ~max_vertices ~max_triangles
 
 (* In a part, what resolving [r] (the index read, with [part_offset]
    added to the count [own + part_offset] it was resolved against)

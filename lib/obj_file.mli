@@ -137,7 +137,9 @@ val create_part : name:string -> max_vertices:int -> max_triangles:int -> parser
     defined: a negative index is never out of range here, nor a positive
     one. Its errors (a bad number, an index 0, a bound crossed by the
     part alone...) count lines from the part's start: a caller reads the
-    part again with the whole text's reader to report them. *)
+    part again with the whole text's reader to report them.
+    @raise Invalid_argument where integers have fewer than 63 bits
+    (JavaScript). *)
 
 val finish_part : parser -> (part, [> `Msg of string ]) result
 (** [finish_part p] reads the last line of [p]'s text (if it does not end
