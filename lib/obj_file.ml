@@ -153,28 +153,27 @@ let int_array ?(tail = Bytes.empty) ?(before = 0) g =
   g.icur <- [||];
   a
 
-(* The elements of a store as bytes. *)
-let float_bytes g =
-  let b = Bytes.create (8 * float_length g) in
-  let put (a : float array) at len =
-    for k = 0 to len - 1 do
-      set64 b (8 * (at + k)) (Int64.bits_of_float (Array.unsafe_get a k))
-    done
-  in
-  put g.fcur g.ffull g.fn;
-  List.iteri (fun k a -> put a (g.ffull - ((k + 1) * block)) block) g.fblocks;
+(* The [length] elements of a store (its current block [cur], whose [n]
+   elements come after [full] others, and its full [blocks]) as bytes:
+   [put b a at len] writes the first [len] elements of block [a] as
+   elements [at ..] of [b]. *)
+let store_bytes ~length ~cur ~full ~n ~blocks put =
+  let b = Bytes.create (8 * length) in
+  put b cur full n;
+  List.iteri (fun k a -> put b a (full - ((k + 1) * block)) block) blocks;
   b
 
+let float_bytes g =
+  store_bytes ~length:(float_length g) ~cur:g.fcur ~full:g.ffull ~n:g.fn ~blocks:g.fblocks (fun b (a : float array) at len ->
+      for k = 0 to len - 1 do
+        set64 b (8 * (at + k)) (Int64.bits_of_float (Array.unsafe_get a k))
+      done)
+
 let int_bytes g =
-  let b = Bytes.create (8 * int_length g) in
-  let put (a : int array) at len =
-    for k = 0 to len - 1 do
-      set64 b (8 * (at + k)) (Int64.of_int (Array.unsafe_get a k))
-    done
-  in
-  put g.icur g.ifull g.inn;
-  List.iteri (fun k a -> put a (g.ifull - ((k + 1) * block)) block) g.iblocks;
-  b
+  store_bytes ~length:(int_length g) ~cur:g.icur ~full:g.ifull ~n:g.inn ~blocks:g.iblocks (fun b (a : int array) at len ->
+      for k = 0 to len - 1 do
+        set64 b (8 * (at + k)) (Int64.of_int (Array.unsafe_get a k))
+      done)
 
 (* Whether stores [g] and [h], filled in step (a push to one is a push
    to the other), hold the same elements. *)
