@@ -1,34 +1,33 @@
 (* How fast Obj_file reads a large OBJ file, and in how much memory: the
-   file read 64 KiB at a time, never whole, as a renderer would.
+   file read 64 KiB at a time, never whole, as a renderer would
+   (Files.read_mesh); with --jobs 2, its second half by a child process.
 
    dune build --profile release bench/gen.exe bench/obj_load.exe
    ./_build/default/bench/gen.exe knot --segments 31250 --sides 16 -o /tmp/knot.obj
-   ./_build/default/bench/obj_load.exe /tmp/knot.obj *)
+   ./_build/default/bench/obj_load.exe /tmp/knot.obj [--jobs 2] *)
 
 open Raytrace
 
 let () =
-  let file = match Sys.argv with [| _; f |] -> f | _ -> prerr_endline "usage: obj_load FILE.obj"; exit 2 in
-  let ic = open_in_bin file in
-  let size = in_channel_length ic in
-  let t0 = Unix.gettimeofday () in
-  let p = Obj_file.create ~name:file ~max_vertices:max_int ~max_triangles:max_int in
-  let chunk = Bytes.create 65536 in
-  let rec read () =
-    let n = input ic chunk 0 65536 in
-    if n > 0 then
-      match Obj_file.feed_bytes p chunk 0 n with Ok () -> read () | Error (`Msg e) -> prerr_endline e; exit 1
+  let file, jobs =
+    match Sys.argv with
+    | [| _; f |] -> (f, 1)
+    | [| _; f; "--jobs"; j |] -> (f, int_of_string j)
+    | _ -> prerr_endline "usage: obj_load FILE.obj [--jobs N]"; exit 2
   in
-  read ();
-  let m = match Obj_file.finish p with Ok m -> m | Error (`Msg e) -> prerr_endline e; exit 1 in
-  let t = Unix.gettimeofday () -. t0 in
-  close_in ic;
+  let size = (Unix.stat file).st_size in
+  let t0 = Unix.gettimeofday () and cpu0 = Sys.time () in
+  let on_part ~pid k = Printf.printf "the child process %d read %d triangles\n" pid k in
+  let m = match Files.read_mesh ~jobs ~on_part file with Ok m -> m | Error (`Msg e) -> prerr_endline e; exit 1 in
+  let t = Unix.gettimeofday () -. t0 and cpu = Sys.time () -. cpu0 in
+  let child = (Unix.times ()).tms_cutime in
   let tris = Obj_file.triangle_count m in
   let top_heap = Float.of_int ((Gc.quick_stat ()).top_heap_words * (Sys.word_size / 8)) /. 1048576. in
   (* What the mesh holds: its normal numbers may be its vertex numbers. *)
   let result_mb = Float.of_int (Obj.reachable_words (Obj.repr m) * (Sys.word_size / 8)) /. 1048576. in
   Printf.printf "%s: %.1f MB, %d vertices, %d normals, %d triangles\n" file (Float.of_int size /. 1048576.)
     (Obj_file.vertex_count m) (Array.length m.normals / 3) tris;
+  Printf.printf "cpu s: this process %.3f, its child %.3f\n" cpu child;
   Printf.printf "load %.3f s (%.0f MB/s), minor words %.0f (%.1f per line)\n" t (Float.of_int size /. 1048576. /. t)
     (Gc.minor_words ())
     (Gc.minor_words () /. Float.of_int (Obj_file.vertex_count m + (Array.length m.normals / 3) + tris));

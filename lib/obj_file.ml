@@ -46,6 +46,18 @@ let v ~positions ~normals ~triangles ~triangle_normals =
    stores and loads unboxed floats. *)
 let block = 1 lsl 16
 
+(* A part (the text from a line start on, read without the text before
+   it) counts its own vertices, normals and texture coordinates, and adds
+   [part_offset] to each count that resolves an index: then no index is
+   out of range, a positive index [x] resolves as usual to [x - 1] (below
+   2^60: it has at most 18 digits), and a negative one [-x] to
+   [own + part_offset - x], at least 2^60, which the join re-bases to
+   [before + own - x] once the count [before] of the text before is
+   known. *)
+let part_offset = 1 lsl 61
+let positive_below = 1 lsl 60
+let[@inline] rebased r before = if r >= positive_below then r - part_offset + before else r
+
 type floats = { mutable fblocks : float array list; mutable fcur : float array; mutable fn : int; mutable ffull : int }
 type ints = { mutable iblocks : int array list; mutable icur : int array; mutable inn : int; mutable ifull : int }
 
@@ -98,37 +110,82 @@ let push_int g x =
   Array.unsafe_set g.icur g.inn x;
   g.inn <- g.inn + 1
 
-(* The elements of a store as one array; the store is emptied, so that
-   its blocks can be collected while the next store is concatenated. *)
-let float_array g =
-  let a = Array.make (float_length g) 0. in
+(* A part's floats and numbers travel as bytes, 8 each, in the machine's
+   byte order (a part is read and joined by processes of one program):
+   written from the reader's blocks, sent as they are ({!output_part})
+   and read into the joined arrays. Marshalled, an [int array] takes 30
+   instructions a number each way, and the part two more copies. *)
+external get64 : Bytes.t -> int -> int64 = "%caml_bytes_get64u"
+external set64 : Bytes.t -> int -> int64 -> unit = "%caml_bytes_set64u"
+
+(* Element [k] of [b], which holds at least [k + 1]: callers loop below
+   [Bytes.length b / 8]. *)
+let[@inline] float_at b k = Int64.float_of_bits (get64 b (8 * k))
+let[@inline] int_at b k = Int64.to_int (get64 b (8 * k))
+
+(* The elements of store [g], then those of the bytes [tail], as one
+   array; the store is emptied, so that its blocks can be collected while
+   the next store is concatenated. *)
+let float_array ?(tail = Bytes.empty) g =
+  let n = float_length g and m = Bytes.length tail / 8 in
+  let a = Array.create_float (n + m) in
   Array.blit g.fcur 0 a g.ffull g.fn;
   List.iteri (fun k b -> Array.blit b 0 a (g.ffull - ((k + 1) * block)) block) g.fblocks;
+  for k = 0 to m - 1 do
+    Array.unsafe_set a (n + k) (float_at tail k)
+  done;
   g.fblocks <- [];
   g.fcur <- [||];
   a
 
-let int_array g =
-  let a = Array.make (int_length g) 0 in
+(* The same for numbers, [tail]'s a part's (see [part_offset]): those
+   resolved from a negative index are re-based on the count [before] of
+   the text before the part. *)
+let int_array ?(tail = Bytes.empty) ?(before = 0) g =
+  let n = int_length g and m = Bytes.length tail / 8 in
+  let a = Array.make (n + m) 0 in
   blit_ints g.icur a g.ifull g.inn;
   List.iteri (fun k b -> blit_ints b a (g.ifull - ((k + 1) * block)) block) g.iblocks;
+  for k = 0 to m - 1 do
+    Array.unsafe_set a (n + k) (rebased (int_at tail k) before)
+  done;
   g.iblocks <- [];
   g.icur <- [||];
   a
 
-(* Whether store [g] holds the elements of [a], in order. *)
-let holds g (a : int array) =
-  int_length g = Array.length a
-  &&
-  let same = ref true in
-  let check (b : int array) at len =
+(* The [length] elements of a store (its current block [cur], whose [n]
+   elements come after [full] others, and its full [blocks]) as bytes:
+   [put b a at len] writes the first [len] elements of block [a] as
+   elements [at ..] of [b]. *)
+let store_bytes ~length ~cur ~full ~n ~blocks put =
+  let b = Bytes.create (8 * length) in
+  put b cur full n;
+  List.iteri (fun k a -> put b a (full - ((k + 1) * block)) block) blocks;
+  b
+
+let float_bytes g =
+  store_bytes ~length:(float_length g) ~cur:g.fcur ~full:g.ffull ~n:g.fn ~blocks:g.fblocks (fun b (a : float array) at len ->
+      for k = 0 to len - 1 do
+        set64 b (8 * (at + k)) (Int64.bits_of_float (Array.unsafe_get a k))
+      done)
+
+let int_bytes g =
+  store_bytes ~length:(int_length g) ~cur:g.icur ~full:g.ifull ~n:g.inn ~blocks:g.iblocks (fun b (a : int array) at len ->
+      for k = 0 to len - 1 do
+        set64 b (8 * (at + k)) (Int64.of_int (Array.unsafe_get a k))
+      done)
+
+(* Whether stores [g] and [h], filled in step (a push to one is a push
+   to the other), hold the same elements. *)
+let same_stores g h =
+  let same (a : int array) (b : int array) len =
+    let r = ref true in
     for k = 0 to len - 1 do
-      if Array.unsafe_get b k <> Array.unsafe_get a (at + k) then same := false
-    done
+      if Array.unsafe_get a k <> Array.unsafe_get b k then r := false
+    done;
+    !r
   in
-  check g.icur g.ifull g.inn;
-  List.iteri (fun k b -> if !same then check b (g.ifull - ((k + 1) * block)) block) g.iblocks;
-  !same
+  int_length g = int_length h && same g.icur h.icur g.inn && List.for_all2 (fun a b -> same a b block) g.iblocks h.iblocks
 
 (* A face's vertices: a growable array, reused from face to face. *)
 type face = { mutable fa : int array; mutable len : int }
@@ -146,6 +203,8 @@ type parser = {
   name : string;
   max_vertices : int;
   max_triangles : int;
+  offset : int;  (* [0], or {!part_offset} for a part *)
+  needs : int array;  (* a part's needs of the text before it: see [note] *)
   pos : floats;
   nrm : floats;
   tris : ints;
@@ -164,15 +223,48 @@ type parser = {
 
 exception Error_at of string
 
-let create ~name ~max_vertices ~max_triangles =
+(* What a part's indices need of the text before it, per kind (vertex,
+   normal, texture), is kept in [needs]: the largest [x - 1 - own] of a
+   positive index [x] read when the part had [own] of that kind (the
+   index must be below [before + own]), and the smallest [own - x] of a
+   negative one (which must resolve to at least 0). *)
+let need_vertex = 0
+let need_normal = 2
+let need_texture = 4
+let no_needs () = [| min_int; 0; min_int; 0; min_int; 0 |]
+
+let make ~offset ~name ~max_vertices ~max_triangles =
   {
-    name; max_vertices; max_triangles;
+    name; max_vertices; max_triangles; offset; needs = no_needs ();
     pos = floats (); nrm = floats (); tris = ints (); tri_nrm = ints ();
     face_v = { fa = Array.make 16 0; len = 0 }; face_n = { fa = Array.make 16 0; len = 0 };
     counts = Array.make (Array.length kinds) 0;
     texcoords = 0; line = 1; carry = Bytes.create 256; carry_len = 0;
     error = None; finished = false; num = [| 0. |];
   }
+
+let create = make ~offset:0
+let create_part ~name ~max_vertices ~max_triangles =
+  (* [part_offset] is 2^61: JavaScript's 32-bit integers cannot hold it. *)
+  if Sys.int_size < 63 then invalid_arg "Obj_file.create_part: needs 63-bit integers";
+  make ~offset:part_offset ~name ~max_vertices ~max_triangles
+
+(* In a part, what resolving [r] (the index read, with [part_offset]
+   added to the count [own + part_offset] it was resolved against)
+   needs of the text before. *)
+let note p kind ~own r =
+  if r < positive_below then begin
+    if r - own > p.needs.(kind) then p.needs.(kind) <- r - own
+  end
+  else if r - p.offset < p.needs.(kind + 1) then p.needs.(kind + 1) <- r - p.offset
+
+(* In a part, the needs of the face just read. *)
+let note_face p ~nv ~nn =
+  for c = 0 to p.face_v.len - 1 do
+    note p need_vertex ~own:(nv - p.offset) p.face_v.fa.(c);
+    let n = p.face_n.fa.(c) in
+    if n >= 0 then note p need_normal ~own:(nn - p.offset) n
+  done
 
 (* Errors: [i] is the byte where the line starts, [k] the offending byte. *)
 let fail p i k fmt =
@@ -264,15 +356,17 @@ let index p b i k j ~count ~what =
 let face p b i f k j =
   p.face_v.len <- 0;
   p.face_n.len <- 0;
-  let nv = float_length p.pos / 3 and nn = float_length p.nrm / 3 in
+  let nv = (float_length p.pos / 3) + p.offset and nn = (float_length p.nrm / 3) + p.offset in
   let k = ref (skip_spaces b k j) in
   while !k < j && Bytes.unsafe_get b !k <> '#' do
     push_face p.face_v (index p b i k j ~count:nv ~what:"vertex");
     let n = ref (-1) in
     if !k < j && Bytes.unsafe_get b !k = '/' then begin
       incr k;
-      if !k < j && Bytes.unsafe_get b !k <> '/' && not (is_space (Bytes.unsafe_get b !k)) then
-        ignore (index p b i k j ~count:p.texcoords ~what:"texture");
+      if !k < j && Bytes.unsafe_get b !k <> '/' && not (is_space (Bytes.unsafe_get b !k)) then begin
+        let t = index p b i k j ~count:(p.texcoords + p.offset) ~what:"texture" in
+        if p.offset > 0 then note p need_texture ~own:p.texcoords t
+      end;
       if !k < j && Bytes.unsafe_get b !k = '/' then begin
         incr k;
         if !k < j && not (is_space (Bytes.unsafe_get b !k)) then n := index p b i k j ~count:nn ~what:"normal"
@@ -288,6 +382,7 @@ let face p b i f k j =
   if n < 3 then fail p i f "a face needs at least 3 vertices, found %d" n;
   if (int_length p.tris / 3) + (n - 2) > p.max_triangles then
     fail p i f "more than %d triangles (the limit of triangles)" p.max_triangles;
+  if p.offset > 0 then note_face p ~nv ~nn;
   let v = p.face_v.fa and vn = p.face_n.fa in
   for t = 1 to n - 2 do
     push_int p.tris v.(0); push_int p.tris v.(t); push_int p.tris v.(t + 1);
@@ -398,30 +493,132 @@ let feed_bytes p b off len =
 
 let feed p s off len = feed_bytes p (Bytes.unsafe_of_string s) off len
 
-let finish p =
+type part = {
+  part_positions : Bytes.t;
+  part_normals : Bytes.t;
+  part_triangles : Bytes.t;  (* with a negative index's numbers not yet re-based *)
+  part_triangle_normals : Bytes.t;  (* [== part_triangles] where they are equal *)
+  part_counts : int array;
+  part_needs : int array;
+}
+
+let skipped_of counts =
+  let skipped = ref [] in
+  for n = Array.length kinds - 1 downto 0 do
+    if counts.(n) > 0 then skipped := (kinds.(n), counts.(n)) :: !skipped
+  done;
+  !skipped
+
+(* Ends the reading of [p] (which must be [Ok]) with its last line. *)
+let last_line p =
   if p.finished then invalid_arg "Obj_file.finish: called twice";
   p.finished <- true;
   match p.error with
-  | Some m -> Error (`Msg m)
-  | None -> (
-      try
-        if p.carry_len > 0 then begin
-          let n = p.carry_len in
-          p.carry_len <- 0;
-          line_before p p.carry 0 n
-        end;
-        let skipped = ref [] in
-        for n = Array.length kinds - 1 downto 0 do
-          if p.counts.(n) > 0 then skipped := (kinds.(n), p.counts.(n)) :: !skipped
-        done;
-        let positions = float_array p.pos in
-        let normals = float_array p.nrm in
-        let triangles = int_array p.tris in
-        (* Exporters mostly number a corner's normal as its vertex
-           ([f 1//1 2//2 3//3]): then one array serves both. *)
-        let triangle_normals = if holds p.tri_nrm triangles then triangles else int_array p.tri_nrm in
-        Ok { positions; normals; triangles; triangle_normals; skipped = !skipped }
-      with Error_at m -> Error (`Msg m))
+  | Some m -> raise (Error_at m)
+  | None ->
+      if p.carry_len > 0 then begin
+        let n = p.carry_len in
+        p.carry_len <- 0;
+        line_before p p.carry 0 n
+      end
+
+(* Exporters mostly number a corner's normal as its vertex
+   ([f 1//1 2//2 3//3]): then one array serves both. *)
+
+let finish p =
+  match last_line p with
+  | exception Error_at m -> Error (`Msg m)
+  | () ->
+      let positions = float_array p.pos in
+      let normals = float_array p.nrm in
+      let same = same_stores p.tri_nrm p.tris in
+      let triangles = int_array p.tris in
+      let triangle_normals = if same then triangles else int_array p.tri_nrm in
+      Ok { positions; normals; triangles; triangle_normals; skipped = skipped_of p.counts }
+
+let finish_part p =
+  if p.offset = 0 then invalid_arg "Obj_file.finish_part: not a part";
+  match last_line p with
+  | exception Error_at m -> Error (`Msg m)
+  | () ->
+      let same = same_stores p.tri_nrm p.tris in
+      let part_triangles = int_bytes p.tris in
+      let part_triangle_normals = if same then part_triangles else int_bytes p.tri_nrm in
+      Ok
+        { part_positions = float_bytes p.pos; part_normals = float_bytes p.nrm; part_triangles; part_triangle_normals;
+          part_counts = p.counts; part_needs = p.needs }
+
+let part_triangle_count part = Bytes.length part.part_triangles / 24
+
+(* Whether [a.(at + k)] is the re-based number [k] of [tail] for every
+   [k]. *)
+let holds_rebased tail before (a : int array) at =
+  Array.length a - at = Bytes.length tail / 8
+  &&
+  let same = ref true in
+  for k = 0 to (Bytes.length tail / 8) - 1 do
+    if Array.unsafe_get a (at + k) <> rebased (int_at tail k) before then same := false
+  done;
+  !same
+
+let join p part =
+  let nv = float_length p.pos / 3 and nn = float_length p.nrm / 3 in
+  let fits kind before = part.part_needs.(kind) < before && before + part.part_needs.(kind + 1) >= 0 in
+  if p.offset > 0 || p.finished || p.error <> None || p.carry_len > 0 then None
+  else if
+    not
+      (fits need_vertex nv && fits need_normal nn && fits need_texture p.texcoords
+      && nv + (Bytes.length part.part_positions / 24) <= p.max_vertices
+      && nn + (Bytes.length part.part_normals / 24) <= p.max_vertices
+      && (int_length p.tris / 3) + part_triangle_count part <= p.max_triangles)
+  then None
+  else begin
+    p.finished <- true;
+    let at = int_length p.tri_nrm in
+    let positions = float_array ~tail:part.part_positions p.pos in
+    let normals = float_array ~tail:part.part_normals p.nrm in
+    let same = same_stores p.tri_nrm p.tris in
+    let triangles = int_array ~tail:part.part_triangles ~before:nv p.tris in
+    let triangle_normals =
+      if same && holds_rebased part.part_triangle_normals nn triangles at then triangles
+      else int_array ~tail:part.part_triangle_normals ~before:nn p.tri_nrm
+    in
+    let counts = Array.map2 ( + ) p.counts part.part_counts in
+    Some { positions; normals; triangles; triangle_normals; skipped = skipped_of counts }
+  end
+
+(* The part's bytes follow a header: its length (8 bytes), then the
+   counts, the needs and the lengths of the four byte strings, marshalled
+   (0 for the triangles' normals where they are the triangles'). *)
+let output_part write part =
+  let shared = part.part_triangle_normals == part.part_triangles in
+  let blobs = [ part.part_positions; part.part_normals; part.part_triangles ] in
+  let blobs = if shared then blobs else blobs @ [ part.part_triangle_normals ] in
+  let lengths = Array.of_list (List.map Bytes.length blobs @ if shared then [ 0 ] else []) in
+  let header = Marshal.to_bytes (part.part_counts, part.part_needs, lengths) [] in
+  let size = Bytes.create 8 in
+  set64 size 0 (Int64.of_int (Bytes.length header));
+  write size 0 8;
+  write header 0 (Bytes.length header);
+  List.iter (fun b -> write b 0 (Bytes.length b)) blobs
+
+let input_part read =
+  let bytes n =
+    let b = Bytes.create n in
+    read b 0 n;
+    b
+  in
+  let size = int_at (bytes 8) 0 in
+  if size <= 0 || size > 4096 then failwith "Obj_file.input_part: not a part";
+  let part_counts, part_needs, lengths = (Marshal.from_bytes (bytes size) 0 : int array * int array * int array) in
+  if Array.length part_counts <> Array.length kinds || Array.length part_needs <> 6 || Array.length lengths <> 4
+     || Array.exists (fun n -> n < 0 || n mod 24 <> 0) lengths
+  then failwith "Obj_file.input_part: not a part";
+  let part_positions = bytes lengths.(0) in
+  let part_normals = bytes lengths.(1) in
+  let part_triangles = bytes lengths.(2) in
+  let part_triangle_normals = if lengths.(3) = 0 then part_triangles else bytes lengths.(3) in
+  { part_positions; part_normals; part_triangles; part_triangle_normals; part_counts; part_needs }
 
 let of_string ~name ~max_vertices ~max_triangles s =
   let p = create ~name ~max_vertices ~max_triangles in

@@ -1,26 +1,8 @@
-(* A mesh file, 64 KiB at a time: the text is never held whole. *)
-let read_mesh path =
-  match open_in_bin path with
-  | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
-  | ic ->
-      Fun.protect
-        ~finally:(fun () -> close_in_noerr ic)
-        (fun () ->
-          let p = Obj_file.create ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
-          let chunk = Bytes.create 65536 in
-          let rec go () =
-            match input ic chunk 0 (Bytes.length chunk) with
-            | 0 -> Obj_file.finish p
-            | n -> ( match Obj_file.feed_bytes p chunk 0 n with Ok () -> go () | Error e -> Error e)
-            | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
-          in
-          go ())
-
 let split_bytes = 4 lsl 20
 
-(* The first line start at or after the middle of the [n] bytes of file
-   [path], if one comes within 64 KiB. *)
-let middle_line path n =
+(* The first line start at or after byte [at] of file [path], if one
+   comes within 64 KiB. *)
+let line_after path at =
   match open_in_bin path with
   | exception Sys_error _ -> None
   | ic ->
@@ -28,21 +10,28 @@ let middle_line path n =
         ~finally:(fun () -> close_in_noerr ic)
         (fun () ->
           match
-            seek_in ic (n / 2);
+            seek_in ic at;
             let buf = Bytes.create 65536 in
             let k = input ic buf 0 (Bytes.length buf) in
             Bytes.index_opt (Bytes.sub buf 0 k) '\n'
           with
-          | Some j -> Some ((n / 2) + j + 1)
+          | Some j -> Some (at + j + 1)
           | None | (exception (Sys_error _ | End_of_file)) -> None)
 
-(* The fields of the child's spheres (40 bytes each: center, radius as
-   floats, the material as an integer) travel through a temporary file,
-   unlinked as soon as it is made, a block of spheres at a time: sent by
-   Marshal they took the parent a buffer and a copy of their size (18 MB
-   for grid:1000000), which raised the render's peak by 9 MB. *)
-let block = 16384
-let sphere_bytes = 40
+(* A temporary file for a child's result, in memory where /dev/shm is,
+   unlinked as soon as it is made; [None] where none can be made. *)
+let temporary () =
+  let dir = if Sys.file_exists "/dev/shm" then "/dev/shm" else Filename.get_temp_dir_name () in
+  match Filename.temp_file ~temp_dir:dir "raytrace" ".part" with
+  | exception Sys_error _ -> None
+  | name -> (
+      match Unix.openfile name [ O_RDWR; O_CLOEXEC ] 0o600 with
+      | fd ->
+          Sys.remove name;
+          Some fd
+      | exception Unix.Unix_error _ ->
+          (try Sys.remove name with Sys_error _ -> ());
+          None)
 
 let rec write_all fd buf off len =
   if len > 0 then
@@ -54,6 +43,115 @@ let rec read_all fd buf off len =
     match Unix.read fd buf off len with
     | 0 -> raise End_of_file
     | k -> read_all fd buf (off + k) (len - k)
+
+(* Feeds [p] the bytes of [ic] until [stop] bytes were read from [start]
+   (or the end). *)
+let feed_mesh p ic ~start ~stop =
+  let chunk = Bytes.create 65536 in
+  let rec go at =
+    if at >= stop then Ok ()
+    else
+      match input ic chunk 0 (min (Bytes.length chunk) (stop - at)) with
+      | 0 -> Ok ()
+      | n -> ( match Obj_file.feed_bytes p chunk 0 n with Ok () -> go (at + n) | Error e -> Error e)
+      | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
+  in
+  go start
+
+(* The mesh from line start [split] of file [path] to its end, read in a
+   child process (Parallel.beside), and the process's id; [wait ()] is
+   [None] where the child failed, whatever the reason: the caller then
+   reads that part itself. The part (25 MB for half of a million
+   triangles) travels through a temporary file, written whole by the child
+   and read once it has ended: through the pipe, each 64 KiB needs the
+   other process to run, and on a busy machine the two would wait for
+   each other some 400 times. *)
+let mesh_part path split =
+  match temporary () with
+  | None -> fun () -> None
+  | Some fd ->
+      let read () =
+        let ic = open_in_bin path in
+        Fun.protect
+          ~finally:(fun () -> close_in_noerr ic)
+          (fun () ->
+            seek_in ic split;
+            let p = Obj_file.create_part ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
+            match Result.bind (feed_mesh p ic ~start:split ~stop:max_int) (fun () -> Obj_file.finish_part p) with
+            | Error _ -> None
+            | Ok part ->
+                Obj_file.output_part (write_all fd) part;
+                Some (Unix.getpid ()))
+      in
+      let wait = Parallel.beside read in
+      fun () ->
+        let part =
+          match wait () with
+          | Ok (Some pid) -> (
+              match
+                ignore (Unix.lseek fd 0 SEEK_SET);
+                Obj_file.input_part (read_all fd)
+              with
+              | part -> Some (pid, part)
+              | exception (Unix.Unix_error _ | End_of_file | Failure _ | Invalid_argument _ | Out_of_memory) -> None)
+          | Ok None | Error _ -> None
+        in
+        (try Unix.close fd with Unix.Unix_error _ -> ());
+        part
+
+(* Where the child's part of a mesh file starts, in percent of the file:
+   past the middle, since the child also sends its part (finish_part and
+   Marshal: 7% of its reading) before the parent can join it (9% of its
+   reading). On the knot of 100,000 triangles (callgrind, instructions on
+   the longer path: the longer reading, then the join) 50% gives 251.7 M,
+   52% about 240 M, 54% 248.6 M, one core 429.5 M. *)
+let mesh_split_percent = 52
+
+(* A mesh file, 64 KiB at a time: the text is never held whole. With two
+   jobs, a child reads the second half of a big regular file meanwhile. *)
+let read_mesh ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = fun ~pid:_ _ -> ()) path =
+  match open_in_bin path with
+  | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
+  | ic ->
+      Fun.protect
+        ~finally:(fun () -> close_in_noerr ic)
+        (fun () ->
+          let p = Obj_file.create ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
+          let split =
+            if jobs <= 1 then None
+            else
+              match Unix.fstat (Unix.descr_of_in_channel ic) with
+              | { st_kind = S_REG; st_size = n; _ } when n >= split_bytes && n > 0 -> (
+                  match line_after path (n / 100 * mesh_split_percent) with Some split when split < n -> Some split | Some _ | None -> None)
+              | _ | (exception Unix.Unix_error _) -> None
+          in
+          let rest at = match feed_mesh p ic ~start:at ~stop:max_int with Ok () -> Obj_file.finish p | Error e -> Error e in
+          match split with
+          | None -> rest 0
+          | Some split -> (
+              let wait = mesh_part path split in
+              let first = feed_mesh p ic ~start:0 ~stop:split in
+              (* Waited for even after an error, so that no child is left. *)
+              let part = wait () in
+              match first with
+              | Error e -> Error e
+              | Ok () -> (
+                  match part with
+                  | None -> rest split
+                  | Some (pid, part) -> (
+                      match Obj_file.join p part with
+                      | Some m ->
+                          on_part ~pid (Obj_file.part_triangle_count part);
+                          Ok m
+                      | None -> rest split))))
+
+(* The fields of the child's spheres (40 bytes each: center, radius as
+   floats, the material as an integer) travel through a temporary file,
+   unlinked as soon as it is made, a block of spheres at a time: sent by
+   Marshal they took the parent a buffer and a copy of their size (18 MB
+   for grid:1000000), which raised the render's peak by 9 MB. *)
+let block = 16384
+let sphere_bytes = 40
 
 (* Top-level and inlined, so that the floats are not boxed. *)
 let[@inline] put_float buf at x = Bytes.set_int64_le buf at (Int64.bits_of_float x)
@@ -115,20 +213,7 @@ let append_spheres fd b part =
    sequential read would have read, costs only its time. [None], and
    nothing to close, where no temporary file can be made. *)
 let beside ~limits ~on_part path ic n =
-  let temporary () =
-    let dir = if Sys.file_exists "/dev/shm" then "/dev/shm" else Filename.get_temp_dir_name () in
-    match Filename.temp_file ~temp_dir:dir "raytrace" ".part" with
-    | exception Sys_error _ -> None
-    | name -> (
-        match Unix.openfile name [ O_RDWR; O_CLOEXEC ] 0o600 with
-        | fd ->
-            Sys.remove name;
-            Some fd
-        | exception Unix.Unix_error _ ->
-            (try Sys.remove name with Sys_error _ -> ());
-            None)
-  in
-  match middle_line path n with
+  match line_after path (n / 2) with
   | None -> None
   | Some split when split >= n -> None
   | Some split -> (
@@ -166,7 +251,7 @@ let read_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_byte
   let whole () =
     match File_io.read ~check_size:(Limits.check_scene_bytes limits) path with
     | Error e -> Error e
-    | Ok text -> Scene_file.of_string ~limits ~load_mesh:read_mesh ~file:path text
+    | Ok text -> Scene_file.of_string ~limits ~load_mesh:(read_mesh ~jobs ~split_bytes) ~file:path text
   in
   match open_in_bin path with
   | exception Sys_error e -> Error (`Msg e)
@@ -193,7 +278,7 @@ let read_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_byte
                 Option.iter close_in_noerr !first;
                 Option.iter (fun (_, fd) -> try Unix.close fd with Unix.Unix_error _ -> ()) beside
               in
-              match Scene_file.of_source ~limits ~load_mesh:read_mesh ~file:path ?beside:(Option.map fst beside) source with
+              match Scene_file.of_source ~limits ~load_mesh:(read_mesh ~jobs ~split_bytes) ~file:path ?beside:(Option.map fst beside) source with
               | r ->
                   close ();
                   r
@@ -213,6 +298,6 @@ let read_ppm ?(limits = Limits.default) path =
 let write_ppm ?comments path img = File_io.write_atomic path (fun oc -> Ppm.output ?comments oc img)
 
 let render_file ?limits ?jobs path =
-  match read_scene ?limits path with
+  match read_scene ?limits ?jobs path with
   | Error _ as e -> e
   | Ok scene -> ( match Render_jobs.image ?limits ?jobs scene with Ok (img, _) -> Ok img | Error _ as e -> e)
