@@ -301,7 +301,7 @@ let tests =
                     Alcotest.failf "Trace.roots gives %h (%h), the paper's arithmetic %h, order %d" t t' expected order;
                   if Float.is_finite t then incr hits else incr misses;
                   (* The traversal's copies, without a hierarchy and in
-                     a leaf of one (the triangle among small ones behind
+                     a leaf (the triangle among small ones behind
                      the ray's origin, which it never sees): each sees
                      the hit at [t] beyond [epsilon = pred t], not beyond
                      [epsilon = t]. *)
