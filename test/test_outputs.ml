@@ -178,15 +178,24 @@ let every_channel_fails_cleanly () =
     [ "2>&-"; "2>/dev/full"; "2>&- 0<&-" ]
 
 (* The workers of a render started in the background, once both run. *)
+let terminating =
+  Sys.
+    [
+      (sigint, "INT"); (sigterm, "TERM"); (sighup, "HUP"); (sigquit, "QUIT"); (sigusr1, "USR1"); (sigusr2, "USR2");
+      (sigalrm, "ALRM"); (sigxcpu, "XCPU"); (sigxfsz, "XFSZ"); (sigvtalrm, "VTALRM"); (sigprof, "PROF");
+    ]
+
 let spawn_render args =
   let err = Filename.temp_file "rt" ".err" in
   let fd = Unix.openfile err [ O_WRONLY; O_TRUNC ] 0o600 in
-  (* SIGINT at its default action even if the tests run in a background
-     job, which ignores it. *)
-  let previous = Sys.signal Sys.sigint Sys.Signal_default in
+  (* Every signal at its default action in the render, even if the tests
+     run in a background job, which ignores SIGINT, or under nohup, which
+     ignores SIGHUP: an ignored signal stays ignored across exec, and the
+     render rightly keeps it so. *)
+  let previous = List.map (fun (signal, _) -> (signal, Sys.signal signal Sys.Signal_default)) terminating in
   let pid =
     Fun.protect
-      ~finally:(fun () -> Sys.set_signal Sys.sigint previous)
+      ~finally:(fun () -> List.iter (fun (signal, p) -> Sys.set_signal signal p) previous)
       (fun () ->
         (* Through a shell that sets no core file (SIGQUIT dumps one) and
            then becomes raytrace, with the same pid. *)
@@ -234,13 +243,6 @@ let fresh () =
   let dir = Helpers.temp_dir () in
   write (Filename.concat dir "out.ppm") "old\n";
   dir
-
-let terminating =
-  Sys.
-    [
-      (sigint, "INT"); (sigterm, "TERM"); (sighup, "HUP"); (sigquit, "QUIT"); (sigusr1, "USR1"); (sigusr2, "USR2");
-      (sigalrm, "ALRM"); (sigxcpu, "XCPU"); (sigxfsz, "XFSZ"); (sigvtalrm, "VTALRM"); (sigprof, "PROF");
-    ]
 
 let every_signal_to_the_parent () =
   List.iter
