@@ -218,16 +218,52 @@ let running_boxes (bin_n : int array) (bin_box : float array) b0 b1 (out : float
     Array.unsafe_set out (o + 5) !bz1
   done
 
+type floats = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t
+
+(* [leaf_box x0 y0 z0 x1 y1 z1 l c into o] writes the box of slots [l ..
+   l + c - 1] to [into] at [o .. o + 5]. *)
+let[@inline] leaf_box (x0 : float array) (y0 : float array) (z0 : float array) (x1 : float array)
+    (y1 : float array) (z1 : float array) l c (into : float array) o =
+  let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
+  let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
+  for s = l to l + c - 1 do
+    bx0 := fmin !bx0 (Array.unsafe_get x0 s);
+    by0 := fmin !by0 (Array.unsafe_get y0 s);
+    bz0 := fmin !bz0 (Array.unsafe_get z0 s);
+    bx1 := fmax !bx1 (Array.unsafe_get x1 s);
+    by1 := fmax !by1 (Array.unsafe_get y1 s);
+    bz1 := fmax !bz1 (Array.unsafe_get z1 s)
+  done;
+  into.(o) <- !bx0;
+  into.(o + 1) <- !by0;
+  into.(o + 2) <- !bz0;
+  into.(o + 3) <- !bx1;
+  into.(o + 4) <- !by1;
+  into.(o + 5) <- !bz1
+
+(* The leaves of nodes [first .. last - 1], whose boxes were gathered
+   into the six arrays of slot boxes: the [j]th one's box in slot
+   [at + j], each one slot ([at + j] is at most its first slot). *)
+type gathered = { first : int; last : int; at : int; leaves : int }
+
+let none_gathered = { first = 0; last = 0; at = 0; leaves = 0 }
+
 (* The nodes of the tree [t] over the slots' boxes, the boxes from the
    leaves up: children come after their parent. The shape's arrays (16
    bytes a node) are garbage once read: the nodes (64 bytes a node) are
-   the only copy made. *)
-let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
+   the only copy made. The leaves of [mine] and [theirs] have their
+   boxes gathered (see {!gathered}). *)
+let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ?(mine = none_gathered) ?(theirs = none_gathered) order depth =
   let n_nodes = t.size in
   (* Every element is written below. *)
   let nodes = Array.create_float ((node_floats * n_nodes) + node_floats - 1) in
   let root = aligned_root nodes in
   let link = t.link and tag = t.tag in
+  let n = Array.length x0 in
+  if mine.at < 0 || mine.at + mine.leaves > n || theirs.at < 0 || theirs.at + theirs.leaves > n then
+    invalid_arg "Bvh.finish: gathered leaves";
+  (* The gathered leaves are met last to first. *)
+  let mine_at = ref (mine.at + mine.leaves) and theirs_at = ref (theirs.at + theirs.leaves) in
   for k = n_nodes - 1 downto 0 do
     let o = at root k in
     let l = link.(k) and g = tag.(k) in
@@ -237,22 +273,17 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
     if g < 0 then begin
       (* A leaf: its count, [-g], becomes its tag. *)
       nodes.(o + 7) <- Float.of_int (-g);
-      let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
-      let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
-      for s = l to l - g - 1 do
-        bx0 := fmin !bx0 (Array.unsafe_get x0 s);
-        by0 := fmin !by0 (Array.unsafe_get y0 s);
-        bz0 := fmin !bz0 (Array.unsafe_get z0 s);
-        bx1 := fmax !bx1 (Array.unsafe_get x1 s);
-        by1 := fmax !by1 (Array.unsafe_get y1 s);
-        bz1 := fmax !bz1 (Array.unsafe_get z1 s)
-      done;
-      nodes.(o) <- !bx0;
-      nodes.(o + 1) <- !by0;
-      nodes.(o + 2) <- !bz0;
-      nodes.(o + 3) <- !bx1;
-      nodes.(o + 4) <- !by1;
-      nodes.(o + 5) <- !bz1
+      (* The box of one slot is that slot's box: the min of infinity and
+         [x] is [x]. *)
+      if k >= theirs.first && k < theirs.last then begin
+        decr theirs_at;
+        leaf_box x0 y0 z0 x1 y1 z1 !theirs_at 1 nodes o
+      end
+      else if k >= mine.first && k < mine.last then begin
+        decr mine_at;
+        leaf_box x0 y0 z0 x1 y1 z1 !mine_at 1 nodes o
+      end
+      else leaf_box x0 y0 z0 x1 y1 z1 l (-g) nodes o
     end
     else begin
       (* An inner node: its axis [g] becomes [-1 - g]; [l] is its right child. *)
@@ -267,9 +298,8 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order depth =
       Array.unsafe_set nodes (o + 5) (fmax (Array.unsafe_get nodes (c + 5)) (Array.unsafe_get nodes (r + 5)))
     end
   done;
+  if !mine_at <> mine.at || !theirs_at <> theirs.at then invalid_arg "Bvh.finish: gathered leaves";
   { order; n_nodes; nodes; root; depth }
-
-type floats = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t
 
 type beside = {
   beside : 'a. (unit -> 'a) -> unit -> 'a option;
@@ -279,11 +309,12 @@ type beside = {
 
 (* What a subtree built beside sends back on the pipe, small (half a MB
    for half a million objects): its nodes' tags (a byte each: their links
-   follow from the tags), the deepest level it reached. Its slots' boxes
-   and objects, in the order it left them, come in the floats shared with
-   the caller ([beside.floats]): copied in order from there, where the
-   caller once followed a permutation through 7 arrays, a cache miss at
-   nearly every step (70 ms for half a million objects). *)
+   follow from the tags), the deepest level it reached. Its slots'
+   objects, in the order it left them, and its leaves' boxes come in the
+   floats shared with the caller ([beside.floats]): read in order from
+   there, where the caller once followed a permutation through 7 arrays,
+   a cache miss at nearly every step (70 ms for half a million
+   objects). *)
 type part = { tags : Bytes.t; part_depth : int }
 
 let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
@@ -397,6 +428,32 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
     centers.(o + 5) <- !z1'
   in
   let depth = ref 0 and split_bin = ref 0 and alone = ref true and built_here = ref false in
+  let mine = ref none_gathered and theirs = ref none_gathered in
+  (* [put_box box at] writes the box of 6 floats [box] to slot [at]. *)
+  let put_box (box : float array) at =
+    x0.(at) <- box.(0);
+    y0.(at) <- box.(1);
+    z0.(at) <- box.(2);
+    x1.(at) <- box.(3);
+    y1.(at) <- box.(4);
+    z1.(at) <- box.(5)
+  in
+  (* Gathers the boxes of the leaves of nodes [first .. t.size - 1], over
+     slots from [at], into slots [at ..], in order ({!gathered}): the
+     leaves' slots are read before a later leaf's box is written, which
+     goes no further than its first slot. *)
+  let gather first at =
+    let box = Array.make 6 0. and j = ref 0 in
+    for c = first to t.size - 1 do
+      let g = t.tag.(c) in
+      if g < 0 then begin
+        leaf_box x0 y0 z0 x1 y1 z1 t.link.(c) (-g) box 0;
+        put_box box (at + !j);
+        incr j
+      end
+    done;
+    { first; last = t.size; at; leaves = !j }
+  in
   (* The node over slots [lo .. hi - 1], whose bounds are in [bounds] at [o]. *)
   let n_all = n in
   let rec node lo hi level (bounds : float array) o =
@@ -569,6 +626,9 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
           let right = Array.sub !frames (f + 12) 12 in
           let wait = b.beside (fun () -> part split hi (level + 1) right sh) in
           node lo split (level + 1) !frames f;
+          (* Work of [finish], done while the other process may still
+             build: the left subtree's leaves' boxes, read once, there. *)
+          mine := gather (k + 1) lo;
           t.link.(k) <- t.size;
           (match wait () with
           | Some _ when !built_here -> (* [beside] ran [part] here: the tree is complete. *) ()
@@ -582,22 +642,32 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
     end
   (* The subtree over slots [lo .. hi - 1] and what [graft] needs of it:
      run beside (in a copy of this process), after [node lo split] there
-     has moved nothing in [lo .. hi - 1]. The slots' boxes and objects
-     go to [sh]: the [m] lower x, then y, z, upper x, y, z, then the
-     objects' numbers (exact as floats: [m < 2^31]). *)
+     has moved nothing in [lo .. hi - 1]. To [sh]: the [m] slots'
+     objects (exact as floats: [m < 2^31]), then the box of each of its
+     leaves in order, 6 floats (lower corner, upper), at most [6 m]
+     floats (a leaf holds a slot or more). Its boxes, not its slots':
+     this process's [finish] reads them once, in order, and the caller
+     needs no copy of the slots' boxes (the arrays of 7 floats a slot
+     that this process once copied back, then read again in [finish]). *)
   and part lo hi level bounds (sh : floats) =
     built_here := true;
     let m = hi - lo in
     let first = t.size in
     node lo hi level bounds 0;
-    List.iteri
-      (fun a (x : float array) ->
-        for j = 0 to m - 1 do
-          Bigarray.Array1.unsafe_set sh ((a * m) + j) (Array.unsafe_get x (lo + j))
-        done)
-      [ x0; y0; z0; x1; y1; z1 ];
     for j = 0 to m - 1 do
-      Bigarray.Array1.unsafe_set sh ((6 * m) + j) (Float.of_int (Array.unsafe_get order (lo + j)))
+      Bigarray.Array1.unsafe_set sh j (Float.of_int (Array.unsafe_get order (lo + j)))
+    done;
+    let box = Array.make 6 0. and at = ref m in
+    for c = first to t.size - 1 do
+      let g = t.tag.(c) in
+      if g < 0 then begin
+        leaf_box x0 y0 z0 x1 y1 z1 t.link.(c) (-g) box 0;
+        (* [!at + 6 <= 7 m]: at most [m] leaves. *)
+        for i = 0 to 5 do
+          Bigarray.Array1.unsafe_set sh (!at + i) (Array.unsafe_get box i)
+        done;
+        at := !at + 6
+      end
     done;
     let tags = Bytes.create (t.size - first) in
     for c = 0 to t.size - first - 1 do
@@ -605,8 +675,9 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
     done;
     { tags; part_depth = !depth }
   (* Appends the nodes of the part over slots [lo .. hi - 1] and moves
-     the slots (boxes and order) as that part's build did, from [sh]: the
-     same tree as if it had been built here. *)
+     the slots' objects as that part's build did, from [sh]: the same
+     tree as if it had been built here, its leaves' boxes left in [sh]
+     gathered into its slots for [finish]. *)
   and graft lo hi p (sh : floats) =
     let first = t.size and nodes = Bytes.length p.tags in
     for c = 0 to nodes - 1 do
@@ -623,31 +694,35 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
         let l = link.(k + 1) in
         link.(k) <- 1 + l + link.(k + 1 + l)
     done;
-    let slot = ref lo in
+    let slot = ref lo and leaves = ref 0 in
     for k = first to first + nodes - 1 do
       if tag.(k) < 0 then begin
         link.(k) <- !slot;
-        slot := !slot - tag.(k)
+        slot := !slot - tag.(k);
+        incr leaves
       end
       else link.(k) <- k + 1 + link.(k + 1)
     done;
     if p.part_depth > !depth then depth := p.part_depth;
     let m = hi - lo in
     if Bigarray.Array1.dim sh < 7 * m then invalid_arg "Bvh.build_boxes: beside.floats gave too few floats";
-    List.iteri
-      (fun a (x : float array) ->
-        for j = 0 to m - 1 do
-          Array.unsafe_set x (lo + j) (Bigarray.Array1.unsafe_get sh ((a * m) + j))
-        done)
-      [ x0; y0; z0; x1; y1; z1 ];
     for j = 0 to m - 1 do
-      Array.unsafe_set order (lo + j) (Float.to_int (Bigarray.Array1.unsafe_get sh ((6 * m) + j)))
-    done
+      Array.unsafe_set order (lo + j) (Float.to_int (Bigarray.Array1.unsafe_get sh j))
+    done;
+    (* At most [m] leaves: their boxes fit in [sh] and in the slots. *)
+    let box = Array.make 6 0. in
+    for j = 0 to !leaves - 1 do
+      for i = 0 to 5 do
+        box.(i) <- Bigarray.Array1.get sh (m + (6 * j) + i)
+      done;
+      put_box box (lo + j)
+    done;
+    theirs := { first; last = first + nodes; at = lo; leaves = !leaves }
   in
   let root = Array.make 12 0. in
   bounds_of 0 n root 0;
   node 0 n 1 root 0;
-  finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 order !depth
+  finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ~mine:!mine ~theirs:!theirs order !depth
 
 let build ?leaf_size ~cx ~cy ~cz extent =
   let n = Array.length cx in

@@ -94,8 +94,8 @@ type beside = {
           a later [beside] writes and this process reads (memory shared
           with the copy; in this process's own memory where [beside]
           computes here). The subtree built beside leaves its objects'
-          boxes and numbers there (56 bytes an object), for this process
-          to copy in order. It may raise [Failure] or [Out_of_memory]: the
+          numbers and its leaves' boxes there (at most 56 bytes an
+          object), for this process to read in order. It may raise [Failure] or [Out_of_memory]: the
           subtree is then built here. *)
 }
 (** The type for ways to build a part of a hierarchy on another core. The
@@ -118,10 +118,11 @@ val build_boxes :
     and upper corners [(x1.(i), y1.(i), z1.(i))], split by the surface area
     heuristic over 16 bins of their centers along the longest axis (at the
     median when their centers coincide). Leaves hold at most [leaf_size]
-    (default 4) objects. The six arrays are reordered in place into slot
-    order: afterwards [x0.(slot)] is the box of object [order.(slot)]
-    (the boxes move with the objects, so that each pass over a node reads
-    memory in order).
+    (default 4) objects. The six arrays are reordered in place (the
+    boxes move with the objects, so that each pass over a node reads
+    memory in order): afterwards [x0.(slot)] is the box of object
+    [order.(slot)], except in the slots of a part built beside (below),
+    whose boxes are left in an order of their own.
 
     With [beside], the right subtree of the first node (depth first) whose
     children each hold at least a quarter of all the objects, the right
