@@ -156,6 +156,31 @@ let tests =
               (Trace.red tr, Trace.green tr, Trace.blue tr))
         in
         Alcotest.(check bool) "the same pixels" true (img one = img two));
+    Alcotest.test_case "a part beside below the root: the nodes built after it and their leaves" `Quick (fun () ->
+        (* Clusters of 400, 400 and 200 boxes along x, far apart: the root
+           splits off the 200 (under a quarter), its left child the two
+           400s, whose right one is built beside; the 200 after the graft. *)
+        let n = 1000 in
+        let rand = Random.State.make [| 5 |] in
+        let b = Array.init 6 (fun _ -> Array.make n 0.) in
+        for i = 0 to n - 1 do
+          let cluster = if i < 400 then 0. else if i < 800 then 100. else 10000. in
+          for a = 0 to 2 do
+            let c = (if a = 0 then cluster else 0.) +. Random.State.float rand 10. in
+            let h = Random.State.float rand 1. in
+            b.(a).(i) <- c -. h;
+            b.(a + 3).(i) <- c +. h
+          done
+        done;
+        let ((t, _) as one) = build b in
+        (* The shape claimed above: node 1 (the root's left child) holds
+           the two clusters of 400, its right child all of the second. *)
+        let slots k = let rec count k = if Bvh.tag t k > 0 then Bvh.tag t k else count (k + 1) + count (Bvh.link t k) in count k in
+        Alcotest.(check (list int)) "the root's children" [ 800; 200 ] [ slots 1; slots (Bvh.link t 0) ];
+        Alcotest.(check (list int)) "node 1's children" [ 400; 400 ] [ slots 2; slots (Bvh.link t 1) ];
+        let built = ref 0 in
+        check_same "clusters" one (build ~beside:(counting ~min_objects:100 built) b);
+        Alcotest.(check int) "a part built by another process" 1 !built);
     Helpers.qcheck ~count:30 "random box sets: the same tree with a part beside"
       QCheck.(pair (int_range 20 600) (int_range 0 1000))
       (fun (n, seed) ->
