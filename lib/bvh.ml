@@ -248,23 +248,15 @@ type gathered = { first : int; last : int; at : int; leaves : int }
 
 let none_gathered = { first = 0; last = 0; at = 0; leaves = 0 }
 
-(* The nodes of the tree [t] over the slots' boxes, the boxes from the
-   leaves up: children come after their parent. The shape's arrays (16
-   bytes a node) are garbage once read: the nodes (64 bytes a node) are
-   the only copy made. The leaves of [mine] and [theirs] have their
-   boxes gathered (see {!gathered}). *)
-let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ?(mine = none_gathered) ?(theirs = none_gathered) order depth =
-  let n_nodes = t.size in
-  (* Every element is written below. *)
-  let nodes = Array.create_float ((node_floats * n_nodes) + node_floats - 1) in
-  let root = aligned_root nodes in
-  let link = t.link and tag = t.tag in
-  let n = Array.length x0 in
-  if mine.at < 0 || mine.at + mine.leaves > n || theirs.at < 0 || theirs.at + theirs.leaves > n then
-    invalid_arg "Bvh.finish: gathered leaves";
-  (* The gathered leaves are met last to first. *)
-  let mine_at = ref (mine.at + mine.leaves) and theirs_at = ref (theirs.at + theirs.leaves) in
-  for k = n_nodes - 1 downto 0 do
+(* [finish_nodes nodes root link tag x0 y0 z0 x1 y1 z1 lo hi gathered]
+   writes nodes [hi - 1] down to [lo] to [nodes], from the shape's [link]
+   and [tag] and their children, already written: a leaf's box from its
+   slots if [gathered < 0], else the leaves' boxes are gathered in slots
+   [.. gathered - 1] (the box of one slot is that slot's box: the min of
+   infinity and [x] is [x]). It is where the gathered boxes start. *)
+let finish_nodes nodes root (link : int array) (tag : int array) x0 y0 z0 x1 y1 z1 lo hi gathered =
+  let next = ref gathered in
+  for k = hi - 1 downto lo do
     let o = at root k in
     let l = link.(k) and g = tag.(k) in
     (* An inner node's link is its right child's offset: the tracer's
@@ -273,17 +265,11 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ?(mine = none_gathered) ?(theirs = none_gat
     if g < 0 then begin
       (* A leaf: its count, [-g], becomes its tag. *)
       nodes.(o + 7) <- Float.of_int (-g);
-      (* The box of one slot is that slot's box: the min of infinity and
-         [x] is [x]. *)
-      if k >= theirs.first && k < theirs.last then begin
-        decr theirs_at;
-        leaf_box x0 y0 z0 x1 y1 z1 !theirs_at 1 nodes o
+      if gathered < 0 then leaf_box x0 y0 z0 x1 y1 z1 l (-g) nodes o
+      else begin
+        decr next;
+        leaf_box x0 y0 z0 x1 y1 z1 !next 1 nodes o
       end
-      else if k >= mine.first && k < mine.last then begin
-        decr mine_at;
-        leaf_box x0 y0 z0 x1 y1 z1 !mine_at 1 nodes o
-      end
-      else leaf_box x0 y0 z0 x1 y1 z1 l (-g) nodes o
     end
     else begin
       (* An inner node: its axis [g] becomes [-1 - g]; [l] is its right child. *)
@@ -298,7 +284,33 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ?(mine = none_gathered) ?(theirs = none_gat
       Array.unsafe_set nodes (o + 5) (fmax (Array.unsafe_get nodes (c + 5)) (Array.unsafe_get nodes (r + 5)))
     end
   done;
-  if !mine_at <> mine.at || !theirs_at <> theirs.at then invalid_arg "Bvh.finish: gathered leaves";
+  !next
+
+(* The nodes of the tree [t] over the slots' boxes, the boxes from the
+   leaves up: children come after their parent. The shape's arrays (16
+   bytes a node) are garbage once read: the nodes (64 bytes a node) are
+   the only copy made. The leaves of [mine] and [theirs] have their
+   boxes gathered (see {!gathered}): [mine] is this process's left
+   subtree, [theirs] the part built beside, right after it. *)
+let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ?(mine = none_gathered) ?(theirs = none_gathered) order depth =
+  let n_nodes = t.size in
+  (* Every element is written below. *)
+  let nodes = Array.create_float ((node_floats * n_nodes) + node_floats - 1) in
+  let root = aligned_root nodes in
+  let link = t.link and tag = t.tag in
+  let n = Array.length x0 in
+  (* Without [theirs] (nothing built beside), an empty range after [mine]. *)
+  let theirs = if theirs.leaves = 0 then { none_gathered with first = mine.last; last = mine.last } else theirs in
+  if mine.at < 0 || mine.at + mine.leaves > n || theirs.at < 0 || theirs.at + theirs.leaves > n
+     || mine.first < 0 || mine.first > mine.last || theirs.first <> mine.last || theirs.last > n_nodes
+  then invalid_arg "Bvh.finish: gathered leaves";
+  let finish_nodes = finish_nodes nodes root link tag x0 y0 z0 x1 y1 z1 in
+  (* Last to first: each node after its children. *)
+  ignore (finish_nodes theirs.last n_nodes (-1));
+  let t_at = finish_nodes theirs.first theirs.last (theirs.at + theirs.leaves) in
+  let m_at = finish_nodes mine.first mine.last (mine.at + mine.leaves) in
+  ignore (finish_nodes 0 mine.first (-1));
+  if t_at <> theirs.at || m_at <> mine.at then invalid_arg "Bvh.finish: gathered leaves";
   { order; n_nodes; nodes; root; depth }
 
 type beside = {
