@@ -316,7 +316,7 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ?(mine = none_gathered) ?(theirs = none_gat
 type beside = {
   beside : 'a. (unit -> 'a) -> unit -> 'a option;
   min_objects : int;
-  floats : int -> floats;
+  floats : int -> floats * (int -> unit);
 }
 
 (* What a subtree built beside sends back on the pipe, small (half a MB
@@ -629,14 +629,14 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
                && leaf_size <= 127 && hi - split <= 0x7fff_ffff -> (
             alone := false;
             match b.floats (7 * (hi - split)) with
-            | sh -> Some (b, sh)
+            | sh, reserve -> Some (b, sh, reserve)
             | exception (Failure _ | Out_of_memory) -> (* Built here, as without [beside]. *) None)
         | _ -> None
       in
       match shared with
-      | Some (b, sh) ->
+      | Some (b, sh, reserve) ->
           let right = Array.sub !frames (f + 12) 12 in
-          let wait = b.beside (fun () -> part split hi (level + 1) right sh) in
+          let wait = b.beside (fun () -> part split hi (level + 1) right sh reserve) in
           node lo split (level + 1) !frames f;
           (* Work of [finish], done while the other process may still
              build: the left subtree's leaves' boxes, read once, there. *)
@@ -661,11 +661,18 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
      this process's [finish] reads them once, in order, and the caller
      needs no copy of the slots' boxes (the arrays of 7 floats a slot
      that this process once copied back, then read again in [finish]). *)
-  and part lo hi level bounds (sh : floats) =
+  and part lo hi level bounds (sh : floats) reserve =
     built_here := true;
     let m = hi - lo in
     let first = t.size in
     node lo hi level bounds 0;
+    let leaves = ref 0 in
+    for c = first to t.size - 1 do
+      if t.tag.(c) < 0 then incr leaves
+    done;
+    (* Only what is sent takes memory: for a million objects, this
+       process no longer writes 28 MB of zeros before the build. *)
+    reserve (m + (6 * !leaves));
     for j = 0 to m - 1 do
       Bigarray.Array1.unsafe_set sh j (Float.of_int (Array.unsafe_get order (lo + j)))
     done;

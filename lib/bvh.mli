@@ -89,11 +89,14 @@ type beside = {
           compute [f ()] itself, in this process; never [beside]. [f ()]
           holds no functions. *)
   min_objects : int;  (** The fewest objects of a subtree built beside. *)
-  floats : int -> floats;
-      (** [floats n] is at least [n] floats that a computation started by
-          a later [beside] writes and this process reads (memory shared
-          with the copy; in this process's own memory where [beside]
-          computes here). The subtree built beside leaves its objects'
+  floats : int -> floats * (int -> unit);
+      (** [floats n] is [(a, reserve)]: [a], at least [n] floats that a
+          computation started by a later [beside] writes and this process
+          reads (memory shared with the copy; in this process's own
+          memory where [beside] computes here), of which the computation
+          writes the first [k] only after [reserve k] (which gives them
+          memory; it may raise [Failure]: the computation then fails, and
+          the subtree is built here). The subtree built beside leaves its objects'
           numbers and its leaves' boxes there (at most 56 bytes an
           object), for this process to read in order. It may raise [Failure] or [Out_of_memory]: the
           subtree is then built here. *)

@@ -56,7 +56,7 @@ let counting ~min_objects built =
   { b with Bvh.beside }
 
 (* Floats of this process's own memory, for a [beside] that computes here. *)
-let own n = Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout n
+let own n = (Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout n, fun _ -> ())
 
 let bits = Array.map Int64.bits_of_float
 
@@ -156,6 +156,43 @@ let tests =
               (Trace.red tr, Trace.green tr, Trace.blue tr))
         in
         Alcotest.(check bool) "the same pixels" true (img one = img two));
+    Alcotest.test_case "shared floats reserved later: a child reserves and writes them, the parent reads them" `Quick
+      (fun () ->
+        let r = Parallel.shared_floats_later 100_000 in
+        let wait =
+          Parallel.beside (fun () ->
+              r.reserve 50_000;
+              for i = 0 to 49_999 do
+                r.floats.{i} <- Float.of_int (3 * i)
+              done;
+              7)
+        in
+        (match wait () with Ok v -> Alcotest.(check int) "the child's result" 7 v | Error (`Msg m) -> Alcotest.fail m);
+        for i = 0 to 49_999 do
+          if r.floats.{i} <> Float.of_int (3 * i) then Alcotest.failf "float %d is %g" i r.floats.{i}
+        done;
+        Alcotest.check_raises "more than were mapped" (Invalid_argument "Parallel.shared_floats_later: reserve")
+          (fun () -> r.reserve 100_001);
+        r.release ();
+        r.release ();
+        match r.reserve 10 with
+        | () -> Alcotest.fail "a reserve after release"
+        | exception Failure _ -> ());
+    Alcotest.test_case "a part whose shared memory cannot be reserved is built here, the same tree" `Quick (fun () ->
+        let b = boxes `Random 3000 4 in
+        let one = build b in
+        let built = ref 0 in
+        let no_room =
+          {
+            (counting ~min_objects:100 built) with
+            Bvh.floats =
+              (fun n ->
+                let r = Parallel.shared_floats_later n in
+                (r.floats, fun _ -> failwith "cannot get 1 bytes of shared memory: No space left on device"));
+          }
+        in
+        check_same "no room" one (build ~beside:no_room b);
+        Alcotest.(check int) "nothing built by another process" 0 !built);
     Alcotest.test_case "a part beside below the root: the nodes built after it and their leaves" `Quick (fun () ->
         (* Clusters of 400, 400 and 200 boxes along x, far apart: the root
            splits off the 200 (under a quarter), its left child the two

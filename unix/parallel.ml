@@ -50,7 +50,11 @@ let fill_zeros fd bytes =
   in
   go bytes
 
-let map_shared kind n =
+(* [map_shared ~keep kind n] is [n] elements of [kind] mapped from a file
+   filled with zeros, and [None]; with [keep], from a file of that size
+   with no memory yet (a hole: a page touched before it is written is a
+   SIGBUS), and the file's descriptor, still open, to fill. *)
+let map_shared_file ~keep kind n =
   (* A file in memory-backed /dev/shm when there is one, unlinked at once:
      the mapping outlives the name. Filling a large file takes a while: a
      signal meanwhile removes it too. *)
@@ -67,22 +71,47 @@ let map_shared kind n =
             let path = Filename.temp_file ~temp_dir:dir "raytrace" ".shm" in
             created := Some path;
             let fd = Unix.openfile path [ O_RDWR; O_CLOEXEC ] 0o600 in
-            Fun.protect
-              ~finally:(fun () ->
-                Unix.close fd;
-                remove ())
-              (fun () ->
-                fill_zeros fd bytes;
-                Bigarray.array1_of_genarray (Unix.map_file fd kind Bigarray.c_layout true [| max 1 n |]))))
+            match
+              Fun.protect ~finally:remove (fun () ->
+                  if not keep then fill_zeros fd bytes;
+                  Bigarray.array1_of_genarray (Unix.map_file fd kind Bigarray.c_layout true [| max 1 n |]))
+            with
+            | a when keep -> (a, Some fd)
+            | a -> Unix.close fd; (a, None)
+            | exception e -> Unix.close fd; raise e))
   with
   | a -> a
   | exception (Unix.Unix_error (e, _, _)) ->
       failwith (Printf.sprintf "cannot get %d bytes of shared memory in %s: %s" bytes dir (Unix.error_message e))
   | exception Sys_error e -> failwith (Printf.sprintf "cannot get shared memory in %s: %s" dir e)
 
+let map_shared kind n = fst (map_shared_file ~keep:false kind n)
 let shared_bytes n = map_shared Bigarray.int8_unsigned n
 let shared_ints n = map_shared Bigarray.int64 n
 let shared_floats n = map_shared Bigarray.float64 n
+
+type reserved_later = {
+  floats : (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t;
+  reserve : int -> unit;
+  release : unit -> unit;
+}
+
+let shared_floats_later n =
+  match map_shared_file ~keep:true Bigarray.float64 n with
+  | _, None -> assert false
+  | floats, Some fd ->
+      let closed = ref false in
+      let release () = if not !closed then begin closed := true; Unix.close fd end in
+      let reserve k =
+        if k < 0 || k > n then invalid_arg "Parallel.shared_floats_later: reserve";
+        if !closed then failwith "the shared floats were released";
+        ignore (Unix.lseek fd 0 Unix.SEEK_SET);
+        match Signals.without_sigxfsz (fun () -> fill_zeros fd (8 * k)) with
+        | () -> ()
+        | exception Unix.Unix_error (e, _, _) ->
+            failwith (Printf.sprintf "cannot get %d bytes of shared memory: %s" (8 * k) (Unix.error_message e))
+      in
+      { floats; reserve; release }
 
 let signal_name s =
   let names =

@@ -30,6 +30,32 @@ val shared_floats : int -> (float, Bigarray.float64_elt, Bigarray.c_layout) Biga
 (** [shared_floats n] is [n] zeroed 64-bit floats shared like
     {!shared_bytes}. *)
 
+type reserved_later = {
+  floats : (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t;
+      (** Floats shared like {!shared_floats}, but none backed by memory
+          until reserved: touching one beyond the reserved ones is a
+          SIGBUS. *)
+  reserve : int -> unit;
+      (** [reserve k] backs the first [k] floats of [floats] with memory,
+          zeroed, in the process that calls it (forked after
+          {!shared_floats_later}, or the one that called it). Where none can
+          be had (a full [/dev/shm], a file-size limit) it raises
+          [Failure] with a one-line message, and touches nothing.
+          @raise Invalid_argument if [k] is not in [0 .. n]. *)
+  release : unit -> unit;
+      (** [release ()] lets go of what {!reserve} needs (a descriptor) in
+          the calling process; [floats] stay mapped. Later [reserve]s
+          raise [Failure]. *)
+}
+(** The type for shared floats reserved as they are needed. *)
+
+val shared_floats_later : int -> reserved_later
+(** [shared_floats_later n] is [n] shared floats of which a process forked
+    later reserves what it writes, as it learns how many: none are written
+    before the fork, by the caller (for {!shared_floats}, [8 n] bytes of
+    zeros are written before the call returns).
+    @raise Failure as {!shared_floats}. *)
+
 type reports
 (** The type for the channel on which the workers of a {!run} tell the
     parent which tasks they have finished. *)

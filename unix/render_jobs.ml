@@ -58,13 +58,27 @@ let bands ~jobs n =
    come back (the parent is told of each on {!Parallel.reports}), so that
    [rows_done] can write it while the workers still trace. *)
 let bvh_beside ?(min_objects = 1 lsl 16) () =
+  (* The floats in memory shared with the child: its part's leaves' boxes
+     come back in order, no permutation followed through them here. The
+     child reserves what it sends, once it knows how much: nothing is
+     written before the fork (28 MB of zeros for a million objects, in
+     /dev/shm). Their descriptors are let go once the child is waited
+     for. *)
+  let pending = ref [] in
+  let floats n =
+    let r = Parallel.shared_floats_later n in
+    pending := r :: !pending;
+    (r.floats, r.reserve)
+  in
   let beside f =
     let wait = Parallel.beside f in
-    fun () -> Result.to_option (wait ())
+    fun () ->
+      let r = wait () in
+      List.iter (fun (r : Parallel.reserved_later) -> r.release ()) !pending;
+      pending := [];
+      Result.to_option r
   in
-  (* The floats in memory shared with the child: its part's boxes come
-     back in order, no permutation followed through them here. *)
-  { Bvh.beside; min_objects; floats = Parallel.shared_floats }
+  { Bvh.beside; min_objects; floats }
 
 let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region : Region.t) =
   (* Nothing here holds the scene past [Prepared.prepare], which lets its

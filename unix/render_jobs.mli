@@ -52,8 +52,8 @@ val bvh_beside : ?min_objects:int -> unit -> Bvh.beside
 (** [bvh_beside ~min_objects ()] builds the right subtree of a hierarchy's
     node of at least [min_objects] (default [2^16]) objects in a child
     process ({!Parallel.beside}) while this one builds the rest; the
-    child's boxes come back in memory shared with it
-    ({!Parallel.shared_floats}). A child
+    child's leaves' boxes come back in memory shared with it, which the
+    child reserves as it writes ({!Parallel.shared_floats_later}). A child
     that fails (killed, out of memory) costs the time it took: its part
     is built here. {!image} and {!region_image} use it with more than one
     job: on a quiet 2-core machine grid:1000000 renders 0.27 s sooner
