@@ -94,12 +94,13 @@ type beside = {
           computation started by a later [beside] writes and this process
           reads (memory shared with the copy; in this process's own
           memory where [beside] computes here), of which the computation
-          writes the first [k] only after [reserve k] (which gives them
-          memory; it may raise [Failure]: the computation then fails, and
-          the subtree is built here). The subtree built beside leaves its objects'
-          numbers and its leaves' boxes there (at most 56 bytes an
-          object), for this process to read in order. It may raise [Failure] or [Out_of_memory]: the
-          subtree is then built here. *)
+          writes the first [k] only after [reserve k], which gives them
+          memory (it may raise [Failure]: the computation then fails, and
+          the subtree is built here). The subtree built beside leaves its
+          objects' numbers and its leaves' boxes there (at most 56 bytes
+          an object), for this process to read in order. [floats] may
+          raise [Failure] or [Out_of_memory]: the subtree is then built
+          here. *)
 }
 (** The type for ways to build a part of a hierarchy on another core. The
     core library forks nothing: a caller that can gives {!build_boxes} a
@@ -123,9 +124,10 @@ val build_boxes :
     median when their centers coincide). Leaves hold at most [leaf_size]
     (default 4) objects. The six arrays are reordered in place (the
     boxes move with the objects, so that each pass over a node reads
-    memory in order): afterwards [x0.(slot)] is the box of object
-    [order.(slot)], except in the slots of a part built beside (below),
-    whose boxes are left in an order of their own.
+    memory in order): afterwards, without [beside], [x0.(slot)] is the
+    box of object [order.(slot)]; with [beside], they are the build's
+    scratch (its leaves' boxes are gathered there for the last pass) and
+    hold other boxes.
 
     With [beside], the right subtree of the first node (depth first) whose
     children each hold at least a quarter of all the objects, the right
