@@ -198,21 +198,19 @@ let ambient_lead (lights : Light.t array) =
 
 (* The objects in scene order: the spheres, then each shape, a mesh giving
    one object per triangle (less its degenerate ones, which no ray can
-   hit). [iter] calls [single k sh] or [mesh_triangle k m t] for the
-   shapes' objects [k]; the spheres are objects [0] to [n_spheres - 1],
-   read from the scene's arrays. *)
-let iter_objects ~n_spheres (scene : Scene.t) ~single ~mesh_triangle =
+   hit). [iter_shapes] calls [single k sh] for the shapes' objects [k]
+   but the meshes', and [mesh k m] for each mesh, [k] the object of its
+   first triangle that is not degenerate, and is the number of objects;
+   the spheres are objects [0] to [n_spheres - 1], read from the scene's
+   arrays. *)
+let iter_shapes ~n_spheres (scene : Scene.t) ~single ~mesh =
   let k = ref n_spheres in
   List.iter
     (fun sh ->
       match sh with
       | Shape.Mesh m ->
-          for t = 0 to Mesh.triangle_count m - 1 do
-            if not (Mesh.degenerate m t) then begin
-              mesh_triangle !k m t;
-              incr k
-            end
-          done
+          mesh !k m;
+          k := !k + Mesh.objects m
       | _ ->
           single !k sh;
           incr k)
@@ -394,7 +392,7 @@ let[@inline] half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) i cx cy cz 
    [half_box] for each triangle of [m] but the degenerate ones, objects
    [k] on, that [bounded] holds from [!pos] on (every one, if [all]), its
    box found from its corners as {!Mesh.box} finds it; it advances [pos]
-   past them and is the object after [m]'s last. *)
+   past them. *)
 let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~bounded ~nb ~pos (m : Mesh.t) k =
   let p = m.positions and tri = m.triangles in
   let b0 = ref bounds.(0) and b1 = ref bounds.(1) and b2 = ref bounds.(2) in
@@ -438,8 +436,7 @@ let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~bounded
   bounds.(3) <- !b3;
   bounds.(4) <- !b4;
   bounds.(5) <- !b5;
-  pos := !i;
-  !k
+  pos := !i
 
 (* For a scene with a mesh: the boxes of the [nb] objects [bounded]
    (increasing object numbers; every object if [all]), as [build_boxes] takes them, each padded by its
@@ -469,22 +466,17 @@ let mesh_boxes ~n_spheres (scene : Scene.t) ~all ~bounded ~nb ~cx ~cy ~cz ~radiu
       incr pos
     end
   done;
-  (* Each shape's objects, as [iter_objects] numbers them, a mesh's
-     triangles in a loop of their own: no call through a closure, and the
-     bounds in registers, for each of millions. *)
-  let k = ref n_spheres in
-  List.iter
-    (fun sh ->
-      match sh with
-      | Shape.Mesh m -> k := mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds ~all ~bounded ~nb ~pos m !k
-      | _ ->
-          if next !k then begin
-            let (c : Vec3.t), h = single_bounds sh in
-            half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos c.x c.y c.z h h h;
-            incr pos
-          end;
-          incr k)
-    scene.shapes;
+  (* A mesh's triangles in a loop of their own: no call through a
+     closure, and the bounds in registers, for each of millions. *)
+  ignore
+    (iter_shapes ~n_spheres scene
+       ~single:(fun k sh ->
+         if next k then begin
+           let (c : Vec3.t), h = single_bounds sh in
+           half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos c.x c.y c.z h h h;
+           incr pos
+         end)
+       ~mesh:(fun k m -> mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds ~all ~bounded ~nb ~pos m k));
   let terms = Bvh.margin_of_bounds bounds in
   for i = 0 to nb - 1 do
     let hx = x1.(i) and hy = y1.(i) and hz = z1.(i) in
@@ -502,7 +494,7 @@ let mesh_boxes ~n_spheres (scene : Scene.t) ~all ~bounded ~nb ~cx ~cy ~cz ~radiu
 let prepare_scene ~skips ?beside scene =
   let scene = Scene.of_valid scene in
   let n_spheres = Spheres.length scene.spheres in
-  let n = iter_objects ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
+  let n = iter_shapes ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh:(fun _ _ -> ()) in
   (* Per object, in scene order: kind, material, and a cube around it
      (center, half side) for the hierarchy. *)
   let any_mesh = List.exists (function Shape.Mesh _ -> true | _ -> false) scene.shapes in
@@ -517,7 +509,10 @@ let prepare_scene ~skips ?beside scene =
      its shapes, found again from their geometry when the hierarchy is
      built ([mesh_boxes]), take no 56 bytes a triangle meanwhile. *)
   let nc = if any_mesh then n_spheres else n in
-  let ocx = Array.make nc 0. and ocy = Array.make nc 0. and ocz = Array.make nc 0. and ohalf = Array.make nc 0. in
+  (* Every element is written below: the spheres' by
+     [Spheres.blit_fields], the other shapes' by [set]. *)
+  let f () = Array.create_float nc in
+  let ocx = f () and ocy = f () and ocz = f () and ohalf = f () in
   let materials = ref [] and n_materials = ref 0 in
   (* With each patterned material, where its pattern lies: [frame ()] is
      the object's [Shape.pattern_frame], asked only then (a mesh's scans
@@ -636,12 +631,14 @@ let prepare_scene ~skips ?beside scene =
      million spheres). *)
   let scene = { scene with spheres = Spheres.empty } in
   ignore
-    (iter_objects ~n_spheres scene
+    (iter_shapes ~n_spheres scene
        ~single:(fun k sh ->
          let c, h = single_bounds sh in
          let mat = match sh with Shape.Csg c -> add_csg k c | _ -> new_material (Shape.material sh) (fun () -> Shape.pattern_frame sh) in
          set k (Shape.kind sh) mat c h)
-       ~mesh_triangle:(fun k m t ->
+       ~mesh:(fun k m ->
+         (* A mesh given twice in a row (the same value) is one run: one
+            material, its normals once. *)
          let mat, base =
            match !last_mesh with
            | Some (m', i, base) when m' == m -> (i, base)
@@ -662,13 +659,21 @@ let prepare_scene ~skips ?beside scene =
          in
          (* Smooth where every corner has a normal that could be divided
             by its length ([Mesh.corner_normals]). *)
-         let usable c =
-           let j = m.triangle_normals.((3 * t) + c) in
+         let tn = m.triangle_normals in
+         let usable t c =
+           let j = tn.((3 * t) + c) in
            j >= 0 && not (Float.is_nan vnormal.(base + (3 * j)))
          in
-         (* [set]'s arrays, written here without a vector: a mesh has millions. *)
-         okind.(k) <- (if m.smooth && usable 0 && usable 1 && usable 2 then Shape.smooth_triangle else Shape.triangle);
-         omat.(k) <- mat));
+         (* [set]'s arrays, written here in a loop of the mesh's own: it
+            has millions of triangles. *)
+         let k = ref k in
+         for t = 0 to Mesh.triangle_count m - 1 do
+           if not (Mesh.degenerate m t) then begin
+             okind.(!k) <- (if m.smooth && usable t 0 && usable t 1 && usable t 2 then Shape.smooth_triangle else Shape.triangle);
+             omat.(!k) <- mat;
+             incr k
+           end
+         done));
   let materials = Array.of_list (List.rev !materials) in
   (* A patterned material's second colour is a material of its own, after
      the scene's: the tracer picks one of the two indices, so that the
@@ -774,7 +779,7 @@ let prepare_scene ~skips ?beside scene =
      but the boxes are of fewer objects). *)
   let twins_beside =
     match beside with
-    | Some (b : Bvh.beside) when n_spheres >= b.min_objects -> Some (b.beside find_twins)
+    | Some (b : Bvh.beside) when n_spheres >= b.min_objects -> Some (fun () -> b.beside find_twins)
     | _ -> None
   in
   let twin_of, (bounded, unbounded, nb), boxes =
@@ -784,7 +789,11 @@ let prepare_scene ~skips ?beside scene =
         let selected = select twin_of in
         collect ();
         (twin_of, selected, boxes selected)
-    | Some wait -> (
+    | Some start -> (
+        (* Started before the collection: started after it, the child
+           shares the compacted heap, and writing the boxes there copied
+           its pages (0.03-0.04 s more for a million spheres). *)
+        let wait = start () in
         let selected = select [||] in
         collect ();
         let guess = boxes selected in
@@ -891,7 +900,6 @@ let prepare_scene ~skips ?beside scene =
   let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
   let vnormal = if any_smooth then vnormal else [||] in
   let vcorner = if any_smooth && not follow then Array.make (3 * n_kept) 0 else [||] in
-  let run = ref None in
   (* Spheres alone, without twins: [index] orders every object, and the
      per-object arrays, put in slot order where they are, are the
      tracer's (no second array of a million). Not for meshes: their slot
@@ -930,9 +938,9 @@ let prepare_scene ~skips ?beside scene =
     done;
     extent.(i) <- !e
   in
-  let vrun = ref None in
+  let run = ref None in
   ignore
-    (iter_objects ~n_spheres scene
+    (iter_shapes ~n_spheres scene
        ~single:(fun k sh ->
          let i = slot.(k) in
          match sh with
@@ -954,32 +962,30 @@ let prepare_scene ~skips ?beside scene =
              | _ ->
                  Shape.store sh geom (stride * g);
                  extent_of g))
-       ~mesh_triangle:(fun k m t ->
-         let i = slot.(k) in
-         let vb =
-           match !vrun with
-           | Some (m', vb) when m' == m -> vb
+       ~mesh:(fun k m ->
+         let vb = vertex_base m and tri = m.triangles in
+         let base =
+           match !run with
+           | Some (m', base) when m' == m -> base
            | _ ->
-               let vb = vertex_base m in
-               vrun := Some (m, vb);
-               vb
+               let base = Option.value (Hashtbl.find_opt normal_base k) ~default:0 in
+               run := Some (m, base);
+               base
          in
-         at0.(i) <- vb + (3 * m.triangles.(3 * t));
-         at1.(i) <- vb + (3 * m.triangles.((3 * t) + 1));
-         at2.(i) <- vb + (3 * m.triangles.((3 * t) + 2));
-         if any_smooth && not follow then begin
-           let base =
-             match !run with
-             | Some (m', base) when m' == m -> base
-             | _ ->
-                 let base = Option.value (Hashtbl.find_opt normal_base k) ~default:0 in
-                 run := Some (m, base);
-                 base
-           in
-           for c = 0 to 2 do
-             vcorner.((3 * i) + c) <- base + (3 * max 0 m.triangle_normals.((3 * t) + c))
-           done
-         end));
+         let k = ref k in
+         for t = 0 to Mesh.triangle_count m - 1 do
+           if not (Mesh.degenerate m t) then begin
+             let i = slot.(!k) in
+             at0.(i) <- vb + (3 * tri.(3 * t));
+             at1.(i) <- vb + (3 * tri.((3 * t) + 1));
+             at2.(i) <- vb + (3 * tri.((3 * t) + 2));
+             if any_smooth && not follow then
+               for c = 0 to 2 do
+                 vcorner.((3 * i) + c) <- base + (3 * max 0 m.triangle_normals.((3 * t) + c))
+               done;
+             incr k
+           end
+         done));
   (* The spheres' [set] wrote their centers and radii in scene order:
      into slot order by [index], with no second walk of the scene. *)
   if not in_place then
