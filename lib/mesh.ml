@@ -10,6 +10,7 @@ type t = {
   translate : Vec3.t;
   skipped : int;
   flat : Bytes.t;
+  objects : int;
 }
 
 (* Whether triangle [k] of these arrays has no normal, in floats, not
@@ -50,7 +51,23 @@ let v ?(smooth = false) ?(scale = 1.) ?(translate = Vec3.zero) ?(source = "") ?(
       error "mesh coordinates, scaled and translated, must lie within +-%s" (Float_text.to_string Limits.max_coordinate)
     else
       let flat = Bytes.init (nt / 3) (fun k -> if flat_triangle placed triangles k then '\001' else '\000') in
-      Ok { positions = placed; triangles; normals; triangle_normals; smooth; material; source; scale; translate; skipped; flat }
+      let objects = ref 0 in
+      Bytes.iter (fun c -> if c = '\000' then incr objects) flat;
+      Ok
+        {
+          positions = placed;
+          triangles;
+          normals;
+          triangle_normals;
+          smooth;
+          material;
+          source;
+          scale;
+          translate;
+          skipped;
+          flat;
+          objects = !objects;
+        }
 
 let triangle_count m = Array.length m.triangles / 3
 
@@ -61,6 +78,7 @@ let vertex m k c =
 let triangle m k = Triangle.v (vertex m k 0) (vertex m k 1) (vertex m k 2) m.material
 
 let degenerate m k = Bytes.unsafe_get m.flat k <> '\000'
+let objects m = m.objects
 
 
 let unit_normal m j g o =

@@ -29,6 +29,7 @@ type t = private {
       (** Per triangle, ['\001'] if it is degenerate ({!degenerate}),
           ['\000'] if not: found once, when the mesh is made, for the
           kernel that asks it of each triangle several times. *)
+  objects : int;  (** The triangles that are not degenerate ({!objects}). *)
 }
 (** The type for meshes. *)
 
@@ -66,6 +67,11 @@ val triangle : t -> int -> Triangle.t
 val degenerate : t -> int -> bool
 (** [degenerate m k] is [true] iff triangle [k] has no normal: its
     vertices lie on a line, as {!Triangle.validate} refuses. *)
+
+val objects : t -> int
+(** [objects m] is the number of [m]'s triangles that are not
+    {!degenerate}: the objects it gives the kernel (no ray can hit the
+    others). *)
 
 val unit_normal : t -> int -> float array -> int -> bool
 (** [unit_normal m j g o] writes normal [j] of [m], divided by its length,

@@ -198,21 +198,19 @@ let ambient_lead (lights : Light.t array) =
 
 (* The objects in scene order: the spheres, then each shape, a mesh giving
    one object per triangle (less its degenerate ones, which no ray can
-   hit). [iter] calls [single k sh] or [mesh_triangle k m t] for the
-   shapes' objects [k]; the spheres are objects [0] to [n_spheres - 1],
-   read from the scene's arrays. *)
-let iter_objects ~n_spheres (scene : Scene.t) ~single ~mesh_triangle =
+   hit). [iter_shapes] calls [single k sh] for the shapes' objects [k]
+   but the meshes', and [mesh k m] for each mesh, [k] the object of its
+   first triangle that is not degenerate, and is the number of objects;
+   the spheres are objects [0] to [n_spheres - 1], read from the scene's
+   arrays. *)
+let iter_shapes ~n_spheres (scene : Scene.t) ~single ~mesh =
   let k = ref n_spheres in
   List.iter
     (fun sh ->
       match sh with
       | Shape.Mesh m ->
-          for t = 0 to Mesh.triangle_count m - 1 do
-            if not (Mesh.degenerate m t) then begin
-              mesh_triangle !k m t;
-              incr k
-            end
-          done
+          mesh !k m;
+          k := !k + Mesh.objects m
       | _ ->
           single !k sh;
           incr k)
@@ -224,10 +222,11 @@ let iter_objects ~n_spheres (scene : Scene.t) ~single ~mesh_triangle =
    tie (it comes first) and blocks every shadow ray they would block; and
    a ray leaving one leaves them all, which the robust mode's exact
    handling of the sphere a ray leaves must see (or an identical twin,
-   with a root of about 1e-16 there, would shadow it). Other objects are
-   their own. The result is empty if no sphere has a twin: a million
-   spheres leave 8 MB more for the hierarchy. *)
-let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
+   with a root of about 1e-16 there, would shadow it). The result lists
+   each sphere that has an earlier twin, then that twin, [k; first] at [2 j]
+   and [2 j + 1], in no particular order: few, or none, which a child process
+   sends back at little cost ([twin_table] makes the table). *)
+let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres =
   (* Equal as [Float.compare] has it: -0. is 0. (adding 0. maps it there),
      and the scene holds no nan. *)
   let bits x = Int64.bits_of_float (x +. 0.) in
@@ -286,7 +285,7 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
   let mask = !size - 1 in
   let entry = Array.make !size (-1) and entry_hash = Array.make !size 0 in
   let taken = Array.make !largest 0 in
-  let twin = ref [||] in
+  let twins = ref [] in
   for b = 0 to buckets - 1 do
     let n_taken = ref 0 in
     for p = start.(b) to start.(b + 1) - 1 do
@@ -301,16 +300,37 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres n =
         taken.(!n_taken) <- !j;
         incr n_taken
       end
-      else begin
-        if !twin = [||] then twin := Array.init n Fun.id;
-        !twin.(k) <- entry.(!j)
-      end
+      else twins := (k, entry.(!j)) :: !twins
     done;
     for i = 0 to !n_taken - 1 do
       entry.(taken.(i)) <- -1
     done
   done;
-  !twin
+  let twins = Array.of_list !twins in
+  let pairs = Array.make (2 * Array.length twins) 0 in
+  Array.iteri
+    (fun j (k, first) ->
+      pairs.(2 * j) <- k;
+      pairs.((2 * j) + 1) <- first)
+    twins;
+  pairs
+
+(* The twins of [n] objects as a table: [t.(k)] is the first of object
+   [k]'s twins ([k] itself if it has none), from [sphere_twins]'s pairs;
+   empty if there are none: a million spheres leave 8 MB more for the
+   hierarchy. *)
+let twin_table pairs n =
+  if Array.length pairs = 0 then [||]
+  else begin
+    let t = Array.make n 0 in
+    for k = 0 to n - 1 do
+      t.(k) <- k
+    done;
+    for j = 0 to (Array.length pairs / 2) - 1 do
+      t.(pairs.(2 * j)) <- pairs.((2 * j) + 1)
+    done;
+    t
+  end
 
 (* [a.(i) <- a.(index.(i))] for every [i] and every array [a] of
    [floats] and [ints], [index] a permutation of [0 .. length a - 1]: each
@@ -368,8 +388,58 @@ let[@inline] half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) i cx cy cz 
   bounds.(4) <- fmax bounds.(4) (cy +. r);
   bounds.(5) <- fmax bounds.(5) (cz +. r)
 
-(* For a scene with a mesh: the boxes of the objects [bounded] (increasing
-   object numbers), as [build_boxes] takes them, each padded by its
+(* [mesh_half_boxes ... bounds ~all ~bounded ~nb ~pos m k] is
+   [half_box] for each triangle of [m] but the degenerate ones, objects
+   [k] on, that [bounded] holds from [!pos] on (every one, if [all]), its
+   box found from its corners as {!Mesh.box} finds it; it advances [pos]
+   past them. *)
+let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~bounded ~nb ~pos (m : Mesh.t) k =
+  let p = m.positions and tri = m.triangles in
+  let b0 = ref bounds.(0) and b1 = ref bounds.(1) and b2 = ref bounds.(2) in
+  let b3 = ref bounds.(3) and b4 = ref bounds.(4) and b5 = ref bounds.(5) in
+  let k = ref k and i = ref !pos in
+  for t = 0 to Mesh.triangle_count m - 1 do
+    if not (Mesh.degenerate m t) then begin
+      if !i < nb && (all || bounded.(!i) = !k) then begin
+        let i0 = 3 * tri.(3 * t) and i1 = 3 * tri.((3 * t) + 1) and i2 = 3 * tri.((3 * t) + 2) in
+        let ux = p.(i0) and vx = p.(i1) and wx = p.(i2) in
+        let uy = p.(i0 + 1) and vy = p.(i1 + 1) and wy = p.(i2 + 1) in
+        let uz = p.(i0 + 2) and vz = p.(i1 + 2) and wz = p.(i2 + 2) in
+        let lx = fmin ux (fmin vx wx) and hx = fmax ux (fmax vx wx) in
+        let ly = fmin uy (fmin vy wy) and hy = fmax uy (fmax vy wy) in
+        let lz = fmin uz (fmin vz wz) and hz = fmax uz (fmax vz wz) in
+        (* As [half_box] has them, from [Mesh.box]'s box. *)
+        let cx = 0.5 *. (lx +. hx) and cy = 0.5 *. (ly +. hy) and cz = 0.5 *. (lz +. hz) in
+        let ex = 0.5 *. (hx -. lx) and ey = 0.5 *. (hy -. ly) and ez = 0.5 *. (hz -. lz) in
+        let j = !i in
+        x0.(j) <- cx;
+        y0.(j) <- cy;
+        z0.(j) <- cz;
+        x1.(j) <- ex;
+        y1.(j) <- ey;
+        z1.(j) <- ez;
+        let r = fmax ex (fmax ey ez) in
+        b0 := fmin !b0 (cx -. r);
+        b1 := fmin !b1 (cy -. r);
+        b2 := fmin !b2 (cz -. r);
+        b3 := fmax !b3 (cx +. r);
+        b4 := fmax !b4 (cy +. r);
+        b5 := fmax !b5 (cz +. r);
+        i := j + 1
+      end;
+      incr k
+    end
+  done;
+  bounds.(0) <- !b0;
+  bounds.(1) <- !b1;
+  bounds.(2) <- !b2;
+  bounds.(3) <- !b3;
+  bounds.(4) <- !b4;
+  bounds.(5) <- !b5;
+  pos := !i
+
+(* For a scene with a mesh: the boxes of the [nb] objects [bounded]
+   (increasing object numbers; every object if [all]), as [build_boxes] takes them, each padded by its
    [Bvh.ray_box_margin]. A sphere's is its cube (its center and radius
    in [cx] to [radius], by object); another shape's its cube too, found
    again; a mesh's triangle's is its box (half of it along each axis:
@@ -381,15 +451,14 @@ let[@inline] half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) i cx cy cz 
    then each box is padded where it is, with no array of margins, centers
    or half sides of a million triangles between, and no second reading
    of the corners. *)
-let mesh_boxes ~n_spheres (scene : Scene.t) ~bounded ~cx ~cy ~cz ~radius =
-  let nb = Array.length bounded in
+let mesh_boxes ~n_spheres (scene : Scene.t) ~all ~bounded ~nb ~cx ~cy ~cz ~radius =
   (* Every element is written below. *)
   let f () = Array.create_float nb in
   let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
   let p = scene.camera.position in
-  let bounds = [| p.x; p.y; p.z; p.x; p.y; p.z |] and box = Array.make 6 0. in
+  let bounds = [| p.x; p.y; p.z; p.x; p.y; p.z |] in
   let pos = ref 0 in
-  let next k = !pos < nb && bounded.(!pos) = k in
+  let next k = !pos < nb && (all || bounded.(!pos) = k) in
   for k = 0 to n_spheres - 1 do
     if next k then begin
       let h = radius.(k) in
@@ -397,25 +466,17 @@ let mesh_boxes ~n_spheres (scene : Scene.t) ~bounded ~cx ~cy ~cz ~radius =
       incr pos
     end
   done;
+  (* A mesh's triangles in a loop of their own: no call through a
+     closure, and the bounds in registers, for each of millions. *)
   ignore
-    (iter_objects ~n_spheres scene
+    (iter_shapes ~n_spheres scene
        ~single:(fun k sh ->
          if next k then begin
            let (c : Vec3.t), h = single_bounds sh in
            half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos c.x c.y c.z h h h;
            incr pos
          end)
-       ~mesh_triangle:(fun k m t ->
-         if next k then begin
-           Mesh.box m t box;
-           let dx = box.(3) -. box.(0) and dy = box.(4) -. box.(1) and dz = box.(5) -. box.(2) in
-           half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos
-             (0.5 *. (box.(0) +. box.(3)))
-             (0.5 *. (box.(1) +. box.(4)))
-             (0.5 *. (box.(2) +. box.(5)))
-             (0.5 *. dx) (0.5 *. dy) (0.5 *. dz);
-           incr pos
-         end));
+       ~mesh:(fun k m -> mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds ~all ~bounded ~nb ~pos m k));
   let terms = Bvh.margin_of_bounds bounds in
   for i = 0 to nb - 1 do
     let hx = x1.(i) and hy = y1.(i) and hz = z1.(i) in
@@ -433,7 +494,7 @@ let mesh_boxes ~n_spheres (scene : Scene.t) ~bounded ~cx ~cy ~cz ~radius =
 let prepare_scene ~skips ?beside scene =
   let scene = Scene.of_valid scene in
   let n_spheres = Spheres.length scene.spheres in
-  let n = iter_objects ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh_triangle:(fun _ _ _ -> ()) in
+  let n = iter_shapes ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh:(fun _ _ -> ()) in
   (* Per object, in scene order: kind, material, and a cube around it
      (center, half side) for the hierarchy. *)
   let any_mesh = List.exists (function Shape.Mesh _ -> true | _ -> false) scene.shapes in
@@ -448,7 +509,10 @@ let prepare_scene ~skips ?beside scene =
      its shapes, found again from their geometry when the hierarchy is
      built ([mesh_boxes]), take no 56 bytes a triangle meanwhile. *)
   let nc = if any_mesh then n_spheres else n in
-  let ocx = Array.make nc 0. and ocy = Array.make nc 0. and ocz = Array.make nc 0. and ohalf = Array.make nc 0. in
+  (* Every element is written below: the spheres' by
+     [Spheres.blit_fields], the other shapes' by [set]. *)
+  let f () = Array.create_float nc in
+  let ocx = f () and ocy = f () and ocz = f () and ohalf = f () in
   let materials = ref [] and n_materials = ref 0 in
   (* With each patterned material, where its pattern lies: [frame ()] is
      the object's [Shape.pattern_frame], asked only then (a mesh's scans
@@ -567,12 +631,14 @@ let prepare_scene ~skips ?beside scene =
      million spheres). *)
   let scene = { scene with spheres = Spheres.empty } in
   ignore
-    (iter_objects ~n_spheres scene
+    (iter_shapes ~n_spheres scene
        ~single:(fun k sh ->
          let c, h = single_bounds sh in
          let mat = match sh with Shape.Csg c -> add_csg k c | _ -> new_material (Shape.material sh) (fun () -> Shape.pattern_frame sh) in
          set k (Shape.kind sh) mat c h)
-       ~mesh_triangle:(fun k m t ->
+       ~mesh:(fun k m ->
+         (* A mesh given twice in a row (the same value) is one run: one
+            material, its normals once. *)
          let mat, base =
            match !last_mesh with
            | Some (m', i, base) when m' == m -> (i, base)
@@ -593,13 +659,21 @@ let prepare_scene ~skips ?beside scene =
          in
          (* Smooth where every corner has a normal that could be divided
             by its length ([Mesh.corner_normals]). *)
-         let usable c =
-           let j = m.triangle_normals.((3 * t) + c) in
+         let tn = m.triangle_normals in
+         let usable t c =
+           let j = tn.((3 * t) + c) in
            j >= 0 && not (Float.is_nan vnormal.(base + (3 * j)))
          in
-         (* [set]'s arrays, written here without a vector: a mesh has millions. *)
-         okind.(k) <- (if m.smooth && usable 0 && usable 1 && usable 2 then Shape.smooth_triangle else Shape.triangle);
-         omat.(k) <- mat));
+         (* [set]'s arrays, written here in a loop of the mesh's own: it
+            has millions of triangles. *)
+         let k = ref k in
+         for t = 0 to Mesh.triangle_count m - 1 do
+           if not (Mesh.degenerate m t) then begin
+             okind.(!k) <- (if m.smooth && usable t 0 && usable t 1 && usable t 2 then Shape.smooth_triangle else Shape.triangle);
+             omat.(!k) <- mat;
+             incr k
+           end
+         done));
   let materials = Array.of_list (List.rev !materials) in
   (* A patterned material's second colour is a material of its own, after
      the scene's: the tracer picks one of the two indices, so that the
@@ -616,29 +690,36 @@ let prepare_scene ~skips ?beside scene =
       (List.rev !frames)
   in
   let materials = Array.append materials (Array.of_list extra) in
-  let twin_of = sphere_twins ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~n_spheres n in
-  (* Arrays, not lists: a mesh makes millions of objects. *)
-  let select keep =
-    (* Counted first: no array of [n] for the few planes. *)
-    let m = ref 0 in
+  (* The objects kept (each sphere but the twins of earlier ones) that are
+     bounded, in scene order, for the hierarchy, and the planes. Where
+     every object is kept and bounded (no twins, no planes: the big
+     scenes), [bounded] is empty and [nb = n]: no array of
+     a million numbers [0 .. n - 1] to make, to read, or for the
+     collections to mark. *)
+  let select twin_of =
+    let kept k = Array.length twin_of = 0 || twin_of.(k) = k in
+    let nb = ref 0 and nu = ref 0 in
     for k = 0 to n - 1 do
-      if keep k then incr m
+      if kept k then if okind.(k) = Shape.plane then incr nu else incr nb
     done;
-    let a = Array.make !m 0 in
-    m := 0;
-    for k = 0 to n - 1 do
-      if keep k then begin
-        a.(!m) <- k;
-        incr m
-      end
-    done;
-    a
+    if !nb = n then ([||], [||], n)
+    else begin
+      let bounded = Array.make !nb 0 and unbounded = Array.make !nu 0 in
+      let b = ref 0 and u = ref 0 in
+      for k = 0 to n - 1 do
+        if kept k then
+          if okind.(k) = Shape.plane then begin
+            unbounded.(!u) <- k;
+            incr u
+          end
+          else begin
+            bounded.(!b) <- k;
+            incr b
+          end
+      done;
+      (bounded, unbounded, !nb)
+    end
   in
-  let no_twins = Array.length twin_of = 0 in
-  let kept k = no_twins || twin_of.(k) = k in
-  let bounded = select (fun k -> kept k && okind.(k) <> Shape.plane) in
-  let unbounded = select (fun k -> kept k && okind.(k) = Shape.plane) in
-  let nb = Array.length bounded in
   (* A big scene's loading left garbage in pieces (the text's windows, the
      spheres' blocks, which the caller no longer holds: see below), too
      small for the hierarchy's arrays of a million: compacted now, the heap
@@ -646,15 +727,86 @@ let prepare_scene ~skips ?beside scene =
      slot-order arrays reuse its build's arrays. For a million spheres the
      render's peak goes from 293 to 235 MB, for 5% of the time of loading
      and preparing. A mesh's scene was compacted above, before the
-     per-object arrays: here a compaction would only move them. *)
+     per-object arrays: here a compaction would only move them, and where
+     spheres are few there is no garbage yet to collect before the
+     hierarchy (the 1M-triangle knot peaks as high without it: 0.03 s
+     less, and the collection after it is cheaper). *)
   let collections = ref 0 in
   let collect () =
     if n > big_scene then begin
-      if !collections = 0 && n_spheres > n / 2 && not any_mesh then Gc.compact () else Gc.full_major ();
+      if !collections > 0 then Gc.full_major ()
+      else if not any_mesh then (if n_spheres > n / 2 then Gc.compact () else Gc.full_major ())
+      else if n_spheres > n / 2 then Gc.full_major ();
       incr collections
     end
   in
-  collect ();
+  (* The boxes of the [nb] objects [bounded] (all, if [nb = n]), each padded
+     by its margin, as [Bvh.build_boxes] takes them; [None] without a
+     hierarchy. *)
+  let boxes (bounded, _, nb) =
+    if not (skips && nb > bvh_threshold) then None
+    else
+      let all = nb = n in
+      if any_mesh then Some (mesh_boxes ~n_spheres scene ~all ~bounded ~nb ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf)
+      else begin
+      (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
+      let terms =
+        if all then Bvh.margin_terms ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position
+        else Bvh.margin_terms ~among:bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position
+      in
+      (* Each box padded by its margin, in a loop: [Array.mapi]'s
+         function would return each float boxed. *)
+      let f () = Array.create_float nb in
+      let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
+      for i = 0 to nb - 1 do
+        let k = if all then i else bounded.(i) in
+        let e = ohalf.(k) +. Bvh.margin terms ohalf.(k) in
+        x0.(i) <- ocx.(k) -. e;
+        y0.(i) <- ocy.(k) -. e;
+        z0.(i) <- ocz.(k) -. e;
+        x1.(i) <- ocx.(k) +. e;
+        y1.(i) <- ocy.(k) +. e;
+        z1.(i) <- ocz.(k) +. e
+      done;
+      Some (x0, y0, z0, x1, y1, z1)
+    end
+  in
+  let find_twins () = sphere_twins ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~n_spheres in
+  (* With two cores, a child finds a big scene's twins while this process
+     selects and pads the boxes as if there were none: twins are rare,
+     and where a child finds some, their selection and boxes are made
+     again (twins are exact copies: the margins' terms would be the same,
+     but the boxes are of fewer objects). *)
+  let twins_beside =
+    match beside with
+    | Some (b : Bvh.beside) when n_spheres >= b.min_objects -> Some (fun () -> b.beside find_twins)
+    | _ -> None
+  in
+  let twin_of, (bounded, unbounded, nb), boxes =
+    match twins_beside with
+    | None ->
+        let twin_of = twin_table (find_twins ()) n in
+        let selected = select twin_of in
+        collect ();
+        (twin_of, selected, boxes selected)
+    | Some start -> (
+        (* Started before the collection: started after it, the child
+           shares the compacted heap, and writing the boxes there copied
+           its pages (0.03-0.04 s more for a million spheres). *)
+        let wait = start () in
+        let selected = select [||] in
+        collect ();
+        let guess = boxes selected in
+        let pairs = match wait () with Some pairs -> pairs | None -> find_twins () in
+        match pairs with
+        | [||] -> ([||], selected, guess)
+        | _ ->
+            let twin_of = twin_table pairs n in
+            let selected = select twin_of in
+            (twin_of, selected, boxes selected))
+  in
+  let kept k = Array.length twin_of = 0 || twin_of.(k) = k in
+  let all_bounded = nb = n in
   (* The build's six arrays of boxes, which it leaves in slot order and
      does not keep: arrays of floats of their length made below are made
      in their memory, not taken from the system once more (a million
@@ -662,29 +814,9 @@ let prepare_scene ~skips ?beside scene =
      collector finding no room for them among the freed ones). *)
   let spare = ref [] in
   let bvh =
-    if skips && nb > bvh_threshold then begin
-      let x0, y0, z0, x1, y1, z1 =
-        if any_mesh then mesh_boxes ~n_spheres scene ~bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf
-        else begin
-          (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
-          let terms = Bvh.margin_terms ~among:bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position in
-          (* Each box padded by its margin, in a loop: [Array.mapi]'s
-             function would return each float boxed. *)
-          let f () = Array.create_float nb in
-          let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
-          for i = 0 to nb - 1 do
-            let k = bounded.(i) in
-            let e = ohalf.(k) +. Bvh.margin terms ohalf.(k) in
-            x0.(i) <- ocx.(k) -. e;
-            y0.(i) <- ocy.(k) -. e;
-            z0.(i) <- ocz.(k) -. e;
-            x1.(i) <- ocx.(k) +. e;
-            y1.(i) <- ocy.(k) +. e;
-            z1.(i) <- ocz.(k) +. e
-          done;
-          (x0, y0, z0, x1, y1, z1)
-        end
-      in
+    match boxes with
+    | None -> None
+    | Some (x0, y0, z0, x1, y1, z1) ->
       (* Leaves of up to 16, where the surface area heuristic finds no
          cheaper split: a mesh's thin triangles overlap, and below 16 more
          boxes buy no fewer triangle tests (the 1M-triangle knot: 26.6 M
@@ -699,8 +831,6 @@ let prepare_scene ~skips ?beside scene =
          the arrays of other lengths made below. *)
       if scene.shapes = [] && nb = n then spare := [ x0; y0; z0; x1; y1; z1 ];
       Some b
-    end
-    else None
   in
   (* An array of [len] floats, every one of which the caller writes. *)
   let floats len =
@@ -715,13 +845,42 @@ let prepare_scene ~skips ?beside scene =
   collect ();
   let index =
     match bvh with
+    (* Every object in the hierarchy: its order is the slots' ([index] is
+       only read), not copied. *)
+    | Some b when all_bounded -> b.order
     | Some b ->
         let nb = Array.length b.order in
-        Array.init (nb + Array.length unbounded) (fun i -> if i < nb then bounded.(b.order.(i)) else unbounded.(i - nb))
-    | None -> select kept
+        let index = Array.make (nb + Array.length unbounded) 0 in
+        for i = 0 to nb - 1 do
+          index.(i) <- bounded.(b.order.(i))
+        done;
+        Array.blit unbounded 0 index nb (Array.length unbounded);
+        index
+    | None when all_bounded ->
+        let index = Array.make n 0 in
+        for k = 0 to n - 1 do
+          index.(k) <- k
+        done;
+        index
+    | None ->
+        let m = ref 0 in
+        for k = 0 to n - 1 do
+          if kept k then incr m
+        done;
+        let index = Array.make !m 0 in
+        m := 0;
+        for k = 0 to n - 1 do
+          if kept k then begin
+            index.(!m) <- k;
+            incr m
+          end
+        done;
+        index
   in
   let slot = Array.make n 0 in
-  Array.iteri (fun k i -> slot.(i) <- k) index;
+  for i = 0 to Array.length index - 1 do
+    slot.(index.(i)) <- i
+  done;
   Array.iteri (fun k first -> if first <> k then slot.(k) <- slot.(first)) twin_of;
   let n_kept = Array.length index in
   (* Geometry and sphere data, written in slot order. *)
@@ -741,7 +900,6 @@ let prepare_scene ~skips ?beside scene =
   let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
   let vnormal = if any_smooth then vnormal else [||] in
   let vcorner = if any_smooth && not follow then Array.make (3 * n_kept) 0 else [||] in
-  let run = ref None in
   (* Spheres alone, without twins: [index] orders every object, and the
      per-object arrays, put in slot order where they are, are the
      tracer's (no second array of a million). Not for meshes: their slot
@@ -750,9 +908,27 @@ let prepare_scene ~skips ?beside scene =
   let in_place = n_kept = n && scene.shapes = [] in
   let sphere_len = if n_spheres > 0 then n_kept else 0 in
   (* [okind] is all spheres here: no need to gather it. *)
-  if in_place then gather_in_place index ~scratch:(floats n_kept) ~floats:[| ocx; ocy; ocz; ohalf |] ~ints:[| omat |];
   let cx, cy, cz, radius =
-    if in_place then (ocx, ocy, ocz, ohalf)
+    if in_place && List.length !spare >= 5 then begin
+      (* Into four of the build's arrays, in one walk of [index]; the
+         scene-order arrays then serve the arrays made below. *)
+      let cx = floats n and cy = floats n and cz = floats n and radius = floats n in
+      for i = 0 to n - 1 do
+        let k = index.(i) in
+        cx.(i) <- ocx.(k);
+        cy.(i) <- ocy.(k);
+        cz.(i) <- ocz.(k);
+        radius.(i) <- ohalf.(k)
+      done;
+      let scratch = floats n in
+      gather_in_place index ~scratch ~floats:[||] ~ints:[| omat |];
+      spare := scratch :: ocx :: ocy :: ocz :: ohalf :: !spare;
+      (cx, cy, cz, radius)
+    end
+    else if in_place then begin
+      gather_in_place index ~scratch:(floats n_kept) ~floats:[| ocx; ocy; ocz; ohalf |] ~ints:[| omat |];
+      (ocx, ocy, ocz, ohalf)
+    end
     else (Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0.)
   in
   let extent_of i =
@@ -762,9 +938,9 @@ let prepare_scene ~skips ?beside scene =
     done;
     extent.(i) <- !e
   in
-  let vrun = ref None in
+  let run = ref None in
   ignore
-    (iter_objects ~n_spheres scene
+    (iter_shapes ~n_spheres scene
        ~single:(fun k sh ->
          let i = slot.(k) in
          match sh with
@@ -786,32 +962,30 @@ let prepare_scene ~skips ?beside scene =
              | _ ->
                  Shape.store sh geom (stride * g);
                  extent_of g))
-       ~mesh_triangle:(fun k m t ->
-         let i = slot.(k) in
-         let vb =
-           match !vrun with
-           | Some (m', vb) when m' == m -> vb
+       ~mesh:(fun k m ->
+         let vb = vertex_base m and tri = m.triangles in
+         let base =
+           match !run with
+           | Some (m', base) when m' == m -> base
            | _ ->
-               let vb = vertex_base m in
-               vrun := Some (m, vb);
-               vb
+               let base = Option.value (Hashtbl.find_opt normal_base k) ~default:0 in
+               run := Some (m, base);
+               base
          in
-         at0.(i) <- vb + (3 * m.triangles.(3 * t));
-         at1.(i) <- vb + (3 * m.triangles.((3 * t) + 1));
-         at2.(i) <- vb + (3 * m.triangles.((3 * t) + 2));
-         if any_smooth && not follow then begin
-           let base =
-             match !run with
-             | Some (m', base) when m' == m -> base
-             | _ ->
-                 let base = Option.value (Hashtbl.find_opt normal_base k) ~default:0 in
-                 run := Some (m, base);
-                 base
-           in
-           for c = 0 to 2 do
-             vcorner.((3 * i) + c) <- base + (3 * max 0 m.triangle_normals.((3 * t) + c))
-           done
-         end));
+         let k = ref k in
+         for t = 0 to Mesh.triangle_count m - 1 do
+           if not (Mesh.degenerate m t) then begin
+             let i = slot.(!k) in
+             at0.(i) <- vb + (3 * tri.(3 * t));
+             at1.(i) <- vb + (3 * tri.((3 * t) + 1));
+             at2.(i) <- vb + (3 * tri.((3 * t) + 2));
+             if any_smooth && not follow then
+               for c = 0 to 2 do
+                 vcorner.((3 * i) + c) <- base + (3 * max 0 m.triangle_normals.((3 * t) + c))
+               done;
+             incr k
+           end
+         done));
   (* The spheres' [set] wrote their centers and radii in scene order:
      into slot order by [index], with no second walk of the scene. *)
   if not in_place then

@@ -206,7 +206,9 @@ val prepare : ?skips:bool -> ?beside:Bvh.beside -> Scene.valid -> t
     {!Raytrace.Private.Bvh.ray_box_margin}) boxes they meet. With
     [~skips:false] it does everything the document does, for tests that
     prove the skips exact. [beside] builds a part of the hierarchy on
-    another core ({!Raytrace.Private.Bvh.build_boxes}): the same result.
+    another core ({!Raytrace.Private.Bvh.build_boxes}) and, from its
+    [min_objects] spheres on, finds the identical spheres there while
+    this process makes the hierarchy's boxes: the same result.
     For a scene of more than 2{^18} objects, the garbage collector's
     [major_heap_increment] is 256 MB while it runs (then set back): the
     heap's free pieces between the default's smaller chunks do not fit

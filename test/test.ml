@@ -35,6 +35,7 @@ let () =
       ("shapes", Test_shapes.tests);
       ("csg", Test_csg.tests);
       ("bvh", Test_bvh.tests);
+      ("prepared", Test_prepared.tests);
       ("antialias", Test_antialias.tests);
       ("progressive", Test_progressive.tests);
       ("view", Test_view.tests);
