@@ -457,11 +457,13 @@ let[@inline] closest_from tr ~primary ~spheres =
           end;
           let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
           let nodes = b.nodes and stack = tr.nodes and sp = ref 1 in
+          (* Counted here, added to the counters once a ray. *)
+          let boxes = ref 0 and tests = ref 0 in
           Array.unsafe_set stack 0 b.root;
           while !sp > 0 do
             decr sp;
             let o = Array.unsafe_get stack !sp in
-            tr.counters.box_tests <- tr.counters.box_tests + 1;
+            incr boxes;
             (* A box entered beyond the best hit so far cannot hold a better
                one (its spheres' hit points lie inside it, rounding
                included); one entered exactly there may hold an equal one. *)
@@ -469,14 +471,16 @@ let[@inline] closest_from tr ~primary ~spheres =
               let count = node_tag nodes o in
               if count > 0 then begin
                 let first = node_link nodes o in
-                tr.counters.tests <- tr.counters.tests + count;
+                tests := !tests + count;
                 for i = first to first + count - 1 do
                   test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
                 done
               end
               else sp := push_children nodes stack !sp o dx dy dz
             end
-          done);
+          done;
+          tr.counters.box_tests <- tr.counters.box_tests + !boxes;
+          tr.counters.tests <- tr.counters.tests + !tests);
       tr.hit
 
 (* One copy of the traversal per kind of ray and per kind of scene:
@@ -609,6 +613,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
       let nodes = b.nodes and stack = tr.nodes and sp = ref 1 and found = ref (-1) in
+      let boxes = ref 0 and tests = ref 0 in
       (* Planes first: they are outside the hierarchy. *)
       let planes = p.unbounded in
       let n = Array.length planes in
@@ -627,7 +632,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
       while !sp > 0 do
         decr sp;
         let o = Array.unsafe_get stack !sp in
-        tr.counters.box_tests <- tr.counters.box_tests + 1;
+        incr boxes;
         if meets_box nodes s o ix iy iz s.t_max then begin
           let count = node_tag nodes o in
           if count > 0 then begin
@@ -636,7 +641,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
             while !i < last && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
               incr i
             done;
-            tr.counters.tests <- tr.counters.tests + count;
+            tests := !tests + count;
             if !i < last then begin
               found := !i;
               sp := 0
@@ -645,6 +650,8 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
           else sp := push_children nodes stack !sp o dx dy dz
         end
       done;
+      tr.counters.box_tests <- tr.counters.box_tests + !boxes;
+      tr.counters.tests <- tr.counters.tests + !tests;
       !found
 
 (* With skips and a hierarchy or the robust roots: light [l]'s last
@@ -704,39 +711,29 @@ let[@inline never] transmit tr =
   done;
   Array.unsafe_set tr.tree.attenuation 0 !f
 
-(* Adds light [l]'s diffuse and specular terms, of intensity [li] and
-   unnormalised direction [s.dx..], to [s.intensity]. *)
-let[@inline] add_light (p : Prepared.t) s ~shiny ~specular_of m li nx ny nz vx vy vz length_n length_v =
-  let lx = s.dx and ly = s.dy and lz = s.dz in
-  let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
-  if n_dot_l > 0. then
-    s.intensity <-
-      s.intensity
-      +. (li *. n_dot_l /. (length_n *. sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz))));
-  if shiny then begin
-    (* R = 2 <L, N> N - L (section 7.6). *)
-    let k = 2. *. ((lx *. nx) +. (ly *. ny) +. (lz *. nz)) in
-    let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
-    let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
-    if r_dot_v > 0. then begin
-      let cos = r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v) in
-      (* Below the sphere's threshold, cos^s is exactly 0 and adds
-         nothing: pow is not called (Prepared.specular_zero). *)
-      if cos > Array.unsafe_get p.specular_zero m then
-        s.intensity <- s.intensity +. (li *. Float.pow cos (Array.unsafe_get specular_of m))
-    end
-  end
+(* Adds light [l]'s terms, of intensity [li] and unnormalised direction
+   [s.dx..], to [s.intensity]: the diffuse one if [n_dot_l > 0], the
+   specular one of cosine [cos] if [cos > 0] (see [lighting_with]). *)
+let[@inline] add_terms s ~specular_of m li n_dot_l cos length_n =
+  if n_dot_l > 0. then begin
+    let lx = s.dx and ly = s.dy and lz = s.dz in
+    s.intensity <- s.intensity +. (li *. n_dot_l /. (length_n *. sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz))))
+  end;
+  if cos > 0. then s.intensity <- s.intensity +. (li *. Float.pow cos (Array.unsafe_get specular_of m))
 
 (* The total intensity at the hit point [s.px..] with unit normal [s.nx..]
    and view vector [s.vx..] (sections 7.4 to 7.7), left in [s.intensity].
    The shadow rays reuse [s]'s ray fields. [through]: shadow rays pass
    through transparent objects ([transmit]); otherwise any object stops
-   them. *)
+   them. Both terms of a light are decided before its shadow ray: with
+   [p.shadow_skip], a light that would add neither casts none (lit or
+   not, it leaves the sum as it is), as in the document's kernel. *)
 let[@inline] lighting_with tr ~through ~shiny ~specular_of m =
   let p = tr.p and s = tr.s in
   let px = s.px and py = s.py and pz = s.pz in
   let nx = s.nx and ny = s.ny and nz = s.nz in
   let vx = s.vx and vy = s.vy and vz = s.vz in
+  let shadow_skip = p.shadow_skip and cut = p.specular_cut and mo = m * p.n_lights in
   s.intensity <- 0.;
   let length_n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
   let length_v = sqrt ((vx *. vx) +. (vy *. vy) +. (vz *. vz)) in
@@ -761,16 +758,37 @@ let[@inline] lighting_with tr ~through ~shiny ~specular_of m =
       s.oy <- py;
       s.oz <- pz;
       s.t_min <- p.epsilon;
+      let lx = s.dx and ly = s.dy and lz = s.dz in
+      let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
+      (* The specular cosine, or [0.] where no term is added: matte,
+         <R, V> <= 0, or a cosine at or below the cut, where cos^s is 0 or
+         too small to change the sum (Prepared.specular_cut, never below
+         0): the sum is what it would be with the term. *)
+      let cos =
+        if shiny then begin
+          (* R = 2 <L, N> N - L (section 7.6). *)
+          let k = 2. *. n_dot_l in
+          let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
+          let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
+          let cos = if r_dot_v > 0. then r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v) else 0. in
+          if cos > Array.unsafe_get cut (mo + l) then cos else 0.
+        end
+        else 0.
+      in
       (* A point light on the lit point itself gives no direction, L = 0:
-         it is skipped (as Literal does), not divided by zero. *)
-      if (not point) || s.dx <> 0. || s.dy <> 0. || s.dz <> 0. then begin
+         it is skipped (as Literal does), not divided by zero; with the
+         skip, it adds no term (n_dot_l = 0 and R = 0). *)
+      if
+        if shadow_skip then n_dot_l > 0. || cos > 0.
+        else (not point) || lx <> 0. || ly <> 0. || lz <> 0.
+      then begin
         if through then begin
           (* [transmit] moves [s.t_min]; the direction stays. *)
           transmit tr;
           let f = Array.unsafe_get tr.tree.attenuation 0 in
-          if f > 0. then add_light p s ~shiny ~specular_of m (li *. f) nx ny nz vx vy vz length_n length_v
+          if f > 0. then add_terms s ~specular_of m (li *. f) n_dot_l cos length_n
         end
-        else if not (shadowed tr l) then add_light p s ~shiny ~specular_of m li nx ny nz vx vy vz length_n length_v
+        else if not (shadowed tr l) then add_terms s ~specular_of m li n_dot_l cos length_n
       end
     end
   done
