@@ -32,6 +32,10 @@ type t = {
           [-1]: in the robust mode that sphere is handled exactly. (An
           identical sphere has no slot of its own: {!Prepared.prepare}.) *)
   mutable first_hit : int;
+  triangles : bool;
+      (** Every object in the hierarchy is a triangle (a mesh, maybe on
+          planes, which are outside it): the traversals then read no
+          object's kind, one array (and a cache miss a leaf) less. *)
   mutable kx : int;
       (** The axes of the ray in [s] for the triangle test
           ({!Triangle.shear}), [kz = -1] until a traversal's first triangle
@@ -71,6 +75,11 @@ let tile = 8
 (* The tile columns of the canvas, where culling applies. *)
 let tiles_across (p : Prepared.t) = if p.cull && p.textbook_all then (p.width + tile - 1) / tile else 0
 
+(* Whether [p] has a hierarchy and every object in it is a triangle:
+   every object is one, or a plane (planes are not in the hierarchy). *)
+let hierarchy_of_triangles (p : Prepared.t) =
+  p.bvh <> None && Array.for_all (fun k -> k = Shape.triangle || k = Shape.smooth_triangle || k = Shape.plane) p.kind
+
 let create ?(averaging = false) (p : Prepared.t) =
   {
     p;
@@ -88,6 +97,7 @@ let create ?(averaging = false) (p : Prepared.t) =
     hit = -1;
     origin_sphere = -1;
     first_hit = -1;
+    triangles = hierarchy_of_triangles p;
     kx = 0;
     ky = 0;
     kz = -1;
@@ -306,9 +316,9 @@ let shape_test tr s i =
 (* Tests the ray in [s] against the object in slot [i], keeping the better
    hit. From the camera ([primary]), [CO] and the textbook's [k3] are
    per-frame constants. *)
-let[@inline] test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4 =
+let[@inline] test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4 =
   let p = tr.p in
-  let k = if spheres then Shape.sphere else Array.unsafe_get p.kind i in
+  let k = if spheres then Shape.sphere else if triangles then Shape.triangle else Array.unsafe_get p.kind i in
   (* A triangle's one root is its near and far: [keep] once is
      [shape_test]'s two tries. ([not spheres] first: the copy for spheres
      alone then holds no triangle test.) *)
@@ -429,7 +439,7 @@ let closest_textbook_secondary tr = closest_textbook_all tr ~primary:false
    [t] is left in [s.t] ([infinity] if none), its slot is returned. One
    traversal for every kind of object; spheres alone in the document's
    mode without a hierarchy (the reference scene) take the loop above. *)
-let[@inline] closest_from tr ~primary ~spheres =
+let[@inline] closest_from tr ~primary ~spheres ~triangles =
   let p = tr.p and s = tr.s in
       if not spheres then tr.kz <- -1;
       let bvh = p.bvh in
@@ -443,7 +453,7 @@ let[@inline] closest_from tr ~primary ~spheres =
           let n = p.n_objects in
           tr.counters.tests <- tr.counters.tests + n;
           for i = 0 to n - 1 do
-            test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
+            test tr s i ~primary ~spheres ~triangles:false dx dy dz a inv_a two_k1 k1x4
           done
       | Some b ->
           (* Planes, unbounded, are outside the hierarchy. *)
@@ -473,7 +483,7 @@ let[@inline] closest_from tr ~primary ~spheres =
                 let first = node_link nodes o in
                 tests := !tests + count;
                 for i = first to first + count - 1 do
-                  test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
+                  test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4
                 done
               end
               else sp := push_children nodes stack !sp o dx dy dz
@@ -485,20 +495,25 @@ let[@inline] closest_from tr ~primary ~spheres =
 
 (* One copy of the traversal per kind of ray and per kind of scene:
    spheres alone test no object's kind. *)
-let closest_objects tr = closest_from tr ~primary:false ~spheres:false
-let closest_primary_objects tr = closest_from tr ~primary:true ~spheres:false
+let closest_objects tr =
+  if tr.triangles then closest_from tr ~primary:false ~spheres:false ~triangles:true
+  else closest_from tr ~primary:false ~spheres:false ~triangles:false
+
+let closest_primary_objects tr =
+  if tr.triangles then closest_from tr ~primary:true ~spheres:false ~triangles:true
+  else closest_from tr ~primary:true ~spheres:false ~triangles:false
 
 (* The closest hit where the caller knows whether the scene has spheres
    alone (a scene with other shapes is never the textbook one). *)
 let[@inline] closest_in tr ~spheres =
   if not spheres then closest_objects tr
   else if tr.p.textbook_all then closest_textbook_secondary tr
-  else closest_from tr ~primary:false ~spheres:true
+  else closest_from tr ~primary:false ~spheres:true ~triangles:false
 
 let[@inline] closest_primary_in tr ~spheres =
   if not spheres then closest_primary_objects tr
   else if tr.p.textbook_all then closest_textbook_primary tr
-  else closest_from tr ~primary:true ~spheres:true
+  else closest_from tr ~primary:true ~spheres:true ~triangles:false
 
 let[@inline] closest tr = if tr.p.all_spheres then closest_in tr ~spheres:true else closest_in tr ~spheres:false
 
@@ -512,9 +527,9 @@ let shape_blocks tr i =
 (* Does the object in slot [i] meet the ray in [s] with
    [t_min < t < t_max]? The same roots as [closest], so an object blocks
    exactly when [closest] would have found it. *)
-let[@inline] blocks tr i ~spheres a inv_a =
+let[@inline] blocks tr i ~spheres ~triangles a inv_a =
   let p = tr.p and s = tr.s in
-  let k = if spheres then Shape.sphere else Array.unsafe_get p.kind i in
+  let k = if spheres then Shape.sphere else if triangles then Shape.triangle else Array.unsafe_get p.kind i in
   if (not spheres) && is_triangle k then
     triangle_hit tr s i
     &&
@@ -598,13 +613,13 @@ let[@inline never] blocker_textbook_all tr last =
   end
 
 (* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
-let[@inline] first_blocker_from tr ~spheres skip a inv_a =
+let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
   let p = tr.p and s = tr.s in
   match p.bvh with
   | None ->
       let n = p.n_objects in
       let i = ref 0 in
-      while !i < n && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
+      while !i < n && (!i = skip || not (blocks tr !i ~spheres ~triangles:false a inv_a)) do
         incr i
       done;
       tr.counters.tests <- tr.counters.tests + !i + 1;
@@ -638,7 +653,7 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
           if count > 0 then begin
             let first = node_link nodes o in
             let i = ref first and last = first + count in
-            while !i < last && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
+            while !i < last && (!i = skip || not (blocks tr !i ~spheres ~triangles a inv_a)) do
               incr i
             done;
             tests := !tests + count;
@@ -657,23 +672,26 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
 (* With skips and a hierarchy or the robust roots: light [l]'s last
    blocker first, then the first blocker of the others. One copy per kind
    of scene, so that spheres alone ask the kind once per shadow ray. *)
-let[@inline] blocked_from tr l ~spheres =
+let[@inline] blocked_from tr l ~spheres ~triangles =
   let s = tr.s in
   if not spheres then tr.kz <- -1;
   let last = Array.unsafe_get tr.last_blocker l in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
   let inv_a = 1. /. a in
-  if last >= 0 && blocks tr last ~spheres a inv_a then begin
+  (* The last blocker may be a plane: its kind is looked up. *)
+  if last >= 0 && blocks tr last ~spheres ~triangles:false a inv_a then begin
     tr.counters.tests <- tr.counters.tests + 1;
     true
   end
   else
-    let blocker = first_blocker_from tr ~spheres last a inv_a in
+    let blocker = first_blocker_from tr ~spheres ~triangles last a inv_a in
     if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
     blocker >= 0
 
-let[@inline] blocked_objects tr l = blocked_from tr l ~spheres:false
+let[@inline] blocked_objects tr l =
+  if tr.triangles then blocked_from tr l ~spheres:false ~triangles:true
+  else blocked_from tr l ~spheres:false ~triangles:false
 
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
@@ -687,7 +705,7 @@ let shadowed tr l =
     if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
     blocker >= 0
   end
-  else if p.all_spheres then blocked_from tr l ~spheres:true
+  else if p.all_spheres then blocked_from tr l ~spheres:true ~triangles:false
   else blocked_objects tr l
 
 (* Light through transparent objects: the shadow ray in [s] (its range
@@ -848,7 +866,7 @@ let[@inline] primary_hit_in tr ~spheres =
     tr.counters.tests <- tr.counters.tests + 1;
     if not spheres then tr.kz <- -1;
     (* The same test as [closest_primary] makes of that sphere: the same t. *)
-    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres dx dy dz a (1. /. a) (2. *. a) (4. *. a);
+    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres ~triangles:false dx dy dz a (1. /. a) (2. *. a) (4. *. a);
     if tr.hit >= 0 then tr.hit else closest_primary_in tr ~spheres
   end
 
