@@ -39,7 +39,8 @@ type t = {
   mutable kx : int;
       (** The axes of the ray in [s] for the triangle test
           ({!Triangle.shear}), [kz = -1] until a traversal's first triangle
-          finds them: once a ray, not once a triangle. *)
+          finds them (a traversal of a hierarchy of triangles alone finds
+          them before its first box): once a ray, not once a triangle. *)
   mutable ky : int;
   mutable kz : int;
   mutable order : int;
@@ -265,9 +266,9 @@ let[@inline] is_triangle k = k = Shape.triangle || k = Shape.smooth_triangle
    [s.near]: {!Triangle.hit} inlined, nothing written for a miss. (Not a
    float returned: without cross-module inlining, as in the dev profile,
    it would be boxed.) *)
-let[@inline] triangle_hit tr s i =
+let[@inline] triangle_hit tr s i ~sheared =
   let p = tr.p in
-  shear_once tr s;
+  if not sheared then shear_once tr s;
   let g = p.vertex in
   let o0 = Array.unsafe_get p.at0 i and o1 = Array.unsafe_get p.at1 i and o2 = Array.unsafe_get p.at2 i in
   (* One copy of the test per order of the axes, each with its axes as
@@ -322,7 +323,7 @@ let[@inline] test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1
   (* A triangle's one root is its near and far: [keep] once is
      [shape_test]'s two tries. ([not spheres] first: the copy for spheres
      alone then holds no triangle test.) *)
-  if (not spheres) && is_triangle k then (if triangle_hit tr s i then keep tr s i s.near)
+  if (not spheres) && is_triangle k then (if triangle_hit tr s i ~sheared:triangles then keep tr s i s.near)
   else if (not spheres) && k <> Shape.sphere then shape_test tr s i
   else
   let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
@@ -466,6 +467,9 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
             done
           end;
           let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+          (* A hierarchy of triangles: the ray's shear once, here, rather
+             than a check of [tr.kz] at every triangle. *)
+          if triangles then shear_once tr s;
           let nodes = b.nodes and stack = tr.nodes and sp = ref 1 in
           (* Counted here, added to the counters once a ray. *)
           let boxes = ref 0 and tests = ref 0 in
@@ -531,7 +535,7 @@ let[@inline] blocks tr i ~spheres ~triangles a inv_a =
   let p = tr.p and s = tr.s in
   let k = if spheres then Shape.sphere else if triangles then Shape.triangle else Array.unsafe_get p.kind i in
   if (not spheres) && is_triangle k then
-    triangle_hit tr s i
+    triangle_hit tr s i ~sheared:triangles
     &&
     let t = s.near in
     s.t_min < t && t < s.t_max
@@ -627,6 +631,7 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
   | Some b ->
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+      if triangles then shear_once tr s;
       let nodes = b.nodes and stack = tr.nodes and sp = ref 1 and found = ref (-1) in
       let boxes = ref 0 and tests = ref 0 in
       (* Planes first: they are outside the hierarchy. *)
