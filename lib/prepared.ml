@@ -178,13 +178,21 @@ let specular_cut ~skips (materials : Material.t array) (lights : Light.t array) 
   for l = 1 to n_lights - 1 do
     before.(l) <- (match lights.(l - 1) with Light.Ambient { intensity } -> before.(l - 1) +. intensity | _ -> before.(l - 1))
   done;
+  (* Per exponent, not per material: a million materials share a few. *)
+  let cuts = Hashtbl.create 16 in
+  let cut s l =
+    match Hashtbl.find_opt cuts (s, l) with
+    | Some c -> c
+    | None ->
+        let c = Float.max (specular_zero s) (negligible_cos ~before:before.(l) ~li:(Light.intensity lights.(l)) s) in
+        Hashtbl.add cuts (s, l) c;
+        c
+  in
   Array.init
     (Array.length materials * n_lights)
     (fun k ->
       let s = materials.(k / n_lights).specular and l = k mod n_lights in
-      if s = Sphere.matte then infinity
-      else if not skips then 0.
-      else Float.max (specular_zero s) (negligible_cos ~before:before.(l) ~li:(Light.intensity lights.(l)) s))
+      if s = Sphere.matte then infinity else if not skips then 0. else cut s l)
 
 (* The sum of the ambient lights that come first, added from 0 in order
    as the tracer adds them, and the index of the first other light. *)
@@ -1101,8 +1109,7 @@ let prepare_scene ~skips ?beside scene =
        by the operations [Trace]'s primary ray does for any point. *)
     (* The document's kernel reads a sphere, a camera ray's constants and a
        light from one array each: fewer pointers to keep in registers. *)
-    (* Only the document's kernel reads it: no pow per material elsewhere. *)
-    specular_cut = (if textbook_all then specular_cut ~skips materials lights else [||]);
+    specular_cut = specular_cut ~skips materials lights;
     ambient_lead = fst (ambient_lead lights);
     first_light = snd (ambient_lead lights);
     sphere4 =

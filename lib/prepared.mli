@@ -149,13 +149,13 @@ type t = private {
           two roots are certainly [<= 0] ([k2 > 0] and [k3 > 0]) without
           computing them. *)
   shadow_skip : bool;
-      (** The skips are on: the document's kernel casts a shadow ray only
-          when the light would add a term. *)
+      (** The skips are on: the tracer casts a shadow ray only when the
+          light would add a term. *)
   cull : bool;
       (** The skips are on: the document's kernel tests a camera ray only
           against the spheres that can meet some ray of its 8 x 8 tile. *)
   specular_cut : float array;
-      (** With [textbook_all] (otherwise empty) and the skips, per
+      (** With the skips, per
           material [m] and light [l] at [m * n_lights + l]: the cosine at or below which the specular
           term of [l] adds nothing to the intensity it joins, because
           [cos ** s] is 0 ([specular_zero]) or below half an ulp of the
@@ -214,8 +214,9 @@ val prepare : ?skips:bool -> ?beside:Bvh.beside -> Scene.valid -> t
     heap's free pieces between the default's smaller chunks do not fit
     arrays of a million floats. *)
 
-(** The skips of the tracer's kernel for the document's scenes (spheres
-    alone, an epsilon, no hierarchy), each exact on its own. *)
+(** The skips of the tracer's kernel, each exact on its own: [Behind] and
+    [Culling] for the document's scenes (spheres alone, an epsilon, no
+    hierarchy), [Shadow_rays] and [Negligible_terms] for every scene. *)
 type kernel_skip =
   | Behind  (** [behind]: no roots computed for a sphere behind the ray. *)
   | Shadow_rays  (** [shadow_skip]: no shadow ray for a light that adds nothing. *)

@@ -32,10 +32,15 @@ type t = {
           [-1]: in the robust mode that sphere is handled exactly. (An
           identical sphere has no slot of its own: {!Prepared.prepare}.) *)
   mutable first_hit : int;
+  triangles : bool;
+      (** Every object in the hierarchy is a triangle (a mesh, maybe on
+          planes, which are outside it): the traversals then read no
+          object's kind, one array (and a cache miss a leaf) less. *)
   mutable kx : int;
       (** The axes of the ray in [s] for the triangle test
           ({!Triangle.shear}), [kz = -1] until a traversal's first triangle
-          finds them: once a ray, not once a triangle. *)
+          finds them (a traversal of a hierarchy of triangles alone finds
+          them before its first box): once a ray, not once a triangle. *)
   mutable ky : int;
   mutable kz : int;
   mutable order : int;
@@ -71,6 +76,11 @@ let tile = 8
 (* The tile columns of the canvas, where culling applies. *)
 let tiles_across (p : Prepared.t) = if p.cull && p.textbook_all then (p.width + tile - 1) / tile else 0
 
+(* Whether [p] has a hierarchy and every object in it is a triangle:
+   every object is one, or a plane (planes are not in the hierarchy). *)
+let hierarchy_of_triangles (p : Prepared.t) =
+  p.bvh <> None && Array.for_all (fun k -> k = Shape.triangle || k = Shape.smooth_triangle || k = Shape.plane) p.kind
+
 let create ?(averaging = false) (p : Prepared.t) =
   {
     p;
@@ -88,6 +98,7 @@ let create ?(averaging = false) (p : Prepared.t) =
     hit = -1;
     origin_sphere = -1;
     first_hit = -1;
+    triangles = hierarchy_of_triangles p;
     kx = 0;
     ky = 0;
     kz = -1;
@@ -255,9 +266,9 @@ let[@inline] is_triangle k = k = Shape.triangle || k = Shape.smooth_triangle
    [s.near]: {!Triangle.hit} inlined, nothing written for a miss. (Not a
    float returned: without cross-module inlining, as in the dev profile,
    it would be boxed.) *)
-let[@inline] triangle_hit tr s i =
+let[@inline] triangle_hit tr s i ~sheared =
   let p = tr.p in
-  shear_once tr s;
+  if not sheared then shear_once tr s;
   let g = p.vertex in
   let o0 = Array.unsafe_get p.at0 i and o1 = Array.unsafe_get p.at1 i and o2 = Array.unsafe_get p.at2 i in
   (* One copy of the test per order of the axes, each with its axes as
@@ -306,13 +317,13 @@ let shape_test tr s i =
 (* Tests the ray in [s] against the object in slot [i], keeping the better
    hit. From the camera ([primary]), [CO] and the textbook's [k3] are
    per-frame constants. *)
-let[@inline] test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4 =
+let[@inline] test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4 =
   let p = tr.p in
-  let k = if spheres then Shape.sphere else Array.unsafe_get p.kind i in
+  let k = if spheres then Shape.sphere else if triangles then Shape.triangle else Array.unsafe_get p.kind i in
   (* A triangle's one root is its near and far: [keep] once is
      [shape_test]'s two tries. ([not spheres] first: the copy for spheres
      alone then holds no triangle test.) *)
-  if (not spheres) && is_triangle k then (if triangle_hit tr s i then keep tr s i s.near)
+  if (not spheres) && is_triangle k then (if triangle_hit tr s i ~sheared:triangles then keep tr s i s.near)
   else if (not spheres) && k <> Shape.sphere then shape_test tr s i
   else
   let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
@@ -429,7 +440,7 @@ let closest_textbook_secondary tr = closest_textbook_all tr ~primary:false
    [t] is left in [s.t] ([infinity] if none), its slot is returned. One
    traversal for every kind of object; spheres alone in the document's
    mode without a hierarchy (the reference scene) take the loop above. *)
-let[@inline] closest_from tr ~primary ~spheres =
+let[@inline] closest_from tr ~primary ~spheres ~triangles =
   let p = tr.p and s = tr.s in
       if not spheres then tr.kz <- -1;
       let bvh = p.bvh in
@@ -443,7 +454,7 @@ let[@inline] closest_from tr ~primary ~spheres =
           let n = p.n_objects in
           tr.counters.tests <- tr.counters.tests + n;
           for i = 0 to n - 1 do
-            test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
+            test tr s i ~primary ~spheres ~triangles:false dx dy dz a inv_a two_k1 k1x4
           done
       | Some b ->
           (* Planes, unbounded, are outside the hierarchy. *)
@@ -456,12 +467,17 @@ let[@inline] closest_from tr ~primary ~spheres =
             done
           end;
           let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+          (* A hierarchy of triangles: the ray's shear once, here, rather
+             than a check of [tr.kz] at every triangle. *)
+          if triangles then shear_once tr s;
           let nodes = b.nodes and stack = tr.nodes and sp = ref 1 in
+          (* Counted here, added to the counters once a ray. *)
+          let boxes = ref 0 and tests = ref 0 in
           Array.unsafe_set stack 0 b.root;
           while !sp > 0 do
             decr sp;
             let o = Array.unsafe_get stack !sp in
-            tr.counters.box_tests <- tr.counters.box_tests + 1;
+            incr boxes;
             (* A box entered beyond the best hit so far cannot hold a better
                one (its spheres' hit points lie inside it, rounding
                included); one entered exactly there may hold an equal one. *)
@@ -469,32 +485,39 @@ let[@inline] closest_from tr ~primary ~spheres =
               let count = node_tag nodes o in
               if count > 0 then begin
                 let first = node_link nodes o in
-                tr.counters.tests <- tr.counters.tests + count;
+                tests := !tests + count;
                 for i = first to first + count - 1 do
-                  test tr s i ~primary ~spheres dx dy dz a inv_a two_k1 k1x4
+                  test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4
                 done
               end
               else sp := push_children nodes stack !sp o dx dy dz
             end
-          done);
+          done;
+          tr.counters.box_tests <- tr.counters.box_tests + !boxes;
+          tr.counters.tests <- tr.counters.tests + !tests);
       tr.hit
 
 (* One copy of the traversal per kind of ray and per kind of scene:
    spheres alone test no object's kind. *)
-let closest_objects tr = closest_from tr ~primary:false ~spheres:false
-let closest_primary_objects tr = closest_from tr ~primary:true ~spheres:false
+let closest_objects tr =
+  if tr.triangles then closest_from tr ~primary:false ~spheres:false ~triangles:true
+  else closest_from tr ~primary:false ~spheres:false ~triangles:false
+
+let closest_primary_objects tr =
+  if tr.triangles then closest_from tr ~primary:true ~spheres:false ~triangles:true
+  else closest_from tr ~primary:true ~spheres:false ~triangles:false
 
 (* The closest hit where the caller knows whether the scene has spheres
    alone (a scene with other shapes is never the textbook one). *)
 let[@inline] closest_in tr ~spheres =
   if not spheres then closest_objects tr
   else if tr.p.textbook_all then closest_textbook_secondary tr
-  else closest_from tr ~primary:false ~spheres:true
+  else closest_from tr ~primary:false ~spheres:true ~triangles:false
 
 let[@inline] closest_primary_in tr ~spheres =
   if not spheres then closest_primary_objects tr
   else if tr.p.textbook_all then closest_textbook_primary tr
-  else closest_from tr ~primary:true ~spheres:true
+  else closest_from tr ~primary:true ~spheres:true ~triangles:false
 
 let[@inline] closest tr = if tr.p.all_spheres then closest_in tr ~spheres:true else closest_in tr ~spheres:false
 
@@ -508,11 +531,11 @@ let shape_blocks tr i =
 (* Does the object in slot [i] meet the ray in [s] with
    [t_min < t < t_max]? The same roots as [closest], so an object blocks
    exactly when [closest] would have found it. *)
-let[@inline] blocks tr i ~spheres a inv_a =
+let[@inline] blocks tr i ~spheres ~triangles a inv_a =
   let p = tr.p and s = tr.s in
-  let k = if spheres then Shape.sphere else Array.unsafe_get p.kind i in
+  let k = if spheres then Shape.sphere else if triangles then Shape.triangle else Array.unsafe_get p.kind i in
   if (not spheres) && is_triangle k then
-    triangle_hit tr s i
+    triangle_hit tr s i ~sheared:triangles
     &&
     let t = s.near in
     s.t_min < t && t < s.t_max
@@ -594,13 +617,13 @@ let[@inline never] blocker_textbook_all tr last =
   end
 
 (* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
-let[@inline] first_blocker_from tr ~spheres skip a inv_a =
+let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
   let p = tr.p and s = tr.s in
   match p.bvh with
   | None ->
       let n = p.n_objects in
       let i = ref 0 in
-      while !i < n && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
+      while !i < n && (!i = skip || not (blocks tr !i ~spheres ~triangles:false a inv_a)) do
         incr i
       done;
       tr.counters.tests <- tr.counters.tests + !i + 1;
@@ -608,7 +631,9 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
   | Some b ->
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+      if triangles then shear_once tr s;
       let nodes = b.nodes and stack = tr.nodes and sp = ref 1 and found = ref (-1) in
+      let boxes = ref 0 and tests = ref 0 in
       (* Planes first: they are outside the hierarchy. *)
       let planes = p.unbounded in
       let n = Array.length planes in
@@ -627,16 +652,16 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
       while !sp > 0 do
         decr sp;
         let o = Array.unsafe_get stack !sp in
-        tr.counters.box_tests <- tr.counters.box_tests + 1;
+        incr boxes;
         if meets_box nodes s o ix iy iz s.t_max then begin
           let count = node_tag nodes o in
           if count > 0 then begin
             let first = node_link nodes o in
             let i = ref first and last = first + count in
-            while !i < last && (!i = skip || not (blocks tr !i ~spheres a inv_a)) do
+            while !i < last && (!i = skip || not (blocks tr !i ~spheres ~triangles a inv_a)) do
               incr i
             done;
-            tr.counters.tests <- tr.counters.tests + count;
+            tests := !tests + count;
             if !i < last then begin
               found := !i;
               sp := 0
@@ -645,28 +670,33 @@ let[@inline] first_blocker_from tr ~spheres skip a inv_a =
           else sp := push_children nodes stack !sp o dx dy dz
         end
       done;
+      tr.counters.box_tests <- tr.counters.box_tests + !boxes;
+      tr.counters.tests <- tr.counters.tests + !tests;
       !found
 
 (* With skips and a hierarchy or the robust roots: light [l]'s last
    blocker first, then the first blocker of the others. One copy per kind
    of scene, so that spheres alone ask the kind once per shadow ray. *)
-let[@inline] blocked_from tr l ~spheres =
+let[@inline] blocked_from tr l ~spheres ~triangles =
   let s = tr.s in
   if not spheres then tr.kz <- -1;
   let last = Array.unsafe_get tr.last_blocker l in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
   let inv_a = 1. /. a in
-  if last >= 0 && blocks tr last ~spheres a inv_a then begin
+  (* The last blocker may be a plane: its kind is looked up. *)
+  if last >= 0 && blocks tr last ~spheres ~triangles:false a inv_a then begin
     tr.counters.tests <- tr.counters.tests + 1;
     true
   end
   else
-    let blocker = first_blocker_from tr ~spheres last a inv_a in
+    let blocker = first_blocker_from tr ~spheres ~triangles last a inv_a in
     if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
     blocker >= 0
 
-let[@inline] blocked_objects tr l = blocked_from tr l ~spheres:false
+let[@inline] blocked_objects tr l =
+  if tr.triangles then blocked_from tr l ~spheres:false ~triangles:true
+  else blocked_from tr l ~spheres:false ~triangles:false
 
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
@@ -680,7 +710,7 @@ let shadowed tr l =
     if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
     blocker >= 0
   end
-  else if p.all_spheres then blocked_from tr l ~spheres:true
+  else if p.all_spheres then blocked_from tr l ~spheres:true ~triangles:false
   else blocked_objects tr l
 
 (* Light through transparent objects: the shadow ray in [s] (its range
@@ -704,39 +734,29 @@ let[@inline never] transmit tr =
   done;
   Array.unsafe_set tr.tree.attenuation 0 !f
 
-(* Adds light [l]'s diffuse and specular terms, of intensity [li] and
-   unnormalised direction [s.dx..], to [s.intensity]. *)
-let[@inline] add_light (p : Prepared.t) s ~shiny ~specular_of m li nx ny nz vx vy vz length_n length_v =
-  let lx = s.dx and ly = s.dy and lz = s.dz in
-  let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
-  if n_dot_l > 0. then
-    s.intensity <-
-      s.intensity
-      +. (li *. n_dot_l /. (length_n *. sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz))));
-  if shiny then begin
-    (* R = 2 <L, N> N - L (section 7.6). *)
-    let k = 2. *. ((lx *. nx) +. (ly *. ny) +. (lz *. nz)) in
-    let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
-    let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
-    if r_dot_v > 0. then begin
-      let cos = r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v) in
-      (* Below the sphere's threshold, cos^s is exactly 0 and adds
-         nothing: pow is not called (Prepared.specular_zero). *)
-      if cos > Array.unsafe_get p.specular_zero m then
-        s.intensity <- s.intensity +. (li *. Float.pow cos (Array.unsafe_get specular_of m))
-    end
-  end
+(* Adds light [l]'s terms, of intensity [li] and unnormalised direction
+   [s.dx..], to [s.intensity]: the diffuse one if [n_dot_l > 0], the
+   specular one of cosine [cos] if [cos > 0] (see [lighting_with]). *)
+let[@inline] add_terms s ~specular_of m li n_dot_l cos length_n =
+  if n_dot_l > 0. then begin
+    let lx = s.dx and ly = s.dy and lz = s.dz in
+    s.intensity <- s.intensity +. (li *. n_dot_l /. (length_n *. sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz))))
+  end;
+  if cos > 0. then s.intensity <- s.intensity +. (li *. Float.pow cos (Array.unsafe_get specular_of m))
 
 (* The total intensity at the hit point [s.px..] with unit normal [s.nx..]
    and view vector [s.vx..] (sections 7.4 to 7.7), left in [s.intensity].
    The shadow rays reuse [s]'s ray fields. [through]: shadow rays pass
    through transparent objects ([transmit]); otherwise any object stops
-   them. *)
+   them. Both terms of a light are decided before its shadow ray: with
+   [p.shadow_skip], a light that would add neither casts none (lit or
+   not, it leaves the sum as it is), as in the document's kernel. *)
 let[@inline] lighting_with tr ~through ~shiny ~specular_of m =
   let p = tr.p and s = tr.s in
   let px = s.px and py = s.py and pz = s.pz in
   let nx = s.nx and ny = s.ny and nz = s.nz in
   let vx = s.vx and vy = s.vy and vz = s.vz in
+  let shadow_skip = p.shadow_skip and cut = p.specular_cut and mo = m * p.n_lights in
   s.intensity <- 0.;
   let length_n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
   let length_v = sqrt ((vx *. vx) +. (vy *. vy) +. (vz *. vz)) in
@@ -761,16 +781,37 @@ let[@inline] lighting_with tr ~through ~shiny ~specular_of m =
       s.oy <- py;
       s.oz <- pz;
       s.t_min <- p.epsilon;
+      let lx = s.dx and ly = s.dy and lz = s.dz in
+      let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
+      (* The specular cosine, or [0.] where no term is added: matte,
+         <R, V> <= 0, or a cosine at or below the cut, where cos^s is 0 or
+         too small to change the sum (Prepared.specular_cut, never below
+         0): the sum is what it would be with the term. *)
+      let cos =
+        if shiny then begin
+          (* R = 2 <L, N> N - L (section 7.6). *)
+          let k = 2. *. n_dot_l in
+          let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
+          let r_dot_v = (rx *. vx) +. (ry *. vy) +. (rz *. vz) in
+          let cos = if r_dot_v > 0. then r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v) else 0. in
+          if cos > Array.unsafe_get cut (mo + l) then cos else 0.
+        end
+        else 0.
+      in
       (* A point light on the lit point itself gives no direction, L = 0:
-         it is skipped (as Literal does), not divided by zero. *)
-      if (not point) || s.dx <> 0. || s.dy <> 0. || s.dz <> 0. then begin
+         it is skipped (as Literal does), not divided by zero; with the
+         skip, it adds no term (n_dot_l = 0 and R = 0). *)
+      if
+        if shadow_skip then n_dot_l > 0. || cos > 0.
+        else (not point) || lx <> 0. || ly <> 0. || lz <> 0.
+      then begin
         if through then begin
           (* [transmit] moves [s.t_min]; the direction stays. *)
           transmit tr;
           let f = Array.unsafe_get tr.tree.attenuation 0 in
-          if f > 0. then add_light p s ~shiny ~specular_of m (li *. f) nx ny nz vx vy vz length_n length_v
+          if f > 0. then add_terms s ~specular_of m (li *. f) n_dot_l cos length_n
         end
-        else if not (shadowed tr l) then add_light p s ~shiny ~specular_of m li nx ny nz vx vy vz length_n length_v
+        else if not (shadowed tr l) then add_terms s ~specular_of m li n_dot_l cos length_n
       end
     end
   done
@@ -830,7 +871,7 @@ let[@inline] primary_hit_in tr ~spheres =
     tr.counters.tests <- tr.counters.tests + 1;
     if not spheres then tr.kz <- -1;
     (* The same test as [closest_primary] makes of that sphere: the same t. *)
-    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres dx dy dz a (1. /. a) (2. *. a) (4. *. a);
+    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres ~triangles:false dx dy dz a (1. /. a) (2. *. a) (4. *. a);
     if tr.hit >= 0 then tr.hit else closest_primary_in tr ~spheres
   end
 

@@ -101,6 +101,53 @@ let tests =
         fewer "tests, culling" (count (Prepared.without Culling p)) (fun c -> c.tests);
         fewer "shadow rays" (count (Prepared.without Shadow_rays p)) (fun c -> c.shadow);
         fewer "shadow rays, negligible terms" (count (Prepared.without Negligible_terms p)) (fun c -> c.shadow));
+    Alcotest.test_case "the general path's skips of shadow rays, on or off, give the same bytes" `Quick (fun () ->
+        (* A mesh with a plane, a box and a sphere (scenes/mesh.scene,
+           robust); patterns on a plane, spheres and a box; glass, whose
+           shadow rays go through [transmit]: every scene outside the
+           document's kernel, lit by [lighting]. Each skip off in turn,
+           then both, then the reference of [~skips:false] (no hierarchy)
+           for the small scenes. *)
+        List.iter
+          (fun (name, reference) ->
+            let s = Scene.with_overrides ~width:96 ~height:72 (Helpers.load_scene name) in
+            let p = Helpers.prepare s in
+            if p.textbook_all || not p.shadow_skip then Alcotest.failf "%s: not the general path with its skips" name;
+            let expected = by_rows p in
+            let both = Prepared.without Shadow_rays (Prepared.without Negligible_terms p) in
+            List.iter
+              (fun (what, q) -> same (name ^ ", " ^ what) ~expected (by_rows q))
+              ([ ("shadow rays for every light", Prepared.without Shadow_rays p);
+                 ("no negligible specular terms", Prepared.without Negligible_terms p);
+                 ("neither", both) ]
+              @ if reference then [ ("the reference", Helpers.prepare ~skips:false s) ] else []))
+          [ ("mesh.scene", false); ("checker.scene", true); ("glass.scene", true); ("room.scene", true) ]);
+    Helpers.qcheck ~count:150 "on random scenes, the general path's skips of shadow rays change no byte"
+      (* Few objects or a crowd in a hierarchy, with shapes, glass and
+         patterns on some. *)
+      (QCheck.make ~print:Scene_file.to_string
+         QCheck.Gen.(
+           let* s = oneof [ Gen_scene.gen; Gen_scene.crowd ] and* seed = int in
+           return (if seed land 1 = 0 then s else Gen_scene.with_patterns (Random.State.make [| seed |]) s)))
+      (fun s ->
+        let s = Scene.with_overrides ~width:(min s.width 24) ~height:(min s.height 24) s in
+        let p = Helpers.prepare s in
+        let expected = by_rows p in
+        same "shadow rays for every light" ~expected (by_rows (Prepared.without Shadow_rays p));
+        same "no negligible specular terms" ~expected (by_rows (Prepared.without Negligible_terms p));
+        true);
+    Alcotest.test_case "the skips cast fewer shadow rays through a mesh" `Quick (fun () ->
+        (* So that the test above compares the skips, not the same rays:
+           the knot's back faces, and its highlights too weak to count. *)
+        let count p =
+          let tr = Trace.create p in
+          ignore (by_rows_with tr);
+          (Trace.counters tr).shadow
+        and p = Helpers.prepare (Scene.with_overrides ~width:96 ~height:72 (Helpers.load_scene "mesh.scene")) in
+        let all = count p and off = count (Prepared.without Shadow_rays p) in
+        if not (all < off) then Alcotest.failf "shadow rays: %d with the skip, %d without" all off;
+        let negligible = count (Prepared.without Negligible_terms p) in
+        if not (all < negligible) then Alcotest.failf "shadow rays: %d with the cut, %d without" all negligible);
     Alcotest.test_case "a negligible specular term changes no sum, at its cut" `Quick (fun () ->
         (* The cut's claim at its worst (the cosine itself), for the
            reference scene's and a spread of exponents and intensities. *)
