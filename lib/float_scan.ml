@@ -56,8 +56,10 @@ let seventeen_digits m e =
     decide q ((rem +. b) /. p)
   end
 
-let into b i j (dst : float array) d =
-  if i < 0 || j > Bytes.length b || i > j || d < 0 || d >= Array.length dst then invalid_arg "Float_scan.into";
+(* The decimal [b.[i] .. b.[j-1]] (or NaN if it is not one) into
+   [dst.(d)], for any length: [scan]'s path for numbers of more than 18
+   digits or beyond the exact powers of ten. *)
+let[@inline never] slow b i j (dst : float array) d =
   let k = ref i in
   let neg =
     if !k < j && Bytes.unsafe_get b !k = '-' then (incr k; true)
@@ -109,6 +111,81 @@ let into b i j (dst : float array) d =
     let r = if !exact && !e >= -22 && !e <= 22 then seventeen_digits !m !e else Float.nan in
     if Float.is_nan r then Array.unsafe_set dst d (float_of_string (Bytes.sub_string b i (j - i)))
     else Array.unsafe_set dst d (if neg then -.r else r)
+
+(* Digits that [scan] reads into an integer: 10^18 < 2^62 fits. *)
+let max_digits = 18
+
+(* The longest decimal at [i] (see the interface), its value stored in
+   [dst.(d)]: one pass over the bytes, which the callers need not have
+   delimited first. Decimals of at most 18 digits whose integer is at
+   most 2^53 and power of ten at most 10^22 (Clinger's fast path: nearly
+   every number of a scene or mesh) make no call, which would spill the
+   registers of the loops, and allocate nothing; the others are read
+   again by [slow]. *)
+let[@inline never] scan b i j (dst : float array) d =
+  if i < 0 || j > Bytes.length b || i > j || d < 0 || d >= Array.length dst then
+    raise (Invalid_argument "Float_scan.scan");
+  let k = ref i in
+  let neg =
+    if !k < j && Bytes.unsafe_get b !k = '-' then (incr k; true)
+    else (if !k < j && Bytes.unsafe_get b !k = '+' then incr k; false)
+  in
+  let start = !k in
+  let m = ref 0 in
+  while !k < j && is_digit (Bytes.unsafe_get b !k) do
+    m := (!m * 10) + (Char.code (Bytes.unsafe_get b !k) - 48);
+    incr k
+  done;
+  let n = ref (!k - start) and e = ref 0 in
+  if !k < j && Bytes.unsafe_get b !k = '.' && !n <= max_digits then begin
+    incr k;
+    let frac = !k in
+    while !k < j && is_digit (Bytes.unsafe_get b !k) do
+      m := (!m * 10) + (Char.code (Bytes.unsafe_get b !k) - 48);
+      incr k
+    done;
+    e := frac - !k;
+    n := !n + (!k - frac)
+  end
+  else if !k < j && Bytes.unsafe_get b !k = '.' then begin
+    incr k;
+    let frac = !k in
+    while !k < j && is_digit (Bytes.unsafe_get b !k) do incr k done;
+    n := !n + (!k - frac)
+  end;
+  if !n = 0 then begin
+    Array.unsafe_set dst d Float.nan;
+    i
+  end
+  else begin
+    (* An exponent marker without digits is not part of the number. *)
+    if !k + 1 < j && (Bytes.unsafe_get b !k = 'e' || Bytes.unsafe_get b !k = 'E') then begin
+      let s = if Bytes.unsafe_get b (!k + 1) = '-' || Bytes.unsafe_get b (!k + 1) = '+' then !k + 2 else !k + 1 in
+      if s < j && is_digit (Bytes.unsafe_get b s) then begin
+        let eneg = Bytes.unsafe_get b (!k + 1) = '-' in
+        k := s;
+        let x = ref 0 in
+        while !k < j && is_digit (Bytes.unsafe_get b !k) do
+          if !x < exponent_cap then x := (!x * 10) + (Char.code (Bytes.unsafe_get b !k) - 48);
+          incr k
+        done;
+        e := if eneg then !e - !x else !e + !x
+      end
+    end;
+    (* Each branch stores its own result: a float returned from a function
+       that is not inlined is boxed, two words a number. *)
+    if !n <= max_digits && !m <= two_53 && !e >= -22 && !e <= 22 then begin
+      let f = Float.of_int !m in
+      let r = if !e >= 0 then f *. Array.unsafe_get pow10 !e else f /. Array.unsafe_get pow10 (- !e) in
+      Array.unsafe_set dst d (if neg then -.r else r)
+    end
+    else slow b i !k dst d;
+    !k
+  end
+
+let into b i j (dst : float array) d =
+  if i < 0 || j > Bytes.length b || i > j || d < 0 || d >= Array.length dst then invalid_arg "Float_scan.into";
+  if scan b i j dst d <> j then Array.unsafe_set dst d Float.nan
 
 let to_float b i j =
   if i < 0 || j > Bytes.length b || i > j then invalid_arg "Float_scan.to_float";
