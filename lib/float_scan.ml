@@ -127,10 +127,15 @@ let max_digits = 18
    few instructions only). *)
 external get64 : Bytes.t -> int -> int64 = "%caml_bytes_get64u"
 
+(* Equality of int64 words as one comparison: [Int64.equal] goes through
+   [compare]. *)
+let[@inline] eq64 (x : int64) (y : int64) = x = y
+
+
 let[@inline] eight_digits b k =
   let x = get64 b k in
-  Int64.equal (Int64.logand x 0xF0F0F0F0F0F0F0F0L) 0x3030303030303030L
-  && Int64.equal (Int64.logand (Int64.add x 0x0606060606060606L) 0xF0F0F0F0F0F0F0F0L) 0x3030303030303030L
+  eq64 (Int64.logand x 0xF0F0F0F0F0F0F0F0L) 0x3030303030303030L
+  && eq64 (Int64.logand (Int64.add x 0x0606060606060606L) 0xF0F0F0F0F0F0F0F0L) 0x3030303030303030L
 
 let[@inline] eight_value b k =
   let v = Int64.sub (get64 b k) 0x3030303030303030L in

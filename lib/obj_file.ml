@@ -532,6 +532,10 @@ let[@inline] line_before p b i nl =
   let j = if nl > i && Bytes.unsafe_get b (nl - 1) = '\r' then nl - 1 else nl in
   line p b i j
 
+(* Equality of int64 words as one comparison: [Int64.equal] goes through
+   [compare]. *)
+let[@inline] eq64 (x : int64) (y : int64) = x = y
+
 (* The first LF at or after [k], or [stop]. Eight bytes at a time: the
    classic test for a zero byte in a word, on the word xor LF in every
    byte, is non-zero iff some byte is LF (it can only mark wrongly the
@@ -541,7 +545,7 @@ let newline b k stop =
   let k = ref k and found = ref false in
   while (not !found) && !k + 8 <= stop do
     let x = Int64.logxor (Bytes.get_int64_le b !k) 0x0a0a0a0a0a0a0a0aL in
-    if Int64.equal (Int64.logand (Int64.logand (Int64.sub x 0x0101010101010101L) (Int64.lognot x)) 0x8080808080808080L) 0L
+    if eq64 (Int64.logand (Int64.logand (Int64.sub x 0x0101010101010101L) (Int64.lognot x)) 0x8080808080808080L) 0L
     then k := !k + 8
     else found := true
   done;

@@ -71,6 +71,11 @@ let general f s i =
    compared under the mask of the word's [n] low bytes. *)
 external get64 : string -> int -> int64 = "%caml_string_get64u"
 
+(* Equality of int64 words as one comparison: [Int64.equal] goes through
+   [compare]. *)
+let[@inline] eq64 (x : int64) (y : int64) = x = y
+
+
 let literal w =
   let b = Bytes.make 8 '\000' in
   Bytes.blit_string w 0 b 0 (String.length w);
@@ -93,7 +98,7 @@ let margin = 16
 let layout f s i =
   let n = String.length s in
   let limit = n - margin in
-  if i < 0 || i >= limit || not (Int64.equal (Int64.logand (get64 s i) mask7) open_sphere) then -1
+  if i < 0 || i >= limit || not (eq64 (Int64.logand (get64 s i) mask7) open_sphere) then -1
   else begin
     let b = Bytes.unsafe_of_string s in
     f.seen <- 0;
@@ -108,12 +113,12 @@ let layout f s i =
         (* The field, and where its first number starts. *)
         let w = get64 s (q + 2) in
         let c = ref (-1) and at = ref 0 in
-        if Int64.equal (Int64.logand w mask7) center then (c := 0; at := q + 9)
-        else if Int64.equal (Int64.logand w mask7) radius then (c := 1; at := q + 9)
-        else if Int64.equal (Int64.logand w mask6) color then (c := 2; at := q + 8)
-        else if Int64.equal w specular && String.unsafe_get s (q + 10) = ' ' then (c := 3; at := q + 11)
+        if eq64 (Int64.logand w mask7) center then (c := 0; at := q + 9)
+        else if eq64 (Int64.logand w mask7) radius then (c := 1; at := q + 9)
+        else if eq64 (Int64.logand w mask6) color then (c := 2; at := q + 8)
+        else if eq64 w specular && String.unsafe_get s (q + 10) = ' ' then (c := 3; at := q + 11)
         else if
-          Int64.equal w reflecti
+          eq64 w reflecti
           && String.unsafe_get s (q + 10) = 'v'
           && String.unsafe_get s (q + 11) = 'e'
           && String.unsafe_get s (q + 12) = ' '
