@@ -5,6 +5,7 @@ let pow10 =
      1e16; 1e17; 1e18; 1e19; 1e20; 1e21; 1e22 |]
 
 let two_53 = 1 lsl 53
+let two_57 = 1 lsl 57
 
 (* A mantissa beyond 2^53 leaves the fast path, so accumulation stops
    there: no overflow of the 63-bit int. An exponent beyond this bound is
@@ -211,7 +212,11 @@ let[@inline never] scan b i j (dst : float array) d =
       let r = if !e >= 0 then f *. Array.unsafe_get pow10 !e else f /. Array.unsafe_get pow10 (- !e) in
       Array.unsafe_set dst d (if neg then -.r else r)
     end
-    else slow b i !k dst d;
+    else begin
+      (* 17 digits, a double printed exactly: [m] holds them all. *)
+      let r = if !n <= max_digits && !m < two_57 && !e >= -22 && !e <= 22 then seventeen_digits !m !e else Float.nan in
+      if Float.is_nan r then slow b i !k dst d else Array.unsafe_set dst d (if neg then -.r else r)
+    end;
     !k
   end
 
