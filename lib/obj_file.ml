@@ -544,7 +544,8 @@ let[@inline] eq64 (x : int64) (y : int64) = x = y
 let newline b k stop =
   let k = ref k and found = ref false in
   while (not !found) && !k + 8 <= stop do
-    let x = Int64.logxor (Bytes.get_int64_le b !k) 0x0a0a0a0a0a0a0a0aL in
+    (* [!k + 8 <= stop <= Bytes.length b]: no bounds check. *)
+    let x = Int64.logxor (get64 b !k) 0x0a0a0a0a0a0a0a0aL in
     if eq64 (Int64.logand (Int64.logand (Int64.sub x 0x0101010101010101L) (Int64.lognot x)) 0x8080808080808080L) 0L
     then k := !k + 8
     else found := true

@@ -755,6 +755,9 @@ let stream ~limits ~window_bytes r ~from =
     scene_limits = limits;
   }
 
+(* A word of a window where 8 bytes are known to be there. *)
+external get64 : string -> int -> int64 = "%caml_string_get64u"
+
 (* [line_at st p] is the position of absolute offset [p], which must be in
    the window or at its end (an offset before [st.at] is not counted
    again: it is placed on [st.at]'s line); offsets only grow from call to
@@ -766,7 +769,7 @@ let line_at st p =
     (* Eight bytes at a time: every window passes here once. *)
     let k = ref from and line = ref st.line in
     while !k + 8 <= upto do
-      line := !line + newlines (String.get_int64_le text !k);
+      line := !line + newlines (get64 text !k);
       k := !k + 8
     done;
     for j = !k to upto - 1 do
