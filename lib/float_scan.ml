@@ -113,8 +113,10 @@ let[@inline never] slow b i j (dst : float array) d =
     if Float.is_nan r then Array.unsafe_set dst d (float_of_string (Bytes.sub_string b i (j - i)))
     else Array.unsafe_set dst d (if neg then -.r else r)
 
-(* Digits that [scan] reads into an integer: 10^18 < 2^62 fits. *)
-let max_digits = 18
+(* Digits that [scan] reads into an integer: 10^18 < 2^62 fits in 63
+   bits, 10^9 < 2^30 in the 32 bits of JavaScript's integers (the web
+   page reads scenes with this too). *)
+let max_digits = if Sys.int_size >= 63 then 18 else 9
 
 (* Eight digits at a time where eight follow: the 8 bytes at [k] as a
    little-endian word (the first digit in the low byte) are all digits
@@ -214,7 +216,10 @@ let[@inline never] scan b i j (dst : float array) d =
     end
     else begin
       (* 17 digits, a double printed exactly: [m] holds them all. *)
-      let r = if !n <= max_digits && !m < two_57 && !e >= -22 && !e <= 22 then seventeen_digits !m !e else Float.nan in
+      let r =
+        if Sys.int_size >= 63 && !n <= max_digits && !m < two_57 && !e >= -22 && !e <= 22 then seventeen_digits !m !e
+        else Float.nan
+      in
       if Float.is_nan r then slow b i !k dst d else Array.unsafe_set dst d (if neg then -.r else r)
     end;
     !k

@@ -343,6 +343,10 @@ let vertex p b i kw k j ~normal =
   if !n < 3 then fail p i !k "expected 3 numbers (%s), found %d" (if normal then "vn x y z" else "v x y z") !n
   else if (not normal) && !n = 5 then fail p i !k "expected x y z [w] or x y z r g b, found 5 numbers"
 
+(* The digits of an index that fit an integer: 63 bits, or the 32 of
+   JavaScript's integers. *)
+let index_digits = if Sys.int_size >= 63 then 18 else 9
+
 (* An OBJ index at [!k] (1-based or negative), resolved against [count]
    elements of [what] to 0-based. Leaves [!k] after its digits. *)
 let index p b i k j ~count ~what =
@@ -351,21 +355,22 @@ let index p b i k j ~count ~what =
   if neg then incr k;
   let x = ref 0 and digits = ref 0 in
   while !k < j && Bytes.unsafe_get b !k >= '0' && Bytes.unsafe_get b !k <= '9' do
-    if !digits < 18 then x := (!x * 10) + (Char.code (Bytes.unsafe_get b !k) - 48);
+    if !digits < index_digits then x := (!x * 10) + (Char.code (Bytes.unsafe_get b !k) - 48);
     incr digits;
     incr k
   done;
   if !digits = 0 then fail p i start "expected a %s index, found %S" what (shown b start (token_end b start j));
   if !x = 0 then fail p i start "%s index 0 (indices start at 1, or -1 for the last)" what;
-  let r = if !digits > 18 then -1 else if neg then count - !x else !x - 1 in
+  let r = if !digits > index_digits then -1 else if neg then count - !x else !x - 1 in
   if r < 0 || r >= count then
     fail p i start "%s index %s is out of range: %d %s defined so far" what
       (Bytes.sub_string b start (!k - start)) count
       (if count = 1 then what else if what = "vertex" then "vertices" else what ^ "s");
   r
 
-(* The positive number of at most 18 digits at [!k], [!k] moved past
-   its digits; [0] (which no index is) where there is none or more. *)
+(* The positive number of at most [index_digits] digits at [!k], [!k]
+   moved past its digits; [0] (which no index is) where there is none or
+   more. *)
 let[@inline] positive b k j =
   let start = !k in
   let x = ref 0 in
@@ -373,7 +378,7 @@ let[@inline] positive b k j =
     x := (!x * 10) + (Char.code (Bytes.unsafe_get b !k) - 48);
     incr k
   done;
-  if !k - start <= 18 then !x else 0
+  if !k - start <= index_digits then !x else 0
 
 (* [index] where the index at [!k] is a plain positive number within
    [count]: read without a call, the common case of every face. *)
