@@ -96,6 +96,21 @@ let tests =
     Helpers.qcheck ~count:20_000 "the layout reads the one-space sphere forms as the general reader does, and no others"
       (QCheck.make ~print:(fun f -> f.text) gen_form)
       agrees;
+    Alcotest.test_case "a sphere without its opening parenthesis is not a sphere: an error at its first byte" `Quick
+      (fun () ->
+        (* main's fast path read "x sphere (...))" as a sphere, where
+           parsexp's reader refuses the atom x. *)
+        let text = "(light ambient (intensity 1))\nx sphere (center 0 0 3) (radius 1) (color 255 0 0))\n" in
+        (match Sphere_scan.general (Sphere_scan.create ()) text 30 with
+        | _ -> Alcotest.fail "read as a sphere"
+        | exception Sexp_scan.Unusual -> ());
+        List.iter
+          (fun reader ->
+            match Raytrace.Scene_file.of_string ~file:"x.scene" ~reader text with
+            | Ok _ -> Alcotest.fail "accepted"
+            | Error (`Msg m) ->
+                Alcotest.(check string) __LOC__ "x.scene:2:1: expected a form in parentheses such as (sphere ...), got x" m)
+          [ `Fast; `Parsexp ]);
     Alcotest.test_case "the layout reads a generated grid line, and a line with a comment is left to the general reader" `Quick
       (fun () ->
         let line = "(sphere (center -499.5 -0.6 2000) (radius 0.4) (color 0 255 0) (specular 10) (reflective 0.2))" in
