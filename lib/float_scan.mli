@@ -30,5 +30,19 @@ val into : Bytes.t -> int -> int -> float array -> int -> unit
     @raise Invalid_argument if [0 <= i <= j <= Bytes.length b] or
     [0 <= d < Array.length dst] is false. *)
 
+val scan : Bytes.t -> int -> int -> float array -> int -> int
+(** [scan b i j dst d] is the index just past the longest decimal of the
+    form of {!to_float} that starts at [b.[i]] and ends at or before
+    [b.[j-1]], its value {!to_float}[ b i e] stored in [dst.(d)]; it is
+    [i], and [dst.(d)] is [nan], if no such decimal starts at [i]. An
+    exponent marker that no digit follows is not part of the decimal:
+    ["1e+x"] gives [1.] and the index of ['e']. A caller that checks the
+    byte at the result (a delimiter) reads a number in one pass, where
+    {!into} needs its end first; [into b i j dst d] is [scan b i j dst d]
+    with [nan] stored unless the result is [j]. It allocates only where
+    {!into} does.
+    @raise Invalid_argument if [0 <= i <= j <= Bytes.length b] or
+    [0 <= d < Array.length dst] is false. *)
+
 val of_string : string -> float
 (** [of_string s] is {!to_float} on all of [s]. *)

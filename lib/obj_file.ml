@@ -270,7 +270,8 @@ let note_face p ~nv ~nn =
 let fail p i k fmt =
   Printf.ksprintf (fun m -> raise (Error_at (Printf.sprintf "%s:%d:%d: %s" p.name p.line (k - i + 1) m))) fmt
 
-let[@inline] is_space c = c = ' ' || c = '\t' || c = '\r' || c = '\012' || c = '\011'
+(* One comparison for the bytes of numbers and keywords, all above ' '. *)
+let[@inline] is_space c = c <= ' ' && (c = ' ' || c = '\t' || c = '\r' || c = '\012' || c = '\011')
 
 let[@inline] skip_spaces b k j =
   let k = ref k in
@@ -320,17 +321,31 @@ let vertex p b i kw k j ~normal =
   let most = if normal then 3 else 7 in
   k := skip_spaces b !k j;
   while !k < j && Bytes.unsafe_get b !k <> '#' do
-    let e = token_end b !k j in
-    if !n >= most then
-      fail p i !k "expected at most %d numbers (%s), found %S" most
-        (if normal then "vn x y z" else "v x y z [w]") (shown b !k e);
-    number p b i !k e;
+    (* The number read in one pass where a space or the line's end ends
+       it (then it is the whole token); else the token is delimited
+       first, and its errors told. *)
+    let e = Float_scan.scan b !k j p.num 0 in
+    let e =
+      if e > !k && (e = j || is_space (Bytes.unsafe_get b e)) && !n < most && Float.is_finite p.num.(0) then e
+      else begin
+        let e = token_end b !k j in
+        if !n >= most then
+          fail p i !k "expected at most %d numbers (%s), found %S" most
+            (if normal then "vn x y z" else "v x y z [w]") (shown b !k e);
+        number p b i !k e;
+        e
+      end
+    in
     if !n < 3 then push_float g p.num;
     incr n;
     k := skip_spaces b e j
   done;
   if !n < 3 then fail p i !k "expected 3 numbers (%s), found %d" (if normal then "vn x y z" else "v x y z") !n
   else if (not normal) && !n = 5 then fail p i !k "expected x y z [w] or x y z r g b, found 5 numbers"
+
+(* The digits of an index that fit an integer: 63 bits, or the 32 of
+   JavaScript's integers. *)
+let index_digits = if Sys.int_size >= 63 then 18 else 9
 
 (* An OBJ index at [!k] (1-based or negative), resolved against [count]
    elements of [what] to 0-based. Leaves [!k] after its digits. *)
@@ -340,18 +355,41 @@ let index p b i k j ~count ~what =
   if neg then incr k;
   let x = ref 0 and digits = ref 0 in
   while !k < j && Bytes.unsafe_get b !k >= '0' && Bytes.unsafe_get b !k <= '9' do
-    if !digits < 18 then x := (!x * 10) + (Char.code (Bytes.unsafe_get b !k) - 48);
+    if !digits < index_digits then x := (!x * 10) + (Char.code (Bytes.unsafe_get b !k) - 48);
     incr digits;
     incr k
   done;
   if !digits = 0 then fail p i start "expected a %s index, found %S" what (shown b start (token_end b start j));
   if !x = 0 then fail p i start "%s index 0 (indices start at 1, or -1 for the last)" what;
-  let r = if !digits > 18 then -1 else if neg then count - !x else !x - 1 in
+  let r = if !digits > index_digits then -1 else if neg then count - !x else !x - 1 in
   if r < 0 || r >= count then
     fail p i start "%s index %s is out of range: %d %s defined so far" what
       (Bytes.sub_string b start (!k - start)) count
       (if count = 1 then what else if what = "vertex" then "vertices" else what ^ "s");
   r
+
+(* The positive number of at most [index_digits] digits at [!k], [!k]
+   moved past its digits; [0] (which no index is) where there is none or
+   more. *)
+let[@inline] positive b k j =
+  let start = !k in
+  let x = ref 0 in
+  while !k < j && Bytes.unsafe_get b !k >= '0' && Bytes.unsafe_get b !k <= '9' do
+    x := (!x * 10) + (Char.code (Bytes.unsafe_get b !k) - 48);
+    incr k
+  done;
+  if !k - start <= index_digits then !x else 0
+
+(* [index] where the index at [!k] is a plain positive number within
+   [count]: read without a call, the common case of every face. *)
+let[@inline] fast_index p b i k j ~count ~what =
+  let start = !k in
+  let x = positive b k j in
+  if x > 0 && x <= count then x - 1
+  else begin
+    k := start;
+    index p b i k j ~count ~what
+  end
 
 let face p b i f k j =
   p.face_v.len <- 0;
@@ -359,7 +397,7 @@ let face p b i f k j =
   let nv = (float_length p.pos / 3) + p.offset and nn = (float_length p.nrm / 3) + p.offset in
   let k = ref (skip_spaces b k j) in
   while !k < j && Bytes.unsafe_get b !k <> '#' do
-    push_face p.face_v (index p b i k j ~count:nv ~what:"vertex");
+    push_face p.face_v (fast_index p b i k j ~count:nv ~what:"vertex");
     let n = ref (-1) in
     if !k < j && Bytes.unsafe_get b !k = '/' then begin
       incr k;
@@ -369,7 +407,7 @@ let face p b i f k j =
       end;
       if !k < j && Bytes.unsafe_get b !k = '/' then begin
         incr k;
-        if !k < j && not (is_space (Bytes.unsafe_get b !k)) then n := index p b i k j ~count:nn ~what:"normal"
+        if !k < j && not (is_space (Bytes.unsafe_get b !k)) then n := fast_index p b i k j ~count:nn ~what:"normal"
       end
     end;
     if !k < j && not (is_space (Bytes.unsafe_get b !k)) then
@@ -388,6 +426,60 @@ let face p b i f k j =
     push_int p.tris v.(0); push_int p.tris v.(t); push_int p.tris v.(t + 1);
     push_int p.tri_nrm vn.(0); push_int p.tri_nrm vn.(t); push_int p.tri_nrm vn.(t + 1)
   done
+
+let[@inline] push3 g x y z =
+  if g.inn + 3 <= Array.length g.icur then begin
+    let a = g.icur and n = g.inn in
+    Array.unsafe_set a n x;
+    Array.unsafe_set a (n + 1) y;
+    Array.unsafe_set a (n + 2) z;
+    g.inn <- n + 3
+  end
+  else begin
+    push_int g x; push_int g y; push_int g z
+  end
+
+(* The face after the keyword [f] at [b.[k]], where it is a triangle in
+   the layout of every exporter: one space before each of its 3 corners,
+   each [v] or [v//n] with positive indices in range, nothing after.
+   Then it is what [face] would read, read without its loop and calls,
+   and the result is [true]; on anything else nothing is read and the
+   result is [false]: [face] reads the line, and tells its errors. *)
+let triangle p b k j =
+  let nv = (float_length p.pos / 3) + p.offset and nn = (float_length p.nrm / 3) + p.offset in
+  let v = p.face_v.fa and vn = p.face_n.fa in
+  let q = ref k and ok = ref true and c = ref 0 in
+  while !ok && !c < 3 do
+    if !q < j && Bytes.unsafe_get b !q = ' ' then begin
+      incr q;
+      let x = positive b q j in
+      if x <= 0 || x > nv then ok := false
+      else begin
+        Array.unsafe_set v !c (x - 1);
+        if !q + 1 < j && Bytes.unsafe_get b !q = '/' && Bytes.unsafe_get b (!q + 1) = '/' then begin
+          q := !q + 2;
+          let y = positive b q j in
+          if y <= 0 || y > nn then ok := false else Array.unsafe_set vn !c (y - 1)
+        end
+        else Array.unsafe_set vn !c (-1);
+        if !q < j && Bytes.unsafe_get b !q <> ' ' then ok := false
+      end
+    end
+    else ok := false;
+    incr c
+  done;
+  !ok && !q = j
+  && (int_length p.tris / 3) + 1 <= p.max_triangles
+  && begin
+       if p.offset > 0 then begin
+         p.face_v.len <- 3;
+         p.face_n.len <- 3;
+         note_face p ~nv ~nn
+       end;
+       push3 p.tris (Array.unsafe_get v 0) (Array.unsafe_get v 1) (Array.unsafe_get v 2);
+       push3 p.tri_nrm (Array.unsafe_get vn 0) (Array.unsafe_get vn 1) (Array.unsafe_get vn 2);
+       true
+     end
 
 (* The kind of the skipped keyword [b.[k] .. b.[e-1]]. *)
 let kind_of b k e =
@@ -418,7 +510,7 @@ let line p b i j =
       let len = e - k in
       if len = 1 && c = 'v' then vertex p b i k e j ~normal:false
       else if len = 2 && c = 'v' && Bytes.unsafe_get b (k + 1) = 'n' then vertex p b i k e j ~normal:true
-      else if len = 1 && c = 'f' then face p b i k e j
+      else if len = 1 && c = 'f' then (if not (triangle p b e j) then face p b i k e j)
       else begin
         let kind = kind_of b k e in
         if kind = kind_vt then p.texcoords <- p.texcoords + 1;
@@ -445,6 +537,10 @@ let[@inline] line_before p b i nl =
   let j = if nl > i && Bytes.unsafe_get b (nl - 1) = '\r' then nl - 1 else nl in
   line p b i j
 
+(* Equality of int64 words as one comparison: [Int64.equal] goes through
+   [compare]. *)
+let[@inline] eq64 (x : int64) (y : int64) = x = y
+
 (* The first LF at or after [k], or [stop]. Eight bytes at a time: the
    classic test for a zero byte in a word, on the word xor LF in every
    byte, is non-zero iff some byte is LF (it can only mark wrongly the
@@ -453,8 +549,9 @@ let[@inline] line_before p b i nl =
 let newline b k stop =
   let k = ref k and found = ref false in
   while (not !found) && !k + 8 <= stop do
-    let x = Int64.logxor (Bytes.get_int64_le b !k) 0x0a0a0a0a0a0a0a0aL in
-    if Int64.equal (Int64.logand (Int64.logand (Int64.sub x 0x0101010101010101L) (Int64.lognot x)) 0x8080808080808080L) 0L
+    (* [!k + 8 <= stop <= Bytes.length b]: no bounds check. *)
+    let x = Int64.logxor (get64 b !k) 0x0a0a0a0a0a0a0a0aL in
+    if eq64 (Int64.logand (Int64.logand (Int64.sub x 0x0101010101010101L) (Int64.lognot x)) 0x8080808080808080L) 0L
     then k := !k + 8
     else found := true
   done;

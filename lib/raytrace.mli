@@ -133,6 +133,7 @@ module Private : sig
   module Ray_tree = Ray_tree
   module Float_scan = Float_scan
   module Sexp_scan = Sexp_scan
+  module Sphere_scan = Sphere_scan
   module Antialias = Antialias
   module Render_work = Render_work
 end

@@ -755,6 +755,9 @@ let stream ~limits ~window_bytes r ~from =
     scene_limits = limits;
   }
 
+(* A word of a window where 8 bytes are known to be there. *)
+external get64 : string -> int -> int64 = "%caml_string_get64u"
+
 (* [line_at st p] is the position of absolute offset [p], which must be in
    the window or at its end (an offset before [st.at] is not counted
    again: it is placed on [st.at]'s line); offsets only grow from call to
@@ -766,7 +769,7 @@ let line_at st p =
     (* Eight bytes at a time: every window passes here once. *)
     let k = ref from and line = ref st.line in
     while !k + 8 <= upto do
-      line := !line + newlines (String.get_int64_le text !k);
+      line := !line + newlines (get64 text !k);
       k := !k + 8
     done;
     for j = !k to upto - 1 do
@@ -814,8 +817,7 @@ let lookahead = 2 * simple_form_bytes
    grid layout repeats a dozen materials, and a sphere whose material is
    one of those is added without making a [Material.t] to find it. *)
 type fast = {
-  values : float array;  (** center x y z, radius, color r g b, specular, reflective. *)
-  mutable seen : int;  (** The fields read, one bit each, in [sphere_field] order. *)
+  form : Sphere_scan.t;  (** The sphere's fields. *)
   recent : float array;  (** Per slot [k] of a hash, at [4 k]: color r g b, specular. *)
   recent_reflective : float array;  (** Per slot, the reflective of its material. *)
   recent_index : int array;  (** Per slot, its material's index in the spheres' table, or [-1]. *)
@@ -825,78 +827,19 @@ let n_recent = 64
 
 let fast_state () =
   {
-    values = Array.make 9 0.;
-    seen = 0;
+    form = Sphere_scan.create ();
     recent = Array.make (4 * n_recent) 0.;
     recent_reflective = Array.make n_recent 0.;
     recent_index = Array.make n_recent (-1);
   }
-
-let sphere_arity = [| 3; 1; 3; 1; 1 |]
-let sphere_value = [| 0; 3; 4; 7; 8 |]
-
-(* Is [s.[i] .. s.[j - 1]] the word [w]? *)
-let is_word s i j w =
-  j - i = String.length w
-  &&
-  let k = ref 0 in
-  while !k < j - i && String.unsafe_get s (i + !k) = String.unsafe_get w !k do
-    incr k
-  done;
-  !k = j - i
-
-(* The field of a sphere named [s.[a] .. s.[e - 1]], numbered center,
-   radius, color, specular, reflective; [-1] if none. *)
-let sphere_field s a e =
-  match e - a with
-  | 6 -> if is_word s a e "center" then 0 else if is_word s a e "radius" then 1 else -1
-  | 5 -> if is_word s a e "color" then 2 else -1
-  | 8 -> if is_word s a e "specular" then 3 else -1
-  | 10 -> if is_word s a e "reflective" then 4 else -1
-  | _ -> -1
-
-(* The fields of a plain sphere form from [s.[p]] on, to its closing
-   parenthesis: a function of its own, not a closure made per sphere. *)
-let rec sphere_field_list f s p =
-  let open Sexp_scan in
-  let p = skip_blank s p in
-  if p >= String.length s then raise Unusual;
-  match String.unsafe_get s p with
-  | ')' -> p + 1
-  | '(' ->
-      let a = skip_blank s (p + 1) in
-      let e = atom_end s a in
-      let c = sphere_field s a e in
-      if c < 0 || f.seen land (1 lsl c) <> 0 then raise Unusual;
-      f.seen <- f.seen lor (1 lsl c);
-      let q = ref e in
-      for v = 0 to sphere_arity.(c) - 1 do
-        let a = skip_blank s !q in
-        let e = atom_end s a in
-        let d = sphere_value.(c) + v in
-        if e = a then raise Unusual;
-        (* Stored, not returned: a returned float would be boxed. *)
-        Float_scan.into (Bytes.unsafe_of_string s) a e f.values d;
-        if not (Float.is_finite f.values.(d)) then raise Unusual;
-        q := e
-      done;
-      let q = skip_blank s !q in
-      if q >= String.length s || String.unsafe_get s q <> ')' then raise Unusual;
-      sphere_field_list f s (q + 1)
-  | _ -> raise Unusual
 
 (* Reads the plain sphere form at [s.[i] = '('] into [f] and is the index
    past it: each field once, numbers that [Float_scan] reads as finite
    floats (the same as [Float_text.of_string]), [center], [radius] and
    [color] given. @raise Sexp_scan.Unusual otherwise. *)
 let sphere_fields f s i =
-  let open Sexp_scan in
-  let j = skip_blank s (i + 1) in
-  let k = atom_end s j in
-  if not (is_word s j k "sphere") then raise Unusual;
-  f.seen <- 0;
-  let e = sphere_field_list f s k in
-  if f.seen land 7 <> 7 then raise Unusual;
+  let e = Sphere_scan.read f.form s i in
+  if f.form.seen land 7 <> 7 then raise Sexp_scan.Unusual;
   e
 
 let[@inline] same_float x y = Int64.equal (Int64.bits_of_float x) (Int64.bits_of_float y)
@@ -912,7 +855,7 @@ let[@inline] holds f k r g bl specular reflective =
    @raise Sexp_scan.Unusual if a check fails: [sphere] then reports it. *)
 let add_sphere b f =
   let ok = function Ok x -> x | Error _ -> raise Sexp_scan.Unusual in
-  let v = f.values in
+  let v = f.form.values and seen = f.form.seen in
   (* [Limits.check_count]'s test, without building its messages. *)
   if not (Float.of_int (b.n_spheres + 1) <= Limits.bound b.limits `Spheres) then raise Sexp_scan.Unusual;
   let x = v.(0) and y = v.(1) and z = v.(2) in
@@ -920,9 +863,9 @@ let add_sphere b f =
   if not (Limits.coordinate_ok x && Limits.coordinate_ok y && Limits.coordinate_ok z) then raise Sexp_scan.Unusual;
   let radius = v.(3) in
   if not (Limits.size_ok radius) then raise Sexp_scan.Unusual;
-  let specular = if f.seen land 8 = 0 then Sphere.matte else v.(7) in
+  let specular = if seen land 8 = 0 then Sphere.matte else v.(7) in
   if not (Sphere.specular_ok specular) then raise Sexp_scan.Unusual;
-  let reflective = if f.seen land 16 = 0 then 0. else v.(8) in
+  let reflective = if seen land 16 = 0 then 0. else v.(8) in
   if not (Sphere.reflective_ok reflective) then raise Sexp_scan.Unusual;
   let r = v.(4) and g = v.(5) and bl = v.(6) in
   (* Any hash will do; [truncate] is defined for every finite float here

@@ -25,6 +25,7 @@ let () =
       ("pattern", Test_pattern.tests);
       ("scene_file", Test_scene_file.tests);
       ("sexp_scan", Test_sexp_scan.tests);
+      ("sphere_scan", Test_sphere_scan.tests);
       ("scene_split", Test_scene_split.tests);
       ("ppm", Test_ppm.tests);
       ("image_diff", Test_image_diff.tests);

@@ -88,6 +88,43 @@ let tests =
               (fun (n, e) -> Printf.sprintf "%Lde%d" n e)
               (pair (map Int64.of_int (int_range 9007199254740993 99999999999999999)) (int_range (-22) 22))))
       agrees;
+    Helpers.qcheck ~count:5_000 "scan reads the longest decimal at a point, as into reads it"
+      (* Texts of decimal characters and a few others: from every point,
+         [scan] stops where [into] (hence [float_of_string]) reads the
+         same bits, and no longer piece reads as a number. *)
+      QCheck.(make ~print:Fun.id Gen.(string_size ~gen:(oneofl [ '0'; '1'; '9'; '.'; 'e'; 'E'; '-'; '+'; ' '; ')'; 'x' ]) (int_bound 14)))
+      (fun s ->
+        let b = Bytes.of_string s and n = String.length s in
+        let a = [| 0. |] and c = [| 0. |] in
+        let bits x = Int64.bits_of_float x in
+        let ok = ref true in
+        for i = 0 to n do
+          let e = Float_scan.scan b i n a 0 in
+          if e = i then (if not (Float.is_nan a.(0)) then ok := false)
+          else begin
+            Float_scan.into b i e c 0;
+            if Float.is_nan c.(0) || not (Int64.equal (bits a.(0)) (bits c.(0))) then ok := false
+          end;
+          for e' = max (i + 1) (e + 1) to n do
+            Float_scan.into b i e' c 0;
+            if not (Float.is_nan c.(0)) then ok := false
+          done
+        done;
+        !ok);
+    Alcotest.test_case "scan stops before an exponent marker without digits, and at its bound" `Quick (fun () ->
+        let b = Bytes.of_string "12.5e+x 3e7) .e4 -" and a = [| 0. |] in
+        Alcotest.(check int) __LOC__ 4 (Float_scan.scan b 0 18 a 0);
+        Alcotest.(check (float 0.)) __LOC__ 12.5 a.(0);
+        Alcotest.(check int) __LOC__ 11 (Float_scan.scan b 8 18 a 0);
+        Alcotest.(check (float 0.)) __LOC__ 3e7 a.(0);
+        Alcotest.(check int) __LOC__ 9 (Float_scan.scan b 8 9 a 0);
+        Alcotest.(check (float 0.)) __LOC__ 3. a.(0);
+        Alcotest.(check int) __LOC__ 13 (Float_scan.scan b 13 18 a 0);
+        Alcotest.(check bool) __LOC__ true (Float.is_nan a.(0));
+        Alcotest.(check int) __LOC__ 17 (Float_scan.scan b 17 18 a 0);
+        match Float_scan.scan b 0 19 a 0 with
+        | _ -> Alcotest.fail "out of bounds accepted"
+        | exception Invalid_argument _ -> ());
     Alcotest.test_case "to_float reads only the bytes between its bounds" `Quick (fun () ->
         let b = Bytes.of_string "v 12.5e1 7" in
         Alcotest.(check (float 0.)) __LOC__ 125. (Float_scan.to_float b 2 8);

@@ -197,6 +197,63 @@ let tests =
         let n = String.length text in
         let cuts = List.sort_uniq compare (List.map (fun c -> c mod (n + 1)) cuts) in
         same_result (parse text) (chunked text cuts));
+    Helpers.qcheck ~count:3000 "a triangle read on the fast path is the triangle the general face reader reads"
+      (* The fast path reads [f] lines of 3 corners [v] or [v//n] one
+         space apart and nothing after; a space at the end of each [f]
+         line sends them all to the general reader, which ignores it:
+         the meshes and errors must be the same, whatever the corners
+         (indices in range or not, 0, negative, too long, texture
+         indices, other blanks, 2 to 4 corners), in a whole text or in a
+         part joined to the text before it. *)
+      QCheck.(
+        make
+          ~print:(fun (lines, cut) -> Printf.sprintf "cut %d: %S" cut (String.concat "\n" lines))
+          Gen.(
+            (* Mostly indices in range (8 vertices, 4 normals and 2
+               texture coordinates come first), now and then not. *)
+            let index =
+              frequency
+                [ (40, map string_of_int (int_range 1 4)); (4, oneofl [ "5"; "6"; "7"; "8"; "-1"; "-3" ]);
+                  (1, oneofl [ "0"; "01"; "9"; "12"; "1234567890123456789"; "" ]) ]
+            in
+            let corner =
+              frequency
+                [ (20, index); (20, map2 (fun v n -> v ^ "//" ^ n) index index); (1, map2 (fun v t -> v ^ "/" ^ t) index index);
+                  (1, map3 (fun v t n -> v ^ "/" ^ t ^ "/" ^ n) index index index); (1, map (fun v -> v ^ "/") index) ]
+            in
+            let blank = frequency [ (40, return " "); (1, oneofl [ "  "; "\t"; " # c " ]) ] in
+            let face =
+              frequency [ (10, return 3); (1, int_range 2 4) ] >>= fun n ->
+              list_repeat n (pair blank corner) >|= fun cs -> "f" ^ String.concat "" (List.map (fun (b, c) -> b ^ c) cs)
+            in
+            let line = frequency [ (1, oneofl [ "v 1 2 3"; "vn 0 0 1"; "vt 0 0"; "# x" ]); (8, face) ] in
+            let head =
+              [ "v 1 2 3"; "v -1 0.5 2"; "v 0 0 0"; "v 1 1 1"; "v 2 0 1"; "v 0 3 1"; "v 1 0 4"; "v 5 5 5";
+                "vn 0 0 1"; "vn 1 0 0"; "vn 0 1 0"; "vn 1 1 1"; "vt 0 0"; "vt 1 1" ]
+            in
+            pair (map (fun ls -> head @ ls) (list_size (int_range 1 12) line)) (int_bound 30)))
+      (fun (lines, cut) ->
+        let text ls = String.concat "\n" ls ^ "\n" in
+        let spaced = List.map (fun l -> if l <> "" && l.[0] = 'f' then l ^ " " else l) lines in
+        let whole = same_result (parse (text lines)) (parse (text spaced)) in
+        (* Read in two parts (the second as a part, then joined), as two
+           cores read a big file; [None] where the join declines. *)
+        let joined ls =
+          let cut = min cut (List.length ls) in
+          let a = text (List.filteri (fun k _ -> k < cut) ls) and b = text (List.filteri (fun k _ -> k >= cut) ls) in
+          let p = Obj_file.create ~name:"t.obj" ~max_vertices:1000 ~max_triangles:1000 in
+          let q = Obj_file.create_part ~name:"t.obj" ~max_vertices:1000 ~max_triangles:1000 in
+          match (Obj_file.feed p a 0 (String.length a), Result.bind (Obj_file.feed q b 0 (String.length b)) (fun () -> Obj_file.finish_part q)) with
+          | Ok (), Ok part -> Option.map (fun m -> Ok m) (Obj_file.join p part)
+          | _ -> None
+        in
+        let parts =
+          match (joined lines, joined spaced) with
+          | Some a, Some b -> same_result a b
+          | None, None -> true
+          | _ -> false
+        in
+        whole && parts);
     Helpers.qcheck ~count:3000 "any text, of OBJ words or of any bytes, is a mesh or a one-line error"
       QCheck.(
         make ~print:String.escaped

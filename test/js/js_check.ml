@@ -44,3 +44,25 @@ let () =
           match Raytrace.render_string "(canvas (width 2) (height 2)) (sphere (radius 1))" with
           | Ok _ -> failwith "a sphere without a center was accepted"
           | Error (`Msg m) -> print_endline m))
+
+(* Numbers read by the scene and mesh readers, whose integers have 32 bits
+   in JavaScript: decimals of 9 digits and more, 17-digit doubles, eight
+   fraction digits at a time, and indices of 10 digits; printed as their
+   bits, which both builds must agree on. *)
+let () =
+  let decimals =
+    [ "2.608632225956649"; "-0.0598994318"; "2.32335784"; "123456789.5"; "1234567890123"; "0.30000000000000004";
+      "9007199254740993"; "1e22"; "1.5e-7"; "-499.5"; "2000" ]
+  in
+  List.iter
+    (fun s -> Printf.printf "scan %s %Lx\n" s (Int64.bits_of_float (Raytrace.Private.Float_scan.of_string s)))
+    decimals;
+  let line = "(sphere (center 0.2398439109344519 2.608632225956649 6.308065847849772) (radius 1) (color 0 0 255))" in
+  let f = Raytrace.Private.Sphere_scan.create () in
+  let e = Raytrace.Private.Sphere_scan.read f (line ^ String.make 16 ' ') 0 in
+  Printf.printf "sphere %d %s\n" e
+    (String.concat " " (List.map (fun x -> Printf.sprintf "%Lx" (Int64.bits_of_float x)) (Array.to_list f.values)));
+  let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4294967299\n" in
+  match Raytrace.Obj_file.of_string ~name:"js.obj" ~max_vertices:10 ~max_triangles:10 obj with
+  | Ok m -> Printf.printf "obj %d triangles\n" (Raytrace.Obj_file.triangle_count m)
+  | Error (`Msg m) -> Printf.printf "obj %s\n" m
