@@ -222,23 +222,8 @@ let check_output opts ~frames ~part output =
         output
   | _ -> Ok ()
 
-(* The peak resident size of this process in kB (Linux: VmHWM of
-   /proc/self/status), if known. *)
-let peak_kb () =
-  match open_in "/proc/self/status" with
-  | exception Sys_error _ -> None
-  | ic ->
-      let rec find () =
-        match input_line ic with
-        | exception End_of_file -> None
-        | line when String.length line > 6 && String.sub line 0 6 = "VmHWM:" ->
-            (try Scanf.sscanf (String.sub line 6 (String.length line - 6)) " %d" Option.some
-             with Scanf.Scan_failure _ | Failure _ | End_of_file -> None)
-        | _ -> find ()
-      in
-      let r = find () in
-      close_in_noerr ic;
-      r
+(* The peak resident size of this process in kB, if known. *)
+let peak_kb () = Proc_self.kb "status" "VmHWM"
 
 (* One picture (a frame, a part, or both) rendered and written. *)
 let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~region ~output ~sampling valid =
@@ -313,7 +298,8 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~regio
       (fun (source, triangles, skipped) ->
         Format.eprintf "%-24s %s: %d triangles, %d OBJ statements skipped@." "mesh" source triangles skipped)
       meshes;
-    Option.iter (fun kb -> Format.eprintf "%-24s %.1f@." "peak memory (MB)" (Float.of_int kb /. 1024.)) (peak_kb ())
+    Option.iter (fun kb -> Format.eprintf "%-24s %.1f@." "peak memory (MB)" (Float.of_int kb /. 1024.)) (peak_kb ());
+    Format.eprintf "%-24s %s@." "huge pages" (Huge_pages.status ())
   end;
   if output <> "-" && not quiet then begin
     let what =

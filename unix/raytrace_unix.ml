@@ -8,3 +8,5 @@ module Ppm_stream = Ppm_stream
 module Progressive_workers = Progressive_workers
 module Signals = Signals
 module Part = Part
+module Huge_pages = Huge_pages
+module Proc_self = Proc_self
