@@ -242,10 +242,11 @@ let tests =
           let cut = min cut (List.length ls) in
           let a = text (List.filteri (fun k _ -> k < cut) ls) and b = text (List.filteri (fun k _ -> k >= cut) ls) in
           let p = Obj_file.create ~name:"t.obj" ~max_vertices:1000 ~max_triangles:1000 in
-          let q = Obj_file.create_part ~name:"t.obj" ~max_vertices:1000 ~max_triangles:1000 in
-          match (Obj_file.feed p a 0 (String.length a), Result.bind (Obj_file.feed q b 0 (String.length b)) (fun () -> Obj_file.finish_part q)) with
-          | Ok (), Ok part -> Option.map (fun m -> Ok m) (Obj_file.join p part)
-          | _ -> None
+          match Obj_file.feed p a 0 (String.length a) with
+          | Ok () ->
+              Option.map (fun m -> Ok m)
+                (Helpers.obj_part_joined p ~name:"t.obj" ~max_vertices:1000 ~max_triangles:1000 b 0 (String.length b))
+          | Error _ -> None
         in
         let parts =
           match (joined lines, joined spaced) with
