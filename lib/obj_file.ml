@@ -83,9 +83,9 @@ let ints () = { iblocks = []; icur = Array.make 256 0; inn = 0; ifull = 0; ifree
 let float_length g = g.ffull + g.fn
 let int_length g = g.ifull + g.inn
 
-(* Pushes [src.(0)]: read from an array, not passed, since a float
+(* Pushes [src.(i)]: read from an array, not passed, since a float
    argument of a function that is not inlined is boxed. *)
-let push_float g (src : float array) =
+let push_float g (src : float array) i =
   if g.fn = Array.length g.fcur then
     if g.fn < block then begin
       let a = Array.make (2 * g.fn) 0. in
@@ -102,7 +102,7 @@ let push_float g (src : float array) =
        | [] -> g.fcur <- Array.make block 0.);
       g.fn <- 0
     end;
-  Array.unsafe_set g.fcur g.fn src.(0);
+  Array.unsafe_set g.fcur g.fn src.(i);
   g.fn <- g.fn + 1
 
 (* [Array.blit] on ints goes through the write barrier, element by
@@ -215,7 +215,7 @@ type parser = {
   mutable carry_len : int;
   mutable error : string option;
   mutable finished : bool;
-  num : float array;  (* the number just read, unboxed *)
+  num : float array;  (* the numbers just read, unboxed: 3 *)
   output : (Bytes.t -> int -> int -> unit) option;  (* a part's, see [spill] *)
   mutable sent : int;  (* the bytes given to [output] *)
   mutable send_buffer : Bytes.t;
@@ -240,7 +240,7 @@ let make ~offset ~output ~name ~max_vertices ~max_triangles =
     face_v = { fa = Array.make 16 0; len = 0 }; face_n = { fa = Array.make 16 0; len = 0 };
     counts = Array.make (Array.length kinds) 0;
     texcoords = 0; line = 1; carry = Bytes.create 256; carry_len = 0;
-    error = None; finished = false; num = [| 0. |]; output; sent = 0; send_buffer = Bytes.empty;
+    error = None; finished = false; num = [| 0.; 0.; 0. |]; output; sent = 0; send_buffer = Bytes.empty;
   }
 
 let create = make ~offset:0 ~output:None
@@ -336,12 +336,48 @@ let vertex p b i kw k j ~normal =
         e
       end
     in
-    if !n < 3 then push_float g p.num;
+    if !n < 3 then push_float g p.num 0;
     incr n;
     k := skip_spaces b e j
   done;
   if !n < 3 then fail p i !k "expected 3 numbers (%s), found %d" (if normal then "vn x y z" else "v x y z") !n
   else if (not normal) && !n = 5 then fail p i !k "expected x y z [w] or x y z r g b, found 5 numbers"
+
+(* The vertex (or with [normal] the normal) after the keyword [v] at
+   [b.[k]], where it is in the layout of every exporter: one space before
+   each of 3 numbers, each ended by the next space or the line's end,
+   finite, nothing after, the bound not reached. Then it is what [vertex]
+   would read, read without its loop and checks, and the result is
+   [true]; on anything else nothing is read and the result is [false]:
+   [vertex] reads the line, and tells its errors. [j <= Bytes.length b]
+   for every line read: the numbers are scanned without bounds checks. *)
+let vertex3 p b k j ~normal =
+  let g = if normal then p.nrm else p.pos in
+  let num = p.num in
+  let q = ref k and ok = ref (float_length g / 3 < p.max_vertices) and c = ref 0 in
+  while !ok && !c < 3 do
+    if !q < j && Bytes.unsafe_get b !q = ' ' then begin
+      let e = Float_scan.unsafe_scan b (!q + 1) j num !c in
+      if e > !q + 1 && (e = j || Bytes.unsafe_get b e = ' ') && Float.is_finite (Array.unsafe_get num !c) then q := e
+      else ok := false
+    end
+    else ok := false;
+    incr c
+  done;
+  !ok && !q = j
+  && begin
+       if g.fn + 3 <= Array.length g.fcur then begin
+         let a = g.fcur and n = g.fn in
+         Array.unsafe_set a n (Array.unsafe_get num 0);
+         Array.unsafe_set a (n + 1) (Array.unsafe_get num 1);
+         Array.unsafe_set a (n + 2) (Array.unsafe_get num 2);
+         g.fn <- n + 3
+       end
+       else begin
+         push_float g num 0; push_float g num 1; push_float g num 2
+       end;
+       true
+     end
 
 (* The digits of an index that fit an integer: 63 bits, or the 32 of
    JavaScript's integers. *)
@@ -508,8 +544,9 @@ let line p b i j =
     else begin
       let e = token_end b k j in
       let len = e - k in
-      if len = 1 && c = 'v' then vertex p b i k e j ~normal:false
-      else if len = 2 && c = 'v' && Bytes.unsafe_get b (k + 1) = 'n' then vertex p b i k e j ~normal:true
+      if len = 1 && c = 'v' then (if not (vertex3 p b e j ~normal:false) then vertex p b i k e j ~normal:false)
+      else if len = 2 && c = 'v' && Bytes.unsafe_get b (k + 1) = 'n' then
+        (if not (vertex3 p b e j ~normal:true) then vertex p b i k e j ~normal:true)
       else if len = 1 && c = 'f' then (if not (triangle p b e j) then face p b i k e j)
       else begin
         let kind = kind_of b k e in

@@ -103,12 +103,15 @@ let mesh_part path split =
             None
 
 (* Where the child's part of a mesh file starts, in percent of the file:
-   past the middle, since the child also sends its part (finish_part and
-   Marshal: 7% of its reading) before the parent can join it (9% of its
-   reading). On the knot of 100,000 triangles (callgrind, instructions on
-   the longer path: the longer reading, then the join) 50% gives 251.7 M,
-   52% about 240 M, 54% 248.6 M, one core 429.5 M. *)
-let mesh_split_percent = 52
+   where the two readings cost about the same, since the join comes after
+   both. The knot's file has its [v] and [vn] lines first, which cost
+   about as much per byte as its [f] lines. On the knot of 100,000
+   triangles (callgrind, bench/obj_load.exe --jobs 2, the reading loop of
+   each process, the child's sending of its blocks included): 52% gives
+   120.1 M in the parent and 136.5 M in the child, 54% 125.4 M and
+   131.0 M; the child's sending also costs system time (its temporary
+   file's pages), which callgrind does not count: 55%. *)
+let mesh_split_percent = 55
 
 let read_mesh_paced ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = fun ~pid:_ _ -> ()) path =
   match open_in_bin path with
