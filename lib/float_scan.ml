@@ -153,9 +153,7 @@ let[@inline] eight_value b k =
    every number of a scene or mesh) make no call, which would spill the
    registers of the loops, and allocate nothing; the others are read
    again by [slow]. *)
-let[@inline never] scan b i j (dst : float array) d =
-  if i < 0 || j > Bytes.length b || i > j || d < 0 || d >= Array.length dst then
-    raise (Invalid_argument "Float_scan.scan");
+let[@inline never] unsafe_scan b i j (dst : float array) d =
   let k = ref i in
   let neg =
     if !k < j && Bytes.unsafe_get b !k = '-' then (incr k; true)
@@ -225,9 +223,16 @@ let[@inline never] scan b i j (dst : float array) d =
     !k
   end
 
+(* The checks inlined where [scan] is called, so that a caller that
+   knows them true ({!unsafe_scan}) does not pay them per number. *)
+let[@inline] scan b i j (dst : float array) d =
+  if i < 0 || j > Bytes.length b || i > j || d < 0 || d >= Array.length dst then
+    raise (Invalid_argument "Float_scan.scan");
+  unsafe_scan b i j dst d
+
 let into b i j (dst : float array) d =
   if i < 0 || j > Bytes.length b || i > j || d < 0 || d >= Array.length dst then invalid_arg "Float_scan.into";
-  if scan b i j dst d <> j then Array.unsafe_set dst d Float.nan
+  if unsafe_scan b i j dst d <> j then Array.unsafe_set dst d Float.nan
 
 let to_float b i j =
   if i < 0 || j > Bytes.length b || i > j then invalid_arg "Float_scan.to_float";

@@ -44,5 +44,11 @@ val scan : Bytes.t -> int -> int -> float array -> int -> int
     @raise Invalid_argument if [0 <= i <= j <= Bytes.length b] or
     [0 <= d < Array.length dst] is false. *)
 
+val unsafe_scan : Bytes.t -> int -> int -> float array -> int -> int
+(** [unsafe_scan b i j dst d] is {!scan}[ b i j dst d] without its checks:
+    the caller knows [0 <= i <= j <= Bytes.length b] and
+    [0 <= d < Array.length dst] (else memory is read or written out of
+    bounds). A mesh's [v] lines read their numbers with it. *)
+
 val of_string : string -> float
 (** [of_string s] is {!to_float} on all of [s]. *)

@@ -58,19 +58,34 @@ let part_offset = 1 lsl 61
 let positive_below = 1 lsl 60
 let[@inline] rebased r before = if r >= positive_below then r - part_offset + before else r
 
-type floats = { mutable fblocks : float array list; mutable fcur : float array; mutable fn : int; mutable ffull : int }
-type ints = { mutable iblocks : int array list; mutable icur : int array; mutable inn : int; mutable ifull : int }
+(* A store's full blocks are newest first; [free] holds blocks already
+   sent ({!spill}), reused for the next ones. *)
+type floats = {
+  mutable fblocks : float array list;
+  mutable fcur : float array;
+  mutable fn : int;
+  mutable ffull : int;
+  mutable ffree : float array list;
+}
 
-let floats () = { fblocks = []; fcur = Array.make 256 0.; fn = 0; ffull = 0 }
-let ints () = { iblocks = []; icur = Array.make 256 0; inn = 0; ifull = 0 }
+type ints = {
+  mutable iblocks : int array list;
+  mutable icur : int array;
+  mutable inn : int;
+  mutable ifull : int;
+  mutable ifree : int array list;
+}
+
+let floats () = { fblocks = []; fcur = Array.make 256 0.; fn = 0; ffull = 0; ffree = [] }
+let ints () = { iblocks = []; icur = Array.make 256 0; inn = 0; ifull = 0; ifree = [] }
 
 (* The number of elements of a store. *)
 let float_length g = g.ffull + g.fn
 let int_length g = g.ifull + g.inn
 
-(* Pushes [src.(0)]: read from an array, not passed, since a float
+(* Pushes [src.(i)]: read from an array, not passed, since a float
    argument of a function that is not inlined is boxed. *)
-let push_float g (src : float array) =
+let push_float g (src : float array) i =
   if g.fn = Array.length g.fcur then
     if g.fn < block then begin
       let a = Array.make (2 * g.fn) 0. in
@@ -80,10 +95,14 @@ let push_float g (src : float array) =
     else begin
       g.fblocks <- g.fcur :: g.fblocks;
       g.ffull <- g.ffull + block;
-      g.fcur <- Array.make block 0.;
+      (match g.ffree with
+       | a :: rest ->
+           g.ffree <- rest;
+           g.fcur <- a
+       | [] -> g.fcur <- Array.make block 0.);
       g.fn <- 0
     end;
-  Array.unsafe_set g.fcur g.fn src.(0);
+  Array.unsafe_set g.fcur g.fn src.(i);
   g.fn <- g.fn + 1
 
 (* [Array.blit] on ints goes through the write barrier, element by
@@ -104,7 +123,11 @@ let push_int g x =
     else begin
       g.iblocks <- g.icur :: g.iblocks;
       g.ifull <- g.ifull + block;
-      g.icur <- Array.make block 0;
+      (match g.ifree with
+       | a :: rest ->
+           g.ifree <- rest;
+           g.icur <- a
+       | [] -> g.icur <- Array.make block 0);
       g.inn <- 0
     end;
   Array.unsafe_set g.icur g.inn x;
@@ -112,9 +135,10 @@ let push_int g x =
 
 (* A part's floats and numbers travel as bytes, 8 each, in the machine's
    byte order (a part is read and joined by processes of one program):
-   written from the reader's blocks, sent as they are ({!output_part})
-   and read into the joined arrays. Marshalled, an [int array] takes 30
-   instructions a number each way, and the part two more copies. *)
+   sent a block at a time while the part is read ({!spill}), and read by
+   the join straight into the joined arrays. Marshalled, an [int array]
+   takes 30 instructions a number each way, and the part two more
+   copies. *)
 external get64 : Bytes.t -> int -> int64 = "%caml_bytes_get64u"
 external set64 : Bytes.t -> int -> int64 -> unit = "%caml_bytes_set64u"
 
@@ -123,57 +147,30 @@ external set64 : Bytes.t -> int -> int64 -> unit = "%caml_bytes_set64u"
 let[@inline] float_at b k = Int64.float_of_bits (get64 b (8 * k))
 let[@inline] int_at b k = Int64.to_int (get64 b (8 * k))
 
-(* The elements of store [g], then those of the bytes [tail], as one
-   array; the store is emptied, so that its blocks can be collected while
-   the next store is concatenated. *)
-let float_array ?(tail = Bytes.empty) g =
-  let n = float_length g and m = Bytes.length tail / 8 in
-  let a = Array.create_float (n + m) in
+(* The elements of store [g] into [a.(0) ..], the store left as it is. *)
+let blit_float_store g (a : float array) =
   Array.blit g.fcur 0 a g.ffull g.fn;
-  List.iteri (fun k b -> Array.blit b 0 a (g.ffull - ((k + 1) * block)) block) g.fblocks;
-  for k = 0 to m - 1 do
-    Array.unsafe_set a (n + k) (float_at tail k)
-  done;
+  List.iteri (fun k b -> Array.blit b 0 a (g.ffull - ((k + 1) * block)) block) g.fblocks
+
+let blit_int_store g (a : int array) =
+  blit_ints g.icur a g.ifull g.inn;
+  List.iteri (fun k b -> blit_ints b a (g.ifull - ((k + 1) * block)) block) g.iblocks
+
+(* The elements of store [g] as one array; the store is emptied, so that
+   its blocks can be collected while the next store is concatenated. *)
+let float_array g =
+  let a = Array.create_float (float_length g) in
+  blit_float_store g a;
   g.fblocks <- [];
   g.fcur <- [||];
   a
 
-(* The same for numbers, [tail]'s a part's (see [part_offset]): those
-   resolved from a negative index are re-based on the count [before] of
-   the text before the part. *)
-let int_array ?(tail = Bytes.empty) ?(before = 0) g =
-  let n = int_length g and m = Bytes.length tail / 8 in
-  let a = Array.make (n + m) 0 in
-  blit_ints g.icur a g.ifull g.inn;
-  List.iteri (fun k b -> blit_ints b a (g.ifull - ((k + 1) * block)) block) g.iblocks;
-  for k = 0 to m - 1 do
-    Array.unsafe_set a (n + k) (rebased (int_at tail k) before)
-  done;
+let int_array g =
+  let a = Array.make (int_length g) 0 in
+  blit_int_store g a;
   g.iblocks <- [];
   g.icur <- [||];
   a
-
-(* The [length] elements of a store (its current block [cur], whose [n]
-   elements come after [full] others, and its full [blocks]) as bytes:
-   [put b a at len] writes the first [len] elements of block [a] as
-   elements [at ..] of [b]. *)
-let store_bytes ~length ~cur ~full ~n ~blocks put =
-  let b = Bytes.create (8 * length) in
-  put b cur full n;
-  List.iteri (fun k a -> put b a (full - ((k + 1) * block)) block) blocks;
-  b
-
-let float_bytes g =
-  store_bytes ~length:(float_length g) ~cur:g.fcur ~full:g.ffull ~n:g.fn ~blocks:g.fblocks (fun b (a : float array) at len ->
-      for k = 0 to len - 1 do
-        set64 b (8 * (at + k)) (Int64.bits_of_float (Array.unsafe_get a k))
-      done)
-
-let int_bytes g =
-  store_bytes ~length:(int_length g) ~cur:g.icur ~full:g.ifull ~n:g.inn ~blocks:g.iblocks (fun b (a : int array) at len ->
-      for k = 0 to len - 1 do
-        set64 b (8 * (at + k)) (Int64.of_int (Array.unsafe_get a k))
-      done)
 
 (* Whether stores [g] and [h], filled in step (a push to one is a push
    to the other), hold the same elements. *)
@@ -218,7 +215,10 @@ type parser = {
   mutable carry_len : int;
   mutable error : string option;
   mutable finished : bool;
-  num : float array;  (* the number just read, unboxed *)
+  num : float array;  (* the numbers just read, unboxed: 3 *)
+  output : (Bytes.t -> int -> int -> unit) option;  (* a part's, see [spill] *)
+  mutable sent : int;  (* the bytes given to [output] *)
+  mutable send_buffer : Bytes.t;
 }
 
 exception Error_at of string
@@ -233,21 +233,21 @@ let need_normal = 2
 let need_texture = 4
 let no_needs () = [| min_int; 0; min_int; 0; min_int; 0 |]
 
-let make ~offset ~name ~max_vertices ~max_triangles =
+let make ~offset ~output ~name ~max_vertices ~max_triangles =
   {
     name; max_vertices; max_triangles; offset; needs = no_needs ();
     pos = floats (); nrm = floats (); tris = ints (); tri_nrm = ints ();
     face_v = { fa = Array.make 16 0; len = 0 }; face_n = { fa = Array.make 16 0; len = 0 };
     counts = Array.make (Array.length kinds) 0;
     texcoords = 0; line = 1; carry = Bytes.create 256; carry_len = 0;
-    error = None; finished = false; num = [| 0. |];
+    error = None; finished = false; num = [| 0.; 0.; 0. |]; output; sent = 0; send_buffer = Bytes.empty;
   }
 
-let create = make ~offset:0
-let create_part ~name ~max_vertices ~max_triangles =
+let create = make ~offset:0 ~output:None
+let create_part ~output ~name ~max_vertices ~max_triangles =
   (* [part_offset] is 2^61: JavaScript's 32-bit integers cannot hold it. *)
   if Sys.int_size < 63 then invalid_arg "Obj_file.create_part: needs 63-bit integers";
-  make ~offset:part_offset ~name ~max_vertices ~max_triangles
+  make ~offset:part_offset ~output:(Some output) ~name ~max_vertices ~max_triangles
 
 (* In a part, what resolving [r] (the index read, with [part_offset]
    added to the count [own + part_offset] it was resolved against)
@@ -336,12 +336,48 @@ let vertex p b i kw k j ~normal =
         e
       end
     in
-    if !n < 3 then push_float g p.num;
+    if !n < 3 then push_float g p.num 0;
     incr n;
     k := skip_spaces b e j
   done;
   if !n < 3 then fail p i !k "expected 3 numbers (%s), found %d" (if normal then "vn x y z" else "v x y z") !n
   else if (not normal) && !n = 5 then fail p i !k "expected x y z [w] or x y z r g b, found 5 numbers"
+
+(* The vertex (or with [normal] the normal) after the keyword [v] at
+   [b.[k]], where it is in the layout of every exporter: one space before
+   each of 3 numbers, each ended by the next space or the line's end,
+   finite, nothing after, the bound not reached. Then it is what [vertex]
+   would read, read without its loop and checks, and the result is
+   [true]; on anything else nothing is read and the result is [false]:
+   [vertex] reads the line, and tells its errors. [j <= Bytes.length b]
+   for every line read: the numbers are scanned without bounds checks. *)
+let vertex3 p b k j ~normal =
+  let g = if normal then p.nrm else p.pos in
+  let num = p.num in
+  let q = ref k and ok = ref (float_length g / 3 < p.max_vertices) and c = ref 0 in
+  while !ok && !c < 3 do
+    if !q < j && Bytes.unsafe_get b !q = ' ' then begin
+      let e = Float_scan.unsafe_scan b (!q + 1) j num !c in
+      if e > !q + 1 && (e = j || Bytes.unsafe_get b e = ' ') && Float.is_finite (Array.unsafe_get num !c) then q := e
+      else ok := false
+    end
+    else ok := false;
+    incr c
+  done;
+  !ok && !q = j
+  && begin
+       if g.fn + 3 <= Array.length g.fcur then begin
+         let a = g.fcur and n = g.fn in
+         Array.unsafe_set a n (Array.unsafe_get num 0);
+         Array.unsafe_set a (n + 1) (Array.unsafe_get num 1);
+         Array.unsafe_set a (n + 2) (Array.unsafe_get num 2);
+         g.fn <- n + 3
+       end
+       else begin
+         push_float g num 0; push_float g num 1; push_float g num 2
+       end;
+       true
+     end
 
 (* The digits of an index that fit an integer: 63 bits, or the 32 of
    JavaScript's integers. *)
@@ -508,8 +544,9 @@ let line p b i j =
     else begin
       let e = token_end b k j in
       let len = e - k in
-      if len = 1 && c = 'v' then vertex p b i k e j ~normal:false
-      else if len = 2 && c = 'v' && Bytes.unsafe_get b (k + 1) = 'n' then vertex p b i k e j ~normal:true
+      if len = 1 && c = 'v' then (if not (vertex3 p b e j ~normal:false) then vertex p b i k e j ~normal:false)
+      else if len = 2 && c = 'v' && Bytes.unsafe_get b (k + 1) = 'n' then
+        (if not (vertex3 p b e j ~normal:true) then vertex p b i k e j ~normal:true)
       else if len = 1 && c = 'f' then (if not (triangle p b e j) then face p b i k e j)
       else begin
         let kind = kind_of b k e in
@@ -558,6 +595,80 @@ let newline b k stop =
   while !k < stop && Bytes.unsafe_get b !k <> '\n' do incr k done;
   !k
 
+(* A part's arrays are sent to its [output] as records, each a header
+   (its kind and its number [n] of elements, 8 bytes each) then [n]
+   elements (none for [record_same]), a full block at a time as the part
+   is read and the rest when it is finished: the reader then holds a block
+   or two per array, whatever the part's size, and its collector has
+   little to mark. A block of triangle normals equal to the triangles'
+   block and without relative indices (then both are final as they are)
+   is sent as [record_same]: exporters number a corner's normal as its
+   vertex, and the join then reads half as many bytes. *)
+let record_positions = 0
+let record_normals = 1
+let record_triangles = 2
+let record_triangle_normals = 3
+let record_same = 4
+let record_header = 16
+
+let send p out kind n =
+  set64 p.send_buffer 0 (Int64.of_int kind);
+  set64 p.send_buffer 8 (Int64.of_int n);
+  let bytes = if kind = record_same then record_header else record_header + (8 * n) in
+  out p.send_buffer 0 bytes;
+  p.sent <- p.sent + bytes
+
+let send_floats p out kind (a : float array) n =
+  for k = 0 to n - 1 do
+    set64 p.send_buffer (record_header + (8 * k)) (Int64.bits_of_float (Array.unsafe_get a k))
+  done;
+  send p out kind n
+
+let send_ints p out kind (a : int array) n =
+  for k = 0 to n - 1 do
+    set64 p.send_buffer (record_header + (8 * k)) (Int64.of_int (Array.unsafe_get a k))
+  done;
+  send p out kind n
+
+(* Whether the first [n] numbers of [a] and [b] are equal and none is
+   relative (see [part_offset]). *)
+let same_plain (a : int array) (b : int array) n =
+  let same = ref true in
+  for k = 0 to n - 1 do
+    let x = Array.unsafe_get a k in
+    if x <> Array.unsafe_get b k || x >= positive_below then same := false
+  done;
+  !same
+
+(* A pair of blocks, of triangles and of their normals: filled in step,
+   they are as many at every line start. *)
+let send_pair p out (t : int array) (tn : int array) n =
+  send_ints p out record_triangles t n;
+  if same_plain t tn n then send p out record_same n else send_ints p out record_triangle_normals tn n
+
+(* Sends the full blocks of a part's arrays (at a line start), and with
+   [last] the rest; the blocks sent are reused. *)
+let spill p ~last =
+  match p.output with
+  | None -> ()
+  | Some out ->
+      if Bytes.length p.send_buffer = 0 then p.send_buffer <- Bytes.create (record_header + (8 * block));
+      let floats kind g =
+        List.iter (fun a -> send_floats p out kind a block) (List.rev g.fblocks);
+        g.ffree <- List.rev_append g.fblocks g.ffree;
+        g.fblocks <- [];
+        if last && g.fn > 0 then send_floats p out kind g.fcur g.fn
+      in
+      floats record_positions p.pos;
+      floats record_normals p.nrm;
+      let t = p.tris and tn = p.tri_nrm in
+      List.iter2 (fun a b -> send_pair p out a b block) (List.rev t.iblocks) (List.rev tn.iblocks);
+      t.ifree <- List.rev_append t.iblocks t.ifree;
+      tn.ifree <- List.rev_append tn.iblocks tn.ifree;
+      t.iblocks <- [];
+      tn.iblocks <- [];
+      if last && t.inn > 0 then send_pair p out t.icur tn.icur t.inn
+
 let feed_bytes p b off len =
   if off < 0 || len < 0 || off > Bytes.length b - len then invalid_arg "Obj_file.feed";
   if p.finished then invalid_arg "Obj_file.feed: after finish";
@@ -583,6 +694,7 @@ let feed_bytes p b off len =
           if nl < stop then line_before p b !k nl else append_carry p b !k nl;
           k := nl + 1
         done;
+        if p.pos.fblocks != [] || p.nrm.fblocks != [] || p.tris.iblocks != [] then spill p ~last:false;
         Ok ()
       with Error_at m ->
         p.error <- Some m;
@@ -591,12 +703,12 @@ let feed_bytes p b off len =
 let feed p s off len = feed_bytes p (Bytes.unsafe_of_string s) off len
 
 type part = {
-  part_positions : Bytes.t;
-  part_normals : Bytes.t;
-  part_triangles : Bytes.t;  (* with a negative index's numbers not yet re-based *)
-  part_triangle_normals : Bytes.t;  (* [== part_triangles] where they are equal *)
+  part_floats : int;  (* the positions' floats *)
+  part_normal_floats : int;
+  part_numbers : int;  (* the triangles' vertex numbers, as many normal numbers *)
   part_counts : int array;
   part_needs : int array;
+  part_bytes : int;  (* sent to the output *)
 }
 
 let skipped_of counts =
@@ -638,84 +750,127 @@ let finish_part p =
   match last_line p with
   | exception Error_at m -> Error (`Msg m)
   | () ->
-      let same = same_stores p.tri_nrm p.tris in
-      let part_triangles = int_bytes p.tris in
-      let part_triangle_normals = if same then part_triangles else int_bytes p.tri_nrm in
+      spill p ~last:true;
       Ok
-        { part_positions = float_bytes p.pos; part_normals = float_bytes p.nrm; part_triangles; part_triangle_normals;
-          part_counts = p.counts; part_needs = p.needs }
+        { part_floats = float_length p.pos; part_normal_floats = float_length p.nrm; part_numbers = int_length p.tris;
+          part_counts = p.counts; part_needs = p.needs; part_bytes = p.sent }
 
-let part_triangle_count part = Bytes.length part.part_triangles / 24
+let part_triangle_count part = part.part_numbers / 3
+let part_bytes part = part.part_bytes
 
-(* Whether [a.(at + k)] is the re-based number [k] of [tail] for every
-   [k]. *)
-let holds_rebased tail before (a : int array) at =
-  Array.length a - at = Bytes.length tail / 8
+let same_ints (a : int array) (b : int array) =
+  Array.length a = Array.length b
   &&
   let same = ref true in
-  for k = 0 to (Bytes.length tail / 8) - 1 do
-    if Array.unsafe_get a (at + k) <> rebased (int_at tail k) before then same := false
+  for k = 0 to Array.length a - 1 do
+    if Array.unsafe_get a k <> Array.unsafe_get b k then same := false
   done;
   !same
 
-let join p part =
+(* Reads the records of [part] by [input] into the joined arrays, whose
+   first elements are the text before's, at [at_p], [at_n] and [at_t];
+   [tn] is [[||]] while the triangle normals read are the triangles (the
+   text before's and the records' so far): it is made at the first
+   record that differs. The result is the triangle normals. *)
+let read_records ~input ~nv ~nn ~positions ~normals ~triangles ~tn ~at_p ~at_n ~at_t =
+  let bad () = failwith "Obj_file.join: not the part's bytes" in
+  let buf = Bytes.create (record_header + (8 * block)) in
+  let cp = ref at_p and cn = ref at_n and ct = ref at_t and ctn = ref at_t and tn = ref tn in
+  let np = Array.length positions and nn_floats = Array.length normals and nt = Array.length triangles in
+  while !cp < np || !cn < nn_floats || !ct < nt || !ctn < nt do
+    input buf 0 record_header;
+    let kind = int_at buf 0 and n = int_at buf 1 in
+    if n <= 0 || n > block then bad ();
+    if kind = record_same then begin
+      (* The triangles' block comes first. *)
+      if !ctn + n > !ct then bad ();
+      let a = !tn in
+      if a != [||] then
+        for k = !ctn to !ctn + n - 1 do
+          Array.unsafe_set a k (Array.unsafe_get triangles k)
+        done;
+      ctn := !ctn + n
+    end
+    else begin
+      let at, length =
+        if kind = record_positions then (cp, np)
+        else if kind = record_normals then (cn, nn_floats)
+        else if kind = record_triangles then (ct, nt)
+        else if kind = record_triangle_normals then (ctn, nt)
+        else bad ()
+      in
+      let c = !at in
+      if c + n > length then bad ();
+      input buf record_header (8 * n);
+      if kind = record_positions then
+        for k = 0 to n - 1 do
+          Array.unsafe_set positions (c + k) (float_at buf (k + 2))
+        done
+      else if kind = record_normals then
+        for k = 0 to n - 1 do
+          Array.unsafe_set normals (c + k) (float_at buf (k + 2))
+        done
+      else if kind = record_triangles then
+        for k = 0 to n - 1 do
+          Array.unsafe_set triangles (c + k) (rebased (int_at buf (k + 2)) nv)
+        done
+      else begin
+        if !tn == [||] then begin
+          (* Until here the normals' numbers were the triangles'. *)
+          let a = Array.make nt 0 in
+          blit_ints triangles a 0 c;
+          tn := a
+        end;
+        let a = !tn in
+        for k = 0 to n - 1 do
+          Array.unsafe_set a (c + k) (rebased (int_at buf (k + 2)) nn)
+        done
+      end;
+      at := c + n
+    end
+  done;
+  (* One reader's: one array where the two numberings are equal. *)
+  if !tn == [||] || same_ints !tn triangles then triangles else !tn
+
+let join p part ~input =
   let nv = float_length p.pos / 3 and nn = float_length p.nrm / 3 in
   let fits kind before = part.part_needs.(kind) < before && before + part.part_needs.(kind + 1) >= 0 in
   if p.offset > 0 || p.finished || p.error <> None || p.carry_len > 0 then None
   else if
     not
       (fits need_vertex nv && fits need_normal nn && fits need_texture p.texcoords
-      && nv + (Bytes.length part.part_positions / 24) <= p.max_vertices
-      && nn + (Bytes.length part.part_normals / 24) <= p.max_vertices
+      && part.part_floats mod 3 = 0 && part.part_normal_floats mod 3 = 0 && part.part_numbers mod 3 = 0
+      && part.part_floats >= 0 && part.part_normal_floats >= 0 && part.part_numbers >= 0
+      && nv + (part.part_floats / 3) <= p.max_vertices
+      && nn + (part.part_normal_floats / 3) <= p.max_vertices
       && (int_length p.tris / 3) + part_triangle_count part <= p.max_triangles)
   then None
   else begin
-    p.finished <- true;
-    let at = int_length p.tri_nrm in
-    let positions = float_array ~tail:part.part_positions p.pos in
-    let normals = float_array ~tail:part.part_normals p.nrm in
-    let same = same_stores p.tri_nrm p.tris in
-    let triangles = int_array ~tail:part.part_triangles ~before:nv p.tris in
-    let triangle_normals =
-      if same && holds_rebased part.part_triangle_normals nn triangles at then triangles
-      else int_array ~tail:part.part_triangle_normals ~before:nn p.tri_nrm
+    let at_p = float_length p.pos and at_n = float_length p.nrm and at_t = int_length p.tris in
+    let positions = Array.create_float (at_p + part.part_floats) in
+    blit_float_store p.pos positions;
+    let normals = Array.create_float (at_n + part.part_normal_floats) in
+    blit_float_store p.nrm normals;
+    let triangles = Array.make (at_t + part.part_numbers) 0 in
+    blit_int_store p.tris triangles;
+    let tn =
+      if same_stores p.tri_nrm p.tris then [||]
+      else begin
+        let a = Array.make (Array.length triangles) 0 in
+        blit_int_store p.tri_nrm a;
+        a
+      end
     in
+    (* The reader is left as it was until the records are read. *)
+    let triangle_normals = read_records ~input ~nv ~nn ~positions ~normals ~triangles ~tn ~at_p ~at_n ~at_t in
+    p.finished <- true;
+    p.pos.fblocks <- [];
+    p.nrm.fblocks <- [];
+    p.tris.iblocks <- [];
+    p.tri_nrm.iblocks <- [];
     let counts = Array.map2 ( + ) p.counts part.part_counts in
     Some { positions; normals; triangles; triangle_normals; skipped = skipped_of counts }
   end
-
-(* The part's bytes follow a header: its length (8 bytes), then the
-   counts, the needs and the lengths of the four byte strings, marshalled
-   (0 for the triangles' normals where they are the triangles'). *)
-let output_part write part =
-  let shared = part.part_triangle_normals == part.part_triangles in
-  let blobs = [ part.part_positions; part.part_normals; part.part_triangles ] in
-  let blobs = if shared then blobs else blobs @ [ part.part_triangle_normals ] in
-  let lengths = Array.of_list (List.map Bytes.length blobs @ if shared then [ 0 ] else []) in
-  let header = Marshal.to_bytes (part.part_counts, part.part_needs, lengths) [] in
-  let size = Bytes.create 8 in
-  set64 size 0 (Int64.of_int (Bytes.length header));
-  write size 0 8;
-  write header 0 (Bytes.length header);
-  List.iter (fun b -> write b 0 (Bytes.length b)) blobs
-
-let input_part read =
-  let bytes n =
-    let b = Bytes.create n in
-    read b 0 n;
-    b
-  in
-  let size = int_at (bytes 8) 0 in
-  if size <= 0 || size > 4096 then failwith "Obj_file.input_part: not a part";
-  let part_counts, part_needs, lengths = (Marshal.from_bytes (bytes size) 0 : int array * int array * int array) in
-  if Array.length part_counts <> Array.length kinds || Array.length part_needs <> 6 || Array.length lengths <> 4
-     || Array.exists (fun n -> n < 0 || n mod 24 <> 0) lengths
-  then failwith "Obj_file.input_part: not a part";
-  let part_positions = bytes lengths.(0) in
-  let part_normals = bytes lengths.(1) in
-  let part_triangles = bytes lengths.(2) in
-  let part_triangle_normals = if lengths.(3) = 0 then part_triangles else bytes lengths.(3) in
-  { part_positions; part_normals; part_triangles; part_triangle_normals; part_counts; part_needs }
 
 let of_string ~name ~max_vertices ~max_triangles s =
   let p = create ~name ~max_vertices ~max_triangles in

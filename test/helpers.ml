@@ -180,3 +180,19 @@ let same_floats (s : Scene.t) =
     done
   done;
   !ok
+
+let obj_part_joined p ~name ~max_vertices ~max_triangles s off len =
+  let sent = Buffer.create 4096 in
+  let q = Raytrace.Obj_file.create_part ~output:(Buffer.add_subbytes sent) ~name ~max_vertices ~max_triangles in
+  match Result.bind (Raytrace.Obj_file.feed q s off len) (fun () -> Raytrace.Obj_file.finish_part q) with
+  | Error _ -> None
+  | Ok part ->
+      let bytes = Buffer.to_bytes sent and at = ref 0 in
+      if Raytrace.Obj_file.part_bytes part <> Bytes.length bytes then Alcotest.fail "the part's bytes are not those sent";
+      let input b off len =
+        Bytes.blit bytes !at b off len;
+        at := !at + len
+      in
+      let m = Raytrace.Obj_file.join p part ~input in
+      if Option.is_some m && !at <> Bytes.length bytes then Alcotest.failf "the join read %d of %d bytes" !at (Bytes.length bytes);
+      m

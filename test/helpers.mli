@@ -129,3 +129,15 @@ val mask_errors : bool array array -> [ `In | `Out | `Edge ] array array -> int 
     [mask] (row by row) disagrees with the exact classification [exact]
     ([`Edge] pixels, within the error bound of an edge, are not counted),
     and the pixels classified [`In]. *)
+
+(** {1:obj Meshes read in two parts} *)
+
+val obj_part_joined :
+  Raytrace.Obj_file.parser -> name:string -> max_vertices:int -> max_triangles:int -> string -> int -> int ->
+  Raytrace.Obj_file.t option
+(** [obj_part_joined p ~name ~max_vertices ~max_triangles s off len] is
+    the bytes [s.[off] .. s.[off+len-1]] read as a part
+    ({!Raytrace.Obj_file.create_part}, its output kept in a buffer) and
+    joined to [p] ({!Raytrace.Obj_file.join}, its input that buffer), as
+    [Files.read_mesh] does without the fork; [None] where the part is an
+    error or the join declines. *)

@@ -20,9 +20,9 @@ let two ?(max_vertices = 1000) ?(max_triangles = 1000) text split =
   match Obj_file.feed p text 0 split with
   | Error _ as e -> (e, false)
   | Ok () -> (
-      let q = Obj_file.create_part ~name ~max_vertices ~max_triangles in
-      let part = match Obj_file.feed q text split (n - split) with Error _ -> None | Ok () -> Result.to_option (Obj_file.finish_part q) in
-      match Option.bind part (Obj_file.join p) with Some m -> (Ok m, true) | None -> (rest (), false))
+      match Helpers.obj_part_joined p ~name ~max_vertices ~max_triangles text split (n - split) with
+      | Some m -> (Ok m, true)
+      | None -> (rest (), false))
 
 (* Equal meshes that share their two numberings alike (48 bytes a
    triangle rather than 72), or equal errors. *)
@@ -116,6 +116,65 @@ let tests =
             Alcotest.(check bool) __LOC__ true (a.triangle_normals == a.triangles);
             Alcotest.(check bool) __LOC__ true (b.triangle_normals == b.triangles)
         | _ -> Alcotest.fail "the knot was not read in two parts");
+    Alcotest.test_case "a part of several blocks, its normals numbered as its vertices, relatively or apart, joins as one read" `Quick
+      (fun () ->
+        (* A part sends its arrays a block of 65536 numbers at a time,
+           and a block of normal numbers equal to its vertex numbers, with
+           no relative index, as a mark only: 70,000 vertices are 4 blocks
+           of positions; 52,000 triangles are 3 blocks of numbers, the
+           middle faces alike but relative ([-1//-1]: equal once re-based,
+           since the text has as many normals as vertices) or apart. *)
+        let vertices = String.concat "" (List.init 70_000 (fun k -> Printf.sprintf "v %d %d.5 -%d\nvn 0 %d 1\n" (k mod 97) (k mod 89) k k)) in
+        let alike k = Printf.sprintf "f %d//%d %d//%d %d//%d\n" (k + 1) (k + 1) (k + 2) (k + 2) (k + 3) (k + 3) in
+        let faces middle = String.concat "" (List.init 52_000 (fun k -> if k >= 24_000 && k < 26_000 then middle k else alike k)) in
+        let texts =
+          [ ("alike", vertices ^ faces alike); ("relative", vertices ^ faces (fun _ -> "f -1//-1 -2//-2 -3//-3\n"));
+            ("apart", vertices ^ faces (fun k -> Printf.sprintf "f %d//%d %d//%d %d//%d\n" (k + 1) (k + 2) (k + 2) (k + 3) (k + 3) (k + 1)));
+            ("apart before the cut", vertices ^ "f 1//2 2//3 3//1\n" ^ faces alike) ]
+        in
+        List.iter
+          (fun (what, text) ->
+            let n = String.length text in
+            let expected = one ~max_vertices:100_000 ~max_triangles:100_000 text in
+            List.iter
+              (fun at ->
+                let split = if at = 0 then 0 else String.index_from text at '\n' + 1 in
+                match two ~max_vertices:100_000 ~max_triangles:100_000 text split with
+                | r, true -> same (Printf.sprintf "%s cut at byte %d" what split) expected r
+                | _, false -> Alcotest.failf "%s: not joined at byte %d" what split)
+              [ 0; String.length vertices / 2; String.length vertices; n / 2; n - 100 ])
+          texts);
+    Alcotest.test_case "a join whose bytes are cut short or not a part's raises, and leaves the reader as it was" `Quick (fun () ->
+        let text = knot in
+        let split = String.index_from text (String.length text / 2) '\n' + 1 in
+        let sent = Buffer.create 4096 in
+        let q = Obj_file.create_part ~output:(Buffer.add_subbytes sent) ~name ~max_vertices:1000 ~max_triangles:1000 in
+        let part =
+          match Result.bind (Obj_file.feed q text split (String.length text - split)) (fun () -> Obj_file.finish_part q) with
+          | Ok part -> part
+          | Error (`Msg e) -> Alcotest.fail e
+        in
+        let bytes = Buffer.to_bytes sent in
+        let input bytes =
+          let at = ref 0 in
+          fun b off len ->
+            if !at + len > Bytes.length bytes then raise End_of_file;
+            Bytes.blit bytes !at b off len;
+            at := !at + len
+        in
+        let corrupt = Bytes.copy bytes in
+        Bytes.set corrupt 0 '\009';
+        List.iter
+          (fun (what, bytes, raised) ->
+            let p = Obj_file.create ~name ~max_vertices:1000 ~max_triangles:1000 in
+            ignore (Obj_file.feed p text 0 split);
+            (match Obj_file.join p part ~input:(input bytes) with
+            | _ -> Alcotest.failf "%s: joined" what
+            | exception e -> if not (raised e) then Alcotest.failf "%s: raised %s" what (Printexc.to_string e));
+            (* The reader reads the rest itself, as it would have. *)
+            same what (one text) (Result.bind (Obj_file.feed p text split (String.length text - split)) (fun () -> Obj_file.finish p)))
+          [ ("cut short", Bytes.sub bytes 0 (Bytes.length bytes - 8), ( = ) End_of_file);
+            ("not a part's", corrupt, function Failure _ -> true | _ -> false) ]);
     Alcotest.test_case "an error after the cut is one reader's, at its line and column" `Quick (fun () ->
         List.iter
           (fun (what, text) ->
@@ -138,25 +197,19 @@ let tests =
             if (not fits) && joined > 0 then Alcotest.failf "%s: joined at %d cuts, over the bounds" what joined)
           [ (12, 20); (11, 20); (12, 19); (6, 20); (12, 10); (1, 1) ]);
     Alcotest.test_case "join refuses a reader that is finished, failed or not at a line start" `Quick (fun () ->
-        let part text =
-          let q = Obj_file.create_part ~name ~max_vertices:10 ~max_triangles:10 in
-          match Result.bind (Obj_file.feed q text 0 (String.length text)) (fun () -> Obj_file.finish_part q) with
-          | Ok part -> part
-          | Error (`Msg e) -> Alcotest.fail e
-        in
         let reader text =
           let p = Obj_file.create ~name ~max_vertices:10 ~max_triangles:10 in
           ignore (Obj_file.feed p text 0 (String.length text));
           p
         in
-        let b = part "f 1 2 3\n" in
-        Alcotest.(check bool) __LOC__ true (Option.is_some (Obj_file.join (reader v3) b));
-        Alcotest.(check bool) "mid-line" true (Option.is_none (Obj_file.join (reader (v3 ^ "v 1")) b));
-        Alcotest.(check bool) "failed" true (Option.is_none (Obj_file.join (reader (v3 ^ "v 1 2 x\n")) b));
+        let join p = Helpers.obj_part_joined p ~name ~max_vertices:10 ~max_triangles:10 "f 1 2 3\n" 0 8 in
+        Alcotest.(check bool) __LOC__ true (Option.is_some (join (reader v3)));
+        Alcotest.(check bool) "mid-line" true (Option.is_none (join (reader (v3 ^ "v 1"))));
+        Alcotest.(check bool) "failed" true (Option.is_none (join (reader (v3 ^ "v 1 2 x\n"))));
         let p = reader v3 in
         ignore (Obj_file.finish p);
-        Alcotest.(check bool) "finished" true (Option.is_none (Obj_file.join p b));
-        Alcotest.(check bool) "out of range" true (Option.is_none (Obj_file.join (reader "v 1 1 1\n") b));
+        Alcotest.(check bool) "finished" true (Option.is_none (join p));
+        Alcotest.(check bool) "out of range" true (Option.is_none (join (reader "v 1 1 1\n")));
         match Obj_file.finish_part (Obj_file.create ~name ~max_vertices:1 ~max_triangles:1) with
         | _ -> Alcotest.fail "finish_part of a whole text's reader"
         | exception Invalid_argument _ -> ());

@@ -59,13 +59,15 @@ let feed_mesh p ic ~start ~stop =
   go start
 
 (* The mesh from line start [split] of file [path] to its end, read in a
-   child process (Parallel.beside), and the process's id; [wait ()] is
-   [None] where the child failed, whatever the reason: the caller then
-   reads that part itself. The part (25 MB for half of a million
-   triangles) travels through a temporary file, written whole by the child
-   and read once it has ended: through the pipe, each 64 KiB needs the
-   other process to run, and on a busy machine the two would wait for
-   each other some 400 times. *)
+   child process (Parallel.beside); [wait ()] is the part, the id of the
+   process that read it and the temporary file that holds its arrays
+   (Obj_file.join reads them), or [None] where the child failed, whatever
+   the reason: the caller then reads that part itself. The child writes
+   its arrays to the file as it reads (a block at a time: it holds a few
+   blocks, never the part, and its collector has little to do) and sends
+   the part's counts through the pipe. A file rather than the pipe: there
+   each 64 KiB would need the other process to run, and on a busy machine
+   the two would wait for each other some 400 times. *)
 let mesh_part path split =
   match temporary () with
   | None -> fun () -> None
@@ -76,36 +78,40 @@ let mesh_part path split =
           ~finally:(fun () -> close_in_noerr ic)
           (fun () ->
             seek_in ic split;
-            let p = Obj_file.create_part ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
+            let p =
+              Obj_file.create_part ~output:(write_all fd) ~name:path ~max_vertices:Limits.max_triangles
+                ~max_triangles:Limits.max_triangles
+            in
             match Result.bind (feed_mesh p ic ~start:split ~stop:max_int) (fun () -> Obj_file.finish_part p) with
             | Error _ -> None
-            | Ok part ->
-                Obj_file.output_part (write_all fd) part;
-                Some (Unix.getpid ()))
+            | Ok part -> Some (Unix.getpid (), part))
       in
       let wait = Parallel.beside read in
       fun () ->
-        let part =
-          match wait () with
-          | Ok (Some pid) -> (
-              match
-                ignore (Unix.lseek fd 0 SEEK_SET);
-                Obj_file.input_part (read_all fd)
-              with
-              | part -> Some (pid, part)
-              | exception (Unix.Unix_error _ | End_of_file | Failure _ | Invalid_argument _ | Out_of_memory) -> None)
-          | Ok None | Error _ -> None
-        in
-        (try Unix.close fd with Unix.Unix_error _ -> ());
-        part
+        match wait () with
+        | Ok (Some (pid, part)) -> (
+            match
+              ignore (Unix.lseek fd 0 SEEK_SET);
+              (Unix.fstat fd).st_size = Obj_file.part_bytes part
+            with
+            | true -> Some (pid, part, fd)
+            | false | (exception Unix.Unix_error _) ->
+                (try Unix.close fd with Unix.Unix_error _ -> ());
+                None)
+        | Ok None | Error _ ->
+            (try Unix.close fd with Unix.Unix_error _ -> ());
+            None
 
 (* Where the child's part of a mesh file starts, in percent of the file:
-   past the middle, since the child also sends its part (finish_part and
-   Marshal: 7% of its reading) before the parent can join it (9% of its
-   reading). On the knot of 100,000 triangles (callgrind, instructions on
-   the longer path: the longer reading, then the join) 50% gives 251.7 M,
-   52% about 240 M, 54% 248.6 M, one core 429.5 M. *)
-let mesh_split_percent = 52
+   where the two readings cost about the same, since the join comes after
+   both. The knot's file has its [v] and [vn] lines first, which cost
+   about as much per byte as its [f] lines. On the knot of 100,000
+   triangles (callgrind, bench/obj_load.exe --jobs 2, the reading loop of
+   each process, the child's sending of its blocks included): 52% gives
+   120.1 M in the parent and 136.5 M in the child, 54% 125.4 M and
+   131.0 M; the child's sending also costs system time (its temporary
+   file's pages), which callgrind does not count: 55%. *)
+let mesh_split_percent = 55
 
 let read_mesh_paced ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = fun ~pid:_ _ -> ()) path =
   match open_in_bin path with
@@ -136,8 +142,14 @@ let read_mesh_paced ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = fun ~pi
               | Ok () -> (
                   match part with
                   | None -> rest split
-                  | Some (pid, part) -> (
-                      match Obj_file.join p part with
+                  | Some (pid, part, fd) -> (
+                      let joined =
+                        match Obj_file.join p part ~input:(read_all fd) with
+                        | m -> m
+                        | exception (Unix.Unix_error _ | End_of_file | Failure _) -> None
+                      in
+                      (try Unix.close fd with Unix.Unix_error _ -> ());
+                      match joined with
                       | Some m ->
                           on_part ~pid (Obj_file.part_triangle_count part);
                           Ok m
