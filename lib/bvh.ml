@@ -239,7 +239,7 @@ let partition_bins (x0 : float array) (y0 : float array) (z0 : float array) (x1 
   check_block fr cn l;
   check_block fr cn r;
   let n = Array.length x0 in
-  if lo < 0 || hi > n || hi > Bytes.length bin_at || Array.length order <> n || Array.length y0 <> n
+  if lo < 0 || hi > n || hi > Bytes.length bin_at || Array.length params < 4 || Array.length order <> n || Array.length y0 <> n
      || Array.length z0 <> n || Array.length x1 <> n || Array.length y1 <> n || Array.length z1 <> n
   then invalid_arg "Bvh.partition_bins";
   let la = lg land 3 and lnb = lg lsr 2 and ra = rg land 3 and rnb = rg lsr 2 in
