@@ -352,7 +352,22 @@ let tests =
             ("random boxes, leaves of 16", `Random, 4000, 16);
             ("every center the same (median splits)", `Same_center, 700, 4);
             ("centers within 1e-9 (bins of rounding)", `One_bin, 700, 16);
-          ]);
+          ];
+        (* Centers at 2^i along x: each split takes off the farthest
+           few, a tree of depth 100 or so, deeper than the 48 levels of
+           nodes waiting to be built that the build makes room for first. *)
+        let n = 400 in
+        let b = Array.init 6 (fun _ -> Array.make n 0.) in
+        for i = 0 to n - 1 do
+          let c = Float.ldexp 1. i in
+          b.(0).(i) <- c -. 0.5;
+          b.(3).(i) <- c +. 0.5;
+          b.(4).(i) <- 1.;
+          b.(5).(i) <- 1.
+        done;
+        let t, _ = build b in
+        if t.depth <= 48 then Alcotest.failf "depth %d" t.depth;
+        check_reference "a deep tree" ~leaf_size:4 b t);
     Helpers.qcheck ~count:40 "random box sets: the reference build's tree"
       QCheck.(triple (int_range 1 700) (int_range 0 1000) bool)
       (fun (n, seed, sixteen) ->
