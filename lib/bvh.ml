@@ -63,10 +63,6 @@ let[@inline] half_area x0 y0 z0 x1 y1 z1 =
 
 let bins = 16
 
-(* [a.(i)] lowered to [v], raised to [v]. *)
-let[@inline] lower (a : float array) i v = Array.unsafe_set a i (fmin (Array.unsafe_get a i) v)
-let[@inline] higher (a : float array) i v = Array.unsafe_set a i (fmax (Array.unsafe_get a i) v)
-
 (* The tree's shape while it is built, 16 bytes a node, grown as the
    tree is: the ten node arrays are made once the number of nodes is
    known, and their boxes filled in from the leaves up (a box is the min
@@ -106,83 +102,186 @@ let[@inline] bin_of c c0 scale bins =
   let b = truncate ((c -. c0) *. scale) in
   if b < 0 then 0 else if b >= bins then bins - 1 else b
 
-(* [merge box o ...] grows the box of 6 floats at [o] in [box] by the box given. *)
+(* [merge box o ...] grows the box of 6 floats at [o] in [box] by the box
+   given: each bound [fmin box.(o + i) v] or [fmax box.(o + i) v], bit for
+   bit, stored only where it is [v] (most objects leave a bin's box as it
+   is). The offsets written out at each access, not bound once: the
+   compiler then folds them into the addressing. *)
 let[@inline] merge (box : float array) o x0 y0 z0 x1 y1 z1 =
-  lower box o x0;
-  lower box (o + 1) y0;
-  lower box (o + 2) z0;
-  higher box (o + 3) x1;
-  higher box (o + 4) y1;
-  higher box (o + 5) z1
+  if not (Array.unsafe_get box o < x0) then Array.unsafe_set box o x0;
+  if not (Array.unsafe_get box (o + 1) < y0) then Array.unsafe_set box (o + 1) y0;
+  if not (Array.unsafe_get box (o + 2) < z0) then Array.unsafe_set box (o + 2) z0;
+  if not (Array.unsafe_get box (o + 3) > x1) then Array.unsafe_set box (o + 3) x1;
+  if not (Array.unsafe_get box (o + 4) > y1) then Array.unsafe_set box (o + 4) y1;
+  if not (Array.unsafe_get box (o + 5) > z1) then Array.unsafe_set box (o + 5) z1
 
-(* Bins slots [lo .. hi - 1] by their doubled centers [ka + kb] among
-   [bins] over [c0 .. c0 + bins / scale] ([c0] and [scale] at 0 and 1 of
-   [p]): counts in [bin_n], boxes in [bin_box] (6 floats a bin; both
-   reset first), each slot's bin in [bin_at]. Consecutive slots mostly
-   fall in the same bin: the current bin's box is grown in registers and
-   merged into its bin when the bin changes, rather than each object
-   updating the bin in memory, whose next update would wait on that
-   store; but in small nodes, near the leaves, the bin changes at nearly
-   every object, and updating it directly costs less. Min and max are
-   exact in any order: the bins are the same. *)
-let bin_slots (ka : float array) (kb : float array) (x0 : float array) (y0 : float array) (z0 : float array)
-    (x1 : float array) (y1 : float array) (z1 : float array) (p : float array) bins (bin_n : int array)
-    (bin_box : float array) bin_at lo hi =
-  let c0 = Array.unsafe_get p 0 and scale = Array.unsafe_get p 1 in
-  for b = 0 to bins - 1 do
-    Array.unsafe_set bin_n b 0
-  done;
-  for o = 0 to bins - 1 do
-    let o = 6 * o in
-    Array.unsafe_set bin_box o infinity;
-    Array.unsafe_set bin_box (o + 1) infinity;
-    Array.unsafe_set bin_box (o + 2) infinity;
-    Array.unsafe_set bin_box (o + 3) neg_infinity;
-    Array.unsafe_set bin_box (o + 4) neg_infinity;
-    Array.unsafe_set bin_box (o + 5) neg_infinity
-  done;
-  if hi - lo < 32 then
+(* A node waiting to be built has a block of [block] floats: its bounds
+   (12 floats: its objects' box, lower corner then upper, then the box of
+   their doubled centers), the boxes of its bins (6 floats a bin, at
+   [boxes_at]), the boxes of each bin's doubled centers (at
+   [centers_at]); and [bins] ints of another array, its bins' counts.
+   Its parent fills the bins as it moves each object to its side (see
+   {!partition_bins}): a level of the tree is one pass over its objects,
+   where it was two (bin, then partition). The bins' boxes of centers
+   give the children's bounds of centers, which the binning of the
+   children needs before that pass. *)
+let block = 12 + (12 * bins)
+let boxes_at = 12
+let centers_at = 12 + (6 * bins)
+
+(* [check_block fr cn p] checks that block [p] is in [fr] and [cn]: one
+   check for the unchecked reads and writes of the block's bins. *)
+let check_block (fr : float array) (cn : int array) p =
+  if p < 0 || ((p + 1) * block) > Array.length fr || ((p + 1) * bins) > Array.length cn then
+    invalid_arg "Bvh: block"
+
+(* [reset_bins fr cn p nb] empties the first [nb] bins of block [p]: their
+   counts (a bin's boxes are written by its first object, {!add_to}, and
+   read only if it has one). *)
+let reset_bins (fr : float array) (cn : int array) p nb =
+  check_block fr cn p;
+  if nb > bins then invalid_arg "Bvh.reset_bins";
+  let co = p * bins in
+  for b = 0 to nb - 1 do
+    Array.unsafe_set cn (co + b) 0
+  done
+
+(* Adds the box [x0 .. z1] of doubled center [(cx, cy, cz)] to bin [b]
+   of the block at [bo] in [fr], counts at [co] in [cn]: the first
+   object's boxes are the bin's (the min of infinity and [x] is [x]), the
+   others grow them. Min and max are exact in any order: a bin's boxes
+   are the same in whatever order its objects come. *)
+let[@inline] add_to (fr : float array) (cn : int array) bo co b x0 y0 z0 x1 y1 z1 cx cy cz =
+  let c = Array.unsafe_get cn (co + b) in
+  Array.unsafe_set cn (co + b) (c + 1);
+  let o = bo + boxes_at + (6 * b) and oc = bo + centers_at + (6 * b) in
+  if c = 0 then begin
+    Array.unsafe_set fr o x0;
+    Array.unsafe_set fr (o + 1) y0;
+    Array.unsafe_set fr (o + 2) z0;
+    Array.unsafe_set fr (o + 3) x1;
+    Array.unsafe_set fr (o + 4) y1;
+    Array.unsafe_set fr (o + 5) z1;
+    Array.unsafe_set fr oc cx;
+    Array.unsafe_set fr (oc + 1) cy;
+    Array.unsafe_set fr (oc + 2) cz;
+    Array.unsafe_set fr (oc + 3) cx;
+    Array.unsafe_set fr (oc + 4) cy;
+    Array.unsafe_set fr (oc + 5) cz
+  end
+  else begin
+    merge fr o x0 y0 z0 x1 y1 z1;
+    merge fr oc cx cy cz cx cy cz
+  end
+
+(* Bins slot [s], of box [x0 .. z1] and doubled center [(cx, cy, cz)],
+   among the [nb] bins along axis [a] of the block at [bo] in [fr]
+   (counts at [co] in [cn]) that start at [c0], [scale] bins a unit;
+   its bin to [bin_at]. *)
+let[@inline] bin_one (fr : float array) (cn : int array) bo co bin_at s a c0 scale nb x0 y0 z0 x1 y1 z1 cx cy cz =
+  let b = bin_of (if a = 0 then cx else if a = 1 then cy else cz) c0 scale nb in
+  Bytes.unsafe_set bin_at s (Char.unsafe_chr b);
+  add_to fr cn bo co b x0 y0 z0 x1 y1 z1 cx cy cz
+
+(* [binning fr p n params i] is [a + 4 nb] for the node of [n] objects
+   whose bounds are in block [p]: [a] the axis 0 to 2 along which its
+   centers spread most, [nb] its number of bins, 0 if it is not binned
+   (one object, or its centers all at the same place along [a]). It
+   writes the bins' first center and scale to [params] at [i] and [i +
+   1] (bin [b] holds the doubled centers from [c0 + b / scale]). *)
+let binning (fr : float array) p n (params : float array) i =
+  let o = (p * block) + 6 in
+  let ex = fr.(o + 3) -. fr.(o) and ey = fr.(o + 4) -. fr.(o + 1) and ez = fr.(o + 5) -. fr.(o + 2) in
+  let a = if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2 in
+  let ext = match a with 0 -> ex | 1 -> ey | _ -> ez in
+  let nb = if n < bins then n else bins in
+  if n <= 1 || not (ext > 0.) then a
+  else begin
+    params.(i) <- fr.(o + a);
+    params.(i + 1) <- Float.of_int nb /. ext;
+    a + (4 * nb)
+  end
+
+(* [bin_slots x0 y0 z0 x1 y1 z1 bin_at lo hi params fr cn p] bins slots
+   [lo .. hi - 1] into block [p], as {!binning} found it ([params] at 0
+   and 1), each slot's bin in [bin_at]: for the nodes that no partition
+   binned, the root and the children of a split at the median. *)
+let bin_slots (x0 : float array) (y0 : float array) (z0 : float array) (x1 : float array) (y1 : float array)
+    (z1 : float array) bin_at lo hi (params : float array) (fr : float array) (cn : int array) p =
+  let n = hi - lo in
+  let g = binning fr p n params 0 in
+  let a = g land 3 and nb = g lsr 2 in
+  if nb > 0 then begin
+    reset_bins fr cn p nb;
+    if lo < 0 || hi > Array.length x0 || hi > Bytes.length bin_at then invalid_arg "Bvh.bin_slots";
+    let c0 = Array.unsafe_get params 0 and scale = Array.unsafe_get params 1 in
+    let bo = p * block and co = p * bins in
     for s = lo to hi - 1 do
-      let b = bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins in
-      Bytes.unsafe_set bin_at s (Char.unsafe_chr b);
-      Array.unsafe_set bin_n b (Array.unsafe_get bin_n b + 1);
-      merge bin_box (6 * b) (Array.unsafe_get x0 s) (Array.unsafe_get y0 s) (Array.unsafe_get z0 s)
-        (Array.unsafe_get x1 s) (Array.unsafe_get y1 s) (Array.unsafe_get z1 s)
+      let vx0 = Array.unsafe_get x0 s and vy0 = Array.unsafe_get y0 s and vz0 = Array.unsafe_get z0 s in
+      let vx1 = Array.unsafe_get x1 s and vy1 = Array.unsafe_get y1 s and vz1 = Array.unsafe_get z1 s in
+      let cx = vx0 +. vx1 and cy = vy0 +. vy1 and cz = vz0 +. vz1 in
+      bin_one fr cn bo co bin_at s a c0 scale nb vx0 vy0 vz0 vx1 vy1 vz1 cx cy cz
     done
-  else
-  let cur = ref (bin_of (Array.unsafe_get ka lo +. Array.unsafe_get kb lo) c0 scale bins) and count = ref 0 in
-  let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
-  let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
-  for s = lo to hi - 1 do
-    let b = bin_of (Array.unsafe_get ka s +. Array.unsafe_get kb s) c0 scale bins in
-    Bytes.unsafe_set bin_at s (Char.unsafe_chr b);
-    if b <> !cur then begin
-      let c = !cur in
-      Array.unsafe_set bin_n c (Array.unsafe_get bin_n c + !count);
-      merge bin_box (6 * c) !bx0 !by0 !bz0 !bx1 !by1 !bz1;
-      cur := b;
-      count := 0;
-      bx0 := infinity;
-      by0 := infinity;
-      bz0 := infinity;
-      bx1 := neg_infinity;
-      by1 := neg_infinity;
-      bz1 := neg_infinity
-    end;
-    incr count;
-    bx0 := fmin !bx0 (Array.unsafe_get x0 s);
-    by0 := fmin !by0 (Array.unsafe_get y0 s);
-    bz0 := fmin !bz0 (Array.unsafe_get z0 s);
-    bx1 := fmax !bx1 (Array.unsafe_get x1 s);
-    by1 := fmax !by1 (Array.unsafe_get y1 s);
-    bz1 := fmax !bz1 (Array.unsafe_get z1 s)
+  end
+
+(* [partition_bins x0 y0 z0 x1 y1 z1 order bin_at best lo hi params l r
+   fr cn] moves slots [lo .. hi - 1] whose bin is at most [best] first
+   (their boxes and objects with them), the others after, and is the
+   first of the others. Each object is read once: as it goes to its side,
+   it is binned into that child's block, [l] or [r] ([g] of {!binning}
+   at [params] 0 and 2, bins reset; a child of no bins is not binned),
+   its bin for the child left in [bin_at]. The order of the slots is that
+   of the partition that was once a pass of its own: slot [i] kept if on
+   the left, else exchanged with the last slot not yet placed. *)
+let partition_bins (x0 : float array) (y0 : float array) (z0 : float array) (x1 : float array)
+    (y1 : float array) (z1 : float array) (order : int array) bin_at best lo hi (params : float array) lg rg
+    l r (fr : float array) (cn : int array) =
+  check_block fr cn l;
+  check_block fr cn r;
+  let n = Array.length x0 in
+  if lo < 0 || hi > n || hi > Bytes.length bin_at || Array.length params < 4 || Array.length order <> n || Array.length y0 <> n
+     || Array.length z0 <> n || Array.length x1 <> n || Array.length y1 <> n || Array.length z1 <> n
+  then invalid_arg "Bvh.partition_bins";
+  let la = lg land 3 and lnb = lg lsr 2 and ra = rg land 3 and rnb = rg lsr 2 in
+  let lc0 = Array.unsafe_get params 0 and ls = Array.unsafe_get params 1 in
+  let rc0 = Array.unsafe_get params 2 and rs = Array.unsafe_get params 3 in
+  let lbo = l * block and lco = l * bins and rbo = r * block and rco = r * bins in
+  let i = ref lo and j = ref (hi - 1) in
+  while !i <= !j do
+    let s = !i in
+    let vx0 = Array.unsafe_get x0 s and vy0 = Array.unsafe_get y0 s and vz0 = Array.unsafe_get z0 s in
+    let vx1 = Array.unsafe_get x1 s and vy1 = Array.unsafe_get y1 s and vz1 = Array.unsafe_get z1 s in
+    let cx = vx0 +. vx1 and cy = vy0 +. vy1 and cz = vz0 +. vz1 in
+    if Char.code (Bytes.unsafe_get bin_at s) <= best then begin
+      if lnb > 0 then bin_one fr cn lbo lco bin_at s la lc0 ls lnb vx0 vy0 vz0 vx1 vy1 vz1 cx cy cz;
+      incr i
+    end
+    else begin
+      let d = !j in
+      Array.unsafe_set x0 s (Array.unsafe_get x0 d);
+      Array.unsafe_set y0 s (Array.unsafe_get y0 d);
+      Array.unsafe_set z0 s (Array.unsafe_get z0 d);
+      Array.unsafe_set x1 s (Array.unsafe_get x1 d);
+      Array.unsafe_set y1 s (Array.unsafe_get y1 d);
+      Array.unsafe_set z1 s (Array.unsafe_get z1 d);
+      Array.unsafe_set x0 d vx0;
+      Array.unsafe_set y0 d vy0;
+      Array.unsafe_set z0 d vz0;
+      Array.unsafe_set x1 d vx1;
+      Array.unsafe_set y1 d vy1;
+      Array.unsafe_set z1 d vz1;
+      let o = Array.unsafe_get order s in
+      Array.unsafe_set order s (Array.unsafe_get order d);
+      Array.unsafe_set order d o;
+      Bytes.unsafe_set bin_at s (Bytes.unsafe_get bin_at d);
+      if rnb > 0 then bin_one fr cn rbo rco bin_at d ra rc0 rs rnb vx0 vy0 vz0 vx1 vy1 vz1 cx cy cz;
+      decr j
+    end
   done;
-  let c = !cur in
-  Array.unsafe_set bin_n c (Array.unsafe_get bin_n c + !count);
-  merge bin_box (6 * c) !bx0 !by0 !bz0 !bx1 !by1 !bz1
+  !i
 
 (* [copy6 a i b j] copies [a.(i) .. a.(i + 5)] to [b.(j) .. b.(j + 5)],
-   in place of [Array.blit], a call into C, for the 4 boxes of every node. *)
+   in place of [Array.blit], a call into C, for the 2 boxes of every node. *)
 let[@inline] copy6 (a : float array) i (b : float array) j =
   if i < 0 || j < 0 || i + 6 > Array.length a || j + 6 > Array.length b then invalid_arg "Bvh.copy6";
   Array.unsafe_set b j (Array.unsafe_get a i);
@@ -192,24 +291,29 @@ let[@inline] copy6 (a : float array) i (b : float array) j =
   Array.unsafe_set b (j + 4) (Array.unsafe_get a (i + 4));
   Array.unsafe_set b (j + 5) (Array.unsafe_get a (i + 5))
 
-(* [running_boxes bin_n bin_box b0 b1 out] writes at [6 b] in [out], for
+(* [running_boxes cn co fr bo b0 b1 out] writes at [6 b] in [out], for
    each [b] from [b0] to [b1] (downwards if [b1 < b0]), the box of the
-   bins from [b0] to [b]: grown in registers, each bin's box read once. *)
-let running_boxes (bin_n : int array) (bin_box : float array) b0 b1 (out : float array) =
+   bins from [b0] to [b] of the block whose counts are at [co] in [cn],
+   boxes at [bo] in [fr]: grown in registers, each bin's box read once. *)
+let running_boxes (cn : int array) co (fr : float array) bo b0 b1 (out : float array) =
+  if co < 0 || bo < 0 || co + bins > Array.length cn || bo + (6 * bins) > Array.length fr || b0 < 0 || b1 < 0
+     || b0 >= bins || b1 >= bins || Array.length out < 6 * bins
+  then invalid_arg "Bvh.running_boxes";
   let step = if b1 >= b0 then 1 else -1 in
   let bx0 = ref infinity and by0 = ref infinity and bz0 = ref infinity in
   let bx1 = ref neg_infinity and by1 = ref neg_infinity and bz1 = ref neg_infinity in
   for i = 0 to abs (b1 - b0) do
     let b = b0 + (step * i) in
-    let o = 6 * b in
-    if Array.unsafe_get bin_n b > 0 then begin
-      bx0 := fmin !bx0 (Array.unsafe_get bin_box o);
-      by0 := fmin !by0 (Array.unsafe_get bin_box (o + 1));
-      bz0 := fmin !bz0 (Array.unsafe_get bin_box (o + 2));
-      bx1 := fmax !bx1 (Array.unsafe_get bin_box (o + 3));
-      by1 := fmax !by1 (Array.unsafe_get bin_box (o + 4));
-      bz1 := fmax !bz1 (Array.unsafe_get bin_box (o + 5))
+    let o = bo + (6 * b) in
+    if Array.unsafe_get cn (co + b) > 0 then begin
+      bx0 := fmin !bx0 (Array.unsafe_get fr o);
+      by0 := fmin !by0 (Array.unsafe_get fr (o + 1));
+      bz0 := fmin !bz0 (Array.unsafe_get fr (o + 2));
+      bx1 := fmax !bx1 (Array.unsafe_get fr (o + 3));
+      by1 := fmax !by1 (Array.unsafe_get fr (o + 4));
+      bz1 := fmax !bz1 (Array.unsafe_get fr (o + 5))
     end;
+    let o = 6 * b in
     Array.unsafe_set out o !bx0;
     Array.unsafe_set out (o + 1) !by0;
     Array.unsafe_set out (o + 2) !bz0;
@@ -217,6 +321,31 @@ let running_boxes (bin_n : int array) (bin_box : float array) b0 b1 (out : float
     Array.unsafe_set out (o + 4) !by1;
     Array.unsafe_set out (o + 5) !bz1
   done
+
+(* [union cn co fr bo b0 b1 out o] writes to [out] at [o] the union of
+   the boxes of bins [b0 .. b1] (6 floats a bin at [bo] in [fr], counts
+   at [co] in [cn]; an empty bin holds no box): the box of a side's
+   doubled centers. *)
+let union (cn : int array) co (fr : float array) bo b0 b1 (out : float array) o =
+  let x0 = ref infinity and y0 = ref infinity and z0 = ref infinity in
+  let x1 = ref neg_infinity and y1 = ref neg_infinity and z1 = ref neg_infinity in
+  for b = b0 to b1 do
+    if cn.(co + b) > 0 then begin
+      let c = bo + (6 * b) in
+      x0 := fmin !x0 fr.(c);
+      y0 := fmin !y0 fr.(c + 1);
+      z0 := fmin !z0 fr.(c + 2);
+      x1 := fmax !x1 fr.(c + 3);
+      y1 := fmax !y1 fr.(c + 4);
+      z1 := fmax !z1 fr.(c + 5)
+    end
+  done;
+  out.(o) <- !x0;
+  out.(o + 1) <- !y0;
+  out.(o + 2) <- !z0;
+  out.(o + 3) <- !x1;
+  out.(o + 4) <- !y1;
+  out.(o + 5) <- !z1
 
 type floats = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t
 
@@ -363,19 +492,21 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       if k <= !j then hi := !j else if k >= !i then lo := !i else lo := !hi
     done
   in
-  (* The bounds of the nodes being built, 12 floats each: their objects'
-     box (lower corner, upper corner), then the box of their doubled
-     centers [lo + hi]. A node's children's bounds go at [24 level] and
-     [24 level + 12]: the right child's wait there while the left's
-     subtree is built above. *)
-  let frames = ref (Array.make (24 * 64) 0.) in
+  (* The blocks of the nodes being built ({!block}): a node's children's
+     go at blocks [2 level] and [2 level + 1], the right child's waiting
+     there while the left's subtree is built above; the root's at 0. *)
+  let frames = ref (Array.make (block * 2 * 48) 0.) and counts = ref (Array.make (bins * 2 * 48) 0) in
   let frame level =
-    if (24 * level) + 24 > Array.length !frames then begin
-      let b = Array.make (2 * Array.length !frames) 0. in
-      Array.blit !frames 0 b 0 (Array.length !frames);
-      frames := b
+    if (2 * level) + 2 > Array.length !counts / bins then begin
+      let grow a z =
+        let b = Array.make (2 * Array.length a) z in
+        Array.blit a 0 b 0 (Array.length a);
+        b
+      in
+      frames := grow !frames 0.;
+      counts := grow !counts 0
     end;
-    24 * level
+    2 * level
   in
   (* [bounds_of lo hi r o] writes the bounds of slots [lo .. hi - 1] to [r] at [o]. *)
   let bounds_of lo hi (r : float array) o =
@@ -397,49 +528,18 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       r.(o + a + 9) <- !m1
     done
   in
-  (* Per bin: count and box (6 floats at [6 b]); reused by every node.
-     The bounds of the centers are not kept per bin: the partition finds
-     the children's as it moves each object to its side. *)
-  let bin_n = Array.make bins 0 in
-  let params = Array.make 2 0. in
-  (* Each slot's bin, from the binning to the partition that follows;
-     it moves with the slot. *)
+  let params = Array.make 4 0. in
+  (* Each slot's bin in its node, from the binning to the partition that
+     follows; it moves with the slot. *)
   let bin_at = Bytes.create n in
-  let bin_box = Array.make (6 * bins) 0. in
   (* The boxes of bins [0 .. b] and of bins [b .. bins - 1], at [6 b]. *)
   let prefix = Array.make (6 * bins) 0. and suffix = Array.make (6 * bins) 0. in
-  (* The children's bounds of centers from the last partition: left's,
-     then right's, lower corner then upper, as in [bounds_of]. *)
-  let centers = Array.make 12 0. in
   let area (a : float array) b =
     let o = 6 * b in
     half_area (Array.unsafe_get a o) (Array.unsafe_get a (o + 1)) (Array.unsafe_get a (o + 2))
       (Array.unsafe_get a (o + 3)) (Array.unsafe_get a (o + 4)) (Array.unsafe_get a (o + 5))
   in
-  (* [centers_of lo hi o] writes the bounds of the centers of slots
-     [lo .. hi - 1] to [centers] at [o]. *)
-  let centers_of lo hi o =
-    let x0' = ref infinity and y0' = ref infinity and z0' = ref infinity in
-    let x1' = ref neg_infinity and y1' = ref neg_infinity and z1' = ref neg_infinity in
-    for s = lo to hi - 1 do
-      let cx = Array.unsafe_get x0 s +. Array.unsafe_get x1 s in
-      let cy = Array.unsafe_get y0 s +. Array.unsafe_get y1 s in
-      let cz = Array.unsafe_get z0 s +. Array.unsafe_get z1 s in
-      x0' := fmin !x0' cx;
-      y0' := fmin !y0' cy;
-      z0' := fmin !z0' cz;
-      x1' := fmax !x1' cx;
-      y1' := fmax !y1' cy;
-      z1' := fmax !z1' cz
-    done;
-    centers.(o) <- !x0';
-    centers.(o + 1) <- !y0';
-    centers.(o + 2) <- !z0';
-    centers.(o + 3) <- !x1';
-    centers.(o + 4) <- !y1';
-    centers.(o + 5) <- !z1'
-  in
-  let depth = ref 0 and split_bin = ref 0 and alone = ref true and built_here = ref false in
+  let depth = ref 0 and alone = ref true and built_here = ref false in
   let mine = ref none_gathered and theirs = ref none_gathered in
   (* [put_box box at] writes the box of 6 floats [box] to slot [at]. *)
   let put_box (box : float array) at =
@@ -466,47 +566,43 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
     done;
     { first; last = t.size; at; leaves = !j }
   in
-  (* The node over slots [lo .. hi - 1], whose bounds are in [bounds] at [o]. *)
+  (* The node over slots [lo .. hi - 1], whose block is [p] in [fr] and
+     [cn], binned (if {!binning} bins it). *)
   let n_all = n in
-  let rec node lo hi level (bounds : float array) o =
+  let rec node lo hi level (fr : float array) (cn : int array) p =
     let k = add_node t in
     if level > !depth then depth := level;
-    (* One check for the twelve reads, at every node. *)
-    if o < 0 || o + 12 > Array.length bounds then invalid_arg "Bvh.build_boxes: bounds";
-    let bx0 = Array.unsafe_get bounds o and by0 = Array.unsafe_get bounds (o + 1) in
-    let bz0 = Array.unsafe_get bounds (o + 2) and bx1 = Array.unsafe_get bounds (o + 3) in
-    let by1 = Array.unsafe_get bounds (o + 4) and bz1 = Array.unsafe_get bounds (o + 5) in
-    let mx0 = Array.unsafe_get bounds (o + 6) and my0 = Array.unsafe_get bounds (o + 7) in
-    let mz0 = Array.unsafe_get bounds (o + 8) and mx1 = Array.unsafe_get bounds (o + 9) in
-    let my1 = Array.unsafe_get bounds (o + 10) and mz1 = Array.unsafe_get bounds (o + 11) in
+    check_block fr cn p;
+    let o = p * block and co = p * bins in
+    let bx0 = Array.unsafe_get fr o and by0 = Array.unsafe_get fr (o + 1) in
+    let bz0 = Array.unsafe_get fr (o + 2) and bx1 = Array.unsafe_get fr (o + 3) in
+    let by1 = Array.unsafe_get fr (o + 4) and bz1 = Array.unsafe_get fr (o + 5) in
+    let mx0 = Array.unsafe_get fr (o + 6) and my0 = Array.unsafe_get fr (o + 7) in
+    let mz0 = Array.unsafe_get fr (o + 8) and mx1 = Array.unsafe_get fr (o + 9) in
+    let my1 = Array.unsafe_get fr (o + 10) and mz1 = Array.unsafe_get fr (o + 11) in
     let n = hi - lo in
     let ex = mx1 -. mx0 and ey = my1 -. my0 and ez = mz1 -. mz0 in
     let a = if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2 in
     let ka = match a with 0 -> x0 | 1 -> y0 | _ -> z0 in
     let kb = match a with 0 -> x1 | 1 -> y1 | _ -> z1 in
-    let c0 = match a with 0 -> mx0 | 1 -> my0 | _ -> mz0 in
     let ext = match a with 0 -> ex | 1 -> ey | _ -> ez in
     (* Fewer bins for fewer objects: the bins' fixed cost would otherwise
        dominate the many small nodes near the leaves. *)
     let bins = if n < bins then n else bins in
+    let f = frame level in
     (* The split between bins that minimises the SAH cost
        A_left n_left + A_right n_right (in units of this box's area): [-2]
-       a leaf, [-1] the median, else the first slot of the right child
-       (the last bin on the left is then in [split_bin]). *)
+       a leaf, [-1] the median, else the first slot of the right child. *)
     let split =
       if n <= 1 then -2
       else if ext > 0. then begin
-        let scale = Float.of_int bins /. ext in
-        params.(0) <- c0;
-        params.(1) <- scale;
-        bin_slots ka kb x0 y0 z0 x1 y1 z1 params bins bin_n bin_box bin_at lo hi;
-        running_boxes bin_n bin_box 0 (bins - 2) prefix;
-        running_boxes bin_n bin_box (bins - 1) 1 suffix;
+        running_boxes cn co fr (o + boxes_at) 0 (bins - 2) prefix;
+        running_boxes cn co fr (o + boxes_at) (bins - 1) 1 suffix;
         let best = ref (-1) and best_cost = ref infinity and right_n = ref 0 and left_n = ref n in
         for b = bins - 1 downto 1 do
-          (* [b < bins <= 16], the length of [bin_n]. *)
-          right_n := !right_n + Array.unsafe_get bin_n b;
-          left_n := !left_n - Array.unsafe_get bin_n b;
+          (* [b < bins <= 16]: in the block's counts (checked above). *)
+          right_n := !right_n + Array.unsafe_get cn (co + b);
+          left_n := !left_n - Array.unsafe_get cn (co + b);
           if !left_n > 0 && !right_n > 0 then begin
             let cost = (area prefix (b - 1) *. Float.of_int !left_n) +. (area suffix b *. Float.of_int !right_n) in
             if cost < !best_cost then begin
@@ -521,70 +617,24 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
         if !best < 0 then if n <= leaf_size then -2 else -1
         else if n <= leaf_size && Float.of_int n *. parent <= parent +. !best_cost then -2
         else begin
-          (* Partition the slots: bins <= best first. *)
           let best = !best in
-          split_bin := best;
-          let i = ref lo and j = ref (hi - 1) in
-          if n < 64 then begin
-            (* A small node: a plain partition, then the bounds of each
-               side's centers from slots still in the cache, cheaper than
-               the accumulators' setup below. *)
-            while !i <= !j do
-              if Char.code (Bytes.unsafe_get bin_at !i) <= best then incr i
-              else begin
-                swap !i !j;
-                Bytes.unsafe_set bin_at !i (Bytes.unsafe_get bin_at !j);
-                decr j
-              end
-            done;
-            centers_of lo !i 0;
-            centers_of !i hi 6;
-            !i
-          end
-          else
-          let lx0 = ref infinity and ly0 = ref infinity and lz0 = ref infinity in
-          let lx1 = ref neg_infinity and ly1 = ref neg_infinity and lz1 = ref neg_infinity in
-          let rx0 = ref infinity and ry0 = ref infinity and rz0 = ref infinity in
-          let rx1 = ref neg_infinity and ry1 = ref neg_infinity and rz1 = ref neg_infinity in
-          while !i <= !j do
-            let s = !i in
-            let cx = Array.unsafe_get x0 s +. Array.unsafe_get x1 s in
-            let cy = Array.unsafe_get y0 s +. Array.unsafe_get y1 s in
-            let cz = Array.unsafe_get z0 s +. Array.unsafe_get z1 s in
-            if Char.code (Bytes.unsafe_get bin_at s) <= best then begin
-              lx0 := fmin !lx0 cx;
-              ly0 := fmin !ly0 cy;
-              lz0 := fmin !lz0 cz;
-              lx1 := fmax !lx1 cx;
-              ly1 := fmax !ly1 cy;
-              lz1 := fmax !lz1 cz;
-              incr i
-            end
-            else begin
-              rx0 := fmin !rx0 cx;
-              ry0 := fmin !ry0 cy;
-              rz0 := fmin !rz0 cz;
-              rx1 := fmax !rx1 cx;
-              ry1 := fmax !ry1 cy;
-              rz1 := fmax !rz1 cz;
-              swap s !j;
-              Bytes.unsafe_set bin_at s (Bytes.unsafe_get bin_at !j);
-              decr j
-            end
+          let left_n = ref 0 in
+          for b = 0 to best do
+            left_n := !left_n + cn.(co + b)
           done;
-          centers.(0) <- !lx0;
-          centers.(1) <- !ly0;
-          centers.(2) <- !lz0;
-          centers.(3) <- !lx1;
-          centers.(4) <- !ly1;
-          centers.(5) <- !lz1;
-          centers.(6) <- !rx0;
-          centers.(7) <- !ry0;
-          centers.(8) <- !rz0;
-          centers.(9) <- !rx1;
-          centers.(10) <- !ry1;
-          centers.(11) <- !rz1;
-          !i
+          (* The children's blocks: their boxes from the bins on each
+             side, their centers' bounds from the bins' centers, their
+             bins filled as the partition moves each object to its side. *)
+          let l = f and r = f + 1 in
+          let fr' = !frames and cn' = !counts in
+          copy6 prefix (6 * best) fr' (l * block);
+          union cn co fr (o + centers_at) 0 best fr' ((l * block) + 6);
+          copy6 suffix (6 * (best + 1)) fr' (r * block);
+          union cn co fr (o + centers_at) (best + 1) (bins - 1) fr' ((r * block) + 6);
+          let lg = binning fr' l !left_n params 0 and rg = binning fr' r (n - !left_n) params 2 in
+          reset_bins fr' cn' l (lg lsr 2);
+          reset_bins fr' cn' r (rg lsr 2);
+          partition_bins x0 y0 z0 x1 y1 z1 order bin_at best lo hi params lg rg l r fr' cn'
         end
       end
       else if n <= leaf_size then -2
@@ -596,25 +646,16 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
     end
     else begin
       t.tag.(k) <- a;
-      let f = frame level in
       let split =
-        if split > lo && split < hi then begin
-          (* The children's boxes, from the bins on each side, and their
-             centers' bounds, from the partition. *)
-          let best = !split_bin in
-          let fr = !frames in
-          copy6 prefix (6 * best) fr f;
-          copy6 centers 0 fr (f + 6);
-          copy6 suffix (6 * (best + 1)) fr (f + 12);
-          copy6 centers 6 fr (f + 18);
-          split
-        end
+        if split >= 0 then split
         else begin
           (* Centers all together, in one bin: split at the median. *)
           let m = (lo + hi) / 2 in
           select ka kb lo hi m;
-          bounds_of lo m !frames f;
-          bounds_of m hi !frames (f + 12);
+          bounds_of lo m !frames (f * block);
+          bounds_of m hi !frames ((f + 1) * block);
+          bin_slots x0 y0 z0 x1 y1 z1 bin_at lo m params !frames !counts f;
+          bin_slots x0 y0 z0 x1 y1 z1 bin_at m hi params !frames !counts (f + 1);
           m
         end
       in
@@ -635,9 +676,9 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
       in
       match shared with
       | Some (b, sh, reserve) ->
-          let right = Array.sub !frames (f + 12) 12 in
-          let wait = b.beside (fun () -> part split hi (level + 1) right sh reserve) in
-          node lo split (level + 1) !frames f;
+          let right = Array.sub !frames ((f + 1) * block) block and right_n = Array.sub !counts ((f + 1) * bins) bins in
+          let wait = b.beside (fun () -> part split hi (level + 1) right right_n sh reserve) in
+          node lo split (level + 1) !frames !counts f;
           (* Work of [finish], done while the other process may still
              build: the left subtree's leaves' boxes, read once, there. *)
           mine := gather (k + 1) lo;
@@ -645,12 +686,12 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
           (match wait () with
           | Some _ when !built_here -> (* [beside] ran [part] here: the tree is complete. *) ()
           | Some p -> graft split hi p sh
-          | None -> node split hi (level + 1) !frames (f + 12))
+          | None -> node split hi (level + 1) !frames !counts (f + 1))
       | None ->
-          node lo split (level + 1) !frames f;
+          node lo split (level + 1) !frames !counts f;
           t.link.(k) <- t.size;
           (* [frames] may have grown (and moved) meanwhile. *)
-          node split hi (level + 1) !frames (f + 12)
+          node split hi (level + 1) !frames !counts (f + 1)
     end
   (* The subtree over slots [lo .. hi - 1] and what [graft] needs of it:
      run beside (in a copy of this process), after [node lo split] there
@@ -661,11 +702,11 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
      this process's [finish] reads them once, in order, and the caller
      needs no copy of the slots' boxes (the arrays of 7 floats a slot
      that this process once copied back, then read again in [finish]). *)
-  and part lo hi level bounds (sh : floats) reserve =
+  and part lo hi level block_fr block_cn (sh : floats) reserve =
     built_here := true;
     let m = hi - lo in
     let first = t.size in
-    node lo hi level bounds 0;
+    node lo hi level block_fr block_cn 0;
     let leaves = ref 0 in
     for c = first to t.size - 1 do
       if t.tag.(c) < 0 then incr leaves
@@ -738,9 +779,9 @@ let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
     done;
     theirs := { first; last = first + nodes; at = lo; leaves = !leaves }
   in
-  let root = Array.make 12 0. in
-  bounds_of 0 n root 0;
-  node 0 n 1 root 0;
+  bounds_of 0 n !frames 0;
+  bin_slots x0 y0 z0 x1 y1 z1 bin_at 0 n params !frames !counts 0;
+  node 0 n 1 !frames !counts 0;
   finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ~mine:!mine ~theirs:!theirs order !depth
 
 let build ?leaf_size ~cx ~cy ~cz extent =

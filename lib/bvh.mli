@@ -5,8 +5,9 @@
     about [log n] boxes per ray instead of [n] spheres. Built top-down
     ({!build_boxes}): each node's objects binned by their centers along the
     longest axis of the centers' bounds and split where the surface area
-    heuristic is lowest (at the median when the centers coincide), in a
-    few passes over the node's objects, so building is [O(n log n)].
+    heuristic is lowest (at the median when the centers coincide), in one
+    pass over the node's objects (the partition that moves each object to
+    its side bins it for its child), so building is [O(n log n)].
 
     Nodes are stored depth-first, 8 floats each in one array, so that the
     tracer reads a node from one cache line: the left child of inner node

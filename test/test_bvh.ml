@@ -97,6 +97,115 @@ let boxes kind n seed =
   done;
   b
 
+(* The reference build, as the hierarchy was first built and as
+   Bvh.mli describes it: at each node, the bounds of its objects' boxes
+   and doubled centers found from its slots, one pass binning its objects
+   (16 bins along the centers' longest axis), the split of lowest surface
+   area heuristic cost, then one pass moving the slots (slot [i] kept if
+   on the left, else exchanged with the last slot not yet placed), or
+   Hoare's selection at the median. Plain arrays and lists, nothing
+   shared with Bvh: [(order, depth, nodes)], [nodes.(k)] node [k]'s tag
+   and link as {!Bvh.tag} and {!Bvh.link} give them. *)
+let reference ~leaf_size (boxes : float array array) =
+  let n = Array.length boxes.(0) in
+  let b = Array.map Array.copy boxes in
+  let order = Array.init n Fun.id and bin = Array.make n 0 in
+  let swap i j =
+    let sw a = let x = a.(i) in a.(i) <- a.(j); a.(j) <- x in
+    Array.iter sw b; sw order; sw bin
+  in
+  let center a s = b.(a).(s) +. b.(a + 3).(s) in
+  (* Of equal bounds (0. and -0.), the later one, as Bvh's. *)
+  let fmin x y = if x < y then x else y and fmax x y = if x > y then x else y in
+  let empty () = [| infinity; infinity; infinity; neg_infinity; neg_infinity; neg_infinity |] in
+  let grow u (v : float array) = for i = 0 to 2 do u.(i) <- fmin u.(i) v.(i); u.(i + 3) <- fmax u.(i + 3) v.(i + 3) done in
+  let half u = let dx = u.(3) -. u.(0) and dy = u.(4) -. u.(1) and dz = u.(5) -. u.(2) in (dx *. dy) +. (dy *. dz) +. (dz *. dx) in
+  let select a lo hi k =
+    let lo = ref lo and hi = ref (hi - 1) in
+    while !lo < !hi do
+      let pivot = center a ((!lo + !hi) / 2) in
+      let i = ref !lo and j = ref !hi in
+      while !i <= !j do
+        while center a !i < pivot do incr i done;
+        while center a !j > pivot do decr j done;
+        if !i <= !j then begin swap !i !j; incr i; decr j end
+      done;
+      if k <= !j then hi := !j else if k >= !i then lo := !i else lo := !hi
+    done
+  in
+  let nodes = ref [] and count = ref 0 and depth = ref 0 in
+  let rec node lo hi level =
+    let cell = ref (0, 0) in
+    nodes := cell :: !nodes;
+    incr count;
+    depth := max !depth level;
+    let n = hi - lo in
+    let box = empty () and centers = empty () in
+    for s = lo to hi - 1 do
+      grow box (Array.init 6 (fun i -> b.(i).(s)));
+      grow centers (Array.init 6 (fun i -> center (i mod 3) s))
+    done;
+    let ext = Array.init 3 (fun a -> centers.(a + 3) -. centers.(a)) in
+    let a = if ext.(0) >= ext.(1) && ext.(0) >= ext.(2) then 0 else if ext.(1) >= ext.(2) then 1 else 2 in
+    let nb = min n 16 in
+    let split =
+      if n <= 1 then `Leaf
+      else if not (ext.(a) > 0.) then if n <= leaf_size then `Leaf else `Median
+      else begin
+        let scale = Float.of_int nb /. ext.(a) in
+        let counts = Array.make nb 0 and bin_box = Array.init nb (fun _ -> empty ()) in
+        for s = lo to hi - 1 do
+          let x = truncate ((center a s -. centers.(a)) *. scale) in
+          let x = if x < 0 then 0 else if x >= nb then nb - 1 else x in
+          bin.(s) <- x;
+          counts.(x) <- counts.(x) + 1;
+          grow bin_box.(x) (Array.init 6 (fun i -> b.(i).(s)))
+        done;
+        let union b0 b1 = let u = empty () in for x = b0 to b1 do if counts.(x) > 0 then grow u bin_box.(x) done; u in
+        let best = ref (-1) and best_cost = ref infinity and right = ref 0 and left = ref n in
+        for x = nb - 1 downto 1 do
+          right := !right + counts.(x);
+          left := !left - counts.(x);
+          if !left > 0 && !right > 0 then begin
+            let cost = (half (union 0 (x - 1)) *. Float.of_int !left) +. (half (union x (nb - 1)) *. Float.of_int !right) in
+            if cost < !best_cost then begin best_cost := cost; best := x - 1 end
+          end
+        done;
+        let parent = half box in
+        if !best < 0 then if n <= leaf_size then `Leaf else `Median
+        else if n <= leaf_size && Float.of_int n *. parent <= parent +. !best_cost then `Leaf
+        else begin
+          let i = ref lo and j = ref (hi - 1) in
+          while !i <= !j do
+            if bin.(!i) <= !best then incr i else begin swap !i !j; decr j end
+          done;
+          `At !i
+        end
+      end
+    in
+    match split with
+    | `Leaf -> cell := (n, lo)
+    | (`Median | `At _) as split ->
+        let m = match split with `At m -> m | `Median -> let m = (lo + hi) / 2 in select a lo hi m; m in
+        node lo m (level + 1);
+        let right = !count in
+        node m hi (level + 1);
+        cell := (-1 - a, right)
+  in
+  node 0 n 1;
+  (order, !depth, Array.of_list (List.rev_map ( ! ) !nodes))
+
+(* Fails unless [t] is the reference's tree over [boxes]. *)
+let check_reference what ~leaf_size boxes (t : Bvh.t) =
+  let order, depth, nodes = reference ~leaf_size boxes in
+  Alcotest.(check int) (what ^ ": nodes") (Array.length nodes) t.n_nodes;
+  Alcotest.(check int) (what ^ ": depth") depth t.depth;
+  Alcotest.(check (array int)) (what ^ ": order") order t.order;
+  Array.iteri
+    (fun k (tag, link) ->
+      Alcotest.(check (pair int int)) (Printf.sprintf "%s: node %d's tag and link" what k) (tag, link) (Bvh.tag t k, Bvh.link t k))
+    nodes
+
 let tests =
   [
     Alcotest.test_case "a part built in another process: the same tree, field by field" `Quick (fun () ->
@@ -226,6 +335,46 @@ let tests =
         let b = boxes kind n seed in
         let built = ref 0 in
         check_same "random" (build b) (build ~beside:(counting ~min_objects:2 built) b);
+        true);
+    Alcotest.test_case "the tree is the reference build's, node for node, with and without a part beside" `Quick
+      (fun () ->
+        List.iter
+          (fun (what, kind, n, leaf_size) ->
+            let b = boxes kind n (n + leaf_size) in
+            let t, _ = build ~leaf_size b in
+            check_reference what ~leaf_size b t;
+            let built = ref 0 in
+            let t2, _ = build ~leaf_size ~beside:(counting ~min_objects:(n / 8) built) b in
+            check_reference (what ^ ", a part beside") ~leaf_size b t2;
+            Alcotest.(check int) (what ^ ": a part built by another process") 1 !built)
+          [
+            ("random boxes, leaves of 4", `Random, 4000, 4);
+            ("random boxes, leaves of 16", `Random, 4000, 16);
+            ("every center the same (median splits)", `Same_center, 700, 4);
+            ("centers within 1e-9 (bins of rounding)", `One_bin, 700, 16);
+          ];
+        (* Centers at 2^i along x: each split takes off the farthest
+           few, a tree of depth 100 or so, deeper than the 48 levels of
+           nodes waiting to be built that the build makes room for first. *)
+        let n = 400 in
+        let b = Array.init 6 (fun _ -> Array.make n 0.) in
+        for i = 0 to n - 1 do
+          let c = Float.ldexp 1. i in
+          b.(0).(i) <- c -. 0.5;
+          b.(3).(i) <- c +. 0.5;
+          b.(4).(i) <- 1.;
+          b.(5).(i) <- 1.
+        done;
+        let t, _ = build b in
+        if t.depth <= 48 then Alcotest.failf "depth %d" t.depth;
+        check_reference "a deep tree" ~leaf_size:4 b t);
+    Helpers.qcheck ~count:40 "random box sets: the reference build's tree"
+      QCheck.(triple (int_range 1 700) (int_range 0 1000) bool)
+      (fun (n, seed, sixteen) ->
+        let kind = match seed mod 3 with 0 -> `Random | 1 -> `Same_center | _ -> `One_bin in
+        let leaf_size = if sixteen then 16 else 4 in
+        let b = boxes kind n seed in
+        check_reference "random" ~leaf_size b (fst (build ~leaf_size b));
         true);
     Alcotest.test_case "every sphere sits in exactly one leaf, inside every box above it" `Quick (fun () ->
         List.iter
