@@ -710,24 +710,25 @@ let prepare_scene ~skips ?beside scene =
      (the slots' objects), or marked by the collections. *)
   let select twin_of =
     let kept k = Array.length twin_of = 0 || twin_of.(k) = k in
-    let nb = ref 0 and planes = ref [] and first = ref (-1) and last = ref (-1) in
+    let is_bounded k = kept k && okind.(k) <> Shape.plane in
+    let nb = ref 0 and planes = ref [] in
     for k = 0 to n - 1 do
-      if kept k then
-        if okind.(k) = Shape.plane then planes := k :: !planes
-        else begin
-          incr nb;
-          if !first < 0 then first := k;
-          last := k
-        end
+      if kept k then if okind.(k) = Shape.plane then planes := k :: !planes else incr nb
     done;
     let unbounded = Array.of_list (List.rev !planes) in
+    (* The first and the last bounded object, looked for from each end. *)
+    let first = ref 0 and last = ref (n - 1) in
+    if any_mesh && !nb > 0 && !nb < n then begin
+      while not (is_bounded !first) do incr first done;
+      while not (is_bounded !last) do decr last done
+    end;
     if !nb = n then ([||], unbounded, n, 0)
     else if any_mesh && !nb > 0 && !last - !first + 1 = !nb then ([||], unbounded, !nb, !first)
     else begin
       let bounded = Array.make !nb 0 in
       let b = ref 0 in
       for k = 0 to n - 1 do
-        if kept k && okind.(k) <> Shape.plane then begin
+        if is_bounded k then begin
           bounded.(!b) <- k;
           incr b
         end
