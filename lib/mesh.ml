@@ -13,46 +13,70 @@ type t = {
   objects : int;
 }
 
-(* Whether triangle [k] of these arrays has no normal, in floats, not
-   vectors: asked once for each of millions of triangles, when the mesh is
-   made. *)
-let flat_triangle (positions : float array) (triangles : int array) k =
-  let coord c a = positions.((3 * triangles.((3 * k) + c)) + a) in
-  let e1x = coord 1 0 -. coord 0 0 and e1y = coord 1 1 -. coord 0 1 and e1z = coord 1 2 -. coord 0 2 in
-  let e2x = coord 2 0 -. coord 0 0 and e2y = coord 2 1 -. coord 0 1 and e2z = coord 2 2 -. coord 0 2 in
+(* Whether the triangle of corners [a], [b], [c] (offsets in [p]) has no
+   normal, in floats, not vectors: asked once for each of millions of
+   triangles, when the mesh is made. *)
+let[@inline] flat_triangle (p : float array) a b c =
+  let e1x = p.(b) -. p.(a) and e1y = p.(b + 1) -. p.(a + 1) and e1z = p.(b + 2) -. p.(a + 2) in
+  let e2x = p.(c) -. p.(a) and e2y = p.(c + 1) -. p.(a + 1) and e2z = p.(c + 2) -. p.(a + 2) in
   let nx = (e1y *. e2z) -. (e1z *. e2y) and ny = (e1z *. e2x) -. (e1x *. e2z) and nz = (e1x *. e2y) -. (e1y *. e2x) in
   let n = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
-  not (n > 0. && Float.is_finite n && Float.is_finite (1. /. n))
+  (* [x -. x = 0.] is [Float.is_finite x], without a call. *)
+  let inv = 1. /. n in
+  not (n > 0. && n -. n = 0. && inv -. inv = 0.)
 
 let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
+
+(* Whether every element of [a] is in [[lo, hi)]: a loop, not
+   [Array.for_all]'s call of a closure per element of millions. *)
+let within lo hi (a : int array) =
+  let ok = ref true in
+  for i = 0 to Array.length a - 1 do
+    let x = Array.unsafe_get a i in
+    if x < lo || x >= hi then ok := false
+  done;
+  !ok
 
 let v ?(smooth = false) ?(scale = 1.) ?(translate = Vec3.zero) ?(source = "") ?(skipped = 0) ~positions ~triangles
     ~normals ~triangle_normals material =
   let np = Array.length positions and nt = Array.length triangles and nn = Array.length normals in
-  let in_range n a = Array.for_all (fun i -> i >= 0 && i < n) a in
   if np mod 3 <> 0 || nt mod 3 <> 0 || nn mod 3 <> 0 || Array.length triangle_normals <> nt then
     error "mesh arrays have inconsistent lengths"
   else if nt = 0 then error "mesh %s has no triangle" (if source = "" then "" else source)
-  else if not (in_range (np / 3) triangles) then error "mesh triangle refers to a vertex that does not exist"
-  else if not (Array.for_all (fun i -> i >= -1 && i < nn / 3) triangle_normals) then
+  else if not (within 0 (np / 3) triangles) then error "mesh triangle refers to a vertex that does not exist"
+  else if not (within (-1) (nn / 3) triangle_normals) then
     error "mesh triangle refers to a normal that does not exist"
   else if not (Float.is_finite scale && scale > 0.) then
     error "mesh scale must be finite and > 0, got %s" (Float_text.to_string scale)
   else
-    let placed = Array.make np 0. in
-    let t = [| translate.x; translate.y; translate.z |] in
+    (* Every element is written below. *)
+    let placed = Array.create_float np in
+    let tx = translate.x and ty = translate.y and tz = translate.z in
     let ok = ref true in
-    for i = 0 to np - 1 do
-      let x = (scale *. positions.(i)) +. t.(i mod 3) in
-      if not (Float.abs x <= Limits.max_coordinate) then ok := false;
-      placed.(i) <- x
+    (* A vertex at a time: no [i mod 3] (a division) per coordinate. *)
+    for j = 0 to (np / 3) - 1 do
+      let i = 3 * j in
+      let x = (scale *. positions.(i)) +. tx in
+      let y = (scale *. positions.(i + 1)) +. ty in
+      let z = (scale *. positions.(i + 2)) +. tz in
+      if not (Float.abs x <= Limits.max_coordinate && Float.abs y <= Limits.max_coordinate && Float.abs z <= Limits.max_coordinate)
+      then ok := false;
+      placed.(i) <- x;
+      placed.(i + 1) <- y;
+      placed.(i + 2) <- z
     done;
     if not !ok then
       error "mesh coordinates, scaled and translated, must lie within +-%s" (Float_text.to_string Limits.max_coordinate)
     else
-      let flat = Bytes.init (nt / 3) (fun k -> if flat_triangle placed triangles k then '\001' else '\000') in
-      let objects = ref 0 in
-      Bytes.iter (fun c -> if c = '\000' then incr objects) flat;
+      let flat = Bytes.create (nt / 3) and objects = ref 0 in
+      for k = 0 to (nt / 3) - 1 do
+        let a = 3 * triangles.(3 * k) and b = 3 * triangles.((3 * k) + 1) and c = 3 * triangles.((3 * k) + 2) in
+        if flat_triangle placed a b c then Bytes.unsafe_set flat k '\001'
+        else begin
+          Bytes.unsafe_set flat k '\000';
+          incr objects
+        end
+      done;
       Ok
         {
           positions = placed;

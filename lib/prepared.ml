@@ -396,19 +396,20 @@ let[@inline] half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) i cx cy cz 
   bounds.(4) <- fmax bounds.(4) (cy +. r);
   bounds.(5) <- fmax bounds.(5) (cz +. r)
 
-(* [mesh_half_boxes ... bounds ~all ~bounded ~nb ~pos m k] is
+(* [mesh_half_boxes ... bounds ~all ~first ~bounded ~nb ~pos m k] is
    [half_box] for each triangle of [m] but the degenerate ones, objects
-   [k] on, that [bounded] holds from [!pos] on (every one, if [all]), its
+   [k] on, that [bounded] holds from [!pos] on (every one from [first]
+   on, if [all]), its
    box found from its corners as {!Mesh.box} finds it; it advances [pos]
    past them. *)
-let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~bounded ~nb ~pos (m : Mesh.t) k =
+let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~first ~bounded ~nb ~pos (m : Mesh.t) k =
   let p = m.positions and tri = m.triangles in
   let b0 = ref bounds.(0) and b1 = ref bounds.(1) and b2 = ref bounds.(2) in
   let b3 = ref bounds.(3) and b4 = ref bounds.(4) and b5 = ref bounds.(5) in
   let k = ref k and i = ref !pos in
   for t = 0 to Mesh.triangle_count m - 1 do
     if not (Mesh.degenerate m t) then begin
-      if !i < nb && (all || bounded.(!i) = !k) then begin
+      if !i < nb && (if all then !k >= first else bounded.(!i) = !k) then begin
         let i0 = 3 * tri.(3 * t) and i1 = 3 * tri.((3 * t) + 1) and i2 = 3 * tri.((3 * t) + 2) in
         let ux = p.(i0) and vx = p.(i1) and wx = p.(i2) in
         let uy = p.(i0 + 1) and vy = p.(i1 + 1) and wy = p.(i2 + 1) in
@@ -447,7 +448,8 @@ let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~bounded
   pos := !i
 
 (* For a scene with a mesh: the boxes of the [nb] objects [bounded]
-   (increasing object numbers; every object if [all]), as [build_boxes] takes them, each padded by its
+   (increasing object numbers; objects [first] to [first + nb - 1] if
+   [all]), as [build_boxes] takes them, each padded by its
    [Bvh.ray_box_margin]. A sphere's is its cube (its center and radius
    in [cx] to [radius], by object); another shape's its cube too, found
    again; a mesh's triangle's is its box (half of it along each axis:
@@ -459,14 +461,14 @@ let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~bounded
    then each box is padded where it is, with no array of margins, centers
    or half sides of a million triangles between, and no second reading
    of the corners. *)
-let mesh_boxes ~n_spheres (scene : Scene.t) ~all ~bounded ~nb ~cx ~cy ~cz ~radius =
+let mesh_boxes ~n_spheres (scene : Scene.t) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius =
   (* Every element is written below. *)
   let f () = Array.create_float nb in
   let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
   let p = scene.camera.position in
   let bounds = [| p.x; p.y; p.z; p.x; p.y; p.z |] in
   let pos = ref 0 in
-  let next k = !pos < nb && (all || bounded.(!pos) = k) in
+  let next k = !pos < nb && if all then k >= first else bounded.(!pos) = k in
   for k = 0 to n_spheres - 1 do
     if next k then begin
       let h = radius.(k) in
@@ -484,7 +486,7 @@ let mesh_boxes ~n_spheres (scene : Scene.t) ~all ~bounded ~nb ~cx ~cy ~cz ~radiu
            half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos c.x c.y c.z h h h;
            incr pos
          end)
-       ~mesh:(fun k m -> mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds ~all ~bounded ~nb ~pos m k));
+       ~mesh:(fun k m -> mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds ~all ~first ~bounded ~nb ~pos m k));
   let terms = Bvh.margin_of_bounds bounds in
   for i = 0 to nb - 1 do
     let hx = x1.(i) and hy = y1.(i) and hz = z1.(i) in
@@ -699,33 +701,39 @@ let prepare_scene ~skips ?beside scene =
   in
   let materials = Array.append materials (Array.of_list extra) in
   (* The objects kept (each sphere but the twins of earlier ones) that are
-     bounded, in scene order, for the hierarchy, and the planes. Where
-     every object is kept and bounded (no twins, no planes: the big
-     scenes), [bounded] is empty and [nb = n]: no array of
-     a million numbers [0 .. n - 1] to make, to read, or for the
-     collections to mark. *)
+     bounded, in scene order, for the hierarchy, their number, the first
+     of them, and the planes. Where every object is kept and bounded (no
+     twins, no planes: the big scenes), or, in a scene with a mesh, the
+     bounded objects follow each other (the planes before the mesh, or
+     after it), [bounded] is empty: they are objects [first] to [first +
+     nb - 1], and no array of a million numbers is made, read through
+     (the slots' objects), or marked by the collections. *)
   let select twin_of =
     let kept k = Array.length twin_of = 0 || twin_of.(k) = k in
-    let nb = ref 0 and nu = ref 0 in
+    let is_bounded k = kept k && okind.(k) <> Shape.plane in
+    let nb = ref 0 and planes = ref [] in
     for k = 0 to n - 1 do
-      if kept k then if okind.(k) = Shape.plane then incr nu else incr nb
+      if kept k then if okind.(k) = Shape.plane then planes := k :: !planes else incr nb
     done;
-    if !nb = n then ([||], [||], n)
+    let unbounded = Array.of_list (List.rev !planes) in
+    (* The first and the last bounded object, looked for from each end. *)
+    let first = ref 0 and last = ref (n - 1) in
+    if any_mesh && !nb > 0 && !nb < n then begin
+      while not (is_bounded !first) do incr first done;
+      while not (is_bounded !last) do decr last done
+    end;
+    if !nb = n then ([||], unbounded, n, 0)
+    else if any_mesh && !nb > 0 && !last - !first + 1 = !nb then ([||], unbounded, !nb, !first)
     else begin
-      let bounded = Array.make !nb 0 and unbounded = Array.make !nu 0 in
-      let b = ref 0 and u = ref 0 in
+      let bounded = Array.make !nb 0 in
+      let b = ref 0 in
       for k = 0 to n - 1 do
-        if kept k then
-          if okind.(k) = Shape.plane then begin
-            unbounded.(!u) <- k;
-            incr u
-          end
-          else begin
-            bounded.(!b) <- k;
-            incr b
-          end
+        if is_bounded k then begin
+          bounded.(!b) <- k;
+          incr b
+        end
       done;
-      (bounded, unbounded, !nb)
+      (bounded, unbounded, !nb, 0)
     end
   in
   (* A big scene's loading left garbage in pieces (the text's windows, the
@@ -748,14 +756,14 @@ let prepare_scene ~skips ?beside scene =
       incr collections
     end
   in
-  (* The boxes of the [nb] objects [bounded] (all, if [nb = n]), each padded
-     by its margin, as [Bvh.build_boxes] takes them; [None] without a
-     hierarchy. *)
-  let boxes (bounded, _, nb) =
+  (* The boxes of the [nb] objects [bounded] (from [first] on, if it is
+     empty), each padded by its margin, as [Bvh.build_boxes] takes them;
+     [None] without a hierarchy. *)
+  let boxes (bounded, _, nb, first) =
     if not (skips && nb > bvh_threshold) then None
     else
-      let all = nb = n in
-      if any_mesh then Some (mesh_boxes ~n_spheres scene ~all ~bounded ~nb ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf)
+      let all = Array.length bounded = 0 in
+      if any_mesh then Some (mesh_boxes ~n_spheres scene ~all ~first ~bounded ~nb ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf)
       else begin
       (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
       let terms =
@@ -790,7 +798,7 @@ let prepare_scene ~skips ?beside scene =
     | Some (b : Bvh.beside) when n_spheres >= b.min_objects -> Some (fun () -> b.beside find_twins)
     | _ -> None
   in
-  let twin_of, (bounded, unbounded, nb), boxes =
+  let twin_of, (bounded, unbounded, nb, first), boxes =
     match twins_beside with
     | None ->
         let twin_of = twin_table (find_twins ()) n in
@@ -859,9 +867,14 @@ let prepare_scene ~skips ?beside scene =
     | Some b ->
         let nb = Array.length b.order in
         let index = Array.make (nb + Array.length unbounded) 0 in
-        for i = 0 to nb - 1 do
-          index.(i) <- bounded.(b.order.(i))
-        done;
+        if Array.length bounded = 0 then
+          for i = 0 to nb - 1 do
+            index.(i) <- first + b.order.(i)
+          done
+        else
+          for i = 0 to nb - 1 do
+            index.(i) <- bounded.(b.order.(i))
+          done;
         Array.blit unbounded 0 index nb (Array.length unbounded);
         index
     | None when all_bounded ->
@@ -885,12 +898,36 @@ let prepare_scene ~skips ?beside scene =
         done;
         index
   in
-  let slot = Array.make n 0 in
-  for i = 0 to Array.length index - 1 do
-    slot.(index.(i)) <- i
-  done;
-  Array.iteri (fun k first -> if first <> k then slot.(k) <- slot.(first)) twin_of;
   let n_kept = Array.length index in
+  (* Spheres alone, without twins: [index] orders every object, and the
+     per-object arrays, put in slot order where they are, are the
+     tracer's (no second array of a million). Not for meshes: their slot
+     order is far from the scene's, and moving in place along its cycles
+     cost more than the copies. *)
+  let in_place = n_kept = n && scene.shapes = [] in
+  let slot = Array.make n 0 in
+  (* Otherwise each slot's kind and material, in the walk that finds the
+     slots: one read of [index], the three random accesses of a slot's
+     object side by side. *)
+  let kind, material =
+    if in_place then begin
+      for i = 0 to n_kept - 1 do
+        slot.(index.(i)) <- i
+      done;
+      (okind, omat)
+    end
+    else begin
+      let kind = Array.make n_kept 0 and material = Array.make n_kept 0 in
+      for i = 0 to n_kept - 1 do
+        let k = index.(i) in
+        slot.(k) <- i;
+        Array.unsafe_set kind i okind.(k);
+        Array.unsafe_set material i omat.(k)
+      done;
+      (kind, material)
+    end
+  in
+  Array.iteri (fun k first -> if first <> k then slot.(k) <- slot.(first)) twin_of;
   (* Geometry and sphere data, written in slot order. *)
   let stride = Shape.stride in
   (* Spheres alone need no table of shapes. *)
@@ -908,12 +945,6 @@ let prepare_scene ~skips ?beside scene =
   let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
   let vnormal = if any_smooth then vnormal else [||] in
   let vcorner = if any_smooth && not follow then Array.make (3 * n_kept) 0 else [||] in
-  (* Spheres alone, without twins: [index] orders every object, and the
-     per-object arrays, put in slot order where they are, are the
-     tracer's (no second array of a million). Not for meshes: their slot
-     order is far from the scene's, and moving in place along its cycles
-     cost more than the copies. *)
-  let in_place = n_kept = n && scene.shapes = [] in
   let sphere_len = if n_spheres > 0 then n_kept else 0 in
   (* [okind] is all spheres here: no need to gather it. *)
   let cx, cy, cz, radius =
@@ -1052,7 +1083,7 @@ let prepare_scene ~skips ?beside scene =
     slot;
     bvh;
     unbounded = Array.map (fun i -> slot.(i)) unbounded;
-    kind = (if in_place then okind else Array.map (fun k -> okind.(k)) index);
+    kind;
     geom;
     vertex;
     at0;
@@ -1063,7 +1094,7 @@ let prepare_scene ~skips ?beside scene =
     extent;
     csg = Csg.table csg;
     n_scene_objects = n;
-    material = (if in_place then omat else Array.map (fun k -> omat.(k)) index);
+    material;
     cx;
     cy;
     cz;

@@ -170,4 +170,49 @@ let tests =
         walk 0 [];
         Alcotest.(check int) "every triangle in a leaf" (Hashtbl.length triangle_of) !seen;
         Helpers.check_images "skips against none" ~expected:(Helpers.image_exn ~skips:false s) (Helpers.image_exn s));
+    Alcotest.test_case "a mesh's triangles in one run beside planes: the same hierarchy wherever the planes are" `Quick
+      (fun () ->
+        (* A mesh between planes numbers its triangles in one run, which
+           the preparation takes as a range of objects, not a list. The
+           tree is built from the same boxes in the same order wherever
+           the planes are: the same nodes, and the slots' objects those
+           of the mesh first, moved by the planes before it. *)
+        let m =
+          let o = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1.5 ~tube:0.2 ~segments:120 ~sides:8 in
+          match
+            Mesh.v ~smooth:true ~translate:(Vec3.v 0. 0. 3.) ~positions:o.positions ~triangles:o.triangles
+              ~normals:o.normals ~triangle_normals:o.triangle_normals (Material.v ~specular:50. Color.white)
+          with
+          | Ok m -> m
+          | Error (`Msg e) -> Alcotest.fail e
+        in
+        let t = Mesh.objects m in
+        let floor = Shape.Plane (Plane.v ~point:(Vec3.v 0. (-2.) 0.) ~normal:(Vec3.v 0. 1. 0.) (Material.v ~reflective:0.3 Color.white)) in
+        let scene shapes =
+          Scene.v ~width:48 ~height:36 ~camera:(Camera.v (Vec3.v 0. 1. (-3.))) ~shapes ~spheres:[]
+            ~lights:[ Light.ambient 0.3; Light.point 0.7 (Vec3.v 2. 5. (-3.)) ] ()
+        in
+        let first = scene [ Shape.Mesh m; floor ] and after = scene [ floor; plane; Shape.Mesh m ] in
+        let a = prepare first and b = prepare after in
+        let nodes (p : Prepared.t) =
+          match p.bvh with
+          | None -> Alcotest.fail "no hierarchy"
+          | Some t ->
+              List.init t.n_nodes (fun k ->
+                  (Bvh.tag t k, Bvh.link t k, List.init 6 (fun a -> if a < 3 then Bvh.lo t k a else Bvh.hi t k (a - 3))))
+        in
+        Alcotest.(check bool) "the same hierarchy" true (compare (nodes a) (nodes b) = 0);
+        Alcotest.(check (array int)) "the triangles' slots, the planes' objects before them counted"
+          (Array.init t (fun i -> a.index.(i) + 2))
+          (Array.sub b.index 0 t);
+        Alcotest.(check (array int)) "the planes last, in scene order" [| 0; 1 |] (Array.sub b.index t 2);
+        Alcotest.(check (array int)) "the plane last" [| t |] (Array.sub a.index t 1);
+        Array.iteri (fun i k -> Alcotest.(check int) "slot is the inverse of index" i b.slot.(k)) b.index;
+        Alcotest.(check (array int)) "the triangles' corners" (Array.sub a.at0 0 t) (Array.sub b.at0 0 t);
+        Alcotest.(check (array int)) "the triangles' kinds" (Array.sub a.kind 0 t) (Array.sub b.kind 0 t);
+        Alcotest.(check bool) "the triangles' materials" true
+          (Array.for_all (fun i -> b.material.(i) = b.material.(0)) (Array.init t Fun.id) && b.material.(0) <> b.material.(t));
+        List.iter
+          (fun (what, s) -> Helpers.check_images what ~expected:(Helpers.image_exn ~skips:false s) (Helpers.image_exn s))
+          [ ("the mesh first: skips against none", first); ("the planes first: skips against none", after) ]);
   ]
