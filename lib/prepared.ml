@@ -1040,6 +1040,16 @@ let prepare_scene ~skips ?beside scene =
   (* The document's own scenes: spheres of plain materials (no pattern, no
      glass), few enough for no hierarchy, in the document's mode. *)
   let textbook_all = scene.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None in
+  let kind = if in_place then okind else Array.map (fun k -> okind.(k)) index in
+  (* The triangles' vertices in the order the leaves read them, their
+     normals alike where they are parallel (Vertex_order). *)
+  let vertex, vnormal =
+    if bvh = None || Array.length vertex = 0 then (vertex, vnormal)
+    else
+      let normals = if follow then vnormal else [||] in
+      let v, n = Vertex_order.gather ~kind ~vertex ~normals at0 at1 at2 in
+      (v, if follow then n else vnormal)
+  in
   {
     n_spheres;
     n_objects = n_kept;
@@ -1052,7 +1062,7 @@ let prepare_scene ~skips ?beside scene =
     slot;
     bvh;
     unbounded = Array.map (fun i -> slot.(i)) unbounded;
-    kind = (if in_place then okind else Array.map (fun k -> okind.(k)) index);
+    kind;
     geom;
     vertex;
     at0;
