@@ -17,6 +17,7 @@ type t = {
   at1 : int array;
   at2 : int array;
   vnormal : float array;
+  vsource : int array;
   vcorner : int array;
   extent : float array;
   csg : Csg.table;
@@ -1041,14 +1042,10 @@ let prepare_scene ~skips ?beside scene =
      glass), few enough for no hierarchy, in the document's mode. *)
   let textbook_all = scene.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None in
   let kind = if in_place then okind else Array.map (fun k -> okind.(k)) index in
-  (* The triangles' vertices in the order the leaves read them, their
-     normals alike where they are parallel (Vertex_order). *)
-  let vertex, vnormal =
-    if bvh = None || Array.length vertex = 0 then (vertex, vnormal)
-    else
-      let normals = if follow then vnormal else [||] in
-      let v, n = Vertex_order.gather ~kind ~vertex ~normals at0 at1 at2 in
-      (v, if follow then n else vnormal)
+  (* The triangles' vertices in the order the leaves read them
+     (Vertex_order); the normals stay where they are. *)
+  let vertex, vsource =
+    if bvh = None || Array.length vertex = 0 then (vertex, [||]) else Vertex_order.gather ~kind ~vertex at0 at1 at2
   in
   {
     n_spheres;
@@ -1069,6 +1066,7 @@ let prepare_scene ~skips ?beside scene =
     at1;
     at2;
     vnormal;
+    vsource;
     vcorner;
     extent;
     csg = Csg.table csg;

@@ -1,7 +1,3 @@
-(* The new offset of each old vertex, [-1] until a slot names it: an int
-   array of a third of [vertex]'s length (4 MB for the 1M-triangle knot),
-   read as the slots walk the mesh, which keeps it mostly in cache. *)
-
 (* The reads below are unchecked: a corner's offset is checked to lie in
    [vertex] first. (That it is a multiple of 3 is [Prepared]'s invariant,
    not checked: a division per corner, and a wrong one reads in bounds.) *)
@@ -9,34 +5,31 @@ let check_corner vertex o =
   if o < 0 || o + 2 >= Array.length vertex then
     invalid_arg (Printf.sprintf "Vertex_order.gather: %d is not a vertex's offset" o)
 
-let gather ~kind ~vertex ~normals at0 at1 at2 =
+let gather ~kind ~vertex at0 at1 at2 =
   let n = Array.length kind in
   if Array.length at0 <> n || Array.length at1 <> n || Array.length at2 <> n then
     invalid_arg "Vertex_order.gather: arrays of different lengths";
-  let with_normals = Array.length normals > 0 in
-  if with_normals && Array.length normals <> Array.length vertex then
-    invalid_arg "Vertex_order.gather: normals not parallel to the vertices";
-  let fresh = Array.make (Array.length vertex / 3) (-1) in
-  (* Written in order, never read before: no zeroing. *)
+  let n_vertices = Array.length vertex / 3 in
+  (* Per old vertex, its new offset, or [-1] until a slot names it: read
+     as the slots walk the mesh, mostly near the last reads. *)
+  let fresh = Array.make n_vertices (-1) in
+  (* Written in order before any read: no zeroing. *)
   let out = Array.create_float (Array.length vertex) in
-  let nout = if with_normals then Array.create_float (Array.length vertex) else [||] in
-  let next = ref 0 in
+  let source = Array.make n_vertices 0 in
+  let placed = ref 0 in
   let place o =
     let v = o / 3 in
-    let placed = Array.unsafe_get fresh v in
-    if placed >= 0 then placed
+    let p = Array.unsafe_get fresh v in
+    if p >= 0 then p
     else begin
-      let p = !next in
+      let j = !placed in
+      let p = 3 * j in
       Array.unsafe_set out p (Array.unsafe_get vertex o);
       Array.unsafe_set out (p + 1) (Array.unsafe_get vertex (o + 1));
       Array.unsafe_set out (p + 2) (Array.unsafe_get vertex (o + 2));
-      if with_normals then begin
-        Array.unsafe_set nout p (Array.unsafe_get normals o);
-        Array.unsafe_set nout (p + 1) (Array.unsafe_get normals (o + 1));
-        Array.unsafe_set nout (p + 2) (Array.unsafe_get normals (o + 2))
-      end;
+      Array.unsafe_set source j o;
       Array.unsafe_set fresh v p;
-      next := p + 3;
+      placed := j + 1;
       p
     end
   in
@@ -52,6 +45,5 @@ let gather ~kind ~vertex ~normals at0 at1 at2 =
       Array.unsafe_set at2 i (place o2)
     end
   done;
-  let used = !next in
-  if used = Array.length vertex then (out, nout)
-  else (Array.sub out 0 used, if with_normals then Array.sub nout 0 used else [||])
+  let used = !placed in
+  if used = n_vertices then (out, source) else (Array.sub out 0 (3 * used), Array.sub source 0 used)

@@ -11,21 +11,17 @@
     The copy moves coordinates, never computes them: every test reads the
     same floats as before, and every image is the same. *)
 
-val gather :
-  kind:int array -> vertex:float array -> normals:float array -> int array -> int array -> int array ->
-  float array * float array
-(** [gather ~kind ~vertex ~normals at0 at1 at2] is [(vertex', normals')]:
-    the vertices (3 floats each) that the triangles name, in the order in
+val gather : kind:int array -> vertex:float array -> int array -> int array -> int array -> float array * int array
+(** [gather ~kind ~vertex at0 at1 at2] is [(vertex', source)]: the
+    vertices (3 floats each) that the triangles name, in the order in
     which the slots [i] whose [kind.(i)] is {!Shape.triangle} or
     {!Shape.smooth_triangle} first name them (slot [0]'s three corners,
     then slot [1]'s new ones, ...), each copied once however many
-    triangles share it. It rewrites those slots' offsets [at0.(i)],
-    [at1.(i)], [at2.(i)] (corners in [vertex], multiples of 3) to the same
-    vertices' offsets in [vertex']; other slots are left as they are.
-    [normals], if not empty, is parallel to [vertex] (a vertex's normal at
-    its offset) and [normals'] is then parallel to [vertex'] (empty if
-    [normals] is). [vertex'] holds only the vertices some triangle names:
-    it is [vertex]'s length or shorter.
+    triangles share it; and per vertex of [vertex'] (its offset [o'], at
+    [o' / 3]) its offset in [vertex]. It rewrites those slots' offsets
+    [at0.(i)], [at1.(i)], [at2.(i)] (corners in [vertex], multiples of 3)
+    to the same vertices' offsets in [vertex']; other slots are left as
+    they are. [vertex'] holds only the vertices some triangle names: it is
+    [vertex]'s length or shorter.
     @raise Invalid_argument if [at0], [at1], [at2] and [kind] differ in
-    length, if [normals] is neither empty nor as long as [vertex], or if a
-    triangle's corner lies outside [vertex]. *)
+    length, or if a triangle's corner lies outside [vertex]. *)

@@ -193,8 +193,9 @@ let tests =
            three offsets a slot in one copy of the mesh's placed
            positions, each vertex once, and a smooth corner's normal where
            its vertex is: no 9 floats of geometry, 3 normal offsets and an
-           extent per triangle (104 bytes); 24 bytes of offsets, and 12 of
-           the copy (a vertex for two triangles), instead. *)
+           extent per triangle (104 bytes); 24 bytes of offsets, and 16 of
+           the copy and its map to the normals (a vertex for two
+           triangles), instead. *)
         let m = knot_mesh 3125 in
         let floor = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy (Material.v (Color.v 120. 120. 130.))) in
         let s = Scene.with_overrides ~width:8 ~height:8 { Scene.cgfs with spheres = Spheres.empty; shapes = [ floor; Shape.Mesh m ] } in
@@ -203,8 +204,9 @@ let tests =
         Alcotest.(check int) "triangles" 100_000 n;
         (* The tracer's vertices: the mesh's positions copied once, in the
            order the slots (leaf after leaf) first name them
-           (Vertex_order), each slot's corners where its triangle's are,
-           each smooth corner's normal where its vertex is. *)
+           (Vertex_order), each slot's corners where its triangle's are;
+           each smooth corner's normal where its vertex was, found by
+           [vsource]. *)
         let next = ref 0 and wrong = ref 0 and unordered = ref 0 and normal = Array.make 3 0. in
         for i = 0 to n do
           if p.kind.(i) = Shape.smooth_triangle then begin
@@ -215,8 +217,13 @@ let tests =
                 if o = !next then next := o + 3 else if o > !next then incr unordered;
                 let v = Mesh.vertex m t c in
                 if p.vertex.(o) <> v.x || p.vertex.(o + 1) <> v.y || p.vertex.(o + 2) <> v.z then incr wrong;
-                ignore (Mesh.unit_normal m m.triangles.((3 * t) + c) normal 0);
-                if p.vnormal.(o) <> normal.(0) || p.vnormal.(o + 1) <> normal.(1) || p.vnormal.(o + 2) <> normal.(2) then
+                (* Its normal where its vertex was: the vertex's number in
+                   the mesh, times 3 (the mesh's base is 0). *)
+                let j = m.triangles.((3 * t) + c) in
+                if p.vsource.(o / 3) <> 3 * j then incr wrong;
+                ignore (Mesh.unit_normal m j normal 0);
+                let n = 3 * j in
+                if p.vnormal.(n) <> normal.(0) || p.vnormal.(n + 1) <> normal.(1) || p.vnormal.(n + 2) <> normal.(2) then
                   incr wrong)
               [ p.at0.(i); p.at1.(i); p.at2.(i) ]
           end
@@ -232,7 +239,7 @@ let tests =
         (* What is left a triangle: its offsets (24), kind, material, index
            and slot (32), a share of the hierarchy (about 40 with its
            order), of the vertices and of the unit normals (12 each a
-           triangle here). Main had
+           triangle here) and of the vertices' map to the normals (4). Main had
            geom, vcorner and extent besides: 104 bytes more. *)
         let bytes = prepared_bytes_per_triangle p m in
         Alcotest.(check bool) (Printf.sprintf "%.1f bytes a triangle, at most 150" bytes) true (bytes <= 150.));
