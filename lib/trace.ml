@@ -370,19 +370,10 @@ let[@inline] meets_box (nodes : float array) s o ix iy iz limit =
 (* Pushes the children of the inner node at offset [o] of [nodes] on
    [stack] above [sp], so that the nearer along the ray is popped first;
    the new stack pointer. The stack holds nodes' offsets: the left child
-   follows its parent (8 floats on), the right one is at its link.
-
-   The right child, far from its parent in a big hierarchy, is read here
-   already: its box's cache miss then overlaps the work on the other child
-   instead of stalling the loop when it is popped (on the 1M-triangle knot
-   the first load of a box held 18% of [shadowed]'s samples). OCaml has
-   no prefetch and drops a load whose value is unused, so the value is
-   compared; the store that the comparison may make lands in the slot
-   written next, and changes nothing. *)
+   follows its parent (8 floats on), the right one is at its link. *)
 let[@inline] push_children nodes stack sp o dx dy dz =
   let right = node_link nodes o and left = o + 8 in
   let tag = node_tag nodes o in
-  if Array.unsafe_get nodes right = 0.5 then Array.unsafe_set stack sp right;
   let d = if tag = -1 then dx else if tag = -2 then dy else dz in
   if d >= 0. then begin
     Array.unsafe_set stack sp right;
