@@ -17,6 +17,7 @@ type t = {
   at1 : int array;
   at2 : int array;
   vnormal : float array;
+  vsource : int array;
   vcorner : int array;
   extent : float array;
   csg : Csg.table;
@@ -1071,6 +1072,12 @@ let prepare_scene ~skips ?beside scene =
   (* The document's own scenes: spheres of plain materials (no pattern, no
      glass), few enough for no hierarchy, in the document's mode. *)
   let textbook_all = scene.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None in
+  let kind = if in_place then okind else Array.map (fun k -> okind.(k)) index in
+  (* The triangles' vertices in the order the leaves read them
+     (Vertex_order); the normals stay where they are. *)
+  let vertex, vsource =
+    if bvh = None || Array.length vertex = 0 then (vertex, [||]) else Vertex_order.gather ~kind ~vertex at0 at1 at2
+  in
   {
     n_spheres;
     n_objects = n_kept;
@@ -1090,6 +1097,7 @@ let prepare_scene ~skips ?beside scene =
     at1;
     at2;
     vnormal;
+    vsource;
     vcorner;
     extent;
     csg = Csg.table csg;

@@ -52,10 +52,13 @@ type t = private {
           shape [g]'s at [Shape.stride * g], as the shape module's [store]
           writes it; a slot's [g] is in [at0]. *)
   vertex : float array;
-      (** The triangles' vertices, 3 floats each: each mesh's placed
-          positions (a scene's one mesh's own array, not a copy), then the
-          lone triangles' corners. A vertex is stored once, however many
-          triangles share it. *)
+      (** The triangles' vertices, 3 floats each, a vertex stored once
+          however many triangles share it. Without a hierarchy, in the
+          scene's order: each mesh's placed positions (a scene's one
+          mesh's own array, not a copy), then the lone triangles' corners.
+          With one, those copied in the order in which the slots first
+          name them ({!Vertex_order}), so that a leaf's triangles read
+          their corners close together. *)
   at0 : int array;
       (** Per slot of a shape (empty when the scene has spheres alone): a
           triangle's first corner, as its offset in [vertex]; another
@@ -69,8 +72,14 @@ type t = private {
           which no smooth triangle uses): a corner's normal once, however
           many triangles share it (empty if the scene has no smooth
           triangle). When every smooth mesh names its corners' normals by
-          their vertices' numbers ([vcorner] empty), parallel to [vertex]:
-          the normal of a corner is at its offset in [vertex]. *)
+          their vertices' numbers ([vcorner] empty), parallel to the
+          vertices in the scene's order: the normal of the corner at
+          offset [o] in [vertex] is at [o], or at [vsource.(o / 3)] if
+          [vsource] is not empty. *)
+  vsource : int array;
+      (** Where [vertex] is a copy in the slots' order: per vertex of
+          [vertex] (the one at offset [o] at [o / 3]), its offset in the
+          scene's order; empty where [vertex] is in the scene's order. *)
   vcorner : int array;
       (** Smooth triangles whose corners' normals are not their vertices'
           numbers: the offsets in [vnormal] of the normals of the three

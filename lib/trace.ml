@@ -902,6 +902,10 @@ let[@inline] fmax_abs (e : float) x =
   let x = Float.abs x in
   if x > e then x else e
 
+(* The offset in [p.vnormal] of the normal of the corner at offset [o] in
+   [p.vertex], where normals follow their vertices. *)
+let[@inline] normal_of (p : Prepared.t) o = if Array.length p.vsource = 0 then o else p.vsource.(o / 3)
+
 let shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
@@ -936,9 +940,9 @@ let shape_hit tr i =
   if k = Shape.smooth_triangle
      && (let follow = Array.length p.vcorner = 0 and j = 3 * i in
          Triangle.smooth_normal_at s p.vertex o0 o1 o2 p.vnormal
-           (if follow then o0 else Array.unsafe_get p.vcorner j)
-           (if follow then o1 else Array.unsafe_get p.vcorner (j + 1))
-           (if follow then o2 else Array.unsafe_get p.vcorner (j + 2)))
+           (if follow then normal_of p o0 else Array.unsafe_get p.vcorner j)
+           (if follow then normal_of p o1 else Array.unsafe_get p.vcorner (j + 1))
+           (if follow then normal_of p o2 else Array.unsafe_get p.vcorner (j + 2)))
      && flip then begin
     s.nx <- -.s.nx;
     s.ny <- -.s.ny;

@@ -73,10 +73,12 @@ let knot_mesh segments =
   | Ok m -> m
   | Error (`Msg m) -> Alcotest.fail m
 
-(* The words reachable from [p] but not from the mesh [m] (its placed
-   positions, which [p] shares), per triangle of [m]. *)
+(* The words reachable from [p] (and not from the mesh [m]'s placed
+   positions, where [p] shares them: a scene without a hierarchy), per
+   triangle of [m]. *)
 let prepared_bytes_per_triangle (p : Prepared.t) (m : Mesh.t) =
-  let words = Obj.reachable_words (Obj.repr p) - Obj.reachable_words (Obj.repr m.positions) in
+  let shared = if p.vertex == m.positions then Obj.reachable_words (Obj.repr m.positions) else 0 in
+  let words = Obj.reachable_words (Obj.repr p) - shared in
   Float.of_int (8 * words) /. Float.of_int (Mesh.triangle_count m)
 
 let peak_mb err =
@@ -186,26 +188,58 @@ let tests =
           && String.sub err 0 (String.length prefix) = prefix
           && List.length (String.split_on_char '\n' err) = 2);
         Alcotest.(check bool) "no output" false (Sys.file_exists (Filename.concat dir "out.ppm")));
-    Alcotest.test_case "a mesh's prepared scene holds no copy of its triangles' geometry" `Quick (fun () ->
-        (* 100,000 triangles. The tracer reads a triangle's corners in the
-           mesh's own placed positions, by three offsets a slot, and a
-           smooth corner's normal where its vertex is: 9 floats of
-           geometry, 3 normal offsets and an extent per triangle (104
-           bytes) are gone, 24 bytes of offsets came. *)
+    Alcotest.test_case "a mesh's prepared scene holds each vertex once, in the order its leaves read them" `Quick (fun () ->
+        (* 100,000 triangles. The tracer reads a triangle's corners by
+           three offsets a slot in one copy of the mesh's placed
+           positions, each vertex once, and a smooth corner's normal where
+           its vertex is: no 9 floats of geometry, 3 normal offsets and an
+           extent per triangle (104 bytes); 24 bytes of offsets, and 16 of
+           the copy and its map to the normals (a vertex for two
+           triangles), instead. *)
         let m = knot_mesh 3125 in
         let floor = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy (Material.v (Color.v 120. 120. 130.))) in
         let s = Scene.with_overrides ~width:8 ~height:8 { Scene.cgfs with spheres = Spheres.empty; shapes = [ floor; Shape.Mesh m ] } in
         let p = Helpers.prepare s in
         let n = Mesh.triangle_count m in
         Alcotest.(check int) "triangles" 100_000 n;
-        Alcotest.(check bool) "the mesh's positions are the tracer's vertices, not a copy" true (p.vertex == m.positions);
+        (* The tracer's vertices: the mesh's positions copied once, in the
+           order the slots (leaf after leaf) first name them
+           (Vertex_order), each slot's corners where its triangle's are;
+           each smooth corner's normal where its vertex was, found by
+           [vsource]. *)
+        let next = ref 0 and wrong = ref 0 and unordered = ref 0 and normal = Array.make 3 0. in
+        for i = 0 to n do
+          if p.kind.(i) = Shape.smooth_triangle then begin
+            (* Object 0 is the plane, the mesh's triangles follow. *)
+            let t = p.index.(i) - 1 in
+            List.iteri
+              (fun c o ->
+                if o = !next then next := o + 3 else if o > !next then incr unordered;
+                let v = Mesh.vertex m t c in
+                if p.vertex.(o) <> v.x || p.vertex.(o + 1) <> v.y || p.vertex.(o + 2) <> v.z then incr wrong;
+                (* Its normal where its vertex was: the vertex's number in
+                   the mesh, times 3 (the mesh's base is 0). *)
+                let j = m.triangles.((3 * t) + c) in
+                if p.vsource.(o / 3) <> 3 * j then incr wrong;
+                ignore (Mesh.unit_normal m j normal 0);
+                let n = 3 * j in
+                if p.vnormal.(n) <> normal.(0) || p.vnormal.(n + 1) <> normal.(1) || p.vnormal.(n + 2) <> normal.(2) then
+                  incr wrong)
+              [ p.at0.(i); p.at1.(i); p.at2.(i) ]
+          end
+        done;
+        Alcotest.(check int) "corners whose position or normal is not their triangle's" 0 !wrong;
+        Alcotest.(check int) "vertices placed out of the order of first use" 0 !unordered;
+        Alcotest.(check int) "every vertex copied once" (Array.length m.positions) !next;
+        Alcotest.(check int) "no other vertex" (Array.length m.positions) (Array.length p.vertex);
         Alcotest.(check int) "geometry: the plane's alone" Shape.stride (Array.length p.geom);
         Alcotest.(check int) "extents: the plane's alone" 1 (Array.length p.extent);
         Alcotest.(check int) "an offset a slot, in each of three arrays" (n + 1) (Array.length p.at0);
         Alcotest.(check int) "no table of the corners' normals" 0 (Array.length p.vcorner);
         (* What is left a triangle: its offsets (24), kind, material, index
            and slot (32), a share of the hierarchy (about 40 with its
-           order) and of the unit normals (12 a triangle here). Main had
+           order), of the vertices and of the unit normals (12 each a
+           triangle here) and of the vertices' map to the normals (4). Main had
            geom, vcorner and extent besides: 104 bytes more. *)
         let bytes = prepared_bytes_per_triangle p m in
         Alcotest.(check bool) (Printf.sprintf "%.1f bytes a triangle, at most 150" bytes) true (bytes <= 150.));
