@@ -1072,7 +1072,6 @@ let prepare_scene ~skips ?beside scene =
   (* The document's own scenes: spheres of plain materials (no pattern, no
      glass), few enough for no hierarchy, in the document's mode. *)
   let textbook_all = scene.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None in
-  let kind = if in_place then okind else Array.map (fun k -> okind.(k)) index in
   (* The triangles' vertices in the order the leaves read them
      (Vertex_order); the normals stay where they are. *)
   let vertex, vsource =
