@@ -298,8 +298,7 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~regio
       (fun (source, triangles, skipped) ->
         Format.eprintf "%-24s %s: %d triangles, %d OBJ statements skipped@." "mesh" source triangles skipped)
       meshes;
-    Option.iter (fun kb -> Format.eprintf "%-24s %.1f@." "peak memory (MB)" (Float.of_int kb /. 1024.)) (peak_kb ());
-    Format.eprintf "%-24s %s@." "huge pages" (Huge_pages.status ())
+    Option.iter (fun kb -> Format.eprintf "%-24s %.1f@." "peak memory (MB)" (Float.of_int kb /. 1024.)) (peak_kb ())
   end;
   if output <> "-" && not quiet then begin
     let what =

@@ -27,15 +27,6 @@ let limit_envs =
     env `Work "the ray-sphere intersection tests that a render may need (pixels x samples x rays per sample x spheres met per ray x (1 + lights)); 1e12 is a few hours of one core";
   ]
 
-(* Not a limit; listed with them, on the pages of the commands that render. *)
-let huge_pages_env =
-  Cmd.Env.info Huge_pages.variable
-    ~doc:
-      "Set to 0 to stop asking the kernel for transparent huge pages (2 MiB) for blocks of 4 MiB or \
-       more, which it gives where /sys/kernel/mm/transparent_hugepage/enabled is madvise or always: \
-       fewer page faults and faster traces of big scenes (the million-triangle knot: 58,000 faults \
-       fewer), the same image. $(b,--stats) says whether they are on."
-
 let scene_options =
   let scene =
     Arg.(
@@ -135,7 +126,7 @@ let scene_format =
     ]
 
 let view_info =
-  Cmd.info "view" ~exits ~envs:(limit_envs @ [ huge_pages_env ]) ~doc:"show a scene in a window"
+  Cmd.info "view" ~exits ~envs:limit_envs ~doc:"show a scene in a window"
     ~man:
       [
         `S Manpage.s_description;
@@ -233,7 +224,7 @@ let render_cmd =
           ~doc:"Render with the literal transcription of the document (slow; the oracle the fast renderer is tested against).")
   in
   let info =
-    Cmd.info "render" ~exits ~envs:(limit_envs @ [ huge_pages_env ]) ~doc:"render a scene to an image file"
+    Cmd.info "render" ~exits ~envs:limit_envs ~doc:"render a scene to an image file"
       ~man:
         [
           `S Manpage.s_description;

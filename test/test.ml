@@ -62,7 +62,6 @@ let () =
       ("cli_fuzz", Test_cli_fuzz.tests);
       ("skips", Test_skips.tests);
       ("memory", Test_memory.tests);
-      ("huge_pages", Test_huge_pages.tests);
       ("float_scan", Test_float_scan.tests);
       ("obj_file", Test_obj_file.tests);
       ("obj_split", Test_obj_split.tests);

@@ -25,5 +25,4 @@ module Ppm_stream = Ppm_stream
 module Progressive_workers = Progressive_workers
 module Signals = Signals
 module Part = Part
-module Huge_pages = Huge_pages
 module Proc_self = Proc_self
