@@ -39,6 +39,28 @@ let rich =
   ^ "f 1 2 3\nf 1/1 2/2 3/1\nf 1//1 2//2 3//1\r\nf 1/1/1 2/2/2 3/1/1 4/2/2 5/1/1\n"
   ^ "f -1 -2 -3\nl 1 2\np 1\n  \t \nfoo bar\nf 1/-1/-1 2//-2 3"
 
+(* Do the lines [fast] and [slow] (the same lines written so that the
+   general reader reads them) give the same mesh or error, read whole and
+   read in two parts cut at line [cut] (the second as a part, then joined,
+   as two cores read a big file; [None] where the join declines)? *)
+let same_whole_and_joined ~max_vertices fast slow ~cut =
+  let text ls = String.concat "\n" ls ^ "\n" in
+  let whole = same_result (parse ~max_vertices (text fast)) (parse ~max_vertices (text slow)) in
+  let joined ls =
+    let cut = min cut (List.length ls) in
+    let a = text (List.filteri (fun k _ -> k < cut) ls) and b = text (List.filteri (fun k _ -> k >= cut) ls) in
+    let p = Obj_file.create ~name:"t.obj" ~max_vertices ~max_triangles:1000 in
+    match Obj_file.feed p a 0 (String.length a) with
+    | Ok () ->
+        Option.map (fun m -> Ok m)
+          (Helpers.obj_part_joined p ~name:"t.obj" ~max_vertices ~max_triangles:1000 b 0 (String.length b))
+    | Error _ -> None
+  in
+  let parts =
+    match (joined fast, joined slow) with Some a, Some b -> same_result a b | None, None -> true | _ -> false
+  in
+  whole && parts
+
 let tests =
   [
     Alcotest.test_case "a triangle keeps its positions and 0-based indices" `Quick (fun () ->
@@ -233,28 +255,8 @@ let tests =
             in
             pair (map (fun ls -> head @ ls) (list_size (int_range 1 12) line)) (int_bound 30)))
       (fun (lines, cut) ->
-        let text ls = String.concat "\n" ls ^ "\n" in
         let spaced = List.map (fun l -> if l <> "" && l.[0] = 'f' then l ^ " " else l) lines in
-        let whole = same_result (parse (text lines)) (parse (text spaced)) in
-        (* Read in two parts (the second as a part, then joined), as two
-           cores read a big file; [None] where the join declines. *)
-        let joined ls =
-          let cut = min cut (List.length ls) in
-          let a = text (List.filteri (fun k _ -> k < cut) ls) and b = text (List.filteri (fun k _ -> k >= cut) ls) in
-          let p = Obj_file.create ~name:"t.obj" ~max_vertices:1000 ~max_triangles:1000 in
-          match Obj_file.feed p a 0 (String.length a) with
-          | Ok () ->
-              Option.map (fun m -> Ok m)
-                (Helpers.obj_part_joined p ~name:"t.obj" ~max_vertices:1000 ~max_triangles:1000 b 0 (String.length b))
-          | Error _ -> None
-        in
-        let parts =
-          match (joined lines, joined spaced) with
-          | Some a, Some b -> same_result a b
-          | None, None -> true
-          | _ -> false
-        in
-        whole && parts);
+        same_whole_and_joined ~max_vertices:1000 lines spaced ~cut);
     Helpers.qcheck ~count:3000 "a vertex read on the fast path is the vertex the general vertex reader reads"
       (* The fast path reads [v] and [vn] lines of 3 numbers one space
          apart and nothing after, under the bound; a tab after the
@@ -285,32 +287,12 @@ let tests =
             let head = [ "v 1 2 3"; "v -1 0.5 2"; "v 0 0 0"; "vn 0 0 1" ] in
             pair (map (fun ls -> head @ ls) (list_size (int_range 1 8) line)) (int_bound 12)))
       (fun (lines, cut) ->
-        let parse s = parse ~max_vertices:6 s in
-        let text ls = String.concat "\n" ls ^ "\n" in
         let general l =
           if String.length l > 2 && String.sub l 0 2 = "v " then "v\t" ^ String.sub l 2 (String.length l - 2)
           else if String.length l > 3 && String.sub l 0 3 = "vn " then "vn\t" ^ String.sub l 3 (String.length l - 3)
           else l
         in
-        let slow = List.map general lines in
-        let whole = same_result (parse (text lines)) (parse (text slow)) in
-        let joined ls =
-          let cut = min cut (List.length ls) in
-          let a = text (List.filteri (fun k _ -> k < cut) ls) and b = text (List.filteri (fun k _ -> k >= cut) ls) in
-          let p = Obj_file.create ~name:"t.obj" ~max_vertices:6 ~max_triangles:1000 in
-          match Obj_file.feed p a 0 (String.length a) with
-          | Ok () ->
-              Option.map (fun m -> Ok m)
-                (Helpers.obj_part_joined p ~name:"t.obj" ~max_vertices:6 ~max_triangles:1000 b 0 (String.length b))
-          | Error _ -> None
-        in
-        let parts =
-          match (joined lines, joined slow) with
-          | Some a, Some b -> same_result a b
-          | None, None -> true
-          | _ -> false
-        in
-        whole && parts);
+        same_whole_and_joined ~max_vertices:6 lines (List.map general lines) ~cut);
     Helpers.qcheck ~count:3000 "any text, of OBJ words or of any bytes, is a mesh or a one-line error"
       QCheck.(
         make ~print:String.escaped
