@@ -502,6 +502,18 @@ let mesh_boxes ~n_spheres (scene : Scene.t) ~all ~first ~bounded ~nb ~cx ~cy ~cz
   done;
   (x0, y0, z0, x1, y1, z1)
 
+(* The [count] numbers [k] of [0 .. n - 1] for which [p k] holds, in
+   order. *)
+let indices_where n count p =
+  let a = Array.make count 0 and j = ref 0 in
+  for k = 0 to n - 1 do
+    if p k then begin
+      a.(!j) <- k;
+      incr j
+    end
+  done;
+  a
+
 let prepare_scene ~skips ?beside scene =
   let scene = Scene.of_valid scene in
   let n_spheres = Spheres.length scene.spheres in
@@ -726,15 +738,7 @@ let prepare_scene ~skips ?beside scene =
     if !nb = n then ([||], unbounded, n, 0)
     else if any_mesh && !nb > 0 && !last - !first + 1 = !nb then ([||], unbounded, !nb, !first)
     else begin
-      let bounded = Array.make !nb 0 in
-      let b = ref 0 in
-      for k = 0 to n - 1 do
-        if is_bounded k then begin
-          bounded.(!b) <- k;
-          incr b
-        end
-      done;
-      (bounded, unbounded, !nb, 0)
+      (indices_where n !nb is_bounded, unbounded, !nb, 0)
     end
   in
   (* A big scene's loading left garbage in pieces (the text's windows, the
@@ -889,15 +893,7 @@ let prepare_scene ~skips ?beside scene =
         for k = 0 to n - 1 do
           if kept k then incr m
         done;
-        let index = Array.make !m 0 in
-        m := 0;
-        for k = 0 to n - 1 do
-          if kept k then begin
-            index.(!m) <- k;
-            incr m
-          end
-        done;
-        index
+        indices_where n !m kept
   in
   let n_kept = Array.length index in
   (* Spheres alone, without twins: [index] orders every object, and the
