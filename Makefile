@@ -2,8 +2,10 @@
 #   make run    set up, build, and show the default scene in a window
 #               (or render it to cgfs.ppm when there is no display)
 #   make test   set up, build, and run the whole test suite
-# `make deps` installs what the build and the tests need from Debian's
-# packages; it does nothing when everything is already there.
+# `make deps-build` installs what the build and the window need from Debian's
+# packages, `make deps` that and what the tests need too (a virtual X server,
+# Chromium, Slurm, sshd, npm's playwright-core); each does nothing when
+# everything is already there. `make run` installs only the first.
 
 # Debian packages: the build, then the tests (virtual X server, screenshots;
 # js_of_ocaml and node run the core library as JavaScript, Chromium the web
@@ -19,9 +21,12 @@ BENCH_PKGS = gnuplot-nox
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: run test deps build golden screenshot web web-screenshot clean bench bench-quality fuzz
+.PHONY: run test deps deps-build build golden screenshot web web-screenshot clean bench bench-quality fuzz
 
-run: deps build
+# Only what the program needs (dune build's default would build the tests too,
+# and their libraries come with `make deps`).
+run: deps-build
+	dune build @install
 	@if [ -n "$$DISPLAY" ]; then \
 	  dune exec --no-print-directory -- raytrace; \
 	else \
@@ -32,18 +37,26 @@ run: deps build
 test: deps
 	dune build @install @runtest
 
-# Node.js drives Chromium in the web page's tests (test/web): Debian's nodejs
-# and npm only where there is no node or npm (Debian's npm conflicts with
-# other builds of node), then playwright-core, pinned in test/web.
-deps:
-	@missing=$$(for p in $(BUILD_PKGS) $(TEST_PKGS); do \
+# Installs the Debian packages of $(1) that are missing (one apt-get for all).
+define apt_missing
+	@missing=$$(for p in $(1); do \
 	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done; \
-	  command -v node >/dev/null || echo nodejs; command -v npm >/dev/null || echo npm); \
+	  $(2)); \
 	if [ -n "$$missing" ]; then \
 	  echo "Installing from Debian:" $$missing; \
 	  $(SUDO) apt-get update -qq && \
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing >/dev/null; \
 	fi
+endef
+
+deps-build:
+	$(call apt_missing,$(BUILD_PKGS),true)
+
+# Node.js drives Chromium in the web page's tests (test/web): Debian's nodejs
+# and npm only where there is no node or npm (Debian's npm conflicts with
+# other builds of node), then playwright-core, pinned in test/web.
+deps:
+	$(call apt_missing,$(BUILD_PKGS) $(TEST_PKGS),command -v node >/dev/null || echo nodejs; command -v npm >/dev/null || echo npm)
 	@[ -d test/web/node_modules/playwright-core ] || \
 	  { echo "Installing playwright-core from npm (test/web)"; cd test/web && npm ci --no-audit --no-fund --loglevel=error; }
 
