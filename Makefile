@@ -80,7 +80,7 @@ screenshot: build
 
 # The ray tracer in a web page (docs/web.md): one HTML file and one
 # JavaScript file, opened from the file system.
-web: deps
+web: deps-build
 	dune build web/index.html web/raytrace.js
 	@echo "Open file://$(CURDIR)/_build/default/web/index.html in a browser."
 
