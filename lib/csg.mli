@@ -12,7 +12,7 @@
     is a list of [entry, exit] intervals of the line; an operation merges
     its children's lists into its own (one sweep over both lists' ends in
     order); the first end of the solid's list beyond [t_min] is the hit.
-    Every list has room reserved once per tracer ({!work}), so that a ray
+    Every list has room reserved once per tracer ({!val-work}), so that a ray
     allocates nothing. {!literal_hit} is the oracle: it classifies every
     crossing of every leaf by evaluating the boolean expression just before
     and just after it. *)

@@ -29,7 +29,7 @@ type t = private {
       (** Per triangle, ['\001'] if it is degenerate ({!degenerate}),
           ['\000'] if not: found once, when the mesh is made, for the
           kernel that asks it of each triangle several times. *)
-  objects : int;  (** The triangles that are not degenerate ({!objects}). *)
+  objects : int;  (** The triangles that are not degenerate ({!val-objects}). *)
 }
 (** The type for meshes. *)
 

@@ -57,7 +57,7 @@ type t = private {
           scene's order: each mesh's placed positions (a scene's one
           mesh's own array, not a copy), then the lone triangles' corners.
           With one, those copied in the order in which the slots first
-          name them ({!Vertex_order}), so that a leaf's triangles read
+          name them ([Vertex_order]), so that a leaf's triangles read
           their corners close together. *)
   at0 : int array;
       (** Per slot of a shape (empty when the scene has spheres alone): a

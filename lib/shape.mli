@@ -58,7 +58,7 @@ val smooth_triangle : int
 
 val csg : int
 (** [csg] is [5]: a CSG solid, whose geometry is the number of its root
-    node in the kernel's {!Csg.table} (see {!Raytrace.Private.Prepared}). *)
+    node in the kernel's {!Csg.type-table} (see {!Raytrace.Private.Prepared}). *)
 
 val kind : t -> int
 (** [kind s] is the kind of [s].
