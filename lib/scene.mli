@@ -13,7 +13,9 @@ type t = {
   viewport : Viewport.t;
   camera : Camera.t;
   background : Color.t;  (** Colour of rays that hit nothing. *)
-  depth : int;  (** Recursion depth of mirror reflection (7.8), [>= 0]. *)
+  depth : int;
+      (** Recursion depth, [>= 0]: how many times a ray may be followed after its
+          first hit, reflected (7.8) or refracted through glass, one level for either. *)
   epsilon : float option;
       (** [Some e]: the document's semantics, shadow and reflection rays
           see objects at [t > e] only. [None]: the robust mode, which needs

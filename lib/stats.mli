@@ -9,8 +9,11 @@ type t = {
   box_tests : int;  (** Ray-box tests in the sphere hierarchy. *)
   early_stops : int;  (** Reflections stopped by the exact weight bound. *)
   jobs : int;  (** Processes that traced. *)
-  prepare_s : float;  (** Seconds spent preparing the scene. *)
-  trace_s : float;  (** Wall-clock seconds spent tracing. *)
+  prepare_s : float;  (** Seconds spent preparing the scene, by the render's clock (below). *)
+  trace_s : float;
+      (** Seconds spent tracing, by the render's clock: {!Render.image}'s [clock],
+          processor time ([Sys.time]) unless the caller gives another; the
+          command line's renders (all their processes together) read the wall clock. *)
   minor_words : float;  (** Minor-heap words allocated by the tracing loops. *)
 }
 (** The type for render statistics. *)
