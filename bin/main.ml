@@ -429,6 +429,9 @@ let () =
   in
   let usage = Buffer.create 256 in
   let err = Format.formatter_of_buffer usage in
+  (* Cmdliner wraps its messages at the formatter's margin: a wrapped
+     message would lose its end to [one_line_usage]. *)
+  Format.pp_set_margin err 1_000_000;
   match Cmd.eval' ~catch:false ~err main with
   | code -> (
       Format.pp_print_flush err ();

@@ -129,6 +129,21 @@ let tests =
             ([ "--jobs"; "100000" ], "raytrace: --jobs must lie in [1, 1024], got 100000\n");
           ];
         Alcotest.(check bool) __LOC__ false (Sys.file_exists "/tmp/never.ppm"));
+    Alcotest.test_case "an integer option too large for an int is one whole line, not a message cut short" `Quick
+      (fun () ->
+        (* Cmdliner wraps its message at 78 columns; the first line alone
+           ended in "expected an". *)
+        List.iter
+          (fun (option, value) ->
+            let code, _, err = run (exe ()) [ "render"; option; value; "-o"; "/tmp/never.ppm" ] in
+            Alcotest.(check int) __LOC__ 124 code;
+            Alcotest.(check string) __LOC__
+              (Printf.sprintf
+                 "raytrace: option '%s': invalid value '%s', expected an integer; see 'raytrace render --help'\n"
+                 option value)
+              err)
+          [ ("--width", "99999999999999999999"); ("--jobs", "9999999999999999999999999") ];
+        Alcotest.(check bool) __LOC__ false (Sys.file_exists "/tmp/never.ppm"));
     Alcotest.test_case "without a display, view says so in one line and exits 3" `Quick (fun () ->
         let env =
           Unix.environment () |> Array.to_list
