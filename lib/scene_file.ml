@@ -616,6 +616,31 @@ let string_source text () =
   in
   { read; close = ignore }
 
+(* [src] with a UTF-8 byte order mark at its start (some editors write
+   one) read as three spaces: both readers then skip it, and every offset
+   and column is the file's. Where the text starts otherwise, its bytes
+   as they are. *)
+let without_byte_order_mark (src : source) () =
+  let r = src () in
+  (* The text's first 3 bytes (fewer if it is shorter), read before
+     anything is given, then given first. *)
+  let head = Bytes.create 3 and head_len = ref (-1) and given = ref 0 in
+  let rec fill n = if n < 3 then match r.read head n (3 - n) with 0 -> n | k -> fill (n + k) else n in
+  let read buf pos len =
+    if !head_len < 0 then begin
+      head_len := fill 0;
+      if !head_len = 3 && Bytes.to_string head = "\xef\xbb\xbf" then Bytes.fill head 0 3 ' '
+    end;
+    if !given < !head_len && len > 0 then begin
+      let k = min len (!head_len - !given) in
+      Bytes.blit head !given buf pos k;
+      given := !given + k;
+      k
+    end
+    else r.read buf pos len
+  in
+  { read; close = r.close }
+
 (* [each_chunk src f] calls [f bytes len] on the text of [src], 64 KiB at a
    time, in order. *)
 let each_chunk (src : source) f =
@@ -1021,6 +1046,7 @@ type beside = {
 
 let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast)
     ?(window_bytes = 1 lsl 20) ?beside (src : source) =
+  let src = without_byte_order_mark src in
   (* Mesh files are named relative to the scene file; each is read once,
      even when an error makes a second, located pass over the text. *)
   let loaded = Hashtbl.create 4 in
