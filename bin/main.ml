@@ -20,7 +20,7 @@ let limit_envs =
     env `Pixels "canvas and image pixels (width x height)";
     env `Depth "the recursion depth";
     env `Samples "rays per pixel (--samples N traces N x N)";
-    env `Spheres "spheres in a scene";
+    env `Spheres "objects in a scene (spheres, planes, triangles, boxes, meshes and CSG solids, each counted once)";
     env `Lights "lights in a scene";
     env `Scene_bytes "the size of a scene file, in bytes";
     env `Form_bytes "the size of one top-level form of a scene file (such as a camera-path), in bytes: the parser holds a form whole, in about 50 times its size";

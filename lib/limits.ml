@@ -158,8 +158,9 @@ let check_samples l n =
     ~what:(fun () -> Printf.sprintf "%d samples per pixel are too many" n)
 
 let check_count l kind n =
-  let noun = match kind with `Spheres -> "spheres" | `Lights -> "lights" in
-  bounded l (kind :> name) ~lo:0 n
+  let noun = match kind with `Spheres -> "spheres" | `Objects -> "objects" | `Lights -> "lights" in
+  let name = match kind with `Spheres | `Objects -> `Spheres | `Lights -> `Lights in
+  bounded l name ~lo:0 n
     ~low:(fun () -> Printf.sprintf "a negative number of %s: %d" noun n)
     ~what:(fun () -> Printf.sprintf "the scene has %d %s" n noun)
 

@@ -173,9 +173,11 @@ val check_samples : t -> int -> (int, [> `Msg of string ]) result
     within the [`Samples] bound of [l] (the renderer checks
     [samples x samples]). *)
 
-val check_count : t -> [ `Spheres | `Lights ] -> int -> (int, [> `Msg of string ]) result
+val check_count : t -> [ `Spheres | `Objects | `Lights ] -> int -> (int, [> `Msg of string ]) result
 (** [check_count l kind n] is [Ok n] if a scene with [n] spheres (or lights)
-    is within that bound of [l]. *)
+    is within that bound of [l]. [`Objects] counts spheres and other shapes
+    together against the [`Spheres] bound, and says "objects" where
+    [`Spheres] says "spheres". *)
 
 val check_scene_bytes : t -> int -> (int, [> `Msg of string ]) result
 (** [check_scene_bytes l n] is [Ok n] if a scene text of [n] bytes is within

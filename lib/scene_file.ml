@@ -528,6 +528,10 @@ let once b kw kw_node =
         (Option.fold ~none:"?" ~some:position first)
   | None -> Hashtbl.add b.seen kw (b.where kw_node)
 
+(* What the count of spheres and shapes is, for its message: "spheres"
+   while the scene has no other shape. *)
+let objects b = match b.shapes with [] -> `Spheres | _ :: _ -> `Objects
+
 let add_form b node =
   let where = b.where in
   match node with
@@ -540,21 +544,21 @@ let add_form b node =
          beyond the bound, before the rest of the file is read. *)
       | "sphere" ->
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits (objects b) b.n_spheres));
           Spheres.add b.spheres (sphere ~where node rest)
       | ("plane" | "triangle" | "box") as form ->
           (* Shapes count against the bound of spheres: both are objects. *)
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
           let parse = match form with "plane" -> plane | "triangle" -> triangle | _ -> box in
           b.shapes <- parse ~where node rest :: b.shapes
       | "mesh" ->
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
           b.shapes <- mesh ~where ~load:b.load node rest :: b.shapes
       | "csg" ->
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
           b.shapes <- Shape.Csg (csg ~where ~load:b.load ~depth:1 node rest) :: b.shapes
       | "light" ->
           b.n_lights <- b.n_lights + 1;
