@@ -24,6 +24,7 @@ let limit_envs =
     env `Lights "lights in a scene";
     env `Scene_bytes "the size of a scene file, in bytes";
     env `Form_bytes "the size of one top-level form of a scene file (such as a camera-path), in bytes: the parser holds a form whole, in about 50 times its size";
+    env `Mesh_bytes "the size of a mesh (OBJ) file, in bytes: it is read 64 KiB at a time, so the bound stops a file that would never end";
     env `Work "the ray-sphere intersection tests that a render may need (pixels x samples x rays per sample x spheres met per ray x (1 + lights)); 1e12 is a few hours of one core";
   ]
 

@@ -372,6 +372,69 @@ let tests =
         Alcotest.(check int) __LOC__ 1 code;
         one_line __LOC__ err;
         contains __LOC__ err "RAYTRACE_MAX_SCENE_BYTES");
+    Alcotest.test_case "a mesh that is a directory, a FIFO, a device or over the byte bound is one located line naming it"
+      `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        let f = Filename.concat dir in
+        Unix.mkdir (f "d.obj") 0o755;
+        Unix.mkfifo (f "fifo.obj") 0o600;
+        write (f "big.obj") "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+        let scene mesh =
+          write (f "s.scene") ("(canvas (width 4) (height 4))\n(mesh (file \"" ^ mesh ^ "\") (color 255 0 0))\n")
+        in
+        let out = f "out.ppm" in
+        List.iter
+          (fun (mesh, env, expected) ->
+            scene mesh;
+            (* A FIFO with no writer blocked the open for ever, /dev/zero was
+               read for ever: a time limit makes a hang a failure. *)
+            let code, _, err =
+              sh (env ^ "timeout 20 " ^ command [ exe (); "render"; f "s.scene"; "-o"; out ])
+            in
+            Alcotest.(check int) (mesh ^ ": status") 1 code;
+            Alcotest.(check string) mesh (Printf.sprintf "raytrace: %s:2:7: %s\n" (f "s.scene") expected) err;
+            Alcotest.(check bool) (mesh ^ ": no output") false (Sys.file_exists out))
+          [
+            ("d.obj", "", "cannot read mesh file: " ^ f "d.obj" ^ ": is a directory");
+            ("fifo.obj", "", "cannot read mesh file: " ^ f "fifo.obj" ^ ": is a FIFO, not a regular file");
+            ("/dev/zero", "", "cannot read mesh file: /dev/zero: is a character device, not a regular file");
+            (* 4 lines: 10 + 9 + 8 + 8 = 35 bytes. *)
+            ( "big.obj", "RAYTRACE_MAX_MESH_BYTES=34 ",
+              "mesh file " ^ f "big.obj" ^ " is 35 bytes long, more than the limit of 34 (set RAYTRACE_MAX_MESH_BYTES to raise it)" );
+          ];
+        (* A file whose size is not known ahead (a /proc file, 0 bytes to
+           stat) is bounded as it is read: its lines are statements that
+           are skipped, which could go on for ever. *)
+        (match Files.read_mesh ~limits:(Raytrace.Limits.with_bound Raytrace.Limits.default `Mesh_bytes 100.) "/proc/self/maps" with
+        | Ok _ -> Alcotest.fail "/proc/self/maps read past the bound"
+        | Error (`Msg m) -> contains __LOC__ m "more than the limit of 100 (set RAYTRACE_MAX_MESH_BYTES to raise it)");
+        scene "big.obj";
+        let code, _, err = sh ("RAYTRACE_MAX_MESH_BYTES=35 " ^ command [ exe (); "render"; f "s.scene"; "-o"; out ]) in
+        Alcotest.(check int) err 0 code);
+    Alcotest.test_case "a scene FIFO that no program writes is an error after 5 s; a writer that comes later is read" `Quick
+      (fun () ->
+        let dir = Helpers.temp_dir () in
+        let fifo = Filename.concat dir "s.fifo" and out = Filename.concat dir "out.ppm" in
+        Unix.mkfifo fifo 0o600;
+        let t0 = Unix.gettimeofday () in
+        let code, _, err = sh ("timeout 20 " ^ command [ exe (); "render"; fifo; "-o"; out ]) in
+        let waited = Unix.gettimeofday () -. t0 in
+        Alcotest.(check int) __LOC__ 1 code;
+        Alcotest.(check string) __LOC__
+          (Printf.sprintf
+             "raytrace: %s: is a FIFO that no program wrote to within 5 s; start the program that writes the scene first, or pipe it to /dev/stdin\n"
+             fifo)
+          err;
+        if waited < 4.9 || waited > 15. then Alcotest.failf "waited %.1f s, not about 5" waited;
+        (* The writer opens the FIFO a second after raytrace: read, as before. *)
+        let code, _, err =
+          sh
+            (Printf.sprintf "(sleep 1; echo '(canvas (width 4) (height 4))' > %s) & %s; s=$?; wait; exit $s"
+               (Filename.quote fifo)
+               (command [ exe (); "render"; fifo; "-o"; out ]))
+        in
+        Alcotest.(check int) err 0 code;
+        Alcotest.(check string) __LOC__ "P6\n4 4\n255\n" (String.sub (read out) 0 11));
     Alcotest.test_case "diff refuses an image file larger than the pixel bound before reading it" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let big = Filename.concat dir "big.ppm" in

@@ -75,6 +75,34 @@ let no_output_destroys_an_input () =
     [ command [ exe (); "merge"; path "p.ppm"; "-o"; "/dev/stdout" ]; ">>"; Filename.quote (path "p.ppm") ]
     "/dev/stdout: the output file is the input part"
 
+(* A scene's mesh is an input like the scene: no render, frame or part
+   may replace it, by any name. *)
+let no_output_replaces_a_mesh () =
+  let dir = Helpers.temp_dir () in
+  let path f = Filename.concat dir f in
+  write (path "frame-0001.obj") "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+  Unix.mkdir (path "sub") 0o755;
+  write (path "sub/s.scene")
+    "(canvas (width 4) (height 4))\n\
+     (camera-path (key (frame 0) (position 0 0 -1) (look-at 0 0 3)) (key (frame 2) (position 1 0 -1) (look-at 0 0 3)))\n\
+     (mesh (file \"../frame-0001.obj\") (color 255 0 0) (translate 0 0 3))\n\
+     (light ambient (intensity 1))\n";
+  Unix.symlink (path "frame-0001.obj") (path "link.obj");
+  Unix.link (path "frame-0001.obj") (path "hard.obj");
+  let scene = path "sub/s.scene" in
+  let input_mesh = "the output file is the input mesh; choose another output path" in
+  refused dir "the mesh by its name" [ "render"; scene; "-o"; path "frame-0001.obj" ] (path "frame-0001.obj: " ^ input_mesh);
+  refused dir "the mesh through a symbolic link" [ "render"; scene; "-o"; path "link.obj" ] input_mesh;
+  refused dir "the mesh through a hard link" [ "render"; scene; "-o"; path "hard.obj" ] input_mesh;
+  refused dir "the mesh through .." [ "render"; scene; "-o"; path "sub/../frame-0001.obj" ] input_mesh;
+  refused dir "the mesh as a part" [ "render"; scene; "--tile"; "1/2"; "-o"; path "hard.obj" ] input_mesh;
+  refused dir "the mesh as frame 1"
+    [ "render"; scene; "--frames"; "0:2"; "-o"; path "frame-%04d.obj" ]
+    (path "frame-0001.obj: " ^ input_mesh);
+  refused dir "stdout appended to the mesh" ~script:true
+    [ command [ exe (); "render"; scene; "-o"; "-" ]; ">>"; Filename.quote (path "hard.obj") ]
+    ("standard output: " ^ input_mesh)
+
 let special_files_are_written_to () =
   let dir = Helpers.temp_dir () in
   let log = Filename.concat dir "log" in
@@ -331,6 +359,7 @@ let a_stopped_worker_is_continued () =
 let tests =
   [
     Alcotest.test_case "no output is an input or another output, by any name" `Quick no_output_destroys_an_input;
+    Alcotest.test_case "no render, frame or part replaces the mesh a scene reads, by any name" `Quick no_output_replaces_a_mesh;
     Alcotest.test_case "stdout, /dev/stdout and FIFOs are written to, never replaced" `Quick special_files_are_written_to;
     Alcotest.test_case "a full, closed or broken stdout or stderr is one line for every command" `Quick
       every_channel_fails_cleanly;
