@@ -80,13 +80,17 @@ let bvh_beside ?(min_objects = 1 lsl 16) () =
   in
   { Bvh.beside; min_objects; floats }
 
+(* Raised by [in_workers] where it cannot have the shared memory it needs
+   (a full /dev/shm, a file-size limit), before any worker starts. *)
+exception No_shared_memory
+
 let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region : Region.t) =
   (* Nothing here holds the scene past [Prepared.prepare], which lets its
      spheres go as it builds the hierarchy. *)
   let canvas = (let s = Scene.of_valid scene in (s.width, s.height)) in
   match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
   | exception Out_of_memory -> Render_work.out_of_memory region
-  | exception Failure m -> Error (`Msg m)
+  | exception Failure _ -> raise No_shared_memory
   | img -> (
       let t0 = Unix.gettimeofday () in
       (* A part of a big hierarchy is built by a child process meanwhile
@@ -98,16 +102,18 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
       let p = Prepared.prepare ?skips ?beside scene in
       let t1 = Unix.gettimeofday () in
       let plan =
-        Sampling.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y)
+        match Sampling.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y) with
+        | plan -> plan
+        | exception Failure _ -> raise No_shared_memory
       in
       let passes = Sampling.passes plan in
       match Parallel.shared_ints (passes * jobs * Render_work.counter_fields) with
       | exception Out_of_memory -> Render_work.out_of_memory region
-      | exception Failure m -> Error (`Msg m)
+      | exception Failure _ -> raise No_shared_memory
       | ints -> (
           match Option.map (fun _ -> Parallel.shared_ints (2 * jobs)) progress with
           | exception Out_of_memory -> Render_work.out_of_memory region
-          | exception Failure m -> Error (`Msg m)
+          | exception Failure _ -> raise No_shared_memory
           | slots ->
           let total = Render_work.total_rows plan in
           let report () =
@@ -216,8 +222,7 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptiv
           | Error _ as e -> e
           | Ok () -> (
               let jobs = min jobs region.h in
-              if jobs > 1 then in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene region
-              else
+              let one_process () =
                 match
                   Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample ?progress
                     scene region
@@ -225,7 +230,15 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptiv
                 | Error _ as e -> e
                 | Ok (img, stats) ->
                     Option.iter (fun f -> f img region.h) rows_done;
-                    Ok (img, stats))))
+                    Ok (img, stats)
+              in
+              (* Without shared memory the picture is the same, traced in
+                 this process, which needs none. *)
+              if jobs = 1 then one_process ()
+              else
+                match in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene region with
+                | r -> r
+                | exception No_shared_memory -> one_process ())))
 
 let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene =
   if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";
