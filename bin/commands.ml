@@ -36,9 +36,30 @@ let say line =
     flush stderr
   with Sys_error _ -> ()
 
+(* A reader gone from a pipeline (`raytrace render -o - | head -c 10`)
+   is no error: the process ends as Unix tools do there, killed by
+   SIGPIPE (status 141 in the shell), quietly. By the signal, not by
+   status 0: the output was not all delivered, which a script with
+   [set -o pipefail] may want to know. SIGPIPE itself is ignored (see
+   bin/main.ml), so that the write fails and this runs: nothing is left
+   to clean up by then. *)
+let broken_pipe = Unix.error_message Unix.EPIPE
+
+let is_broken_pipe m =
+  let n = String.length m and k = String.length broken_pipe in
+  n >= k && String.sub m (n - k) k = broken_pipe && (n = k || String.sub m (n - k - 2) 2 = ": ")
+
+let end_as_reader_gone () =
+  (try flush stderr with Sys_error _ -> ());
+  Sys.set_signal Sys.sigpipe Sys.Signal_default;
+  Unix.kill (Unix.getpid ()) Sys.sigpipe;
+  (* Where SIGPIPE is blocked: the status a shell shows for it. *)
+  Unix._exit 141
+
 (* The one place where an error becomes a message and an exit status. *)
 let report = function
   | Ok code -> code
+  | Error (`Msg m) when is_broken_pipe m -> end_as_reader_gone ()
   | Error (`Msg m) ->
       say m;
       exit_input
