@@ -47,7 +47,7 @@ let broken_pipe = Unix.error_message Unix.EPIPE
 
 let is_broken_pipe m =
   let n = String.length m and k = String.length broken_pipe in
-  n >= k && String.sub m (n - k) k = broken_pipe && (n = k || String.sub m (n - k - 2) 2 = ": ")
+  n >= k && String.sub m (n - k) k = broken_pipe && (n = k || (n >= k + 2 && String.sub m (n - k - 2) 2 = ": "))
 
 let end_as_reader_gone () =
   (try flush stderr with Sys_error _ -> ());
