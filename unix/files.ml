@@ -77,7 +77,9 @@ let mesh_part ~check path split =
   | None -> fun () -> None
   | Some fd ->
       let read () =
-        let ic = match File_io.open_read ~regular:true path with Ok o -> o.channel | Error (`Msg m) -> failwith m in
+        match File_io.open_read ~regular:true path with
+        | Error _ -> None
+        | Ok { channel = ic; _ } ->
         Fun.protect
           ~finally:(fun () -> close_in_noerr ic)
           (fun () ->
