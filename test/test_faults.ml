@@ -436,7 +436,7 @@ let tests =
         Alcotest.(check int) __LOC__ 1 code;
         Alcotest.(check string) __LOC__
           (Printf.sprintf
-             "raytrace: %s: is a FIFO that no program wrote to within 5 s; start the program that writes the scene first, or pipe it to /dev/stdin\n"
+             "raytrace: %s: is a FIFO that no program wrote to within 5 s; start the program that writes it first, or pipe its data to /dev/stdin\n"
              fifo)
           err;
         if waited < 4.9 || waited > 15. then Alcotest.failf "waited %.1f s, not about 5" waited;

@@ -45,7 +45,7 @@ let wait_for_writer path fd =
     | 0 ->
         error path
           (Printf.sprintf
-             "is a FIFO that no program wrote to within %.0f s; start the program that writes the scene first, or pipe it to /dev/stdin"
+             "is a FIFO that no program wrote to within %.0f s; start the program that writes it first, or pipe its data to /dev/stdin"
              fifo_wait)
     | n -> Ok (Bytes.sub_string buf 0 n)
     | exception Unix.Unix_error ((EAGAIN | EWOULDBLOCK), _, _) -> Ok ""
