@@ -182,6 +182,14 @@ let tests =
             Alcotest.(check int) __LOC__ 0 code;
             if not (Astring_free.contains out "EXAMPLES") then Alcotest.failf "%s: no EXAMPLES" (String.concat " " cmd))
           [ []; [ "view" ]; [ "render" ]; [ "diff" ] ]);
+    Alcotest.test_case "render's manual names every bound's variable, the mesh file's included" `Quick (fun () ->
+        let code, out, _ = run (exe ()) [ "render"; "--help=plain" ] in
+        Alcotest.(check int) __LOC__ 0 code;
+        List.iter
+          (fun name ->
+            let v = Raytrace.Limits.variable name in
+            if not (Astring_free.contains out v) then Alcotest.failf "render --help does not name %s" v)
+          [ `Pixels; `Depth; `Samples; `Spheres; `Lights; `Scene_bytes; `Form_bytes; `Mesh_bytes; `Work ]);
     Alcotest.test_case "--samples 1 writes the plain render's bytes, --samples N --adaptive T the library's" `Quick
       (fun () ->
         let dir = Helpers.temp_dir () in
