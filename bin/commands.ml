@@ -36,9 +36,30 @@ let say line =
     flush stderr
   with Sys_error _ -> ()
 
+(* A reader gone from a pipeline (`raytrace render -o - | head -c 10`)
+   is no error: the process ends as Unix tools do there, killed by
+   SIGPIPE (status 141 in the shell), quietly. By the signal, not by
+   status 0: the output was not all delivered, which a script with
+   [set -o pipefail] may want to know. SIGPIPE itself is ignored (see
+   bin/main.ml), so that the write fails and this runs: nothing is left
+   to clean up by then. *)
+let broken_pipe = Unix.error_message Unix.EPIPE
+
+let is_broken_pipe m =
+  let n = String.length m and k = String.length broken_pipe in
+  n >= k && String.sub m (n - k) k = broken_pipe && (n = k || (n >= k + 2 && String.sub m (n - k - 2) 2 = ": "))
+
+let end_as_reader_gone () =
+  (try flush stderr with Sys_error _ -> ());
+  Sys.set_signal Sys.sigpipe Sys.Signal_default;
+  Unix.kill (Unix.getpid ()) Sys.sigpipe;
+  (* Where SIGPIPE is blocked: the status a shell shows for it. *)
+  Unix._exit 141
+
 (* The one place where an error becomes a message and an exit status. *)
 let report = function
   | Ok code -> code
+  | Error (`Msg m) when is_broken_pipe m -> end_as_reader_gone ()
   | Error (`Msg m) ->
       say m;
       exit_input
@@ -46,13 +67,20 @@ let report = function
 (* The one scene validation of a command: a file's, or the built-in
    scene's. Overrides come from the command line: checked like a file's
    values, and only they. *)
-let load ~limits ~jobs opts =
-  let* scene =
+let load_with_inputs ~limits ~jobs opts =
+  let* scene, inputs =
     match opts.scene with
-    | None -> Scene.validate ~limits Scene.cgfs
-    | Some path -> Files.read_scene ~limits ~jobs path
+    | None ->
+        let* s = Scene.validate ~limits Scene.cgfs in
+        Ok (s, [])
+    | Some path ->
+        let* l = Files.load_scene ~limits ~jobs path in
+        Ok (l.scene, l.inputs)
   in
-  Scene.override ~limits ?width:opts.width ?height:opts.height ?depth:opts.depth scene
+  let* scene = Scene.override ~limits ?width:opts.width ?height:opts.height ?depth:opts.depth scene in
+  Ok (scene, inputs)
+
+let load ~limits ~jobs opts = Result.map fst (load_with_inputs ~limits ~jobs opts)
 
 let scene_name opts =
   match opts.scene with None -> "cgfs (built-in)" | Some p -> Filename.basename p
@@ -195,6 +223,11 @@ let progress_after =
   | Some (Some s) when Float.is_finite s && s >= 0. -> Some s
   | _ -> None
 
+let outputs ~frames output =
+  match frames with
+  | None -> [ ("output", output) ]
+  | Some (a, b) -> List.init (b - a + 1) (fun i -> (Printf.sprintf "frame %d" (a + i), frame_path output (a + i)))
+
 let check_output opts ~frames ~part output =
   (* No camera path has frames outside [0, Camera_path.max_frame]: a range
      beyond it is refused before its list of outputs is made. *)
@@ -205,13 +238,8 @@ let check_output opts ~frames ~part output =
           Camera_path.max_frame
     | _ -> Ok ()
   in
-  let outputs =
-    match frames with
-    | None -> [ ("output", output) ]
-    | Some (a, b) -> List.init (b - a + 1) (fun i -> (Printf.sprintf "frame %d" (a + i), frame_path output (a + i)))
-  in
   let* () =
-    match (Io_plan.check ~inputs:(scene_input opts) ~outputs, frames, frame_placeholder output) with
+    match (Io_plan.check ~inputs:(scene_input opts) ~outputs:(outputs ~frames output), frames, frame_placeholder output) with
     | Error _, Some (a, b), None when a < b ->
         msg "%s: with --frames %d:%d, the output needs the frame number, e.g. anim-%%04d.ppm" output a b
     | r, _, _ -> r
@@ -226,7 +254,7 @@ let check_output opts ~frames ~part output =
 let peak_kb () = Proc_self.kb "status" "VmHWM"
 
 (* One picture (a frame, a part, or both) rendered and written. *)
-let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~region ~output ~sampling valid =
+let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~files ~frame ~region ~output ~sampling valid =
   let scene = Scene.of_valid valid in
   (* A whole image to a PPM file is written while the workers trace
      (Ppm_stream): little of the writing is left when the last row is done.
@@ -251,7 +279,7 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~frame ~regio
     | Some _ ->
         let renderer = if literal then "literal" else "fast" in
         Part.settings ?frame ~samples:sampling.Sampling.samples ?adaptive:sampling.adaptive ~subsample:sampling.subsample
-          ~renderer scene
+          ~renderer ~files scene
   in
   let* (st, seconds), write_s =
     if streamed then begin
@@ -321,9 +349,22 @@ let render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling =
      let t0 = Unix.gettimeofday () in
      (* The reader uses the jobs too; a bad --jobs is reported after the
         scene's errors, as before. *)
-     let* scene = load ~limits ~jobs:(Result.value (jobs_or_cores jobs) ~default:1) opts in
+     let* scene, inputs = load_with_inputs ~limits ~jobs:(Result.value (jobs_or_cores jobs) ~default:1) opts in
      let load_s = Unix.gettimeofday () -. t0 in
+     (* The files the scene read (its meshes) are inputs too, known only
+        now: no output may replace one. *)
+     let* () =
+       match inputs with
+       | [] -> Ok ()
+       | _ ->
+           let inputs = List.map (fun (i : Files.input) -> (i.what, i.path)) inputs in
+           Io_plan.check ~inputs:(scene_input opts @ inputs) ~outputs:(outputs ~frames output)
+     in
      let* region = part_region (Scene.of_valid scene) part in
+     (* A part's digest covers what the files the scene read held when they
+        were read: parts rendered before and after a mesh changed do not
+        merge. *)
+     let* files = match part with None -> Ok "" | Some _ -> Files.inputs_digest inputs in
      let* jobs = jobs_or_cores jobs in
      let count = match frames with None -> 1 | Some (a, b) -> b - a + 1 in
      let meter =
@@ -332,7 +373,7 @@ let render opts ~output ~jobs ~stats ~quiet ~literal ~part ~frames ~sampling =
      in
      (* An error's message, or an interrupt, finds the line erased. *)
      Fun.protect ~finally:(fun () -> Option.iter Meter.clear meter) @@ fun () ->
-     let render_one = render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~region ~sampling in
+     let render_one = render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~files ~region ~sampling in
      match frames with
      | None ->
          let* () = render_one ~frame:None ~output scene in

@@ -15,6 +15,16 @@ val say : string -> unit
 (** [say line] writes [raytrace: line] and a newline on stderr, and
     flushes it; a closed or full stderr loses the line silently. *)
 
+val is_broken_pipe : string -> bool
+(** [is_broken_pipe m] is [true] iff the message [m] is a write's
+    ["Broken pipe"] ([EPIPE]), alone or after a path and [": "]: a reader
+    gone. *)
+
+val end_as_reader_gone : unit -> 'a
+(** [end_as_reader_gone ()] ends the process as a Unix tool ends when the
+    reader of its output goes away: killed by SIGPIPE (status 141 in a
+    shell), with no message. *)
+
 type scene_options = {
   scene : string option;  (** Scene file; [None] for the built-in scene. *)
   width : int option;

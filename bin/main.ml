@@ -20,10 +20,11 @@ let limit_envs =
     env `Pixels "canvas and image pixels (width x height)";
     env `Depth "the recursion depth";
     env `Samples "rays per pixel (--samples N traces N x N)";
-    env `Spheres "spheres in a scene";
+    env `Spheres "objects in a scene (spheres, planes, triangles, boxes, meshes and CSG solids, each counted once)";
     env `Lights "lights in a scene";
     env `Scene_bytes "the size of a scene file, in bytes";
     env `Form_bytes "the size of one top-level form of a scene file (such as a camera-path), in bytes: the parser holds a form whole, in about 50 times its size";
+    env `Mesh_bytes "the size of a mesh (OBJ) file, in bytes: it is read 64 KiB at a time, so the bound stops a file that would never end";
     env `Work "the ray-sphere intersection tests that a render may need (pixels x samples x rays per sample x spheres met per ray x (1 + lights)); 1e12 is a few hours of one core";
   ]
 
@@ -242,7 +243,9 @@ let render_cmd =
             "Interrupted (Ctrl-C, SIGTERM, SIGHUP), it stops its worker processes, removes its \
              temporary file and ends with the signal. A worker that dies (killed, out of memory) \
              fails the render with a message instead of leaving a hole in the image. A scene or \
-             an override beyond a limit (see ENVIRONMENT) is refused before any work.";
+             an override beyond a limit (see ENVIRONMENT) is refused before any work. A reader of \
+             standard output that goes away ($(b,| head)) ends it quietly, by SIGPIPE, as other \
+             tools in a pipeline.";
           `P
             "On a terminal, a render that takes more than a second shows its progress on stderr, \
              on one line rewritten in place: the share done, the rays per second and the time \
@@ -388,10 +391,13 @@ let one_line_usage text =
   | first :: _ -> strip "raytrace: " first ^ Option.value help ~default:""
 
 (* The single exit point. Every output channel may fail, cmdliner's help
-   and version included (a full disk, a closed stdout, a reader gone): one
-   line, status 1. SIGPIPE is ignored on purpose, so that a reader gone is
-   such an error ("Broken pipe") and not a silent death; a stray SIGPIPE
-   from [kill] does nothing. What the channels still buffer after a
+   and version included (a full disk, a closed stdout): one line, status
+   1. A reader gone ends the process quietly, by SIGPIPE, as Unix tools
+   end in a pipeline (Commands.end_as_reader_gone). SIGPIPE is ignored
+   until then on purpose, so that a write to a broken pipe fails where it
+   can be told from other failures, with nothing left to clean up (no
+   worker, no temporary file) when the process ends; a stray SIGPIPE from
+   [kill] does nothing. What the channels still buffer after a
    failure is dropped by leaving with [_exit], as the standard library's
    own flush at exit would raise again. *)
 (* An allocation that fails despite the bounds checked before (the
@@ -429,6 +435,9 @@ let () =
   in
   let usage = Buffer.create 256 in
   let err = Format.formatter_of_buffer usage in
+  (* Cmdliner wraps its messages at the formatter's margin: a wrapped
+     message would lose its end to [one_line_usage]. *)
+  Format.pp_set_margin err 1_000_000;
   match Cmd.eval' ~catch:false ~err main with
   | code -> (
       Format.pp_print_flush err ();
@@ -436,8 +445,10 @@ let () =
       (* A write that failed in a command was reported already; stderr's
          failures lose only messages. *)
       match stdout_error () with
+      | Some e when Commands.is_broken_pipe e -> Commands.end_as_reader_gone ()
       | Some e when code = Commands.exit_ok -> failed ("standard output: " ^ e)
       | _ -> leave code)
+  | exception Sys_error e when Commands.is_broken_pipe e -> Commands.end_as_reader_gone ()
   | exception Sys_error e -> failed ("standard output: " ^ e)
   | exception Out_of_memory ->
       failed "out of memory: an allocation failed (see the limits in raytrace render --help, ENVIRONMENT)"

@@ -12,10 +12,11 @@ let max_triangles = 4_000_000
 let max_lights = 1000
 let max_scene_bytes = 128 * 1024 * 1024
 let max_form_bytes = 16 * 1024 * 1024
+let max_mesh_bytes = 1024 * 1024 * 1024
 let max_work = 1e12
 let num = Float_text.to_string
 
-type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Form_bytes | `Work ]
+type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Form_bytes | `Mesh_bytes | `Work ]
 
 let variable = function
   | `Pixels -> "RAYTRACE_MAX_PIXELS"
@@ -25,6 +26,7 @@ let variable = function
   | `Lights -> "RAYTRACE_MAX_LIGHTS"
   | `Scene_bytes -> "RAYTRACE_MAX_SCENE_BYTES"
   | `Form_bytes -> "RAYTRACE_MAX_FORM_BYTES"
+  | `Mesh_bytes -> "RAYTRACE_MAX_MESH_BYTES"
   | `Work -> "RAYTRACE_MAX_WORK"
 
 (* Values are integers; a float keeps them exact up to 2^53, far beyond
@@ -37,6 +39,7 @@ type t = {
   lights : float;
   scene_bytes : float;
   form_bytes : float;
+  mesh_bytes : float;
   work : float;
 }
 
@@ -49,6 +52,7 @@ let default =
     lights = Float.of_int max_lights;
     scene_bytes = Float.of_int max_scene_bytes;
     form_bytes = Float.of_int max_form_bytes;
+    mesh_bytes = Float.of_int max_mesh_bytes;
     work = max_work;
   }
 
@@ -60,6 +64,7 @@ let bound l = function
   | `Lights -> l.lights
   | `Scene_bytes -> l.scene_bytes
   | `Form_bytes -> l.form_bytes
+  | `Mesh_bytes -> l.mesh_bytes
   | `Work -> l.work
 
 let with_bound l n x =
@@ -71,9 +76,10 @@ let with_bound l n x =
   | `Lights -> { l with lights = x }
   | `Scene_bytes -> { l with scene_bytes = x }
   | `Form_bytes -> { l with form_bytes = x }
+  | `Mesh_bytes -> { l with mesh_bytes = x }
   | `Work -> { l with work = x }
 
-let names = [ `Pixels; `Depth; `Samples; `Spheres; `Lights; `Scene_bytes; `Form_bytes; `Work ]
+let names = [ `Pixels; `Depth; `Samples; `Spheres; `Lights; `Scene_bytes; `Form_bytes; `Mesh_bytes; `Work ]
 
 let of_lookup lookup =
   let parse l n =
@@ -158,8 +164,9 @@ let check_samples l n =
     ~what:(fun () -> Printf.sprintf "%d samples per pixel are too many" n)
 
 let check_count l kind n =
-  let noun = match kind with `Spheres -> "spheres" | `Lights -> "lights" in
-  bounded l (kind :> name) ~lo:0 n
+  let noun = match kind with `Spheres -> "spheres" | `Objects -> "objects" | `Lights -> "lights" in
+  let name = match kind with `Spheres | `Objects -> `Spheres | `Lights -> `Lights in
+  bounded l name ~lo:0 n
     ~low:(fun () -> Printf.sprintf "a negative number of %s: %d" noun n)
     ~what:(fun () -> Printf.sprintf "the scene has %d %s" n noun)
 
@@ -172,6 +179,11 @@ let check_form_bytes l n =
   bounded l `Form_bytes ~lo:0 n
     ~low:(fun () -> Printf.sprintf "a negative size: %d" n)
     ~what:(fun () -> Printf.sprintf "a form of the scene is more than %d bytes long" n)
+
+let check_mesh_bytes l file n =
+  bounded l `Mesh_bytes ~lo:0 n
+    ~low:(fun () -> Printf.sprintf "a negative size: %d" n)
+    ~what:(fun () -> Printf.sprintf "mesh file %s is %d bytes long" file n)
 
 (* Beyond 8 spheres the renderer walks a bounding volume hierarchy: about
    log2 n levels of boxes, each with leaves of up to 4 spheres on either

@@ -14,7 +14,7 @@
       the command line replaces it: [RAYTRACE_MAX_PIXELS],
       [RAYTRACE_MAX_DEPTH], [RAYTRACE_MAX_SAMPLES], [RAYTRACE_MAX_SPHERES],
       [RAYTRACE_MAX_LIGHTS], [RAYTRACE_MAX_SCENE_BYTES],
-      [RAYTRACE_MAX_FORM_BYTES], [RAYTRACE_MAX_WORK]. This library reads no environment:
+      [RAYTRACE_MAX_FORM_BYTES], [RAYTRACE_MAX_MESH_BYTES], [RAYTRACE_MAX_WORK]. This library reads no environment:
       {!of_lookup} turns the variables into a {!t} given a lookup function
       (the system library [raytrace.unix] calls it once, with
       [Sys.getenv_opt]). *)
@@ -84,6 +84,14 @@ val max_form_bytes : int
     for 20 MB; refused at this bound, 500 MB), so this bounds the memory
     of loading whatever the file's size. *)
 
+val max_mesh_bytes : int
+(** [max_mesh_bytes] is [1_073_741_824] (1 GiB): the default largest mesh
+    (OBJ) file. A mesh is read 64 KiB at a time, so its text costs no
+    memory; the bound stops a read that would never end (a file that
+    grows as it is read) or that could not give a mesh within
+    {!max_triangles} in a sensible time: an OBJ file of 4M triangles with
+    normals is some 300 to 600 MB. *)
+
 val max_work : float
 (** [max_work] is [1e12]: the default largest number of ray-sphere
     intersection tests that a render may need by the estimate of
@@ -95,7 +103,7 @@ val max_work : float
 type t
 (** The type for resource bounds. *)
 
-type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Form_bytes | `Work ]
+type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Form_bytes | `Mesh_bytes | `Work ]
 (** The type for the names of the resource bounds. *)
 
 val default : t
@@ -173,9 +181,11 @@ val check_samples : t -> int -> (int, [> `Msg of string ]) result
     within the [`Samples] bound of [l] (the renderer checks
     [samples x samples]). *)
 
-val check_count : t -> [ `Spheres | `Lights ] -> int -> (int, [> `Msg of string ]) result
+val check_count : t -> [ `Spheres | `Objects | `Lights ] -> int -> (int, [> `Msg of string ]) result
 (** [check_count l kind n] is [Ok n] if a scene with [n] spheres (or lights)
-    is within that bound of [l]. *)
+    is within that bound of [l]. [`Objects] counts spheres and other shapes
+    together against the [`Spheres] bound, and says "objects" where
+    [`Spheres] says "spheres". *)
 
 val check_scene_bytes : t -> int -> (int, [> `Msg of string ]) result
 (** [check_scene_bytes l n] is [Ok n] if a scene text of [n] bytes is within
@@ -185,6 +195,11 @@ val check_form_bytes : t -> int -> (int, [> `Msg of string ]) result
 (** [check_form_bytes l n] is [Ok n] if a top-level form of [n] bytes (or
     more, as far as it was read) is within the [`Form_bytes] bound of
     [l]. *)
+
+val check_mesh_bytes : t -> string -> int -> (int, [> `Msg of string ]) result
+(** [check_mesh_bytes l file n] is [Ok n] if a mesh file of [n] bytes (or
+    more, as far as it was read) is within the [`Mesh_bytes] bound of [l];
+    [Error] names [file]. *)
 
 val work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> float
 (** [work ~pixels ~samples ~depth ~spheres ~lights] estimates the ray-sphere

@@ -534,10 +534,22 @@ let kind_of b k e =
   in
   go 0
 
-(* One line, [b.[i] .. b.[j-1]] without its line end. *)
+(* Whether [b.[i] ..] starts with UTF-8's byte order mark, which some
+   editors put at the start of a text: read as a keyword, it made the
+   first statement an unknown one, skipped, and shifted every index. *)
+let byte_order_mark b i j =
+  j - i >= 3
+  && Bytes.unsafe_get b i = '\xef'
+  && Bytes.unsafe_get b (i + 1) = '\xbb'
+  && Bytes.unsafe_get b (i + 2) = '\xbf'
+
+(* One line, [b.[i] .. b.[j-1]] without its line end. The text's first
+   line (not a part's: a part starts after a line end) may start with a
+   byte order mark, skipped; columns still count its bytes. *)
 let line p b i j =
   if j - i > max_line_bytes then fail p i j "line longer than %d bytes" max_line_bytes;
-  let k = skip_spaces b i j in
+  let from = if p.line = 1 && p.offset = 0 && byte_order_mark b i j then i + 3 else i in
+  let k = skip_spaces b from j in
   if k < j then begin
     let c = Bytes.unsafe_get b k in
     if c = '#' then p.counts.(kind_comment) <- p.counts.(kind_comment) + 1

@@ -16,7 +16,8 @@
     Every other statement ([vt], [o], [g], [s], [usemtl], [mtllib], [l],
     [p], comments...) is skipped and counted ({!skipped}); texture indices
     are checked against the [vt] statements seen, then dropped. Lines end
-    with LF or CRLF; the last line needs no line end.
+    with LF or CRLF; the last line needs no line end. A UTF-8 byte order
+    mark (bytes [EF BB BF]) at the start of the text is skipped.
 
     Errors name [name:line:column] (both from 1, the column in bytes) and
     what was expected: a number that is malformed, NaN or infinite; an

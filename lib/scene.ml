@@ -157,7 +157,11 @@ let validate ?(limits = Limits.default) s =
     let* _ = check_background s.background in
     let* _ = Limits.check_depth limits s.depth in
     let* _ = match s.epsilon with Some e -> check_epsilon e | None -> Ok 0. in
-    let* _ = Limits.check_count limits `Spheres (Spheres.length s.spheres + List.length s.shapes) in
+    let* _ =
+      Limits.check_count limits
+        (match s.shapes with [] -> `Spheres | _ :: _ -> `Objects)
+        (Spheres.length s.spheres + List.length s.shapes)
+    in
     let* _ = Limits.check_count limits `Lights (List.length s.lights) in
     let* () = valid_spheres s.spheres in
     let* () = all Light.validate s.lights in

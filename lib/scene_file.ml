@@ -528,6 +528,10 @@ let once b kw kw_node =
         (Option.fold ~none:"?" ~some:position first)
   | None -> Hashtbl.add b.seen kw (b.where kw_node)
 
+(* What the count of spheres and shapes is, for its message: "spheres"
+   while the scene has no other shape. *)
+let objects b = match b.shapes with [] -> `Spheres | _ :: _ -> `Objects
+
 let add_form b node =
   let where = b.where in
   match node with
@@ -540,21 +544,21 @@ let add_form b node =
          beyond the bound, before the rest of the file is read. *)
       | "sphere" ->
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits (objects b) b.n_spheres));
           Spheres.add b.spheres (sphere ~where node rest)
       | ("plane" | "triangle" | "box") as form ->
           (* Shapes count against the bound of spheres: both are objects. *)
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
           let parse = match form with "plane" -> plane | "triangle" -> triangle | _ -> box in
           b.shapes <- parse ~where node rest :: b.shapes
       | "mesh" ->
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
           b.shapes <- mesh ~where ~load:b.load node rest :: b.shapes
       | "csg" ->
           b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits `Spheres b.n_spheres));
+          ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
           b.shapes <- Shape.Csg (csg ~where ~load:b.load ~depth:1 node rest) :: b.shapes
       | "light" ->
           b.n_lights <- b.n_lights + 1;
@@ -615,6 +619,31 @@ let string_source text () =
     k
   in
   { read; close = ignore }
+
+(* [src] with a UTF-8 byte order mark at its start (some editors write
+   one) read as three spaces: both readers then skip it, and every offset
+   and column is the file's. Where the text starts otherwise, its bytes
+   as they are. *)
+let without_byte_order_mark (src : source) () =
+  let r = src () in
+  (* The text's first 3 bytes (fewer if it is shorter), read before
+     anything is given, then given first. *)
+  let head = Bytes.create 3 and head_len = ref (-1) and given = ref 0 in
+  let rec fill n = if n < 3 then match r.read head n (3 - n) with 0 -> n | k -> fill (n + k) else n in
+  let read buf pos len =
+    if !head_len < 0 then begin
+      head_len := fill 0;
+      if !head_len = 3 && Bytes.to_string head = "\xef\xbb\xbf" then Bytes.fill head 0 3 ' '
+    end;
+    if !given < !head_len && len > 0 then begin
+      let k = min len (!head_len - !given) in
+      Bytes.blit head !given buf pos k;
+      given := !given + k;
+      k
+    end
+    else r.read buf pos len
+  in
+  { read; close = r.close }
 
 (* [each_chunk src f] calls [f bytes len] on the text of [src], 64 KiB at a
    time, in order. *)
@@ -1021,6 +1050,7 @@ type beside = {
 
 let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast)
     ?(window_bytes = 1 lsl 20) ?beside (src : source) =
+  let src = without_byte_order_mark src in
   (* Mesh files are named relative to the scene file; each is read once,
      even when an error makes a second, located pass over the text. *)
   let loaded = Hashtbl.create 4 in

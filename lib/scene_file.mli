@@ -31,6 +31,10 @@ v}
     defaults to [-1] (matte) and [reflective] to [0]. Numbers are OCaml
     floats ([1], [-0.5], [1e-3]), finite; sizes and depths are integers.
 
+    A UTF-8 byte order mark (bytes [EF BB BF], which some editors write)
+    at the start of the text is read as blanks: columns still count its
+    bytes.
+
     Errors are one line, [file:line:column: message], with 1-based lines
     and columns pointing at the offending text, e.g.
     [scenes/x.scene:4:17: sphere radius must be > 0, got -1]. Unknown forms

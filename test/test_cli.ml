@@ -129,6 +129,21 @@ let tests =
             ([ "--jobs"; "100000" ], "raytrace: --jobs must lie in [1, 1024], got 100000\n");
           ];
         Alcotest.(check bool) __LOC__ false (Sys.file_exists "/tmp/never.ppm"));
+    Alcotest.test_case "an integer option too large for an int is one whole line, not a message cut short" `Quick
+      (fun () ->
+        (* Cmdliner wraps its message at 78 columns; the first line alone
+           ended in "expected an". *)
+        List.iter
+          (fun (option, value) ->
+            let code, _, err = run (exe ()) [ "render"; option; value; "-o"; "/tmp/never.ppm" ] in
+            Alcotest.(check int) __LOC__ 124 code;
+            Alcotest.(check string) __LOC__
+              (Printf.sprintf
+                 "raytrace: option '%s': invalid value '%s', expected an integer; see 'raytrace render --help'\n"
+                 option value)
+              err)
+          [ ("--width", "99999999999999999999"); ("--jobs", "9999999999999999999999999") ];
+        Alcotest.(check bool) __LOC__ false (Sys.file_exists "/tmp/never.ppm"));
     Alcotest.test_case "without a display, view says so in one line and exits 3" `Quick (fun () ->
         let env =
           Unix.environment () |> Array.to_list
@@ -167,6 +182,14 @@ let tests =
             Alcotest.(check int) __LOC__ 0 code;
             if not (Astring_free.contains out "EXAMPLES") then Alcotest.failf "%s: no EXAMPLES" (String.concat " " cmd))
           [ []; [ "view" ]; [ "render" ]; [ "diff" ] ]);
+    Alcotest.test_case "render's manual names every bound's variable, the mesh file's included" `Quick (fun () ->
+        let code, out, _ = run (exe ()) [ "render"; "--help=plain" ] in
+        Alcotest.(check int) __LOC__ 0 code;
+        List.iter
+          (fun name ->
+            let v = Raytrace.Limits.variable name in
+            if not (Astring_free.contains out v) then Alcotest.failf "render --help does not name %s" v)
+          [ `Pixels; `Depth; `Samples; `Spheres; `Lights; `Scene_bytes; `Form_bytes; `Mesh_bytes; `Work ]);
     Alcotest.test_case "--samples 1 writes the plain render's bytes, --samples N --adaptive T the library's" `Quick
       (fun () ->
         let dir = Helpers.temp_dir () in

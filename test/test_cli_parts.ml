@@ -91,6 +91,37 @@ let tests =
             ^ ": not a part of a raytrace render (its header has no \"# raytrace-part 1\" line); render parts with raytrace render --tile or --region")
           (succeed __LOC__ ([ "render"; scene; "-o"; f "whole.ppm" ] @ size);
            [ "merge"; f "t1.ppm"; f "whole.ppm"; "-o"; out ]));
+    Alcotest.test_case "tiles rendered before and after the mesh file changed do not merge, nor do frames" `Quick
+      (fun () ->
+        let _, f = fresh () in
+        let write name text =
+          let oc = open_out_bin (f name) in
+          output_string oc text;
+          close_out oc
+        in
+        let triangle x = Printf.sprintf "v -1 -1 0\nv %s -1 0\nv 0 1 0\nf 1 2 3\n" x in
+        write "m.obj" (triangle "1");
+        write "s.scene"
+          "(canvas (width 8) (height 8))\n(mesh (file \"m.obj\") (color 255 0 0) (translate 0 0 3))\n(light ambient (intensity 1))\n";
+        let tile i name = succeed __LOC__ [ "render"; f "s.scene"; "--tile"; Printf.sprintf "%d/2" i; "-o"; f name ] in
+        tile 1 "t1.ppm";
+        tile 2 "t2.ppm";
+        succeed __LOC__ [ "merge"; f "t1.ppm"; f "t2.ppm"; "-o"; f "same.ppm" ];
+        (* The scene's text is the same; the mesh it reads is not. *)
+        write "m.obj" (triangle "1.5");
+        tile 2 "t2-new.ppm";
+        let out = f "torn.ppm" in
+        let code, _, err = run (exe ()) [ "merge"; f "t1.ppm"; f "t2-new.ppm"; "-o"; out ] in
+        Alcotest.(check int) __LOC__ 1 code;
+        if not (Astring_free.contains err (f "t2-new.ppm" ^ " was rendered from a different scene than " ^ f "t1.ppm"))
+        then Alcotest.failf "torn picture: %s" err;
+        Alcotest.(check bool) __LOC__ false (Sys.file_exists out);
+        (* The same bytes again: the digest is of the contents, not of the
+           file's time. *)
+        write "m.obj" (triangle "1");
+        tile 2 "t2-again.ppm";
+        succeed __LOC__ [ "merge"; f "t1.ppm"; f "t2-again.ppm"; "-o"; f "again.ppm" ];
+        Alcotest.(check bool) __LOC__ true (String.equal (read (f "same.ppm")) (read (f "again.ppm"))));
     Alcotest.test_case "bad tiles and regions are one line, no file" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let out = Filename.concat dir "p.ppm" in

@@ -148,7 +148,24 @@ let tests =
             Alcotest.(check string) __LOC__
               "t.scene:4:1: the scene has 4 spheres, more than the limit of 3 (set \
                RAYTRACE_MAX_SPHERES to raise it)"
-              (scene_error (spheres 4)));
+              (scene_error (spheres 4));
+            (* Boxes, or spheres after another shape, are objects, not spheres. *)
+            let box = "(box (min 0 0 0) (max 1 1 1) (color 1 2 3))\n" in
+            Alcotest.(check string) __LOC__
+              "t.scene:4:1: the scene has 4 objects, more than the limit of 3 (set RAYTRACE_MAX_SPHERES to raise it)"
+              (scene_error (String.concat "" (List.init 4 (fun _ -> box))));
+            Alcotest.(check string) __LOC__
+              "t.scene:4:1: the scene has 4 objects, more than the limit of 3 (set RAYTRACE_MAX_SPHERES to raise it)"
+              (scene_error (box ^ spheres 3));
+            (* And a scene built in code, checked by Scene.validate. *)
+            match Helpers.of_string (box ^ box) with
+            | Error (`Msg m) -> Alcotest.fail m
+            | Ok s -> (
+                match Scene.validate ~limits:(Limits.with_bound Limits.default `Spheres 1.) s with
+                | Ok _ -> Alcotest.fail "two boxes within a bound of 1"
+                | Error (`Msg m) ->
+                    Alcotest.(check string) __LOC__
+                      "the scene has 2 objects, more than the limit of 1 (set RAYTRACE_MAX_SPHERES to raise it)" m));
         with_env "RAYTRACE_MAX_LIGHTS" "1" (fun () ->
             Alcotest.(check string) __LOC__
               "t.scene:1:30: the scene has 2 lights, more than the limit of 1 (set \

@@ -317,6 +317,41 @@ let tests =
             let cuts = List.init (String.length text) Fun.id in
             Alcotest.(check bool) __LOC__ true (same_result (parse text) (chunked text cuts)))
           [ rich; rich ^ "\n"; "v 1 2 3\r"; "v 1 2 3\r\n"; square ^ "f 1 2 3 4 5" ]);
+    Alcotest.test_case "a UTF-8 byte order mark at the start is skipped: no vertex lost, no index shifted" `Quick
+      (fun () ->
+        let bom = "\xef\xbb\xbf" in
+        (* First lines for the fast path (v, f of plain numbers), the general
+           one (a vertex with a colour, an exponent) and a comment. *)
+        List.iter
+          (fun text ->
+            let with_bom = bom ^ text in
+            let cuts = List.init (String.length with_bom) Fun.id in
+            Alcotest.(check bool) (String.escaped text ^ ": whole") true (same_result (parse text) (parse with_bom));
+            Alcotest.(check bool) (String.escaped text ^ ": a byte at a time") true
+              (same_result (parse text) (chunked with_bom cuts)))
+          [ square ^ "f 1 2 3\n"; "v 0 0 0 1 0.5 0.25\nv 1e0 0 0\nv 0 1 0\nf 1 2 3\n"; "# made by an editor\n" ^ square ^ "f -4 -3 -2\n"; rich ];
+        let m = mesh (bom ^ square ^ "f 1 2 3\n") in
+        (* The first vertex (0 0 0) is there and index 1 names it. *)
+        Alcotest.check floats __LOC__ [| 0.; 0.; 0.; 1.; 0.; 0.; 1.; 1.; 0.; 0.; 1.; 0. |] m.positions;
+        Alcotest.check ints __LOC__ [| 0; 1; 2 |] m.triangles;
+        (* Only at the start of the text: elsewhere it is an unknown statement. *)
+        Alcotest.(check int) __LOC__ 1 (Obj_file.skipped_total (mesh (square ^ bom ^ "v 1 1 1\n")));
+        (* Columns count bytes, the mark's included: 3 + "v 0 0 " (6), then x at 10. *)
+        Alcotest.(check string) __LOC__ "t.obj:1:10: expected a number, found \"x\"" (error (bom ^ "v 0 0 x\n")));
+    Alcotest.test_case "a mesh file with a byte order mark reads the same on one core and on two" `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        let path = Filename.concat dir "bom.obj" in
+        let text = Obj_file.to_string (Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.3 ~segments:40 ~sides:8) in
+        let oc = open_out_bin path in
+        output_string oc ("\xef\xbb\xbf" ^ text);
+        close_out oc;
+        let expected = mesh text in
+        List.iter
+          (fun jobs ->
+            match Raytrace_unix.Files.read_mesh ~jobs ~split_bytes:1 path with
+            | Ok m -> Alcotest.(check bool) (Printf.sprintf "%d jobs: the mesh without the mark" jobs) true (Obj_file.equal m expected)
+            | Error (`Msg e) -> Alcotest.fail e)
+          [ 1; 2 ]);
     Alcotest.test_case "feed_bytes reads from a buffer the caller then reuses" `Quick (fun () ->
         let p = Obj_file.create ~name:"t.obj" ~max_vertices:10 ~max_triangles:10 in
         let buf = Bytes.create 7 in

@@ -75,6 +75,34 @@ let no_output_destroys_an_input () =
     [ command [ exe (); "merge"; path "p.ppm"; "-o"; "/dev/stdout" ]; ">>"; Filename.quote (path "p.ppm") ]
     "/dev/stdout: the output file is the input part"
 
+(* A scene's mesh is an input like the scene: no render, frame or part
+   may replace it, by any name. *)
+let no_output_replaces_a_mesh () =
+  let dir = Helpers.temp_dir () in
+  let path f = Filename.concat dir f in
+  write (path "frame-0001.obj") "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+  Unix.mkdir (path "sub") 0o755;
+  write (path "sub/s.scene")
+    "(canvas (width 4) (height 4))\n\
+     (camera-path (key (frame 0) (position 0 0 -1) (look-at 0 0 3)) (key (frame 2) (position 1 0 -1) (look-at 0 0 3)))\n\
+     (mesh (file \"../frame-0001.obj\") (color 255 0 0) (translate 0 0 3))\n\
+     (light ambient (intensity 1))\n";
+  Unix.symlink (path "frame-0001.obj") (path "link.obj");
+  Unix.link (path "frame-0001.obj") (path "hard.obj");
+  let scene = path "sub/s.scene" in
+  let input_mesh = "the output file is the input mesh; choose another output path" in
+  refused dir "the mesh by its name" [ "render"; scene; "-o"; path "frame-0001.obj" ] (path "frame-0001.obj: " ^ input_mesh);
+  refused dir "the mesh through a symbolic link" [ "render"; scene; "-o"; path "link.obj" ] input_mesh;
+  refused dir "the mesh through a hard link" [ "render"; scene; "-o"; path "hard.obj" ] input_mesh;
+  refused dir "the mesh through .." [ "render"; scene; "-o"; path "sub/../frame-0001.obj" ] input_mesh;
+  refused dir "the mesh as a part" [ "render"; scene; "--tile"; "1/2"; "-o"; path "hard.obj" ] input_mesh;
+  refused dir "the mesh as frame 1"
+    [ "render"; scene; "--frames"; "0:2"; "-o"; path "frame-%04d.obj" ]
+    (path "frame-0001.obj: " ^ input_mesh);
+  refused dir "stdout appended to the mesh" ~script:true
+    [ command [ exe (); "render"; scene; "-o"; "-" ]; ">>"; Filename.quote (path "hard.obj") ]
+    ("standard output: " ^ input_mesh)
+
 let special_files_are_written_to () =
   let dir = Helpers.temp_dir () in
   let log = Filename.concat dir "log" in
@@ -155,13 +183,20 @@ let every_channel_fails_cleanly () =
         (fun (fault, name, reason) ->
           let what = name ^ " " ^ String.concat " " args in
           let status, err = with_stdout fault args in
-          if status <> Unix.WEXITED 1 then Alcotest.failf "%s: status not 1; stderr %S" what err;
-          one_line what err;
-          (* "standard output: ...", or the name given, "/dev/stdout: ..." *)
-          let expected = ": " ^ reason in
-          if not (Astring_free.contains err expected) then Alcotest.failf "%s: expected %S in %S" what expected err)
+          match fault with
+          | `Broken ->
+              (* A reader gone is normal on a pipeline: the command ends as
+                 Unix tools do there, by SIGPIPE (141 in the shell), quietly. *)
+              if status <> Unix.WSIGNALED Sys.sigpipe then Alcotest.failf "%s: not ended by SIGPIPE; stderr %S" what err;
+              Alcotest.(check string) (what ^ ": nothing on stderr") "" err
+          | `Full | `Closed ->
+              if status <> Unix.WEXITED 1 then Alcotest.failf "%s: status not 1; stderr %S" what err;
+              one_line what err;
+              (* "standard output: ...", or the name given, "/dev/stdout: ..." *)
+              let expected = ": " ^ reason in
+              if not (Astring_free.contains err expected) then Alcotest.failf "%s: expected %S in %S" what expected err)
         [ (`Full, "stdout /dev/full", "No space left on device"); (`Closed, "stdout closed", "Bad file descriptor");
-          (`Broken, "stdout a broken pipe", "Broken pipe") ])
+          (`Broken, "stdout a broken pipe", "") ])
     commands;
   (* stderr closed or full: the commands still work, and say nothing. *)
   List.iter
@@ -331,7 +366,19 @@ let a_stopped_worker_is_continued () =
 let tests =
   [
     Alcotest.test_case "no output is an input or another output, by any name" `Quick no_output_destroys_an_input;
+    Alcotest.test_case "no render, frame or part replaces the mesh a scene reads, by any name" `Quick no_output_replaces_a_mesh;
     Alcotest.test_case "stdout, /dev/stdout and FIFOs are written to, never replaced" `Quick special_files_are_written_to;
+    Alcotest.test_case "render -o - | head -c 10 ends quietly, by SIGPIPE, as Unix tools do" `Quick (fun () ->
+        (* 300 x 300 x 3 bytes: more than the pipe holds, so the write
+           meets the reader gone. *)
+        let code, out, err =
+          sh
+            ("(" ^ command [ exe (); "render"; "--width"; "300"; "--height"; "300"; "-o"; "-" ]
+           ^ "; echo \"status $?\" >&2) | head -c 10")
+        in
+        Alcotest.(check int) __LOC__ 0 code;
+        Alcotest.(check string) "what head read" "P6\n300 300" out;
+        Alcotest.(check string) "no message; the shell's status for SIGPIPE" "status 141\n" err);
     Alcotest.test_case "a full, closed or broken stdout or stderr is one line for every command" `Quick
       every_channel_fails_cleanly;
     Alcotest.test_case "every terminating signal to the parent leaves no file and no worker" `Quick

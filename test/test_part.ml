@@ -61,6 +61,34 @@ let tests =
         Alcotest.(check string) __LOC__ (Digest.to_hex (Digest.string (Scene_file.to_string Scene.cgfs))) (digest Scene.cgfs);
         Alcotest.(check bool) __LOC__ false (digest Scene.cgfs = digest Scene.cgfs_camera);
         Alcotest.(check bool) __LOC__ false (digest Scene.cgfs = digest { Scene.cgfs with epsilon = Some 0.01 }));
+    Alcotest.test_case "the scene digest covers the contents of the files the scene read, as they were read" `Quick
+      (fun () ->
+        let dir = Helpers.temp_dir () in
+        let f = Filename.concat dir in
+        let write name text =
+          let oc = open_out_bin (f name) in
+          output_string oc text;
+          close_out oc
+        in
+        write "m.obj" "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+        write "s.scene" "(canvas (width 4) (height 4))\n(mesh (file \"m.obj\") (color 255 0 0) (translate 0 0 3))\n";
+        let loaded = ok (Files.load_scene (f "s.scene")) in
+        Alcotest.(check (list (pair string string))) "the inputs" [ ("mesh", f "m.obj") ]
+          (List.map (fun (i : Files.input) -> (i.what, i.path)) loaded.inputs);
+        let files = ok (Files.inputs_digest loaded.inputs) in
+        let s = Scene.of_valid loaded.scene in
+        let digest files = List.assoc "scene" (Part.settings ~files s) in
+        (* Without files, the text's digest, as before files were digested. *)
+        Alcotest.(check string) __LOC__ (Digest.to_hex (Digest.string (Scene_file.to_string s))) (digest "");
+        Alcotest.(check bool) "the mesh's contents change the digest" true (digest files <> digest "");
+        (* Written to after it was read: the part would not be of what was read. *)
+        write "m.obj" "v -1 -1 0\nv 2 -1 0\nv 0 1 0\nf 1 2 3\n";
+        Alcotest.(check string) __LOC__
+          (f "m.obj" ^ ": the mesh changed after it was read (written to or replaced); render again")
+          (error (Files.inputs_digest loaded.inputs));
+        let reloaded = ok (Files.load_scene (f "s.scene")) in
+        Alcotest.(check bool) "another mesh, another digest" true
+          (ok (Files.inputs_digest reloaded.inputs) <> files));
     Alcotest.test_case "merge refuses parts that do not fit together, naming them" `Quick (fun () ->
         let t = tiles 3 in
         let with_part i p = List.mapi (fun j np -> if i = j then p else np) t in

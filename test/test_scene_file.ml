@@ -156,6 +156,30 @@ let tests =
         in
         Alcotest.(check int) __LOC__ 2 s.depth;
         Alcotest.(check int) __LOC__ 0 (Spheres.length s.spheres));
+    Alcotest.test_case "a UTF-8 byte order mark at the start reads as blanks, in both readers and in windows" `Quick
+      (fun () ->
+        let bom = "\xef\xbb\xbf" in
+        let text = "(canvas (width 8) (height 6))\n(sphere (center 0 0 3) (radius 1) (color 1 2 3))\n" in
+        let read ?(window_bytes = 1 lsl 20) reader t =
+          Result.map Scene.of_valid
+            (Scene_file.of_source ~file:"t.scene" ~reader ~window_bytes (Scene_file.string_source t))
+        in
+        List.iter
+          (fun (what, reader, window_bytes) ->
+            match (read ~window_bytes reader text, read ~window_bytes reader (bom ^ text)) with
+            | Ok a, Ok b -> Alcotest.check scene what a b
+            | _, Error (`Msg m) | Error (`Msg m), _ -> Alcotest.failf "%s: %s" what m)
+          [ ("fast", `Fast, 1 lsl 20); ("parsexp", `Parsexp, 1 lsl 20); ("fast, 2-byte windows", `Fast, 2);
+            ("fast, 1-byte windows", `Fast, 1) ];
+        (* Columns count the mark's 3 bytes, in both readers. *)
+        List.iter
+          (fun reader ->
+            match read reader (bom ^ "(sphere)") with
+            | Ok _ -> Alcotest.fail "accepted"
+            | Error (`Msg m) -> Alcotest.(check string) __LOC__ "t.scene:1:4: sphere is missing its (center ...) field" m)
+          [ `Fast; `Parsexp ];
+        (* Elsewhere, the bytes are an atom like any other. *)
+        Alcotest.(check bool) __LOC__ true (Result.is_error (read `Fast (" " ^ bom ^ text))));
     Alcotest.test_case "look-at builds the camera" `Quick (fun () ->
         let s = parse "(camera (position 3 0 1) (look-at 2 0 2) (up 0 1 0))" in
         let d = Camera.direction s.camera Vec3.oz in

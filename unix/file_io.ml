@@ -2,37 +2,109 @@ let error path reason = Error (`Msg (Printf.sprintf "%s: %s" path reason))
 
 (* Files whose length is unknown (/proc files, pipes, devices): read in
    chunks, checking the size so far. *)
-let read_to_end ~check_size ic =
+let read_to_end ~first ~check_size ic =
   let b = Buffer.create 4096 and chunk = Bytes.create 65536 in
   let rec go () =
-    match input ic chunk 0 (Bytes.length chunk) with
-    | 0 -> Ok (Buffer.contents b)
-    | k -> (
-        Buffer.add_subbytes b chunk 0 k;
-        match check_size (Buffer.length b) with Ok _ -> go () | Error (`Msg m) -> Error m)
+    match check_size (Buffer.length b) with
+    | Error (`Msg m) -> Error m
+    | Ok _ -> (
+        match input ic chunk 0 (Bytes.length chunk) with
+        | 0 -> Ok (Buffer.contents b)
+        | k ->
+            Buffer.add_subbytes b chunk 0 k;
+            go ())
+  in
+  Buffer.add_string b first;
+  go ()
+
+type opened = { channel : in_channel; stats : Unix.stats; first : string }
+
+let fifo_wait = 5.
+
+let kind_name = function
+  | Unix.S_DIR -> "a directory"
+  | S_FIFO -> "a FIFO"
+  | S_CHR -> "a character device"
+  | S_BLK -> "a block device"
+  | S_SOCK -> "a socket"
+  | S_LNK -> "a symbolic link"
+  | S_REG -> "a regular file"
+
+(* A FIFO opened without blocking: [0] from a read means that no program
+   has it open for writing (or one did and wrote nothing), [EAGAIN] that
+   one has and has not written yet. The first bytes, where some came, are
+   the text's: they are given back. *)
+let wait_for_writer path fd =
+  let buf = Bytes.create 65536 in
+  let deadline = Unix.gettimeofday () +. fifo_wait in
+  let rec go () =
+    match Unix.read fd buf 0 (Bytes.length buf) with
+    | 0 when Unix.gettimeofday () < deadline ->
+        Unix.sleepf 0.02;
+        go ()
+    | 0 ->
+        error path
+          (Printf.sprintf
+             "is a FIFO that no program wrote to within %.0f s; start the program that writes it first, or pipe its data to /dev/stdin"
+             fifo_wait)
+    | n -> Ok (Bytes.sub_string buf 0 n)
+    | exception Unix.Unix_error ((EAGAIN | EWOULDBLOCK), _, _) -> Ok ""
+    | exception Unix.Unix_error (EINTR, _, _) -> go ()
+    | exception Unix.Unix_error (e, _, _) -> error path (Unix.error_message e)
   in
   go ()
 
-let read ?(check_size = fun n -> Ok n) path =
-  match open_in_bin path with
-  | exception Sys_error e -> Error (`Msg e)
-  | ic -> (
-      match
-        Fun.protect
-          ~finally:(fun () -> close_in_noerr ic)
-          (fun () ->
-            (* The size is checked before a byte is read or allocated. *)
-            match Unix.fstat (Unix.descr_of_in_channel ic) with
-            | { st_kind = S_REG; st_size = n; _ } when n > 0 -> (
-                match check_size n with Error (`Msg m) -> Error m | Ok _ -> Ok (really_input_string ic n))
-            | _ -> read_to_end ~check_size ic)
-      with
+let open_read ?(regular = false) path =
+  (* O_NONBLOCK: opening a FIFO for reading would otherwise wait, without
+     end, for a program to open it for writing. *)
+  match Unix.openfile path [ O_RDONLY; O_NONBLOCK; O_CLOEXEC ] 0 with
+  | exception Unix.Unix_error (e, _, _) -> error path (Unix.error_message e)
+  | fd -> (
+      let fail m =
+        (try Unix.close fd with Unix.Unix_error _ -> ());
+        error path m
+      in
+      match Unix.fstat fd with
+      | exception Unix.Unix_error (e, _, _) -> fail (Unix.error_message e)
+      | { st_kind = S_DIR; _ } -> fail "is a directory"
+      | { st_kind = S_REG; _ } as stats ->
+          Unix.clear_nonblock fd;
+          Ok { channel = Unix.in_channel_of_descr fd; stats; first = "" }
+      | { st_kind; _ } when regular -> fail ("is " ^ kind_name st_kind ^ ", not a regular file")
+      | { st_kind = S_FIFO; _ } as stats -> (
+          match wait_for_writer path fd with
+          | Error _ as e ->
+              (try Unix.close fd with Unix.Unix_error _ -> ());
+              e
+          | Ok first ->
+              Unix.clear_nonblock fd;
+              Ok { channel = Unix.in_channel_of_descr fd; stats; first })
+      | stats ->
+          Unix.clear_nonblock fd;
+          Ok { channel = Unix.in_channel_of_descr fd; stats; first = "" })
+
+let read_opened ?(check_size = fun n -> Ok n) path o =
+  let ic = o.channel in
+  set_binary_mode_in ic true;
+  match
+    Fun.protect
+      ~finally:(fun () -> close_in_noerr ic)
+      (fun () ->
+        (* The size is checked before a byte is read or allocated. *)
+        match o.stats with
+        | { st_kind = S_REG; st_size = n; _ } when n > 0 -> (
+            match check_size n with Error (`Msg m) -> Error m | Ok _ -> Ok (really_input_string ic n))
+        | _ -> read_to_end ~first:o.first ~check_size ic)
+  with
       | Ok s -> Ok s
       | Error m -> error path m
       | exception Sys_error e -> error path e
       | exception Unix.Unix_error (e, _, _) -> error path (Unix.error_message e)
       | exception Out_of_memory -> error path "not enough memory to read the file"
-      | exception End_of_file -> error path "file changed while it was read")
+      | exception End_of_file -> error path "file changed while it was read"
+
+let read ?check_size path =
+  match open_read path with Error _ as e -> e | Ok o -> read_opened ?check_size path o
 
 (* Temporary files of writes in progress, for [remove_temporaries]. *)
 let temporaries : (string, unit) Hashtbl.t = Hashtbl.create 4

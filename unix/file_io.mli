@@ -9,11 +9,39 @@
 
 val read : ?check_size:(int -> (int, [ `Msg of string ]) result) -> string -> (string, [> `Msg of string ]) result
 (** [read ~check_size path] is the contents of the file [path], read until
-    its end (so pipes and [/proc] files work too). [check_size] (default:
-    accept all) is called on the file's length in bytes before anything is
-    read, and on the bytes read so far for files of unknown length; an
-    [Error m] of it is returned as [path: m], so that an oversized file
-    costs no memory. *)
+    its end (so pipes and [/proc] files work too), opened by {!open_read}.
+    [check_size] (default: accept all) is called on the file's length in
+    bytes before anything is read, and on the bytes read so far for files
+    of unknown length; an [Error m] of it is returned as [path: m], so that
+    an oversized file costs no memory. *)
+
+(** {1:opening Opening without blocking} *)
+
+type opened = {
+  channel : in_channel;  (** Binary, blocking, at the file's start (after [first]). *)
+  stats : Unix.stats;  (** The file's, when it was opened. *)
+  first : string;  (** The text's first bytes, already read from a FIFO; [""] for other files. *)
+}
+(** The type for files opened for reading. *)
+
+val fifo_wait : float
+(** [fifo_wait] is [5.]: the seconds {!open_read} waits for a program to
+    write to a FIFO. *)
+
+val open_read : ?regular:bool -> string -> (opened, [> `Msg of string ]) result
+(** [open_read ~regular path] opens [path] for reading, never waiting
+    without end: the open itself does not wait for a FIFO's writer
+    ([O_NONBLOCK], cleared once open). A FIFO that no program has open for
+    writing (or whose writer wrote nothing) within {!fifo_wait} seconds is
+    an [Error]; one that a program writes is read as it comes, as before.
+    A directory is an [Error] ([path: is a directory]); with [regular]
+    (default [false]), so is anything but a regular file ([path: is a
+    FIFO, not a regular file]). Errors start with [path]. *)
+
+val read_opened :
+  ?check_size:(int -> (int, [ `Msg of string ]) result) -> string -> opened -> (string, [> `Msg of string ]) result
+(** [read_opened ~check_size path o] is {!read} of the file [o] opened at
+    [path], which it closes. *)
 
 val write_atomic : string -> (out_channel -> unit) -> (unit, [> `Msg of string ]) result
 (** [write_atomic path f] calls [f oc] on a channel to a new temporary file

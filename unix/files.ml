@@ -3,9 +3,9 @@ let split_bytes = 4 lsl 20
 (* The first line start at or after byte [at] of file [path], if one
    comes within 64 KiB. *)
 let line_after path at =
-  match open_in_bin path with
-  | exception Sys_error _ -> None
-  | ic ->
+  match File_io.open_read ~regular:true path with
+  | Error _ -> None
+  | Ok { channel = ic; _ } ->
       Fun.protect
         ~finally:(fun () -> close_in_noerr ic)
         (fun () ->
@@ -45,16 +45,20 @@ let rec read_all fd buf off len =
     | k -> read_all fd buf (off + k) (len - k)
 
 (* Feeds [p] the bytes of [ic] until [stop] bytes were read from [start]
-   (or the end). *)
-let feed_mesh p ic ~start ~stop =
+   (or the end). [check at] is called on the offset reached after each
+   chunk: a file that grows as it is read stops at the bound. *)
+let feed_mesh ~check ~path p ic ~start ~stop =
   let chunk = Bytes.create 65536 in
   let rec go at =
     if at >= stop then Ok ()
     else
       match input ic chunk 0 (min (Bytes.length chunk) (stop - at)) with
       | 0 -> Ok ()
-      | n -> ( match Obj_file.feed_bytes p chunk 0 n with Ok () -> go (at + n) | Error e -> Error e)
-      | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
+      | n -> (
+          match check (at + n) with
+          | Error (`Msg m) -> Error (`Msg m)
+          | Ok _ -> ( match Obj_file.feed_bytes p chunk 0 n with Ok () -> go (at + n) | Error e -> Error e))
+      | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s: %s" path m))
   in
   go start
 
@@ -68,12 +72,14 @@ let feed_mesh p ic ~start ~stop =
    the part's counts through the pipe. A file rather than the pipe: there
    each 64 KiB would need the other process to run, and on a busy machine
    the two would wait for each other some 400 times. *)
-let mesh_part path split =
+let mesh_part ~check path split =
   match temporary () with
   | None -> fun () -> None
   | Some fd ->
       let read () =
-        let ic = open_in_bin path in
+        match File_io.open_read ~regular:true path with
+        | Error _ -> None
+        | Ok { channel = ic; _ } ->
         Fun.protect
           ~finally:(fun () -> close_in_noerr ic)
           (fun () ->
@@ -82,7 +88,7 @@ let mesh_part path split =
               Obj_file.create_part ~output:(write_all fd) ~name:path ~max_vertices:Limits.max_triangles
                 ~max_triangles:Limits.max_triangles
             in
-            match Result.bind (feed_mesh p ic ~start:split ~stop:max_int) (fun () -> Obj_file.finish_part p) with
+            match Result.bind (feed_mesh ~check ~path p ic ~start:split ~stop:max_int) (fun () -> Obj_file.finish_part p) with
             | Error _ -> None
             | Ok part -> Some (Unix.getpid (), part))
       in
@@ -113,28 +119,30 @@ let mesh_part path split =
    file's pages), which callgrind does not count: 55%. *)
 let mesh_split_percent = 55
 
-let read_mesh_paced ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = fun ~pid:_ _ -> ()) path =
-  match open_in_bin path with
-  | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s" m))
-  | ic ->
-      Fun.protect
-        ~finally:(fun () -> close_in_noerr ic)
-        (fun () ->
+(* A mesh file is a regular file (never a FIFO, whose open could wait for
+   ever, nor a device, which could be read for ever), within the
+   [`Mesh_bytes] bound, checked before it is read and as it is read. *)
+let read_mesh_paced ~limits ~jobs ~split_bytes ~on_part path (o : File_io.opened) =
+  let ic = o.channel in
+  Fun.protect
+    ~finally:(fun () -> close_in_noerr ic)
+    (fun () ->
+      let check n = Limits.check_mesh_bytes limits path n in
+      match check o.stats.st_size with
+      | Error _ as e -> e
+      | Ok n ->
           let p = Obj_file.create ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
           let split =
-            if jobs <= 1 then None
+            if jobs <= 1 || n < split_bytes || n = 0 then None
             else
-              match Unix.fstat (Unix.descr_of_in_channel ic) with
-              | { st_kind = S_REG; st_size = n; _ } when n >= split_bytes && n > 0 -> (
-                  match line_after path (n / 100 * mesh_split_percent) with Some split when split < n -> Some split | Some _ | None -> None)
-              | _ | (exception Unix.Unix_error _) -> None
+              match line_after path (n / 100 * mesh_split_percent) with Some split when split < n -> Some split | Some _ | None -> None
           in
-          let rest at = match feed_mesh p ic ~start:at ~stop:max_int with Ok () -> Obj_file.finish p | Error e -> Error e in
+          let rest at = match feed_mesh ~check ~path p ic ~start:at ~stop:max_int with Ok () -> Obj_file.finish p | Error e -> Error e in
           match split with
           | None -> rest 0
           | Some split -> (
-              let wait = mesh_part path split in
-              let first = feed_mesh p ic ~start:0 ~stop:split in
+              let wait = mesh_part ~check path split in
+              let first = feed_mesh ~check ~path p ic ~start:0 ~stop:split in
               (* Waited for even after an error, so that no child is left. *)
               let part = wait () in
               match first with
@@ -167,12 +175,22 @@ let mesh_space_overhead = 1000
 
 (* A mesh file, 64 KiB at a time: the text is never held whole. With two
    jobs, a child reads the second half of a big regular file meanwhile. *)
-let read_mesh ?jobs ?split_bytes ?on_part path =
+let read_mesh_opened ~limits ~jobs ~split_bytes ~on_part path o =
   let gc = Gc.get () in
   Gc.set { gc with space_overhead = max gc.space_overhead mesh_space_overhead };
   Fun.protect
     ~finally:(fun () -> Gc.set { (Gc.get ()) with space_overhead = gc.space_overhead })
-    (fun () -> read_mesh_paced ?jobs ?split_bytes ?on_part path)
+    (fun () -> read_mesh_paced ~limits ~jobs ~split_bytes ~on_part path o)
+
+let open_mesh path =
+  match File_io.open_read ~regular:true path with
+  | Ok o -> Ok o
+  | Error (`Msg m) -> Error (`Msg ("cannot read mesh file: " ^ m))
+
+let read_mesh ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = fun ~pid:_ _ -> ()) path =
+  match open_mesh path with
+  | Error _ as e -> e
+  | Ok o -> read_mesh_opened ~limits ~jobs ~split_bytes ~on_part path o
 
 (* The fields of the child's spheres (40 bytes each: center, radius as
    floats, the material as an integer) travel through a temporary file,
@@ -272,51 +290,103 @@ let beside ~limits ~on_part path ic n =
           in
           Some ({ Scene_file.split; wait; append = append_spheres fd; seek = seek_in ic }, fd))
 
+type input = { what : string; path : string; stats : Unix.stats }
+type loaded = { scene : Scene.valid; inputs : input list }
+
 (* A regular file is read a window at a time (Scene_file.of_source): the
    text of a million spheres (88 MB) is never held whole. Other files
    (pipes, /proc files), whose text cannot be read a second time to
-   locate an error, are read whole. The errors are File_io.read's. *)
-let read_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = ignore) path =
-  let whole () =
-    match File_io.read ~check_size:(Limits.check_scene_bytes limits) path with
-    | Error e -> Error e
-    | Ok text -> Scene_file.of_string ~limits ~load_mesh:(read_mesh ~jobs ~split_bytes) ~file:path text
+   locate an error, are read whole, from the descriptor opened here (a
+   FIFO closed and opened again would lose what its writer wrote
+   meanwhile). The errors are File_io.read's. *)
+let load_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = ignore) path =
+  (* Every file the scene reads, as it reads it (Scene_file reads each
+     path once). *)
+  let inputs = ref [] in
+  let load_mesh mesh =
+    match open_mesh mesh with
+    | Error _ as e -> e
+    | Ok o ->
+        inputs := { what = "mesh"; path = mesh; stats = o.stats } :: !inputs;
+        read_mesh_opened ~limits ~jobs ~split_bytes ~on_part:(fun ~pid:_ _ -> ()) mesh o
   in
-  match open_in_bin path with
-  | exception Sys_error e -> Error (`Msg e)
-  | ic -> (
-      match Unix.fstat (Unix.descr_of_in_channel ic) with
-      | exception Unix.Unix_error _ ->
+  let loaded r = Result.map (fun scene -> { scene; inputs = List.rev !inputs }) r in
+  match File_io.open_read path with
+  | Error _ as e -> e
+  | Ok ({ stats = { st_kind = S_REG; st_size = n; _ }; channel = ic; _ }) when n > 0 -> (
+      match Limits.check_scene_bytes limits n with
+      | Error (`Msg m) ->
           close_in_noerr ic;
-          whole ()
-      | { st_kind = S_REG; st_size = n; _ } when n > 0 -> (
-          match Limits.check_scene_bytes limits n with
-          | Error (`Msg m) ->
-              close_in_noerr ic;
-              Error (`Msg (Printf.sprintf "%s: %s" path m))
-          | Ok _ -> (
-              (* The first pass reads the channel opened here; an error's
-                 pass opens the file again. *)
-              let first = ref (Some ic) in
-              let source () =
-                let ic = match !first with Some ic -> first := None; ic | None -> open_in_bin path in
-                { Scene_file.read = input ic; close = (fun () -> close_in_noerr ic) }
-              in
-              let beside = if jobs > 1 && n >= split_bytes then beside ~limits ~on_part path ic n else None in
-              let close () =
-                Option.iter close_in_noerr !first;
-                Option.iter (fun (_, fd) -> try Unix.close fd with Unix.Unix_error _ -> ()) beside
-              in
-              match Scene_file.of_source ~limits ~load_mesh:(read_mesh ~jobs ~split_bytes) ~file:path ?beside:(Option.map fst beside) source with
-              | r ->
-                  close ();
-                  r
-              | exception Sys_error e ->
-                  close ();
-                  Error (`Msg (Printf.sprintf "%s: %s" path e))))
-      | _ ->
-          close_in_noerr ic;
-          whole ())
+          Error (`Msg (Printf.sprintf "%s: %s" path m))
+      | Ok _ -> (
+          (* The first pass reads the channel opened here; an error's
+             pass opens the file again. *)
+          let first = ref (Some ic) in
+          let source () =
+            let ic =
+              match !first with
+              | Some ic ->
+                  first := None;
+                  ic
+              | None -> ( match File_io.open_read ~regular:true path with Ok o -> o.channel | Error (`Msg m) -> raise (Sys_error m))
+            in
+            { Scene_file.read = input ic; close = (fun () -> close_in_noerr ic) }
+          in
+          let beside = if jobs > 1 && n >= split_bytes then beside ~limits ~on_part path ic n else None in
+          let close () =
+            Option.iter close_in_noerr !first;
+            Option.iter (fun (_, fd) -> try Unix.close fd with Unix.Unix_error _ -> ()) beside
+          in
+          match Scene_file.of_source ~limits ~load_mesh ~file:path ?beside:(Option.map fst beside) source with
+          | r ->
+              close ();
+              loaded r
+          | exception Sys_error e ->
+              close ();
+              Error (`Msg (Printf.sprintf "%s: %s" path e))))
+  | Ok o -> (
+      match File_io.read_opened ~check_size:(Limits.check_scene_bytes limits) path o with
+      | Error e -> Error e
+      | Ok text -> loaded (Scene_file.of_string ~limits ~load_mesh ~file:path text))
+
+let read_scene ?limits ?jobs ?split_bytes ?on_part path =
+  Result.map (fun l -> l.scene) (load_scene ?limits ?jobs ?split_bytes ?on_part path)
+
+(* The identity and version of a file: another file, or the same one
+   written to, differs in one of them. *)
+let same_version (a : Unix.stats) (b : Unix.stats) =
+  a.st_dev = b.st_dev && a.st_ino = b.st_ino && a.st_size = b.st_size
+  && Float.equal a.st_mtime b.st_mtime && Float.equal a.st_ctime b.st_ctime
+
+let inputs_digest inputs =
+  let digest i =
+    let changed () =
+      Error
+        (`Msg
+          (Printf.sprintf "%s: the %s changed after it was read (written to or replaced); render again" i.path i.what))
+    in
+    match File_io.open_read ~regular:true i.path with
+    | Error _ -> changed ()
+    | Ok o ->
+        Fun.protect
+          ~finally:(fun () -> close_in_noerr o.channel)
+          (fun () ->
+            if not (same_version o.stats i.stats) then changed ()
+            else
+              match Digest.channel o.channel (-1) with
+              | exception (Sys_error _ | End_of_file) -> changed ()
+              | d -> (
+                  match Unix.fstat (Unix.descr_of_in_channel o.channel) with
+                  | st when same_version st i.stats -> Ok (i.what ^ " " ^ Digest.to_hex d)
+                  | _ | (exception Unix.Unix_error _) -> changed ()))
+  in
+  let rec all acc = function
+    | [] -> Ok (List.rev acc)
+    | i :: rest -> ( match digest i with Ok d -> all (d :: acc) rest | Error _ as e -> e)
+  in
+  match inputs with
+  | [] -> Ok ""
+  | _ -> Result.map (fun ds -> Digest.to_hex (Digest.string (String.concat "\n" ds))) (all [] inputs)
 
 let read_ppm ?(limits = Limits.default) path =
   match File_io.read ~check_size:(Ppm.check_file_size ~limits) path with

@@ -2,6 +2,43 @@
     with a size bound and written atomically ({!File_io}). Errors start
     with the path. *)
 
+(** {1:scenes Scenes and the files they read} *)
+
+type input = {
+  what : string;  (** What it is to the scene, for messages: ["mesh"] (later ["texture"]). *)
+  path : string;  (** The path it was read from (joined to the scene file's directory). *)
+  stats : Unix.stats;  (** Its identity and version when it was opened. *)
+}
+(** The type for files that a scene reads. *)
+
+type loaded = {
+  scene : Scene.valid;
+  inputs : input list;
+      (** Every file the scene read (its meshes), once each, in the order
+          first read; not the scene file itself. No output may replace one
+          ({!Io_plan.check}), and a part's digest covers their contents
+          ({!inputs_digest}). *)
+}
+(** The type for scenes read from files. *)
+
+val load_scene :
+  ?limits:Limits.t ->
+  ?jobs:int ->
+  ?split_bytes:int ->
+  ?on_part:(int -> unit) ->
+  string ->
+  (loaded, [> `Msg of string ]) result
+(** [load_scene ~limits ~jobs ~split_bytes ~on_part path] is {!read_scene}
+    with the files the scene read. *)
+
+val inputs_digest : input list -> (string, [> `Msg of string ]) result
+(** [inputs_digest inputs] is [""] if [inputs] is empty, and otherwise the
+    hex MD5 digest of what each input is and of its contents, read again,
+    in order. [Error], naming the file, if one is no longer the version
+    that was read (another file, or the same one written to since: its
+    device, inode, size, modification or change time differ), before or
+    while it is digested. *)
+
 val read_scene :
   ?limits:Limits.t ->
   ?jobs:int ->
@@ -15,7 +52,9 @@ val read_scene :
     bound of [limits] (default {!Raytrace.Limits.default}) is refused
     before it is read. A regular file is read a window at a time
     ({!Raytrace.Scene_file.of_source}, the file opened again to locate an
-    error), never held whole; others (pipes) are read whole.
+    error), never held whole; others (pipes) are read whole, from the one
+    descriptor {!File_io.open_read} opened: a FIFO that no program writes
+    is an error, not a wait without end.
 
     With [jobs > 1] (default [1]), a regular file of [split_bytes] bytes
     or more (default {!split_bytes}; tests use less) is read on two cores:
@@ -32,12 +71,22 @@ val split_bytes : int
     {!read_mesh} read on two cores by default. *)
 
 val read_mesh :
-  ?jobs:int -> ?split_bytes:int -> ?on_part:(pid:int -> int -> unit) -> string -> (Obj_file.t, [ `Msg of string ]) result
-(** [read_mesh ~jobs ~split_bytes ~on_part path] is the Wavefront OBJ mesh
-    in file [path], read 64 KiB at a time by
+  ?limits:Limits.t ->
+  ?jobs:int ->
+  ?split_bytes:int ->
+  ?on_part:(pid:int -> int -> unit) ->
+  string ->
+  (Obj_file.t, [ `Msg of string ]) result
+(** [read_mesh ~limits ~jobs ~split_bytes ~on_part path] is the Wavefront
+    OBJ mesh in file [path], read 64 KiB at a time by
     {!Raytrace.Obj_file.feed_bytes}, with at most
     {!Raytrace.Limits.max_triangles} vertices and triangles. {!read_scene}
-    reads a scene's meshes with it, with its [jobs] and [split_bytes].
+    reads a scene's meshes with it, with its [limits], [jobs] and
+    [split_bytes]. [path] must be a regular file (opened without waiting:
+    a FIFO, a directory or a device is an error that names it) within the
+    [`Mesh_bytes] bound of [limits] (default {!Raytrace.Limits.default}),
+    checked before it is read and as it is read. Errors start with
+    ["cannot read mesh file: "] and [path], or name it.
 
     With [jobs > 1] (default [1]), a regular file of [split_bytes] bytes
     or more (default {!split_bytes}) is read on two cores: a child process

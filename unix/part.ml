@@ -25,13 +25,17 @@ let v ~canvas_width ~canvas_height ~region ~settings image =
     settings;
   { canvas_width; canvas_height; region; settings; image }
 
-let settings ?frame ?(samples = 1) ?adaptive ?(subsample = false) ?(renderer = "fast") (scene : Scene.t) =
+let settings ?frame ?(samples = 1) ?adaptive ?(subsample = false) ?(renderer = "fast") ?(files = "") (scene : Scene.t) =
+  (* Without files, the digest of the text alone, as parts had it before
+     files were digested: such parts still merge with them. *)
+  let text = Scene_file.to_string scene in
+  let digest = if files = "" then Digest.string text else Digest.string (text ^ "\nfiles " ^ files) in
   [ ("depth", string_of_int scene.depth); ("samples", string_of_int samples) ]
   @ (match adaptive with Some th -> [ ("adaptive", string_of_int th) ] | None -> [])
   @ (if subsample then [ ("subsample", "true") ] else [])
   @ [ ("renderer", renderer) ]
   @ (match frame with Some f -> [ ("frame", string_of_int f) ] | None -> [])
-  @ [ ("scene", Digest.to_hex (Digest.string (Scene_file.to_string scene))) ]
+  @ [ ("scene", Digest.to_hex digest) ]
 
 let comments p =
   let r = p.region in

@@ -47,15 +47,20 @@ val settings :
   ?adaptive:int ->
   ?subsample:bool ->
   ?renderer:string ->
+  ?files:string ->
   Scene.t ->
   (string * string) list
-(** [settings ~frame ~samples ~adaptive ~subsample ~renderer scene] is the
-    settings of a part of [scene]: [depth], [samples] (default [1]),
-    [adaptive] (the threshold) when given, [subsample] when [true]
-    ({!Raytrace.Sampling.v}), [renderer] (default ["fast"]), [frame] when given,
-    and last [scene], the MD5 digest of
-    {!Raytrace.Scene_file.to_string}[ scene] (which covers every field of the scene,
-    the canvas and the camera of the frame included). *)
+(** [settings ~frame ~samples ~adaptive ~subsample ~renderer ~files scene]
+    is the settings of a part of [scene]: [depth], [samples] (default
+    [1]), [adaptive] (the threshold) when given, [subsample] when [true]
+    ({!Raytrace.Sampling.v}), [renderer] (default ["fast"]), [frame] when
+    given, and last [scene], the MD5 digest of
+    {!Raytrace.Scene_file.to_string}[ scene] (which covers every field of
+    the scene, the canvas and the camera of the frame included, but of a
+    mesh only its file's name) and of [files], the digest of the contents
+    of the files the scene read ({!Files.inputs_digest}; default [""],
+    for none: then the digest of the text alone). Parts of a scene whose
+    mesh file changed between them thus have different digests. *)
 
 val to_string : t -> string
 (** [to_string p] is [p] as a binary PPM file of the part's pixels whose

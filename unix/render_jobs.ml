@@ -80,35 +80,39 @@ let bvh_beside ?(min_objects = 1 lsl 16) () =
   in
   { Bvh.beside; min_objects; floats }
 
-let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region : Region.t) =
-  (* Nothing here holds the scene past [Prepared.prepare], which lets its
-     spheres go as it builds the hierarchy. *)
+(* Every piece of shared memory is taken before the scene is prepared:
+   where one cannot be had (a full /dev/shm, a file-size limit), the
+   render is [one_process scene], the same picture traced in this process,
+   which needs none. Nothing here holds the scene past
+   [Prepared.prepare], which lets its spheres go as it builds the
+   hierarchy ([one_process] does not hold it either). *)
+let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling scene (region : Region.t) =
   let canvas = (let s = Scene.of_valid scene in (s.width, s.height)) in
   match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
   | exception Out_of_memory -> Render_work.out_of_memory region
-  | exception Failure m -> Error (`Msg m)
+  | exception Failure _ -> one_process scene
   | img -> (
-      let t0 = Unix.gettimeofday () in
-      (* A part of a big hierarchy is built by a child process meanwhile
-         (grid:1000000 with two jobs, alternating runs on a quiet 2-core
-         machine: 2.66 -> 2.39 s, its peak 209 -> 214 MB). On a machine
-         whose cores are all busy the child waits for one, and preparing
-         takes longer (docs/performance.md). *)
-      let beside = if jobs > 1 then Some (bvh_beside ()) else None in
-      let p = Prepared.prepare ?skips ?beside scene in
-      let t1 = Unix.gettimeofday () in
-      let plan =
-        Sampling.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y)
-      in
+      match Sampling.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y) with
+      | exception Failure _ -> one_process scene
+      | plan ->
       let passes = Sampling.passes plan in
       match Parallel.shared_ints (passes * jobs * Render_work.counter_fields) with
       | exception Out_of_memory -> Render_work.out_of_memory region
-      | exception Failure m -> Error (`Msg m)
+      | exception Failure _ -> one_process scene
       | ints -> (
           match Option.map (fun _ -> Parallel.shared_ints (2 * jobs)) progress with
           | exception Out_of_memory -> Render_work.out_of_memory region
-          | exception Failure m -> Error (`Msg m)
+          | exception Failure _ -> one_process scene
           | slots ->
+          let t0 = Unix.gettimeofday () in
+          (* A part of a big hierarchy is built by a child process meanwhile
+             (grid:1000000 with two jobs, alternating runs on a quiet 2-core
+             machine: 2.66 -> 2.39 s, its peak 209 -> 214 MB). On a machine
+             whose cores are all busy the child waits for one, and preparing
+             takes longer (docs/performance.md). *)
+          let beside = if jobs > 1 then Some (bvh_beside ()) else None in
+          let p = Prepared.prepare ?skips ?beside scene in
+          let t1 = Unix.gettimeofday () in
           let total = Render_work.total_rows plan in
           let report () =
             match (progress, slots) with
@@ -216,8 +220,9 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptiv
           | Error _ as e -> e
           | Ok () -> (
               let jobs = min jobs region.h in
-              if jobs > 1 then in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene region
-              else
+              (* A function of the scene, not a closure over it: passed to
+                 [in_workers], it would hold the scene through the render. *)
+              let one_process scene =
                 match
                   Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample ?progress
                     scene region
@@ -225,7 +230,10 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptiv
                 | Error _ as e -> e
                 | Ok (img, stats) ->
                     Option.iter (fun f -> f img region.h) rows_done;
-                    Ok (img, stats))))
+                    Ok (img, stats)
+              in
+              if jobs > 1 then in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling scene region
+              else one_process scene)))
 
 let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene =
   if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";
