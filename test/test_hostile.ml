@@ -314,9 +314,9 @@ let tests =
     Alcotest.test_case "the work estimate is the product of its factors" `Quick (fun () ->
         (* 600 * 600 pixels * 4 samples * (3 + 1) rays * 4 spheres * (1 + 2) = 69120000 *)
         Alcotest.(check (float 0.)) __LOC__ 69120000.
-          (Limits.work ~pixels:360000 ~samples:4 ~depth:3 ~spheres:4 ~lights:2);
+          (Limits.work ~pixels:360000 ~samples:4 ~depth:3 ~spheres:4 ~lights:2 ());
         (* 100000 spheres: 2^17 = 131072 >= 100000, so 16 x 17 = 272 per ray;
            1000 * 1 * 1 * 272 * 1 = 272000 *)
         Alcotest.(check (float 0.)) __LOC__ 272000.
-          (Limits.work ~pixels:1000 ~samples:1 ~depth:0 ~spheres:100_000 ~lights:0));
+          (Limits.work ~pixels:1000 ~samples:1 ~depth:0 ~spheres:100_000 ~lights:0 ()));
   ]

@@ -158,14 +158,14 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
                 let slot = (i * jobs) + w in
                 let before = Gc.minor_words () in
                 let publish () = Render_work.save ints slot tr (Gc.minor_words () -. before) in
-                (* The work budget is shared: before each band, a worker
-                   publishes its count and keeps for itself what the others
-                   (as last published) have left. *)
+                (* The work budget is shared: a worker reserves a slice of
+                   what is left, and once it has done that, publishes its
+                   count and reserves the next (Render_work.refill). *)
+                let refill _ = Render_work.refill ints ~slots:(passes * jobs) ~slot ~budget ~jobs tr in
                 let rec loop () =
                   let b = Parallel.take queue in
                   if b >= 0 then begin
                     publish ();
-                    Trace.set_budget tr (budget - (work_done ints - Trace.work tr));
                     (* Rays of the earlier passes, whose tracers are gone. *)
                     let earlier =
                       match slots with
@@ -182,7 +182,11 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
                     loop ()
                   end
                 in
-                (try loop () with Limits.Work_exceeded _ -> ());
+                (try
+                   Trace.set_budget ~refill tr (refill 0);
+                   loop ()
+                 with Limits.Work_exceeded _ -> ());
+                Render_work.release ints slot tr;
                 publish ()
               in
               let tick = Option.map (fun _ -> report) progress in
