@@ -91,6 +91,15 @@ let tests =
     Helpers.qcheck ~count:400 "mutated example scenes are scenes or one located line"
       (mutated (example_scenes ()) Hostile.scene_tokens)
       (fun text -> holds "mutated scene" Hostile.scene text; true);
+    Helpers.qcheck ~count:300
+      "random scenes of every form (meshes, CSG, glass, patterns) render within their work budget or fail with one located line"
+      (QCheck.make
+         ~print:(fun (text, meshes) ->
+           text ^ String.concat "" (List.map (fun (n, t) -> Printf.sprintf "\n--- %s\n%s" n t) meshes))
+         Hostile.random_scene)
+      (fun (text, meshes) ->
+        (match Hostile.scene ~meshes text with Ok () -> () | Error m -> Alcotest.failf "%s\ninput:\n%s" m text);
+        true);
     Helpers.qcheck ~count:400 "mutated images are images or one line"
       (mutated (example_ppms ()) Hostile.ppm_tokens)
       (fun bytes -> holds "mutated image" Hostile.ppm bytes; true);
