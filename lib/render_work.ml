@@ -35,10 +35,10 @@ let save ints w tr words =
   set 5 (truncate words);
   set 6 c.box_tests
 
-let save_work ints w tr =
+let save_work ?(base = 0) ints w tr =
   let c = Trace.counters tr in
   let k = w * counter_fields in
-  Bigarray.Array1.set ints (k + 3) (Int64.of_int c.tests);
+  Bigarray.Array1.set ints (k + 3) (Int64.of_int (c.tests - base));
   Bigarray.Array1.set ints (k + 6) (Int64.of_int c.box_tests)
 
 let field ints w i = Int64.to_int (Bigarray.Array1.get ints ((w * counter_fields) + i))
@@ -46,25 +46,41 @@ let field ints w i = Int64.to_int (Bigarray.Array1.get ints ((w * counter_fields
 (* Each worker reserves its slice in its slot before it works through it:
    a worker takes a [jobs]th of what nobody has done or reserved, so that
    even workers that refill at the same moment reserve at most what is
-   left between them. Near the end, at least a 64th of a [jobs]th of the
-   whole: slices that shrank to nothing would make workers refill at
-   every pixel, for a bound passed by that much at most. *)
-let refill ints ~slots ~slot ~budget ~jobs tr =
-  save_work ints slot tr;
-  let total = ref 0 and others = ref 0 in
-  for w = 0 to slots - 1 do
-    let d = field ints w 3 + field ints w 6 in
-    total := !total + d;
-    if w <> slot then others := !others + max d (field ints w 7)
-  done;
-  if !total > budget then raise (Limits.Work_exceeded !total);
-  let own = Trace.work tr in
-  let slice = max (max 1 (budget / (64 * jobs))) ((budget - !others - own) / jobs) in
-  let next = if own > max_int - slice then max_int else own + slice in
-  Bigarray.Array1.set ints ((slot * counter_fields) + 7) (Int64.of_int next);
-  next
+   left between them (and at least a 64th of a [jobs]th of the whole:
+   slices that shrank to nothing would make workers refill at every
+   pixel). Once all is reserved, a worker waits for the others to do or
+   give back what they hold; once all is done, it takes a last small
+   slice, past which the render stops. *)
+let refill ?(base = 0) ?(wait = ignore) ints ~slots ~slot ~budget ~jobs tr =
+  save_work ~base ints slot tr;
+  let own = Trace.work tr - base and least = max 1 (budget / (64 * jobs)) in
+  let rec next () =
+    let total = ref 0 and others = ref 0 and unused = ref 0 in
+    for w = 0 to slots - 1 do
+      let d = field ints w 3 + field ints w 6 in
+      total := !total + d;
+      if w <> slot then begin
+        let r = field ints w 7 in
+        others := !others + max d r;
+        unused := !unused + max 0 (r - d)
+      end
+    done;
+    if !total > budget then raise (Limits.Work_exceeded (base + !total));
+    let free = budget - !others - own in
+    if free > 0 then max least (free / jobs)
+    else if !unused > 0 then begin
+      wait ();
+      next ()
+    end
+    else least
+  in
+  let slice = next () in
+  let reserved = if own > max_int - slice then max_int else own + slice in
+  Bigarray.Array1.set ints ((slot * counter_fields) + 7) (Int64.of_int reserved);
+  if reserved > max_int - base then max_int else base + reserved
 
-let release ints slot tr = Bigarray.Array1.set ints ((slot * counter_fields) + 7) (Int64.of_int (Trace.work tr))
+let release ?(base = 0) ints slot tr =
+  Bigarray.Array1.set ints ((slot * counter_fields) + 7) (Int64.of_int (Trace.work tr - base))
 
 let stats ints ~slots ~pixels ~jobs ~prepare_s ~trace_s =
   let sum i = List.init slots (fun w -> Int64.to_int ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in

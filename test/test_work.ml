@@ -97,6 +97,27 @@ let tests =
           |> Result.get_ok
         in
         Alcotest.(check bool) __LOC__ true (Scene.check_work (Helpers.valid chain) = Ok ()));
+    Alcotest.test_case "a CSG solid's leaves count in the estimate, each tested by every ray that meets it" `Quick
+      (fun () ->
+        (* 1000 x 1000 pixels x 1 ray x (1 object + 3 leaves) x (1 + 1
+           light) = 8e6, beyond 3e6; counted as one object it was 2e6. *)
+        let scene =
+          Helpers.of_string
+            "(canvas (width 1000) (height 1000)) (recursion-depth 0)\n\
+             (csg union (sphere (center 0 0 3) (radius 1) (color 255 0 0))\n\
+             \  (csg difference (sphere (center 1 0 3) (radius 1) (color 255 0 0)) (box (min 0 0 0) (max 1 1 1) (color 1 2 3))))\n\
+             (light point (intensity 1) (position 0 0 0))"
+          |> Result.get_ok
+        in
+        let limits = Limits.with_bound Limits.default `Work 3e6 in
+        match Scene.check_work ~limits (Helpers.valid scene) with
+        | Ok () -> Alcotest.fail "accepted"
+        | Error (`Msg m) ->
+            Alcotest.(check string) __LOC__
+              "the render needs about 8e+06 ray-sphere intersection tests (1000000 pixels x 1 samples x 1 rays x 4 \
+               spheres per ray (with 3 leaves of CSG solids) x (1 + 1 lights)), more than the limit of 3000000 (set \
+               RAYTRACE_MAX_WORK to raise it)"
+              m);
     Alcotest.test_case "a transparent scene's depth counts in the estimate" `Quick (fun () ->
         (* Transparent, not reflective: the refracted rays bounce too.
            100 x 100 pixels x 65 rays x 1 x 1 = 650000, beyond 600000;
@@ -219,7 +240,18 @@ let tests =
         go ();
         match Progressive.stopped r with
         | None -> Alcotest.fail "the progressive render went to its end"
-        | Some m -> within "progressive" budget (stopped_after ("raytrace: " ^ m ^ "\n")));
+        | Some m -> (
+            within "progressive" budget (stopped_after ("raytrace: " ^ m ^ "\n"));
+            (* The window's workers share the budget: 512 x 8 pixels, the
+               full-resolution rows traced by 2 workers, 4 rows a step. *)
+            let valid = Helpers.valid (Result.get_ok (Helpers.of_string (concentric ~width:512 ~height:8))) in
+            let workers = Progressive_workers.v ~jobs:2 ~width:512 ~height:8 in
+            let r = Progressive.create ~limits ~workers valid in
+            let rec go () = match Progressive.step ~rows:4 r with Some _ -> go () | None -> () in
+            go ();
+            match Progressive.stopped r with
+            | None -> Alcotest.fail "the progressive render with workers went to its end"
+            | Some m -> within "progressive, 2 workers" budget (stopped_after ("raytrace: " ^ m ^ "\n"))));
     Alcotest.test_case "the triangles of every mesh form count against a bound before they are made" `Quick
       (fun () ->
         (* A file of 2 triangles named 6 times: 12 triangles, beyond a

@@ -128,6 +128,7 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
             done;
             !n
           in
+          let wait () = Unix.sleepf 0.001 in
           let over_budget n = Error (`Msg (Limits.work_exceeded limits n)) in
           let rec run i =
             if i = passes then
@@ -161,7 +162,7 @@ let in_workers ~limits ~jobs ?skips ?progress ?rows_done sampling scene (region 
                 (* The work budget is shared: a worker reserves a slice of
                    what is left, and once it has done that, publishes its
                    count and reserves the next (Render_work.refill). *)
-                let refill _ = Render_work.refill ints ~slots:(passes * jobs) ~slot ~budget ~jobs tr in
+                let refill _ = Render_work.refill ~wait ints ~slots:(passes * jobs) ~slot ~budget ~jobs tr in
                 let rec loop () =
                   let b = Parallel.take queue in
                   if b >= 0 then begin
