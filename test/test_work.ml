@@ -139,7 +139,14 @@ let tests =
         Alcotest.(check int) ("exit status: " ^ err) 1 code;
         one_line "refused" err;
         Alcotest.(check bool) "no output" false (Sys.file_exists out);
-        Alcotest.(check bool) "at once" true (Unix.gettimeofday () -. t0 < 10.));
+        Alcotest.(check bool) "at once" true (Unix.gettimeofday () -. t0 < 10.);
+        (* The window too, before it opens (with or without a display). *)
+        let code, _, err =
+          Helpers.run ~env:(env [ "DISPLAY=" ]) (Helpers.raytrace ()) [ "view"; Filename.concat dir "glass.scene" ]
+        in
+        Alcotest.(check int) ("view: exit status: " ^ err) 1 code;
+        one_line "view" err;
+        Alcotest.(check bool) ("view: names the bound: " ^ err) true (contains err "RAYTRACE_MAX_WORK"));
     Alcotest.test_case "a depth of max_int is refused in one line, never an internal error" `Quick (fun () ->
         (* With the depth bound raised as far as it goes: the estimate
            saturates (2^(max_int + 1) rays is infinity, not an overflow),
