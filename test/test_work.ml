@@ -297,4 +297,29 @@ let tests =
                   "the scene's meshes have 12 triangles in all, more than the limit of 11 (set \
                    RAYTRACE_MAX_TRIANGLES to raise it)"
                   m));
+      Alcotest.test_case "random scenes of every form, with their mesh files on disk, render or fail in one line" `Quick
+      (fun () ->
+        (* The command line end to end (files, workers, the budget shared
+           by 2 jobs): an image, or one line and status 1, never an
+           internal error or a render far past its budget. *)
+        let rand = Random.State.make [| 29 |] in
+        for i = 1 to 24 do
+          let text, meshes = Hostile.random_scene rand in
+          let dir = files (("s.scene", text) :: meshes) in
+          let out = Filename.concat dir "out.ppm" in
+          let jobs = string_of_int (1 + (i mod 2)) in
+          let code, _, err =
+            Helpers.run ~env:(env [ "RAYTRACE_MAX_WORK=1000000" ]) (Helpers.raytrace ())
+              [ "render"; Filename.concat dir "s.scene"; "-o"; out; "--jobs"; jobs; "--quiet" ]
+          in
+          let what = Printf.sprintf "scene %d (--jobs %s): %s\n%s" i jobs err text in
+          if code = 0 then Alcotest.(check bool) (what ^ ": an image") true (Sys.file_exists out)
+          else begin
+            Alcotest.(check int) (what ^ ": exit status") 1 code;
+            one_line what err;
+            Alcotest.(check bool) (what ^ ": no output") false (Sys.file_exists out);
+            if contains err "the render was stopped after" then
+              Alcotest.(check bool) (what ^ ": near its budget") true (stopped_after err <= 1_100_000)
+          end
+        done);
   ]
