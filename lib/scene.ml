@@ -216,15 +216,15 @@ let at_frame (s : valid) f =
       | Error e -> Error e)
 
 let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
-  let materials =
-    Array.to_list (Spheres.materials s.spheres) @ List.concat_map Shape.materials s.shapes
+  (* No list of a million spheres' materials: each array and list is read
+     where it is. *)
+  let exists p =
+    Array.exists p (Spheres.materials s.spheres) || List.exists (fun sh -> List.exists p (Shape.materials sh)) s.shapes
   in
   (* A hit bounces on a reflective or a transparent surface; it may spawn
      two rays where some of the light is reflected and some refracted. *)
-  let bounces = List.exists (fun (m : Material.t) -> m.reflective > 0. || m.transparency > 0.) materials in
-  let split =
-    List.exists (fun (m : Material.t) -> m.transparency > 0. && (m.reflective > 0. || m.fresnel)) materials
-  in
+  let bounces = exists (fun (m : Material.t) -> m.reflective > 0. || m.transparency > 0.) in
+  let split = exists (fun (m : Material.t) -> m.transparency > 0. && (m.reflective > 0. || m.fresnel)) in
   let objects, leaves =
     List.fold_left
       (fun (o, l) -> function

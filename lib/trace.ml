@@ -137,6 +137,7 @@ let set_budget ?(refill = exhausted) tr n =
    pixel. *)
 let[@inline never] over_budget tr = tr.budget <- tr.refill (work tr)
 let[@inline] check_budget tr = if tr.counters.tests + tr.counters.box_tests > tr.budget then over_budget tr
+
 let red tr = tr.s.r
 let green tr = tr.s.g
 let blue tr = tr.s.b
