@@ -154,6 +154,7 @@ let bounded l name ~lo ~low ~what n =
   else match within l name (Float.of_int n) what with Ok () -> Ok n | Error e -> Error e
 
 let max_levels = 1 lsl 20
+let max_tree_levels = 4096
 
 let check_depth l d =
   if d > max_levels then

@@ -79,6 +79,12 @@ val max_levels : int
     [`Depth] bound says, a fixed bound: a tracer keeps a few floats per
     level, made when it is created. *)
 
+val max_tree_levels : int
+(** [max_tree_levels] is [4096]: the largest recursion depth of a scene
+    with transparent objects, a fixed bound: the tracer follows their ray
+    tree by recursion, a few hundred bytes of the system stack a level (8
+    MiB, the usual stack, overflowed at about 20000 levels). *)
+
 val max_lights : int
 (** [max_lights] is [1000]: the default largest number of lights of a
     scene. *)

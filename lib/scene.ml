@@ -234,6 +234,14 @@ let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
       (Spheres.length s.spheres, 0) s.shapes
   in
   let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in
+  if s.depth > Limits.max_tree_levels && exists (fun (m : Material.t) -> m.transparency > 0.) then
+    Error
+      (`Msg
+        (Printf.sprintf
+           "recursion depth %d is too deep for a scene with transparent objects: their ray tree is followed by \
+            recursion, at most %d levels"
+           s.depth Limits.max_tree_levels))
+  else
   Limits.check_work limits ~split ~leaves
     ~pixels:(Option.value pixels ~default:(s.width * s.height))
     ~samples ~depth:(if bounces then s.depth else 0) ~spheres:objects ~lights ()

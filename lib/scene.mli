@@ -140,8 +140,9 @@ val check_work : ?limits:Limits.t -> ?samples:int -> ?pixels:int -> valid -> (un
     term; only point and directional lights cast shadow rays; a mesh's
     triangles are objects of the hierarchy, a CSG solid's leaves are
     tested by every ray that meets it), and otherwise [Error] saying the
-    estimate, the bound and how to raise it. {!Render.image} checks it
-    before it allocates anything. *)
+    estimate, the bound and how to raise it; a scene with transparent
+    objects deeper than {!Limits.max_tree_levels} is an [Error] too.
+    {!Render.image} checks it before it allocates anything. *)
 
 val with_overrides : ?width:int -> ?height:int -> ?depth:int -> t -> t
 (** [with_overrides ~width ~height ~depth s] is [s] with the given fields

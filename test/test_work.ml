@@ -174,6 +174,26 @@ let tests =
             Alcotest.(check int) (what ^ ": exit status: " ^ err) 1 code;
             one_line what err)
           [ ("glass.scene", [ "--depth"; depth ]); ("matte.scene", [ "--depth"; depth ]) ];
+        (* Two facing mirrors and a glass ball: the ray tree of a scene
+           with transparency is followed by recursion, whose stack (8 MiB)
+           overflowed at about 20000 levels. *)
+        let mirrors =
+          "(canvas (width 3) (height 3)) (camera (position 0 0 0)) (recursion-depth 25000)\n\
+           (sphere (center 0 0 -1001) (radius 998) (color 255 0 0) (reflective 1))\n\
+           (sphere (center 0 0 1001) (radius 998) (color 0 255 0) (reflective 1))\n\
+           (sphere (center 100 100 100) (radius 1) (color 0 255 0) (transparency 0.5))\n\
+           (light ambient (intensity 0.2))\n"
+        in
+        let dir = files [ ("mirrors.scene", mirrors) ] in
+        let code, _, err =
+          Helpers.run ~env:(env [ "RAYTRACE_MAX_DEPTH=1000000" ]) (Helpers.raytrace ())
+            [ "render"; Filename.concat dir "mirrors.scene"; "-o"; Filename.concat dir "out.ppm" ]
+        in
+        Alcotest.(check int) ("deep glass: exit status: " ^ err) 1 code;
+        Alcotest.(check string) __LOC__
+          "raytrace: recursion depth 25000 is too deep for a scene with transparent objects: their ray tree is \
+           followed by recursion, at most 4096 levels\n"
+          err;
         Alcotest.(check bool) __LOC__ true
           (Limits.work ~split:true ~pixels:1 ~samples:1 ~depth:max_int ~spheres:1 ~lights:0 () = infinity);
         Alcotest.(check bool) __LOC__ true
