@@ -123,6 +123,9 @@ let view opts ~jobs =
     (let* limits = Limits_env.read () in
      let* jobs = jobs_or_cores jobs in
      let* scene = load ~limits ~jobs opts in
+     (* As [render] does: a frame that cannot finish is refused before the
+        window opens. *)
+     let* () = Scene.check_work ~limits scene in
      match Window.run ~limits ~name:(scene_name opts) ~scene_file:opts.scene ~jobs scene with
      | Ok () -> Ok exit_ok
      | Error (`Msg _ as e) -> Error e

@@ -21,11 +21,12 @@ let limit_envs =
     env `Depth "the recursion depth";
     env `Samples "rays per pixel (--samples N traces N x N)";
     env `Spheres "objects in a scene (spheres, planes, triangles, boxes, meshes and CSG solids, each counted once)";
+    env `Triangles "the triangles of a scene's meshes, over all its mesh forms (a file named twice counts twice), counted before they are made";
     env `Lights "lights in a scene";
     env `Scene_bytes "the size of a scene file, in bytes";
     env `Form_bytes "the size of one top-level form of a scene file (such as a camera-path), in bytes: the parser holds a form whole, in about 50 times its size";
     env `Mesh_bytes "the size of a mesh (OBJ) file, in bytes: it is read 64 KiB at a time, so the bound stops a file that would never end";
-    env `Work "the ray-sphere intersection tests that a render may need (pixels x samples x rays per sample x spheres met per ray x (1 + lights)); 1e12 is a few hours of one core";
+    env `Work "the intersection tests that a render may need (pixels x samples x rays per sample x objects met per ray x (1 + lights), rays per sample a tree of 2^(depth+1) - 1 when glass both reflects and refracts); and, as they are counted during the render, the tests it does; 1e12 is a few hours of one core";
   ]
 
 let scene_options =

@@ -46,6 +46,8 @@ let names =
     "sphere"; "light";
     "width"; "height"; "distance"; "position"; "rotation"; "look-at"; "up"; "center"; "radius"; "color";
     "specular"; "reflective"; "intensity"; "direction"; "ambient"; "point"; "directional";
+    "plane"; "triangle"; "box"; "mesh"; "csg"; "normal"; "vertices"; "min"; "max"; "file"; "scale"; "translate";
+    "smooth"; "transparency"; "refractive-index"; "fresnel"; "pattern"; "checker"; "size";
   |]
 
 let field =
@@ -104,6 +106,66 @@ let valid_scene =
   map [ list valid_setting; list valid_sphere; list valid_light ] (fun settings spheres lights ->
       String.concat "\n" (settings @ spheres @ lights))
 
+(* The forms of round 2 and 3: glass (transparency, refractive index,
+   Fresnel), mirrors and patterns on every shape; planes, triangles,
+   boxes, meshes of files the test makes, CSG solids nested with every
+   operation. *)
+let material =
+  map
+    [ triple 0. 255.; optional "specular" (choose [ const "-1"; value 0. 1000. ]); optional "reflective" (value 0. 0.5);
+      optional "transparency" (value 0. 0.5); optional "refractive-index" (value 0.5 2.5);
+      optional "fresnel" (choose [ const "true"; const "false"; token Hostile.scene_tokens ]);
+      optional "pattern" (map [ triple 0. 255.; value 0.1 2. ] (Printf.sprintf "checker (color %s) (size %s)")) ]
+    (fun col spec refl tr idx fres pat -> Printf.sprintf "(color %s)%s%s%s%s%s%s" col spec refl tr idx fres pat)
+
+let sphere_form = map [ triple (-3.) 3.; value 0.1 2.; material ] (Printf.sprintf "(sphere (center %s) (radius %s) %s)")
+
+let box_form =
+  map [ triple (-2.) 2.; triple 0. 2.; material ] (fun lo size m ->
+      (* [max] = [min] + [size], written as the parser reads it. *)
+      let parse t = List.map (fun x -> Option.value ~default:0. (float_of_string_opt x)) (String.split_on_char ' ' t) in
+      let hi = List.map2 ( +. ) (parse lo) (parse size) in
+      Printf.sprintf "(box (min %s) (max %s) %s)" lo
+        (String.concat " " (List.map Raytrace.Private.Float_text.to_string hi)) m)
+
+let mesh_form =
+  map
+    [ choose [ const "closed.obj"; const "loose.obj"; const "missing.obj" ]; optional "scale" (value 0.1 3.);
+      optional "translate" (triple (-2.) 2.); optional "smooth" (choose [ const "true"; const "false" ]); material ]
+    (Printf.sprintf "(mesh (file %S)%s%s%s %s)")
+
+let csg_form =
+  fix (fun csg ->
+      map
+        [ choose [ const "union"; const "intersection"; const "difference"; token Hostile.scene_tokens ];
+          choose [ sphere_form; box_form; mesh_form; csg ]; choose [ sphere_form; box_form; mesh_form; csg ] ]
+        (Printf.sprintf "(csg %s %s %s)"))
+
+let shape_form =
+  choose
+    [
+      sphere_form; box_form; mesh_form; csg_form;
+      map [ triple (-2.) 2.; triple (-1.) 1.; material ] (Printf.sprintf "(plane (point %s) (normal %s) %s)");
+      map [ triple (-2.) 2.; triple (-2.) 2.; triple 1. 5.; material ]
+        (Printf.sprintf "(triangle (vertices (%s) (%s) (%s)) %s)");
+    ]
+
+(* A closed tetrahedron, and loose triangles (with whatever lines). *)
+let obj_files =
+  map
+    [ list1 (triple (-1.) 1.); list (map [ range ~min:1 8; range ~min:1 8; range ~min:1 8 ] (Printf.sprintf "f %d %d %d"));
+      list (token [| "v nan 0 0"; "f 1 2 99"; "vn 0 0 1"; "f 1//1 2//1 3//1"; "# c"; "o x"; "f 1" |]) ]
+    (fun vertices faces junk ->
+      let v = List.map (fun p -> "v " ^ p) vertices in
+      [
+        ("closed.obj", "v 0 0 2\nv 1 0 3\nv -1 0 3\nv 0 1 2.5\nf 1 2 3\nf 1 4 2\nf 2 4 3\nf 3 4 1\n");
+        ("loose.obj", String.concat "\n" (v @ faces @ junk) ^ "\n");
+      ])
+
+let scene_with_meshes =
+  map [ list valid_setting; list1 shape_form; list valid_light; obj_files ] (fun settings shapes lights meshes ->
+      (String.concat "\n" (settings @ shapes @ lights), meshes))
+
 (* Deep nesting, balanced or not, around a generated form. *)
 let nested =
   map [ range 100_000; range 3; scene_text ] (fun depth shape inner ->
@@ -141,6 +203,9 @@ let () =
   add_test ~name:"scene: forms and fields" [ scene_text ] (check ".scene" Hostile.scene);
   add_test ~name:"scene: mostly valid" [ valid_scene ] (check ".scene" Hostile.scene);
   add_test ~name:"scene: deep nesting" [ nested ] (check ".scene" Hostile.scene);
+  add_test ~name:"scene: meshes, CSG, glass, patterns" [ scene_with_meshes ] (fun (text, meshes) ->
+      dump ".scene" text;
+      match Hostile.scene ~meshes text with Ok () -> () | Error m -> fail m);
   add_test ~name:"ppm: any bytes" [ bytes ] (check ".ppm" Hostile.ppm);
   add_test ~name:"ppm: headers" [ ppm_text ] (check ".ppm" Hostile.ppm);
   add_test ~name:"ppm: pixels" [ ppm_image ] (check ".ppm" Hostile.ppm)

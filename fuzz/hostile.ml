@@ -40,9 +40,39 @@ let located text m =
           | _ -> Error (Printf.sprintf "bad location in %S (the text has %d lines)" m (lines_of text)))
       | _ -> Error (Printf.sprintf "no line:column in %S" m)
 
-let scene text =
+let work_budget = 1_000_000
+let limits_of budget = Limits.with_bound Limits.default `Work (Float.of_int budget)
+
+(* Mesh files by name, read from memory as the command line reads them
+   from disk: the same parser and the same bounds. *)
+let loader meshes name =
+  match List.assoc_opt name meshes with
+  | None -> Error (`Msg (Printf.sprintf "cannot read mesh file %s: no such file" name))
+  | Some text -> Obj_file.of_string ~name ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles text
+
+let starts_with prefix m = String.length m >= String.length prefix && String.sub m 0 (String.length prefix) = prefix
+
+(* A render at 3 x 2 pixels under a budget of [budget] tests ends with an
+   image, or with one line: the estimate's refusal, or a render stopped
+   past its budget by at most [slack] tests. *)
+let rendered ~budget ~slack valid =
+  match Result.bind (Scene.override ~width:3 ~height:2 valid) (Render.image ~limits:(limits_of budget)) with
+  | Ok _ -> Ok ()
+  | Error (`Msg m) ->
+      let* () = one_line "render" m in
+      let stopped = "the render was stopped after " in
+      if starts_with stopped m then
+        let rest = String.sub m (String.length stopped) (String.length m - String.length stopped) in
+        match int_of_string_opt (List.hd (String.split_on_char ' ' rest)) with
+        | Some n when n <= budget + slack -> Ok ()
+        | _ -> Error (Printf.sprintf "the render ran far past its work budget of %d tests: %s" budget m)
+      else if starts_with "the render needs about" m then Ok ()
+      else Error ("rendering the scene at 3x2 failed: " ^ m)
+
+let scene ?(meshes = []) text =
+  let load_mesh = loader meshes in
   guard "Scene_file.of_string" (fun () ->
-      match Scene_file.of_string ~file:scene_file text with
+      match Scene_file.of_string ~load_mesh ~file:scene_file text with
       | Error (`Msg m) ->
           let* () = one_line "scene" m in
           located text m
@@ -53,14 +83,16 @@ let scene text =
           in
           let printed = Scene_file.to_string s in
           let* () =
-            match Scene_file.of_string printed with
+            match Scene_file.of_string ~load_mesh printed with
             | Ok s' when Scene.equal s (Scene.of_valid s') -> Ok ()
             | Ok _ -> Error ("the printed scene reads back different:\n" ^ printed)
             | Error (`Msg m) -> Error (Printf.sprintf "the printed scene does not parse (%s):\n%s" m printed)
           in
-          (match Result.bind (Scene.override ~width:3 ~height:2 valid) Render.image with
-          | Ok _ -> Ok ()
-          | Error (`Msg m) -> Error ("rendering the scene at 3x2 failed: " ^ m)))
+          (* Within the budget, and past a tiny one by no more than a
+             pixel's (a hit's, in a ray tree) work: for these small
+             scenes, far less than the budget. *)
+          let* () = rendered ~budget:work_budget ~slack:work_budget valid in
+          rendered ~budget:100 ~slack:20_000 valid)
 
 let ppm bytes =
   let* () =
@@ -137,3 +169,132 @@ let mutate rand ~tokens s =
   in
   let rec go k s = if k = 0 then s else go (k - 1) (edit s) in
   go (1 + int 8) s
+
+(* Scenes of every form, most of them valid, some not: each value comes
+   from its domain, now and then from a token at or beyond an edge. *)
+module Gen = struct
+  let int rand n = Random.State.int rand (max 1 n)
+  let pick rand a = a.(int rand (Array.length a))
+  let chance rand n = int rand n = 0
+  let edges = [| "0"; "-1"; "1e12"; "1e13"; "nan"; "inf"; "-0"; "4.9e-324"; "9223372036854775807" |]
+
+  (* A third of the scenes are hostile: values at or beyond the edges of
+     their domains, words out of place, missing files; the others valid
+     (most of the time). *)
+  let hostile = ref false
+  let odd rand = !hostile && chance rand 12
+
+  let num rand lo hi =
+    if odd rand then pick rand edges
+    else Raytrace.Private.Float_text.to_string (lo +. ((hi -. lo) *. Random.State.float rand 1.))
+
+  let triple rand lo hi = String.concat " " [ num rand lo hi; num rand lo hi; num rand lo hi ]
+  let opt rand field v = if chance rand 2 then Printf.sprintf " (%s %s)" field (v ()) else ""
+
+  (* Glass and mirrors, patterns: reflective + transparency stays within
+     1 but for the edges. *)
+  let material rand =
+    let refl = if chance rand 2 then 0. else Random.State.float rand 0.6 in
+    let transparency = if chance rand 2 then 0. else Random.State.float rand (1. -. refl) in
+    Printf.sprintf "(color %s)%s%s%s%s%s%s" (triple rand 0. 255.)
+      (opt rand "specular" (fun () -> if chance rand 3 then "-1" else num rand 0. 1000.))
+      (if refl > 0. then Printf.sprintf " (reflective %s)" (Raytrace.Private.Float_text.to_string refl) else "")
+      (if transparency > 0. then Printf.sprintf " (transparency %s)" (Raytrace.Private.Float_text.to_string transparency) else "")
+      (opt rand "refractive-index" (fun () -> num rand 0.5 2.5))
+      (opt rand "fresnel" (fun () -> if odd rand then "maybe" else pick rand [| "true"; "false" |]))
+      (if chance rand 4 then Printf.sprintf " (pattern checker (color %s) (size %s))" (triple rand 0. 255.) (num rand 0.1 2.)
+       else "")
+
+  let sphere rand = Printf.sprintf "(sphere (center %s) (radius %s) %s)" (triple rand (-3.) 3.) (num rand 0.1 2.) (material rand)
+
+  let box rand =
+    let x = Random.State.float rand 4. -. 2. and y = Random.State.float rand 4. -. 2. and z = Random.State.float rand 4. +. 1. in
+    let f = Raytrace.Private.Float_text.to_string in
+    Printf.sprintf "(box (min %s %s %s) (max %s %s %s) %s)" (f x) (f y) (f z)
+      (if chance rand 30 then "nan" else f (x +. Random.State.float rand 2.))
+      (f (y +. Random.State.float rand 2.)) (f (z +. Random.State.float rand 2.)) (material rand)
+
+  let mesh rand names =
+    Printf.sprintf "(mesh (file %S)%s%s%s %s)" (if odd rand then "missing.obj" else pick rand names)
+      (opt rand "scale" (fun () -> num rand 0.1 3.))
+      (opt rand "translate" (fun () -> triple rand (-2.) 2.))
+      (opt rand "smooth" (fun () -> pick rand [| "true"; "false" |]))
+      (material rand)
+
+  let ops = [| "union"; "intersection"; "difference" |]
+
+  let rec csg rand names depth =
+    let operand () =
+      match int rand (if depth > 0 then 4 else 3) with
+      | 0 -> sphere rand
+      | 1 -> box rand
+      | 2 -> mesh rand (if odd rand then names else [| "closed.obj" |])
+      | _ -> csg rand names (depth - 1)
+    in
+    Printf.sprintf "(csg %s %s %s)" (pick rand ops) (operand ()) (operand ())
+
+  let shape rand names =
+    match int rand 7 with
+    | 0 -> sphere rand
+    | 1 -> Printf.sprintf "(plane (point %s) (normal %s) %s)" (triple rand (-2.) 2.) (triple rand (-1.) 1.) (material rand)
+    | 2 ->
+        Printf.sprintf "(triangle (vertices (%s) (%s) (%s)) %s)" (triple rand (-2.) 2.) (triple rand (-2.) 2.)
+          (triple rand 1. 5.) (material rand)
+    | 3 -> box rand
+    | 4 -> mesh rand names
+    | _ -> csg rand names (int rand 4)
+
+  (* A closed tetrahedron (a CSG operand), its corners anywhere, or loose
+     triangles, now and then with a broken line. *)
+  let obj rand ~closed =
+    let v () = Printf.sprintf "v %s\n" (triple rand (-1.) 1.) in
+    let text =
+      if closed then
+        Printf.sprintf "v %s\nv %s\nv %s\nv %s\nf 1 2 3\nf 1 4 2\nf 2 4 3\nf 3 4 1\n" (triple rand (-1.) 1.)
+          (triple rand (-1.) 1.) (triple rand (-1.) 1.) (triple rand (-1.) 1.)
+      else
+        let n = 3 + int rand 6 in
+        String.concat "" (List.init n (fun _ -> v ()))
+        ^ String.concat ""
+            (List.init (1 + int rand 6) (fun _ ->
+                 Printf.sprintf "f %d %d %d\n" (1 + int rand n) (1 + int rand n) (1 + int rand n)))
+    in
+    if odd rand then text ^ pick rand [| "f 1 2 99\n"; "v nan 0 0\n"; "f 1\n"; "vn 0 0 0\nf 1//1 2//1 3//1\n" |]
+    else text
+
+  let light rand =
+    match int rand 3 with
+    | 0 -> Printf.sprintf "(light ambient (intensity %s))" (num rand 0. 1.)
+    | 1 -> Printf.sprintf "(light point (intensity %s) (position %s))" (num rand 0. 1.) (triple rand (-5.) 5.)
+    | _ -> Printf.sprintf "(light directional (intensity %s) (direction %s))" (num rand 0. 1.) (triple rand (-5.) 5.)
+
+  let scene rand =
+    hostile := chance rand 3;
+    let names = [| "closed.obj"; "loose.obj" |] in
+    let meshes = [ ("closed.obj", obj rand ~closed:true); ("loose.obj", obj rand ~closed:false) ] in
+    let settings =
+      [
+        Printf.sprintf "(canvas (width %d) (height %d))" (1 + int rand 8) (1 + int rand 8);
+        Printf.sprintf "(recursion-depth %d)" (int rand 12);
+        (if chance rand 3 then Printf.sprintf "(epsilon %s)" (num rand 0. 0.01) else "");
+        (if chance rand 3 then Printf.sprintf "(camera (position %s) (look-at 0 0 3))" (triple rand (-3.) 3.) else "");
+      ]
+    in
+    let forms = List.init (1 + int rand 6) (fun _ -> shape rand names) @ List.init (int rand 3) (fun _ -> light rand) in
+    (String.concat "\n" (settings @ forms) ^ "\n", meshes)
+end
+
+let random_scene = Gen.scene
+
+let scene_tokens =
+  Array.append scene_tokens
+    [|
+      "plane"; "triangle"; "box"; "mesh"; "csg"; "union"; "intersection"; "difference"; "normal"; "vertices"; "min";
+      "max"; "file"; "scale"; "translate"; "smooth"; "transparency"; "refractive-index"; "fresnel"; "true"; "false";
+      "pattern"; "checker"; "size"; "(transparency 0.9) (refractive-index 1.5) (fresnel true)";
+      "(pattern checker (color 30 30 30) (size 1))"; "(plane (point 0 -1 0) (normal 0 1 0) (color 200 200 200))";
+      "(box (min -1 -1 2) (max 1 1 4) (color 240 240 230))";
+      "(csg difference (box (min -1 -1 2) (max 1 1 4) (color 1 2 3)) (sphere (center 0 0 3) (radius 1.4) (color 1 2 3)))";
+      "(triangle (vertices (0 0 3) (1 0 3) (0 1 3)) (color 255 0 0))"; "(mesh (file \"closed.obj\") (color 1 2 3))";
+      "(recursion-depth 40)";
+    |]

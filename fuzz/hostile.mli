@@ -10,17 +10,36 @@
 val scene_file : string
 (** [scene_file] is ["fuzz.scene"], the file name given to the parser. *)
 
-val scene : string -> (unit, string) result
-(** [scene text] is [Ok ()] if {!Raytrace.Scene_file.of_string} on [text]
-    returns without raising, and either
+val scene : ?meshes:(string * string) list -> string -> (unit, string) result
+(** [scene ~meshes text] is [Ok ()] if {!Raytrace.Scene_file.of_string} on
+    [text] returns without raising, and either
     - [Ok s] where [s] passes {!Raytrace.Scene.validate}, prints back
       ({!Raytrace.Scene_file.to_string}) to text that parses to an equal
       scene, and renders at 3 x 2 pixels with {!Raytrace.Render.image}
-      without an error or an exception; or
+      under a work budget of {!work_budget} tests, to an image or to one
+      line: the estimate's refusal, or a render stopped after at most
+      twice the budget; and under a budget of 100 tests, to an image or
+      one line, stopped (if it is) after at most 20100 tests; or
     - [Error m] where [m] is one line that starts with
       [fuzz.scene:LINE:COLUMN: ] (a line and a column that exist in
       [text], 1-based) or, for a text beyond the size bound, with
-      [fuzz.scene: ]. *)
+      [fuzz.scene: ].
+    Its mesh forms read the files of [meshes] (name, OBJ text; default
+    none) with the command line's parser and bounds; another name is a
+    file that cannot be read. *)
+
+val work_budget : int
+(** [work_budget] is [1_000_000]: the [`Work] bound of the renders of
+    {!scene}. *)
+
+val random_scene : Random.State.t -> string * (string * string) list
+(** [random_scene rand] is a scene text of every form (spheres, planes,
+    triangles, boxes, meshes, CSG solids nested up to 4 deep with every
+    operation, glass with transparency, refractive index and the Fresnel
+    term, mirrors, checker patterns, every light) with its mesh files
+    (name, OBJ text: a closed tetrahedron or loose triangles, now and then
+    a broken line), most of it valid, with values at or beyond the edges
+    of their domains now and then; for {!scene}. *)
 
 val ppm : string -> (unit, string) result
 (** [ppm bytes] is [Ok ()] if {!Raytrace.Ppm.of_string} on [bytes] returns

@@ -9,6 +9,7 @@ let max_grid = 64
 let max_samples = max_grid * max_grid
 let max_spheres = 1_000_000
 let max_triangles = 4_000_000
+let max_scene_triangles = 4_000_000
 let max_lights = 1000
 let max_scene_bytes = 128 * 1024 * 1024
 let max_form_bytes = 16 * 1024 * 1024
@@ -16,13 +17,14 @@ let max_mesh_bytes = 1024 * 1024 * 1024
 let max_work = 1e12
 let num = Float_text.to_string
 
-type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Form_bytes | `Mesh_bytes | `Work ]
+type name = [ `Pixels | `Depth | `Samples | `Spheres | `Triangles | `Lights | `Scene_bytes | `Form_bytes | `Mesh_bytes | `Work ]
 
 let variable = function
   | `Pixels -> "RAYTRACE_MAX_PIXELS"
   | `Depth -> "RAYTRACE_MAX_DEPTH"
   | `Samples -> "RAYTRACE_MAX_SAMPLES"
   | `Spheres -> "RAYTRACE_MAX_SPHERES"
+  | `Triangles -> "RAYTRACE_MAX_TRIANGLES"
   | `Lights -> "RAYTRACE_MAX_LIGHTS"
   | `Scene_bytes -> "RAYTRACE_MAX_SCENE_BYTES"
   | `Form_bytes -> "RAYTRACE_MAX_FORM_BYTES"
@@ -36,6 +38,7 @@ type t = {
   depth : float;
   samples : float;
   spheres : float;
+  triangles : float;
   lights : float;
   scene_bytes : float;
   form_bytes : float;
@@ -49,6 +52,7 @@ let default =
     depth = Float.of_int max_depth;
     samples = Float.of_int max_samples;
     spheres = Float.of_int max_spheres;
+    triangles = Float.of_int max_scene_triangles;
     lights = Float.of_int max_lights;
     scene_bytes = Float.of_int max_scene_bytes;
     form_bytes = Float.of_int max_form_bytes;
@@ -61,6 +65,7 @@ let bound l = function
   | `Depth -> l.depth
   | `Samples -> l.samples
   | `Spheres -> l.spheres
+  | `Triangles -> l.triangles
   | `Lights -> l.lights
   | `Scene_bytes -> l.scene_bytes
   | `Form_bytes -> l.form_bytes
@@ -73,13 +78,14 @@ let with_bound l n x =
   | `Depth -> { l with depth = x }
   | `Samples -> { l with samples = x }
   | `Spheres -> { l with spheres = x }
+  | `Triangles -> { l with triangles = x }
   | `Lights -> { l with lights = x }
   | `Scene_bytes -> { l with scene_bytes = x }
   | `Form_bytes -> { l with form_bytes = x }
   | `Mesh_bytes -> { l with mesh_bytes = x }
   | `Work -> { l with work = x }
 
-let names = [ `Pixels; `Depth; `Samples; `Spheres; `Lights; `Scene_bytes; `Form_bytes; `Mesh_bytes; `Work ]
+let names = [ `Pixels; `Depth; `Samples; `Spheres; `Triangles; `Lights; `Scene_bytes; `Form_bytes; `Mesh_bytes; `Work ]
 
 let of_lookup lookup =
   let parse l n =
@@ -153,10 +159,22 @@ let bounded l name ~lo ~low ~what n =
   if n < lo then Error (`Msg (low ()))
   else match within l name (Float.of_int n) what with Ok () -> Ok n | Error e -> Error e
 
+let max_levels = 1 lsl 20
+let max_tree_levels = 4096
+
 let check_depth l d =
-  bounded l `Depth ~lo:0 d
-    ~low:(fun () -> Printf.sprintf "recursion depth must be >= 0, got %d" d)
-    ~what:(fun () -> Printf.sprintf "recursion depth %d is too deep" d)
+  if d > max_levels then
+    error "recursion depth %d is too deep: a tracer keeps a few floats per level, and takes at most %d levels \
+           whatever %s says" d max_levels (variable `Depth)
+  else
+    bounded l `Depth ~lo:0 d
+      ~low:(fun () -> Printf.sprintf "recursion depth must be >= 0, got %d" d)
+      ~what:(fun () -> Printf.sprintf "recursion depth %d is too deep" d)
+
+let check_triangles l n =
+  bounded l `Triangles ~lo:0 n
+    ~low:(fun () -> Printf.sprintf "a negative number of triangles: %d" n)
+    ~what:(fun () -> Printf.sprintf "the scene's meshes have %d triangles in all" n)
 
 let check_samples l n =
   bounded l `Samples ~lo:1 n
@@ -188,25 +206,43 @@ let check_mesh_bytes l file n =
 (* Beyond 8 spheres the renderer walks a bounding volume hierarchy: about
    log2 n levels of boxes, each with leaves of up to 4 spheres on either
    side; 16 log2 n is a generous bound of what a ray meets on scenes that
-   are not pathological. *)
+   are not pathological. In floats: no count can overflow. *)
 let spheres_per_ray n =
-  if n <= 8 then n
-  else
-    let log2 = ref 0 in
-    while 1 lsl !log2 < n do incr log2 done;
-    min n (16 * !log2)
+  let f = Float.of_int n in
+  if n <= 8 then Float.max 0. f else Float.min f (16. *. Float.ceil (Float.log2 f))
 
-let work ~pixels ~samples ~depth ~spheres ~lights =
+(* A chain of [depth] bounces; with glass that both reflects and refracts,
+   every hit may spawn two rays: a full binary tree of [depth] levels below
+   the camera ray, [2^(depth+1) - 1] rays (infinity far beyond any bound,
+   never an overflow). *)
+let rays_per_sample ~depth ~split =
+  let levels = Float.max 0. (Float.of_int depth) +. 1. in
+  if split then Float.pow 2. levels -. 1. else levels
+
+let work ?(split = false) ?(leaves = 0) ~pixels ~samples ~depth ~spheres ~lights () =
   let f = Float.of_int in
-  f pixels *. f samples *. f (depth + 1) *. f (spheres_per_ray spheres) *. f (1 + lights)
+  f pixels *. f samples *. rays_per_sample ~depth ~split
+  *. (spheres_per_ray spheres +. f leaves)
+  *. (1. +. f lights)
 
-let check_work l ~pixels ~samples ~depth ~spheres ~lights =
-  let w = work ~pixels ~samples ~depth ~spheres ~lights in
+(* An integer in full while it has few digits, else three of them. *)
+let show_count x = if Float.is_integer x && x < 1e15 then Printf.sprintf "%.0f" x else Printf.sprintf "%.3g" x
+
+let check_work ?(split = false) ?(leaves = 0) l ~pixels ~samples ~depth ~spheres ~lights () =
+  let w = work ~split ~leaves ~pixels ~samples ~depth ~spheres ~lights () in
   within l `Work w (fun () ->
+      let rays = rays_per_sample ~depth ~split in
       Printf.sprintf
-        "the render needs about %.3g ray-sphere intersection tests (%d pixels x %d samples x %d \
-         rays x %d spheres per ray x (1 + %d lights))"
-        w pixels samples (depth + 1) (spheres_per_ray spheres) lights)
+        "the render needs about %s ray-sphere intersection tests (%d pixels x %d samples x %s rays%s x %s \
+         spheres per ray%s x (1 + %d lights))"
+        (if Float.is_finite w then Printf.sprintf "%.3g" w else "more than 1e308")
+        pixels samples
+        (if Float.is_finite rays then show_count rays else "more than 1e308")
+        (if split then Printf.sprintf " (a tree of depth %d: a hit on glass that reflects may spawn two rays)" depth
+         else "")
+        (show_count (spheres_per_ray spheres +. Float.of_int leaves))
+        (if leaves > 0 then Printf.sprintf " (with %d leaves of CSG solids)" leaves else "")
+        lights)
 
 exception Work_exceeded of int
 

@@ -13,7 +13,7 @@
       ({!max_pixels}, ...) and a name, the environment variable by which
       the command line replaces it: [RAYTRACE_MAX_PIXELS],
       [RAYTRACE_MAX_DEPTH], [RAYTRACE_MAX_SAMPLES], [RAYTRACE_MAX_SPHERES],
-      [RAYTRACE_MAX_LIGHTS], [RAYTRACE_MAX_SCENE_BYTES],
+      [RAYTRACE_MAX_TRIANGLES], [RAYTRACE_MAX_LIGHTS], [RAYTRACE_MAX_SCENE_BYTES],
       [RAYTRACE_MAX_FORM_BYTES], [RAYTRACE_MAX_MESH_BYTES], [RAYTRACE_MAX_WORK]. This library reads no environment:
       {!of_lookup} turns the variables into a {!t} given a lookup function
       (the system library [raytrace.unix] calls it once, with
@@ -66,6 +66,25 @@ val max_spheres : int
     a scene. Measured: [grid:1000000] (an 88 MB file) loads, prepares and
     renders in 590 MB of memory. *)
 
+val max_scene_triangles : int
+(** [max_scene_triangles] is [4_000_000]: the default largest number of
+    triangles over all the mesh forms of a scene (a file named twice
+    counts twice: each form places its own copy), counted before each
+    copy is made. As many as the largest mesh file ({!max_triangles}), so
+    that a scene that names one big file once is accepted, and one that
+    names it sixty times is refused before its memory runs out. *)
+
+val max_levels : int
+(** [max_levels] is [2^20]: the largest recursion depth whatever the
+    [`Depth] bound says, a fixed bound: a tracer keeps a few floats per
+    level, made when it is created. *)
+
+val max_tree_levels : int
+(** [max_tree_levels] is [4096]: the largest recursion depth of a scene
+    with transparent objects, a fixed bound: the tracer follows their ray
+    tree by recursion, a few hundred bytes of the system stack a level (8
+    MiB, the usual stack, overflowed at about 20000 levels). *)
+
 val max_lights : int
 (** [max_lights] is [1000]: the default largest number of lights of a
     scene. *)
@@ -103,7 +122,7 @@ val max_work : float
 type t
 (** The type for resource bounds. *)
 
-type name = [ `Pixels | `Depth | `Samples | `Spheres | `Lights | `Scene_bytes | `Form_bytes | `Mesh_bytes | `Work ]
+type name = [ `Pixels | `Depth | `Samples | `Spheres | `Triangles | `Lights | `Scene_bytes | `Form_bytes | `Mesh_bytes | `Work ]
 (** The type for the names of the resource bounds. *)
 
 val default : t
@@ -173,13 +192,17 @@ val check_image_size : t -> int -> int -> (unit, [> `Msg of string ]) result
     {!max_dimension}). Never overflows. *)
 
 val check_depth : t -> int -> (int, [> `Msg of string ]) result
-(** [check_depth l d] is [Ok d] if [0 <= d] and [d] is within the [`Depth]
-    bound of [l]. *)
+(** [check_depth l d] is [Ok d] if [0 <= d <= max_levels] and [d] is
+    within the [`Depth] bound of [l]. *)
 
 val check_samples : t -> int -> (int, [> `Msg of string ]) result
 (** [check_samples l n] is [Ok n] if [1 <= n] and [n] rays per pixel are
     within the [`Samples] bound of [l] (the renderer checks
     [samples x samples]). *)
+
+val check_triangles : t -> int -> (int, [> `Msg of string ]) result
+(** [check_triangles l n] is [Ok n] if meshes of [n] triangles in all are
+    within the [`Triangles] bound of [l]. *)
 
 val check_count : t -> [ `Spheres | `Objects | `Lights ] -> int -> (int, [> `Msg of string ]) result
 (** [check_count l kind n] is [Ok n] if a scene with [n] spheres (or lights)
@@ -201,15 +224,30 @@ val check_mesh_bytes : t -> string -> int -> (int, [> `Msg of string ]) result
     more, as far as it was read) is within the [`Mesh_bytes] bound of [l];
     [Error] names [file]. *)
 
-val work : pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> float
-(** [work ~pixels ~samples ~depth ~spheres ~lights] estimates the ray-sphere
-    intersection tests of a render:
-    [pixels * samples * (depth + 1) * m * (1 + lights)], where [depth]
-    counts the reflections a ray may make (0 without reflective spheres),
-    [lights] the lights that cast shadow rays (point and directional), and
-    [m] the spheres a ray meets: all of them up to 8, beyond that (where the
-    renderer uses a bounding volume hierarchy) at most [16 log2 spheres],
-    rounded up. A float, so that it cannot overflow. *)
+val rays_per_sample : depth:int -> split:bool -> float
+(** [rays_per_sample ~depth ~split] is the most rays that one camera ray
+    leads to, itself included: [depth + 1] along a chain of reflections
+    (or of refractions), [2^(depth + 1) - 1] when a hit may spawn both a
+    reflected and a refracted ray ([split]: a material that is transparent
+    and reflective, or transparent with the Fresnel term), the size of a
+    full binary tree of [depth] levels below its root. A float, [infinity]
+    rather than an overflow for a large [depth]; a negative [depth] counts
+    as [0]. *)
+
+val work :
+  ?split:bool -> ?leaves:int -> pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> unit -> float
+(** [work ~split ~leaves ~pixels ~samples ~depth ~spheres ~lights ()]
+    bounds the intersection tests of a render:
+    [pixels * samples * r * (m + leaves) * (1 + lights)], where [r] is
+    {!rays_per_sample} [~depth ~split] ([split] defaults to [false]),
+    [depth] counts the bounces a ray may make (0 without reflective or
+    transparent objects), [lights] the lights that cast shadow rays (point
+    and directional), [m] the objects a ray meets: all of them up to 8,
+    beyond that (where the renderer uses a bounding volume hierarchy) at
+    most [16 log2 spheres], rounded up; and [leaves] (default [0]) the
+    leaves of CSG solids, each of which a ray that meets its solid tests.
+    A float, computed in floats, so that no factor can overflow (it may be
+    [infinity]). *)
 
 exception Work_exceeded of int
 (** [Work_exceeded n] is raised by a renderer that has counted [n]
@@ -226,6 +264,17 @@ val work_exceeded : t -> int -> string
 (** [work_exceeded l n] is the message for a render stopped after [n]
     intersection tests, naming the bound of [l] and how to raise it. *)
 
-val check_work : t -> pixels:int -> samples:int -> depth:int -> spheres:int -> lights:int -> (unit, [> `Msg of string ]) result
+val check_work :
+  ?split:bool ->
+  ?leaves:int ->
+  t ->
+  pixels:int ->
+  samples:int ->
+  depth:int ->
+  spheres:int ->
+  lights:int ->
+  unit ->
+  (unit, [> `Msg of string ]) result
 (** [check_work l ...] is [Ok ()] if {!work} is within the [`Work] bound of
-    [l]. *)
+    [l], and otherwise [Error] with the estimate and its factors, in one
+    line. *)

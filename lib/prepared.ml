@@ -1118,7 +1118,12 @@ let prepare_scene ~skips ?beside scene =
     lz = lf (fun l -> (vector l).z);
     robust = scene.epsilon = None;
     epsilon = Option.value scene.epsilon ~default:0.;
-    depth = scene.depth;
+    (* Nothing bounces off a scene without mirrors or glass, whatever its
+       depth: the tracer then keeps storage for no level it cannot reach
+       (a depth of [max_int] would overflow its size). *)
+    depth =
+      (if Array.exists (fun (m : Material.t) -> m.reflective > 0. || m.transparency > 0.) materials then scene.depth
+       else 0);
     width = scene.width;
     height = scene.height;
     viewport = scene.viewport;

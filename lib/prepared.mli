@@ -128,7 +128,7 @@ type t = private {
       (** Lower bound of [t] for secondary rays: the scene's epsilon, or [0.]
           in the robust mode, where the tracer handles the sphere a ray
           leaves exactly instead. *)
-  depth : int;  (** Recursion depth. *)
+  depth : int;  (** Recursion depth; [0] when no material reflects or is transparent. *)
   width : int;  (** Canvas size. *)
   height : int;
   viewport : Viewport.t;

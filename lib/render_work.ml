@@ -18,7 +18,7 @@ let out_of_memory (region : Region.t) =
   let mib = Float.of_int (3 * Region.pixels region) /. 1048576. in
   Error (`Msg (Printf.sprintf "not enough memory for a %dx%d image (%.0f MiB)" region.w region.h mib))
 
-let counter_fields = 7
+let counter_fields = 8
 
 type counters = (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t
 
@@ -34,6 +34,53 @@ let save ints w tr words =
   set 4 c.early_stops;
   set 5 (truncate words);
   set 6 c.box_tests
+
+let save_work ?(base = 0) ints w tr =
+  let c = Trace.counters tr in
+  let k = w * counter_fields in
+  Bigarray.Array1.set ints (k + 3) (Int64.of_int (c.tests - base));
+  Bigarray.Array1.set ints (k + 6) (Int64.of_int c.box_tests)
+
+let field ints w i = Int64.to_int (Bigarray.Array1.get ints ((w * counter_fields) + i))
+
+(* Each worker reserves its slice in its slot before it works through it:
+   a worker takes a [jobs]th of what nobody has done or reserved, so that
+   even workers that refill at the same moment reserve at most what is
+   left between them (and at least a 64th of a [jobs]th of the whole:
+   slices that shrank to nothing would make workers refill at every
+   pixel). Once all is reserved, a worker waits for the others to do or
+   give back what they hold; once all is done, it takes a last small
+   slice, past which the render stops. *)
+let refill ?(base = 0) ?(wait = ignore) ints ~slots ~slot ~budget ~jobs tr =
+  save_work ~base ints slot tr;
+  let own = Trace.work tr - base and least = max 1 (budget / (64 * jobs)) in
+  let rec next () =
+    let total = ref 0 and others = ref 0 and unused = ref 0 in
+    for w = 0 to slots - 1 do
+      let d = field ints w 3 + field ints w 6 in
+      total := !total + d;
+      if w <> slot then begin
+        let r = field ints w 7 in
+        others := !others + max d r;
+        unused := !unused + max 0 (r - d)
+      end
+    done;
+    if !total > budget then raise (Limits.Work_exceeded (base + !total));
+    let free = budget - !others - own in
+    if free > 0 then max least (free / jobs)
+    else if !unused > 0 then begin
+      wait ();
+      next ()
+    end
+    else least
+  in
+  let slice = next () in
+  let reserved = if own > max_int - slice then max_int else own + slice in
+  Bigarray.Array1.set ints ((slot * counter_fields) + 7) (Int64.of_int reserved);
+  if reserved > max_int - base then max_int else base + reserved
+
+let release ?(base = 0) ints slot tr =
+  Bigarray.Array1.set ints ((slot * counter_fields) + 7) (Int64.of_int (Trace.work tr - base))
 
 let stats ints ~slots ~pixels ~jobs ~prepare_s ~trace_s =
   let sum i = List.init slots (fun w -> Int64.to_int ints.{(w * counter_fields) + i}) |> List.fold_left ( + ) 0 in

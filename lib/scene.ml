@@ -142,6 +142,26 @@ let valid_spheres spheres =
   in
   go 0
 
+(* The sum of [leaf] over the leaves of a CSG solid, without recursion:
+   trees may be deep. *)
+let csg_sum leaf (c : Csg.t) =
+  let rec sum n = function
+    | [] -> n
+    | Csg.Csg c :: rest -> sum n (c.a :: c.b :: rest)
+    | solid :: rest -> sum (n + leaf solid) rest
+  in
+  sum 0 [ c.a; c.b ]
+
+(* A mesh operand's triangles are leaves, tested one by one. *)
+let csg_leaves = csg_sum (function Csg.Mesh m -> Mesh.triangle_count m | _ -> 1)
+
+(* The triangles of the scene's meshes, CSG operands included. *)
+let mesh_triangles shapes =
+  let of_leaf = function Csg.Mesh m -> Mesh.triangle_count m | _ -> 0 in
+  List.fold_left
+    (fun n -> function Shape.Mesh m -> n + Mesh.triangle_count m | Csg c -> n + csg_sum of_leaf c | _ -> n)
+    0 shapes
+
 let validate ?(limits = Limits.default) s =
   let ( let* ) = Result.bind in
   let rec all check = function
@@ -163,6 +183,7 @@ let validate ?(limits = Limits.default) s =
         (Spheres.length s.spheres + List.length s.shapes)
     in
     let* _ = Limits.check_count limits `Lights (List.length s.lights) in
+    let* _ = Limits.check_triangles limits (mesh_triangles s.shapes) in
     let* () = valid_spheres s.spheres in
     let* () = all Light.validate s.lights in
     all (fun sh -> Result.map ignore (Shape.validate sh)) s.shapes
@@ -199,17 +220,32 @@ let at_frame (s : valid) f =
       | Error e -> Error e)
 
 let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
-  let depth =
-    if
-      Array.exists (fun (m : Material.t) -> m.reflective > 0.) (Spheres.materials s.spheres)
-      || List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.reflective > 0.) (Shape.materials sh)) s.shapes
-    then s.depth
-    else 0
+  (* No list of a million spheres' materials: each array and list is read
+     where it is. *)
+  let exists p =
+    Array.exists p (Spheres.materials s.spheres) || List.exists (fun sh -> List.exists p (Shape.materials sh)) s.shapes
+  in
+  (* A hit bounces on a reflective or a transparent surface; it may spawn
+     two rays where some of the light is reflected and some refracted. *)
+  let bounces = exists (fun (m : Material.t) -> m.reflective > 0. || m.transparency > 0.) in
+  let split = exists (fun (m : Material.t) -> m.transparency > 0. && (m.reflective > 0. || m.fresnel)) in
+  let objects, leaves =
+    List.fold_left
+      (fun (o, l) -> function
+        | Shape.Mesh m -> (o + Mesh.objects m, l)
+        | Csg c -> (o + 1, l + csg_leaves c)
+        | Plane _ | Triangle _ | Box _ -> (o + 1, l))
+      (Spheres.length s.spheres, 0) s.shapes
   in
   let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in
-  match
-    Limits.check_work limits ~pixels:(Option.value pixels ~default:(s.width * s.height)) ~samples ~depth
-      ~spheres:(Spheres.length s.spheres + List.length s.shapes) ~lights
-  with
-  | Ok () -> Ok ()
-  | Error _ as e -> e
+  if s.depth > Limits.max_tree_levels && exists (fun (m : Material.t) -> m.transparency > 0.) then
+    Error
+      (`Msg
+        (Printf.sprintf
+           "recursion depth %d is too deep for a scene with transparent objects: their ray tree is followed by \
+            recursion, at most %d levels"
+           s.depth Limits.max_tree_levels))
+  else
+  Limits.check_work limits ~split ~leaves
+    ~pixels:(Option.value pixels ~default:(s.width * s.height))
+    ~samples ~depth:(if bounces then s.depth else 0) ~spheres:objects ~lights ()

@@ -109,7 +109,8 @@ type valid
 
 val validate : ?limits:Limits.t -> t -> (valid, [> `Msg of string ]) result
 (** [validate ~limits s] is [Ok s] if every part of [s] passes its check
-    (canvas, depth and the numbers of spheres and lights within [limits],
+    (canvas, depth and the numbers of spheres, lights and triangles of
+    meshes within [limits],
     default {!Limits.default}; {!Viewport.validate}, {!Camera.validate},
     {!Sphere.validate}, {!Light.validate}), and otherwise
     [Error (`Msg m)] with the first failure. *)
@@ -135,11 +136,15 @@ val check_work : ?limits:Limits.t -> ?samples:int -> ?pixels:int -> valid -> (un
 (** [check_work ~limits ~samples ~pixels s] is [Ok ()] if rendering
     [pixels] (default the whole canvas; fewer for a region) of [s] with
     [samples] (default 1) samples per pixel needs at most [limits]' bound
-    on ray-sphere intersection tests ({!Limits.check_work}; the recursion
-    depth counts only when some sphere is reflective, and only point and
-    directional lights cast shadow rays), and otherwise [Error] saying the
-    estimate, the bound and how to raise it. {!Render.image} checks it
-    before it allocates anything. *)
+    on ray-sphere intersection tests ({!Limits.check_work}: the recursion
+    depth counts only when some object is reflective or transparent, as a
+    tree where some transparent object also reflects or has the Fresnel
+    term; only point and directional lights cast shadow rays; a mesh's
+    triangles are objects of the hierarchy, a CSG solid's leaves are
+    tested by every ray that meets it), and otherwise [Error] saying the
+    estimate, the bound and how to raise it; a scene with transparent
+    objects deeper than {!Limits.max_tree_levels} is an [Error] too.
+    {!Render.image} checks it before it allocates anything. *)
 
 val with_overrides : ?width:int -> ?height:int -> ?depth:int -> t -> t
 (** [with_overrides ~width ~height ~depth s] is [s] with the given fields

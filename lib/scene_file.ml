@@ -343,7 +343,7 @@ let box_solid ~where form_node nodes =
 let box ~where form_node nodes = Shape.Box (box_solid ~where form_node nodes)
 
 (* A mesh: its file is read by [load] (the path as the scene gives it). *)
-let mesh_solid ~where ~load form_node nodes =
+let mesh_solid ~where ~load ~add_triangles form_node nodes =
   let form = "mesh" in
   let fs = fields ~where ~form ~allowed:([ "file"; "scale"; "translate"; "smooth" ] @ material_fields) nodes in
   let file_node, file =
@@ -368,17 +368,20 @@ let mesh_solid ~where ~load form_node nodes =
   let smooth = Option.fold ~none:false ~some:(bool_field form "smooth") (find fs "smooth") in
   let m = material ~where ~form ~form_node fs in
   let obj = check file_node (load file) in
+  (* Each form places its own copy of the file's triangles: counted over
+     the whole scene before this one is made. *)
+  check form_node (add_triangles (Array.length obj.Obj_file.triangles / 3));
   check form_node
     (Mesh.v ~smooth ~scale ~translate ~source:file ~skipped:(Obj_file.skipped_total obj) ~positions:obj.positions
        ~triangles:obj.triangles ~normals:obj.normals ~triangle_normals:obj.triangle_normals m)
 
-let mesh ~where ~load form_node nodes = Shape.Mesh (mesh_solid ~where ~load form_node nodes)
+let mesh ~where ~load ~add_triangles form_node nodes = Shape.Mesh (mesh_solid ~where ~load ~add_triangles form_node nodes)
 
 let csg_ops = [ "union"; "intersection"; "difference" ]
 
 (* A CSG form [(csg op A B)], nested [depth] deep: each operand is a
    closed solid's form. *)
-let rec csg ~where ~load ~depth form_node nodes =
+let rec csg ~where ~load ~add_triangles ~depth form_node nodes =
   if depth > Csg.max_depth then fail form_node "csg nested deeper than %d levels" Csg.max_depth;
   match nodes with
   | Sexp.Atom name :: rest as all -> (
@@ -390,21 +393,22 @@ let rec csg ~where ~load ~depth form_node nodes =
               (suggestion name csg_ops)
       in
       match rest with
-      | [ a; b ] -> Csg.v op (csg_operand ~where ~load ~depth a) (csg_operand ~where ~load ~depth b)
+      | [ a; b ] ->
+          Csg.v op (csg_operand ~where ~load ~add_triangles ~depth a) (csg_operand ~where ~load ~add_triangles ~depth b)
       | _ -> fail form_node "csg %s takes 2 solids, got %d" name (List.length rest))
   | _ ->
       fail form_node "csg: expected an operation first, e.g. (csg difference (sphere ...) (box ...)); operations are %s"
         (one_of csg_ops)
 
-and csg_operand ~where ~load ~depth node =
+and csg_operand ~where ~load ~add_triangles ~depth node =
   match node with
   | Sexp.List (Sexp.Atom "sphere" :: rest) -> Csg.Sphere (sphere ~where node rest)
   | Sexp.List (Sexp.Atom "box" :: rest) -> Csg.Box (box_solid ~where node rest)
   | Sexp.List (Sexp.Atom "mesh" :: rest) ->
-      let m = mesh_solid ~where ~load node rest in
+      let m = mesh_solid ~where ~load ~add_triangles node rest in
       check node (Csg.check_closed m);
       Csg.Mesh m
-  | Sexp.List (Sexp.Atom "csg" :: rest) -> Csg.Csg (csg ~where ~load ~depth:(depth + 1) node rest)
+  | Sexp.List (Sexp.Atom "csg" :: rest) -> Csg.Csg (csg ~where ~load ~add_triangles ~depth:(depth + 1) node rest)
   | Sexp.List (Sexp.Atom ("plane" | "triangle" as kw) :: _) ->
       fail node "csg: a %s is not a closed solid; an operand is a sphere, box, closed mesh or csg" kw
   | Sexp.List (Sexp.Atom kw :: _) ->
@@ -505,6 +509,7 @@ type builder = {
   mutable lights : Light.t list;  (** In reverse order. *)
   mutable n_spheres : int;
   mutable n_lights : int;
+  mutable n_triangles : int;  (** Of every mesh form so far. *)
 }
 
 let builder ~limits ~load where =
@@ -519,7 +524,12 @@ let builder ~limits ~load where =
     lights = [];
     n_spheres = 0;
     n_lights = 0;
+    n_triangles = 0;
   }
+
+let add_triangles b n =
+  b.n_triangles <- b.n_triangles + n;
+  Result.map ignore (Limits.check_triangles b.limits b.n_triangles)
 
 let once b kw kw_node =
   match Hashtbl.find_opt b.seen kw with
@@ -555,11 +565,11 @@ let add_form b node =
       | "mesh" ->
           b.n_spheres <- b.n_spheres + 1;
           ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
-          b.shapes <- mesh ~where ~load:b.load node rest :: b.shapes
+          b.shapes <- mesh ~where ~load:b.load ~add_triangles:(add_triangles b) node rest :: b.shapes
       | "csg" ->
           b.n_spheres <- b.n_spheres + 1;
           ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
-          b.shapes <- Shape.Csg (csg ~where ~load:b.load ~depth:1 node rest) :: b.shapes
+          b.shapes <- Shape.Csg (csg ~where ~load:b.load ~add_triangles:(add_triangles b) ~depth:1 node rest) :: b.shapes
       | "light" ->
           b.n_lights <- b.n_lights + 1;
           ignore (check node (Limits.check_count b.limits `Lights b.n_lights));

@@ -48,7 +48,10 @@ type t = {
           (see [triangle_hit]). *)
   averaging : bool;  (** Samples are averaged: see [settled]. *)
   mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see [primary_hit]. *)
-  mutable budget : int;  (** Most tests [check_budget] accepts. *)
+  mutable budget : int;  (** Most tests [check_budget] accepts before it calls [refill]. *)
+  mutable refill : int -> int;
+      (** Called with the work done once it passes [budget]: the next
+          budget, or it raises [Limits.Work_exceeded]. *)
   tracer : int;  (** The loop of [trace]: [spheres_chain], [objects_chain] or [tree]. *)
   tree : Ray_tree.t;  (** The ray tree's levels: transparent scenes only. *)
   cand : int array;
@@ -81,6 +84,8 @@ let tiles_across (p : Prepared.t) = if p.cull && p.textbook_all then (p.width + 
 let hierarchy_of_triangles (p : Prepared.t) =
   p.bvh <> None && Array.for_all (fun k -> k = Shape.triangle || k = Shape.smooth_triangle || k = Shape.plane) p.kind
 
+let exhausted w = raise (Limits.Work_exceeded w)
+
 let create ?(averaging = false) (p : Prepared.t) =
   {
     p;
@@ -106,6 +111,7 @@ let create ?(averaging = false) (p : Prepared.t) =
     averaging;
     assumed = no_assumption;
     budget = Limits.work_budget Limits.default;
+    refill = exhausted;
     tracer = (if p.transparent then tree else if p.all_spheres then spheres_chain else objects_chain);
     tree = (if p.transparent then Ray_tree.create ~depth:p.depth else Ray_tree.empty);
     (* Read by the document's kernel alone ([textbook_all]): other scenes,
@@ -123,11 +129,15 @@ let create ?(averaging = false) (p : Prepared.t) =
 let prepared tr = tr.p
 let counters tr = tr.counters
 let work tr = tr.counters.tests + tr.counters.box_tests
-let set_budget tr n = tr.budget <- n
+let set_budget ?(refill = exhausted) tr n =
+  tr.budget <- n;
+  tr.refill <- refill
 
-let check_budget tr =
-  let w = work tr in
-  if w > tr.budget then raise (Limits.Work_exceeded w)
+(* Out of line: the check itself is a sum and a comparison, made once a
+   pixel. *)
+let[@inline never] over_budget tr = tr.budget <- tr.refill (work tr)
+let[@inline] check_budget tr = if tr.counters.tests + tr.counters.box_tests > tr.budget then over_budget tr
+
 let red tr = tr.s.r
 let green tr = tr.s.g
 let blue tr = tr.s.b
@@ -728,6 +738,9 @@ let[@inline never] transmit tr =
   tr.counters.shadow <- tr.counters.shadow + 1;
   let f = ref 1. and go = ref true in
   while !go do
+    (* A shadow ray may cross every transparent surface: each crossing a
+       search, checked against the budget like a hit of the tree. *)
+    check_budget tr;
     let i = closest tr in
     if i < 0 then go := false
     else begin
@@ -1640,6 +1653,7 @@ let rec shade tr l =
      sides) are crossed on the same ray: no bounce, no rounding. *)
   let searching = ref true and hit = ref (-1) and first = ref (l = 0) in
   while !searching do
+    if not !first then check_budget tr;
     let i =
       if !first then if p.all_spheres then primary_hit_spheres tr else primary_hit_objects tr else closest tr
     in
@@ -1892,6 +1906,7 @@ let primary tr =
    operations as [primary]'s), and its tile's spheres are the candidates. *)
 let[@inline] pixel tr gx gy =
   let p = tr.p in
+  check_budget tr;
   let col = gx + (p.width / 2) and row = gy + (p.height / 2) in
   if col >= 0 && col < p.width && row >= 0 && row < p.height then begin
     if p.cull && p.textbook_all then begin
@@ -1908,6 +1923,10 @@ let[@inline] pixel tr gx gy =
     primary tr
   end
 
+(* The pixels of a row the document's kernel traces between two checks of
+   the budget: a multiple of [tile], so that blocks start on tiles. *)
+let block = 8 * tile
+
 let row tr buffer k gx gy count =
   let p = tr.p in
   let col0 = gx + (p.width / 2) and r = gy + (p.height / 2) in
@@ -1916,7 +1935,16 @@ let row tr buffer k gx gy count =
        document's kernel takes the whole row. *)
     (* The kernel's row copy takes no assumed sphere (see [textbook_kernel]). *)
     if p.textbook_all && p.skips && tr.assumed = no_assumption then begin
-      if p.behind then row_textbook_behind tr buffer k col0 count r else row_textbook_all_roots tr buffer k col0 count r
+      (* In blocks of pixels, with the budget checked before each: a
+         single wide row cannot run far past it. *)
+      let c = ref 0 in
+      while !c < count do
+        let n = if count - !c < block then count - !c else block in
+        check_budget tr;
+        if p.behind then row_textbook_behind tr buffer (k + (3 * !c)) (col0 + !c) n r
+        else row_textbook_all_roots tr buffer (k + (3 * !c)) (col0 + !c) n r;
+        c := !c + n
+      done
     end
     else
       let s = tr.s and c = tr.counters in
@@ -1924,6 +1952,7 @@ let row tr buffer k gx gy count =
       let vz = p.viewport.distance and m = p.camera.rotation and o = p.camera.position in
       let identity = p.identity_rotation in
       for col = col0 to col0 + count - 1 do
+        check_budget tr;
         set_direction s identity m (Array.unsafe_get vx col) vy vz;
         s.ox <- o.x;
         s.oy <- o.y;
@@ -2062,6 +2091,7 @@ let no_samples : samples = Bigarray.Array1.create Bigarray.float64 Bigarray.c_la
 let average tr gx gy ~n =
   check_averaging tr "average";
   if n < 1 then invalid_arg "Trace.average: n < 1";
+  check_budget tr;
   grid tr gx gy n ~reuse:false no_samples 0
 
 (* For an odd [n], the centre sample [(n / 2, n / 2)] has offsets
@@ -2076,6 +2106,7 @@ let save tr (saved : samples) k =
 let average_reusing tr saved k gx gy ~n =
   check_averaging tr "average_reusing";
   if n < 1 || n land 1 = 0 then invalid_arg "Trace.average_reusing: n is not odd and positive";
+  check_budget tr;
   grid tr gx gy n ~reuse:true saved k
 
 let store_average tr (buffer : Image.buffer) k ~count =

@@ -59,35 +59,50 @@ val counters : t -> counters
     The estimate of {!Limits.check_work} can be beaten by a scene that
     defeats the bounding volume hierarchy (many coincident spheres). The
     renderers therefore count the work as it is done, from the counters,
-    and check it between rows of pixels: nothing is added per ray. *)
+    and check it before each pixel ({!pixel}, {!average},
+    {!average_reusing}; {!row} before each pixel, or each block of 64
+    pixels in the document's kernel), at every hit of a ray tree and
+    every surface a ray crosses in a scene with transparency: a sum and a
+    comparison, nothing per ray of an opaque scene, and no allocation. A
+    render passes its budget by at most the work of one pixel (of one
+    block, in the document's kernel), or of one hit of a tree. *)
 
 val work : t -> int
 (** [work tr] is the intersection tests [tr] has done: [tests + box_tests]
     of {!val-counters}. *)
 
-val set_budget : t -> int -> unit
-(** [set_budget tr n] lets {!check_budget} accept up to [n] tests of [tr];
-    {!create} sets the budget of {!Limits.default}. *)
+val set_budget : ?refill:(int -> int) -> t -> int -> unit
+(** [set_budget ~refill tr n] lets {!check_budget} accept up to [n] tests
+    of [tr]. Past them, it calls [refill w] with the work [w] done so far:
+    that is the next budget (a renderer whose workers share one budget
+    takes its next slice of it there), or it raises
+    [Limits.Work_exceeded]; the default [refill] raises
+    [Limits.Work_exceeded w]. {!create} sets the budget of
+    {!Limits.default}. *)
 
 val check_budget : t -> unit
 (** [check_budget tr] does nothing while {!work}[ tr] is within the budget
-    of [tr], and otherwise raises [Limits.Work_exceeded (work tr)]. *)
+    of [tr], and otherwise calls its [refill] ({!set_budget}), which may
+    raise [Limits.Work_exceeded]. It allocates nothing (unless [refill]
+    does). *)
 
 val pixel : t -> int -> int -> unit
 (** [pixel tr gx gy] traces the primary ray through canvas pixel
     [(gx, gy)] (centered coordinates, {!Raytrace.Private.Canvas}) from the camera, [t > 1],
     with the scene's recursion depth (section 8). The unclamped colour is
     then in {!red}, {!green} and {!blue}, and {!store} writes it.
-    @raise Limits.Work_exceeded in a scene with transparency, once the
-    work counted ({!work}) passes the budget ({!set_budget}): a ray tree
-    may have [2^depth] rays, so the tree checks at every hit (so do
-    {!sample}, {!average} and {!average_reusing}, which trace rays
-    alike). *)
+    @raise Limits.Work_exceeded once the work counted ({!work}) has
+    passed the budget ({!set_budget}) before the pixel; in a scene with
+    transparency, also during the pixel: a ray tree may have [2^depth]
+    rays, so the tree checks at every hit (so do {!sample}, {!average}
+    and {!average_reusing}, which trace rays alike). *)
 
 val row : t -> Image.buffer -> int -> int -> int -> int -> unit
 (** [row tr buf k gx gy n] is {!pixel} then {!store} for the [n] pixels
     [(gx, gy)] to [(gx + n - 1, gy)], stored from byte [k] of [buf] on,
-    three bytes apart. *)
+    three bytes apart.
+    @raise Limits.Work_exceeded as {!pixel} does, before a pixel (or a
+    block of 64 in the document's kernel). *)
 
 val sample : t -> int -> int -> i:int -> j:int -> n:int -> unit
 (** [sample tr gx gy ~i ~j ~n] is {!pixel} for the point

@@ -57,6 +57,7 @@ let () =
       ("pixel", Test_pixel.tests);
       ("library", Test_library.tests);
       ("hostile", Test_hostile.tests);
+      ("work", Test_work.tests);
       ("faults", Test_faults.tests);
       ("outputs", Test_outputs.tests);
       ("cli_fuzz", Test_cli_fuzz.tests);

@@ -91,6 +91,15 @@ let tests =
     Helpers.qcheck ~count:400 "mutated example scenes are scenes or one located line"
       (mutated (example_scenes ()) Hostile.scene_tokens)
       (fun text -> holds "mutated scene" Hostile.scene text; true);
+    Helpers.qcheck ~count:300
+      "random scenes of every form (meshes, CSG, glass, patterns) render within their work budget or fail with one located line"
+      (QCheck.make
+         ~print:(fun (text, meshes) ->
+           text ^ String.concat "" (List.map (fun (n, t) -> Printf.sprintf "\n--- %s\n%s" n t) meshes))
+         Hostile.random_scene)
+      (fun (text, meshes) ->
+        (match Hostile.scene ~meshes text with Ok () -> () | Error m -> Alcotest.failf "%s\ninput:\n%s" m text);
+        true);
     Helpers.qcheck ~count:400 "mutated images are images or one line"
       (mutated (example_ppms ()) Hostile.ppm_tokens)
       (fun bytes -> holds "mutated image" Hostile.ppm bytes; true);
@@ -331,9 +340,9 @@ let tests =
     Alcotest.test_case "the work estimate is the product of its factors" `Quick (fun () ->
         (* 600 * 600 pixels * 4 samples * (3 + 1) rays * 4 spheres * (1 + 2) = 69120000 *)
         Alcotest.(check (float 0.)) __LOC__ 69120000.
-          (Limits.work ~pixels:360000 ~samples:4 ~depth:3 ~spheres:4 ~lights:2);
+          (Limits.work ~pixels:360000 ~samples:4 ~depth:3 ~spheres:4 ~lights:2 ());
         (* 100000 spheres: 2^17 = 131072 >= 100000, so 16 x 17 = 272 per ray;
            1000 * 1 * 1 * 272 * 1 = 272000 *)
         Alcotest.(check (float 0.)) __LOC__ 272000.
-          (Limits.work ~pixels:1000 ~samples:1 ~depth:0 ~spheres:100_000 ~lights:0));
+          (Limits.work ~pixels:1000 ~samples:1 ~depth:0 ~spheres:100_000 ~lights:0 ()));
   ]

@@ -5,6 +5,7 @@ let v ~jobs ~width ~height =
   if jobs < 2 then invalid_arg "Progressive_workers.v: jobs < 2";
   let image = Image.of_buffer width height (Parallel.shared_bytes (3 * width * height)) in
   let ints = Parallel.shared_ints (jobs * counter_fields) in
+  let budget = Parallel.shared_ints (jobs * Raytrace.Private.Render_work.counter_fields) in
   let run n work =
     Bigarray.Array1.fill ints 0L;
     let child w =
@@ -16,4 +17,4 @@ let v ~jobs ~width ~height =
     | Error (`Msg m) -> Error (`Msg m)
     | Ok () -> Ok (Array.init n (fun w -> Array.init counter_fields (fun i -> Int64.to_int ints.{(w * counter_fields) + i})))
   in
-  { Raytrace_view.Progressive.jobs; image; run }
+  { Raytrace_view.Progressive.jobs; image; run; budget }

@@ -132,6 +132,7 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
             done;
             !n
           in
+          let wait () = Unix.sleepf 0.001 in
           let over_budget n = Error (`Msg (Limits.work_exceeded limits n)) in
           let rec run i =
             if i = passes then
@@ -162,14 +163,14 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
                 let slot = (i * jobs) + w in
                 let before = Gc.minor_words () in
                 let publish () = Render_work.save ints slot tr (Gc.minor_words () -. before) in
-                (* The work budget is shared: before each band, a worker
-                   publishes its count and keeps for itself what the others
-                   (as last published) have left. *)
+                (* The work budget is shared: a worker reserves a slice of
+                   what is left, and once it has done that, publishes its
+                   count and reserves the next (Render_work.refill). *)
+                let refill _ = Render_work.refill ~wait ints ~slots:(passes * jobs) ~slot ~budget ~jobs tr in
                 let rec loop () =
                   let b = Parallel.take queue in
                   if b >= 0 then begin
                     publish ();
-                    Trace.set_budget tr (budget - (work_done ints - Trace.work tr));
                     (* Rays of the earlier passes, whose tracers are gone. *)
                     let earlier =
                       match slots with
@@ -186,7 +187,11 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
                     loop ()
                   end
                 in
-                (try loop () with Limits.Work_exceeded _ -> ());
+                (try
+                   Trace.set_budget ~refill tr (refill 0);
+                   loop ()
+                 with Limits.Work_exceeded _ -> ());
+                Render_work.release ints slot tr;
                 publish ()
               in
               let tick = Option.map (fun _ -> report) progress in

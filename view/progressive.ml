@@ -2,6 +2,7 @@ type workers = {
   jobs : int;
   image : Image.t;
   run : int -> (int -> int array) -> (int array array, [ `Msg of string ]) result;
+  budget : Render_work.counters;
 }
 
 type t = {
@@ -85,16 +86,24 @@ let trace_rows_in_workers (r : t) (ws : workers) pass ~top ~rows =
     let c = Trace.counters r.tr in
     [| c.primary; c.shadow; c.reflection; c.tests; c.box_tests; c.early_stops |]
   in
+  (* The workers share what is left of the budget, each reserving slices
+     of it (Render_work.refill): together they pass it by little. *)
+  let base = Trace.work r.tr in
+  let budget = Limits.work_budget r.limits - base in
+  Bigarray.Array1.fill ws.budget 0L;
   let work w =
     let before = counts () in
     let row = ref (top + w) in
     (* Over its budget, a worker stops; the parent sees the sum. *)
     (try
+       Trace.set_budget r.tr (base - 1)
+         ~refill:(fun _ -> Render_work.refill ~base ws.budget ~slots:jobs ~slot:w ~budget ~jobs r.tr);
        while !row < top + rows do
          trace_row r r.tr pass !row;
          row := !row + jobs
        done
      with Limits.Work_exceeded _ -> ());
+    Render_work.release ~base ws.budget w r.tr;
     Array.map2 ( - ) (counts ()) before
   in
   match ws.run jobs work with
