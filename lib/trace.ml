@@ -49,6 +49,7 @@ type t = {
   averaging : bool;  (** Samples are averaged: see [settled]. *)
   mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see [primary_hit]. *)
   mutable budget : int;  (** Most tests [check_budget] accepts. *)
+  mutable over_budget : int -> unit;  (** What [check_budget] does past [budget]: see [on_budget]. *)
   tracer : int;  (** The loop of [trace]: [spheres_chain], [objects_chain] or [tree]. *)
   tree : Ray_tree.t;  (** The ray tree's levels: transparent scenes only. *)
   cand : int array;
@@ -81,6 +82,8 @@ let tiles_across (p : Prepared.t) = if p.cull && p.textbook_all then (p.width + 
 let hierarchy_of_triangles (p : Prepared.t) =
   p.bvh <> None && Array.for_all (fun k -> k = Shape.triangle || k = Shape.smooth_triangle || k = Shape.plane) p.kind
 
+let exceeded w = raise (Limits.Work_exceeded w)
+
 let create ?(averaging = false) (p : Prepared.t) =
   {
     p;
@@ -106,6 +109,7 @@ let create ?(averaging = false) (p : Prepared.t) =
     averaging;
     assumed = no_assumption;
     budget = Limits.work_budget Limits.default;
+    over_budget = exceeded;
     tracer = (if p.transparent then tree else if p.all_spheres then spheres_chain else objects_chain);
     tree = (if p.transparent then Ray_tree.create ~depth:p.depth else Ray_tree.empty);
     (* Read by the document's kernel alone ([textbook_all]): other scenes,
@@ -125,9 +129,11 @@ let counters tr = tr.counters
 let work tr = tr.counters.tests + tr.counters.box_tests
 let set_budget tr n = tr.budget <- n
 
+let on_budget tr f = tr.over_budget <- f
+
 let check_budget tr =
   let w = work tr in
-  if w > tr.budget then raise (Limits.Work_exceeded w)
+  if w > tr.budget then tr.over_budget w
 let red tr = tr.s.r
 let green tr = tr.s.g
 let blue tr = tr.s.b

@@ -71,7 +71,17 @@ val set_budget : t -> int -> unit
 
 val check_budget : t -> unit
 (** [check_budget tr] does nothing while {!work}[ tr] is within the budget
-    of [tr], and otherwise raises [Limits.Work_exceeded (work tr)]. *)
+    of [tr], and otherwise raises [Limits.Work_exceeded (work tr)], or
+    calls the function given to {!on_budget}. *)
+
+val on_budget : t -> (int -> unit) -> unit
+(** [on_budget tr f] makes {!check_budget} call [f w] instead of raising
+    once the work [w] passes the budget. The front ends use it to look at
+    their keys or their clock while a pixel is traced (a pixel of a deep
+    glass tree can take seconds): they set the budget to the next time to
+    look ({!set_budget}), and [f] looks, sets the next one and returns, or
+    raises. An exception from [f] ends the pixel being traced; the tracer
+    can trace other pixels after it. *)
 
 val pixel : t -> int -> int -> unit
 (** [pixel tr gx gy] traces the primary ray through canvas pixel
