@@ -12,21 +12,12 @@ let run_to_end r =
 
 let primary r = (Trace.counters (Progressive.tracer r)).primary
 
-(* Four glass planes, half mirror, half window: at depth 20 a pixel's ray
-   tree has tens of thousands of rays, several looks of the front end. *)
+(* A pixel of this scene's ray tree has tens of thousands of rays,
+   several looks of the front end. *)
 let deep_glass () =
-  let plane z =
-    Printf.sprintf
-      "(plane (point 0 0 %d) (normal 0 0 -1) (color 200 200 255) (transparency 0.5) (reflective 0.5) \
-       (refractive-index 1.5))"
-      z
-  in
-  let text =
-    String.concat "\n"
-      ([ "(canvas (width 5) (height 4))"; "(recursion-depth 20)"; "(light ambient (intensity 0.5))" ]
-      @ List.map plane [ 2; 3; 4; 5 ])
-  in
-  match Helpers.of_string text with Ok s -> s | Error (`Msg m) -> Alcotest.fail m
+  match Helpers.of_string (Helpers.glass_planes ~width:5 ~height:4 ~depth:20) with
+  | Ok s -> s
+  | Error (`Msg m) -> Alcotest.fail m
 
 let tests =
   [
