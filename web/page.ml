@@ -111,11 +111,20 @@ let channel = Js.Unsafe.new_obj Js.Unsafe.global##._MessageChannel [||]
 (* Set when an exception escaped from the frame: it is not traced on. *)
 let broken = ref false
 
+(* The line under the editor when it says why a frame stopped or a key was
+   refused, not what is wrong with the editor's text: the next frame
+   clears it. *)
+let transient = ref None
+
+let say m =
+  transient := Some m;
+  set_text error_line m
+
 let show_frame () =
   match (Session.stopped session, Session.last_frame session) with
   | Some m, _ ->
       set_text frame_line "Stopped: the line under the scene says why.";
-      set_text error_line m
+      say m
   | None, Some f when Session.finished session -> set_text frame_line ("Frame: " ^ Session.frame_text f)
   | None, _ -> set_text frame_line (if !broken then "Stopped: the line under the scene says why." else "Rendering...")
 
@@ -133,7 +142,7 @@ let guard f =
       | _ -> Session.exception_line e
     in
     broken := true;
-    set_text error_line m;
+    say m;
     set_text frame_line "Stopped: the line under the scene says why."
 
 let rec slice () =
@@ -158,6 +167,9 @@ let () = Js.Unsafe.set channel##.port1 "onmessage" (Js.wrap_callback (fun _ -> s
 (* Everything that follows a new frame: the canvas's size, the texts. *)
 let new_frame () =
   broken := false;
+  if Some (Js.to_string (Js.Opt.get error_line##.textContent (fun () -> Js.string ""))) = !transient then
+    set_text error_line "";
+  transient := None;
   let view = Session.view session in
   fit_canvas view.scene.width view.scene.height;
   let p = view.scene.camera.position in
@@ -176,10 +188,9 @@ let report = function
 
 let on_input (i : View.input) =
   let effect = Session.input session i in
-  Option.iter (set_text error_line) (Session.refused session);
+  Option.iter say (Session.refused session);
   match effect with
   | View.Render ->
-      set_text error_line "";
       new_frame ();
       true
   | Redraw ->
