@@ -409,7 +409,7 @@ let tests =
             let _, _, slice = List.nth answers (List.length answers - 1) in
             Printf.printf "answers in %s ms; longest slice %.3f s\n"
               (String.concat " " (List.map (fun (ms, _, _) -> string_of_int ms) answers)) slice;
-            (* Before, a slice was a band: the page answered after 0.5-2 s. *)
+            (* Before, a slice was a band of seconds (docs/faults.md). *)
             Alcotest.(check bool) "every answer while the frame was traced" true
               (List.for_all (fun (_, f, _) -> f = "false") answers);
             Alcotest.(check bool) (Printf.sprintf "the slowest answer within 1 s (%d ms)" slowest) true (slowest < 1000);

@@ -92,7 +92,7 @@ val advance : ?rows:int -> ?poll:(poll -> bool) -> t -> outcome
 
 val poll_tests : int
 (** [poll_tests] is the intersection tests between two calls of
-    {!advance}'s [poll]: [65536], about a millisecond natively. *)
+    {!advance}'s [poll]: [65536] (docs/window.md, docs/web.md). *)
 
 val failure : t -> string option
 (** [failure r] is why the workers of [r] stopped being used, if they
