@@ -153,7 +153,7 @@ let hostile =
     (drive
        [
          step "wait";
-         (fun dir -> file_step "set" "glass.scene" (Helpers.glass_planes ~width:400 ~height:300 ~depth:20) dir);
+         (fun dir -> file_step "set" "glass.scene" (Helpers.glass_planes ~width:300 ~height:200 ~depth:20) dir);
          step "answers:glass";
          (fun dir -> file_step "set" "huge.scene" (huge_text ()) dir);
          step "shot:huge";
