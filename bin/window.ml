@@ -118,6 +118,7 @@ type session = {
   mutable shared : Progressive.workers option;  (** For [jobs > 1], at the frame's size. *)
   mutable row_s : float;  (** Seconds per row of the last full-resolution band. *)
   mutable rows : int;  (** Rows of the last full-resolution band. *)
+  mutable paused_s : float;  (** Seconds spent on the band that [work] paused, if one is. *)
   mutable failure_told : bool;
   mutable view : View.t;
   mutable render : Progressive.t;
@@ -127,6 +128,7 @@ type session = {
   mutable preview_s : float;  (** Seconds spent drawing its coarse passes. *)
   mutable save_pending : bool;
   mutable drag : (int * int) option;  (** Pointer position while a button is held. *)
+  mutable seen : int * int;  (** The window's size when [poll] last read it. *)
   mutable quit : bool;
 }
 
@@ -149,6 +151,7 @@ let start_frame s =
   end;
   s.render <- Progressive.create ~limits:s.view.limits ~samples:(View.samples s.view) ?workers:s.shared s.view.valid;
   s.rows <- 1;
+  s.paused_s <- 0.;
   s.started <- Unix.gettimeofday ();
   s.trace_s <- 0.;
   s.plot_s <- 0.;
@@ -217,6 +220,7 @@ let poll s =
     | `None -> ()
   in
   let w = Graphics.size_x () and h = Graphics.size_y () in
+  s.seen <- (w, h);
   note (apply s (View.Resize (w, h)));
   while (not s.quit) && Graphics.key_pressed () do
     note (apply s (View.Key (Graphics.read_key ())))
@@ -243,27 +247,53 @@ let poll s =
     end
     else log "saving once this frame is complete"
 
-(* Traces and draws bands for about [slice] seconds, then shows them. A
+(* Whether something came that [poll] must read: a key, the button
+   pressed, released or dragged, or a new size. Cheap (Graphics reads what
+   the X server sent, without a round trip): [work] asks it every few
+   milliseconds of tracing, inside pixels too, since a pixel of a deep
+   glass scene can take seconds. *)
+let input_pending s =
+  Graphics.key_pressed ()
+  || Graphics.button_down () <> Option.is_some s.drag
+  || (Option.is_some s.drag && Some (Graphics.mouse_pos ()) <> s.drag)
+  || (Graphics.size_x (), Graphics.size_y ()) <> s.seen
+
+(* Traces and draws bands for about [slice] seconds, then shows them; it
+   pauses the band at once, even inside a pixel, when input comes. A
    full-resolution band gets as many rows as fit in a slice, by the speed
    of the last one, but at most twice as many as the last one: rows of sky
    are quick. Workers are forked anew for each band, which costs a few
-   milliseconds (more on a busy machine): their bands are 5 slices long. *)
+   milliseconds (more on a busy machine): their bands are 5 slices long.
+   They cannot be paused: rows slower than such a band (a glass scene's;
+   the coarse passes tell) are traced here, one band a row. *)
 let work s ~slice =
   let t_end = Unix.gettimeofday () +. slice in
   let img = Progressive.image s.render in
   let band_s = if s.jobs > 1 then 5. *. slice else slice in
+  let poll = function
+    | Progressive.Between_pixels -> input_pending s || Unix.gettimeofday () >= t_end
+    | Inside_pixel -> input_pending s
+  in
   let continue = ref true in
   while !continue do
     let t0 = Unix.gettimeofday () in
-    let rows = max s.jobs (min (2 * s.rows) (truncate (Float.min 1e6 (band_s /. s.row_s)))) in
-    match Progressive.step ~rows s.render with
-    | None -> continue := false
-    | Some band ->
+    let rows =
+      if s.row_s > band_s then 1 else max s.jobs (min (2 * s.rows) (truncate (Float.min 1e6 (band_s /. s.row_s))))
+    in
+    match Progressive.advance ~rows ~poll s.render with
+    | Done -> continue := false
+    | Paused ->
+        let t = Unix.gettimeofday () -. t0 in
+        s.trace_s <- s.trace_s +. t;
+        s.paused_s <- s.paused_s +. t;
+        continue := false
+    | Band band ->
         let t1 = Unix.gettimeofday () in
-        if band.size = 1 then begin
-          s.row_s <- Float.max 1e-7 ((t1 -. t0) /. Float.of_int band.rows);
-          s.rows <- band.rows
-        end;
+        (* A coarse band of blocks of [size] traces about one pixel in
+           [size] of a row: it tells the speed of the rows to come. *)
+        s.row_s <- Float.max 1e-7 ((s.paused_s +. t1 -. t0) *. Float.of_int band.size /. Float.of_int band.rows);
+        s.paused_s <- 0.;
+        if band.size = 1 then s.rows <- band.rows;
         draw_band img band;
         let t2 = Unix.gettimeofday () in
         s.trace_s <- s.trace_s +. (t1 -. t0);
@@ -341,6 +371,7 @@ let run ~limits ~name ~scene_file ~jobs valid =
             shared = None;
             row_s = 1e-3;
             rows = 1;
+            paused_s = 0.;
             failure_told = false;
             view = View.v ~limits valid;
             render = Progressive.create valid;
@@ -350,6 +381,7 @@ let run ~limits ~name ~scene_file ~jobs valid =
             preview_s = 0.;
             save_pending = false;
             drag = None;
+            seen = (scene.width, scene.height);
             quit = false;
           }
         in

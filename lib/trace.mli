@@ -84,7 +84,10 @@ val check_budget : t -> unit
 (** [check_budget tr] does nothing while {!work}[ tr] is within the budget
     of [tr], and otherwise calls its [refill] ({!set_budget}), which may
     raise [Limits.Work_exceeded]. It allocates nothing (unless [refill]
-    does). *)
+    does). The front ends give a [refill] that looks at their keys or
+    their clock while a pixel is traced (a pixel of a deep glass tree can take
+    seconds) and may raise to pause: an exception from [refill] ends the pixel
+    being traced; the tracer can trace other pixels after it. *)
 
 val pixel : t -> int -> int -> unit
 (** [pixel tr gx gy] traces the primary ray through canvas pixel

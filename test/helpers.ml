@@ -196,3 +196,16 @@ let obj_part_joined p ~name ~max_vertices ~max_triangles s off len =
       let m = Raytrace.Obj_file.join p part ~input in
       if Option.is_some m && !at <> Bytes.length bytes then Alcotest.failf "the join read %d of %d bytes" !at (Bytes.length bytes);
       m
+
+let glass_planes ~width ~height ~depth =
+  let plane z =
+    Printf.sprintf
+      "(plane (point 0 0 %d) (normal 0 0 -1) (color 200 200 255) (transparency 0.5) (reflective 0.5) \
+       (refractive-index 1.5))"
+      z
+  in
+  String.concat "\n"
+    ([ Printf.sprintf "(canvas (width %d) (height %d))" width height; Printf.sprintf "(recursion-depth %d)" depth;
+       "(light ambient (intensity 0.5))" ]
+    @ List.map plane [ 2; 3; 4; 5 ])
+  ^ "\n"

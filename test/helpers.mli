@@ -141,3 +141,12 @@ val obj_part_joined :
     joined to [p] ({!Raytrace.Obj_file.join}, its input that buffer), as
     [Files.read_mesh] does without the fork; [None] where the part is an
     error or the join declines. *)
+
+(** {1:slow Scenes slow to render} *)
+
+val glass_planes : width:int -> height:int -> depth:int -> string
+(** [glass_planes ~width ~height ~depth] is the text of a scene of four
+    parallel planes, each half mirror, half glass, one behind the other,
+    seen face on: every hit spawns two rays, so a pixel's ray tree grows
+    about as [2^(depth/2)] rays (tens of thousands at depth 20, millions at
+    28), the front ends' slowest pixels. *)

@@ -12,6 +12,13 @@ let run_to_end r =
 
 let primary r = (Trace.counters (Progressive.tracer r)).primary
 
+(* A pixel of this scene's ray tree has tens of thousands of rays,
+   several looks of the front end. *)
+let deep_glass () =
+  match Helpers.of_string (Helpers.glass_planes ~width:5 ~height:4 ~depth:20) with
+  | Ok s -> s
+  | Error (`Msg m) -> Alcotest.fail m
+
 let tests =
   [
     Alcotest.test_case "the first step traces one band of 16-pixel blocks" `Quick (fun () ->
@@ -102,6 +109,46 @@ let tests =
         | Some ("worker 1 of 2 was killed by SIGKILL" | "worker 2 of 2 was killed by SIGKILL") -> ()
         | f -> Alcotest.failf "%s: the failure is %s" __LOC__ (Option.value f ~default:"none"));
         Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:3 (Helpers.valid s)) (Progressive.image r));
+    Alcotest.test_case "the front end is asked inside a deep glass pixel; paused anywhere, the image is Render's" `Quick
+      (fun () ->
+        let s = deep_glass () in
+        let paused_in r ~samples =
+          let inside = ref 0 and paused = ref 0 and last = ref min_int in
+          (* Pauses at every look inside a pixel but inside the pixel of
+             the last pause, traced again: a front end that always paused
+             there would never see it finished. A pixel casts [samples]
+             primary rays. *)
+          let poll = function
+            | Progressive.Inside_pixel ->
+                incr inside;
+                let p = primary r in
+                if p > !last + samples then (last := p; true) else false
+            | Between_pixels -> true
+          in
+          let rec go () = match Progressive.advance ~rows:3 ~poll r with Done -> () | Paused -> incr paused; go () | Band _ -> go () in
+          go ();
+          Printf.printf "%d looks inside pixels, %d pauses\n" !inside !paused;
+          Alcotest.(check bool) "paused inside pixels" true (!paused > 10)
+        in
+        let r = create s in
+        paused_in r ~samples:1;
+        Helpers.check_images __LOC__ ~expected:(Helpers.image_exn s) (Progressive.image r);
+        let r = create ~samples:2 s in
+        paused_in r ~samples:4;
+        Helpers.check_images __LOC__ ~expected:(Antialias.image ~n:2 (Helpers.valid s)) (Progressive.image r));
+    Alcotest.test_case "a front end that pauses at every look between pixels sees the image finished" `Quick (fun () ->
+        let s = Scene.cgfs in
+        let r = create s in
+        let paused = ref 0 in
+        let rec go () =
+          match Progressive.advance ~rows:50 ~poll:(fun _ -> true) r with
+          | Done -> ()
+          | Paused -> incr paused; go ()
+          | Band _ -> go ()
+        in
+        go ();
+        Alcotest.(check bool) (Printf.sprintf "paused (%d times)" !paused) true (!paused > 0);
+        Helpers.check_images __LOC__ ~expected:(Helpers.image_exn s) (Progressive.image r));
     Alcotest.test_case "a shared image of another size is refused" `Quick (fun () ->
         let shared = Progressive_workers.v ~jobs:2 ~width:10 ~height:10 in
         Alcotest.check_raises __LOC__ (Invalid_argument "Progressive.create: the workers' image is not of the canvas size")

@@ -109,6 +109,66 @@ let main =
 
 let held = lazy (drive ~hash:"#hold" [ step "advance:38"; step "shot:coarse"; step "release"; step "probe:progress"; step "shot:final" ])
 
+(* A CSG union of 16384 spheres, a balanced tree (CSG nests at most 32
+   deep), 16 x 16 pixels: `raytrace render` draws it; JavaScript's smaller
+   stack ran out on it with an empty error line. *)
+let csg_text () =
+  let n = 16384 in
+  let sphere i =
+    let a = Float.of_int i *. 0.01 and r = 0.2 +. (Float.of_int i *. 1e-4) in
+    Printf.sprintf "(sphere (center %.4f %.4f 4) (radius 0.05) (color 255 0 0))" (r *. cos a) (r *. sin a)
+  in
+  let b = Buffer.create (n * 64) in
+  let rec tree lo hi =
+    if hi - lo = 1 then Buffer.add_string b (sphere lo)
+    else begin
+      Buffer.add_string b "(csg union ";
+      tree lo ((lo + hi) / 2);
+      Buffer.add_char b ' ';
+      tree ((lo + hi) / 2) hi;
+      Buffer.add_char b ')'
+    end
+  in
+  Buffer.add_string b
+    "(canvas (width 16) (height 16))\n(camera (position 0 0 -3))\n(light ambient (intensity 0.3))\n\
+     (light point (intensity 0.7) (position 2 3 -4))\n";
+  tree 0 n;
+  Buffer.add_char b '\n';
+  Buffer.contents b
+
+(* The reference scene at 16384 x 16384 pixels. *)
+let huge_text () =
+  let text = cgfs_text () in
+  let from = "(canvas (width 600) (height 600))" in
+  let i = index text from in
+  String.sub text 0 i ^ "(canvas (width 16384) (height 16384))"
+  ^ String.sub text (i + String.length from) (String.length text - i - String.length from)
+
+(* Hostile scenes, each put in the editor while the one before renders:
+   glass whose rows take seconds (the page asked every 100 ms meanwhile),
+   a canvas of 16384 x 16384, a CSG of 16384 spheres, a glass pixel of
+   seconds at depth 28. *)
+let hostile =
+  lazy
+    (drive
+       [
+         step "wait";
+         (fun dir -> file_step "set" "glass.scene" (Helpers.glass_planes ~width:300 ~height:200 ~depth:20) dir);
+         step "answers:glass";
+         (fun dir -> file_step "set" "huge.scene" (huge_text ()) dir);
+         step "shot:huge";
+         (* A quick frame ends the glass one: the CSG, if refused, leaves
+            it on the page. *)
+         (fun dir -> file_step "set" "cgfs.scene" (cgfs_text ()) dir);
+         step "wait";
+         (fun dir -> file_step "set" "csg.scene" (csg_text ()) dir);
+         step "wait";
+         step "shot:csg";
+         (fun dir -> file_step "set" "deep.scene" (Helpers.glass_planes ~width:1 ~height:1 ~depth:28) dir);
+         step "wait";
+         step "shot:deep";
+       ])
+
 (* Every example scene, small (the size chosen fits the viewport as a
    resized window does), with 2 x 2 samples: shots named after the scenes. *)
 let scenes =
@@ -334,6 +394,59 @@ let tests =
             done;
             Helpers.check_images __LOC__ ~expected coarse;
             Helpers.check_images __LOC__ ~expected:full (shot dir "final")));
+    Alcotest.test_case "the page answers within a fraction of a second while glass rows take seconds" `Slow (fun () ->
+        with_browser "web: glass" (fun () ->
+            let dir = Lazy.force hostile in
+            let answers =
+              List.map
+                (fun l ->
+                  match String.split_on_char ' ' l with
+                  | [ ms; finished; slice ] -> (int_of_string ms, finished, float_of_string slice)
+                  | _ -> Alcotest.failf "answers.txt: %S" l)
+                (String.split_on_char '\n' (String.trim (read_text (Filename.concat dir "glass.txt"))))
+            in
+            let slowest = List.fold_left (fun m (ms, _, _) -> max m ms) 0 answers in
+            let _, _, slice = List.nth answers (List.length answers - 1) in
+            Printf.printf "answers in %s ms; longest slice %.3f s\n"
+              (String.concat " " (List.map (fun (ms, _, _) -> string_of_int ms) answers)) slice;
+            (* Before, a slice was a band of seconds (docs/faults.md). *)
+            Alcotest.(check bool) "every answer while the frame was traced" true
+              (List.for_all (fun (_, f, _) -> f = "false") answers);
+            Alcotest.(check bool) (Printf.sprintf "the slowest answer within 1 s (%d ms)" slowest) true (slowest < 1000);
+            Alcotest.(check bool)
+              (Printf.sprintf "slices within a pixel's bound (%.3f s)" slice)
+              true
+              (slice < Raytrace_web.Session.max_pixel_seconds +. 0.1)));
+    Alcotest.test_case "a 16384 x 16384 canvas is refused with a positioned line, at once" `Slow (fun () ->
+        with_browser "web: huge canvas" (fun () ->
+            let dir = Lazy.force hostile in
+            Alcotest.(check string) __LOC__
+              "scene:5:1: canvas 16384x16384 has 268435456 pixels, more than the limit of 16777216 (the page's bound: \
+               raytrace render draws larger canvases)"
+              (json_string dir "huge" "error")));
+    Alcotest.test_case "a CSG of 16384 spheres is raytrace render's picture, or one positioned line" `Slow (fun () ->
+        with_browser "web: big CSG" (fun () ->
+            let dir = Lazy.force hostile in
+            match json_string dir "csg" "error" with
+            | "" -> Helpers.check_images __LOC__ ~expected:(native (csg_text ())) (shot dir "csg")
+            | error ->
+                (* The library's passes over the tree are too deep for
+                   JavaScript's stack: docs/web.md. *)
+                Printf.printf "the page says: %s\n" error;
+                Alcotest.(check string) __LOC__
+                  "scene:1:1: scene too deeply nested for the browser: its stack ran out (raytrace render renders it)"
+                  error));
+    Alcotest.test_case "a pixel that takes seconds stops the frame with a positioned line" `Slow (fun () ->
+        with_browser "web: slow pixel" (fun () ->
+            let dir = Lazy.force hostile in
+            let expected =
+              Printf.sprintf
+                "scene:1:1: one pixel takes more than %g s to trace, too long for the page to stay responsive: the \
+                 frame stops here (raytrace render renders it)"
+                Raytrace_web.Session.max_pixel_seconds
+            in
+            Alcotest.(check string) "the line" expected (json_string dir "deep" "error");
+            Alcotest.(check string) "stopped" expected (json_string dir "deep" "stopped")));
     Alcotest.test_case "the page answers while it traces a frame" `Slow (fun () ->
         with_browser "web: responsive" (fun () ->
             let dir = Lazy.force held in

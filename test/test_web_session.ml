@@ -27,8 +27,64 @@ let finish p =
 (* A small picture of the scene, so that frames are quick. *)
 let small p = ok (Session.set_size p (Some (60, 40)))
 
+let glass ~width ~height ~depth = session ~now:Unix.gettimeofday (Helpers.glass_planes ~width ~height ~depth)
+
 let tests =
   [
+    Alcotest.test_case "a slice ends soon after its deadline, inside a band of glass that takes a second" `Quick (fun () ->
+        (* The first band: 38 pixels of deep glass, far longer than the slice. *)
+        let p = glass ~width:600 ~height:2 ~depth:22 in
+        let t0 = Unix.gettimeofday () in
+        let bands = Session.step p ~until:(t0 +. 0.02) in
+        let t = Unix.gettimeofday () -. t0 in
+        Printf.printf "a slice of 20 ms took %.3f s, %d bands\n" t (List.length bands);
+        Alcotest.(check bool) (Printf.sprintf "within 0.2 s (%.3f s)" t) true (t < 0.2);
+        Alcotest.(check int) "the band is not finished" 0 (List.length bands);
+        Alcotest.(check bool) "the frame goes on" false (Session.finished p);
+        (* It goes on where it paused: the picture is raytrace render's. *)
+        let p = glass ~width:40 ~height:3 ~depth:12 in
+        let slices = ref 0 in
+        while not (Session.finished p) do
+          incr slices;
+          ignore (Session.step p ~until:(Unix.gettimeofday () +. 0.002))
+        done;
+        Printf.printf "%d slices of 2 ms\n" !slices;
+        let scene = match Helpers.of_string (Session.shown_text p) with Ok s -> s | Error (`Msg m) -> Alcotest.fail m in
+        Helpers.check_images __LOC__ ~expected:(Helpers.image_exn scene) (Session.image p));
+    Alcotest.test_case "a pixel that takes seconds stops the frame with a positioned line" `Quick (fun () ->
+        (* The page's clock runs 50 times as fast as the wall's, so that the
+           pixel takes "seconds" on any machine: this one traces it in about
+           half a second of wall time, the page's bound. *)
+        let t0 = Unix.gettimeofday () in
+        let now () = t0 +. (50. *. (Unix.gettimeofday () -. t0)) in
+        let p = session ~now (Helpers.glass_planes ~width:1 ~height:1 ~depth:28) in
+        ignore (Session.step p ~until:(now () +. 0.02));
+        let t = Unix.gettimeofday () -. t0 in
+        Printf.printf "stopped after %.3f s\n" t;
+        Alcotest.(check bool) (Printf.sprintf "within a second (%.3f s)" t) true (t < 1.);
+        Alcotest.(check bool) "finished" true (Session.finished p);
+        Alcotest.(check (option string)) "the line"
+          (Some
+             "scene:1:1: one pixel takes more than 0.5 s to trace, too long for the page to stay responsive: the frame \
+              stops here (raytrace render renders it)")
+          (Session.stopped p);
+        Alcotest.(check bool) "no frame statistics" true (Session.last_frame p = None));
+    Alcotest.test_case "a canvas beyond 4096 x 4096 is refused with the page's bound, positioned" `Quick (fun () ->
+        let p = session (cgfs_text ()) in
+        small p;
+        let huge = Helpers.glass_planes ~width:16384 ~height:16384 ~depth:1 in
+        (match Session.edit p huge with
+        | Ok () -> Alcotest.fail "a 16384 x 16384 canvas was accepted"
+        | Error (`Msg m) ->
+            Alcotest.(check string) __LOC__
+              "scene:1:1: canvas 16384x16384 has 268435456 pixels, more than the limit of 16777216 (the page's bound: \
+               raytrace render draws larger canvases)"
+              m);
+        (match Session.edit p (Helpers.glass_planes ~width:4096 ~height:4096 ~depth:1) with
+        | Ok () -> ()
+        | Error (`Msg m) -> Alcotest.failf "4096 x 4096 was refused: %s" m);
+        Alcotest.(check (pair int int)) "the size chosen stays" (60, 40)
+          ((Session.view p).scene.width, (Session.view p).scene.height));
     Alcotest.test_case "the finished picture of the default text is raytrace render's" `Quick (fun () ->
         let p = session (cgfs_text ()) in
         Helpers.check_images __LOC__ ~expected:(Helpers.image_exn Scene.cgfs) (finish p);

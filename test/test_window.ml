@@ -17,7 +17,7 @@ let available () =
 
 (* Runs the window on a copy of scenes/[name] in a fresh directory (where
    [s] saves) through [steps]; the directory then holds the screenshots. *)
-let session ?(view_args = "") ?(screen = "1024x768") ?(edit = Fun.id) name steps =
+let session ?(view_args = "") ?(first_frame = true) ?(screen = "1024x768") ?(edit = Fun.id) name steps =
   let dir = Helpers.temp_dir () in
   let scene = Filename.concat dir name in
   (match File_io.read (Helpers.scene_path name) with
@@ -27,7 +27,9 @@ let session ?(view_args = "") ?(screen = "1024x768") ?(edit = Fun.id) name steps
       close_out oc
   | Error (`Msg m) -> Alcotest.fail m);
   New_scenes.copy_models dir;
-  let env = Array.append [| "VIEW_ARGS=" ^ view_args |] (Unix.environment ()) in
+  let env =
+    Array.append [| "VIEW_ARGS=" ^ view_args; "FIRST_FRAME=" ^ if first_frame then "yes" else "no" |] (Unix.environment ())
+  in
   let code, _, err =
     Helpers.run ~env "xvfb-run"
       ([ "-a"; "-s"; "-screen 0 " ^ screen ^ "x24"; "./window_session.sh"; Helpers.raytrace (); scene; dir ] @ steps)
@@ -64,6 +66,19 @@ let with_canvas w h text =
 
 let tests =
   [
+    Alcotest.test_case "q quits within a fraction of a second while a glass pixel takes seconds" `Slow (fun () ->
+        if available () then begin
+          (* The window used to read its keys between bands of pixels:
+             q waited for the band, seconds here. *)
+          (* At depth 30 a pixel takes seconds; a canvas this small
+             keeps the render within the work bound however the estimate
+             counts the tree. *)
+          let glass _ = Helpers.glass_planes ~width:8 ~height:8 ~depth:30 in
+          let dir = session ~first_frame:false ~edit:glass "cgfs.scene" [ "quit:1" ] in
+          let seconds = float_of_string (String.trim (text (Filename.concat dir "quit.seconds"))) in
+          Printf.printf "q pressed after 1 s of tracing: the window closed in %.3f s\n" seconds;
+          Alcotest.(check bool) (Printf.sprintf "closed within 0.5 s (%.3f s)" seconds) true (seconds < 0.5)
+        end);
     Alcotest.test_case "quitting with q never crashes, whatever the canvas size" `Slow (fun () ->
         if available () then
           (* 1x2 and 7x8 crashed (SIGSEGV, status 139) on q: the frame's

@@ -14,8 +14,13 @@
 #                   the frame, release
 #   save:KEYS       press the keys (the last one s) at once, and wait until
 #                   the window says it saved
+#   quit:SECONDS    let the window trace for SECONDS, press q and time how
+#                   long the window takes to exit -> DIR/quit.seconds; the
+#                   session ends there
 # The window's stderr is left in DIR/log. VIEW_ARGS, if set, are more
-# arguments for `raytrace view` (e.g. "--jobs 1").
+# arguments for `raytrace view` (e.g. "--jobs 1"). With FIRST_FRAME=no, the
+# steps start once the window is open, not after its first full frame (a
+# slow scene's).
 # usage: window_session.sh RAYTRACE SCENE DIR STEP...
 set -u
 raytrace=$1 scene=$2 dir=$3
@@ -47,7 +52,7 @@ wait_for() {
   done
 }
 
-wait_for "drawn" 1
+if [ "${FIRST_FRAME:-yes}" = no ]; then wait_for "keys:" 1; else wait_for "drawn" 1; fi
 win=$(xdotool search --name "^raytrace: " | head -n 1)
 [ -n "$win" ] || fail "no window named raytrace"
 # Without a window manager nothing has the focus; xdotool complains then.
@@ -99,6 +104,17 @@ for step in "$@"; do
     n=$(count "saved")
     xdotool key --window "$win" $(echo "$arg" | tr ',' ' ')
     wait_for "saved" $((n + 1))
+    ;;
+  quit)
+    sleep "$arg"
+    kill -0 $pid 2>/dev/null || fail "the window exited before q"
+    t0=$(date +%s.%N)
+    xdotool key --window "$win" q 2>/dev/null
+    status=0
+    wait $pid || status=$?
+    t1=$(date +%s.%N)
+    awk "BEGIN { print $t1 - $t0 }" >"$dir/quit.seconds"
+    exit $status
     ;;
   *) fail "unknown step $step" ;;
   esac

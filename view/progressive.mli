@@ -67,8 +67,36 @@ val step : ?rows:int -> t -> band option
     full-resolution pass has [rows] rows (default 1), or fewer at the
     bottom; a coarse band has its block size. If a worker fails (or no
     worker can be started), the band is traced again in this process, as
-    are all later ones ({!failure}).
+    are all later ones ({!failure}). A band that {!advance} paused is
+    finished first, with its own rows.
     @raise Invalid_argument if [rows < 1]. *)
+
+type poll =
+  | Between_pixels  (** A pixel was just traced: pausing here loses nothing. *)
+  | Inside_pixel  (** A pixel is being traced: pausing here traces it again later. *)
+(** The type for where {!advance} asks the front end whether to pause. *)
+
+type outcome =
+  | Band of band  (** The band traced, as {!step}'s. *)
+  | Paused  (** The front end asked for its thread back: the band is unfinished. *)
+  | Done  (** The image is complete; nothing was done. *)
+(** The type for the outcomes of {!advance}. *)
+
+val advance : ?rows:int -> ?poll:(poll -> bool) -> t -> outcome
+(** [advance ~rows ~poll r] is {!step}, but calls [poll] every few
+    milliseconds of tracing (every {!poll_tests} tests, counted as they
+    are done), between pixels and inside them (at each hit of a ray tree,
+    where one pixel of a deep glass scene can take seconds), and is
+    [Paused] as soon as it says [true]. The next call goes on from where
+    this one paused (the pixel it was inside is traced again, from the
+    start, so the image is the same), with [rows] as the band was begun.
+    Bands traced by workers are not polled: a front end that must answer
+    gives a single row when rows are slow.
+    @raise Invalid_argument if [rows < 1]. *)
+
+val poll_tests : int
+(** [poll_tests] is the intersection tests between two calls of
+    {!advance}'s [poll]: [65536] (docs/window.md, docs/web.md). *)
 
 val failure : t -> string option
 (** [failure r] is why the workers of [r] stopped being used, if they
@@ -78,7 +106,7 @@ val stopped : t -> string option
 (** [stopped r] is why [r] ended before its last pass, if it did: the
     message of {!Raytrace.Limits.work_exceeded} once the tests counted by [r]'s
     tracer (and its workers) pass {!Raytrace.Limits.work_budget}, checked after each
-    row. [r] is then {!finished}; its image is incomplete. With workers,
+    pixel (and at each hit of a ray tree). [r] is then {!finished}; its image is incomplete. With workers,
     each may do a band's share beyond the budget before the count is
     summed. *)
 

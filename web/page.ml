@@ -108,18 +108,51 @@ let held = ref (Js.to_string Dom_html.window##.location##.hash = "#hold")
 let scheduled = ref false
 let channel = Js.Unsafe.new_obj Js.Unsafe.global##._MessageChannel [||]
 
+(* Set when an exception escaped from the frame: it is not traced on. *)
+let broken = ref false
+
+(* The line under the editor when it says why a frame stopped or a key was
+   refused, not what is wrong with the editor's text: the next frame
+   clears it. *)
+let transient = ref None
+
+let say m =
+  transient := Some m;
+  set_text error_line m
+
 let show_frame () =
-  match Session.last_frame session with
-  | Some f when Session.finished session -> set_text frame_line ("Frame: " ^ Session.frame_text f)
-  | _ -> set_text frame_line "Rendering..."
+  match (Session.stopped session, Session.last_frame session) with
+  | Some m, _ ->
+      set_text frame_line "Stopped: the line under the scene says why.";
+      say m
+  | None, Some f when Session.finished session -> set_text frame_line ("Frame: " ^ Session.frame_text f)
+  | None, _ -> set_text frame_line (if !broken then "Stopped: the line under the scene says why." else "Rendering...")
+
+(* Every event and slice runs through [guard]: whatever escapes (a
+   JavaScript error, the stack or the memory running out) becomes one line
+   under the editor, and the frame stops, instead of an empty line and a
+   page that throws again at every slice. *)
+let guard f =
+  try f ()
+  with e ->
+    let m =
+      match Js_error.of_exn e with
+      | Some err when not (e = Stack_overflow || e = Out_of_memory) ->
+          Session.located ("the browser failed: " ^ Js_error.name err ^ ": " ^ Js_error.message err)
+      | _ -> Session.exception_line e
+    in
+    broken := true;
+    say m;
+    set_text frame_line "Stopped: the line under the scene says why."
 
 let rec slice () =
   scheduled := false;
-  if (not !held) && not (Session.finished session) then begin
-    let bands = Session.step session ~until:(now () +. slice_seconds) in
-    paint (Session.image session) bands;
-    if Session.finished session then show_frame () else schedule ()
-  end
+  guard (fun () ->
+      if (not !held) && (not !broken) && not (Session.finished session) then begin
+        let bands = Session.step session ~until:(now () +. slice_seconds) in
+        paint (Session.image session) bands;
+        if Session.finished session then show_frame () else schedule ()
+      end)
 
 and schedule () =
   (* A message to ourselves runs as soon as the browser is free, without
@@ -133,6 +166,10 @@ let () = Js.Unsafe.set channel##.port1 "onmessage" (Js.wrap_callback (fun _ -> s
 
 (* Everything that follows a new frame: the canvas's size, the texts. *)
 let new_frame () =
+  broken := false;
+  if Some (Js.to_string (Js.Opt.get error_line##.textContent (fun () -> Js.string ""))) = !transient then
+    set_text error_line "";
+  transient := None;
   let view = Session.view session in
   fit_canvas view.scene.width view.scene.height;
   let p = view.scene.camera.position in
@@ -150,7 +187,9 @@ let report = function
   | Error (`Msg m) -> set_text error_line m
 
 let on_input (i : View.input) =
-  match Session.input session i with
+  let effect = Session.input session i in
+  Option.iter say (Session.refused session);
+  match effect with
   | View.Render ->
       new_frame ();
       true
@@ -167,7 +206,7 @@ let size_of_string s =
   | [ w; h ] -> ( match (int_of_string_opt w, int_of_string_opt h) with Some w, Some h -> Some (w, h) | _ -> None)
   | _ -> None
 
-let handler f = Dom_html.handler (fun e -> f e; Js._true)
+let handler f = Dom_html.handler (fun e -> guard (fun () -> f e); Js._true)
 
 let () =
   editor##.value := Js.string Default_scene.text;
@@ -184,10 +223,13 @@ let () =
   canvas##.onkeydown :=
     Dom_html.handler (fun e ->
         let key = Js.Optdef.case e##.key (fun () -> "") Js.to_string in
-        match Key.to_char key with
-        | Some c when (not (Js.to_bool e##.ctrlKey || Js.to_bool e##.altKey || Js.to_bool e##.metaKey)) && on_input (View.Key c) ->
-            Js._false (* handled: no scrolling by the arrows *)
-        | _ -> Js._true);
+        let handled = ref false in
+        guard (fun () ->
+            match Key.to_char key with
+            | Some c when not (Js.to_bool e##.ctrlKey || Js.to_bool e##.altKey || Js.to_bool e##.metaKey) ->
+                handled := on_input (View.Key c)
+            | _ -> ());
+        if !handled then Js._false (* handled: no scrolling by the arrows *) else Js._true);
   (* Dragging turns the camera so that the picture follows the pointer. *)
   let last = ref None in
   canvas##.onmousedown :=
@@ -209,7 +251,7 @@ let () =
     Js.Unsafe.obj
       Js.Unsafe.
         [|
-          ("finished", inject (Js.bool (Session.finished session)));
+          ("finished", inject (Js.bool (Session.finished session || !broken)));
           ("frame", inject (Js.string (match frame with Some f -> Session.frame_text f | None -> "")));
           ("seconds", inject (match frame with Some f -> f.seconds | None -> -1.));
           ("traceSeconds", inject (match frame with Some f -> f.trace_seconds | None -> -1.));
@@ -219,15 +261,19 @@ let () =
           ("height", inject view.scene.height);
           ("samples", inject (Session.samples session));
           ("bands", inject (Session.bands session));
+          ("sliceSoFar", inject (Session.longest_slice session));
           ("error", inject error_line##.textContent);
+          ("stopped", inject (Js.string (Option.value (Session.stopped session) ~default:"")));
+          ("broken", inject (Js.bool !broken));
           ("shown", inject (Js.string (Session.shown_text session)));
         |]
   in
   let advance n =
-    for _ = 1 to n do
-      paint (Session.image session) (Session.step session ~until:neg_infinity)
-    done;
-    show_frame ()
+    guard (fun () ->
+        for _ = 1 to n do
+          paint (Session.image session) (Session.step session ~until:neg_infinity)
+        done;
+        show_frame ())
   in
   Js.Unsafe.set Dom_html.window "raytrace"
     (Js.Unsafe.obj

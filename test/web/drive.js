@@ -26,6 +26,10 @@
 //   release           let frames advance by themselves again
 //   probe:NAME        until the frame is finished, ask the page its state
 //                     every few ms; NAME.txt: one line per answer, "finished bands"
+//   answers:NAME      for about two seconds, every 100 ms, time how long the
+//                     page takes to answer (its state, read in its own
+//                     thread); NAME.txt: one line per answer, "MS finished
+//                     SECONDS", the last the longest slice of the frame so far
 //   download:NAME     click the download link; NAME.png is what it gives
 //   savekey:NAME      press s on the canvas; NAME.png is the download it starts
 //   screenshot:FILE   a PNG of the page
@@ -141,6 +145,17 @@ async function run(page, step) {
         lines.push(`${s.finished} ${s.bands}`);
         if (s.finished) break;
         await new Promise((r) => setTimeout(r, 5));
+      }
+      fs.writeFileSync(path.join(outDir, arg + '.txt'), lines.join('\n') + '\n');
+      return;
+    }
+    case 'answers': {
+      const lines = [];
+      for (let i = 0; i < 20; i++) {
+        const t0 = Date.now();
+        const s = await state(page);
+        lines.push(`${Date.now() - t0} ${s.finished} ${s.sliceSoFar}`);
+        await new Promise((r) => setTimeout(r, 100));
       }
       fs.writeFileSync(path.join(outDir, arg + '.txt'), lines.join('\n') + '\n');
       return;
