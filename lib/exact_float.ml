@@ -55,6 +55,4 @@ let sign a =
   let x = last a in
   if x > 0. then 1 else if x < 0. then -1 else 0
 
-let approx a = List.fold_left ( +. ) 0. a
-
 let compare_fractions n1 d1 n2 d2 = sign (sub (mul n1 d2) (mul n2 d1)) * sign d1 * sign d2

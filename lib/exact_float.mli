@@ -38,10 +38,6 @@ val mul : t -> t -> t
 val sign : t -> int
 (** [sign a] is [-1], [0] or [1], the sign of [a]'s exact value. *)
 
-val approx : t -> float
-(** [approx a] is [a]'s value rounded (its largest component plus the
-    others, summed in increasing magnitude). *)
-
 val compare_fractions : t -> t -> t -> t -> int
 (** [compare_fractions n1 d1 n2 d2] is the sign of [n1 / d1 - n2 / d2],
     exactly. [d1] and [d2] must not be zero. *)

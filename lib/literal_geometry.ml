@@ -31,11 +31,22 @@ let abs_dot (a : Vec3.t) (b : Vec3.t) = (Float.abs a.x *. b.x) +. (Float.abs a.y
    of the plane through o, p and o + d the point q lies. The float value's
    error is below 7u of the sum of its terms' magnitudes (Shewchuk's
    orient3d bound; here one column is exact): 64u is a wide margin. *)
-let orient ~(o : Vec3.t) ~(d : Vec3.t) p q =
-  let a = Vec3.sub p o and b = Vec3.sub q o in
-  let v = Vec3.dot d (Vec3.cross a b) in
-  let bound = 64. *. u *. abs_dot d (abs_cross a b) in
-  filtered v bound (fun () -> edot (evec d) (ecross (ediff p o) (ediff q o)))
+let orient ~(o : Vec3.t) ~(d : Vec3.t) (p : Vec3.t) (q : Vec3.t) =
+  (* Written out on floats: a mesh's every triangle asks it four times per
+     ray, and the filter nearly always decides. *)
+  let ax = p.x -. o.x and ay = p.y -. o.y and az = p.z -. o.z in
+  let bx = q.x -. o.x and by = q.y -. o.y and bz = q.z -. o.z in
+  let cx = (ay *. bz) -. (az *. by) and cy = (az *. bx) -. (ax *. bz) and cz = (ax *. by) -. (ay *. bx) in
+  let v = (d.x *. cx) +. (d.y *. cy) +. (d.z *. cz) in
+  let m =
+    (Float.abs d.x *. (Float.abs (ay *. bz) +. Float.abs (az *. by)))
+    +. (Float.abs d.y *. (Float.abs (az *. bx) +. Float.abs (ax *. bz)))
+    +. (Float.abs d.z *. (Float.abs (ax *. by) +. Float.abs (ay *. bx)))
+  in
+  let bound = 64. *. u *. m in
+  if v > bound && bound > tiny then 1
+  else if v < -.bound && bound > tiny then -1
+  else Exact_float.sign (edot (evec d) (ecross (ediff p o) (ediff q o)))
 
 (* The sign of component [k] of (q - p) x d. *)
 let cross_component k ~(d : Vec3.t) (p : Vec3.t) (q : Vec3.t) =
@@ -100,7 +111,7 @@ let sphere_normal (s : Sphere.t) p =
 
 (* [num / den] with [num] and [den] rounded within [en] and [ed]: an
    enclosure of the exact quotient, or none where [den] may be 0. *)
-let enclosure t ~num:_ ~den ~en ~ed =
+let enclosure t ~den ~en ~ed =
   if Float.abs den > 2. *. ed && Float.is_finite t then
     let e = 2. *. (((en +. (Float.abs t *. (1. +. u) *. ed)) /. (Float.abs den -. ed)) +. (u *. Float.abs t)) in
     (Float.pred (t -. e), Float.succ (t +. e))
@@ -118,7 +129,7 @@ let plane_key (p : Plane.t) ~origin ~direction =
     if not (Float.is_finite t) then None
     else
       let abs_n = Vec3.v (Float.abs n.x) (Float.abs n.y) (Float.abs n.z) in
-      let lo, hi = enclosure t ~num ~den ~en:(16. *. u *. abs_dot f abs_n) ~ed:(16. *. u *. abs_dot direction abs_n) in
+      let lo, hi = enclosure t ~den ~en:(16. *. u *. abs_dot f abs_n) ~ed:(16. *. u *. abs_dot direction abs_n) in
       Some
         {
           t;
@@ -128,7 +139,6 @@ let plane_key (p : Plane.t) ~origin ~direction =
           den = lazy (edot (evec direction) n_exact);
         }
 
-let plane_root p ~origin ~direction = match plane_key p ~origin ~direction with Some k -> k.t | None -> infinity
 let plane_normal (p : Plane.t) = Vec3.unit p.normal
 
 (* {1 Triangles} *)
@@ -146,7 +156,7 @@ let triangle_key ~origin ~direction a b c =
   let num = Vec3.dot f n and den = Vec3.dot direction n in
   let en = 16. *. u *. abs_dot f big and ed = 16. *. u *. abs_dot direction big in
   let t = num /. den in
-  let lo, hi = enclosure t ~num ~den ~en ~ed in
+  let lo, hi = enclosure t ~den ~en ~ed in
   let n_exact = lazy (ecross (ediff b a) (ediff c a)) in
   {
     t;

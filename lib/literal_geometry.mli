@@ -59,11 +59,6 @@ val plane_key : Plane.t -> origin:Vec3.t -> direction:Vec3.t -> key option
     with the unit normal; [None] if [<D, n> = 0] exactly or the float
     quotient is not finite. *)
 
-val plane_root : Plane.t -> origin:Vec3.t -> direction:Vec3.t -> float
-(** [plane_root p ~origin ~direction] is [<P0 - O, n> / <D, n>] ([n] the
-    unit normal), or [infinity] if [<D, n> = 0] exactly (for the given
-    normal) or the quotient is not finite. *)
-
 val plane_normal : Plane.t -> Vec3.t
 (** [plane_normal p] is [p]'s normal divided by its length. *)
 
@@ -146,8 +141,8 @@ val csg_hit :
     floats), classified by [c]'s boolean expression on the leaves just
     before and just after it; of crossings at the same parameter, the
     leftmost leaf's. [tested n] is called for every [n] tests done (one
-    per sphere or box leaf, one per mesh triangle) before they are done.
-    @raise Invalid_argument never; exceptions of [tested] pass through. *)
+    per sphere or box leaf, one per mesh triangle) before they are done;
+    an exception it raises stops the search and passes through. *)
 
 (** {1:patterns Patterns} *)
 

@@ -1,6 +1,6 @@
 (* Constructive solid geometry: the (csg ...) form read, printed back and
    refused with its position; the kernel's interval method against the
-   literal algorithm (Csg.literal_hit, through Literal) colour float by
+   literal algorithm (Literal's own, Literal_geometry.csg_hit) colour float by
    colour float on random scenes; silhouettes of small far CSG solids
    against exact rational arithmetic; the subtracted solid's normals;
    shadows through holes; no self-shadowing at any scale; no allocation

@@ -293,3 +293,81 @@ let mesh_tests =
   ]
 
 let tests = tests @ exact_tests @ mesh_tests
+
+(* {1 Where the kernel and the oracle were seen to disagree} *)
+
+let qv (v : Vec3.t) = (Q.of_float v.x, Q.of_float v.y, Q.of_float v.z)
+let qsub (ax, ay, az) (bx, by, bz) = Q.(sub ax bx, sub ay by, sub az bz)
+let qcross (ax, ay, az) (bx, by, bz) = Q.(sub (mul ay bz) (mul az by), sub (mul az bx) (mul ax bz), sub (mul ax by) (mul ay bx))
+let qdot (ax, ay, az) (bx, by, bz) = Q.(add (add (mul ax bx) (mul ay by)) (mul az bz))
+
+(* The exact edge function <D, (p - O) x (q - O)>. *)
+let edge ~o ~d p q = qdot (qv d) (qcross (qsub (qv p) (qv o)) (qsub (qv q) (qv o)))
+
+let disagreement_tests =
+  [
+    Alcotest.test_case "a shadow ray 2^-49 outside a triangle's edge misses it, as exact arithmetic says" `Quick (fun () ->
+        (* The floor point (-1.2, -1, 4) as rounded, toward the light
+           (2, 3, 0): in decimal the ray meets the edge from (-2, -1, 2) to
+           (2, 1, 6) at t = 1/6; as rounded it passes beside it, the edge
+           function 2^-49 against the other two's -28.8 and -14.4. *)
+        let o = Vec3.v (-1.2) (-1.) 4. in
+        let d = Vec3.sub (Vec3.v 2. 3. 0.) o in
+        let a = Vec3.v (-2.) (-1.) 2. and b = Vec3.v 2. 1. 6. and c = Vec3.v 0. 1.5 4. in
+        Alcotest.(check string) "exact edge function of a b" (Q.to_string (Q.of_ints 1 562949953421312)) (Q.to_string (edge ~o ~d a b));
+        Alcotest.(check bool) "the others negative" true (Q.sign (edge ~o ~d b c) < 0 && Q.sign (edge ~o ~d c a) < 0);
+        let tri = Shape.Triangle (Triangle.v a b c (Material.v Color.white)) in
+        let s = Scene.v ~epsilon:0.001 ~spheres:[] ~shapes:[ tri ] ~lights:[] () in
+        Alcotest.(check bool) "the oracle: no blocker" true (Literal.closest_hit s ~origin:o ~direction:d ~t_min:0.001 ~t_max:1. = None));
+    Alcotest.test_case "a ray beside a mesh's silhouette vertex hits the triangle it meets first, exactly" `Quick
+      (fun () ->
+        (* Along (1/4 - 2^-55, 0, 1) the line passes 2^-53 inside the
+           octahedron's vertex (1, 0, 4), in the plane y = 0: it enters
+           through the front edge to it at z = 4 - 16/3 2^-55 (about) and
+           leaves through the back edge at z = 4 + 16/5 2^-55, both 4 once
+           rounded. Front: triangles 4 and 7; back: 0 and 3, listed first.
+           The nearest exactly is triangle 4. *)
+        let d = Vec3.v (Float.pred 0.25) 0. 1. in
+        let s = Scene.v ~epsilon:0.001 ~spheres:[] ~shapes:[ Shape.Mesh octahedron ] ~lights:[] () in
+        let hits =
+          List.filter
+            (fun k ->
+              Literal_geometry.triangle_root ~origin:Vec3.zero ~direction:d (Mesh.vertex octahedron k 0)
+                (Mesh.vertex octahedron k 1) (Mesh.vertex octahedron k 2)
+              < infinity)
+            (List.init (Mesh.triangle_count octahedron) Fun.id)
+        in
+        Alcotest.(check (list int)) "the triangles met" [ 0; 3; 4; 7 ] hits;
+        match Literal.closest_hit s ~origin:Vec3.zero ~direction:d ~t_min:1. ~t_max:infinity with
+        | Some (Literal.Mesh_triangle (_, k), _) -> Alcotest.(check int) "the first met" 4 k
+        | _ -> Alcotest.fail "no triangle");
+  ]
+
+let tests = tests @ disagreement_tests
+
+(* Floats of every magnitude from 2^-40 to 2^40, either sign, some equal
+   or nearly: where an exact sign is hard. *)
+let hard_float =
+  QCheck.Gen.(
+    map3
+      (fun m e s -> (if s then -1. else 1.) *. Float.ldexp (1. +. m) e)
+      (oneof [ return 0.; return 0.5; float_bound_inclusive 1. ])
+      (int_range (-40) 40) bool)
+
+let exact_float_tests =
+  [
+    Helpers.qcheck ~count:2000 "exact signs of a b - c d and of fractions are the rationals' signs"
+      QCheck.(make Gen.(pair (pair hard_float hard_float) (pair hard_float hard_float)))
+      (fun ((a, b), (c, d)) ->
+        let e = Exact_float.of_float in
+        let q = Q.of_float in
+        Exact_float.sign (Exact_float.sub (Exact_float.mul (e a) (e b)) (Exact_float.mul (e c) (e d)))
+        = Q.sign Q.(sub (mul (q a) (q b)) (mul (q c) (q d)))
+        && Exact_float.sign (Exact_float.sub (Exact_float.diff a b) (Exact_float.diff c d))
+           = Q.sign Q.(sub (sub (q a) (q b)) (sub (q c) (q d)))
+        && (b = 0. || d = 0.
+           || Exact_float.compare_fractions (Exact_float.diff a c) (e b) (Exact_float.diff c a) (e d)
+              = Q.compare Q.(div (sub (q a) (q c)) (q b)) Q.(div (sub (q c) (q a)) (q d))));
+  ]
+
+let tests = tests @ exact_float_tests
