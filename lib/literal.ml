@@ -1,17 +1,25 @@
-(* Ray-sphere tests done since the last [render] began, checked against
-   the work bound after each column of the canvas. *)
-let tests = ref 0
+(* The document's algorithm, and every extension, from the definitions.
+   The geometry (roots, normals, inside tests, CSG membership, mesh
+   parity, refraction, pattern cells) is Literal_geometry's, which calls
+   no routine of the kernel. *)
+module G = Literal_geometry
 
-(* The work bound of the [render] under way, for the ray tree. *)
-let tree_budget = ref max_int
+(* Ray-object tests done since the last [render] began, and the bound
+   they may not pass: every test is counted as it is done, and the count
+   checked there. *)
+let tests = ref 0
+let budget = ref max_int
+
+let tested n =
+  tests := !tests + n;
+  if !tests > !budget then raise (Limits.Work_exceeded !tests)
 
 let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
-  tests := !tests + List.length spheres;
   let closest = ref None and closest_t = ref infinity in
   List.iter
     (fun sphere ->
-      let a, b, c = Sphere.quadratic sphere ~origin ~direction in
-      let t1, t2 = Sphere.textbook_roots a b c in
+      tested 1;
+      let t1, t2 = G.sphere_textbook_roots sphere ~origin ~direction in
       if t1 < !closest_t && t_min < t1 && t1 < t_max then begin
         closest_t := t1;
         closest := Some sphere
@@ -23,81 +31,61 @@ let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
     spheres;
   match !closest with Some sphere -> Some (sphere, !closest_t) | None -> None
 
-(* A CSG solid's hit is a point of one of its leaves: its material, and
-   the solid's outward normal there. *)
-type obj = Sphere of Sphere.t | Shape of Shape.t | Mesh_triangle of Mesh.t * int | Csg_surface of Csg.t * Csg.solid * Vec3.t
+type obj = Sphere of Sphere.t | Shape of Shape.t * Vec3.t | Mesh_triangle of Mesh.t * int | Csg_surface of Csg.t * Csg.solid * Vec3.t
 
 let material = function
   | Sphere s -> Material.of_sphere s
-  | Shape sh -> Shape.material sh
+  | Shape (Shape.Plane p, _) -> p.material
+  | Shape (Shape.Triangle t, _) -> t.material
+  | Shape (Shape.Box b, _) -> b.material
+  | Shape ((Shape.Mesh _ | Shape.Csg _), _) -> invalid_arg "Literal.material: not a single surface"
   | Mesh_triangle (m, _) -> m.material
-  | Csg_surface (_, l, _) -> Csg.leaf_material l
+  | Csg_surface (_, Csg.Sphere s, _) -> Material.of_sphere s
+  | Csg_surface (_, Csg.Box b, _) -> b.material
+  | Csg_surface (_, Csg.Mesh m, _) -> m.material
+  | Csg_surface (_, Csg.Csg _, _) -> invalid_arg "Literal.material: a CSG node is not a leaf"
 
 (* The medium inside an object: a CSG solid is one medium, its first
-   operand's (leftmost leaf's) material, as in the kernel. *)
-let medium_material = function Csg_surface (c, _, _) -> List.hd (Csg.materials c) | obj -> material obj
+   operand's (leftmost leaf's) material. *)
+let medium_material = function
+  | Csg_surface (c, _, n) -> material (Csg_surface (c, List.hd (G.leaves c), n))
+  | obj -> material obj
 
-(* A mesh is its triangles, in order, less the degenerate ones (no ray
-   can hit them). Each object comes with its geometry as the kernel's
-   routine reads it (Shape.store), made once per list of shapes: a mesh
-   has thousands of triangles, and every ray tests them all. *)
-let objects_of_shape = function
-  | Shape.Mesh m ->
-      List.filter_map
-        (fun k -> if Mesh.degenerate m k then None else Some (Mesh_triangle (m, k), Shape.Triangle (Mesh.triangle m k)))
-        (List.init (Mesh.triangle_count m) Fun.id)
-  | sh -> [ (Shape sh, sh) ]
+(* The objects other than spheres, each with the number of its shape in
+   the scene's list (a mesh's triangles share theirs, and are listed with
+   their corners), made once per list of shapes. *)
+type item =
+  | Plane_item of Plane.t
+  | Triangle_item of Triangle.t
+  | Box_item of Box.t
+  | Facet_item of Mesh.t * int * Vec3.t * Vec3.t * Vec3.t
+  | Csg_item of Csg.t
 
-let table shape =
-  let g = Array.make Shape.stride 0. in
-  (match shape with Shape.Csg _ -> () | _ -> Shape.store shape g 0);
-  g
+let items_of_shape = function
+  | Shape.Plane p -> [ Plane_item p ]
+  | Shape.Triangle t -> [ Triangle_item t ]
+  | Shape.Box b -> [ Box_item b ]
+  | Shape.Mesh m -> List.init (Mesh.triangle_count m) (fun k -> Facet_item (m, k, Mesh.vertex m k 0, Mesh.vertex m k 1, Mesh.vertex m k 2))
+  | Shape.Csg c -> [ Csg_item c ]
 
-let objects_cache = ref ([], [||])
+let items_cache = ref ([], [||])
 
-(* Each object comes with the number of its shape in the list (a mesh's
-   triangles share theirs). *)
-let objects (shapes : Shape.t list) =
-  match !objects_cache with
-  | cached, objects when cached == shapes -> objects
+let items (shapes : Shape.t list) =
+  match !items_cache with
+  | cached, items when cached == shapes -> items
   | _ ->
-      let objects =
-        Array.of_list
-          (List.concat
-             (List.mapi (fun k sh -> List.map (fun (o, s) -> (o, s, table s, k)) (objects_of_shape sh)) shapes))
-      in
-      objects_cache := (shapes, objects);
-      objects
+      let items = Array.of_list (List.concat (List.mapi (fun k sh -> List.map (fun i -> (i, k)) (items_of_shape sh)) shapes)) in
+      items_cache := (shapes, items);
+      items
 
-let scratch = Scratch.create ()
-
-(* The roots of [shape] (stored in [g]) by its module's routine. *)
-let roots shape g ~origin ~direction =
-  Scratch.set_ray scratch origin direction;
-  let hit =
-    match shape with
-    | Shape.Plane _ -> Plane.roots scratch g 0
-    | Shape.Triangle _ -> Triangle.roots scratch g 0
-    | Shape.Box _ -> Box.roots scratch g 0
-    | Shape.Mesh _ -> invalid_arg "Literal.roots: a mesh is its triangles"
-    | Shape.Csg _ -> invalid_arg "Literal.roots: a CSG solid has its own literal algorithm"
-  in
-  if hit then (scratch.near, scratch.far) else (infinity, infinity)
-
-(* The spheres first, then the other shapes, each root compared with a
-   strict [<]: of equal roots, the first object in that order wins. *)
 (* The position of [x] in [l], by physical equality: of spheres given
    twice, the first is the one hit. *)
 let position x l =
   let rec go k = function y :: rest -> if y == x then k else go (k + 1) rest | [] -> -1 in
   go 0 l
 
-(* The closest hit with its object's number: the spheres in order, then
-   the shapes, a mesh one number (the numbers of the kernel's materials,
-   which name the media a ray is in). *)
-(* The oracle reads spheres as the document's list. The scene's compact
-   spheres are listed once per scene, not once per ray: the last list is
-   kept, with the spheres it lists. *)
+(* The scene's compact spheres are listed once per scene, not once per
+   ray: the last list is kept, with the spheres it lists. *)
 let last_listed = ref (Spheres.empty, [])
 
 let sphere_list spheres =
@@ -109,94 +97,126 @@ let sphere_list spheres =
     l
   end
 
+(* The roots of an item, nearer first, each with its object. *)
+let item_roots item ~origin ~direction ~t_min ~t_max =
+  match item with
+  | Plane_item p -> (
+      tested 1;
+      match G.plane_key p ~origin ~direction with Some k -> [ (k, Shape (Shape.Plane p, G.plane_normal p)) ] | None -> [])
+  | Triangle_item tri -> (
+      tested 1;
+      match G.triangle_hit ~origin ~direction tri.v0 tri.v1 tri.v2 with
+      | Some k -> [ (k, Shape (Shape.Triangle tri, G.triangle_normal tri.v0 tri.v1 tri.v2)) ]
+      | None -> [])
+  | Facet_item (m, k, a, b, c) -> (
+      tested 1;
+      match G.triangle_hit ~origin ~direction a b c with Some key -> [ (key, Mesh_triangle (m, k)) ] | None -> [])
+  | Box_item b -> (
+      tested 1;
+      match G.box_hit b ~origin ~direction with
+      | Some h -> [ (h.enter, Shape (Shape.Box b, h.enter_normal)); (h.exit, Shape (Shape.Box b, h.exit_normal)) ]
+      | None -> [])
+  | Csg_item c -> (
+      match G.csg_hit ~tested c ~origin ~direction ~t_min ~t_max with
+      | Some h -> [ (h.key, Csg_surface (c, h.leaf, h.normal)) ]
+      | None -> [])
+
+(* The closest hit with its object's number: the spheres in order, then
+   the shapes, a mesh one number (the numbers name the media a ray is
+   in). Roots are ordered exactly, strictly: of equal roots, the first
+   object in that order wins. *)
 let closest_numbered (scene : Scene.t) ~origin ~direction ~t_min ~t_max =
   let spheres = sphere_list scene.spheres in
   let best =
     match closest_intersection spheres ~origin ~direction ~t_min ~t_max with
-    | Some (sphere, t) -> Some (Sphere sphere, position sphere spheres, t)
+    | Some (sphere, t) -> Some (Sphere sphere, position sphere spheres, G.key_of_float t)
     | None -> None
   in
   let n_spheres = Spheres.length scene.spheres in
-  Array.fold_left
-    (fun best (obj, shape, g, k) ->
-      incr tests;
-      let best_t = match best with Some (_, _, t) -> t | None -> infinity in
-      match shape with
-      | Shape.Csg c -> (
-          match Csg.literal_hit c ~origin ~direction ~t_min ~t_max with
-          | Some (t, l, n) when t < best_t -> Some (Csg_surface (c, l, n), n_spheres + k, t)
-          | _ -> best)
-      | _ ->
-          let near, far = roots shape g ~origin ~direction in
-          if near < best_t && t_min < near && near < t_max then Some (obj, n_spheres + k, near)
-          else if far < best_t && t_min < far && far < t_max then Some (obj, n_spheres + k, far)
-          else best)
-    best (objects scene.shapes)
+  let best =
+    Array.fold_left
+      (fun best (item, k) ->
+        (* The range on the rounded parameter, as the document's: a ray
+           continued from a hit at [t] never meets that surface there
+           again. *)
+        let in_range ((t : G.key), _) =
+          t_min < t.t && t.t < t_max && match best with Some (_, _, b) -> G.compare_keys t b < 0 | None -> true
+        in
+        match List.find_opt in_range (item_roots item ~origin ~direction ~t_min ~t_max) with
+        | Some (t, obj) -> Some (obj, n_spheres + k, t)
+        | None -> best)
+      best (items scene.shapes)
+  in
+  Option.map (fun (obj, id, (t : G.key)) -> (obj, id, t.t)) best
 
 let closest_hit scene ~origin ~direction ~t_min ~t_max =
   Option.map (fun (obj, _, t) -> (obj, t)) (closest_numbered scene ~origin ~direction ~t_min ~t_max)
 
-(* A sphere's normal points out of it, as in the document; a plane's or a
-   triangle's, and a box's (outward), is turned toward the ray, so that
-   they are lit from the side they are seen from. *)
+(* A corner's normal, divided by its length, if it has one that can be. *)
+let corner_normal (m : Mesh.t) k c =
+  let j = m.triangle_normals.((3 * k) + c) in
+  if j < 0 then None
+  else
+    let n = Vec3.v m.normals.(3 * j) m.normals.((3 * j) + 1) m.normals.((3 * j) + 2) in
+    let l = Vec3.norm n in
+    if l > 0. && Float.is_finite l && Float.is_finite (1. /. l) then Some (Vec3.smul (1. /. l) n) else None
+
+let turn n direction = if Vec3.dot n direction > 0. then Vec3.neg n else n
+
+(* A sphere's normal points out of it, as in the document; the others'
+   are turned toward the ray, so that they are lit from the side they are
+   seen from. A smooth triangle's is turned as its flat normal is. *)
 let normal obj ~point ~direction =
   match obj with
-  | Sphere sphere -> Sphere.normal sphere point
-  | Shape shape ->
-      let n = Shape.normal shape point in
-      if Vec3.dot n direction > 0. then Vec3.neg n else n
-  | Csg_surface (_, _, n) -> if Vec3.dot n direction > 0. then Vec3.neg n else n
+  | Sphere sphere -> G.sphere_normal sphere point
+  | Shape (_, n) | Csg_surface (_, _, n) -> turn n direction
   | Mesh_triangle (m, k) -> (
-      let tri = Mesh.triangle m k in
-      let n = Shape.normal (Shape.Triangle tri) point in
+      let a = Mesh.vertex m k 0 and b = Mesh.vertex m k 1 and c = Mesh.vertex m k 2 in
+      let n = G.triangle_normal a b c in
       let flip = Vec3.dot n direction > 0. in
-      let turn n = if flip then Vec3.neg n else n in
-      (* Smooth: the corners' normals interpolated at the point, on the
-         side the ray sees. *)
-      let g = Array.make 9 0. and vn = Array.make 9 0. in
-      Triangle.store tri g 0;
-      let s = Scratch.create () in
-      s.px <- point.x;
-      s.py <- point.y;
-      s.pz <- point.z;
-      match Mesh.corner_normals m k vn 0 && Triangle.smooth_normal s g 0 vn 0 3 6 with
-      | true -> turn (Vec3.v s.nx s.ny s.nz)
-      | false -> turn n)
+      let turned n = if flip then Vec3.neg n else n in
+      let smooth =
+        if not m.smooth then None
+        else
+          match (corner_normal m k 0, corner_normal m k 1, corner_normal m k 2) with
+          | Some na, Some nb, Some nc -> G.smooth_normal a b c (na, nb, nc) point
+          | _ -> None
+      in
+      match smooth with Some s -> turned s | None -> turned n)
 
-(* Where an object's pattern lies ({!Shape.pattern_frame}); a mesh's, which
-   scans every vertex, is kept for the mesh's next triangle. *)
+(* {1 Pattern frames} *)
+
+let largest (v : Vec3.t) = Float.max (Float.abs v.x) (Float.max (Float.abs v.y) (Float.abs v.z))
+let sphere_frame (s : Sphere.t) = (Vec3.zero, 1., largest s.center +. s.radius)
+let box_frame (b : Box.t) = (b.min, 1., Float.max (largest b.min) (largest b.max))
+
+(* A mesh's frame scans every vertex: kept for the mesh's next triangle. *)
 let last_frame = ref None
 
+let mesh_frame (m : Mesh.t) =
+  match !last_frame with
+  | Some (m', f) when m' == m -> f
+  | _ ->
+      let f = (m.translate, m.scale, Array.fold_left (fun e x -> Float.max e (Float.abs x)) 0. m.positions) in
+      last_frame := Some (m, f);
+      f
+
+(* Where an object's pattern lies: its origin and scale, and its largest
+   coordinate (docs/scene-format.md, Patterns). *)
 let pattern_frame = function
-  | Sphere s -> Shape.leaf_pattern_frame (Csg.Sphere s)
-  | Shape sh -> Shape.pattern_frame sh
-  | Csg_surface (_, l, _) -> Shape.leaf_pattern_frame l
-  | Mesh_triangle (m, _) -> (
-      match !last_frame with
-      | Some (m', f) when m' == m -> f
-      | _ ->
-          let f = Shape.pattern_frame (Shape.Mesh m) in
-          last_frame := Some (m, f);
-          f)
+  | Sphere s | Csg_surface (_, Csg.Sphere s, _) -> sphere_frame s
+  | Shape (Shape.Plane p, _) -> (Vec3.zero, 1., Float.max (largest p.point) (largest (Vec3.unit p.normal)))
+  | Shape (Shape.Triangle t, _) -> (Vec3.zero, 1., Float.max (largest t.v0) (Float.max (largest t.v1) (largest t.v2)))
+  | Shape (Shape.Box b, _) | Csg_surface (_, Csg.Box b, _) -> box_frame b
+  | Mesh_triangle (m, _) | Csg_surface (_, Csg.Mesh m, _) -> mesh_frame m
+  | Shape ((Shape.Mesh _ | Shape.Csg _), _) | Csg_surface (_, Csg.Csg _, _) -> invalid_arg "Literal.pattern_frame"
 
 (* The colour the hit shows: the material's, or its pattern's second
-   colour, by the kernel's lookup. *)
+   colour. *)
 let local_color obj (m : Material.t) ~origin ~direction ~point ~normal =
   match m.pattern with
   | None -> m.color
-  | Some p ->
-      let origin', scale, extent = pattern_frame obj in
-      let table = Array.make Pattern.stride 0. in
-      Pattern.store p ~origin:origin' ~scale ~extent table 0;
-      let s = Scratch.create () in
-      Scratch.set_ray s origin direction;
-      s.px <- point.Vec3.x;
-      s.py <- point.y;
-      s.pz <- point.z;
-      s.nx <- normal.Vec3.x;
-      s.ny <- normal.y;
-      s.nz <- normal.z;
-      if Pattern.odd s table 0 then Pattern.color p else m.color
+  | Some p -> if G.odd p ~frame:(pattern_frame obj) ~origin ~direction ~point ~normal then Pattern.color p else m.color
 
 (* The light a shadow ray lets through transparent objects: the product
    of the transparency of each surface it crosses, nearest first, until an
@@ -268,27 +288,40 @@ let trace_ray (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~t_max ~depth
 
 (* Transparency (the book's chapter "Extending the Raytracer"), as a
    recursion. [media] lists the objects the ray is inside, innermost first,
-   by number, with their indices (at most [Ray_tree.media_cap]). Crossing
-   a surface of object [id] gives the indices on its near and far sides
-   and the media beyond it. *)
+   by number, with their indices; at most 16 nest (docs/scene-format.md).
+   Crossing a surface of object [id] gives the indices on its near and far
+   sides and the media beyond it. *)
+let media_cap = 16
+
 let cross media ~id ~index =
   let near = match media with (_, n) :: _ -> n | [] -> 1. in
   match media with
   | (top, _) :: under when top = id -> (near, (match under with (_, n) :: _ -> n | [] -> 1.), under)
   | _ when List.mem_assoc id media -> (near, near, List.remove_assoc id media)
-  | _ -> (near, index, if List.length media < Ray_tree.media_cap then (id, index) :: media else media)
+  | _ -> (near, index, if List.length media < media_cap then (id, index) :: media else media)
+
+(* Snell and Schlick at a hit; a smooth triangle's normal may send the
+   refracted ray back to the side it came from: then its flat normal,
+   turned toward the ray, splits it. *)
+let optics obj (m : Material.t) ~near ~far ~direction ~normal =
+  let facing = if Vec3.dot normal direction <= 0. then normal else Vec3.neg normal in
+  let sp = G.split ~n1:near ~n2:far ~fresnel:m.fresnel ~direction ~normal:facing in
+  match (obj, sp.refracted) with
+  | Mesh_triangle (mesh, k), Some t when mesh.smooth ->
+      let g = G.triangle_normal (Mesh.vertex mesh k 0) (Mesh.vertex mesh k 1) (Mesh.vertex mesh k 2) in
+      let g_dot_d = Vec3.dot g direction and g_dot_t = Vec3.dot g t in
+      if (g_dot_d > 0. && g_dot_t > 0.) || (g_dot_d < 0. && g_dot_t < 0.) then sp
+      else G.split ~n1:near ~n2:far ~fresnel:m.fresnel ~direction ~normal:(if g_dot_d > 0. then Vec3.neg g else g)
+  | _ -> sp
 
 (* The colour seen along a ray at bounce [level]: the hit's local colour
    weighted [1 - r - t], the reflected ray's [wr = r + t R] and the
-   refracted ray's [wt = t (1 - R)], [R] the reflectance of
-   [Ray_tree.split] (1 on total internal reflection). A surface that
-   changes nothing (transparency 1, the same index on both sides) is
-   crossed on the same ray, without a bounce. At [level = depth], or
-   without either ray, the local colour alone (section 7.8). *)
+   refracted ray's [wt = t (1 - R)], [R] the reflectance (1 on total
+   internal reflection). A surface that changes nothing (transparency 1,
+   the same index on both sides) is crossed on the same ray, without a
+   bounce. At [level = depth], or without either ray, the local colour
+   alone (section 7.8). *)
 let rec shade (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~level ~media =
-  (* A tree of 64 levels may have 2^64 rays: the work bound is checked at
-     every hit, not only after each column. *)
-  if !tests > !tree_budget then raise (Limits.Work_exceeded !tests);
   match closest_numbered scene ~origin ~direction ~t_min ~t_max:infinity with
   | None -> scene.background
   | Some (obj, id, t) ->
@@ -299,34 +332,12 @@ let rec shade (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~level ~media
         let point = Vec3.add origin (Vec3.smul t direction) in
         let normal = normal obj ~point ~direction in
         let view = Vec3.neg direction in
-        let optics = Array.make Ray_tree.optics_size 0. in
-        let reflectance =
-          if m.transparency > 0. then begin
-            let facing = if Vec3.dot normal direction <= 0. then normal else Vec3.neg normal in
-            List.iteri (fun i x -> optics.(i) <- x)
-              [ near; far; direction.x; direction.y; direction.z; facing.x; facing.y; facing.z ];
-            Ray_tree.split optics ~fresnel:m.fresnel;
-            (* A smooth triangle's normal may send the ray back to the side
-               it came from: then its flat normal, turned toward the ray. *)
-            (match obj with
-            | Mesh_triangle (mesh, k) when mesh.smooth && optics.(11) < 1. ->
-                let g = Shape.normal (Shape.Triangle (Mesh.triangle mesh k)) point in
-                let t = Vec3.v optics.(8) optics.(9) optics.(10) in
-                let g_dot_d = Vec3.dot g direction and g_dot_t = Vec3.dot g t in
-                if not ((g_dot_d > 0. && g_dot_t > 0.) || (g_dot_d < 0. && g_dot_t < 0.)) then begin
-                  let g = if g_dot_d > 0. then Vec3.neg g else g in
-                  optics.(5) <- g.x;
-                  optics.(6) <- g.y;
-                  optics.(7) <- g.z;
-                  Ray_tree.split optics ~fresnel:m.fresnel
-                end
-            | _ -> ());
-            optics.(11)
-          end
-          else 0.
+        let sp =
+          if m.transparency > 0. then optics obj m ~near ~far ~direction ~normal
+          else { G.refracted = None; reflectance = 0. }
         in
-        let wr = m.reflective +. (m.transparency *. reflectance) in
-        let wt = m.transparency *. (1. -. reflectance) in
+        let wr = m.reflective +. (m.transparency *. sp.reflectance) in
+        let wt = m.transparency *. (1. -. sp.reflectance) in
         let local () =
           Color.smul
             (lighting_through ~through:true scene ~epsilon ~point ~normal ~view ~specular:m.specular)
@@ -345,13 +356,11 @@ let rec shade (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~level ~media
               Color.add c (Color.smul wr reflected)
             else c
           in
-          if wt > 0. then
-            let refracted =
-              shade scene ~epsilon ~origin:point ~direction:(Vec3.v optics.(8) optics.(9) optics.(10)) ~t_min:epsilon
-                ~level:(level + 1) ~media:beyond
-            in
-            Color.add c (Color.smul wt refracted)
-          else c
+          match sp.refracted with
+          | Some direction when wt > 0. ->
+              let refracted = shade scene ~epsilon ~origin:point ~direction ~t_min:epsilon ~level:(level + 1) ~media:beyond in
+              Color.add c (Color.smul wt refracted)
+          | _ -> c
 
 let transparent (scene : Scene.t) =
   Spheres.exists (fun (s : Sphere.t) -> s.transparency > 0.) scene.spheres
@@ -370,11 +379,9 @@ let pixel (scene : Scene.t) gx gy =
 
 let render ?(limits = Limits.default) valid =
   let scene = Scene.of_valid valid in
-  let budget = Limits.work_budget limits in
   tests := 0;
-  (* Checked after each column, and by the ray tree at every hit. *)
-  Fun.protect ~finally:(fun () -> tree_budget := max_int) @@ fun () ->
-  tree_budget := budget;
+  Fun.protect ~finally:(fun () -> budget := max_int) @@ fun () ->
+  budget := Limits.work_budget limits;
   let img = Image.create scene.width scene.height in
   for gx = Canvas.min_x scene.width to Canvas.max_x scene.width do
     for gy = Canvas.min_y scene.height to Canvas.max_y scene.height do
@@ -383,7 +390,6 @@ let render ?(limits = Limits.default) valid =
         (Canvas.column ~width:scene.width gx)
         (Canvas.row ~height:scene.height gy)
         (Color.to_byte c.r) (Color.to_byte c.g) (Color.to_byte c.b)
-    done;
-    if !tests > budget then raise (Limits.Work_exceeded !tests)
+    done
   done;
   img

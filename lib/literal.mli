@@ -3,51 +3,99 @@
 
     This module follows the document (and, where it is silent, the CGFS
     demos that it summarises) step by step, with lists, boxed vectors and
-    options, and no shortcut: every sphere is tested for every ray, every
+    options, and no shortcut: every object is tested for every ray, every
     light casts a shadow ray, reflection recurses. It is slow on purpose and
     is kept as the oracle that the fast renderer ({!Render}) is tested
-    against. The arithmetic is done in the same order as the CGFS demos,
-    so that on the reference scene it reproduces their images byte for
-    byte.
+    against. The spheres' arithmetic is done in the same order as the CGFS
+    demos, so that on the reference scene it reproduces their images byte
+    for byte.
+
+    {b Independent of the kernel.} Every shape's hit, normal, inside test,
+    CSG membership and mesh parity, the refraction and Fresnel split of
+    glass and the pattern cells are computed here and in
+    {!Raytrace.Private.Literal_geometry}, from the definitions, by code
+    that shares nothing with the kernel's shape modules ({!Sphere},
+    {!Plane}, {!Triangle}, {!Box}, {!Mesh}, {!Csg}, {!Shape},
+    {!Pattern} are read for their data only; the ray tree's
+    {!Raytrace.Private.Ray_tree} is not used): a mistake in the kernel's shape
+    code cannot also be here. Every comparison that decides whether a ray
+    meets a triangle, a plane or a box, and the order of the crossings of
+    a CSG solid's boxes and meshes, is exact ({!Raytrace.Private.Exact_float}):
+
+    - a triangle (alone or in a mesh) is closed: a line through its edge or
+      vertex meets it, decided by the exact signs of its three edge
+      functions [det\[P - O, Q - O, D\]];
+    - a closed mesh as a CSG operand is inside after an odd number of
+      crossings, each counted by the same exact edge functions with a
+      consistent tie rule (the line moved by an infinitesimal, fixed per
+      ray, off every edge and vertex), so that a line through a shared
+      edge or vertex crosses the surface once, and one that touches it at
+      a fold crosses it twice or not at all;
+    - a box is the closed set [min <= P <= max]: a line touching an edge
+      or a corner meets it, and as a CSG operand, a line that only touches
+      it does not go in;
+    - a CSG solid's surface along a ray is found by classifying each
+      crossing of each leaf: the boolean expression on the leaves just
+      before and just after it (a leaf is inside between its entry and
+      exit, a mesh after an odd number of crossings); touching and
+      coincident intervals (two boxes sharing a face, seen from inside
+      their union) thus make no surface, and of two crossings at the
+      same parameter the leaf further left gives the surface.
+
+    A sphere's roots are the document's textbook formula; a sphere leaf of
+    a CSG solid uses the cancellation-free roots of Ray Tracing Gems,
+    chapter 7, as docs/numerics.md states for CSG solids; the
+    parameters [t] of hits are floats.
 
     It always uses the document's semantics: a scene without an epsilon is
-    traced with {!Scene.document_epsilon}. *)
+    traced with {!Scene.document_epsilon}.
+
+    {b Work.} Every ray-object test (a sphere, plane, triangle, box, a
+    mesh's triangle, a CSG solid's leaf or mesh triangle) is counted as it
+    is done and checked against the work bound of {!render}: a render
+    stops within one test of its bound. *)
 
 val closest_intersection :
   Sphere.t list -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float ->
   (Sphere.t * float) option
 (** [closest_intersection spheres ~origin ~direction ~t_min ~t_max] is the
     sphere hit first by the ray [P = O + t D] with [t_min < t < t_max], and
-    its [t] (section 6.1, roots by {!Sphere.textbook_roots}); [None] if the
-    ray hits nothing in that range. Of two spheres hit at the same [t], the
-    first in the list wins. *)
+    its [t] (section 6.1, [t1,2 = (-b +- sqrt (b^2 - 4ac)) / 2a]); [None] if
+    the ray hits nothing in that range. Of two spheres hit at the same [t],
+    the first in the list wins. *)
 
 type obj =
   | Sphere of Sphere.t
-  | Shape of Shape.t  (** A plane, a triangle or a box. *)
+  | Shape of Shape.t * Vec3.t
+      (** A plane, a triangle or a box, and its unit normal at the hit: the
+          plane's and the triangle's as given ([(v1 - v0) x (v2 - v0)]), the
+          outward normal of the box's face that the ray crosses there. *)
   | Mesh_triangle of Mesh.t * int  (** Triangle [k] of a mesh. *)
   | Csg_surface of Csg.t * Csg.solid * Vec3.t
       (** The point hit on a CSG solid: the solid, the leaf whose surface it is and the
-          solid's outward normal there ({!Csg.literal_hit}). *)
+          solid's outward normal there. *)
 (** The type for the objects of a scene: a mesh is one object per
-    triangle, less its degenerate ones. *)
+    triangle. *)
 
 val closest_hit :
   Scene.t -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float -> (obj * float) option
 (** [closest_hit scene ~origin ~direction ~t_min ~t_max] is the object of
     [scene] hit first by the ray [P = O + t D] with [t_min < t < t_max],
     and its [t]: the spheres by {!closest_intersection}, then the other
-    shapes by {!Shape.roots}, the nearer of its two roots that is in range,
-    a CSG solid by {!Csg.literal_hit}.
-    Of objects hit at the same [t], the first wins, spheres before shapes. *)
+    shapes in order, the nearer of a box's two roots that is in range.
+    The range is on the rounded [t] (so that a ray continued from a hit at
+    [t] does not meet that surface there again); the hits are ordered by
+    their exact parameters (a sphere's is its rounded root): of objects hit
+    at the same [t], the first wins, spheres before shapes. *)
 
 val normal : obj -> point:Vec3.t -> direction:Vec3.t -> Vec3.t
 (** [normal obj ~point ~direction] is the unit normal of [obj] at [point]
-    for a ray along [direction]: {!Sphere.normal} for a sphere (outward, as
-    in the document), and for the other shapes {!Shape.normal} turned
-    toward the ray ([-n] when [<n, D> > 0]); a mesh's smooth triangle
-    gives its corners' normals interpolated ({!Triangle.smooth_normal}),
-    turned as its flat normal is. *)
+    for a ray along [direction]: for a sphere [(P - C) * (1 / |P - C|)]
+    (outward, as in the document), for the other shapes their normal
+    turned toward the ray ([-n] when [<n, D> > 0]); a mesh's smooth
+    triangle gives its corners' normals weighted by the barycentric
+    coordinates of [point] (ratios of signed areas), turned as its flat
+    normal is. *)
 
 val compute_lighting :
   Scene.t -> epsilon:float -> point:Vec3.t -> normal:Vec3.t -> view:Vec3.t -> specular:float ->
@@ -56,7 +104,7 @@ val compute_lighting :
     total intensity [I_total] at [point] (sections 7.4 to 7.7): the ambient
     intensities plus, for each point or directional light that no object
     shadows, its diffuse term and (unless [specular] is {!Sphere.matte}) its
-    specular term. A sphere shadows a light if it meets the shadow ray
+    specular term. An object shadows a light if it meets the shadow ray
     [P + t L] with [epsilon < t < Light.shadow_t_max]. A point light
     located exactly at [point] ([L = 0]) is skipped: it has no direction. *)
 
@@ -65,9 +113,9 @@ val trace_ray :
   depth:int -> Color.t
 (** [trace_ray scene ~epsilon ~origin ~direction ~t_min ~t_max ~depth] is the
     unclamped colour seen along the ray: the background if it hits nothing,
-    else the hit sphere's colour times the lighting at the hit point,
+    else the hit object's colour times the lighting at the hit point,
     blended with the colour seen along the mirror ray (section 7.8,
-    [t > epsilon], [depth - 1]) when the sphere is reflective and
+    [t > epsilon], [depth - 1]) when the object is reflective and
     [depth > 0]. *)
 
 val pixel : Scene.t -> int -> int -> Color.t
@@ -77,13 +125,14 @@ val pixel : Scene.t -> int -> int -> Color.t
     {!trace_ray}; or, when some object has [transparency > 0], by the
     ray tree of the book's chapter "Extending the Raytracer", as a
     recursion: at each hit [local (1 - r - t) + reflected wr +
-    refracted wt] with [wr = r + t R], [wt = t (1 - R)] and the reflectance
-    [R] and refracted direction of {!Raytrace.Private.Ray_tree.split}
-    (Snell's law; [R = 1] on total internal reflection; Schlick's when
-    [fresnel]), the indices those of the media the ray is in and enters
-    (the objects it is inside, innermost first), one depth for both kinds
-    of ray; shadow rays scaled by the transparency of every surface they
-    cross, nearest first; a surface of transparency 1 between equal
+    refracted wt] with [wr = r + t R], [wt = t (1 - R)], the refracted
+    direction by Snell's law [eta d + (eta c - cos t) n] and the
+    reflectance [R] ([R = 1] on total internal reflection; Schlick's
+    [R0 + (1 - R0) (1 - cos)^5] when [fresnel], the cosine on the side of
+    the lower index), the indices those of the media the ray is in and
+    enters (the objects it is inside, innermost first), one depth for both
+    kinds of ray; shadow rays scaled by the transparency of every surface
+    they cross, nearest first; a surface of transparency 1 between equal
     indices crossed on the same ray. docs/scene-format.md states the
     rules. *)
 
@@ -92,7 +141,7 @@ val render : ?limits:Limits.t -> Scene.valid -> Image.t
     (section 8), clamped and rounded by {!Color.to_byte}. Reflections are
     followed in a loop, not by recursion: any depth fits in the stack, and
     memory grows with the reflections of one ray (a few words a level).
-    @raise Limits.Work_exceeded once the ray-sphere tests counted so far
-    pass the work bound of [limits] (default {!Limits.default};
-    {!Limits.work_budget}), checked after each column of pixels, and at
-    every hit of a ray tree (a scene with transparency). *)
+    @raise Limits.Work_exceeded as soon as the ray-object tests counted so
+    far pass the work bound of [limits] (default {!Limits.default};
+    {!Limits.work_budget}): each test is counted and checked as it is done,
+    in every ray of every pixel. *)

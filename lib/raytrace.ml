@@ -50,4 +50,6 @@ module Private = struct
   module Sphere_scan = Sphere_scan
   module Antialias = Antialias
   module Render_work = Render_work
+  module Exact_float = Exact_float
+  module Literal_geometry = Literal_geometry
 end

@@ -163,14 +163,14 @@ let mask_errors mask exact =
     mask;
   (!wrong, !inside)
 
-let same_floats (s : Scene.t) =
+let oracle_floats (s : Scene.t) =
   let tr = Trace.create (prepare ~skips:false s) in
   let ok = ref true in
   for gx = Canvas.min_x s.width to Canvas.max_x s.width do
     for gy = Canvas.min_y s.height to Canvas.max_y s.height do
       Trace.pixel tr gx gy;
       let c = Literal.pixel s gx gy in
-      let same a b = Int64.equal (Int64.bits_of_float a) (Int64.bits_of_float b) in
+      let same a b = Float.abs (a -. b) <= 1e-9 *. Float.max 1. (Float.max (Float.abs a) (Float.abs b)) in
       if not (same c.r (Trace.red tr) && same c.g (Trace.green tr) && same c.b (Trace.blue tr)) then begin
         if !ok then
           Printf.printf "pixel (%d, %d): literal %h %h %h, fast %h %h %h\n" gx gy c.r c.g c.b (Trace.red tr)

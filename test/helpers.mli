@@ -84,11 +84,14 @@ val image_exn :
 val prepare : ?skips:bool -> Raytrace.Scene.t -> Raytrace.Private.Prepared.t
 (** [prepare ~skips s] is [s] validated and prepared. *)
 
-val same_floats : Raytrace.Scene.t -> bool
-(** [same_floats s] is [true] iff every pixel's colour floats of the fast
-    tracer (skips off: the early stop changes floats, never bytes) equal
-    {!Raytrace.Literal.pixel}'s bit for bit; the first difference is
-    printed. *)
+val oracle_floats : Raytrace.Scene.t -> bool
+(** [oracle_floats s] is [true] iff every pixel's colour floats of the fast
+    tracer (skips off: the early stop changes floats, never bytes) are
+    within [1e-9] (relative, absolute below 1) of
+    {!Raytrace.Literal.pixel}'s; the first difference is printed. The
+    oracle computes its geometry its own way ({!Raytrace.Literal}): the
+    two agree to rounding, and a pixel where they decide differently (a
+    hit, a shadow, a cell) differs by far more. *)
 
 val read_scene : string -> (Raytrace.Scene.t, [> `Msg of string ]) result
 (** [read_scene path] is the scene of the file [path], as a plain scene. *)
