@@ -289,14 +289,17 @@ let[@inline] leaf_interval w (s : Scratch.t) node base sf hit =
   end
   else Array.unsafe_set w.count node 0
 
-(* A closed mesh: its crossings along the line, sorted (insertion: a ray
-   crosses few triangles), paired as in, out, in, out... An odd count (a
-   ray through an edge, counted by both triangles) drops the last. *)
+(* A closed mesh: its crossings along the line, each counted once
+   ({!Triangle.crosses}: an even number), sorted (insertion: a ray crosses
+   few triangles), paired as in, out, in, out... An empty pair (a ray that
+   touches the surface) is dropped, and a pair that starts where the last
+   one ended (a ray that touches it from inside) extends it. An odd count,
+   which the rule excludes, would drop the last. *)
 let mesh_intervals tb w (s : Scratch.t) node base =
   let xt = w.xt and xs = w.xs in
   let n = ref 0 in
   for sf = Array.unsafe_get tb.left node to Array.unsafe_get tb.right node - 1 do
-    if Triangle.roots s tb.geom (stride * sf) then begin
+    if Triangle.crosses s tb.geom (stride * sf) then begin
       let t = s.near in
       let j = ref !n in
       while !j > 0 && Array.unsafe_get xt (!j - 1) > t do
@@ -312,7 +315,11 @@ let mesh_intervals tb w (s : Scratch.t) node base =
   let m = ref 0 in
   for j = 0 to (!n / 2) - 1 do
     let t0 = Array.unsafe_get xt (2 * j) and t1 = Array.unsafe_get xt ((2 * j) + 1) in
-    if t0 < t1 then begin
+    if !m > 0 && Array.unsafe_get w.t_out (base + !m - 1) = t0 then begin
+      Array.unsafe_set w.t_out (base + !m - 1) t1;
+      Array.unsafe_set w.s_out (base + !m - 1) (Array.unsafe_get xs ((2 * j) + 1))
+    end
+    else if t0 < t1 then begin
       Array.unsafe_set w.t_in (base + !m) t0;
       Array.unsafe_set w.t_out (base + !m) t1;
       Array.unsafe_set w.s_in (base + !m) (Array.unsafe_get xs (2 * j));
@@ -497,7 +504,7 @@ let literal_hit c ~origin ~direction ~t_min ~t_max =
                 (fun k ->
                   if Mesh.degenerate m k then None
                   else
-                    let t = Triangle.intersect (Mesh.triangle m k) ~origin ~direction in
+                    let t = Triangle.crossing (Mesh.triangle m k) ~origin ~direction in
                     if t < infinity then Some (t, i, k) else None)
                 (List.init (Mesh.triangle_count m) Fun.id)
             in

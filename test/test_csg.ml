@@ -213,6 +213,75 @@ let kernel_hit c ~origin ~direction =
     Some (t, Vec3.v s.nx s.ny s.nz, Csg.entering w)
   end
 
+
+(* {1 Closed meshes through their edges and vertices} *)
+
+(* The cube [-1, 1] x [-1, 1] x [4, 8] as a mesh of 12 triangles (each face
+   cut along a diagonal), and as the half-spaces [n . p <= b] that make it. *)
+let cube_arrays () =
+  let positions =
+    Array.concat
+      (List.map
+         (fun (x, y, z) -> [| x; y; z |])
+         [ (-1., -1., 4.); (1., -1., 4.); (1., 1., 4.); (-1., 1., 4.); (-1., -1., 8.); (1., -1., 8.); (1., 1., 8.); (-1., 1., 8.) ])
+  in
+  let quads = [ (0, 3, 2, 1); (4, 5, 6, 7); (0, 1, 5, 4); (3, 7, 6, 2); (0, 4, 7, 3); (1, 2, 6, 5) ] in
+  let triangles = Array.of_list (List.concat_map (fun (a, b, c, d) -> [ a; b; c; a; c; d ]) quads) in
+  (positions, triangles)
+
+let cube_planes = [ ((1., 0., 0.), 1.); ((-1., 0., 0.), 1.); ((0., 1., 0.), 1.); ((0., -1., 0.), 1.); ((0., 0., 1.), 8.); ((0., 0., -1.), -4.) ]
+
+(* The octahedron of [octahedron (Vec3.v 0. 0. 4.) 1.]: |x| + |y| + |z - 4| <= 1. *)
+let octahedron_planes =
+  List.concat_map
+    (fun sx -> List.concat_map (fun sy -> List.map (fun sz -> ((sx, sy, sz), 1. +. (4. *. sz))) [ 1.; -1. ]) [ 1.; -1. ])
+    [ 1.; -1. ]
+
+let mesh_solid (positions, triangles) =
+  match
+    Mesh.v ~positions ~triangles ~normals:[||] ~triangle_normals:(Array.make (Array.length triangles) (-1)) (Material.v white)
+  with
+  | Ok m -> Csg.Mesh m
+  | Error (`Msg e) -> Alcotest.fail e
+
+(* The exact line [origin + t direction] against the convex solid of
+   [planes]: `In if it passes through its inside, `Touch if it meets only
+   its surface, `Out if it misses it. Each half-space bounds [t] on one
+   side: [a t <= c]. *)
+let convex_class planes ~origin ~direction =
+  let o = qv origin and d = qv direction in
+  let lo = ref None and hi = ref None and parallel = ref `In in
+  List.iter
+    (fun ((nx, ny, nz), b) ->
+      let n = (q nx, q ny, q nz) in
+      let a = dot n d and c = Q.sub (q b) (dot n o) in
+      let sign = Q.sign a in
+      if sign = 0 then (if Q.sign c < 0 then parallel := `Out else if Q.sign c = 0 && !parallel = `In then parallel := `Touch)
+      else
+        let x = Q.div c a in
+        if sign > 0 then hi := Some (match !hi with Some h -> Q.min h x | None -> x)
+        else lo := Some (match !lo with Some l -> Q.max l x | None -> x))
+    planes;
+  match (!parallel, !lo, !hi) with
+  | `Out, _, _ -> `Out
+  | p, Some l, Some h -> if Q.lt h l then `Out else if Q.equal l h || p = `Touch then `Touch else `In
+  | p, _, _ -> p
+
+let csg_mask ?(classify = Fun.id) (scene : Scene.t) planes =
+  exact_mask scene (fun ~origin ~direction ->
+      match convex_class planes ~origin ~direction with `In -> `In | `Out -> `Out | `Touch -> classify `Out)
+
+(* Of a 64 x 64 canvas through the default viewport: every pixel's ray is
+   [(x / 64, y / 64, 1)], exact, and so is everything the triangle test
+   computes from these corners, small integers: the rays through the
+   edges and corners in the picture pass through them exactly. *)
+let through_edges shapes =
+  Scene.v ~width:64 ~height:64 ~spheres:[] ~shapes
+    ~lights:[ Light.ambient 0.3; Light.directional 0.7 (Vec3.v 1. 2. (-3.)) ]
+    ()
+
+let count_class cls mask = Array.fold_left (Array.fold_left (fun n c -> if c = cls then n + 1 else n)) 0 mask
+
 let stats (s : Scene.t) = match Helpers.render s with Ok (_, st) -> st | Error (`Msg m) -> Alcotest.fail m
 let load_octahedron _ =
   let positions, triangles = octahedron_arrays (Vec3.v 0. 0. 0.) 1. in
@@ -420,6 +489,68 @@ let tests =
           (List.concat_map
              (fun op -> [ (op, Vec3.zero); (op, Vec3.v 1e6 (-1e6) 1e6) ])
              [ Csg.Difference; Csg.Intersection; Csg.Union ]));
+    Alcotest.test_case
+      "a closed mesh as a CSG operand, seen through its shared edges and corners, is its exact solid: no seam, no lost pixel"
+      `Quick (fun () ->
+        let big = box (Vec3.v (-10.) (-10.) 0.) (Vec3.v 10. 10. 20.) in
+        List.iter
+          (fun (name, mesh, planes, min_in) ->
+            let scene = through_edges [ Shape.Csg (Csg.v Csg.Intersection mesh big) ] in
+            let exact = csg_mask scene planes in
+            let wrong, inside = Helpers.mask_errors (Test_numerics.hit_mask scene) exact in
+            Printf.printf "%s: %d pixels inside, %d wrong\n" name inside wrong;
+            if inside < min_in then Alcotest.failf "%s covers only %d pixels" name inside;
+            Alcotest.(check int) (name ^ " in a CSG: pixels off the exact solid") 0 wrong;
+            (* Alone, the mesh is its closest hits: the rays that only touch
+               its surface may see it or not. *)
+            let alone = through_edges [ (match mesh with Csg.Mesh m -> Shape.Mesh m | _ -> assert false) ] in
+            let wrong, _ = Helpers.mask_errors (Test_numerics.hit_mask alone) (csg_mask ~classify:(fun _ -> `Edge) alone planes) in
+            Alcotest.(check int) (name ^ " alone: pixels off the exact solid") 0 wrong)
+          [
+            ("the cube", mesh_solid (cube_arrays ()), cube_planes, 900);
+            ("the octahedron", octahedron (Vec3.v 0. 0. 4.) 1., octahedron_planes, 200);
+          ];
+        (* The cube as a box: the same solid, the same picture, byte for byte
+           (the front face's diagonal, crossed by 31 rays, included). *)
+        let as_mesh = through_edges [ Shape.Csg (Csg.v Csg.Intersection (mesh_solid (cube_arrays ())) big) ] in
+        let as_box = through_edges [ Shape.Csg (Csg.v Csg.Intersection (box (Vec3.v (-1.) (-1.) 4.) (Vec3.v 1. 1. 8.)) big) ] in
+        Helpers.check_images "the cube as a mesh and as a box" ~expected:(Helpers.image_exn as_box) (Helpers.image_exn as_mesh));
+    Alcotest.test_case "a ray through a closed mesh's shared edge or corner crosses it once; one that touches it, zero or twice"
+      `Quick (fun () ->
+        let cube = mesh_solid (cube_arrays ()) and octa = octahedron (Vec3.v 0. 0. 4.) 1. in
+        let crossings solid ~direction =
+          match solid with
+          | Csg.Mesh m ->
+              List.length
+                (List.filter
+                   (fun k -> Triangle.crossing (Mesh.triangle m k) ~origin:Vec3.zero ~direction < infinity)
+                   (List.init (Mesh.triangle_count m) Fun.id))
+          | _ -> assert false
+        in
+        List.iter
+          (fun (what, solid, direction, expected) ->
+            Alcotest.(check int) what expected (crossings solid ~direction))
+          [
+            ("cube: through the front face's diagonal", cube, Vec3.v 0.125 0.125 1., 2);
+            ("cube: out through a back corner (3 faces, 6 triangles)", cube, Vec3.v 0.125 (-0.125) 1., 2);
+            ("cube: out through a side face's diagonal", cube, Vec3.v (9. /. 64.) (5. /. 64.) 1., 2);
+            ("cube: touching a front corner", cube, Vec3.v 0.25 0.25 1., 0);
+            ("cube: touching a front edge", cube, Vec3.v 0.25 0.125 1., 0);
+            ("octahedron: through both corners on its axis (4 triangles each)", octa, Vec3.oz, 2);
+            ("octahedron: through two opposite edges", octa, Vec3.v 0.125 0. 1., 2);
+            ("octahedron: touching a corner of its silhouette", octa, Vec3.v 0.25 0. 1., 0);
+          ];
+        (* Any ray, any closed mesh: an even number. *)
+        let rand = Random.State.make [| 29 |] in
+        for _ = 1 to 2000 do
+          let g () = Float.of_int (Random.State.int rand 9 - 4) /. 16. in
+          let direction = Vec3.v (g ()) (g ()) 1. in
+          List.iter
+            (fun solid ->
+              let n = crossings solid ~direction in
+              if n mod 2 = 1 then Alcotest.failf "%d crossings along %s" n (Vec3.show direction))
+            [ cube; octa ]
+        done);
     Alcotest.test_case "the surface of a subtracted solid faces into the cavity; hits say whether they enter" `Quick
       (fun () ->
         let o = Vec3.zero and d = Vec3.oz in
