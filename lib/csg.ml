@@ -233,6 +233,7 @@ type work = {
   xs : int array;
   mutable surface : int;
   mutable entering : bool;
+  mutable tests : int;
 }
 
 let work tb =
@@ -247,6 +248,7 @@ let work tb =
     xs = Array.make x 0;
     surface = -1;
     entering = true;
+    tests = 0;
   }
 
 (* The sphere at [o] in [g]: {!Sphere.roots}'s cancellation-free roots,
@@ -298,7 +300,9 @@ let[@inline] leaf_interval w (s : Scratch.t) node base sf hit =
 let mesh_intervals tb w (s : Scratch.t) node base =
   let xt = w.xt and xs = w.xs in
   let n = ref 0 in
-  for sf = Array.unsafe_get tb.left node to Array.unsafe_get tb.right node - 1 do
+  let first = Array.unsafe_get tb.left node and last = Array.unsafe_get tb.right node in
+  w.tests <- w.tests + (last - first);
+  for sf = first to last - 1 do
     if Triangle.crosses s tb.geom (stride * sf) then begin
       let t = s.near in
       let j = ref !n in
@@ -398,10 +402,12 @@ let merge w op node base na nb ba bb =
 let rec eval tb w (s : Scratch.t) node =
   let k = Array.unsafe_get tb.node_kind node and base = Array.unsafe_get tb.base node in
   if k = leaf_sphere then begin
+    w.tests <- w.tests + 1;
     let sf = Array.unsafe_get tb.left node in
     leaf_interval w s node base sf (sphere_roots s tb.geom (stride * sf))
   end
   else if k = leaf_box then begin
+    w.tests <- w.tests + 1;
     let sf = Array.unsafe_get tb.left node in
     leaf_interval w s node base sf (Box.roots s tb.geom (stride * sf))
   end
@@ -419,6 +425,7 @@ let rec eval tb w (s : Scratch.t) node =
   end
 
 let roots tb w (s : Scratch.t) root =
+  w.tests <- 0;
   eval tb w s root;
   let base = Array.unsafe_get tb.base root and n = Array.unsafe_get w.count root in
   let t_min = s.t_min in
@@ -471,6 +478,7 @@ let normal tb w (s : Scratch.t) =
 
 let material tb w = Array.unsafe_get tb.surface_material w.surface
 let entering w = w.entering
+let tests w = w.tests
 
 (* {1 The literal algorithm} *)
 

@@ -136,6 +136,11 @@ val material : table -> work -> int
 (** [material tb w] is the material's number of the surface of the last
     hit found by {!roots} with [w]. *)
 
+val tests : work -> int
+(** [tests w] is the number of leaf tests (a sphere, a box, a mesh's
+    triangle) the last {!roots} with [w] made: the kernel adds them to its
+    count of intersection tests, which the work bound checks. *)
+
 val entering : work -> bool
 (** [entering w] is [true] iff the last hit found by {!roots} with [w] is
     where the ray enters the solid, [false] where it leaves it. *)

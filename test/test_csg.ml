@@ -282,6 +282,16 @@ let through_edges shapes =
 
 let count_class cls mask = Array.fold_left (Array.fold_left (fun n c -> if c = cls then n + 1 else n)) 0 mask
 
+
+(* A union of [n] spheres of radius 0.1 in a row across the view at z = 4,
+   seen on an 8 x 8 canvas by ambient light alone: every camera ray meets
+   the solid's bounds, and a union tests every leaf. *)
+let row_of_spheres n =
+  let leaf i = sphere (Vec3.v (-0.5 +. (Float.of_int i /. Float.of_int n)) 0. 4.) 0.1 in
+  let rec tree lo hi = if hi - lo = 1 then leaf lo else let mid = (lo + hi) / 2 in Csg.Csg (Csg.v Csg.Union (tree lo mid) (tree mid hi)) in
+  let c = match tree 0 n with Csg.Csg c -> c | _ -> assert false in
+  Scene.v ~width:8 ~height:8 ~depth:0 ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[ Light.ambient 1. ] ()
+
 let stats (s : Scene.t) = match Helpers.render s with Ok (_, st) -> st | Error (`Msg m) -> Alcotest.fail m
 let load_octahedron _ =
   let positions, triangles = octahedron_arrays (Vec3.v 0. 0. 0.) 1. in
@@ -551,6 +561,20 @@ let tests =
               if n mod 2 = 1 then Alcotest.failf "%d crossings along %s" n (Vec3.show direction))
             [ cube; octa ]
         done);
+    Alcotest.test_case "every CSG leaf test is counted: --stats tells them, the work bound stops a render of many leaves"
+      `Quick (fun () ->
+        let scene = row_of_spheres 64 in
+        let st = stats scene in
+        (* 64 camera rays, each through all 64 leaves of the union; the
+           pixels that see it test them again for the normal. *)
+        if st.tests < 64 * 64 then Alcotest.failf "%d tests counted for 64 rays through 64 leaves each" st.tests;
+        let limits = Limits.with_bound Limits.default `Work 2000. in
+        match Helpers.render ~limits ~jobs:1 scene with
+        | Ok _ -> Alcotest.fail "rendered past a bound of 2000 tests"
+        | Error (`Msg m) ->
+            let suffix = "(set RAYTRACE_MAX_WORK to raise it)" in
+            Alcotest.(check string) ("names the variable: " ^ m) suffix
+              (String.sub m (max 0 (String.length m - String.length suffix)) (min (String.length m) (String.length suffix))));
     Alcotest.test_case "the surface of a subtracted solid faces into the cavity; hits say whether they enter" `Quick
       (fun () ->
         let o = Vec3.zero and d = Vec3.oz in
