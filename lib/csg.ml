@@ -23,9 +23,17 @@ let leaf_material = function
   | Mesh m -> m.material
   | Csg _ -> invalid_arg "Csg.leaf_material: not a leaf"
 
-let materials c = List.map leaf_material (leaves c)
+(* Every pass over a tree recurses as deep as it nests, and no deeper:
+   never along a list of its leaves (a balanced tree of 2^18 leaves nests
+   18 deep, and [List.map] over its leaves overflowed the stack, the
+   JavaScript one long before the native one). *)
+let materials c = List.rev (fold_solids (fun acc l -> leaf_material l :: acc) [] (Csg c))
 
-let rec depth = function Csg c -> 1 + max (depth c.a) (depth c.b) | _ -> 0
+(* Whether [s] nests more than [limit] CSG forms, found without going
+   deeper than [limit + 1]: a tree built in code may nest a million deep. *)
+let rec deeper_than limit = function
+  | Csg c -> limit <= 0 || deeper_than (limit - 1) c.a || deeper_than (limit - 1) c.b
+  | _ -> false
 
 (* Every edge of a closed mesh borders exactly two of its triangles.
    Edges are keyed by their endpoints' coordinates, not by vertex numbers,
@@ -57,7 +65,7 @@ let check_closed (m : Mesh.t) =
 let rec validate c =
   let ( let* ) = Result.bind in
   let* () =
-    if depth (Csg c) > max_depth then Error (`Msg (Printf.sprintf "csg nested deeper than %d levels" max_depth))
+    if deeper_than max_depth (Csg c) then Error (`Msg (Printf.sprintf "csg nested deeper than %d levels" max_depth))
     else Ok ()
   in
   let child = function
@@ -541,7 +549,9 @@ let literal_hit c ~origin ~direction ~t_min ~t_max =
         let a = inside ~after t a and b = inside ~after t b in
         match op with Union -> a || b | Intersection -> a && b | Difference -> a && not b)
   in
-  let all = List.stable_sort (fun (a, _, _) (b, _, _) -> Float.compare a b) (List.concat (Array.to_list crossings)) in
+  let all =
+    List.stable_sort (fun (a, _, _) (b, _, _) -> Float.compare a b) (List.rev (Array.fold_left (fun acc l -> List.rev_append l acc) [] crossings))
+  in
   let boundary =
     List.find_opt
       (fun (t, _, _) -> t > t_min && inside ~after:false t tree <> inside ~after:true t tree)

@@ -575,6 +575,40 @@ let tests =
             let suffix = "(set RAYTRACE_MAX_WORK to raise it)" in
             Alcotest.(check string) ("names the variable: " ^ m) suffix
               (String.sub m (max 0 (String.length m - String.length suffix)) (min (String.length m) (String.length suffix))));
+    Alcotest.test_case "CSG trees of 2^18 leaves, balanced or nested, load, render or are refused at their position" `Slow
+      (fun () ->
+        let limits = Limits.with_bound Limits.default `Form_bytes 1e9 in
+        let leaf = "(sphere (center 0 0 9) (radius 1) (color 255 0 0))" in
+        let b = Buffer.create (1 lsl 24) in
+        let rec tree depth = if depth = 0 then Buffer.add_string b leaf else begin
+            Buffer.add_string b "(csg union ";
+            tree (depth - 1);
+            Buffer.add_char b ' ';
+            tree (depth - 1);
+            Buffer.add_char b ')' end
+        in
+        Buffer.add_string b "(canvas (width 1) (height 1)) (light ambient (intensity 1))\n";
+        tree 18;
+        (* The passes over its leaves (materials, preparation, the kernel's
+           table) overflowed the stack. *)
+        (match Helpers.of_string ~limits (Buffer.contents b) with
+        | Error (`Msg m) -> Alcotest.fail m
+        | Ok scene -> (
+            match Helpers.render ~limits ~jobs:1 scene with
+            | Error (`Msg m) -> Alcotest.fail m
+            | Ok (img, st) ->
+                Alcotest.(check (list int)) "the sphere, red" [ 255; 0; 0 ] (let r, g, b = Image.get img 0 0 in [ r; g; b ]);
+                if st.tests < 1 lsl 18 then Alcotest.failf "%d tests for 2^18 leaves" st.tests));
+        Buffer.clear b;
+        Buffer.add_string b "(light ambient (intensity 1))\n";
+        for _ = 1 to 1 lsl 18 do Buffer.add_string b "(csg union " done;
+        Buffer.add_string b leaf;
+        for _ = 1 to 1 lsl 18 do Buffer.add_string b (" " ^ leaf ^ ")") done;
+        (* Refused at the 33rd (csg: the search for that position recursed as
+           deep as the nesting, overflowed, and put the error at 1:1. *)
+        match Helpers.of_string ~limits ~file:"deep.scene" (Buffer.contents b) with
+        | Ok _ -> Alcotest.fail "a CSG nested 2^18 deep was accepted"
+        | Error (`Msg m) -> Alcotest.(check string) "the message" "deep.scene:2:353: csg nested deeper than 32 levels" m);
     Alcotest.test_case "the surface of a subtracted solid faces into the cavity; hits say whether they enter" `Quick
       (fun () ->
         let o = Vec3.zero and d = Vec3.oz in
