@@ -87,7 +87,7 @@ let () =
       Buffer.add_char b ')'
     end
   in
-  Buffer.add_string b "(canvas (width 8) (height 8)) (viewport (width 4) (height 4) (distance 1)) (light ambient (intensity 1))\n";
+  Buffer.add_string b "(canvas (width 2) (height 2)) (viewport (width 4) (height 4) (distance 1)) (light ambient (intensity 1))\n";
   tree 0 16384;
   (match Raytrace.Scene_file.of_string ~file:"csg.scene" (Buffer.contents b) with
   | Error (`Msg m) -> Printf.printf "csg of 16384 spheres: %s\n" m
