@@ -35,26 +35,97 @@ let rec deeper_than limit = function
   | Csg c -> limit <= 0 || deeper_than (limit - 1) c.a || deeper_than (limit - 1) c.b
   | _ -> false
 
+(* The number of each vertex of [p] ([x y z] each), equal points one
+   number, and the first vertex of each number: an open-addressing table
+   of vertex numbers by their coordinates' hash ([Hashtbl.hash] makes -0
+   and 0 one), in linear time, with no boxed key. *)
+let points (p : float array) =
+  let nv = Array.length p / 3 in
+  let size = ref 16 in
+  while !size < 2 * nv do
+    size := 2 * !size
+  done;
+  let mask = !size - 1 in
+  let table = Array.make !size (-1) in
+  let point = Array.make nv 0 and first = Array.make (max 1 nv) 0 and n = ref 0 in
+  for v = 0 to nv - 1 do
+    let x = p.(3 * v) and y = p.((3 * v) + 1) and z = p.((3 * v) + 2) in
+    let h = ref (Hashtbl.hash x + (65599 * (Hashtbl.hash y + (65599 * Hashtbl.hash z)))) in
+    let found = ref (-1) in
+    while !found < 0 do
+      let i = !h land mask in
+      let w = table.(i) in
+      if w < 0 then begin
+        table.(i) <- v;
+        first.(!n) <- v;
+        found := !n;
+        incr n
+      end
+      else if p.(3 * w) = x && p.((3 * w) + 1) = y && p.((3 * w) + 2) = z then found := point.(w)
+      else h := !h + 1
+    done;
+    point.(v) <- !found
+  done;
+  (point, first, !n)
+
 (* Every edge of a closed mesh borders exactly two of its triangles.
    Edges are keyed by their endpoints' coordinates, not by vertex numbers,
    so that a file that repeats a vertex (one per face, as some exporters
    do) is still closed. Degenerate triangles are left out: no ray can hit
-   them, the kernel drops them. *)
+   them, the kernel drops them. The edges are sorted by their lower end
+   into buckets (counting), and each bucket, a vertex's few edges, by the
+   upper end: linear time, ints alone. A hash table of coordinate tuples
+   took about 400 bytes an edge, and most of the load time of a million
+   triangles. *)
 let check_closed (m : Mesh.t) =
-  let edges = Hashtbl.create 64 in
-  let corner k c = Vec3.to_tuple (Mesh.vertex m k c) in
-  for k = 0 to Mesh.triangle_count m - 1 do
-    if not (Mesh.degenerate m k) then
-      for c = 0 to 2 do
-        let p = corner k c and q = corner k ((c + 1) mod 3) in
-        let key = if compare p q <= 0 then (p, q) else (q, p) in
-        Hashtbl.replace edges key (1 + Option.value ~default:0 (Hashtbl.find_opt edges key))
-      done
+  let p = m.positions in
+  let point, first, np = points p in
+  let ends k c = (point.(m.triangles.((3 * k) + c)), point.(m.triangles.((3 * k) + ((c + 1) mod 3)))) in
+  let start = Array.make (np + 1) 0 in
+  let each f =
+    for k = 0 to Mesh.triangle_count m - 1 do
+      if not (Mesh.degenerate m k) then
+        for c = 0 to 2 do
+          let a, b = ends k c in
+          f (min a b) (max a b)
+        done
+    done
+  in
+  each (fun lo _ -> start.(lo + 1) <- start.(lo + 1) + 1);
+  for i = 1 to np do
+    start.(i) <- start.(i) + start.(i - 1)
   done;
-  let bad = Hashtbl.fold (fun key n acc -> if n <> 2 && acc = None then Some (key, n) else acc) edges None in
-  match bad with
+  let upper = Array.make (max 1 start.(np)) 0 and fill = Array.sub start 0 np in
+  each (fun lo hi ->
+      upper.(fill.(lo)) <- hi;
+      fill.(lo) <- fill.(lo) + 1);
+  let bad = ref None and lo = ref 0 in
+  while !bad = None && !lo < np do
+    let i0 = start.(!lo) and i1 = start.(!lo + 1) in
+    for i = i0 + 1 to i1 - 1 do
+      let x = upper.(i) and j = ref i in
+      while !j > i0 && upper.(!j - 1) > x do
+        upper.(!j) <- upper.(!j - 1);
+        decr j
+      done;
+      upper.(!j) <- x
+    done;
+    let i = ref i0 in
+    while !bad = None && !i < i1 do
+      let j = ref !i in
+      while !j < i1 && upper.(!j) = upper.(!i) do
+        incr j
+      done;
+      if !j - !i <> 2 then bad := Some (!lo, upper.(!i), !j - !i);
+      i := !j
+    done;
+    incr lo
+  done;
+  match !bad with
   | None -> Ok ()
-  | Some (((ax, ay, az), (bx, by, bz)), n) ->
+  | Some (a, b, n) ->
+      let corner v = (p.(3 * first.(v)), p.((3 * first.(v)) + 1), p.((3 * first.(v)) + 2)) in
+      let (ax, ay, az), (bx, by, bz) = (corner a, corner b) in
       let num = Float_text.to_string in
       Error
         (`Msg
@@ -137,22 +208,44 @@ let leaf_sphere = 3
 let leaf_box = 4
 let leaf_mesh = 5
 
-(* Surfaces: a sphere [cx cy cz r], a box as {!Box.store} writes it, a
-   mesh's triangle as {!Triangle.store} does. *)
+(* Surfaces, one a leaf: a sphere [cx cy cz r], a box as {!Box.store}
+   writes it, a mesh (its number in [meshes], as a float). *)
 let surface_sphere = 0
 let surface_box = 1
-let surface_triangle = 2
+let surface_mesh = 2
+
+(* The intervals name the surface crossed at each end as [sf lsl slot_bits
+   lor slot]: the leaf's surface [sf], and for a mesh the slot of the
+   triangle in its hierarchy. Numbers then compare as the leaves' order
+   does (the merge's tie rule). A mesh has at most {!Limits.max_triangles}
+   triangles, below [2^slot_bits]. *)
+let slot_bits = 23
+let slot_mask = (1 lsl slot_bits) - 1
+
+(* A mesh leaf: its triangles' corners, in the order of its hierarchy's
+   slots, as offsets in [vertex] (the mesh's own positions, not a copy),
+   and the hierarchy over their boxes. *)
+type mesh_leaf = {
+  vertex : float array;
+  corners : int array;  (** 3 per slot. *)
+  nodes : float array;  (** {!Bvh.t}'s; empty for a mesh of no triangle the kernel keeps. *)
+  root : int;
+  depth : int;  (** Of the hierarchy: {!Bvh.t}'s. *)
+  reach : float;  (** The largest magnitude of a coordinate of the mesh. *)
+}
 
 type table = {
   node_kind : int array;
-  left : int array;  (** An operation's first child; a leaf's first surface. *)
-  right : int array;  (** An operation's second child; a leaf's last surface, plus one. *)
+  left : int array;  (** An operation's first child; a leaf's surface. *)
+  right : int array;  (** An operation's second child; a mesh leaf's number in [meshes]. *)
   base : int array;  (** A node's first interval in the work arrays. *)
   surface_kind : int array;
   geom : float array;  (** [stride] floats per surface. *)
   surface_material : int array;
+  meshes : mesh_leaf array;
   intervals : int;
   crossings : int;  (** The most triangles of a mesh leaf. *)
+  depth : int;  (** The deepest hierarchy of a mesh leaf. *)
 }
 
 type builder = {
@@ -160,11 +253,15 @@ type builder = {
   mutable n_nodes : int;
   mutable surfaces : (int * float array * int) list;  (** Reversed. *)
   mutable n_surfaces : int;
+  mutable meshes : mesh_leaf list;  (** Reversed. *)
+  mutable n_meshes : int;
   mutable n_intervals : int;
   mutable max_crossings : int;
+  mutable max_depth : int;
 }
 
-let builder () = { nodes = []; n_nodes = 0; surfaces = []; n_surfaces = 0; n_intervals = 0; max_crossings = 0 }
+let builder () =
+  { nodes = []; n_nodes = 0; surfaces = []; n_surfaces = 0; meshes = []; n_meshes = 0; n_intervals = 0; max_crossings = 0; max_depth = 0 }
 
 let add_surface b kind g mat =
   b.surfaces <- (kind, g, mat) :: b.surfaces;
@@ -177,34 +274,73 @@ let add_node b kind left right cap =
   b.n_nodes <- b.n_nodes + 1;
   b.n_nodes - 1
 
+(* The hierarchy over [m]'s triangles that the kernel keeps (not
+   degenerate): the only copy of the mesh is its corners' offsets, 3 ints
+   a triangle; the boxes are the build's, dropped after it. *)
+let mesh_leaf (m : Mesh.t) =
+  let n = Mesh.objects m in
+  if n > slot_mask then invalid_arg "Csg: a mesh operand has too many triangles";
+  let reach = Array.fold_left (fun acc x -> Float.max acc (Float.abs x)) 0. m.positions in
+  if n = 0 then { vertex = m.positions; corners = [||]; nodes = [||]; root = 0; depth = 0; reach }
+  else begin
+    let kept = Array.make n 0 and j = ref 0 in
+    for k = 0 to Mesh.triangle_count m - 1 do
+      if not (Mesh.degenerate m k) then begin
+        kept.(!j) <- k;
+        incr j
+      end
+    done;
+    let f () = Array.create_float n in
+    let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
+    let box = Array.make 6 0. in
+    Array.iteri
+      (fun i k ->
+        Mesh.box m k box;
+        x0.(i) <- box.(0);
+        y0.(i) <- box.(1);
+        z0.(i) <- box.(2);
+        x1.(i) <- box.(3);
+        y1.(i) <- box.(4);
+        z1.(i) <- box.(5))
+      kept;
+    let bvh = Bvh.build_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
+    let corners = Array.make (3 * n) 0 in
+    Array.iteri
+      (fun slot i ->
+        for c = 0 to 2 do
+          corners.((3 * slot) + c) <- 3 * m.triangles.((3 * kept.(i)) + c)
+        done)
+      bvh.order;
+    { vertex = m.positions; corners; nodes = bvh.nodes; root = bvh.root; depth = bvh.depth; reach }
+  end
+
 (* Adds [s] with its leaves' materials numbered by [material] (given the
-   leaf); its node
-   and its capacity in intervals. *)
+   leaf); its node and its capacity in intervals. *)
 let rec add_solid b ~material s =
   match s with
   | Sphere sp ->
       let first = b.n_surfaces in
       add_surface b surface_sphere [| sp.center.x; sp.center.y; sp.center.z; sp.radius |] (material s);
-      (add_node b leaf_sphere first (first + 1) 1, 1)
+      (add_node b leaf_sphere first 0 1, 1)
   | Box bx ->
       let first = b.n_surfaces in
       let g = Array.make stride 0. in
       Box.store bx g 0;
       add_surface b surface_box g (material s);
-      (add_node b leaf_box first (first + 1) 1, 1)
+      (add_node b leaf_box first 0 1, 1)
   | Mesh m ->
-      let first = b.n_surfaces and mat = material s in
-      for k = 0 to Mesh.triangle_count m - 1 do
-        if not (Mesh.degenerate m k) then begin
-          let g = Array.make stride 0. in
-          Triangle.store (Mesh.triangle m k) g 0;
-          add_surface b surface_triangle g mat
-        end
-      done;
-      let n = b.n_surfaces - first in
+      let sf = b.n_surfaces and leaf = mesh_leaf m in
+      let number = b.n_meshes in
+      add_surface b surface_mesh [| Float.of_int number |] (material s);
+      b.meshes <- leaf :: b.meshes;
+      b.n_meshes <- number + 1;
+      let n = Array.length leaf.corners / 3 in
       b.max_crossings <- max b.max_crossings n;
+      (* A line through the hierarchy keeps a stack of at most one node
+         a level, and the nodes it pushes last. *)
+      b.max_depth <- max b.max_depth leaf.depth;
       let cap = (n / 2) + 1 in
-      (add_node b leaf_mesh first b.n_surfaces cap, cap)
+      (add_node b leaf_mesh sf number cap, cap)
   | Csg c ->
       let a, ca = add_solid b ~material c.a in
       let bn, cb = add_solid b ~material c.b in
@@ -225,8 +361,10 @@ let table b =
     surface_kind = Array.map (fun (k, _, _) -> k) surfaces;
     geom;
     surface_material = Array.map (fun (_, _, m) -> m) surfaces;
+    meshes = Array.of_list (List.rev b.meshes);
     intervals = b.n_intervals;
     crossings = b.max_crossings;
+    depth = b.max_depth;
   }
 
 let empty = table (builder ())
@@ -239,9 +377,11 @@ type work = {
   count : int array;
   xt : float array;
   xs : int array;
+  stack : int array;  (** The nodes of a mesh's hierarchy still to visit. *)
   mutable surface : int;
   mutable entering : bool;
   mutable tests : int;
+  mutable boxes : int;
 }
 
 let work tb =
@@ -254,9 +394,11 @@ let work tb =
     count = Array.make (max 1 (Array.length tb.node_kind)) 0;
     xt = Array.make x 0.;
     xs = Array.make x 0;
+    stack = Array.make ((2 * tb.depth) + 2) 0;
     surface = -1;
     entering = true;
     tests = 0;
+    boxes = 0;
   }
 
 (* The sphere at [o] in [g]: {!Sphere.roots}'s cancellation-free roots,
@@ -299,31 +441,100 @@ let[@inline] leaf_interval w (s : Scratch.t) node base sf hit =
   end
   else Array.unsafe_set w.count node 0
 
-(* A closed mesh: its crossings along the line, each counted once
-   ({!Triangle.crosses}: an even number), sorted (insertion: a ray crosses
-   few triangles), paired as in, out, in, out... An empty pair (a ray that
-   touches the surface) is dropped, and a pair that starts where the last
-   one ended (a ray that touches it from inside) extends it. An odd count,
-   which the rule excludes, would drop the last. *)
-let mesh_intervals tb w (s : Scratch.t) node base =
+(* The reciprocal of a direction coordinate for the slab test: a zero
+   coordinate gets a huge finite value, not an infinity, so that the
+   slab's ends are huge and of the right signs (or 0), never NaN. *)
+let[@inline] slab_inverse d = if d = 0. then 1e300 else 1. /. d
+
+(* Does the line of the ray in [s] (slab inverses [ix], [iy], [iz]) meet
+   the box of the node at [o] of [nodes], grown by [pad] on every side? *)
+let[@inline] line_meets (nodes : float array) (s : Scratch.t) o pad ix iy iz =
+  let ox = s.ox and oy = s.oy and oz = s.oz in
+  let x0 = (Array.unsafe_get nodes o -. pad -. ox) *. ix and x1 = (Array.unsafe_get nodes (o + 3) +. pad -. ox) *. ix in
+  let y0 = (Array.unsafe_get nodes (o + 1) -. pad -. oy) *. iy and y1 = (Array.unsafe_get nodes (o + 4) +. pad -. oy) *. iy in
+  let z0 = (Array.unsafe_get nodes (o + 2) -. pad -. oz) *. iz and z1 = (Array.unsafe_get nodes (o + 5) +. pad -. oz) *. iz in
+  let enter_x = if x0 < x1 then x0 else x1 and exit_x = if x0 < x1 then x1 else x0 in
+  let enter_y = if y0 < y1 then y0 else y1 and exit_y = if y0 < y1 then y1 else y0 in
+  let enter_z = if z0 < z1 then z0 else z1 and exit_z = if z0 < z1 then z1 else z0 in
+  let enter = if enter_x > enter_y then enter_x else enter_y in
+  let enter = if enter > enter_z then enter else enter_z in
+  let exit = if exit_x < exit_y then exit_x else exit_y in
+  let exit = if exit < exit_z then exit else exit_z in
+  enter <= exit
+
+(* Crossing [t] of the surface [id] kept in order among the [n] of [w]
+   (insertion: a line crosses few triangles). *)
+let[@inline] insert w n t id =
   let xt = w.xt and xs = w.xs in
-  let n = ref 0 in
-  let first = Array.unsafe_get tb.left node and last = Array.unsafe_get tb.right node in
-  w.tests <- w.tests + (last - first);
-  for sf = first to last - 1 do
-    if Triangle.crosses s tb.geom (stride * sf) then begin
-      let t = s.near in
-      let j = ref !n in
-      while !j > 0 && Array.unsafe_get xt (!j - 1) > t do
-        Array.unsafe_set xt !j (Array.unsafe_get xt (!j - 1));
-        Array.unsafe_set xs !j (Array.unsafe_get xs (!j - 1));
-        decr j
-      done;
-      Array.unsafe_set xt !j t;
-      Array.unsafe_set xs !j sf;
-      incr n
-    end
+  let j = ref n in
+  while !j > 0 && Array.unsafe_get xt (!j - 1) > t do
+    Array.unsafe_set xt !j (Array.unsafe_get xt (!j - 1));
+    Array.unsafe_set xs !j (Array.unsafe_get xs (!j - 1));
+    decr j
   done;
+  Array.unsafe_set xt !j t;
+  Array.unsafe_set xs !j id
+
+(* The boxes of the hierarchy grow by [2^-47 (reach + |O|)], 64 u of the
+   largest coordinate of the corners or of the ray's origin: the triangle
+   test moves each corner into the ray's frame with an error below [8 u]
+   of that, and decides exactly on the moved corners; the slab test errs
+   by a few u of it. So the grown box of every triangle that
+   {!Triangle.crosses} reports is met by the line, and none is missed: a
+   crossing missed would turn the parity, inside for outside, along the
+   whole line. *)
+let pad_scale = 0x1p-47
+
+(* A closed mesh: its crossings along the whole line (the triangles of the
+   boxes of its hierarchy that the line meets), each counted once
+   ({!Triangle.crosses}: an even number), in order, paired as in, out, in,
+   out... An empty pair (a ray that touches the surface) is dropped, and a
+   pair that starts where the last one ended (a ray that touches it from
+   inside) extends it. An odd count, which the rule excludes, would drop
+   the last. *)
+let mesh_intervals tb w (s : Scratch.t) node base =
+  let sf = Array.unsafe_get tb.left node in
+  let leaf = Array.unsafe_get tb.meshes (Array.unsafe_get tb.right node) in
+  let g = leaf.vertex and corners = leaf.corners and nodes = leaf.nodes in
+  let n = ref 0 in
+  if Array.length corners > 0 then begin
+    let axes = Triangle.shear s in
+    let kx = Triangle.axis_x axes and ky = Triangle.axis_y axes and kz = Triangle.axis_z axes in
+    let ix = slab_inverse s.dx and iy = slab_inverse s.dy and iz = slab_inverse s.dz in
+    let reach = Float.max (Float.abs s.ox) (Float.max (Float.abs s.oy) (Float.abs s.oz)) in
+    let pad = pad_scale *. (leaf.reach +. reach) in
+    let stack = w.stack and sp = ref 1 and boxes = ref 0 and tests = ref 0 in
+    Array.unsafe_set stack 0 leaf.root;
+    while !sp > 0 do
+      decr sp;
+      let o = Array.unsafe_get stack !sp in
+      incr boxes;
+      if line_meets nodes s o pad ix iy iz then begin
+        let tag = truncate (Array.unsafe_get nodes (o + 7)) and link = truncate (Array.unsafe_get nodes (o + 6)) in
+        if tag > 0 then begin
+          tests := !tests + tag;
+          for slot = link to link + tag - 1 do
+            let c = 3 * slot in
+            if
+              Triangle.crosses_at s g (Array.unsafe_get corners c) (Array.unsafe_get corners (c + 1))
+                (Array.unsafe_get corners (c + 2)) kx ky kz
+            then begin
+              insert w !n s.near ((sf lsl slot_bits) lor slot);
+              incr n
+            end
+          done
+        end
+        else begin
+          Array.unsafe_set stack !sp link;
+          Array.unsafe_set stack (!sp + 1) (o + Bvh.node_floats);
+          sp := !sp + 2
+        end
+      end
+    done;
+    w.tests <- w.tests + !tests;
+    w.boxes <- w.boxes + !boxes
+  end;
+  let xt = w.xt and xs = w.xs in
   let m = ref 0 in
   for j = 0 to (!n / 2) - 1 do
     let t0 = Array.unsafe_get xt (2 * j) and t1 = Array.unsafe_get xt ((2 * j) + 1) in
@@ -412,12 +623,12 @@ let rec eval tb w (s : Scratch.t) node =
   if k = leaf_sphere then begin
     w.tests <- w.tests + 1;
     let sf = Array.unsafe_get tb.left node in
-    leaf_interval w s node base sf (sphere_roots s tb.geom (stride * sf))
+    leaf_interval w s node base (sf lsl slot_bits) (sphere_roots s tb.geom (stride * sf))
   end
   else if k = leaf_box then begin
     w.tests <- w.tests + 1;
     let sf = Array.unsafe_get tb.left node in
-    leaf_interval w s node base sf (Box.roots s tb.geom (stride * sf))
+    leaf_interval w s node base (sf lsl slot_bits) (Box.roots s tb.geom (stride * sf))
   end
   else if k = leaf_mesh then mesh_intervals tb w s node base
   else begin
@@ -434,6 +645,7 @@ let rec eval tb w (s : Scratch.t) node =
 
 let roots tb w (s : Scratch.t) root =
   w.tests <- 0;
+  w.boxes <- 0;
   eval tb w s root;
   let base = Array.unsafe_get tb.base root and n = Array.unsafe_get w.count root in
   let t_min = s.t_min in
@@ -463,7 +675,7 @@ let roots tb w (s : Scratch.t) root =
   !found
 
 let normal tb w (s : Scratch.t) =
-  let sf = w.surface in
+  let sf = w.surface lsr slot_bits in
   let k = Array.unsafe_get tb.surface_kind sf and o = stride * sf in
   if k = surface_sphere then begin
     let g = tb.geom in
@@ -474,7 +686,10 @@ let normal tb w (s : Scratch.t) =
     s.nz <- nz *. inv
   end
   else if k = surface_box then Box.normal s tb.geom o
-  else Triangle.normal s tb.geom o;
+  else begin
+    let leaf = tb.meshes.(truncate tb.geom.(o)) and c = 3 * (w.surface land slot_mask) in
+    Triangle.normal_at s leaf.vertex leaf.corners.(c) leaf.corners.(c + 1) leaf.corners.(c + 2)
+  end;
   (* Outward from the solid: against the ray where it enters, along it
      where it leaves. This turns a subtracted solid's normal around. *)
   let along = (s.nx *. s.dx) +. (s.ny *. s.dy) +. (s.nz *. s.dz) > 0. in
@@ -484,9 +699,10 @@ let normal tb w (s : Scratch.t) =
     s.nz <- -.s.nz
   end
 
-let material tb w = Array.unsafe_get tb.surface_material w.surface
+let material tb w = Array.unsafe_get tb.surface_material (w.surface lsr slot_bits)
 let entering w = w.entering
 let tests w = w.tests
+let boxes w = w.boxes
 
 (* {1 The literal algorithm} *)
 

@@ -86,8 +86,13 @@ val extent : t -> float
 (** {1:kernel The kernel's table}
 
     The CSG solids of a prepared scene are stored in one table of nodes
-    (operations and leaves) and surfaces (a sphere, a box, or one triangle
-    of a mesh, each with its material's number). *)
+    (operations and leaves) and surfaces (a sphere, a box or a mesh, each
+    with its material's number). A mesh leaf keeps the mesh's own
+    positions (no copy), its kept triangles' corners (3 ints a triangle)
+    and a bounding volume hierarchy ({!Bvh}) over them, which a ray
+    descends along its whole line: its crossings anywhere are the parity
+    of the points along it, and a triangle's box is grown so that no
+    crossing the triangle test reports is missed (see [csg.ml]). *)
 
 type table
 (** The type for tables of CSG solids. *)
@@ -123,8 +128,10 @@ val roots : table -> work -> Scratch.t -> int -> bool
     surface crossed there and whether the ray enters or leaves the solid
     ({!entering}). Otherwise [s.near] and [s.far] are [infinity]. Leaves'
     roots are their modules' kernel routines ({!Box.roots},
-    {!Triangle.roots}, {!Sphere.roots}'s arithmetic), so a CSG silhouette
-    is exactly its leaves' silhouettes, combined. Allocates nothing. *)
+    {!Triangle.crosses}, {!Sphere.roots}'s arithmetic), so a CSG silhouette
+    is exactly its leaves' silhouettes, combined; a mesh's crossings are
+    counted once each ({!Triangle.crosses}), so that its inside is right
+    along rays through its shared edges and corners. Allocates nothing. *)
 
 val normal : table -> work -> Scratch.t -> unit
 (** [normal tb w s] sets [s.nx], [s.ny], [s.nz] to the outward unit
@@ -140,6 +147,10 @@ val tests : work -> int
 (** [tests w] is the number of leaf tests (a sphere, a box, a mesh's
     triangle) the last {!roots} with [w] made: the kernel adds them to its
     count of intersection tests, which the work bound checks. *)
+
+val boxes : work -> int
+(** [boxes w] is the number of boxes of the mesh leaves' hierarchies the
+    last {!roots} with [w] tested, counted as the kernel's box tests. *)
 
 val entering : work -> bool
 (** [entering w] is [true] iff the last hit found by {!roots} with [w] is

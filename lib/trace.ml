@@ -293,6 +293,7 @@ let[@inline never] csg_roots tr s o =
   let p = tr.p in
   let hit = Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o)) in
   tr.counters.tests <- tr.counters.tests + Csg.tests tr.csg;
+  tr.counters.box_tests <- tr.counters.box_tests + Csg.boxes tr.csg;
   hit
 
 (* The roots of the shape (not a sphere) in slot [i], by its module's

@@ -292,6 +292,17 @@ let row_of_spheres n =
   let c = match tree 0 n with Csg.Csg c -> c | _ -> assert false in
   Scene.v ~width:8 ~height:8 ~depth:0 ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[ Light.ambient 1. ] ()
 
+
+(* A torus knot of [2 segments 12] triangles, closed, at z = 4. *)
+let knot segments =
+  let o = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.15 ~segments ~sides:12 in
+  match
+    Mesh.v ~translate:(Vec3.v 0. 0. 4.) ~positions:o.positions ~triangles:o.triangles ~normals:[||]
+      ~triangle_normals:(Array.make (Array.length o.triangles) (-1)) (Material.v (Color.v 230. 150. 40.))
+  with
+  | Ok m -> m
+  | Error (`Msg m) -> Alcotest.fail m
+
 let stats (s : Scene.t) = match Helpers.render s with Ok (_, st) -> st | Error (`Msg m) -> Alcotest.fail m
 let load_octahedron _ =
   let positions, triangles = octahedron_arrays (Vec3.v 0. 0. 0.) 1. in
@@ -609,6 +620,19 @@ let tests =
         match Helpers.of_string ~limits ~file:"deep.scene" (Buffer.contents b) with
         | Ok _ -> Alcotest.fail "a CSG nested 2^18 deep was accepted"
         | Error (`Msg m) -> Alcotest.(check string) "the message" "deep.scene:2:353: csg nested deeper than 32 levels" m);
+    Alcotest.test_case "a big closed mesh as a CSG operand is searched through a hierarchy, with the literal algorithm's colours"
+      `Quick (fun () ->
+        let big = box (Vec3.v (-10.) (-10.) 0.) (Vec3.v 10. 10. 20.) in
+        let on m = scene ~epsilon:0.001 ~width:16 ~height:16 [ Shape.Csg (Csg.v Csg.Intersection (Csg.Mesh m) big) ] in
+        (* 48000 triangles: every camera ray's line meets the knot's box,
+           and a test of every triangle would be 48000 a ray. *)
+        let st = stats (on (knot 2000)) in
+        let per_ray = st.tests / st.primary in
+        Printf.printf "%d tests, %d box tests, %d rays\n" st.tests st.box_tests (Stats.rays st);
+        if st.tests > 2000 * Stats.rays st then Alcotest.failf "%d tests a ray for 48000 triangles" per_ray;
+        if st.box_tests = 0 then Alcotest.fail "no box test counted";
+        (* Small enough for the oracle: the same colours, float for float. *)
+        Alcotest.(check bool) "the literal algorithm's colours" true (Helpers.same_floats (on (knot 40))));
     Alcotest.test_case "the surface of a subtracted solid faces into the cavity; hits say whether they enter" `Quick
       (fun () ->
         let o = Vec3.zero and d = Vec3.oz in
