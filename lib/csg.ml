@@ -244,7 +244,6 @@ type table = {
   surface_material : int array;
   meshes : mesh_leaf array;
   intervals : int;
-  crossings : int;  (** The most triangles of a mesh leaf. *)
   depth : int;  (** The deepest hierarchy of a mesh leaf. *)
 }
 
@@ -256,12 +255,11 @@ type builder = {
   mutable meshes : mesh_leaf list;  (** Reversed. *)
   mutable n_meshes : int;
   mutable n_intervals : int;
-  mutable max_crossings : int;
   mutable max_depth : int;
 }
 
 let builder () =
-  { nodes = []; n_nodes = 0; surfaces = []; n_surfaces = 0; meshes = []; n_meshes = 0; n_intervals = 0; max_crossings = 0; max_depth = 0 }
+  { nodes = []; n_nodes = 0; surfaces = []; n_surfaces = 0; meshes = []; n_meshes = 0; n_intervals = 0; max_depth = 0 }
 
 let add_surface b kind g mat =
   b.surfaces <- (kind, g, mat) :: b.surfaces;
@@ -303,7 +301,10 @@ let mesh_leaf (m : Mesh.t) =
         y1.(i) <- box.(4);
         z1.(i) <- box.(5))
       kept;
-    let bvh = Bvh.build_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
+    (* Leaves of up to 16, as the scene's hierarchy has for meshes (see
+       [Prepared]): a mesh's thin triangles overlap, and smaller leaves
+       buy more boxes for few fewer triangle tests. *)
+    let bvh = Bvh.build_boxes ~leaf_size:16 ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
     let corners = Array.make (3 * n) 0 in
     Array.iteri
       (fun slot i ->
@@ -335,7 +336,6 @@ let rec add_solid b ~material s =
       b.meshes <- leaf :: b.meshes;
       b.n_meshes <- number + 1;
       let n = Array.length leaf.corners / 3 in
-      b.max_crossings <- max b.max_crossings n;
       (* A line through the hierarchy keeps a stack of at most one node
          a level, and the nodes it pushes last. *)
       b.max_depth <- max b.max_depth leaf.depth;
@@ -363,7 +363,6 @@ let table b =
     surface_material = Array.map (fun (_, _, m) -> m) surfaces;
     meshes = Array.of_list (List.rev b.meshes);
     intervals = b.n_intervals;
-    crossings = b.max_crossings;
     depth = b.max_depth;
   }
 
@@ -375,8 +374,6 @@ type work = {
   s_in : int array;
   s_out : int array;
   count : int array;
-  xt : float array;
-  xs : int array;
   stack : int array;  (** The nodes of a mesh's hierarchy still to visit. *)
   mutable surface : int;
   mutable entering : bool;
@@ -385,15 +382,13 @@ type work = {
 }
 
 let work tb =
-  let n = max 1 tb.intervals and x = max 1 tb.crossings in
+  let n = max 1 tb.intervals in
   {
     t_in = Array.make n 0.;
     t_out = Array.make n 0.;
     s_in = Array.make n 0;
     s_out = Array.make n 0;
     count = Array.make (max 1 (Array.length tb.node_kind)) 0;
-    xt = Array.make x 0.;
-    xs = Array.make x 0;
     stack = Array.make ((2 * tb.depth) + 2) 0;
     surface = -1;
     entering = true;
@@ -462,18 +457,35 @@ let[@inline] line_meets (nodes : float array) (s : Scratch.t) o pad ix iy iz =
   let exit = if exit < exit_z then exit else exit_z in
   enter <= exit
 
-(* Crossing [t] of the surface [id] kept in order among the [n] of [w]
-   (insertion: a line crosses few triangles). *)
-let[@inline] insert w n t id =
-  let xt = w.xt and xs = w.xs in
+(* A mesh's crossings are kept in order in its node's own room for
+   intervals, where they are paired: crossing [j] is the entry of interval
+   [base + j / 2] for an even [j], its exit for an odd one. A node has
+   room for [n / 2 + 1] intervals, [n] its triangles. *)
+let[@inline] crossing_t w base j =
+  if j land 1 = 0 then Array.unsafe_get w.t_in (base + (j lsr 1)) else Array.unsafe_get w.t_out (base + (j lsr 1))
+
+let[@inline] crossing_surface w base j =
+  if j land 1 = 0 then Array.unsafe_get w.s_in (base + (j lsr 1)) else Array.unsafe_get w.s_out (base + (j lsr 1))
+
+let[@inline] set_crossing w base j t id =
+  if j land 1 = 0 then begin
+    Array.unsafe_set w.t_in (base + (j lsr 1)) t;
+    Array.unsafe_set w.s_in (base + (j lsr 1)) id
+  end
+  else begin
+    Array.unsafe_set w.t_out (base + (j lsr 1)) t;
+    Array.unsafe_set w.s_out (base + (j lsr 1)) id
+  end
+
+(* Crossing [t] of the surface [id] kept in order among the [n] of the
+   node at [base] (insertion: a line crosses few triangles). *)
+let[@inline] insert w base n t id =
   let j = ref n in
-  while !j > 0 && Array.unsafe_get xt (!j - 1) > t do
-    Array.unsafe_set xt !j (Array.unsafe_get xt (!j - 1));
-    Array.unsafe_set xs !j (Array.unsafe_get xs (!j - 1));
+  while !j > 0 && crossing_t w base (!j - 1) > t do
+    set_crossing w base !j (crossing_t w base (!j - 1)) (crossing_surface w base (!j - 1));
     decr j
   done;
-  Array.unsafe_set xt !j t;
-  Array.unsafe_set xs !j id
+  set_crossing w base !j t id
 
 (* The boxes of the hierarchy grow by [2^-47 (reach + |O|)], 64 u of the
    largest coordinate of the corners or of the ray's origin: the triangle
@@ -519,7 +531,7 @@ let mesh_intervals tb w (s : Scratch.t) node base =
               Triangle.crosses_at s g (Array.unsafe_get corners c) (Array.unsafe_get corners (c + 1))
                 (Array.unsafe_get corners (c + 2)) kx ky kz
             then begin
-              insert w !n s.near ((sf lsl slot_bits) lor slot);
+              insert w base !n s.near ((sf lsl slot_bits) lor slot);
               incr n
             end
           done
@@ -534,19 +546,20 @@ let mesh_intervals tb w (s : Scratch.t) node base =
     w.tests <- w.tests + !tests;
     w.boxes <- w.boxes + !boxes
   end;
-  let xt = w.xt and xs = w.xs in
+  (* Pairs compacted in place: pair [j] moves to [m <= j]. *)
   let m = ref 0 in
   for j = 0 to (!n / 2) - 1 do
-    let t0 = Array.unsafe_get xt (2 * j) and t1 = Array.unsafe_get xt ((2 * j) + 1) in
+    let k = base + j in
+    let t0 = Array.unsafe_get w.t_in k and t1 = Array.unsafe_get w.t_out k in
     if !m > 0 && Array.unsafe_get w.t_out (base + !m - 1) = t0 then begin
       Array.unsafe_set w.t_out (base + !m - 1) t1;
-      Array.unsafe_set w.s_out (base + !m - 1) (Array.unsafe_get xs ((2 * j) + 1))
+      Array.unsafe_set w.s_out (base + !m - 1) (Array.unsafe_get w.s_out k)
     end
     else if t0 < t1 then begin
       Array.unsafe_set w.t_in (base + !m) t0;
       Array.unsafe_set w.t_out (base + !m) t1;
-      Array.unsafe_set w.s_in (base + !m) (Array.unsafe_get xs (2 * j));
-      Array.unsafe_set w.s_out (base + !m) (Array.unsafe_get xs ((2 * j) + 1));
+      Array.unsafe_set w.s_in (base + !m) (Array.unsafe_get w.s_in k);
+      Array.unsafe_set w.s_out (base + !m) (Array.unsafe_get w.s_out k);
       incr m
     end
   done;

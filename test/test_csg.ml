@@ -713,5 +713,11 @@ let tests =
                 let s = Scene.with_overrides ~width:64 ~height:48 { s with Scene.epsilon } in
                 Alcotest.(check (float 0.)) (name ^ ": minor words") 0. (stats s).minor_words)
               [ None; Some 0.001 ])
-          [ "die.scene"; "glass-lens.scene" ]);
+          [ "die.scene"; "glass-lens.scene" ];
+        (* A mesh operand: its hierarchy's descent, its crossings kept in order. *)
+        List.iter
+          (fun epsilon ->
+            let s = scene ?epsilon ~width:32 ~height:32 [ floor; Shape.Csg (Csg.v Csg.Difference (Csg.Mesh (knot 200)) (sphere (Vec3.v 0. 0. 3.5) 0.6)) ] in
+            Alcotest.(check (float 0.)) "a knot less a sphere: minor words" 0. (stats s).minor_words)
+          [ None; Some 0.001 ]);
   ]
