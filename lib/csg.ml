@@ -657,8 +657,6 @@ let rec eval tb w (s : Scratch.t) node =
   end
 
 let roots tb w (s : Scratch.t) root =
-  w.tests <- 0;
-  w.boxes <- 0;
   eval tb w s root;
   let base = Array.unsafe_get tb.base root and n = Array.unsafe_get w.count root in
   let t_min = s.t_min in
@@ -714,8 +712,15 @@ let normal tb w (s : Scratch.t) =
 
 let material tb w = Array.unsafe_get tb.surface_material (w.surface lsr slot_bits)
 let entering w = w.entering
-let tests w = w.tests
-let boxes w = w.boxes
+let take_tests w =
+  let n = w.tests in
+  w.tests <- 0;
+  n
+
+let take_boxes w =
+  let n = w.boxes in
+  w.boxes <- 0;
+  n
 
 (* {1 The literal algorithm} *)
 

@@ -143,14 +143,16 @@ val material : table -> work -> int
 (** [material tb w] is the material's number of the surface of the last
     hit found by {!roots} with [w]. *)
 
-val tests : work -> int
-(** [tests w] is the number of leaf tests (a sphere, a box, a mesh's
-    triangle) the last {!roots} with [w] made: the kernel adds them to its
-    count of intersection tests, which the work bound checks. *)
+val take_tests : work -> int
+(** [take_tests w] is the number of leaf tests (a sphere, a box, a mesh's
+    triangle) the calls of {!roots} with [w] made since the last
+    [take_tests w], and restarts that count: the kernel adds them to its
+    count of intersection tests whenever it reads it (the statistics, the
+    work bound), at no cost per ray. *)
 
-val boxes : work -> int
-(** [boxes w] is the number of boxes of the mesh leaves' hierarchies the
-    last {!roots} with [w] tested, counted as the kernel's box tests. *)
+val take_boxes : work -> int
+(** [take_boxes w] is {!take_tests} for the boxes of the mesh leaves'
+    hierarchies, counted as the kernel's box tests. *)
 
 val entering : work -> bool
 (** [entering w] is [true] iff the last hit found by {!roots} with [w] is

@@ -121,8 +121,17 @@ let create ?(averaging = false) (p : Prepared.t) =
   }
 
 let prepared tr = tr.p
-let counters tr = tr.counters
-let work tr = tr.counters.tests + tr.counters.box_tests
+(* A CSG solid's leaf tests are counted in its work room, and taken into
+   the counters whenever they are read: nothing per ray. *)
+let counters tr =
+  let c = tr.counters in
+  c.tests <- c.tests + Csg.take_tests tr.csg;
+  c.box_tests <- c.box_tests + Csg.take_boxes tr.csg;
+  c
+
+let work tr =
+  let c = counters tr in
+  c.tests + c.box_tests
 let set_budget tr n = tr.budget <- n
 
 let check_budget tr =
@@ -287,15 +296,6 @@ let[@inline] triangle_hit tr s i ~sheared =
   | 4 -> Triangle.hit s g o0 o1 o2 0 1 2
   | _ -> Triangle.hit s g o0 o1 o2 1 0 2
 
-(* A CSG solid's roots: its leaves' tests counted as the kernel's own, so
-   that statistics and the work bound see them. *)
-let[@inline never] csg_roots tr s o =
-  let p = tr.p in
-  let hit = Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o)) in
-  tr.counters.tests <- tr.counters.tests + Csg.tests tr.csg;
-  tr.counters.box_tests <- tr.counters.box_tests + Csg.boxes tr.csg;
-  hit
-
 (* The roots of the shape (not a sphere) in slot [i], by its module's
    routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
    gives its first crossing beyond [s.t_min] as both. *)
@@ -311,7 +311,7 @@ let shape_roots tr s i =
   let o = Shape.stride * Array.unsafe_get p.at0 i in
   if k = Shape.plane then Plane.roots s p.geom o
   else if k = Shape.box then Box.roots s p.geom o
-  else csg_roots tr s o
+  else Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o))
 
 (* Tests the ray in [s] against the shape (not a sphere) in slot [i],
    keeping the better hit. Secondary rays of the robust mode start off
@@ -932,7 +932,7 @@ let shape_hit tr i =
     (* The surface hit, found again for the ray still in [s]: the same
        first crossing that [closest] kept. The normal is the solid's
        outward one, as a box's, before it is turned toward the ray. *)
-    ignore (csg_roots tr s o);
+    ignore (Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o)));
     Csg.normal p.csg tr.csg s
   end;
   let flip = (s.nx *. dx) +. (s.ny *. dy) +. (s.nz *. dz) > 0. in
