@@ -633,6 +633,29 @@ let tests =
         if st.box_tests = 0 then Alcotest.fail "no box test counted";
         (* Small enough for the oracle: the same colours, float for float. *)
         Alcotest.(check bool) "the literal algorithm's colours" true (Helpers.same_floats (on (knot 40))));
+    Alcotest.test_case "a mesh operand's hierarchy misses no crossing: rays from near and far find the literal first crossing"
+      `Quick (fun () ->
+        let c = Csg.v Csg.Difference (Csg.Mesh (knot 100)) (sphere (Vec3.v 0.5 0.5 4.) 0.3) in
+        let rand = Random.State.make [| 2029 |] in
+        let misses = ref 0 and hits = ref 0 in
+        for i = 1 to 3000 do
+          (* Origins from 2 to 2e6 away, aimed at points of the knot's box,
+             some exactly at its corners' coordinates. *)
+          let far = 10. ** Float.of_int (i mod 7) in
+          let g () = (Random.State.float rand 2. -. 1.) *. far in
+          let origin = Vec3.v (g ()) (g ()) (4. +. g ()) in
+          let target = Vec3.v (Random.State.float rand 2.6 -. 1.3) (Random.State.float rand 2.6 -. 1.3) (4. +. Random.State.float rand 0.6 -. 0.3) in
+          let direction = Vec3.sub target origin in
+          let kernel = kernel_hit c ~origin ~direction and literal = Csg.literal_hit c ~origin ~direction ~t_min:0. ~t_max:infinity in
+          match (kernel, literal) with
+          | None, None -> incr misses
+          | Some (t, n, _), Some (t', _, n') when t = t' && Vec3.equal n n' -> incr hits
+          | _ ->
+              Alcotest.failf "ray %d from %s along %s: kernel %s, literal %s" i (Vec3.show origin) (Vec3.show direction)
+                (match kernel with Some (t, _, _) -> Printf.sprintf "%h" t | None -> "none")
+                (match literal with Some (t, _, _) -> Printf.sprintf "%h" t | None -> "none")
+        done;
+        if !hits < 1000 || !misses < 300 then Alcotest.failf "%d hits, %d misses: not a test of both" !hits !misses);
     Alcotest.test_case "the surface of a subtracted solid faces into the cavity; hits say whether they enter" `Quick
       (fun () ->
         let o = Vec3.zero and d = Vec3.oz in
