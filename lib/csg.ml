@@ -78,29 +78,35 @@ let points (p : float array) =
    took about 400 bytes an edge, and most of the load time of a million
    triangles. *)
 let check_closed (m : Mesh.t) =
-  let p = m.positions in
+  let p = m.positions and tri = m.triangles in
   let point, first, np = points p in
-  let ends k c = (point.(m.triangles.((3 * k) + c)), point.(m.triangles.((3 * k) + ((c + 1) mod 3)))) in
+  (* Edge [c] of triangle [k], from corner [c] to the next: its ends'
+     point numbers. *)
+  let a k c = point.(tri.((3 * k) + c)) and b k c = point.(tri.((3 * k) + if c = 2 then 0 else c + 1)) in
   let start = Array.make (np + 1) 0 in
-  let each f =
-    for k = 0 to Mesh.triangle_count m - 1 do
-      if not (Mesh.degenerate m k) then
-        for c = 0 to 2 do
-          let a, b = ends k c in
-          f (min a b) (max a b)
-        done
-    done
-  in
-  each (fun lo _ -> start.(lo + 1) <- start.(lo + 1) + 1);
+  for k = 0 to Mesh.triangle_count m - 1 do
+    if not (Mesh.degenerate m k) then
+      for c = 0 to 2 do
+        let x = a k c and y = b k c in
+        let lo = if x < y then x else y in
+        start.(lo + 1) <- start.(lo + 1) + 1
+      done
+  done;
   for i = 1 to np do
     start.(i) <- start.(i) + start.(i - 1)
   done;
   let upper = Array.make (max 1 start.(np)) 0 and fill = Array.sub start 0 np in
-  each (fun lo hi ->
-      upper.(fill.(lo)) <- hi;
-      fill.(lo) <- fill.(lo) + 1);
-  let bad = ref None and lo = ref 0 in
-  while !bad = None && !lo < np do
+  for k = 0 to Mesh.triangle_count m - 1 do
+    if not (Mesh.degenerate m k) then
+      for c = 0 to 2 do
+        let x = a k c and y = b k c in
+        let lo = if x < y then x else y and hi = if x < y then y else x in
+        upper.(fill.(lo)) <- hi;
+        fill.(lo) <- fill.(lo) + 1
+      done
+  done;
+  let bad = ref None and found = ref false and lo = ref 0 in
+  while (not !found) && !lo < np do
     let i0 = start.(!lo) and i1 = start.(!lo + 1) in
     for i = i0 + 1 to i1 - 1 do
       let x = upper.(i) and j = ref i in
@@ -111,12 +117,15 @@ let check_closed (m : Mesh.t) =
       upper.(!j) <- x
     done;
     let i = ref i0 in
-    while !bad = None && !i < i1 do
+    while (not !found) && !i < i1 do
       let j = ref !i in
       while !j < i1 && upper.(!j) = upper.(!i) do
         incr j
       done;
-      if !j - !i <> 2 then bad := Some (!lo, upper.(!i), !j - !i);
+      if !j - !i <> 2 then begin
+        bad := Some (!lo, upper.(!i), !j - !i);
+        found := true
+      end;
       i := !j
     done;
     incr lo
