@@ -196,6 +196,8 @@ let extent c =
       Float.max acc (Float.max (ext lo) (ext hi)))
     0. (Csg c)
 
+let triangles c = fold_solids (fun n l -> match l with Mesh m -> n + Mesh.objects m | _ -> n) 0 (Csg c)
+
 let rec pp ppf c =
   let solid ppf = function
     | Sphere s -> Sphere.pp ppf s

@@ -78,6 +78,10 @@ val bounds : t -> Vec3.t * Vec3.t
     around both operands' boxes, for an intersection their common part (a
     point if they are disjoint), for a difference the first operand's. *)
 
+val triangles : t -> int
+(** [triangles c] is the number of triangles of [c]'s mesh leaves that the
+    kernel keeps ({!Mesh.objects}). *)
+
 val extent : t -> float
 (** [extent c] is the largest magnitude of a coordinate of the boxes of
     [c]'s leaves, the scale of its geometry for the error-bound offsets of
