@@ -656,6 +656,47 @@ let tests =
                 (match literal with Some (t, _, _) -> Printf.sprintf "%h" t | None -> "none")
         done;
         if !hits < 1000 || !misses < 300 then Alcotest.failf "%d hits, %d misses: not a test of both" !hits !misses);
+    Alcotest.test_case "closedness: edges by coordinates (repeated vertices, -0 and 0 one point), the first bad edge named" `Quick
+      (fun () ->
+        let mesh positions triangles =
+          match
+            Mesh.v ~source:"m.obj" ~positions ~triangles ~normals:[||]
+              ~triangle_normals:(Array.make (Array.length triangles) (-1)) (Material.v white)
+          with
+          | Ok m -> m
+          | Error (`Msg e) -> Alcotest.fail e
+        in
+        let corners = [| (0., 0., 0.); (1., 0., 0.); (0., 1., 0.); (0., 0., 1.) |] in
+        let faces = [ (0, 2, 1); (0, 1, 3); (0, 3, 2); (1, 2, 3) ] in
+        (* A tetrahedron whose faces each repeat their corners, the first
+           corner written -0 in one face. *)
+        let positions =
+          Array.concat
+            (List.mapi
+               (fun f (a, b, c) ->
+                 Array.concat
+                   (List.map
+                      (fun v ->
+                        let x, y, z = corners.(v) in
+                        if f = 1 && v = 0 then [| -0.; -0.; -0. |] else [| x; y; z |])
+                      [ a; b; c ]))
+               faces)
+        in
+        let triangles = Array.init 12 Fun.id in
+        Alcotest.(check bool) "closed" true (Csg.check_closed (mesh positions triangles) = Ok ());
+        (* Without its last face: three edges border one triangle each. *)
+        (match Csg.check_closed (mesh (Array.sub positions 0 27) (Array.init 9 Fun.id)) with
+        | Ok () -> Alcotest.fail "an open mesh is closed"
+        | Error (`Msg m) ->
+            Alcotest.(check string) "the message"
+              "csg: mesh \"m.obj\" is not a closed solid: its edge from (0 1 0) to (1 0 0) borders 1 triangle, not 2" m);
+        (* A fifth triangle on an edge: three triangles there. *)
+        let positions = Array.append positions [| 1.; 0.; 0.; 0.; 1.; 0.; 1.; 1.; 1. |] in
+        match Csg.check_closed (mesh positions (Array.init 15 Fun.id)) with
+        | Ok () -> Alcotest.fail "an edge of three triangles is closed"
+        | Error (`Msg m) ->
+            Alcotest.(check string) "the message"
+              "csg: mesh \"m.obj\" is not a closed solid: its edge from (0 1 0) to (1 0 0) borders 3 triangles, not 2" m);
     Alcotest.test_case "the surface of a subtracted solid faces into the cavity; hits say whether they enter" `Quick
       (fun () ->
         let o = Vec3.zero and d = Vec3.oz in
