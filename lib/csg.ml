@@ -23,30 +23,118 @@ let leaf_material = function
   | Mesh m -> m.material
   | Csg _ -> invalid_arg "Csg.leaf_material: not a leaf"
 
-let materials c = List.map leaf_material (leaves c)
+(* Every pass over a tree recurses as deep as it nests, and no deeper:
+   never along a list of its leaves (a balanced tree of 2^18 leaves nests
+   18 deep, and [List.map] over its leaves overflowed the stack, the
+   JavaScript one long before the native one). *)
+let materials c = List.rev (fold_solids (fun acc l -> leaf_material l :: acc) [] (Csg c))
 
-let rec depth = function Csg c -> 1 + max (depth c.a) (depth c.b) | _ -> 0
+(* Whether [s] nests more than [limit] CSG forms, found without going
+   deeper than [limit + 1]: a tree built in code may nest a million deep. *)
+let rec deeper_than limit = function
+  | Csg c -> limit <= 0 || deeper_than (limit - 1) c.a || deeper_than (limit - 1) c.b
+  | _ -> false
+
+(* The number of each vertex of [p] ([x y z] each), equal points one
+   number, and the first vertex of each number: an open-addressing table
+   of vertex numbers by their coordinates' hash ([Hashtbl.hash] makes -0
+   and 0 one), in linear time, with no boxed key. *)
+let points (p : float array) =
+  let nv = Array.length p / 3 in
+  let size = ref 16 in
+  while !size < 2 * nv do
+    size := 2 * !size
+  done;
+  let mask = !size - 1 in
+  let table = Array.make !size (-1) in
+  let point = Array.make nv 0 and first = Array.make (max 1 nv) 0 and n = ref 0 in
+  for v = 0 to nv - 1 do
+    let x = p.(3 * v) and y = p.((3 * v) + 1) and z = p.((3 * v) + 2) in
+    let h = ref (Hashtbl.hash x + (65599 * (Hashtbl.hash y + (65599 * Hashtbl.hash z)))) in
+    let found = ref (-1) in
+    while !found < 0 do
+      let i = !h land mask in
+      let w = table.(i) in
+      if w < 0 then begin
+        table.(i) <- v;
+        first.(!n) <- v;
+        found := !n;
+        incr n
+      end
+      else if p.(3 * w) = x && p.((3 * w) + 1) = y && p.((3 * w) + 2) = z then found := point.(w)
+      else h := !h + 1
+    done;
+    point.(v) <- !found
+  done;
+  (point, first, !n)
 
 (* Every edge of a closed mesh borders exactly two of its triangles.
    Edges are keyed by their endpoints' coordinates, not by vertex numbers,
    so that a file that repeats a vertex (one per face, as some exporters
    do) is still closed. Degenerate triangles are left out: no ray can hit
-   them, the kernel drops them. *)
+   them, the kernel drops them. The edges are sorted by their lower end
+   into buckets (counting), and each bucket, a vertex's few edges, by the
+   upper end: linear time, ints alone. A hash table of coordinate tuples
+   took about 400 bytes an edge, and most of the load time of a million
+   triangles. *)
 let check_closed (m : Mesh.t) =
-  let edges = Hashtbl.create 64 in
-  let corner k c = Vec3.to_tuple (Mesh.vertex m k c) in
+  let p = m.positions and tri = m.triangles in
+  let point, first, np = points p in
+  (* Edge [c] of triangle [k], from corner [c] to the next: its ends'
+     point numbers. *)
+  let a k c = point.(tri.((3 * k) + c)) and b k c = point.(tri.((3 * k) + if c = 2 then 0 else c + 1)) in
+  let start = Array.make (np + 1) 0 in
   for k = 0 to Mesh.triangle_count m - 1 do
     if not (Mesh.degenerate m k) then
       for c = 0 to 2 do
-        let p = corner k c and q = corner k ((c + 1) mod 3) in
-        let key = if compare p q <= 0 then (p, q) else (q, p) in
-        Hashtbl.replace edges key (1 + Option.value ~default:0 (Hashtbl.find_opt edges key))
+        let x = a k c and y = b k c in
+        let lo = if x < y then x else y in
+        start.(lo + 1) <- start.(lo + 1) + 1
       done
   done;
-  let bad = Hashtbl.fold (fun key n acc -> if n <> 2 && acc = None then Some (key, n) else acc) edges None in
-  match bad with
+  for i = 1 to np do
+    start.(i) <- start.(i) + start.(i - 1)
+  done;
+  let upper = Array.make (max 1 start.(np)) 0 and fill = Array.sub start 0 np in
+  for k = 0 to Mesh.triangle_count m - 1 do
+    if not (Mesh.degenerate m k) then
+      for c = 0 to 2 do
+        let x = a k c and y = b k c in
+        let lo = if x < y then x else y and hi = if x < y then y else x in
+        upper.(fill.(lo)) <- hi;
+        fill.(lo) <- fill.(lo) + 1
+      done
+  done;
+  let bad = ref None and found = ref false and lo = ref 0 in
+  while (not !found) && !lo < np do
+    let i0 = start.(!lo) and i1 = start.(!lo + 1) in
+    for i = i0 + 1 to i1 - 1 do
+      let x = upper.(i) and j = ref i in
+      while !j > i0 && upper.(!j - 1) > x do
+        upper.(!j) <- upper.(!j - 1);
+        decr j
+      done;
+      upper.(!j) <- x
+    done;
+    let i = ref i0 in
+    while (not !found) && !i < i1 do
+      let j = ref !i in
+      while !j < i1 && upper.(!j) = upper.(!i) do
+        incr j
+      done;
+      if !j - !i <> 2 then begin
+        bad := Some (!lo, upper.(!i), !j - !i);
+        found := true
+      end;
+      i := !j
+    done;
+    incr lo
+  done;
+  match !bad with
   | None -> Ok ()
-  | Some (((ax, ay, az), (bx, by, bz)), n) ->
+  | Some (a, b, n) ->
+      let corner v = (p.(3 * first.(v)), p.((3 * first.(v)) + 1), p.((3 * first.(v)) + 2)) in
+      let (ax, ay, az), (bx, by, bz) = (corner a, corner b) in
       let num = Float_text.to_string in
       Error
         (`Msg
@@ -57,7 +145,7 @@ let check_closed (m : Mesh.t) =
 let rec validate c =
   let ( let* ) = Result.bind in
   let* () =
-    if depth (Csg c) > max_depth then Error (`Msg (Printf.sprintf "csg nested deeper than %d levels" max_depth))
+    if deeper_than max_depth (Csg c) then Error (`Msg (Printf.sprintf "csg nested deeper than %d levels" max_depth))
     else Ok ()
   in
   let child = function
@@ -108,6 +196,8 @@ let extent c =
       Float.max acc (Float.max (ext lo) (ext hi)))
     0. (Csg c)
 
+let triangles c = fold_solids (fun n l -> match l with Mesh m -> n + Mesh.objects m | _ -> n) 0 (Csg c)
+
 let rec pp ppf c =
   let solid ppf = function
     | Sphere s -> Sphere.pp ppf s
@@ -129,22 +219,43 @@ let leaf_sphere = 3
 let leaf_box = 4
 let leaf_mesh = 5
 
-(* Surfaces: a sphere [cx cy cz r], a box as {!Box.store} writes it, a
-   mesh's triangle as {!Triangle.store} does. *)
+(* Surfaces, one a leaf: a sphere [cx cy cz r], a box as {!Box.store}
+   writes it, a mesh (its number in [meshes], as a float). *)
 let surface_sphere = 0
 let surface_box = 1
-let surface_triangle = 2
+let surface_mesh = 2
+
+(* The intervals name the surface crossed at each end as [sf lsl slot_bits
+   lor slot]: the leaf's surface [sf], and for a mesh the slot of the
+   triangle in its hierarchy. Numbers then compare as the leaves' order
+   does (the merge's tie rule). A mesh has at most {!Limits.max_triangles}
+   triangles, below [2^slot_bits]. *)
+let slot_bits = 23
+let slot_mask = (1 lsl slot_bits) - 1
+
+(* A mesh leaf: its triangles' corners, in the order of its hierarchy's
+   slots, as offsets in [vertex] (the mesh's own positions, not a copy),
+   and the hierarchy over their boxes. *)
+type mesh_leaf = {
+  vertex : float array;
+  corners : int array;  (** 3 per slot. *)
+  nodes : float array;  (** {!Bvh.t}'s; empty for a mesh of no triangle the kernel keeps. *)
+  root : int;
+  depth : int;  (** Of the hierarchy: {!Bvh.t}'s. *)
+  reach : float;  (** The largest magnitude of a coordinate of the mesh. *)
+}
 
 type table = {
   node_kind : int array;
-  left : int array;  (** An operation's first child; a leaf's first surface. *)
-  right : int array;  (** An operation's second child; a leaf's last surface, plus one. *)
+  left : int array;  (** An operation's first child; a leaf's surface. *)
+  right : int array;  (** An operation's second child; a mesh leaf's number in [meshes]. *)
   base : int array;  (** A node's first interval in the work arrays. *)
   surface_kind : int array;
   geom : float array;  (** [stride] floats per surface. *)
   surface_material : int array;
+  meshes : mesh_leaf array;
   intervals : int;
-  crossings : int;  (** The most triangles of a mesh leaf. *)
+  depth : int;  (** The deepest hierarchy of a mesh leaf. *)
 }
 
 type builder = {
@@ -152,11 +263,14 @@ type builder = {
   mutable n_nodes : int;
   mutable surfaces : (int * float array * int) list;  (** Reversed. *)
   mutable n_surfaces : int;
+  mutable meshes : mesh_leaf list;  (** Reversed. *)
+  mutable n_meshes : int;
   mutable n_intervals : int;
-  mutable max_crossings : int;
+  mutable max_depth : int;
 }
 
-let builder () = { nodes = []; n_nodes = 0; surfaces = []; n_surfaces = 0; n_intervals = 0; max_crossings = 0 }
+let builder () =
+  { nodes = []; n_nodes = 0; surfaces = []; n_surfaces = 0; meshes = []; n_meshes = 0; n_intervals = 0; max_depth = 0 }
 
 let add_surface b kind g mat =
   b.surfaces <- (kind, g, mat) :: b.surfaces;
@@ -169,34 +283,75 @@ let add_node b kind left right cap =
   b.n_nodes <- b.n_nodes + 1;
   b.n_nodes - 1
 
+(* The hierarchy over [m]'s triangles that the kernel keeps (not
+   degenerate): the only copy of the mesh is its corners' offsets, 3 ints
+   a triangle; the boxes are the build's, dropped after it. *)
+let mesh_leaf (m : Mesh.t) =
+  let n = Mesh.objects m in
+  if n > slot_mask then invalid_arg "Csg: a mesh operand has too many triangles";
+  let reach = Array.fold_left (fun acc x -> Float.max acc (Float.abs x)) 0. m.positions in
+  if n = 0 then { vertex = m.positions; corners = [||]; nodes = [||]; root = 0; depth = 0; reach }
+  else begin
+    let kept = Array.make n 0 and j = ref 0 in
+    for k = 0 to Mesh.triangle_count m - 1 do
+      if not (Mesh.degenerate m k) then begin
+        kept.(!j) <- k;
+        incr j
+      end
+    done;
+    let f () = Array.create_float n in
+    let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
+    let box = Array.make 6 0. in
+    Array.iteri
+      (fun i k ->
+        Mesh.box m k box;
+        x0.(i) <- box.(0);
+        y0.(i) <- box.(1);
+        z0.(i) <- box.(2);
+        x1.(i) <- box.(3);
+        y1.(i) <- box.(4);
+        z1.(i) <- box.(5))
+      kept;
+    (* Leaves of up to 16, as the scene's hierarchy has for meshes (see
+       [Prepared]): a mesh's thin triangles overlap, and smaller leaves
+       buy more boxes for few fewer triangle tests. *)
+    let bvh = Bvh.build_boxes ~leaf_size:16 ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
+    let corners = Array.make (3 * n) 0 in
+    Array.iteri
+      (fun slot i ->
+        for c = 0 to 2 do
+          corners.((3 * slot) + c) <- 3 * m.triangles.((3 * kept.(i)) + c)
+        done)
+      bvh.order;
+    { vertex = m.positions; corners; nodes = bvh.nodes; root = bvh.root; depth = bvh.depth; reach }
+  end
+
 (* Adds [s] with its leaves' materials numbered by [material] (given the
-   leaf); its node
-   and its capacity in intervals. *)
+   leaf); its node and its capacity in intervals. *)
 let rec add_solid b ~material s =
   match s with
   | Sphere sp ->
       let first = b.n_surfaces in
       add_surface b surface_sphere [| sp.center.x; sp.center.y; sp.center.z; sp.radius |] (material s);
-      (add_node b leaf_sphere first (first + 1) 1, 1)
+      (add_node b leaf_sphere first 0 1, 1)
   | Box bx ->
       let first = b.n_surfaces in
       let g = Array.make stride 0. in
       Box.store bx g 0;
       add_surface b surface_box g (material s);
-      (add_node b leaf_box first (first + 1) 1, 1)
+      (add_node b leaf_box first 0 1, 1)
   | Mesh m ->
-      let first = b.n_surfaces and mat = material s in
-      for k = 0 to Mesh.triangle_count m - 1 do
-        if not (Mesh.degenerate m k) then begin
-          let g = Array.make stride 0. in
-          Triangle.store (Mesh.triangle m k) g 0;
-          add_surface b surface_triangle g mat
-        end
-      done;
-      let n = b.n_surfaces - first in
-      b.max_crossings <- max b.max_crossings n;
+      let sf = b.n_surfaces and leaf = mesh_leaf m in
+      let number = b.n_meshes in
+      add_surface b surface_mesh [| Float.of_int number |] (material s);
+      b.meshes <- leaf :: b.meshes;
+      b.n_meshes <- number + 1;
+      let n = Array.length leaf.corners / 3 in
+      (* A line through the hierarchy keeps a stack of at most one node
+         a level, and the nodes it pushes last. *)
+      b.max_depth <- max b.max_depth leaf.depth;
       let cap = (n / 2) + 1 in
-      (add_node b leaf_mesh first b.n_surfaces cap, cap)
+      (add_node b leaf_mesh sf number cap, cap)
   | Csg c ->
       let a, ca = add_solid b ~material c.a in
       let bn, cb = add_solid b ~material c.b in
@@ -217,8 +372,9 @@ let table b =
     surface_kind = Array.map (fun (k, _, _) -> k) surfaces;
     geom;
     surface_material = Array.map (fun (_, _, m) -> m) surfaces;
+    meshes = Array.of_list (List.rev b.meshes);
     intervals = b.n_intervals;
-    crossings = b.max_crossings;
+    depth = b.max_depth;
   }
 
 let empty = table (builder ())
@@ -229,24 +385,26 @@ type work = {
   s_in : int array;
   s_out : int array;
   count : int array;
-  xt : float array;
-  xs : int array;
+  stack : int array;  (** The nodes of a mesh's hierarchy still to visit. *)
   mutable surface : int;
   mutable entering : bool;
+  mutable tests : int;
+  mutable boxes : int;
 }
 
 let work tb =
-  let n = max 1 tb.intervals and x = max 1 tb.crossings in
+  let n = max 1 tb.intervals in
   {
     t_in = Array.make n 0.;
     t_out = Array.make n 0.;
     s_in = Array.make n 0;
     s_out = Array.make n 0;
     count = Array.make (max 1 (Array.length tb.node_kind)) 0;
-    xt = Array.make x 0.;
-    xs = Array.make x 0;
+    stack = Array.make ((2 * tb.depth) + 2) 0;
     surface = -1;
     entering = true;
+    tests = 0;
+    boxes = 0;
   }
 
 (* The sphere at [o] in [g]: {!Sphere.roots}'s cancellation-free roots,
@@ -289,34 +447,130 @@ let[@inline] leaf_interval w (s : Scratch.t) node base sf hit =
   end
   else Array.unsafe_set w.count node 0
 
-(* A closed mesh: its crossings along the line, sorted (insertion: a ray
-   crosses few triangles), paired as in, out, in, out... An odd count (a
-   ray through an edge, counted by both triangles) drops the last. *)
-let mesh_intervals tb w (s : Scratch.t) node base =
-  let xt = w.xt and xs = w.xs in
-  let n = ref 0 in
-  for sf = Array.unsafe_get tb.left node to Array.unsafe_get tb.right node - 1 do
-    if Triangle.roots s tb.geom (stride * sf) then begin
-      let t = s.near in
-      let j = ref !n in
-      while !j > 0 && Array.unsafe_get xt (!j - 1) > t do
-        Array.unsafe_set xt !j (Array.unsafe_get xt (!j - 1));
-        Array.unsafe_set xs !j (Array.unsafe_get xs (!j - 1));
-        decr j
-      done;
-      Array.unsafe_set xt !j t;
-      Array.unsafe_set xs !j sf;
-      incr n
-    end
+(* The reciprocal of a direction coordinate for the slab test: a zero
+   coordinate gets a huge finite value, not an infinity, so that the
+   slab's ends are huge and of the right signs (or 0), never NaN. *)
+let[@inline] slab_inverse d = if d = 0. then 1e300 else 1. /. d
+
+(* Does the line of the ray in [s] (slab inverses [ix], [iy], [iz]) meet
+   the box of the node at [o] of [nodes], grown by [pad] on every side? *)
+let[@inline] line_meets (nodes : float array) (s : Scratch.t) o pad ix iy iz =
+  let ox = s.ox and oy = s.oy and oz = s.oz in
+  let x0 = (Array.unsafe_get nodes o -. pad -. ox) *. ix and x1 = (Array.unsafe_get nodes (o + 3) +. pad -. ox) *. ix in
+  let y0 = (Array.unsafe_get nodes (o + 1) -. pad -. oy) *. iy and y1 = (Array.unsafe_get nodes (o + 4) +. pad -. oy) *. iy in
+  let z0 = (Array.unsafe_get nodes (o + 2) -. pad -. oz) *. iz and z1 = (Array.unsafe_get nodes (o + 5) +. pad -. oz) *. iz in
+  let enter_x = if x0 < x1 then x0 else x1 and exit_x = if x0 < x1 then x1 else x0 in
+  let enter_y = if y0 < y1 then y0 else y1 and exit_y = if y0 < y1 then y1 else y0 in
+  let enter_z = if z0 < z1 then z0 else z1 and exit_z = if z0 < z1 then z1 else z0 in
+  let enter = if enter_x > enter_y then enter_x else enter_y in
+  let enter = if enter > enter_z then enter else enter_z in
+  let exit = if exit_x < exit_y then exit_x else exit_y in
+  let exit = if exit < exit_z then exit else exit_z in
+  enter <= exit
+
+(* A mesh's crossings are kept in order in its node's own room for
+   intervals, where they are paired: crossing [j] is the entry of interval
+   [base + j / 2] for an even [j], its exit for an odd one. A node has
+   room for [n / 2 + 1] intervals, [n] its triangles. *)
+let[@inline] crossing_t w base j =
+  if j land 1 = 0 then Array.unsafe_get w.t_in (base + (j lsr 1)) else Array.unsafe_get w.t_out (base + (j lsr 1))
+
+let[@inline] crossing_surface w base j =
+  if j land 1 = 0 then Array.unsafe_get w.s_in (base + (j lsr 1)) else Array.unsafe_get w.s_out (base + (j lsr 1))
+
+let[@inline] set_crossing w base j t id =
+  if j land 1 = 0 then begin
+    Array.unsafe_set w.t_in (base + (j lsr 1)) t;
+    Array.unsafe_set w.s_in (base + (j lsr 1)) id
+  end
+  else begin
+    Array.unsafe_set w.t_out (base + (j lsr 1)) t;
+    Array.unsafe_set w.s_out (base + (j lsr 1)) id
+  end
+
+(* Crossing [t] of the surface [id] kept in order among the [n] of the
+   node at [base] (insertion: a line crosses few triangles). *)
+let[@inline] insert w base n t id =
+  let j = ref n in
+  while !j > 0 && crossing_t w base (!j - 1) > t do
+    set_crossing w base !j (crossing_t w base (!j - 1)) (crossing_surface w base (!j - 1));
+    decr j
   done;
+  set_crossing w base !j t id
+
+(* The boxes of the hierarchy grow by [2^-47 (reach + |O|)], 64 u of the
+   largest coordinate of the corners or of the ray's origin: the triangle
+   test moves each corner into the ray's frame with an error below [8 u]
+   of that, and decides exactly on the moved corners; the slab test errs
+   by a few u of it. So the grown box of every triangle that
+   {!Triangle.crosses} reports is met by the line, and none is missed: a
+   crossing missed would turn the parity, inside for outside, along the
+   whole line. *)
+let pad_scale = 0x1p-47
+
+(* A closed mesh: its crossings along the whole line (the triangles of the
+   boxes of its hierarchy that the line meets), each counted once
+   ({!Triangle.crosses}: an even number), in order, paired as in, out, in,
+   out... An empty pair (a ray that touches the surface) is dropped, and a
+   pair that starts where the last one ended (a ray that touches it from
+   inside) extends it. An odd count, which the rule excludes, would drop
+   the last. *)
+let mesh_intervals tb w (s : Scratch.t) node base =
+  let sf = Array.unsafe_get tb.left node in
+  let leaf = Array.unsafe_get tb.meshes (Array.unsafe_get tb.right node) in
+  let g = leaf.vertex and corners = leaf.corners and nodes = leaf.nodes in
+  let n = ref 0 in
+  if Array.length corners > 0 then begin
+    let axes = Triangle.shear s in
+    let kx = Triangle.axis_x axes and ky = Triangle.axis_y axes and kz = Triangle.axis_z axes in
+    let ix = slab_inverse s.dx and iy = slab_inverse s.dy and iz = slab_inverse s.dz in
+    let reach = Float.max (Float.abs s.ox) (Float.max (Float.abs s.oy) (Float.abs s.oz)) in
+    let pad = pad_scale *. (leaf.reach +. reach) in
+    let stack = w.stack and sp = ref 1 and boxes = ref 0 and tests = ref 0 in
+    Array.unsafe_set stack 0 leaf.root;
+    while !sp > 0 do
+      decr sp;
+      let o = Array.unsafe_get stack !sp in
+      incr boxes;
+      if line_meets nodes s o pad ix iy iz then begin
+        let tag = truncate (Array.unsafe_get nodes (o + 7)) and link = truncate (Array.unsafe_get nodes (o + 6)) in
+        if tag > 0 then begin
+          tests := !tests + tag;
+          for slot = link to link + tag - 1 do
+            let c = 3 * slot in
+            if
+              Triangle.crosses_at s g (Array.unsafe_get corners c) (Array.unsafe_get corners (c + 1))
+                (Array.unsafe_get corners (c + 2)) kx ky kz
+            then begin
+              insert w base !n s.near ((sf lsl slot_bits) lor slot);
+              incr n
+            end
+          done
+        end
+        else begin
+          Array.unsafe_set stack !sp link;
+          Array.unsafe_set stack (!sp + 1) (o + Bvh.node_floats);
+          sp := !sp + 2
+        end
+      end
+    done;
+    w.tests <- w.tests + !tests;
+    w.boxes <- w.boxes + !boxes
+  end;
+  (* Pairs compacted in place: pair [j] moves to [m <= j]. *)
   let m = ref 0 in
   for j = 0 to (!n / 2) - 1 do
-    let t0 = Array.unsafe_get xt (2 * j) and t1 = Array.unsafe_get xt ((2 * j) + 1) in
-    if t0 < t1 then begin
+    let k = base + j in
+    let t0 = Array.unsafe_get w.t_in k and t1 = Array.unsafe_get w.t_out k in
+    if !m > 0 && Array.unsafe_get w.t_out (base + !m - 1) = t0 then begin
+      Array.unsafe_set w.t_out (base + !m - 1) t1;
+      Array.unsafe_set w.s_out (base + !m - 1) (Array.unsafe_get w.s_out k)
+    end
+    else if t0 < t1 then begin
       Array.unsafe_set w.t_in (base + !m) t0;
       Array.unsafe_set w.t_out (base + !m) t1;
-      Array.unsafe_set w.s_in (base + !m) (Array.unsafe_get xs (2 * j));
-      Array.unsafe_set w.s_out (base + !m) (Array.unsafe_get xs ((2 * j) + 1));
+      Array.unsafe_set w.s_in (base + !m) (Array.unsafe_get w.s_in k);
+      Array.unsafe_set w.s_out (base + !m) (Array.unsafe_get w.s_out k);
       incr m
     end
   done;
@@ -391,12 +645,14 @@ let merge w op node base na nb ba bb =
 let rec eval tb w (s : Scratch.t) node =
   let k = Array.unsafe_get tb.node_kind node and base = Array.unsafe_get tb.base node in
   if k = leaf_sphere then begin
+    w.tests <- w.tests + 1;
     let sf = Array.unsafe_get tb.left node in
-    leaf_interval w s node base sf (sphere_roots s tb.geom (stride * sf))
+    leaf_interval w s node base (sf lsl slot_bits) (sphere_roots s tb.geom (stride * sf))
   end
   else if k = leaf_box then begin
+    w.tests <- w.tests + 1;
     let sf = Array.unsafe_get tb.left node in
-    leaf_interval w s node base sf (Box.roots s tb.geom (stride * sf))
+    leaf_interval w s node base (sf lsl slot_bits) (Box.roots s tb.geom (stride * sf))
   end
   else if k = leaf_mesh then mesh_intervals tb w s node base
   else begin
@@ -441,7 +697,7 @@ let roots tb w (s : Scratch.t) root =
   !found
 
 let normal tb w (s : Scratch.t) =
-  let sf = w.surface in
+  let sf = w.surface lsr slot_bits in
   let k = Array.unsafe_get tb.surface_kind sf and o = stride * sf in
   if k = surface_sphere then begin
     let g = tb.geom in
@@ -452,7 +708,10 @@ let normal tb w (s : Scratch.t) =
     s.nz <- nz *. inv
   end
   else if k = surface_box then Box.normal s tb.geom o
-  else Triangle.normal s tb.geom o;
+  else begin
+    let leaf = tb.meshes.(truncate tb.geom.(o)) and c = 3 * (w.surface land slot_mask) in
+    Triangle.normal_at s leaf.vertex leaf.corners.(c) leaf.corners.(c + 1) leaf.corners.(c + 2)
+  end;
   (* Outward from the solid: against the ray where it enters, along it
      where it leaves. This turns a subtracted solid's normal around. *)
   let along = (s.nx *. s.dx) +. (s.ny *. s.dy) +. (s.nz *. s.dz) > 0. in
@@ -462,8 +721,19 @@ let normal tb w (s : Scratch.t) =
     s.nz <- -.s.nz
   end
 
-let material tb w = Array.unsafe_get tb.surface_material w.surface
+let material tb w = Array.unsafe_get tb.surface_material (w.surface lsr slot_bits)
 let entering w = w.entering
+let take_tests w =
+  let n = w.tests in
+  w.tests <- 0;
+  n
+
+let take_boxes w =
+  let n = w.boxes in
+  w.boxes <- 0;
+  n
+
+let[@inline] pending w = w.tests + w.boxes
 
 (* {1 The literal algorithm} *)
 
@@ -497,7 +767,7 @@ let literal_hit c ~origin ~direction ~t_min ~t_max =
                 (fun k ->
                   if Mesh.degenerate m k then None
                   else
-                    let t = Triangle.intersect (Mesh.triangle m k) ~origin ~direction in
+                    let t = Triangle.crossing (Mesh.triangle m k) ~origin ~direction in
                     if t < infinity then Some (t, i, k) else None)
                 (List.init (Mesh.triangle_count m) Fun.id)
             in
@@ -526,7 +796,9 @@ let literal_hit c ~origin ~direction ~t_min ~t_max =
         let a = inside ~after t a and b = inside ~after t b in
         match op with Union -> a || b | Intersection -> a && b | Difference -> a && not b)
   in
-  let all = List.stable_sort (fun (a, _, _) (b, _, _) -> Float.compare a b) (List.concat (Array.to_list crossings)) in
+  let all =
+    List.stable_sort (fun (a, _, _) (b, _, _) -> Float.compare a b) (List.rev (Array.fold_left (fun acc l -> List.rev_append l acc) [] crossings))
+  in
   let boundary =
     List.find_opt
       (fun (t, _, _) -> t > t_min && inside ~after:false t tree <> inside ~after:true t tree)

@@ -78,6 +78,10 @@ val bounds : t -> Vec3.t * Vec3.t
     around both operands' boxes, for an intersection their common part (a
     point if they are disjoint), for a difference the first operand's. *)
 
+val triangles : t -> int
+(** [triangles c] is the number of triangles of [c]'s mesh leaves that the
+    kernel keeps ({!Mesh.objects}). *)
+
 val extent : t -> float
 (** [extent c] is the largest magnitude of a coordinate of the boxes of
     [c]'s leaves, the scale of its geometry for the error-bound offsets of
@@ -86,8 +90,13 @@ val extent : t -> float
 (** {1:kernel The kernel's table}
 
     The CSG solids of a prepared scene are stored in one table of nodes
-    (operations and leaves) and surfaces (a sphere, a box, or one triangle
-    of a mesh, each with its material's number). *)
+    (operations and leaves) and surfaces (a sphere, a box or a mesh, each
+    with its material's number). A mesh leaf keeps the mesh's own
+    positions (no copy), its kept triangles' corners (3 ints a triangle)
+    and a bounding volume hierarchy ({!Bvh}) over them, which a ray
+    descends along its whole line: its crossings anywhere are the parity
+    of the points along it, and a triangle's box is grown so that no
+    crossing the triangle test reports is missed (see [csg.ml]). *)
 
 type table
 (** The type for tables of CSG solids. *)
@@ -123,8 +132,10 @@ val roots : table -> work -> Scratch.t -> int -> bool
     surface crossed there and whether the ray enters or leaves the solid
     ({!entering}). Otherwise [s.near] and [s.far] are [infinity]. Leaves'
     roots are their modules' kernel routines ({!Box.roots},
-    {!Triangle.roots}, {!Sphere.roots}'s arithmetic), so a CSG silhouette
-    is exactly its leaves' silhouettes, combined. Allocates nothing. *)
+    {!Triangle.crosses}, {!Sphere.roots}'s arithmetic), so a CSG silhouette
+    is exactly its leaves' silhouettes, combined; a mesh's crossings are
+    counted once each ({!Triangle.crosses}), so that its inside is right
+    along rays through its shared edges and corners. Allocates nothing. *)
 
 val normal : table -> work -> Scratch.t -> unit
 (** [normal tb w s] sets [s.nx], [s.ny], [s.nz] to the outward unit
@@ -135,6 +146,22 @@ val normal : table -> work -> Scratch.t -> unit
 val material : table -> work -> int
 (** [material tb w] is the material's number of the surface of the last
     hit found by {!roots} with [w]. *)
+
+val take_tests : work -> int
+(** [take_tests w] is the number of leaf tests (a sphere, a box, a mesh's
+    triangle) the calls of {!roots} with [w] made since the last
+    [take_tests w], and restarts that count: the kernel adds them to its
+    count of intersection tests whenever it reads it (the statistics, the
+    work bound), at no cost per ray. *)
+
+val take_boxes : work -> int
+(** [take_boxes w] is {!take_tests} for the boxes of the mesh leaves'
+    hierarchies, counted as the kernel's box tests. *)
+
+val pending : work -> int
+(** [pending w] is the leaf and box tests that {!take_tests} and
+    {!take_boxes} would take now, without taking them: the kernel's check
+    of its work bound reads it. *)
 
 val entering : work -> bool
 (** [entering w] is [true] iff the last hit found by {!roots} with [w] is

@@ -526,7 +526,10 @@ let prepare_scene ~skips ?beside scene =
      arrays below do not fit in: compacted now, the heap is the mesh's
      arrays and grows from there (the 1M-triangle knot's peak goes from
      275 to 235 MB, for 40 ms). *)
-  if any_mesh && n > big_scene then Gc.compact ();
+  (* So does a big mesh as a CSG operand, in a scene of few objects
+     (docs/performance.md, issue 29). *)
+  let csg_triangles = List.fold_left (fun t -> function Shape.Csg c -> t + Csg.triangles c | _ -> t) 0 scene.shapes in
+  if (any_mesh && n > big_scene) || csg_triangles > big_scene then Gc.compact ();
   let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
   (* A scene with a mesh has these for its spheres alone: the boxes of
      its shapes, found again from their geometry when the hierarchy is

@@ -673,19 +673,32 @@ let each_chunk (src : source) f =
 (* The located pass: the same conversion over a parse that kept positions. *)
 (* The located pass streams too: it keeps the positions of the form being
    converted only, so locating an error costs no more memory than loading. *)
+(* The number, in [form]'s positions, of the first position of [sub]:
+   an atom has two positions, a list one before its elements and one after.
+   parsexp's own search ([Positions.find_sub_sexp_phys]) recurses as deep as
+   the nesting, and a form nested a million deep (a CSG refused for its
+   depth, found by the hostile tests) overflowed the stack; this loop
+   keeps the lists still to finish in a list of its own. *)
+let position_index form ~sub =
+  let rec go i todo stack =
+    match todo with
+    | x :: _ when x == sub -> Some i
+    | Sexp.Atom _ :: rest -> go (i + 2) rest stack
+    | Sexp.List l :: rest -> go (i + 1) l (rest :: stack)
+    | [] -> ( match stack with [] -> None | rest :: stack -> go (i + 1) rest stack)
+  in
+  go 0 [ form ] []
+
 let locate_error ~limits ~load (src : source) =
   let module P = Parsexp.Eager_and_positions in
   let current = ref None in
   let where node =
     match !current with
     | None -> None
-    | Some (form, positions) -> (
-        (* parsexp's search recurses as deep as the nesting: a million
-           nested parentheses overflow the stack (found by the hostile
-           tests); such an error is placed at the start of the file. *)
-        match Positions.find_sub_sexp_phys positions form ~sub:node with
-        | found -> Option.map (fun (r : Positions.range) -> r.start_pos) found
-        | exception Stack_overflow -> None)
+    | Some (form, positions) ->
+        Option.map
+          (fun i -> Positions.Iterator.advance_exn (Positions.Iterator.create positions) ~skip:i)
+          (position_index form ~sub:node)
   in
   let b = builder ~limits ~load where in
   let state =

@@ -127,16 +127,28 @@ let create ?(averaging = false) (p : Prepared.t) =
   }
 
 let prepared tr = tr.p
-let counters tr = tr.counters
-let work tr = tr.counters.tests + tr.counters.box_tests
+(* A CSG solid's leaf tests are counted in its work room, and taken into
+   the counters whenever they are read: nothing per ray. *)
+let counters tr =
+  let c = tr.counters in
+  c.tests <- c.tests + Csg.take_tests tr.csg;
+  c.box_tests <- c.box_tests + Csg.take_boxes tr.csg;
+  c
+
+let work tr =
+  let c = counters tr in
+  c.tests + c.box_tests
+
 let set_budget ?(refill = exhausted) tr n =
   tr.budget <- n;
   tr.refill <- refill
 
 (* Out of line: the check itself is a sum and a comparison, made once a
-   pixel. *)
+   pixel; the CSG leaves' tests not yet taken into the counters count too. *)
 let[@inline never] over_budget tr = tr.budget <- tr.refill (work tr)
-let[@inline] check_budget tr = if tr.counters.tests + tr.counters.box_tests > tr.budget then over_budget tr
+
+let[@inline] check_budget tr =
+  if tr.counters.tests + tr.counters.box_tests + Csg.pending tr.csg > tr.budget then over_budget tr
 
 let red tr = tr.s.r
 let green tr = tr.s.g

@@ -52,7 +52,11 @@ val prepared : t -> Prepared.t
 (** [prepared tr] is the scene [tr] traces. *)
 
 val counters : t -> counters
-(** [counters tr] are the work counters of [tr], updated by every call. *)
+(** [counters tr] are the work counters of [tr], updated by every call.
+    The leaf tests of CSG solids (each sphere, box, mesh triangle and box
+    of a mesh's hierarchy) are counted apart, at no cost per ray, and
+    added to [tests] and [box_tests] when [counters] or {!work} is called:
+    read the counters through them. *)
 
 (** {1:budget The work budget}
 

@@ -96,6 +96,67 @@ let[@inline] hit (s : Scratch.t) g o0 o1 o2 kx ky kz =
        true
      end
 
+(* The sign of the edge function [qx py - qy px] of the edge [p -> q]
+   whose computed value is 0, for the point [(e, e^2)] of the ray's plane,
+   [e > 0] infinitely small: the exact value first (the computed one is 0,
+   so the rounded products are equal and the exact value is the difference
+   of their rounding errors, which [fma] gives exactly), then [qy - py],
+   then [px - qx], the terms of [e] and [e^2]. Swapping [p] and [q] negates
+   each step, rounding included: the two triangles of an edge disagree. *)
+let[@inline never] tie_sign px py qx qy =
+  let e = Float.fma qx py (-.(qx *. py)) -. Float.fma qy px (-.(qy *. px)) in
+  if e > 0. then 1
+  else if e < 0. then -1
+  else
+    let dy = qy -. py in
+    if dy > 0. then 1
+    else if dy < 0. then -1
+    else
+      let dx = px -. qx in
+      if dx > 0. then 1 else if dx < 0. then -1 else 0
+
+let[@inline] sign_of e px py qx qy = if e > 0. then 1 else if e < 0. then -1 else tie_sign px py qx qy
+
+let[@inline never] crosses_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
+  let sx = s.sx and sy = s.sy in
+  let okx = s.okx and oky = s.oky and okz = s.okz in
+  let az_ = rel g o0 kz okz and bz_ = rel g o1 kz okz and cz_ = rel g o2 kz okz in
+  let ax_ = rel g o0 kx okx -. (sx *. az_) and ay_ = rel g o0 ky oky -. (sy *. az_) in
+  let bx_ = rel g o1 kx okx -. (sx *. bz_) and by_ = rel g o1 ky oky -. (sy *. bz_) in
+  let cx_ = rel g o2 kx okx -. (sx *. cz_) and cy_ = rel g o2 ky oky -. (sy *. cz_) in
+  let u = (cx_ *. by_) -. (cy_ *. bx_) in
+  let v = (ax_ *. cy_) -. (ay_ *. cx_) in
+  let crossed =
+    (not (u *. v < 0.))
+    &&
+    let w = (bx_ *. ay_) -. (by_ *. ax_) in
+    let su = sign_of u bx_ by_ cx_ cy_ in
+    su <> 0
+    && su = sign_of v cx_ cy_ ax_ ay_
+    && su = sign_of w ax_ ay_ bx_ by_
+    && begin
+         let sz = s.sz in
+         let det = u +. v +. w in
+         (* All three of one sign, none computed above 0 against it: [det]
+            is 0 only if all three are computed 0, a triangle seen edge on
+            or too small to resolve, whose depth is then its corners'. *)
+         s.near <-
+           (if det = 0. then sz *. ((az_ +. bz_ +. cz_) /. 3.)
+            else ((u *. (sz *. az_)) +. (v *. (sz *. bz_)) +. (w *. (sz *. cz_))) /. det);
+         true
+       end
+  in
+  if crossed then s.far <- s.near
+  else begin
+    s.near <- infinity;
+    s.far <- infinity
+  end;
+  crossed
+
+let crosses s g o =
+  let axes = shear s in
+  crosses_at s g o (o + 3) (o + 6) (axis_x axes) (axis_y axes) (axis_z axes)
+
 let[@inline never] roots_at (s : Scratch.t) g o0 o1 o2 kx ky kz =
   if hit s g o0 o1 o2 kx ky kz then begin
     s.far <- s.near;
@@ -157,6 +218,12 @@ let intersect tri ~origin ~direction =
   store tri g 0;
   Scratch.set_ray s origin direction;
   if roots s g 0 then s.near else infinity
+
+let crossing tri ~origin ~direction =
+  let g = Array.make 9 0. and s = Scratch.create () in
+  store tri g 0;
+  Scratch.set_ray s origin direction;
+  if crosses s g 0 then s.near else infinity
 
 let pp ppf t =
   Format.fprintf ppf "(triangle (vertices (%a) (%a) (%a)) %a)" Vec3.pp_components t.v0 Vec3.pp_components t.v1

@@ -96,6 +96,68 @@ val roots : Scratch.t -> float array -> int -> bool
     [O + t D] of a hit lies within [32 u (|v0 - O| + |v1 - O| + |v2 - O|)]
     of the triangle's plane ([u = 2^-53]). *)
 
+(** {2:parity Crossings counted once: the parity of a closed mesh}
+
+    {!roots} is watertight for the closest hit: a ray through an edge
+    shared by two triangles hits one of them {e or both}. Inside and
+    outside of a closed mesh (CSG's leaves) is the parity of the number of
+    crossings along the line, where "both" is one too many. {!crosses}
+    counts each crossing exactly once.
+
+    {b The rule.} In the frame of the test (after {!shear}, the ray's
+    origin at [(0, 0)] of the plane its direction is the normal of), the
+    corners of every triangle are the same floats wherever they are read:
+    a corner shared by triangles is moved into the frame once, by the same
+    operations. The ray is taken to pass through the point [(e, e^2)] of
+    that plane, [e > 0] infinitely small, rather than [(0, 0)] (a
+    simulation of simplicity, Edelsbrunner and Mücke, 1990). The edge
+    function of the edge [p -> q], [E = qx py - qy px] for the origin,
+    becomes [E + e (qy - py) + e^2 (px - qx)]: its sign is that of [E]
+    where [E <> 0], else that of [qy - py], else that of [px - qx], and it
+    is 0 only if [p = q]. The triangle is crossed iff its three edge
+    functions have one sign (either: triangles are seen from both sides),
+    none 0. The sign of [E] is exact: where the computed [E] is not 0, its
+    sign is the exact one (the two products are each rounded to nearest,
+    a monotone rounding, so their computed difference can be 0 but never
+    of the wrong sign); where it is 0, the two rounded products are equal
+    and [E] is the difference of their rounding errors, each exact by
+    [Float.fma] (while the products are not subnormal: corners more than
+    about [1e-145] from the ray in the frame; nearer ones keep the rule's
+    consistency below, not its exactness). The ties, [qy - py] and
+    [px - qx], are differences of floats: their signs are exact.
+
+    {b Why the count has the right parity.} The signs are exactly those of
+    the point [(e, e^2)] against the exact triangles of the moved corners,
+    a point on no edge's line (its edge functions are never 0). Over a
+    closed mesh (every edge bordered by exactly two triangles, {!Csg.check_closed}),
+    the number of triangles containing a point of the plane on no edge,
+    modulo 2, changes across no edge (crossing one toggles its two
+    triangles, or one of them twice where the other is seen edge on) and
+    is 0 far away: it is even everywhere. So every line meets a closed
+    mesh an even number of times: a ray through a shared edge or vertex
+    counts one crossing there, where the surface goes on across it, and
+    zero or two where it only touches the surface (a silhouette edge or
+    vertex between faces seen from the front and from the back). Which
+    triangle is counted depends only on the corners' floats, so the rule
+    does not depend on the triangles' order or winding (reversing a
+    triangle negates all three edge functions). Swapping an edge's ends
+    negates each step of its sign, rounding included, so the two triangles
+    of an edge take opposite sides of it even where products are
+    subnormal. *)
+
+val crosses : Scratch.t -> float array -> int -> bool
+(** [crosses s g o] is [true] iff the line of the ray of [s] crosses the
+    triangle stored at [o] in [g] under the rule above, with the crossing's
+    [t] in [s.near] and [s.far] ({!roots}'s formula; the mean depth of the
+    corners for a triangle whose three edge functions are computed 0), and
+    [infinity] in both otherwise. Where {!roots} hits a triangle away
+    from its edges, [crosses] does too, at the same [t]. *)
+
+val crosses_at : Scratch.t -> float array -> int -> int -> int -> int -> int -> int -> bool
+(** [crosses_at s g o0 o1 o2 kx ky kz] is {!crosses} for the triangle
+    with vertices at [o0], [o1], [o2] in [g], with {!shear}'s axes (see
+    {!roots_at}). *)
+
 val normal : Scratch.t -> float array -> int -> unit
 (** [normal s g o] sets [s.nx], [s.ny], [s.nz] to the unit normal
     [(v1 - v0) x (v2 - v0) / |(v1 - v0) x (v2 - v0)|] of the triangle. *)
@@ -120,3 +182,6 @@ val smooth_normal_at : Scratch.t -> float array -> int -> int -> int -> float ar
 
 val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float
 (** [intersect tri ~origin ~direction] is the root of {!roots}, or [infinity]. *)
+
+val crossing : t -> origin:Vec3.t -> direction:Vec3.t -> float
+(** [crossing tri ~origin ~direction] is the crossing of {!crosses}, or [infinity]. *)

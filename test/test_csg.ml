@@ -213,6 +213,96 @@ let kernel_hit c ~origin ~direction =
     Some (t, Vec3.v s.nx s.ny s.nz, Csg.entering w)
   end
 
+
+(* {1 Closed meshes through their edges and vertices} *)
+
+(* The cube [-1, 1] x [-1, 1] x [4, 8] as a mesh of 12 triangles (each face
+   cut along a diagonal), and as the half-spaces [n . p <= b] that make it. *)
+let cube_arrays () =
+  let positions =
+    Array.concat
+      (List.map
+         (fun (x, y, z) -> [| x; y; z |])
+         [ (-1., -1., 4.); (1., -1., 4.); (1., 1., 4.); (-1., 1., 4.); (-1., -1., 8.); (1., -1., 8.); (1., 1., 8.); (-1., 1., 8.) ])
+  in
+  let quads = [ (0, 3, 2, 1); (4, 5, 6, 7); (0, 1, 5, 4); (3, 7, 6, 2); (0, 4, 7, 3); (1, 2, 6, 5) ] in
+  let triangles = Array.of_list (List.concat_map (fun (a, b, c, d) -> [ a; b; c; a; c; d ]) quads) in
+  (positions, triangles)
+
+let cube_planes = [ ((1., 0., 0.), 1.); ((-1., 0., 0.), 1.); ((0., 1., 0.), 1.); ((0., -1., 0.), 1.); ((0., 0., 1.), 8.); ((0., 0., -1.), -4.) ]
+
+(* The octahedron of [octahedron (Vec3.v 0. 0. 4.) 1.]: |x| + |y| + |z - 4| <= 1. *)
+let octahedron_planes =
+  List.concat_map
+    (fun sx -> List.concat_map (fun sy -> List.map (fun sz -> ((sx, sy, sz), 1. +. (4. *. sz))) [ 1.; -1. ]) [ 1.; -1. ])
+    [ 1.; -1. ]
+
+let mesh_solid (positions, triangles) =
+  match
+    Mesh.v ~positions ~triangles ~normals:[||] ~triangle_normals:(Array.make (Array.length triangles) (-1)) (Material.v white)
+  with
+  | Ok m -> Csg.Mesh m
+  | Error (`Msg e) -> Alcotest.fail e
+
+(* The exact line [origin + t direction] against the convex solid of
+   [planes]: `In if it passes through its inside, `Touch if it meets only
+   its surface, `Out if it misses it. Each half-space bounds [t] on one
+   side: [a t <= c]. *)
+let convex_class planes ~origin ~direction =
+  let o = qv origin and d = qv direction in
+  let lo = ref None and hi = ref None and parallel = ref `In in
+  List.iter
+    (fun ((nx, ny, nz), b) ->
+      let n = (q nx, q ny, q nz) in
+      let a = dot n d and c = Q.sub (q b) (dot n o) in
+      let sign = Q.sign a in
+      if sign = 0 then (if Q.sign c < 0 then parallel := `Out else if Q.sign c = 0 && !parallel = `In then parallel := `Touch)
+      else
+        let x = Q.div c a in
+        if sign > 0 then hi := Some (match !hi with Some h -> Q.min h x | None -> x)
+        else lo := Some (match !lo with Some l -> Q.max l x | None -> x))
+    planes;
+  match (!parallel, !lo, !hi) with
+  | `Out, _, _ -> `Out
+  | p, Some l, Some h -> if Q.lt h l then `Out else if Q.equal l h || p = `Touch then `Touch else `In
+  | p, _, _ -> p
+
+let csg_mask ?(classify = Fun.id) (scene : Scene.t) planes =
+  exact_mask scene (fun ~origin ~direction ->
+      match convex_class planes ~origin ~direction with `In -> `In | `Out -> `Out | `Touch -> classify `Out)
+
+(* Of a 64 x 64 canvas through the default viewport: every pixel's ray is
+   [(x / 64, y / 64, 1)], exact, and so is everything the triangle test
+   computes from these corners, small integers: the rays through the
+   edges and corners in the picture pass through them exactly. *)
+let through_edges shapes =
+  Scene.v ~width:64 ~height:64 ~spheres:[] ~shapes
+    ~lights:[ Light.ambient 0.3; Light.directional 0.7 (Vec3.v 1. 2. (-3.)) ]
+    ()
+
+let count_class cls mask = Array.fold_left (Array.fold_left (fun n c -> if c = cls then n + 1 else n)) 0 mask
+
+
+(* A union of [n] spheres of radius 0.1 in a row across the view at z = 4,
+   seen on an 8 x 8 canvas by ambient light alone: every camera ray meets
+   the solid's bounds, and a union tests every leaf. *)
+let row_of_spheres n =
+  let leaf i = sphere (Vec3.v (-0.5 +. (Float.of_int i /. Float.of_int n)) 0. 4.) 0.1 in
+  let rec tree lo hi = if hi - lo = 1 then leaf lo else let mid = (lo + hi) / 2 in Csg.Csg (Csg.v Csg.Union (tree lo mid) (tree mid hi)) in
+  let c = match tree 0 n with Csg.Csg c -> c | _ -> assert false in
+  Scene.v ~width:8 ~height:8 ~depth:0 ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[ Light.ambient 1. ] ()
+
+
+(* A torus knot of [2 segments 12] triangles, closed, at z = 4. *)
+let knot segments =
+  let o = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.15 ~segments ~sides:12 in
+  match
+    Mesh.v ~translate:(Vec3.v 0. 0. 4.) ~positions:o.positions ~triangles:o.triangles ~normals:[||]
+      ~triangle_normals:(Array.make (Array.length o.triangles) (-1)) (Material.v (Color.v 230. 150. 40.))
+  with
+  | Ok m -> m
+  | Error (`Msg m) -> Alcotest.fail m
+
 let stats (s : Scene.t) = match Helpers.render s with Ok (_, st) -> st | Error (`Msg m) -> Alcotest.fail m
 let load_octahedron _ =
   let positions, triangles = octahedron_arrays (Vec3.v 0. 0. 0.) 1. in
@@ -420,6 +510,193 @@ let tests =
           (List.concat_map
              (fun op -> [ (op, Vec3.zero); (op, Vec3.v 1e6 (-1e6) 1e6) ])
              [ Csg.Difference; Csg.Intersection; Csg.Union ]));
+    Alcotest.test_case
+      "a closed mesh as a CSG operand, seen through its shared edges and corners, is its exact solid: no seam, no lost pixel"
+      `Quick (fun () ->
+        let big = box (Vec3.v (-10.) (-10.) 0.) (Vec3.v 10. 10. 20.) in
+        List.iter
+          (fun (name, mesh, planes, min_in) ->
+            let scene = through_edges [ Shape.Csg (Csg.v Csg.Intersection mesh big) ] in
+            let exact = csg_mask scene planes in
+            let wrong, inside = Helpers.mask_errors (Test_numerics.hit_mask scene) exact in
+            Printf.printf "%s: %d pixels inside, %d wrong\n" name inside wrong;
+            if inside < min_in then Alcotest.failf "%s covers only %d pixels" name inside;
+            Alcotest.(check int) (name ^ " in a CSG: pixels off the exact solid") 0 wrong;
+            (* Alone, the mesh is its closest hits: the rays that only touch
+               its surface may see it or not. *)
+            let alone = through_edges [ (match mesh with Csg.Mesh m -> Shape.Mesh m | _ -> assert false) ] in
+            let wrong, _ = Helpers.mask_errors (Test_numerics.hit_mask alone) (csg_mask ~classify:(fun _ -> `Edge) alone planes) in
+            Alcotest.(check int) (name ^ " alone: pixels off the exact solid") 0 wrong)
+          [
+            ("the cube", mesh_solid (cube_arrays ()), cube_planes, 900);
+            ("the octahedron", octahedron (Vec3.v 0. 0. 4.) 1., octahedron_planes, 200);
+          ];
+        (* The cube as a box: the same solid, the same picture, byte for byte
+           (the front face's diagonal, crossed by 31 rays, included). *)
+        let as_mesh = through_edges [ Shape.Csg (Csg.v Csg.Intersection (mesh_solid (cube_arrays ())) big) ] in
+        let as_box = through_edges [ Shape.Csg (Csg.v Csg.Intersection (box (Vec3.v (-1.) (-1.) 4.) (Vec3.v 1. 1. 8.)) big) ] in
+        Helpers.check_images "the cube as a mesh and as a box" ~expected:(Helpers.image_exn as_box) (Helpers.image_exn as_mesh));
+    Alcotest.test_case "a ray through a closed mesh's shared edge or corner crosses it once; one that touches it, zero or twice"
+      `Quick (fun () ->
+        let cube = mesh_solid (cube_arrays ()) and octa = octahedron (Vec3.v 0. 0. 4.) 1. in
+        let crossings solid ~direction =
+          match solid with
+          | Csg.Mesh m ->
+              List.length
+                (List.filter
+                   (fun k -> Triangle.crossing (Mesh.triangle m k) ~origin:Vec3.zero ~direction < infinity)
+                   (List.init (Mesh.triangle_count m) Fun.id))
+          | _ -> assert false
+        in
+        List.iter
+          (fun (what, solid, direction, expected) ->
+            Alcotest.(check int) what expected (crossings solid ~direction))
+          [
+            ("cube: through the front face's diagonal", cube, Vec3.v 0.125 0.125 1., 2);
+            ("cube: out through a back corner (3 faces, 6 triangles)", cube, Vec3.v 0.125 (-0.125) 1., 2);
+            ("cube: out through a side face's diagonal", cube, Vec3.v (9. /. 64.) (5. /. 64.) 1., 2);
+            ("cube: touching a front corner", cube, Vec3.v 0.25 0.25 1., 0);
+            ("cube: touching a front edge", cube, Vec3.v 0.25 0.125 1., 0);
+            ("octahedron: through both corners on its axis (4 triangles each)", octa, Vec3.oz, 2);
+            ("octahedron: through two opposite edges", octa, Vec3.v 0.125 0. 1., 2);
+            ("octahedron: touching a corner of its silhouette", octa, Vec3.v 0.25 0. 1., 0);
+          ];
+        (* Any ray, any closed mesh: an even number. *)
+        let rand = Random.State.make [| 29 |] in
+        for _ = 1 to 2000 do
+          let g () = Float.of_int (Random.State.int rand 9 - 4) /. 16. in
+          let direction = Vec3.v (g ()) (g ()) 1. in
+          List.iter
+            (fun solid ->
+              let n = crossings solid ~direction in
+              if n mod 2 = 1 then Alcotest.failf "%d crossings along %s" n (Vec3.show direction))
+            [ cube; octa ]
+        done);
+    Alcotest.test_case "every CSG leaf test is counted: --stats tells them, the work bound stops a render of many leaves"
+      `Quick (fun () ->
+        let scene = row_of_spheres 64 in
+        let st = stats scene in
+        (* 64 camera rays, each through all 64 leaves of the union; the
+           pixels that see it test them again for the normal. *)
+        if st.tests < 64 * 64 then Alcotest.failf "%d tests counted for 64 rays through 64 leaves each" st.tests;
+        let limits = Limits.with_bound Limits.default `Work 2000. in
+        match Helpers.render ~limits ~jobs:1 scene with
+        | Ok _ -> Alcotest.fail "rendered past a bound of 2000 tests"
+        | Error (`Msg m) ->
+            let suffix = "(set RAYTRACE_MAX_WORK to raise it)" in
+            Alcotest.(check string) ("names the variable: " ^ m) suffix
+              (String.sub m (max 0 (String.length m - String.length suffix)) (min (String.length m) (String.length suffix))));
+    Alcotest.test_case "CSG trees of 2^18 leaves, balanced or nested, load, render or are refused at their position" `Slow
+      (fun () ->
+        let limits = Limits.with_bound Limits.default `Form_bytes 1e9 in
+        let leaf = "(sphere (center 0 0 9) (radius 1) (color 255 0 0))" in
+        let b = Buffer.create (1 lsl 24) in
+        let rec tree depth = if depth = 0 then Buffer.add_string b leaf else begin
+            Buffer.add_string b "(csg union ";
+            tree (depth - 1);
+            Buffer.add_char b ' ';
+            tree (depth - 1);
+            Buffer.add_char b ')' end
+        in
+        Buffer.add_string b "(canvas (width 1) (height 1)) (light ambient (intensity 1))\n";
+        tree 18;
+        (* The passes over its leaves (materials, preparation, the kernel's
+           table) overflowed the stack. *)
+        (match Helpers.of_string ~limits (Buffer.contents b) with
+        | Error (`Msg m) -> Alcotest.fail m
+        | Ok scene -> (
+            match Helpers.render ~limits ~jobs:1 scene with
+            | Error (`Msg m) -> Alcotest.fail m
+            | Ok (img, st) ->
+                Alcotest.(check (list int)) "the sphere, red" [ 255; 0; 0 ] (let r, g, b = Image.get img 0 0 in [ r; g; b ]);
+                if st.tests < 1 lsl 18 then Alcotest.failf "%d tests for 2^18 leaves" st.tests));
+        Buffer.clear b;
+        Buffer.add_string b "(light ambient (intensity 1))\n";
+        for _ = 1 to 1 lsl 18 do Buffer.add_string b "(csg union " done;
+        Buffer.add_string b leaf;
+        for _ = 1 to 1 lsl 18 do Buffer.add_string b (" " ^ leaf ^ ")") done;
+        (* Refused at the 33rd (csg: the search for that position recursed as
+           deep as the nesting, overflowed, and put the error at 1:1. *)
+        match Helpers.of_string ~limits ~file:"deep.scene" (Buffer.contents b) with
+        | Ok _ -> Alcotest.fail "a CSG nested 2^18 deep was accepted"
+        | Error (`Msg m) -> Alcotest.(check string) "the message" "deep.scene:2:353: csg nested deeper than 32 levels" m);
+    Alcotest.test_case "a big closed mesh as a CSG operand is searched through a hierarchy, with the literal algorithm's colours"
+      `Quick (fun () ->
+        let big = box (Vec3.v (-10.) (-10.) 0.) (Vec3.v 10. 10. 20.) in
+        let on m = scene ~epsilon:0.001 ~width:16 ~height:16 [ Shape.Csg (Csg.v Csg.Intersection (Csg.Mesh m) big) ] in
+        (* 48000 triangles: every camera ray's line meets the knot's box,
+           and a test of every triangle would be 48000 a ray. *)
+        let st = stats (on (knot 2000)) in
+        let per_ray = st.tests / st.primary in
+        Printf.printf "%d tests, %d box tests, %d rays\n" st.tests st.box_tests (Stats.rays st);
+        if st.tests > 2000 * Stats.rays st then Alcotest.failf "%d tests a ray for 48000 triangles" per_ray;
+        if st.box_tests = 0 then Alcotest.fail "no box test counted";
+        (* Small enough for the oracle: the same colours, float for float. *)
+        Alcotest.(check bool) "the literal algorithm's colours" true (Helpers.oracle_floats (on (knot 40))));
+    Alcotest.test_case "a mesh operand's hierarchy misses no crossing: rays from near and far find the literal first crossing"
+      `Quick (fun () ->
+        let c = Csg.v Csg.Difference (Csg.Mesh (knot 100)) (sphere (Vec3.v 0.5 0.5 4.) 0.3) in
+        let rand = Random.State.make [| 2029 |] in
+        let misses = ref 0 and hits = ref 0 in
+        for i = 1 to 3000 do
+          (* Origins from 2 to 2e6 away, aimed at points of the knot's box,
+             some exactly at its corners' coordinates. *)
+          let far = 10. ** Float.of_int (i mod 7) in
+          let g () = (Random.State.float rand 2. -. 1.) *. far in
+          let origin = Vec3.v (g ()) (g ()) (4. +. g ()) in
+          let target = Vec3.v (Random.State.float rand 2.6 -. 1.3) (Random.State.float rand 2.6 -. 1.3) (4. +. Random.State.float rand 0.6 -. 0.3) in
+          let direction = Vec3.sub target origin in
+          let kernel = kernel_hit c ~origin ~direction and literal = Csg.literal_hit c ~origin ~direction ~t_min:0. ~t_max:infinity in
+          match (kernel, literal) with
+          | None, None -> incr misses
+          | Some (t, n, _), Some (t', _, n') when t = t' && Vec3.equal n n' -> incr hits
+          | _ ->
+              Alcotest.failf "ray %d from %s along %s: kernel %s, literal %s" i (Vec3.show origin) (Vec3.show direction)
+                (match kernel with Some (t, _, _) -> Printf.sprintf "%h" t | None -> "none")
+                (match literal with Some (t, _, _) -> Printf.sprintf "%h" t | None -> "none")
+        done;
+        if !hits < 1000 || !misses < 300 then Alcotest.failf "%d hits, %d misses: not a test of both" !hits !misses);
+    Alcotest.test_case "closedness: edges by coordinates (repeated vertices, -0 and 0 one point), the first bad edge named" `Quick
+      (fun () ->
+        let mesh positions triangles =
+          match
+            Mesh.v ~source:"m.obj" ~positions ~triangles ~normals:[||]
+              ~triangle_normals:(Array.make (Array.length triangles) (-1)) (Material.v white)
+          with
+          | Ok m -> m
+          | Error (`Msg e) -> Alcotest.fail e
+        in
+        let corners = [| (0., 0., 0.); (1., 0., 0.); (0., 1., 0.); (0., 0., 1.) |] in
+        let faces = [ (0, 2, 1); (0, 1, 3); (0, 3, 2); (1, 2, 3) ] in
+        (* A tetrahedron whose faces each repeat their corners, the first
+           corner written -0 in one face. *)
+        let positions =
+          Array.concat
+            (List.mapi
+               (fun f (a, b, c) ->
+                 Array.concat
+                   (List.map
+                      (fun v ->
+                        let x, y, z = corners.(v) in
+                        if f = 1 && v = 0 then [| -0.; -0.; -0. |] else [| x; y; z |])
+                      [ a; b; c ]))
+               faces)
+        in
+        let triangles = Array.init 12 Fun.id in
+        Alcotest.(check bool) "closed" true (Csg.check_closed (mesh positions triangles) = Ok ());
+        (* Without its last face: three edges border one triangle each. *)
+        (match Csg.check_closed (mesh (Array.sub positions 0 27) (Array.init 9 Fun.id)) with
+        | Ok () -> Alcotest.fail "an open mesh is closed"
+        | Error (`Msg m) ->
+            Alcotest.(check string) "the message"
+              "csg: mesh \"m.obj\" is not a closed solid: its edge from (0 1 0) to (1 0 0) borders 1 triangle, not 2" m);
+        (* A fifth triangle on an edge: three triangles there. *)
+        let positions = Array.append positions [| 1.; 0.; 0.; 0.; 1.; 0.; 1.; 1.; 1. |] in
+        match Csg.check_closed (mesh positions (Array.init 15 Fun.id)) with
+        | Ok () -> Alcotest.fail "an edge of three triangles is closed"
+        | Error (`Msg m) ->
+            Alcotest.(check string) "the message"
+              "csg: mesh \"m.obj\" is not a closed solid: its edge from (0 1 0) to (1 0 0) borders 3 triangles, not 2" m);
     Alcotest.test_case "the surface of a subtracted solid faces into the cavity; hits say whether they enter" `Quick
       (fun () ->
         let o = Vec3.zero and d = Vec3.oz in
@@ -500,5 +777,11 @@ let tests =
                 let s = Scene.with_overrides ~width:64 ~height:48 { s with Scene.epsilon } in
                 Alcotest.(check (float 0.)) (name ^ ": minor words") 0. (stats s).minor_words)
               [ None; Some 0.001 ])
-          [ "die.scene"; "glass-lens.scene" ]);
+          [ "die.scene"; "glass-lens.scene" ];
+        (* A mesh operand: its hierarchy's descent, its crossings kept in order. *)
+        List.iter
+          (fun epsilon ->
+            let s = scene ?epsilon ~width:32 ~height:32 [ floor; Shape.Csg (Csg.v Csg.Difference (Csg.Mesh (knot 200)) (sphere (Vec3.v 0. 0. 3.5) 0.6)) ] in
+            Alcotest.(check (float 0.)) "a knot less a sphere: minor words" 0. (stats s).minor_words)
+          [ None; Some 0.001 ]);
   ]

@@ -66,3 +66,48 @@ let () =
   match Raytrace.Obj_file.of_string ~name:"js.obj" ~max_vertices:10 ~max_triangles:10 obj with
   | Ok m -> Printf.printf "obj %d triangles\n" (Raytrace.Obj_file.triangle_count m)
   | Error (`Msg m) -> Printf.printf "obj %s\n" m
+
+(* CSG trees as big as the limits let a scene file make, parsed and
+   rendered: a balanced union of 16384 spheres (the web page threw
+   "Maximum call stack size exceeded" on it, a List.map over its leaves),
+   and 100000 unions nested in one another, refused for its depth at the
+   33rd with its line and column (the search for that position recursed
+   as deep as the nesting). JavaScript's stack is far smaller than the
+   native one: both builds must print the same lines. *)
+let () =
+  let b = Buffer.create (1 lsl 20) in
+  let rec tree lo hi =
+    if hi - lo = 1 then
+      Printf.bprintf b "(sphere (center %d %d 40) (radius 0.4) (color 255 0 0))" ((lo mod 128) - 64) ((lo / 128) - 64)
+    else begin
+      Buffer.add_string b "(csg union ";
+      tree lo ((lo + hi) / 2);
+      Buffer.add_char b ' ';
+      tree ((lo + hi) / 2) hi;
+      Buffer.add_char b ')'
+    end
+  in
+  Buffer.add_string b "(canvas (width 2) (height 2)) (viewport (width 4) (height 4) (distance 1)) (light ambient (intensity 1))\n";
+  tree 0 16384;
+  (match Raytrace.Scene_file.of_string ~file:"csg.scene" (Buffer.contents b) with
+  | Error (`Msg m) -> Printf.printf "csg of 16384 spheres: %s\n" m
+  | Ok scene -> (
+      match Raytrace.Render.image scene with
+      | Error (`Msg m) -> Printf.printf "csg of 16384 spheres: %s\n" m
+      | Ok (img, stats) ->
+          Printf.printf "csg of 16384 spheres: md5 %s, %d tests\n"
+            (Digest.to_hex (Digest.string (Raytrace.Ppm.to_string img)))
+            stats.tests));
+  let n = 100_000 in
+  let b = Buffer.create (64 * n) in
+  Buffer.add_string b "(light ambient (intensity 1))\n";
+  for _ = 1 to n do
+    Buffer.add_string b "(csg union "
+  done;
+  Buffer.add_string b "(sphere (center 0 0 9) (radius 1) (color 1 0 0))";
+  for _ = 1 to n do
+    Buffer.add_string b " (sphere (center 0 0 9) (radius 1) (color 1 0 0)))"
+  done;
+  match Raytrace.Scene_file.of_string ~file:"deep.scene" (Buffer.contents b) with
+  | Ok _ -> print_endline "csg nested 100000 deep: accepted"
+  | Error (`Msg m) -> Printf.printf "csg nested 100000 deep: %s\n" m
