@@ -50,7 +50,7 @@ let skips_exact (s : Scene.t) =
   let s = robust s in
   fail_with
     (Option.to_list
-       (difference "robust mode, skips on against skips off" ~expected:(Helpers.image_exn ~skips:false s)
+       (difference "in the robust mode (the scene above without its epsilon), skips on against skips off" ~expected:(Helpers.image_exn ~skips:false s)
           (Helpers.image_exn ~skips:true s)))
 
 let tests =
