@@ -388,12 +388,14 @@ let floor ~kinds ~plain =
   oneofl
     ((if List.mem `Plane kinds then [ Other (Shape.Plane (Plane.v ~point:(Vec3.v 0. (-1.) 0.) ~normal:Vec3.oy m)) ] else [])
     @ (if List.mem `Box kinds then [ Other (Shape.Box (Box.v ~min:(Vec3.v (-8.) (-3.) (-2.)) ~max:(Vec3.v 8. (-1.) 20.) m)) ] else [])
-    @ [ Ball (sphere_of m ~center:(Vec3.v 0. (-1001.) 0.) ~radius:1000.) ])
+    @ if List.mem `Sphere kinds then [ Ball (sphere_of m ~center:(Vec3.v 0. (-1001.) 0.) ~radius:1000.) ] else [])
 
-let scene ~kinds ~plain =
+(* With [grid], canvases of 8 or 16 pixels a side only, on which every
+   grazing object's boundary is exact. *)
+let scene ?(grid = false) ~kinds ~plain () =
   let* plain = if plain then return true else bool in
   let* w, h = frequencyl [ (3, (8, 8)); (3, (16, 16)); (1, (8, 16)); (1, (16, 8)) ] in
-  let* w, h = frequency [ (4, return (w, h)); (1, pair (int_range 3 12) (int_range 3 12)) ] in
+  let* w, h = if grid then return (w, h) else frequency [ (4, return (w, h)); (1, pair (int_range 3 12) (int_range 3 12)) ] in
   let* c = oneof [ return Vec3.zero; map3 Vec3.v (quarter (-1) 1) (quarter (-1) 1) (quarter (-1) 1) ] in
   let* receiver = map3 Vec3.v (quarter (-1) 1) (return (-1.)) (quarter 3 6) in
   let* floor = frequency [ (5, map Option.some (floor ~kinds ~plain)); (1, return None) ] in
@@ -425,7 +427,9 @@ let scene ~kinds ~plain =
     (Scene.v ~width:w ~height:h ~camera:(Camera.v c) ~depth ~epsilon ~background ~spheres ~shapes ~lights ())
 
 let all_kinds = [ `Sphere; `Plane; `Triangle; `Box; `Mesh; `Csg ]
-let gen = scene ~kinds:all_kinds ~plain:false
-let spheres = scene ~kinds:[ `Sphere ] ~plain:true
+let gen = scene ~kinds:all_kinds ~plain:false ()
+let spheres = scene ~kinds:[ `Sphere ] ~plain:true ()
+let flat = scene ~grid:true ~kinds:[ `Plane; `Triangle; `Box; `Mesh ] ~plain:true ()
 let arbitrary = QCheck.make ~print ~shrink:Gen_scene.shrink gen
 let arbitrary_spheres = QCheck.make ~print ~shrink:Gen_scene.shrink spheres
+let arbitrary_flat = QCheck.make ~print ~shrink:Gen_scene.shrink flat

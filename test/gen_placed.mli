@@ -25,6 +25,13 @@ val spheres : Raytrace.Scene.t QCheck.Gen.t
     culling, and the hierarchy beyond {!Raytrace.Private.Prepared.bvh_threshold}
     spheres). *)
 
+val flat : Raytrace.Scene.t QCheck.Gen.t
+(** [flat] generates such scenes of planes, triangles, boxes and meshes
+    alone (no sphere nor CSG solid, whose exact hits {!Exact_hits} does
+    not compute), with no glass (whose invisible surfaces a camera ray
+    crosses) nor pattern, on canvases of 8 or 16 pixels a side, where
+    every grazing boundary is exact. *)
+
 val print : Raytrace.Scene.t -> string
 (** [print s] is [s] in the scene-file syntax, followed by the OBJ text
     of each of its meshes as a comment headed by its file name (write
@@ -35,3 +42,6 @@ val arbitrary : Raytrace.Scene.t QCheck.arbitrary
 
 val arbitrary_spheres : Raytrace.Scene.t QCheck.arbitrary
 (** [arbitrary_spheres] is {!spheres} with {!print} and {!Gen_scene.shrink}. *)
+
+val arbitrary_flat : Raytrace.Scene.t QCheck.arbitrary
+(** [arbitrary_flat] is {!flat} with {!print} and {!Gen_scene.shrink}. *)
