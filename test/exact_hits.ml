@@ -67,9 +67,8 @@ let bounded lo hi exact =
 let roots (s : Scene.t) =
   if Spheres.length s.spheres > 0 then invalid_arg "Exact_hits.roots: a sphere";
   let triangle_of (t : Triangle.t) =
-    let lo = Vec3.v (Float.min t.v0.x (Float.min t.v1.x t.v2.x)) (Float.min t.v0.y (Float.min t.v1.y t.v2.y)) (Float.min t.v0.z (Float.min t.v1.z t.v2.z))
-    and hi = Vec3.v (Float.max t.v0.x (Float.max t.v1.x t.v2.x)) (Float.max t.v0.y (Float.max t.v1.y t.v2.y)) (Float.max t.v0.z (Float.max t.v1.z t.v2.z)) in
-    bounded lo hi (triangle (v t.v0) (v t.v1) (v t.v2))
+    let corner f = Vec3.v (f t.v0.x (f t.v1.x t.v2.x)) (f t.v0.y (f t.v1.y t.v2.y)) (f t.v0.z (f t.v1.z t.v2.z)) in
+    bounded (corner Float.min) (corner Float.max) (triangle (v t.v0) (v t.v1) (v t.v2))
   in
   Array.of_list
     (List.concat_map

@@ -169,7 +169,11 @@ and csg ~plain ~depth m (p : Vec3.t) r =
           let lo = Vec3.sub p (Vec3.v r r r) in
           return
             ( Csg.Box (Box.v ~min:lo ~max:(Vec3.add p (Vec3.v r r r)) m),
-              Csg.Box (Box.v ~min:(Vec3.v (p.x -. (r /. 2.)) lo.y (p.z -. (r /. 2.))) ~max:(Vec3.add p (Vec3.v (r /. 2.) (r /. 2.) (r /. 2.))) m2) ) );
+              Csg.Box
+                (Box.v
+                   ~min:(Vec3.v (p.x -. (r /. 2.)) lo.y (p.z -. (r /. 2.)))
+                   ~max:(Vec3.add p (Vec3.v (r /. 2.) (r /. 2.) (r /. 2.)))
+                   m2) ) );
       ]
   in
   return (Csg.v op a b)
@@ -283,16 +287,30 @@ let touching ~kinds ~plain =
               [ Other (Shape.Triangle (Triangle.v (Vec3.v (x -. r) bottom z) (Vec3.v (x +. r) bottom z) (Vec3.v x bottom (z -. r)) m)) ];
               [
                 Other (Shape.Box (box m));
-                Other (Shape.Triangle (Triangle.v (Vec3.v (x -. r) (bottom +. r) (z -. r)) (Vec3.v (x +. r) (bottom +. r) (z -. r)) (Vec3.v x (bottom +. r) (z +. r)) m2));
+                Other
+                  (Shape.Triangle
+                     (Triangle.v
+                        (Vec3.v (x -. r) (bottom +. r) (z -. r))
+                        (Vec3.v (x +. r) (bottom +. r) (z -. r))
+                        (Vec3.v x (bottom +. r) (z +. r))
+                        m2));
               ];
             ]
         | `Plane -> [ [ Other (Shape.Box (box m)); Other (Shape.Plane (Plane.v ~point:(Vec3.v (x +. r) 0. 0.) ~normal:Vec3.ox m2)) ] ]
         | `Mesh ->
-            [ [ Other (Shape.Box (box m)); Other (Shape.Mesh (cube m2 (Vec3.v (x -. r) bottom (z -. r)) (Vec3.v (x +. r) (bottom +. r) (z +. r)))) ] ]
+            [
+              [
+                Other (Shape.Box (box m));
+                Other (Shape.Mesh (cube m2 (Vec3.v (x -. r) bottom (z -. r)) (Vec3.v (x +. r) (bottom +. r) (z +. r))));
+              ];
+            ]
         | `Csg -> [ [ Other (Shape.Csg (Csg.v Csg.Union (Csg.Box (box m)) (Csg.Box (box m2)))) ] ])
       kinds
   in
-  let* csg = if List.mem `Csg kinds then map (fun c -> [ [ Other (Shape.Csg c) ] ]) (csg ~plain ~depth:1 m (Vec3.v x (bottom +. r) z) r) else return [] in
+  let* csg =
+    if List.mem `Csg kinds then map (fun c -> [ [ Other (Shape.Csg c) ] ]) (csg ~plain ~depth:1 m (Vec3.v x (bottom +. r) z) r)
+    else return []
+  in
   oneofl (choices @ csg)
 
 (* {1 Grazing} *)
@@ -314,7 +332,12 @@ let grazing ~kinds ~plain ~w ~h (c : Vec3.t) =
   let triangle v0 v1 v2 m = match Triangle.validate (Triangle.v v0 v1 v2 m) with Ok t -> [ Other (Shape.Triangle t) ] | Error _ -> [] in
   let corner = q a b k in
   let far = Vec3.add (q (a + n) (b + n) k) (Vec3.v 0. 0. (depth +. 0.25)) in
-  let lo = Vec3.v (if sx then corner.x else 2. *. corner.x -. far.x) (if sy then corner.y else 2. *. corner.y -. far.y) (if sz then corner.z else corner.z -. depth -. 0.25) in
+  let lo =
+    Vec3.v
+      (if sx then corner.x else (2. *. corner.x) -. far.x)
+      (if sy then corner.y else (2. *. corner.y) -. far.y)
+      (if sz then corner.z else corner.z -. depth -. 0.25)
+  in
   let hi = Vec3.v (if sx then far.x else corner.x) (if sy then far.y else corner.y) (if sz then far.z else corner.z) in
   let slab = Box.v ~min:(q a b k) ~max:far in
   let beside = Box.v ~min:(Vec3.v far.x (q a b k).y (q a b k).z) ~max:(Vec3.add far (Vec3.v (far.x -. (q a b k).x) 0. 0.)) in

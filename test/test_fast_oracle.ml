@@ -27,7 +27,9 @@ let difference what ~expected actual =
       done;
       let x, y = Option.get !first in
       Some
-        (Printf.sprintf "%s: %d of %d pixels differ (%d by more than 1), by up to %d per channel, mean %.4f; the first at column %d, row %d: %s where the oracle has %s"
+        (Printf.sprintf
+           "%s: %d of %d pixels differ (%d by more than 1), by up to %d per channel, mean %.4f; the first at column %d, row \
+            %d: %s where the oracle has %s"
            what d.differing d.pixels d.differing_gt1 d.max_abs d.mean_abs x y
            (show_pixel (Image.get actual x y))
            (show_pixel (Image.get expected x y)))
