@@ -425,7 +425,11 @@ let scene ?(grid = false) ~kinds ~plain () =
   let* placed = list_size (int_range 1 3) (placed_light ~kinds ~plain receiver) in
   let* ambient = frequency [ (4, map (fun i -> [ Light.ambient i ]) (float_range 0.05 0.3)); (1, return []) ] in
   let* touching = frequency [ (2, touching ~kinds ~plain); (1, return []) ] in
-  let* grazing = frequency [ (2, grazing ~kinds ~plain ~w ~h c); (1, return []) ] in
+  (* On other canvases the grazing objects' coordinates are rounded: their
+     rays pass within an ulp of an edge, where a float test and the exact
+     answer may differ (the kernel's stated accuracy), not exactly on it. *)
+  let exact = List.mem w [ 8; 16 ] && List.mem h [ 8; 16 ] in
+  let* grazing = if exact then frequency [ (2, grazing ~kinds ~plain ~w ~h c); (1, return []) ] else return [] in
   let* inside = frequency [ (1, map Option.some (around_camera ~kinds ~plain c)); (3, return None) ] in
   let* crowd =
     frequency
