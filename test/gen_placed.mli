@@ -14,7 +14,8 @@
     coordinates are dyadic, so that the boundary is met exactly in
     floats. Every scene gives an epsilon (the document's mode, where the
     fast tracer must give the oracle's bytes); canvases are 3 to 16
-    pixels a side, mostly 8 or 16. *)
+    pixels a side, mostly 8 or 16, and only those of 8 or 16 have
+    grazing objects (elsewhere their coordinates would be rounded). *)
 
 val gen : Raytrace.Scene.t QCheck.Gen.t
 (** [gen] generates such scenes with every kind of object. *)
