@@ -34,17 +34,21 @@ val validate : t -> (t, [> `Msg of string ]) result
 (** {1:kernel The kernel's routines}
 
     A plane is stored in a float array at an offset [o]: [P0] at
-    [o .. o + 2], the unit normal at [o + 3 .. o + 5]. The tracer calls
-    these routines, and so do {!Literal} and the tests. *)
+    [o .. o + 2], the unit normal at [o + 3 .. o + 5], the normal as
+    given times a power of two (its largest coordinate in [\[1/4, 1/2)])
+    at [o + 6 .. o + 8]. The tracer calls these routines, and so do
+    {!Literal} and the tests. *)
 
 val store : t -> float array -> int -> unit
-(** [store p g o] writes [p] to [g] at offset [o] (6 floats). *)
+(** [store p g o] writes [p] to [g] at offset [o] (9 floats). *)
 
 val roots : Scratch.t -> float array -> int -> bool
 (** [roots s g o] is [true] iff the line of the ray of [s] meets the plane
-    stored at [o] in [g], at [t = <P0 - O, N> / <D, N>], left in [s.near]
-    and [s.far]; [false] (and [infinity] there) when the ray is parallel to
-    the plane.
+    stored at [o] in [g], at [t = <P0 - O, N> / <D, N>] ([N] the normal as
+    given, times a power of two), left in [s.near] and [s.far]; [false]
+    (and [infinity] there) when the ray is parallel to the plane,
+    [<D, N> = 0] (so for a ray exactly parallel to the normal as given,
+    to which the rounded unit normal need not be perpendicular).
 
     Accuracy (checked by the test suite in exact rational arithmetic): the
     exact point [O + t D] lies within [16 u (|P0 - O| + |t D|)] of the

@@ -135,14 +135,13 @@ let crowd =
   let shapes = match shapes with s :: rest when dup_shape -> s :: s :: rest | l -> l in
   return { base with spheres = Spheres.of_list spheres; shapes = base.shapes @ shapes }
 
-let arbitrary =
-  let shrink (s : Scene.t) =
-    QCheck.Iter.(
-      map (fun spheres -> { s with spheres = Spheres.of_list spheres }) (QCheck.Shrink.list (Spheres.to_list s.spheres))
-      <+> map (fun shapes -> { s with shapes }) (QCheck.Shrink.list s.shapes)
-      <+> map (fun lights -> { s with lights }) (QCheck.Shrink.list s.lights))
-  in
-  QCheck.make ~print:Scene_file.to_string ~shrink gen
+let shrink (s : Scene.t) =
+  QCheck.Iter.(
+    map (fun spheres -> { s with spheres = Spheres.of_list spheres }) (QCheck.Shrink.list (Spheres.to_list s.spheres))
+    <+> map (fun shapes -> { s with shapes }) (QCheck.Shrink.list s.shapes)
+    <+> map (fun lights -> { s with lights }) (QCheck.Shrink.list s.lights))
+
+let arbitrary = QCheck.make ~print:Scene_file.to_string ~shrink gen
 
 (* A checker on about half the objects, drawn from [rand] (not QCheck's
    generator: the scenes of [gen] stay what they were). *)

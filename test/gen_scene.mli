@@ -16,6 +16,14 @@ val crowd : Raytrace.Scene.t QCheck.Gen.t
     a huge ground sphere, sometimes spheres around the camera; often
     triangles and boxes among them, sometimes duplicated. *)
 
+val material : Raytrace.Material.t QCheck.Gen.t
+(** [material] generates the materials of {!gen}'s shapes: any colour,
+    matte, specular 0 or up to 1000, reflective 0, 1 or between, and glass
+    one time in three. *)
+
+val shrink : Raytrace.Scene.t QCheck.Shrink.t
+(** [shrink s] is the scenes of [s] with fewer spheres, shapes or lights. *)
+
 val arbitrary : Raytrace.Scene.t QCheck.arbitrary
 (** [arbitrary] is {!gen} with a printer (the scene file) and shrinking of
     the sphere and light lists. *)

@@ -30,6 +30,7 @@ let () =
       ("ppm", Test_ppm.tests);
       ("image_diff", Test_image_diff.tests);
       ("render", Test_render.tests);
+      ("fast_oracle", Test_fast_oracle.tests);
       ("kernel", Test_kernel.tests);
       ("sampling", Test_sampling.tests);
       ("numerics", Test_numerics.tests);

@@ -1,0 +1,129 @@
+(* The fast tracer, with its skips on (the default: first-blocker shadow
+   rays, the last blocker first, culling, the hierarchy, the early stop)
+   and off, against the literal oracle, on the scenes of Gen_placed:
+   every kind of object on every side of every light, touching and
+   coinciding surfaces, the camera inside solids and glass, rays exactly
+   through edges and vertices. In the document's mode, which these scenes
+   use, the fast tracer does the oracle's arithmetic, so the images must
+   be equal byte for byte (as in Test_render's random scenes): no
+   tolerance. In the robust mode it uses other formulas, and there the
+   skips alone are held to bytes, on and off. *)
+open Raytrace
+
+let show_pixel (r, g, b) = Printf.sprintf "(%d, %d, %d)" r g b
+
+(* [None] if [actual] is [expected] byte for byte; otherwise how many
+   pixels differ, by how much, and the first of them. *)
+let difference what ~expected actual =
+  match Image_diff.compare expected actual with
+  | Error (`Msg m) -> Some (what ^ ": " ^ m)
+  | Ok d when d.differing = 0 -> None
+  | Ok d ->
+      let first = ref None in
+      for y = Image.height expected - 1 downto 0 do
+        for x = Image.width expected - 1 downto 0 do
+          if Image.get expected x y <> Image.get actual x y then first := Some (x, y)
+        done
+      done;
+      let x, y = Option.get !first in
+      Some
+        (Printf.sprintf
+           "%s: %d of %d pixels differ (%d by more than 1), by up to %d per channel, mean %.4f; the first at column %d, row \
+            %d: %s where the oracle has %s"
+           what d.differing d.pixels d.differing_gt1 d.max_abs d.mean_abs x y
+           (show_pixel (Image.get actual x y))
+           (show_pixel (Image.get expected x y)))
+
+let fail_with = function
+  | [] -> true
+  | l -> QCheck.Test.fail_reportf "%s\n(the scene above is Gen_placed.print's: its meshes' files follow it)" (String.concat "\n" l)
+
+(* The fast tracer with the skips on and off, each against the oracle. *)
+let as_the_oracle (s : Scene.t) =
+  let expected = Literal.render (Helpers.valid s) in
+  fail_with
+    (List.filter_map
+       (fun (what, skips) -> difference what ~expected (Helpers.image_exn ~skips s))
+       [ ("with the skips on", true); ("with the skips off", false) ])
+
+let robust (s : Scene.t) = { s with epsilon = None }
+
+let skips_exact (s : Scene.t) =
+  let s = robust s in
+  fail_with
+    (Option.to_list
+       (difference "in the robust mode (the scene above without its epsilon), skips on against skips off" ~expected:(Helpers.image_exn ~skips:false s)
+          (Helpers.image_exn ~skips:true s)))
+
+(* Two exact roots of coinciding surfaces (a triangle in the floor, a
+   box's face) are equal, and their rounded ones may come in either
+   order: the kernel's object may be any whose exact root is within this
+   relative distance of the nearest. *)
+let coinciding = Q.of_float (Float.ldexp 1. (-40))
+
+(* The object that the kernel's camera ray of pixel [(gx, gy)] hits,
+   [Trace.hit_object], against the exact roots: [None] if it is one
+   whose exact root is (within [coinciding] of) the nearest, or no object
+   where none has a root. *)
+let wrong_hit (s : Scene.t) roots tr gx gy =
+  Trace.pixel tr gx gy;
+  let origin = s.camera.position in
+  let direction =
+    Vec3.v
+      (Float.of_int gx *. s.viewport.width /. Float.of_int s.width)
+      (Float.of_int gy *. s.viewport.height /. Float.of_int s.height)
+      s.viewport.distance
+  in
+  let exact = Array.map (fun root -> root ~origin ~direction ~t_min:Q.one) roots in
+  let nearest = Array.fold_left (fun m r -> match (m, r) with Some a, Some b -> Some (Q.min a b) | None, r -> r | m, None -> m) None exact in
+  let k = Trace.hit_object tr in
+  let seen = if k < 0 then None else exact.(k) in
+  let show = function Some t -> Printf.sprintf "t = %s" (Q.to_string t) | None -> "no hit" in
+  let near_enough t m = Q.leq (Q.sub t m) (Q.mul m coinciding) in
+  match (nearest, seen) with
+  | None, _ when k < 0 -> None
+  | Some m, Some t when near_enough t m -> None
+  | _ ->
+      let first = ref (-1) in
+      Array.iteri (fun i r -> if !first < 0 && r <> None && r = nearest then first := i) exact;
+      Some
+        (Printf.sprintf "pixel (%d, %d): the kernel sees object %d (exactly: %s), the nearest is object %d at %s" gx gy k
+           (show seen) !first (show nearest))
+
+(* Every camera ray's first object, with the skips on and off, against
+   exact arithmetic: how many pixels are wrong, and the first. *)
+let exact_first_hits (s : Scene.t) =
+  let roots = Exact_hits.roots s in
+  fail_with
+    (List.filter_map
+       (fun (what, skips) ->
+         let tr = Trace.create (Helpers.prepare ~skips s) and wrong = ref [] in
+         for gy = Canvas.max_y s.height downto Canvas.min_y s.height do
+           for gx = Canvas.min_x s.width to Canvas.max_x s.width do
+             Option.iter (fun w -> wrong := w :: !wrong) (wrong_hit s roots tr gx gy)
+           done
+         done;
+         match List.rev !wrong with
+         | [] -> None
+         | first :: _ as l ->
+             Some (Printf.sprintf "%s: %d of %d pixels see another object than the exact one; %s" what (List.length l) (s.width * s.height) first))
+       [ ("with the skips on", true); ("with the skips off", false) ])
+
+let tests =
+  [
+    Helpers.qcheck ~count:500 "every kind of object, placed around the lights, touching and grazed, renders as the oracle does with the skips on and off"
+      Gen_placed.arbitrary as_the_oracle;
+    Helpers.qcheck ~count:300 "spheres alone, placed around the lights, touching and around the camera, render as the oracle does with the skips on and off"
+      Gen_placed.arbitrary_spheres as_the_oracle;
+    Helpers.qcheck ~count:400 "planes, triangles, boxes and meshes placed and grazed: every camera ray sees the object exact arithmetic says, with the skips on and off"
+      Gen_placed.arbitrary_flat exact_first_hits;
+    Alcotest.test_case "a ray parallel to a plane misses it, though the plane's unit normal is rounded" `Quick (fun () ->
+        (* <D, N> = 0.125 - 0.375 + 0.25 = 0 exactly, but N / |N| is
+           rounded, and <D, N / |N|> is not 0: the exact property above
+           found the plane seen at a huge t. *)
+        let p = Plane.v ~point:(Vec3.v 1. 2. 4.) ~normal:(Vec3.v (-0.5) (-1.) 0.25) (Material.v Color.white) in
+        List.iter
+          (fun direction -> Alcotest.(check (float 0.)) __LOC__ infinity (Plane.intersect p ~origin:Vec3.zero ~direction))
+          [ Vec3.v (-0.25) 0.375 1.; Vec3.v 0.5 (-0.25) 0.; Vec3.v 2. 0. 4. ]);
+    Helpers.qcheck ~count:300 "in the robust mode the skips change no byte of such scenes" Gen_placed.arbitrary skips_exact;
+  ]
