@@ -750,14 +750,18 @@ let[@inline never] transmit tr =
   tr.counters.shadow <- tr.counters.shadow + 1;
   let f = ref 1. and go = ref true in
   while !go do
-    (* A shadow ray may cross every transparent surface: each crossing a
-       search, checked against the budget like a hit of the tree. *)
-    check_budget tr;
     let i = closest tr in
     if i < 0 then go := false
     else begin
       f := !f *. Array.unsafe_get p.transparency (Array.unsafe_get p.material i);
-      if !f > 0. then s.t_min <- s.t else go := false
+      if !f > 0. then begin
+        s.t_min <- s.t;
+        (* A shadow ray may cross every transparent surface: each further
+           crossing is a search, checked against the budget like a hit of
+           the tree (the first one is the hit's, checked there). *)
+        check_budget tr
+      end
+      else go := false
     end
   done;
   Array.unsafe_set tr.tree.attenuation 0 !f
@@ -1937,7 +1941,7 @@ let[@inline] pixel tr gx gy =
 
 (* The pixels of a row the document's kernel traces between two checks of
    the budget: a multiple of [tile], so that blocks start on tiles. *)
-let block = 8 * tile
+let block = 32 * tile
 
 let row tr buffer k gx gy count =
   let p = tr.p in
