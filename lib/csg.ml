@@ -225,13 +225,17 @@ let surface_sphere = 0
 let surface_box = 1
 let surface_mesh = 2
 
-(* The intervals name the surface crossed at each end as [sf lsl slot_bits
-   lor slot]: the leaf's surface [sf], and for a mesh the slot of the
-   triangle in its hierarchy. Numbers then compare as the leaves' order
-   does (the merge's tie rule). A mesh has at most {!Limits.max_triangles}
-   triangles, below [2^slot_bits]. *)
-let slot_bits = 23
-let slot_mask = (1 lsl slot_bits) - 1
+(* The intervals name the surface crossed at each end as [sf lsl
+   slot_bits lor slot]: the leaf's surface [sf], and for a mesh the slot of
+   the triangle in its hierarchy. Numbers then compare as the leaves' order
+   does (the merge's tie rule). [slot_bits] is the table's: as few as its
+   largest mesh operand needs (none without one), so that the numbers fit
+   JavaScript's 32-bit integers too (a fixed 23 bits wrapped past 256
+   leaves there and lost spheres of a big union). *)
+let bits_for n =
+  let b = ref 0 in
+  while n > 1 lsl !b do incr b done;
+  !b
 
 (* A mesh leaf: its triangles' corners, in the order of its hierarchy's
    slots, as offsets in [vertex] (the mesh's own positions, not a copy),
@@ -256,6 +260,7 @@ type table = {
   meshes : mesh_leaf array;
   intervals : int;
   depth : int;  (** The deepest hierarchy of a mesh leaf. *)
+  slot_bits : int;  (** Of a surface's number: see [bits_for]. *)
 }
 
 type builder = {
@@ -288,7 +293,6 @@ let add_node b kind left right cap =
    a triangle; the boxes are the build's, dropped after it. *)
 let mesh_leaf (m : Mesh.t) =
   let n = Mesh.objects m in
-  if n > slot_mask then invalid_arg "Csg: a mesh operand has too many triangles";
   let reach = Array.fold_left (fun acc x -> Float.max acc (Float.abs x)) 0. m.positions in
   if n = 0 then { vertex = m.positions; corners = [||]; nodes = [||]; root = 0; depth = 0; reach }
   else begin
@@ -364,6 +368,12 @@ let table b =
   let nodes = Array.of_list (List.rev b.nodes) and surfaces = Array.of_list (List.rev b.surfaces) in
   let geom = Array.make (stride * Array.length surfaces) 0. in
   Array.iteri (fun i (_, g, _) -> Array.blit g 0 geom (stride * i) (Array.length g)) surfaces;
+  let slots = List.fold_left (fun m leaf -> max m (Array.length leaf.corners / 3)) 0 b.meshes in
+  let slot_bits = bits_for slots in
+  if Array.length surfaces > max_int lsr slot_bits then
+    invalid_arg
+      (Printf.sprintf "Csg.table: %d leaves with a mesh operand of %d triangles are too many for this platform's integers"
+         (Array.length surfaces) slots);
   {
     node_kind = Array.map (fun (k, _, _, _) -> k) nodes;
     left = Array.map (fun (_, l, _, _) -> l) nodes;
@@ -375,6 +385,7 @@ let table b =
     meshes = Array.of_list (List.rev b.meshes);
     intervals = b.n_intervals;
     depth = b.max_depth;
+    slot_bits;
   }
 
 let empty = table (builder ())
@@ -542,7 +553,7 @@ let mesh_intervals tb w (s : Scratch.t) node base =
               Triangle.crosses_at s g (Array.unsafe_get corners c) (Array.unsafe_get corners (c + 1))
                 (Array.unsafe_get corners (c + 2)) kx ky kz
             then begin
-              insert w base !n s.near ((sf lsl slot_bits) lor slot);
+              insert w base !n s.near ((sf lsl tb.slot_bits) lor slot);
               incr n
             end
           done
@@ -647,12 +658,12 @@ let rec eval tb w (s : Scratch.t) node =
   if k = leaf_sphere then begin
     w.tests <- w.tests + 1;
     let sf = Array.unsafe_get tb.left node in
-    leaf_interval w s node base (sf lsl slot_bits) (sphere_roots s tb.geom (stride * sf))
+    leaf_interval w s node base (sf lsl tb.slot_bits) (sphere_roots s tb.geom (stride * sf))
   end
   else if k = leaf_box then begin
     w.tests <- w.tests + 1;
     let sf = Array.unsafe_get tb.left node in
-    leaf_interval w s node base (sf lsl slot_bits) (Box.roots s tb.geom (stride * sf))
+    leaf_interval w s node base (sf lsl tb.slot_bits) (Box.roots s tb.geom (stride * sf))
   end
   else if k = leaf_mesh then mesh_intervals tb w s node base
   else begin
@@ -697,7 +708,7 @@ let roots tb w (s : Scratch.t) root =
   !found
 
 let normal tb w (s : Scratch.t) =
-  let sf = w.surface lsr slot_bits in
+  let sf = w.surface lsr tb.slot_bits in
   let k = Array.unsafe_get tb.surface_kind sf and o = stride * sf in
   if k = surface_sphere then begin
     let g = tb.geom in
@@ -709,7 +720,7 @@ let normal tb w (s : Scratch.t) =
   end
   else if k = surface_box then Box.normal s tb.geom o
   else begin
-    let leaf = tb.meshes.(truncate tb.geom.(o)) and c = 3 * (w.surface land slot_mask) in
+    let leaf = tb.meshes.(truncate tb.geom.(o)) and c = 3 * (w.surface land ((1 lsl tb.slot_bits) - 1)) in
     Triangle.normal_at s leaf.vertex leaf.corners.(c) leaf.corners.(c + 1) leaf.corners.(c + 2)
   end;
   (* Outward from the solid: against the ray where it enters, along it
@@ -721,7 +732,7 @@ let normal tb w (s : Scratch.t) =
     s.nz <- -.s.nz
   end
 
-let material tb w = Array.unsafe_get tb.surface_material (w.surface lsr slot_bits)
+let material tb w = Array.unsafe_get tb.surface_material (w.surface lsr tb.slot_bits)
 let entering w = w.entering
 let take_tests w =
   let n = w.tests in

@@ -113,7 +113,11 @@ val add : builder -> material:(solid -> int) -> t -> int
     the number of its root node, for {!roots}. *)
 
 val table : builder -> table
-(** [table b] is the table built by [b]. *)
+(** [table b] is the table built by [b].
+    @raise Invalid_argument if its leaves, numbered with room for the
+    triangles of its largest mesh operand, do not fit the platform's
+    integers: never with 63-bit integers within {!Limits}; in JavaScript
+    (32-bit), past [2^31] leaves without a mesh operand, fewer beside one. *)
 
 val empty : table
 (** [empty] is the table of no solid. *)

@@ -67,6 +67,37 @@ let () =
   | Ok m -> Printf.printf "obj %d triangles\n" (Raytrace.Obj_file.triangle_count m)
   | Error (`Msg m) -> Printf.printf "obj %s\n" m
 
+(* A union of 4096 spheres in a spiral, on 16 x 16 pixels: the surfaces'
+   numbers in the kernel's intervals once wrapped JavaScript's 32-bit
+   integers past 256 leaves, and the page lost spheres. *)
+let () =
+  let b = Buffer.create (1 lsl 18) in
+  let rec tree lo hi =
+    if hi - lo = 1 then begin
+      let a = Float.of_int lo *. 0.01 and r = 0.2 +. (Float.of_int lo *. 1e-4) in
+      Printf.bprintf b "(sphere (center %.4f %.4f 4) (radius 0.05) (color 255 0 0))" (r *. cos a) (r *. sin a)
+    end
+    else begin
+      Buffer.add_string b "(csg union ";
+      tree lo ((lo + hi) / 2);
+      Buffer.add_char b ' ';
+      tree ((lo + hi) / 2) hi;
+      Buffer.add_char b ')'
+    end
+  in
+  Buffer.add_string b "(canvas (width 16) (height 16)) (camera (position 0 0 -3)) (light ambient (intensity 0.3))\n\
+                       (light point (intensity 0.7) (position 2 3 -4))\n";
+  tree 0 4096;
+  match Raytrace.Scene_file.of_string ~file:"spiral.scene" (Buffer.contents b) with
+  | Error (`Msg m) -> Printf.printf "csg spiral of 4096 spheres: %s\n" m
+  | Ok scene -> (
+      match Raytrace.Render.image scene with
+      | Error (`Msg m) -> Printf.printf "csg spiral of 4096 spheres: %s\n" m
+      | Ok (img, stats) ->
+          Printf.printf "csg spiral of 4096 spheres: md5 %s, %d tests\n"
+            (Digest.to_hex (Digest.string (Raytrace.Ppm.to_string img)))
+            stats.tests)
+
 (* CSG trees as big as the limits let a scene file make, parsed and
    rendered: a balanced union of 16384 spheres (the web page threw
    "Maximum call stack size exceeded" on it, a List.map over its leaves),
