@@ -197,6 +197,27 @@ let obj_part_joined p ~name ~max_vertices ~max_triangles s off len =
       if Option.is_some m && !at <> Bytes.length bytes then Alcotest.failf "the join read %d of %d bytes" !at (Bytes.length bytes);
       m
 
+let csg_spiral n =
+  let b = Buffer.create (n * 64) in
+  let rec tree lo hi =
+    if hi - lo = 1 then
+      let a = Float.of_int lo *. 0.01 and r = 0.2 +. (Float.of_int lo *. 1e-4) in
+      Printf.bprintf b "(sphere (center %.4f %.4f 4) (radius 0.05) (color 255 0 0))" (r *. cos a) (r *. sin a)
+    else begin
+      Buffer.add_string b "(csg union ";
+      tree lo ((lo + hi) / 2);
+      Buffer.add_char b ' ';
+      tree ((lo + hi) / 2) hi;
+      Buffer.add_char b ')'
+    end
+  in
+  Buffer.add_string b
+    "(canvas (width 16) (height 16))\n(camera (position 0 0 -3))\n(light ambient (intensity 0.3))\n\
+     (light point (intensity 0.7) (position 2 3 -4))\n";
+  tree 0 n;
+  Buffer.add_char b '\n';
+  Buffer.contents b
+
 let glass_planes ~width ~height ~depth =
   let plane z =
     Printf.sprintf

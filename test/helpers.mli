@@ -147,6 +147,11 @@ val obj_part_joined :
 
 (** {1:slow Scenes slow to render} *)
 
+val csg_spiral : int -> string
+(** [csg_spiral n] is the text of a scene of 16 x 16 pixels: a CSG union of
+    [n] small spheres along a spiral, as a balanced tree (CSG nests at most
+    32 deep), lit by an ambient and a point light. *)
+
 val glass_planes : width:int -> height:int -> depth:int -> string
 (** [glass_planes ~width ~height ~depth] is the text of a scene of four
     parallel planes, each half mirror, half glass, one behind the other,

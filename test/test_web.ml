@@ -109,32 +109,9 @@ let main =
 
 let held = lazy (drive ~hash:"#hold" [ step "advance:38"; step "shot:coarse"; step "release"; step "probe:progress"; step "shot:final" ])
 
-(* A CSG union of 16384 spheres, a balanced tree (CSG nests at most 32
-   deep), 16 x 16 pixels: `raytrace render` draws it; JavaScript's smaller
-   stack ran out on it with an empty error line. *)
-let csg_text () =
-  let n = 16384 in
-  let sphere i =
-    let a = Float.of_int i *. 0.01 and r = 0.2 +. (Float.of_int i *. 1e-4) in
-    Printf.sprintf "(sphere (center %.4f %.4f 4) (radius 0.05) (color 255 0 0))" (r *. cos a) (r *. sin a)
-  in
-  let b = Buffer.create (n * 64) in
-  let rec tree lo hi =
-    if hi - lo = 1 then Buffer.add_string b (sphere lo)
-    else begin
-      Buffer.add_string b "(csg union ";
-      tree lo ((lo + hi) / 2);
-      Buffer.add_char b ' ';
-      tree ((lo + hi) / 2) hi;
-      Buffer.add_char b ')'
-    end
-  in
-  Buffer.add_string b
-    "(canvas (width 16) (height 16))\n(camera (position 0 0 -3))\n(light ambient (intensity 0.3))\n\
-     (light point (intensity 0.7) (position 2 3 -4))\n";
-  tree 0 n;
-  Buffer.add_char b '\n';
-  Buffer.contents b
+(* A CSG union of 16384 spheres: `raytrace render` draws it; JavaScript's
+   smaller stack ran out on it with an empty error line. *)
+let csg_text () = Helpers.csg_spiral 16384
 
 (* The reference scene at 16384 x 16384 pixels. *)
 let huge_text () =

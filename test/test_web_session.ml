@@ -29,32 +29,11 @@ let small p = ok (Session.set_size p (Some (60, 40)))
 
 let glass ~width ~height ~depth = session ~now:Unix.gettimeofday (Helpers.glass_planes ~width ~height ~depth)
 
-(* A union of [n] small spheres in a balanced tree, on 16 x 16 pixels. *)
-let csg_spheres n =
-  let b = Buffer.create (n * 64) in
-  let rec tree lo hi =
-    if hi - lo = 1 then
-      let a = Float.of_int lo *. 0.01 and r = 0.2 +. (Float.of_int lo *. 1e-4) in
-      Printf.bprintf b "(sphere (center %.4f %.4f 4) (radius 0.05) (color 255 0 0))" (r *. cos a) (r *. sin a)
-    else begin
-      Buffer.add_string b "(csg union ";
-      tree lo ((lo + hi) / 2);
-      Buffer.add_char b ' ';
-      tree ((lo + hi) / 2) hi;
-      Buffer.add_char b ')'
-    end
-  in
-  Buffer.add_string b
-    "(canvas (width 16) (height 16))\n(camera (position 0 0 -3))\n(light ambient (intensity 0.3))\n\
-     (light point (intensity 0.7) (position 2 3 -4))\n";
-  tree 0 n;
-  Buffer.contents b
-
 let tests =
   [
     Alcotest.test_case "a big CSG traced in slices, paused between and inside pixels, is raytrace render's picture" `Quick
       (fun () ->
-        let text = csg_spheres 16384 in
+        let text = Helpers.csg_spiral 16384 in
         let p = session ~now:Unix.gettimeofday text in
         let expected = match Helpers.of_string text with Ok s -> Helpers.image_exn s | Error (`Msg m) -> Alcotest.fail m in
         let slices = ref 0 in
