@@ -1,0 +1,209 @@
+(* What the public interfaces promise at their boundaries, one test per
+   promise that no other suite asserted: a plane's parallel ray, a box's
+   outward normals and the rays that touch its faces, edges and corners
+   exactly, a triangle's edges, vertices and plane, the bounds the
+   hierarchy is built from, and a mesh's validation. The cases are exact
+   in floats (small integers and halves), so that each expected value is
+   the promise itself, with no rounding to allow for. *)
+open Raytrace
+
+let white = Material.v Color.white
+let infinite = Alcotest.(pair (float 0.) (float 0.))
+let roots shape origin direction = Shape.roots shape ~origin ~direction
+
+(* [Plane.intersect] and [Shape.roots] of a plane, which must agree. *)
+let plane_root p origin direction =
+  let t = Plane.intersect p ~origin ~direction in
+  let near, far = roots (Shape.Plane p) origin direction in
+  if not (Float.equal near t && Float.equal far t) then
+    Alcotest.failf "Plane.intersect %h, Shape.roots (%h, %h)" t near far;
+  t
+
+(* The unit cube [0, 1]^3, and the box [1, 3] x [2, 5] x [-1, 0]. *)
+let cube = Box.v ~min:Vec3.zero ~max:(Vec3.v 1. 1. 1.) white
+let slab = Box.v ~min:(Vec3.v 1. 2. (-1.)) ~max:(Vec3.v 3. 5. 0.) white
+let box_normal b p = Shape.normal (Shape.Box b) p
+let v = Vec3.v
+
+(* The triangle (0, 0, 0), (1, 0, 0), (0, 1, 0) in the plane z = 0. *)
+let tri = Triangle.v Vec3.zero Vec3.ox Vec3.oy white
+
+(* Exact containment of [lo, hi] in the cube [(c, h)], in rationals. *)
+let cube_holds (c, h) (lo : Vec3.t) (hi : Vec3.t) =
+  let q = Q.of_float in
+  let inside x lo hi = Q.(leq (sub (q x) (q h)) (q lo) && geq (add (q x) (q h)) (q hi)) in
+  inside c.Vec3.x lo.x hi.x && inside c.y lo.y hi.y && inside c.z lo.z hi.z
+
+let tests =
+  [
+    Alcotest.test_case "a ray parallel to a plane: Plane.intersect is infinity, never -infinity or nan" `Quick (fun () ->
+        (* <D, N> = 0 exactly: above, below and in the plane y = 0, with
+           -0. components; and a tilted plane whose unit normal (1, 1, 0) /
+           sqrt 2 has two equal coordinates, so that <(1, -1, 0), N> is 0. *)
+        let floor = Plane.v ~point:Vec3.zero ~normal:(v 0. 2. 0.) white in
+        List.iter
+          (fun (what, o, d) -> Alcotest.(check (float 0.)) what infinity (plane_root floor o d))
+          [ ("above", v 0. 1. 0., v 1. 0. 0.); ("below", v 3. (-2.) 1., v 0. 0. (-1.)); ("in the plane", v 1. 0. 1., v 1. 0. 1.);
+            ("-0. components", v 0. 1. 0., v (-0.) (-0.) 1.) ];
+        let tilted = Plane.v ~point:(v 1. 0. 0.) ~normal:(v 1. 1. 0.) white in
+        Alcotest.(check (float 0.)) "tilted" infinity (plane_root tilted (v 5. 5. 5.) (v 1. (-1.) 0.));
+        Alcotest.check infinite "Shape.roots: (infinity, infinity)" (infinity, infinity) (roots (Shape.Plane floor) (v 0. 1. 0.) (v 1. 0. 0.)));
+    Alcotest.test_case "a plane's root is <P0 - O, N> / <D, N>, behind the origin too" `Quick (fun () ->
+        (* The plane y = 0 from (0, 5, 0): t = -5 / -2 = 2.5 down, -5 / 1 = -5 up. *)
+        let floor = Plane.v ~point:(v 7. 0. (-3.)) ~normal:(v 0. 4. 0.) white in
+        Alcotest.(check (float 0.)) "toward it" 2.5 (plane_root floor (v 0. 5. 0.) (v 1. (-2.) 0.));
+        Alcotest.(check (float 0.)) "away from it: negative" (-5.) (plane_root floor (v 0. 5. 0.) (v 0. 1. 0.)));
+    Alcotest.test_case "a plane's normal is its unit normal on the side it was given with, from either side" `Quick
+      (fun () ->
+        let p = Plane.v ~point:Vec3.zero ~normal:(v 0. (-3.) 0.) white in
+        Alcotest.check Helpers.vec3 "below" (v 0. (-1.) 0.) (Shape.normal (Shape.Plane p) (v 2. 0. 1.));
+        let p = Plane.v ~point:Vec3.zero ~normal:(v 0. 0. 0.5) white in
+        Alcotest.check Helpers.vec3 "above" (v 0. 0. 1.) (Shape.normal (Shape.Plane p) (v 2. 1. 0.)));
+    Alcotest.test_case "a box's normal is the outward unit normal of the nearest face, at points outside and inside"
+      `Quick (fun () ->
+        (* The slab [1, 3] x [2, 5] x [-1, 0]: each face's center, a point
+           just inside it and one just outside it. *)
+        List.iter
+          (fun (p, n) ->
+            List.iter
+              (fun k ->
+                let q = Vec3.add p (Vec3.smul k n) in
+                Alcotest.check Helpers.vec3 (Format.asprintf "at %a" Vec3.pp q) n (box_normal slab q))
+              [ 0.; -0.25; 0.25 ])
+          [ (v 1. 3.5 (-0.5), v (-1.) 0. 0.); (v 3. 3.5 (-0.5), v 1. 0. 0.); (v 2. 2. (-0.5), v 0. (-1.) 0.);
+            (v 2. 5. (-0.5), v 0. 1. 0.); (v 2. 3.5 (-1.), v 0. 0. (-1.)); (v 2. 3.5 0., v 0. 0. 1.) ];
+        (* From inside, the ray meets the far wall; the normal there still
+           points out, along the ray. *)
+        let near, far = roots (Shape.Box slab) (v 2. 3.5 (-0.5)) (v 0. 0. 2.) in
+        Alcotest.check infinite "from inside: one root behind, one ahead" (-0.25, 0.25) (near, far);
+        Alcotest.check Helpers.vec3 "the far wall's normal, along the ray" (v 0. 0. 1.) (box_normal slab (v 2. 3.5 0.)));
+    Alcotest.test_case "at a box's edges and corners the first of the faces -x, +x, -y, +y, -z, +z gives the normal"
+      `Quick (fun () ->
+        List.iter
+          (fun (p, n) -> Alcotest.check Helpers.vec3 (Format.asprintf "at %a" Vec3.pp p) n (box_normal cube p))
+          [ (v 1. 1. 1., v 1. 0. 0.); (v 0. 0. 0., v (-1.) 0. 0.); (v 0. 1. 1., v (-1.) 0. 0.); (v 0.5 1. 1., v 0. 1. 0.);
+            (v 0.5 0. 1., v 0. (-1.) 0.); (v 0.5 1. 0., v 0. 1. 0.); (v 1. 0.5 0., v 1. 0. 0.); (v 0.5 0.5 1., v 0. 0. 1.) ]);
+    Alcotest.test_case "a ray along a box's face, edge or axis: that axis bounds nothing when the origin is between its \
+                        planes, planes included; beside them it misses"
+      `Quick (fun () ->
+        (* Along x, on the face y = 1 of the unit cube, on its edge
+           y = 0, z = 0, and through the middle: it enters at x = 0, t = 1,
+           leaves at x = 1, t = 2. A hair beside the face: a miss. *)
+        List.iter
+          (fun (what, o) -> Alcotest.check infinite what (1., 2.) (roots (Shape.Box cube) o (v 1. 0. 0.)))
+          [ ("on the face y = 1", v (-1.) 1. 0.5); ("on the edge y = 0, z = 0", v (-1.) 0. 0.); ("through the middle", v (-1.) 0.5 0.5);
+            ("on the edge y = 1, z = 1", v (-1.) 1. 1.) ];
+        List.iter
+          (fun (what, o) -> Alcotest.check infinite what (infinity, infinity) (roots (Shape.Box cube) o (v 1. 0. 0.)))
+          [ ("above the face y = 1", v (-1.) (Float.succ 1.) 0.5); ("below the face z = 0, on y = -0.", v (-1.) (-0.) (Float.pred 0.)) ];
+        Alcotest.check infinite "Box.intersect of a miss" (infinity, infinity) (Box.intersect cube ~origin:(v 2. 2. 2.) ~direction:(v 1. 0. 0.)));
+    Alcotest.test_case "a ray that touches only a box's edge, or only a corner, meets it there once: near = far" `Quick
+      (fun () ->
+        (* Along the line x - y = 1 in the plane z = 0.5, from (0, -1):
+           the x slab is t in [0, 1], the y slab [1, 2]: they share t = 1,
+           the point (1, 0, 0.5) of the edge x = 1, y = 0. Through the
+           corner (1, 1, 1) from (0, 0, 2) along (1, 1, -1): slabs [0, 1],
+           [0, 1], [1, 2]. All exact in floats: the box is closed, the
+           exact line meets it, and so must the test. *)
+        Alcotest.check infinite "edge" (1., 1.) (roots (Shape.Box cube) (v 0. (-1.) 0.5) (v 1. 1. 0.));
+        Alcotest.check infinite "corner" (1., 1.) (roots (Shape.Box cube) (v 0. 0. 2.) (v 1. 1. (-1.)));
+        (* The parallel line half a unit away misses. *)
+        Alcotest.check infinite "beside the edge" (infinity, infinity) (roots (Shape.Box cube) (v 0. (-1.5) 0.5) (v 1. 1. 0.)));
+    Alcotest.test_case "a triangle's edges and vertices are part of it: rays exactly through them hit" `Quick (fun () ->
+        List.iter
+          (fun (what, x, y) ->
+            List.iter
+              (fun dz ->
+                let origin = v x y (-.dz) in
+                Alcotest.(check (float 0.)) (Printf.sprintf "%s, from z = %g" what (-.dz)) 1.
+                  (Triangle.intersect tri ~origin ~direction:(v 0. 0. dz)))
+              [ 1.; -1. ])
+          [ ("vertex v0", 0., 0.); ("vertex v1", 1., 0.); ("vertex v2", 0., 1.); ("edge v0 v1", 0.5, 0.); ("edge v1 v2", 0.5, 0.5);
+            ("edge v2 v0", 0., 0.25); ("inside", 0.25, 0.25) ];
+        Alcotest.(check (float 0.)) "outside, beside the long edge" infinity
+          (Triangle.intersect tri ~origin:(v 0.5 (Float.succ 0.5) (-1.)) ~direction:(v 0. 0. 1.)));
+    Alcotest.test_case "a ray in a triangle's plane misses it, even through its inside" `Quick (fun () ->
+        List.iter
+          (fun (o, d) ->
+            Alcotest.(check (float 0.)) (Format.asprintf "from %a" Vec3.pp o) infinity (Triangle.intersect tri ~origin:o ~direction:d);
+            Alcotest.check infinite "Shape.roots" (infinity, infinity) (roots (Shape.Triangle tri) o d))
+          [ (v (-1.) 0.25 0., v 1. 0. 0.); (v 0.25 0.25 0., v 0. 1. 0.); (v (-1.) (-1.) 0., v 1. 1. 0.) ]);
+    Alcotest.test_case "a triangle's normal is (v1 - v0) x (v2 - v0), unit: the order of the vertices picks the side"
+      `Quick (fun () ->
+        let n t = Shape.normal (Shape.Triangle t) (v 0.25 0.25 0.) in
+        Alcotest.check Helpers.vec3 "counter-clockwise seen from +z" (v 0. 0. 1.) (n tri);
+        Alcotest.check Helpers.vec3 "two vertices swapped" (v 0. 0. (-1.)) (n (Triangle.v Vec3.zero Vec3.oy Vec3.ox white));
+        Alcotest.check Helpers.vec3 "large: still unit" (v 0. 0. 1.) (n (Triangle.v Vec3.zero (v 1e6 0. 0.) (v 0. 1e6 0.) white)));
+    Alcotest.test_case "a shape's bounding cube holds it, exactly (rationals), for boxes, triangles and CSG solids" `Quick
+      (fun () ->
+        (* Corners that are not sums of halves: the center and half-side
+           are rounded, and the cube must still hold every corner. *)
+        let rand = Random.State.make [| 30 |] in
+        let coord () = (Random.State.float rand 2. -. 1.) *. (10. ** float (Random.State.int rand 7 - 3)) in
+        for _ = 1 to 2000 do
+          let a = v (coord ()) (coord ()) (coord ()) and b = v (coord ()) (coord ()) (coord ()) and c = v (coord ()) (coord ()) (coord ()) in
+          let lo = v (Float.min a.x b.x) (Float.min a.y b.y) (Float.min a.z b.z)
+          and hi = v (Float.max a.x b.x) (Float.max a.y b.y) (Float.max a.z b.z) in
+          let box = Box.v ~min:lo ~max:hi white in
+          if not (cube_holds (Shape.bounds (Shape.Box box)) lo hi) then
+            Alcotest.failf "the cube of the box %a .. %a does not hold it" Vec3.pp lo Vec3.pp hi;
+          let t = Triangle.v a b c white in
+          if not (cube_holds (Shape.bounds (Shape.Triangle t)) lo hi && cube_holds (Shape.bounds (Shape.Triangle t)) c c) then
+            Alcotest.failf "the cube of the triangle %a %a %a does not hold it" Vec3.pp a Vec3.pp b Vec3.pp c
+        done);
+    Alcotest.test_case "a CSG solid's box: around both for a union, the common part for an intersection (a point when \
+                        disjoint), the first operand's for a difference"
+      `Quick (fun () ->
+        let a = Csg.Box (Box.v ~min:(v 0. 0. 0.) ~max:(v 2. 2. 2.) white)
+        and b = Csg.Sphere (Sphere.v ~center:(v 2. 1. 1.) ~radius:1. Color.white)
+        and far = Csg.Box (Box.v ~min:(v 5. 5. 5.) ~max:(v 6. 6. 6.) white) in
+        let bounds op x y = Csg.bounds (Csg.v op x y) in
+        let pair = Alcotest.pair Helpers.vec3 Helpers.vec3 in
+        Alcotest.check pair "union" (v 0. 0. 0., v 3. 2. 2.) (bounds Csg.Union a b);
+        Alcotest.check pair "intersection" (v 1. 0. 0., v 2. 2. 2.) (bounds Csg.Intersection a b);
+        Alcotest.check pair "difference" (v 0. 0. 0., v 2. 2. 2.) (bounds Csg.Difference a b);
+        Alcotest.check pair "difference, the other way" (v 1. 0. 0., v 3. 2. 2.) (bounds Csg.Difference b a);
+        let lo, hi = bounds Csg.Intersection a far in
+        Alcotest.check Helpers.vec3 "disjoint: a point" lo hi);
+    Alcotest.test_case "a plane has no bounds, a mesh is many objects: Shape.bounds and Shape.kind raise Invalid_argument"
+      `Quick (fun () ->
+        let raises what f = match f () with _ -> Alcotest.failf "%s: no exception" what | exception Invalid_argument _ -> () in
+        let plane = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy white) in
+        raises "bounds of a plane" (fun () -> Shape.bounds plane);
+        let mesh =
+          match Mesh.v ~positions:[| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] ~triangles:[| 0; 1; 2 |] ~normals:[||] ~triangle_normals:[| -1; -1; -1 |] white with
+          | Ok m -> Shape.Mesh m
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        raises "kind of a mesh" (fun () -> Shape.kind mesh);
+        raises "bounds of a mesh" (fun () -> Shape.bounds mesh);
+        Alcotest.(check bool) "a plane is unbounded" false (Shape.bounded plane));
+    Alcotest.test_case "Mesh.v refuses inconsistent arrays, a bad scale, coordinates beyond the limit and no triangle"
+      `Quick (fun () ->
+        let p = [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] in
+        let mesh ?scale ?(positions = p) ?(triangles = [| 0; 1; 2 |]) ?(tn = [| -1; -1; -1 |]) ?(normals = [||]) () =
+          Mesh.v ?scale ~positions ~triangles ~normals ~triangle_normals:tn white
+        in
+        let refused what m = match m with Ok _ -> Alcotest.failf "%s: accepted" what | Error (`Msg _) -> () in
+        refused "positions not a multiple of 3" (mesh ~positions:[| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1. |] ());
+        refused "a vertex number out of range" (mesh ~triangles:[| 0; 1; 3 |] ());
+        refused "a negative vertex number" (mesh ~triangles:[| 0; -1; 2 |] ());
+        refused "a normal number out of range" (mesh ~tn:[| 0; -1; -1 |] ());
+        refused "triangle normals not parallel to the triangles" (mesh ~tn:[| -1; -1 |] ());
+        refused "no triangle" (mesh ~triangles:[||] ~tn:[||] ());
+        refused "scale 0" (mesh ~scale:0. ());
+        refused "scale -1" (mesh ~scale:(-1.) ());
+        refused "scale nan" (mesh ~scale:nan ());
+        refused "scale infinity" (mesh ~scale:infinity ());
+        refused "a coordinate beyond the limit once scaled" (mesh ~scale:(2. *. Limits.max_coordinate) ());
+        (match mesh ~scale:2. () with
+        | Ok m -> Alcotest.check Helpers.vec3 "placed: scale * p" (v 2. 0. 0.) (Mesh.vertex m 0 1)
+        | Error (`Msg e) -> Alcotest.fail e);
+        (* A degenerate triangle is kept, and counted out of the objects. *)
+        match mesh ~positions:(Array.append p [| 2.; 0.; 0. |]) ~triangles:[| 0; 1; 2; 0; 1; 3 |] ~tn:(Array.make 6 (-1)) () with
+        | Ok m ->
+            Alcotest.(check int) "both kept" 2 (Mesh.triangle_count m);
+            Alcotest.(check bool) "the second is degenerate" true (Mesh.degenerate m 1);
+            Alcotest.(check int) "one object" 1 (Mesh.objects m)
+        | Error (`Msg e) -> Alcotest.fail e);
+  ]
