@@ -194,7 +194,15 @@ let tests =
         Alcotest.check near "R entering glass" 0.0403072 r;
         (* At normal incidence both ways: R0. *)
         let _, r = split ~fresnel:true 1.5 1. (Vec3.v 0. 0. 1.) (Vec3.v 0. 0. (-1.)) in
-        Alcotest.check near "R0 leaving glass" 0.04 r);
+        Alcotest.check near "R0 leaving glass" 0.04 r;
+        (* "Any length > 0": d of length 1e-300 or 1e300 (whose squares
+           underflow or overflow) gives the same split. *)
+        List.iter
+          (fun k ->
+            let t, r = split ~fresnel:true 1.5 1. (Vec3.smul k (Vec3.v 0.6 0. 0.8)) (Vec3.v 0. 0. (-1.)) in
+            Alcotest.check near (Printf.sprintf "R, |d| = %g" k) 0.0948391396199233 r;
+            Alcotest.check (Helpers.vec3_near 1e-15) (Printf.sprintf "direction, |d| = %g" k) (Vec3.v 0.9 0. 0.43588989435406733) t)
+          [ 1e-300; 1e300; 3. ]);
     Alcotest.test_case "nested media, left one by one: each surface has the indices of the media on its two sides"
       `Quick (fun () ->
         (* Media 0, 1, 2 of indices 1.2, 1.5, 2 nested as shells: the ray
