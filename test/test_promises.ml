@@ -178,6 +178,56 @@ let tests =
         raises "kind of a mesh" (fun () -> Shape.kind mesh);
         raises "bounds of a mesh" (fun () -> Shape.bounds mesh);
         Alcotest.(check bool) "a plane is unbounded" false (Shape.bounded plane));
+    Alcotest.test_case
+      "an object beyond a point light casts no shadow (Light.shadow_t_max = 1), for every kind, skips on and off, in \
+       both modes"
+      `Quick (fun () ->
+        (* A floor lit by a point light at (0, 2, 2) (and an ambient one),
+           seen from (0, 2.5, -1) looking down at (0, 0, 2): every camera
+           ray goes down, so nothing above y = 2.5 is seen. Above the light,
+           at y = 3 to 4, each object lies on the continuation of the floor's
+           shadow rays past the light (t > 1): the floor must not change.
+           The same object below the light must shadow it (else the scene
+           would prove nothing). *)
+        let camera = match Camera.look_at ~position:(v 0. 2.5 (-1.)) (v 0. 0. 2.) with Ok c -> c | Error (`Msg m) -> Alcotest.fail m in
+        let floor = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy (Material.v (Color.v 200. 200. 200.))) in
+        let scene ?(spheres = []) shapes =
+          Scene.v ~width:32 ~height:32 ~camera ~spheres ~shapes:(floor :: shapes)
+            ~lights:[ Light.ambient 0.2; Light.point 0.8 (v 0. 2. 2.) ] ()
+        in
+        let grey = Material.v (Color.v 90. 90. 90.) in
+        let terrain y =
+          let o = Mesh_gen.terrain ~seed:1 ~nx:4 ~nz:4 ~size:30. ~height:0. in
+          match Mesh.v ~translate:(v 0. y 2.) ~positions:o.positions ~triangles:o.triangles ~normals:o.normals ~triangle_normals:o.triangle_normals grey with
+          | Ok m -> Shape.Mesh m
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        (* Each kind at height [y] (the middle of it), wide enough to cover
+           every shadow ray's continuation. *)
+        let kinds y =
+          [ ("triangle", [], [ Shape.Triangle (Triangle.v (v (-20.) y (-20.)) (v 20. y (-20.)) (v 0. y 30.) grey) ]);
+            ("box", [], [ Shape.Box (Box.v ~min:(v (-20.) (y -. 0.5) (-20.)) ~max:(v 20. (y +. 0.5) 30.) grey) ]);
+            ("plane", [], [ Shape.Plane (Plane.v ~point:(v 0. y 0.) ~normal:Vec3.oy grey) ]);
+            ("sphere", [ Sphere.v ~center:(v 0. y 2.) ~radius:0.5 Color.white ], []);
+            ("mesh", [], [ terrain y ]);
+            (* Many spheres: the hierarchy's shadow traversal. *)
+            ("spheres", List.init 40 (fun k -> Sphere.v ~center:(v (float (k mod 8) -. 3.5) y (float (k / 8) -. 0.5)) ~radius:0.4 Color.white), []) ]
+        in
+        List.iter
+          (fun epsilon ->
+            List.iter
+              (fun skips ->
+                let render s = Helpers.image_exn ~skips { s with epsilon } in
+                let bare = render (scene []) in
+                List.iter2
+                  (fun (name, spheres, shapes) (_, spheres_below, shapes_below) ->
+                    let what = Printf.sprintf "%s beyond the light, skips %b, epsilon %b" name skips (epsilon <> None) in
+                    Helpers.check_images ~max_abs:0 ~min_share:1. what ~expected:bare (render (scene ~spheres shapes));
+                    if Image.equal bare (render (scene ~spheres:spheres_below shapes_below)) then
+                      Alcotest.failf "%s below the light casts no shadow: the scene proves nothing" name)
+                  (kinds 3.5) (kinds 1.))
+              [ true; false ])
+          [ None; Some 0.001 ]);
     Alcotest.test_case "Mesh.v refuses inconsistent arrays, a bad scale, coordinates beyond the limit and no triangle"
       `Quick (fun () ->
         let p = [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] in
