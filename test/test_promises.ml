@@ -36,6 +36,23 @@ let cube_holds (c, h) (lo : Vec3.t) (hi : Vec3.t) =
 
 let tests =
   [
+    Alcotest.test_case "a ray tangent to a sphere: the tracer's own test gives the double root, in both modes" `Quick
+      (fun () ->
+        (* Sphere.roots promises a double root for a tangent ray; the
+           tracer's inlined copy (Trace.roots runs it) must agree. Exact in
+           floats: the line's distance to the center is the radius, and the
+           textbook discriminant is 0. *)
+        List.iter
+          (fun (center, radius, origin, direction, t) ->
+            let sphere = Sphere.v ~center ~radius Color.white in
+            Alcotest.check infinite "Sphere.roots" (t, t) (Sphere.roots sphere ~origin ~direction);
+            List.iter
+              (fun epsilon ->
+                let tr = Trace.create (Helpers.prepare (Scene.v ?epsilon ~spheres:[ sphere ] ~lights:[] ())) in
+                Alcotest.check infinite (Printf.sprintf "Trace.roots, epsilon %b" (epsilon <> None)) (t, t) (Trace.roots tr 0 origin direction))
+              [ None; Some 0.001 ])
+          [ (v 0. 0. 5., 1., v 1. 0. 0., v 0. 0. 1., 5.); (Vec3.zero, 2., v 2. (-3.) 0., v 0. 1. 0., 3.);
+            (v 0. 0. 5., 1., v 0. (-1.) 0., v 0. 0. 0.5, 10.) ]);
     Alcotest.test_case "a ray parallel to a plane: Plane.intersect is infinity, never -infinity or nan" `Quick (fun () ->
         (* <D, N> = 0 exactly: above, below and in the plane y = 0, with
            -0. components; and a tilted plane whose unit normal (1, 1, 0) /
