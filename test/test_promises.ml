@@ -94,12 +94,16 @@ let tests =
         let near, far = roots (Shape.Box slab) (v 2. 3.5 (-0.5)) (v 0. 0. 2.) in
         Alcotest.check infinite "from inside: one root behind, one ahead" (-0.25, 0.25) (near, far);
         Alcotest.check Helpers.vec3 "the far wall's normal, along the ray" (v 0. 0. 1.) (box_normal slab (v 2. 3.5 0.)));
-    Alcotest.test_case "at a box's edges and corners the first of the faces -x, +x, -y, +y, -z, +z gives the normal"
+    Alcotest.test_case
+      "at a box's edges and corners, and inside where faces are equally near, the first of the faces -x, +x, -y, +y, \
+       -z, +z gives the normal"
       `Quick (fun () ->
         List.iter
           (fun (p, n) -> Alcotest.check Helpers.vec3 (Format.asprintf "at %a" Vec3.pp p) n (box_normal cube p))
           [ (v 1. 1. 1., v 1. 0. 0.); (v 0. 0. 0., v (-1.) 0. 0.); (v 0. 1. 1., v (-1.) 0. 0.); (v 0.5 1. 1., v 0. 1. 0.);
-            (v 0.5 0. 1., v 0. (-1.) 0.); (v 0.5 1. 0., v 0. 1. 0.); (v 1. 0.5 0., v 1. 0. 0.); (v 0.5 0.5 1., v 0. 0. 1.) ]);
+            (v 0.5 0. 1., v 0. (-1.) 0.); (v 0.5 1. 0., v 0. 1. 0.); (v 1. 0.5 0., v 1. 0. 0.); (v 0.5 0.5 1., v 0. 0. 1.);
+            (* Inside, as near to two opposite faces as to any: the first. *)
+            (v 0.5 0.5 0.5, v (-1.) 0. 0.); (v 0.25 0.5 0.5, v (-1.) 0. 0.); (v 0.5 0.5 0.75, v 0. 0. 1.); (v 0.75 0.5 0.5, v 1. 0. 0.) ]);
     Alcotest.test_case "a ray along a box's face, edge or axis: that axis bounds nothing when the origin is between its \
                         planes, planes included; beside them it misses"
       `Quick (fun () ->
