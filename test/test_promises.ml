@@ -212,9 +212,12 @@ let tests =
            would prove nothing). *)
         let camera = match Camera.look_at ~position:(v 0. 2.5 (-1.)) (v 0. 0. 2.) with Ok c -> c | Error (`Msg m) -> Alcotest.fail m in
         let floor = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy (Material.v (Color.v 200. 200. 200.))) in
-        let scene ?(spheres = []) shapes =
-          Scene.v ~width:32 ~height:32 ~camera ~spheres ~shapes:(floor :: shapes)
-            ~lights:[ Light.ambient 0.2; Light.point 0.8 (v 0. 2. 2.) ] ()
+        (* Or a ground sphere, for scenes of spheres alone: the document's
+           own kernel and its shadow loop. *)
+        let ground = Sphere.v ~center:(v 0. (-1000.) 0.) ~radius:1000. (Color.v 200. 200. 200.) in
+        let scene ~on_sphere ?(spheres = []) shapes =
+          let spheres, shapes = if on_sphere then (ground :: spheres, shapes) else (spheres, floor :: shapes) in
+          Scene.v ~width:32 ~height:32 ~camera ~spheres ~shapes ~lights:[ Light.ambient 0.2; Light.point 0.8 (v 0. 2. 2.) ] ()
         in
         let grey = Material.v (Color.v 90. 90. 90.) in
         let terrain y =
@@ -223,28 +226,30 @@ let tests =
           | Ok m -> Shape.Mesh m
           | Error (`Msg m) -> Alcotest.fail m
         in
+        let many_spheres y = List.init 40 (fun k -> Sphere.v ~center:(v (float (k mod 8) -. 3.5) y (float (k / 8) -. 0.5)) ~radius:0.4 Color.white) in
         (* Each kind at height [y] (the middle of it), wide enough to cover
            every shadow ray's continuation. *)
         let kinds y =
-          [ ("triangle", [], [ Shape.Triangle (Triangle.v (v (-20.) y (-20.)) (v 20. y (-20.)) (v 0. y 30.) grey) ]);
-            ("box", [], [ Shape.Box (Box.v ~min:(v (-20.) (y -. 0.5) (-20.)) ~max:(v 20. (y +. 0.5) 30.) grey) ]);
-            ("plane", [], [ Shape.Plane (Plane.v ~point:(v 0. y 0.) ~normal:Vec3.oy grey) ]);
-            ("sphere", [ Sphere.v ~center:(v 0. y 2.) ~radius:0.5 Color.white ], []);
-            ("mesh", [], [ terrain y ]);
+          [ ("triangle", false, [], [ Shape.Triangle (Triangle.v (v (-20.) y (-20.)) (v 20. y (-20.)) (v 0. y 30.) grey) ]);
+            ("box", false, [], [ Shape.Box (Box.v ~min:(v (-20.) (y -. 0.5) (-20.)) ~max:(v 20. (y +. 0.5) 30.) grey) ]);
+            ("plane", false, [], [ Shape.Plane (Plane.v ~point:(v 0. y 0.) ~normal:Vec3.oy grey) ]);
+            ("sphere", false, [ Sphere.v ~center:(v 0. y 2.) ~radius:0.5 Color.white ], []);
+            ("sphere, on a ground sphere", true, [ Sphere.v ~center:(v 0. y 2.) ~radius:0.5 Color.white ], []);
+            ("mesh", false, [], [ terrain y ]);
             (* Many spheres: the hierarchy's shadow traversal. *)
-            ("spheres", List.init 40 (fun k -> Sphere.v ~center:(v (float (k mod 8) -. 3.5) y (float (k / 8) -. 0.5)) ~radius:0.4 Color.white), []) ]
+            ("spheres", false, many_spheres y, []); ("spheres, on a ground sphere", true, many_spheres y, []) ]
         in
         List.iter
           (fun epsilon ->
             List.iter
               (fun skips ->
                 let render s = Helpers.image_exn ~skips { s with epsilon } in
-                let bare = render (scene []) in
                 List.iter2
-                  (fun (name, spheres, shapes) (_, spheres_below, shapes_below) ->
+                  (fun (name, on_sphere, spheres, shapes) (_, _, spheres_below, shapes_below) ->
+                    let bare = render (scene ~on_sphere []) in
                     let what = Printf.sprintf "%s beyond the light, skips %b, epsilon %b" name skips (epsilon <> None) in
-                    Helpers.check_images ~max_abs:0 ~min_share:1. what ~expected:bare (render (scene ~spheres shapes));
-                    if Image.equal bare (render (scene ~spheres:spheres_below shapes_below)) then
+                    Helpers.check_images ~max_abs:0 ~min_share:1. what ~expected:bare (render (scene ~on_sphere ~spheres shapes));
+                    if Image.equal bare (render (scene ~on_sphere ~spheres:spheres_below shapes_below)) then
                       Alcotest.failf "%s below the light casts no shadow: the scene proves nothing" name)
                   (kinds 3.5) (kinds 1.))
               [ true; false ])
