@@ -254,6 +254,50 @@ let tests =
                   (kinds 3.5) (kinds 1.))
               [ true; false ])
           [ None; Some 0.001 ]);
+    Alcotest.test_case
+      "every kind of blocker casts the same shadow with the skips on and off, with and without a hierarchy, in both \
+       modes"
+      `Quick (fun () ->
+        (* The floor and light of the test above; between them one blocker
+           of each kind: the plane z = 1.5 (the floor before it, toward the
+           camera, is in its shadow), a box, a triangle, a sphere, a small
+           mesh, each over (0, 0, 2). With twelve spheres behind the camera
+           (seen by no ray) the scene has a hierarchy, and the skips' shadow
+           rays take its traversal, planes first. *)
+        let camera = match Camera.look_at ~position:(v 0. 2.5 (-1.)) (v 0. 0. 2.) with Ok c -> c | Error (`Msg m) -> Alcotest.fail m in
+        let floor = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy (Material.v (Color.v 200. 200. 200.))) in
+        let grey = Material.v (Color.v 90. 90. 90.) in
+        let far = List.init 12 (fun k -> Sphere.v ~center:(v (float k) 10. (-10.)) ~radius:0.3 Color.white) in
+        let small_mesh =
+          let o = Mesh_gen.terrain ~seed:2 ~nx:3 ~nz:3 ~size:0.8 ~height:0.1 in
+          match Mesh.v ~translate:(v 0. 1. 2.) ~positions:o.positions ~triangles:o.triangles ~normals:o.normals ~triangle_normals:o.triangle_normals grey with
+          | Ok m -> Shape.Mesh m
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        let blockers =
+          [ ("plane", [], [ Shape.Plane (Plane.v ~point:(v 0. 0. 1.5) ~normal:Vec3.oz grey) ]);
+            ("box", [], [ Shape.Box (Box.v ~min:(v (-0.3) 0.8 1.7) ~max:(v 0.3 1.2 2.3) grey) ]);
+            ("triangle", [], [ Shape.Triangle (Triangle.v (v (-0.4) 1. 1.6) (v 0.4 1. 1.6) (v 0. 1. 2.4) grey) ]);
+            ("sphere", [ Sphere.v ~center:(v 0. 1. 2.) ~radius:0.3 Color.white ], []); ("mesh", [], [ small_mesh ]) ]
+        in
+        List.iter
+          (fun (name, spheres, shapes) ->
+            List.iter
+              (fun (crowd, extra) ->
+                List.iter
+                  (fun epsilon ->
+                    let scene spheres shapes =
+                      Scene.v ~width:32 ~height:32 ?epsilon ~camera ~spheres:(spheres @ extra) ~shapes:(floor :: shapes)
+                        ~lights:[ Light.ambient 0.2; Light.point 0.8 (v 0. 2. 2.) ] ()
+                    in
+                    let s = scene spheres shapes in
+                    let what = Printf.sprintf "%s%s, epsilon %b" name crowd (epsilon <> None) in
+                    let off = Helpers.image_exn ~skips:false s in
+                    Helpers.check_images ~max_abs:0 ~min_share:1. (what ^ ": skips on and off") ~expected:off (Helpers.image_exn s);
+                    if Image.equal off (Helpers.image_exn ~skips:false (scene [] [])) then Alcotest.failf "%s: no shadow, no blocker seen" what)
+                  [ None; Some 0.001 ])
+              [ ("", []); (", in a hierarchy", far) ])
+          blockers);
     Alcotest.test_case "Mesh.v refuses inconsistent arrays, a bad scale, coordinates beyond the limit and no triangle"
       `Quick (fun () ->
         let p = [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] in
