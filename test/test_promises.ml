@@ -298,6 +298,35 @@ let tests =
                   [ None; Some 0.001 ])
               [ ("", []); (", in a hierarchy", far) ])
           blockers);
+    Alcotest.test_case
+      "a union of two touching boxes is one solid: from inside and outside it looks as the one box they make" `Quick
+      (fun () ->
+        (* The boxes [0, 3] x [0, 2] x [1, 4] and [3, 6] x [0, 2] x [1, 4]
+           share the face x = 3, inside their union: an interval that opens
+           where the last one closed extends it (Csg.merge), so no ray sees
+           that face. Lit from inside and outside, from cameras looking
+           across it (from inside, from 2.5 before it: camera rays start at
+           t = 1), the union renders as the box [0, 6] x [0, 2] x [1, 4]
+           (the same material, so the same colour everywhere). *)
+        let m = Material.v ~specular:50. (Color.v 200. 120. 40.) in
+        let a = Csg.Box (Box.v ~min:(v 0. 0. 1.) ~max:(v 3. 2. 4.) m) and b = Csg.Box (Box.v ~min:(v 3. 0. 1.) ~max:(v 6. 2. 4.) m) in
+        let one = Shape.Box (Box.v ~min:(v 0. 0. 1.) ~max:(v 6. 2. 4.) m) in
+        List.iter
+          (fun (where, position, target) ->
+            let camera = match Camera.look_at ~position target with Ok c -> c | Error (`Msg e) -> Alcotest.fail e in
+            List.iter
+              (fun epsilon ->
+                let scene shapes =
+                  Scene.v ~width:24 ~height:24 ?epsilon ~camera ~spheres:[] ~shapes
+                    ~lights:[ Light.ambient 0.3; Light.point 0.7 (v 5. 1.5 2.5); Light.directional 0.2 (v (-1.) 1. (-1.)) ] ()
+                in
+                List.iter
+                  (fun (name, c) ->
+                    Helpers.check_images ~max_abs:0 ~min_share:1. (Printf.sprintf "%s, %s, epsilon %b" name where (epsilon <> None))
+                      ~expected:(Helpers.image_exn (scene [ one ])) (Helpers.image_exn (scene [ Shape.Csg c ])))
+                  [ ("a union b", Csg.v Csg.Union a b); ("b union a", Csg.v Csg.Union b a) ])
+              [ None; Some 0.001 ])
+          [ ("from inside", v 0.5 1. 2.5, v 6. 1. 2.5); ("from outside", v (-3.) 4. (-1.), v 3. 1. 2.5) ]);
     Alcotest.test_case "Mesh.v refuses inconsistent arrays, a bad scale, coordinates beyond the limit and no triangle"
       `Quick (fun () ->
         let p = [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] in
