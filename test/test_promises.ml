@@ -327,6 +327,30 @@ let tests =
                   [ ("a union b", Csg.v Csg.Union a b); ("b union a", Csg.v Csg.Union b a) ])
               [ None; Some 0.001 ])
           [ ("from inside", v 0.5 1. 2.5, v 6. 1. 2.5); ("from outside", v (-3.) 4. (-1.), v 3. 1. 2.5) ]);
+    Alcotest.test_case
+      "a hole cut through a box by a box whose face lies in the first one's face is a hole: no face drawn across it"
+      `Quick (fun () ->
+        (* A = [0, 2] x [0, 2] x [1, 3] minus B = [0.5, 1.5] x [0.5, 1.5] x
+           [1, 5]: B's front face lies in A's, so a ray through the hole
+           enters A and B at the same t, where the difference opens and
+           closes at once: that empty interval is dropped (Csg.merge). The
+           picture is that of the same hole cut by B reaching out to z =
+           0.5 (the same solid, no coincident faces): the background through
+           the hole, from in front, at an angle, in both modes. *)
+        let m = Material.v (Color.v 60. 160. 220.) in
+        let a = Csg.Box (Box.v ~min:(v 0. 0. 1.) ~max:(v 2. 2. 3.) m) in
+        let hole z0 = Csg.v Csg.Difference a (Csg.Box (Box.v ~min:(v 0.5 0.5 z0) ~max:(v 1.5 1.5 5.) m)) in
+        List.iter
+          (fun (position, epsilon) ->
+            let camera = match Camera.look_at ~position (v 1. 1. 2.) with Ok c -> c | Error (`Msg e) -> Alcotest.fail e in
+            let scene c =
+              Scene.v ~width:24 ~height:24 ?epsilon ~camera ~spheres:[] ~shapes:[ Shape.Csg c ]
+                ~lights:[ Light.ambient 0.4; Light.directional 0.6 (v 0.3 0.5 (-1.)) ] ()
+            in
+            Helpers.check_images ~max_abs:0 ~min_share:1.
+              (Format.asprintf "from %a, epsilon %b" Vec3.pp position (epsilon <> None))
+              ~expected:(Helpers.image_exn (scene (hole 0.5))) (Helpers.image_exn (scene (hole 1.))))
+          [ (v 1. 1. (-3.), None); (v 1. 1. (-3.), Some 0.001); (v 1.3 0.8 (-4.), None) ]);
     Alcotest.test_case "Mesh.v refuses inconsistent arrays, a bad scale, coordinates beyond the limit and no triangle"
       `Quick (fun () ->
         let p = [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] in
