@@ -351,6 +351,33 @@ let tests =
               (Format.asprintf "from %a, epsilon %b" Vec3.pp position (epsilon <> None))
               ~expected:(Helpers.image_exn (scene (hole 0.5))) (Helpers.image_exn (scene (hole 1.))))
           [ (v 1. 1. (-3.), None); (v 1. 1. (-3.), Some 0.001); (v 1.3 0.8 (-4.), None) ]);
+    Alcotest.test_case
+      "where two leaves' surfaces coincide, a CSG solid shows the leaf further left: the intersection's front face is \
+       the first box's"
+      `Quick (fun () ->
+        (* A = [0, 2] x [0, 2] x [1, 3], red, and B = [0.5, 1.5] x [0.5, 1.5]
+           x [1, 5], blue, enter at the same t on the face z = 1, where it is
+           B's end that makes the ray enter A and B: the point belongs to the
+           surface of the lower number, A's (Csg.merge). So A and B's
+           intersection looks as A and B' where B' = [0.5, 1.5] x [0.5, 1.5]
+           x [0.5, 5] starts before A (a red front face, A's alone), and B
+           and A's as B and A' with A' = [0, 2] x [0, 2] x [0.5, 3] (a blue
+           one). (Not as a lone box: its edges are hit by the rays that only
+           touch them, which a CSG solid drops; here the pixels' rays run
+           exactly along the front face's edges.) *)
+        let red = Material.v (Color.v 220. 30. 30.) and blue = Material.v (Color.v 30. 30. 220.) in
+        let box z0 lo hi m = Csg.Box (Box.v ~min:(v lo lo z0) ~max:(v hi hi (if hi = 2. then 3. else 5.)) m) in
+        let a = box 1. 0. 2. red and a' = box 0.5 0. 2. red and b = box 1. 0.5 1.5 blue and b' = box 0.5 0.5 1.5 blue in
+        let camera = match Camera.look_at ~position:(v 1. 1. (-3.)) (v 1. 1. 2.) with Ok c -> c | Error (`Msg e) -> Alcotest.fail e in
+        let image x y =
+          Helpers.image_exn
+            (Scene.v ~width:24 ~height:24 ~camera ~spheres:[] ~shapes:[ Shape.Csg (Csg.v Csg.Intersection x y) ]
+               ~lights:[ Light.ambient 0.4; Light.directional 0.6 (v 0.3 0.5 (-1.)) ] ())
+        in
+        let front_red = image a b' and front_blue = image b a' in
+        if Image.equal front_red front_blue then Alcotest.fail "the two colours give one picture: the scene proves nothing";
+        Helpers.check_images ~max_abs:0 ~min_share:1. "A and B: A's red" ~expected:front_red (image a b);
+        Helpers.check_images ~max_abs:0 ~min_share:1. "B and A: B's blue" ~expected:front_blue (image b a));
     Alcotest.test_case "Mesh.v refuses inconsistent arrays, a bad scale, coordinates beyond the limit and no triangle"
       `Quick (fun () ->
         let p = [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] in
