@@ -101,11 +101,15 @@ let tests =
             List.iter
               (fun fresnel ->
                 let t, r = split ~fresnel n1 n2 d (Vec3.v 0. 0. (-1.)) in
-                if not (Float.is_finite r && r >= 0. && r <= 1.) then Alcotest.failf "R = %g" r;
+                if not (Float.is_finite r && r >= 0. && r <= 1.) then Alcotest.failf "R = %.17g, not in [0, 1]" r;
                 if r < 1. && not (Float.is_finite (Vec3.norm t)) then Alcotest.fail "direction not finite")
               [ false; true ])
           [ (1., 1.5, Vec3.v 1. 0. 0.); (1.5, 1., Vec3.v 1. 0. 0.); (1., 1.5, Vec3.v 1. 0. 1e-300);
-            (1., 1.5, Vec3.v 1. 0. (-1e-17)); (1.2, 1.3, Vec3.v 1e-300 0. 1e-300) ]);
+            (1., 1.5, Vec3.v 1. 0. (-1e-17)); (1.2, 1.3, Vec3.v 1e-300 0. 1e-300);
+            (* A cosine of -1e-15, as rounding leaves a direction that should
+               be along the surface: clamped to 0, not 1 - c = 1 + 1e-15 in
+               Schlick's (1 - c)^5, which would make R exceed 1. *)
+            (1., 1.5, Vec3.v 1. 0. (-1e-15)); (1., 1.5, Vec3.v 1. 0. (-1e-12)) ]);
     Alcotest.test_case "Schlick: R0 = 0.04 from air to 1.5 at normal incidence, 1 at grazing" `Quick (fun () ->
         (* R0 = ((1 - 1.5) / (1 + 1.5))^2 = 0.2^2 = 0.04. *)
         let _, r = split ~fresnel:true 1. 1.5 (Vec3.v 0. 0. 1.) (Vec3.v 0. 0. (-1.)) in
