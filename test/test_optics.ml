@@ -352,6 +352,27 @@ let tests =
                   (Literal.pixel s 0 0).r)
               [ None; Some 0.001 ])
           [ (0.5, 255. *. 0.25); (0.8, 255. *. 0.8 *. 0.8); (1., 255.); (0., 0.) ]);
+    Alcotest.test_case "light through two glass slabs 1e-10 apart is scaled by each of their four faces" `Quick
+      (fun () ->
+        (* The scene of the test above, the ball replaced by two slabs of
+           transparency 0.5 across the shadow ray, [-1, 1] x [2, 3] x [-1, 1]
+           and the same from y = 3 + 1e-10 to 4: the shadow ray crosses
+           four faces, the middle two 1e-10 apart, and each scales the
+           light: red = 255 * 0.5^4 = 15.9375. *)
+        let slab lo hi = Shape.Box (Box.v ~min:(Vec3.v (-1.) lo (-1.)) ~max:(Vec3.v 1. hi 1.) (Material.v ~transparency:0.5 ~refractive_index:1.5 Color.white)) in
+        List.iter
+          (fun epsilon ->
+            let s =
+              Scene.v ~width:3 ~height:3 ?epsilon
+                ~camera:(ok (Camera.look_at ~position:(Vec3.v 0. 5. (-5.)) Vec3.zero))
+                ~spheres:[]
+                ~shapes:[ slab 2. 3.; slab (3. +. 1e-10) 4.; Shape.Plane (Plane.v ~point:Vec3.zero ~normal:up (Material.v (Color.v 255. 255. 255.))) ]
+                ~lights:[ Light.directional 1. up ] ()
+            in
+            let tr = Trace.create (Helpers.prepare s) in
+            Trace.pixel tr 0 0;
+            Alcotest.check (Helpers.float_near 1e-9) (Printf.sprintf "epsilon %b" (epsilon <> None)) 15.9375 (Trace.red tr))
+          [ None; Some 1e-12 ]);
     Alcotest.test_case "one depth for both kinds of ray: at depth 0 glass shows its local colour, as a mirror does"
       `Quick (fun () ->
         (* Ambient light alone: no shadow, which glass lets light through. *)
