@@ -378,6 +378,22 @@ let tests =
         if Image.equal front_red front_blue then Alcotest.fail "the two colours give one picture: the scene proves nothing";
         Helpers.check_images ~max_abs:0 ~min_share:1. "A and B: A's red" ~expected:front_red (image a b);
         Helpers.check_images ~max_abs:0 ~min_share:1. "B and A: B's blue" ~expected:front_blue (image b a));
+    Alcotest.test_case "Box.validate refuses a box flat or inverted on any axis, and takes one of any thinness" `Quick
+      (fun () ->
+        let check what ~min ~max ok =
+          match (Box.validate (Box.v ~min ~max white), ok) with
+          | Ok _, true | Error (`Msg _), false -> ()
+          | Ok _, false -> Alcotest.failf "%s: accepted" what
+          | Error (`Msg m), true -> Alcotest.failf "%s: refused (%s)" what m
+        in
+        List.iteri
+          (fun axis name ->
+            let at k x = if axis = k then x else 1. in
+            let max x = v (at 0 x) (at 1 x) (at 2 x) in
+            check (name ^ ": min = max") ~min:Vec3.zero ~max:(max 0.) false;
+            check (name ^ ": min > max") ~min:Vec3.zero ~max:(max (-1.)) false;
+            check (name ^ ": one float thick") ~min:Vec3.zero ~max:(max (Float.succ 0.)) true)
+          [ "x"; "y"; "z" ]);
     Alcotest.test_case "Mesh.v refuses inconsistent arrays, a bad scale, coordinates beyond the limit and no triangle"
       `Quick (fun () ->
         let p = [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] in
