@@ -57,7 +57,7 @@ let all_glass =
 let glass_scenes = QCheck.map ~rev:Fun.id all_glass Gen_scene.arbitrary
 
 (* Same bytes, or the first differing pixel. *)
-let same what ~expected img = Helpers.check_images ~max_abs:0 ~min_share:1. what ~expected img
+let same what ~expected img = Helpers.check_images ~max_abs:0 what ~expected img
 
 (* Column of the first pixel of row [y] brighter than 128 (red). *)
 let first_bright (img : Image.t) y =
