@@ -282,7 +282,7 @@ MUTANTS = [
       'lib/trace.ml',
       'let[@inline] same_clamped (lo : float) (hi : float) = hi <= 0. || lo >= 255. || lo = hi',
       'let[@inline] same_clamped (lo : float) (hi : float) = hi <= 0. || lo >= 254. || lo = hi',
-      LIGHT + ['sampling']),
+      LIGHT + ['sampling', 'promises']),
     m('L8', 'glass tree early stop: the weight pre-filter `w max_channel < 1` dropped',
       'lib/trace.ml',
       '  && Array.unsafe_get tr.tree.weight l *. w *. p.max_channel < 1.\n',
