@@ -166,8 +166,12 @@ let tests =
            are rounded, and the cube must still hold every corner. *)
         let rand = Random.State.make [| 30 |] in
         let coord () = (Random.State.float rand 2. -. 1.) *. (10. ** float (Random.State.int rand 7 - 3)) in
-        for _ = 1 to 2000 do
+        (* Half the shapes small and far: 1e-6 across, 1e6 from the origin,
+           where an ulp of the center is 1e12 ulps of the half side. *)
+        let near k = Vec3.add k (v (1e-6 *. coord ()) (1e-6 *. coord ()) (1e-6 *. coord ())) in
+        for i = 1 to 2000 do
           let a = v (coord ()) (coord ()) (coord ()) and b = v (coord ()) (coord ()) (coord ()) and c = v (coord ()) (coord ()) (coord ()) in
+          let a, b, c = if i mod 2 = 0 then (a, b, c) else let k = Vec3.smul 1e6 (v 1. (-0.7) 0.3) in (near k, near k, near k) in
           let lo = v (Float.min a.x b.x) (Float.min a.y b.y) (Float.min a.z b.z)
           and hi = v (Float.max a.x b.x) (Float.max a.y b.y) (Float.max a.z b.z) in
           let box = Box.v ~min:lo ~max:hi white in
