@@ -7,7 +7,7 @@ a mutant whose [old] text is gone is reported stale: update it or write a new
 one for the new code.
 """
 
-SH = "shapes 0,3,5-15"  # the shapes suite without its three slow cases
+SH = "shapes"
 GEOM = ["promises", "sphere", "kernel", "golden", "numerics", "literal"]
 SHAPES = GEOM + [SH]
 SHADOW = ["promises", "kernel", "golden", "literal", SH, "render 5,6", "pattern 7"]
@@ -337,5 +337,5 @@ PROBES = [
       'lib/trace.ml',
       'let[@inline never] blocker_textbook_all tr last =\n',
       'let[@inline never] blocker_textbook_all tr last =\n  if Sys.opaque_identity true then failwith "blocker_textbook_all reached";\n',
-      ['promises', 'kernel', 'golden', 'literal', 'shapes 0,3,5-15', 'render', 'sampling', 'pattern', 'numerics', 'optics']),
+      ['promises', 'kernel', 'golden', 'literal', 'shapes', 'render', 'sampling', 'pattern', 'numerics', 'optics']),
 ]
