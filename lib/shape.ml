@@ -51,10 +51,28 @@ let store s g o =
 
 let bounded = function Plane _ -> false | Triangle _ | Box _ | Mesh _ | Csg _ -> true
 
+(* [sub_le a b x] is [true] iff the exact [a - b <= x]: the rounded
+   difference and its rounding error, recovered exactly by Knuth's
+   two-sum, decide. *)
+let sub_le a b x =
+  let s = a -. b in
+  let bb = s -. a in
+  let e = (a -. (s -. bb)) +. (-.b -. bb) in
+  s < x || (s = x && e <= 0.)
+
 let cube (lo : Vec3.t) (hi : Vec3.t) =
   let c = Vec3.smul 0.5 (Vec3.add lo hi) in
   let h = Float.max (hi.x -. lo.x) (Float.max (hi.y -. lo.y) (hi.z -. lo.z)) *. 0.5 in
-  (c, h)
+  (* Rounded, [c] and [h] may leave a corner outside the cube by an ulp of
+     [c], which may be many of [h] (a small shape far from the origin):
+     [h] is first the largest distance from [c] to a corner, rounded, then
+     grows an ulp at a time (a step or two) until the exact cube holds
+     [lo] and [hi]. *)
+  let far (c : float) lo hi = Float.max (c -. lo) (hi -. c) in
+  let h = Float.max h (Float.max (far c.x lo.x hi.x) (Float.max (far c.y lo.y hi.y) (far c.z lo.z hi.z))) in
+  let holds h (c : float) lo hi = sub_le c h lo && sub_le hi c h in
+  let rec grow h = if holds h c.x lo.x hi.x && holds h c.y lo.y hi.y && holds h c.z lo.z hi.z then h else grow (Float.succ h) in
+  (c, grow h)
 
 let bounds = function
   | Plane _ -> invalid_arg "Shape.bounds: a plane is unbounded"

@@ -57,7 +57,7 @@ let all_glass =
 let glass_scenes = QCheck.map ~rev:Fun.id all_glass Gen_scene.arbitrary
 
 (* Same bytes, or the first differing pixel. *)
-let same what ~expected img = Helpers.check_images ~max_abs:0 ~min_share:1. what ~expected img
+let same what ~expected img = Helpers.check_images ~max_abs:0 what ~expected img
 
 (* Column of the first pixel of row [y] brighter than 128 (red). *)
 let first_bright (img : Image.t) y =
@@ -101,11 +101,15 @@ let tests =
             List.iter
               (fun fresnel ->
                 let t, r = split ~fresnel n1 n2 d (Vec3.v 0. 0. (-1.)) in
-                if not (Float.is_finite r && r >= 0. && r <= 1.) then Alcotest.failf "R = %g" r;
+                if not (Float.is_finite r && r >= 0. && r <= 1.) then Alcotest.failf "R = %.17g, not in [0, 1]" r;
                 if r < 1. && not (Float.is_finite (Vec3.norm t)) then Alcotest.fail "direction not finite")
               [ false; true ])
           [ (1., 1.5, Vec3.v 1. 0. 0.); (1.5, 1., Vec3.v 1. 0. 0.); (1., 1.5, Vec3.v 1. 0. 1e-300);
-            (1., 1.5, Vec3.v 1. 0. (-1e-17)); (1.2, 1.3, Vec3.v 1e-300 0. 1e-300) ]);
+            (1., 1.5, Vec3.v 1. 0. (-1e-17)); (1.2, 1.3, Vec3.v 1e-300 0. 1e-300);
+            (* A cosine of -1e-15, as rounding leaves a direction that should
+               be along the surface: clamped to 0, not 1 - c = 1 + 1e-15 in
+               Schlick's (1 - c)^5, which would make R exceed 1. *)
+            (1., 1.5, Vec3.v 1. 0. (-1e-15)); (1., 1.5, Vec3.v 1. 0. (-1e-12)) ]);
     Alcotest.test_case "Schlick: R0 = 0.04 from air to 1.5 at normal incidence, 1 at grazing" `Quick (fun () ->
         (* R0 = ((1 - 1.5) / (1 + 1.5))^2 = 0.2^2 = 0.04. *)
         let _, r = split ~fresnel:true 1. 1.5 (Vec3.v 0. 0. 1.) (Vec3.v 0. 0. (-1.)) in
@@ -116,6 +120,134 @@ let tests =
         let t, r = split ~fresnel:true 1.3 1.3 (Vec3.v 3. 1. 0.5) (Vec3.v 0. 0. (-1.)) in
         Alcotest.check near "equal indices" 0. r;
         Alcotest.check Helpers.vec3 "unchanged" (Vec3.v 3. 1. 0.5) t);
+    Alcotest.test_case
+      "total internal reflection where the rounded sin^2 t is exactly 1: R = 1, though the exact ray would pass; one \
+       float closer to the normal it passes, grazing"
+      `Quick (fun () ->
+        (* Glass (1.5) to air, the normal (0, 0, -1), d = (x, 0, 1): sin^2 t
+           = 2.25 x^2 / (1 + x^2), exactly 1 at x = 2 / sqrt 5. The x below
+           is the first float, walking up from below 2 / sqrt 5, at which
+           [split]'s own arithmetic (replayed op for op by [rounded_sin2])
+           gives exactly 1.0; the float before it gives 1 - 2^-51. The
+           exact sin^2 t of this ray is below 1 (5 x^2 < 4, checked with
+           Zarith): it is total internal reflection only by rounding, the
+           point where ">= 1" and "> 1" part. The interface promises R = 1
+           there ("the critical angle included"). *)
+        let x = 0x1.c9f25c5bfedd8p-1 in
+        let normal = Vec3.v 0. 0. (-1.) in
+        let rounded_sin2 x =
+          (* [Ray_tree.split]'s operations for d = (x, 0, 1), x < 1: the
+             largest coordinate is 1, c = 1 / |d|. *)
+          let len = sqrt ((x *. x) +. 0. +. 1.) in
+          let c = -.((x *. 0.) +. (0. *. 0.) +. (1. *. -1.)) *. (1. /. len) in
+          let eta = 1.5 /. 1. in
+          eta *. eta *. ((1. -. c) *. (1. +. c))
+        in
+        Alcotest.(check (float 0.)) "sin^2 t rounds to exactly 1" 1. (rounded_sin2 x);
+        Alcotest.(check bool) "and below 1 one float before" true (rounded_sin2 (Float.pred x) < 1.);
+        Alcotest.(check bool) "the exact sin^2 t is below 1 (5 x^2 < 4)" true Q.(lt (mul (of_int 5) (mul (of_float x) (of_float x))) (of_int 4));
+        List.iter
+          (fun fresnel ->
+            let _, r = split ~fresnel 1.5 1. (Vec3.v x 0. 1.) normal in
+            Alcotest.(check (float 0.)) (Printf.sprintf "R at the rounding point, fresnel %b" fresnel) 1. r;
+            (* One float toward the normal: transmitted, along the surface
+               (cos t = sqrt (2^-51) = 2.1e-8), a unit direction. *)
+            let t, r = split ~fresnel 1.5 1. (Vec3.v (Float.pred x) 0. 1.) normal in
+            if not (r < 1.) then Alcotest.failf "one float before, fresnel %b: R = %h, not transmitted" fresnel r;
+            Alcotest.check near "transmitted: unit length" 1. (Vec3.norm t);
+            Alcotest.check (Helpers.float_near 1e-9) "transmitted: grazing, cos t = 2.1e-8" (sqrt (ldexp 1. (-51))) t.z;
+            Alcotest.check near "transmitted: sin t = 1" 1. t.x;
+            (* Schlick with the cosine on the air's side: R = 0.04 + 0.96
+               (1 - cos t)^5 = 1 - 4.8 cos t to first order = 1 - 1.0115e-7,
+               continuous with the 1 of total reflection; without fresnel,
+               no reflection. *)
+            if fresnel then
+              Alcotest.check (Helpers.float_near 1e-12) "Schlick next to the critical angle" (1. -. (4.8 *. sqrt (ldexp 1. (-51)))) r
+            else Alcotest.(check (float 0.)) "no Fresnel: R = 0" 0. r)
+          [ false; true ]);
+    Alcotest.test_case "grazing refraction into glass: cos i = 0 gives sin t = 1 / 1.5, a unit direction" `Quick
+      (fun () ->
+        (* d along the surface, n = (0, 0, -1): c = 0, sin^2 t = 1 / 2.25,
+           cos t = sqrt (5 / 9) = 0.74535599249992990; the transmitted
+           direction is eta d + (eta c - cos t) n = (2/3, 0, cos t). A
+           direction a hair away from the surface (c < 0 by rounding or
+           by 1e-17) is clamped to c = 0: the same direction. *)
+        List.iter
+          (fun d ->
+            let t, r = split 1. 1.5 d (Vec3.v 0. 0. (-1.)) in
+            Alcotest.(check (float 0.)) "no Fresnel: R = 0" 0. r;
+            Alcotest.check (Helpers.vec3_near 1e-15) "the transmitted direction" (Vec3.v (2. /. 3.) 0. 0.74535599249992990) t)
+          [ Vec3.v 1. 0. 0.; Vec3.v 3. 0. 0.; Vec3.v 1. 0. (-1e-17) ];
+        (* Leaving glass at grazing incidence: far past the critical angle. *)
+        let _, r = split 1.5 1. (Vec3.v 1. 0. 0.) (Vec3.v 0. 0. (-1.)) in
+        Alcotest.(check (float 0.)) "from glass: totally reflected" 1. r);
+    Alcotest.test_case "Schlick leaving a denser medium takes the cosine on the air's side: 0.0948 at sin i = 0.6"
+      `Quick (fun () ->
+        (* From 1.5 to 1, d = (0.6, 0, 0.8), n = (0, 0, -1): cos i = 0.8,
+           sin t = 1.5 * 0.6 = 0.9, cos t = sqrt 0.19 = 0.43588989435406733.
+           R0 = (0.5 / 2.5)^2 = 0.04, and with the transmitted cosine,
+           R = 0.04 + 0.96 (1 - 0.43588989)^5 = 0.0948391396199233 (with
+           cos i it would be 0.04 + 0.96 * 0.2^5 = 0.0403072). The
+           transmitted direction is (sin t, 0, cos t) = (0.9, 0,
+           0.43588989). Entering glass at the same cos i = 0.8, the
+           cosine is the incident one: R = 0.0403072. *)
+        let t, r = split ~fresnel:true 1.5 1. (Vec3.v 0.6 0. 0.8) (Vec3.v 0. 0. (-1.)) in
+        Alcotest.check near "R leaving glass" 0.0948391396199233 r;
+        Alcotest.check (Helpers.vec3_near 1e-15) "direction leaving glass" (Vec3.v 0.9 0. 0.43588989435406733) t;
+        let _, r = split ~fresnel:true 1. 1.5 (Vec3.v 0.6 0. 0.8) (Vec3.v 0. 0. (-1.)) in
+        Alcotest.check near "R entering glass" 0.0403072 r;
+        (* At normal incidence both ways: R0. *)
+        let _, r = split ~fresnel:true 1.5 1. (Vec3.v 0. 0. 1.) (Vec3.v 0. 0. (-1.)) in
+        Alcotest.check near "R0 leaving glass" 0.04 r;
+        (* "Any length > 0": d of length 1e-300 or 1e300 (whose squares
+           underflow or overflow) gives the same split. *)
+        List.iter
+          (fun k ->
+            let t, r = split ~fresnel:true 1.5 1. (Vec3.smul k (Vec3.v 0.6 0. 0.8)) (Vec3.v 0. 0. (-1.)) in
+            Alcotest.check near (Printf.sprintf "R, |d| = %g" k) 0.0948391396199233 r;
+            Alcotest.check (Helpers.vec3_near 1e-15) (Printf.sprintf "direction, |d| = %g" k) (Vec3.v 0.9 0. 0.43588989435406733) t)
+          [ 1e-300; 1e300; 3. ]);
+    Alcotest.test_case "nested media, left one by one: each surface has the indices of the media on its two sides"
+      `Quick (fun () ->
+        (* Media 0, 1, 2 of indices 1.2, 1.5, 2 nested as shells: the ray
+           enters 0, 1, 2 and leaves 2, 1, 0; at each surface the near
+           index is the innermost medium's and the far one the next. *)
+        let index = [| 1.2; 1.5; 2. |] and media = Array.make Ray_tree.media_cap (-1) in
+        let io = Array.make Ray_tree.optics_size 0. in
+        let n =
+          List.fold_left
+            (fun n (id, expected) ->
+              Ray_tree.indices index media 0 n id io;
+              Alcotest.(check (pair (float 0.) (float 0.))) (Printf.sprintf "crossing %d with %d media" id n) expected (io.(0), io.(1));
+              Ray_tree.cross media 0 n id)
+            0
+            [ (0, (1., 1.2)); (1, (1.2, 1.5)); (2, (1.5, 2.)); (2, (2., 1.5)); (1, (1.5, 1.2)); (0, (1.2, 1.)) ]
+        in
+        Alcotest.(check int) "no medium left" 0 n;
+        (* The same medium twice in the stack (a ray that entered it, then
+           another, then it again through a second object of the same
+           material): [find] returns the innermost, leaving it uncovers
+           the medium under it. *)
+        let media = [| 0; 1; 0 |] in
+        Alcotest.(check int) "find: the innermost of equal ids" 2 (Ray_tree.find media 0 3 0);
+        Alcotest.(check int) "find: absent" (-1) (Ray_tree.find media 0 3 2);
+        Ray_tree.indices index media 0 3 0 io;
+        Alcotest.(check (pair (float 0.) (float 0.))) "leaving the innermost copy" (1.2, 1.5) (io.(0), io.(1)));
+    Alcotest.test_case "a full medium stack takes no more: the ray stays in the innermost kept medium" `Quick (fun () ->
+        let cap = Ray_tree.media_cap in
+        let media = Array.make cap (-1) in
+        let n = ref 0 in
+        for id = 0 to cap - 1 do
+          n := Ray_tree.cross media 0 !n id
+        done;
+        Alcotest.(check int) "media_cap is 16" 16 cap;
+        Alcotest.(check int) "full" cap !n;
+        Alcotest.(check int) "one more is not pushed" cap (Ray_tree.cross media 0 !n cap);
+        Alcotest.(check (array int)) "the stack unchanged" (Array.init cap Fun.id) media;
+        (* Leaving one in the middle closes the gap, in order. *)
+        let n = Ray_tree.cross media 0 cap 5 in
+        Alcotest.(check int) "one left" (cap - 1) n;
+        Alcotest.(check (array int)) "the others in order" (Array.init (cap - 1) (fun k -> if k < 5 then k else k + 1)) (Array.sub media 0 (cap - 1)));
     Alcotest.test_case "the medium stack: nested media refract by the ratio of their indices" `Quick (fun () ->
         (* Materials 0 (water, 1.33) and 1 (glass, 1.5). *)
         let index = [| 1.33; 1.5 |] and media = Array.make Ray_tree.media_cap 0 in
@@ -220,6 +352,27 @@ let tests =
                   (Literal.pixel s 0 0).r)
               [ None; Some 0.001 ])
           [ (0.5, 255. *. 0.25); (0.8, 255. *. 0.8 *. 0.8); (1., 255.); (0., 0.) ]);
+    Alcotest.test_case "light through two glass slabs 1e-10 apart is scaled by each of their four faces" `Quick
+      (fun () ->
+        (* The scene of the test above, the ball replaced by two slabs of
+           transparency 0.5 across the shadow ray, [-1, 1] x [2, 3] x [-1, 1]
+           and the same from y = 3 + 1e-10 to 4: the shadow ray crosses
+           four faces, the middle two 1e-10 apart, and each scales the
+           light: red = 255 * 0.5^4 = 15.9375. *)
+        let slab lo hi = Shape.Box (Box.v ~min:(Vec3.v (-1.) lo (-1.)) ~max:(Vec3.v 1. hi 1.) (Material.v ~transparency:0.5 ~refractive_index:1.5 Color.white)) in
+        List.iter
+          (fun epsilon ->
+            let s =
+              Scene.v ~width:3 ~height:3 ?epsilon
+                ~camera:(ok (Camera.look_at ~position:(Vec3.v 0. 5. (-5.)) Vec3.zero))
+                ~spheres:[]
+                ~shapes:[ slab 2. 3.; slab (3. +. 1e-10) 4.; Shape.Plane (Plane.v ~point:Vec3.zero ~normal:up (Material.v (Color.v 255. 255. 255.))) ]
+                ~lights:[ Light.directional 1. up ] ()
+            in
+            let tr = Trace.create (Helpers.prepare s) in
+            Trace.pixel tr 0 0;
+            Alcotest.check (Helpers.float_near 1e-9) (Printf.sprintf "epsilon %b" (epsilon <> None)) 15.9375 (Trace.red tr))
+          [ None; Some 1e-12 ]);
     Alcotest.test_case "one depth for both kinds of ray: at depth 0 glass shows its local colour, as a mirror does"
       `Quick (fun () ->
         (* Ambient light alone: no shadow, which glass lets light through. *)
@@ -307,6 +460,52 @@ let tests =
               done
             done;
             if not (Color.is_finite (Literal.pixel s 0 0)) then Alcotest.fail "the oracle is not finite")
+          [ None; Some 0.001 ]);
+    Alcotest.test_case
+      "nested glass slabs, the inner left before the outer: the edge behind them is where Snell's law puts it with \
+       each medium's index"
+      `Quick (fun () ->
+        (* The camera at the origin looks along z; an outer slab of index
+           1.2 fills 2 <= z <= 20, an inner one of index 1.5 (inside it in
+           x and y too) 6 <= z <= 16; a red wall at z = 22 begins at x = 6.
+           (Not from z = 1: that is the viewport, where camera rays start,
+           t_min = 1, and a surface there is not seen.) The ray of angle a
+           reaches x = 4 tan a + 8 tan b1 + 10 tan b2 at z = 22, sin bk =
+           sin a / nk: in air (2 + 2), inside the outer slab on both sides
+           of the inner one (4 + 4), inside the inner one (10). The ray
+           leaving the inner slab must be given 1.5 -> 1.2, then 1.2 -> 1
+           leaving the outer one; a wrong index on either surface moves
+           the edge by several pixels (a ray leaving the inner slab into
+           air: column 535.4 instead of 541.4). *)
+        let width = 801 and vw = 2. in
+        let glass ~lo ~hi ~half n =
+          Shape.Box (Box.v ~min:(Vec3.v (-.half) (-.half) lo) ~max:(Vec3.v half half hi) (Material.v ~transparency:1. ~refractive_index:n Color.white))
+        in
+        let wall = Shape.Box (Box.v ~min:(Vec3.v 6. (-80.) 22.) ~max:(Vec3.v 90. 80. 22.001) (Material.v (Color.v 255. 0. 0.))) in
+        let scene ~outer ~inner epsilon =
+          Scene.v ~width ~height:3 ?epsilon ~viewport:(Viewport.v ~width:vw ~height:(3. *. vw /. float width) ~distance:1.) ~depth:6
+            ~shapes:[ glass ~lo:2. ~hi:20. ~half:60. outer; glass ~lo:6. ~hi:16. ~half:50. inner; wall ] ~spheres:[] ~lights:[ Light.ambient 1. ] ()
+        in
+        let x_at u =
+          let sin_a = u /. sqrt (1. +. (u *. u)) in
+          let tan_in n = let s = sin_a /. n in s /. sqrt (1. -. (s *. s)) in
+          (4. *. u) +. (8. *. tan_in 1.2) +. (10. *. tan_in 1.5)
+        in
+        let rec solve lo hi k = if k = 0 then (lo +. hi) /. 2. else
+            let mid = (lo +. hi) /. 2. in
+            if x_at mid < 6. then solve mid hi (k - 1) else solve lo mid (k - 1)
+        in
+        (* Column c looks at tan a = (c - 400) vw / 801. *)
+        let column u = 400. +. (u *. float width /. vw) in
+        let expected = column (solve 0. 1. 80) in
+        List.iter
+          (fun epsilon ->
+            let plain = first_bright (Helpers.image_exn (scene ~outer:1. ~inner:1. epsilon)) 1 in
+            if Float.abs (Float.of_int plain -. column (6. /. 22.)) > 1. then
+              Alcotest.failf "without bending the edge is at column %d, not %.2f" plain (column (6. /. 22.));
+            let bent = first_bright (Helpers.image_exn (scene ~outer:1.2 ~inner:1.5 epsilon)) 1 in
+            if Float.abs (Float.of_int bent -. expected) > 1. then
+              Alcotest.failf "the edge is at column %d; Snell's law puts it at %.2f" bent expected)
           [ None; Some 0.001 ]);
     Alcotest.test_case "the edge seen through a glass slab at an angle is where Snell's law puts it" `Quick
       (fun () ->
