@@ -233,8 +233,8 @@ let check_work ?(split = false) ?(leaves = 0) l ~pixels ~samples ~depth ~spheres
   within l `Work w (fun () ->
       let rays = rays_per_sample ~depth ~split in
       Printf.sprintf
-        "the render needs about %s ray-sphere intersection tests (%d pixels x %d samples x %s rays%s x %s \
-         spheres per ray%s x (1 + %d lights))"
+        "the render needs about %s intersection tests (%d pixels x %d samples x %s rays%s x %s \
+         objects per ray%s x (1 + %d lights))"
         (if Float.is_finite w then Printf.sprintf "%.3g" w else "more than 1e308")
         pixels samples
         (if Float.is_finite rays then show_count rays else "more than 1e308")
@@ -251,4 +251,4 @@ let work_budget l =
   if bound >= Float.of_int max_int then max_int else Float.to_int bound
 
 let work_exceeded l n =
-  exceeded l `Work (Printf.sprintf "the render was stopped after %d intersection tests (spheres and boxes)" n)
+  exceeded l `Work (Printf.sprintf "the render was stopped after %d intersection tests (objects, CSG leaves and boxes of the hierarchies)" n)

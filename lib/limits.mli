@@ -112,7 +112,7 @@ val max_mesh_bytes : int
     normals is some 300 to 600 MB. *)
 
 val max_work : float
-(** [max_work] is [1e12]: the default largest number of ray-sphere
+(** [max_work] is [1e12]: the default largest number of
     intersection tests that a render may need by the estimate of
     {!work}, about four hours of one core at the 7e7 tests per second
     measured on the reference scene. *)
@@ -251,7 +251,7 @@ val work :
 
 exception Work_exceeded of int
 (** [Work_exceeded n] is raised by a renderer that has counted [n]
-    intersection tests (ray-sphere and ray-box) in a render, more than
+    intersection tests (with objects, CSG leaves and the hierarchies' boxes) in a render, more than
     {!work_budget}: the estimate of {!check_work} can be beaten by a scene
     that defeats the bounding volume hierarchy (many coincident spheres),
     so the work done is also counted as it is done. *)

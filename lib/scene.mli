@@ -136,7 +136,7 @@ val check_work : ?limits:Limits.t -> ?samples:int -> ?pixels:int -> valid -> (un
 (** [check_work ~limits ~samples ~pixels s] is [Ok ()] if rendering
     [pixels] (default the whole canvas; fewer for a region) of [s] with
     [samples] (default 1) samples per pixel needs at most [limits]' bound
-    on ray-sphere intersection tests ({!Limits.check_work}: the recursion
+    on intersection tests ({!Limits.check_work}: the recursion
     depth counts only when some object is reflective or transparent, as a
     tree where some transparent object also reflects or has the Fresnel
     term; only point and directional lights cast shadow rays; a mesh's

@@ -213,12 +213,12 @@ let tests =
         | Ok () -> Alcotest.fail "1024 samples accepted"
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
-              "the render needs about 1.32e+13 ray-sphere intersection tests (268435456 pixels x \
-               1024 samples x 4 rays x 4 spheres per ray x (1 + 2 lights)), more than the limit of \
+              "the render needs about 1.32e+13 intersection tests (268435456 pixels x \
+               1024 samples x 4 rays x 4 objects per ray x (1 + 2 lights)), more than the limit of \
                1000000000000 (set RAYTRACE_MAX_WORK to raise it)"
               m);
         (* 400 spheres: a hierarchy of ceil (log2 400) = 9 levels, at most
-           16 x 9 = 144 spheres per ray; depth 64: 65 rays.
+           16 x 9 = 144 objects per ray; depth 64: 65 rays.
            268435456 x 65 x 144 x 3 = 7.54e12. *)
         let crowded =
           { big with depth = 64; spheres = Spheres.of_list (List.concat (List.init 100 (fun _ -> Spheres.to_list Scene.cgfs.spheres))) }
@@ -227,8 +227,8 @@ let tests =
         | Ok _ -> Alcotest.fail "rendered"
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
-              "the render needs about 7.54e+12 ray-sphere intersection tests (268435456 pixels x 1 \
-               samples x 65 rays x 144 spheres per ray x (1 + 2 lights)), more than the limit of \
+              "the render needs about 7.54e+12 intersection tests (268435456 pixels x 1 \
+               samples x 65 rays x 144 objects per ray x (1 + 2 lights)), more than the limit of \
                1000000000000 (set RAYTRACE_MAX_WORK to raise it)"
               m);
     Alcotest.test_case "a scene that defeats the hierarchy is stopped once its tests pass the work bound" `Slow
@@ -258,7 +258,7 @@ let tests =
             Alcotest.(check int) (what ^ ": exit status: " ^ err) 1 code;
             let prefix = "raytrace: the render was stopped after " in
             let suffix =
-              " intersection tests (spheres and boxes), more than the limit of 1000000 (set RAYTRACE_MAX_WORK \
+              " intersection tests (objects, CSG leaves and boxes of the hierarchies), more than the limit of 1000000 (set RAYTRACE_MAX_WORK \
                to raise it)\n"
             in
             let ends_with s e =

@@ -76,9 +76,9 @@ let tests =
         | Ok () -> Alcotest.fail "accepted"
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
-              "the render needs about 4.5e+15 ray-sphere intersection tests (256 pixels x 1 samples x \
+              "the render needs about 4.5e+15 intersection tests (256 pixels x 1 samples x \
                2199023255551 rays (a tree of depth 40: a hit on glass that reflects may spawn two rays) x 4 \
-               spheres per ray x (1 + 1 lights)), more than the limit of 1000000000000 (set RAYTRACE_MAX_WORK \
+               objects per ray x (1 + 1 lights)), more than the limit of 1000000000000 (set RAYTRACE_MAX_WORK \
                to raise it)"
               m);
         (* 2^(d+1) - 1 rays for a tree, d + 1 for a chain. *)
@@ -114,8 +114,8 @@ let tests =
         | Ok () -> Alcotest.fail "accepted"
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
-              "the render needs about 8e+06 ray-sphere intersection tests (1000000 pixels x 1 samples x 1 rays x 4 \
-               spheres per ray (with 3 leaves of CSG solids) x (1 + 1 lights)), more than the limit of 3000000 (set \
+              "the render needs about 8e+06 intersection tests (1000000 pixels x 1 samples x 1 rays x 4 \
+               objects per ray (with 3 leaves of CSG solids) x (1 + 1 lights)), more than the limit of 3000000 (set \
                RAYTRACE_MAX_WORK to raise it)"
               m);
     Alcotest.test_case "a transparent scene's depth counts in the estimate" `Quick (fun () ->
