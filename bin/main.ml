@@ -47,7 +47,7 @@ let scene_options =
     Arg.(
       value
       & opt (some int) None
-      & info [ "depth"; "d" ] ~docv:"N" ~doc:"Override the recursion depth of mirror reflection.")
+      & info [ "depth"; "d" ] ~docv:"N" ~doc:"Override the recursion depth: how many times a ray is followed after its first hit, reflected or refracted.")
   in
   let make scene width height depth = Commands.{ scene; width; height; depth } in
   Term.(const make $ scene $ dim "width" $ dim "height" $ depth)
@@ -78,7 +78,7 @@ let sampling =
           ~doc:
             "Adaptive supersampling: trace one ray per pixel, through its centre, then the rest \
              of the $(b,--samples) grid (an odd N: 3, 5, 7...) only in pixels whose ray hit \
-             another sphere than a neighbour's, or whose colour differs from a neighbour's by \
+             another object than a neighbour's, or whose colour differs from a neighbour's by \
              more than $(docv) (0-255) in some channel. Never traces more rays than full \
              sampling.")
   in
@@ -98,11 +98,11 @@ let quality_section =
     [
       `S "RUN TIME AGAINST ERROR";
       `P
-        "$(b,--depth) (mirror reflections), $(b,--samples) (rays per pixel), $(b,--adaptive) \
+        "$(b,--depth) (reflections and refractions), $(b,--samples) (rays per pixel), $(b,--adaptive) \
          and $(b,--subsample) trade time for accuracy; docs/run-time-against-error.md shows the \
          trade-off measured on four scenes ($(b,make bench-quality)). Recommended: the default (one ray per \
          pixel) or $(b,--subsample) for previews; $(b,--samples 5 --adaptive 2 --depth 5) for \
-         final renders; full sampling ($(b,--samples 4)) where spheres are smaller than a \
+         final renders; full sampling ($(b,--samples 4)) where objects are smaller than a \
          pixel, which adaptive sampling cannot see.";
     ]
 
@@ -142,7 +142,7 @@ let view_info =
         `S "KEYS";
         `I ("arrows, $(b,W) $(b,A) $(b,S) $(b,D)", "Move the camera forward, left, back, right, by half the viewport distance. Letters that move or turn are upper case (Shift), as lower-case $(b,a) and $(b,s) are commands.");
         `I ("$(b,Q) $(b,E), $(b,<) $(b,>), drag", "Turn left or right by 5 degrees; dragging with a button held turns so that the picture follows the pointer.");
-        `I ("$(b,+) $(b,-)", "Recursion depth of mirror reflection up or down by one.");
+        `I ("$(b,+) $(b,-)", "Recursion depth (reflections and refractions) up or down by one.");
         `I ("$(b,a)", "Antialiasing on or off: each pixel the mean of 3 x 3 samples.");
         `I ("$(b,r)", "Render again.");
         `I ("$(b,s)", "Save the picture as a PPM next to the scene file ($(i,NAME)-$(i,N).ppm, written atomically), with the scene of the current view ($(i,NAME)-$(i,N).scene), and print their names.");
@@ -341,7 +341,8 @@ let main =
           `P
             "Renders spheres lit by ambient, point and directional lights, with diffuse and \
              specular shading, shadows and mirror reflection, as the document \"Very Basic \
-             Raytracer\" describes. Without a command, shows the built-in scene in a window \
+             Raytracer\" describes, and beyond it planes, triangles, boxes, OBJ meshes, \
+             constructive solid geometry, glass and checker patterns. Without a command, shows the built-in scene in a window \
              (as $(b,raytrace view)).";
           `S Manpage.s_examples;
           `Pre "raytrace\nraytrace render scenes/cgfs.scene -o cgfs.ppm\nraytrace diff a.ppm b.ppm";
