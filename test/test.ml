@@ -69,5 +69,5 @@ let () =
       ("obj_split", Test_obj_split.tests);
       ("mesh_gen", Test_mesh_gen.tests);
       ("optics", Test_optics.tests);
-      ("promises", Test_promises.tests);
+      ("promises", Test_promises.tests @ Test_promises_values.tests);
     ]
