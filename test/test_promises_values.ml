@@ -143,4 +143,113 @@ let viewport_camera_tests =
         Alcotest.(check bool) turned true (contains ~sub:"(rotation (0.7071 0 -0.7071) (0 1 0) (0.7071 0 0.7071))" turned));
   ]
 
-let tests = vec3_tests @ color_tests @ viewport_camera_tests
+(* Minor words allocated by [n] rounds of [f] (after one to warm up). *)
+let words_of n f =
+  f ();
+  let before = Gc.minor_words () in
+  for _ = 1 to n do
+    f ()
+  done;
+  Gc.minor_words () -. before
+
+let limits_light_material_tests =
+  [
+    Alcotest.test_case "Limits: coordinates up to 1e12 and sizes from 1e-30 pass, the next floats and nan do not" `Quick
+      (fun () ->
+        let above = Float.succ Limits.max_coordinate and below = Float.pred Limits.min_size in
+        List.iter
+          (fun (what, x, coordinate, size) ->
+            Alcotest.(check bool) ("coordinate_ok " ^ what) coordinate (Limits.coordinate_ok x);
+            Alcotest.(check bool) ("check_coordinate " ^ what) coordinate (Result.is_ok (Limits.check_coordinate "x" x));
+            Alcotest.(check bool) ("size_ok " ^ what) size (Limits.size_ok x);
+            Alcotest.(check bool) ("check_size " ^ what) size (Result.is_ok (Limits.check_size "radius" x)))
+          [ ("1e12", 1e12, true, true); ("-1e12", -1e12, true, false); ("succ 1e12", above, false, false);
+            ("-succ 1e12", -.above, false, false); ("1e-30", 1e-30, true, true); ("pred 1e-30", below, true, false);
+            ("0", 0., true, false); ("nan", nan, false, false); ("infinity", infinity, false, false) ];
+        let m = error "sphere radius" (Limits.check_size "sphere radius" 0.) in
+        if not (contains ~sub:"sphere radius" m) then Alcotest.failf "%S does not name the sphere radius" m);
+    Alcotest.test_case "Limits.coordinate_ok and size_ok allocate nothing" `Quick (fun () ->
+        let xs = [ 1.; -1e12; nan; 1e-31; infinity; 0.5 ] in
+        let count = ref 0 in
+        let f x = if Limits.coordinate_ok x && Limits.size_ok x then incr count in
+        let words = words_of 10_000 (fun () -> List.iter f xs) in
+        if words > 50. then Alcotest.failf "%.0f minor words for 120000 checks" words);
+    Alcotest.test_case "Limits.of_lookup reads 1_000 and 1e13, ignores empty text, names the first bad variable" `Quick
+      (fun () ->
+        let lookup env name = List.assoc_opt name env in
+        let l = ok (Limits.of_lookup (lookup [ ("RAYTRACE_MAX_PIXELS", "1_000"); ("RAYTRACE_MAX_WORK", "1e13"); ("RAYTRACE_MAX_DEPTH", "") ])) in
+        Alcotest.check exact "pixels" 1000. (Limits.bound l `Pixels);
+        Alcotest.check exact "work" 1e13 (Limits.bound l `Work);
+        Alcotest.check exact "depth: empty is the default" (float Limits.max_depth) (Limits.bound l `Depth);
+        List.iter
+          (fun value ->
+            let m = error value (Limits.of_lookup (lookup [ ("RAYTRACE_MAX_LIGHTS", value) ])) in
+            if not (contains ~sub:"RAYTRACE_MAX_LIGHTS" m) then Alcotest.failf "%S: %S does not name the variable" value m)
+          [ "-1"; "0"; "ten"; "1.5"; "nan" ]);
+    Alcotest.test_case "Limits.exceeded says the value, the bound and the variable that raises it" `Quick (fun () ->
+        Alcotest.(check string) "pixels"
+          "canvas 70000x70000 has 4900000000 pixels, more than the limit of 268435456 (set RAYTRACE_MAX_PIXELS to raise it)"
+          (Limits.exceeded Limits.default `Pixels "canvas 70000x70000 has 4900000000 pixels"));
+    Alcotest.test_case "Limits.check_image_size never overflows: max_int x max_int pixels is an error" `Quick (fun () ->
+        refused "max_int^2" (Limits.check_image_size Limits.default max_int max_int);
+        refused "0 wide" (Limits.check_image_size Limits.default 0 5);
+        (* No max_dimension for files: 100000 x 1 is 100000 pixels. *)
+        ignore (ok (Limits.check_image_size Limits.default 100_000 1));
+        refused "canvas 100000 wide" (Limits.check_canvas Limits.default 100_000 1);
+        let small = Limits.with_bound Limits.default `Pixels 12. in
+        ignore (ok (Limits.check_canvas small 3 4));
+        refused "13 pixels" (Limits.check_canvas small 13 1));
+    Alcotest.test_case "Limits.check_jobs is [1, 1024]; check_depth [0, the bound]" `Quick (fun () ->
+        Alcotest.(check (list bool)) "jobs 0, 1, 1024, 1025" [ false; true; true; false ]
+          (List.map (fun n -> Result.is_ok (Limits.check_jobs n)) [ 0; 1; 1024; 1025 ]);
+        Alcotest.(check (list bool)) "depth -1, 0, 64, 65" [ false; true; true; false ]
+          (List.map (fun n -> Result.is_ok (Limits.check_depth Limits.default n)) [ -1; 0; 64; 65 ]));
+    Alcotest.test_case "Light.check_intensity is [0, 1e6]: -1, nan and the float above 1e6 are refused" `Quick (fun () ->
+        Alcotest.(check (list bool)) "0, 1e6, -1, succ 1e6, nan, infinity" [ true; true; false; false; false; false ]
+          (List.map (fun i -> Result.is_ok (Light.check_intensity i)) [ 0.; 1e6; -1.; Float.succ 1e6; nan; infinity ]));
+    Alcotest.test_case "Light.validate refuses a zero, tiny or nan direction and a point light beyond the limit" `Quick
+      (fun () ->
+        refused "zero" (Light.validate (Light.directional 0.5 Vec3.zero));
+        refused "1e-31 long" (Light.validate (Light.directional 0.5 (v 1e-31 0. 0.)));
+        refused "nan" (Light.validate (Light.directional 0.5 (v nan 1. 0.)));
+        refused "position 2e12" (Light.validate (Light.point 0.5 (v 0. 2e12 0.)));
+        refused "intensity" (Light.validate (Light.ambient (-0.5)));
+        ignore (ok (Light.validate (Light.directional 0.5 (v 0. 1e-20 0.)))));
+    Alcotest.test_case "Material.v's defaults are the sphere's: matte, no mirror, opaque, index 1, no Fresnel, no pattern"
+      `Quick (fun () ->
+        let m = Material.v (Color.v 1. 2. 3.) in
+        Alcotest.check exact "specular" Sphere.matte m.specular;
+        Alcotest.(check (list (float 0.))) "reflective, transparency, index" [ 0.; 0.; 1. ] [ m.reflective; m.transparency; m.refractive_index ];
+        Alcotest.(check bool) "fresnel" false m.fresnel;
+        Alcotest.(check bool) "pattern" true (m.pattern = None);
+        Alcotest.(check string) "pp writes the colour only" "(color 1 2 3)" (Material.show m));
+    Alcotest.test_case "Material.same_plain: bit for bit (0. differs from -0.), never with a pattern; Plain finds by it"
+      `Quick (fun () ->
+        let a = Material.v ~reflective:0. Color.white and b = Material.v ~reflective:(-0.) Color.white in
+        Alcotest.(check bool) "equal" true (Material.equal a b);
+        Alcotest.(check bool) "0. and -0." false (Material.same_plain a b);
+        Alcotest.(check bool) "itself" true (Material.same_plain a (Material.v Color.white));
+        let p = Material.v ~pattern:(Pattern.checker ~size:1. Color.black) Color.white in
+        Alcotest.(check bool) "a pattern" false (Material.same_plain p p);
+        let t = Material.Plain.create 4 in
+        Material.Plain.replace t a 1;
+        Alcotest.(check (option int)) "found" (Some 1) (Material.Plain.find_opt t (Material.v Color.white));
+        Alcotest.(check (option int)) "-0. not found" None (Material.Plain.find_opt t b));
+    Alcotest.test_case "Material.validate and Pattern.validate name the form in their messages" `Quick (fun () ->
+        let starts what prefix m =
+          if not (String.length m >= String.length prefix && String.sub m 0 (String.length prefix) = prefix) then
+            Alcotest.failf "%s: %S does not start with %S" what m prefix
+        in
+        starts "colour" "plane color channels must lie in [0, 255], got"
+          (error "colour" (Material.validate ~form:"plane" (Material.v (Color.v 256. 0. 0.))));
+        refused "split" (Material.validate ~form:"box" (Material.v ~reflective:0.6 ~transparency:0.5 Color.white));
+        refused "index 0" (Material.validate ~form:"box" (Material.v ~refractive_index:0. Color.white));
+        Alcotest.(check string) "pattern size" "sphere pattern size must be > 0, got 0"
+          (error "size" (Pattern.check_size ~form:"sphere" 0.));
+        let m = error "pattern colour" (Pattern.validate ~form:"triangle" (Pattern.checker ~size:1. (Color.v 0. (-1.) 0.))) in
+        starts "pattern colour" "triangle" m;
+        let m = error "material's pattern" (Material.validate ~form:"mesh" (Material.v ~pattern:(Pattern.checker ~size:nan Color.black) Color.white)) in
+        starts "material's pattern" "mesh" m);
+  ]
+
+let tests = vec3_tests @ color_tests @ viewport_camera_tests @ limits_light_material_tests
