@@ -252,4 +252,226 @@ let limits_light_material_tests =
         starts "material's pattern" "mesh" m);
   ]
 
-let tests = vec3_tests @ color_tests @ viewport_camera_tests @ limits_light_material_tests
+let region = Alcotest.testable Region.pp Region.equal
+
+let image_tests =
+  [
+    Alcotest.test_case "Region.contains: non-empty and inside the canvas; pixels is w h; pp_corners is x0 y0 x1 y1" `Quick
+      (fun () ->
+        let r x y w h = Region.{ x; y; w; h } in
+        List.iter
+          (fun (what, reg, expected) -> Alcotest.(check bool) what expected (Region.contains reg ~width:10 ~height:5))
+          [ ("whole", r 0 0 10 5, true); ("corner pixel", r 9 4 1 1, true); ("empty", r 2 2 0 1, false);
+            ("one column too wide", r 1 0 10 5, false); ("one row too low", r 0 1 10 5, false); ("x = -1", r (-1) 0 2 2, false) ];
+        Alcotest.(check int) "pixels" 15 (Region.pixels (r 1 2 5 3));
+        Alcotest.(check string) "pp_corners" "0 86 600 172" (Format.asprintf "%a" Region.pp_corners (r 0 86 600 86));
+        let back = ok (Region.of_corners ~width:600 ~height:600 0 86 600 172) in
+        Alcotest.check region "of_corners reads pp_corners back" (r 0 86 600 86) back);
+    Alcotest.test_case "Image: create, of_buffer, get, set, blit and sub raise Invalid_argument outside their domain"
+      `Quick (fun () ->
+        raises_invalid "create 0 1" (fun () -> Image.create 0 1);
+        raises_invalid "create 1 -1" (fun () -> Image.create 1 (-1));
+        let buffer n = Bigarray.(Array1.create int8_unsigned c_layout n) in
+        raises_invalid "of_buffer 2 x 2 of 11 bytes" (fun () -> Image.of_buffer 2 2 (buffer 11));
+        raises_invalid "of_buffer 2 x 2 of 13 bytes" (fun () -> Image.of_buffer 2 2 (buffer 13));
+        let img = Image.create 3 2 in
+        List.iter
+          (fun (x, y) ->
+            raises_invalid (Printf.sprintf "get %d %d" x y) (fun () -> Image.get img x y);
+            raises_invalid (Printf.sprintf "set %d %d" x y) (fun () -> Image.set img x y 0 0 0))
+          [ (-1, 0); (3, 0); (0, -1); (0, 2) ];
+        raises_invalid "set 256" (fun () -> Image.set img 0 0 0 256 0);
+        raises_invalid "set -1" (fun () -> Image.set img 0 0 0 0 (-1));
+        Alcotest.(check (triple int int int)) "a refused set changes nothing" (0, 0, 0) (Image.get img 0 0);
+        raises_invalid "blit 2 x 2 at (2, 0)" (fun () -> Image.blit ~src:(Image.create 2 2) ~dst:img ~x:2 ~y:0);
+        raises_invalid "blit at (0, -1)" (fun () -> Image.blit ~src:(Image.create 1 1) ~dst:img ~x:0 ~y:(-1));
+        raises_invalid "sub 2 x 2 at (0, 1)" (fun () -> Image.sub img ~x:0 ~y:1 ~w:2 ~h:2);
+        raises_invalid "sub 0 wide" (fun () -> Image.sub img ~x:0 ~y:0 ~w:0 ~h:1));
+    Alcotest.test_case "Image: of_buffer shares, copy and sub do not; blit puts src's top-left at (x, y); channel k is \
+                        pixel k / 3's channel k mod 3" `Quick (fun () ->
+        let buf = Bigarray.(Array1.create int8_unsigned c_layout 12) in
+        Bigarray.Array1.fill buf 0;
+        let img = Image.of_buffer 2 2 buf in
+        Image.set img 1 0 10 20 30;
+        Alcotest.(check int) "set wrote the buffer: byte 3 * 1 + 1" 20 buf.{4};
+        Alcotest.(check int) "channel 5" 30 (Image.channel img 5);
+        let c = Image.copy img and part = Image.sub img ~x:1 ~y:0 ~w:1 ~h:2 in
+        Alcotest.(check bool) "copy equal" true (Image.equal c img);
+        Image.set img 1 0 0 0 0;
+        Alcotest.(check (triple int int int)) "copy kept" (10, 20, 30) (Image.get c 1 0);
+        Alcotest.(check (triple int int int)) "sub kept" (10, 20, 30) (Image.get part 0 0);
+        let dst = Image.create 3 3 in
+        Image.blit ~src:c ~dst ~x:1 ~y:1;
+        Alcotest.(check (triple int int int)) "(1, 0) of src is (2, 1) of dst" (10, 20, 30) (Image.get dst 2 1);
+        Alcotest.(check (triple int int int)) "outside the blit" (0, 0, 0) (Image.get dst 2 0);
+        Alcotest.(check bool) "1 x 2 and 2 x 1 black images differ" false (Image.equal (Image.create 1 2) (Image.create 2 1)));
+    Alcotest.test_case "Ppm: a comment with a line break raises; header is to_string up to the pixels; header_comments \
+                        reads the comments back" `Quick (fun () ->
+        let img = Image.create 2 1 in
+        Image.set img 1 0 1 2 3;
+        raises_invalid "to_string" (fun () -> Ppm.to_string ~comments:[ "a\nb" ] img);
+        raises_invalid "header" (fun () -> Ppm.header ~comments:[ "a\rb" ] img);
+        let comments = [ "made by raytrace"; " two spaces"; "" ] in
+        let text = Ppm.to_string ~comments img in
+        Alcotest.(check string) "the bytes" "P6\n# made by raytrace\n#  two spaces\n# \n2 1\n255\n\000\000\000\001\002\003" text;
+        let header = Ppm.header ~comments img in
+        Alcotest.(check string) "header" (String.sub text 0 (String.length text - 6)) header;
+        Alcotest.(check (list string)) "header_comments" comments (Ppm.header_comments text);
+        Alcotest.(check (list string)) "not a PPM" [] (Ppm.header_comments "P5\n# x\n1 1\n255\n\000");
+        Alcotest.(check bool) "reads back" true (Image.equal img (ok (Ppm.of_string text))));
+    Alcotest.test_case "Ppm.of_string never raises: every prefix of a file cut inside its data is an Error, the file is Ok" `Quick
+      (fun () ->
+        let img = Image.create 3 2 in
+        Image.set img 2 1 255 128 7;
+        List.iter
+          (fun text ->
+            (* A P3 file's last sample ends at its last digit: the line end
+               after it is optional. *)
+            let complete = String.length (String.trim text) in
+            for n = 0 to String.length text do
+              let prefix = String.sub text 0 n in
+              match Ppm.of_string prefix with
+              | Ok back -> if n < complete || not (Image.equal back img) then Alcotest.failf "%S read" prefix
+              | Error _ -> if n = String.length text then Alcotest.failf "the whole file %S refused" text
+              | exception e -> Alcotest.failf "%S raised %s" prefix (Printexc.to_string e)
+            done)
+          [ Ppm.to_string ~comments:[ "c" ] img; "P3\n3 2\n255\n0 0 0 0 0 0 0 0 0\n0 0 0 0 0 0 255 128 7\n" ]);
+    Alcotest.test_case "Ppm.check_file_size allows 3 bytes a pixel plus 1 MiB, and names the variable beyond" `Quick
+      (fun () ->
+        let limits = Limits.with_bound Limits.default `Pixels 100. in
+        let bound = (3 * 100) + (1024 * 1024) in
+        Alcotest.(check int) "at the bound" bound (ok (Ppm.check_file_size ~limits bound));
+        let m = error "a byte more" (Ppm.check_file_size ~limits (bound + 1)) in
+        if not (contains ~sub:"RAYTRACE_MAX_PIXELS" m) then Alcotest.failf "%S does not name RAYTRACE_MAX_PIXELS" m);
+    Alcotest.test_case "Ppm.output_rows refuses rows outside 0 <= first <= stop <= height" `Quick (fun () ->
+        let img = Image.create 2 3 in
+        let dev_null = open_out_bin Filename.null in
+        Fun.protect ~finally:(fun () -> close_out dev_null) (fun () ->
+            List.iter
+              (fun (first, stop) ->
+                raises_invalid (Printf.sprintf "rows %d to %d" first stop) (fun () -> Ppm.output_rows dev_null img ~first ~stop))
+              [ (-1, 1); (2, 1); (0, 4) ];
+            Ppm.output_rows dev_null img ~first:3 ~stop:3));
+    Alcotest.test_case "Image_diff.compare of images of different sizes is an Error; pp_summary is one line of the figures"
+      `Quick (fun () ->
+        refused "2 x 1 and 1 x 2" (Image_diff.compare (Image.create 2 1) (Image.create 1 2));
+        let a = Image.create 2 1 and b = Image.create 2 1 in
+        Image.set b 1 0 0 0 3;
+        let d = ok (Image_diff.compare a b) in
+        let line = Format.asprintf "%a" Image_diff.pp_summary d in
+        let prefix = "pixels=2 differing=1 differing_gt1=1 max_abs=3 mean_abs=0.5" in
+        if not (String.length line >= String.length prefix && String.sub line 0 (String.length prefix) = prefix) then
+          Alcotest.failf "%S" line;
+        Alcotest.(check bool) "one line" false (String.contains line '\n');
+        Alcotest.(check bool) "psnr" true (contains ~sub:" psnr=" line));
+    Alcotest.test_case "Stats.rays is primary + shadow + reflection" `Quick (fun () ->
+        let s =
+          Stats.{ pixels = 1; primary = 3; shadow = 50; reflection = 700; tests = 9; box_tests = 9; early_stops = 9; jobs = 1;
+                  prepare_s = 0.; trace_s = 0.; minor_words = 0. }
+        in
+        Alcotest.(check int) "rays" 753 (Stats.rays s));
+  ]
+
+let sphere_at x = Sphere.v ~center:(v x 0. 5.) ~radius:1. Color.white
+
+let scene_tests =
+  [
+    Alcotest.test_case "Scene.v is the document's scene: 600 x 600, default viewport and camera, black, depth 3, robust"
+      `Quick (fun () ->
+        let s = Scene.v ~spheres:[] ~lights:[] () in
+        Alcotest.(check (pair int int)) "canvas" (600, 600) (s.width, s.height);
+        Alcotest.(check bool) "viewport" true (Viewport.equal s.viewport Viewport.default);
+        Alcotest.(check bool) "camera" true (Camera.equal s.camera Camera.default);
+        Alcotest.(check bool) "background" true (Color.equal s.background Color.black);
+        Alcotest.(check int) "depth" 3 s.depth;
+        Alcotest.(check bool) "no epsilon, no path, no shapes" true (s.epsilon = None && s.camera_path = None && s.shapes = []));
+    Alcotest.test_case "Scene.validate refuses a bad canvas, depth, epsilon, background, viewport or camera" `Quick
+      (fun () ->
+        let base = Scene.v ~spheres:[ sphere_at 0. ] ~lights:[ Light.ambient 1. ] () in
+        ignore (ok (Scene.validate base));
+        List.iter
+          (fun (what, s) -> refused what (Scene.validate s))
+          [ ("width 0", { base with width = 0 }); ("height 65537", { base with height = 65537 });
+            ("depth -1", { base with depth = -1 }); ("depth 65", { base with depth = 65 });
+            ("epsilon nan", { base with epsilon = Some nan }); ("epsilon -0.5", { base with epsilon = Some (-0.5) });
+            ("background 256", { base with background = Color.v 0. 256. 0. });
+            ("background nan", { base with background = Color.v nan 0. 0. });
+            ("viewport 0", { base with viewport = { Viewport.default with distance = 0. } });
+            ("camera nan", { base with camera = Camera.v (v 0. nan 0.) });
+            ("light", { base with lights = [ Light.point 0.5 (v infinity 0. 0.) ] });
+            ("sphere radius 0", { base with spheres = Spheres.of_list [ Sphere.v ~center:Vec3.zero ~radius:0. Color.white ] }) ];
+        ignore (ok (Scene.check_epsilon 0.));
+        refused "epsilon infinity" (Scene.check_epsilon infinity);
+        ignore (ok (Scene.check_background Color.white)));
+    Alcotest.test_case "Scene.override checks what it replaces and keeps the rest" `Quick (fun () ->
+        let valid = Helpers.valid Scene.cgfs in
+        refused "width 0" (Scene.override ~width:0 valid);
+        refused "depth 65" (Scene.override ~depth:65 valid);
+        refused "viewport nan" (Scene.override ~viewport:{ Viewport.default with width = nan } valid);
+        refused "singular camera"
+          (Scene.override ~camera:(Camera.v ~rotation:{ Camera.identity with row2 = Vec3.ox } Vec3.zero) valid);
+        refused "pixels beyond the limits"
+          (Scene.override ~limits:(Limits.with_bound Limits.default `Pixels 99.) ~width:10 ~height:10 valid);
+        let s = Scene.of_valid (ok (Scene.override ~width:7 ~depth:0 valid)) in
+        Alcotest.(check bool) "the rest kept" true
+          (Scene.equal s { Scene.cgfs with width = 7; depth = 0 } && Scene.equal s (Scene.with_overrides ~width:7 ~depth:0 Scene.cgfs)));
+    Alcotest.test_case "Scene.grid: sphere i at (i mod k - (k - 1) / 2, i / k - 0.6, 2 k); grid 0 raises" `Quick (fun () ->
+        raises_invalid "grid 0" (fun () -> Scene.grid 0);
+        (* n = 5: k = 3 (9 >= 5), centers x in {-1, 0, 1}, z = 6; sphere 4 is
+           (4 mod 3 - 1, 4 / 3 - 0.6, 6) = (0, 0.4, 6), then the ground. *)
+        let s = Scene.grid 5 in
+        Alcotest.(check int) "5 spheres and the ground" 6 (Spheres.length s.spheres);
+        let c = (Spheres.get s.spheres 4).center in
+        Alcotest.check Helpers.vec3 "sphere 4" (v 0. (1. -. 0.6) 6.) c;
+        Alcotest.check exact "radius" 0.4 (Spheres.get s.spheres 4).radius;
+        Alcotest.(check (pair int int)) "800 x 800" (800, 800) (s.width, s.height));
+    Alcotest.test_case "Scene.at_frame of a scene without a camera path is an Error" `Quick (fun () ->
+        refused "no path" (Scene.at_frame (Helpers.valid Scene.cgfs) 0));
+    Alcotest.test_case "Scene_file.to_string then of_string gives the same floats bit for bit: -0., the smallest \
+                        subnormal, 1e12, 1e-30, 0.1 + 0.2" `Quick (fun () ->
+        let sphere = Sphere.v ~center:(v (-0.) 5e-324 1e12) ~radius:1e-30 ~specular:0. ~reflective:(0.1 +. 0.2) (Color.v 254.99999999999997 0. 1e-300) in
+        let s =
+          Scene.v ~width:3 ~height:2 ~epsilon:(-0.) ~background:(Color.v 0.1 (-0.) 255.)
+            ~viewport:(Viewport.v ~width:(1. /. 3.) ~height:1e-30 ~distance:1e12)
+            ~spheres:[ sphere ] ~lights:[ Light.directional 1e6 (v (-0.) 1e-30 (-1e12)) ] ()
+        in
+        let text = Scene_file.to_string s in
+        let back = Scene.of_valid (ok (Scene_file.of_string text)) in
+        Alcotest.(check string) "prints the same" text (Scene_file.to_string back);
+        let bits = Alcotest.testable (fun ppf x -> Format.fprintf ppf "%h" x) (fun a b -> Int64.equal (Int64.bits_of_float a) (Int64.bits_of_float b)) in
+        let b = Spheres.get back.spheres 0 in
+        Alcotest.(check (list bits)) "sphere"
+          [ -0.; 5e-324; 1e12; 1e-30; 0.; 0.1 +. 0.2; 254.99999999999997; 1e-300 ]
+          [ b.center.x; b.center.y; b.center.z; b.radius; b.specular; b.reflective; b.color.r; b.color.b ];
+        Alcotest.(check (list bits)) "scene" [ -0.; 0.1; -0.; 1. /. 3. ]
+          [ Option.get back.epsilon; back.background.r; back.background.g; back.viewport.width ]);
+    Alcotest.test_case "Spheres.append_fields refuses a short array or a bad material and appends nothing; blit_fields \
+                        refuses short arrays" `Quick (fun () ->
+        let b = Spheres.builder () in
+        let m = Spheres.material b (Material.v Color.white) in
+        let a n = Array.make n 1. in
+        raises_invalid "short radius" (fun () ->
+            Spheres.append_fields b ~x:(a 2) ~y:(a 2) ~z:(a 2) ~radius:(a 1) ~material:[| m; m |] 2);
+        raises_invalid "material 1" (fun () ->
+            Spheres.append_fields b ~x:(a 2) ~y:(a 2) ~z:(a 2) ~radius:(a 2) ~material:[| m; m + 1 |] 2);
+        Alcotest.(check int) "nothing appended" 0 (Spheres.builder_length b);
+        let s = Spheres.of_list [ sphere_at 1.; sphere_at 2. ] in
+        raises_invalid "blit into 1" (fun () ->
+            Spheres.blit_fields s ~x:(a 2) ~y:(a 2) ~z:(a 1) ~radius:(a 2) ~material:[| 0; 0 |]);
+        let x = a 2 in
+        Spheres.blit_fields s ~x ~y:(a 2) ~z:(a 2) ~radius:(a 2) ~material:[| 7; 7 |];
+        Alcotest.(check (array (float 0.))) "x" [| 1.; 2. |] x);
+    Alcotest.test_case "Render.image refuses bad sampling settings; region_image raises for a region outside the canvas"
+      `Quick (fun () ->
+        let s = Helpers.valid { Scene.cgfs with width = 4; height = 3 } in
+        refused "samples 0" (Render.image ~samples:0 s);
+        refused "adaptive with 2 x 2" (Render.image ~samples:2 ~adaptive:8 s);
+        refused "subsampled 2 x 2" (Render.image ~samples:2 ~subsample:true s);
+        raises_invalid "5 wide" (fun () -> Render.region_image s Region.{ x = 0; y = 0; w = 5; h = 1 });
+        raises_invalid "from row 3" (fun () -> Render.region_image s Region.{ x = 0; y = 3; w = 1; h = 1 });
+        let img, _ = ok (Render.region_image s Region.{ x = 3; y = 2; w = 1; h = 1 }) in
+        let whole, _ = ok (Render.image s) in
+        Alcotest.(check (triple int int int)) "the corner pixel" (Image.get whole 3 2) (Image.get img 0 0));
+  ]
+
+let tests = vec3_tests @ color_tests @ viewport_camera_tests @ limits_light_material_tests @ image_tests @ scene_tests
