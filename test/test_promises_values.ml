@@ -11,6 +11,7 @@ let error what = function Ok _ -> Alcotest.failf "%s: accepted" what | Error (`M
 let refused what r = ignore (error what r)
 let raises_invalid what f = match f () with _ -> Alcotest.failf "%s: no Invalid_argument" what | exception Invalid_argument _ -> ()
 let exact = Alcotest.float 0.
+let white_material = Material.v Color.white
 
 let contains ~sub s =
   let n = String.length sub in
@@ -474,4 +475,102 @@ let scene_tests =
         Alcotest.(check (triple int int int)) "the corner pixel" (Image.get whole 3 2) (Image.get img 0 0));
   ]
 
-let tests = vec3_tests @ color_tests @ viewport_camera_tests @ limits_light_material_tests @ image_tests @ scene_tests
+(* A scratch holding the ray O + t D and its hit point P with normal N. *)
+let scratch_at (o : Vec3.t) (d : Vec3.t) (p : Vec3.t) (n : Vec3.t) =
+  let s = Scratch.create () in
+  s.ox <- o.x; s.oy <- o.y; s.oz <- o.z;
+  s.dx <- d.x; s.dy <- d.y; s.dz <- d.z;
+  s.px <- p.x; s.py <- p.y; s.pz <- p.z;
+  s.nx <- n.x; s.ny <- n.y; s.nz <- n.z;
+  s
+
+let kernel_tests =
+  [
+    Alcotest.test_case "Pattern.odd: object coordinates (W - origin) / scale; on a boundary, the cell on the ray's side; \
+                        it writes nothing and allocates nothing" `Quick (fun () ->
+        (* Checker of side 1, object origin (10, 0, 0), scale 2. *)
+        let table = Array.make Pattern.stride nan in
+        Pattern.store (Pattern.checker ~size:1. Color.black) ~origin:(v 10. 0. 0.) ~scale:2. ~extent:20. table 0;
+        let odd o d p n = Pattern.odd (scratch_at o d p n) table 0 in
+        let up = v 0. 0. 1. in
+        (* (13, 0.5, 0.5) is (1.5, 0.25, 0.25): cell (1, 0, 0), odd;
+           (11, 0.5, 0.5) is (0.5, 0.25, 0.25): cell (0, 0, 0), even. *)
+        Alcotest.(check bool) "cell (1, 0, 0)" true (odd (v 13. 0.5 (-5.)) up (v 13. 0.5 0.5) up);
+        Alcotest.(check bool) "cell (0, 0, 0)" false (odd (v 11. 0.5 (-5.)) up (v 11. 0.5 0.5) up);
+        (* The hit point (11, 0.5, 0) lies on the boundary z = 0: seen from
+           below, cell (0, 0, -1) (odd), from above cell (0, 0, 0) (even),
+           whichever side the normal was given with. *)
+        List.iter
+          (fun n ->
+            Alcotest.(check bool) "from below" true (odd (v 11. 0.5 (-5.)) up (v 11. 0.5 0.) n);
+            Alcotest.(check bool) "from above" false (odd (v 11. 0.5 5.) (Vec3.neg up) (v 11. 0.5 0.) n))
+          [ up; Vec3.neg up ];
+        let s = scratch_at (v 11. 0.5 (-5.)) up (v 11. 0.5 0.) up in
+        s.t <- 3.;
+        let f () = ignore (Pattern.odd s table 0) in
+        let words = words_of 10_000 f in
+        if words > 50. then Alcotest.failf "%.0f minor words for 10000 lookups" words;
+        Alcotest.(check (list (float 0.))) "the scratch is unchanged" [ 11.; 0.5; 0.; 0.; 0.; 1.; 3. ]
+          [ s.px; s.py; s.pz; s.nx; s.ny; s.nz; s.t ]);
+    Alcotest.test_case "Sampling: to_string, is_one, averaging and the passes of each mode" `Quick (fun () ->
+        let sv ?samples ?adaptive ?subsample () = ok (Sampling.v ?samples ?adaptive ?subsample ()) in
+        let modes = [ Sampling.one; sv ~samples:4 (); sv ~samples:5 ~adaptive:8 (); sv ~subsample:true () ] in
+        Alcotest.(check (list string)) "to_string" [ "1x1"; "4x4"; "adaptive 5x5 t=8"; "subsampled" ]
+          (List.map Sampling.to_string modes);
+        Alcotest.(check (list bool)) "is_one" [ true; false; false; false ] (List.map Sampling.is_one modes);
+        Alcotest.(check bool) "v () is one" true (Sampling.is_one (sv ()));
+        Alcotest.(check (list bool)) "averaging" [ false; true; true; false ] (List.map Sampling.averaging modes);
+        let img = Image.create 4 3 in
+        let passes = List.map (fun m -> Sampling.passes (Sampling.plan m img ~canvas:(4, 3) ~at:(0, 0))) modes in
+        Alcotest.(check (list int)) "passes" [ 1; 1; 2; 2 ] passes;
+        let pl = Sampling.plan Sampling.one img ~canvas:(4, 3) ~at:(0, 0) in
+        Alcotest.(check int) "pass 0 works on the 3 rows" 3 (Sampling.pass_rows pl 0);
+        raises_invalid "pass 1 of a one-pass plan" (fun () -> Sampling.pass_rows pl 1);
+        raises_invalid "a rectangle past the canvas" (fun () -> Sampling.plan Sampling.one img ~canvas:(4, 3) ~at:(1, 0));
+        Alcotest.(check (list bool)) "64 and 65 samples" [ true; false ]
+          (List.map (fun samples -> Result.is_ok (Sampling.v ~samples ())) [ Sampling.max_samples; Sampling.max_samples + 1 ]);
+        Alcotest.(check (list bool)) "adaptive 0, 255, 256, -1" [ true; true; false; false ]
+          (List.map (fun adaptive -> Result.is_ok (Sampling.v ~samples:3 ~adaptive ())) [ 0; 255; 256; -1 ]));
+    Alcotest.test_case "Obj_file: feed raises outside its string and after finish; finish twice raises; ~digits writes %g"
+      `Quick (fun () ->
+        let p = Obj_file.create ~name:"m.obj" ~max_vertices:10 ~max_triangles:10 in
+        raises_invalid "off 4 len 2 of 5 bytes" (fun () -> Obj_file.feed p "v 1 " 4 2);
+        raises_invalid "len -1" (fun () -> Obj_file.feed p "v" 0 (-1));
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3" in
+        ok (Obj_file.feed p text 0 (String.length text));
+        let m = ok (Obj_file.finish p) in
+        Alcotest.(check int) "one triangle, the last line without line end" 1 (Obj_file.triangle_count m);
+        raises_invalid "feed after finish" (fun () -> Obj_file.feed p "\n" 0 1);
+        raises_invalid "finish twice" (fun () -> Obj_file.finish p);
+        let m = Obj_file.v ~positions:[| 1. /. 3.; 2.; -0.5 |] ~normals:[||] ~triangles:[||] ~triangle_normals:[||] in
+        Alcotest.(check string) "3 digits" "v 0.333 2 -0.5\n" (Obj_file.to_string ~digits:3 m));
+    Alcotest.test_case "Literal: of two spheres hit at the same t the first wins; a point light at the point adds nothing"
+      `Quick (fun () ->
+        let red = Sphere.v ~center:(v 0. 0. 5.) ~radius:1. (Color.v 255. 0. 0.) in
+        let blue = Sphere.v ~center:(v 0. 0. 5.) ~radius:1. (Color.v 0. 0. 255.) in
+        let first spheres =
+          match Literal.closest_intersection spheres ~origin:Vec3.zero ~direction:Vec3.oz ~t_min:1. ~t_max:infinity with
+          | Some (s, t) -> Alcotest.check exact "t" 4. t; s.color
+          | None -> Alcotest.fail "missed"
+        in
+        Alcotest.check Helpers.color "red first" red.color (first [ red; blue ]);
+        Alcotest.check Helpers.color "blue first" blue.color (first [ blue; red ]);
+        let scene = Scene.v ~spheres:[] ~lights:[ Light.ambient 0.25; Light.point 0.5 (v 0. 0. 4.) ] () in
+        let lighting point =
+          Literal.compute_lighting scene ~epsilon:0.001 ~point ~normal:(v 0. 0. (-1.)) ~view:(v 0. 0. (-1.)) ~specular:Sphere.matte
+        in
+        Alcotest.check exact "L = 0: ambient only" 0.25 (lighting (v 0. 0. 4.));
+        (* From (0, 0, 5) the light is at L = (0, 0, -1): <N, L> / |N| |L| = 1. *)
+        Alcotest.check exact "facing the light" 0.75 (lighting (v 0. 0. 5.)));
+    Alcotest.test_case "Literal.normal turns a plane's or a triangle's normal toward the ray, never a sphere's" `Quick
+      (fun () ->
+        let floor = Plane.v ~point:Vec3.zero ~normal:Vec3.oy white_material in
+        let n d = Literal.normal (Literal.Shape (Shape.Plane floor, Vec3.oy)) ~point:Vec3.zero ~direction:d in
+        Alcotest.check Helpers.vec3 "from above" Vec3.oy (n (v 1. (-1.) 0.));
+        Alcotest.check Helpers.vec3 "from below" (v 0. (-1.) 0.) (n (v 0. 1. 3.));
+        let ball = Sphere.v ~center:Vec3.zero ~radius:2. Color.white in
+        Alcotest.check Helpers.vec3 "a sphere from inside: outward" (v 0. 0. 1.)
+          (Literal.normal (Literal.Sphere ball) ~point:(v 0. 0. 2.) ~direction:Vec3.oz));
+  ]
+
+let tests = vec3_tests @ color_tests @ viewport_camera_tests @ limits_light_material_tests @ image_tests @ scene_tests @ kernel_tests
