@@ -571,6 +571,20 @@ let kernel_tests =
         let ball = Sphere.v ~center:Vec3.zero ~radius:2. Color.white in
         Alcotest.check Helpers.vec3 "a sphere from inside: outward" (v 0. 0. 1.)
           (Literal.normal (Literal.Sphere ball) ~point:(v 0. 0. 2.) ~direction:Vec3.oz));
+    Alcotest.test_case "Camera_path: frames in [0, max_frame]; pp_key leaves out up = (0 1 0); first and last frames" `Quick
+      (fun () ->
+        let key ?up frame = Camera_path.key ?up ~frame ~position:Vec3.zero (v 0. 0. 1.) in
+        Alcotest.(check (list bool)) "frames -1, 0, 1000000, 1000001" [ false; true; true; false ]
+          (List.map (fun f -> Result.is_ok (Camera_path.check_key (key f))) [ -1; 0; Camera_path.max_frame; Camera_path.max_frame + 1 ]);
+        refused "up along the view" (Camera_path.check_key (key ~up:(v 0. 0. 2.) 0));
+        let plain = Camera_path.show_key (key 3) and tilted = Camera_path.show_key (key ~up:(v 1. 1. 0.) 3) in
+        Alcotest.(check bool) plain false (contains ~sub:"up" plain);
+        Alcotest.(check bool) tilted true (contains ~sub:"(up 1 1 0)" tilted);
+        let path = ok (Camera_path.v [ key 2; key 10 ]) in
+        Alcotest.(check (pair int int)) "frames" (2, 10) (Camera_path.first_frame path, Camera_path.last_frame path);
+        refused "frame 1" (Camera_path.camera path 1);
+        refused "frame 11" (Camera_path.camera path 11);
+        refused "equal frames" (Camera_path.v [ key 2; key 2 ]));
   ]
 
 let tests = vec3_tests @ color_tests @ viewport_camera_tests @ limits_light_material_tests @ image_tests @ scene_tests @ kernel_tests
