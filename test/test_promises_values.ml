@@ -585,6 +585,37 @@ let kernel_tests =
         refused "frame 1" (Camera_path.camera path 1);
         refused "frame 11" (Camera_path.camera path 11);
         refused "equal frames" (Camera_path.v [ key 2; key 2 ]));
+    Alcotest.test_case "adaptive sampling: each pixel is exactly the document's or exactly full supersampling's, and it \
+                        traces 1 + (n^2 - 1) k rays for k refined pixels" `Quick (fun () ->
+        let s = Helpers.valid (Scene.with_overrides ~width:48 ~height:48 Scene.cgfs) in
+        let one, _ = ok (Render.image s) in
+        let full, full_st = ok (Render.image ~samples:5 s) in
+        let adaptive, st = ok (Render.image ~samples:5 ~adaptive:3 s) in
+        let pixels = 48 * 48 and as_one = ref 0 and as_full = ref 0 in
+        for y = 0 to 47 do
+          for x = 0 to 47 do
+            let a = Image.get adaptive x y and o = Image.get one x y and f = Image.get full x y in
+            if a = o && a <> f then incr as_one
+            else if a = f && a <> o then incr as_full
+            else if a <> o && a <> f then Alcotest.failf "pixel (%d, %d) is neither the document's nor full sampling's" x y
+          done
+        done;
+        if !as_one = 0 || !as_full = 0 then Alcotest.failf "%d pixels as the document's, %d as full sampling's" !as_one !as_full;
+        let extra = st.primary - pixels in
+        if extra mod 24 <> 0 || extra / 24 < !as_full || st.primary > full_st.primary then
+          Alcotest.failf "%d primary rays for %d pixels (%d refined at least), full sampling %d" st.primary pixels !as_full
+            full_st.primary;
+        let _, sub = ok (Render.image ~subsample:true s) in
+        Alcotest.(check int) "subsampling: one primary ray a pixel" pixels sub.primary);
+    Alcotest.test_case "Light.pp, Viewport.pp and Pattern.pp write their scene-file forms" `Quick (fun () ->
+        Alcotest.(check string) "point" "(light point (intensity 0.6) (position 2 1 0))" (Light.show (Light.point 0.6 (v 2. 1. 0.)));
+        Alcotest.(check string) "viewport" "(viewport (width 1) (height 0.5) (distance 2))"
+          (Viewport.show (Viewport.v ~width:1. ~height:0.5 ~distance:2.));
+        let p = Pattern.checker ~size:0.25 (Color.v 0. 0. 255.) in
+        Alcotest.(check string) "pattern" "(pattern checker (color 0 0 255) (size 0.25))" (Format.asprintf "%a" Pattern.pp p);
+        Alcotest.(check string) "pp_optional" " (pattern checker (color 0 0 255) (size 0.25))"
+          (Format.asprintf "%a" Pattern.pp_optional (Some p));
+        Alcotest.(check string) "pp_optional None" "" (Format.asprintf "%a" Pattern.pp_optional None));
   ]
 
 let tests = vec3_tests @ color_tests @ viewport_camera_tests @ limits_light_material_tests @ image_tests @ scene_tests @ kernel_tests
