@@ -365,12 +365,20 @@ let image_tests =
           Alcotest.failf "%S" line;
         Alcotest.(check bool) "one line" false (String.contains line '\n');
         Alcotest.(check bool) "psnr" true (contains ~sub:" psnr=" line));
-    Alcotest.test_case "Stats.rays is primary + shadow + reflection" `Quick (fun () ->
+    Alcotest.test_case "Stats.rays is primary + shadow + reflection; pp_table of no time and no pixel has no nan or inf" `Quick (fun () ->
         let s =
           Stats.{ pixels = 1; primary = 3; shadow = 50; reflection = 700; tests = 9; box_tests = 9; early_stops = 9; jobs = 1;
                   prepare_s = 0.; trace_s = 0.; minor_words = 0. }
         in
-        Alcotest.(check int) "rays" 753 (Stats.rays s));
+        Alcotest.(check int) "rays" 753 (Stats.rays s);
+        (* No time and no pixel (a render of nothing, a clock too coarse):
+           the table shows "-" and 0, never nan or inf. *)
+        let table = Format.asprintf "%a" Stats.pp_table { s with pixels = 0; trace_s = 0.; minor_words = 5. } in
+        List.iter
+          (fun bad -> if contains ~sub:bad table then Alcotest.failf "%S in\n%s" bad table)
+          [ "nan"; "inf" ];
+        Alcotest.(check bool) "rays per second: -" true (contains ~sub:"rays per second          -" table);
+        Alcotest.(check bool) "tests per ray: 9 / 753" true (contains ~sub:(Printf.sprintf "%.2f" (9. /. 753.)) table));
   ]
 
 let sphere_at x = Sphere.v ~center:(v x 0. 5.) ~radius:1. Color.white
