@@ -538,7 +538,17 @@ let kernel_tests =
         Alcotest.(check (list bool)) "64 and 65 samples" [ true; false ]
           (List.map (fun samples -> Result.is_ok (Sampling.v ~samples ())) [ Sampling.max_samples; Sampling.max_samples + 1 ]);
         Alcotest.(check (list bool)) "adaptive 0, 255, 256, -1" [ true; true; false; false ]
-          (List.map (fun adaptive -> Result.is_ok (Sampling.v ~samples:3 ~adaptive ())) [ 0; 255; 256; -1 ]));
+          (List.map (fun adaptive -> Result.is_ok (Sampling.v ~samples:3 ~adaptive ())) [ 0; 255; 256; -1 ]);
+        (* Sampling.rows: a step below 1, another canvas, another averaging. *)
+        let scene w = Helpers.prepare (Scene.with_overrides ~width:w ~height:3 Scene.cgfs) in
+        let four = sv ~samples:4 () in
+        let pl4 = Sampling.plan four img ~canvas:(4, 3) ~at:(0, 0) in
+        let averaging = Trace.create ~averaging:true (scene 4) in
+        raises_invalid "step 0" (fun () -> Sampling.rows pl4 0 averaging ~first:0 ~step:0);
+        raises_invalid "pass 1" (fun () -> Sampling.rows pl4 1 averaging ~first:0 ~step:1);
+        raises_invalid "a 5-wide canvas" (fun () -> Sampling.rows pl4 0 (Trace.create ~averaging:true (scene 5)) ~first:0 ~step:1);
+        raises_invalid "a tracer that does not average" (fun () -> Sampling.rows pl4 0 (Trace.create (scene 4)) ~first:0 ~step:1);
+        Sampling.rows pl4 0 averaging ~first:0 ~step:1);
     Alcotest.test_case "Obj_file: feed raises outside its string and after finish; finish twice raises; ~digits writes %g"
       `Quick (fun () ->
         let p = Obj_file.create ~name:"m.obj" ~max_vertices:10 ~max_triangles:10 in
