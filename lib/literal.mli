@@ -81,15 +81,16 @@ val rounding_dependent : unit -> int
 (** [rounding_dependent ()] is the number of ray-object searches so far
     whose answer the rounding of floats may decide, in the oracle as in
     the kernel: those where exact arithmetic had to decide whether a ray
-    passes a boundary (an edge, a vertex, a parallel, another root) it
-    is within rounding of but off ({!Literal_geometry.undecided}'s
-    [near]), and those of a ray from a computed hit point (a shadow,
-    mirror or refracted ray) exactly on one, since that point and the
-    ray's direction are rounded, by the oracle's arithmetic and the
-    kernel's each its own way; and the checker cells of points within
+    passes a boundary (a triangle's edge or vertex, another root) it is
+    within rounding of but off ({!Literal_geometry.undecided}'s [near]),
+    those of a ray from a computed hit point (a shadow, mirror or
+    refracted ray) exactly through a triangle's edge, since that point
+    and the ray's direction are rounded, by the oracle's arithmetic and
+    the kernel's each its own way; and the checker cells of points within
     rounding of a cell's boundary. A camera ray exactly through an edge
-    is not counted: its origin and direction are the scene's, and its
-    answer is exact. *)
+    or a vertex, and exact ties of two roots (touching CSG operands,
+    coinciding surfaces, a box's edge), are not counted: their answer is
+    exact. *)
 
 val closest_hit :
   Scene.t -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float -> (obj * float) option

@@ -16,8 +16,8 @@ let near_count = ref 0
 let tie_count = ref 0
 let undecided () = (!near_count, !tie_count)
 
-(* [tie]: whether a zero is a tie that depends on the line's origin (an
-   edge function, an order of roots), not a parallel, which the direction
+(* [tie]: whether a zero is a tie that depends on the line's origin (a
+   line through a triangle's edge), not a parallel, which the direction
    alone decides. *)
 let exactly ?(tie = false) sign =
   if sign <> 0 then incr near_count else if tie then incr tie_count;
@@ -80,7 +80,11 @@ let compare_keys a b =
   else if b.hi < a.lo then 1
   else if a == b then 0
   else if a.lo = a.hi && b.lo = b.hi then Float.compare a.t b.t
-  else exactly ~tie:true (Exact_float.compare_fractions (Lazy.force a.num) (Lazy.force a.den) (Lazy.force b.num) (Lazy.force b.den))
+  else
+    (* An exact tie of two parameters is not counted: CSG operands that
+       share a face, coinciding surfaces and a line through a box's edge
+       tie wherever the line's origin is, as the kernel must see them. *)
+    exactly (Exact_float.compare_fractions (Lazy.force a.num) (Lazy.force a.den) (Lazy.force b.num) (Lazy.force b.den))
 
 (* The document's range is strict, [t_min < t < t_max]. Its lower end
    is decided on the exact parameter: a plane met at exactly [t = 1] is

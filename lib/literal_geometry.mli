@@ -40,14 +40,17 @@ val in_range : continued:bool -> t_min:float -> t_max:float -> key -> bool
     its rounding. *)
 
 val undecided : unit -> int * int
-(** [undecided ()] is [(near, ties)], the numbers of decisions so far
-    (signs of orientations, cross products and of a direction against a
-    plane's normal, orders of two parameters) that the float filter could
-    not make: [near], those exact arithmetic made non-zero (a line within
-    rounding of an edge, a vertex, a parallel or another root, off it),
-    and [ties], those it made zero (a line exactly through an edge, two
-    equal roots). The kernel's float tests decide near cases only up to
-    their rounding, and ties of a ray from a rounded point ({!Literal.rounding_dependent}). *)
+(** [undecided ()] is [(near, ties)], counts so far of decisions the
+    float filter could not make: [near], those exact arithmetic made
+    non-zero (a line within rounding of a triangle's edge or vertex, two
+    parameters within rounding of each other, off them), and [ties], a
+    line exactly through a triangle's edge (not parallel to it, its
+    origin off the triangle's plane). Exact ties of two parameters (CSG
+    operands sharing a face, a line through a box's edge) are not
+    counted: they hold wherever the line's origin is. {!odd} counts in
+    [near] a point within rounding of a checker cell's boundary. The
+    kernel's float tests decide near cases only up to their rounding, and
+    ties of a ray from a rounded point ({!Literal.rounding_dependent}). *)
 
 val compare_keys : key -> key -> int
 (** [compare_keys a b] is the sign of [a - b], exact: by the enclosures

@@ -10,13 +10,16 @@
    stated bounds. So the images must be equal byte for byte on every pixel
    whose rays no rounding decides; only the pixels where
    [Literal.rounding_dependent] counts a search are left out: a ray
-   within rounding of an edge, a vertex, a parallel or another root
-   without touching it, or a shadow, mirror or refracted ray (from a
-   rounded hit point, along a rounded direction) exactly on one, as a
-   shadow ray that slides along the wall it leaves through the edge where
-   the ceiling meets it. A camera ray exactly through an edge or vertex is
-   held to bytes. In the robust mode the kernel uses other formulas, and
-   there the skips alone are held to bytes, on and off. *)
+   within rounding of a triangle's edge or vertex or of another root
+   without touching it, a shadow, mirror or refracted ray (from a rounded
+   hit point, along a rounded direction) exactly through a triangle's
+   edge (a shadow ray that slides along the wall it leaves, through the
+   edge where the ceiling meets it), a checker point within rounding of a
+   cell's boundary. A camera ray exactly through an edge or vertex, and
+   exact ties of two roots (touching CSG operands, coinciding faces, a
+   box's edge), are held to bytes: leaving out the ties hid three CSG
+   mutants (docs/testing.md). In the robust mode the kernel uses other
+   formulas, and there the skips alone are held to bytes, on and off. *)
 open Raytrace
 
 let show_pixel (r, g, b) = Printf.sprintf "(%d, %d, %d)" r g b
