@@ -8,8 +8,6 @@ let u = epsilon_float /. 2.
 (* Below this a float filter's bound may have underflowed: decide exactly. *)
 let tiny = 1e-280
 
-(* [if |approx| > bound then its sign else the exact one]: the filter of
-   Shewchuk's adaptive predicates. *)
 (* Decisions the float filter left to exact arithmetic: ties (exactly on
    a boundary) and near ones (within rounding of a boundary, off it). *)
 let near_count = ref 0
@@ -23,6 +21,8 @@ let exactly ?(tie = false) sign =
   if sign <> 0 then incr near_count else if tie then incr tie_count;
   sign
 
+(* [if |approx| > bound then its sign else the exact one]: the filter of
+   Shewchuk's adaptive predicates. *)
 let filtered approx bound exact =
   if approx > bound && bound > tiny then 1 else if approx < -.bound && bound > tiny then -1 else exactly (Exact_float.sign (exact ()))
 
@@ -79,7 +79,7 @@ let compare_keys a b =
   if a.hi < b.lo then -1
   else if b.hi < a.lo then 1
   else if a == b then 0
-  else if a.lo = a.hi && b.lo = b.hi then Float.compare a.t b.t
+  else if a.lo = a.hi && b.lo = b.hi then (* Two floats ([key_of_float]'s): exact. *) Float.compare a.t b.t
   else
     (* An exact tie of two parameters is not counted: CSG operands that
        share a face, coinciding surfaces and a line through a box's edge
@@ -440,4 +440,3 @@ let split ~n1 ~n2 ~fresnel ~direction ~normal =
           r0 +. ((1. -. r0) *. (x *. x *. x *. x *. x))
       in
       { refracted = Some t; reflectance }
-
