@@ -75,6 +75,48 @@ let[@inline never] normal (s : Scratch.t) g o =
   s.ny <- (if axis = 1 then sign else 0.);
   s.nz <- (if axis = 2 then sign else 0.)
 
+(* An axis's entry and exit parameters, as [slab] finds them; an axis
+   along which the ray does not move bounds nothing. *)
+let[@inline] entry lo hi o d =
+  if d = 0. then neg_infinity
+  else
+    let t0 = (lo -. o) /. d and t1 = (hi -. o) /. d in
+    if t0 < t1 then t0 else t1
+
+let[@inline] exit lo hi o d =
+  if d = 0. then infinity
+  else
+    let t0 = (lo -. o) /. d and t1 = (hi -. o) /. d in
+    if t0 < t1 then t1 else t0
+
+let[@inline never] hit_normal (s : Scratch.t) g o =
+  let ex = entry (Array.unsafe_get g o) (Array.unsafe_get g (o + 3)) s.ox s.dx in
+  let ey = entry (Array.unsafe_get g (o + 1)) (Array.unsafe_get g (o + 4)) s.oy s.dy in
+  let ez = entry (Array.unsafe_get g (o + 2)) (Array.unsafe_get g (o + 5)) s.oz s.dz in
+  let xx = exit (Array.unsafe_get g o) (Array.unsafe_get g (o + 3)) s.ox s.dx in
+  let xy = exit (Array.unsafe_get g (o + 1)) (Array.unsafe_get g (o + 4)) s.oy s.dy in
+  let xz = exit (Array.unsafe_get g (o + 2)) (Array.unsafe_get g (o + 5)) s.oz s.dz in
+  (* As [roots] narrows: a later axis replaces an earlier one only if
+     strictly beyond it, so the first axis of equals decides. *)
+  let y_in = ey > ex in
+  let near_xy = if y_in then ey else ex in
+  let z_in = ez > near_xy in
+  let near = if z_in then ez else near_xy in
+  let y_out = xy < xx in
+  let far_xy = if y_out then xy else xx in
+  let z_out = xz < far_xy in
+  (* The root at or before the entry (the line touching an edge has
+     [near = far]) enters; the other leaves. *)
+  let entering = s.near <= near in
+  let axis =
+    if entering then if z_in then 2 else if y_in then 1 else 0 else if z_out then 2 else if y_out then 1 else 0
+  in
+  let d = if axis = 0 then s.dx else if axis = 1 then s.dy else s.dz in
+  let sign = if (d > 0.) = entering then -1. else 1. in
+  s.nx <- (if axis = 0 then sign else 0.);
+  s.ny <- (if axis = 1 then sign else 0.);
+  s.nz <- (if axis = 2 then sign else 0.)
+
 let intersect b ~origin ~direction =
   let g = Array.make 6 0. and s = Scratch.create () in
   store b g 0;

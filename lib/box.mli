@@ -52,7 +52,23 @@ val normal : Scratch.t -> float array -> int -> unit
 (** [normal s g o] sets [s.nx], [s.ny], [s.nz] to the outward unit normal
     of the face of the box nearest to the hit point [s.px], [s.py],
     [s.pz] (faces tried in the order -x, +x, -y, +y, -z, +z; the first of
-    equally near ones wins, at edges and corners). *)
+    equally near ones wins, at edges and corners). With a point alone
+    ({!Shape.normal}); the kernel's hits take {!hit_normal}, which knows
+    the ray. *)
+
+val hit_normal : Scratch.t -> float array -> int -> unit
+(** [hit_normal s g o] sets [s.nx], [s.ny], [s.nz] to the outward unit
+    normal of the face of the box stored at [o] that the ray of [s]
+    crosses at its root [s.near] (one of those {!roots} found, for the
+    same ray): the slab method's face, the one whose slab decides the
+    root. Where the ray enters ([s.near] at or before the entry, as for a
+    line that only touches an edge), the face of the slab it enters last;
+    where it leaves, the face of the slab it leaves first; of slabs
+    entered or left at the same parameter (a ray through an edge or a
+    corner), the first axis in the order x, y, z. A ray sliding along a
+    face, or leaving through an edge, so never gets the normal of a face
+    it does not cross, as the nearest face to the hit point ({!normal})
+    may be. Allocates nothing. *)
 
 val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float * float
 (** [intersect b ~origin ~direction] is [(near, far)] of {!roots}, or

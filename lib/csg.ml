@@ -718,7 +718,7 @@ let normal tb w (s : Scratch.t) =
     s.ny <- ny *. inv;
     s.nz <- nz *. inv
   end
-  else if k = surface_box then Box.normal s tb.geom o
+  else if k = surface_box then Box.hit_normal s tb.geom o
   else begin
     let leaf = tb.meshes.(truncate tb.geom.(o)) and c = 3 * (w.surface land ((1 lsl tb.slot_bits) - 1)) in
     Triangle.normal_at s leaf.vertex leaf.corners.(c) leaf.corners.(c + 1) leaf.corners.(c + 2)
@@ -829,7 +829,9 @@ let literal_hit c ~origin ~direction ~t_min ~t_max =
         | Sphere s -> Sphere.normal s point
         | Box b ->
             Box.store b g 0;
-            Box.normal sc g 0;
+            Scratch.set_ray sc origin direction;
+            sc.near <- t;
+            Box.hit_normal sc g 0;
             Vec3.v sc.nx sc.ny sc.nz
         | Mesh m ->
             Triangle.store (Mesh.triangle m k) g 0;

@@ -97,8 +97,12 @@ let sphere_list spheres =
     l
   end
 
+(* Ray-object searches whose answer rounding may decide (see the .mli). *)
+let dependent = ref 0
+let rounding_dependent () = !dependent
+
 (* The roots of an item, nearer first, each with its object. *)
-let item_roots item ~origin ~direction ~t_min ~t_max =
+let item_roots ~continued item ~origin ~direction ~t_min ~t_max =
   match item with
   | Plane_item p -> (
       tested 1;
@@ -117,7 +121,7 @@ let item_roots item ~origin ~direction ~t_min ~t_max =
       | Some h -> [ (h.enter, Shape (Shape.Box b, h.enter_normal)); (h.exit, Shape (Shape.Box b, h.exit_normal)) ]
       | None -> [])
   | Csg_item c -> (
-      match G.csg_hit ~tested c ~origin ~direction ~t_min ~t_max with
+      match G.csg_hit ~continued ~tested c ~origin ~direction ~t_min ~t_max with
       | Some h -> [ (h.key, Csg_surface (c, h.leaf, h.normal)) ]
       | None -> [])
 
@@ -125,7 +129,11 @@ let item_roots item ~origin ~direction ~t_min ~t_max =
    the shapes, a mesh one number (the numbers name the media a ray is
    in). Roots are ordered exactly, strictly: of equal roots, the first
    object in that order wins. *)
-let closest_numbered (scene : Scene.t) ~origin ~direction ~t_min ~t_max =
+let closest_numbered ?(continued = false) (scene : Scene.t) ~origin ~direction ~t_min ~t_max =
+  let near0, ties0 = G.undecided () in
+  (* A camera ray's origin is the camera's own value, continued or not:
+     every other ray leaves a computed point. *)
+  let secondary = origin != scene.camera.position in
   let spheres = sphere_list scene.spheres in
   let best =
     match closest_intersection spheres ~origin ~direction ~t_min ~t_max with
@@ -136,17 +144,16 @@ let closest_numbered (scene : Scene.t) ~origin ~direction ~t_min ~t_max =
   let best =
     Array.fold_left
       (fun best (item, k) ->
-        (* The range on the rounded parameter, as the document's: a ray
-           continued from a hit at [t] never meets that surface there
-           again. *)
         let in_range ((t : G.key), _) =
-          t_min < t.t && t.t < t_max && match best with Some (_, _, b) -> G.compare_keys t b < 0 | None -> true
+          G.in_range ~continued ~t_min ~t_max t && match best with Some (_, _, b) -> G.compare_keys t b < 0 | None -> true
         in
-        match List.find_opt in_range (item_roots item ~origin ~direction ~t_min ~t_max) with
+        match List.find_opt in_range (item_roots ~continued item ~origin ~direction ~t_min ~t_max) with
         | Some (t, obj) -> Some (obj, n_spheres + k, t)
         | None -> best)
       best (items scene.shapes)
   in
+  let near1, ties1 = G.undecided () in
+  if near1 > near0 || (secondary && ties1 > ties0) then incr dependent;
   Option.map (fun (obj, id, (t : G.key)) -> (obj, id, t.t)) best
 
 let closest_hit scene ~origin ~direction ~t_min ~t_max =
@@ -216,17 +223,21 @@ let pattern_frame = function
 let local_color obj (m : Material.t) ~origin ~direction ~point ~normal =
   match m.pattern with
   | None -> m.color
-  | Some p -> if G.odd p ~frame:(pattern_frame obj) ~origin ~direction ~point ~normal then Pattern.color p else m.color
+  | Some p ->
+      let near0, _ = G.undecided () in
+      let odd = G.odd p ~frame:(pattern_frame obj) ~origin ~direction ~point ~normal in
+      if fst (G.undecided ()) > near0 then incr dependent;
+      if odd then Pattern.color p else m.color
 
 (* The light a shadow ray lets through transparent objects: the product
    of the transparency of each surface it crosses, nearest first, until an
    opaque one stops it (0). *)
-let rec transmitted scene ~origin ~direction ~t_min ~t_max f =
-  match closest_numbered scene ~origin ~direction ~t_min ~t_max with
+let rec transmitted ?(continued = false) scene ~origin ~direction ~t_min ~t_max f =
+  match closest_numbered ~continued scene ~origin ~direction ~t_min ~t_max with
   | None -> f
   | Some (obj, _, t) ->
       let f = f *. (medium_material obj).transparency in
-      if f > 0. then transmitted scene ~origin ~direction ~t_min:t ~t_max f else f
+      if f > 0. then transmitted ~continued:true scene ~origin ~direction ~t_min:t ~t_max f else f
 
 let lighting_through ~through (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
   let intensity = ref 0. in
@@ -321,13 +332,13 @@ let optics obj (m : Material.t) ~near ~far ~direction ~normal =
    the same index on both sides) is crossed on the same ray, without a
    bounce. At [level = depth], or without either ray, the local colour
    alone (section 7.8). *)
-let rec shade (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~level ~media =
-  match closest_numbered scene ~origin ~direction ~t_min ~t_max:infinity with
+let rec shade ?(continued = false) (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~level ~media =
+  match closest_numbered ~continued scene ~origin ~direction ~t_min ~t_max:infinity with
   | None -> scene.background
   | Some (obj, id, t) ->
       let m = material obj and medium = medium_material obj in
       let near, far, beyond = cross media ~id ~index:medium.refractive_index in
-      if medium.transparency = 1. && near = far then shade scene ~epsilon ~origin ~direction ~t_min:t ~level ~media:beyond
+      if medium.transparency = 1. && near = far then shade ~continued:true scene ~epsilon ~origin ~direction ~t_min:t ~level ~media:beyond
       else
         let point = Vec3.add origin (Vec3.smul t direction) in
         let normal = normal obj ~point ~direction in

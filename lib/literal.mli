@@ -77,14 +77,30 @@ type obj =
 (** The type for the objects of a scene: a mesh is one object per
     triangle. *)
 
+val rounding_dependent : unit -> int
+(** [rounding_dependent ()] is the number of ray-object searches so far
+    whose answer the rounding of floats may decide, in the oracle as in
+    the kernel: those where exact arithmetic had to decide whether a ray
+    passes a boundary (a triangle's edge or vertex, another root) it is
+    within rounding of but off ({!Literal_geometry.undecided}'s [near]),
+    those of a ray from a computed hit point (a shadow, mirror or
+    refracted ray) exactly through a triangle's edge, since that point
+    and the ray's direction are rounded, by the oracle's arithmetic and
+    the kernel's each its own way; and the checker cells of points within
+    rounding of a cell's boundary. A camera ray exactly through an edge
+    or a vertex, and exact ties of two roots (touching CSG operands,
+    coinciding surfaces, a box's edge), are not counted: their answer is
+    exact. *)
+
 val closest_hit :
   Scene.t -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float -> (obj * float) option
 (** [closest_hit scene ~origin ~direction ~t_min ~t_max] is the object of
     [scene] hit first by the ray [P = O + t D] with [t_min < t < t_max],
     and its [t]: the spheres by {!closest_intersection}, then the other
     shapes in order, the nearer of a box's two roots that is in range.
-    The range is on the rounded [t] (so that a ray continued from a hit at
-    [t] does not meet that surface there again); the hits are ordered by
+    The range is strict and decided on the exact [t]
+    ({!Literal_geometry.in_range}): a plane met at exactly [t = t_min] is
+    not hit, whatever its rounded [t]; the hits are ordered by
     their exact parameters (a sphere's is its rounded root): of objects hit
     at the same [t], the first wins, spheres before shapes. *)
 

@@ -8,10 +8,23 @@ let u = epsilon_float /. 2.
 (* Below this a float filter's bound may have underflowed: decide exactly. *)
 let tiny = 1e-280
 
+(* Decisions the float filter left to exact arithmetic: ties (exactly on
+   a boundary) and near ones (within rounding of a boundary, off it). *)
+let near_count = ref 0
+let tie_count = ref 0
+let undecided () = (!near_count, !tie_count)
+
+(* [tie]: whether a zero is a tie that depends on the line's origin (a
+   line through a triangle's edge), not a parallel, which the direction
+   alone decides. *)
+let exactly ?(tie = false) sign =
+  if sign <> 0 then incr near_count else if tie then incr tie_count;
+  sign
+
 (* [if |approx| > bound then its sign else the exact one]: the filter of
    Shewchuk's adaptive predicates. *)
 let filtered approx bound exact =
-  if approx > bound && bound > tiny then 1 else if approx < -.bound && bound > tiny then -1 else Exact_float.sign (exact ())
+  if approx > bound && bound > tiny then 1 else if approx < -.bound && bound > tiny then -1 else exactly (Exact_float.sign (exact ()))
 
 let ediff (p : Vec3.t) (o : Vec3.t) = Exact_float.(diff p.x o.x, diff p.y o.y, diff p.z o.z)
 
@@ -46,7 +59,7 @@ let orient ~(o : Vec3.t) ~(d : Vec3.t) (p : Vec3.t) (q : Vec3.t) =
   let bound = 64. *. u *. m in
   if v > bound && bound > tiny then 1
   else if v < -.bound && bound > tiny then -1
-  else Exact_float.sign (edot (evec d) (ecross (ediff p o) (ediff q o)))
+  else exactly (Exact_float.sign (edot (evec d) (ecross (ediff p o) (ediff q o))))
 
 (* The sign of component [k] of (q - p) x d. *)
 let cross_component k ~(d : Vec3.t) (p : Vec3.t) (q : Vec3.t) =
@@ -65,7 +78,28 @@ let key_of_float x = { t = x; lo = x; hi = x; num = lazy (Exact_float.of_float x
 let compare_keys a b =
   if a.hi < b.lo then -1
   else if b.hi < a.lo then 1
-  else Exact_float.compare_fractions (Lazy.force a.num) (Lazy.force a.den) (Lazy.force b.num) (Lazy.force b.den)
+  else if a == b then 0
+  else if a.lo = a.hi && b.lo = b.hi then (* Two floats ([key_of_float]'s): exact. *) Float.compare a.t b.t
+  else
+    (* An exact tie of two parameters is not counted: CSG operands that
+       share a face, coinciding surfaces and a line through a box's edge
+       tie wherever the line's origin is, as the kernel must see them. *)
+    exactly (Exact_float.compare_fractions (Lazy.force a.num) (Lazy.force a.den) (Lazy.force b.num) (Lazy.force b.den))
+
+(* The document's range is strict, [t_min < t < t_max]. Its lower end
+   is decided on the exact parameter: a plane met at exactly [t = 1] is
+   not seen by the camera, though its rounded parameter may be
+   [1 + ulp]. A ray continued from a hit ([continued], its [t_min] that
+   hit's rounded parameter) must also pass it when rounded, or it would
+   meet that surface there again: its exact parameter may lie above its
+   rounding. The upper end, a light's [t = 1] for a shadow ray, is on the
+   rounded parameter: the ray's direction [L - P] is rounded, so a
+   surface through the light is met an ulp before or after [t = 1] by
+   that rounding, not by the scene, and the document compares the
+   computed [t]. *)
+let above ~continued t_min k = compare_keys (key_of_float t_min) k < 0 && ((not continued) || t_min < k.t)
+let below t_max k = k.t < t_max
+let in_range ~continued ~t_min ~t_max k = above ~continued t_min k && below t_max k
 
 (* (p - o) / d for floats, d <> 0: rounded twice, within 2u of |t|. *)
 let ratio_key p o d =
@@ -145,7 +179,23 @@ let plane_normal (p : Plane.t) = Vec3.unit p.normal
 
 let edge_signs ~origin ~direction a b c =
   let s = orient ~o:a ~d:direction b c in
-  (s, orient ~o:origin ~d:direction b c, orient ~o:origin ~d:direction c a, orient ~o:origin ~d:direction a b)
+  let e0 = orient ~o:origin ~d:direction b c and e1 = orient ~o:origin ~d:direction c a and e2 = orient ~o:origin ~d:direction a b in
+  (* A zero edge function is a tie with the line's origin, unless the edge
+     is parallel to the line, which makes it zero wherever the origin is. *)
+  let through p q e =
+    e = 0
+    &&
+    let x, y, z = ecross (ediff q p) (evec direction) in
+    Exact_float.(sign x <> 0 || sign y <> 0 || sign z <> 0)
+  in
+  (* Nor where the origin lies in the triangle's plane: the line leaves
+     the triangle there, at [t = 0], out of every ray's range. *)
+  if
+    s <> 0
+    && (through b c e0 || through c a e1 || through a b e2)
+    && Exact_float.sign (edot (ecross (ediff b a) (ediff c a)) (ediff origin a)) <> 0
+  then ignore (exactly ~tie:true 0);
+  (s, e0, e1, e2)
 
 (* The plane's parameter of the line, in floats, with an enclosure of the
    exact one and the exact numerator and denominator:
@@ -188,6 +238,7 @@ let largest_axis (d : Vec3.t) =
 let perturbed_sign ~origin ~direction ~k1 ~k2 p q =
   match orient ~o:origin ~d:direction p q with
   | 0 -> (
+      ignore (exactly ~tie:true 0);
       match cross_component k1 ~d:direction p q with
       | 0 -> -cross_component k2 ~d:direction p q
       | c -> -c)
@@ -313,7 +364,7 @@ let rec inside lines ~after t next (s : Csg.solid) =
 
 type csg_hit = { key : key; leaf : Csg.solid; normal : Vec3.t; entering : bool }
 
-let csg_hit ~tested (c : Csg.t) ~origin ~direction ~t_min ~t_max =
+let csg_hit ?(continued = false) ~tested (c : Csg.t) ~origin ~direction ~t_min ~t_max =
   let leaves = Array.of_list (leaves c) in
   let per_leaf = Array.mapi (fun i l -> leaf_crossings ~tested ~origin ~direction i l) leaves in
   let lines = Array.map fst per_leaf in
@@ -321,13 +372,14 @@ let csg_hit ~tested (c : Csg.t) ~origin ~direction ~t_min ~t_max =
     List.stable_sort (fun (x : crossing) (y : crossing) -> compare_keys x.key y.key) (List.concat_map snd (Array.to_list per_leaf))
   in
   let state ~after t = fst (inside lines ~after t 0 (Csg.Csg c)) in
-  (* The range on the rounded parameter: a ray continued from a crossing
-     at [t] does not meet it again. *)
   let boundary =
-    List.find_opt (fun (x : crossing) -> x.key.t > t_min && state ~after:false x.key <> state ~after:true x.key) all
+    List.find_opt
+      (fun (x : crossing) ->
+        above ~continued t_min x.key && state ~after:false x.key <> state ~after:true x.key)
+      all
   in
   match boundary with
-  | Some (x : crossing) when x.key.t < t_max ->
+  | Some (x : crossing) when below t_max x.key ->
       let entering = state ~after:true x.key in
       let point = Vec3.add origin (Vec3.smul x.key.t direction) in
       let n =
@@ -345,7 +397,15 @@ let odd (Pattern.Checker { size; _ }) ~frame:((o : Vec3.t), scale, extent) ~(ori
   let e = 64. *. u *. (l1 origin +. l1 point +. extent) in
   let e = if Vec3.dot normal direction > 0. then -.e else e in
   let q = Vec3.add point (Vec3.smul e normal) in
-  let cell x o = Float.abs (Float.rem (Float.floor ((x -. o) /. scale /. size)) 2.) in
+  (* A cell boundary within rounding of the point (a quarter of the
+     offset [e], a bound on the point's rounding): which side it lies on
+     is the floats' choice, the kernel's and the oracle's each its own. *)
+  let cell x o =
+    let v = (x -. o) /. scale /. size in
+    if Float.abs (v -. Float.round v) <= Float.abs e /. 4. /. scale /. size then
+      incr near_count;
+    Float.abs (Float.rem (Float.floor v) 2.)
+  in
   let sum = cell q.x o.x +. cell q.y o.y +. cell q.z o.z in
   sum = 1. || sum = 3.
 

@@ -28,6 +28,30 @@ type key = {
 val key_of_float : float -> key
 (** [key_of_float x] is the parameter [x], exactly. *)
 
+val in_range : continued:bool -> t_min:float -> t_max:float -> key -> bool
+(** [in_range ~continued ~t_min ~t_max k] is [t_min < k], exactly (the
+    document's range is strict: a surface met at exactly [t = 1] is not
+    seen by the camera), and [k.t < t_max] on [k]'s rounded parameter
+    (a shadow ray's [t_max] is its light's [t = 1], which the rounded
+    direction [L - P] reaches only within its rounding); with
+    [continued] (a ray continued from a hit whose rounded parameter is
+    [t_min]), also [t_min < k.t], so that the ray does not meet that
+    surface there again, as it would where the exact parameter lies above
+    its rounding. *)
+
+val undecided : unit -> int * int
+(** [undecided ()] is [(near, ties)], counts so far of decisions the
+    float filter could not make: [near], those exact arithmetic made
+    non-zero (a line within rounding of a triangle's edge or vertex, two
+    parameters within rounding of each other, off them), and [ties], a
+    line exactly through a triangle's edge (not parallel to it, its
+    origin off the triangle's plane). Exact ties of two parameters (CSG
+    operands sharing a face, a line through a box's edge) are not
+    counted: they hold wherever the line's origin is. {!odd} counts in
+    [near] a point within rounding of a checker cell's boundary. The
+    kernel's float tests decide near cases only up to their rounding, and
+    ties of a ray from a rounded point ({!Literal.rounding_dependent}). *)
+
 val compare_keys : key -> key -> int
 (** [compare_keys a b] is the sign of [a - b], exact: by the enclosures
     where they do not overlap, else by {!Exact_float.compare_fractions}. *)
@@ -130,12 +154,17 @@ type csg_hit = {
 (** The type for hits on CSG solids. *)
 
 val csg_hit :
-  tested:(int -> unit) -> Csg.t -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float -> csg_hit option
-(** [csg_hit ~tested c ~origin ~direction ~t_min ~t_max] is the first
-    crossing of [c]'s surface whose rounded parameter is in
-    [t_min < t < t_max] (so that a ray continued from a crossing does not
-    meet it again),
-    if any: every crossing of every leaf along the whole line (a sphere's
+  ?continued:bool ->
+  tested:(int -> unit) ->
+  Csg.t ->
+  origin:Vec3.t ->
+  direction:Vec3.t ->
+  t_min:float ->
+  t_max:float ->
+  csg_hit option
+(** [csg_hit ~continued ~tested c ~origin ~direction ~t_min ~t_max] is the
+    first crossing of [c]'s surface beyond [t_min], if it is before
+    [t_max] ({!in_range}'s comparisons), if any: every crossing of every leaf along the whole line (a sphere's
     or a box's interval of positive length, a closed mesh's crossings by
     {!triangle_crossing}), in exact order (a sphere's ends as their
     floats), classified by [c]'s boolean expression on the leaves just

@@ -947,7 +947,11 @@ let shape_hit tr i =
   let o = Shape.stride * o0 in
   if triangle then Triangle.normal_at s p.vertex o0 o1 o2
   else if k = Shape.plane then Plane.normal s p.geom o
-  else if k = Shape.box then Box.normal s p.geom o
+  else if k = Shape.box then begin
+    (* The root kept, for the face whose slab decides it. *)
+    s.near <- s.t;
+    Box.hit_normal s p.geom o
+  end
   else begin
     (* The surface hit, found again for the ray still in [s]: the same
        first crossing that [closest] kept. The normal is the solid's

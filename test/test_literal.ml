@@ -371,3 +371,37 @@ let exact_float_tests =
   ]
 
 let tests = tests @ exact_float_tests
+
+(* {1 The range of a camera ray is strict}
+
+   The camera (0, -0.75, 0.5) and the plane through (0.625, 0, 3.75) of
+   normal (-0.5, -1, 0.25): the ray of pixel (gx, gy) of a 16 x 16 canvas
+   meets it at t = -0.25 / (0.25 - gx / 32 - gy / 16): exactly 1 where
+   gx + 2 gy = 16, below 1 beyond, above 1 before. The document sees only
+   t > 1: the pixels at exactly 1 show the
+   background, as the kernel's do, whatever the plane's rounded t (the
+   oracle's is 1 + ulp at some of them). *)
+let range_tests =
+  [
+    Alcotest.test_case "a plane met at exactly t = 1 is not seen by the camera, one met just beyond is" `Quick (fun () ->
+        let s =
+          match
+            Helpers.of_string
+              "(canvas (width 16) (height 16)) (viewport (width 1) (height 1) (distance 1)) (camera (position 0 -0.75 0.5)) \
+               (background 0 0 255) (plane (point 0.625 0 3.75) (normal -0.5 -1 0.25) (color 255 0 0)) (light ambient (intensity 1))"
+          with
+          | Ok s -> s
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        let tr = Trace.create (Helpers.prepare ~skips:true s) in
+        List.iter
+          (fun (gx, gy, seen) ->
+            let c = Literal.pixel s gx gy in
+            Trace.pixel tr gx gy;
+            let expected = if seen then 255. else 0. in
+            Alcotest.(check (float 0.)) (Printf.sprintf "the oracle's red at (%d, %d)" gx gy) expected c.r;
+            Alcotest.(check (float 0.)) (Printf.sprintf "the kernel's red at (%d, %d)" gx gy) expected (Trace.red tr))
+          [ (2, 7, false); (4, 6, false); (6, 5, false); (3, 7, false); (1, 7, true); (2, 6, true); (0, 7, true) ]);
+  ]
+
+let tests = tests @ range_tests

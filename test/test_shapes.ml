@@ -197,8 +197,70 @@ let document_mode =
 
 let stats (s : Scene.t) = match Helpers.render s with Ok (_, st) -> st | Error (`Msg m) -> Alcotest.fail m
 
+(* The kernel's normal of the box [0, 1] x [0, 1] x [2, 3] where the ray
+   [origin + t direction] meets it at the root [pick]s of {!Box.roots},
+   and the oracle's ({!Literal_geometry.box_hit}) there. *)
+let box_normals ~origin ~direction pick =
+  let b = Box.v ~min:(Vec3.v 0. 0. 2.) ~max:(Vec3.v 1. 1. 3.) (Material.v Color.white) in
+  let g = Array.make 6 0. and s = Private.Scratch.create () in
+  Box.store b g 0;
+  Private.Scratch.set_ray s origin direction;
+  if not (Box.roots s g 0) then Alcotest.fail "the ray missed the box";
+  let h = Option.get (Private.Literal_geometry.box_hit b ~origin ~direction) in
+  let entering = pick = `Entry in
+  s.near <- (if entering then s.near else s.far);
+  Box.hit_normal s g 0;
+  (Vec3.v s.nx s.ny s.nz, if entering then h.enter_normal else h.exit_normal)
+
+let box_edge_normals () =
+  let v = Vec3.v in
+  List.iter
+    (fun (what, origin, direction, pick, expected) ->
+      let kernel, oracle = box_normals ~origin ~direction pick in
+      let show (n : Vec3.t) = Printf.sprintf "(%g, %g, %g)" n.x n.y n.z in
+      if kernel <> expected then Alcotest.failf "%s: the kernel's normal is %s, not %s" what (show kernel) (show expected);
+      if oracle <> expected then Alcotest.failf "%s: the oracle's normal is %s, not %s" what (show oracle) (show expected))
+    [
+      (* The nearest face to the hit point, the rule before, gave +y: a
+         face the ray slides along, never crosses. *)
+      ("a ray sliding along the top face enters by the front face", v 0.5 1. 0., v 0. 0. 1., `Entry, v 0. 0. (-1.));
+      ("a ray sliding along the top face leaves by the back face", v 0.5 1. 2.5, v 0. 0. 1., `Exit, v 0. 0. 1.);
+      ("a ray sliding along the left face leaves by the top face", v 0. 0.5 2.5, v 0. 1. 0., `Exit, v 0. 1. 0.);
+      (* Slabs entered or left at the same parameter: the first axis. *)
+      ("a ray entering through the edge of the left and bottom faces", v (-1.) (-1.) 2.5, v 1. 1. 0., `Entry, v (-1.) 0. 0.);
+      ("a ray leaving through the edge of the top and back faces", v 0.5 0.5 2.5, v 0. 1. 1., `Exit, v 0. 1. 0.);
+      ("a ray entering through the corner (0, 0, 2)", v (-1.) (-1.) 1., v 1. 1. 1., `Entry, v (-1.) 0. 0.);
+      (* Off the edges, the face crossed, as before. *)
+      ("a ray entering through the front face's middle", v 0.5 0.5 0., v 0.125 0. 1., `Entry, v 0. 0. (-1.));
+      ("a ray leaving through the right face", v 0.5 0.5 2.5, v 1. 0.25 0., `Exit, v 1. 0. 0.);
+    ]
+
+(* Through the kernel's tracer: the camera's ray (0, 0, 1) runs along the
+   box's top face and enters by its front face, lit head-on by a
+   directional light; the normal of the top face would leave it black. *)
+let box_edge_lit () =
+  let s =
+    match
+      Helpers.of_string
+        "(canvas (width 2) (height 2)) (viewport (width 1) (height 1) (distance 1)) (camera (position 0.5 1 0)) \
+         (background 0 0 0) (box (min 0 0 2) (max 1 1 3) (color 200 200 200)) \
+         (light directional (intensity 1) (direction 0 0 -1))"
+    with
+    | Ok s -> s
+    | Error (`Msg m) -> Alcotest.fail m
+  in
+  List.iter
+    (fun skips ->
+      let tr = Trace.create (Helpers.prepare ~skips s) in
+      Trace.pixel tr 0 0;
+      Alcotest.(check (float 0.)) (Printf.sprintf "red, with the skips %s" (if skips then "on" else "off")) 200. (Trace.red tr))
+    [ true; false ]
+
 let tests =
   [
+    Alcotest.test_case "a ray through a box's edge, or sliding along a face, gets the normal of the face whose slab decides its root" `Quick
+      box_edge_normals;
+    Alcotest.test_case "a camera ray along a box's top face is lit as its front face" `Quick box_edge_lit;
     Alcotest.test_case "a plane's root puts the exact point within 16 u (|P0 - O| + |t D|) of the plane, at any angle"
       `Quick (fun () ->
         let worst = ref 0. and cases = ref 0 in
