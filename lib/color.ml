@@ -27,6 +27,8 @@ let to_byte x =
     if frac > 0.5 then n + 1 else if frac < 0.5 then n else n + (n land 1)
 [@@inline]
 
+let to_rgb8 c = (to_byte c.r lsl 16) lor (to_byte c.g lsl 8) lor to_byte c.b
+
 let in_gamut c =
   let ok x = x >= 0. && x <= 255. in
   ok c.r && ok c.g && ok c.b

@@ -44,6 +44,13 @@ val to_byte : float -> int
     (as the CGFS demos' canvas stores it): an integer in [\[0, 255\]], [0]
     for NaN. This is the one place where a channel is clamped. *)
 
+val to_rgb8 : t -> int
+(** [to_rgb8 c] is the pixel the renderer stores for [c], packed in one
+    integer (no allocation): [(to_byte c.r lsl 16) lor (to_byte c.g lsl 8)
+    lor to_byte c.b], so [0xRRGGBB] in [\[0, 0xFFFFFF\]]; red is
+    [p lsr 16], green [(p lsr 8) land 0xFF], blue [p land 0xFF]. A NaN
+    channel gives [0], as {!to_byte}. *)
+
 val is_finite : t -> bool
 (** [is_finite c] is [true] iff no channel is NaN or infinite. *)
 

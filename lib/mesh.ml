@@ -93,6 +93,10 @@ let v ?(smooth = false) ?(scale = 1.) ?(translate = Vec3.zero) ?(source = "") ?(
           objects = !objects;
         }
 
+let of_obj ?smooth ?scale ?translate ?source (obj : Obj_file.t) material =
+  v ?smooth ?scale ?translate ?source ~skipped:(Obj_file.skipped_total obj) ~positions:obj.positions
+    ~triangles:obj.triangles ~normals:obj.normals ~triangle_normals:obj.triangle_normals material
+
 let triangle_count m = Array.length m.triangles / 3
 
 let vertex m k c =
@@ -148,12 +152,16 @@ let equal a b =
   && a.skipped = b.skipped
 
 let pp ppf m =
-  Format.fprintf ppf "<mesh %S: %d triangles, scale %s, translate %a%s>" m.source (triangle_count m)
+  let source = if m.source = "" then "built in code" else Printf.sprintf "%S" m.source in
+  Format.fprintf ppf "<mesh %s: %d triangles, scale %s, translate %a%s>" source (triangle_count m)
     (Float_text.to_string m.scale) Vec3.pp m.translate (if m.smooth then ", smooth" else "")
 
 (* The file's text is not kept: a mesh prints as the form that reads it
    again. *)
 let pp_form ppf m =
+  if m.source = "" then
+    Format.fprintf ppf "; a mesh built in code (%d triangle%s): no file to read it from@\n" (triangle_count m)
+      (if triangle_count m = 1 then "" else "s");
   Format.fprintf ppf "(mesh (file %S) (scale %s) (translate %a)%s %a)" m.source (Float_text.to_string m.scale)
     Vec3.pp_components m.translate
     (if m.smooth then " (smooth true)" else "")

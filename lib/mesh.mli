@@ -55,6 +55,21 @@ val v :
     no triangle. Degenerate triangles (their vertices on a line) are kept
     here and dropped by the kernel, which can never hit them. *)
 
+val of_obj :
+  ?smooth:bool ->
+  ?scale:float ->
+  ?translate:Vec3.t ->
+  ?source:string ->
+  Obj_file.t ->
+  Material.t ->
+  (t, [> `Msg of string ]) result
+(** [of_obj ~smooth ~scale ~translate ~source obj m] is the mesh of
+    [obj]'s arrays placed as {!v} places them, with [skipped] set to
+    {!Obj_file.skipped_total}[ obj]: the mesh the scene form
+    [(mesh (file source) (scale ...) (translate ...) (smooth ...))]
+    makes of its file, and the errors of {!v}. The placed positions are
+    a new array; the index and normal arrays are [obj]'s, shared. *)
+
 val triangle_count : t -> int
 (** [triangle_count m] is the number of triangles of [m]. *)
 
@@ -95,10 +110,14 @@ val equal : t -> t -> bool
     compared with [Float.equal]. *)
 
 val pp : Format.formatter -> t -> unit
-(** [pp ppf m] prints a summary of [m]: its source, triangle count and
-    placement. *)
+(** [pp ppf m] prints a summary of [m]: its source (quoted, or
+    [built in code] if it has none), triangle count and placement. *)
 
 val pp_form : Format.formatter -> t -> unit
 (** [pp_form ppf m] prints [m] as its form in the scene-file syntax: the
     form that reads its file again ([file], [scale], [translate],
-    [smooth] when true, the material's fields). *)
+    [smooth] when true, the material's fields). A mesh with no [source]
+    (built in code) has no file to read again and the syntax has no
+    inline mesh: it prints as [(mesh (file "") ...)] after a [;] comment
+    line that says so and gives its triangle count, which a scene file
+    refuses ("expected a file name") rather than reading a wrong mesh. *)

@@ -135,12 +135,36 @@ let valid_spheres spheres =
     else if ok i then go (i + 1)
     else
       let center = Vec3.v (Spheres.center_x spheres i) (Spheres.center_y spheres i) (Spheres.center_z spheres i) in
+      let named (`Msg m) = Error (`Msg (Printf.sprintf "object %d (sphere): %s" (i + 1) m)) in
       match (Sphere.check_center center, Sphere.check_radius (Spheres.radius spheres i)) with
-      | Error e, _ | _, Error e -> Error e
+      | Error e, _ | _, Error e -> named e
       | Ok _, Ok _ -> (
-          match checked.(Spheres.material_index spheres i) with Ok _ -> go (i + 1) | Error e -> Error e)
+          match checked.(Spheres.material_index spheres i) with Ok _ -> go (i + 1) | Error e -> named e)
   in
   go 0
+
+(* The shapes count on from the spheres, as in [Scene.pp]'s order. *)
+let valid_shapes ~first shapes =
+  let rec go k = function
+    | [] -> Ok ()
+    | sh :: rest -> (
+        match Shape.validate sh with
+        | Ok _ -> go (k + 1) rest
+        | Error (`Msg m) -> Error (`Msg (Printf.sprintf "object %d (%s): %s" k (Shape.name sh) m)))
+  in
+  go first shapes
+
+let light_kind = function Light.Ambient _ -> "ambient" | Point _ -> "point" | Directional _ -> "directional"
+
+let valid_lights lights =
+  let rec go k = function
+    | [] -> Ok ()
+    | l :: rest -> (
+        match Light.validate l with
+        | Ok _ -> go (k + 1) rest
+        | Error (`Msg m) -> Error (`Msg (Printf.sprintf "light %d (%s): %s" k (light_kind l) m)))
+  in
+  go 1 lights
 
 (* The sum of [leaf] over the leaves of a CSG solid, without recursion:
    trees may be deep. *)
@@ -164,12 +188,6 @@ let mesh_triangles shapes =
 
 let validate ?(limits = Limits.default) s =
   let ( let* ) = Result.bind in
-  let rec all check = function
-    | [] -> Ok ()
-    | x :: rest ->
-        let* _ = check x in
-        all check rest
-  in
   let result =
     let* () = Limits.check_canvas limits s.width s.height in
     let* _ = Viewport.validate s.viewport in
@@ -185,8 +203,8 @@ let validate ?(limits = Limits.default) s =
     let* _ = Limits.check_count limits `Lights (List.length s.lights) in
     let* _ = Limits.check_triangles limits (mesh_triangles s.shapes) in
     let* () = valid_spheres s.spheres in
-    let* () = all Light.validate s.lights in
-    all (fun sh -> Result.map ignore (Shape.validate sh)) s.shapes
+    let* () = valid_lights s.lights in
+    valid_shapes ~first:(Spheres.length s.spheres + 1) s.shapes
   in
   match result with Ok () -> Ok s | Error _ as e -> e
 

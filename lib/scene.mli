@@ -112,8 +112,19 @@ val validate : ?limits:Limits.t -> t -> (valid, [> `Msg of string ]) result
     (canvas, depth and the numbers of spheres, lights and triangles of
     meshes within [limits],
     default {!Limits.default}; {!Viewport.validate}, {!Camera.validate},
-    {!Sphere.validate}, {!Light.validate}), and otherwise
-    [Error (`Msg m)] with the first failure. *)
+    {!Sphere.validate}, {!Light.validate}, {!Shape.validate}), and
+    otherwise [Error (`Msg m)] with the first failure. A failure of one
+    object or light names it before the part's own message, e.g.
+    [object 3 (sphere): sphere radius must be > 0, got -1] or
+    [light 2 (point): ...]: objects are numbered from [1] in the order
+    [spheres] (their list order), then [shapes] (so the first shape is
+    object [n + 1] after [n] spheres), a mesh or a CSG solid counting as
+    one object; lights from [1] in the order of [lights]; the kind in
+    parentheses is the scene-file form ({!Shape.name}, or [ambient],
+    [point], [directional]). A scene read by {!Scene_file} has each object
+    checked where it is read, so its messages name [file:line:column]
+    instead. The error carries no structured location: [Error] stays
+    [`Msg] for every caller. *)
 
 val of_valid : valid -> t
 (** [of_valid v] is the scene [v]. *)

@@ -372,8 +372,7 @@ let mesh_solid ~where ~load ~add_triangles form_node nodes =
      the whole scene before this one is made. *)
   check form_node (add_triangles (Array.length obj.Obj_file.triangles / 3));
   check form_node
-    (Mesh.v ~smooth ~scale ~translate ~source:file ~skipped:(Obj_file.skipped_total obj) ~positions:obj.positions
-       ~triangles:obj.triangles ~normals:obj.normals ~triangle_normals:obj.triangle_normals m)
+(Mesh.of_obj ~smooth ~scale ~translate ~source:file obj m)
 
 let mesh ~where ~load ~add_triangles form_node nodes = Shape.Mesh (mesh_solid ~where ~load ~add_triangles form_node nodes)
 

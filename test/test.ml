@@ -23,6 +23,7 @@ let () =
       ("shading", Test_shading.tests);
       ("literal", Test_literal.tests);
       ("pattern", Test_pattern.tests);
+      ("scene", Test_scene.tests);
       ("scene_file", Test_scene_file.tests);
       ("sexp_scan", Test_sexp_scan.tests);
       ("sphere_scan", Test_sphere_scan.tests);

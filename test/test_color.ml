@@ -35,4 +35,17 @@ let tests =
     Helpers.qcheck "Trace's copy of to_byte agrees with Color.to_byte"
       QCheck.(float_range (-10.) 300.)
       (fun x -> Trace.to_byte x = Color.to_byte x && Trace.to_byte (Float.round x +. 0.5) = Color.to_byte (Float.round x +. 0.5));
+    Alcotest.test_case "to_rgb8 packs the bytes the renderer stores, clamped and rounded, as 0xRRGGBB" `Quick (fun () ->
+        (* 300 clamps to 255 = 0xFF; 127.5 rounds to even, 128 = 0x80; NaN is 0. *)
+        Alcotest.(check int) __LOC__ 0xFF8000 (Color.to_rgb8 (Color.v 300. 127.5 Float.nan));
+        (* -4 clamps to 0; 1.49 rounds to 1; 254.5 rounds to even, 254 = 0xFE. *)
+        Alcotest.(check int) __LOC__ 0x0001FE (Color.to_rgb8 (Color.v (-4.) 1.49 254.5));
+        let c = Color.v 12.3 200.7 99.5 in
+        let words = Gc.minor_words () in
+        let p = Color.to_rgb8 c in
+        let allocated = Gc.minor_words () -. words in
+        Alcotest.(check (list int)) __LOC__
+          [ Color.to_byte c.r; Color.to_byte c.g; Color.to_byte c.b ]
+          [ p lsr 16; (p lsr 8) land 0xFF; p land 0xFF ];
+        Alcotest.(check (float 0.)) "minor words allocated by to_rgb8" 0. allocated);
   ]

@@ -386,4 +386,47 @@ let tests =
            3 indices of a line; floats boxed between functions take 2. *)
         let per_line = words /. Float.of_int (2 * lines) in
         Alcotest.(check bool) (Printf.sprintf "%.2f minor words per line" per_line) true (per_line < 6.));
+    Alcotest.test_case "Mesh.of_obj makes the mesh the scene form (mesh (file ...) ...) makes" `Quick (fun () ->
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n# note\n" in
+        let obj = mesh text in
+        let load _ = Obj_file.of_string ~name:"m.obj" ~max_vertices:1000 ~max_triangles:1000 text in
+        let scene =
+          "(light ambient (intensity 1))\n\
+           (mesh (file \"m.obj\") (scale 2) (translate 1 2 3) (smooth true) (color 10 20 30) (specular 5))"
+        in
+        let from_file =
+          match Scene_file.of_string ~load_mesh:load scene with
+          | Error (`Msg e) -> Alcotest.failf "scene refused: %s" e
+          | Ok s -> (
+              match (Scene.of_valid s).shapes with
+              | [ Shape.Mesh m ] -> m
+              | _ -> Alcotest.fail "expected one mesh")
+        in
+        let m = Material.v ~specular:5. (Color.v 10. 20. 30.) in
+        match Mesh.of_obj ~smooth:true ~scale:2. ~translate:(Vec3.v 1. 2. 3.) ~source:"m.obj" obj m with
+        | Error (`Msg e) -> Alcotest.failf "of_obj refused: %s" e
+        | Ok code ->
+            Alcotest.(check bool) (Format.asprintf "%a = %a" Mesh.pp code Mesh.pp from_file) true (Mesh.equal code from_file);
+            (* Corner 1 of triangle 0 is vertex (1, 0, 0): 2 * 1 + 1 = 3, 2 * 0 + 2 = 2, 2 * 0 + 3 = 3. *)
+            Alcotest.(check bool) __LOC__ true (Vec3.equal (Mesh.vertex code 0 1) (Vec3.v 3. 2. 3.));
+            Alcotest.(check int) "the comment is counted as skipped" 1 code.skipped);
+    Alcotest.test_case "Mesh.of_obj refuses a scale of 0 with a message" `Quick (fun () ->
+        let obj = mesh "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n" in
+        match Mesh.of_obj ~scale:0. obj (Material.v Color.white) with
+        | Ok _ -> Alcotest.fail "accepted a scale of 0"
+        | Error (`Msg e) -> Alcotest.(check string) __LOC__ "mesh scale must be finite and > 0, got 0" e);
+    Alcotest.test_case "a mesh built in code prints as a form a scene file refuses, after a comment that says why" `Quick
+      (fun () ->
+        let obj = mesh "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n" in
+        let m = match Mesh.of_obj obj (Material.v Color.white) with Ok m -> m | Error (`Msg e) -> Alcotest.fail e in
+        let printed = Format.asprintf "%a" Mesh.pp_form m in
+        let first = List.hd (String.split_on_char '\n' printed) in
+        Alcotest.(check string) __LOC__ "; a mesh built in code (1 triangle): no file to read it from" first;
+        Alcotest.(check string) __LOC__ "<mesh built in code: 1 triangles, scale 1, translate (0 0 0)>"
+          (Format.asprintf "%a" Mesh.pp m);
+        match Scene_file.of_string ("(light ambient (intensity 1))\n" ^ printed) with
+        | Ok _ -> Alcotest.fail "a scene file read a mesh with no file"
+        | Error (`Msg e) ->
+            let has = Astring_free.contains in
+            Alcotest.(check bool) e true (has e "expected a file name"));
   ]

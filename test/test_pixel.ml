@@ -66,4 +66,39 @@ let tests =
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
               "adaptive sampling needs an odd number of samples >= 3, whose grid has the pixel's centre in its middle, got 2" m);
+    Alcotest.test_case "with samples, a pixel's colour is Render.image's pixel with the same samples (cgfs.scene)" `Quick
+      (fun () ->
+        let cgfs = Helpers.valid (Helpers.load_scene "cgfs.scene") in
+        (* Every pixel of a 48 x 36 canvas, an even and an odd grid. *)
+        let small = match Scene.override ~width:48 ~height:36 cgfs with Ok v -> v | Error (`Msg m) -> Alcotest.fail m in
+        List.iter
+          (fun samples ->
+            let img = match Render.image ~samples small with Ok (i, _) -> i | Error (`Msg m) -> Alcotest.fail m in
+            match first_difference (Pixel.v ~samples small) img with
+            | None -> ()
+            | Some (x, y) -> Alcotest.failf "%dx%d samples: pixel (%d, %d) differs" samples samples x y)
+          [ 2; 3 ];
+        (* A few pixels of the full canvas, on the spheres' edges and
+           reflections, against Render.image of the whole image. *)
+        let samples = 4 in
+        let img = match Render.image ~samples cgfs with Ok (i, _) -> i | Error (`Msg m) -> Alcotest.fail m in
+        let p = Pixel.v ~samples cgfs in
+        List.iter
+          (fun (x, y) ->
+            let c = Pixel.color p x y in
+            let rgb = Color.to_rgb8 c in
+            Alcotest.(check (triple int int int))
+              (Printf.sprintf "pixel (%d, %d)" x y)
+              (Image.get img x y)
+              (rgb lsr 16, (rgb lsr 8) land 0xFF, rgb land 0xFF))
+          [ (0, 0); (300, 300); (250, 320); (380, 250); (430, 300); (200, 400); (599, 599) ]);
+    Alcotest.test_case "Pixel.v refuses a grid of 0 or more than Sampling.max_samples samples" `Quick (fun () ->
+        let v = Helpers.valid (Helpers.load_scene "cgfs.scene") in
+        List.iter
+          (fun samples ->
+            match Pixel.v ~samples v with
+            | _ -> Alcotest.failf "accepted %d samples" samples
+            | exception Invalid_argument _ -> ())
+          [ 0; Sampling.max_samples + 1 ];
+        Alcotest.(check int) __LOC__ 5 (Pixel.samples (Pixel.v ~samples:5 v)));
   ]
