@@ -261,6 +261,7 @@ type table = {
   intervals : int;
   depth : int;  (** The deepest hierarchy of a mesh leaf. *)
   slot_bits : int;  (** Of a surface's number: see [bits_for]. *)
+  surface_id : int array;  (** [sf lsl slot_bits] for each surface [sf]: a load, not a shift, per leaf test. *)
 }
 
 type builder = {
@@ -386,6 +387,7 @@ let table b =
     intervals = b.n_intervals;
     depth = b.max_depth;
     slot_bits;
+    surface_id = Array.init (Array.length surfaces) (fun sf -> sf lsl slot_bits);
   }
 
 let empty = table (builder ())
@@ -553,7 +555,7 @@ let mesh_intervals tb w (s : Scratch.t) node base =
               Triangle.crosses_at s g (Array.unsafe_get corners c) (Array.unsafe_get corners (c + 1))
                 (Array.unsafe_get corners (c + 2)) kx ky kz
             then begin
-              insert w base !n s.near ((sf lsl tb.slot_bits) lor slot);
+              insert w base !n s.near (Array.unsafe_get tb.surface_id sf lor slot);
               incr n
             end
           done
@@ -658,12 +660,12 @@ let rec eval tb w (s : Scratch.t) node =
   if k = leaf_sphere then begin
     w.tests <- w.tests + 1;
     let sf = Array.unsafe_get tb.left node in
-    leaf_interval w s node base (sf lsl tb.slot_bits) (sphere_roots s tb.geom (stride * sf))
+    leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (sphere_roots s tb.geom (stride * sf))
   end
   else if k = leaf_box then begin
     w.tests <- w.tests + 1;
     let sf = Array.unsafe_get tb.left node in
-    leaf_interval w s node base (sf lsl tb.slot_bits) (Box.roots s tb.geom (stride * sf))
+    leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (Box.roots s tb.geom (stride * sf))
   end
   else if k = leaf_mesh then mesh_intervals tb w s node base
   else begin
