@@ -67,16 +67,13 @@ let () =
   | Ok m -> Printf.printf "obj %d triangles\n" (Raytrace.Obj_file.triangle_count m)
   | Error (`Msg m) -> Printf.printf "obj %s\n" m
 
-(* A union of 4096 spheres in a spiral, on 16 x 16 pixels: the surfaces'
-   numbers in the kernel's intervals once wrapped JavaScript's 32-bit
-   integers past 256 leaves, and the page lost spheres. *)
-let () =
-  let b = Buffer.create (1 lsl 18) in
+(* The text of [header], then a balanced union of the [n] spheres that
+   [sphere b i] writes, rendered: its image's digest and its tests, or the
+   message, after [what]. *)
+let balanced_union ~what ~file header n sphere =
+  let b = Buffer.create (n * 64) in
   let rec tree lo hi =
-    if hi - lo = 1 then begin
-      let a = Float.of_int lo *. 0.01 and r = 0.2 +. (Float.of_int lo *. 1e-4) in
-      Printf.bprintf b "(sphere (center %.4f %.4f 4) (radius 0.05) (color 255 0 0))" (r *. cos a) (r *. sin a)
-    end
+    if hi - lo = 1 then sphere b lo
     else begin
       Buffer.add_string b "(csg union ";
       tree lo ((lo + hi) / 2);
@@ -85,18 +82,26 @@ let () =
       Buffer.add_char b ')'
     end
   in
-  Buffer.add_string b "(canvas (width 16) (height 16)) (camera (position 0 0 -3)) (light ambient (intensity 0.3))\n\
-                       (light point (intensity 0.7) (position 2 3 -4))\n";
-  tree 0 4096;
-  match Raytrace.Scene_file.of_string ~file:"spiral.scene" (Buffer.contents b) with
-  | Error (`Msg m) -> Printf.printf "csg spiral of 4096 spheres: %s\n" m
+  Buffer.add_string b header;
+  tree 0 n;
+  match Raytrace.Scene_file.of_string ~file (Buffer.contents b) with
+  | Error (`Msg m) -> Printf.printf "%s: %s\n" what m
   | Ok scene -> (
       match Raytrace.Render.image scene with
-      | Error (`Msg m) -> Printf.printf "csg spiral of 4096 spheres: %s\n" m
+      | Error (`Msg m) -> Printf.printf "%s: %s\n" what m
       | Ok (img, stats) ->
-          Printf.printf "csg spiral of 4096 spheres: md5 %s, %d tests\n"
-            (Digest.to_hex (Digest.string (Raytrace.Ppm.to_string img)))
-            stats.tests)
+          Printf.printf "%s: md5 %s, %d tests\n" what (Digest.to_hex (Digest.string (Raytrace.Ppm.to_string img))) stats.tests)
+
+(* A union of 4096 spheres in a spiral, on 16 x 16 pixels: the surfaces'
+   numbers in the kernel's intervals once wrapped JavaScript's 32-bit
+   integers past 256 leaves, and the page lost spheres. *)
+let () =
+  balanced_union ~what:"csg spiral of 4096 spheres" ~file:"spiral.scene"
+    "(canvas (width 16) (height 16)) (camera (position 0 0 -3)) (light ambient (intensity 0.3))\n\
+     (light point (intensity 0.7) (position 2 3 -4))\n"
+    4096 (fun b i ->
+      let a = Float.of_int i *. 0.01 and r = 0.2 +. (Float.of_int i *. 1e-4) in
+      Printf.bprintf b "(sphere (center %.4f %.4f 4) (radius 0.05) (color 255 0 0))" (r *. cos a) (r *. sin a))
 
 (* CSG trees as big as the limits let a scene file make, parsed and
    rendered: a balanced union of 16384 spheres (the web page threw
@@ -106,29 +111,10 @@ let () =
    as deep as the nesting). JavaScript's stack is far smaller than the
    native one: both builds must print the same lines. *)
 let () =
-  let b = Buffer.create (1 lsl 20) in
-  let rec tree lo hi =
-    if hi - lo = 1 then
-      Printf.bprintf b "(sphere (center %d %d 40) (radius 0.4) (color 255 0 0))" ((lo mod 128) - 64) ((lo / 128) - 64)
-    else begin
-      Buffer.add_string b "(csg union ";
-      tree lo ((lo + hi) / 2);
-      Buffer.add_char b ' ';
-      tree ((lo + hi) / 2) hi;
-      Buffer.add_char b ')'
-    end
-  in
-  Buffer.add_string b "(canvas (width 2) (height 2)) (viewport (width 4) (height 4) (distance 1)) (light ambient (intensity 1))\n";
-  tree 0 16384;
-  (match Raytrace.Scene_file.of_string ~file:"csg.scene" (Buffer.contents b) with
-  | Error (`Msg m) -> Printf.printf "csg of 16384 spheres: %s\n" m
-  | Ok scene -> (
-      match Raytrace.Render.image scene with
-      | Error (`Msg m) -> Printf.printf "csg of 16384 spheres: %s\n" m
-      | Ok (img, stats) ->
-          Printf.printf "csg of 16384 spheres: md5 %s, %d tests\n"
-            (Digest.to_hex (Digest.string (Raytrace.Ppm.to_string img)))
-            stats.tests));
+  balanced_union ~what:"csg of 16384 spheres" ~file:"csg.scene"
+    "(canvas (width 2) (height 2)) (viewport (width 4) (height 4) (distance 1)) (light ambient (intensity 1))\n"
+    16384 (fun b i ->
+      Printf.bprintf b "(sphere (center %d %d 40) (radius 0.4) (color 255 0 0))" ((i mod 128) - 64) ((i / 128) - 64));
   let n = 100_000 in
   let b = Buffer.create (64 * n) in
   Buffer.add_string b "(light ambient (intensity 1))\n";
