@@ -1,4 +1,4 @@
-(* Writes a generated test mesh (lib/mesh_gen.ml) as Wavefront OBJ, so
+(* Writes a generated test mesh (lib/text/mesh_gen.ml) as Wavefront OBJ, so
    that tests and benchmarks make their meshes rather than ship them.
 
    dune exec bench/gen.exe -- knot --segments 31250 --sides 16 -o knot.obj   (1M triangles)
