@@ -76,9 +76,9 @@ type t = {
 let bvh_threshold = 8
 
 (* Above this many objects, preparing collects its garbage at two points
-   (see [prepare]): each costs a marking of the live heap, 6% of the
-   instructions of loading and preparing grid:100000, where it saves
-   little. *)
+   ([collect]): each costs a marking of the live heap, which below it
+   saves little (docs/performance.md, "Numbers moved out of prepare's
+   comments"). *)
 let big_scene = 1 lsl 18
 let ambient = 0
 let point = 1
@@ -149,7 +149,7 @@ let object_count (s : Scene.t) =
 (* The most [cos ** s] can be: 1 for an exact cosine, but the tracer's
    cosine, a quotient of rounded terms, may exceed 1 by a few ulps (about
    10 u at most, u = 2^-53, by the rounding of a 3-term dot product, two
-   norms and a quotient; 6 u measured), and for a huge exponent
+   norms and a quotient), and for a huge exponent
    [(1 + 16 u) ** s] is far above 1 (about 7000 for s = 1e16, infinite
    from about 1e18 on). *)
 let specular_bound s = if s = Sphere.matte then 0. else Float.pow (1. +. (8. *. epsilon_float)) s
@@ -291,10 +291,10 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres =
   in
   let hash k = Int64.to_int (mix (mix (mix (mix 0L cx.(k)) cy.(k)) cz.(k)) radius.(k)) in
   let same i k = cx.(i) = cx.(k) && cy.(i) = cy.(k) && cz.(i) = cz.(k) && radius.(i) = radius.(k) in
-  (* A hash, not a sort: most scenes have no twins, and sorting ten
-     thousand spheres cost more than the rest of the preparation. One
-     table over a million spheres made every look-up a cache and TLB miss
-     (0.15 s): the spheres are first sorted by the hash's low bits into
+  (* A hash, not a sort: most scenes have no twins, and sorting the
+     spheres cost more than the rest of the preparation. One table over a
+     million spheres made every look-up a cache and TLB miss: the
+     spheres are first sorted by the hash's low bits into
      buckets of about a thousand (two passes in order, a counting sort),
      then each bucket goes through a table that stays in the cache,
      keeping each entry's whole hash, so that only equal hashes compare
@@ -386,10 +386,10 @@ let twin_table pairs n =
    [floats] and [ints], [index] a permutation of [0 .. length a - 1]: each
    array gathered into [scratch], of at least as many floats, then copied
    back. The loads are independent: following the permutation's cycles in
-   place made each wait for the one before, 4 times slower for a million
-   spheres. The ints (below 2^53: exact as floats) go through the same
-   scratch: an int array of a million more would raise the peak by 8 MB,
-   and its making (filled twice) start a slice of the major collection. *)
+   place made each wait for the one before, several times slower. The
+   ints (below 2^53: exact as floats) go through the same scratch: an int
+   array of a million more would raise the peak by 8 MB, and its making
+   (filled twice) start a slice of the major collection. *)
 let gather_in_place index ~scratch:fs ~(floats : float array array) ~(ints : int array array) =
   let n = Array.length index in
   if Array.length fs < n then invalid_arg "Prepared.gather_in_place: scratch";
@@ -937,8 +937,8 @@ let hierarchy ?beside ~reuse pool boxes =
   | Some (x0, y0, z0, x1, y1, z1) ->
       (* Leaves of up to 16, where the surface area heuristic finds no
          cheaper split: a mesh's thin triangles overlap, and below 16 more
-         boxes buy no fewer triangle tests (docs/performance.md, "Leaves
-         of 16"). The grids of spheres build the same trees as with 4.
+         boxes buy no fewer triangle tests (docs/performance.md, issue
+         15's fifth round). The grids of spheres build the same trees as with 4.
          The image never depends on the tree (see [Trace.better]). *)
       let b = Bvh.build_boxes ?beside ~leaf_size:16 ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
       if reuse then pool.spare <- [ x0; y0; z0; x1; y1; z1 ];
@@ -1380,9 +1380,9 @@ let prepare_scene ~skips ?beside scene =
 (* The major heap grows by 256 MB of address space at a time while a big
    scene is prepared, not by 15% of its size: the pieces freed between
    the default's many chunks are each smaller than an array of a million
-   floats, so that every such array took new memory (grid:1000000 peaked
-   at 247 MB, 208 MB with this). A chunk costs memory only where it is
-   written. *)
+   floats, so that every such array took new memory (docs/performance.md,
+   "Numbers moved out of prepare's comments"). A chunk costs memory only
+   where it is written. *)
 let big_increment = 32 * 1024 * 1024
 
 let prepare ?(skips = true) ?beside scene =
