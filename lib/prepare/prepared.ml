@@ -145,7 +145,6 @@ let object_count (s : Scene.t) =
     (fun a sh -> match sh with Shape.Mesh m -> a + Mesh.triangle_count m | _ -> a + 1)
     (Spheres.length s.spheres) s.shapes
 
-
 (* The most [cos ** s] can be: 1 for an exact cosine, but the tracer's
    cosine, a quotient of rounded terms, may exceed 1 by a few ulps (about
    10 u at most, u = 2^-53, by the rounding of a 3-term dot product, two
@@ -555,7 +554,6 @@ let indices_where n count p =
   done;
   a
 
-
 (* {1 The steps of [prepare_scene]}
 
    Each does one job, in the order [prepare_scene] calls them. Per-object
@@ -793,7 +791,6 @@ let shape_objects o r v s okind omat c =
        ~mesh:(mesh_objects r v runs okind omat));
   runs.normal_base
 
-
 (* {2 Twins and the hierarchy} *)
 
 (* The objects kept (each sphere but the twins of earlier ones) that are
@@ -1023,7 +1020,6 @@ let slots o index okind omat twin_of =
   Array.iteri (fun k first -> if first <> k then slot.(k) <- slot.(first)) twin_of;
   { index; slot; kind; material; in_place }
 
-
 (* {2 Geometry, in slot order} *)
 
 type geometry = {
@@ -1192,7 +1188,6 @@ let camera_constants pool (eye : Vec3.t) (cx, cy, cz, radius) =
     primary_k3.(i) <- ((x *. x) +. (y *. y) +. (z *. z)) -. (r *. r)
   done;
   { cx; cy; cz; radius; r2; primary_ocx; primary_ocy; primary_ocz; primary_k3 }
-
 
 (* {2 The prepared scene} *)
 
@@ -1374,8 +1369,6 @@ let prepare_scene ~skips ?beside scene =
   in
   assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder) sl g
     sp ~vertex ~vsource ~vnormal
-
-
 
 (* The major heap grows by 256 MB of address space at a time while a big
    scene is prepared, not by 15% of its size: the pieces freed between
