@@ -493,22 +493,40 @@ type build = {
 
 let start_build ~leaf_size ~beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 =
   let n = Array.length x0 in
+  (* Made one after the other, not in the record's fields (evaluated in
+     no set order): the same order of big allocations as before the build
+     was cut into steps, so that the collector's slices fall where they
+     fell. *)
+  let order = Array.init n Fun.id in
   (* Up to [1.04 n] nodes for a wall of spheres, [0.6 n] for a mesh: room
      for [n + n / 16] from the start, not grown (a copy) in most cases. *)
   let cap = n + (n / 16) + 16 in
+  let link = Array.make cap 0 in
+  let tag = Array.make cap 0 in
+  let frames = Array.make (block * 2 * 48) 0. in
+  let counts = Array.make (bins * 2 * 48) 0 in
+  let params = Array.make 4 0. in
+  let bin_at = Bytes.create n in
+  let prefix = Array.make (6 * bins) 0. in
+  let suffix = Array.make (6 * bins) 0. in
   {
-    x0; y0; z0; x1; y1; z1;
-    order = Array.init n Fun.id;
-    t = { size = 0; link = Array.make cap 0; tag = Array.make cap 0 };
+    x0;
+    y0;
+    z0;
+    x1;
+    y1;
+    z1;
+    order;
+    t = { size = 0; link; tag };
     leaf_size = max 1 leaf_size;
     beside;
     n_all = n;
-    frames = Array.make (block * 2 * 48) 0.;
-    counts = Array.make (bins * 2 * 48) 0;
-    params = Array.make 4 0.;
-    bin_at = Bytes.create n;
-    prefix = Array.make (6 * bins) 0.;
-    suffix = Array.make (6 * bins) 0.;
+    frames;
+    counts;
+    params;
+    bin_at;
+    prefix;
+    suffix;
     depth = 0;
     alone = true;
     built_here = false;
