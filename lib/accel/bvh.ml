@@ -454,335 +454,411 @@ type beside = {
    objects, in the order it left them, and its leaves' boxes come in the
    floats shared with the caller ([beside.floats]): read in order from
    there, where the caller once followed a permutation through 7 arrays,
-   a cache miss at nearly every step (70 ms for half a million
-   objects). *)
+   a cache miss at nearly every step. *)
 type part = { tags : Bytes.t; part_depth : int }
+
+(* A build in progress: the slots' boxes and objects, which move together
+   (so that every pass over a node's objects reads memory in order), the
+   nodes made so far, and the blocks of the nodes being built. *)
+type build = {
+  x0 : float array;
+  y0 : float array;
+  z0 : float array;
+  x1 : float array;
+  y1 : float array;
+  z1 : float array;
+  order : int array;
+  t : shape;
+  leaf_size : int;
+  beside : beside option;
+  n_all : int;
+  mutable frames : float array;
+  mutable counts : int array;
+      (* The blocks of the nodes being built ({!block}): a node's
+         children's go at blocks [2 level] and [2 level + 1], the right
+         child's waiting there while the left's subtree is built above;
+         the root's at 0. *)
+  params : float array;
+  bin_at : Bytes.t;
+      (* Each slot's bin in its node, from the binning to the partition
+         that follows; it moves with the slot. *)
+  prefix : float array;
+  suffix : float array;  (* The boxes of bins [0 .. b] and of bins [b .. bins - 1], at [6 b]. *)
+  mutable depth : int;
+  mutable alone : bool;  (* No subtree has been sent to be built beside. *)
+  mutable built_here : bool;  (* [beside] ran [part] in this process. *)
+  mutable mine : gathered;
+  mutable theirs : gathered;
+}
+
+let start_build ~leaf_size ~beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 =
+  let n = Array.length x0 in
+  (* Made one after the other, not in the record's fields (evaluated in
+     no set order): the same order of big allocations as before the build
+     was cut into steps, so that the collector's slices fall where they
+     fell. *)
+  let order = Array.init n Fun.id in
+  (* Up to [1.04 n] nodes for a wall of spheres, [0.6 n] for a mesh: room
+     for [n + n / 16] from the start, not grown (a copy) in most cases. *)
+  let cap = n + (n / 16) + 16 in
+  let link = Array.make cap 0 in
+  let tag = Array.make cap 0 in
+  let frames = Array.make (block * 2 * 48) 0. in
+  let counts = Array.make (bins * 2 * 48) 0 in
+  let params = Array.make 4 0. in
+  let bin_at = Bytes.create n in
+  let prefix = Array.make (6 * bins) 0. in
+  let suffix = Array.make (6 * bins) 0. in
+  {
+    x0;
+    y0;
+    z0;
+    x1;
+    y1;
+    z1;
+    order;
+    t = { size = 0; link; tag };
+    leaf_size = max 1 leaf_size;
+    beside;
+    n_all = n;
+    frames;
+    counts;
+    params;
+    bin_at;
+    prefix;
+    suffix;
+    depth = 0;
+    alone = true;
+    built_here = false;
+    mine = none_gathered;
+    theirs = none_gathered;
+  }
+
+(* Hoare's selection on the (doubled) centers [ka + kb]: the slot of rank
+   [k] at [k], smaller ones before, larger after. *)
+let select b (ka : float array) (kb : float array) lo hi k =
+  let x0 = b.x0 and y0 = b.y0 and z0 = b.z0 and x1 = b.x1 and y1 = b.y1 and z1 = b.z1 and order = b.order in
+  let[@inline] swap i j = swap_slots x0 y0 z0 x1 y1 z1 order i j in
+  let key s = Array.unsafe_get ka s +. Array.unsafe_get kb s in
+  let lo = ref lo and hi = ref (hi - 1) in
+  while !lo < !hi do
+    let pivot = key ((!lo + !hi) / 2) in
+    let i = ref !lo and j = ref !hi in
+    while !i <= !j do
+      while key !i < pivot do incr i done;
+      while key !j > pivot do decr j done;
+      if !i <= !j then begin
+        swap !i !j;
+        incr i;
+        decr j
+      end
+    done;
+    if k <= !j then hi := !j else if k >= !i then lo := !i else lo := !hi
+  done
+
+let grow a z =
+  let b = Array.make (2 * Array.length a) z in
+  Array.blit a 0 b 0 (Array.length a);
+  b
+
+(* The first of the blocks of the children of a node at [level], the
+   blocks grown to hold them. *)
+let frame b level =
+  if (2 * level) + 2 > Array.length b.counts / bins then begin
+    b.frames <- grow b.frames 0.;
+    b.counts <- grow b.counts 0
+  end;
+  2 * level
+
+(* [bounds_of b lo hi r o] writes the bounds of slots [lo .. hi - 1] to [r] at [o]. *)
+let bounds_of b lo hi (r : float array) o =
+  let lows = [| b.x0; b.y0; b.z0 |] and highs = [| b.x1; b.y1; b.z1 |] in
+  for a = 0 to 2 do
+    let l = lows.(a) and h = highs.(a) in
+    let b0 = ref infinity and b1 = ref neg_infinity and m0 = ref infinity and m1 = ref neg_infinity in
+    for s = lo to hi - 1 do
+      let x = Array.unsafe_get l s and y = Array.unsafe_get h s in
+      b0 := fmin !b0 x;
+      b1 := fmax !b1 y;
+      let c = x +. y in
+      m0 := fmin !m0 c;
+      m1 := fmax !m1 c
+    done;
+    r.(o + a) <- !b0;
+    r.(o + a + 3) <- !b1;
+    r.(o + a + 6) <- !m0;
+    r.(o + a + 9) <- !m1
+  done
+
+let area (a : float array) b =
+  let o = 6 * b in
+  half_area (Array.unsafe_get a o) (Array.unsafe_get a (o + 1)) (Array.unsafe_get a (o + 2))
+    (Array.unsafe_get a (o + 3)) (Array.unsafe_get a (o + 4)) (Array.unsafe_get a (o + 5))
+
+(* [put_box b box at] writes the box of 6 floats [box] to slot [at]. *)
+let put_box b (box : float array) at =
+  b.x0.(at) <- box.(0);
+  b.y0.(at) <- box.(1);
+  b.z0.(at) <- box.(2);
+  b.x1.(at) <- box.(3);
+  b.y1.(at) <- box.(4);
+  b.z1.(at) <- box.(5)
+
+(* Gathers the boxes of the leaves of nodes [first .. t.size - 1], over
+   slots from [at], into slots [at ..], in order ({!gathered}): the
+   leaves' slots are read before a later leaf's box is written, which
+   goes no further than its first slot. *)
+let gather b first at =
+  let t = b.t in
+  let box = Array.make 6 0. and j = ref 0 in
+  for c = first to t.size - 1 do
+    let g = t.tag.(c) in
+    if g < 0 then begin
+      leaf_box b.x0 b.y0 b.z0 b.x1 b.y1 b.z1 t.link.(c) (-g) box 0;
+      put_box b box (at + !j);
+      incr j
+    end
+  done;
+  { first; last = t.size; at; leaves = !j }
+
+(* The axis of the node whose block is [p] in [fr] along which its
+   centers' bounds are longest. *)
+let widest_axis (fr : float array) p =
+  let o = p * block in
+  let ex = Array.unsafe_get fr (o + 9) -. Array.unsafe_get fr (o + 6) in
+  let ey = Array.unsafe_get fr (o + 10) -. Array.unsafe_get fr (o + 7) in
+  let ez = Array.unsafe_get fr (o + 11) -. Array.unsafe_get fr (o + 8) in
+  if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2
+
+(* The split of the node over slots [lo .. hi - 1], whose block is [p] in
+   [fr] and [cn], along axis [a], between the [nbins] bins that minimises
+   the SAH cost A_left n_left + A_right n_right (in units of this box's
+   area): [-2] a leaf, [-1] the median (the centers are together), else
+   the first slot of the right child, the children's blocks [f] and
+   [f + 1] filled: their boxes from the bins on each side, their centers'
+   bounds from the bins' centers, their bins filled as the partition moves
+   each object to its side. *)
+let sah_split b lo hi (fr : float array) (cn : int array) p a nbins f =
+  let o = p * block and co = p * bins in
+  let n = hi - lo in
+  let ext = Array.unsafe_get fr (o + 9 + a) -. Array.unsafe_get fr (o + 6 + a) in
+  let bins = nbins in
+  if n <= 1 then -2
+  else if ext > 0. then begin
+    let prefix = b.prefix and suffix = b.suffix in
+    running_boxes cn co fr (o + boxes_at) 0 (bins - 2) prefix;
+    running_boxes cn co fr (o + boxes_at) (bins - 1) 1 suffix;
+    let best = ref (-1) and best_cost = ref infinity and right_n = ref 0 and left_n = ref n in
+    for bin = bins - 1 downto 1 do
+      (* [bin < bins <= 16]: in the block's counts (checked by [node]). *)
+      right_n := !right_n + Array.unsafe_get cn (co + bin);
+      left_n := !left_n - Array.unsafe_get cn (co + bin);
+      if !left_n > 0 && !right_n > 0 then begin
+        let cost = (area prefix (bin - 1) *. Float.of_int !left_n) +. (area suffix bin *. Float.of_int !right_n) in
+        if cost < !best_cost then begin
+          best_cost := cost;
+          best := bin - 1
+        end
+      end
+    done;
+    let parent =
+      half_area (Array.unsafe_get fr o) (Array.unsafe_get fr (o + 1)) (Array.unsafe_get fr (o + 2))
+        (Array.unsafe_get fr (o + 3)) (Array.unsafe_get fr (o + 4)) (Array.unsafe_get fr (o + 5))
+    in
+    (* A leaf costs n tests; a split, one box test plus the expected
+       tests below it (areas relative to this box's). *)
+    if !best < 0 then if n <= b.leaf_size then -2 else -1
+    else if n <= b.leaf_size && Float.of_int n *. parent <= parent +. !best_cost then -2
+    else begin
+      let best = !best in
+      let left_n = ref 0 in
+      for bin = 0 to best do
+        left_n := !left_n + cn.(co + bin)
+      done;
+      let l = f and r = f + 1 in
+      let fr' = b.frames and cn' = b.counts and params = b.params in
+      copy6 prefix (6 * best) fr' (l * block);
+      union cn co fr (o + centers_at) 0 best fr' ((l * block) + 6);
+      copy6 suffix (6 * (best + 1)) fr' (r * block);
+      union cn co fr (o + centers_at) (best + 1) (bins - 1) fr' ((r * block) + 6);
+      let lg = binning fr' l !left_n params 0 and rg = binning fr' r (n - !left_n) params 2 in
+      reset_bins fr' cn' l (lg lsr 2);
+      reset_bins fr' cn' r (rg lsr 2);
+      partition_bins b.x0 b.y0 b.z0 b.x1 b.y1 b.z1 b.order b.bin_at best lo hi params lg rg l r fr' cn'
+    end
+  end
+  else if n <= b.leaf_size then -2
+  else -1
+
+(* The split at the median of the centers along axis [a] (all in one
+   bin), the children's blocks [f] and [f + 1] filled. *)
+let median_split b a lo hi f =
+  let ka = match a with 0 -> b.x0 | 1 -> b.y0 | _ -> b.z0 in
+  let kb = match a with 0 -> b.x1 | 1 -> b.y1 | _ -> b.z1 in
+  let m = (lo + hi) / 2 in
+  select b ka kb lo hi m;
+  bounds_of b lo m b.frames (f * block);
+  bounds_of b m hi b.frames ((f + 1) * block);
+  bin_slots b.x0 b.y0 b.z0 b.x1 b.y1 b.z1 b.bin_at lo m b.params b.frames b.counts f;
+  bin_slots b.x0 b.y0 b.z0 b.x1 b.y1 b.z1 b.bin_at m hi b.params b.frames b.counts (f + 1);
+  m
+
+(* Whether the right child over slots [split .. hi - 1] of a node over
+   [lo .. hi - 1] is built beside, and with what: once, for two children
+   of a quarter of the objects or more, so that neither process has much
+   more to do than the other. *)
+let share_right b lo split hi =
+  match b.beside with
+  | Some s
+    when b.alone && hi - split >= s.min_objects && 4 * (hi - split) >= b.n_all && 4 * (split - lo) >= b.n_all
+         && b.leaf_size <= 127 && hi - split <= 0x7fff_ffff -> (
+      b.alone <- false;
+      match s.floats (7 * (hi - split)) with
+      | sh, reserve -> Some (s, sh, reserve)
+      | exception (Failure _ | Out_of_memory) -> (* Built here, as without [beside]. *) None)
+  | _ -> None
+
+(* Appends the nodes of the part over slots [lo .. hi - 1] and moves the
+   slots' objects as that part's build did, from [sh]: the same tree as if
+   it had been built here, its leaves' boxes left in [sh] gathered into
+   its slots for [finish]. *)
+let graft b lo hi p (sh : floats) =
+  let t = b.t in
+  let first = t.size and nodes = Bytes.length p.tags in
+  for c = 0 to nodes - 1 do
+    t.tag.(add_node t) <- Bytes.get_int8 p.tags c
+  done;
+  let link = t.link and tag = t.tag in
+  (* The nodes are depth first: each subtree's size from the last node
+     back (children after their parent), in [link]; then the links, in
+     order, an inner node's from its left child's size, not yet
+     overwritten, a leaf's from the slots of the leaves before it. *)
+  for k = first + nodes - 1 downto first do
+    if tag.(k) < 0 then link.(k) <- 1
+    else
+      let l = link.(k + 1) in
+      link.(k) <- 1 + l + link.(k + 1 + l)
+  done;
+  let slot = ref lo and leaves = ref 0 in
+  for k = first to first + nodes - 1 do
+    if tag.(k) < 0 then begin
+      link.(k) <- !slot;
+      slot := !slot - tag.(k);
+      incr leaves
+    end
+    else link.(k) <- k + 1 + link.(k + 1)
+  done;
+  if p.part_depth > b.depth then b.depth <- p.part_depth;
+  let m = hi - lo in
+  if Bigarray.Array1.dim sh < 7 * m then invalid_arg "Bvh.build_boxes: beside.floats gave too few floats";
+  for j = 0 to m - 1 do
+    Array.unsafe_set b.order (lo + j) (Float.to_int (Bigarray.Array1.unsafe_get sh j))
+  done;
+  (* At most [m] leaves: their boxes fit in [sh] and in the slots. *)
+  let box = Array.make 6 0. in
+  for j = 0 to !leaves - 1 do
+    for i = 0 to 5 do
+      box.(i) <- Bigarray.Array1.get sh (m + (6 * j) + i)
+    done;
+    put_box b box (lo + j)
+  done;
+  b.theirs <- { first; last = first + nodes; at = lo; leaves = !leaves }
+
+(* The node over slots [lo .. hi - 1], whose block is [p] in [fr] and
+   [cn], binned (if {!binning} bins it), and its subtree. *)
+let rec node b lo hi level (fr : float array) (cn : int array) p =
+  let t = b.t in
+  let k = add_node t in
+  if level > b.depth then b.depth <- level;
+  check_block fr cn p;
+  let a = widest_axis fr p in
+  let n = hi - lo in
+  (* Fewer bins for fewer objects: the bins' fixed cost would otherwise
+     dominate the many small nodes near the leaves. *)
+  let nbins = if n < bins then n else bins in
+  let f = frame b level in
+  let split = sah_split b lo hi fr cn p a nbins f in
+  if split = -2 then begin
+    t.link.(k) <- lo;
+    t.tag.(k) <- lo - hi
+  end
+  else begin
+    t.tag.(k) <- a;
+    let split = if split >= 0 then split else median_split b a lo hi f in
+    match share_right b lo split hi with
+    | Some (s, sh, reserve) ->
+        (* The right subtree built beside while this process builds the
+           left one; it goes after the left's nodes. *)
+        let right = Array.sub b.frames ((f + 1) * block) block and right_n = Array.sub b.counts ((f + 1) * nbins) nbins in
+        let wait = s.beside (fun () -> part b split hi (level + 1) right right_n sh reserve) in
+        node b lo split (level + 1) b.frames b.counts f;
+        (* Work of [finish], done while the other process may still
+           build: the left subtree's leaves' boxes, read once, there. *)
+        b.mine <- gather b (k + 1) lo;
+        t.link.(k) <- t.size;
+        (match wait () with
+        | Some _ when b.built_here -> (* [beside] ran [part] here: the tree is complete. *) ()
+        | Some p -> graft b split hi p sh
+        | None -> node b split hi (level + 1) b.frames b.counts (f + 1))
+    | None ->
+        node b lo split (level + 1) b.frames b.counts f;
+        t.link.(k) <- t.size;
+        (* [frames] may have grown (and moved) meanwhile. *)
+        node b split hi (level + 1) b.frames b.counts (f + 1)
+  end
+
+(* The subtree over slots [lo .. hi - 1] and what [graft] needs of it:
+   run beside (in a copy of this process), after [node lo split] there
+   has moved nothing in [lo .. hi - 1]. To [sh]: the [m] slots' objects
+   (exact as floats: [m < 2^31]), then the box of each of its leaves in
+   order, 6 floats (lower corner, upper), at most [6 m] floats (a leaf
+   holds a slot or more). Its boxes, not its slots': this process's
+   [finish] reads them once, in order, and the caller needs no copy of
+   the slots' boxes. *)
+and part b lo hi level block_fr block_cn (sh : floats) reserve =
+  let t = b.t in
+  b.built_here <- true;
+  let m = hi - lo in
+  let first = t.size in
+  node b lo hi level block_fr block_cn 0;
+  let leaves = ref 0 in
+  for c = first to t.size - 1 do
+    if t.tag.(c) < 0 then incr leaves
+  done;
+  (* Only what is sent takes memory: this process writes no zeros
+     before the build. *)
+  reserve (m + (6 * !leaves));
+  for j = 0 to m - 1 do
+    Bigarray.Array1.unsafe_set sh j (Float.of_int (Array.unsafe_get b.order (lo + j)))
+  done;
+  let box = Array.make 6 0. and at = ref m in
+  for c = first to t.size - 1 do
+    let g = t.tag.(c) in
+    if g < 0 then begin
+      leaf_box b.x0 b.y0 b.z0 b.x1 b.y1 b.z1 t.link.(c) (-g) box 0;
+      (* [!at + 6 <= 7 m]: at most [m] leaves. *)
+      for i = 0 to 5 do
+        Bigarray.Array1.unsafe_set sh (!at + i) (Array.unsafe_get box i)
+      done;
+      at := !at + 6
+    end
+  done;
+  let tags = Bytes.create (t.size - first) in
+  for c = 0 to t.size - first - 1 do
+    Bytes.set_int8 tags c t.tag.(first + c)
+  done;
+  { tags; part_depth = b.depth }
 
 let build_boxes ?(leaf_size = 4) ?beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () =
   let n = Array.length x0 in
   if n = 0 then invalid_arg "Bvh.build_boxes: no boxes";
   if Array.exists (fun a -> Array.length a <> n) [| y0; z0; x1; y1; z1 |] then
     invalid_arg "Bvh.build_boxes: arrays of different lengths";
-  let leaf_size = max 1 leaf_size in
-  let order = Array.init n Fun.id in
-  (* Up to [1.04 n] nodes for a wall of spheres, [0.6 n] for a mesh: room
-     for [n + n / 16] from the start, not grown (a copy) in most cases. *)
-  let cap = n + (n / 16) + 16 in
-  let t = { size = 0; link = Array.make cap 0; tag = Array.make cap 0 } in
-  (* The boxes move with their slots, so that every pass over a node's
-     objects reads memory in order. *)
-  let[@inline] swap i j = swap_slots x0 y0 z0 x1 y1 z1 order i j in
-  (* Hoare's selection on the (doubled) centers [ka + kb]: the slot of
-     rank [k] at [k], smaller ones before, larger after. *)
-  let select (ka : float array) (kb : float array) lo hi k =
-    let key s = Array.unsafe_get ka s +. Array.unsafe_get kb s in
-    let lo = ref lo and hi = ref (hi - 1) in
-    while !lo < !hi do
-      let pivot = key ((!lo + !hi) / 2) in
-      let i = ref !lo and j = ref !hi in
-      while !i <= !j do
-        while key !i < pivot do incr i done;
-        while key !j > pivot do decr j done;
-        if !i <= !j then begin
-          swap !i !j;
-          incr i;
-          decr j
-        end
-      done;
-      if k <= !j then hi := !j else if k >= !i then lo := !i else lo := !hi
-    done
-  in
-  (* The blocks of the nodes being built ({!block}): a node's children's
-     go at blocks [2 level] and [2 level + 1], the right child's waiting
-     there while the left's subtree is built above; the root's at 0. *)
-  let frames = ref (Array.make (block * 2 * 48) 0.) and counts = ref (Array.make (bins * 2 * 48) 0) in
-  let frame level =
-    if (2 * level) + 2 > Array.length !counts / bins then begin
-      let grow a z =
-        let b = Array.make (2 * Array.length a) z in
-        Array.blit a 0 b 0 (Array.length a);
-        b
-      in
-      frames := grow !frames 0.;
-      counts := grow !counts 0
-    end;
-    2 * level
-  in
-  (* [bounds_of lo hi r o] writes the bounds of slots [lo .. hi - 1] to [r] at [o]. *)
-  let bounds_of lo hi (r : float array) o =
-    let lows = [| x0; y0; z0 |] and highs = [| x1; y1; z1 |] in
-    for a = 0 to 2 do
-      let l = lows.(a) and h = highs.(a) in
-      let b0 = ref infinity and b1 = ref neg_infinity and m0 = ref infinity and m1 = ref neg_infinity in
-      for s = lo to hi - 1 do
-        let x = Array.unsafe_get l s and y = Array.unsafe_get h s in
-        b0 := fmin !b0 x;
-        b1 := fmax !b1 y;
-        let c = x +. y in
-        m0 := fmin !m0 c;
-        m1 := fmax !m1 c
-      done;
-      r.(o + a) <- !b0;
-      r.(o + a + 3) <- !b1;
-      r.(o + a + 6) <- !m0;
-      r.(o + a + 9) <- !m1
-    done
-  in
-  let params = Array.make 4 0. in
-  (* Each slot's bin in its node, from the binning to the partition that
-     follows; it moves with the slot. *)
-  let bin_at = Bytes.create n in
-  (* The boxes of bins [0 .. b] and of bins [b .. bins - 1], at [6 b]. *)
-  let prefix = Array.make (6 * bins) 0. and suffix = Array.make (6 * bins) 0. in
-  let area (a : float array) b =
-    let o = 6 * b in
-    half_area (Array.unsafe_get a o) (Array.unsafe_get a (o + 1)) (Array.unsafe_get a (o + 2))
-      (Array.unsafe_get a (o + 3)) (Array.unsafe_get a (o + 4)) (Array.unsafe_get a (o + 5))
-  in
-  let depth = ref 0 and alone = ref true and built_here = ref false in
-  let mine = ref none_gathered and theirs = ref none_gathered in
-  (* [put_box box at] writes the box of 6 floats [box] to slot [at]. *)
-  let put_box (box : float array) at =
-    x0.(at) <- box.(0);
-    y0.(at) <- box.(1);
-    z0.(at) <- box.(2);
-    x1.(at) <- box.(3);
-    y1.(at) <- box.(4);
-    z1.(at) <- box.(5)
-  in
-  (* Gathers the boxes of the leaves of nodes [first .. t.size - 1], over
-     slots from [at], into slots [at ..], in order ({!gathered}): the
-     leaves' slots are read before a later leaf's box is written, which
-     goes no further than its first slot. *)
-  let gather first at =
-    let box = Array.make 6 0. and j = ref 0 in
-    for c = first to t.size - 1 do
-      let g = t.tag.(c) in
-      if g < 0 then begin
-        leaf_box x0 y0 z0 x1 y1 z1 t.link.(c) (-g) box 0;
-        put_box box (at + !j);
-        incr j
-      end
-    done;
-    { first; last = t.size; at; leaves = !j }
-  in
-  (* The node over slots [lo .. hi - 1], whose block is [p] in [fr] and
-     [cn], binned (if {!binning} bins it). *)
-  let n_all = n in
-  let rec node lo hi level (fr : float array) (cn : int array) p =
-    let k = add_node t in
-    if level > !depth then depth := level;
-    check_block fr cn p;
-    let o = p * block and co = p * bins in
-    let bx0 = Array.unsafe_get fr o and by0 = Array.unsafe_get fr (o + 1) in
-    let bz0 = Array.unsafe_get fr (o + 2) and bx1 = Array.unsafe_get fr (o + 3) in
-    let by1 = Array.unsafe_get fr (o + 4) and bz1 = Array.unsafe_get fr (o + 5) in
-    let mx0 = Array.unsafe_get fr (o + 6) and my0 = Array.unsafe_get fr (o + 7) in
-    let mz0 = Array.unsafe_get fr (o + 8) and mx1 = Array.unsafe_get fr (o + 9) in
-    let my1 = Array.unsafe_get fr (o + 10) and mz1 = Array.unsafe_get fr (o + 11) in
-    let n = hi - lo in
-    let ex = mx1 -. mx0 and ey = my1 -. my0 and ez = mz1 -. mz0 in
-    let a = if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2 in
-    let ka = match a with 0 -> x0 | 1 -> y0 | _ -> z0 in
-    let kb = match a with 0 -> x1 | 1 -> y1 | _ -> z1 in
-    let ext = match a with 0 -> ex | 1 -> ey | _ -> ez in
-    (* Fewer bins for fewer objects: the bins' fixed cost would otherwise
-       dominate the many small nodes near the leaves. *)
-    let bins = if n < bins then n else bins in
-    let f = frame level in
-    (* The split between bins that minimises the SAH cost
-       A_left n_left + A_right n_right (in units of this box's area): [-2]
-       a leaf, [-1] the median, else the first slot of the right child. *)
-    let split =
-      if n <= 1 then -2
-      else if ext > 0. then begin
-        running_boxes cn co fr (o + boxes_at) 0 (bins - 2) prefix;
-        running_boxes cn co fr (o + boxes_at) (bins - 1) 1 suffix;
-        let best = ref (-1) and best_cost = ref infinity and right_n = ref 0 and left_n = ref n in
-        for b = bins - 1 downto 1 do
-          (* [b < bins <= 16]: in the block's counts (checked above). *)
-          right_n := !right_n + Array.unsafe_get cn (co + b);
-          left_n := !left_n - Array.unsafe_get cn (co + b);
-          if !left_n > 0 && !right_n > 0 then begin
-            let cost = (area prefix (b - 1) *. Float.of_int !left_n) +. (area suffix b *. Float.of_int !right_n) in
-            if cost < !best_cost then begin
-              best_cost := cost;
-              best := b - 1
-            end
-          end
-        done;
-        let parent = half_area bx0 by0 bz0 bx1 by1 bz1 in
-        (* A leaf costs n tests; a split, one box test plus the expected
-           tests below it (areas relative to this box's). *)
-        if !best < 0 then if n <= leaf_size then -2 else -1
-        else if n <= leaf_size && Float.of_int n *. parent <= parent +. !best_cost then -2
-        else begin
-          let best = !best in
-          let left_n = ref 0 in
-          for b = 0 to best do
-            left_n := !left_n + cn.(co + b)
-          done;
-          (* The children's blocks: their boxes from the bins on each
-             side, their centers' bounds from the bins' centers, their
-             bins filled as the partition moves each object to its side. *)
-          let l = f and r = f + 1 in
-          let fr' = !frames and cn' = !counts in
-          copy6 prefix (6 * best) fr' (l * block);
-          union cn co fr (o + centers_at) 0 best fr' ((l * block) + 6);
-          copy6 suffix (6 * (best + 1)) fr' (r * block);
-          union cn co fr (o + centers_at) (best + 1) (bins - 1) fr' ((r * block) + 6);
-          let lg = binning fr' l !left_n params 0 and rg = binning fr' r (n - !left_n) params 2 in
-          reset_bins fr' cn' l (lg lsr 2);
-          reset_bins fr' cn' r (rg lsr 2);
-          partition_bins x0 y0 z0 x1 y1 z1 order bin_at best lo hi params lg rg l r fr' cn'
-        end
-      end
-      else if n <= leaf_size then -2
-      else -1
-    in
-    if split = -2 then begin
-      t.link.(k) <- lo;
-      t.tag.(k) <- lo - hi
-    end
-    else begin
-      t.tag.(k) <- a;
-      let split =
-        if split >= 0 then split
-        else begin
-          (* Centers all together, in one bin: split at the median. *)
-          let m = (lo + hi) / 2 in
-          select ka kb lo hi m;
-          bounds_of lo m !frames (f * block);
-          bounds_of m hi !frames ((f + 1) * block);
-          bin_slots x0 y0 z0 x1 y1 z1 bin_at lo m params !frames !counts f;
-          bin_slots x0 y0 z0 x1 y1 z1 bin_at m hi params !frames !counts (f + 1);
-          m
-        end
-      in
-      (* The right subtree built beside, once, while this process
-         builds the left one; it goes after the left's nodes. Two
-         children of a quarter of the objects or more: neither process
-         has much more to do than the other. *)
-      let shared =
-        match beside with
-        | Some b
-          when !alone && hi - split >= b.min_objects && 4 * (hi - split) >= n_all && 4 * (split - lo) >= n_all
-               && leaf_size <= 127 && hi - split <= 0x7fff_ffff -> (
-            alone := false;
-            match b.floats (7 * (hi - split)) with
-            | sh, reserve -> Some (b, sh, reserve)
-            | exception (Failure _ | Out_of_memory) -> (* Built here, as without [beside]. *) None)
-        | _ -> None
-      in
-      match shared with
-      | Some (b, sh, reserve) ->
-          let right = Array.sub !frames ((f + 1) * block) block and right_n = Array.sub !counts ((f + 1) * bins) bins in
-          let wait = b.beside (fun () -> part split hi (level + 1) right right_n sh reserve) in
-          node lo split (level + 1) !frames !counts f;
-          (* Work of [finish], done while the other process may still
-             build: the left subtree's leaves' boxes, read once, there. *)
-          mine := gather (k + 1) lo;
-          t.link.(k) <- t.size;
-          (match wait () with
-          | Some _ when !built_here -> (* [beside] ran [part] here: the tree is complete. *) ()
-          | Some p -> graft split hi p sh
-          | None -> node split hi (level + 1) !frames !counts (f + 1))
-      | None ->
-          node lo split (level + 1) !frames !counts f;
-          t.link.(k) <- t.size;
-          (* [frames] may have grown (and moved) meanwhile. *)
-          node split hi (level + 1) !frames !counts (f + 1)
-    end
-  (* The subtree over slots [lo .. hi - 1] and what [graft] needs of it:
-     run beside (in a copy of this process), after [node lo split] there
-     has moved nothing in [lo .. hi - 1]. To [sh]: the [m] slots'
-     objects (exact as floats: [m < 2^31]), then the box of each of its
-     leaves in order, 6 floats (lower corner, upper), at most [6 m]
-     floats (a leaf holds a slot or more). Its boxes, not its slots':
-     this process's [finish] reads them once, in order, and the caller
-     needs no copy of the slots' boxes (the arrays of 7 floats a slot
-     that this process once copied back, then read again in [finish]). *)
-  and part lo hi level block_fr block_cn (sh : floats) reserve =
-    built_here := true;
-    let m = hi - lo in
-    let first = t.size in
-    node lo hi level block_fr block_cn 0;
-    let leaves = ref 0 in
-    for c = first to t.size - 1 do
-      if t.tag.(c) < 0 then incr leaves
-    done;
-    (* Only what is sent takes memory: for a million objects, this
-       process no longer writes 28 MB of zeros before the build. *)
-    reserve (m + (6 * !leaves));
-    for j = 0 to m - 1 do
-      Bigarray.Array1.unsafe_set sh j (Float.of_int (Array.unsafe_get order (lo + j)))
-    done;
-    let box = Array.make 6 0. and at = ref m in
-    for c = first to t.size - 1 do
-      let g = t.tag.(c) in
-      if g < 0 then begin
-        leaf_box x0 y0 z0 x1 y1 z1 t.link.(c) (-g) box 0;
-        (* [!at + 6 <= 7 m]: at most [m] leaves. *)
-        for i = 0 to 5 do
-          Bigarray.Array1.unsafe_set sh (!at + i) (Array.unsafe_get box i)
-        done;
-        at := !at + 6
-      end
-    done;
-    let tags = Bytes.create (t.size - first) in
-    for c = 0 to t.size - first - 1 do
-      Bytes.set_int8 tags c t.tag.(first + c)
-    done;
-    { tags; part_depth = !depth }
-  (* Appends the nodes of the part over slots [lo .. hi - 1] and moves
-     the slots' objects as that part's build did, from [sh]: the same
-     tree as if it had been built here, its leaves' boxes left in [sh]
-     gathered into its slots for [finish]. *)
-  and graft lo hi p (sh : floats) =
-    let first = t.size and nodes = Bytes.length p.tags in
-    for c = 0 to nodes - 1 do
-      t.tag.(add_node t) <- Bytes.get_int8 p.tags c
-    done;
-    let link = t.link and tag = t.tag in
-    (* The nodes are depth first: each subtree's size from the last node
-       back (children after their parent), in [link]; then the links,
-       in order, an inner node's from its left child's size, not yet
-       overwritten, a leaf's from the slots of the leaves before it. *)
-    for k = first + nodes - 1 downto first do
-      if tag.(k) < 0 then link.(k) <- 1
-      else
-        let l = link.(k + 1) in
-        link.(k) <- 1 + l + link.(k + 1 + l)
-    done;
-    let slot = ref lo and leaves = ref 0 in
-    for k = first to first + nodes - 1 do
-      if tag.(k) < 0 then begin
-        link.(k) <- !slot;
-        slot := !slot - tag.(k);
-        incr leaves
-      end
-      else link.(k) <- k + 1 + link.(k + 1)
-    done;
-    if p.part_depth > !depth then depth := p.part_depth;
-    let m = hi - lo in
-    if Bigarray.Array1.dim sh < 7 * m then invalid_arg "Bvh.build_boxes: beside.floats gave too few floats";
-    for j = 0 to m - 1 do
-      Array.unsafe_set order (lo + j) (Float.to_int (Bigarray.Array1.unsafe_get sh j))
-    done;
-    (* At most [m] leaves: their boxes fit in [sh] and in the slots. *)
-    let box = Array.make 6 0. in
-    for j = 0 to !leaves - 1 do
-      for i = 0 to 5 do
-        box.(i) <- Bigarray.Array1.get sh (m + (6 * j) + i)
-      done;
-      put_box box (lo + j)
-    done;
-    theirs := { first; last = first + nodes; at = lo; leaves = !leaves }
-  in
-  bounds_of 0 n !frames 0;
-  bin_slots x0 y0 z0 x1 y1 z1 bin_at 0 n params !frames !counts 0;
-  node 0 n 1 !frames !counts 0;
-  finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ~mine:!mine ~theirs:!theirs order !depth
+  let b = start_build ~leaf_size ~beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 in
+  bounds_of b 0 n b.frames 0;
+  bin_slots x0 y0 z0 x1 y1 z1 b.bin_at 0 n b.params b.frames b.counts 0;
+  node b 0 n 1 b.frames b.counts 0;
+  finish b.t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ~mine:b.mine ~theirs:b.theirs b.order b.depth
 
 let build ?leaf_size ~cx ~cy ~cz extent =
   let n = Array.length cx in

@@ -76,18 +76,79 @@ type t = {
 let bvh_threshold = 8
 
 (* Above this many objects, preparing collects its garbage at two points
-   (see [prepare]): each costs a marking of the live heap, 6% of the
-   instructions of loading and preparing grid:100000, where it saves
-   little. *)
+   ([collect]): each costs a marking of the live heap, which below it
+   saves little (docs/performance.md, "Numbers moved out of prepare's
+   comments"). *)
 let big_scene = 1 lsl 18
 let ambient = 0
 let point = 1
 let directional = 2
 
+(* {1 The scene's objects}
+
+   The one step that reads the scene's objects: the steps after it read
+   [objects] and the scene's settings and lights ([settings]), never the
+   scene's lists of objects, so that a change of the scene's
+   representation changes this section alone. *)
+
+(* The objects in the order of ties, numbered: the spheres are objects [0]
+   to [n_spheres - 1], then come the shapes, a mesh giving one object per
+   triangle but its degenerate ones, which no ray can hit. *)
+type objects = {
+  n : int;  (* The number of objects. *)
+  n_spheres : int;
+  spheres : Spheres.t;  (* [Spheres.empty] once they are copied ([prepare_scene]). *)
+  shapes : Shape.t list;  (* The objects after the spheres, in order. *)
+  any_mesh : bool;
+  csg_triangles : int;  (* The triangles of the meshes inside CSG solids. *)
+}
+
+(* [iter_shapes o ~single ~mesh] calls [single k sh] for the shapes'
+   objects [k] but the meshes', and [mesh k m] for each mesh, [k] the
+   object of its first triangle that is not degenerate, and is the number
+   of objects. *)
+let iter_shapes o ~single ~mesh =
+  let k = ref o.n_spheres in
+  List.iter
+    (fun sh ->
+      match sh with
+      | Shape.Mesh m ->
+          mesh !k m;
+          k := !k + Mesh.objects m
+      | _ ->
+          single !k sh;
+          incr k)
+    o.shapes;
+  !k
+
+let read_objects (scene : Scene.t) =
+  let o =
+    {
+      n = 0;
+      n_spheres = Spheres.length scene.spheres;
+      spheres = scene.spheres;
+      shapes = scene.shapes;
+      any_mesh = List.exists (function Shape.Mesh _ -> true | _ -> false) scene.shapes;
+      csg_triangles = List.fold_left (fun t -> function Shape.Csg c -> t + Csg.triangles c | _ -> t) 0 scene.shapes;
+    }
+  in
+  { o with n = iter_shapes o ~single:(fun _ _ -> ()) ~mesh:(fun _ _ -> ()) }
+
+(* The scene without its objects: what the steps read of it after
+   [read_objects]. *)
+let settings (scene : Scene.t) = { scene with spheres = Spheres.empty; shapes = [] }
+
+(* The objects of [scene], each triangle of a mesh counted: known before
+   [read_objects], to choose the collector's settings ([prepare]). *)
+let object_count (s : Scene.t) =
+  List.fold_left
+    (fun a sh -> match sh with Shape.Mesh m -> a + Mesh.triangle_count m | _ -> a + 1)
+    (Spheres.length s.spheres) s.shapes
+
 (* The most [cos ** s] can be: 1 for an exact cosine, but the tracer's
    cosine, a quotient of rounded terms, may exceed 1 by a few ulps (about
    10 u at most, u = 2^-53, by the rounding of a 3-term dot product, two
-   norms and a quotient; 6 u measured), and for a huge exponent
+   norms and a quotient), and for a huge exponent
    [(1 + 16 u) ** s] is far above 1 (about 7000 for s = 1e16, infinite
    from about 1e18 on). *)
 let specular_bound s = if s = Sphere.matte then 0. else Float.pow (1. +. (8. *. epsilon_float)) s
@@ -99,7 +160,7 @@ let specular_bound s = if s = Sphere.matte then 0. else Float.pow (1. +. (8. *. 
    they stay below it. The margin covers the rounding of cosines and
    blends, each off by a few ulps at most. Infinite (no early stop) when a
    specular term can be. *)
-let max_channel (scene : Scene.t) =
+let max_channel (scene : Scene.t) o =
   let ambient, direct =
     List.fold_left
       (fun (a, d) l ->
@@ -129,13 +190,13 @@ let max_channel (scene : Scene.t) =
     Array.fold_left
       (fun acc (m : Material.t) -> Float.max acc (channels m.color m.pattern m.specular))
       (Float.max bg.r (Float.max bg.g bg.b))
-      (Spheres.materials scene.spheres)
+      (Spheres.materials o.spheres)
   in
   let bound =
     List.fold_left
       (fun acc sh ->
         List.fold_left (fun acc (m : Material.t) -> Float.max acc (channels m.color m.pattern m.specular)) acc (Shape.materials sh))
-      bound scene.shapes
+      bound o.shapes
   in
   (bound *. (1. +. 1e-6)) +. 1e-6
 
@@ -205,27 +266,6 @@ let ambient_lead (lights : Light.t array) =
   done;
   (!sum, !l)
 
-(* The objects in scene order: the spheres, then each shape, a mesh giving
-   one object per triangle (less its degenerate ones, which no ray can
-   hit). [iter_shapes] calls [single k sh] for the shapes' objects [k]
-   but the meshes', and [mesh k m] for each mesh, [k] the object of its
-   first triangle that is not degenerate, and is the number of objects;
-   the spheres are objects [0] to [n_spheres - 1], read from the scene's
-   arrays. *)
-let iter_shapes ~n_spheres (scene : Scene.t) ~single ~mesh =
-  let k = ref n_spheres in
-  List.iter
-    (fun sh ->
-      match sh with
-      | Shape.Mesh m ->
-          mesh !k m;
-          k := !k + Mesh.objects m
-      | _ ->
-          single !k sh;
-          incr k)
-    scene.shapes;
-  !k
-
 (* Identical spheres, by the first of them in scene order. Only the first
    gets a slot: the others have the same roots, so the first wins every
    tie (it comes first) and blocks every shadow ray they would block; and
@@ -250,10 +290,10 @@ let sphere_twins ~cx ~cy ~cz ~radius ~n_spheres =
   in
   let hash k = Int64.to_int (mix (mix (mix (mix 0L cx.(k)) cy.(k)) cz.(k)) radius.(k)) in
   let same i k = cx.(i) = cx.(k) && cy.(i) = cy.(k) && cz.(i) = cz.(k) && radius.(i) = radius.(k) in
-  (* A hash, not a sort: most scenes have no twins, and sorting ten
-     thousand spheres cost more than the rest of the preparation. One
-     table over a million spheres made every look-up a cache and TLB miss
-     (0.15 s): the spheres are first sorted by the hash's low bits into
+  (* A hash, not a sort: most scenes have no twins, and sorting the
+     spheres cost more than the rest of the preparation. One table over a
+     million spheres made every look-up a cache and TLB miss: the
+     spheres are first sorted by the hash's low bits into
      buckets of about a thousand (two passes in order, a counting sort),
      then each bucket goes through a table that stays in the cache,
      keeping each entry's whole hash, so that only equal hashes compare
@@ -345,10 +385,10 @@ let twin_table pairs n =
    [floats] and [ints], [index] a permutation of [0 .. length a - 1]: each
    array gathered into [scratch], of at least as many floats, then copied
    back. The loads are independent: following the permutation's cycles in
-   place made each wait for the one before, 4 times slower for a million
-   spheres. The ints (below 2^53: exact as floats) go through the same
-   scratch: an int array of a million more would raise the peak by 8 MB,
-   and its making (filled twice) start a slice of the major collection. *)
+   place made each wait for the one before, several times slower. The
+   ints (below 2^53: exact as floats) go through the same scratch: an int
+   array of a million more would raise the peak by 8 MB, and its making
+   (filled twice) start a slice of the major collection. *)
 let gather_in_place index ~scratch:fs ~(floats : float array array) ~(ints : int array array) =
   let n = Array.length index in
   if Array.length fs < n then invalid_arg "Prepared.gather_in_place: scratch";
@@ -462,7 +502,7 @@ let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~first ~
    then each box is padded where it is, with no array of margins, centers
    or half sides of a million triangles between, and no second reading
    of the corners. *)
-let mesh_boxes ~n_spheres (scene : Scene.t) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius =
+let mesh_boxes o (scene : Scene.t) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius =
   (* Every element is written below. *)
   let f () = Array.create_float nb in
   let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
@@ -470,7 +510,7 @@ let mesh_boxes ~n_spheres (scene : Scene.t) ~all ~first ~bounded ~nb ~cx ~cy ~cz
   let bounds = [| p.x; p.y; p.z; p.x; p.y; p.z |] in
   let pos = ref 0 in
   let next k = !pos < nb && if all then k >= first else bounded.(!pos) = k in
-  for k = 0 to n_spheres - 1 do
+  for k = 0 to o.n_spheres - 1 do
     if next k then begin
       let h = radius.(k) in
       half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos cx.(k) cy.(k) cz.(k) h h h;
@@ -480,7 +520,7 @@ let mesh_boxes ~n_spheres (scene : Scene.t) ~all ~first ~bounded ~nb ~cx ~cy ~cz
   (* A mesh's triangles in a loop of their own: no call through a
      closure, and the bounds in registers, for each of millions. *)
   ignore
-    (iter_shapes ~n_spheres scene
+    (iter_shapes o
        ~single:(fun k sh ->
          if next k then begin
            let (c : Vec3.t), h = single_bounds sh in
@@ -514,265 +554,310 @@ let indices_where n count p =
   done;
   a
 
-let prepare_scene ~skips ?beside scene =
-  let scene = Scene.of_valid scene in
-  let n_spheres = Spheres.length scene.spheres in
-  let n = iter_shapes ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh:(fun _ _ -> ()) in
-  (* Per object, in scene order: kind, material, and a cube around it
-     (center, half side) for the hierarchy. *)
-  let any_mesh = List.exists (function Shape.Mesh _ -> true | _ -> false) scene.shapes in
-  (* A big mesh's loading left garbage (the OBJ reader's blocks, the
-     positions before their placement) as big as the mesh, in pieces the
-     arrays below do not fit in: compacted now, the heap is the mesh's
-     arrays and grows from there (the 1M-triangle knot's peak goes from
-     275 to 235 MB, for 40 ms). *)
-  (* So does a big mesh as a CSG operand, in a scene of few objects
-     (docs/performance.md, issue 29). *)
-  let csg_triangles = List.fold_left (fun t -> function Shape.Csg c -> t + Csg.triangles c | _ -> t) 0 scene.shapes in
-  if (any_mesh && n > big_scene) || csg_triangles > big_scene then Gc.compact ();
-  let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
-  (* A scene with a mesh has these for its spheres alone: the boxes of
-     its shapes, found again from their geometry when the hierarchy is
-     built ([mesh_boxes]), take no 56 bytes a triangle meanwhile. *)
-  let nc = if any_mesh then n_spheres else n in
+(* {1 The steps of [prepare_scene]}
+
+   Each does one job, in the order [prepare_scene] calls them. Per-object
+   arrays are in object order ([read_objects]'s numbering) until [slots],
+   in slot order after it. *)
+
+(* {2 Per object, in object order} *)
+
+(* The cubes around the objects (center, half side) for the hierarchy's
+   boxes, which hold the spheres' centers and radii too. A scene with a
+   mesh has them for its spheres alone: the boxes of its shapes, found
+   again from their geometry when the hierarchy is built ([mesh_boxes]),
+   take no 56 bytes a triangle meanwhile. *)
+type cubes = { ocx : float array; ocy : float array; ocz : float array; ohalf : float array }
+
+let cubes o =
+  let nc = if o.any_mesh then o.n_spheres else o.n in
   (* Every element is written below: the spheres' by
-     [Spheres.blit_fields], the other shapes' by [set]. *)
+     [Spheres.blit_fields], the other shapes' by [shape_objects]. *)
   let f () = Array.create_float nc in
   let ocx = f () and ocy = f () and ocz = f () and ohalf = f () in
-  let materials = ref [] and n_materials = ref 0 in
-  (* With each patterned material, where its pattern lies: [frame ()] is
-     the object's [Shape.pattern_frame], asked only then (a mesh's scans
-     every vertex). *)
-  let frames = ref [] in
-  let add_material (m : Material.t) frame =
-    materials := m :: !materials;
-    (match m.pattern with Some p -> frames := (!n_materials, p, frame ()) :: !frames | None -> ());
-    incr n_materials;
-    !n_materials - 1
-  in
-  (* Equal materials share one: a million spheres use a dozen. Equal bit
-     for bit, so that sharing changes no arithmetic. Plain ones only: a
-     pattern lies in its object's frame, and a transparent material names
-     its object's medium (Ray_tree). *)
-  let known = Materials.create 64 in
-  let new_material (m : Material.t) frame =
-    if Option.is_some m.pattern || m.transparency > 0. then add_material m frame
-    else
-      match Materials.find_opt known m with
-      | Some i -> i
-      | None ->
-          let i = add_material m frame in
-          Materials.add known m i;
-          i
-  in
-  (* The smooth meshes' normals, divided by their lengths once for all
-     the corners that share them. *)
-  (* The triangles' vertices, in one array: each mesh's placed positions
-     at its base, then the lone triangles, 9 floats each. *)
-  let mesh_bases, n_vertex =
-    List.fold_left
-      (fun (bases, n) sh -> match sh with Shape.Mesh m -> ((m, n) :: bases, n + Array.length m.positions) | _ -> (bases, n))
-      ([], 0) scene.shapes
-  in
-  let n_lone = List.length (List.filter (function Shape.Triangle _ -> true | _ -> false) scene.shapes) in
-  let vertex =
-    match mesh_bases with
-    | [ (m, _) ] when n_lone = 0 -> m.positions
-    | _ ->
-        let v = Array.make (n_vertex + (9 * n_lone)) 0. in
-        List.iter (fun ((m : Mesh.t), b) -> Array.blit m.positions 0 v b (Array.length m.positions)) mesh_bases;
-        v
-  in
-  let vertex_base m = List.assq m mesh_bases in
-  (* Where each smooth mesh's corners name their normals by their vertices'
-     numbers (an OBJ file's [f 1//1 2//2 3//3]), the unit normals lie
-     parallel to [vertex], and a corner's normal is where its vertex is:
-     no table of the corners' normals. *)
-  let follow =
-    List.for_all
-      (function Shape.Mesh m when m.smooth -> m.triangle_normals == m.triangles || m.triangle_normals = m.triangles | _ -> true)
-      scene.shapes
-  in
-  let vnormal =
-    Array.make
-      (if follow then
-         if List.exists (function Shape.Mesh m -> m.smooth | _ -> false) scene.shapes then Array.length vertex else 0
-       else List.fold_left (fun a sh -> match sh with Shape.Mesh m when m.smooth -> a + Array.length m.normals | _ -> a) 0 scene.shapes)
-      nan
-  in
-  let next_normal = ref 0 in
-  (* The offset in [vnormal] of the normals of the mesh whose run of
-     triangles starts at object [k]. *)
-  let normal_base = Hashtbl.create 8 in
-  (* A mesh's triangles come in a run: one material for the run. *)
-  let last_mesh = ref None in
-  (* CSG solids go to their own table: the root node of object [k]'s. Each
-     leaf has its material; the object's is its first leaf's. *)
-  let csg = Csg.builder () and csg_root = Hashtbl.create 8 in
-  (* A leaf's pattern lies where the leaf's would as an object of its own. *)
+  { ocx; ocy; ocz; ohalf }
 
-  let add_csg k c =
-    let first = ref (-1) in
-    let material leaf =
-      (* Not shared: the first leaf's number names the solid's medium. *)
-      let i = add_material (Csg.leaf_material leaf) (fun () -> Shape.leaf_pattern_frame leaf) in
-      if !first < 0 then first := i;
-      i
-    in
-    Hashtbl.replace csg_root k (Csg.add csg ~material c);
-    !first
-  in
-  let set k kind mat (c : Vec3.t) h =
-    okind.(k) <- kind;
-    omat.(k) <- mat;
-    if k < nc then begin
-      ocx.(k) <- c.x;
-      ocy.(k) <- c.y;
-      ocz.(k) <- c.z;
-      ohalf.(k) <- h
-    end
-  in
-  (* The spheres' plain materials are distinct in their table: the first
-     sphere of each finds or makes the prepared material, the others
-     reuse its number (what [new_material] would find). *)
-  let spheres = scene.spheres in
-  let sphere_materials = Spheres.materials spheres in
-  let shared = Array.make (Array.length sphere_materials) (-1) in
-  (* Each sphere's material, first as its index in the spheres' table. *)
-  Spheres.blit_fields spheres ~x:ocx ~y:ocy ~z:ocz ~radius:ohalf ~material:omat;
-  for k = 0 to n_spheres - 1 do
-    let j = omat.(k) in
-    omat.(k) <-
-      (if shared.(j) >= 0 then shared.(j)
-       else
-         let m = sphere_materials.(j) in
-         let i = new_material m (fun () -> Shape.leaf_pattern_frame (Csg.Sphere (Spheres.get spheres k))) in
-         if Option.is_none m.pattern && not (m.transparency > 0.) then shared.(j) <- i;
-         i)
-  done;
-  let max_channel = max_channel scene in
-  (* The spheres are copied: from here on [prepare] holds none of the
-     scene's, and a caller that holds the scene no longer either (the
-     renderers) lets them go while the hierarchy is built (40 MB for a
-     million spheres). *)
-  let scene = { scene with spheres = Spheres.empty } in
-  ignore
-    (iter_shapes ~n_spheres scene
-       ~single:(fun k sh ->
-         let c, h = single_bounds sh in
-         let mat = match sh with Shape.Csg c -> add_csg k c | _ -> new_material (Shape.material sh) (fun () -> Shape.pattern_frame sh) in
-         set k (Shape.kind sh) mat c h)
-       ~mesh:(fun k m ->
-         (* A mesh given twice in a row (the same value) is one run: one
-            material, its normals once. *)
-         let mat, base =
-           match !last_mesh with
-           | Some (m', i, base) when m' == m -> (i, base)
-           | _ ->
-               let i = new_material m.material (fun () -> Shape.pattern_frame (Shape.Mesh m)) in
-               let base = if follow then vertex_base m else !next_normal in
-               if m.smooth then begin
-                 (* Parallel to [vertex], the normals that no vertex number names are not needed. *)
-                 let nn = Array.length m.normals / 3 in
-                 for j = 0 to (if follow then min nn (Array.length m.positions / 3) else nn) - 1 do
-                   ignore (Mesh.unit_normal m j vnormal (base + (3 * j)))
-                 done;
-                 next_normal := base + Array.length m.normals;
-                 Hashtbl.replace normal_base k base
-               end;
-               last_mesh := Some (m, i, base);
-               (i, base)
-         in
-         (* Smooth where every corner has a normal that could be divided
-            by its length ([Mesh.corner_normals]). *)
-         let tn = m.triangle_normals in
-         let usable t c =
-           let j = tn.((3 * t) + c) in
-           j >= 0 && not (Float.is_nan vnormal.(base + (3 * j)))
-         in
-         (* [set]'s arrays, written here in a loop of the mesh's own: it
-            has millions of triangles. *)
-         let k = ref k in
-         for t = 0 to Mesh.triangle_count m - 1 do
-           if not (Mesh.degenerate m t) then begin
-             okind.(!k) <- (if m.smooth && usable t 0 && usable t 1 && usable t 2 then Shape.smooth_triangle else Shape.triangle);
-             omat.(!k) <- mat;
-             incr k
-           end
-         done));
-  let materials = Array.of_list (List.rev !materials) in
-  (* A patterned material's second colour is a material of its own, after
-     the scene's: the tracer picks one of the two indices, so that the
-     colour channels stay in the arrays they are read from. *)
+(* {2 Materials} *)
+
+(* The prepared scene's materials, numbered as the objects are read. *)
+type registry = {
+  mutable added : Material.t list;  (* The last first. *)
+  mutable count : int;
+  mutable frames : (int * Pattern.t * (Vec3.t * float * float)) list;
+      (* Each patterned material's number, pattern and object's frame. *)
+  known : int Materials.t;
+}
+
+let registry () = { added = []; count = 0; frames = []; known = Materials.create 64 }
+
+(* A new material: [frame ()] is its object's [Shape.pattern_frame], asked
+   only if it has a pattern (a mesh's scans every vertex). *)
+let add_material r (m : Material.t) frame =
+  r.added <- m :: r.added;
+  (match m.pattern with Some p -> r.frames <- (r.count, p, frame ()) :: r.frames | None -> ());
+  r.count <- r.count + 1;
+  r.count - 1
+
+(* Equal materials share one: a million spheres use a dozen. Equal bit
+   for bit, so that sharing changes no arithmetic. Plain ones only: a
+   pattern lies in its object's frame, and a transparent material names
+   its object's medium (Ray_tree). *)
+let new_material r (m : Material.t) frame =
+  if Option.is_some m.pattern || m.transparency > 0. then add_material r m frame
+  else
+    match Materials.find_opt r.known m with
+    | Some i -> i
+    | None ->
+        let i = add_material r m frame in
+        Materials.add r.known m i;
+        i
+
+(* The materials, the [alternate] of each and the patterns. A patterned
+   material's second colour is a material of its own, after the scene's:
+   the tracer picks one of the two indices, so that the colour channels
+   stay in the arrays they are read from. *)
+let material_table r =
+  let materials = Array.of_list (List.rev r.added) in
   let n_own = Array.length materials in
-  let alternate = if !frames = [] then [||] else Array.make n_own (-1) in
-  let pattern = Array.make (if !frames = [] then 0 else Pattern.stride * n_own) 0. in
+  let alternate = if r.frames = [] then [||] else Array.make n_own (-1) in
+  let pattern = Array.make (if r.frames = [] then 0 else Pattern.stride * n_own) 0. in
   let extra =
     List.mapi
       (fun j (i, p, (origin, scale, extent)) ->
         alternate.(i) <- n_own + j;
         Pattern.store p ~origin ~scale ~extent pattern (Pattern.stride * i);
         { (materials.(i)) with Material.color = Pattern.color p; pattern = None })
-      (List.rev !frames)
+      (List.rev r.frames)
   in
-  let materials = Array.append materials (Array.of_list extra) in
-  (* The objects kept (each sphere but the twins of earlier ones) that are
-     bounded, in scene order, for the hierarchy, their number, the first
-     of them, and the planes. Where every object is kept and bounded (no
-     twins, no planes: the big scenes), or, in a scene with a mesh, the
-     bounded objects follow each other (the planes before the mesh, or
-     after it), [bounded] is empty: they are objects [first] to [first +
-     nb - 1], and no array of a million numbers is made, read through
-     (the slots' objects), or marked by the collections. *)
-  let select twin_of =
-    let kept k = Array.length twin_of = 0 || twin_of.(k) = k in
-    let is_bounded k = kept k && okind.(k) <> Shape.plane in
-    let nb = ref 0 and planes = ref [] in
-    for k = 0 to n - 1 do
-      if kept k then if okind.(k) = Shape.plane then planes := k :: !planes else incr nb
-    done;
-    let unbounded = Array.of_list (List.rev !planes) in
-    (* The first and the last bounded object, looked for from each end. *)
-    let first = ref 0 and last = ref (n - 1) in
-    if any_mesh && !nb > 0 && !nb < n then begin
-      while not (is_bounded !first) do incr first done;
-      while not (is_bounded !last) do decr last done
-    end;
-    if !nb = n then ([||], unbounded, n, 0)
-    else if any_mesh && !nb > 0 && !last - !first + 1 = !nb then ([||], unbounded, !nb, !first)
+  (Array.append materials (Array.of_list extra), alternate, pattern)
+
+(* {2 Vertices and normals} *)
+
+type vertices = {
+  vertex : float array;
+      (* The triangles' vertices: each mesh's placed positions at its base
+         (a scene's one mesh's own array, not a copy), then the lone
+         triangles, 9 floats each, from [lone_base]. *)
+  bases : (Mesh.t * int) list;  (* Each mesh's base. *)
+  lone_base : int;
+  follow : bool;
+      (* Each smooth mesh's corners name their normals by their vertices'
+         numbers (an OBJ file's [f 1//1 2//2 3//3]): the unit normals lie
+         parallel to [vertex], and a corner's normal is where its vertex
+         is: no table of the corners' normals. *)
+  vnormal : float array;
+      (* The smooth meshes' normals, divided by their lengths once for all
+         the corners that share them ([mesh_run] writes them). *)
+}
+
+let vertices o =
+  let bases, lone_base =
+    List.fold_left
+      (fun (bases, n) sh -> match sh with Shape.Mesh m -> ((m, n) :: bases, n + Array.length m.positions) | _ -> (bases, n))
+      ([], 0) o.shapes
+  in
+  let n_lone = List.length (List.filter (function Shape.Triangle _ -> true | _ -> false) o.shapes) in
+  let vertex =
+    match bases with
+    | [ (m, _) ] when n_lone = 0 -> m.positions
+    | _ ->
+        let v = Array.make (lone_base + (9 * n_lone)) 0. in
+        List.iter (fun ((m : Mesh.t), b) -> Array.blit m.positions 0 v b (Array.length m.positions)) bases;
+        v
+  in
+  let follow =
+    List.for_all
+      (function Shape.Mesh m when m.smooth -> m.triangle_normals == m.triangles || m.triangle_normals = m.triangles | _ -> true)
+      o.shapes
+  in
+  let vnormal =
+    Array.make
+      (if follow then
+         if List.exists (function Shape.Mesh m -> m.smooth | _ -> false) o.shapes then Array.length vertex else 0
+       else List.fold_left (fun a sh -> match sh with Shape.Mesh m when m.smooth -> a + Array.length m.normals | _ -> a) 0 o.shapes)
+      nan
+  in
+  { vertex; bases; lone_base; follow; vnormal }
+
+let vertex_base v m = List.assq m v.bases
+
+(* {2 Kinds, materials and cubes of the objects} *)
+
+(* The spheres' materials, centers and radii (their kind is already
+   [Shape.sphere]). The spheres' plain materials are distinct in their
+   table: the first sphere of each finds or makes the prepared material,
+   the others reuse its number (what [new_material] would find). *)
+let sphere_objects o r omat c =
+  let spheres = o.spheres in
+  let sphere_materials = Spheres.materials spheres in
+  let shared = Array.make (Array.length sphere_materials) (-1) in
+  (* Each sphere's material, first as its index in the spheres' table. *)
+  Spheres.blit_fields spheres ~x:c.ocx ~y:c.ocy ~z:c.ocz ~radius:c.ohalf ~material:omat;
+  for k = 0 to o.n_spheres - 1 do
+    let j = omat.(k) in
+    omat.(k) <-
+      (if shared.(j) >= 0 then shared.(j)
+       else
+         let m = sphere_materials.(j) in
+         let i = new_material r m (fun () -> Shape.leaf_pattern_frame (Csg.Sphere (Spheres.get spheres k))) in
+         if Option.is_none m.pattern && not (m.transparency > 0.) then shared.(j) <- i;
+         i)
+  done
+
+(* CSG solids go to their own table; [roots] maps object [k] to its
+   solid's root node. *)
+type solids = { builder : Csg.builder; roots : (int, int) Hashtbl.t }
+
+(* Adds object [k]'s solid [c]: each leaf has its material (a leaf's
+   pattern lies where the leaf's would as an object of its own); the
+   object's is its first leaf's. *)
+let add_csg r s k c =
+  let first = ref (-1) in
+  let material leaf =
+    (* Not shared: the first leaf's number names the solid's medium. *)
+    let i = add_material r (Csg.leaf_material leaf) (fun () -> Shape.leaf_pattern_frame leaf) in
+    if !first < 0 then first := i;
+    i
+  in
+  Hashtbl.replace s.roots k (Csg.add s.builder ~material c);
+  !first
+
+(* A mesh's triangles come in a run: one material for the run. A mesh
+   given twice in a row (the same value) is one run: one material, its
+   normals once. [normal_base] maps the first object of a smooth mesh's
+   run to the offset of its normals in [vnormal]. *)
+type runs = {
+  mutable last : (Mesh.t * int * int) option;  (* The mesh, its material, its normals' base. *)
+  mutable next_normal : int;
+  normal_base : (int, int) Hashtbl.t;
+}
+
+(* The material and the normals' base of mesh [m]'s run from object [k],
+   its normals divided by their lengths if it starts a run. *)
+let mesh_run r v runs k (m : Mesh.t) =
+  match runs.last with
+  | Some (m', i, base) when m' == m -> (i, base)
+  | _ ->
+      let i = new_material r m.material (fun () -> Shape.pattern_frame (Shape.Mesh m)) in
+      let base = if v.follow then vertex_base v m else runs.next_normal in
+      if m.smooth then begin
+        (* Parallel to [vertex], the normals that no vertex number names are not needed. *)
+        let nn = Array.length m.normals / 3 in
+        for j = 0 to (if v.follow then min nn (Array.length m.positions / 3) else nn) - 1 do
+          ignore (Mesh.unit_normal m j v.vnormal (base + (3 * j)))
+        done;
+        runs.next_normal <- base + Array.length m.normals;
+        Hashtbl.replace runs.normal_base k base
+      end;
+      runs.last <- Some (m, i, base);
+      (i, base)
+
+(* The kinds and materials of mesh [m]'s objects from [k], in a loop of
+   the mesh's own: it has millions of triangles. *)
+let mesh_objects r v runs okind omat k (m : Mesh.t) =
+  let mat, base = mesh_run r v runs k m in
+  (* Smooth where every corner has a normal that could be divided by its
+     length ([Mesh.corner_normals]). *)
+  let tn = m.triangle_normals in
+  let usable t c =
+    let j = tn.((3 * t) + c) in
+    j >= 0 && not (Float.is_nan v.vnormal.(base + (3 * j)))
+  in
+  let k = ref k in
+  for t = 0 to Mesh.triangle_count m - 1 do
+    if not (Mesh.degenerate m t) then begin
+      okind.(!k) <- (if m.smooth && usable t 0 && usable t 1 && usable t 2 then Shape.smooth_triangle else Shape.triangle);
+      omat.(!k) <- mat;
+      incr k
+    end
+  done
+
+(* The kinds, materials and cubes of the objects after the spheres; the
+   result is the base of each smooth mesh's normals ([runs.normal_base]). *)
+let shape_objects o r v s okind omat c =
+  let runs = { last = None; next_normal = 0; normal_base = Hashtbl.create 8 } in
+  ignore
+    (iter_shapes o
+       ~single:(fun k sh ->
+         let (center : Vec3.t), h = single_bounds sh in
+         okind.(k) <- Shape.kind sh;
+         omat.(k) <- (match sh with Shape.Csg cs -> add_csg r s k cs | _ -> new_material r (Shape.material sh) (fun () -> Shape.pattern_frame sh));
+         if k < Array.length c.ocx then begin
+           c.ocx.(k) <- center.x;
+           c.ocy.(k) <- center.y;
+           c.ocz.(k) <- center.z;
+           c.ohalf.(k) <- h
+         end)
+       ~mesh:(mesh_objects r v runs okind omat));
+  runs.normal_base
+
+(* {2 Twins and the hierarchy} *)
+
+(* The objects kept (each sphere but the twins of earlier ones) that are
+   bounded, in object order, for the hierarchy, their number [nb], the
+   first of them, and the planes ([unbounded]). Where every object is kept
+   and bounded (no twins, no planes: the big scenes), or, in a scene with
+   a mesh, the bounded objects follow each other (the planes before the
+   mesh, or after it), [bounded] is empty: they are objects [first] to
+   [first + nb - 1], and no array of a million numbers is made, read
+   through (the slots' objects), or marked by the collections. *)
+type selection = { bounded : int array; unbounded : int array; nb : int; first : int }
+
+let[@inline] kept twin_of k = Array.length twin_of = 0 || twin_of.(k) = k
+
+let select o okind twin_of =
+  let n = o.n in
+  let is_bounded k = kept twin_of k && okind.(k) <> Shape.plane in
+  let nb = ref 0 and planes = ref [] in
+  for k = 0 to n - 1 do
+    if kept twin_of k then if okind.(k) = Shape.plane then planes := k :: !planes else incr nb
+  done;
+  let unbounded = Array.of_list (List.rev !planes) in
+  (* The first and the last bounded object, looked for from each end. *)
+  let first = ref 0 and last = ref (n - 1) in
+  if o.any_mesh && !nb > 0 && !nb < n then begin
+    while not (is_bounded !first) do incr first done;
+    while not (is_bounded !last) do decr last done
+  end;
+  if !nb = n then { bounded = [||]; unbounded; nb = n; first = 0 }
+  else if o.any_mesh && !nb > 0 && !last - !first + 1 = !nb then { bounded = [||]; unbounded; nb = !nb; first = !first }
+  else { bounded = indices_where n !nb is_bounded; unbounded; nb = !nb; first = 0 }
+
+(* A big scene's loading left garbage in pieces (the text's windows, the
+   spheres' blocks, which the caller no longer holds: see
+   [prepare_scene]), too small for the hierarchy's arrays of a million:
+   compacted before the hierarchy, the heap does not grow past them; after
+   it, a collection lets the slot-order arrays reuse its build's arrays. A
+   mesh's scene was compacted before its per-object arrays
+   ([compact_after_loading]): here a compaction would only move them, and
+   where spheres are few there is no garbage yet to collect before the
+   hierarchy. [collections] counts the calls. *)
+let collect o collections =
+  if o.n > big_scene then begin
+    if !collections > 0 then Gc.full_major ()
+    else if not o.any_mesh then (if o.n_spheres > o.n / 2 then Gc.compact () else Gc.full_major ())
+    else if o.n_spheres > o.n / 2 then Gc.full_major ();
+    incr collections
+  end
+
+(* A big mesh's loading left garbage (the OBJ reader's blocks, the
+   positions before their placement) as big as the mesh, in pieces the
+   per-object arrays do not fit in: compacted before them, the heap is
+   the mesh's arrays and grows from there. So does a big mesh as a CSG
+   operand, in a scene of few objects. *)
+let compact_after_loading o =
+  if (o.any_mesh && o.n > big_scene) || o.csg_triangles > big_scene then Gc.compact ()
+
+(* The boxes of the selected objects, each padded by its margin, as
+   [Bvh.build_boxes] takes them; [None] without a hierarchy. *)
+let boxes ~skips o (scene : Scene.t) c sel =
+  if not (skips && sel.nb > bvh_threshold) then None
+  else
+    let all = Array.length sel.bounded = 0 and nb = sel.nb and bounded = sel.bounded in
+    let { ocx; ocy; ocz; ohalf } = c in
+    if o.any_mesh then
+      Some (mesh_boxes o scene ~all ~first:sel.first ~bounded ~nb ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf)
     else begin
-      (indices_where n !nb is_bounded, unbounded, !nb, 0)
-    end
-  in
-  (* A big scene's loading left garbage in pieces (the text's windows, the
-     spheres' blocks, which the caller no longer holds: see below), too
-     small for the hierarchy's arrays of a million: compacted now, the heap
-     does not grow past them; after the hierarchy, a collection lets the
-     slot-order arrays reuse its build's arrays. For a million spheres the
-     render's peak goes from 293 to 235 MB, for 5% of the time of loading
-     and preparing. A mesh's scene was compacted above, before the
-     per-object arrays: here a compaction would only move them, and where
-     spheres are few there is no garbage yet to collect before the
-     hierarchy (the 1M-triangle knot peaks as high without it: 0.03 s
-     less, and the collection after it is cheaper). *)
-  let collections = ref 0 in
-  let collect () =
-    if n > big_scene then begin
-      if !collections > 0 then Gc.full_major ()
-      else if not any_mesh then (if n_spheres > n / 2 then Gc.compact () else Gc.full_major ())
-      else if n_spheres > n / 2 then Gc.full_major ();
-      incr collections
-    end
-  in
-  (* The boxes of the [nb] objects [bounded] (from [first] on, if it is
-     empty), each padded by its margin, as [Bvh.build_boxes] takes them;
-     [None] without a hierarchy. *)
-  let boxes (bounded, _, nb, first) =
-    if not (skips && nb > bvh_threshold) then None
-    else
-      let all = Array.length bounded = 0 in
-      if any_mesh then Some (mesh_boxes ~n_spheres scene ~all ~first ~bounded ~nb ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf)
-      else begin
       (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
       let terms =
         if all then Bvh.margin_terms ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position
@@ -794,117 +879,122 @@ let prepare_scene ~skips ?beside scene =
       done;
       Some (x0, y0, z0, x1, y1, z1)
     end
-  in
-  let find_twins () = sphere_twins ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~n_spheres in
-  (* With two cores, a child finds a big scene's twins while this process
-     selects and pads the boxes as if there were none: twins are rare,
-     and where a child finds some, their selection and boxes are made
-     again (twins are exact copies: the margins' terms would be the same,
-     but the boxes are of fewer objects). *)
-  let twins_beside =
-    match beside with
-    | Some (b : Bvh.beside) when n_spheres >= b.min_objects -> Some (fun () -> b.beside find_twins)
-    | _ -> None
-  in
-  let twin_of, (bounded, unbounded, nb, first), boxes =
-    match twins_beside with
-    | None ->
-        let twin_of = twin_table (find_twins ()) n in
-        let selected = select twin_of in
-        collect ();
-        (twin_of, selected, boxes selected)
-    | Some start -> (
-        (* Started before the collection: started after it, the child
-           shares the compacted heap, and writing the boxes there copied
-           its pages (0.03-0.04 s more for a million spheres). *)
-        let wait = start () in
-        let selected = select [||] in
-        collect ();
-        let guess = boxes selected in
-        let pairs = match wait () with Some pairs -> pairs | None -> find_twins () in
-        match pairs with
-        | [||] -> ([||], selected, guess)
-        | _ ->
-            let twin_of = twin_table pairs n in
-            let selected = select twin_of in
-            (twin_of, selected, boxes selected))
-  in
-  let kept k = Array.length twin_of = 0 || twin_of.(k) = k in
-  let all_bounded = nb = n in
-  (* The build's six arrays of boxes, which it leaves in slot order and
-     does not keep: arrays of floats of their length made below are made
-     in their memory, not taken from the system once more (a million
-     spheres peak 40 MB lower than with new arrays, the garbage
-     collector finding no room for them among the freed ones). *)
-  let spare = ref [] in
-  let bvh =
-    match boxes with
-    | None -> None
-    | Some (x0, y0, z0, x1, y1, z1) ->
+
+(* The twins ([twin_table]), the selection and the boxes. With two cores,
+   a child finds a big scene's twins while this process selects and pads
+   the boxes as if there were none: twins are rare, and where a child
+   finds some, their selection and boxes are made again (twins are exact
+   copies: the margins' terms would be the same, but the boxes are of
+   fewer objects). *)
+let twins_and_boxes ~skips ?beside o scene okind c collections =
+  let find_twins () = sphere_twins ~cx:c.ocx ~cy:c.ocy ~cz:c.ocz ~radius:c.ohalf ~n_spheres:o.n_spheres in
+  match (beside : Bvh.beside option) with
+  | Some b when o.n_spheres >= b.min_objects -> (
+      (* Started before the collection: started after it, the child
+         shares the compacted heap, and writing the boxes there copied
+         its pages. *)
+      let wait = b.beside find_twins in
+      let selected = select o okind [||] in
+      collect o collections;
+      let guess = boxes ~skips o scene c selected in
+      let pairs = match wait () with Some pairs -> pairs | None -> find_twins () in
+      match pairs with
+      | [||] -> ([||], selected, guess)
+      | _ ->
+          let twin_of = twin_table pairs o.n in
+          let selected = select o okind twin_of in
+          (twin_of, selected, boxes ~skips o scene c selected))
+  | _ ->
+      let twin_of = twin_table (find_twins ()) o.n in
+      let selected = select o okind twin_of in
+      collect o collections;
+      (twin_of, selected, boxes ~skips o scene c selected)
+
+(* The build's six arrays of boxes, which it leaves in slot order and
+   does not keep: arrays of floats of their length made after it are made
+   in their memory, not taken from the system once more (the garbage
+   collector would find no room for them among the freed ones). *)
+type pool = { mutable spare : float array list }
+
+(* An array of [len] floats, every one of which the caller writes. *)
+let floats pool len =
+  match pool.spare with
+  | a :: rest when Array.length a = len ->
+      pool.spare <- rest;
+      a
+  | _ -> Array.create_float len
+
+(* The hierarchy over [boxes]; with [reuse] (spheres alone, each with a
+   slot: the arrays of their number made later fit the boxes'), the
+   boxes' arrays go to [pool]; otherwise they are let go, for the arrays
+   of other lengths made later. *)
+let hierarchy ?beside ~reuse pool boxes =
+  match boxes with
+  | None -> None
+  | Some (x0, y0, z0, x1, y1, z1) ->
       (* Leaves of up to 16, where the surface area heuristic finds no
          cheaper split: a mesh's thin triangles overlap, and below 16 more
-         boxes buy no fewer triangle tests (the 1M-triangle knot: 26.6 M
-         box tests for 28.9 M triangle tests with leaves of 4, 13.8 M for
-         30.7 M with 16, its trace 15-20% faster, 26 MB less at the peak).
-         The grids of spheres (grid-100, grid:1000000, tiny-spheres)
-         build the same trees as with 4. The image never depends on the
-         tree (see [Trace.better]). *)
+         boxes buy no fewer triangle tests (docs/performance.md, issue
+         15's fifth round). The grids of spheres build the same trees as with 4.
+         The image never depends on the tree (see [Trace.better]). *)
       let b = Bvh.build_boxes ?beside ~leaf_size:16 ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
-      (* Spheres alone, each with a slot: below, [floats] asks for arrays
-         of their number. Otherwise the build's arrays are let go, for
-         the arrays of other lengths made below. *)
-      if scene.shapes = [] && nb = n then spare := [ x0; y0; z0; x1; y1; z1 ];
+      if reuse then pool.spare <- [ x0; y0; z0; x1; y1; z1 ];
       Some b
-  in
-  (* An array of [len] floats, every one of which the caller writes. *)
-  let floats len =
-    match !spare with
-    | a :: rest when Array.length a = len ->
-        spare := rest;
-        a
-    | _ -> Array.create_float len
-  in
-  (* Slots: the hierarchy's leaf order, then the planes; without a
-     hierarchy, the scene's order. *)
-  collect ();
-  let index =
-    match bvh with
-    (* Every object in the hierarchy: its order is the slots' ([index] is
-       only read), not copied. *)
-    | Some b when all_bounded -> b.order
-    | Some b ->
-        let nb = Array.length b.order in
-        let index = Array.make (nb + Array.length unbounded) 0 in
-        if Array.length bounded = 0 then
-          for i = 0 to nb - 1 do
-            index.(i) <- first + b.order.(i)
-          done
-        else
-          for i = 0 to nb - 1 do
-            index.(i) <- bounded.(b.order.(i))
-          done;
-        Array.blit unbounded 0 index nb (Array.length unbounded);
-        index
-    | None when all_bounded ->
-        let index = Array.make n 0 in
-        for k = 0 to n - 1 do
-          index.(k) <- k
+
+(* {2 Slots} *)
+
+(* The object in each slot: the hierarchy's leaf order, then the planes;
+   without a hierarchy, the objects kept, in order. *)
+let index_of_slots o (bvh : Bvh.t option) sel twin_of =
+  let n = o.n in
+  match bvh with
+  (* Every object in the hierarchy: its order is the slots' ([index] is
+     only read), not copied. *)
+  | Some b when sel.nb = n -> b.order
+  | Some b ->
+      let nb = Array.length b.order in
+      let index = Array.make (nb + Array.length sel.unbounded) 0 in
+      if Array.length sel.bounded = 0 then
+        for i = 0 to nb - 1 do
+          index.(i) <- sel.first + b.order.(i)
+        done
+      else
+        for i = 0 to nb - 1 do
+          index.(i) <- sel.bounded.(b.order.(i))
         done;
-        index
-    | None ->
-        let m = ref 0 in
-        for k = 0 to n - 1 do
-          if kept k then incr m
-        done;
-        indices_where n !m kept
-  in
-  let n_kept = Array.length index in
-  (* Spheres alone, without twins: [index] orders every object, and the
-     per-object arrays, put in slot order where they are, are the
-     tracer's (no second array of a million). Not for meshes: their slot
-     order is far from the scene's, and moving in place along its cycles
-     cost more than the copies. *)
-  let in_place = n_kept = n && scene.shapes = [] in
+      Array.blit sel.unbounded 0 index nb (Array.length sel.unbounded);
+      index
+  | None when sel.nb = n ->
+      let index = Array.make n 0 in
+      for k = 0 to n - 1 do
+        index.(k) <- k
+      done;
+      index
+  | None ->
+      let m = ref 0 in
+      for k = 0 to n - 1 do
+        if kept twin_of k then incr m
+      done;
+      indices_where n !m (kept twin_of)
+
+type slots = {
+  index : int array;
+  slot : int array;
+  kind : int array;  (* By slot. *)
+  material : int array;  (* By slot. *)
+  in_place : bool;
+      (* Spheres alone, without twins: [index] orders every object, and
+         the per-object arrays, put in slot order where they are, are the
+         tracer's (no second array of a million). Not for meshes: their
+         slot order is far from the object order, and moving in place
+         along its cycles cost more than the copies. *)
+}
+
+(* The slot of each object ([slot]; a twin's is its first's) and each
+   slot's kind and material. *)
+let slots o index okind omat twin_of =
+  let n = o.n and n_kept = Array.length index in
+  let in_place = n_kept = n && o.shapes = [] in
   let slot = Array.make n 0 in
   (* Otherwise each slot's kind and material, in the walk that finds the
      slots: one read of [index], the three random accesses of a slot's
@@ -928,139 +1018,187 @@ let prepare_scene ~skips ?beside scene =
     end
   in
   Array.iteri (fun k first -> if first <> k then slot.(k) <- slot.(first)) twin_of;
-  (* Geometry and sphere data, written in slot order. *)
-  let stride = Shape.stride in
+  { index; slot; kind; material; in_place }
+
+(* {2 Geometry, in slot order} *)
+
+type geometry = {
+  geom : float array;
+  extent : float array;
+  at0 : int array;
+  at1 : int array;
+  at2 : int array;
+  vcorner : int array;
+}
+
+(* The shapes' arrays, by slot, to be written by [store_geometry]. *)
+let geometry_arrays o sl ~any_smooth ~follow =
+  let n_kept = Array.length sl.index in
   (* Spheres alone need no table of shapes. *)
-  let shapes_len = if scene.shapes = [] then 0 else n_kept in
+  let shapes_len = if o.shapes = [] then 0 else n_kept in
   (* Triangles are read from [vertex]; the other shapes, few, have [geom]. *)
-  let n_geom =
-    List.length (List.filter (function Shape.Triangle _ | Shape.Mesh _ -> false | _ -> true) scene.shapes)
-  in
-  let geom = Array.make (stride * n_geom) 0. and extent = Array.make n_geom 0. in
+  let n_geom = List.length (List.filter (function Shape.Triangle _ | Shape.Mesh _ -> false | _ -> true) o.shapes) in
+  let geom = Array.make (Shape.stride * n_geom) 0. and extent = Array.make n_geom 0. in
   (* Three arrays, not one of three ints a slot: made after the
-     hierarchy, each fits where one of its build's arrays was (the
-     1M-triangle knot peaks 24 MB lower). *)
+     hierarchy, each fits where one of its build's arrays was. *)
   let at0 = Array.make shapes_len 0 and at1 = Array.make shapes_len 0 and at2 = Array.make shapes_len 0 in
-  let next_geom = ref 0 and next_lone = ref n_vertex in
-  let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
-  let vnormal = if any_smooth then vnormal else [||] in
   let vcorner = if any_smooth && not follow then Array.make (3 * n_kept) 0 else [||] in
-  let sphere_len = if n_spheres > 0 then n_kept else 0 in
-  (* [okind] is all spheres here: no need to gather it. *)
-  let cx, cy, cz, radius =
-    if in_place && List.length !spare >= 5 then begin
-      (* Into four of the build's arrays, in one walk of [index]; the
-         scene-order arrays then serve the arrays made below. *)
-      let cx = floats n and cy = floats n and cz = floats n and radius = floats n in
-      for i = 0 to n - 1 do
-        let k = index.(i) in
-        cx.(i) <- ocx.(k);
-        cy.(i) <- ocy.(k);
-        cz.(i) <- ocz.(k);
-        radius.(i) <- ohalf.(k)
-      done;
-      let scratch = floats n in
-      gather_in_place index ~scratch ~floats:[||] ~ints:[| omat |];
-      spare := scratch :: ocx :: ocy :: ocz :: ohalf :: !spare;
-      (cx, cy, cz, radius)
-    end
-    else if in_place then begin
-      gather_in_place index ~scratch:(floats n_kept) ~floats:[| ocx; ocy; ocz; ohalf |] ~ints:[| omat |];
-      (ocx, ocy, ocz, ohalf)
-    end
-    else (Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0., Array.make sphere_len 0.)
+  { geom; extent; at0; at1; at2; vcorner }
+
+(* The slots of mesh [m]'s triangles from object [k]: their corners'
+   offsets in [vertex], and in [vnormal] (in [vcorner]) where the normals
+   do not follow the vertices. [run] holds the last mesh and the base of
+   its normals. *)
+let store_mesh v normal_base sl g ~any_smooth run k (m : Mesh.t) =
+  let vb = vertex_base v m and tri = m.triangles in
+  let base =
+    match !run with
+    | Some (m', base) when m' == m -> base
+    | _ ->
+        let base = Option.value (Hashtbl.find_opt normal_base k) ~default:0 in
+        run := Some (m, base);
+        base
   in
+  let k = ref k in
+  for t = 0 to Mesh.triangle_count m - 1 do
+    if not (Mesh.degenerate m t) then begin
+      let i = sl.slot.(!k) in
+      g.at0.(i) <- vb + (3 * tri.(3 * t));
+      g.at1.(i) <- vb + (3 * tri.((3 * t) + 1));
+      g.at2.(i) <- vb + (3 * tri.((3 * t) + 2));
+      if any_smooth && not v.follow then
+        for c = 0 to 2 do
+          g.vcorner.((3 * i) + c) <- base + (3 * max 0 m.triangle_normals.((3 * t) + c))
+        done;
+      incr k
+    end
+  done
+
+(* Each shape's geometry where its slot says: a lone triangle's corners
+   in [vertex], and their offsets; a mesh's ([store_mesh]); another
+   shape's in [geom] and [extent] (a CSG solid's root node in [geom]). *)
+let store_geometry o v s normal_base sl g ~any_smooth =
+  let stride = Shape.stride in
+  let next_geom = ref 0 and next_lone = ref v.lone_base in
   let extent_of i =
     let e = ref 0. in
     for j = stride * i to (stride * i) + stride - 1 do
-      e := fmax !e (Float.abs geom.(j))
+      e := fmax !e (Float.abs g.geom.(j))
     done;
-    extent.(i) <- !e
+    g.extent.(i) <- !e
   in
-  let run = ref None in
   ignore
-    (iter_shapes ~n_spheres scene
+    (iter_shapes o
        ~single:(fun k sh ->
-         let i = slot.(k) in
+         let i = sl.slot.(k) in
          match sh with
          | Shape.Triangle tri ->
              let o = !next_lone in
-             Triangle.store tri vertex o;
-             at0.(i) <- o;
-             at1.(i) <- o + 3;
-             at2.(i) <- o + 6;
+             Triangle.store tri v.vertex o;
+             g.at0.(i) <- o;
+             g.at1.(i) <- o + 3;
+             g.at2.(i) <- o + 6;
              next_lone := o + 9
          | _ -> (
-             let g = !next_geom in
+             let j = !next_geom in
              incr next_geom;
-             at0.(i) <- g;
+             g.at0.(i) <- j;
              match sh with
              | Shape.Csg c ->
-                 geom.(stride * g) <- Float.of_int (Hashtbl.find csg_root k);
-                 extent.(g) <- Csg.extent c
+                 g.geom.(stride * j) <- Float.of_int (Hashtbl.find s.roots k);
+                 g.extent.(j) <- Csg.extent c
              | _ ->
-                 Shape.store sh geom (stride * g);
-                 extent_of g))
-       ~mesh:(fun k m ->
-         let vb = vertex_base m and tri = m.triangles in
-         let base =
-           match !run with
-           | Some (m', base) when m' == m -> base
-           | _ ->
-               let base = Option.value (Hashtbl.find_opt normal_base k) ~default:0 in
-               run := Some (m, base);
-               base
-         in
-         let k = ref k in
-         for t = 0 to Mesh.triangle_count m - 1 do
-           if not (Mesh.degenerate m t) then begin
-             let i = slot.(!k) in
-             at0.(i) <- vb + (3 * tri.(3 * t));
-             at1.(i) <- vb + (3 * tri.((3 * t) + 1));
-             at2.(i) <- vb + (3 * tri.((3 * t) + 2));
-             if any_smooth && not follow then
-               for c = 0 to 2 do
-                 vcorner.((3 * i) + c) <- base + (3 * max 0 m.triangle_normals.((3 * t) + c))
-               done;
-             incr k
-           end
-         done));
-  (* The spheres' [set] wrote their centers and radii in scene order:
-     into slot order by [index], with no second walk of the scene. *)
-  if not in_place then
-  for i = 0 to sphere_len - 1 do
-    let k = index.(i) in
-    if okind.(k) = Shape.sphere then begin
+                 Shape.store sh g.geom (stride * j);
+                 extent_of j))
+       ~mesh:(store_mesh v normal_base sl g ~any_smooth (ref None)))
+
+(* The spheres' data by slot (empty without spheres; [0.] for the slots
+   of other shapes). *)
+type spheres_by_slot = {
+  cx : float array;
+  cy : float array;
+  cz : float array;
+  radius : float array;
+  r2 : float array;
+  primary_ocx : float array;
+  primary_ocy : float array;
+  primary_ocz : float array;
+  primary_k3 : float array;
+}
+
+(* The spheres' centers and radii by slot, from [c]. *)
+let sphere_arrays o pool sl okind c =
+  let n = o.n and n_kept = Array.length sl.index and index = sl.index in
+  let { ocx; ocy; ocz; ohalf } = c in
+  if sl.in_place && List.length pool.spare >= 5 then begin
+    (* Into four of the build's arrays, in one walk of [index]; the
+       object-order arrays then serve the arrays made later. *)
+    let cx = floats pool n and cy = floats pool n and cz = floats pool n and radius = floats pool n in
+    for i = 0 to n - 1 do
+      let k = index.(i) in
       cx.(i) <- ocx.(k);
       cy.(i) <- ocy.(k);
       cz.(i) <- ocz.(k);
       radius.(i) <- ohalf.(k)
-    end
-  done;
-  let lights =
-    Array.of_list
-      (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
-  in
-  let lf f = Array.map f lights and mf f = Array.map f materials in
-  let o = scene.camera.position in
-  (* Loops, not [Array.map]: its function returns each float boxed, 10
-     million words for a million spheres. *)
-  let r2 = floats sphere_len in
-  let primary_ocx = floats sphere_len in
-  let primary_ocy = floats sphere_len in
-  let primary_ocz = floats sphere_len in
-  let primary_k3 = floats sphere_len in
-  spare := [];
-  for i = 0 to sphere_len - 1 do
+    done;
+    let scratch = floats pool n in
+    gather_in_place index ~scratch ~floats:[||] ~ints:[| sl.material |];
+    pool.spare <- scratch :: ocx :: ocy :: ocz :: ohalf :: pool.spare;
+    (cx, cy, cz, radius)
+  end
+  else if sl.in_place then begin
+    gather_in_place index ~scratch:(floats pool n_kept) ~floats:[| ocx; ocy; ocz; ohalf |] ~ints:[| sl.material |];
+    (ocx, ocy, ocz, ohalf)
+  end
+  else begin
+    let sphere_len = if o.n_spheres > 0 then n_kept else 0 in
+    let cx = Array.make sphere_len 0. and cy = Array.make sphere_len 0. in
+    let cz = Array.make sphere_len 0. and radius = Array.make sphere_len 0. in
+    for i = 0 to sphere_len - 1 do
+      let k = index.(i) in
+      if okind.(k) = Shape.sphere then begin
+        cx.(i) <- ocx.(k);
+        cy.(i) <- ocy.(k);
+        cz.(i) <- ocz.(k);
+        radius.(i) <- ohalf.(k)
+      end
+    done;
+    (cx, cy, cz, radius)
+  end
+
+(* The spheres' squared radii and the constants of camera rays, by slot;
+   the pool is emptied. *)
+let camera_constants pool (eye : Vec3.t) (cx, cy, cz, radius) =
+  let len = Array.length cx in
+  (* Loops, not [Array.map]: its function returns each float boxed. *)
+  let r2 = floats pool len in
+  let primary_ocx = floats pool len in
+  let primary_ocy = floats pool len in
+  let primary_ocz = floats pool len in
+  let primary_k3 = floats pool len in
+  pool.spare <- [];
+  for i = 0 to len - 1 do
     let r = radius.(i) in
     r2.(i) <- r *. r;
-    let x = o.x -. cx.(i) and y = o.y -. cy.(i) and z = o.z -. cz.(i) in
+    let x = eye.x -. cx.(i) and y = eye.y -. cy.(i) and z = eye.z -. cz.(i) in
     primary_ocx.(i) <- x;
     primary_ocy.(i) <- y;
     primary_ocz.(i) <- z;
     (* Same operands in the same order as the tracer's per-ray [k3]. *)
     primary_k3.(i) <- ((x *. x) +. (y *. y) +. (z *. z)) -. (r *. r)
   done;
+  { cx; cy; cz; radius; r2; primary_ocx; primary_ocy; primary_ocz; primary_k3 }
+
+(* {2 The prepared scene} *)
+
+(* The record, from the steps' results; the lights' and the materials'
+   arrays made here. *)
+let assemble ~skips (scene : Scene.t) o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg sl g sp
+    ~vertex ~vsource ~vnormal =
+  let lights =
+    Array.of_list (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
+  in
+  let lf f = Array.map f lights and mf f = Array.map f materials in
   let vector l =
     match l with
     | Light.Ambient _ -> Vec3.zero
@@ -1070,42 +1208,38 @@ let prepare_scene ~skips ?beside scene =
   let transparent = Array.exists (fun (m : Material.t) -> m.transparency > 0.) materials in
   (* The document's own scenes: spheres of plain materials (no pattern, no
      glass), few enough for no hierarchy, in the document's mode. *)
-  let textbook_all = scene.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None in
-  (* The triangles' vertices in the order the leaves read them
-     (Vertex_order); the normals stay where they are. *)
-  let vertex, vsource =
-    if bvh = None || Array.length vertex = 0 then (vertex, [||]) else Vertex_order.gather ~kind ~vertex at0 at1 at2
-  in
+  let textbook_all = o.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None in
+  let n_kept = Array.length sl.index in
   {
-    n_spheres;
+    n_spheres = o.n_spheres;
     n_objects = n_kept;
-    all_spheres = scene.shapes = [] && alternate = [||];
+    all_spheres = o.shapes = [] && alternate = [||];
     patterned = alternate <> [||];
     alternate;
     pattern;
     textbook_all;
-    index;
-    slot;
+    index = sl.index;
+    slot = sl.slot;
     bvh;
-    unbounded = Array.map (fun i -> slot.(i)) unbounded;
-    kind;
-    geom;
+    unbounded = Array.map (fun i -> sl.slot.(i)) unbounded;
+    kind = sl.kind;
+    geom = g.geom;
     vertex;
-    at0;
-    at1;
-    at2;
+    at0 = g.at0;
+    at1 = g.at1;
+    at2 = g.at2;
     vnormal;
     vsource;
-    vcorner;
-    extent;
-    csg = Csg.table csg;
-    n_scene_objects = n;
-    material;
-    cx;
-    cy;
-    cz;
-    radius;
-    r2;
+    vcorner = g.vcorner;
+    extent = g.extent;
+    csg;
+    n_scene_objects = o.n;
+    material = sl.material;
+    cx = sp.cx;
+    cy = sp.cy;
+    cz = sp.cz;
+    radius = sp.radius;
+    r2 = sp.r2;
     red = mf (fun m -> m.Material.color.r);
     green = mf (fun m -> m.color.g);
     blue = mf (fun m -> m.color.b);
@@ -1133,10 +1267,10 @@ let prepare_scene ~skips ?beside scene =
     camera = scene.camera;
     identity_rotation = Camera.is_identity scene.camera.rotation;
     background = scene.background;
-    primary_ocx;
-    primary_ocy;
-    primary_ocz;
-    primary_k3;
+    primary_ocx = sp.primary_ocx;
+    primary_ocy = sp.primary_ocy;
+    primary_ocz = sp.primary_ocz;
+    primary_k3 = sp.primary_k3;
     max_channel;
     early_stop = skips && Float.is_finite max_channel;
     skips;
@@ -1147,24 +1281,26 @@ let prepare_scene ~skips ?beside scene =
     behind = skips;
     shadow_skip = skips;
     cull = skips;
-    (* The viewport coordinates of each column and row of pixel centres,
-       by the operations [Trace]'s primary ray does for any point. *)
-    (* The document's kernel reads a sphere, a camera ray's constants and a
-       light from one array each: fewer pointers to keep in registers. *)
     specular_cut = specular_cut ~skips materials lights;
     ambient_lead = fst (ambient_lead lights);
     first_light = snd (ambient_lead lights);
+    (* The document's kernel reads a sphere, a camera ray's constants and a
+       light from one array each: fewer pointers to keep in registers. *)
     sphere4 =
       (if textbook_all then
          Array.init (4 * n_kept) (fun k ->
              let i = k / 4 in
-             match k mod 4 with 0 -> cx.(i) | 1 -> cy.(i) | 2 -> cz.(i) | _ -> r2.(i))
+             match k mod 4 with 0 -> sp.cx.(i) | 1 -> sp.cy.(i) | 2 -> sp.cz.(i) | _ -> sp.r2.(i))
        else [||]);
     primary4 =
       (if textbook_all then
          Array.init (4 * n_kept) (fun k ->
              let i = k / 4 in
-             match k mod 4 with 0 -> primary_ocx.(i) | 1 -> primary_ocy.(i) | 2 -> primary_ocz.(i) | _ -> primary_k3.(i))
+             match k mod 4 with
+             | 0 -> sp.primary_ocx.(i)
+             | 1 -> sp.primary_ocy.(i)
+             | 2 -> sp.primary_ocz.(i)
+             | _ -> sp.primary_k3.(i))
        else [||]);
     light6 =
       Array.concat
@@ -1180,6 +1316,8 @@ let prepare_scene ~skips ?beside scene =
                sqrt ((v.x *. v.x) +. (v.y *. v.y) +. (v.z *. v.z));
              |])
            (Array.to_list lights));
+    (* The viewport coordinates of each column and row of pixel centres,
+       by the operations [Trace]'s primary ray does for any point. *)
     column_vx =
       Array.init scene.width (fun c ->
           Float.of_int (Canvas.x_of_column ~width:scene.width c) *. scene.viewport.width /. Float.of_int scene.width);
@@ -1188,22 +1326,60 @@ let prepare_scene ~skips ?beside scene =
           Float.of_int (r - (scene.height / 2)) *. scene.viewport.height /. Float.of_int scene.height);
   }
 
+(* The steps in order. Each big array is let go as soon as no step needs
+   it any more: the steps' results are taken apart here, not held whole. *)
+let prepare_scene ~skips ?beside scene =
+  let scene = Scene.of_valid scene in
+  let o = read_objects scene in
+  let scene = settings scene in
+  compact_after_loading o;
+  (* Per object, in object order: kind, material, and the cube around it. *)
+  let okind = Array.make o.n Shape.sphere and omat = Array.make o.n 0 in
+  let c = cubes o in
+  let r = registry () in
+  let v = vertices o in
+  let s = { builder = Csg.builder (); roots = Hashtbl.create 8 } in
+  sphere_objects o r omat c;
+  let max_channel = max_channel scene o in
+  (* The spheres are copied: from here on [prepare] holds none of the
+     scene's, and a caller that holds the scene no longer either (the
+     renderers) lets them go while the hierarchy is built. *)
+  let o = { o with spheres = Spheres.empty } in
+  let normal_base = shape_objects o r v s okind omat c in
+  let materials, alternate, pattern = material_table r in
+  (* The hierarchy over the bounded objects kept, then the slots. *)
+  let collections = ref 0 in
+  let twin_of, sel, boxes = twins_and_boxes ~skips ?beside o scene okind c collections in
+  let pool = { spare = [] } in
+  let bvh = hierarchy ?beside ~reuse:(o.shapes = [] && sel.nb = o.n) pool boxes in
+  collect o collections;
+  let unbounded = sel.unbounded in
+  let sl = slots o (index_of_slots o bvh sel twin_of) okind omat twin_of in
+  (* Geometry and sphere data, in slot order. *)
+  let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
+  let vnormal = if any_smooth then v.vnormal else [||] in
+  let g = geometry_arrays o sl ~any_smooth ~follow:v.follow in
+  let sp = camera_constants pool scene.camera.position (sphere_arrays o pool sl okind c) in
+  store_geometry o v s normal_base sl g ~any_smooth;
+  (* The triangles' vertices in the order the leaves read them
+     (Vertex_order); the normals stay where they are. *)
+  let vertex, vsource =
+    if bvh = None || Array.length v.vertex = 0 then (v.vertex, [||])
+    else Vertex_order.gather ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
+  in
+  assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder) sl g
+    sp ~vertex ~vsource ~vnormal
+
 (* The major heap grows by 256 MB of address space at a time while a big
    scene is prepared, not by 15% of its size: the pieces freed between
    the default's many chunks are each smaller than an array of a million
-   floats, so that every such array took new memory (grid:1000000 peaked
-   at 247 MB, 208 MB with this). A chunk costs memory only where it is
-   written. *)
+   floats, so that every such array took new memory (docs/performance.md,
+   "Numbers moved out of prepare's comments"). A chunk costs memory only
+   where it is written. *)
 let big_increment = 32 * 1024 * 1024
 
 let prepare ?(skips = true) ?beside scene =
-  let s = Scene.of_valid scene in
-  let objects =
-    List.fold_left
-      (fun a sh -> match sh with Shape.Mesh m -> a + Mesh.triangle_count m | _ -> a + 1)
-      (Spheres.length s.spheres) s.shapes
-  in
-  if objects <= big_scene then prepare_scene ~skips ?beside scene
+  if object_count (Scene.of_valid scene) <= big_scene then prepare_scene ~skips ?beside scene
   else begin
     let gc = Gc.get () in
     Gc.set { gc with major_heap_increment = big_increment };
