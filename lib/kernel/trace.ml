@@ -82,7 +82,7 @@ let tiles_across (p : Prepared.t) = if p.cull && p.textbook_all then (p.width + 
 (* Whether [p] has a hierarchy and every object in it is a triangle:
    every object is one, or a plane (planes are not in the hierarchy). *)
 let hierarchy_of_triangles (p : Prepared.t) =
-  p.bvh <> None && Array.for_all (fun k -> k = Shape.triangle || k = Shape.smooth_triangle || k = Shape.plane) p.kind
+  p.bvh <> None && Array.for_all (fun k -> Kind.is_triangle k || not (Kind.bounded k)) p.kind
 
 let exhausted w = raise (Limits.Work_exceeded w)
 
@@ -272,6 +272,40 @@ let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
     else keep tr s i s.far
   end
 
+(* The roots of the sphere in slot [i] for the ray in [s], in [s.near <=
+   s.far], by the mode's arithmetic; [false] if it misses. For
+   [shape_roots]'s callers that meet a sphere ([roots]): the traversals
+   test spheres with [test] and [blocks], which share the roots' work
+   between them. *)
+let[@inline never] sphere_roots tr s i =
+  let p = tr.p in
+  let fx = s.ox -. Array.unsafe_get p.cx i and fy = s.oy -. Array.unsafe_get p.cy i and fz = s.oz -. Array.unsafe_get p.cz i in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  if p.robust then
+    if i = tr.origin_sphere then begin
+      (* The sphere the ray leaves: its other root alone ([leaving]). *)
+      let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+      reenters b fx fy fz a
+      &&
+      let t = -2. *. b *. (1. /. a) in
+      s.near <- t;
+      s.far <- t;
+      true
+    end
+    else robust_roots p s i fx fy fz dx dy dz a (1. /. a)
+  else begin
+    let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+    let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get p.r2 i in
+    let disc = (k2 *. k2) -. (4. *. a *. k3) in
+    disc >= 0.
+    &&
+    let sq = sqrt disc in
+    s.near <- (-.k2 -. sq) /. (2. *. a);
+    s.far <- (-.k2 +. sq) /. (2. *. a);
+    true
+  end
+
 (* The ray's axes for the triangle test ({!Triangle.shear}), found at the
    first triangle a ray meets, not at each: a traversal over shapes sets
    [tr.kz] to [-1] (not found yet) before its first test. *)
@@ -285,7 +319,10 @@ let[@inline] shear_once tr s =
     tr.order <- (2 * kz) + if kx > ky then 1 else 0
   end
 
-let[@inline] is_triangle k = k = Shape.triangle || k = Shape.smooth_triangle
+(* [Kind.is_triangle], here so that the dev profile's [-opaque] makes no
+   call of it per test. *)
+let[@inline] is_triangle (k : Kind.t) =
+  match k with Triangle | Smooth_triangle -> true | Sphere | Plane | Box | Csg -> false
 
 (* Whether the ray in [s] meets the triangle in slot [i], its root then in
    [s.near]: {!Triangle.hit} inlined, nothing written for a miss. (Not a
@@ -314,17 +351,15 @@ let[@inline] triangle_hit tr s i ~sheared =
    gives its first crossing beyond [s.t_min] as both. *)
 let shape_roots tr s i =
   let p = tr.p in
-  let k = Array.unsafe_get p.kind i in
-  if is_triangle k then begin
-    shear_once tr s;
-    Triangle.roots_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i) tr.kx
-      tr.ky tr.kz
-  end
-  else
-  let o = Shape.stride * Array.unsafe_get p.at0 i in
-  if k = Shape.plane then Plane.roots s p.geom o
-  else if k = Shape.box then Box.roots s p.geom o
-  else Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o))
+  match Array.unsafe_get p.kind i with
+  | Triangle | Smooth_triangle ->
+      shear_once tr s;
+      Triangle.roots_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i) tr.kx
+        tr.ky tr.kz
+  | Plane -> Plane.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
+  | Box -> Box.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
+  | Csg -> Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom (Kind.stride * Array.unsafe_get p.at0 i)))
+  | Sphere -> sphere_roots tr s i
 
 (* Tests the ray in [s] against the shape (not a sphere) in slot [i],
    keeping the better hit. Secondary rays of the robust mode start off
@@ -342,15 +377,8 @@ let shape_test tr s i =
 (* Tests the ray in [s] against the object in slot [i], keeping the better
    hit. From the camera ([primary]), [CO] and the textbook's [k3] are
    per-frame constants. *)
-let[@inline] test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4 =
+let[@inline] test_sphere tr s i ~primary dx dy dz a inv_a two_k1 k1x4 =
   let p = tr.p in
-  let k = if spheres then Shape.sphere else if triangles then Shape.triangle else Array.unsafe_get p.kind i in
-  (* A triangle's one root is its near and far: [keep] once is
-     [shape_test]'s two tries. ([not spheres] first: the copy for spheres
-     alone then holds no triangle test.) *)
-  if (not spheres) && is_triangle k then (if triangle_hit tr s i ~sheared:triangles then keep tr s i s.near)
-  else if (not spheres) && k <> Shape.sphere then shape_test tr s i
-  else
   let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
   let fy = if primary then Array.unsafe_get p.primary_ocy i else s.oy -. Array.unsafe_get p.cy i in
   let fz = if primary then Array.unsafe_get p.primary_ocz i else s.oz -. Array.unsafe_get p.cz i in
@@ -362,6 +390,19 @@ let[@inline] test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1
       else ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get p.r2 i
     in
     consider_textbook tr s i k1x4 two_k1 k2 k3
+
+(* The kernel's dispatch on the kind of a slot in the traversals: the copy
+   for spheres alone and the one for triangles alone read no kind. A
+   triangle's one root is its near and far: [keep] once is [shape_test]'s
+   two tries. *)
+let[@inline] test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4 =
+  if spheres then test_sphere tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+  else if triangles then (if triangle_hit tr s i ~sheared:true then keep tr s i s.near)
+  else
+    match Array.unsafe_get tr.p.kind i with
+    | Triangle | Smooth_triangle -> if triangle_hit tr s i ~sheared:false then keep tr s i s.near
+    | Sphere -> test_sphere tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+    | Plane | Box | Csg -> shape_test tr s i
 
 (* The reciprocal of a direction coordinate for the slab test; a zero
    coordinate gets a huge finite value instead of an infinity, so that
@@ -556,16 +597,8 @@ let shape_blocks tr i =
 (* Does the object in slot [i] meet the ray in [s] with
    [t_min < t < t_max]? The same roots as [closest], so an object blocks
    exactly when [closest] would have found it. *)
-let[@inline] blocks tr i ~spheres ~triangles a inv_a =
+let[@inline] sphere_blocks tr i a inv_a =
   let p = tr.p and s = tr.s in
-  let k = if spheres then Shape.sphere else if triangles then Shape.triangle else Array.unsafe_get p.kind i in
-  if (not spheres) && is_triangle k then
-    triangle_hit tr s i ~sheared:triangles
-    &&
-    let t = s.near in
-    s.t_min < t && t < s.t_max
-  else if (not spheres) && k <> Shape.sphere then shape_blocks tr i
-  else
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let fx = s.ox -. Array.unsafe_get p.cx i
   and fy = s.oy -. Array.unsafe_get p.cy i
@@ -592,6 +625,22 @@ let[@inline] blocks tr i ~spheres ~triangles a inv_a =
     ||
     let t1 = (-.k2 +. sq) /. (2. *. a) in
     s.t_min < t1 && t1 < s.t_max
+
+(* [test]'s dispatch, for any hit in range. *)
+let[@inline] triangle_blocks tr s i ~sheared =
+  triangle_hit tr s i ~sheared
+  &&
+  let t = s.near in
+  s.t_min < t && t < s.t_max
+
+let[@inline] blocks tr i ~spheres ~triangles a inv_a =
+  if spheres then sphere_blocks tr i a inv_a
+  else if triangles then triangle_blocks tr tr.s i ~sheared:true
+  else
+    match Array.unsafe_get tr.p.kind i with
+    | Triangle | Smooth_triangle -> triangle_blocks tr tr.s i ~sheared:false
+    | Sphere -> sphere_blocks tr i a inv_a
+    | Plane | Box | Csg -> shape_blocks tr i
 
 (* Does sphere [i] meet the ray [o + t d] with [t_min < t < t_max]? The
    textbook roots, on loop invariants passed in (see below). *)
@@ -935,30 +984,34 @@ let[@inline] fmax_abs (e : float) x =
    [p.vertex], where normals follow their vertices. *)
 let[@inline] normal_of (p : Prepared.t) o = if Array.length p.vsource = 0 then o else p.vsource.(o / 3)
 
+(* Spheres are hit by [sphere_hit]: the sphere a ray leaves is handled
+   exactly, not offset. *)
+let not_here fn = invalid_arg ("Trace." ^ fn ^ ": a sphere")
+
 let shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let px = s.px and py = s.py and pz = s.pz in
   let k = Array.unsafe_get p.kind i in
-  let triangle = k = Shape.triangle || k = Shape.smooth_triangle in
+  let triangle = is_triangle k in
   (* A triangle's corners in [p.vertex], or the shape's number in [p.geom]. *)
   let o0 = Array.unsafe_get p.at0 i in
   let o1 = if triangle then Array.unsafe_get p.at1 i else 0 and o2 = if triangle then Array.unsafe_get p.at2 i else 0 in
-  let o = Shape.stride * o0 in
-  if triangle then Triangle.normal_at s p.vertex o0 o1 o2
-  else if k = Shape.plane then Plane.normal s p.geom o
-  else if k = Shape.box then begin
-    (* The root kept, for the face whose slab decides it. *)
-    s.near <- s.t;
-    Box.hit_normal s p.geom o
-  end
-  else begin
-    (* The surface hit, found again for the ray still in [s]: the same
-       first crossing that [closest] kept. The normal is the solid's
-       outward one, as a box's, before it is turned toward the ray. *)
-    ignore (Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o)));
-    Csg.normal p.csg tr.csg s
-  end;
+  let o = Kind.stride * o0 in
+  (match k with
+  | Triangle | Smooth_triangle -> Triangle.normal_at s p.vertex o0 o1 o2
+  | Plane -> Plane.normal s p.geom o
+  | Box ->
+      (* The root kept, for the face whose slab decides it. *)
+      s.near <- s.t;
+      Box.hit_normal s p.geom o
+  | Csg ->
+      (* The surface hit, found again for the ray still in [s]: the same
+         first crossing that [closest] kept. The normal is the solid's
+         outward one, as a box's, before it is turned toward the ray. *)
+      ignore (Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o)));
+      Csg.normal p.csg tr.csg s
+  | Sphere -> not_here "shape_hit");
   let flip = (s.nx *. dx) +. (s.ny *. dy) +. (s.nz *. dz) > 0. in
   if flip then begin
     s.nx <- -.s.nx;
@@ -970,7 +1023,7 @@ let shape_hit tr i =
   let gx = s.nx and gy = s.ny and gz = s.nz in
   (* A smooth triangle shades with its interpolated normal, on the side
      the ray sees. *)
-  if k = Shape.smooth_triangle
+  if k = Smooth_triangle
      && (let follow = Array.length p.vcorner = 0 and j = 3 * i in
          Triangle.smooth_normal_at s p.vertex o0 o1 o2 p.vnormal
            (if follow then normal_of p o0 else Array.unsafe_get p.vcorner j)
@@ -1011,7 +1064,9 @@ let shape_hit tr i =
     s.py <- py +. (e *. gy);
     s.pz <- pz +. (e *. gz)
   end;
-  if k = Shape.csg then Csg.material p.csg tr.csg else Array.unsafe_get p.material i
+  match k with
+  | Csg -> Csg.material p.csg tr.csg
+  | Sphere | Plane | Triangle | Smooth_triangle | Box -> Array.unsafe_get p.material i
 
 (* The material whose colour the hit of the ray in [s] at [s.t] shows:
    [m], or the material of its pattern's second colour. {!Pattern.odd}
@@ -1512,7 +1567,7 @@ let[@inline] trace_in tr ~spheres =
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let px = s.ox +. (dx *. t) and py = s.oy +. (dy *. t) and pz = s.oz +. (dz *. t) in
       let m =
-      if spheres || Array.unsafe_get p.kind i = Shape.sphere then begin
+      if spheres || Array.unsafe_get p.kind i = Kind.Sphere then begin
         s.px <- px;
         s.py <- py;
         s.pz <- pz;
@@ -1711,7 +1766,7 @@ let rec shade tr l =
     s.px <- px;
     s.py <- py;
     s.pz <- pz;
-    let sphere = p.all_spheres || Array.unsafe_get p.kind i = Shape.sphere in
+    let sphere = p.all_spheres || Array.unsafe_get p.kind i = Kind.Sphere in
     (* The surface's material (a CSG solid's: the leaf hit), which a
        pattern may change to its second colour's; and the medium the
        surface bounds, the object's (a CSG solid is one medium, its first
@@ -1742,7 +1797,7 @@ let rec shade tr l =
         (* A smooth triangle's interpolated normal may bend the ray back
            to the side it came from, which it would not cross: then the
            flat normal, turned toward the ray, decides. *)
-        if (not sphere) && Array.unsafe_get p.kind i = Shape.smooth_triangle && Array.unsafe_get io 11 < 1. then begin
+        if (not sphere) && Array.unsafe_get p.kind i = Kind.Smooth_triangle && Array.unsafe_get io 11 < 1. then begin
           let snx = s.nx and sny = s.ny and snz = s.nz in
           Triangle.normal_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i);
           let gx = s.nx and gy = s.ny and gz = s.nz in
@@ -2008,7 +2063,7 @@ let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
   s.t_min <- tr.p.epsilon;
   s.t_max <- infinity;
   tr.origin_sphere <-
-    (if from < 0 || tr.p.kind.(tr.p.slot.(from)) <> Shape.sphere then -1 else tr.p.slot.(from));
+    (if from < 0 || tr.p.kind.(tr.p.slot.(from)) <> Kind.Sphere then -1 else tr.p.slot.(from));
   let hit = closest tr in
   if hit < 0 then -1 else tr.p.index.(hit)
 
@@ -2019,7 +2074,7 @@ let roots tr k (o : Vec3.t) (d : Vec3.t) =
   if k < 0 || k >= p.n_scene_objects then invalid_arg "Trace.roots: no such object";
   let i = p.slot.(k) in
   Scratch.set_ray s o d;
-  if p.kind.(i) <> Shape.sphere then begin
+  if p.kind.(i) <> Kind.Sphere then begin
     (* A CSG solid's root is its first crossing beyond [t_min]: all of them. *)
     s.t_min <- neg_infinity;
     tr.kz <- -1;

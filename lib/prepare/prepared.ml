@@ -10,7 +10,7 @@ type t = {
   slot : int array;
   bvh : Bvh.t option;
   unbounded : int array;
-  kind : int array;
+  kind : Kind.t array;
   geom : float array;
   vertex : float array;
   at0 : int array;
@@ -530,7 +530,7 @@ let prepare_scene ~skips ?beside scene =
      (docs/performance.md, issue 29). *)
   let csg_triangles = List.fold_left (fun t -> function Shape.Csg c -> t + Csg.triangles c | _ -> t) 0 scene.shapes in
   if (any_mesh && n > big_scene) || csg_triangles > big_scene then Gc.compact ();
-  let okind = Array.make n Shape.sphere and omat = Array.make n 0 in
+  let okind = Array.make n Kind.Sphere and omat = Array.make n 0 in
   (* A scene with a mesh has these for its spheres alone: the boxes of
      its shapes, found again from their geometry when the hierarchy is
      built ([mesh_boxes]), take no 56 bytes a triangle meanwhile. *)
@@ -695,7 +695,7 @@ let prepare_scene ~skips ?beside scene =
          let k = ref k in
          for t = 0 to Mesh.triangle_count m - 1 do
            if not (Mesh.degenerate m t) then begin
-             okind.(!k) <- (if m.smooth && usable t 0 && usable t 1 && usable t 2 then Shape.smooth_triangle else Shape.triangle);
+             okind.(!k) <- (if m.smooth && usable t 0 && usable t 1 && usable t 2 then Kind.Smooth_triangle else Kind.Triangle);
              omat.(!k) <- mat;
              incr k
            end
@@ -726,10 +726,10 @@ let prepare_scene ~skips ?beside scene =
      (the slots' objects), or marked by the collections. *)
   let select twin_of =
     let kept k = Array.length twin_of = 0 || twin_of.(k) = k in
-    let is_bounded k = kept k && okind.(k) <> Shape.plane in
+    let is_bounded k = kept k && Kind.bounded okind.(k) in
     let nb = ref 0 and planes = ref [] in
     for k = 0 to n - 1 do
-      if kept k then if okind.(k) = Shape.plane then planes := k :: !planes else incr nb
+      if kept k then if not (Kind.bounded okind.(k)) then planes := k :: !planes else incr nb
     done;
     let unbounded = Array.of_list (List.rev !planes) in
     (* The first and the last bounded object, looked for from each end. *)
@@ -917,7 +917,7 @@ let prepare_scene ~skips ?beside scene =
       (okind, omat)
     end
     else begin
-      let kind = Array.make n_kept 0 and material = Array.make n_kept 0 in
+      let kind = Array.make n_kept Kind.Sphere and material = Array.make n_kept 0 in
       for i = 0 to n_kept - 1 do
         let k = index.(i) in
         slot.(k) <- i;
@@ -929,7 +929,7 @@ let prepare_scene ~skips ?beside scene =
   in
   Array.iteri (fun k first -> if first <> k then slot.(k) <- slot.(first)) twin_of;
   (* Geometry and sphere data, written in slot order. *)
-  let stride = Shape.stride in
+  let stride = Kind.stride in
   (* Spheres alone need no table of shapes. *)
   let shapes_len = if scene.shapes = [] then 0 else n_kept in
   (* Triangles are read from [vertex]; the other shapes, few, have [geom]. *)
@@ -942,7 +942,7 @@ let prepare_scene ~skips ?beside scene =
      1M-triangle knot peaks 24 MB lower). *)
   let at0 = Array.make shapes_len 0 and at1 = Array.make shapes_len 0 and at2 = Array.make shapes_len 0 in
   let next_geom = ref 0 and next_lone = ref n_vertex in
-  let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
+  let any_smooth = Array.exists (fun k -> k = Kind.Smooth_triangle) okind in
   let vnormal = if any_smooth then vnormal else [||] in
   let vcorner = if any_smooth && not follow then Array.make (3 * n_kept) 0 else [||] in
   let sphere_len = if n_spheres > 0 then n_kept else 0 in
@@ -1030,7 +1030,7 @@ let prepare_scene ~skips ?beside scene =
   if not in_place then
   for i = 0 to sphere_len - 1 do
     let k = index.(i) in
-    if okind.(k) = Shape.sphere then begin
+    if okind.(k) = Kind.Sphere then begin
       cx.(i) <- ocx.(k);
       cy.(i) <- ocy.(k);
       cz.(i) <- ocz.(k);
