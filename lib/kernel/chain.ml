@@ -99,8 +99,8 @@ let[@inline] trace_in tr ~spheres =
    its pattern ({!Prepared.all_spheres}); the other scenes test per hit
    whether any material has a pattern. (A copy of the loop for patterns
    made [trace_objects] too big for OCaml to inline into the render loop
-   it is called from, which cost more than the test: 13 instructions per
-   pixel on scenes/boxes.scene.) *)
+   it is called from, which cost more than the test: docs/performance.md,
+   "Round 3: the kernel's modules".) *)
 let trace_spheres tr = trace_in tr ~spheres:true
 let trace_objects tr = trace_in tr ~spheres:false
 

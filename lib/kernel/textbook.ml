@@ -109,6 +109,14 @@ let untiled tr =
   tr.cand_first <- Array.length tr.cand - tr.p.n_objects;
   tr.cand_count <- tr.p.n_objects
 
+(* The whole ray tree of a pixel, or of each pixel of a row (the .mli
+   says what it promises). One function, though longer than a screen: its
+   locals (the ray, the hit point, the level loop's state, the row's
+   counts) live in registers across its steps, and helpers, even inlined,
+   change what OCaml keeps there: the closest-hit loops or the shadow
+   search cut out as functions of their own each cost more instructions
+   per pixel than the slack of the speed gate (docs/performance.md,
+   "Round 3: the kernel's modules"). *)
 let[@inline] textbook_kernel tr ~behind ~row (buffer : Image.buffer) k0 col0 count r =
   let p = tr.p and s = tr.s in
   let sph = p.sphere4 in

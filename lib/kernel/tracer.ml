@@ -120,8 +120,8 @@ let create ?(averaging = false) (p : Prepared.t) =
     tracer = (if p.transparent then tree else if p.all_spheres then spheres_chain else objects_chain);
     tree = (if p.transparent then Ray_tree.create ~depth:p.depth else Ray_tree.empty);
     (* Read by the document's kernel alone ([textbook_all]): other scenes,
-       a million objects in a hierarchy, would make 8 MB per tracer (per
-       worker) for nothing. *)
+       a million objects in a hierarchy, would make an int per object and
+       per tile column, per tracer (per worker), for nothing. *)
     cand = (let n = if p.textbook_all then p.n_objects else 0 and tiles = tiles_across p in
             Array.init ((tiles * n) + n) (fun k -> if k >= tiles * n then k - (tiles * n) else 0));
     tile_row = Array.make (tiles_across p) (-1);

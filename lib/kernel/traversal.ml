@@ -158,8 +158,9 @@ let[@inline] triangle_hit tr s i ~sheared =
   let o0 = Array.unsafe_get p.at0 i and o1 = Array.unsafe_get p.at1 i and o2 = Array.unsafe_get p.at2 i in
   (* One copy of the test per order of the axes, each with its axes as
      constants: a vertex's coordinate is then one load at a fixed
-     displacement from its offset, not an index computed per load (20
-     instructions less a test). The order is the same for every triangle
+     displacement from its offset, not an index computed per load (fewer
+     instructions a test: docs/performance.md, "Round 3: the kernel's
+     modules"). The order is the same for every triangle
      of a ray: its branch is predicted. *)
   match tr.order with
   | 0 -> Triangle.hit s g o0 o1 o2 1 2 0

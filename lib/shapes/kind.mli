@@ -3,10 +3,12 @@
     that every [match] on a kind is one the compiler checks: a new kind
     makes it name each match that misses it.
 
-    The kernel dispatches on a kind in one module per table: the scene's
-    slots in [Surface] (roots, normal and material at a hit) and a CSG
-    solid's leaves in {!Csg} (roots and normal). Everything else here is
-    a cold fact, read when a scene is prepared, never per ray. *)
+    The kernel's matches on a kind: for the scene's slots, the kernel's
+    [Traversal] (which test a slot takes, and the roots of the shapes that
+    are not spheres or triangles) and [Surface] (the normal, offset and
+    material at a hit); for a CSG solid's leaves, {!Csg} (roots and
+    normal). None has a catch-all case. Everything else here is a cold
+    fact, read when a scene is prepared, never per ray. *)
 
 type t =
   | Sphere  (** A sphere: the kernel's own arrays of centres and radii. *)
