@@ -27,7 +27,7 @@
 
     {1 The skips and their proofs}
 
-    {2 Spheres behind the ray ([Behind], {!Prepared.t}'s [behind])}
+    {2 Spheres behind the ray ([Behind], [behind])}
 
     A sphere is rejected without the square root and the two divisions
     when [k2 > 0] and [k3 > 0]. Then [disc = fl(fl(k2^2) - fl(4 k1 k3)) <=

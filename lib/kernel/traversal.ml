@@ -4,8 +4,9 @@ open Tracer
 (* Two ways to intersect. The document's mode (the scene gives an epsilon)
    uses the textbook quadratic of section 6.1 in CGFS's order of operations,
    so that it reproduces the document's images byte for byte. The robust
-   mode uses the cancellation-free roots of [Sphere.roots] (same arithmetic,
-   inlined here) and needs no epsilon: a secondary ray cannot hit the sphere
+   mode uses the cancellation-free roots of [Sphere.roots] (its formulas,
+   with [1 / a] computed once a ray: the far root is [q * (1 / a)], where
+   [Sphere.roots] and the CSG table divide, [q / a]) and needs no epsilon: a secondary ray cannot hit the sphere
    it leaves except at that sphere's other root (see [leaving]). *)
 
 (* Is root [t] of the sphere in slot [i] better than the best so far?

@@ -6,21 +6,23 @@
     The kernel's matches on a kind: for the scene's slots, the kernel's
     [Traversal] (which test a slot takes, and the roots of the shapes that
     are not spheres or triangles) and [Surface] (the normal, offset and
-    material at a hit); for a CSG solid's leaves, {!Csg} (roots and
+    material at a hit); for a CSG solid's leaves, {!module-Csg} (roots and
     normal). None has a catch-all case. Everything else here is a cold
-    fact, read when a scene is prepared, never per ray. *)
+    fact, read when a scene is prepared, never per ray.
+
+    @canonical Raytrace.Private.Kind *)
 
 type t =
   | Sphere  (** A sphere: the kernel's own arrays of centres and radii. *)
   | Triangle  (** A triangle, alone or a mesh's, shaded with its flat normal. *)
   | Smooth_triangle
       (** A mesh's triangle shaded with normals interpolated from its
-          corners ({!Triangle.smooth_normal}). *)
+          corners ({!module-Triangle.smooth_normal}). *)
   | Plane  (** A plane: unbounded, outside the hierarchy. *)
   | Box  (** An axis-aligned box. *)
   | Csg
       (** A CSG solid, whose geometry is the number of its root node in
-          the kernel's {!Csg.type-table}. *)
+          the kernel's {!module-Csg.type-table}. *)
 (** The type for kinds. The order of the constructors is the kernel's:
     spheres, then triangles, then the rest, so that the traversal's
     three-way [match] compiles to two comparisons. *)
@@ -52,5 +54,5 @@ val stride : int
     CSG table's). *)
 
 val is_triangle : t -> bool
-(** [is_triangle k] is [true] iff [k] is {!Triangle} or {!Smooth_triangle}:
+(** [is_triangle k] is [true] iff [k] is {!constructor-Triangle} or {!constructor-Smooth_triangle}:
     the kinds whose corners are offsets into the table of vertices. *)

@@ -1,7 +1,7 @@
 (** The shapes besides spheres, as one type.
 
     The kernel ({!Raytrace.Private.Prepared}, {!Raytrace.Private.Trace}) stores every shape in a table: a
-    kind, and its geometry in a float array ({!Kind.stride} floats per shape,
+    kind, and its geometry in a float array ({!Raytrace.Private.Kind.stride} floats per shape,
     written by the shape module's [store]; a triangle's three corners in
     an array of vertices, a mesh's shared by its triangles). This module
     ties the kinds to the shape modules, for the kernel and for
@@ -43,7 +43,7 @@ val name : t -> string
 val kind : t -> Kind.t
 (** [kind s] is the kind of [s] in the kernel's table.
     @raise Invalid_argument on a mesh, which is many objects of kind
-    {!Kind.Triangle} or {!Kind.Smooth_triangle} (so are {!store}, {!bounds},
+    {!Raytrace.Private.Kind.Triangle} or {!Raytrace.Private.Kind.Smooth_triangle} (so are {!store}, {!bounds},
     {!roots} and {!normal}); {!store}, {!roots} and {!normal} raise it
     on a CSG solid too, which the kernel traces from its own table. *)
 
