@@ -41,6 +41,7 @@ module Private = struct
   module Canvas = Canvas
   module Shading = Shading
   module Bvh = Bvh
+  module Kind = Kind
   module Prepared = Prepared
   module Trace = Trace
   module Scratch = Scratch

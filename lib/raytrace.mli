@@ -127,6 +127,7 @@ module Private : sig
   module Canvas = Canvas
   module Shading = Shading
   module Bvh = Bvh
+  module Kind = Kind
   module Prepared = Prepared
   module Trace = Trace
   module Scratch = Scratch

@@ -209,7 +209,7 @@ let tests =
            [vsource]. *)
         let next = ref 0 and wrong = ref 0 and unordered = ref 0 and normal = Array.make 3 0. in
         for i = 0 to n do
-          if p.kind.(i) = Shape.smooth_triangle then begin
+          if p.kind.(i) = Private.Kind.Smooth_triangle then begin
             (* Object 0 is the plane, the mesh's triangles follow. *)
             let t = p.index.(i) - 1 in
             List.iteri
@@ -232,7 +232,7 @@ let tests =
         Alcotest.(check int) "vertices placed out of the order of first use" 0 !unordered;
         Alcotest.(check int) "every vertex copied once" (Array.length m.positions) !next;
         Alcotest.(check int) "no other vertex" (Array.length m.positions) (Array.length p.vertex);
-        Alcotest.(check int) "geometry: the plane's alone" Shape.stride (Array.length p.geom);
+        Alcotest.(check int) "geometry: the plane's alone" Private.Kind.stride (Array.length p.geom);
         Alcotest.(check int) "extents: the plane's alone" 1 (Array.length p.extent);
         Alcotest.(check int) "an offset a slot, in each of three arrays" (n + 1) (Array.length p.at0);
         Alcotest.(check int) "no table of the corners' normals" 0 (Array.length p.vcorner);

@@ -35,7 +35,7 @@ let gather ~kind ~vertex at0 at1 at2 =
   in
   for i = 0 to n - 1 do
     let k = Array.unsafe_get kind i in
-    if k = Shape.triangle || k = Shape.smooth_triangle then begin
+    if Kind.is_triangle k then begin
       let o0 = Array.unsafe_get at0 i and o1 = Array.unsafe_get at1 i and o2 = Array.unsafe_get at2 i in
       check_corner vertex o0;
       check_corner vertex o1;

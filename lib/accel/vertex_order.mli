@@ -11,11 +11,11 @@
     The copy moves coordinates, never computes them: every test reads the
     same floats as before, and every image is the same. *)
 
-val gather : kind:int array -> vertex:float array -> int array -> int array -> int array -> float array * int array
+val gather : kind:Kind.t array -> vertex:float array -> int array -> int array -> int array -> float array * int array
 (** [gather ~kind ~vertex at0 at1 at2] is [(vertex', source)]: the
     vertices (3 floats each) that the triangles name, in the order in
-    which the slots [i] whose [kind.(i)] is {!Shape.triangle} or
-    {!Shape.smooth_triangle} first name them (slot [0]'s three corners,
+    which the slots [i] whose [kind.(i)] is {!Kind.Triangle} or
+    {!Kind.Smooth_triangle} first name them (slot [0]'s three corners,
     then slot [1]'s new ones, ...), each copied once however many
     triangles share it; and per vertex of [vertex'] (its offset [o'], at
     [o' / 3]) its offset in [vertex]. It rewrites those slots' offsets

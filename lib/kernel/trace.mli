@@ -18,6 +18,12 @@
     transparent objects. Scenes without transparency keep the reflection
     loop, instruction for instruction.
 
+    This module is the kernel's front: the work is done by the kernel's
+    modules under it, one job each (the tracer's state, exact bytes and
+    the early stop, camera rays, traversal, surfaces, lighting, the
+    general loop, the ray tree, the document's kernel), listed in
+    docs/architecture.md, "The kernel's modules".
+
     @canonical Raytrace.Private.Trace *)
 
 type counters = {

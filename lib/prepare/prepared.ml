@@ -10,7 +10,7 @@ type t = {
   slot : int array;
   bvh : Bvh.t option;
   unbounded : int array;
-  kind : int array;
+  kind : Kind.t array;
   geom : float array;
   vertex : float array;
   at0 : int array;
@@ -684,7 +684,7 @@ let vertex_base v m = List.assq m v.bases
 (* {2 Kinds, materials and cubes of the objects} *)
 
 (* The spheres' materials, centers and radii (their kind is already
-   [Shape.sphere]). The spheres' plain materials are distinct in their
+   [Kind.Sphere]). The spheres' plain materials are distinct in their
    table: the first sphere of each finds or makes the prepared material,
    the others reuse its number (what [new_material] would find). *)
 let sphere_objects o r omat c =
@@ -766,7 +766,7 @@ let mesh_objects r v runs okind omat k (m : Mesh.t) =
   let k = ref k in
   for t = 0 to Mesh.triangle_count m - 1 do
     if not (Mesh.degenerate m t) then begin
-      okind.(!k) <- (if m.smooth && usable t 0 && usable t 1 && usable t 2 then Shape.smooth_triangle else Shape.triangle);
+      okind.(!k) <- (if m.smooth && usable t 0 && usable t 1 && usable t 2 then Kind.Smooth_triangle else Kind.Triangle);
       omat.(!k) <- mat;
       incr k
     end
@@ -807,10 +807,10 @@ let[@inline] kept twin_of k = Array.length twin_of = 0 || twin_of.(k) = k
 
 let select o okind twin_of =
   let n = o.n in
-  let is_bounded k = kept twin_of k && okind.(k) <> Shape.plane in
+  let is_bounded k = kept twin_of k && Kind.bounded okind.(k) in
   let nb = ref 0 and planes = ref [] in
   for k = 0 to n - 1 do
-    if kept twin_of k then if okind.(k) = Shape.plane then planes := k :: !planes else incr nb
+    if kept twin_of k then if not (Kind.bounded okind.(k)) then planes := k :: !planes else incr nb
   done;
   let unbounded = Array.of_list (List.rev !planes) in
   (* The first and the last bounded object, looked for from each end. *)
@@ -980,7 +980,7 @@ let index_of_slots o (bvh : Bvh.t option) sel twin_of =
 type slots = {
   index : int array;
   slot : int array;
-  kind : int array;  (* By slot. *)
+  kind : Kind.t array;  (* By slot. *)
   material : int array;  (* By slot. *)
   in_place : bool;
       (* Spheres alone, without twins: [index] orders every object, and
@@ -1007,7 +1007,7 @@ let slots o index okind omat twin_of =
       (okind, omat)
     end
     else begin
-      let kind = Array.make n_kept 0 and material = Array.make n_kept 0 in
+      let kind = Array.make n_kept Kind.Sphere and material = Array.make n_kept 0 in
       for i = 0 to n_kept - 1 do
         let k = index.(i) in
         slot.(k) <- i;
@@ -1038,7 +1038,7 @@ let geometry_arrays o sl ~any_smooth ~follow =
   let shapes_len = if o.shapes = [] then 0 else n_kept in
   (* Triangles are read from [vertex]; the other shapes, few, have [geom]. *)
   let n_geom = List.length (List.filter (function Shape.Triangle _ | Shape.Mesh _ -> false | _ -> true) o.shapes) in
-  let geom = Array.make (Shape.stride * n_geom) 0. and extent = Array.make n_geom 0. in
+  let geom = Array.make (Kind.stride * n_geom) 0. and extent = Array.make n_geom 0. in
   (* Three arrays, not one of three ints a slot: made after the
      hierarchy, each fits where one of its build's arrays was. *)
   let at0 = Array.make shapes_len 0 and at1 = Array.make shapes_len 0 and at2 = Array.make shapes_len 0 in
@@ -1078,7 +1078,7 @@ let store_mesh v normal_base sl g ~any_smooth run k (m : Mesh.t) =
    in [vertex], and their offsets; a mesh's ([store_mesh]); another
    shape's in [geom] and [extent] (a CSG solid's root node in [geom]). *)
 let store_geometry o v s normal_base sl g ~any_smooth =
-  let stride = Shape.stride in
+  let stride = Kind.stride in
   let next_geom = ref 0 and next_lone = ref v.lone_base in
   let extent_of i =
     let e = ref 0. in
@@ -1156,7 +1156,7 @@ let sphere_arrays o pool sl okind c =
     let cz = Array.make sphere_len 0. and radius = Array.make sphere_len 0. in
     for i = 0 to sphere_len - 1 do
       let k = index.(i) in
-      if okind.(k) = Shape.sphere then begin
+      if okind.(k) = Kind.Sphere then begin
         cx.(i) <- ocx.(k);
         cy.(i) <- ocy.(k);
         cz.(i) <- ocz.(k);
@@ -1334,7 +1334,7 @@ let prepare_scene ~skips ?beside scene =
   let scene = settings scene in
   compact_after_loading o;
   (* Per object, in object order: kind, material, and the cube around it. *)
-  let okind = Array.make o.n Shape.sphere and omat = Array.make o.n 0 in
+  let okind = Array.make o.n Kind.Sphere and omat = Array.make o.n 0 in
   let c = cubes o in
   let r = registry () in
   let v = vertices o in
@@ -1356,7 +1356,7 @@ let prepare_scene ~skips ?beside scene =
   let unbounded = sel.unbounded in
   let sl = slots o (index_of_slots o bvh sel twin_of) okind omat twin_of in
   (* Geometry and sphere data, in slot order. *)
-  let any_smooth = Array.exists (fun k -> k = Shape.smooth_triangle) okind in
+  let any_smooth = Array.exists (fun k -> k = Kind.Smooth_triangle) okind in
   let vnormal = if any_smooth then v.vnormal else [||] in
   let g = geometry_arrays o sl ~any_smooth ~follow:v.follow in
   let sp = camera_constants pool scene.camera.position (sphere_arrays o pool sl okind c) in

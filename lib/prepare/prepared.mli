@@ -46,10 +46,10 @@ type t = private {
           skips are enabled and there are more than {!bvh_threshold} of them;
           its leaves hold slots [0 .. n - 1], the planes follow. *)
   unbounded : int array;  (** The slots of the planes, in scene order. *)
-  kind : int array;  (** {!Shape.sphere}, {!Shape.plane}, ... *)
+  kind : Kind.t array;  (** The slot's kind, by which the kernel dispatches ({!Kind}). *)
   geom : float array;
       (** The geometry of the shapes other than spheres and triangles:
-          shape [g]'s at [Shape.stride * g], as the shape module's [store]
+          shape [g]'s at [Kind.stride * g], as the shape module's [store]
           writes it; a slot's [g] is in [at0]. *)
   vertex : float array;
       (** The triangles' vertices, 3 floats each, a vertex stored once
@@ -90,7 +90,7 @@ type t = private {
           its geometry (a triangle's is found from its corners when a hit
           needs it). *)
   csg : Csg.table;
-      (** The CSG solids: the [geom] of a slot of kind {!Shape.csg} holds
+      (** The CSG solids: the [geom] of a slot of kind {!Kind.Csg} holds
           the number of its root node in this table. *)
   n_scene_objects : int;
       (** The objects of the scene, [>= n_objects]: a sphere identical (same

@@ -211,19 +211,15 @@ let show c = Format.asprintf "%a" pp c
 
 (* {1 The kernel's table} *)
 
-let stride = 9
+let stride = Kind.stride
 let union = 0
 let intersection = 1
 let difference = 2
-let leaf_sphere = 3
-let leaf_box = 4
-let leaf_mesh = 5
+let leaf_node = 3
 
-(* Surfaces, one a leaf: a sphere [cx cy cz r], a box as {!Box.store}
-   writes it, a mesh (its number in [meshes], as a float). *)
-let surface_sphere = 0
-let surface_box = 1
-let surface_mesh = 2
+(* Surfaces, one a leaf, of a closed kind ({!Kind.closed}): a sphere
+   [cx cy cz r], a box as {!Box.store} writes it, a mesh (kind
+   [Triangle]: its number in [meshes], as a float). *)
 
 (* The intervals name the surface crossed at each end as [sf lsl
    slot_bits lor slot]: the leaf's surface [sf], and for a mesh the slot of
@@ -254,7 +250,7 @@ type table = {
   left : int array;  (** An operation's first child; a leaf's surface. *)
   right : int array;  (** An operation's second child; a mesh leaf's number in [meshes]. *)
   base : int array;  (** A node's first interval in the work arrays. *)
-  surface_kind : int array;
+  surface_kind : Kind.t array;
   geom : float array;  (** [stride] floats per surface. *)
   surface_material : int array;
   meshes : mesh_leaf array;
@@ -267,7 +263,7 @@ type table = {
 type builder = {
   mutable nodes : (int * int * int * int) list;  (** kind, left, right, base; reversed. *)
   mutable n_nodes : int;
-  mutable surfaces : (int * float array * int) list;  (** Reversed. *)
+  mutable surfaces : (Kind.t * float array * int) list;  (** Reversed. *)
   mutable n_surfaces : int;
   mutable meshes : mesh_leaf list;  (** Reversed. *)
   mutable n_meshes : int;
@@ -337,18 +333,18 @@ let rec add_solid b ~material s =
   match s with
   | Sphere sp ->
       let first = b.n_surfaces in
-      add_surface b surface_sphere [| sp.center.x; sp.center.y; sp.center.z; sp.radius |] (material s);
-      (add_node b leaf_sphere first 0 1, 1)
+      add_surface b Kind.Sphere [| sp.center.x; sp.center.y; sp.center.z; sp.radius |] (material s);
+      (add_node b leaf_node first 0 1, 1)
   | Box bx ->
       let first = b.n_surfaces in
       let g = Array.make stride 0. in
       Box.store bx g 0;
-      add_surface b surface_box g (material s);
-      (add_node b leaf_box first 0 1, 1)
+      add_surface b Kind.Box g (material s);
+      (add_node b leaf_node first 0 1, 1)
   | Mesh m ->
       let sf = b.n_surfaces and leaf = mesh_leaf m in
       let number = b.n_meshes in
-      add_surface b surface_mesh [| Float.of_int number |] (material s);
+      add_surface b Kind.Triangle [| Float.of_int number |] (material s);
       b.meshes <- leaf :: b.meshes;
       b.n_meshes <- number + 1;
       let n = Array.length leaf.corners / 3 in
@@ -356,7 +352,7 @@ let rec add_solid b ~material s =
          a level, and the nodes it pushes last. *)
       b.max_depth <- max b.max_depth leaf.depth;
       let cap = (n / 2) + 1 in
-      (add_node b leaf_mesh sf number cap, cap)
+      (add_node b leaf_node sf number cap, cap)
   | Csg c ->
       let a, ca = add_solid b ~material c.a in
       let bn, cb = add_solid b ~material c.b in
@@ -655,19 +651,25 @@ let merge w op node base na nb ba bb =
   done;
   Array.unsafe_set w.count node !n
 
+(* A CSG leaf is closed ({!Kind.closed}), and its triangles are flat:
+   {!add_solid} makes no other. *)
+let not_a_leaf () = invalid_arg "Csg: a leaf of a kind that is not closed"
+
 let rec eval tb w (s : Scratch.t) node =
   let k = Array.unsafe_get tb.node_kind node and base = Array.unsafe_get tb.base node in
-  if k = leaf_sphere then begin
-    w.tests <- w.tests + 1;
+  if k = leaf_node then begin
+    (* The CSG table's dispatch on a leaf's kind. *)
     let sf = Array.unsafe_get tb.left node in
-    leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (sphere_roots s tb.geom (stride * sf))
+    match Array.unsafe_get tb.surface_kind sf with
+    | Kind.Sphere ->
+        w.tests <- w.tests + 1;
+        leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (sphere_roots s tb.geom (stride * sf))
+    | Kind.Box ->
+        w.tests <- w.tests + 1;
+        leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (Box.roots s tb.geom (stride * sf))
+    | Kind.Triangle -> mesh_intervals tb w s node base
+    | Kind.Plane | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ()
   end
-  else if k = leaf_box then begin
-    w.tests <- w.tests + 1;
-    let sf = Array.unsafe_get tb.left node in
-    leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (Box.roots s tb.geom (stride * sf))
-  end
-  else if k = leaf_mesh then mesh_intervals tb w s node base
   else begin
     let na = Array.unsafe_get tb.left node and nb = Array.unsafe_get tb.right node in
     eval tb w s na;
@@ -711,20 +713,20 @@ let roots tb w (s : Scratch.t) root =
 
 let normal tb w (s : Scratch.t) =
   let sf = w.surface lsr tb.slot_bits in
-  let k = Array.unsafe_get tb.surface_kind sf and o = stride * sf in
-  if k = surface_sphere then begin
-    let g = tb.geom in
-    let nx = s.px -. Array.unsafe_get g o and ny = s.py -. Array.unsafe_get g (o + 1) and nz = s.pz -. Array.unsafe_get g (o + 2) in
-    let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
-    s.nx <- nx *. inv;
-    s.ny <- ny *. inv;
-    s.nz <- nz *. inv
-  end
-  else if k = surface_box then Box.hit_normal s tb.geom o
-  else begin
-    let leaf = tb.meshes.(truncate tb.geom.(o)) and c = 3 * (w.surface land ((1 lsl tb.slot_bits) - 1)) in
-    Triangle.normal_at s leaf.vertex leaf.corners.(c) leaf.corners.(c + 1) leaf.corners.(c + 2)
-  end;
+  let o = stride * sf in
+  (match Array.unsafe_get tb.surface_kind sf with
+  | Kind.Sphere ->
+      let g = tb.geom in
+      let nx = s.px -. Array.unsafe_get g o and ny = s.py -. Array.unsafe_get g (o + 1) and nz = s.pz -. Array.unsafe_get g (o + 2) in
+      let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+      s.nx <- nx *. inv;
+      s.ny <- ny *. inv;
+      s.nz <- nz *. inv
+  | Kind.Box -> Box.hit_normal s tb.geom o
+  | Kind.Triangle ->
+      let leaf = tb.meshes.(truncate tb.geom.(o)) and c = 3 * (w.surface land ((1 lsl tb.slot_bits) - 1)) in
+      Triangle.normal_at s leaf.vertex leaf.corners.(c) leaf.corners.(c + 1) leaf.corners.(c + 2)
+  | Kind.Plane | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ());
   (* Outward from the solid: against the ray where it enters, along it
      where it leaves. This turns a subtracted solid's normal around. *)
   let along = (s.nx *. s.dx) +. (s.ny *. s.dy) +. (s.nz *. s.dz) > 0. in

@@ -30,16 +30,9 @@ let validate s =
       Ok (Csg c)
 
 let name = function Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg"
-let sphere = 0
-let plane = 1
-let triangle = 2
-let box = 3
-let smooth_triangle = 4
-let csg = 5
 let one fn = invalid_arg (Printf.sprintf "Shape.%s: a mesh is many objects" fn)
 let own fn = invalid_arg (Printf.sprintf "Shape.%s: a CSG solid is in the kernel's CSG table" fn)
-let kind = function Plane _ -> plane | Triangle _ -> triangle | Box _ -> box | Mesh _ -> one "kind" | Csg _ -> csg
-let stride = 9
+let kind = function Plane _ -> Kind.Plane | Triangle _ -> Kind.Triangle | Box _ -> Kind.Box | Mesh _ -> one "kind" | Csg _ -> Kind.Csg
 
 let store s g o =
   match s with
@@ -89,7 +82,7 @@ let bounds = function
       cube lo hi
 
 let with_table s f =
-  let g = Array.make stride 0. and sc = Scratch.create () in
+  let g = Array.make Kind.stride 0. and sc = Scratch.create () in
   store s g 0;
   f sc g
 
@@ -131,7 +124,7 @@ let show s = Format.asprintf "%a" pp s
 (* The largest coordinate of the stored geometry, as {!Prepared} bounds a
    shape's hit point's rounding. *)
 let stored_extent sh =
-  let g = Array.make stride 0. in
+  let g = Array.make Kind.stride 0. in
   store sh g 0;
   Array.fold_left (fun e x -> Float.max e (Float.abs x)) 0. g
 

@@ -1,7 +1,7 @@
 (** The shapes besides spheres, as one type.
 
     The kernel ({!Raytrace.Private.Prepared}, {!Raytrace.Private.Trace}) stores every shape in a table: a
-    kind, and its geometry in a float array ({!stride} floats per shape,
+    kind, and its geometry in a float array ({!Raytrace.Private.Kind.stride} floats per shape,
     written by the shape module's [store]; a triangle's three corners in
     an array of vertices, a mesh's shared by its triangles). This module
     ties the kinds to the shape modules, for the kernel and for
@@ -40,35 +40,12 @@ val name : t -> string
 
 (** {1:kinds Kinds} *)
 
-val sphere : int
-(** [sphere] is [0], the kind of spheres in the kernel's table. *)
-
-val plane : int
-(** [plane] is [1]. *)
-
-val triangle : int
-(** [triangle] is [2]. *)
-
-val box : int
-(** [box] is [3]. *)
-
-val smooth_triangle : int
-(** [smooth_triangle] is [4]: a mesh's triangle shaded with normals
-    interpolated from its corners ({!Triangle.smooth_normal}). *)
-
-val csg : int
-(** [csg] is [5]: a CSG solid, whose geometry is the number of its root
-    node in the kernel's {!Csg.type-table} (see {!Raytrace.Private.Prepared}). *)
-
-val kind : t -> int
-(** [kind s] is the kind of [s].
+val kind : t -> Kind.t
+(** [kind s] is the kind of [s] in the kernel's table.
     @raise Invalid_argument on a mesh, which is many objects of kind
-    {!triangle} or {!smooth_triangle} (so are {!store}, {!bounds},
+    {!Raytrace.Private.Kind.Triangle} or {!Raytrace.Private.Kind.Smooth_triangle} (so are {!store}, {!bounds},
     {!roots} and {!normal}); {!store}, {!roots} and {!normal} raise it
     on a CSG solid too, which the kernel traces from its own table. *)
-
-val stride : int
-(** [stride] is [9], the floats of geometry per shape in the table. *)
 
 val store : t -> float array -> int -> unit
 (** [store s g o] writes the geometry of [s] to [g] at offset [o]. *)

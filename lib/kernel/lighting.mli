@@ -1,0 +1,18 @@
+(** Lighting (sections 7.4 to 7.7 of the document): the total intensity
+    of the lights at a hit point, with their shadow rays. *)
+
+val lighting : Tracer.t -> shiny:bool -> specular_of:float array -> int -> unit
+(** [lighting tr ~shiny ~specular_of m] leaves in [s.intensity] the total
+    intensity at the hit point [s.px..] with unit normal [s.nx..] and view
+    vector [s.vx..], for material [m] (its specular exponent
+    [specular_of.(m)], used only if [shiny]). Each light's diffuse and
+    specular terms are decided before its shadow ray, and with the skips
+    ({!Prepared.t}'s [shadow_skip]) a light that would add neither casts
+    none; any object stops a shadow ray ({!Traversal.shadowed}). The
+    shadow rays reuse the ray fields of [s]. *)
+
+val lighting_through : Tracer.t -> shiny:bool -> specular_of:float array -> int -> unit
+(** [lighting_through] is {!lighting} with shadow rays that pass through
+    transparent objects, the light scaled by the transparency of each
+    surface crossed (twice through a ball, once out of the one the ray
+    starts in); an opaque object stops them. For the ray tree. *)

@@ -1,0 +1,168 @@
+open Scratch
+open Tracer
+
+(* [64 u]: the hit point [O + t D] of a plane, triangle or box lies within
+   [32 u (|O| + |P| + extent)] of the surface (the shapes' stated bounds,
+   plus the rounding of [P]); twice that leaves the secondary ray's own
+   root on the surface (error [16 u (|P| + extent)] at most) negative. *)
+let offset_bound = 32. *. epsilon_float
+
+(* The hit point [s.px, s.py, s.pz] on the shape (not a sphere) in slot
+   [i], for the ray in [s]: its normal, turned toward the ray (planes and
+   triangles are seen from both sides, and a box from inside shows its
+   walls' inner sides), and the view vector, in [s]. In the robust mode,
+   the point is then moved off the surface, along the normal toward the
+   ray's side, by a bound on its rounding error (Ray Tracing Gems,
+   chapter 6): shadow and mirror rays leave from there, and their roots on
+   this surface, or on any surface through the same point, are negative
+   whatever the angle, with no constant tied to the scene's scale. The
+   material's number of the point is returned: a CSG solid's is its
+   leaf's. *)
+let[@inline] fmax_abs (e : float) x =
+  let x = Float.abs x in
+  if x > e then x else e
+
+(* The offset in [p.vnormal] of the normal of the corner at offset [o] in
+   [p.vertex], where normals follow their vertices. *)
+let[@inline] normal_of (p : Prepared.t) o = if Array.length p.vsource = 0 then o else p.vsource.(o / 3)
+
+(* Spheres are hit by [sphere_hit]: the sphere a ray leaves is handled
+   exactly, not offset. *)
+let not_here fn = invalid_arg ("Trace." ^ fn ^ ": a sphere")
+
+let shape_hit tr i =
+  let p = tr.p and s = tr.s in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let px = s.px and py = s.py and pz = s.pz in
+  let k = Array.unsafe_get p.kind i in
+  let triangle = Kind.is_triangle k in
+  (* A triangle's corners in [p.vertex], or the shape's number in [p.geom]. *)
+  let o0 = Array.unsafe_get p.at0 i in
+  let o1 = if triangle then Array.unsafe_get p.at1 i else 0 and o2 = if triangle then Array.unsafe_get p.at2 i else 0 in
+  let o = Kind.stride * o0 in
+  (match k with
+  | Triangle | Smooth_triangle -> Triangle.normal_at s p.vertex o0 o1 o2
+  | Plane -> Plane.normal s p.geom o
+  | Box ->
+      (* The root kept, for the face whose slab decides it. *)
+      s.near <- s.t;
+      Box.hit_normal s p.geom o
+  | Csg ->
+      (* The surface hit, found again for the ray still in [s]: the same
+         first crossing that [closest] kept. The normal is the solid's
+         outward one, as a box's, before it is turned toward the ray. *)
+      ignore (Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o)));
+      Csg.normal p.csg tr.csg s
+  | Sphere -> not_here "shape_hit");
+  let flip = (s.nx *. dx) +. (s.ny *. dy) +. (s.nz *. dz) > 0. in
+  if flip then begin
+    s.nx <- -.s.nx;
+    s.ny <- -.s.ny;
+    s.nz <- -.s.nz
+  end;
+  (* The geometric normal, turned toward the ray: the side to start
+     secondary rays on. *)
+  let gx = s.nx and gy = s.ny and gz = s.nz in
+  (* A smooth triangle shades with its interpolated normal, on the side
+     the ray sees. *)
+  if k = Smooth_triangle
+     && (let follow = Array.length p.vcorner = 0 and j = 3 * i in
+         Triangle.smooth_normal_at s p.vertex o0 o1 o2 p.vnormal
+           (if follow then normal_of p o0 else Array.unsafe_get p.vcorner j)
+           (if follow then normal_of p o1 else Array.unsafe_get p.vcorner (j + 1))
+           (if follow then normal_of p o2 else Array.unsafe_get p.vcorner (j + 2)))
+     && flip then begin
+    s.nx <- -.s.nx;
+    s.ny <- -.s.ny;
+    s.nz <- -.s.nz
+  end;
+  s.vx <- -.dx;
+  s.vy <- -.dy;
+  s.vz <- -.dz;
+  tr.origin_sphere <- -1;
+  if p.robust then begin
+    (* A triangle's extent from its corners, [fmax] of their magnitudes as
+       [Prepared] finds a shape's: no array of them per triangle. *)
+    let extent =
+      if triangle then
+        let v = p.vertex in
+        let e = fmax_abs 0. (Array.unsafe_get v o0) in
+        let e = fmax_abs e (Array.unsafe_get v (o0 + 1)) in
+        let e = fmax_abs e (Array.unsafe_get v (o0 + 2)) in
+        let e = fmax_abs e (Array.unsafe_get v o1) in
+        let e = fmax_abs e (Array.unsafe_get v (o1 + 1)) in
+        let e = fmax_abs e (Array.unsafe_get v (o1 + 2)) in
+        let e = fmax_abs e (Array.unsafe_get v o2) in
+        let e = fmax_abs e (Array.unsafe_get v (o2 + 1)) in
+        fmax_abs e (Array.unsafe_get v (o2 + 2))
+      else Array.unsafe_get p.extent o0
+    in
+    let size =
+      Float.abs s.ox +. Float.abs s.oy +. Float.abs s.oz +. Float.abs px +. Float.abs py +. Float.abs pz
+      +. extent
+    in
+    let e = offset_bound *. size in
+    s.px <- px +. (e *. gx);
+    s.py <- py +. (e *. gy);
+    s.pz <- pz +. (e *. gz)
+  end;
+  match k with
+  | Csg -> Csg.material p.csg tr.csg
+  | Sphere | Plane | Triangle | Smooth_triangle | Box -> Array.unsafe_get p.material i
+
+(* The material whose colour the hit of the ray in [s] at [s.t] shows:
+   [m], or the material of its pattern's second colour. {!Pattern.odd}
+   reads the hit point as [trace_in] computed it, before the robust mode
+   moved it off a shape (the pattern moves it its own way): recomputed
+   here with the same operations, put in [s] for the call, and the moved
+   point put back. Not inlined: its code would make [trace_objects] too
+   big for OCaml to inline into the render loop. *)
+let[@inline never] local_material tr m =
+  let p = tr.p in
+  let alt = Array.unsafe_get p.alternate m in
+  if alt < 0 then m
+  else begin
+    let s = tr.s in
+    let t = s.t in
+    let px = s.ox +. (s.dx *. t) and py = s.oy +. (s.dy *. t) and pz = s.oz +. (s.dz *. t) in
+    let sx = s.px and sy = s.py and sz = s.pz in
+    s.px <- px;
+    s.py <- py;
+    s.pz <- pz;
+    let odd = Pattern.odd s p.pattern (Pattern.stride * m) in
+    s.px <- sx;
+    s.py <- sy;
+    s.pz <- sz;
+    if odd then alt else m
+  end
+
+(* The hit point [px, py, pz] (already in [s]) on the sphere in slot
+   [i], for a ray of direction [dx, dy, dz]: its outward normal and the
+   view vector, in [s]. *)
+let[@inline] sphere_hit tr i =
+  let p = tr.p and s = tr.s in
+  let px = s.px and py = s.py and pz = s.pz and dx = s.dx and dy = s.dy and dz = s.dz in
+  let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
+  let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+  s.nx <- nx *. inv;
+  s.ny <- ny *. inv;
+  s.nz <- nz *. inv;
+  s.vx <- -.dx;
+  s.vy <- -.dy;
+  s.vz <- -.dz;
+  (* Shadow and mirror rays leave sphere i. *)
+  tr.origin_sphere <- i
+
+(* The mirror ray R = 2 <V, N> N - V from the hit point, in [s]. *)
+let[@inline] mirror_ray (p : Prepared.t) s =
+  let nx = s.nx and ny = s.ny and nz = s.nz and vx = s.vx and vy = s.vy and vz = s.vz in
+  let k = 2. *. ((vx *. nx) +. (vy *. ny) +. (vz *. nz)) in
+  s.ox <- s.px;
+  s.oy <- s.py;
+  s.oz <- s.pz;
+  s.dx <- (nx *. k) -. vx;
+  s.dy <- (ny *. k) -. vy;
+  s.dz <- (nz *. k) -. vz;
+  s.t_min <- p.epsilon;
+  s.t_max <- infinity
+

@@ -1,0 +1,132 @@
+(** The tracer's state: what a tracer keeps between rays (its prepared
+    scene, the per-ray record, the stacks of the loops, the counters and
+    the work budget), at the bottom of the kernel's modules, which all
+    read it. Kernel-internal: {!Trace} is the interface.
+
+    Floats cross the kernel's module boundaries only in the per-ray record
+    {!Scratch.t} ([s]) and in the arrays here: without flambda, and with
+    the dev profile's [-opaque], a float argument or result of a call to
+    another module is boxed. *)
+
+(** {1:state The state} *)
+
+type counters = {
+  mutable primary : int;  (** Primary rays cast. *)
+  mutable shadow : int;  (** Shadow rays cast. *)
+  mutable reflection : int;  (** Mirror rays cast, and refracted rays. *)
+  mutable tests : int;  (** Ray-object intersection tests. *)
+  mutable box_tests : int;  (** Ray-box tests in the object hierarchy. *)
+  mutable early_stops : int;  (** Reflections (and refractions) stopped by the weight bound. *)
+}
+(** The type for the work counters ({!Trace.counters}). *)
+
+type t = {
+  p : Prepared.t;
+  s : Scratch.t;
+  stack : float array;  (** Per reflection level: local r, g, b and reflectivity. *)
+  last_blocker : int array;  (** Per light: the sphere that last shadowed it. *)
+  blockers : float array;
+      (** The document's kernel: per light [l], from [4 n l] on ([n] =
+          [n_objects]), a copy of [sphere4] in the order its shadow rays
+          try the spheres: the last blocker found first. One array read per
+          sphere, not an index then the sphere. *)
+  blockers_first : int array;  (** Per light [l]: [4 n l], read rather than multiplied per shadow ray. *)
+  counters : counters;
+  nodes : int array;  (** Stack of hierarchy nodes still to visit: their offsets in [Bvh.t]'s [nodes]. *)
+  csg : Csg.work;  (** Room for the intervals of the CSG solids. *)
+  mutable hit : int;  (** Index of the sphere found by {!Traversal.closest}. *)
+  mutable origin_sphere : int;
+      (** The slot of the sphere the current secondary ray leaves, or
+          [-1]: in the robust mode that sphere is handled exactly. (An
+          identical sphere has no slot of its own: {!Prepared.prepare}.) *)
+  mutable first_hit : int;
+  triangles : bool;
+      (** Every object in the hierarchy is a triangle (a mesh, maybe on
+          planes, which are outside it): the traversals then read no
+          object's kind, one array (and a cache miss a leaf) less. *)
+  mutable kx : int;
+      (** The axes of the ray in [s] for the triangle test
+          ({!Triangle.shear}), [kz = -1] until a traversal's first triangle
+          finds them (a traversal of a hierarchy of triangles alone finds
+          them before its first box): once a ray, not once a triangle. *)
+  mutable ky : int;
+  mutable kz : int;
+  mutable order : int;
+      (** [kx], [ky], [kz] as one of the six orders of the axes, 0 to 5
+          (see {!Traversal}). *)
+  averaging : bool;  (** Samples are averaged: see {!Byte_exact.settled}. *)
+  mutable assumed : int;  (** Sphere the primary ray is assumed to hit, see {!Traversal.primary_hit_spheres}. *)
+  mutable budget : int;  (** Most tests {!check_budget} accepts before it calls [refill]. *)
+  mutable refill : int -> int;
+      (** Called with the work done once it passes [budget]: the next
+          budget, or it raises [Limits.Work_exceeded]. *)
+  tracer : int;  (** The loop of {!Trace}: {!spheres_chain}, {!objects_chain} or {!tree}. *)
+  tree : Ray_tree.t;  (** The ray tree's levels: transparent scenes only. *)
+  cand : int array;
+      (** The document's kernel: per tile column, the spheres (slots, in
+          scene order) that the camera rays of its current tile may meet,
+          [n_objects] places each; then every slot, for rays of no tile. *)
+  tile_row : int array;  (** Per tile column: the tile row [cand] holds, or [-1]. *)
+  tile_count : int array;  (** Per tile column: how many spheres [cand] holds. *)
+  corners : float array;  (** Scratch: the four corner directions of a tile. *)
+  mutable cand_first : int;  (** The next camera ray tests [cand] from here on... *)
+  mutable cand_count : int;  (** ...this many spheres. *)
+}
+(** The type for tracers: one per worker, reused for every ray. *)
+
+val spheres_chain : int
+(** [spheres_chain] is the [tracer] of the chain of mirror rays for spheres alone ({!Chain.trace_spheres}). *)
+
+val objects_chain : int
+(** [objects_chain] is the [tracer] of the chain of mirror rays for any objects ({!Chain.trace_objects}). *)
+
+val tree : int
+(** [tree] is the [tracer] of the ray tree, for scenes with transparency ({!Glass.trace_tree}). *)
+
+val no_assumption : int
+(** [no_assumption] is [assumed] when the primary ray searches every object. *)
+
+val tile : int
+(** [tile] is the side, in pixels, of the square tiles by which the document's kernel culls camera rays ({!Textbook}). *)
+
+val block : int
+(** [block] is the most pixels of a row traced between two checks of the
+    work budget, a multiple of {!tile} ([256]), so that blocks start on
+    tiles. *)
+
+(** {1:make Making and reading} *)
+
+val create : ?averaging:bool -> Prepared.t -> t
+(** [create ~averaging p] is a tracer of [p]: {!Trace.create}. *)
+
+val prepared : t -> Prepared.t
+(** [prepared tr] is [tr]'s scene. *)
+
+val averaging : t -> bool
+(** [averaging tr] is [true] iff [tr] was created with [~averaging:true]. *)
+
+val counters : t -> counters
+(** [counters tr] is [tr]'s counters, the CSG solids' leaf tests taken into them. *)
+
+val work : t -> int
+(** [work tr] is the tests and box tests counted so far. *)
+
+val set_budget : ?refill:(int -> int) -> t -> int -> unit
+(** [set_budget ~refill tr n] is {!Trace.set_budget}. *)
+
+val check_budget : t -> unit
+(** [check_budget tr] calls [tr]'s [refill] if more than its budget of
+    work was done: a sum and a comparison, the call out of line.
+    @raise Limits.Work_exceeded as [refill] does. *)
+
+val red : t -> float
+(** [red tr] is the red of the last ray traced (unclamped). *)
+
+val green : t -> float
+(** [green tr] is its green. *)
+
+val blue : t -> float
+(** [blue tr] is its blue. *)
+
+val hit_object : t -> int
+(** [hit_object tr] is the scene's number of the object the last primary ray hit, or [-1]. *)

@@ -1,0 +1,626 @@
+open Scratch
+open Tracer
+
+(* Two ways to intersect. The document's mode (the scene gives an epsilon)
+   uses the textbook quadratic of section 6.1 in CGFS's order of operations,
+   so that it reproduces the document's images byte for byte. The robust
+   mode uses the cancellation-free roots of [Sphere.roots] (its formulas,
+   with [1 / a] computed once a ray: the far root is [q * (1 / a)], where
+   [Sphere.roots] and the CSG table divide, [q / a]) and needs no epsilon: a secondary ray cannot hit the sphere
+   it leaves except at that sphere's other root (see [leaving]). *)
+
+(* Is root [t] of the sphere in slot [i] better than the best so far?
+   Closer, or as close and earlier in the scene's list: the brute-force loop
+   of CGFS keeps the first of equal roots, and the hierarchy, which visits
+   spheres in another order, must give the same answer. *)
+let[@inline] better tr s i t =
+  t < s.t
+  || (t = s.t && tr.hit >= 0
+     && Array.unsafe_get tr.p.index i < Array.unsafe_get tr.p.index tr.hit)
+
+(* Keeps root [t] of the sphere in slot [i] if it is in range and better. *)
+let[@inline] keep tr s i t =
+  if better tr s i t && s.t_min < t && t < s.t_max then begin
+    s.t <- t;
+    tr.hit <- i
+  end
+
+(* Textbook: k1 = <D,D>, k2 = 2 <CO,D>, k3 = <CO,CO> - r^2, disc
+   k2^2 - 4 k1 k3, roots (-k2 +- sqrt disc) / 2 k1. The smaller root t2 is
+   tried first: it wins whenever both are in range, as in CGFS. *)
+let[@inline] consider_textbook tr s i k1x4 two_k1 k2 k3 =
+  let disc = (k2 *. k2) -. (k1x4 *. k3) in
+  if disc >= 0. then begin
+    let sq = sqrt disc in
+    let t2 = (-.k2 -. sq) /. two_k1 in
+    if better tr s i t2 && s.t_min < t2 && t2 < s.t_max then begin
+      s.t <- t2;
+      tr.hit <- i
+    end
+    else keep tr s i ((-.k2 +. sq) /. two_k1)
+  end
+
+(* Robust: with f = O - C, b = <f, D>, l = f - (b / a) D is the vector from
+   the center to the line; the ray hits iff |l| <= r. The roots are
+   q / a and c / q with q = -(b + sign(b) sqrt (a (r - |l|)(r + |l|))):
+   neither subtracts nearly equal numbers. Leaves the roots in
+   [s.near <= s.far]; [false] if the ray misses. *)
+let[@inline] robust_roots (p : Prepared.t) s i fx fy fz dx dy dz a inv_a =
+  let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+  let k = b *. inv_a in
+  let lx = fx -. (k *. dx) and ly = fy -. (k *. dy) and lz = fz -. (k *. dz) in
+  let l2 = (lx *. lx) +. (ly *. ly) +. (lz *. lz) in
+  let r2 = Array.unsafe_get p.r2 i in
+  l2 <= r2
+  &&
+  let r = Array.unsafe_get p.radius i in
+  let len = sqrt l2 in
+  let sq = sqrt (a *. ((r -. len) *. (r +. len))) in
+  let q = -.(b +. Float.copy_sign sq b) in
+  if q = 0. then begin
+    s.near <- 0.;
+    s.far <- 0.
+  end
+  else begin
+    let t0 = (((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. r2) /. q and t1 = q *. inv_a in
+    if t0 <= t1 then begin
+      s.near <- t0;
+      s.far <- t1
+    end
+    else begin
+      s.near <- t1;
+      s.far <- t0
+    end
+  end;
+  true
+
+(* The other root of the sphere a secondary ray leaves: its origin P is on
+   the sphere, so with f = P - C the roots are 0 and -2 <f, D> / <D, D>.
+   The root 0 is the origin itself and never counts; the other is a hit only
+   if the ray goes into the sphere (a shadow ray toward a light behind the
+   surface), by more than the rounding of <f, D> (at most about 8 u |f| |D|)
+   can explain. No distance threshold: the test is relative. *)
+let leaving_margin = 16. *. epsilon_float *. epsilon_float (* (8u)^2, u = epsilon_float / 2 *)
+
+(* Whether the ray re-enters the sphere it leaves; then its other root is
+   [-2 b / a]. (A bool, not a float with [infinity] for "no": a float
+   chosen by an [if] is boxed.) *)
+let[@inline] reenters b fx fy fz a = b < 0. && b *. b > leaving_margin *. ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) *. a
+
+let[@inline] consider_robust tr s i dx dy dz a inv_a fx fy fz =
+  if i = tr.origin_sphere then begin
+    let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+    if reenters b fx fy fz a then keep tr s i (-2. *. b *. inv_a)
+  end
+  else if robust_roots tr.p s i fx fy fz dx dy dz a inv_a then begin
+    let near = s.near in
+    if better tr s i near && s.t_min < near && near < s.t_max then begin
+      s.t <- near;
+      tr.hit <- i
+    end
+    else keep tr s i s.far
+  end
+
+(* The roots of the sphere in slot [i] for the ray in [s], in [s.near <=
+   s.far], by the mode's arithmetic; [false] if it misses. For
+   [shape_roots]'s callers that meet a sphere ([roots]): the traversals
+   test spheres with [test] and [blocks], which share the roots' work
+   between them. *)
+let[@inline never] sphere_roots tr s i =
+  let p = tr.p in
+  let fx = s.ox -. Array.unsafe_get p.cx i and fy = s.oy -. Array.unsafe_get p.cy i and fz = s.oz -. Array.unsafe_get p.cz i in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  if p.robust then
+    if i = tr.origin_sphere then begin
+      (* The sphere the ray leaves: its other root alone ([leaving]). *)
+      let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+      reenters b fx fy fz a
+      &&
+      let t = -2. *. b *. (1. /. a) in
+      s.near <- t;
+      s.far <- t;
+      true
+    end
+    else robust_roots p s i fx fy fz dx dy dz a (1. /. a)
+  else begin
+    let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+    let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get p.r2 i in
+    let disc = (k2 *. k2) -. (4. *. a *. k3) in
+    disc >= 0.
+    &&
+    let sq = sqrt disc in
+    s.near <- (-.k2 -. sq) /. (2. *. a);
+    s.far <- (-.k2 +. sq) /. (2. *. a);
+    true
+  end
+
+(* The ray's axes for the triangle test ({!Triangle.shear}), found at the
+   first triangle a ray meets, not at each: a traversal over shapes sets
+   [tr.kz] to [-1] (not found yet) before its first test. *)
+let[@inline] shear_once tr s =
+  if tr.kz < 0 then begin
+    let axes = Triangle.shear s in
+    let kx = Triangle.axis_x axes and ky = Triangle.axis_y axes and kz = Triangle.axis_z axes in
+    tr.kx <- kx;
+    tr.ky <- ky;
+    tr.kz <- kz;
+    tr.order <- (2 * kz) + if kx > ky then 1 else 0
+  end
+
+(* Whether the ray in [s] meets the triangle in slot [i], its root then in
+   [s.near]: {!Triangle.hit} inlined, nothing written for a miss. (Not a
+   float returned: without cross-module inlining, as in the dev profile,
+   it would be boxed.) *)
+let[@inline] triangle_hit tr s i ~sheared =
+  let p = tr.p in
+  if not sheared then shear_once tr s;
+  let g = p.vertex in
+  let o0 = Array.unsafe_get p.at0 i and o1 = Array.unsafe_get p.at1 i and o2 = Array.unsafe_get p.at2 i in
+  (* One copy of the test per order of the axes, each with its axes as
+     constants: a vertex's coordinate is then one load at a fixed
+     displacement from its offset, not an index computed per load (fewer
+     instructions a test: docs/performance.md, "Round 3: the kernel's
+     modules"). The order is the same for every triangle
+     of a ray: its branch is predicted. *)
+  match tr.order with
+  | 0 -> Triangle.hit s g o0 o1 o2 1 2 0
+  | 1 -> Triangle.hit s g o0 o1 o2 2 1 0
+  | 2 -> Triangle.hit s g o0 o1 o2 0 2 1
+  | 3 -> Triangle.hit s g o0 o1 o2 2 0 1
+  | 4 -> Triangle.hit s g o0 o1 o2 0 1 2
+  | _ -> Triangle.hit s g o0 o1 o2 1 0 2
+
+(* The roots of the shape (not a sphere) in slot [i], by its module's
+   routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
+   gives its first crossing beyond [s.t_min] as both. *)
+let shape_roots tr s i =
+  let p = tr.p in
+  match Array.unsafe_get p.kind i with
+  | Triangle | Smooth_triangle ->
+      shear_once tr s;
+      Triangle.roots_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i) tr.kx
+        tr.ky tr.kz
+  | Plane -> Plane.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
+  | Box -> Box.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
+  | Csg -> Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom (Kind.stride * Array.unsafe_get p.at0 i)))
+  | Sphere -> sphere_roots tr s i
+
+(* Tests the ray in [s] against the shape (not a sphere) in slot [i],
+   keeping the better hit. Secondary rays of the robust mode start off
+   the surface they leave (see [trace]), so no shape is special here. *)
+let shape_test tr s i =
+  if shape_roots tr s i then begin
+    let near = s.near in
+    if better tr s i near && s.t_min < near && near < s.t_max then begin
+      s.t <- near;
+      tr.hit <- i
+    end
+    else keep tr s i s.far
+  end
+
+(* Tests the ray in [s] against the object in slot [i], keeping the better
+   hit. From the camera ([primary]), [CO] and the textbook's [k3] are
+   per-frame constants. *)
+let[@inline] test_sphere tr s i ~primary dx dy dz a inv_a two_k1 k1x4 =
+  let p = tr.p in
+  let fx = if primary then Array.unsafe_get p.primary_ocx i else s.ox -. Array.unsafe_get p.cx i in
+  let fy = if primary then Array.unsafe_get p.primary_ocy i else s.oy -. Array.unsafe_get p.cy i in
+  let fz = if primary then Array.unsafe_get p.primary_ocz i else s.oz -. Array.unsafe_get p.cz i in
+  if p.robust then consider_robust tr s i dx dy dz a inv_a fx fy fz
+  else
+    let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+    let k3 =
+      if primary then Array.unsafe_get p.primary_k3 i
+      else ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get p.r2 i
+    in
+    consider_textbook tr s i k1x4 two_k1 k2 k3
+
+(* The kernel's dispatch on the kind of a slot in the traversals: the copy
+   for spheres alone and the one for triangles alone read no kind. A
+   triangle's one root is its near and far: [keep] once is [shape_test]'s
+   two tries. *)
+let[@inline] test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4 =
+  if spheres then test_sphere tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+  else if triangles then (if triangle_hit tr s i ~sheared:true then keep tr s i s.near)
+  else
+    match Array.unsafe_get tr.p.kind i with
+    | Triangle | Smooth_triangle -> if triangle_hit tr s i ~sheared:false then keep tr s i s.near
+    | Sphere -> test_sphere tr s i ~primary dx dy dz a inv_a two_k1 k1x4
+    | Plane | Box | Csg -> shape_test tr s i
+
+(* The reciprocal of a direction coordinate for the slab test; a zero
+   coordinate gets a huge finite value instead of an infinity, so that
+   [0 * inv] is 0, never NaN (rays only look at t >= 0). *)
+let[@inline] slab_inverse d = if d = 0. then 1e300 else 1. /. d
+
+(* A node of the hierarchy at offset [o] of [nodes] (the layout of
+   {!Bvh.t}): its box's lower corner at [o], its upper corner at [o + 3],
+   its link at [o + 6], its tag at [o + 7]. Read here with the array's
+   own primitives: a float returned by a function of another module is
+   boxed where that module's code is not inlined (the dev profile). *)
+let[@inline] node_link (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 6))
+let[@inline] node_tag (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 7))
+
+(* Does the ray in [s] (with slab inverses [ix, iy, iz]) meet the box of
+   the node at offset [o] of [nodes] at some t in [t_min, limit]? *)
+let[@inline] meets_box (nodes : float array) s o ix iy iz limit =
+  let ox = s.ox and oy = s.oy and oz = s.oz in
+  let x0 = (Array.unsafe_get nodes o -. ox) *. ix and x1 = (Array.unsafe_get nodes (o + 3) -. ox) *. ix in
+  let y0 = (Array.unsafe_get nodes (o + 1) -. oy) *. iy and y1 = (Array.unsafe_get nodes (o + 4) -. oy) *. iy in
+  let z0 = (Array.unsafe_get nodes (o + 2) -. oz) *. iz and z1 = (Array.unsafe_get nodes (o + 5) -. oz) *. iz in
+  let enter_x = if x0 < x1 then x0 else x1 and exit_x = if x0 < x1 then x1 else x0 in
+  let enter_y = if y0 < y1 then y0 else y1 and exit_y = if y0 < y1 then y1 else y0 in
+  let enter_z = if z0 < z1 then z0 else z1 and exit_z = if z0 < z1 then z1 else z0 in
+  let enter = if enter_x > enter_y then enter_x else enter_y in
+  let enter = if enter > enter_z then enter else enter_z in
+  let exit = if exit_x < exit_y then exit_x else exit_y in
+  let exit = if exit < exit_z then exit else exit_z in
+  enter <= exit && exit >= s.t_min && enter <= limit
+
+(* Pushes the children of the inner node at offset [o] of [nodes] on
+   [stack] above [sp], so that the nearer along the ray is popped first;
+   the new stack pointer. The stack holds nodes' offsets: the left child
+   follows its parent (8 floats on), the right one is at its link. *)
+let[@inline] push_children nodes stack sp o dx dy dz =
+  let right = node_link nodes o and left = o + 8 in
+  let tag = node_tag nodes o in
+  let d = if tag = -1 then dx else if tag = -2 then dy else dz in
+  if d >= 0. then begin
+    Array.unsafe_set stack sp right;
+    Array.unsafe_set stack (sp + 1) left
+  end
+  else begin
+    Array.unsafe_set stack sp left;
+    Array.unsafe_set stack (sp + 1) right
+  end;
+  sp + 2
+
+(* The intersection loops below read every loop invariant (arrays, ray,
+   range) into a local once per ray: without flambda, OCaml reloads a
+   record field at every use. *)
+
+(* Every sphere, in scene order, with the textbook roots: the document's
+   mode without a hierarchy (the reference scene). Scene order makes a plain
+   [<] keep the first of equal roots, as CGFS does. Inlined into a copy for
+   camera rays and one for the others, so that [primary] costs nothing. *)
+let[@inline] closest_textbook_all tr ~primary =
+  let p = tr.p and s = tr.s in
+  let cx = p.cx and cy = p.cy and cz = p.cz and r2 = p.r2 in
+  let pox = p.primary_ocx and poy = p.primary_ocy and poz = p.primary_ocz and pk3 = p.primary_k3 in
+  let ox = s.ox and oy = s.oy and oz = s.oz and dx = s.dx and dy = s.dy and dz = s.dz in
+  let t_min = s.t_min and t_max = s.t_max in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let two_k1 = 2. *. a and k1x4 = 4. *. a in
+  let best = ref infinity and hit = ref (-1) in
+  let n = p.n_objects in
+  tr.counters.tests <- tr.counters.tests + n;
+  for i = 0 to n - 1 do
+    let fx = if primary then Array.unsafe_get pox i else ox -. Array.unsafe_get cx i in
+    let fy = if primary then Array.unsafe_get poy i else oy -. Array.unsafe_get cy i in
+    let fz = if primary then Array.unsafe_get poz i else oz -. Array.unsafe_get cz i in
+    let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+    let k3 =
+      if primary then Array.unsafe_get pk3 i
+      else ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get r2 i
+    in
+    let disc = (k2 *. k2) -. (k1x4 *. k3) in
+    if disc >= 0. then begin
+      let sq = sqrt disc in
+      let t2 = (-.k2 -. sq) /. two_k1 in
+      if t2 < !best && t_min < t2 && t2 < t_max then begin
+        best := t2;
+        hit := i
+      end
+      else
+        let t1 = (-.k2 +. sq) /. two_k1 in
+        if t1 < !best && t_min < t1 && t1 < t_max then begin
+          best := t1;
+          hit := i
+        end
+    end
+  done;
+  s.t <- !best;
+  tr.hit <- !hit;
+  !hit
+
+let closest_textbook_primary tr = closest_textbook_all tr ~primary:true
+let closest_textbook_secondary tr = closest_textbook_all tr ~primary:false
+
+(* The closest object hit by the ray in [s], with [t_min < t < t_max]; its
+   [t] is left in [s.t] ([infinity] if none), its slot is returned. One
+   traversal for every kind of object; spheres alone in the document's
+   mode without a hierarchy (the reference scene) take the loop above. *)
+let[@inline] closest_from tr ~primary ~spheres ~triangles =
+  let p = tr.p and s = tr.s in
+      if not spheres then tr.kz <- -1;
+      let bvh = p.bvh in
+      let dx = s.dx and dy = s.dy and dz = s.dz in
+      let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+      let inv_a = 1. /. a and two_k1 = 2. *. a and k1x4 = 4. *. a in
+      tr.hit <- -1;
+      s.t <- infinity;
+      (match bvh with
+      | None ->
+          let n = p.n_objects in
+          tr.counters.tests <- tr.counters.tests + n;
+          for i = 0 to n - 1 do
+            test tr s i ~primary ~spheres ~triangles:false dx dy dz a inv_a two_k1 k1x4
+          done
+      | Some b ->
+          (* Planes, unbounded, are outside the hierarchy. *)
+          let planes = p.unbounded in
+          let n = Array.length planes in
+          if (not spheres) && n > 0 then begin
+            tr.counters.tests <- tr.counters.tests + n;
+            for j = 0 to n - 1 do
+              shape_test tr s (Array.unsafe_get planes j)
+            done
+          end;
+          let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+          (* A hierarchy of triangles: the ray's shear once, here, rather
+             than a check of [tr.kz] at every triangle. *)
+          if triangles then shear_once tr s;
+          let nodes = b.nodes and stack = tr.nodes and sp = ref 1 in
+          (* Counted here, added to the counters once a ray. *)
+          let boxes = ref 0 and tests = ref 0 in
+          Array.unsafe_set stack 0 b.root;
+          while !sp > 0 do
+            decr sp;
+            let o = Array.unsafe_get stack !sp in
+            incr boxes;
+            (* A box entered beyond the best hit so far cannot hold a better
+               one (its spheres' hit points lie inside it, rounding
+               included); one entered exactly there may hold an equal one. *)
+            if meets_box nodes s o ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
+              let count = node_tag nodes o in
+              if count > 0 then begin
+                let first = node_link nodes o in
+                tests := !tests + count;
+                for i = first to first + count - 1 do
+                  test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4
+                done
+              end
+              else sp := push_children nodes stack !sp o dx dy dz
+            end
+          done;
+          tr.counters.box_tests <- tr.counters.box_tests + !boxes;
+          tr.counters.tests <- tr.counters.tests + !tests);
+      tr.hit
+
+(* One copy of the traversal per kind of ray and per kind of scene:
+   spheres alone test no object's kind. *)
+let closest_objects tr =
+  if tr.triangles then closest_from tr ~primary:false ~spheres:false ~triangles:true
+  else closest_from tr ~primary:false ~spheres:false ~triangles:false
+
+let closest_primary_objects tr =
+  if tr.triangles then closest_from tr ~primary:true ~spheres:false ~triangles:true
+  else closest_from tr ~primary:true ~spheres:false ~triangles:false
+
+(* The closest hit where the caller knows whether the scene has spheres
+   alone (a scene with other shapes is never the textbook one). *)
+let[@inline] closest_in tr ~spheres =
+  if not spheres then closest_objects tr
+  else if tr.p.textbook_all then closest_textbook_secondary tr
+  else closest_from tr ~primary:false ~spheres:true ~triangles:false
+
+let[@inline] closest_primary_in tr ~spheres =
+  if not spheres then closest_primary_objects tr
+  else if tr.p.textbook_all then closest_textbook_primary tr
+  else closest_from tr ~primary:true ~spheres:true ~triangles:false
+
+let[@inline] closest tr = if tr.p.all_spheres then closest_in tr ~spheres:true else closest_in tr ~spheres:false
+
+(* Does the shape (not a sphere) in slot [i] meet the ray in [s] with
+   [t_min < t < t_max]? *)
+let shape_blocks tr i =
+  let s = tr.s in
+  shape_roots tr s i
+  && ((s.t_min < s.near && s.near < s.t_max) || (s.t_min < s.far && s.far < s.t_max))
+
+(* Does the object in slot [i] meet the ray in [s] with
+   [t_min < t < t_max]? The same roots as [closest], so an object blocks
+   exactly when [closest] would have found it. *)
+let[@inline] sphere_blocks tr i a inv_a =
+  let p = tr.p and s = tr.s in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let fx = s.ox -. Array.unsafe_get p.cx i
+  and fy = s.oy -. Array.unsafe_get p.cy i
+  and fz = s.oz -. Array.unsafe_get p.cz i in
+  if p.robust then
+    if i = tr.origin_sphere then
+      let b = (fx *. dx) +. (fy *. dy) +. (fz *. dz) in
+      reenters b fx fy fz a
+      &&
+      let t = -2. *. b *. inv_a in
+      s.t_min < t && t < s.t_max
+    else
+      robust_roots p s i fx fy fz dx dy dz a inv_a
+      && ((s.t_min < s.near && s.near < s.t_max) || (s.t_min < s.far && s.far < s.t_max))
+  else
+    let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+    let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. Array.unsafe_get p.r2 i in
+    let disc = (k2 *. k2) -. (4. *. a *. k3) in
+    disc >= 0.
+    &&
+    let sq = sqrt disc in
+    let t2 = (-.k2 -. sq) /. (2. *. a) in
+    (s.t_min < t2 && t2 < s.t_max)
+    ||
+    let t1 = (-.k2 +. sq) /. (2. *. a) in
+    s.t_min < t1 && t1 < s.t_max
+
+(* [test]'s dispatch, for any hit in range. *)
+let[@inline] triangle_blocks tr s i ~sheared =
+  triangle_hit tr s i ~sheared
+  &&
+  let t = s.near in
+  s.t_min < t && t < s.t_max
+
+let[@inline] blocks tr i ~spheres ~triangles a inv_a =
+  if spheres then sphere_blocks tr i a inv_a
+  else if triangles then triangle_blocks tr tr.s i ~sheared:true
+  else
+    match Array.unsafe_get tr.p.kind i with
+    | Triangle | Smooth_triangle -> triangle_blocks tr tr.s i ~sheared:false
+    | Sphere -> sphere_blocks tr i a inv_a
+    | Plane | Box | Csg -> shape_blocks tr i
+
+(* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
+let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
+  let p = tr.p and s = tr.s in
+  match p.bvh with
+  | None ->
+      let n = p.n_objects in
+      let i = ref 0 in
+      while !i < n && (!i = skip || not (blocks tr !i ~spheres ~triangles:false a inv_a)) do
+        incr i
+      done;
+      tr.counters.tests <- tr.counters.tests + !i + 1;
+      if !i < n then !i else -1
+  | Some b ->
+      let dx = s.dx and dy = s.dy and dz = s.dz in
+      let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+      if triangles then shear_once tr s;
+      let nodes = b.nodes and stack = tr.nodes and sp = ref 1 and found = ref (-1) in
+      let boxes = ref 0 and tests = ref 0 in
+      (* Planes first: they are outside the hierarchy. *)
+      let planes = p.unbounded in
+      let n = Array.length planes in
+      if (not spheres) && n > 0 then begin
+        let j = ref 0 in
+        while !j < n && (Array.unsafe_get planes !j = skip || not (shape_blocks tr (Array.unsafe_get planes !j))) do
+          incr j
+        done;
+        tr.counters.tests <- tr.counters.tests + (if !j < n then !j + 1 else n);
+        if !j < n then begin
+          found := Array.unsafe_get planes !j;
+          sp := 0
+        end
+      end;
+      Array.unsafe_set stack 0 b.root;
+      while !sp > 0 do
+        decr sp;
+        let o = Array.unsafe_get stack !sp in
+        incr boxes;
+        if meets_box nodes s o ix iy iz s.t_max then begin
+          let count = node_tag nodes o in
+          if count > 0 then begin
+            let first = node_link nodes o in
+            let i = ref first and last = first + count in
+            while !i < last && (!i = skip || not (blocks tr !i ~spheres ~triangles a inv_a)) do
+              incr i
+            done;
+            tests := !tests + count;
+            if !i < last then begin
+              found := !i;
+              sp := 0
+            end
+          end
+          else sp := push_children nodes stack !sp o dx dy dz
+        end
+      done;
+      tr.counters.box_tests <- tr.counters.box_tests + !boxes;
+      tr.counters.tests <- tr.counters.tests + !tests;
+      !found
+
+(* With skips and a hierarchy or the robust roots: light [l]'s last
+   blocker first, then the first blocker of the others. One copy per kind
+   of scene, so that spheres alone ask the kind once per shadow ray. *)
+let[@inline] blocked_from tr l ~spheres ~triangles =
+  let s = tr.s in
+  if not spheres then tr.kz <- -1;
+  let last = Array.unsafe_get tr.last_blocker l in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let inv_a = 1. /. a in
+  (* The last blocker may be a plane: its kind is looked up. *)
+  if last >= 0 && blocks tr last ~spheres ~triangles:false a inv_a then begin
+    tr.counters.tests <- tr.counters.tests + 1;
+    true
+  end
+  else
+    let blocker = first_blocker_from tr ~spheres ~triangles last a inv_a in
+    if blocker >= 0 then Array.unsafe_set tr.last_blocker l blocker;
+    blocker >= 0
+
+let[@inline] blocked_objects tr l =
+  if tr.triangles then blocked_from tr l ~spheres:false ~triangles:true
+  else blocked_from tr l ~spheres:false ~triangles:false
+
+(* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
+   the first blocker and tries light [l]'s last blocker first; without, it
+   searches for the closest hit as the document does. Same answer. *)
+let shadowed tr l =
+  let p = tr.p in
+  tr.counters.shadow <- tr.counters.shadow + 1;
+  if not p.skips then closest tr >= 0
+  else if p.all_spheres then blocked_from tr l ~spheres:true ~triangles:false
+  else blocked_objects tr l
+
+(* CGFS's subsampling: when [tr.assumed] names a sphere, the primary ray is
+   tested against it alone (against none for [-1]); a ray that misses the
+   assumed sphere falls back to the full search. Approximate: a sphere in
+   front of the assumed one is not seen. *)
+let[@inline] primary_hit_in tr ~spheres =
+  let k = tr.assumed in
+  if k = no_assumption then closest_primary_in tr ~spheres
+  else if k < 0 then begin
+    tr.hit <- -1;
+    tr.s.t <- infinity;
+    -1
+  end
+  else begin
+    let s = tr.s in
+    let dx = s.dx and dy = s.dy and dz = s.dz in
+    let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+    tr.hit <- -1;
+    s.t <- infinity;
+    tr.counters.tests <- tr.counters.tests + 1;
+    if not spheres then tr.kz <- -1;
+    (* The same test as [closest_primary] makes of that sphere: the same t. *)
+    test tr s (Array.unsafe_get tr.p.slot k) ~primary:true ~spheres ~triangles:false dx dy dz a (1. /. a) (2. *. a) (4. *. a);
+    if tr.hit >= 0 then tr.hit else closest_primary_in tr ~spheres
+  end
+
+let[@inline never] primary_hit_spheres tr = primary_hit_in tr ~spheres:true
+let[@inline never] primary_hit_objects tr = primary_hit_in tr ~spheres:false
+
+(* The roots of object [k]'s test, by the same code as [closest] runs for a
+   secondary ray (not the camera's per-frame constants). *)
+let roots tr k (o : Vec3.t) (d : Vec3.t) =
+  let p = tr.p and s = tr.s in
+  if k < 0 || k >= p.n_scene_objects then invalid_arg "Trace.roots: no such object";
+  let i = p.slot.(k) in
+  Scratch.set_ray s o d;
+  if p.kind.(i) <> Kind.Sphere then begin
+    (* A CSG solid's root is its first crossing beyond [t_min]: all of them. *)
+    s.t_min <- neg_infinity;
+    tr.kz <- -1;
+    if shape_roots tr s i then (s.near, s.far) else (infinity, infinity)
+  end
+  else
+    let fx = s.ox -. p.cx.(i) and fy = s.oy -. p.cy.(i) and fz = s.oz -. p.cz.(i) in
+    let dx = s.dx and dy = s.dy and dz = s.dz in
+    let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+    if p.robust then
+      if robust_roots p s i fx fy fz dx dy dz a (1. /. a) then (s.near, s.far) else (infinity, infinity)
+    else begin
+      (* [consider_textbook]'s roots, kept when in range: the range is opened
+         wide, and the better of the two, then the other, read back. *)
+      s.t_min <- neg_infinity;
+      s.t_max <- infinity;
+      let k2 = 2. *. ((fx *. dx) +. (fy *. dy) +. (fz *. dz)) in
+      let k3 = ((fx *. fx) +. (fy *. fy) +. (fz *. fz)) -. p.r2.(i) in
+      tr.hit <- -1;
+      s.t <- infinity;
+      consider_textbook tr s i (4. *. a) (2. *. a) k2 k3;
+      if tr.hit < 0 then (infinity, infinity)
+      else
+        let near = s.t in
+        let disc = (k2 *. k2) -. (4. *. a *. k3) in
+        let far = (-.k2 +. sqrt disc) /. (2. *. a) in
+        (near, if far < near then near else far)
+    end
+

@@ -1,0 +1,58 @@
+(** The kinds of object the kernel traces: one constant constructor per
+    kind, as cheap as an integer (immediate, compared in a register), so
+    that every [match] on a kind is one the compiler checks: a new kind
+    makes it name each match that misses it.
+
+    The kernel's matches on a kind: for the scene's slots, the kernel's
+    [Traversal] (which test a slot takes, and the roots of the shapes that
+    are not spheres or triangles) and [Surface] (the normal, offset and
+    material at a hit); for a CSG solid's leaves, {!module-Csg} (roots and
+    normal). None has a catch-all case. Everything else here is a cold
+    fact, read when a scene is prepared, never per ray.
+
+    @canonical Raytrace.Private.Kind *)
+
+type t =
+  | Sphere  (** A sphere: the kernel's own arrays of centres and radii. *)
+  | Triangle  (** A triangle, alone or a mesh's, shaded with its flat normal. *)
+  | Smooth_triangle
+      (** A mesh's triangle shaded with normals interpolated from its
+          corners ({!module-Triangle.smooth_normal}). *)
+  | Plane  (** A plane: unbounded, outside the hierarchy. *)
+  | Box  (** An axis-aligned box. *)
+  | Csg
+      (** A CSG solid, whose geometry is the number of its root node in
+          the kernel's {!module-Csg.type-table}. *)
+(** The type for kinds. The order of the constructors is the kernel's:
+    spheres, then triangles, then the rest, so that the traversal's
+    three-way [match] compiles to two comparisons. *)
+
+val all : t list
+(** [all] is every kind, in the order of the type's constructors. *)
+
+val to_string : t -> string
+(** [to_string k] is [k]'s name in lower case (["sphere"], ["plane"],
+    ["triangle"], ["smooth triangle"], ["box"], ["csg"]). *)
+
+val bounded : t -> bool
+(** [bounded k] is [true] iff an object of kind [k] fits in a box: it is
+    then in the bounding volume hierarchy; the others (planes) are
+    tested before each walk of it. *)
+
+val closed : t -> bool
+(** [closed k] is [true] iff an object of kind [k] bounds a volume (a
+    sphere, a box, a CSG solid): it may be a CSG operand, and a ray that
+    enters it leaves it. *)
+
+val floats : t -> int
+(** [floats k] is how many floats of geometry the shape module's [store]
+    writes for an object of kind [k], at most {!stride}. *)
+
+val stride : int
+(** [stride] is the largest {!floats} of any kind ([9]): the floats of
+    geometry per shape in the kernel's tables ([Prepared]'s [geom], the
+    CSG table's). *)
+
+val is_triangle : t -> bool
+(** [is_triangle k] is [true] iff [k] is {!constructor-Triangle} or {!constructor-Smooth_triangle}:
+    the kinds whose corners are offsets into the table of vertices. *)
