@@ -27,6 +27,33 @@ mutants = spec["MUTANTS"] if not args.ids else [m for m in everything if m["id"]
 unknown = set(args.ids) - {m["id"] for m in everything}
 if unknown:
     sys.exit("no such mutant: " + " ".join(sorted(unknown)))
+
+# Every mutant's text must occur exactly once in its file, checked in the
+# repository before anything runs: a mutant whose text has moved (a split,
+# a rename) stops the run, rather than being skipped and counted as nothing.
+def enclosing(src, at):
+    """Module.function around offset [at]: the last top-level [let] that
+    starts before the end of its line."""
+    end = src.find("\n", at)
+    name = "?"
+    for mo in re.finditer(r"^(?:let|and)(?:\[@[^\]]*\])?(?: rec)?\s+([a-z_][A-Za-z0-9_']*)", src[: end if end >= 0 else len(src)], re.M):
+        name = mo.group(1)
+    return name
+
+stale, where = [], {}
+for m in mutants:
+    path = os.path.join(root, m["file"])
+    src = open(path).read() if os.path.exists(path) else None
+    n = -1 if src is None else src.count(m["old"])
+    if n != 1:
+        stale.append(f"{m['id']}: {m['file']}: " + ("no such file" if n < 0 else f"the text to replace occurs {n} times"))
+    else:
+        at = src.index(m["old"])
+        module = os.path.splitext(os.path.basename(m["file"]))[0].capitalize()
+        where[m["id"]] = (src[:at].count("\n") + 1, f"{module}.{enclosing(src, at)}")
+if stale:
+    sys.exit("mutants whose text is not found exactly once (update test/mutants/mutants.py):\n  " + "\n  ".join(stale))
+
 copy = args.copy
 os.makedirs(copy, exist_ok=True)
 subprocess.run(["rsync", "-a", "--delete", "--exclude", ".git", root + "/", copy + "/"], check=True)
@@ -45,17 +72,13 @@ results = []
 for m in mutants:
     path = os.path.join(copy, m["file"])
     src = open(path).read()
-    if src.count(m["old"]) != 1:
-        print(f"{m['id']}: {m['file']}: the text to replace occurs {src.count(m['old'])} times: update mutants.py", flush=True)
-        results.append({"id": m["id"], "status": "stale"})
-        continue
-    line = src[: src.index(m["old"])].count("\n") + 1
+    line, function = where[m["id"]]
     open(path, "w").write(src.replace(m["old"], m["new"]))
     try:
         err = build()
         if err:
             print(f"{m['id']} {m['file']}:{line} does not build:\n{err}", flush=True)
-            results.append({"id": m["id"], "status": "no build"})
+            results.append({"id": m["id"], "file": m["file"], "function": function, "status": "no build"})
             continue
         failed, t0 = set(), time.time()
         for suite in m["suites"]:
@@ -67,10 +90,14 @@ for m in mutants:
             if r.returncode != 0 and not cases:
                 failed.add(f"{suite}: exit {r.returncode}")
         status = "caught" if failed else "survived"
-        print(f"{m['id']} {m['file']}:{line} [{status}] by {', '.join(sorted(failed)) or '-'}"
+        print(f"{m['id']} {m['file']}:{line} ({function}) [{status}] by {', '.join(sorted(failed)) or '-'}"
               f" ({time.time() - t0:.0f} s; suites {'; '.join(m['suites'])})", flush=True)
-        results.append({"id": m["id"], "file": m["file"], "line": line, "status": status, "failed": sorted(failed)})
+        results.append({"id": m["id"], "file": m["file"], "line": line, "function": function, "status": status, "failed": sorted(failed)})
     finally:
         open(path, "w").write(src)
 if args.json:
     json.dump(results, open(args.json, "w"), indent=1)
+# A mutant that does not build tests nothing: the run fails, naming it.
+broken = [r["id"] for r in results if r["status"] == "no build"]
+if broken:
+    sys.exit("mutants that do not build (rewrite them in test/mutants/mutants.py): " + " ".join(broken))
