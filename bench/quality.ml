@@ -315,7 +315,7 @@ let () =
         if !only <> [] && not (List.mem n !only) then None
         else
           match Result.map Scene.of_valid (Files.read_scene path) with
-          | Ok s -> Some (n, path, (if !half then s.width / 2 else s.width), if !half then s.height / 2 else s.height)
+          | Ok s -> Some (n, path, (if !half then (Scene.width s) / 2 else (Scene.width s)), if !half then (Scene.height s) / 2 else (Scene.height s))
           | Error (`Msg m) -> failwith m)
       scenes
   in
@@ -359,7 +359,7 @@ let () =
             Printf.printf "  %-24s %8.4f s  %6.2f rays/px  mean %.4f  max %3d  psnr %s\n%!" (label s) (time_of r)
               r.rays_pp diff.mean_abs diff.max_abs (psnr_text diff.psnr);
             r)
-          (settings ~depth:scene.depth))
+          (settings ~depth:(Scene.depth scene)))
       selected
   in
   mark_pareto rows;

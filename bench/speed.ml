@@ -201,11 +201,11 @@ let () =
             (* The same command line for both. *)
             match if p = C then cref else cfast with
             | Some exe ->
-                let w = string_of_int c.scene.width and h = string_of_int c.scene.height in
-                [| exe; c.cref_name; w; h; string_of_int c.scene.depth; image p |]
+                let w = string_of_int (Scene.width c.scene) and h = string_of_int (Scene.height c.scene) in
+                [| exe; c.cref_name; w; h; string_of_int (Scene.depth c.scene); image p |]
             | None -> [||])
       in
-      let n_spheres = Spheres.length c.scene.spheres in
+      let n_spheres = Spheres.length (Scene.spheres c.scene) in
       (* The C programs test every sphere for most rays: they stop at
          grid:1000 (5 s; grid:10000 would take about a minute, and 9 for
          grid:100000). *)
@@ -259,7 +259,7 @@ let () =
         | _ -> ""
       in
       Printf.printf "%-12s %-10s %10d %8s %6.1fM %8s %8s %8s %7s %8s %7s %8s  %s%s\n%!" c.label
-        (Printf.sprintf "%dx%d" c.scene.width c.scene.height)
+        (Printf.sprintf "%dx%d" (Scene.width c.scene) (Scene.height c.scene))
         !rays (s t1)
         (Float.of_int !rays /. t1 /. 1e6)
         (s t2) (ratio speedup) (s tc) (ratio (t1 /. tc)) (s tf) (ratio (t1 /. tf)) (s (time Literal)) vs_c same_as_c)

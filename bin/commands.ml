@@ -108,7 +108,7 @@ let render_image ?rows_done ~limits ~sampling ~literal ~jobs ~meter valid =
       let* () = Scene.check_work ~limits valid in
       let t0 = Unix.gettimeofday () in
       match Literal.render ~limits valid with
-      | exception Out_of_memory -> msg "not enough memory for a %dx%d image" scene.width scene.height
+      | exception Out_of_memory -> msg "not enough memory for a %dx%d image" (Scene.width scene) (Scene.height scene)
       | exception Limits.Work_exceeded n -> Error (`Msg (Limits.work_exceeded limits n))
       | img -> Ok (img, None, Unix.gettimeofday () -. t0)
   else
@@ -163,9 +163,9 @@ type part_spec = Tile of int * int | Corners of int * int * int * int
 let part_region (scene : Scene.t) = function
   | None -> Ok None
   | Some (Tile (index, count)) ->
-      Result.map Option.some (Region.tile ~width:scene.width ~height:scene.height ~index ~count)
+      Result.map Option.some (Region.tile ~width:(Scene.width scene) ~height:(Scene.height scene) ~index ~count)
   | Some (Corners (x0, y0, x1, y1)) ->
-      Result.map Option.some (Region.of_corners ~width:scene.width ~height:scene.height x0 y0 x1 y1)
+      Result.map Option.some (Region.of_corners ~width:(Scene.width scene) ~height:(Scene.height scene) x0 y0 x1 y1)
 
 let parse_frames s =
   let frame t =
@@ -268,11 +268,11 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~files ~frame
   (* What the report needs, taken now: a whole picture's render holds the
      scene no longer than preparing it needs (Prepared.prepare lets the
      spheres go as it builds the hierarchy). *)
-  let width = scene.width and height = scene.height in
+  let width = (Scene.width scene) and height = (Scene.height scene) in
   let meshes =
     List.filter_map
       (function Shape.Mesh (m : Mesh.t) -> Some (m.source, Mesh.triangle_count m, m.skipped) | _ -> None)
-      scene.shapes
+      (Scene.shapes scene)
   in
   (* A part's header, taken now too: nothing below reads [scene] (one job
      held a million spheres through the render, 324 MB instead of 232). *)

@@ -24,7 +24,7 @@ let ppm_of_scene_text text =
 scene text --Scene_file.of_string--> Scene.valid --Render.image--> Image.t --Ppm.to_string--> bytes
 Scene.t (built in code) --Scene.validate--^        \--Pixel.color--> Color.t (one pixel)
 v}
-    A {!Scene.t} is a plain record; a {!Scene.valid} is a scene that passed
+    A {!Scene.t} is its settings, one list of objects and its lights; a {!Scene.valid} is a scene that passed
     validation, the only kind the renderers take, so an invalid scene
     never reaches them and no scene is validated twice.
 

@@ -166,8 +166,8 @@ let mask_errors mask exact =
 let oracle_floats (s : Scene.t) =
   let tr = Trace.create (prepare ~skips:false s) in
   let ok = ref true in
-  for gx = Canvas.min_x s.width to Canvas.max_x s.width do
-    for gy = Canvas.min_y s.height to Canvas.max_y s.height do
+  for gx = Canvas.min_x (Scene.width s) to Canvas.max_x (Scene.width s) do
+    for gy = Canvas.min_y (Scene.height s) to Canvas.max_y (Scene.height s) do
       Trace.pixel tr gx gy;
       let c = Literal.pixel s gx gy in
       let same a b = Float.abs (a -. b) <= 1e-9 *. Float.max 1. (Float.max (Float.abs a) (Float.abs b)) in
@@ -230,3 +230,19 @@ let glass_planes ~width ~height ~depth =
        "(light ambient (intensity 0.5))" ]
     @ List.map plane [ 2; 3; 4; 5 ])
   ^ "\n"
+
+let sphere ?specular ?reflective ?transparency ?refractive_index ?fresnel ?pattern ~center ~radius color =
+  Sphere.v ~center ~radius (Material.v ?specular ?reflective ?transparency ?refractive_index ?fresnel ?pattern color)
+
+let scene ?width ?height ?viewport ?camera ?background ?depth ?epsilon ?camera_path ?(shapes = []) ~spheres ~lights () =
+  Scene.v ?width ?height ?viewport ?camera ?background ?depth ?epsilon ?camera_path
+    ~objects:(List.map (fun s -> Shape.Sphere s) spheres @ shapes)
+    ~lights ()
+
+let with_sphere_material (s : Sphere.t) f = Sphere.v ~center:s.center ~radius:s.radius (f s.material)
+let scene_spheres s = Spheres.to_list (Scene.spheres s)
+
+let with_objects ?spheres ?shapes s =
+  let spheres = match spheres with Some l -> l | None -> scene_spheres s in
+  let shapes = match shapes with Some l -> l | None -> Scene.shapes s in
+  Scene.with_overrides ~objects:(List.map (fun sp -> Shape.Sphere sp) spheres @ shapes) s

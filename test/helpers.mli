@@ -158,3 +158,44 @@ val glass_planes : width:int -> height:int -> depth:int -> string
     seen face on: every hit spawns two rays, so a pixel's ray tree grows
     about as [2^(depth/2)] rays (tens of thousands at depth 20, millions at
     28), the front ends' slowest pixels. *)
+
+val sphere :
+  ?specular:float ->
+  ?reflective:float ->
+  ?transparency:float ->
+  ?refractive_index:float ->
+  ?fresnel:bool ->
+  ?pattern:Raytrace.Pattern.t ->
+  center:Raytrace.Vec3.t ->
+  radius:float ->
+  Raytrace.Color.t ->
+  Raytrace.Sphere.t
+(** [sphere ~specular ... ~center ~radius color] is the sphere made of
+    [Material.v ~specular ... color]: the tests' short way. *)
+
+val scene :
+  ?width:int ->
+  ?height:int ->
+  ?viewport:Raytrace.Viewport.t ->
+  ?camera:Raytrace.Camera.t ->
+  ?background:Raytrace.Color.t ->
+  ?depth:int ->
+  ?epsilon:float ->
+  ?camera_path:Raytrace.Camera_path.t ->
+  ?shapes:Raytrace.Shape.t list ->
+  spheres:Raytrace.Sphere.t list ->
+  lights:Raytrace.Light.t list ->
+  unit ->
+  Raytrace.Scene.t
+(** [scene ~spheres ~shapes ~lights ()] is {!Raytrace.Scene.v} of the
+    objects [spheres] then [shapes]. *)
+
+val with_sphere_material : Raytrace.Sphere.t -> (Raytrace.Material.t -> Raytrace.Material.t) -> Raytrace.Sphere.t
+(** [with_sphere_material s f] is [s] made of [f] of its material. *)
+
+val scene_spheres : Raytrace.Scene.t -> Raytrace.Sphere.t list
+(** [scene_spheres s] is the spheres of [s], in order. *)
+
+val with_objects : ?spheres:Raytrace.Sphere.t list -> ?shapes:Raytrace.Shape.t list -> Raytrace.Scene.t -> Raytrace.Scene.t
+(** [with_objects ~spheres ~shapes s] is [s] with the objects [spheres]
+    then [shapes], each list by default [s]'s own. *)

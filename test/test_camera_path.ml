@@ -69,10 +69,10 @@ let tests =
           (error_s (Camera_path.v [ k (-1) Vec3.zero Vec3.oz ]));
         Alcotest.(check string) __LOC__ "a camera path needs at least one key" (error_s (Camera_path.v [])));
     Alcotest.test_case "a scene's frame is a still scene with that frame's camera" `Quick (fun () ->
-        let s = { Scene.cgfs with camera_path = Some path } in
+        let s = (Scene.with_overrides ~camera_path:(Some path) Scene.cgfs) in
         let f = Scene.of_valid (ok (Scene.at_frame (Helpers.valid s) 6)) in
-        Alcotest.check camera __LOC__ (ok (Camera_path.camera path 6)) f.camera;
-        Alcotest.(check bool) __LOC__ true (Option.is_none f.camera_path);
+        Alcotest.check camera __LOC__ (ok (Camera_path.camera path 6)) (Scene.camera f);
+        Alcotest.(check bool) __LOC__ true (Option.is_none (Scene.camera_path f));
         match Scene.at_frame (Helpers.valid Scene.cgfs) 0 with
         | Ok _ -> Alcotest.fail "a still scene has frames"
         | Error (`Msg m) -> Alcotest.(check string) __LOC__ "the scene has no camera-path, so it has no frames to render" m);

@@ -4,10 +4,10 @@ open Raytrace
 
 let near = Alcotest.(check (float 1e-12))
 let sphere ?(specular = Sphere.matte) ?(reflective = 0.) ?(color = Color.white) center radius =
-  Sphere.v ~specular ~reflective ~center ~radius color
+  Helpers.sphere ~specular ~reflective ~center ~radius color
 
 let scene ?(background = Color.black) ?(depth = 3) spheres lights =
-  Scene.v ~background ~depth ~epsilon:0.001 ~spheres ~lights ()
+  Helpers.scene ~background ~depth ~epsilon:0.001 ~spheres ~lights ()
 
 (* A unit sphere at the origin, seen at its top point P = (0, 1, 0), N = (0, 1, 0). *)
 let ball = sphere Vec3.zero 1.
@@ -90,7 +90,7 @@ let tests =
         (* with no recursion left, only the local colour *)
         Alcotest.check Helpers.color __LOC__ (Color.v 200. 100. 0.) (trace 0));
     Alcotest.test_case "rendering visits exactly w x h pixels (section 8)" `Quick (fun () ->
-        let s = { (scene [] [ Light.ambient 1. ]) with width = 7; height = 4; background = Color.v 1. 2. 3. } in
+        let s = (Scene.with_overrides ~width:7 ~height:4 ~background:(Color.v 1. 2. 3.) ((scene [] [ Light.ambient 1. ]))) in
         let img = Literal.render (Helpers.valid s) in
         Alcotest.(check (pair int int)) __LOC__ (7, 4) (Image.width img, Image.height img);
         Alcotest.(check (triple int int int)) __LOC__ (1, 2, 3) (Image.get img 6 3));
@@ -100,7 +100,7 @@ let tests =
            lowest point y = 1) is met by the rays with y / 4 = 0.25 (at
            z = 10 they are at y = 2.5, inside it) and by none with y <= 0. *)
         let s =
-          { (scene [ sphere (Vec3.v 0. 101. 10.) 100. ] [ Light.ambient 1. ]) with width = 4; height = 4 }
+          (Scene.with_overrides ~width:4 ~height:4 ((scene [ sphere (Vec3.v 0. 101. 10.) 100. ] [ Light.ambient 1. ])))
         in
         let img = Literal.render (Helpers.valid s) in
         let white = (255, 255, 255) and black = (0, 0, 0) in
@@ -119,7 +119,7 @@ let tests =
    distance 1 on a [n x n] canvas, [n] a power of 2: pixel (gx, gy)'s ray
    has the direction (gx / n, gy / n, 1), exactly. *)
 let exact_scene ?(lights = [ Light.ambient 1. ]) n shapes =
-  Scene.v ~epsilon:0.001 ~width:n ~height:n ~background:Color.black ~spheres:[] ~shapes ~lights ()
+  Helpers.scene ~epsilon:0.001 ~width:n ~height:n ~background:Color.black ~spheres:[] ~shapes ~lights ()
 
 let pixel_direction n gx gy = Vec3.v (Float.of_int gx /. Float.of_int n) (Float.of_int gy /. Float.of_int n) 1.
 
@@ -204,7 +204,7 @@ let exact_tests =
         Helpers.check_images "ambient light: all green" ~expected:(expected_image n (fun _ _ -> (0, 255, 0)))
           (Literal.render (Helpers.valid s));
         (* Lit from a point: the shared face would be lit differently. *)
-        let lit = { s with lights = [ Light.ambient 0.2; Light.point 0.8 (Vec3.v 1. 1. 1.) ] } in
+        let lit = (Scene.with_overrides ~lights:([ Light.ambient 0.2; Light.point 0.8 (Vec3.v 1. 1. 1.) ]) s) in
         Helpers.check_images "the fast renderer, lit" ~max_abs:1 ~expected:(Literal.render (Helpers.valid lit)) (Helpers.image_exn lit));
   ]
 
@@ -279,7 +279,7 @@ let mesh_tests =
            tests per ray, 16384 at least for the primary rays; the bound
            is 5000 and the render stops at test 5001. *)
         let rec tree lo n =
-          if n = 1 then Csg.Sphere (Sphere.v ~center:(Vec3.v (Float.of_int (lo mod 8) -. 3.5) (Float.of_int (lo / 8) -. 3.5) 10.) ~radius:0.4 Color.white)
+          if n = 1 then Csg.Sphere (Helpers.sphere ~center:(Vec3.v (Float.of_int (lo mod 8) -. 3.5) (Float.of_int (lo / 8) -. 3.5) 10.) ~radius:0.4 Color.white)
           else Csg.Csg (Csg.v Csg.Union (tree lo (n / 2)) (tree (lo + (n / 2)) (n / 2)))
         in
         let solid = match tree 0 64 with Csg.Csg c -> c | _ -> assert false in
@@ -317,7 +317,7 @@ let disagreement_tests =
         Alcotest.(check string) "exact edge function of a b" (Q.to_string (Q.of_ints 1 562949953421312)) (Q.to_string (edge ~o ~d a b));
         Alcotest.(check bool) "the others negative" true (Q.sign (edge ~o ~d b c) < 0 && Q.sign (edge ~o ~d c a) < 0);
         let tri = Shape.Triangle (Triangle.v a b c (Material.v Color.white)) in
-        let s = Scene.v ~epsilon:0.001 ~spheres:[] ~shapes:[ tri ] ~lights:[] () in
+        let s = Helpers.scene ~epsilon:0.001 ~spheres:[] ~shapes:[ tri ] ~lights:[] () in
         Alcotest.(check bool) "the oracle: no blocker" true (Literal.closest_hit s ~origin:o ~direction:d ~t_min:0.001 ~t_max:1. = None));
     Alcotest.test_case "a ray beside a mesh's silhouette vertex hits the triangle it meets first, exactly" `Quick
       (fun () ->
@@ -328,7 +328,7 @@ let disagreement_tests =
            rounded. Front: triangles 4 and 7; back: 0 and 3, listed first.
            The nearest exactly is triangle 4. *)
         let d = Vec3.v (Float.pred 0.25) 0. 1. in
-        let s = Scene.v ~epsilon:0.001 ~spheres:[] ~shapes:[ Shape.Mesh octahedron ] ~lights:[] () in
+        let s = Helpers.scene ~epsilon:0.001 ~spheres:[] ~shapes:[ Shape.Mesh octahedron ] ~lights:[] () in
         let hits =
           List.filter
             (fun k ->

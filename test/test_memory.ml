@@ -45,7 +45,7 @@ let spheres_gone_while_tracing render =
   let valid =
     (fun [@inline never] () ->
       let s = Scene.with_overrides ~width:16 ~height:16 (Scene.grid 5000) in
-      Weak.set weak 0 (Some s.spheres);
+      Weak.set weak 0 (Some (Scene.spheres s));
       match Scene.validate s with Ok v -> v | Error (`Msg m) -> Alcotest.fail m)
       ()
   in
@@ -198,7 +198,7 @@ let tests =
            triangles), instead. *)
         let m = knot_mesh 3125 in
         let floor = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy (Material.v (Color.v 120. 120. 130.))) in
-        let s = Scene.with_overrides ~width:8 ~height:8 { Scene.cgfs with spheres = Spheres.empty; shapes = [ floor; Shape.Mesh m ] } in
+        let s = Scene.with_overrides ~width:8 ~height:8 ~objects:[ floor; Shape.Mesh m ] Scene.cgfs in
         let p = Helpers.prepare s in
         let n = Mesh.triangle_count m in
         Alcotest.(check int) "triangles" 100_000 n;

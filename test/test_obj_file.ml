@@ -398,7 +398,7 @@ let tests =
           match Scene_file.of_string ~load_mesh:load scene with
           | Error (`Msg e) -> Alcotest.failf "scene refused: %s" e
           | Ok s -> (
-              match (Scene.of_valid s).shapes with
+              match (Scene.shapes (Scene.of_valid s)) with
               | [ Shape.Mesh m ] -> m
               | _ -> Alcotest.fail "expected one mesh")
         in

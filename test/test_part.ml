@@ -9,11 +9,11 @@ let region_image ?jobs s r = fst (ok (Helpers.render_region ?jobs s r))
 
 let part ?(s = scene) ?settings (r : Region.t) =
   let settings = match settings with Some st -> st | None -> Part.settings s in
-  Part.v ~canvas_width:s.width ~canvas_height:s.height ~region:r ~settings (region_image s r)
+  Part.v ~canvas_width:(Scene.width s) ~canvas_height:(Scene.height s) ~region:r ~settings (region_image s r)
 
 let tiles ?(s = scene) n =
   List.init n (fun i ->
-      let r = ok (Region.tile ~width:s.width ~height:s.height ~index:(i + 1) ~count:n) in
+      let r = ok (Region.tile ~width:(Scene.width s) ~height:(Scene.height s) ~index:(i + 1) ~count:n) in
       (Printf.sprintf "part-%d.ppm" (i + 1), part ~s r))
 
 let tests =
@@ -26,8 +26,8 @@ let tests =
     Helpers.qcheck ~count:60 "any region of any scene is byte for byte that part of the whole"
       QCheck.(pair Gen_scene.arbitrary (quad small_nat small_nat small_nat small_nat))
       (fun ((s : Scene.t), (a, b, c, d)) ->
-        let x = a mod s.width and y = b mod s.height in
-        let w = 1 + (c mod (s.width - x)) and h = 1 + (d mod (s.height - y)) in
+        let x = a mod (Scene.width s) and y = b mod (Scene.height s) in
+        let w = 1 + (c mod ((Scene.width s) - x)) and h = 1 + (d mod ((Scene.height s) - y)) in
         Image.equal (Image.sub (Helpers.image_exn s) ~x ~y ~w ~h) (region_image s { x; y; w; h }));
     Alcotest.test_case "seven tiles merge into the whole image, byte for byte" `Quick (fun () ->
         Helpers.check_images __LOC__ ~expected:(Helpers.image_exn scene) (ok (Part.merge (tiles 7))));
@@ -60,7 +60,7 @@ let tests =
         let digest s = List.assoc "scene" (Part.settings s) in
         Alcotest.(check string) __LOC__ (Digest.to_hex (Digest.string (Scene_file.to_string Scene.cgfs))) (digest Scene.cgfs);
         Alcotest.(check bool) __LOC__ false (digest Scene.cgfs = digest Scene.cgfs_camera);
-        Alcotest.(check bool) __LOC__ false (digest Scene.cgfs = digest { Scene.cgfs with epsilon = Some 0.01 }));
+        Alcotest.(check bool) __LOC__ false (digest Scene.cgfs = digest (Scene.with_overrides ~epsilon:(Some 0.01) Scene.cgfs)));
     Alcotest.test_case "the scene digest covers the contents of the files the scene read, as they were read" `Quick
       (fun () ->
         let dir = Helpers.temp_dir () in
@@ -100,9 +100,9 @@ let tests =
         Alcotest.(check string) __LOC__
           (Printf.sprintf
              "c.ppm was rendered from a different scene than part-1.ppm (scene digests %s and %s): they do not fit together"
-             (List.assoc "scene" (Part.settings { scene with camera = Camera.default }))
+             (List.assoc "scene" (Part.settings (Scene.with_overrides ~camera:Camera.default scene)))
              (List.assoc "scene" (Part.settings scene)))
-          (error (Part.merge (with_part 1 ("c.ppm", part ~s:{ scene with camera = Camera.default } r2))));
+          (error (Part.merge (with_part 1 ("c.ppm", part ~s:(Scene.with_overrides ~camera:Camera.default scene) r2))));
         let wider = Scene.with_overrides ~width:38 scene in
         Alcotest.(check string) __LOC__
           "w.ppm is a part of a 38x23 image, part-1.ppm of a 37x23 one: they do not fit together"

@@ -8,8 +8,8 @@ let image v = match Render.image v with Ok (img, _) -> img | Error (`Msg m) -> A
 let first_difference p img =
   let s = Scene.of_valid (Pixel.scene p) in
   let found = ref None in
-  for y = 0 to s.height - 1 do
-    for x = 0 to s.width - 1 do
+  for y = 0 to (Scene.height s) - 1 do
+    for x = 0 to (Scene.width s) - 1 do
       let c = Pixel.color p x y in
       let mine = (Color.to_byte c.r, Color.to_byte c.g, Color.to_byte c.b) in
       if !found = None && mine <> Image.get img x y then found := Some (x, y)
@@ -23,18 +23,18 @@ let tests =
       Gen_scene.arbitrary (fun s ->
         List.for_all
           (fun epsilon ->
-            let v = Helpers.valid { s with epsilon } in
+            let v = Helpers.valid (Scene.with_overrides ~epsilon s) in
             let p = Pixel.v v in
             match first_difference p (image v) with
             | None -> true
             | Some (x, y) -> QCheck.Test.fail_reportf "pixel (%d, %d) differs" x y)
-          [ s.epsilon; Some 0.001; Some Scene.document_epsilon; None ]);
+          [ (Scene.epsilon s); Some 0.001; Some Scene.document_epsilon; None ]);
     Alcotest.test_case "the reference scenes' pixels, one at a time, are their images" `Quick (fun () ->
         List.iter
           (fun s ->
             let v = Helpers.valid (Scene.with_overrides ~width:64 ~height:48 s) in
             Alcotest.(check (option (pair int int))) __LOC__ None (first_difference (Pixel.v v) (image v)))
-          [ Scene.cgfs; Scene.cgfs_camera; { Scene.cgfs with epsilon = None } ]);
+          [ Scene.cgfs; Scene.cgfs_camera; (Scene.with_overrides ~epsilon:None Scene.cgfs) ]);
     Alcotest.test_case "a pixel outside the canvas is a programmer error naming the function" `Quick (fun () ->
         let p = Pixel.v (Helpers.valid (Scene.with_overrides ~width:4 ~height:3 Scene.cgfs)) in
         Alcotest.check_raises __LOC__ (Invalid_argument "Pixel.color: (4, 0) is outside the 4x3 canvas")

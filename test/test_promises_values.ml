@@ -107,7 +107,7 @@ let viewport_camera_tests =
             let m = error what (Viewport.validate vp) in
             let name = List.hd (String.split_on_char ' ' what) in
             if not (contains ~sub:name m) then Alcotest.failf "%s: %S does not name it" what m)
-          [ ("width 0", { Viewport.default with width = 0. }); ("height -1", { Viewport.default with height = -1. });
+          [ ("width 0", { Viewport.default with width = 0. }); ("height -1", { Viewport.default with height = (-1.) });
             ("distance nan", { Viewport.default with distance = nan }); ("width inf", { Viewport.default with width = infinity }) ]);
     Alcotest.test_case "Camera.direction is M v, each row dotted with v" `Quick (fun () ->
         (* rows (1 2 3) (0 1 0) (-1 0 2) times (1, -1, 2) = (5, -1, 3). *)
@@ -136,10 +136,10 @@ let viewport_camera_tests =
         refused "inf" (Camera.check_rotation { m with row2 = v 0. 0. infinity });
         refused "position nan" (Camera.validate (Camera.v (v nan 0. 0.)));
         refused "position beyond the limit" (Camera.validate (Camera.v (v 1e300 0. 0.)));
-        ignore (ok (Camera.validate Scene.cgfs_camera.camera)));
+        ignore (ok (Camera.validate (Scene.camera Scene.cgfs_camera))));
     Alcotest.test_case "Camera.pp leaves out an identity rotation and writes any other" `Quick (fun () ->
         let plain = Camera.show (Camera.v (v 1. 2. 3.)) in
-        let turned = Camera.show Scene.cgfs_camera.camera in
+        let turned = Camera.show (Scene.camera Scene.cgfs_camera) in
         Alcotest.(check bool) plain false (contains ~sub:"rotation" plain);
         Alcotest.(check bool) turned true (contains ~sub:"(rotation (0.7071 0 -0.7071) (0 1 0) (0.7071 0 0.7071))" turned));
   ]
@@ -381,34 +381,34 @@ let image_tests =
         Alcotest.(check bool) "tests per ray: 9 / 753" true (contains ~sub:(Printf.sprintf "%.2f" (9. /. 753.)) table));
   ]
 
-let sphere_at x = Sphere.v ~center:(v x 0. 5.) ~radius:1. Color.white
+let sphere_at x = Helpers.sphere ~center:(v x 0. 5.) ~radius:1. Color.white
 
 let scene_tests =
   [
-    Alcotest.test_case "Scene.v is the document's scene: 600 x 600, default viewport and camera, black, depth 3, robust"
+    Alcotest.test_case "Helpers.scene is the document's scene: 600 x 600, default viewport and camera, black, depth 3, robust"
       `Quick (fun () ->
-        let s = Scene.v ~spheres:[] ~lights:[] () in
-        Alcotest.(check (pair int int)) "canvas" (600, 600) (s.width, s.height);
-        Alcotest.(check bool) "viewport" true (Viewport.equal s.viewport Viewport.default);
-        Alcotest.(check bool) "camera" true (Camera.equal s.camera Camera.default);
-        Alcotest.(check bool) "background" true (Color.equal s.background Color.black);
-        Alcotest.(check int) "depth" 3 s.depth;
-        Alcotest.(check bool) "no epsilon, no path, no shapes" true (s.epsilon = None && s.camera_path = None && s.shapes = []));
+        let s = Helpers.scene ~spheres:[] ~lights:[] () in
+        Alcotest.(check (pair int int)) "canvas" (600, 600) ((Scene.width s), (Scene.height s));
+        Alcotest.(check bool) "viewport" true (Viewport.equal (Scene.viewport s) Viewport.default);
+        Alcotest.(check bool) "camera" true (Camera.equal (Scene.camera s) Camera.default);
+        Alcotest.(check bool) "background" true (Color.equal (Scene.background s) Color.black);
+        Alcotest.(check int) "depth" 3 (Scene.depth s);
+        Alcotest.(check bool) "no epsilon, no path, no shapes" true ((Scene.epsilon s) = None && (Scene.camera_path s) = None && (Scene.shapes s) = []));
     Alcotest.test_case "Scene.validate refuses a bad canvas, depth, epsilon, background, viewport or camera" `Quick
       (fun () ->
-        let base = Scene.v ~spheres:[ sphere_at 0. ] ~lights:[ Light.ambient 1. ] () in
+        let base = Helpers.scene ~spheres:[ sphere_at 0. ] ~lights:[ Light.ambient 1. ] () in
         ignore (ok (Scene.validate base));
         List.iter
           (fun (what, s) -> refused what (Scene.validate s))
-          [ ("width 0", { base with width = 0 }); ("height 65537", { base with height = 65537 });
-            ("depth -1", { base with depth = -1 }); ("depth 65", { base with depth = 65 });
-            ("epsilon nan", { base with epsilon = Some nan }); ("epsilon -0.5", { base with epsilon = Some (-0.5) });
-            ("background 256", { base with background = Color.v 0. 256. 0. });
-            ("background nan", { base with background = Color.v nan 0. 0. });
-            ("viewport 0", { base with viewport = { Viewport.default with distance = 0. } });
-            ("camera nan", { base with camera = Camera.v (v 0. nan 0.) });
-            ("light", { base with lights = [ Light.point 0.5 (v infinity 0. 0.) ] });
-            ("sphere radius 0", { base with spheres = Spheres.of_list [ Sphere.v ~center:Vec3.zero ~radius:0. Color.white ] }) ];
+          [ ("width 0", (Scene.with_overrides ~width:0 base)); ("height 65537", (Scene.with_overrides ~height:65537 base));
+            ("depth -1", (Scene.with_overrides ~depth:(-1) base)); ("depth 65", (Scene.with_overrides ~depth:65 base));
+            ("epsilon nan", (Scene.with_overrides ~epsilon:(Some nan) base)); ("epsilon -0.5", (Scene.with_overrides ~epsilon:(Some (-0.5)) base));
+            ("background 256", (Scene.with_overrides ~background:(Color.v 0. 256. 0.) base));
+            ("background nan", (Scene.with_overrides ~background:(Color.v nan 0. 0.) base));
+            ("viewport 0", (Scene.with_overrides ~viewport:({ Viewport.default with distance = 0. }) base));
+            ("camera nan", (Scene.with_overrides ~camera:(Camera.v (v 0. nan 0.)) base));
+            ("light", (Scene.with_overrides ~lights:([ Light.point 0.5 (v infinity 0. 0.) ]) base));
+            ("sphere radius 0", Helpers.with_objects ~spheres:[ Helpers.sphere ~center:Vec3.zero ~radius:0. Color.white ] base) ];
         ignore (ok (Scene.check_epsilon 0.));
         refused "epsilon infinity" (Scene.check_epsilon infinity);
         ignore (ok (Scene.check_background Color.white)));
@@ -423,24 +423,24 @@ let scene_tests =
           (Scene.override ~limits:(Limits.with_bound Limits.default `Pixels 99.) ~width:10 ~height:10 valid);
         let s = Scene.of_valid (ok (Scene.override ~width:7 ~depth:0 valid)) in
         Alcotest.(check bool) "the rest kept" true
-          (Scene.equal s { Scene.cgfs with width = 7; depth = 0 } && Scene.equal s (Scene.with_overrides ~width:7 ~depth:0 Scene.cgfs)));
+          (Scene.equal s (Scene.with_overrides ~width:7 ~depth:0 Scene.cgfs) && Scene.equal s (Scene.with_overrides ~width:7 ~depth:0 Scene.cgfs)));
     Alcotest.test_case "Scene.grid: sphere i at (i mod k - (k - 1) / 2, i / k - 0.6, 2 k); grid 0 raises" `Quick (fun () ->
         raises_invalid "grid 0" (fun () -> Scene.grid 0);
         (* n = 5: k = 3 (9 >= 5), centers x in {-1, 0, 1}, z = 6; sphere 4 is
            (4 mod 3 - 1, 4 / 3 - 0.6, 6) = (0, 0.4, 6), then the ground. *)
         let s = Scene.grid 5 in
-        Alcotest.(check int) "5 spheres and the ground" 6 (Spheres.length s.spheres);
-        let c = (Spheres.get s.spheres 4).center in
+        Alcotest.(check int) "5 spheres and the ground" 6 (Spheres.length (Scene.spheres s));
+        let c = (Spheres.get (Scene.spheres s) 4).center in
         Alcotest.check Helpers.vec3 "sphere 4" (v 0. (1. -. 0.6) 6.) c;
-        Alcotest.check exact "radius" 0.4 (Spheres.get s.spheres 4).radius;
-        Alcotest.(check (pair int int)) "800 x 800" (800, 800) (s.width, s.height));
+        Alcotest.check exact "radius" 0.4 (Spheres.get (Scene.spheres s) 4).radius;
+        Alcotest.(check (pair int int)) "800 x 800" (800, 800) ((Scene.width s), (Scene.height s)));
     Alcotest.test_case "Scene.at_frame of a scene without a camera path is an Error" `Quick (fun () ->
         refused "no path" (Scene.at_frame (Helpers.valid Scene.cgfs) 0));
     Alcotest.test_case "Scene_file.to_string then of_string gives the same floats bit for bit: -0., the smallest \
                         subnormal, 1e12, 1e-30, 0.1 + 0.2" `Quick (fun () ->
-        let sphere = Sphere.v ~center:(v (-0.) 5e-324 1e12) ~radius:1e-30 ~specular:0. ~reflective:(0.1 +. 0.2) (Color.v 254.99999999999997 0. 1e-300) in
+        let sphere = Helpers.sphere ~center:(v (-0.) 5e-324 1e12) ~radius:1e-30 ~specular:0. ~reflective:(0.1 +. 0.2) (Color.v 254.99999999999997 0. 1e-300) in
         let s =
-          Scene.v ~width:3 ~height:2 ~epsilon:(-0.) ~background:(Color.v 0.1 (-0.) 255.)
+          Helpers.scene ~width:3 ~height:2 ~epsilon:(-0.) ~background:(Color.v 0.1 (-0.) 255.)
             ~viewport:(Viewport.v ~width:(1. /. 3.) ~height:1e-30 ~distance:1e12)
             ~spheres:[ sphere ] ~lights:[ Light.directional 1e6 (v (-0.) 1e-30 (-1e12)) ] ()
         in
@@ -448,12 +448,12 @@ let scene_tests =
         let back = Scene.of_valid (ok (Scene_file.of_string text)) in
         Alcotest.(check string) "prints the same" text (Scene_file.to_string back);
         let bits = Alcotest.testable (fun ppf x -> Format.fprintf ppf "%h" x) (fun a b -> Int64.equal (Int64.bits_of_float a) (Int64.bits_of_float b)) in
-        let b = Spheres.get back.spheres 0 in
+        let b = Spheres.get (Scene.spheres back) 0 in
         Alcotest.(check (list bits)) "sphere"
           [ -0.; 5e-324; 1e12; 1e-30; 0.; 0.1 +. 0.2; 254.99999999999997; 1e-300 ]
-          [ b.center.x; b.center.y; b.center.z; b.radius; b.specular; b.reflective; b.color.r; b.color.b ];
+          [ b.center.x; b.center.y; b.center.z; b.radius; b.material.specular; b.material.reflective; b.material.color.r; b.material.color.b ];
         Alcotest.(check (list bits)) "scene" [ -0.; 0.1; -0.; 1. /. 3. ]
-          [ Option.get back.epsilon; back.background.r; back.background.g; back.viewport.width ]);
+          [ Option.get (Scene.epsilon back); (Scene.background back).r; (Scene.background back).g; (Scene.viewport back).width ]);
     Alcotest.test_case "Spheres.append_fields refuses a short array or a bad material and appends nothing; blit_fields \
                         refuses short arrays" `Quick (fun () ->
         let b = Spheres.builder () in
@@ -472,7 +472,7 @@ let scene_tests =
         Alcotest.(check (array (float 0.))) "x" [| 1.; 2. |] x);
     Alcotest.test_case "Render.image refuses bad sampling settings; region_image raises for a region outside the canvas"
       `Quick (fun () ->
-        let s = Helpers.valid { Scene.cgfs with width = 4; height = 3 } in
+        let s = Helpers.valid (Scene.with_overrides ~width:4 ~height:3 Scene.cgfs) in
         refused "samples 0" (Render.image ~samples:0 s);
         refused "adaptive with 2 x 2" (Render.image ~samples:2 ~adaptive:8 s);
         refused "subsampled 2 x 2" (Render.image ~samples:2 ~subsample:true s);
@@ -564,16 +564,16 @@ let kernel_tests =
         Alcotest.(check string) "3 digits" "v 0.333 2 -0.5\n" (Obj_file.to_string ~digits:3 m));
     Alcotest.test_case "Literal: of two spheres hit at the same t the first wins; a point light at the point adds nothing"
       `Quick (fun () ->
-        let red = Sphere.v ~center:(v 0. 0. 5.) ~radius:1. (Color.v 255. 0. 0.) in
-        let blue = Sphere.v ~center:(v 0. 0. 5.) ~radius:1. (Color.v 0. 0. 255.) in
+        let red = Helpers.sphere ~center:(v 0. 0. 5.) ~radius:1. (Color.v 255. 0. 0.) in
+        let blue = Helpers.sphere ~center:(v 0. 0. 5.) ~radius:1. (Color.v 0. 0. 255.) in
         let first spheres =
           match Literal.closest_intersection spheres ~origin:Vec3.zero ~direction:Vec3.oz ~t_min:1. ~t_max:infinity with
-          | Some (s, t) -> Alcotest.check exact "t" 4. t; s.color
+          | Some (s, t) -> Alcotest.check exact "t" 4. t; s.material.color
           | None -> Alcotest.fail "missed"
         in
-        Alcotest.check Helpers.color "red first" red.color (first [ red; blue ]);
-        Alcotest.check Helpers.color "blue first" blue.color (first [ blue; red ]);
-        let scene = Scene.v ~spheres:[] ~lights:[ Light.ambient 0.25; Light.point 0.5 (v 0. 0. 4.) ] () in
+        Alcotest.check Helpers.color "red first" red.material.color (first [ red; blue ]);
+        Alcotest.check Helpers.color "blue first" blue.material.color (first [ blue; red ]);
+        let scene = Helpers.scene ~spheres:[] ~lights:[ Light.ambient 0.25; Light.point 0.5 (v 0. 0. 4.) ] () in
         let lighting point =
           Literal.compute_lighting scene ~epsilon:0.001 ~point ~normal:(v 0. 0. (-1.)) ~view:(v 0. 0. (-1.)) ~specular:Sphere.matte
         in
@@ -586,7 +586,7 @@ let kernel_tests =
         let n d = Literal.normal (Literal.Shape (Shape.Plane floor, Vec3.oy)) ~point:Vec3.zero ~direction:d in
         Alcotest.check Helpers.vec3 "from above" Vec3.oy (n (v 1. (-1.) 0.));
         Alcotest.check Helpers.vec3 "from below" (v 0. (-1.) 0.) (n (v 0. 1. 3.));
-        let ball = Sphere.v ~center:Vec3.zero ~radius:2. Color.white in
+        let ball = Helpers.sphere ~center:Vec3.zero ~radius:2. Color.white in
         Alcotest.check Helpers.vec3 "a sphere from inside: outward" (v 0. 0. 1.)
           (Literal.normal (Literal.Sphere ball) ~point:(v 0. 0. 2.) ~direction:Vec3.oz));
     Alcotest.test_case "Camera_path: frames in [0, max_frame]; pp_key leaves out up = (0 1 0); first and last frames" `Quick

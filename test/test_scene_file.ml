@@ -116,37 +116,37 @@ let tests =
         List.iter (fun name -> ignore (Helpers.load_scene name)) (Helpers.scene_names ()));
     Alcotest.test_case "omitted forms take the document's values" `Quick (fun () ->
         let s = parse "(light ambient (intensity 1))" in
-        Alcotest.(check (pair int int)) __LOC__ (600, 600) (s.width, s.height);
-        Alcotest.(check int) __LOC__ 3 s.depth;
-        Alcotest.(check bool) __LOC__ true (Viewport.equal s.viewport Viewport.default);
-        Alcotest.(check bool) __LOC__ true (Camera.equal s.camera Camera.default);
-        Alcotest.(check (option (float 0.))) __LOC__ None s.epsilon;
-        Alcotest.check Helpers.color __LOC__ Color.black s.background);
+        Alcotest.(check (pair int int)) __LOC__ (600, 600) ((Scene.width s), (Scene.height s));
+        Alcotest.(check int) __LOC__ 3 (Scene.depth s);
+        Alcotest.(check bool) __LOC__ true (Viewport.equal (Scene.viewport s) Viewport.default);
+        Alcotest.(check bool) __LOC__ true (Camera.equal (Scene.camera s) Camera.default);
+        Alcotest.(check (option (float 0.))) __LOC__ None (Scene.epsilon s);
+        Alcotest.check Helpers.color __LOC__ Color.black (Scene.background s));
     Alcotest.test_case "specular and reflective default to matte and 0" `Quick (fun () ->
         let s = parse "(sphere (center 0 0 3) (radius 1) (color 1 2 3))" in
-        match Spheres.to_list s.spheres with
+        match Spheres.to_list (Scene.spheres s) with
         | [ sp ] ->
-            Alcotest.(check (float 0.)) __LOC__ (-1.) sp.specular;
-            Alcotest.(check (float 0.)) __LOC__ 0. sp.reflective
+            Alcotest.(check (float 0.)) __LOC__ (-1.) sp.material.specular;
+            Alcotest.(check (float 0.)) __LOC__ 0. sp.material.reflective
         | _ -> Alcotest.fail "one sphere expected");
     Alcotest.test_case "the optical fields default to opaque, index 1, no Fresnel, and print only when set" `Quick
       (fun () ->
         let plain = "(sphere (center 0 0 3) (radius 1) (color 1 2 3))" in
-        (match Spheres.to_list (parse plain).spheres with
+        (match Helpers.scene_spheres (parse plain) with
         | [ sp ] ->
-            Alcotest.(check (float 0.)) __LOC__ 0. sp.transparency;
-            Alcotest.(check (float 0.)) __LOC__ 1. sp.refractive_index;
-            Alcotest.(check bool) __LOC__ false sp.fresnel;
+            Alcotest.(check (float 0.)) __LOC__ 0. sp.material.transparency;
+            Alcotest.(check (float 0.)) __LOC__ 1. sp.material.refractive_index;
+            Alcotest.(check bool) __LOC__ false sp.material.fresnel;
             Alcotest.(check string) "a sphere without them prints as before" plain (Sphere.show sp)
         | _ -> Alcotest.fail "one sphere expected");
         let glass =
           "(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 0.1) (transparency 0.9) (refractive-index 1.5) (fresnel true))"
         in
-        (match Spheres.to_list (parse glass).spheres with
+        (match Helpers.scene_spheres (parse glass) with
         | [ sp ] -> Alcotest.(check string) "a glass sphere prints its fields" glass (Sphere.show sp)
         | _ -> Alcotest.fail "one sphere expected");
         let box = "(box (min 0 0 3) (max 1 1 4) (color 1 2 3) (transparency 1) (refractive-index 1.33))" in
-        match (parse box).shapes with
+        match Scene.shapes (parse box) with
         | [ sh ] -> Alcotest.(check string) "a glass box prints its fields" box (Shape.show sh)
         | _ -> Alcotest.fail "one shape expected");
     Alcotest.test_case "comments of every kind are ignored" `Quick (fun () ->
@@ -154,8 +154,8 @@ let tests =
           parse
             "; line\n#| block |#\n#;(sphere (center 0 0 0))\n(recursion-depth 2) ; trailing\n"
         in
-        Alcotest.(check int) __LOC__ 2 s.depth;
-        Alcotest.(check int) __LOC__ 0 (Spheres.length s.spheres));
+        Alcotest.(check int) __LOC__ 2 (Scene.depth s);
+        Alcotest.(check int) __LOC__ 0 (Spheres.length (Scene.spheres s)));
     Alcotest.test_case "a UTF-8 byte order mark at the start reads as blanks, in both readers and in windows" `Quick
       (fun () ->
         let bom = "\xef\xbb\xbf" in
@@ -182,7 +182,7 @@ let tests =
         Alcotest.(check bool) __LOC__ true (Result.is_error (read `Fast (" " ^ bom ^ text))));
     Alcotest.test_case "look-at builds the camera" `Quick (fun () ->
         let s = parse "(camera (position 3 0 1) (look-at 2 0 2) (up 0 1 0))" in
-        let d = Camera.direction s.camera Vec3.oz in
+        let d = Camera.direction (Scene.camera s) Vec3.oz in
         let k = 1. /. sqrt 2. in
         Alcotest.check (Helpers.vec3_near 1e-15) __LOC__ (Vec3.v (-.k) 0. k) d);
     Alcotest.test_case "bad input gets one located line" `Quick (fun () ->
@@ -207,20 +207,20 @@ let tests =
             "(camera-path (key (frame 2) (position 0 1 -2) (look-at 0 0 4))\n\
              (key (frame 10) (position 1 1 -2) (look-at 0 0 4) (up 0 1 0.5)))"
         in
-        match s.camera_path with
+        match (Scene.camera_path s) with
         | None -> Alcotest.fail "no camera path"
         | Some p ->
             Alcotest.(check (list int)) __LOC__ [ 2; 10 ] (List.map (fun (k : Camera_path.key) -> k.frame) (Camera_path.keys p));
             Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 1. 0.5) (List.nth (Camera_path.keys p) 1).up;
             Alcotest.check Helpers.vec3 __LOC__ Vec3.oy (List.hd (Camera_path.keys p)).up;
             (match Camera.look_at ~position:(Vec3.v 0. 1. (-2.)) (Vec3.v 0. 0. 4.) with
-            | Ok c -> Alcotest.(check bool) __LOC__ true (Camera.equal c s.camera)
+            | Ok c -> Alcotest.(check bool) __LOC__ true (Camera.equal c (Scene.camera s))
             | Error (`Msg m) -> Alcotest.fail m);
             let with_camera = parse "(camera (position 0 0 -1))\n(camera-path (key (frame 0) (position 0 0 0) (look-at 0 0 1)))" in
-            Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 0. (-1.)) with_camera.camera.position);
+            Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 0. (-1.)) (Scene.camera with_camera).position);
     Alcotest.test_case "a scene with a camera path prints and parses back equal" `Quick (fun () ->
         let s = Helpers.load_scene "orbit.scene" in
-        Alcotest.(check bool) __LOC__ true (Option.is_some s.camera_path);
+        Alcotest.(check bool) __LOC__ true (Option.is_some (Scene.camera_path s));
         Alcotest.check scene __LOC__ s (parse (Scene_file.to_string s)));
     Helpers.qcheck ~count:300 "any valid scene prints and parses back equal" Gen_scene.arbitrary
       (fun s ->
@@ -243,18 +243,18 @@ let tests =
         let has_line what form =
           if not (List.mem form lines) then QCheck.Test.fail_reportf "%s prints %S, not a line of:\n%s" what form text
         in
-        has_line "Viewport.show" (Viewport.show s.viewport);
-        has_line "Camera.show" (Camera.show s.camera);
-        Spheres.iter (fun x -> has_line "Sphere.show" (Sphere.show x)) s.spheres;
-        List.iter (fun x -> has_line "Shape.show" (Shape.show x)) s.shapes;
-        List.iter (fun x -> has_line "Light.show" (Light.show x)) s.lights;
+        has_line "Viewport.show" (Viewport.show (Scene.viewport s));
+        has_line "Camera.show" (Camera.show (Scene.camera s));
+        Spheres.iter (fun x -> has_line "Sphere.show" (Sphere.show x)) (Scene.spheres s);
+        List.iter (fun x -> has_line "Shape.show" (Shape.show x)) (Scene.shapes s);
+        List.iter (fun x -> has_line "Light.show" (Light.show x)) (Scene.lights s);
         Option.iter
           (fun p ->
             let form = Camera_path.show p in
             let n = String.length form and t = String.length text in
             let rec found i = i + n <= t && (String.sub text i n = form || found (i + 1)) in
             if not (found 0) then QCheck.Test.fail_reportf "Camera_path.show prints %S, not in:\n%s" form text)
-          s.camera_path;
+          (Scene.camera_path s);
         true);
       Alcotest.test_case "the new shapes read with their fields and defaults" `Quick (fun () ->
         let s =
@@ -263,7 +263,7 @@ let tests =
              (triangle (vertices (-1 0 4) (1 0 4) (0 1.5 4)) (color 4 5 6) (specular 10))\n\
              (box (min -1 -1 3) (max 1 1 5) (color 7 8 9) (reflective 0.5))"
         in
-        match s.Scene.shapes with
+        match (Scene.shapes s) with
         | [ Shape.Plane p; Shape.Triangle t; Shape.Box b ] ->
             Alcotest.(check (float 0.)) "plane normal as given" 2. p.normal.y;
             Alcotest.(check (float 0.)) "plane matte" Sphere.matte p.material.specular;
@@ -290,7 +290,7 @@ let tests =
         match with_mesh "(mesh (file \"quad.obj\") (color 1 2 3) (scale 2) (translate 10 0 0) (smooth true))" with
         | Error (`Msg m) -> Alcotest.fail m
         | Ok s -> (
-            match s.Scene.shapes with
+            match (Scene.shapes s) with
             | [ Shape.Mesh m ] ->
                 Alcotest.(check string) "source as given" "quad.obj" m.source;
                 Alcotest.(check int) "fan-triangulated" 2 (Mesh.triangle_count m);

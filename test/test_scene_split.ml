@@ -30,7 +30,7 @@ let same_result what one two =
   | Ok a, Ok b ->
       let a = Scene.of_valid a and b = Scene.of_valid b in
       if not (Scene.equal a b) then Alcotest.failf "%s: a different scene" what;
-      same_spheres what a.spheres b.spheres
+      same_spheres what (Scene.spheres a) (Scene.spheres b)
   | Error (`Msg a), Error (`Msg b) -> Alcotest.(check string) what a b
   | Ok _, Error (`Msg m) -> Alcotest.failf "%s: read on one core, but on two: %s" what m
   | Error (`Msg m), Ok _ -> Alcotest.failf "%s: read on two cores, but on one: %s" what m
@@ -168,7 +168,7 @@ let tests =
         let p = part ~window:(1 lsl 20) other split in
         if Scene_file.part_length p < 10 then Alcotest.failf "a part of %d spheres" (Scene_file.part_length p);
         match (two ~part:p ~window:(1 lsl 20) text split, one ~window:(1 lsl 20) other) with
-        | (Ok a, true), Ok b -> same_spheres "the other text's spheres" (Scene.of_valid b).spheres (Scene.of_valid a).spheres
+        | (Ok a, true), Ok b -> same_spheres "the other text's spheres" (Scene.spheres (Scene.of_valid b)) (Scene.spheres (Scene.of_valid a))
         | (_, false), _ -> Alcotest.fail "the part was not used"
         | (Error (`Msg m), _), _ | _, Error (`Msg m) -> Alcotest.fail m);
     Alcotest.test_case "without the part (its process failed or died), the read is one core's" `Quick (fun () ->

@@ -81,12 +81,12 @@ let tests =
         match read `Fast text with
         | Error m -> Alcotest.fail m
         | Ok scene ->
-            Alcotest.(check int) "spheres" 64 (Spheres.length scene.Scene.spheres);
+            Alcotest.(check int) "spheres" 64 (Spheres.length (Scene.spheres scene));
             Spheres.iteri
               (fun i (s : Sphere.t) ->
-                let c = Printf.sprintf "%g %g %g" s.color.r s.color.g s.color.b in
+                let c = Printf.sprintf "%g %g %g" s.material.color.r s.material.color.g s.material.color.b in
                 Alcotest.(check string) (Printf.sprintf "sphere %d's color" i) colors.(i mod Array.length colors) c)
-              scene.Scene.spheres);
+              (Scene.spheres scene));
     Alcotest.test_case "text the fast path leaves to parsexp reads alike" `Quick (fun () ->
         List.iter
           (fun (what, text) -> same what text)
@@ -159,7 +159,7 @@ let tests =
         match Scene_file.of_string text with
         | Error (`Msg m) -> Alcotest.fail m
         | Ok v ->
-            let spheres = (Scene.of_valid v).spheres in
+            let spheres = (Scene.spheres (Scene.of_valid v)) in
             let words = Obj.reachable_words (Obj.repr spheres) / Spheres.length spheres in
             if words > 6 then Alcotest.failf "%d words per sphere, more than 6" words);
     Alcotest.test_case "plain forms are read without parsexp, the rest left to it" `Quick (fun () ->

@@ -4,7 +4,7 @@ open Raytrace
    never shared), centers all different. *)
 let sphere i =
   let pattern = if i mod 5 = 0 then Some (Pattern.checker ~size:1. (Color.v 1. 2. 3.)) else None in
-  Sphere.v ?pattern ~specular:(Float.of_int (i mod 7)) ~reflective:0.25
+  Helpers.sphere ?pattern ~specular:(Float.of_int (i mod 7)) ~reflective:0.25
     ~center:(Vec3.v (Float.of_int i) (-.Float.of_int i) 0.5) ~radius:(1. +. Float.of_int (i mod 3))
     (Color.v 10. 20. 30.)
 
@@ -30,11 +30,11 @@ let tests =
         let s = Spheres.of_list (List.init 100 sphere) in
         Alcotest.(check int) __LOC__ (20 + 7) (Array.length (Spheres.materials s)));
     Alcotest.test_case "0 and -0 are different materials: sharing changes no bit" `Quick (fun () ->
-        let a = Sphere.v ~reflective:0. ~center:Vec3.zero ~radius:1. Color.white in
-        let b = { a with reflective = -0. } in
+        let a = Helpers.sphere ~reflective:0. ~center:Vec3.zero ~radius:1. Color.white in
+        let b = Helpers.with_sphere_material a (Material.update ~reflective:(-0.)) in
         let s = Spheres.of_list [ a; b; a ] in
         Alcotest.(check int) __LOC__ 2 (Array.length (Spheres.materials s));
-        Alcotest.(check bool) __LOC__ true (Float.sign_bit (Spheres.get s 1).reflective));
+        Alcotest.(check bool) __LOC__ true (Float.sign_bit (Spheres.get s 1).material.reflective));
     Alcotest.test_case "get outside the spheres raises Invalid_argument" `Quick (fun () ->
         let s = Spheres.of_list [ sphere 1 ] in
         List.iter
@@ -52,7 +52,7 @@ let tests =
         let a = sphere 1 and b = sphere 2 in
         let b1 = Spheres.builder () and b2 = Spheres.builder () in
         (* b2 numbers b's material first. *)
-        ignore (Spheres.material b2 (Material.of_sphere b));
+        ignore (Spheres.material b2 (Sphere.material b));
         List.iter (Spheres.add b1) [ a; b ];
         List.iter (Spheres.add b2) [ a; b ];
         Alcotest.(check bool) __LOC__ true (Spheres.equal (Spheres.build b1) (Spheres.build b2));

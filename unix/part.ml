@@ -30,7 +30,7 @@ let settings ?frame ?(samples = 1) ?adaptive ?(subsample = false) ?(renderer = "
      files were digested: such parts still merge with them. *)
   let text = Scene_file.to_string scene in
   let digest = if files = "" then Digest.string text else Digest.string (text ^ "\nfiles " ^ files) in
-  [ ("depth", string_of_int scene.depth); ("samples", string_of_int samples) ]
+  [ ("depth", string_of_int (Scene.depth scene)); ("samples", string_of_int samples) ]
   @ (match adaptive with Some th -> [ ("adaptive", string_of_int th) ] | None -> [])
   @ (if subsample then [ ("subsample", "true") ] else [])
   @ [ ("renderer", renderer) ]

@@ -87,7 +87,7 @@ let bvh_beside ?(min_objects = 1 lsl 16) () =
    [Prepared.prepare], which lets its spheres go as it builds the
    hierarchy ([one_process] does not hold it either). *)
 let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling scene (region : Region.t) =
-  let canvas = (let s = Scene.of_valid scene in (s.width, s.height)) in
+  let canvas = (let s = Scene.of_valid scene in (Scene.width s, Scene.height s)) in
   match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
   | exception Out_of_memory -> Render_work.out_of_memory region
   | exception Failure _ -> one_process scene
@@ -244,4 +244,4 @@ let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress ?rows_don
   if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";
   let s = Scene.of_valid scene in
   region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene
-    (Region.full ~width:s.width ~height:s.height)
+    (Region.full ~width:(Scene.width s) ~height:(Scene.height s))

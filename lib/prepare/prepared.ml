@@ -99,7 +99,7 @@ let specular_bound s = if s = Sphere.matte then 0. else Float.pow (1. +. (8. *. 
    they stay below it. The margin covers the rounding of cosines and
    blends, each off by a few ulps at most. Infinite (no early stop) when a
    specular term can be. *)
-let max_channel (scene : Scene.t) =
+let max_channel (scene : Scene.view) =
   let ambient, direct =
     List.fold_left
       (fun (a, d) l ->
@@ -212,7 +212,7 @@ let ambient_lead (lights : Light.t array) =
    first triangle that is not degenerate, and is the number of objects;
    the spheres are objects [0] to [n_spheres - 1], read from the scene's
    arrays. *)
-let iter_shapes ~n_spheres (scene : Scene.t) ~single ~mesh =
+let iter_shapes ~n_spheres (scene : Scene.view) ~single ~mesh =
   let k = ref n_spheres in
   List.iter
     (fun sh ->
@@ -225,6 +225,32 @@ let iter_shapes ~n_spheres (scene : Scene.t) ~single ~mesh =
           incr k)
     scene.shapes;
   !k
+
+(* Objects are numbered above spheres first; the kernel's numbers
+   ([index], [slot]: ties, hits) count them in the scene's list. [rank]
+   maps the one to the other, where they differ (a shape placed before a
+   sphere). *)
+let in_list_order ~n_spheres (scene : Scene.view) ~index ~slot =
+  if List.for_all (fun (j, _) -> j = n_spheres) scene.placed then (index, slot)
+  else begin
+    let n = Array.length slot in
+    let rank = Array.make n 0 and r = ref 0 and sphere = ref 0 and k = ref n_spheres in
+    let next a =
+      rank.(!a) <- !r;
+      incr r;
+      incr a
+    in
+    let spheres_upto j = while !sphere < j do next sphere done in
+    List.iter
+      (fun (j, sh) ->
+        spheres_upto j;
+        for _ = 1 to match sh with Shape.Mesh m -> Mesh.objects m | _ -> 1 do next k done)
+      scene.placed;
+    spheres_upto n_spheres;
+    let listed = Array.make n 0 in
+    Array.iteri (fun k i -> listed.(rank.(k)) <- i) slot;
+    (Array.map (fun k -> rank.(k)) index, listed)
+  end
 
 (* Identical spheres, by the first of them in scene order. Only the first
    gets a slot: the others have the same roots, so the first wins every
@@ -462,7 +488,7 @@ let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~first ~
    then each box is padded where it is, with no array of margins, centers
    or half sides of a million triangles between, and no second reading
    of the corners. *)
-let mesh_boxes ~n_spheres (scene : Scene.t) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius =
+let mesh_boxes ~n_spheres (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius =
   (* Every element is written below. *)
   let f () = Array.create_float nb in
   let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
@@ -515,7 +541,7 @@ let indices_where n count p =
   a
 
 let prepare_scene ~skips ?beside scene =
-  let scene = Scene.of_valid scene in
+  let scene = Scene.view (Scene.of_valid scene) in
   let n_spheres = Spheres.length scene.spheres in
   let n = iter_shapes ~n_spheres scene ~single:(fun _ _ -> ()) ~mesh:(fun _ _ -> ()) in
   (* Per object, in scene order: kind, material, and a cube around it
@@ -712,7 +738,7 @@ let prepare_scene ~skips ?beside scene =
       (fun j (i, p, (origin, scale, extent)) ->
         alternate.(i) <- n_own + j;
         Pattern.store p ~origin ~scale ~extent pattern (Pattern.stride * i);
-        { (materials.(i)) with Material.color = Pattern.color p; pattern = None })
+        Material.update ~color:(Pattern.color p) ~pattern:None materials.(i))
       (List.rev !frames)
   in
   let materials = Array.append materials (Array.of_list extra) in
@@ -1076,6 +1102,8 @@ let prepare_scene ~skips ?beside scene =
   let vertex, vsource =
     if bvh = None || Array.length vertex = 0 then (vertex, [||]) else Vertex_order.gather ~kind ~vertex at0 at1 at2
   in
+  let unbounded = Array.map (fun i -> slot.(i)) unbounded in
+  let index, slot = in_list_order ~n_spheres scene ~index ~slot in
   {
     n_spheres;
     n_objects = n_kept;
@@ -1087,7 +1115,7 @@ let prepare_scene ~skips ?beside scene =
     index;
     slot;
     bvh;
-    unbounded = Array.map (fun i -> slot.(i)) unbounded;
+    unbounded;
     kind;
     geom;
     vertex;
@@ -1197,7 +1225,7 @@ let prepare_scene ~skips ?beside scene =
 let big_increment = 32 * 1024 * 1024
 
 let prepare ?(skips = true) ?beside scene =
-  let s = Scene.of_valid scene in
+  let s = Scene.view (Scene.of_valid scene) in
   let objects =
     List.fold_left
       (fun a sh -> match sh with Shape.Mesh m -> a + Mesh.triangle_count m | _ -> a + 1)

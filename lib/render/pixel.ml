@@ -6,7 +6,7 @@ let v ?skips ?(samples = 1) scene =
     | Ok s -> s
     | Error (`Msg m) -> invalid_arg ("Pixel.v: " ^ m)
   in
-  let s = Scene.of_valid scene in
+  let s = Scene.view (Scene.of_valid scene) in
   let tr = Trace.create ~averaging:(Sampling.averaging sampling) (Prepared.prepare ?skips scene) in
   (* One pixel at a time, for as long as the caller likes: no work bound
      across calls (the ray tree of glass checks one at every hit). *)

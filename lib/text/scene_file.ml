@@ -256,29 +256,6 @@ let optics ~form fs ~reflective =
   | None -> ());
   (transparency, refractive_index, fresnel)
 
-let sphere ~where form_node nodes =
-  let form = "sphere" in
-  let fs =
-    fields ~where ~form
-      ~allowed:([ "center"; "radius"; "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern" ])
-      nodes
-  in
-  let node_and parse name = required ~form ~form_node fs name (fun _ f -> (f.node, parse f)) in
-  let center =
-    let node, c = node_and (vec3_field form "center") "center" in
-    check node (Sphere.check_center c)
-  in
-  let radius = require ~form ~form_node "radius" (checked_float form fs "radius" Sphere.check_radius) in
-  let color =
-    let node, c = node_and (color_field form "color") "color" in
-    check node (Sphere.check_color c)
-  in
-  let specular = Option.value ~default:Sphere.matte (checked_float form fs "specular" Sphere.check_specular) in
-  let reflective = Option.value ~default:0. (checked_float form fs "reflective" Sphere.check_reflective) in
-  let transparency, refractive_index, fresnel = optics ~form fs ~reflective in
-  let pattern = pattern ~where ~form fs in
-  Sphere.v ~specular ~reflective ~transparency ~refractive_index ~fresnel ?pattern ~center ~radius color
-
 (* The material fields that every shape takes, as a sphere does. *)
 let material_fields = [ "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern" ]
 
@@ -292,11 +269,26 @@ let material ~where ~form ~form_node fs =
       (fun f -> check (single form name f) (check_value (float_field form name f)))
       (find fs name)
   in
-  let specular = Option.value ~default:Sphere.matte (checked "specular" (Material.check_specular ~form)) in
+  let specular = Option.value ~default:Material.matte (checked "specular" (Material.check_specular ~form)) in
   let reflective = Option.value ~default:0. (checked "reflective" (Material.check_reflective ~form)) in
   let transparency, refractive_index, fresnel = optics ~form fs ~reflective in
   let pattern = pattern ~where ~form fs in
   Material.v ~specular ~reflective ~transparency ~refractive_index ~fresnel ?pattern color
+
+let sphere ~where form_node nodes =
+  let form = "sphere" in
+  let fs =
+    fields ~where ~form
+      ~allowed:([ "center"; "radius"; "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern" ])
+      nodes
+  in
+  let node_and parse name = required ~form ~form_node fs name (fun _ f -> (f.node, parse f)) in
+  let center =
+    let node, c = node_and (vec3_field form "center") "center" in
+    check node (Sphere.check_center c)
+  in
+  let radius = require ~form ~form_node "radius" (checked_float form fs "radius" Sphere.check_radius) in
+  Sphere.v ~center ~radius (material ~where ~form ~form_node fs)
 
 let point_field ~form ~form_node fs name =
   let node, p = required ~form ~form_node fs name (fun _ f -> (f.node, vec3_field form name f)) in
@@ -504,7 +496,8 @@ type builder = {
       (** Forms that may appear once, and where they first did. *)
   mutable scene : Scene.t;
   spheres : Spheres.builder;
-  mutable shapes : Shape.t list;  (** In reverse order. *)
+  mutable shapes : (int * Shape.t) list;
+      (** In reverse order, each with the number of spheres before it. *)
   mutable lights : Light.t list;  (** In reverse order. *)
   mutable n_spheres : int;
   mutable n_lights : int;
@@ -517,7 +510,7 @@ let builder ~limits ~load where =
     where;
     load;
     seen = Hashtbl.create 8;
-    scene = Scene.v ~spheres:[] ~lights:[] ();
+    scene = Scene.v ~objects:[] ~lights:[] ();
     spheres = Spheres.builder ();
     shapes = [];
     lights = [];
@@ -541,6 +534,9 @@ let once b kw kw_node =
    while the scene has no other shape. *)
 let objects b = match b.shapes with [] -> `Spheres | _ :: _ -> `Objects
 
+(* An object other than a sphere, after the spheres read so far. *)
+let place b sh = b.shapes <- (Spheres.builder_length b.spheres, sh) :: b.shapes
+
 let add_form b node =
   let where = b.where in
   match node with
@@ -560,15 +556,15 @@ let add_form b node =
           b.n_spheres <- b.n_spheres + 1;
           ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
           let parse = match form with "plane" -> plane | "triangle" -> triangle | _ -> box in
-          b.shapes <- parse ~where node rest :: b.shapes
+          place b (parse ~where node rest)
       | "mesh" ->
           b.n_spheres <- b.n_spheres + 1;
           ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
-          b.shapes <- mesh ~where ~load:b.load ~add_triangles:(add_triangles b) node rest :: b.shapes
+          place b (mesh ~where ~load:b.load ~add_triangles:(add_triangles b) node rest)
       | "csg" ->
           b.n_spheres <- b.n_spheres + 1;
           ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
-          b.shapes <- Shape.Csg (csg ~where ~load:b.load ~add_triangles:(add_triangles b) ~depth:1 node rest) :: b.shapes
+          place b (Shape.Csg (csg ~where ~load:b.load ~add_triangles:(add_triangles b) ~depth:1 node rest))
       | "light" ->
           b.n_lights <- b.n_lights + 1;
           ignore (check node (Limits.check_count b.limits `Lights b.n_lights));
@@ -576,28 +572,28 @@ let add_form b node =
       | "canvas" ->
           once b kw kw_node;
           let width, height = canvas ~limits:b.limits ~where node rest in
-          b.scene <- { b.scene with width; height }
+          b.scene <- Scene.with_overrides ~width ~height b.scene
       | "viewport" ->
           once b kw kw_node;
-          b.scene <- { b.scene with viewport = viewport ~where rest }
+          b.scene <- Scene.with_overrides ~viewport:(viewport ~where rest) b.scene
       | "camera" ->
           once b kw kw_node;
-          b.scene <- { b.scene with camera = camera ~where rest }
+          b.scene <- Scene.with_overrides ~camera:(camera ~where rest) b.scene
       | "camera-path" ->
           once b kw kw_node;
-          b.scene <- { b.scene with camera_path = Some (camera_path ~where node rest) }
+          b.scene <- Scene.with_overrides ~camera_path:(Some (camera_path ~where node rest)) b.scene
       | "background" ->
           once b kw kw_node;
           let c = color_of_nodes (fun () -> kw) node rest in
-          b.scene <- { b.scene with background = check node (Scene.check_background c) }
+          b.scene <- Scene.with_overrides ~background:(check node (Scene.check_background c)) b.scene
       | "recursion-depth" ->
           once b kw kw_node;
           let v = value kw node rest in
-          b.scene <- { b.scene with depth = check v (Limits.check_depth b.limits (integer (fun () -> kw) v)) }
+          b.scene <- Scene.with_overrides ~depth:(check v (Limits.check_depth b.limits (integer (fun () -> kw) v))) b.scene
       | "epsilon" ->
           once b kw kw_node;
           let v = value kw node rest in
-          b.scene <- { b.scene with epsilon = Some (check v (Scene.check_epsilon (number (fun () -> kw) v))) }
+          b.scene <- Scene.with_overrides ~epsilon:(Some (check v (Scene.check_epsilon (number (fun () -> kw) v)))) b.scene
       | _ ->
           fail kw_node "unknown form %s; expected %s%s" (show_atom kw) (one_of top_level)
             (suggestion kw top_level))
@@ -605,12 +601,14 @@ let add_form b node =
 let finish b =
   (* Without a camera form, a still picture is the path's first frame. *)
   let camera =
-    match b.scene.camera_path with
+    match Scene.camera_path b.scene with
     | Some path when not (Hashtbl.mem b.seen "camera") -> (
-        match Camera_path.camera path (Camera_path.first_frame path) with Ok c -> c | Error _ -> b.scene.camera)
-    | _ -> b.scene.camera
+        match Camera_path.camera path (Camera_path.first_frame path) with Ok c -> c | Error _ -> Scene.camera b.scene)
+    | _ -> Scene.camera b.scene
   in
-  { b.scene with camera; spheres = Spheres.build b.spheres; shapes = List.rev b.shapes; lights = List.rev b.lights }
+  Scene.with_objects
+    (Scene.with_overrides ~camera ~lights:(List.rev b.lights) b.scene)
+    ~spheres:(Spheres.build b.spheres) ~placed:(List.rev b.shapes)
 
 (* Where the text comes from: [open_text ()] reads it from its start, a
    few bytes at a time ([read buf pos len] is how many it put in [buf] at
@@ -914,10 +912,10 @@ let add_sphere b f =
   if not (Limits.coordinate_ok x && Limits.coordinate_ok y && Limits.coordinate_ok z) then raise Sexp_scan.Unusual;
   let radius = v.(3) in
   if not (Limits.size_ok radius) then raise Sexp_scan.Unusual;
-  let specular = if seen land 8 = 0 then Sphere.matte else v.(7) in
-  if not (Sphere.specular_ok specular) then raise Sexp_scan.Unusual;
+  let specular = if seen land 8 = 0 then Material.matte else v.(7) in
+  if not (Material.specular_ok specular) then raise Sexp_scan.Unusual;
   let reflective = if seen land 16 = 0 then 0. else v.(8) in
-  if not (Sphere.reflective_ok reflective) then raise Sexp_scan.Unusual;
+  if not (Material.reflective_ok reflective) then raise Sexp_scan.Unusual;
   let r = v.(4) and g = v.(5) and bl = v.(6) in
   (* Any hash will do; [truncate] is defined for every finite float here
      (checked above, or garbage but harmless for a colour out of range). *)
