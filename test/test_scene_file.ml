@@ -16,12 +16,27 @@ let error text =
    what was expected. *)
 let bad_inputs =
   [
+    ("(material glass (color 1 1 1))\n(material glass (color 2 2 2))",
+     "t.scene:2:11: material glass is defined twice (first at 1:11); a name may be defined only once");
+    ("(sphere (center 0 0 3) (radius 1) (material glass))\n(material glass (color 1 1 1))",
+     "t.scene:1:45: unknown material glass: no (material glass ...) form comes before it");
+    ("(material glass (color 1 1 1))\n(box (min 0 0 3) (max 1 1 4) (material glas))",
+     "t.scene:2:40: unknown material glas; defined before it: glass (did you mean glass?)");
+    ("(material glass (color 1 1 1) (transparency 2))", "t.scene:1:45: material glass transparency must lie in [0, 1], got 2");
+    ("(material glass (color 1 1 1) (reflective 0.5))\n(sphere (center 0 0 3) (radius 1) (material glass) (transparency 0.6))",
+     "t.scene:2:66: sphere reflective + transparency must be <= 1, got 0.5 + 0.6");
+    ("(material glass (specular 10))", "t.scene:1:1: material glass is missing its (color ...) field");
+    ("(material glass (color 1 1 1) (material metal))",
+     "t.scene:1:32: unknown material glass field material; expected color, specular, reflective, transparency, refractive-index, fresnel or pattern");
+    ("(material (color 1 1 1))", "t.scene:1:1: material: expected its name first, e.g. (material glass (color 230 230 255) (transparency 0.9))");
+    ("(sphere (center 0 0 3) (radius 1) (material 1 2))",
+     "t.scene:1:35: sphere material: expected the name of a material, e.g. (material glass)");
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3)", "t.scene:1:48: syntax error: unclosed parentheses at end of input");
     ("(sphere (center 0 0 3) (radius -1) (color 1 2 3))", "t.scene:1:32: sphere radius must be > 0, got -1");
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 1.5))",
      "t.scene:1:61: sphere reflective must lie in [0, 1], got 1.5");
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflectiv 0.5))",
-     "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, color, specular, reflective, transparency, refractive-index, fresnel or pattern (did you mean reflective?)");
+     "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, material, color, specular, reflective, transparency, refractive-index, fresnel or pattern (did you mean reflective?)");
      ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (transparency 1.5))",
       "t.scene:1:63: sphere transparency must lie in [0, 1], got 1.5");
      ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 0.6) (transparency 0.5))",
@@ -55,9 +70,9 @@ let bad_inputs =
     ("(canvas (width 65536) (height 65536))", "t.scene:1:1: canvas 65536x65536 has 4294967296 pixels, more than the limit of 268435456 (set RAYTRACE_MAX_PIXELS to raise it)");
     ("(recursion-depth -1)", "t.scene:1:18: recursion depth must be >= 0, got -1");
     ("(epsilon 0.001)\n(epsilon 0.01)", "t.scene:2:2: duplicate epsilon form (first given at 1:2); it may appear only once");
-    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light (did you mean sphere?)");
+    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected material, canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light (did you mean sphere?)");
     ("sphere", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got sphere");
-    ("()", "t.scene:1:1: empty form (); expected one of canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light");
+    ("()", "t.scene:1:1: empty form (); expected one of material, canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light");
     ("(camera (look-at 0 0 0))", "t.scene:1:9: the camera looks at its own position");
     ("(camera (rotation (1 0 0) (1 0 0) (0 0 1)))",
      "t.scene:1:9: camera rotation must be invertible, but its rows are (nearly) linearly dependent");
@@ -149,6 +164,38 @@ let tests =
         match Scene.shapes (parse box) with
         | [ sh ] -> Alcotest.(check string) "a glass box prints its fields" box (Shape.show sh)
         | _ -> Alcotest.fail "one shape expected");
+    Alcotest.test_case "a named material is defined once and used by any object; inline fields override it" `Quick
+      (fun () ->
+        let text =
+          "(material glass (color 230 230 255) (transparency 0.9) (refractive-index 1.5) (fresnel true))\n\
+           (material checked (color 200 200 200) (pattern checker (color 20 20 20) (size 0.5)))\n\
+           (sphere (center 0 0 3) (radius 1) (material glass))\n\
+           (plane (point 0 -1 0) (normal 0 1 0) (material checked) (specular 50))\n\
+           (box (min 1 0 4) (max 2 1 5) (material glass) (transparency 0.5) (reflective 0.3) (color 1 2 3))\n\
+           (light ambient (intensity 1))"
+        in
+        let glass = Material.v ~transparency:0.9 ~refractive_index:1.5 ~fresnel:true (Color.v 230. 230. 255.) in
+        let checked = Material.v ~pattern:(Pattern.checker ~size:0.5 (Color.v 20. 20. 20.)) (Color.v 200. 200. 200.) in
+        let expected =
+          [
+            Shape.Sphere (Sphere.v ~center:(Vec3.v 0. 0. 3.) ~radius:1. glass);
+            Shape.Plane (Plane.v ~point:(Vec3.v 0. (-1.) 0.) ~normal:(Vec3.v 0. 1. 0.) (Material.update ~specular:50. checked));
+            Shape.Box
+              (Box.v ~min:(Vec3.v 1. 0. 4.) ~max:(Vec3.v 2. 1. 5.)
+                 (Material.update ~transparency:0.5 ~reflective:0.3 ~color:(Color.v 1. 2. 3.) glass));
+          ]
+        in
+        List.iter
+          (fun reader ->
+            match Scene_file.of_string ~reader ~file:"t.scene" text with
+            | Error (`Msg m) -> Alcotest.fail m
+            | Ok v ->
+                let s = Scene.of_valid v in
+                Alcotest.(check (list (testable Shape.pp Shape.equal))) __LOC__ expected (Scene.objects s);
+                (* The names are gone once read: the scene prints each
+                   object's fields, and reads back equal. *)
+                Alcotest.check scene "round trip" s (parse (Scene.show s)))
+          [ `Fast; `Parsexp ]);
     Alcotest.test_case "comments of every kind are ignored" `Quick (fun () ->
         let s =
           parse

@@ -242,44 +242,77 @@ let bool_field form name f =
    transparency. *)
 let optics_fields = [ "transparency"; "refractive-index"; "fresnel" ]
 
-let optics ~form fs ~reflective =
+(* [base]: the fields of the named material that inline fields override. *)
+let optics ~form ?base fs ~reflective =
   let checked name check_value =
     Option.map (fun f -> check (single form name f) (check_value (float_field form name f))) (find fs name)
   in
-  let transparency = Option.value ~default:0. (checked "transparency" (Material.check_transparency ~form)) in
-  let refractive_index =
-    Option.value ~default:1. (checked "refractive-index" (Material.check_refractive_index ~form))
+  let default field value = match base with Some m -> field m | None -> value in
+  let transparency =
+    Option.value ~default:(default Material.transparency 0.) (checked "transparency" (Material.check_transparency ~form))
   in
-  let fresnel = Option.fold ~none:false ~some:(bool_field form "fresnel") (find fs "fresnel") in
-  (match find fs "transparency" with
-  | Some f -> ignore (check (single form "transparency" f) (Material.check_split ~form ~reflective ~transparency))
-  | None -> ());
+  let refractive_index =
+    Option.value ~default:(default Material.refractive_index 1.)
+      (checked "refractive-index" (Material.check_refractive_index ~form))
+  in
+  let fresnel =
+    Option.fold ~none:(default Material.fresnel false) ~some:(bool_field form "fresnel") (find fs "fresnel")
+  in
+  (* A named material passed the check: only an inline field can break it. *)
+  (match (find fs "transparency", find fs "reflective") with
+  | Some f, _ -> ignore (check (single form "transparency" f) (Material.check_split ~form ~reflective ~transparency))
+  | None, Some f -> ignore (check (single form "reflective" f) (Material.check_split ~form ~reflective ~transparency))
+  | None, None -> ());
   (transparency, refractive_index, fresnel)
 
-(* The material fields that every shape takes, as a sphere does. *)
-let material_fields = [ "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern" ]
+(* The material fields that every object takes: a named material
+   [(material glass)], and fields that override it or stand alone. *)
+let material_fields = [ "material"; "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern" ]
 
-let material ~where ~form ~form_node fs =
+(* Named materials, as [(material name ...)] defined them. *)
+type named = (string, Material.t * Positions.pos option) Hashtbl.t
+
+let named_material ~(named : named) ~form f =
+  match f.args with
+  | [ (Sexp.Atom name as node) ] -> (
+      match Hashtbl.find_opt named name with
+      | Some (m, _) -> m
+      | None ->
+          let known = Hashtbl.fold (fun n _ acc -> n :: acc) named [] |> List.sort String.compare in
+          if known = [] then fail node "unknown material %s: no (material %s ...) form comes before it" (show_atom name) name
+          else fail node "unknown material %s; defined before it: %s%s" (show_atom name) (one_of known) (suggestion name known))
+  | _ -> fail f.node "%s material: expected the name of a material, e.g. (material glass)" form
+
+let material ~where ~named ~form ~form_node fs =
+  let base = Option.map (named_material ~named ~form) (find fs "material") in
   let color =
-    let node, c = required ~form ~form_node fs "color" (fun _ f -> (f.node, color_field form "color" f)) in
-    check node (Material.check_color ~form c)
+    match (base, find fs "color") with
+    | Some m, None -> Material.color m
+    | _ ->
+        let node, c = required ~form ~form_node fs "color" (fun _ f -> (f.node, color_field form "color" f)) in
+        check node (Material.check_color ~form c)
   in
   let checked name check_value =
     Option.map
       (fun f -> check (single form name f) (check_value (float_field form name f)))
       (find fs name)
   in
-  let specular = Option.value ~default:Material.matte (checked "specular" (Material.check_specular ~form)) in
-  let reflective = Option.value ~default:0. (checked "reflective" (Material.check_reflective ~form)) in
-  let transparency, refractive_index, fresnel = optics ~form fs ~reflective in
-  let pattern = pattern ~where ~form fs in
+  let default field value = match base with Some m -> field m | None -> value in
+  let specular =
+    Option.value ~default:(default Material.specular Material.matte) (checked "specular" (Material.check_specular ~form))
+  in
+  let reflective =
+    Option.value ~default:(default Material.reflective 0.) (checked "reflective" (Material.check_reflective ~form))
+  in
+  let transparency, refractive_index, fresnel = optics ~form ?base fs ~reflective in
+  let pattern = match pattern ~where ~form fs with Some _ as p -> p | None -> default Material.pattern None in
   Material.v ~specular ~reflective ~transparency ~refractive_index ~fresnel ?pattern color
 
-let sphere ~where form_node nodes =
+let sphere ~where ~named form_node nodes =
   let form = "sphere" in
   let fs =
     fields ~where ~form
-      ~allowed:([ "center"; "radius"; "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern" ])
+      ~allowed:([ "center"; "radius" ] @ material_fields)
       nodes
   in
   let node_and parse name = required ~form ~form_node fs name (fun _ f -> (f.node, parse f)) in
@@ -288,21 +321,21 @@ let sphere ~where form_node nodes =
     check node (Sphere.check_center c)
   in
   let radius = require ~form ~form_node "radius" (checked_float form fs "radius" Sphere.check_radius) in
-  Sphere.v ~center ~radius (material ~where ~form ~form_node fs)
+  Sphere.v ~center ~radius (material ~where ~named ~form ~form_node fs)
 
 let point_field ~form ~form_node fs name =
   let node, p = required ~form ~form_node fs name (fun _ f -> (f.node, vec3_field form name f)) in
   (node, check node (Limits.check_point (field_what form name ()) p))
 
-let plane ~where form_node nodes =
+let plane ~where ~named form_node nodes =
   let form = "plane" in
   let fs = fields ~where ~form ~allowed:([ "point"; "normal" ] @ material_fields) nodes in
   let _, point = point_field ~form ~form_node fs "point" in
   let normal_node, normal = point_field ~form ~form_node fs "normal" in
-  let m = material ~where ~form ~form_node fs in
+  let m = material ~where ~named ~form ~form_node fs in
   Shape.Plane (check normal_node (Plane.validate (Plane.v ~point ~normal m)))
 
-let triangle ~where form_node nodes =
+let triangle ~where ~named form_node nodes =
   let form = "triangle" in
   let fs = fields ~where ~form ~allowed:("vertices" :: material_fields) nodes in
   let node, (v0, v1, v2) =
@@ -321,21 +354,21 @@ let triangle ~where form_node nodes =
             fail f.node "%s takes 3 vertices, e.g. (-1 0 4) (1 0 4) (0 1.5 4), got %d values" (what ())
               (List.length args))
   in
-  let m = material ~where ~form ~form_node fs in
+  let m = material ~where ~named ~form ~form_node fs in
   Shape.Triangle (check node (Triangle.validate (Triangle.v v0 v1 v2 m)))
 
-let box_solid ~where form_node nodes =
+let box_solid ~where ~named form_node nodes =
   let form = "box" in
   let fs = fields ~where ~form ~allowed:([ "min"; "max" ] @ material_fields) nodes in
   let _, min = point_field ~form ~form_node fs "min" in
   let max_node, max = point_field ~form ~form_node fs "max" in
-  let m = material ~where ~form ~form_node fs in
+  let m = material ~where ~named ~form ~form_node fs in
   check max_node (Box.validate (Box.v ~min ~max m))
 
-let box ~where form_node nodes = Shape.Box (box_solid ~where form_node nodes)
+let box ~where ~named form_node nodes = Shape.Box (box_solid ~where ~named form_node nodes)
 
 (* A mesh: its file is read by [load] (the path as the scene gives it). *)
-let mesh_solid ~where ~load ~add_triangles form_node nodes =
+let mesh_solid ~where ~named ~load ~add_triangles form_node nodes =
   let form = "mesh" in
   let fs = fields ~where ~form ~allowed:([ "file"; "scale"; "translate"; "smooth" ] @ material_fields) nodes in
   let file_node, file =
@@ -358,7 +391,7 @@ let mesh_solid ~where ~load ~add_triangles form_node nodes =
     | None -> Vec3.zero
   in
   let smooth = Option.fold ~none:false ~some:(bool_field form "smooth") (find fs "smooth") in
-  let m = material ~where ~form ~form_node fs in
+  let m = material ~where ~named ~form ~form_node fs in
   let obj = check file_node (load file) in
   (* Each form places its own copy of the file's triangles: counted over
      the whole scene before this one is made. *)
@@ -366,13 +399,13 @@ let mesh_solid ~where ~load ~add_triangles form_node nodes =
   check form_node
 (Mesh.of_obj ~smooth ~scale ~translate ~source:file obj m)
 
-let mesh ~where ~load ~add_triangles form_node nodes = Shape.Mesh (mesh_solid ~where ~load ~add_triangles form_node nodes)
+let mesh ~where ~named ~load ~add_triangles form_node nodes = Shape.Mesh (mesh_solid ~where ~named ~load ~add_triangles form_node nodes)
 
 let csg_ops = [ "union"; "intersection"; "difference" ]
 
 (* A CSG form [(csg op A B)], nested [depth] deep: each operand is a
    closed solid's form. *)
-let rec csg ~where ~load ~add_triangles ~depth form_node nodes =
+let rec csg ~where ~named ~load ~add_triangles ~depth form_node nodes =
   if depth > Csg.max_depth then fail form_node "csg nested deeper than %d levels" Csg.max_depth;
   match nodes with
   | Sexp.Atom name :: rest as all -> (
@@ -385,21 +418,21 @@ let rec csg ~where ~load ~add_triangles ~depth form_node nodes =
       in
       match rest with
       | [ a; b ] ->
-          Csg.v op (csg_operand ~where ~load ~add_triangles ~depth a) (csg_operand ~where ~load ~add_triangles ~depth b)
+          Csg.v op (csg_operand ~where ~named ~load ~add_triangles ~depth a) (csg_operand ~where ~named ~load ~add_triangles ~depth b)
       | _ -> fail form_node "csg %s takes 2 solids, got %d" name (List.length rest))
   | _ ->
       fail form_node "csg: expected an operation first, e.g. (csg difference (sphere ...) (box ...)); operations are %s"
         (one_of csg_ops)
 
-and csg_operand ~where ~load ~add_triangles ~depth node =
+and csg_operand ~where ~named ~load ~add_triangles ~depth node =
   match node with
-  | Sexp.List (Sexp.Atom "sphere" :: rest) -> Csg.Sphere (sphere ~where node rest)
-  | Sexp.List (Sexp.Atom "box" :: rest) -> Csg.Box (box_solid ~where node rest)
+  | Sexp.List (Sexp.Atom "sphere" :: rest) -> Csg.Sphere (sphere ~where ~named node rest)
+  | Sexp.List (Sexp.Atom "box" :: rest) -> Csg.Box (box_solid ~where ~named node rest)
   | Sexp.List (Sexp.Atom "mesh" :: rest) ->
-      let m = mesh_solid ~where ~load ~add_triangles node rest in
+      let m = mesh_solid ~where ~named ~load ~add_triangles node rest in
       check node (Csg.check_closed m);
       Csg.Mesh m
-  | Sexp.List (Sexp.Atom "csg" :: rest) -> Csg.Csg (csg ~where ~load ~add_triangles ~depth:(depth + 1) node rest)
+  | Sexp.List (Sexp.Atom "csg" :: rest) -> Csg.Csg (csg ~where ~named ~load ~add_triangles ~depth:(depth + 1) node rest)
   | Sexp.List (Sexp.Atom ("plane" | "triangle" as kw) :: _) ->
       fail node "csg: a %s is not a closed solid; an operand is a sphere, box, closed mesh or csg" kw
   | Sexp.List (Sexp.Atom kw :: _) ->
@@ -484,9 +517,6 @@ let value form form_node = function
   | [ x ] -> x
   | nodes -> fail form_node "%s takes 1 value, got %d" form (List.length nodes)
 
-let top_level =
-  [ "canvas"; "viewport"; "camera"; "camera-path"; "background"; "recursion-depth"; "epsilon"; "sphere"; "plane"; "triangle"; "box"; "mesh"; "csg"; "light" ]
-
 (* The scene being read, form by form. *)
 type builder = {
   limits : Limits.t;
@@ -494,6 +524,7 @@ type builder = {
   load : string -> (Obj_file.t, [ `Msg of string ]) result;  (** Reads a mesh file. *)
   seen : (string, Positions.pos option) Hashtbl.t;
       (** Forms that may appear once, and where they first did. *)
+  named : named;  (** The materials defined so far. *)
   mutable scene : Scene.t;
   spheres : Spheres.builder;
   mutable shapes : (int * Shape.t) list;
@@ -510,6 +541,7 @@ let builder ~limits ~load where =
     where;
     load;
     seen = Hashtbl.create 8;
+    named = Hashtbl.create 8;
     scene = Scene.v ~objects:[] ~lights:[] ();
     spheres = Spheres.builder ();
     shapes = [];
@@ -537,66 +569,97 @@ let objects b = match b.shapes with [] -> `Spheres | _ :: _ -> `Objects
 (* An object other than a sphere, after the spheres read so far. *)
 let place b sh = b.shapes <- (Spheres.builder_length b.spheres, sh) :: b.shapes
 
+(* [(material name field...)]: defined once, before the objects that use it. *)
+let define_material b node = function
+  | (Sexp.Atom name as name_node) :: nodes ->
+      (match Hashtbl.find_opt b.named name with
+      | Some (_, first) ->
+          fail name_node "material %s is defined twice (first at %s); a name may be defined only once" (show_atom name)
+            (Option.fold ~none:"?" ~some:position first)
+      | None -> ());
+      let form = "material " ^ name in
+      let allowed = List.filter (fun f -> f <> "material") material_fields in
+      let fs = fields ~where:b.where ~form ~allowed nodes in
+      let m = material ~where:b.where ~named:b.named ~form ~form_node:node fs in
+      Hashtbl.add b.named name (m, b.where name_node)
+  | _ ->
+      fail node "material: expected its name first, e.g. (material glass (color 230 230 255) (transparency 0.9))"
+
+(* A setting, given at most once: [set b node rest scene] is [scene] with
+   it. *)
+let setting kw set b ~kw_node node rest =
+  once b kw kw_node;
+  b.scene <- set b node rest b.scene
+
+(* Objects are counted as they come, so that the error points at the
+   first form beyond the bound, before the rest of the file is read. *)
+let count b node kind =
+  b.n_spheres <- b.n_spheres + 1;
+  ignore (check node (Limits.check_count b.limits kind b.n_spheres))
+
+(* An object other than a sphere: it counts against the bound of
+   spheres, both are objects. *)
+let shape parse b ~kw_node:_ node rest =
+  count b node `Objects;
+  place b (parse b node rest)
+
+let sphere_form b ~kw_node:_ node rest =
+  count b node (objects b);
+  Spheres.add b.spheres (sphere ~where:b.where ~named:b.named node rest)
+
+let light_form b ~kw_node:_ node rest =
+  b.n_lights <- b.n_lights + 1;
+  ignore (check node (Limits.check_count b.limits `Lights b.n_lights));
+  b.lights <- light ~where:b.where node rest :: b.lights
+
+(* The forms of the top level, in the order their names are listed. *)
+let forms =
+  [
+    ("material", fun b ~kw_node:_ node rest -> define_material b node rest);
+    ( "canvas",
+      setting "canvas" (fun b node rest s ->
+          let width, height = canvas ~limits:b.limits ~where:b.where node rest in
+          Scene.with_overrides ~width ~height s) );
+    ("viewport", setting "viewport" (fun b _ rest s -> Scene.with_overrides ~viewport:(viewport ~where:b.where rest) s));
+    ("camera", setting "camera" (fun b _ rest s -> Scene.with_overrides ~camera:(camera ~where:b.where rest) s));
+    ( "camera-path",
+      setting "camera-path" (fun b node rest s ->
+          Scene.with_overrides ~camera_path:(Some (camera_path ~where:b.where node rest)) s) );
+    ( "background",
+      setting "background" (fun _ node rest s ->
+          let c = color_of_nodes (fun () -> "background") node rest in
+          Scene.with_overrides ~background:(check node (Scene.check_background c)) s) );
+    ( "recursion-depth",
+      setting "recursion-depth" (fun b node rest s ->
+          let v = value "recursion-depth" node rest in
+          Scene.with_overrides ~depth:(check v (Limits.check_depth b.limits (integer (fun () -> "recursion-depth") v))) s) );
+    ( "epsilon",
+      setting "epsilon" (fun _ node rest s ->
+          let v = value "epsilon" node rest in
+          Scene.with_overrides ~epsilon:(Some (check v (Scene.check_epsilon (number (fun () -> "epsilon") v)))) s) );
+    ("sphere", sphere_form);
+    ("plane", shape (fun b -> plane ~where:b.where ~named:b.named));
+    ("triangle", shape (fun b -> triangle ~where:b.where ~named:b.named));
+    ("box", shape (fun b -> box ~where:b.where ~named:b.named));
+    ("mesh", shape (fun b -> mesh ~where:b.where ~named:b.named ~load:b.load ~add_triangles:(add_triangles b)));
+    ( "csg",
+      shape (fun b node rest ->
+          Shape.Csg (csg ~where:b.where ~named:b.named ~load:b.load ~add_triangles:(add_triangles b) ~depth:1 node rest))
+    );
+    ("light", light_form);
+  ]
+
+let top_level = List.map fst forms
+
 let add_form b node =
-  let where = b.where in
   match node with
   | Sexp.Atom atom -> fail node "expected a form in parentheses such as (sphere ...), got %s" (show_atom atom)
   | Sexp.List [] -> fail node "empty form (); expected one of %s" (one_of top_level)
   | Sexp.List (Sexp.List _ :: _) -> fail node "expected a form name such as sphere or light, got a list"
   | Sexp.List ((Sexp.Atom kw as kw_node) :: rest) -> (
-      match kw with
-      (* Counted as they come, so that the error points at the first form
-         beyond the bound, before the rest of the file is read. *)
-      | "sphere" ->
-          b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits (objects b) b.n_spheres));
-          Spheres.add b.spheres (sphere ~where node rest)
-      | ("plane" | "triangle" | "box") as form ->
-          (* Shapes count against the bound of spheres: both are objects. *)
-          b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
-          let parse = match form with "plane" -> plane | "triangle" -> triangle | _ -> box in
-          place b (parse ~where node rest)
-      | "mesh" ->
-          b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
-          place b (mesh ~where ~load:b.load ~add_triangles:(add_triangles b) node rest)
-      | "csg" ->
-          b.n_spheres <- b.n_spheres + 1;
-          ignore (check node (Limits.check_count b.limits `Objects b.n_spheres));
-          place b (Shape.Csg (csg ~where ~load:b.load ~add_triangles:(add_triangles b) ~depth:1 node rest))
-      | "light" ->
-          b.n_lights <- b.n_lights + 1;
-          ignore (check node (Limits.check_count b.limits `Lights b.n_lights));
-          b.lights <- light ~where node rest :: b.lights
-      | "canvas" ->
-          once b kw kw_node;
-          let width, height = canvas ~limits:b.limits ~where node rest in
-          b.scene <- Scene.with_overrides ~width ~height b.scene
-      | "viewport" ->
-          once b kw kw_node;
-          b.scene <- Scene.with_overrides ~viewport:(viewport ~where rest) b.scene
-      | "camera" ->
-          once b kw kw_node;
-          b.scene <- Scene.with_overrides ~camera:(camera ~where rest) b.scene
-      | "camera-path" ->
-          once b kw kw_node;
-          b.scene <- Scene.with_overrides ~camera_path:(Some (camera_path ~where node rest)) b.scene
-      | "background" ->
-          once b kw kw_node;
-          let c = color_of_nodes (fun () -> kw) node rest in
-          b.scene <- Scene.with_overrides ~background:(check node (Scene.check_background c)) b.scene
-      | "recursion-depth" ->
-          once b kw kw_node;
-          let v = value kw node rest in
-          b.scene <- Scene.with_overrides ~depth:(check v (Limits.check_depth b.limits (integer (fun () -> kw) v))) b.scene
-      | "epsilon" ->
-          once b kw kw_node;
-          let v = value kw node rest in
-          b.scene <- Scene.with_overrides ~epsilon:(Some (check v (Scene.check_epsilon (number (fun () -> kw) v)))) b.scene
-      | _ ->
-          fail kw_node "unknown form %s; expected %s%s" (show_atom kw) (one_of top_level)
-            (suggestion kw top_level))
+      match List.assoc_opt kw forms with
+      | Some form -> form b ~kw_node node rest
+      | None -> fail kw_node "unknown form %s; expected %s%s" (show_atom kw) (one_of top_level) (suggestion kw top_level))
 
 let finish b =
   (* Without a camera form, a still picture is the path's first frame. *)
@@ -1068,13 +1131,11 @@ type beside = {
   seek : int -> unit;
 }
 
-let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast)
-    ?(window_bytes = 1 lsl 20) ?beside (src : source) =
-  let src = without_byte_order_mark src in
-  (* Mesh files are named relative to the scene file; each is read once,
-     even when an error makes a second, located pass over the text. *)
+(* Mesh files are named relative to the scene file; each is read once,
+   even when an error makes a second, located pass over the text. *)
+let mesh_loader ~file load_mesh =
   let loaded = Hashtbl.create 4 in
-  let load path =
+  fun path ->
     let dir = Filename.dirname file in
     let path = if Filename.is_relative path && dir <> Filename.current_dir_name then Filename.concat dir path else path in
     match Hashtbl.find_opt loaded path with
@@ -1083,186 +1144,216 @@ let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
         let r = match load_mesh path with Ok m -> Ok m | Error (`Msg m) -> Error (`Msg m) in
         Hashtbl.add loaded path r;
         r
+
+(* The sequential read of [of_source]: each form is converted as soon as
+   it is read, and positions are not recorded, so that big scenes load in
+   little time and memory. *)
+type read = {
+  limits : Limits.t;
+  reader : [ `Fast | `Parsexp ];
+  beside : beside option;
+  b : builder;
+  fast : fast;
+  st : stream;
+  mutable form_end : int;  (** Where the last form read ended. *)
+  mutable boundary : int;  (** The next multiple of [chunk] where the form bound is checked. *)
+  mutable split : int;  (** The offset of the part read beside until it is taken, [max_int] after. *)
+  mutable pending : bool;  (** A part is being read beside and was not taken. *)
+}
+
+(* The form bound is checked as it was when parsexp read the whole text
+   64 KiB at a time: at each multiple of 64 KiB (and at the end), the
+   bytes since the last form's end, counted before the form that
+   straddles that point is converted. The end of the text is checked once
+   it is known. *)
+let check_below r e =
+  let w = r.st.w in
+  let rec go () =
+    let total = if w.eof then w.base + String.length w.text else max_int in
+    let at = min r.boundary total in
+    if r.boundary < max_int && at < e then begin
+      (match Limits.check_form_bytes r.limits (at - r.form_end) with
+      | Ok _ -> ()
+      | Error (`Msg m) -> raise (Form_too_long m));
+      r.boundary <- (if at >= total then max_int else r.boundary + chunk);
+      go ()
+    end
   in
+  go ()
+
+(* A plain form, read by [Sexp_scan] and converted; spheres are read
+   straight into their values. *)
+let simple r i =
+  let form, e = Sexp_scan.form r.st.w.text i ~max_bytes:simple_form_bytes in
+  check_below r (r.st.w.base + e);
+  add_form r.b form;
+  e
+
+let fast_form r i =
+  match sphere_fields r.fast r.st.w.text i with
+  | e -> (
+      check_below r (r.st.w.base + e);
+      match add_sphere r.b r.fast with () -> e | exception Sexp_scan.Unusual -> simple r i)
+  | exception Sexp_scan.Unusual -> simple r i
+
+(* The part read beside, waited for when the read gets to its split. *)
+let take_part r =
+  r.split <- max_int;
+  match r.beside with
+  | Some bs when r.pending ->
+      r.pending <- false;
+      bs.wait ()
+  | _ -> None
+
+(* The part is what this read would read from [i] (relative) on if its
+   first sphere starts there, where this read's next form starts: from
+   there on, both read the same text the same way (whatever the part's
+   reader made of the text before, where the split may be in a form, a
+   string or a comment), and the part stops where this read would leave
+   its fast path for spheres. Its spheres must also keep within the
+   bound, which this read checks one by one. *)
+let use_part r i (p : part) =
+  p.first >= 0 && p.first = r.st.w.base + i
+  && Float.of_int (r.b.n_spheres + part_length p) <= Limits.bound r.limits `Spheres
+
+(* Goes on after the part's last sphere as the sequential read would:
+   the form bound checked before its first sphere, its spheres and
+   materials appended in order, the lines counted past them. *)
+let skip_part r i (p : part) =
+  let st = r.st and w = r.st.w in
+  check_below r p.first_end;
+  ignore (line_at st (w.base + i));
+  (match r.beside with Some bs -> bs.append r.b.spheres p | None -> ());
+  r.b.n_spheres <- r.b.n_spheres + part_length p;
+  r.form_end <- p.stop;
+  r.boundary <- max r.boundary (next_boundary p.stop);
+  st.at <- p.stop;
+  st.line <- st.line + p.lines;
+  if p.lines > 0 then st.bol <- p.stop_bol;
+  (match r.beside with Some bs -> bs.seek p.stop | None -> ());
+  w.text <- "";
+  w.base <- p.stop;
+  w.eof <- false;
+  refill st ~keep:0 ~want:0
+
+(* Anything but a plain form, from [p] (the end of the last form) to the
+   end of the next form, goes to parsexp, fed up to the next closing
+   parenthesis at a time so that it stops where that form does. *)
+let rec slow_from r p =
+  let st = r.st and w = r.st.w in
+  let completed = ref false in
+  let state =
+    Parsexp.Eager.State.create ~pos:(line_at st (w.base + p)) (fun _ form ->
+        completed := true;
+        add_form r.b form)
+  in
+  let rec go p stack =
+    let n = String.length w.text in
+    if p >= n && w.eof then Parsexp.Eager.feed_eoi state stack
+    else if p >= n then begin
+      (* parsexp holds what it was fed: nothing of this window is needed. *)
+      refill st ~keep:n ~want:0;
+      go 0 stack
+    end
+    else begin
+      let stop = min (r.boundary - w.base) n in
+      let q = ref p in
+      while !q < stop && String.unsafe_get w.text !q <> ')' do
+        incr q
+      done;
+      let q = if !q < stop then !q + 1 else stop in
+      let stack = Parsexp.Eager.feed_substring state w.text ~pos:p ~len:(q - p) stack in
+      if !completed then r.form_end <- w.base + q;
+      check_below r (w.base + q + 1);
+      if !completed then fast_from r q else go q stack
+    end
+  in
+  go p Parsexp.Eager.Stack.empty
+
+(* Plain forms on the fast path, until something else. *)
+and fast_from r p =
+  let st = r.st and w = r.st.w in
+  let n = String.length w.text in
+  if r.reader = `Parsexp then
+    if p >= n && w.eof then check_below r (w.base + n + 1)
+    else if p >= n then begin
+      refill st ~keep:n ~want:0;
+      fast_from r 0
+    end
+    else slow_from r p
+  else
+    match Sexp_scan.skip_blank w.text p with
+    | i when i >= n && w.eof -> check_below r (w.base + n + 1)
+    | i when i >= n ->
+        refill st ~keep:(blank_keep w p) ~want:lookahead;
+        fast_from r 0
+    | i when n - i < lookahead && not w.eof ->
+        refill st ~keep:i ~want:lookahead;
+        fast_from r 0
+    | i when w.base + i >= r.split -> (
+        match take_part r with
+        | Some part when use_part r i part ->
+            skip_part r i part;
+            fast_from r 0
+        | _ -> fast_from r p)
+    | i -> (
+        match fast_form r i with
+        | e ->
+            r.form_end <- w.base + e;
+            fast_from r e
+        | exception Sexp_scan.Unusual -> slow_from r p)
+    | exception Sexp_scan.Unusual -> slow_from r p
+
+(* The whole text in one pass: [`Done] with the scene or an error that
+   needs no position, or what the error passes must locate. *)
+let read_all r ~file ~origin ~error ~syntax =
+  Fun.protect
+    ~finally:(fun () ->
+      (* A part still being read is waited for, so that no process is
+         left behind: the read ended before its split. *)
+      if r.pending then ignore (take_part r);
+      r.st.r.close ())
+    (fun () ->
+      match
+        refill r.st ~keep:0 ~want:0;
+        fast_from r 0
+      with
+      | () -> (
+          (* Every field was checked where it was read; this is a net. *)
+          match Scene.validate ~limits:r.limits (finish r.b) with
+          | Ok s -> `Done (Ok s)
+          | Error (`Msg m) -> `Done (error origin m))
+      | exception Too_big m -> `Done (Error (`Msg (Printf.sprintf "%s: %s" file m)))
+      | exception Form_too_long m -> `Form_too_long m
+      | exception Parsexp.Parse_error.Parse_error e -> `Done (syntax e)
+      | exception Located _ -> `Locate)
+
+let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast)
+    ?(window_bytes = 1 lsl 20) ?beside (src : source) =
+  let src = without_byte_order_mark src in
+  let load = mesh_loader ~file load_mesh in
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
   let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
-  (* Each form is converted as soon as it is read, and positions are not
-     recorded: big scenes load in little time and memory. Only an error
-     triggers a second pass that records positions, and fails on the same
-     node. *)
-  let b = builder ~limits ~load (fun _ -> None) in
-  let fast = fast_state () in
-  let st = stream ~limits ~window_bytes (src ()) ~from:0 in
-  let w = st.w in
-  (* [!form_end] is where the last form read ended. The form bound is
-     checked as it was when parsexp read the whole text 64 KiB at a time:
-     at each multiple of 64 KiB (and at the end), the bytes since the
-     last form's end, counted before the form that straddles that point
-     is converted. [!boundary] is the next multiple to check; the end of
-     the text is checked once it is known. *)
-  let form_end = ref 0 and boundary = ref chunk in
-  let check_below e =
-    let rec go () =
-      let total = if w.eof then w.base + String.length w.text else max_int in
-      let at = min !boundary total in
-      if !boundary < max_int && at < e then begin
-        (match Limits.check_form_bytes limits (at - !form_end) with
-        | Ok _ -> ()
-        | Error (`Msg m) -> raise (Form_too_long m));
-        boundary := if at >= total then max_int else !boundary + chunk;
-        go ()
-      end
-    in
-    go ()
+  let r =
+    {
+      limits;
+      reader;
+      beside;
+      b = builder ~limits ~load (fun _ -> None);
+      fast = fast_state ();
+      st = stream ~limits ~window_bytes (src ()) ~from:0;
+      form_end = 0;
+      boundary = chunk;
+      split = (match beside with Some bs when reader = `Fast -> bs.split | _ -> max_int);
+      pending = Option.is_some beside;
+    }
   in
-  (* A plain form, read by [Sexp_scan] and converted; spheres are read
-     straight into their values. *)
-  let simple i =
-    let form, e = Sexp_scan.form w.text i ~max_bytes:simple_form_bytes in
-    check_below (w.base + e);
-    add_form b form;
-    e
-  in
-  let fast_form i =
-    match sphere_fields fast w.text i with
-    | e -> (
-        check_below (w.base + e);
-        match add_sphere b fast with () -> e | exception Sexp_scan.Unusual -> simple i)
-    | exception Sexp_scan.Unusual -> simple i
-  in
-  (* The part read beside, waited for when the read gets to its split:
-     [!split] is that offset until then, [max_int] after. *)
-  let split = ref (match beside with Some bs when reader = `Fast -> bs.split | _ -> max_int) in
-  let pending = ref (Option.is_some beside) in
-  let take_part () =
-    split := max_int;
-    match beside with
-    | Some bs when !pending ->
-        pending := false;
-        bs.wait ()
-    | _ -> None
-  in
-  (* The part is what this read would read from [i] (relative) on if its
-     first sphere starts there, where this read's next form starts: from
-     there on, both read the same text the same way (whatever the part's
-     reader made of the text before, where the split may be in a form, a
-     string or a comment), and the part stops where this read would leave
-     its fast path for spheres. Its spheres must also keep within the
-     bound, which this read checks one by one. *)
-  let use_part i (p : part) =
-    p.first >= 0 && p.first = w.base + i
-    && Float.of_int (b.n_spheres + part_length p) <= Limits.bound limits `Spheres
-  in
-  (* Goes on after the part's last sphere as the sequential read would:
-     the form bound checked before its first sphere, its spheres and
-     materials appended in order, the lines counted past them. *)
-  let skip_part i (p : part) =
-    check_below p.first_end;
-    ignore (line_at st (w.base + i));
-    (match beside with Some bs -> bs.append b.spheres p | None -> ());
-    b.n_spheres <- b.n_spheres + part_length p;
-    form_end := p.stop;
-    boundary := max !boundary (next_boundary p.stop);
-    st.at <- p.stop;
-    st.line <- st.line + p.lines;
-    if p.lines > 0 then st.bol <- p.stop_bol;
-    (match beside with Some bs -> bs.seek p.stop | None -> ());
-    w.text <- "";
-    w.base <- p.stop;
-    w.eof <- false;
-    refill st ~keep:0 ~want:0
-  in
-  (* Anything else, from [p] (the end of the last form) to the end of the
-     next form, goes to parsexp, fed up to the next closing parenthesis
-     at a time so that it stops where that form does. *)
-  let rec slow_from p =
-    let completed = ref false in
-    let state =
-      Parsexp.Eager.State.create ~pos:(line_at st (w.base + p)) (fun _ form ->
-          completed := true;
-          add_form b form)
-    in
-    let rec go p stack =
-      let n = String.length w.text in
-      if p >= n && w.eof then Parsexp.Eager.feed_eoi state stack
-      else if p >= n then begin
-        (* parsexp holds what it was fed: nothing of this window is needed. *)
-        refill st ~keep:n ~want:0;
-        go 0 stack
-      end
-      else begin
-        let stop = min (!boundary - w.base) n in
-        let q = ref p in
-        while !q < stop && String.unsafe_get w.text !q <> ')' do
-          incr q
-        done;
-        let q = if !q < stop then !q + 1 else stop in
-        let stack = Parsexp.Eager.feed_substring state w.text ~pos:p ~len:(q - p) stack in
-        if !completed then form_end := w.base + q;
-        check_below (w.base + q + 1);
-        if !completed then fast_from q else go q stack
-      end
-    in
-    go p Parsexp.Eager.Stack.empty
-  and fast_from p =
-    let n = String.length w.text in
-    if reader = `Parsexp then
-      if p >= n && w.eof then check_below (w.base + n + 1)
-      else if p >= n then begin
-        refill st ~keep:n ~want:0;
-        fast_from 0
-      end
-      else slow_from p
-    else
-      match Sexp_scan.skip_blank w.text p with
-      | i when i >= n && w.eof -> check_below (w.base + n + 1)
-      | i when i >= n ->
-          refill st ~keep:(blank_keep w p) ~want:lookahead;
-          fast_from 0
-      | i when n - i < lookahead && not w.eof ->
-          refill st ~keep:i ~want:lookahead;
-          fast_from 0
-      | i when w.base + i >= !split -> (
-          match take_part () with
-          | Some part when use_part i part ->
-              skip_part i part;
-              fast_from 0
-          | _ -> fast_from p)
-      | i -> (
-          match fast_form i with
-          | e ->
-              form_end := w.base + e;
-              fast_from e
-          | exception Sexp_scan.Unusual -> slow_from p)
-      | exception Sexp_scan.Unusual -> slow_from p
-  in
-  let result =
-    Fun.protect
-      ~finally:(fun () ->
-        (* A part still being read is waited for, so that no process is
-           left behind: the read ended before its split. *)
-        if !pending then ignore (take_part ());
-        st.r.close ())
-      (fun () ->
-        match
-          refill st ~keep:0 ~want:0;
-          fast_from 0
-        with
-        | () -> (
-            (* Every field was checked where it was read; this is a net. *)
-            match Scene.validate ~limits (finish b) with
-            | Ok s -> `Done (Ok s)
-            | Error (`Msg m) -> `Done (error origin m))
-        | exception Too_big m -> `Done (Error (`Msg (Printf.sprintf "%s: %s" file m)))
-        | exception Form_too_long m -> `Form_too_long m
-        | exception Parsexp.Parse_error.Parse_error e -> `Done (syntax e)
-        | exception Located _ -> `Locate)
-  in
-  (* The error passes read the text again from its start. *)
-  match result with
-  | `Done r -> r
-  | `Form_too_long m -> error (form_start src !form_end) m
+  (* Only an error triggers a second pass that records positions, and
+     fails on the same node: it reads the text again from its start. *)
+  match read_all r ~file ~origin ~error ~syntax with
+  | `Done result -> result
+  | `Form_too_long m -> error (form_start src r.form_end) m
   | `Locate -> (
       match locate_error ~limits ~load src with
       | `Syntax e -> syntax e

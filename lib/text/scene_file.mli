@@ -28,7 +28,10 @@ v}
     come in increasing frame order. Without a [camera] form, a still
     picture of such a scene is the path's first frame.
     In a [sphere], [center], [radius] and [color] are required; [specular]
-    defaults to [-1] (matte) and [reflective] to [0]. Numbers are OCaml
+    defaults to [-1] (matte) and [reflective] to [0]. A material may be
+    named once, [(material glass (color 230 230 255) (transparency 0.9))],
+    and used by any later object as [(material glass)] in place of
+    [color]; fields written on the object override the named material's. Numbers are OCaml
     floats ([1], [-0.5], [1e-3]), finite; sizes and depths are integers.
 
     A UTF-8 byte order mark (bytes [EF BB BF], which some editors write)
