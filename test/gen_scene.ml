@@ -49,7 +49,7 @@ let shape =
       (let* v0 = map3 Vec3.v (coord (-3.) 3.) (coord (-3.) 3.) (coord 2. 9.) in
        let* e1 = vec (-2.) 2. and* e2 = vec (-2.) 2. in
        let tri = Triangle.v v0 (Vec3.add v0 e1) (Vec3.add v0 e2) m in
-       return (match Triangle.validate tri with Ok t -> Shape.Triangle t | Error _ -> Shape.Triangle { tri with v2 = Vec3.add v0 Vec3.oy; v1 = Vec3.add v0 Vec3.ox }));
+       return (match Triangle.validate tri with Ok t -> Shape.Triangle t | Error _ -> Shape.Triangle (Triangle.v tri.v0 (Vec3.add v0 Vec3.ox) (Vec3.add v0 Vec3.oy) tri.material)));
       (let* lo = map3 Vec3.v (coord (-3.) 3.) (coord (-3.) 3.) (coord 2. 9.) in
        let* size = map3 Vec3.v (coord 0.05 2.) (coord 0.05 2.) (coord 0.05 2.) in
        return (Shape.Box (Box.v ~min:lo ~max:(Vec3.add lo size) m)));
@@ -153,9 +153,9 @@ let with_patterns rand (s : Scene.t) =
   let material (m : Material.t) = Material.update ~pattern:(pattern ()) m in
   let shape = function
     | Shape.Sphere sp -> Shape.Sphere (Helpers.with_sphere_material sp (fun m -> Material.update ~pattern:(pattern ()) m))
-    | Plane p -> Shape.Plane { p with material = material p.material }
-    | Triangle t -> Triangle { t with material = material t.material }
-    | Box b -> Box { b with material = material b.material }
+    | Plane p -> Shape.Plane (Plane.v ~point:p.point ~normal:p.normal (material p.material))
+    | Triangle t -> Triangle (Triangle.v t.v0 t.v1 t.v2 (material t.material))
+    | Box b -> Box (Box.v ~min:b.min ~max:b.max (material b.material))
     | (Mesh _ | Csg _) as m -> m
   in
   Scene.with_overrides ~objects:(List.map shape (Scene.objects s)) s

@@ -71,7 +71,7 @@ let rec random_solid ?(glass = false) rand depth =
         let lo = random_point rand in
         let size () = 0.2 +. Random.State.float rand 1.5 in
         match box ~color ?specular ?reflective lo (Vec3.add lo (Vec3.v (size ()) (size ()) (size ()))) with
-        | Csg.Box b -> Csg.Box { b with material = material b.material }
+        | Csg.Box b -> Csg.Box (Box.v ~min:b.min ~max:b.max (material b.material))
         | solid -> solid)
     | _ -> octahedron ~color ~material (random_point rand) (0.4 +. Random.State.float rand 1.)
 

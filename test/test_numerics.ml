@@ -147,7 +147,7 @@ let transform ~scale ~translate (s : Scene.t) =
          | Ok m -> m
          | Error (`Msg e) -> Alcotest.fail e
        in
-       let box (b : Box.t) : Box.t = { min = p b.min; max = p b.max; material = material b.material } in
+       let box (b : Box.t) : Box.t = Box.v ~min:(p b.min) ~max:(p b.max) (material b.material) in
        let rec csg (c : Csg.t) =
          let solid = function
            | Csg.Sphere sp -> Csg.Sphere (sphere sp)
@@ -155,13 +155,13 @@ let transform ~scale ~translate (s : Scene.t) =
            | Csg.Mesh m -> Csg.Mesh (mesh m)
            | Csg.Csg c -> Csg.Csg (csg c)
          in
-         { c with a = solid c.a; b = solid c.b }
+         Csg.v c.op (solid c.a) (solid c.b)
        in
        List.map
          (function
            | Shape.Sphere sp -> Shape.Sphere (sphere sp)
-           | Shape.Plane pl -> Shape.Plane { pl with point = p pl.point; material = material pl.material }
-           | Shape.Triangle t -> Shape.Triangle { v0 = p t.v0; v1 = p t.v1; v2 = p t.v2; material = material t.material }
+           | Shape.Plane pl -> Shape.Plane (Plane.v ~point:(p pl.point) ~normal:pl.normal (material pl.material))
+           | Shape.Triangle t -> Shape.Triangle (Triangle.v (p t.v0) (p t.v1) (p t.v2) (material t.material))
            | Shape.Box b -> Shape.Box (box b)
            | Shape.Mesh m -> Shape.Mesh (mesh m)
            | Shape.Csg c -> Shape.Csg (csg c))

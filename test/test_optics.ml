@@ -36,9 +36,9 @@ let has_glass (s : Scene.t) =
 let map_materials ~sphere ~material (s : Scene.t) =
   let shape = function
     | Shape.Sphere sp -> Shape.Sphere (sphere sp)
-    | Shape.Plane p -> Shape.Plane { p with material = material p.material }
-    | Shape.Triangle t -> Shape.Triangle { t with material = material t.material }
-    | Shape.Box b -> Shape.Box { b with material = material b.material }
+    | Shape.Plane p -> Shape.Plane (Plane.v ~point:p.point ~normal:p.normal (material p.material))
+    | Shape.Triangle t -> Shape.Triangle (Triangle.v t.v0 t.v1 t.v2 (material t.material))
+    | Shape.Box b -> Shape.Box (Box.v ~min:b.min ~max:b.max (material b.material))
     | (Shape.Mesh _ | Shape.Csg _) as sh -> sh (* no mesh or CSG in the scenes changed here *)
   in
   Scene.with_overrides ~objects:(List.map shape (Scene.objects s)) s
@@ -321,7 +321,7 @@ let tests =
           Helpers.with_objects
             ~shapes:
               (List.map
-                 (function Shape.Plane p -> Shape.Plane { p with material = opaque_material p.material } | sh -> sh)
+                 (function Shape.Plane p -> Shape.Plane (Plane.v ~point:p.point ~normal:p.normal (opaque_material p.material)) | sh -> sh)
                  (Scene.shapes s))
             s
         in
@@ -408,7 +408,7 @@ let tests =
            bounces. *)
         let s = small (Helpers.load_scene "glass.scene") in
         let mirror = function
-          | Shape.Plane p -> Shape.Plane { p with material = Material.update ~reflective:0.6 p.material }
+          | Shape.Plane p -> Shape.Plane (Plane.v ~point:p.point ~normal:p.normal (Material.update ~reflective:0.6 p.material))
           | sh -> sh
         in
         let glass (b : Sphere.t) =

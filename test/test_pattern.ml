@@ -154,7 +154,7 @@ let tests =
           | Ok m -> m
           | Error (`Msg m) -> Alcotest.fail m
         in
-        let world size = List.init 2 (fun k -> Shape.Triangle { (Mesh.triangle mesh k) with material = material size }) in
+        let world size = List.init 2 (fun k -> (let t = Mesh.triangle mesh k in Shape.Triangle (Triangle.v t.v0 t.v1 t.v2 (material size)))) in
         let scene shapes =
           Helpers.scene ~width:64 ~height:64 ~camera:(Camera.v (Vec3.v 2.1 2.2 0.)) ~lights:[ Light.ambient 1. ] ~spheres:[]
             ~shapes ()

@@ -196,6 +196,19 @@ let tests =
                    object's fields, and reads back equal. *)
                 Alcotest.check scene "round trip" s (parse (Scene.show s)))
           [ `Fast; `Parsexp ]);
+    Alcotest.test_case "Scene_file.located gives the error's file, line and column beside its message" `Quick (fun () ->
+        let text = "(light ambient (intensity 1))\n(sphere (center 0 0 3) (radius -1) (color 1 1 1))" in
+        (match Scene_file.located ~file:"t.scene" text with
+        | Ok _ -> Alcotest.fail "accepted"
+        | Error e ->
+            Alcotest.(check (list string)) __LOC__
+              [ "t.scene"; "2"; "32"; "sphere radius must be > 0, got -1" ]
+              [ e.file; string_of_int e.line; string_of_int e.column; e.message ];
+            Alcotest.(check string) "the message of_string gives" (error text) (Scene_file.error_message e));
+        let limits = Limits.with_bound Limits.default `Scene_bytes 10. in
+        match Scene_file.located ~limits ~file:"t.scene" text with
+        | Ok _ -> Alcotest.fail "accepted"
+        | Error e -> Alcotest.(check (pair int int)) "a whole-text error has no line" (0, 0) (e.line, e.column));
     Alcotest.test_case "comments of every kind are ignored" `Quick (fun () ->
         let s =
           parse

@@ -5,8 +5,9 @@
 
 (** {1:boxes Boxes} *)
 
-type t = { min : Vec3.t; max : Vec3.t; material : Material.t }
-(** The type for boxes: [min] and [max] are opposite corners, in world units. *)
+type t = private { min : Vec3.t; max : Vec3.t; material : Material.t }
+(** The type for boxes: [min] and [max] are opposite corners, in world units.
+    Read its fields, make one with {!v}. *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf x] prints [x] as its form in the scene-file syntax,

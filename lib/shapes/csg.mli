@@ -21,8 +21,8 @@
 
 type op = Union | Intersection | Difference  (** The type for operations. *)
 
-type t = { op : op; a : solid; b : solid }
-(** The type for CSG solids: [a op b]. *)
+type t = private { op : op; a : solid; b : solid }
+(** The type for CSG solids: [a op b]; read its fields, make one with {!v}. *)
 
 and solid = Sphere of Sphere.t | Box of Box.t | Mesh of Mesh.t | Csg of t
 (** The type for the operands. A mesh must be closed ({!check_closed}). *)

@@ -6,12 +6,12 @@
 
 (** {1:planes Planes} *)
 
-type t = {
+type t = private {
   point : Vec3.t;  (** [P0], a point of the plane, in world units. *)
   normal : Vec3.t;  (** [N], not zero; any length (it is normalised when used). *)
   material : Material.t;
 }
-(** The type for planes. *)
+(** The type for planes: read its fields, make one with {!v}. *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf x] prints [x] as its form in the scene-file syntax,

@@ -16,8 +16,9 @@
 
 (** {1:triangles Triangles} *)
 
-type t = { v0 : Vec3.t; v1 : Vec3.t; v2 : Vec3.t; material : Material.t }
-(** The type for triangles, vertices in world units. *)
+type t = private { v0 : Vec3.t; v1 : Vec3.t; v2 : Vec3.t; material : Material.t }
+(** The type for triangles, vertices in world units: read its fields,
+    make one with {!v}. *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf x] prints [x] as its form in the scene-file syntax,

@@ -1304,6 +1304,16 @@ and fast_from r p =
         | exception Sexp_scan.Unusual -> slow_from r p)
     | exception Sexp_scan.Unusual -> slow_from r p
 
+(* An error with its location, beside its message. *)
+type error = { file : string; line : int; column : int; message : string }
+
+let error_message e =
+  if e.line = 0 then Printf.sprintf "%s: %s" e.file e.message
+  else Printf.sprintf "%s:%d:%d: %s" e.file e.line e.column e.message
+
+let pp_error ppf e = Format.pp_print_string ppf (error_message e)
+let msg r = Result.map_error (fun e -> `Msg (error_message e)) r
+
 (* The whole text in one pass: [`Done] with the scene or an error that
    needs no position, or what the error passes must locate. *)
 let read_all r ~file ~origin ~error ~syntax =
@@ -1323,17 +1333,17 @@ let read_all r ~file ~origin ~error ~syntax =
           match Scene.validate ~limits:r.limits (finish r.b) with
           | Ok s -> `Done (Ok s)
           | Error (`Msg m) -> `Done (error origin m))
-      | exception Too_big m -> `Done (Error (`Msg (Printf.sprintf "%s: %s" file m)))
+      | exception Too_big message -> `Done (Error { file; line = 0; column = 0; message })
       | exception Form_too_long m -> `Form_too_long m
       | exception Parsexp.Parse_error.Parse_error e -> `Done (syntax e)
       | exception Located _ -> `Locate)
 
-let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast)
+let of_source_located ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast)
     ?(window_bytes = 1 lsl 20) ?beside (src : source) =
   let src = without_byte_order_mark src in
   let load = mesh_loader ~file load_mesh in
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
-  let error (p : Positions.pos) m = Error (`Msg (Printf.sprintf "%s:%s: %s" file (position p) m)) in
+  let error (p : Positions.pos) message = Error { file; line = p.line; column = p.col + 1; message } in
   let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
   let r =
     {
@@ -1360,9 +1370,14 @@ let of_source ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<str
       | `Located (pos, m) -> error (Option.value pos ~default:origin) m
       | `Not_found -> error origin "internal error: the located pass found no error")
 
-let of_string ?(limits = Limits.default) ?load_mesh ?(file = "<string>") ?reader text =
+let of_source ?limits ?load_mesh ?file ?reader ?window_bytes ?beside src =
+  msg (of_source_located ?limits ?load_mesh ?file ?reader ?window_bytes ?beside src)
+
+let located ?(limits = Limits.default) ?load_mesh ?(file = "<string>") ?reader text =
   match Limits.check_scene_bytes limits (String.length text) with
-  | Error (`Msg m) -> Error (`Msg (Printf.sprintf "%s: %s" file m))
-  | Ok _ -> of_source ~limits ?load_mesh ~file ?reader (string_source text)
+  | Error (`Msg message) -> Error { file; line = 0; column = 0; message }
+  | Ok _ -> of_source_located ~limits ?load_mesh ~file ?reader (string_source text)
+
+let of_string ?limits ?load_mesh ?file ?reader text = msg (located ?limits ?load_mesh ?file ?reader text)
 
 let to_string = Scene.show

@@ -45,6 +45,31 @@ v}
     their domain ({!Sphere.validate}, {!Light.validate}, ...) are all
     errors. *)
 
+type error = {
+  file : string;  (** The source's name, the [file] argument. *)
+  line : int;  (** 1-based; [0] for an error of the whole text (too long). *)
+  column : int;  (** 1-based, in bytes; [0] with [line]. *)
+  message : string;  (** What is wrong, without the location. *)
+}
+(** The type for errors with their location, beside their message. *)
+
+val error_message : error -> string
+(** [error_message e] is the one line [file:line:column: message] (or
+    [file: message] without a line) that {!of_string} gives. *)
+
+val pp_error : Format.formatter -> error -> unit
+(** [pp_error ppf e] prints {!error_message}[ e]. *)
+
+val located :
+  ?limits:Limits.t ->
+  ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
+  ?file:string ->
+  ?reader:[ `Fast | `Parsexp ] ->
+  string ->
+  (Scene.valid, error) result
+(** [located] is {!of_string} with the error's location as numbers: an
+    editor can put its cursor there. *)
+
 val of_string :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
