@@ -29,7 +29,7 @@ let () =
   match Result.bind (Scene.validate scene) Render.image with
   | Ok (image, _stats) ->
       let oc = open_out_bin output in
-      output_string oc (Ppm.to_string image);
+      output_string oc (Image.Ppm.to_string image);
       close_out oc;
       print_endline ("wrote " ^ output)
   | Error (`Msg m) ->

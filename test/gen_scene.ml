@@ -71,13 +71,13 @@ let camera_path =
   let key frame =
     let* position = vec (-2.) 2. in
     let* dx = coord (-1.) 1. and* dy = coord (-1.) 1. and* dz = coord 1. 3. in
-    return (Camera_path.key ~frame ~position (Vec3.add position (Vec3.v dx dy dz)))
+    return (Camera.Path.key ~frame ~position (Vec3.add position (Vec3.v dx dy dz)))
   in
   let* first = int_range 0 5 in
   let* gaps = list_size (int_range 0 3) (int_range 1 6) in
   let frames = List.rev (List.fold_left (fun acc g -> (List.hd acc + g) :: acc) [ first ] gaps) in
   let* keys = flatten_l (List.map key frames) in
-  return (match Camera_path.v keys with Ok p -> Some p | Error _ -> None)
+  return (match Camera.Path.v keys with Ok p -> Some p | Error _ -> None)
 
 let gen =
   let* width = int_range 1 12 and* height = int_range 1 12 in

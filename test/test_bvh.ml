@@ -513,7 +513,7 @@ let tests =
            10000 x 10002 x 10000: D^2 = 3.0004e8; largest coordinate 10001;
            smallest radius 1: 64 u (3.0004e8 + 1e4) = 2.13e-6 *)
         let s = Scene.cgfs in
-        let arr f = Array.of_list (List.map f (Spheres.to_list (Scene.spheres s))) in
+        let arr f = Array.of_list (List.map f (Private.Spheres.to_list (Scene.spheres s))) in
         let m =
           Bvh.ray_box_margin ~cx:(arr (fun s -> s.center.x)) ~cy:(arr (fun s -> s.center.y))
             ~cz:(arr (fun s -> s.center.z)) ~radius:(arr (fun s -> s.radius)) (Scene.camera s).position
@@ -559,7 +559,7 @@ let tests =
            has no randomness, one job), so the counts are exact: a change
            here means the tracer does more or less work than it did; say
            why in the commit and update them. *)
-        let mesh ?(smooth = false) ~translate (o : Obj_file.t) material =
+        let mesh ?(smooth = false) ~translate (o : Mesh.Obj.t) material =
           match
             Mesh.v ~smooth ~translate ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
               ~triangle_normals:o.triangle_normals material
@@ -577,7 +577,7 @@ let tests =
            tree differs; with the 24 sides of the first try, no leaf held
            more than 4 and the leaf size changed nothing). *)
         let knot =
-          let o = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments:4800 ~sides:4 in
+          let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments:4800 ~sides:4 in
           Helpers.with_objects
             ~shapes:[ mesh ~smooth:true ~translate:(Vec3.v 0. 0.5 5.) o (Material.v ~specular:300. ~reflective:0.2 (Color.v 230. 150. 40.)) ]
             (Scene.with_overrides ~width:96 ~height:96 Scene.cgfs)
@@ -585,14 +585,14 @@ let tests =
         (* A terrain seen from above at a slant, lit from the side: long
            shadow rays across the height field. *)
         let terrain =
-          let o = Mesh_gen.terrain ~seed:30 ~nx:150 ~nz:150 ~size:20. ~height:3. in
+          let o = Mesh.Gen.terrain ~seed:30 ~nx:150 ~nz:150 ~size:20. ~height:3. in
           let camera = match Camera.look_at ~position:(Vec3.v 0. 9. (-14.)) (Vec3.v 0. 0. 2.) with Ok c -> c | Error (`Msg m) -> Alcotest.fail m in
           Helpers.scene ~width:96 ~height:72 ~camera ~spheres:[]
             ~shapes:[ mesh ~translate:Vec3.zero o (Material.v ~specular:10. (Color.v 90. 160. 60.)) ]
             ~lights:[ Light.ambient 0.2; Light.point 0.5 (Vec3.v (-8.) 6. 0.); Light.directional 0.3 (Vec3.v 1. 0.4 0.2) ] ()
         in
         let grid = Scene.with_overrides ~width:96 ~height:96 (Scene.grid 40_000) in
-        let counts (st : Stats.t) = [ st.primary; st.shadow; st.reflection; st.tests; st.box_tests; st.early_stops ] in
+        let counts (st : Render.Stats.t) = [ st.primary; st.shadow; st.reflection; st.tests; st.box_tests; st.early_stops ] in
         let tree s = match (Helpers.prepare s).bvh with Some b -> [ b.n_nodes; b.depth ] | None -> [] in
         let fails = ref [] in
         List.iter
@@ -625,5 +625,5 @@ let tests =
       (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
       (fun s ->
         let s = (Scene.with_overrides ~epsilon:(Some 0.001) s) in
-        Image.equal (Literal.render (Helpers.valid s)) (Helpers.image_exn s));
+        Image.equal (Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s));
   ]

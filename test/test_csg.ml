@@ -293,7 +293,7 @@ let row_of_spheres n =
 
 (* A torus knot of [2 segments 12] triangles, closed, at z = 4. *)
 let knot segments =
-  let o = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.15 ~segments ~sides:12 in
+  let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.15 ~segments ~sides:12 in
   match
     Mesh.v ~translate:(Vec3.v 0. 0. 4.) ~positions:o.positions ~triangles:o.triangles ~normals:[||]
       ~triangle_normals:(Array.make (Array.length o.triangles) (-1)) (Material.v (Color.v 230. 150. 40.))
@@ -304,11 +304,11 @@ let knot segments =
 let stats (s : Scene.t) = match Helpers.render s with Ok (_, st) -> st | Error (`Msg m) -> Alcotest.fail m
 let load_octahedron _ =
   let positions, triangles = octahedron_arrays (Vec3.v 0. 0. 0.) 1. in
-  Ok (Obj_file.v ~positions ~normals:[||] ~triangles ~triangle_normals:(Array.make (Array.length triangles) (-1)))
+  Ok (Mesh.Obj.v ~positions ~normals:[||] ~triangles ~triangle_normals:(Array.make (Array.length triangles) (-1)))
 
 let open_mesh _ =
   Ok
-    (Obj_file.v ~positions:[| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1. |] ~normals:[||]
+    (Mesh.Obj.v ~positions:[| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1. |] ~normals:[||]
        ~triangles:[| 0; 1; 2; 0; 1; 3; 0; 2; 3 |] ~triangle_normals:(Array.make 9 (-1)))
 
 let parse ?(load_mesh = load_octahedron) text = Scene_file.of_string ~load_mesh ~file:"t.scene" text
@@ -626,8 +626,8 @@ let tests =
            and a test of every triangle would be 48000 a ray. *)
         let st = stats (on (knot 2000)) in
         let per_ray = st.tests / st.primary in
-        Printf.printf "%d tests, %d box tests, %d rays\n" st.tests st.box_tests (Stats.rays st);
-        if st.tests > 2000 * Stats.rays st then Alcotest.failf "%d tests a ray for 48000 triangles" per_ray;
+        Printf.printf "%d tests, %d box tests, %d rays\n" st.tests st.box_tests (Render.Stats.rays st);
+        if st.tests > 2000 * Render.Stats.rays st then Alcotest.failf "%d tests a ray for 48000 triangles" per_ray;
         if st.box_tests = 0 then Alcotest.fail "no box test counted";
         (* Small enough for the oracle: the same colours, float for float. *)
         Alcotest.(check bool) "the literal algorithm's colours" true (Helpers.oracle_floats (on (knot 40))));

@@ -9,7 +9,7 @@
    hits its own way: the oracle exactly, the kernel in floats within its
    stated bounds. So the images must be equal byte for byte on every pixel
    whose rays no rounding decides; only the pixels where
-   [Literal.rounding_dependent] counts a search are left out: a ray
+   [Private.Literal.rounding_dependent] counts a search are left out: a ray
    within rounding of a triangle's edge or vertex or of another root
    without touching it, a shadow, mirror or refracted ray (from a rounded
    hit point, along a rounded direction) exactly through a triangle's
@@ -25,17 +25,17 @@ open Raytrace
 let show_pixel (r, g, b) = Printf.sprintf "(%d, %d, %d)" r g b
 
 (* The oracle's image, and the pixels whose rays rounding may decide
-   ([Literal.rounding_dependent]), by column and row. *)
+   ([Private.Literal.rounding_dependent]), by column and row. *)
 let oracle (s : Scene.t) =
   let s = Scene.of_valid (Helpers.valid s) in
   let img = Image.create (Scene.width s) (Scene.height s) and rounding = Hashtbl.create 16 in
   for gx = Canvas.min_x (Scene.width s) to Canvas.max_x (Scene.width s) do
     for gy = Canvas.min_y (Scene.height s) to Canvas.max_y (Scene.height s) do
-      let before = Literal.rounding_dependent () in
-      let c = Literal.pixel s gx gy in
+      let before = Private.Literal.rounding_dependent () in
+      let c = Private.Literal.pixel s gx gy in
       let x = Canvas.column ~width:(Scene.width s) gx and y = Canvas.row ~height:(Scene.height s) gy in
       Image.set img x y (Color.to_byte c.r) (Color.to_byte c.g) (Color.to_byte c.b);
-      if Literal.rounding_dependent () > before then Hashtbl.replace rounding (x, y) ()
+      if Private.Literal.rounding_dependent () > before then Hashtbl.replace rounding (x, y) ()
     done
   done;
   (img, rounding)

@@ -40,6 +40,6 @@ let tests =
         List.iter
           (fun (name, digest) ->
             let img = Helpers.image_exn (Helpers.load_scene name) in
-            Alcotest.(check string) name digest (Digest.to_hex (Digest.string (Ppm.to_string img))))
+            Alcotest.(check string) name digest (Digest.to_hex (Digest.string (Image.Ppm.to_string img))))
           cgfs_digests);
   ]

@@ -20,7 +20,7 @@ let example_scenes () = List.map (fun n -> In_channel_free.read (Helpers.scene_p
 
 let example_ppms () =
   let img = Helpers.image_exn (Scene.with_overrides ~width:5 ~height:3 Scene.cgfs) in
-  let p6 = Ppm.to_string img in
+  let p6 = Image.Ppm.to_string img in
   let p3 =
     let b = Buffer.create 256 in
     Buffer.add_string b "P3\n# a comment\n5 3\n255\n";
@@ -135,9 +135,9 @@ let tests =
         Alcotest.(check string) __LOC__ "t.scene:1:2: unknown form"
           (String.sub (scene_error text) 0 (String.length "t.scene:1:2: unknown form")));
     Alcotest.test_case "an image header cannot ask for more memory than the pixel bound" `Quick (fun () ->
-        let bytes = allocated (fun () -> ignore (Ppm.of_string "P6\n16384 16384\n255\n\000")) in
+        let bytes = allocated (fun () -> ignore (Image.Ppm.of_string "P6\n16384 16384\n255\n\000")) in
         if bytes > 1e6 then Alcotest.failf "decoding a lying header allocated %.0f bytes" bytes;
-        match Ppm.of_string "P6\n99999 99999\n255\n" with
+        match Image.Ppm.of_string "P6\n99999 99999\n255\n" with
         | Ok _ -> Alcotest.fail "accepted"
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
@@ -282,7 +282,7 @@ let tests =
         (* 2000 concentric spheres (not identical: those share a slot), 16 x 16 pixels: estimate 256 x 16 x 11
            x (1 + 2 lights) = 135168 tests, within 2e5; a pixel that sees
            the sphere alone does 2000 x 3. *)
-        let sphere = Spheres.get (Scene.spheres Scene.cgfs) 0 in
+        let sphere = Private.Spheres.get (Scene.spheres Scene.cgfs) 0 in
         let scene =
           Helpers.with_objects
             ~spheres:(List.init 2000 (fun i -> Sphere.v ~center:sphere.center ~radius:(sphere.radius +. (Float.of_int i *. 1e-5)) sphere.material))

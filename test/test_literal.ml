@@ -14,14 +14,14 @@ let ball = sphere Vec3.zero 1.
 let top = Vec3.oy
 
 let lighting ?(specular = Sphere.matte) ?(view = Vec3.oy) s =
-  Literal.compute_lighting s ~epsilon:0.001 ~point:top ~normal:Vec3.oy ~view ~specular
+  Private.Literal.compute_lighting s ~epsilon:0.001 ~point:top ~normal:Vec3.oy ~view ~specular
 
 let tests =
   [
     Alcotest.test_case "the closest of several hits wins (section 6.1)" `Quick (fun () ->
         let near_s = sphere (Vec3.v 0. 0. 3.) 1. and far_s = sphere (Vec3.v 0. 0. 10.) 1. in
         match
-          Literal.closest_intersection [ far_s; near_s ] ~origin:Vec3.zero ~direction:Vec3.oz
+          Private.Literal.closest_intersection [ far_s; near_s ] ~origin:Vec3.zero ~direction:Vec3.oz
             ~t_min:1. ~t_max:infinity
         with
         | Some (s, t) ->
@@ -33,7 +33,7 @@ let tests =
         let s = sphere (Vec3.v 0. 0. 3.) 1. in
         let hit ~t_min ~t_max =
           Option.map snd
-            (Literal.closest_intersection [ s ] ~origin:Vec3.zero ~direction:Vec3.oz ~t_min ~t_max)
+            (Private.Literal.closest_intersection [ s ] ~origin:Vec3.zero ~direction:Vec3.oz ~t_min ~t_max)
         in
         (* roots 2 and 4: the range is open at both ends *)
         Alcotest.(check (option (float 0.))) __LOC__ (Some 4.) (hit ~t_min:2. ~t_max:infinity);
@@ -83,7 +83,7 @@ let tests =
             [ Light.ambient 1. ]
         in
         let trace depth =
-          Literal.trace_ray s ~epsilon:0.001 ~origin:Vec3.zero ~direction:Vec3.oz ~t_min:1.
+          Private.Literal.trace_ray s ~epsilon:0.001 ~origin:Vec3.zero ~direction:Vec3.oz ~t_min:1.
             ~t_max:infinity ~depth
         in
         Alcotest.check Helpers.color __LOC__ (Color.v 100. 50. 127.5) (trace 3);
@@ -91,7 +91,7 @@ let tests =
         Alcotest.check Helpers.color __LOC__ (Color.v 200. 100. 0.) (trace 0));
     Alcotest.test_case "rendering visits exactly w x h pixels (section 8)" `Quick (fun () ->
         let s = (Scene.with_overrides ~width:7 ~height:4 ~background:(Color.v 1. 2. 3.) ((scene [] [ Light.ambient 1. ]))) in
-        let img = Literal.render (Helpers.valid s) in
+        let img = Private.Literal.render (Helpers.valid s) in
         Alcotest.(check (pair int int)) __LOC__ (7, 4) (Image.width img, Image.height img);
         Alcotest.(check (triple int int int)) __LOC__ (1, 2, 3) (Image.get img 6 3));
     Alcotest.test_case "what is above the camera lands in the top rows" `Quick (fun () ->
@@ -102,7 +102,7 @@ let tests =
         let s =
           (Scene.with_overrides ~width:4 ~height:4 ((scene [ sphere (Vec3.v 0. 101. 10.) 100. ] [ Light.ambient 1. ])))
         in
-        let img = Literal.render (Helpers.valid s) in
+        let img = Private.Literal.render (Helpers.valid s) in
         let white = (255, 255, 255) and black = (0, 0, 0) in
         List.iter
           (fun (row, expected) ->
@@ -173,7 +173,7 @@ let exact_tests =
               | None -> (0, 0, 0))
         in
         Alcotest.(check int) "rays that touch the box" 32 !touching;
-        Helpers.check_images "the oracle" ~expected (Literal.render (Helpers.valid s));
+        Helpers.check_images "the oracle" ~expected (Private.Literal.render (Helpers.valid s));
         Helpers.check_images "the fast renderer" ~expected (Helpers.image_exn s));
     Alcotest.test_case "inside a union of two boxes that share a face, the shared face is not seen" `Quick
       (fun () ->
@@ -193,8 +193,8 @@ let exact_tests =
               List.fold_left Q.min (Q.of_int 8)
                 (List.filter_map (fun c -> if c = 0. then None else Some (Q.div (Q.of_int 3) (Q.of_float (Float.abs c)))) [ d.x; d.y ])
             in
-            match Literal.closest_hit s ~origin:Vec3.zero ~direction:d ~t_min:1. ~t_max:infinity with
-            | Some (Literal.Csg_surface (_, leaf, _), t) ->
+            match Private.Literal.closest_hit s ~origin:Vec3.zero ~direction:d ~t_min:1. ~t_max:infinity with
+            | Some (Private.Literal.Csg_surface (_, leaf, _), t) ->
                 if not (leaf == b) then Alcotest.failf "pixel (%d, %d): the surface of A is seen" gx gy;
                 if not (Q.equal (Q.of_float t) exit) then
                   Alcotest.failf "pixel (%d, %d): t = %h, exactly %s" gx gy t (Q.to_string exit)
@@ -202,10 +202,10 @@ let exact_tests =
           done
         done;
         Helpers.check_images "ambient light: all green" ~expected:(expected_image n (fun _ _ -> (0, 255, 0)))
-          (Literal.render (Helpers.valid s));
+          (Private.Literal.render (Helpers.valid s));
         (* Lit from a point: the shared face would be lit differently. *)
         let lit = (Scene.with_overrides ~lights:([ Light.ambient 0.2; Light.point 0.8 (Vec3.v 1. 1. 1.) ]) s) in
-        Helpers.check_images "the fast renderer, lit" ~max_abs:1 ~expected:(Literal.render (Helpers.valid lit)) (Helpers.image_exn lit));
+        Helpers.check_images "the fast renderer, lit" ~max_abs:1 ~expected:(Private.Literal.render (Helpers.valid lit)) (Helpers.image_exn lit));
   ]
 
 let mesh_exn ~positions ~triangles =
@@ -248,7 +248,7 @@ let mesh_tests =
         List.iter
           (fun (what, m, inside) ->
             let expected = expected_image 16 (fun gx gy -> if inside gx gy then (255, 255, 255) else (0, 0, 0)) in
-            Helpers.check_images what ~expected (Literal.render (Helpers.valid (mesh_operand_scene m))))
+            Helpers.check_images what ~expected (Private.Literal.render (Helpers.valid (mesh_operand_scene m))))
           closed_meshes);
     Alcotest.test_case "the watertight crossing counts a line through a closed mesh's edge or vertex once" `Quick
       (fun () ->
@@ -286,7 +286,7 @@ let mesh_tests =
         let limits = Limits.with_bound Limits.default `Work 5000. in
         List.iter
           (fun (what, shape) ->
-            match Literal.render ~limits (Helpers.valid (exact_scene 16 [ shape ])) with
+            match Private.Literal.render ~limits (Helpers.valid (exact_scene 16 [ shape ])) with
             | exception Limits.Work_exceeded n -> Alcotest.(check int) what 5001 n
             | _ -> Alcotest.failf "%s: not stopped" what)
           [ ("64 spheres", Shape.Csg solid); ("a mesh", Shape.Csg (Csg.v Csg.Union (Csg.Mesh cube) (Csg.Mesh octahedron))) ]);
@@ -318,7 +318,7 @@ let disagreement_tests =
         Alcotest.(check bool) "the others negative" true (Q.sign (edge ~o ~d b c) < 0 && Q.sign (edge ~o ~d c a) < 0);
         let tri = Shape.Triangle (Triangle.v a b c (Material.v Color.white)) in
         let s = Helpers.scene ~epsilon:0.001 ~spheres:[] ~shapes:[ tri ] ~lights:[] () in
-        Alcotest.(check bool) "the oracle: no blocker" true (Literal.closest_hit s ~origin:o ~direction:d ~t_min:0.001 ~t_max:1. = None));
+        Alcotest.(check bool) "the oracle: no blocker" true (Private.Literal.closest_hit s ~origin:o ~direction:d ~t_min:0.001 ~t_max:1. = None));
     Alcotest.test_case "a ray beside a mesh's silhouette vertex hits the triangle it meets first, exactly" `Quick
       (fun () ->
         (* Along (1/4 - 2^-55, 0, 1) the line passes 2^-53 inside the
@@ -338,8 +338,8 @@ let disagreement_tests =
             (List.init (Mesh.triangle_count octahedron) Fun.id)
         in
         Alcotest.(check (list int)) "the triangles met" [ 0; 3; 4; 7 ] hits;
-        match Literal.closest_hit s ~origin:Vec3.zero ~direction:d ~t_min:1. ~t_max:infinity with
-        | Some (Literal.Mesh_triangle (_, k), _) -> Alcotest.(check int) "the first met" 4 k
+        match Private.Literal.closest_hit s ~origin:Vec3.zero ~direction:d ~t_min:1. ~t_max:infinity with
+        | Some (Private.Literal.Mesh_triangle (_, k), _) -> Alcotest.(check int) "the first met" 4 k
         | _ -> Alcotest.fail "no triangle");
   ]
 
@@ -396,7 +396,7 @@ let range_tests =
         let tr = Trace.create (Helpers.prepare ~skips:true s) in
         List.iter
           (fun (gx, gy, seen) ->
-            let c = Literal.pixel s gx gy in
+            let c = Private.Literal.pixel s gx gy in
             Trace.pixel tr gx gy;
             let expected = if seen then 255. else 0. in
             Alcotest.(check (float 0.)) (Printf.sprintf "the oracle's red at (%d, %d)" gx gy) expected c.r;

@@ -293,7 +293,7 @@ let tests =
                 then Alcotest.failf "%s: pixel (%d, %d) is not finite" what gx gy
               done
             done;
-            let lit = Literal.pixel scene 0 0 in
+            let lit = Private.Literal.pixel scene 0 0 in
             if not (Color.is_finite lit) then Alcotest.failf "%s: the oracle is not finite" what)
           (List.concat_map
              (fun epsilon ->

@@ -29,7 +29,7 @@ let small (s : Scene.t) = Scene.with_overrides ~width:64 ~height:48 s
 let forward (c : Camera.t) = Camera.direction c (Vec3.v 0. 0. 1.)
 
 let has_glass (s : Scene.t) =
-  Spheres.exists (fun (sp : Sphere.t) -> sp.material.transparency > 0.) (Scene.spheres s)
+  Private.Spheres.exists (fun (sp : Sphere.t) -> sp.material.transparency > 0.) (Scene.spheres s)
   || List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.transparency > 0.) (Shape.materials sh)) (Scene.shapes s)
 
 (* [s] with [f] applied to every material. *)
@@ -349,7 +349,7 @@ let tests =
                 Trace.pixel tr 0 0;
                 Alcotest.check (Helpers.float_near 1e-9) (Printf.sprintf "t = %g: fast" t) expected (Trace.red tr);
                 Alcotest.check (Helpers.float_near 1e-9) (Printf.sprintf "t = %g: oracle" t) expected
-                  (Literal.pixel s 0 0).r)
+                  (Private.Literal.pixel s 0 0).r)
               [ None; Some 0.001 ])
           [ (0.5, 255. *. 0.25); (0.8, 255. *. 0.8 *. 0.8); (1., 255.); (0., 0.) ]);
     Alcotest.test_case "light through two glass slabs 1e-10 apart is scaled by each of their four faces" `Quick
@@ -391,7 +391,7 @@ let tests =
     Helpers.qcheck ~count:100 "random glass scenes in the document's mode render as the oracle does" glass_scenes
       (fun s ->
         let s = (Scene.with_overrides ~epsilon:(Some 0.001) s) in
-        Image.equal (Literal.render (Helpers.valid s)) (Helpers.image_exn s));
+        Image.equal (Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s));
     Alcotest.test_case "the glass scenes in the document's mode render as the oracle does, byte for byte" `Quick
       (fun () ->
         (* Smooth glass included: where a corner-interpolated normal would
@@ -399,7 +399,7 @@ let tests =
         List.iter
           (fun name ->
             let s = (Scene.with_overrides ~epsilon:(Some 0.001) ((Scene.with_overrides ~width:48 ~height:36 (Helpers.load_scene name)))) in
-            same name ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
+            same name ~expected:(Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s))
           [ "glass.scene"; "glass-knot.scene"; "glass-lens.scene" ]);
     Alcotest.test_case "the tree stops early: deep glass traces fewer rays with the skips, for the same bytes"
       `Quick (fun () ->
@@ -465,7 +465,7 @@ let tests =
                 then Alcotest.failf "pixel (%d, %d) is not finite" gx gy
               done
             done;
-            if not (Color.is_finite (Literal.pixel s 0 0)) then Alcotest.fail "the oracle is not finite")
+            if not (Color.is_finite (Private.Literal.pixel s 0 0)) then Alcotest.fail "the oracle is not finite")
           [ None; Some 0.001 ]);
     Alcotest.test_case
       "nested glass slabs, the inner left before the outer: the edge behind them is where Snell's law puts it with \

@@ -185,7 +185,7 @@ let tests =
         List.iteri
           (fun i (s : Scene.t) ->
             let s = Gen_scene.with_patterns rand (Scene.with_overrides ~epsilon:(Some 0.001) s) in
-            let expected = Literal.render (Helpers.valid s) in
+            let expected = Private.Literal.render (Helpers.valid s) in
             Helpers.check_images (Printf.sprintf "scene %d:\n%s" i (Scene.show s)) ~expected (Helpers.image_exn s))
           scenes);
     Alcotest.test_case "with patterns, switching the skips off changes no byte" `Quick (fun () ->

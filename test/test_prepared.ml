@@ -54,7 +54,7 @@ let check_same what (a : Prepared.t) (b : Prepared.t) =
 (* [s] with copies of some of its spheres, one of them at -0. where it had
    0., far from their originals in scene order. *)
 let with_twins (s : Scene.t) =
-  let l = Spheres.to_list (Scene.spheres s) in
+  let l = Private.Spheres.to_list (Scene.spheres s) in
   let negative_zero x = if x = 0. then -0. else x in
   let copies =
     List.filteri (fun i _ -> i mod 997 = 3) l
@@ -178,7 +178,7 @@ let tests =
            the planes are: the same nodes, and the slots' objects those
            of the mesh first, moved by the planes before it. *)
         let m =
-          let o = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1.5 ~tube:0.2 ~segments:120 ~sides:8 in
+          let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1.5 ~tube:0.2 ~segments:120 ~sides:8 in
           match
             Mesh.v ~smooth:true ~translate:(Vec3.v 0. 0. 3.) ~positions:o.positions ~triangles:o.triangles
               ~normals:o.normals ~triangle_normals:o.triangle_normals (Material.v ~specular:50. Color.white)

@@ -230,7 +230,7 @@ let tests =
         in
         let grey = Material.v (Color.v 90. 90. 90.) in
         let terrain y =
-          let o = Mesh_gen.terrain ~seed:1 ~nx:4 ~nz:4 ~size:30. ~height:0. in
+          let o = Mesh.Gen.terrain ~seed:1 ~nx:4 ~nz:4 ~size:30. ~height:0. in
           match Mesh.v ~translate:(v 0. y 2.) ~positions:o.positions ~triangles:o.triangles ~normals:o.normals ~triangle_normals:o.triangle_normals grey with
           | Ok m -> Shape.Mesh m
           | Error (`Msg m) -> Alcotest.fail m
@@ -278,7 +278,7 @@ let tests =
         let grey = Material.v (Color.v 90. 90. 90.) in
         let far = List.init 12 (fun k -> Helpers.sphere ~center:(v (float k) 10. (-10.)) ~radius:0.3 Color.white) in
         let small_mesh =
-          let o = Mesh_gen.terrain ~seed:2 ~nx:3 ~nz:3 ~size:0.8 ~height:0.1 in
+          let o = Mesh.Gen.terrain ~seed:2 ~nx:3 ~nz:3 ~size:0.8 ~height:0.1 in
           match Mesh.v ~translate:(v 0. 1. 2.) ~positions:o.positions ~triangles:o.triangles ~normals:o.normals ~triangle_normals:o.triangle_normals grey with
           | Ok m -> Shape.Mesh m
           | Error (`Msg m) -> Alcotest.fail m

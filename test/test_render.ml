@@ -24,8 +24,8 @@ let robust_share (s : Scene.t) =
 
 let check_against_oracle what (s : Scene.t) =
   match (Scene.epsilon s) with
-  | Some _ -> Helpers.check_images what ~expected:(Literal.render (Helpers.valid s)) (render s)
-  | None -> Helpers.check_images ~min_share:(robust_share s) what ~expected:(Literal.render (Helpers.valid s)) (render s)
+  | Some _ -> Helpers.check_images what ~expected:(Private.Literal.render (Helpers.valid s)) (render s)
+  | None -> Helpers.check_images ~min_share:(robust_share s) what ~expected:(Private.Literal.render (Helpers.valid s)) (render s)
 
 (* Random scenes in the document's mode. *)
 let document_mode =
@@ -47,9 +47,9 @@ let tests =
               (Scene.with_overrides ~epsilon:None ((Scene.with_overrides ~width:120 ~height:120 (Helpers.load_scene name)))))
           (Helpers.scene_names ()));
     Alcotest.test_case "the reference scene at full size matches the oracle" `Slow (fun () ->
-        Helpers.check_images "cgfs 600x600" ~expected:(Literal.render (Helpers.valid Scene.cgfs)) (render Scene.cgfs));
+        Helpers.check_images "cgfs 600x600" ~expected:(Private.Literal.render (Helpers.valid Scene.cgfs)) (render Scene.cgfs));
     Helpers.qcheck ~count:150 "random scenes in the document's mode render as the oracle does"
-      document_mode (fun s -> Image.equal (Literal.render (Helpers.valid s)) (render s));
+      document_mode (fun s -> Image.equal (Private.Literal.render (Helpers.valid s)) (render s));
     Alcotest.test_case "random scenes in the robust mode are within 1 of the oracle on 99.9% of pixels"
       `Quick (fun () ->
         let scenes = QCheck.Gen.generate ~rand:(Random.State.make [| 7 |]) ~n:300 Gen_scene.gen in
@@ -57,7 +57,7 @@ let tests =
         List.iter
           (fun (s : Scene.t) ->
             let s = (Scene.with_overrides ~epsilon:None s) in
-            match Image_diff.compare (Literal.render (Helpers.valid s)) (render s) with
+            match Image.Diff.compare (Private.Literal.render (Helpers.valid s)) (render s) with
             | Ok d ->
                 pixels := !pixels + d.pixels;
                 off := !off + d.differing_gt1

@@ -87,7 +87,7 @@ let tests =
         List.iter
           (fun name ->
             let s = small (Helpers.load_scene name) in
-            let expected = Literal.render (Helpers.valid s) in
+            let expected = Private.Literal.render (Helpers.valid s) in
             (* A robust scene's differences from the oracle are those of
                test_render; the sampling paths add none. *)
             let min_share = if (Scene.epsilon s) = None then Some (Test_render.robust_share s) else None in
@@ -124,7 +124,7 @@ let tests =
     Helpers.qcheck ~count:100 "adaptive sampling never traces more rays than full sampling" sampling_settings
       (fun (s, n, th) ->
         let _, full = render ~samples:n s and _, adaptive = render ~samples:n ~adaptive:th s in
-        adaptive.primary <= full.primary && Stats.rays adaptive <= Stats.rays full);
+        adaptive.primary <= full.primary && Render.Stats.rays adaptive <= Render.Stats.rays full);
     Helpers.qcheck ~count:100 "each adaptive pixel is the full-sampling pixel or the document's pixel"
       sampling_settings (fun (s, n, th) ->
         let full = image ~samples:n s and one = image s and adaptive = image ~samples:n ~adaptive:th s in
@@ -175,17 +175,17 @@ let tests =
           ]);
     Alcotest.test_case "a region is the same region of the whole image in every sampling mode" `Quick (fun () ->
         let s = Scene.with_overrides ~width:37 ~height:23 Scene.cgfs_camera in
-        let full = Region.full ~width:37 ~height:23 in
+        let full = Render.Region.full ~width:37 ~height:23 in
         List.iter
           (fun (what, render) ->
             let whole = region_of render s full in
             List.iter
-              (fun (r : Region.t) ->
+              (fun (r : Render.Region.t) ->
                 let expected = Image.sub whole ~x:r.x ~y:r.y ~w:r.w ~h:r.h in
-                let name = Format.asprintf "%s, region %a" what Region.pp r in
+                let name = Format.asprintf "%s, region %a" what Render.Region.pp r in
                 Helpers.check_images name ~expected (region_of render s r);
                 Helpers.check_images (name ^ ", 2 jobs") ~expected (region_of render ~jobs:2 s r))
-              Region.[ { x = 5; y = 3; w = 20; h = 11 }; { x = 0; y = 0; w = 1; h = 1 }; { x = 36; y = 22; w = 1; h = 1 };
+              Render.Region.[ { x = 5; y = 3; w = 20; h = 11 }; { x = 0; y = 0; w = 1; h = 1 }; { x = 36; y = 22; w = 1; h = 1 };
                        { x = 1; y = 1; w = 35; h = 21 }; { x = 0; y = 7; w = 37; h = 4 }; { x = 10; y = 0; w = 3; h = 23 } ])
           modes);
     Helpers.qcheck ~count:60 "any region of any scene is that part of the whole, in every sampling mode"
@@ -195,13 +195,13 @@ let tests =
         let w = 1 + (c mod ((Scene.width s) - x)) and h = 1 + (d mod ((Scene.height s) - y)) in
         List.for_all
           (fun (_, render) ->
-            let whole = region_of render s (Region.full ~width:(Scene.width s) ~height:(Scene.height s)) in
+            let whole = region_of render s (Render.Region.full ~width:(Scene.width s) ~height:(Scene.height s)) in
             Image.equal (Image.sub whole ~x ~y ~w ~h) (region_of render s { x; y; w; h }))
           modes);
     Alcotest.test_case "tracing allocates nothing per pixel, whatever the sampling" `Quick (fun () ->
         let s = Scene.with_overrides ~width:60 ~height:60 Scene.cgfs in
         List.iter
-          (fun (what, (_, (st : Stats.t))) -> Alcotest.(check (float 0.)) what 0. st.minor_words)
+          (fun (what, (_, (st : Render.Stats.t))) -> Alcotest.(check (float 0.)) what 0. st.minor_words)
           [
             ("samples 3", render ~samples:3 s);
             ("adaptive", render ~samples:3 ~adaptive:4 s);
@@ -240,7 +240,7 @@ let tests =
     Alcotest.test_case "bad sampling settings are refused with a message" `Quick (fun () ->
         List.iter
           (fun (samples, adaptive, subsample, expected) ->
-            match Sampling.v ~samples ?adaptive ~subsample () with
+            match Render.Sampling.v ~samples ?adaptive ~subsample () with
             | Ok _ -> Alcotest.failf "accepted %S" expected
             | Error (`Msg m) -> Alcotest.(check string) __LOC__ expected m)
           [

@@ -68,7 +68,7 @@ let tests =
                 let img = Helpers.image_exn s in
                 let r, _, b = Image.get img 0 0 in
                 Alcotest.(check (pair int int)) (what ^ ": fast") expected (r, b);
-                let c = Literal.pixel (Scene.of_valid valid) 0 0 in
+                let c = Private.Literal.pixel (Scene.of_valid valid) 0 0 in
                 Alcotest.(check (pair int int)) (what ^ ": literal") expected (Color.to_byte c.r, Color.to_byte c.b))
               [ None; Some 0.001 ])
           [ ([ blue; red ], (0, 255), "box first"); ([ red; blue ], (255, 0), "sphere first") ]);

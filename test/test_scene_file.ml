@@ -116,7 +116,7 @@ let meshes =
 
 let load_mesh path =
   match List.assoc_opt path meshes with
-  | Some text -> Obj_file.of_string ~name:path ~max_vertices:100 ~max_triangles:100 text
+  | Some text -> Mesh.Obj.of_string ~name:path ~max_vertices:100 ~max_triangles:100 text
   | None -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s: No such file or directory" path))
 
 let with_mesh text = Result.map Scene.of_valid (Scene_file.of_string ~load_mesh ~file:"dir/t.scene" text)
@@ -139,7 +139,7 @@ let tests =
         Alcotest.check Helpers.color __LOC__ Color.black (Scene.background s));
     Alcotest.test_case "specular and reflective default to matte and 0" `Quick (fun () ->
         let s = parse "(sphere (center 0 0 3) (radius 1) (color 1 2 3))" in
-        match Spheres.to_list (Scene.spheres s) with
+        match Private.Spheres.to_list (Scene.spheres s) with
         | [ sp ] ->
             Alcotest.(check (float 0.)) __LOC__ (-1.) sp.material.specular;
             Alcotest.(check (float 0.)) __LOC__ 0. sp.material.reflective
@@ -215,14 +215,14 @@ let tests =
             "; line\n#| block |#\n#;(sphere (center 0 0 0))\n(recursion-depth 2) ; trailing\n"
         in
         Alcotest.(check int) __LOC__ 2 (Scene.depth s);
-        Alcotest.(check int) __LOC__ 0 (Spheres.length (Scene.spheres s)));
+        Alcotest.(check int) __LOC__ 0 (Private.Spheres.length (Scene.spheres s)));
     Alcotest.test_case "a UTF-8 byte order mark at the start reads as blanks, in both readers and in windows" `Quick
       (fun () ->
         let bom = "\xef\xbb\xbf" in
         let text = "(canvas (width 8) (height 6))\n(sphere (center 0 0 3) (radius 1) (color 1 2 3))\n" in
         let read ?(window_bytes = 1 lsl 20) reader t =
           Result.map Scene.of_valid
-            (Scene_file.of_source ~file:"t.scene" ~reader ~window_bytes (Scene_file.string_source t))
+            (Private.Scene_text.of_source ~file:"t.scene" ~reader ~window_bytes (Private.Scene_text.string_source t))
         in
         List.iter
           (fun (what, reader, window_bytes) ->
@@ -270,9 +270,9 @@ let tests =
         match (Scene.camera_path s) with
         | None -> Alcotest.fail "no camera path"
         | Some p ->
-            Alcotest.(check (list int)) __LOC__ [ 2; 10 ] (List.map (fun (k : Camera_path.key) -> k.frame) (Camera_path.keys p));
-            Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 1. 0.5) (List.nth (Camera_path.keys p) 1).up;
-            Alcotest.check Helpers.vec3 __LOC__ Vec3.oy (List.hd (Camera_path.keys p)).up;
+            Alcotest.(check (list int)) __LOC__ [ 2; 10 ] (List.map (fun (k : Camera.Path.key) -> k.frame) (Camera.Path.keys p));
+            Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 1. 0.5) (List.nth (Camera.Path.keys p) 1).up;
+            Alcotest.check Helpers.vec3 __LOC__ Vec3.oy (List.hd (Camera.Path.keys p)).up;
             (match Camera.look_at ~position:(Vec3.v 0. 1. (-2.)) (Vec3.v 0. 0. 4.) with
             | Ok c -> Alcotest.(check bool) __LOC__ true (Camera.equal c (Scene.camera s))
             | Error (`Msg m) -> Alcotest.fail m);
@@ -305,15 +305,15 @@ let tests =
         in
         has_line "Viewport.show" (Viewport.show (Scene.viewport s));
         has_line "Camera.show" (Camera.show (Scene.camera s));
-        Spheres.iter (fun x -> has_line "Sphere.show" (Sphere.show x)) (Scene.spheres s);
+        Private.Spheres.iter (fun x -> has_line "Sphere.show" (Sphere.show x)) (Scene.spheres s);
         List.iter (fun x -> has_line "Shape.show" (Shape.show x)) (Scene.shapes s);
         List.iter (fun x -> has_line "Light.show" (Light.show x)) (Scene.lights s);
         Option.iter
           (fun p ->
-            let form = Camera_path.show p in
+            let form = Camera.Path.show p in
             let n = String.length form and t = String.length text in
             let rec found i = i + n <= t && (String.sub text i n = form || found (i + 1)) in
-            if not (found 0) then QCheck.Test.fail_reportf "Camera_path.show prints %S, not in:\n%s" form text)
+            if not (found 0) then QCheck.Test.fail_reportf "Camera.Path.show prints %S, not in:\n%s" form text)
           (Scene.camera_path s);
         true);
       Alcotest.test_case "the new shapes read with their fields and defaults" `Quick (fun () ->

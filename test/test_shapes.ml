@@ -558,13 +558,13 @@ let tests =
         in
         let twice = Helpers.with_objects ~spheres:(Helpers.scene_spheres s @ List.rev_map copy (Helpers.scene_spheres s)) s in
         Alcotest.(check bool) "some centre has a 0 coordinate" true
-          (List.exists (fun (sp : Sphere.t) -> sp.center.x = 0. || sp.center.y = 0. || sp.center.z = 0.) (Spheres.to_list (Scene.spheres s)));
+          (List.exists (fun (sp : Sphere.t) -> sp.center.x = 0. || sp.center.y = 0. || sp.center.z = 0.) (Private.Spheres.to_list (Scene.spheres s)));
         List.iter
           (fun (mode, epsilon) ->
             let s = (Scene.with_overrides ~epsilon s) and twice = (Scene.with_overrides ~epsilon twice) in
             Alcotest.(check int) (mode ^ ": one slot per distinct sphere") (Helpers.prepare s).n_objects
               (Helpers.prepare twice).n_objects;
-            Alcotest.(check int) (mode ^ ": every sphere counted") (2 * Spheres.length (Scene.spheres s))
+            Alcotest.(check int) (mode ^ ": every sphere counted") (2 * Private.Spheres.length (Scene.spheres s))
               (Helpers.prepare twice).n_scene_objects;
             Helpers.check_images (mode ^ ", every sphere twice") ~expected:(Helpers.image_exn s) (Helpers.image_exn twice))
           [ ("robust", None); ("epsilon 0.001", Some 0.001) ])
@@ -594,10 +594,10 @@ let tests =
             List.iter
               (fun u ->
                 let s = scene u exponent in
-                if (Literal.pixel s 0 0).r > 1. then incr exploded;
+                if (Private.Literal.pixel s 0 0).r > 1. then incr exploded;
                 let x, y, z = u in
                 Helpers.check_images (Printf.sprintf "u = (%g %g %g), specular %g" x y z exponent)
-                  ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
+                  ~expected:(Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s))
               [ (1., -3., 4.); (1., 4., 3.); (2., 0., 6.); (2., 1., 1.); (2., 2., 3.); (1., 2., 3.) ])
           [ 1e15; 1e16; 1e17; 1e18; 1e20; 1e300 ];
         (* The cases do reach the colours that broke the bound. *)
@@ -606,7 +606,7 @@ let tests =
           (fun exponent ->
             let s = Scene.with_overrides ~width:64 ~height:64 Scene.cgfs in
             let s = Helpers.with_objects ~spheres:(List.map (fun sp -> Helpers.with_sphere_material sp (Material.update ~specular:exponent)) (Helpers.scene_spheres s)) s in
-            Helpers.check_images (Printf.sprintf "cgfs, specular %g" exponent) ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
+            Helpers.check_images (Printf.sprintf "cgfs, specular %g" exponent) ~expected:(Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s))
           [ 1e16; 1e300 ]);
     Alcotest.test_case "roots exactly at t_min are not seen, just above they are, as in the oracle" `Quick (fun () ->
         (* A ceiling 0.25 above the floor point (1, 0, 5): the ray straight
@@ -617,7 +617,7 @@ let tests =
           (fun epsilon ->
             let s = Helpers.scene ~epsilon ~spheres:[] ~shapes:[ Shape.Plane ceiling ] ~lights:[] () in
             let fast = Trace.cast (Trace.create (Helpers.prepare s)) ~from:(-1) origin up in
-            let literal = Literal.closest_hit s ~origin ~direction:up ~t_min:epsilon ~t_max:infinity in
+            let literal = Private.Literal.closest_hit s ~origin ~direction:up ~t_min:epsilon ~t_max:infinity in
             Alcotest.(check bool) (Printf.sprintf "epsilon %h: the oracle's answer" epsilon) (literal <> None) (fast >= 0);
             Alcotest.(check bool) (Printf.sprintf "epsilon %h: seen" epsilon) (epsilon < 0.25) (fast >= 0))
           [ 0.25; Float.pred 0.25; Float.succ 0.25 ];
@@ -629,7 +629,7 @@ let tests =
             ~lights:[ Light.ambient 1. ] ()
         in
         Alcotest.(check bool) "the plane at t = 1: floats as the oracle's" true (Helpers.oracle_floats s);
-        let c = Literal.pixel s 0 0 in
+        let c = Private.Literal.pixel s 0 0 in
         Alcotest.(check (float 0.)) "the sphere behind shows" 255. c.g);
     Alcotest.test_case "coincident shapes of different colours: the first wins, as in the oracle" `Quick (fun () ->
         let red = Material.v ~specular:100. (Color.v 255. 0. 0.) and blue = Material.v ~reflective:0.3 (Color.v 0. 0. 255.) in
@@ -655,7 +655,7 @@ let tests =
                 ~lights:[ Light.ambient 0.3; Light.point 0.6 (Vec3.v 2. 3. 0.); Light.directional 0.2 (Vec3.v 1. 4. 4.) ] ()
             in
             if not (Helpers.oracle_floats s) then Alcotest.failf "%s: the fast colours differ from the oracle's" what;
-            Helpers.check_images (what ^ ": bytes, with the skips") ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
+            Helpers.check_images (what ^ ": bytes, with the skips") ~expected:(Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s))
           [
             ("two floors", [], [ floor red; floor blue ]);
             ("two floors, the other order", [], [ floor blue; floor red ]);
@@ -668,7 +668,7 @@ let tests =
         (* Counted on the commit that introduced the shapes' kernel; a change
            here means the tracer does more or less work than it did: say
            why in the commit. *)
-        let counts (st : Stats.t) = [ st.primary; st.shadow; st.reflection; st.tests; st.box_tests; st.early_stops ] in
+        let counts (st : Render.Stats.t) = [ st.primary; st.shadow; st.reflection; st.tests; st.box_tests; st.early_stops ] in
         let fails = ref [] in
         List.iter
           (fun (name, expected) ->

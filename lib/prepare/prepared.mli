@@ -27,7 +27,7 @@ type t = private {
           colour. *)
   pattern : float array;
       (** Per material [m], at [Pattern.stride * m], its pattern as
-          {!Pattern.store} writes it, on its object's {!Shape.pattern_frame}
+          [Pattern.store] writes it, on its object's {!Shape.pattern_frame}
           (zeros where [alternate] is [-1]; empty when no material has a
           pattern). *)
   textbook_all : bool;

@@ -127,7 +127,7 @@ val grid : int -> t
 
 val document_epsilon : float
 (** [document_epsilon] is [0.0001], the document's lower bound of [t] for
-    shadow rays (7.7), used by {!Literal} for scenes without an epsilon. *)
+    shadow rays (7.7), used by {!Raytrace.Private.Literal} for scenes without an epsilon. *)
 
 (** {1:validation Validation} *)
 
@@ -153,7 +153,7 @@ val validate : ?limits:Limits.t -> t -> (valid, [> `Msg of string ]) result
     or [light 2 (point): ...]: objects are numbered from [1] in the order
     of {!objects} (the first failing one is reported), a mesh or a CSG
     solid counting as one object; lights from [1] in the order of
-    {!lights}; the kind in parentheses is the scene-file form
+    {!val-lights}; the kind in parentheses is the scene-file form
     ({!Shape.name}, or [ambient], [point], [directional]). A scene read by
     {!Scene_file} has each object checked where it is read, so its
     messages name [file:line:column] instead. *)
@@ -193,7 +193,7 @@ val check_work : ?limits:Limits.t -> ?samples:int -> ?pixels:int -> valid -> (un
 
 val at_frame : valid -> int -> (valid, [> `Msg of string ]) result
 (** [at_frame s f] is the still scene of frame [f] of [s]'s camera path:
-    [s] with the path's camera of frame [f] ({!Camera_path.camera}) and no
+    [s] with the path's camera of frame [f] ({!Raytrace.Camera.Path.camera}) and no
     camera path. [Error] if [s] has no camera path or [f] lies outside
     it. *)
 

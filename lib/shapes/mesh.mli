@@ -4,7 +4,7 @@
     optional normal per triangle corner for smooth shading, and the
     placement of its file in the scene ([scale], then [translate]). Each
     of its triangles is an object of the kernel of its own, so that meshes
-    share the watertight test ({!Triangle.roots_at}), the hierarchy and
+    share the watertight test ([Triangle.roots_at]), the hierarchy and
     everything else with the other shapes; the kernel reads its corners
     in [positions], where neighbouring triangles read them too: a shared
     edge is computed from the same floats in both triangles, and leaks no
@@ -65,7 +65,7 @@ val of_obj :
   (t, [> `Msg of string ]) result
 (** [of_obj ~smooth ~scale ~translate ~source obj m] is the mesh of
     [obj]'s arrays placed as {!v} places them, with [skipped] set to
-    {!Obj_file.skipped_total}[ obj]: the mesh the scene form
+    {!Raytrace.Mesh.Obj.skipped_total}[ obj]: the mesh the scene form
     [(mesh (file source) (scale ...) (translate ...) (smooth ...))]
     makes of its file, and the errors of {!v}. The placed positions are
     a new array; the index and normal arrays are [obj]'s, shared. *)

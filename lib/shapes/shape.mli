@@ -5,7 +5,7 @@
     written by the shape module's [store]; a triangle's three corners in
     an array of vertices, a mesh's shared by its triangles). This module
     ties the kinds to the shape modules, for the kernel and for
-    {!Literal}. *)
+    {!Raytrace.Private.Literal}. *)
 
 type t = Sphere of Sphere.t | Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t
 (** The type for shapes. *)
@@ -54,11 +54,11 @@ val box : int
 
 val smooth_triangle : int
 (** [smooth_triangle] is [4]: a mesh's triangle shaded with normals
-    interpolated from its corners ({!Triangle.smooth_normal}). *)
+    interpolated from its corners ([Triangle.smooth_normal]). *)
 
 val csg : int
 (** [csg] is [5]: a CSG solid, whose geometry is the number of its root
-    node in the kernel's {!Csg.type-table} (see {!Raytrace.Private.Prepared}). *)
+    node in the kernel's [Csg.type-table] (see {!Raytrace.Private.Prepared}). *)
 
 val kind : t -> int
 (** [kind s] is the kind of [s].
@@ -82,7 +82,7 @@ val bounds : t -> Vec3.t * float
     @raise Invalid_argument on a plane. *)
 
 val pattern_frame : t -> Vec3.t * float * float
-(** [pattern_frame s] is [(origin, scale, extent)] for {!Pattern.store}:
+(** [pattern_frame s] is [(origin, scale, extent)] for [Pattern.store]:
     the world origin and scale of the coordinates a pattern on [s] uses
     (world coordinates for planes and triangles; the [min] corner for
     boxes; the mesh's [translate] and [scale] for meshes), and the

@@ -66,7 +66,7 @@ val check_reflective : float -> (float, [> `Msg of string ]) result
 
 val extent : t -> float
 (** [extent s] is [max |c_x| |c_y| |c_z| + r]: no coordinate of a point
-    of [s] is larger in magnitude (for {!Pattern.store}). *)
+    of [s] is larger in magnitude (for [Pattern.store]). *)
 val check_transparency : float -> (float, [> `Msg of string ]) result
 (** [check_transparency t] checks [0 <= t <= 1]. *)
 
