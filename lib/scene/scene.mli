@@ -219,8 +219,22 @@ type view = {
 }
 
 val view : t -> view
+(** [view s] is [s]'s parts as a record (no copy). *)
+
 val spheres : t -> Spheres.t
+(** [spheres s] is the spheres of [s], in order. *)
+
 val placed : t -> (int * Shape.t) list
+(** [placed s] is the other objects of [s], in order, each with the
+    number of spheres before it in the list. *)
+
 val shapes : t -> Shape.t list
+(** [shapes s] is the other objects of [s], in order. *)
+
 val with_objects : t -> spheres:Spheres.t -> placed:(int * Shape.t) list -> t
+(** [with_objects s ~spheres ~placed] is [s] with these objects (as a
+    reader builds them, without a list of the spheres). *)
+
 val iter_objects : t -> sphere:(int -> unit) -> shape:(Shape.t -> unit) -> unit
+(** [iter_objects s ~sphere ~shape] walks the objects of [s] in order:
+    [sphere i] for sphere [i] of {!spheres}, [shape sh] for the others. *)
