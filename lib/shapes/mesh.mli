@@ -10,6 +10,10 @@
     edge is computed from the same floats in both triangles, and leaks no
     ray. *)
 
+type found
+(** The type for what a mesh finds of its triangles when it is made
+    (which are degenerate, how many are not), for the tracer. *)
+
 type t = private {
   positions : float array;  (** [x y z] per vertex, already scaled and translated. *)
   triangles : int array;  (** Three 0-based vertex numbers per triangle. *)
@@ -25,11 +29,7 @@ type t = private {
   scale : float;  (** The scale applied to the file's positions. *)
   translate : Vec3.t;  (** The translation applied after the scale. *)
   skipped : int;  (** Statements of the file that were skipped (not v, vn or f). *)
-  flat : Bytes.t;
-      (** Per triangle, ['\001'] if it is degenerate ({!degenerate}),
-          ['\000'] if not: found once, when the mesh is made, for the
-          kernel that asks it of each triangle several times. *)
-  objects : int;  (** The triangles that are not degenerate ({!val-objects}). *)
+  found : found;  (** What the mesh found of its triangles: {!degenerate}, {!val-objects}. *)
 }
 (** The type for meshes. *)
 
