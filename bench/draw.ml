@@ -64,16 +64,16 @@ let () =
   let scene = scene () in
   let img = match Render.image scene with Ok (img, _) -> img | Error (`Msg m) -> failwith m in
   let scene = Scene.of_valid scene in
-  Graphics.open_graph (Printf.sprintf " %dx%d" scene.width scene.height);
-  Graphics.resize_window scene.width scene.height;
+  Graphics.open_graph (Printf.sprintf " %dx%d" (Scene.width scene) (Scene.height scene));
+  Graphics.resize_window (Scene.width scene) (Scene.height scene);
   Graphics.auto_synchronize false;
-  Printf.printf "drawing a %dx%d frame of %s\n" scene.width scene.height
+  Printf.printf "drawing a %dx%d frame of %s\n" (Scene.width scene) (Scene.height scene)
     (if Array.length Sys.argv > 1 then Sys.argv.(1) else "the CGFS scene");
   let direct = List.init runs (fun _ -> time (fun () -> each_pixel img plotc)) in
   let buffered =
     List.init runs (fun _ ->
         time (fun () ->
-            rows := Array.init scene.height (fun _ -> Array.make scene.width 0);
+            rows := Array.init (Scene.height scene) (fun _ -> Array.make (Scene.width scene) 0);
             each_pixel img plotc_rows;
             Graphics.draw_image (Graphics.make_image !rows) 0 0))
   in

@@ -37,13 +37,13 @@ let () =
   let mesh =
     try
       match !kind with
-      | "knot" -> Mesh_gen.torus_knot ~p:!p ~q:!q ~radius:!radius ~tube:!tube ~segments:!segments ~sides:!sides
-      | "terrain" -> Mesh_gen.terrain ~seed:!seed ~nx:!nx ~nz:!nz ~size:!size ~height:!height
+      | "knot" -> Mesh.Gen.torus_knot ~p:!p ~q:!q ~radius:!radius ~tube:!tube ~segments:!segments ~sides:!sides
+      | "terrain" -> Mesh.Gen.terrain ~seed:!seed ~nx:!nx ~nz:!nz ~size:!size ~height:!height
       | _ -> prerr_endline usage; exit 2
     with Invalid_argument _ -> prerr_endline ("gen: invalid arguments\n" ^ usage); exit 2
   in
   let b = Buffer.create (1 lsl 20) in
-  Obj_file.to_buffer ~digits:!digits b mesh;
+  Mesh.Obj.to_buffer ~digits:!digits b mesh;
   let oc = if !out = "-" then stdout else open_out_bin !out in
   Buffer.output_buffer oc b;
   close_out oc

@@ -21,15 +21,15 @@ let () =
   let m = match Files.read_mesh ~jobs ~on_part file with Ok m -> m | Error (`Msg e) -> prerr_endline e; exit 1 in
   let t = Unix.gettimeofday () -. t0 and cpu = Sys.time () -. cpu0 in
   let child = (Unix.times ()).tms_cutime in
-  let tris = Obj_file.triangle_count m in
+  let tris = Mesh.Obj.triangle_count m in
   let top_heap = Float.of_int ((Gc.quick_stat ()).top_heap_words * (Sys.word_size / 8)) /. 1048576. in
   (* What the mesh holds: its normal numbers may be its vertex numbers. *)
   let result_mb = Float.of_int (Obj.reachable_words (Obj.repr m) * (Sys.word_size / 8)) /. 1048576. in
   Printf.printf "%s: %.1f MB, %d vertices, %d normals, %d triangles\n" file (Float.of_int size /. 1048576.)
-    (Obj_file.vertex_count m) (Array.length m.normals / 3) tris;
+    (Mesh.Obj.vertex_count m) (Array.length m.normals / 3) tris;
   Printf.printf "cpu s: this process %.3f, its child %.3f\n" cpu child;
   Printf.printf "load %.3f s (%.0f MB/s), minor words %.0f (%.1f per line)\n" t (Float.of_int size /. 1048576. /. t)
     (Gc.minor_words ())
-    (Gc.minor_words () /. Float.of_int (Obj_file.vertex_count m + (Array.length m.normals / 3) + tris));
+    (Gc.minor_words () /. Float.of_int (Mesh.Obj.vertex_count m + (Array.length m.normals / 3) + tris));
   Printf.printf "mesh %.1f MB (%.1f bytes per triangle), peak heap %.1f MB, peak RSS %.1f MB\n" result_mb
     (result_mb *. 1048576. /. Float.of_int (max 1 tris)) top_heap (Peak_rss.mb ())

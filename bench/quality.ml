@@ -107,8 +107,8 @@ type row = {
   wall : float;  (** Median wall-clock seconds. *)
   primary_pp : float;  (** Primary rays per pixel. *)
   rays_pp : float;  (** All rays per pixel. *)
-  diff : Image_diff.t;
-  depth_diff : Image_diff.t option;
+  diff : Image.Diff.t;
+  depth_diff : Image.Diff.t option;
       (** One ray per pixel: against one ray per pixel at [reference_depth]. *)
   mutable pareto : bool;
 }
@@ -315,7 +315,7 @@ let () =
         if !only <> [] && not (List.mem n !only) then None
         else
           match Result.map Scene.of_valid (Files.read_scene path) with
-          | Ok s -> Some (n, path, (if !half then s.width / 2 else s.width), if !half then s.height / 2 else s.height)
+          | Ok s -> Some (n, path, (if !half then (Scene.width s) / 2 else (Scene.width s)), if !half then (Scene.height s) / 2 else (Scene.height s))
           | Error (`Msg m) -> failwith m)
       scenes
   in
@@ -338,8 +338,8 @@ let () =
         in
         List.map
           (fun s ->
-            let img, (stats : Stats.t), times, wall = measure ~runs:!runs scene s in
-            let compare a = match Image_diff.compare a img with Ok d -> d | Error (`Msg m) -> failwith m in
+            let img, (stats : Render.Stats.t), times, wall = measure ~runs:!runs scene s in
+            let compare a = match Image.Diff.compare a img with Ok d -> d | Error (`Msg m) -> failwith m in
             let diff = compare reference in
             let depth_diff = if s.family = "depth" then Some (compare depth_reference) else None in
             let px = Float.of_int stats.pixels in
@@ -350,7 +350,7 @@ let () =
                 times;
                 wall;
                 primary_pp = Float.of_int stats.primary /. px;
-                rays_pp = Float.of_int (Stats.rays stats) /. px;
+                rays_pp = Float.of_int (Render.Stats.rays stats) /. px;
                 diff;
                 depth_diff;
                 pareto = false;
@@ -359,7 +359,7 @@ let () =
             Printf.printf "  %-24s %8.4f s  %6.2f rays/px  mean %.4f  max %3d  psnr %s\n%!" (label s) (time_of r)
               r.rays_pp diff.mean_abs diff.max_abs (psnr_text diff.psnr);
             r)
-          (settings ~depth:scene.depth))
+          (settings ~depth:(Scene.depth scene)))
       selected
   in
   mark_pareto rows;

@@ -201,11 +201,11 @@ let () =
             (* The same command line for both. *)
             match if p = C then cref else cfast with
             | Some exe ->
-                let w = string_of_int c.scene.width and h = string_of_int c.scene.height in
-                [| exe; c.cref_name; w; h; string_of_int c.scene.depth; image p |]
+                let w = string_of_int (Scene.width c.scene) and h = string_of_int (Scene.height c.scene) in
+                [| exe; c.cref_name; w; h; string_of_int (Scene.depth c.scene); image p |]
             | None -> [||])
       in
-      let n_spheres = Spheres.length c.scene.spheres in
+      let n_spheres = Private.Spheres.length (Scene.spheres c.scene) in
       (* The C programs test every sphere for most rays: they stop at
          grid:1000 (5 s; grid:10000 would take about a minute, and 9 for
          grid:100000). *)
@@ -244,7 +244,7 @@ let () =
       let vs_c =
         match (read (Ours 1), if List.mem C programs then read C else None) with
         | Some a, Some b -> (
-            match Image_diff.compare a b with
+            match Image.Diff.compare a b with
             | Ok d when d.differing = 0 -> "identical"
             | Ok d -> Printf.sprintf "%d px differ, %d by >1" d.differing d.differing_gt1
             | Error (`Msg m) -> m)
@@ -259,7 +259,7 @@ let () =
         | _ -> ""
       in
       Printf.printf "%-12s %-10s %10d %8s %6.1fM %8s %8s %8s %7s %8s %7s %8s  %s%s\n%!" c.label
-        (Printf.sprintf "%dx%d" c.scene.width c.scene.height)
+        (Printf.sprintf "%dx%d" (Scene.width c.scene) (Scene.height c.scene))
         !rays (s t1)
         (Float.of_int !rays /. t1 /. 1e6)
         (s t2) (ratio speedup) (s tc) (ratio (t1 /. tc)) (s tf) (ratio (t1 /. tf)) (s (time Literal)) vs_c same_as_c)
@@ -315,9 +315,9 @@ let () =
      process. *)
   let triangles = if !quick then 100_000 else 1_000_000 in
   let obj = Filename.concat dir "knot.obj" in
-  let knot = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.35 ~segments:(triangles / 32) ~sides:16 in
+  let knot = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.35 ~segments:(triangles / 32) ~sides:16 in
   let b = Buffer.create (1 lsl 20) in
-  Obj_file.to_buffer ~digits:9 b knot;
+  Mesh.Obj.to_buffer ~digits:9 b knot;
   (match File_io.write_atomic obj (fun oc -> Buffer.output_buffer oc b) with Ok () -> () | Error (`Msg m) -> failwith m);
   let scene = Filename.concat dir "knot.scene" in
   let text =

@@ -91,7 +91,7 @@ let jobs_or_cores = function
   | Some j -> Limits.check_jobs j
 
 let sampling_of (o : sampling_options) =
-  Sampling.v ?samples:o.samples ?adaptive:o.adaptive ~subsample:o.subsample ()
+  Render.Sampling.v ?samples:o.samples ?adaptive:o.adaptive ~subsample:o.subsample ()
 
 (* The meter's hook into the renderer; none when there is nothing to
    show, so that a render without a terminal does no more than before. *)
@@ -101,14 +101,14 @@ let progress meter = match meter with None -> None | Some m -> Some (Meter.updat
 let render_image ?rows_done ~limits ~sampling ~literal ~jobs ~meter valid =
   let scene = Scene.of_valid valid in
   if literal then
-    if not (Sampling.is_one sampling) then
+    if not (Render.Sampling.is_one sampling) then
       msg "--literal traces one ray per pixel: it cannot be combined with --samples or --subsample"
     else
       (* Render.image checks these itself; the oracle does not. *)
       let* () = Scene.check_work ~limits valid in
       let t0 = Unix.gettimeofday () in
-      match Literal.render ~limits valid with
-      | exception Out_of_memory -> msg "not enough memory for a %dx%d image" scene.width scene.height
+      match Private.Literal.render ~limits valid with
+      | exception Out_of_memory -> msg "not enough memory for a %dx%d image" (Scene.width scene) (Scene.height scene)
       | exception Limits.Work_exceeded n -> Error (`Msg (Limits.work_exceeded limits n))
       | img -> Ok (img, None, Unix.gettimeofday () -. t0)
   else
@@ -155,7 +155,7 @@ let to_stdout data =
 
 (* PPM to stdout; a file in the format its name says. *)
 let write output img =
-  if output = "-" then to_stdout (Ppm.to_string img) else Image_file.write_file output img
+  if output = "-" then to_stdout (Image.Ppm.to_string img) else Image_file.write_file output img
 
 type part_spec = Tile of int * int | Corners of int * int * int * int
 
@@ -163,9 +163,9 @@ type part_spec = Tile of int * int | Corners of int * int * int * int
 let part_region (scene : Scene.t) = function
   | None -> Ok None
   | Some (Tile (index, count)) ->
-      Result.map Option.some (Region.tile ~width:scene.width ~height:scene.height ~index ~count)
+      Result.map Option.some (Render.Region.tile ~width:(Scene.width scene) ~height:(Scene.height scene) ~index ~count)
   | Some (Corners (x0, y0, x1, y1)) ->
-      Result.map Option.some (Region.of_corners ~width:scene.width ~height:scene.height x0 y0 x1 y1)
+      Result.map Option.some (Render.Region.of_corners ~width:(Scene.width scene) ~height:(Scene.height scene) x0 y0 x1 y1)
 
 let parse_frames s =
   let frame t =
@@ -232,13 +232,13 @@ let outputs ~frames output =
   | Some (a, b) -> List.init (b - a + 1) (fun i -> (Printf.sprintf "frame %d" (a + i), frame_path output (a + i)))
 
 let check_output opts ~frames ~part output =
-  (* No camera path has frames outside [0, Camera_path.max_frame]: a range
+  (* No camera path has frames outside [0, Camera.Path.max_frame]: a range
      beyond it is refused before its list of outputs is made. *)
   let* () =
     match frames with
-    | Some (a, b) when a < 0 || b > Camera_path.max_frame ->
+    | Some (a, b) when a < 0 || b > Camera.Path.max_frame ->
         msg "frame %d is outside every camera path, whose frames lie in [0, %d]" (if a < 0 then a else b)
-          Camera_path.max_frame
+          Camera.Path.max_frame
     | _ -> Ok ()
   in
   let* () =
@@ -268,11 +268,11 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~files ~frame
   (* What the report needs, taken now: a whole picture's render holds the
      scene no longer than preparing it needs (Prepared.prepare lets the
      spheres go as it builds the hierarchy). *)
-  let width = scene.width and height = scene.height in
+  let width = (Scene.width scene) and height = (Scene.height scene) in
   let meshes =
     List.filter_map
       (function Shape.Mesh (m : Mesh.t) -> Some (m.source, Mesh.triangle_count m, m.skipped) | _ -> None)
-      scene.shapes
+      (Scene.shapes scene)
   in
   (* A part's header, taken now too: nothing below reads [scene] (one job
      held a million spheres through the render, 324 MB instead of 232). *)
@@ -281,7 +281,7 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~files ~frame
     | None -> []
     | Some _ ->
         let renderer = if literal then "literal" else "fast" in
-        Part.settings ?frame ~samples:sampling.Sampling.samples ?adaptive:sampling.adaptive ~subsample:sampling.subsample
+        Part.settings ?frame ~samples:sampling.Render.Sampling.samples ?adaptive:sampling.adaptive ~subsample:sampling.subsample
           ~renderer ~files scene
   in
   let* (st, seconds), write_s =
@@ -299,7 +299,7 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~files ~frame
       let* img, st, seconds =
         match region with
         | None -> render_image ~limits ~sampling ~literal ~jobs ~meter valid
-        | Some (r : Region.t) when literal ->
+        | Some (r : Render.Region.t) when literal ->
             let* img, st, seconds = render_image ~limits ~sampling ~literal ~jobs ~meter valid in
             Ok (Image.sub img ~x:r.x ~y:r.y ~w:r.w ~h:r.h, st, seconds)
         | Some r ->
@@ -322,7 +322,7 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~files ~frame
   in
   if stats then begin
     (match st with
-    | Some st -> Format.eprintf "%-24s %s@\n%a@?" "sampling" (Sampling.to_string sampling) Stats.pp_table st
+    | Some st -> Format.eprintf "%-24s %s@\n%a@?" "sampling" (Render.Sampling.to_string sampling) Render.Stats.pp_table st
     | None -> Format.eprintf "%-24s %.4f@." "time, literal oracle (s)" seconds);
     Format.eprintf "%-24s %.4f@.%-24s %.4f@." "time, load (s)" load_s "time, write (s)" write_s;
     List.iter
@@ -335,7 +335,7 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~files ~frame
     let what =
       match region with
       | None -> Printf.sprintf "%dx%d" width height
-      | Some r -> Format.asprintf "region %a of %dx%d" Region.pp_corners r width height
+      | Some r -> Format.asprintf "region %a of %dx%d" Render.Region.pp_corners r width height
     in
     say (Printf.sprintf "wrote %s (%s, %.3f s)" output what seconds)
   end;
@@ -414,7 +414,7 @@ let merge parts ~output ~quiet =
               refused before more parts fill the memory. (A part of another
               canvas is left to [Part.merge], which says so.) *)
            let canvas = Option.value canvas ~default:(p.canvas_width, p.canvas_height) in
-           let pixels = if canvas = (p.canvas_width, p.canvas_height) then pixels + Region.pixels p.region else pixels in
+           let pixels = if canvas = (p.canvas_width, p.canvas_height) then pixels + Render.Region.pixels p.region else pixels in
            if pixels > fst canvas * snd canvas then
              msg "%s: the parts up to this one hold %d pixels, more than their %dx%d canvas: they overlap" path
                pixels (fst canvas) (snd canvas)
@@ -436,8 +436,8 @@ let diff a b ~max_diff =
      let* limits = Limits_env.read () in
      let* ia = Image_file.read_file ~limits a in
      let* ib = Image_file.read_file ~limits b in
-     let* d = Image_diff.compare ia ib in
-     let* () = to_stdout (Format.asprintf "%a\n" Image_diff.pp_summary d) in
+     let* d = Image.Diff.compare ia ib in
+     let* () = to_stdout (Format.asprintf "%a\n" Image.Diff.pp_summary d) in
      match max_diff with
      | Some m when d.max_abs > m ->
          msg "images differ by up to %d per channel, more than --max-diff %d" d.max_abs m

@@ -165,7 +165,7 @@ let part =
   let tile =
     Arg.(
       value
-      & opt (some (parsed Raytrace.Region.parse_tile "I/N")) None
+      & opt (some (parsed Raytrace.Render.Region.parse_tile "I/N")) None
       & info [ "tile" ] ~docv:"I/N"
           ~doc:
             "Render only tile $(i,I) of $(i,N) (from 1 to $(i,N)): a band of full rows, the $(i,N) \
@@ -174,7 +174,7 @@ let part =
   let region =
     Arg.(
       value
-      & opt (some (parsed Raytrace.Region.parse_corners "X0,Y0,X1,Y1")) None
+      & opt (some (parsed Raytrace.Render.Region.parse_corners "X0,Y0,X1,Y1")) None
       & info [ "region" ] ~docv:"X0,Y0,X1,Y1"
           ~doc:
             "Render only columns $(i,X0) to $(i,X1)-1 and rows $(i,Y0) to $(i,Y1)-1 (rows from the \

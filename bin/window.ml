@@ -137,12 +137,12 @@ let log fmt = Printf.ksprintf (fun s -> try prerr_endline ("raytrace: " ^ s) wit
 
 let start_frame s =
   let scene = s.view.scene in
-  if scene.width <> Frame.size_x () || scene.height <> Frame.size_y () then begin
-    Frame.resize scene.width scene.height;
+  if (Scene.width scene) <> Frame.size_x () || (Scene.height scene) <> Frame.size_y () then begin
+    Frame.resize (Scene.width scene) (Scene.height scene);
     s.shared <- None
   end;
   if s.jobs > 1 && Option.is_none s.shared && not s.failure_told then begin
-    match Progressive_workers.v ~jobs:s.jobs ~width:scene.width ~height:scene.height with
+    match Progressive_workers.v ~jobs:s.jobs ~width:(Scene.width scene) ~height:(Scene.height scene) with
     | shared -> s.shared <- Some shared
     | exception ((Failure _ | Unix.Unix_error _) as e) ->
         s.failure_told <- true;
@@ -185,10 +185,10 @@ let finish_frame s =
   let seconds = Unix.gettimeofday () -. s.started in
   let rays_per_s = if s.trace_s > 0. then rays /. s.trace_s else 0. in
   let scene = s.view.scene in
-  Graphics.set_window_title (View.title ~name:s.name ~frame:(scene.width, scene.height, seconds, rays_per_s) ());
+  Graphics.set_window_title (View.title ~name:s.name ~frame:((Scene.width scene), (Scene.height scene), seconds, rays_per_s) ());
   let n = View.samples s.view in
-  log "drawn %dx%d%s in %.3f s: traced in %.3f s (%.1f M rays/s), plotted in %.3f s, previews in %.3f s" scene.width
-    scene.height
+  log "drawn %dx%d%s in %.3f s: traced in %.3f s (%.1f M rays/s), plotted in %.3f s, previews in %.3f s" (Scene.width scene)
+    (Scene.height scene)
     (if n > 1 then Printf.sprintf " antialiased %dx%d" n n else "")
     seconds s.trace_s (rays_per_s /. 1e6) s.plot_s s.preview_s;
   if s.save_pending then begin
@@ -342,13 +342,13 @@ let run ~limits ~name ~scene_file ~jobs valid =
   (* A window larger than the screen cannot be seen whole, and a very large
      one makes the server fail to allocate it (an Xlib error): refused. *)
   let screen_w, screen_h = screen_size () in
-  if screen_w > 0 && (scene.width > screen_w || scene.height > screen_h) then
+  if screen_w > 0 && ((Scene.width scene) > screen_w || (Scene.height scene) > screen_h) then
     Error
       (`No_display
         (Printf.sprintf "the X screen is %dx%d pixels, too small for the %dx%d canvas" screen_w screen_h
-           scene.width scene.height))
+           (Scene.width scene) (Scene.height scene)))
   else
-  match Graphics.open_graph (Printf.sprintf " %dx%d" scene.width scene.height) with
+  match Graphics.open_graph (Printf.sprintf " %dx%d" (Scene.width scene) (Scene.height scene)) with
   | exception Graphics.Graphic_failure reason ->
       (* Graphics says "Cannot open display " with an empty name when
          DISPLAY is unset: say what is wrong. *)
@@ -358,7 +358,7 @@ let run ~limits ~name ~scene_file ~jobs valid =
       match
         Graphics.set_window_title (View.title ~name ());
         (* The window manager may have resized us; start at our size. *)
-        Graphics.resize_window scene.width scene.height;
+        Graphics.resize_window (Scene.width scene) (Scene.height scene);
         Graphics.auto_synchronize false;
         if not (bind_arrows (String.init 4 (fun i -> Char.chr (Char.code View.arrow_left + i)))) then
           log "the arrow keys are not available; use Shift+W A S D";
@@ -381,7 +381,7 @@ let run ~limits ~name ~scene_file ~jobs valid =
             preview_s = 0.;
             save_pending = false;
             drag = None;
-            seen = (scene.width, scene.height);
+            seen = ((Scene.width scene), (Scene.height scene));
             quit = false;
           }
         in

@@ -4,14 +4,17 @@ open Raytrace
 
 let scene =
   Scene.v ~width:128 ~height:96
-    ~spheres:
+    ~objects:
       [
-        Sphere.v ~center:(Vec3.v 0. (-0.5) 3.) ~radius:1. ~specular:500. ~reflective:0.3
-          (Color.v 255. 0. 0.);
-        Sphere.v ~center:(Vec3.v 1.5 0. 5.) ~radius:1. ~specular:10. (Color.v 0. 0. 255.);
+        Shape.Sphere
+          (Sphere.v ~center:(Vec3.v 0. (-0.5) 3.) ~radius:1.
+             (Material.v ~specular:500. ~reflective:0.3 (Color.v 255. 0. 0.)));
+        Shape.Sphere
+          (Sphere.v ~center:(Vec3.v 1.5 0. 5.) ~radius:1. (Material.v ~specular:10. (Color.v 0. 0. 255.)));
         (* A huge sphere makes the ground. *)
-        Sphere.v ~center:(Vec3.v 0. (-5001.) 0.) ~radius:5000. ~reflective:0.2
-          (Color.v 255. 255. 0.);
+        Shape.Sphere
+          (Sphere.v ~center:(Vec3.v 0. (-5001.) 0.) ~radius:5000.
+             (Material.v ~reflective:0.2 (Color.v 255. 255. 0.)));
       ]
     ~lights:
       [
@@ -26,7 +29,7 @@ let () =
   match Result.bind (Scene.validate scene) Render.image with
   | Ok (image, _stats) ->
       let oc = open_out_bin output in
-      output_string oc (Ppm.to_string image);
+      output_string oc (Image.Ppm.to_string image);
       close_out oc;
       print_endline ("wrote " ^ output)
   | Error (`Msg m) ->

@@ -48,7 +48,7 @@ let limits_of budget = Limits.with_bound Limits.default `Work (Float.of_int budg
 let loader meshes name =
   match List.assoc_opt name meshes with
   | None -> Error (`Msg (Printf.sprintf "cannot read mesh file %s: no such file" name))
-  | Some text -> Obj_file.of_string ~name ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles text
+  | Some text -> Mesh.Obj.of_string ~name ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles text
 
 let starts_with prefix m = String.length m >= String.length prefix && String.sub m 0 (String.length prefix) = prefix
 
@@ -96,16 +96,16 @@ let scene ?(meshes = []) text =
 
 let ppm bytes =
   let* () =
-    guard "Ppm.of_string" (fun () ->
-        match Ppm.of_string bytes with
+    guard "Image.Ppm.of_string" (fun () ->
+        match Image.Ppm.of_string bytes with
         | Error (`Msg m) -> one_line "ppm" m
         | Ok img -> (
-            match Ppm.of_string (Ppm.to_string img) with
+            match Image.Ppm.of_string (Image.Ppm.to_string img) with
             | Ok img' when Image.equal img img' -> Ok ()
             | Ok _ -> Error "the image written as P6 reads back different"
             | Error (`Msg m) -> Error ("the image written as P6 does not read back: " ^ m)))
   in
-  let* () = guard "Ppm.header_comments" (fun () -> ignore (Ppm.header_comments bytes); Ok ()) in
+  let* () = guard "Image.Ppm.header_comments" (fun () -> ignore (Image.Ppm.header_comments bytes); Ok ()) in
   (* The parts that [raytrace merge] reads are PPM files too. *)
   guard "Part.of_string" (fun () ->
       match Part.of_string bytes with

@@ -42,10 +42,10 @@ val random_scene : Random.State.t -> string * (string * string) list
     of their domains now and then; for {!scene}. *)
 
 val ppm : string -> (unit, string) result
-(** [ppm bytes] is [Ok ()] if {!Raytrace.Ppm.of_string} on [bytes] returns
+(** [ppm bytes] is [Ok ()] if {!Raytrace.Image.Ppm.of_string} on [bytes] returns
     without raising, and either [Ok img] where [img] written as P6 reads
     back equal, or [Error m] where [m] is one non-empty line; and if
-    {!Raytrace.Ppm.header_comments} does not raise, and
+    {!Raytrace.Image.Ppm.header_comments} does not raise, and
     {!Raytrace.Part.of_string} (the parts that [raytrace merge] reads)
     returns a part that reads back once written, or one line of error. *)
 

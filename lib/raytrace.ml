@@ -1,33 +1,45 @@
 module Vec3 = Vec3
 module Color = Color
 module Viewport = Viewport
-module Camera = Camera
-module Camera_path = Camera_path
-module Sphere = Sphere
+
+module Camera = struct
+  include Camera
+  module Path = Camera_path
+end
+
+module Light = Light
 module Pattern = Pattern
 module Material = Material
+module Sphere = Sphere
 module Plane = Plane
 module Triangle = Triangle
 module Box = Box
-module Mesh = Mesh
+
+module Mesh = struct
+  include Mesh
+  module Obj = Obj_file
+  module Gen = Mesh_gen
+end
+
 module Csg = Csg
 module Shape = Shape
-module Obj_file = Obj_file
-module Mesh_gen = Mesh_gen
-module Spheres = Spheres
-module Light = Light
 module Scene = Scene
 module Scene_file = Scene_file
 module Limits = Limits
-module Sampling = Sampling
-module Region = Region
-module Image = Image
-module Stats = Stats
-module Render = Render
-module Pixel = Pixel
-module Ppm = Ppm
-module Image_diff = Image_diff
-module Literal = Literal
+
+module Render = struct
+  include Render
+  module Sampling = Sampling
+  module Region = Region
+  module Stats = Stats
+  module Pixel = Pixel
+end
+
+module Image = struct
+  include Image
+  module Ppm = Ppm
+  module Diff = Image_diff
+end
 
 let render_string ?limits ?file text =
   match Scene_file.of_string ?limits ?file text with
@@ -37,6 +49,9 @@ let render_string ?limits ?file text =
 let version = Version.v
 
 module Private = struct
+  module Spheres = Spheres
+  module Literal = Literal
+  module Scene_text = Scene_text
   module Float_text = Float_text
   module Canvas = Canvas
   module Shading = Shading

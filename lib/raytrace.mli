@@ -3,7 +3,9 @@
     [Raytrace] renders the scenes of the document "Very Basic Raytracer"
     (after Gabriel Gambetta's {e Computer Graphics from Scratch}):
     spheres; ambient, point and directional lights; diffuse and specular
-    shading; shadows; recursive mirror reflection. It is pure OCaml: no
+    shading; shadows; recursive mirror reflection -- and beyond it planes,
+    triangles, boxes, meshes, constructive solid geometry, glass,
+    patterns, antialiasing and animation. It is pure OCaml: no
     files, processes, signals or environment (it builds for JavaScript).
 
     {1:start What to call first}
@@ -12,30 +14,39 @@
 {[
 let ppm_of_scene_text text =
   match Raytrace.render_string text with
-  | Ok image -> Ok (Raytrace.Ppm.to_string image)
+  | Ok image -> Ok (Raytrace.Image.Ppm.to_string image)
   | Error (`Msg m) -> Error m
 ]}
-    Scenes are also built in code ({!Scene.v}) and validated
-    ({!Scene.validate}); a single pixel's colour is {!Pixel.color}.
+    Scenes are also built in code ({!Scene.v}: settings, one list of
+    objects, lights) and validated ({!Scene.validate}); a single pixel's
+    colour, with samples, is {!Render.Pixel.color}.
 
     {1:flow The data flow}
 
 {v
-scene text --Scene_file.of_string--> Scene.valid --Render.image--> Image.t --Ppm.to_string--> bytes
-Scene.t (built in code) --Scene.validate--^        \--Pixel.color--> Color.t (one pixel)
+scene text --Scene_file.of_string--> Scene.valid --Render.image--> Image.t --Image.Ppm.to_string--> bytes
+Scene.v ~objects ~lights --Scene.validate--^     \--Render.Pixel.color--> Color.t (one pixel)
 v}
-    A {!Scene.t} is a plain record; a {!Scene.valid} is a scene that passed
-    validation, the only kind the renderers take, so an invalid scene
-    never reaches them and no scene is validated twice.
+    An object is a shape ({!Shape.t}: {!Sphere}, {!Plane}, {!Triangle},
+    {!Box}, {!Mesh}, {!Csg}) made of a {!Material.t}, one value that any
+    number of objects may share; scene text may name a material once and
+    use it by name. A {!Scene.t} is its settings, one list of objects in
+    the order given (of equal roots, the earlier object is seen) and its
+    lights; a {!Scene.valid} is a scene that passed validation, the only
+    kind the renderers take, so an invalid scene never reaches them and no
+    scene is validated twice. The types a user builds are abstract or
+    private, made by their [v] constructors.
 
     {1:errors The error convention}
 
     Everything a user supplies (scene text, image bytes, sampling settings,
     a scene built in code) is checked, and failures are
     [Error (`Msg message)] in [(_, [> `Msg of string]) result]; scene-text
-    messages start with [file:line:column]. [Invalid_argument] is raised
-    only for programmer errors that a function documents (a region outside
-    the canvas, a pixel outside the image), with a message that names the
+    messages start with [file:line:column] ({!Scene_file.located} gives
+    them as numbers too), and a scene built in code names the failing
+    object, [object 3 (sphere): ...]. [Invalid_argument] is raised only
+    for programmer errors that a function documents (a region outside the
+    canvas, a pixel outside the image), with a message that names the
     public function. Resource bounds (pixels, depth, samples, scene size,
     work) are a {!Limits.t} passed explicitly; the default is
     {!Limits.default}.
@@ -50,18 +61,20 @@ v}
     - Sections 4-6, rays, the sphere and their intersection (6.1):
       {!Sphere}, {!Sphere.roots}.
     - Section 7, lights, diffuse and specular shading (7.1-7.6), shadows
-      (7.7) and mirror reflection (7.8): {!Light}, and {!Literal}, the
-      document's algorithm transcribed literally (the executable
-      specification the fast tracer is tested against).
-    - Section 8, rendering: {!Render}, {!Pixel}.
+      (7.7), mirror reflection (7.8): {!Light}, {!Material}; the
+      document's algorithm transcribed literally, the executable
+      specification the fast tracer is tested against, is
+      {!Private.Literal}.
+    - Section 8, rendering: {!Render}, {!Render.Pixel}.
     - Beyond the document's spheres (its chapter "Extending the
       Raytracer"): {!Plane}, {!Triangle} (watertight), {!Box}, {!Mesh}
-      (from Wavefront OBJ files, {!Obj_file}, or generated, {!Mesh_gen}),
-      one type for them, {!Shape}, each with a {!Material}, which may
-      carry a {!Pattern} (a checkerboard); constructive solid geometry of
-      the closed ones, {!Csg}.
-    - Beyond the document: {!Sampling} (antialiasing), {!Camera_path}
-      (animation), {!Region} (tiles), {!Image_diff}, {!Ppm}.
+      (from Wavefront OBJ files, {!Mesh.Obj}, or generated, {!Mesh.Gen}),
+      one type for every object, {!Shape}; a {!Material} may carry a
+      {!Pattern} (a checkerboard) and the optics of glass; constructive
+      solid geometry of the closed shapes, {!Csg}.
+    - Beyond the document: {!Render.Sampling} (antialiasing),
+      {!Camera.Path} (animation), {!Render.Region} (tiles),
+      {!Image.Diff}, {!Image.Ppm}.
 
     {1:system Beside this library}
 
@@ -72,38 +85,88 @@ v}
       coarse-first progressive renderer, for any front end.
     - [raytrace-png] ([Raytrace_png]): PNG files, through camlimages. *)
 
-(** {1:modules Modules} *)
+(** {1:modules Modules}
+
+    Nineteen modules and {!Private}. The few that belong to another are
+    inside it: the camera's path in {!Camera}, mesh files and generated
+    meshes in {!Mesh}, sampling, regions, statistics and single pixels in
+    {!Render}, PPM files and image differences in {!Image}. *)
+
+(** {2:numbers Numbers and colours} *)
 
 module Vec3 = Vec3
 module Color = Color
+
+(** {2:scene The scene: settings, objects, lights} *)
+
 module Viewport = Viewport
-module Camera = Camera
-module Camera_path = Camera_path
-module Sphere = Sphere
+
+module Camera : sig
+  include module type of struct
+    include Camera
+  end
+
+  module Path = Camera_path
+  (** Animations: the camera of each frame, from keyframes. *)
+end
+
+module Light = Light
 module Pattern = Pattern
 module Material = Material
+module Sphere = Sphere
 module Plane = Plane
 module Triangle = Triangle
 module Box = Box
-module Mesh = Mesh
+
+module Mesh : sig
+  include module type of struct
+    include Mesh
+  end
+
+  module Obj = Obj_file
+  (** Wavefront OBJ files, read into the arrays of {!Mesh.of_obj}. *)
+
+  module Gen = Mesh_gen
+  (** Generated meshes (a torus knot, a terrain). *)
+end
+
 module Csg = Csg
 module Shape = Shape
-module Obj_file = Obj_file
-module Mesh_gen = Mesh_gen
-module Spheres = Spheres
-module Light = Light
 module Scene = Scene
 module Scene_file = Scene_file
 module Limits = Limits
-module Sampling = Sampling
-module Region = Region
-module Image = Image
-module Stats = Stats
-module Render = Render
-module Pixel = Pixel
-module Ppm = Ppm
-module Image_diff = Image_diff
-module Literal = Literal
+
+(** {2:render Rendering and images} *)
+
+module Render : sig
+  include module type of struct
+    include Render
+  end
+
+  module Sampling = Sampling
+  (** Rays per pixel: antialiasing, adaptive and subsampled. *)
+
+  module Region = Region
+  (** Rectangles of the canvas and the tiles that split it. *)
+
+  module Stats = Stats
+  (** What a render cost. *)
+
+  module Pixel = Pixel
+  (** One pixel at a time, with the renderer's own code and samples. *)
+end
+
+module Image : sig
+  include module type of struct
+    include Image
+  end
+
+  module Ppm = Ppm
+  (** PPM files. *)
+
+  module Diff = Image_diff
+  (** Differences between two images. *)
+end
 
 (** {1:one_call One call} *)
 
@@ -123,6 +186,9 @@ val version : string
     tests and its benchmarks. It changes without notice; do not use it. *)
 
 module Private : sig
+  module Spheres = Spheres
+  module Literal = Literal
+  module Scene_text = Scene_text
   module Float_text = Float_text
   module Canvas = Canvas
   module Shading = Shading

@@ -9,11 +9,11 @@ let write_file path img =
   match format_of_path path with Png -> Png_file.write_file path img | Ppm -> Files.write_ppm path img
 
 let read_file ?(limits = Limits.default) path =
-  match File_io.read ~check_size:(Ppm.check_file_size ~limits) path with
+  match File_io.read ~check_size:(Image.Ppm.check_file_size ~limits) path with
   | Error e -> Error e
   | Ok contents when Png_file.is_png contents -> Png_file.read_file ~limits path
   | Ok _ when format_of_path path = Png -> Error (`Msg (path ^ ": not a PNG file (it lacks the PNG signature)"))
   | Ok contents -> (
-      match Ppm.of_string ~limits contents with
+      match Image.Ppm.of_string ~limits contents with
       | Ok img -> Ok img
       | Error (`Msg m) -> Error (`Msg (path ^ ": " ^ m)))

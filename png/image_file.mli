@@ -1,6 +1,6 @@
 (** Image files in the format their name or contents say: PPM or PNG.
 
-    PPM ({!Raytrace.Ppm}) is the default and needs no library; a name
+    PPM ({!Raytrace.Image.Ppm}) is the default and needs no library; a name
     ending in [.png] (in any case) means PNG ({!Png_file}). *)
 
 type format = Ppm | Png  (** The type for image file formats. *)

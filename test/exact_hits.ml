@@ -65,7 +65,7 @@ let bounded lo hi exact =
     if meets origin direction then exact ~origin:(v origin) ~direction:(v direction) ~t_min else None
 
 let roots (s : Scene.t) =
-  if Spheres.length s.spheres > 0 then invalid_arg "Exact_hits.roots: a sphere";
+  if Private.Spheres.length (Scene.spheres s) > 0 then invalid_arg "Exact_hits.roots: a sphere";
   let triangle_of (t : Triangle.t) =
     let corner f = Vec3.v (f t.v0.x (f t.v1.x t.v2.x)) (f t.v0.y (f t.v1.y t.v2.y)) (f t.v0.z (f t.v1.z t.v2.z)) in
     bounded (corner Float.min) (corner Float.max) (triangle (v t.v0) (v t.v1) (v t.v2))
@@ -73,6 +73,7 @@ let roots (s : Scene.t) =
   Array.of_list
     (List.concat_map
        (function
+         | Shape.Sphere _ -> invalid_arg "Exact_hits.roots: a sphere"
          | Shape.Plane p -> [ (fun ~origin ~direction -> plane p ~origin:(v origin) ~direction:(v direction)) ]
          | Triangle t -> [ triangle_of t ]
          | Box b -> [ bounded b.min b.max (box b) ]
@@ -81,4 +82,4 @@ let roots (s : Scene.t) =
                (fun k -> if Mesh.degenerate m k then None else Some (triangle_of (Mesh.triangle m k)))
                (List.init (Mesh.triangle_count m) Fun.id)
          | Csg _ -> invalid_arg "Exact_hits.roots: a CSG solid")
-       s.shapes)
+       (Scene.shapes s))

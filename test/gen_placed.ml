@@ -17,25 +17,25 @@ let color = map3 Color.v channel channel channel
    fastest loops, which take neither). *)
 let material ~plain =
   let* m = Gen_scene.material in
-  if plain then return { m with Material.transparency = 0.; refractive_index = 1.; pattern = None }
+  if plain then return (Material.update ~transparency:0. ~refractive_index:1. ~pattern:None m)
   else
     let* checker = frequencyl [ (3, false); (1, true) ] in
     if not checker then return m
     else
       let* size = oneof [ return 0.5; float_range 0.1 1.5 ] and* c = color in
-      return { m with pattern = Some (Pattern.checker ~size c) }
+      return (Material.update ~pattern:(Some (Pattern.checker ~size c)) m)
 
 let glass =
   let* m = material ~plain:false in
-  let m = { m with reflective = Float.min m.reflective 0.5 } in
+  let m = Material.update ~reflective:(Float.min m.reflective 0.5) m in
   let* transparency = oneof [ return (1. -. m.reflective); float_range 0.1 (1. -. m.reflective) ] in
   let* refractive_index = oneof [ return 1.; return 1.5; float_range 0.5 2.5 ] in
   (* [r + (1 - r)] may round above 1. *)
   let transparency = if m.reflective +. transparency > 1. then Float.pred transparency else transparency in
-  return { m with transparency = Float.max transparency 0.; refractive_index }
+  return (Material.update ~transparency:(Float.max transparency 0.) ~refractive_index m)
 
 let sphere_of (m : Material.t) ~center ~radius =
-  Sphere.v ~specular:m.specular ~reflective:m.reflective ~transparency:m.transparency
+  Helpers.sphere ~specular:m.specular ~reflective:m.reflective ~transparency:m.transparency
     ~refractive_index:m.refractive_index ~fresnel:m.fresnel ?pattern:m.pattern ~center ~radius m.color
 
 (* {1 Meshes}
@@ -98,7 +98,7 @@ let rec solid_meshes = function
 
 let obj_files (s : Scene.t) =
   let meshes =
-    List.concat_map (function Shape.Mesh m -> [ m ] | Shape.Csg c -> solid_meshes (Csg.Csg c) | _ -> []) s.shapes
+    List.concat_map (function Shape.Mesh m -> [ m ] | Shape.Csg c -> solid_meshes (Csg.Csg c) | _ -> []) (Scene.shapes s)
   in
   String.concat ""
     (List.map
@@ -451,7 +451,7 @@ let scene ?(grid = false) ~kinds ~plain () =
   let shapes = List.filter_map (function Other s -> Some s | Ball _ -> None) objects in
   let* lights = shuffle_l (ambient @ List.map fst placed) in
   return
-    (Scene.v ~width:w ~height:h ~camera:(Camera.v c) ~depth ~epsilon ~background ~spheres ~shapes ~lights ())
+    (Helpers.scene ~width:w ~height:h ~camera:(Camera.v c) ~depth ~epsilon ~background ~spheres ~shapes ~lights ())
 
 let all_kinds = [ `Sphere; `Plane; `Triangle; `Box; `Mesh; `Csg ]
 let gen = scene ~kinds:all_kinds ~plain:false ()

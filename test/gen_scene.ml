@@ -27,7 +27,7 @@ let sphere =
   let* specular = oneof [ return Sphere.matte; return 0.; float_range 0. 1000. ] in
   let* reflective = oneof [ return 0.; return 1.; float_range 0. 1. ] in
   let* transparency, refractive_index, fresnel = optics reflective in
-  return (Sphere.v ~specular ~reflective ~transparency ~refractive_index ~fresnel ~center ~radius color)
+  return (Helpers.sphere ~specular ~reflective ~transparency ~refractive_index ~fresnel ~center ~radius color)
 
 let material =
   let* color = map3 Color.v channel channel channel in
@@ -49,7 +49,7 @@ let shape =
       (let* v0 = map3 Vec3.v (coord (-3.) 3.) (coord (-3.) 3.) (coord 2. 9.) in
        let* e1 = vec (-2.) 2. and* e2 = vec (-2.) 2. in
        let tri = Triangle.v v0 (Vec3.add v0 e1) (Vec3.add v0 e2) m in
-       return (match Triangle.validate tri with Ok t -> Shape.Triangle t | Error _ -> Shape.Triangle { tri with v2 = Vec3.add v0 Vec3.oy; v1 = Vec3.add v0 Vec3.ox }));
+       return (match Triangle.validate tri with Ok t -> Shape.Triangle t | Error _ -> Shape.Triangle (Triangle.v tri.v0 (Vec3.add v0 Vec3.ox) (Vec3.add v0 Vec3.oy) tri.material)));
       (let* lo = map3 Vec3.v (coord (-3.) 3.) (coord (-3.) 3.) (coord 2. 9.) in
        let* size = map3 Vec3.v (coord 0.05 2.) (coord 0.05 2.) (coord 0.05 2.) in
        return (Shape.Box (Box.v ~min:lo ~max:(Vec3.add lo size) m)));
@@ -71,13 +71,13 @@ let camera_path =
   let key frame =
     let* position = vec (-2.) 2. in
     let* dx = coord (-1.) 1. and* dy = coord (-1.) 1. and* dz = coord 1. 3. in
-    return (Camera_path.key ~frame ~position (Vec3.add position (Vec3.v dx dy dz)))
+    return (Camera.Path.key ~frame ~position (Vec3.add position (Vec3.v dx dy dz)))
   in
   let* first = int_range 0 5 in
   let* gaps = list_size (int_range 0 3) (int_range 1 6) in
   let frames = List.rev (List.fold_left (fun acc g -> (List.hd acc + g) :: acc) [ first ] gaps) in
   let* keys = flatten_l (List.map key frames) in
-  return (match Camera_path.v keys with Ok p -> Some p | Error _ -> None)
+  return (match Camera.Path.v keys with Ok p -> Some p | Error _ -> None)
 
 let gen =
   let* width = int_range 1 12 and* height = int_range 1 12 in
@@ -91,17 +91,14 @@ let gen =
     oneof
       [
         return Camera.default;
-        return Scene.cgfs_camera.camera;
+        return (Scene.camera Scene.cgfs_camera);
         map (fun p -> Camera.v p) (vec (-0.5) 0.5);
       ]
   in
   let* camera_path = oneof [ return None; camera_path ] in
   return
-    {
-      (Scene.v ~width ~height ~depth ?epsilon ~background ~camera ~spheres ~shapes ~lights ()) with
-      epsilon;
-      camera_path;
-    }
+    (Scene.with_overrides ~epsilon ~camera_path
+       (Helpers.scene ~width ~height ~depth ?epsilon ~background ~camera ~spheres ~shapes ~lights ()))
 
 let crowd =
   let* base = gen in
@@ -112,7 +109,7 @@ let crowd =
     list_repeat n
       (let* s = sphere in
        let* offset = vec (-.spread) spread in
-       return { s with Sphere.center = Vec3.add cluster offset })
+       return (Sphere.v ~center:(Vec3.add cluster offset) ~radius:s.radius s.material))
   in
   (* Duplicates (ties between equal roots), a sphere inside another, a huge
      ground, a sphere around the camera. *)
@@ -120,26 +117,26 @@ let crowd =
   let spheres =
     match spheres with
     | a :: b :: rest ->
-        let nested = { b with Sphere.center = a.center; radius = a.radius *. 0.5 } in
+        let nested = Sphere.v ~center:a.center ~radius:(a.radius *. 0.5) b.material in
         (if dup then [ a; a; nested ] else [ a; nested ]) @ rest
     | l -> l
   in
   let spheres =
-    if ground then spheres @ [ Sphere.v ~center:(Vec3.v 0. (-5001.) 0.) ~radius:5000. ~reflective:0.3 Color.white ]
+    if ground then spheres @ [ Helpers.sphere ~center:(Vec3.v 0. (-5001.) 0.) ~radius:5000. ~reflective:0.3 Color.white ]
     else spheres
   in
-  let spheres = if around then Sphere.v ~center:Vec3.zero ~radius:0.5 Color.white :: spheres else spheres in
+  let spheres = if around then Helpers.sphere ~center:Vec3.zero ~radius:0.5 Color.white :: spheres else spheres in
   (* Shapes in the hierarchy too, sometimes with a duplicate. *)
   let* shapes = oneof [ return []; list_size (int_range 1 12) shape ] in
   let* dup_shape = bool in
   let shapes = match shapes with s :: rest when dup_shape -> s :: s :: rest | l -> l in
-  return { base with spheres = Spheres.of_list spheres; shapes = base.shapes @ shapes }
+  return (Helpers.with_objects ~spheres ~shapes:(Scene.shapes base @ shapes) base)
 
 let shrink (s : Scene.t) =
   QCheck.Iter.(
-    map (fun spheres -> { s with spheres = Spheres.of_list spheres }) (QCheck.Shrink.list (Spheres.to_list s.spheres))
-    <+> map (fun shapes -> { s with shapes }) (QCheck.Shrink.list s.shapes)
-    <+> map (fun lights -> { s with lights }) (QCheck.Shrink.list s.lights))
+    map (fun spheres -> Helpers.with_objects ~spheres s) (QCheck.Shrink.list (Helpers.scene_spheres s))
+    <+> map (fun shapes -> Helpers.with_objects ~shapes s) (QCheck.Shrink.list (Scene.shapes s))
+    <+> map (fun lights -> Scene.with_overrides ~lights s) (QCheck.Shrink.list (Scene.lights s)))
 
 let arbitrary = QCheck.make ~print:Scene_file.to_string ~shrink gen
 
@@ -153,15 +150,12 @@ let with_patterns rand (s : Scene.t) =
       let size = 0.05 +. Random.State.float rand 2. in
       Some (Pattern.checker ~size (Color.v (channel ()) (channel ()) (channel ())))
   in
-  let material (m : Material.t) = { m with pattern = pattern () } in
+  let material (m : Material.t) = Material.update ~pattern:(pattern ()) m in
   let shape = function
-    | Shape.Plane p -> Shape.Plane { p with material = material p.material }
-    | Triangle t -> Triangle { t with material = material t.material }
-    | Box b -> Box { b with material = material b.material }
+    | Shape.Sphere sp -> Shape.Sphere (Helpers.with_sphere_material sp (fun m -> Material.update ~pattern:(pattern ()) m))
+    | Plane p -> Shape.Plane (Plane.v ~point:p.point ~normal:p.normal (material p.material))
+    | Triangle t -> Triangle (Triangle.v t.v0 t.v1 t.v2 (material t.material))
+    | Box b -> Box (Box.v ~min:b.min ~max:b.max (material b.material))
     | (Mesh _ | Csg _) as m -> m
   in
-  {
-    s with
-    spheres = Spheres.of_list (List.map (fun (sp : Sphere.t) -> { sp with pattern = pattern () }) (Spheres.to_list s.spheres));
-    shapes = List.map shape s.shapes;
-  }
+  Scene.with_overrides ~objects:(List.map shape (Scene.objects s)) s

@@ -25,7 +25,7 @@ let translation =
       map (Vec3.smul 1e6) unit_vec;
     ]
 
-let sphere center radius = Sphere.v ~center ~radius Color.white
+let sphere center radius = Helpers.sphere ~center ~radius Color.white
 
 (* A ray from distance [ratio * r] aimed at the point at [offset * r] from
    the center, across the line of sight: offset < 1 hits, > 1 misses. *)

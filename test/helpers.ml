@@ -9,12 +9,12 @@ let color = Alcotest.testable Color.pp Color.equal
 let float_near eps = Alcotest.float eps
 
 let check_images ?(max_abs = 0) ?min_share what ~expected actual =
-  match Image_diff.compare expected actual with
+  match Image.Diff.compare expected actual with
   | Error (`Msg m) -> Alcotest.failf "%s: %s" what m
   | Ok d ->
       let ok =
         match min_share with
-        | Some share -> Image_diff.share_within d >= share
+        | Some share -> Image.Diff.share_within d >= share
         | None -> d.max_abs <= max_abs
       in
       if not ok then
@@ -166,10 +166,10 @@ let mask_errors mask exact =
 let oracle_floats (s : Scene.t) =
   let tr = Trace.create (prepare ~skips:false s) in
   let ok = ref true in
-  for gx = Canvas.min_x s.width to Canvas.max_x s.width do
-    for gy = Canvas.min_y s.height to Canvas.max_y s.height do
+  for gx = Canvas.min_x (Scene.width s) to Canvas.max_x (Scene.width s) do
+    for gy = Canvas.min_y (Scene.height s) to Canvas.max_y (Scene.height s) do
       Trace.pixel tr gx gy;
-      let c = Literal.pixel s gx gy in
+      let c = Private.Literal.pixel s gx gy in
       let same a b = Float.abs (a -. b) <= 1e-9 *. Float.max 1. (Float.max (Float.abs a) (Float.abs b)) in
       if not (same c.r (Trace.red tr) && same c.g (Trace.green tr) && same c.b (Trace.blue tr)) then begin
         if !ok then
@@ -183,17 +183,17 @@ let oracle_floats (s : Scene.t) =
 
 let obj_part_joined p ~name ~max_vertices ~max_triangles s off len =
   let sent = Buffer.create 4096 in
-  let q = Raytrace.Obj_file.create_part ~output:(Buffer.add_subbytes sent) ~name ~max_vertices ~max_triangles in
-  match Result.bind (Raytrace.Obj_file.feed q s off len) (fun () -> Raytrace.Obj_file.finish_part q) with
+  let q = Raytrace.Mesh.Obj.create_part ~output:(Buffer.add_subbytes sent) ~name ~max_vertices ~max_triangles in
+  match Result.bind (Raytrace.Mesh.Obj.feed q s off len) (fun () -> Raytrace.Mesh.Obj.finish_part q) with
   | Error _ -> None
   | Ok part ->
       let bytes = Buffer.to_bytes sent and at = ref 0 in
-      if Raytrace.Obj_file.part_bytes part <> Bytes.length bytes then Alcotest.fail "the part's bytes are not those sent";
+      if Raytrace.Mesh.Obj.part_bytes part <> Bytes.length bytes then Alcotest.fail "the part's bytes are not those sent";
       let input b off len =
         Bytes.blit bytes !at b off len;
         at := !at + len
       in
-      let m = Raytrace.Obj_file.join p part ~input in
+      let m = Raytrace.Mesh.Obj.join p part ~input in
       if Option.is_some m && !at <> Bytes.length bytes then Alcotest.failf "the join read %d of %d bytes" !at (Bytes.length bytes);
       m
 
@@ -230,3 +230,19 @@ let glass_planes ~width ~height ~depth =
        "(light ambient (intensity 0.5))" ]
     @ List.map plane [ 2; 3; 4; 5 ])
   ^ "\n"
+
+let sphere ?specular ?reflective ?transparency ?refractive_index ?fresnel ?pattern ~center ~radius color =
+  Sphere.v ~center ~radius (Material.v ?specular ?reflective ?transparency ?refractive_index ?fresnel ?pattern color)
+
+let scene ?width ?height ?viewport ?camera ?background ?depth ?epsilon ?camera_path ?(shapes = []) ~spheres ~lights () =
+  Scene.v ?width ?height ?viewport ?camera ?background ?depth ?epsilon ?camera_path
+    ~objects:(List.map (fun s -> Shape.Sphere s) spheres @ shapes)
+    ~lights ()
+
+let with_sphere_material (s : Sphere.t) f = Sphere.v ~center:s.center ~radius:s.radius (f s.material)
+let scene_spheres s = Private.Spheres.to_list (Scene.spheres s)
+
+let with_objects ?spheres ?shapes s =
+  let spheres = match spheres with Some l -> l | None -> scene_spheres s in
+  let shapes = match shapes with Some l -> l | None -> Scene.shapes s in
+  Scene.with_overrides ~objects:(List.map (fun sp -> Shape.Sphere sp) spheres @ shapes) s

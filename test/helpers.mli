@@ -58,7 +58,7 @@ val render :
   ?subsample:bool ->
   ?progress:(rows:int -> total:int -> rays:int -> unit) ->
   Raytrace.Scene.t ->
-  (Raytrace.Image.t * Raytrace.Stats.t, [> `Msg of string ]) result
+  (Raytrace.Image.t * Raytrace.Render.Stats.t, [> `Msg of string ]) result
 (** [render ... s] is {!Raytrace_unix.Render_jobs.image} on [s]
     validated (with the same [limits]); [Error] if [s] is invalid. *)
 
@@ -71,8 +71,8 @@ val render_region :
   ?subsample:bool ->
   ?progress:(rows:int -> total:int -> rays:int -> unit) ->
   Raytrace.Scene.t ->
-  Raytrace.Region.t ->
-  (Raytrace.Image.t * Raytrace.Stats.t, [> `Msg of string ]) result
+  Raytrace.Render.Region.t ->
+  (Raytrace.Image.t * Raytrace.Render.Stats.t, [> `Msg of string ]) result
 (** [render_region ... s r] is {!Raytrace_unix.Render_jobs.region_image}
     on [s] validated; [Error] if [s] is invalid. *)
 
@@ -88,7 +88,7 @@ val oracle_floats : Raytrace.Scene.t -> bool
 (** [oracle_floats s] is [true] iff every pixel's colour floats of the fast
     tracer (skips off: the early stop changes floats, never bytes) are
     within [1e-9] (relative, absolute below 1) of
-    {!Raytrace.Literal.pixel}'s; the first difference is printed. The
+    {!Raytrace.Private.Literal.pixel}'s; the first difference is printed. The
     oracle computes its geometry its own way ({!Raytrace.Literal}): the
     two agree to rounding, and a pixel where they decide differently (a
     hit, a shadow, a cell) differs by far more. *)
@@ -136,12 +136,12 @@ val mask_errors : bool array array -> [ `In | `Out | `Edge ] array array -> int 
 (** {1:obj Meshes read in two parts} *)
 
 val obj_part_joined :
-  Raytrace.Obj_file.parser -> name:string -> max_vertices:int -> max_triangles:int -> string -> int -> int ->
-  Raytrace.Obj_file.t option
+  Raytrace.Mesh.Obj.parser -> name:string -> max_vertices:int -> max_triangles:int -> string -> int -> int ->
+  Raytrace.Mesh.Obj.t option
 (** [obj_part_joined p ~name ~max_vertices ~max_triangles s off len] is
     the bytes [s.[off] .. s.[off+len-1]] read as a part
-    ({!Raytrace.Obj_file.create_part}, its output kept in a buffer) and
-    joined to [p] ({!Raytrace.Obj_file.join}, its input that buffer), as
+    ({!Raytrace.Mesh.Obj.create_part}, its output kept in a buffer) and
+    joined to [p] ({!Raytrace.Mesh.Obj.join}, its input that buffer), as
     [Files.read_mesh] does without the fork; [None] where the part is an
     error or the join declines. *)
 
@@ -158,3 +158,44 @@ val glass_planes : width:int -> height:int -> depth:int -> string
     seen face on: every hit spawns two rays, so a pixel's ray tree grows
     about as [2^(depth/2)] rays (tens of thousands at depth 20, millions at
     28), the front ends' slowest pixels. *)
+
+val sphere :
+  ?specular:float ->
+  ?reflective:float ->
+  ?transparency:float ->
+  ?refractive_index:float ->
+  ?fresnel:bool ->
+  ?pattern:Raytrace.Pattern.t ->
+  center:Raytrace.Vec3.t ->
+  radius:float ->
+  Raytrace.Color.t ->
+  Raytrace.Sphere.t
+(** [sphere ~specular ... ~center ~radius color] is the sphere made of
+    [Material.v ~specular ... color]: the tests' short way. *)
+
+val scene :
+  ?width:int ->
+  ?height:int ->
+  ?viewport:Raytrace.Viewport.t ->
+  ?camera:Raytrace.Camera.t ->
+  ?background:Raytrace.Color.t ->
+  ?depth:int ->
+  ?epsilon:float ->
+  ?camera_path:Raytrace.Camera.Path.t ->
+  ?shapes:Raytrace.Shape.t list ->
+  spheres:Raytrace.Sphere.t list ->
+  lights:Raytrace.Light.t list ->
+  unit ->
+  Raytrace.Scene.t
+(** [scene ~spheres ~shapes ~lights ()] is {!Raytrace.Scene.v} of the
+    objects [spheres] then [shapes]. *)
+
+val with_sphere_material : Raytrace.Sphere.t -> (Raytrace.Material.t -> Raytrace.Material.t) -> Raytrace.Sphere.t
+(** [with_sphere_material s f] is [s] made of [f] of its material. *)
+
+val scene_spheres : Raytrace.Scene.t -> Raytrace.Sphere.t list
+(** [scene_spheres s] is the spheres of [s], in order. *)
+
+val with_objects : ?spheres:Raytrace.Sphere.t list -> ?shapes:Raytrace.Shape.t list -> Raytrace.Scene.t -> Raytrace.Scene.t
+(** [with_objects ~spheres ~shapes s] is [s] with the objects [spheres]
+    then [shapes], each list by default [s]'s own. *)

@@ -40,8 +40,8 @@ let tests =
            it; against a black background an edge pixel with k of 4 samples
            on the sphere is 255 k / 4, never 765 k / 4 clamped. *)
         let s =
-          Scene.v ~width:2 ~height:1
-            ~spheres:[ Sphere.v ~center:(Vec3.v (-1.) 0. 2.) ~radius:1. (Color.v 255. 255. 255.) ]
+          Helpers.scene ~width:2 ~height:1
+            ~spheres:[ Helpers.sphere ~center:(Vec3.v (-1.) 0. 2.) ~radius:1. (Color.v 255. 255. 255.) ]
             ~lights:[ Light.ambient 3. ] ()
         in
         (* The sphere covers x < 0 at depth 2 around the pixel column

@@ -249,7 +249,7 @@ let tests =
         Alcotest.(check int) "nothing built beside without shared memory" 0 !calls);
     Alcotest.test_case "grid:140000, above the threshold of 2^16: a part beside, the same tree and pixels" `Slow
       (fun () ->
-        let s = { (Scene.grid 140_000) with width = 48; height = 48 } in
+        let s = (Scene.with_overrides ~width:48 ~height:48 ((Scene.grid 140_000))) in
         let tree (p : Prepared.t) = match p.bvh with Some b -> b | None -> Alcotest.fail "no hierarchy" in
         let built = ref 0 in
         let two = Prepared.prepare ~beside:(counting ~min_objects:(1 lsl 16) built) (Helpers.valid s) in
@@ -260,7 +260,7 @@ let tests =
         (* The images of the two prepared scenes. *)
         let img p =
           let tr = Trace.create p in
-          let w = s.width and h = s.height in
+          let w = (Scene.width s) and h = (Scene.height s) in
           Array.init (w * h) (fun i ->
               Trace.pixel tr ((i mod w) - (w / 2)) ((h / 2) - (i / w));
               (Trace.red tr, Trace.green tr, Trace.blue tr))
@@ -513,10 +513,10 @@ let tests =
            10000 x 10002 x 10000: D^2 = 3.0004e8; largest coordinate 10001;
            smallest radius 1: 64 u (3.0004e8 + 1e4) = 2.13e-6 *)
         let s = Scene.cgfs in
-        let arr f = Array.of_list (List.map f (Spheres.to_list s.spheres)) in
+        let arr f = Array.of_list (List.map f (Private.Spheres.to_list (Scene.spheres s))) in
         let m =
           Bvh.ray_box_margin ~cx:(arr (fun s -> s.center.x)) ~cy:(arr (fun s -> s.center.y))
-            ~cz:(arr (fun s -> s.center.z)) ~radius:(arr (fun s -> s.radius)) s.camera.position
+            ~cz:(arr (fun s -> s.center.z)) ~radius:(arr (fun s -> s.radius)) (Scene.camera s).position
         in
         Alcotest.(check (float 1e-8)) "radius 1" 2.132e-6 m.(0);
         Array.iter (fun x -> if not (x > 0. && x < 3e-6) then Alcotest.failf "margin %g" x) m);
@@ -559,7 +559,7 @@ let tests =
            has no randomness, one job), so the counts are exact: a change
            here means the tracer does more or less work than it did; say
            why in the commit and update them. *)
-        let mesh ?(smooth = false) ~translate (o : Obj_file.t) material =
+        let mesh ?(smooth = false) ~translate (o : Mesh.Obj.t) material =
           match
             Mesh.v ~smooth ~translate ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
               ~triangle_normals:o.triangle_normals material
@@ -577,23 +577,22 @@ let tests =
            tree differs; with the 24 sides of the first try, no leaf held
            more than 4 and the leaf size changed nothing). *)
         let knot =
-          let o = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments:4800 ~sides:4 in
-          {
-            (Scene.with_overrides ~width:96 ~height:96 Scene.cgfs) with
-            shapes = [ mesh ~smooth:true ~translate:(Vec3.v 0. 0.5 5.) o (Material.v ~specular:300. ~reflective:0.2 (Color.v 230. 150. 40.)) ];
-          }
+          let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments:4800 ~sides:4 in
+          Helpers.with_objects
+            ~shapes:[ mesh ~smooth:true ~translate:(Vec3.v 0. 0.5 5.) o (Material.v ~specular:300. ~reflective:0.2 (Color.v 230. 150. 40.)) ]
+            (Scene.with_overrides ~width:96 ~height:96 Scene.cgfs)
         in
         (* A terrain seen from above at a slant, lit from the side: long
            shadow rays across the height field. *)
         let terrain =
-          let o = Mesh_gen.terrain ~seed:30 ~nx:150 ~nz:150 ~size:20. ~height:3. in
+          let o = Mesh.Gen.terrain ~seed:30 ~nx:150 ~nz:150 ~size:20. ~height:3. in
           let camera = match Camera.look_at ~position:(Vec3.v 0. 9. (-14.)) (Vec3.v 0. 0. 2.) with Ok c -> c | Error (`Msg m) -> Alcotest.fail m in
-          Scene.v ~width:96 ~height:72 ~camera ~spheres:[]
+          Helpers.scene ~width:96 ~height:72 ~camera ~spheres:[]
             ~shapes:[ mesh ~translate:Vec3.zero o (Material.v ~specular:10. (Color.v 90. 160. 60.)) ]
             ~lights:[ Light.ambient 0.2; Light.point 0.5 (Vec3.v (-8.) 6. 0.); Light.directional 0.3 (Vec3.v 1. 0.4 0.2) ] ()
         in
         let grid = Scene.with_overrides ~width:96 ~height:96 (Scene.grid 40_000) in
-        let counts (st : Stats.t) = [ st.primary; st.shadow; st.reflection; st.tests; st.box_tests; st.early_stops ] in
+        let counts (st : Render.Stats.t) = [ st.primary; st.shadow; st.reflection; st.tests; st.box_tests; st.early_stops ] in
         let tree s = match (Helpers.prepare s).bvh with Some b -> [ b.n_nodes; b.depth ] | None -> [] in
         let fails = ref [] in
         List.iter
@@ -621,10 +620,10 @@ let tests =
       (fun s ->
         let render skips s = Helpers.image_exn ~skips s in
         Image.equal (render false s) (render true s)
-        && Image.equal (render false { s with epsilon = None }) (render true { s with epsilon = None }));
+        && Image.equal (render false (Scene.with_overrides ~epsilon:None s)) (render true (Scene.with_overrides ~epsilon:None s)));
     Helpers.qcheck ~count:60 "crowded scenes in the document's mode: the oracle's bytes"
       (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
       (fun s ->
-        let s = { s with epsilon = Some 0.001 } in
-        Image.equal (Literal.render (Helpers.valid s)) (Helpers.image_exn s));
+        let s = (Scene.with_overrides ~epsilon:(Some 0.001) s) in
+        Image.equal (Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s));
   ]

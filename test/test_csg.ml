@@ -13,7 +13,7 @@ open Raytrace
 
 let white = Color.white
 let u = epsilon_float /. 2.
-let sphere ?(color = white) ?specular ?reflective c r = Csg.Sphere (Sphere.v ?specular ?reflective ~center:c ~radius:r color)
+let sphere ?(color = white) ?specular ?reflective c r = Csg.Sphere (Helpers.sphere ?specular ?reflective ~center:c ~radius:r color)
 let box ?(color = white) ?specular ?reflective lo hi = Csg.Box (Box.v ~min:lo ~max:hi (Material.v ?specular ?reflective color))
 
 (* A closed octahedron of half-diagonal [r] around [c], as a mesh. *)
@@ -37,7 +37,7 @@ let octahedron ?(color = white) ?(material = Fun.id) c r =
   | Error (`Msg e) -> Alcotest.fail e
 
 let scene ?epsilon ?(width = 32) ?(height = 32) ?camera ?(spheres = []) shapes =
-  Scene.v ~width ~height ?camera ?epsilon ~spheres ~shapes
+  Helpers.scene ~width ~height ?camera ?epsilon ~spheres ~shapes
     ~lights:[ Light.ambient 0.2; Light.point 0.6 (Vec3.v 2. 3. 0.); Light.directional 0.2 (Vec3.v 1. 4. (-4.)) ]
     ()
 
@@ -65,15 +65,13 @@ let rec random_solid ?(glass = false) rand depth =
     | 0 | 1 -> (
         match sphere ~color ?specular ?reflective (random_point rand) (0.3 +. Random.State.float rand 0.9) with
         | Csg.Sphere s ->
-            let m = material (Material.of_sphere s) in
-            Csg.Sphere
-              { s with transparency = m.transparency; refractive_index = m.refractive_index; fresnel = m.fresnel; pattern = m.pattern }
+            Csg.Sphere (Sphere.v ~center:s.center ~radius:s.radius (material s.material))
         | solid -> solid)
     | 2 | 3 -> (
         let lo = random_point rand in
         let size () = 0.2 +. Random.State.float rand 1.5 in
         match box ~color ?specular ?reflective lo (Vec3.add lo (Vec3.v (size ()) (size ()) (size ()))) with
-        | Csg.Box b -> Csg.Box { b with material = material b.material }
+        | Csg.Box b -> Csg.Box (Box.v ~min:b.min ~max:b.max (material b.material))
         | solid -> solid)
     | _ -> octahedron ~color ~material (random_point rand) (0.4 +. Random.State.float rand 1.)
 
@@ -85,10 +83,10 @@ and random_glass rand (m : Material.t) =
       let refractive_index =
         match Random.State.int rand 3 with 0 -> 1. | 1 -> 1.5 | _ -> 0.5 +. Random.State.float rand 2.
       in
-      { m with transparency; refractive_index; fresnel = Random.State.bool rand }
+      Material.update ~transparency ~refractive_index ~fresnel:(Random.State.bool rand) m
   in
   if Random.State.bool rand then m
-  else { m with pattern = Some (Pattern.checker ~size:(0.05 +. Random.State.float rand 1.) (random_color rand)) }
+  else Material.update ~pattern:(Some (Pattern.checker ~size:(0.05 +. Random.State.float rand 1.) (random_color rand))) m
 
 and random_csg ?glass rand depth =
   let op = match Random.State.int rand 3 with 0 -> Csg.Union | 1 -> Csg.Intersection | _ -> Csg.Difference in
@@ -98,7 +96,7 @@ let random_scene ?glass ?epsilon rand =
   let n = 1 + Random.State.int rand 2 in
   let shapes = List.init n (fun _ -> Shape.Csg (random_csg ?glass rand 2)) in
   let spheres =
-    if Random.State.bool rand then [ Sphere.v ~center:(random_point rand) ~radius:0.4 ~reflective:0.3 (random_color rand) ]
+    if Random.State.bool rand then [ Helpers.sphere ~center:(random_point rand) ~radius:0.4 ~reflective:0.3 (random_color rand) ]
     else []
   in
   scene ?epsilon ~width:24 ~height:24 ~spheres (floor :: shapes)
@@ -167,7 +165,7 @@ let tiny_far ~op ~translate =
   let r = 1e-3 in
   let dist = 1e7 *. r in
   let center = Vec3.add translate (Vec3.v (0.3 *. dist) (-0.2 *. dist) dist) in
-  let s = Sphere.v ~center ~radius:r white in
+  let s = Helpers.sphere ~center ~radius:r white in
   let b =
     Box.v ~min:(Vec3.add center (Vec3.v (0.25 *. r) (-0.4 *. r) (-2. *. r))) ~max:(Vec3.add center (Vec3.v (2. *. r) (2. *. r) (2. *. r)))
       (Material.v white)
@@ -176,21 +174,21 @@ let tiny_far ~op ~translate =
     match Camera.look_at ~up:(Vec3.v 0.3 1. 0.2) ~position:translate center with Ok c -> c | Error (`Msg e) -> failwith e
   in
   let scene =
-    Scene.v ~width:90 ~height:90 ~viewport:(Viewport.v ~width:6e-7 ~height:6e-7 ~distance:1.) ~camera ~spheres:[]
+    Helpers.scene ~width:90 ~height:90 ~viewport:(Viewport.v ~width:6e-7 ~height:6e-7 ~distance:1.) ~camera ~spheres:[]
       ~shapes:[ Shape.Csg (Csg.v op (Csg.Sphere s) (Csg.Box b)) ]
       ~lights:[ Light.ambient 1. ] ()
   in
   (scene, s, b)
 
 let exact_mask (scene : Scene.t) classify =
-  let w = scene.width and h = scene.height in
+  let w = (Scene.width scene) and h = (Scene.height scene) in
   Array.init h (fun row ->
       Array.init w (fun col ->
           let v =
-            Viewport.of_canvas scene.viewport ~canvas_width:w ~canvas_height:h (Canvas.x_of_column ~width:w col)
+            Viewport.of_canvas (Scene.viewport scene) ~canvas_width:w ~canvas_height:h (Canvas.x_of_column ~width:w col)
               (Canvas.y_of_row ~height:h row)
           in
-          classify ~origin:scene.camera.position ~direction:(Camera.direction scene.camera v)))
+          classify ~origin:(Scene.camera scene).position ~direction:(Camera.direction (Scene.camera scene) v)))
 
 (* {1 The kernel on one ray} *)
 
@@ -276,7 +274,7 @@ let csg_mask ?(classify = Fun.id) (scene : Scene.t) planes =
    computes from these corners, small integers: the rays through the
    edges and corners in the picture pass through them exactly. *)
 let through_edges shapes =
-  Scene.v ~width:64 ~height:64 ~spheres:[] ~shapes
+  Helpers.scene ~width:64 ~height:64 ~spheres:[] ~shapes
     ~lights:[ Light.ambient 0.3; Light.directional 0.7 (Vec3.v 1. 2. (-3.)) ]
     ()
 
@@ -290,12 +288,12 @@ let row_of_spheres n =
   let leaf i = sphere (Vec3.v (-0.5 +. (Float.of_int i /. Float.of_int n)) 0. 4.) 0.1 in
   let rec tree lo hi = if hi - lo = 1 then leaf lo else let mid = (lo + hi) / 2 in Csg.Csg (Csg.v Csg.Union (tree lo mid) (tree mid hi)) in
   let c = match tree 0 n with Csg.Csg c -> c | _ -> assert false in
-  Scene.v ~width:8 ~height:8 ~depth:0 ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[ Light.ambient 1. ] ()
+  Helpers.scene ~width:8 ~height:8 ~depth:0 ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[ Light.ambient 1. ] ()
 
 
 (* A torus knot of [2 segments 12] triangles, closed, at z = 4. *)
 let knot segments =
-  let o = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.15 ~segments ~sides:12 in
+  let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.15 ~segments ~sides:12 in
   match
     Mesh.v ~translate:(Vec3.v 0. 0. 4.) ~positions:o.positions ~triangles:o.triangles ~normals:[||]
       ~triangle_normals:(Array.make (Array.length o.triangles) (-1)) (Material.v (Color.v 230. 150. 40.))
@@ -306,11 +304,11 @@ let knot segments =
 let stats (s : Scene.t) = match Helpers.render s with Ok (_, st) -> st | Error (`Msg m) -> Alcotest.fail m
 let load_octahedron _ =
   let positions, triangles = octahedron_arrays (Vec3.v 0. 0. 0.) 1. in
-  Ok (Obj_file.v ~positions ~normals:[||] ~triangles ~triangle_normals:(Array.make (Array.length triangles) (-1)))
+  Ok (Mesh.Obj.v ~positions ~normals:[||] ~triangles ~triangle_normals:(Array.make (Array.length triangles) (-1)))
 
 let open_mesh _ =
   Ok
-    (Obj_file.v ~positions:[| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1. |] ~normals:[||]
+    (Mesh.Obj.v ~positions:[| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1. |] ~normals:[||]
        ~triangles:[| 0; 1; 2; 0; 1; 3; 0; 2; 3 |] ~triangle_normals:(Array.make 9 (-1)))
 
 let parse ?(load_mesh = load_octahedron) text = Scene_file.of_string ~load_mesh ~file:"t.scene" text
@@ -329,8 +327,8 @@ let tests =
         | Error (`Msg m) -> Alcotest.fail m
         | Ok v -> (
             let s = Scene.of_valid v in
-            Alcotest.(check int) "two shapes" 2 (List.length s.shapes);
-            (match s.shapes with
+            Alcotest.(check int) "two shapes" 2 (List.length (Scene.shapes s));
+            (match (Scene.shapes s) with
             | Shape.Csg { op = Csg.Difference; a = Csg.Sphere sp; b = Csg.Box bx } :: _ ->
                 Alcotest.(check (float 0.)) "sphere radius" 1. sp.radius;
                 Alcotest.(check (float 0.)) "box's green" 255. bx.material.color.g
@@ -339,7 +337,7 @@ let tests =
             match parse printed with
             | Error (`Msg m) -> Alcotest.failf "the printed scene does not read back: %s\n%s" m printed
             | Ok v' ->
-                if not (List.equal Shape.equal s.shapes (Scene.of_valid v').shapes) then
+                if not (List.equal Shape.equal (Scene.shapes s) (Scene.shapes (Scene.of_valid v'))) then
                   Alcotest.failf "the printed scene reads back different:\n%s" printed));
     Alcotest.test_case "bad csg forms are refused with their file:line:column" `Quick (fun () ->
         List.iter
@@ -406,13 +404,13 @@ let tests =
         List.iter
           (fun name ->
             let s = Scene.with_overrides ~width:40 ~height:40 (Helpers.load_scene name) in
-            if not (Helpers.oracle_floats { s with epsilon = Some 0.001 }) then Alcotest.failf "%s differs" name)
+            if not (Helpers.oracle_floats (Scene.with_overrides ~epsilon:(Some 0.001) s)) then Alcotest.failf "%s differs" name)
           [ "lens.scene"; "die.scene" ]);
     Alcotest.test_case "random CSG scenes with glass and checkered leaves: the kernel's colours are the literal algorithm's"
       `Quick (fun () ->
         let rand = Random.State.make [| 1414 |] in
         let glassy = ref 0 and checkered = ref 0 in
-        let count n (s : Scene.t) p = if List.exists (fun sh -> List.exists p (Shape.materials sh)) s.shapes then incr n in
+        let count n (s : Scene.t) p = if List.exists (fun sh -> List.exists p (Shape.materials sh)) (Scene.shapes s) then incr n in
         for i = 1 to 120 do
           let s = random_scene ~glass:true ~epsilon:0.001 rand in
           (match Scene.validate s with Error (`Msg m) -> Alcotest.failf "scene %d invalid: %s" i m | Ok _ -> ());
@@ -425,7 +423,7 @@ let tests =
         (* The glass lens: rays cross both faces, the floor's cells seen
            through it. *)
         let s = Scene.with_overrides ~width:48 ~height:36 (Helpers.load_scene "glass-lens.scene") in
-        if not (Helpers.oracle_floats { s with epsilon = Some 0.001 }) then Alcotest.fail "glass-lens.scene differs");
+        if not (Helpers.oracle_floats (Scene.with_overrides ~epsilon:(Some 0.001) s)) then Alcotest.fail "glass-lens.scene differs");
     Alcotest.test_case "random CSG scenes with glass and checkered leaves: skips on and off give the same bytes" `Quick
       (fun () ->
         let rand = Random.State.make [| 4114 |] in
@@ -443,17 +441,17 @@ let tests =
     Alcotest.test_case "a checker on a CSG leaf (sphere, box) lies where the leaf alone shows it" `Quick (fun () ->
         let checker = Some (Pattern.checker ~size:0.3 (Color.v 20. 40. 200.)) in
         let ball =
-          { (Sphere.v ~center:(Vec3.v (-0.8) 0. 4.) ~radius:0.9 ~specular:100. ~reflective:0.2 (Color.v 230. 200. 60.)) with pattern = checker }
+          (Helpers.sphere ~center:(Vec3.v (-0.8) 0. 4.) ~radius:0.9 ~specular:100. ~reflective:0.2 ?pattern:checker (Color.v 230. 200. 60.))
         in
         (* No pixel's ray passes exactly through one of the cube's edges:
            there the box alone has a hit of zero length, which the CSG
            solid's intervals drop. *)
-        let cube = Box.v ~min:(Vec3.v 0.35 (-0.95) 3.5) ~max:(Vec3.v 1.6 0.4 4.8) { (Material.v ~specular:10. (Color.v 60. 180. 90.)) with pattern = checker } in
+        let cube = Box.v ~min:(Vec3.v 0.35 (-0.95) 3.5) ~max:(Vec3.v 1.6 0.4 4.8) (Material.v ~specular:10. ?pattern:checker (Color.v 60. 180. 90.)) in
         (* The union with a sphere out of sight, under the floor, and the
            intersection with a sphere that holds the leaf, leave the leaf's
            surface and its pattern's frame as they are. *)
-        let far = Csg.Sphere (Sphere.v ~center:(Vec3.v 0. (-60.) 4.) ~radius:0.1 white) in
-        let around = Csg.Sphere (Sphere.v ~center:(Vec3.v 0. 0. 4.) ~radius:5. (Color.v 255. 0. 0.)) in
+        let far = Csg.Sphere (Helpers.sphere ~center:(Vec3.v 0. (-60.) 4.) ~radius:0.1 white) in
+        let around = Csg.Sphere (Helpers.sphere ~center:(Vec3.v 0. 0. 4.) ~radius:5. (Color.v 255. 0. 0.)) in
         List.iter
           (fun epsilon ->
             List.iter
@@ -480,8 +478,8 @@ let tests =
                 let c = random_csg rand 1 in
                 let shift = Vec3.v (Float.of_int (k - 6) *. 1.5) 0. (Float.of_int (k mod 3)) in
                 let move = Test_numerics.transform ~scale:1. ~translate:shift in
-                match move (Scene.v ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[] ()) with
-                | { shapes = [ sh ]; _ } -> sh
+                match Scene.objects (move (Helpers.scene ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[] ())) with
+                | [ sh ] -> sh
                 | _ -> assert false)
           in
           List.iter
@@ -628,8 +626,8 @@ let tests =
            and a test of every triangle would be 48000 a ray. *)
         let st = stats (on (knot 2000)) in
         let per_ray = st.tests / st.primary in
-        Printf.printf "%d tests, %d box tests, %d rays\n" st.tests st.box_tests (Stats.rays st);
-        if st.tests > 2000 * Stats.rays st then Alcotest.failf "%d tests a ray for 48000 triangles" per_ray;
+        Printf.printf "%d tests, %d box tests, %d rays\n" st.tests st.box_tests (Render.Stats.rays st);
+        if st.tests > 2000 * Render.Stats.rays st then Alcotest.failf "%d tests a ray for 48000 triangles" per_ray;
         if st.box_tests = 0 then Alcotest.fail "no box test counted";
         (* Small enough for the oracle: the same colours, float for float. *)
         Alcotest.(check bool) "the literal algorithm's colours" true (Helpers.oracle_floats (on (knot 40))));
@@ -723,7 +721,7 @@ let tests =
     Alcotest.test_case "each surface point shows the material of the solid it belongs to" `Quick (fun () ->
         let red = Color.v 255. 0. 0. and green = Color.v 0. 255. 0. in
         let c = Csg.v Csg.Difference (sphere ~color:red (Vec3.v 0. 0. 4.) 1.) (box ~color:green (Vec3.v 0. (-2.) 2.) (Vec3.v 2. 2. 3.8)) in
-        let s = Scene.v ~width:21 ~height:21 ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[ Light.ambient 1. ] () in
+        let s = Helpers.scene ~width:21 ~height:21 ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[ Light.ambient 1. ] () in
         let tr = Trace.create (Helpers.prepare s) in
         (* Left of center: the sphere's own surface; right of it, where the
            box took the front away: the cut, the box's far face. *)
@@ -741,7 +739,7 @@ let tests =
         List.iter
           (fun epsilon ->
             let s =
-              Scene.v ~width:41 ~height:41 ?epsilon ~camera ~spheres:[]
+              Helpers.scene ~width:41 ~height:41 ?epsilon ~camera ~spheres:[]
                 ~shapes:[ floor; Shape.Csg (Csg.v Csg.Difference slab hole) ]
                 ~lights:[ Light.directional 1. Vec3.oy ] ()
             in
@@ -755,10 +753,10 @@ let tests =
           [ None; Some 0.001 ]);
     Alcotest.test_case "no acne: a CSG sphere renders as the plain sphere, robust, scaled 1e-6 to 1e6 and moved by 1e6"
       `Quick (fun () ->
-        let ball = Sphere.v ~center:(Vec3.v 0. 0. 4.) ~radius:1. ~specular:100. ~reflective:0.3 (Color.v 200. 100. 50.) in
+        let ball = Helpers.sphere ~center:(Vec3.v 0. 0. 4.) ~radius:1. ~specular:100. ~reflective:0.3 (Color.v 200. 100. 50.) in
         (* The union with a sphere out of sight, under the floor, leaves the
            ball's surface. *)
-        let far = Csg.Sphere (Sphere.v ~center:(Vec3.v 0. (-60.) 4.) ~radius:0.1 white) in
+        let far = Csg.Sphere (Helpers.sphere ~center:(Vec3.v 0. (-60.) 4.) ~radius:0.1 white) in
         List.iter
           (fun (scale, translate) ->
             let t s = Test_numerics.transform ~scale ~translate s in
@@ -774,7 +772,7 @@ let tests =
             let s = Helpers.load_scene name in
             List.iter
               (fun epsilon ->
-                let s = Scene.with_overrides ~width:64 ~height:48 { s with Scene.epsilon } in
+                let s = Scene.with_overrides ~width:64 ~height:48 (Scene.with_overrides ~epsilon s) in
                 Alcotest.(check (float 0.)) (name ^ ": minor words") 0. (stats s).minor_words)
               [ None; Some 0.001 ])
           [ "die.scene"; "glass-lens.scene" ];

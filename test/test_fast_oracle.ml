@@ -9,7 +9,7 @@
    hits its own way: the oracle exactly, the kernel in floats within its
    stated bounds. So the images must be equal byte for byte on every pixel
    whose rays no rounding decides; only the pixels where
-   [Literal.rounding_dependent] counts a search are left out: a ray
+   [Private.Literal.rounding_dependent] counts a search are left out: a ray
    within rounding of a triangle's edge or vertex or of another root
    without touching it, a shadow, mirror or refracted ray (from a rounded
    hit point, along a rounded direction) exactly through a triangle's
@@ -25,17 +25,17 @@ open Raytrace
 let show_pixel (r, g, b) = Printf.sprintf "(%d, %d, %d)" r g b
 
 (* The oracle's image, and the pixels whose rays rounding may decide
-   ([Literal.rounding_dependent]), by column and row. *)
+   ([Private.Literal.rounding_dependent]), by column and row. *)
 let oracle (s : Scene.t) =
   let s = Scene.of_valid (Helpers.valid s) in
-  let img = Image.create s.width s.height and rounding = Hashtbl.create 16 in
-  for gx = Canvas.min_x s.width to Canvas.max_x s.width do
-    for gy = Canvas.min_y s.height to Canvas.max_y s.height do
-      let before = Literal.rounding_dependent () in
-      let c = Literal.pixel s gx gy in
-      let x = Canvas.column ~width:s.width gx and y = Canvas.row ~height:s.height gy in
+  let img = Image.create (Scene.width s) (Scene.height s) and rounding = Hashtbl.create 16 in
+  for gx = Canvas.min_x (Scene.width s) to Canvas.max_x (Scene.width s) do
+    for gy = Canvas.min_y (Scene.height s) to Canvas.max_y (Scene.height s) do
+      let before = Private.Literal.rounding_dependent () in
+      let c = Private.Literal.pixel s gx gy in
+      let x = Canvas.column ~width:(Scene.width s) gx and y = Canvas.row ~height:(Scene.height s) gy in
       Image.set img x y (Color.to_byte c.r) (Color.to_byte c.g) (Color.to_byte c.b);
-      if Literal.rounding_dependent () > before then Hashtbl.replace rounding (x, y) ()
+      if Private.Literal.rounding_dependent () > before then Hashtbl.replace rounding (x, y) ()
     done
   done;
   (img, rounding)
@@ -80,7 +80,7 @@ let as_the_oracle (s : Scene.t) =
        (fun (what, skips) -> difference what ~rounding ~expected (Helpers.image_exn ~skips s))
        [ ("with the skips on", true); ("with the skips off", false) ])
 
-let robust (s : Scene.t) = { s with epsilon = None }
+let robust (s : Scene.t) = (Scene.with_overrides ~epsilon:None s)
 
 let skips_exact (s : Scene.t) =
   let s = robust s in
@@ -101,12 +101,12 @@ let coinciding = Q.of_float (Float.ldexp 1. (-40))
    where none has a root. *)
 let wrong_hit (s : Scene.t) roots tr gx gy =
   Trace.pixel tr gx gy;
-  let origin = s.camera.position in
+  let origin = (Scene.camera s).position in
   let direction =
     Vec3.v
-      (Float.of_int gx *. s.viewport.width /. Float.of_int s.width)
-      (Float.of_int gy *. s.viewport.height /. Float.of_int s.height)
-      s.viewport.distance
+      (Float.of_int gx *. (Scene.viewport s).width /. Float.of_int (Scene.width s))
+      (Float.of_int gy *. (Scene.viewport s).height /. Float.of_int (Scene.height s))
+      (Scene.viewport s).distance
   in
   let exact = Array.map (fun root -> root ~origin ~direction ~t_min:Q.one) roots in
   let nearest = Array.fold_left (fun m r -> match (m, r) with Some a, Some b -> Some (Q.min a b) | None, r -> r | m, None -> m) None exact in
@@ -132,15 +132,15 @@ let exact_first_hits (s : Scene.t) =
     (List.filter_map
        (fun (what, skips) ->
          let tr = Trace.create (Helpers.prepare ~skips s) and wrong = ref [] in
-         for gy = Canvas.max_y s.height downto Canvas.min_y s.height do
-           for gx = Canvas.min_x s.width to Canvas.max_x s.width do
+         for gy = Canvas.max_y (Scene.height s) downto Canvas.min_y (Scene.height s) do
+           for gx = Canvas.min_x (Scene.width s) to Canvas.max_x (Scene.width s) do
              Option.iter (fun w -> wrong := w :: !wrong) (wrong_hit s roots tr gx gy)
            done
          done;
          match List.rev !wrong with
          | [] -> None
          | first :: _ as l ->
-             Some (Printf.sprintf "%s: %d of %d pixels see another object than the exact one; %s" what (List.length l) (s.width * s.height) first))
+             Some (Printf.sprintf "%s: %d of %d pixels see another object than the exact one; %s" what (List.length l) ((Scene.width s) * (Scene.height s)) first))
        [ ("with the skips on", true); ("with the skips off", false) ])
 
 let tests =

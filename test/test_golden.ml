@@ -6,9 +6,9 @@ open Raytrace
 
 (* The scene's canvas shrunk to fit 64 x 64, keeping its aspect ratio. *)
 let small (s : Scene.t) =
-  let longest = max s.width s.height in
+  let longest = max (Scene.width s) (Scene.height s) in
   let fit n = max 1 (n * 64 / longest) in
-  Scene.with_overrides ~width:(fit s.width) ~height:(fit s.height) s
+  Scene.with_overrides ~width:(fit (Scene.width s)) ~height:(fit (Scene.height s)) s
 
 let golden_path name = Filename.concat "golden" (Filename.remove_extension name ^ ".ppm")
 
@@ -40,6 +40,6 @@ let tests =
         List.iter
           (fun (name, digest) ->
             let img = Helpers.image_exn (Helpers.load_scene name) in
-            Alcotest.(check string) name digest (Digest.to_hex (Digest.string (Ppm.to_string img))))
+            Alcotest.(check string) name digest (Digest.to_hex (Digest.string (Image.Ppm.to_string img))))
           cgfs_digests);
   ]

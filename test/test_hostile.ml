@@ -20,7 +20,7 @@ let example_scenes () = List.map (fun n -> In_channel_free.read (Helpers.scene_p
 
 let example_ppms () =
   let img = Helpers.image_exn (Scene.with_overrides ~width:5 ~height:3 Scene.cgfs) in
-  let p6 = Ppm.to_string img in
+  let p6 = Image.Ppm.to_string img in
   let p3 =
     let b = Buffer.create 256 in
     Buffer.add_string b "P3\n# a comment\n5 3\n255\n";
@@ -135,9 +135,9 @@ let tests =
         Alcotest.(check string) __LOC__ "t.scene:1:2: unknown form"
           (String.sub (scene_error text) 0 (String.length "t.scene:1:2: unknown form")));
     Alcotest.test_case "an image header cannot ask for more memory than the pixel bound" `Quick (fun () ->
-        let bytes = allocated (fun () -> ignore (Ppm.of_string "P6\n16384 16384\n255\n\000")) in
+        let bytes = allocated (fun () -> ignore (Image.Ppm.of_string "P6\n16384 16384\n255\n\000")) in
         if bytes > 1e6 then Alcotest.failf "decoding a lying header allocated %.0f bytes" bytes;
-        match Ppm.of_string "P6\n99999 99999\n255\n" with
+        match Image.Ppm.of_string "P6\n99999 99999\n255\n" with
         | Ok _ -> Alcotest.fail "accepted"
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
@@ -188,11 +188,11 @@ let tests =
     Alcotest.test_case "a raised bound lets the scene through" `Quick (fun () ->
         with_env "RAYTRACE_MAX_DEPTH" "1_000" (fun () ->
             match Helpers.of_string ~limits:!limits "(recursion-depth 1000)" with
-            | Ok s -> Alcotest.(check int) __LOC__ 1000 s.depth
+            | Ok s -> Alcotest.(check int) __LOC__ 1000 (Scene.depth s)
             | Error (`Msg m) -> Alcotest.fail m);
         with_env "RAYTRACE_MAX_PIXELS" "1e9" (fun () ->
             match Helpers.of_string ~limits:!limits "(canvas (width 65536) (height 8192))" with
-            | Ok s -> Alcotest.(check int) __LOC__ 8192 s.height
+            | Ok s -> Alcotest.(check int) __LOC__ 8192 (Scene.height s)
             | Error (`Msg m) -> Alcotest.fail m));
     Alcotest.test_case "a malformed bound is an error that names the variable" `Quick (fun () ->
         Unix.putenv "RAYTRACE_MAX_DEPTH" "lots";
@@ -221,7 +221,7 @@ let tests =
            16 x 9 = 144 objects per ray; depth 64: 65 rays.
            268435456 x 65 x 144 x 3 = 7.54e12. *)
         let crowded =
-          { big with depth = 64; spheres = Spheres.of_list (List.concat (List.init 100 (fun _ -> Spheres.to_list Scene.cgfs.spheres))) }
+          Scene.with_overrides ~depth:64 ~objects:(List.concat (List.init 100 (fun _ -> Scene.objects Scene.cgfs))) big
         in
         match Helpers.render crowded with
         | Ok _ -> Alcotest.fail "rendered"
@@ -282,13 +282,11 @@ let tests =
         (* 2000 concentric spheres (not identical: those share a slot), 16 x 16 pixels: estimate 256 x 16 x 11
            x (1 + 2 lights) = 135168 tests, within 2e5; a pixel that sees
            the sphere alone does 2000 x 3. *)
-        let sphere = Spheres.get Scene.cgfs.spheres 0 in
+        let sphere = Private.Spheres.get (Scene.spheres Scene.cgfs) 0 in
         let scene =
-          {
-            (Scene.with_overrides ~width:16 ~height:16 Scene.cgfs) with
-            spheres = Spheres.of_list (List.init 2000 (fun i -> { sphere with radius = sphere.radius +. (Float.of_int i *. 1e-5) }));
-            depth = 0;
-          }
+          Helpers.with_objects
+            ~spheres:(List.init 2000 (fun i -> Sphere.v ~center:sphere.center ~radius:(sphere.radius +. (Float.of_int i *. 1e-5)) sphere.material))
+            (Scene.with_overrides ~width:16 ~height:16 ~depth:0 Scene.cgfs)
         in
         with_env "RAYTRACE_MAX_WORK" "200000" (fun () ->
             let valid = Helpers.valid scene in

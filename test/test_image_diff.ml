@@ -6,7 +6,7 @@ let pair () =
   Image.set b 0 0 10 22 30;
   (a, b)
 
-let stats a b = match Image_diff.compare a b with Ok d -> d | Error (`Msg m) -> Alcotest.fail m
+let stats a b = match Image.Diff.compare a b with Ok d -> d | Error (`Msg m) -> Alcotest.fail m
 
 let tests =
   [
@@ -23,7 +23,7 @@ let tests =
         Alcotest.(check (list int)) __LOC__ [ 2; 1; 1; 2 ] [ d.pixels; d.differing; d.differing_gt1; d.max_abs ];
         Alcotest.(check (float 1e-12)) __LOC__ (2. /. 6.) d.mean_abs;
         Alcotest.(check (float 1e-4)) __LOC__ 49.8917 d.psnr;
-        Alcotest.(check (float 0.)) __LOC__ 0.5 (Image_diff.share_within d));
+        Alcotest.(check (float 0.)) __LOC__ 0.5 (Image.Diff.share_within d));
     Alcotest.test_case "a difference of 1 is within 1" `Quick (fun () ->
         let a = Image.create 1 1 and b = Image.create 1 1 in
         Image.set b 0 0 1 1 1;
@@ -47,9 +47,9 @@ let tests =
         Alcotest.(check (list int)) __LOC__ [ 4; 3; 2; 255 ] [ d.pixels; d.differing; d.differing_gt1; d.max_abs ];
         Alcotest.(check (float 1e-9)) __LOC__ (263. /. 12.) d.mean_abs;
         Alcotest.(check (float 1e-6)) __LOC__ 10.790076 d.psnr;
-        Alcotest.(check (float 0.)) __LOC__ 0.5 (Image_diff.share_within d));
+        Alcotest.(check (float 0.)) __LOC__ 0.5 (Image.Diff.share_within d));
     Alcotest.test_case "images of different sizes cannot be compared" `Quick (fun () ->
-        match Image_diff.compare (Image.create 2 1) (Image.create 1 2) with
+        match Image.Diff.compare (Image.create 2 1) (Image.create 1 2) with
         | Ok _ -> Alcotest.fail "compared"
         | Error (`Msg m) -> Alcotest.(check string) __LOC__ "image sizes differ: 2x1 and 1x2" m);
   ]

@@ -51,15 +51,15 @@ let textbook =
     let* s = Gen_scene.gen in
     let* width = int_range 1 40 and* height = int_range 1 40 in
     let* epsilon = oneof [ return 0.001; float_range 0. 0.01 ] in
-    let plain (sp : Sphere.t) = { sp with transparency = 0.; refractive_index = 1.; fresnel = false; pattern = None } in
+    let plain (sp : Sphere.t) =
+      Sphere.v ~center:sp.center ~radius:sp.radius
+        (Material.update ~transparency:0. ~refractive_index:1. ~fresnel:false ~pattern:None sp.material)
+    in
     return
-      {
-        (Scene.with_overrides ~width ~height s) with
-        spheres = Spheres.of_list (List.map plain (Spheres.to_list s.spheres));
-        shapes = [];
-        epsilon = Some epsilon;
-        camera_path = None;
-      }
+      (Helpers.with_objects
+         ~spheres:(List.map plain (Helpers.scene_spheres s))
+         ~shapes:[]
+         (Scene.with_overrides ~width ~height ~epsilon:(Some epsilon) ~camera_path:None s))
   in
   QCheck.make ~print:Scene_file.to_string gen
 
@@ -130,7 +130,7 @@ let tests =
            let* s = oneof [ Gen_scene.gen; Gen_scene.crowd ] and* seed = int in
            return (if seed land 1 = 0 then s else Gen_scene.with_patterns (Random.State.make [| seed |]) s)))
       (fun s ->
-        let s = Scene.with_overrides ~width:(min s.width 24) ~height:(min s.height 24) s in
+        let s = Scene.with_overrides ~width:(min (Scene.width s) 24) ~height:(min (Scene.height s) 24) s in
         let p = Helpers.prepare s in
         let expected = by_rows p in
         same "shadow rays for every light" ~expected (by_rows (Prepared.without Shadow_rays p));
@@ -153,8 +153,8 @@ let tests =
            reference scene's and a spread of exponents and intensities. *)
         let check ~ambient ~li s =
           let scene =
-            Scene.v ~width:4 ~height:4 ~epsilon:0.001
-              ~spheres:[ Sphere.v ~specular:s ~center:(Vec3.v 0. 0. 3.) ~radius:1. Color.white ]
+            Helpers.scene ~width:4 ~height:4 ~epsilon:0.001
+              ~spheres:[ Helpers.sphere ~specular:s ~center:(Vec3.v 0. 0. 3.) ~radius:1. Color.white ]
               ~lights:[ Light.ambient ambient; Light.point li (Vec3.v 1. 1. 0.) ]
               ()
           in

@@ -27,7 +27,7 @@ let tests =
         Alcotest.check light __LOC__ (Light.ambient 0.2) (ok { k = 'a'; i = 0.2; v = None });
         List.iter
           (fun l -> Alcotest.check light __LOC__ l (ok (Light.to_document l)))
-          Scene.cgfs.lights);
+          (Scene.lights Scene.cgfs));
     Alcotest.test_case "malformed document records are errors" `Quick (fun () ->
         let bad d = Alcotest.(check bool) __LOC__ true (Result.is_error (Light.of_document d)) in
         bad { k = 'x'; i = 0.2; v = None };

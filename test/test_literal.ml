@@ -4,24 +4,24 @@ open Raytrace
 
 let near = Alcotest.(check (float 1e-12))
 let sphere ?(specular = Sphere.matte) ?(reflective = 0.) ?(color = Color.white) center radius =
-  Sphere.v ~specular ~reflective ~center ~radius color
+  Helpers.sphere ~specular ~reflective ~center ~radius color
 
 let scene ?(background = Color.black) ?(depth = 3) spheres lights =
-  Scene.v ~background ~depth ~epsilon:0.001 ~spheres ~lights ()
+  Helpers.scene ~background ~depth ~epsilon:0.001 ~spheres ~lights ()
 
 (* A unit sphere at the origin, seen at its top point P = (0, 1, 0), N = (0, 1, 0). *)
 let ball = sphere Vec3.zero 1.
 let top = Vec3.oy
 
 let lighting ?(specular = Sphere.matte) ?(view = Vec3.oy) s =
-  Literal.compute_lighting s ~epsilon:0.001 ~point:top ~normal:Vec3.oy ~view ~specular
+  Private.Literal.compute_lighting s ~epsilon:0.001 ~point:top ~normal:Vec3.oy ~view ~specular
 
 let tests =
   [
     Alcotest.test_case "the closest of several hits wins (section 6.1)" `Quick (fun () ->
         let near_s = sphere (Vec3.v 0. 0. 3.) 1. and far_s = sphere (Vec3.v 0. 0. 10.) 1. in
         match
-          Literal.closest_intersection [ far_s; near_s ] ~origin:Vec3.zero ~direction:Vec3.oz
+          Private.Literal.closest_intersection [ far_s; near_s ] ~origin:Vec3.zero ~direction:Vec3.oz
             ~t_min:1. ~t_max:infinity
         with
         | Some (s, t) ->
@@ -33,7 +33,7 @@ let tests =
         let s = sphere (Vec3.v 0. 0. 3.) 1. in
         let hit ~t_min ~t_max =
           Option.map snd
-            (Literal.closest_intersection [ s ] ~origin:Vec3.zero ~direction:Vec3.oz ~t_min ~t_max)
+            (Private.Literal.closest_intersection [ s ] ~origin:Vec3.zero ~direction:Vec3.oz ~t_min ~t_max)
         in
         (* roots 2 and 4: the range is open at both ends *)
         Alcotest.(check (option (float 0.))) __LOC__ (Some 4.) (hit ~t_min:2. ~t_max:infinity);
@@ -83,15 +83,15 @@ let tests =
             [ Light.ambient 1. ]
         in
         let trace depth =
-          Literal.trace_ray s ~epsilon:0.001 ~origin:Vec3.zero ~direction:Vec3.oz ~t_min:1.
+          Private.Literal.trace_ray s ~epsilon:0.001 ~origin:Vec3.zero ~direction:Vec3.oz ~t_min:1.
             ~t_max:infinity ~depth
         in
         Alcotest.check Helpers.color __LOC__ (Color.v 100. 50. 127.5) (trace 3);
         (* with no recursion left, only the local colour *)
         Alcotest.check Helpers.color __LOC__ (Color.v 200. 100. 0.) (trace 0));
     Alcotest.test_case "rendering visits exactly w x h pixels (section 8)" `Quick (fun () ->
-        let s = { (scene [] [ Light.ambient 1. ]) with width = 7; height = 4; background = Color.v 1. 2. 3. } in
-        let img = Literal.render (Helpers.valid s) in
+        let s = (Scene.with_overrides ~width:7 ~height:4 ~background:(Color.v 1. 2. 3.) ((scene [] [ Light.ambient 1. ]))) in
+        let img = Private.Literal.render (Helpers.valid s) in
         Alcotest.(check (pair int int)) __LOC__ (7, 4) (Image.width img, Image.height img);
         Alcotest.(check (triple int int int)) __LOC__ (1, 2, 3) (Image.get img 6 3));
     Alcotest.test_case "what is above the camera lands in the top rows" `Quick (fun () ->
@@ -100,9 +100,9 @@ let tests =
            lowest point y = 1) is met by the rays with y / 4 = 0.25 (at
            z = 10 they are at y = 2.5, inside it) and by none with y <= 0. *)
         let s =
-          { (scene [ sphere (Vec3.v 0. 101. 10.) 100. ] [ Light.ambient 1. ]) with width = 4; height = 4 }
+          (Scene.with_overrides ~width:4 ~height:4 ((scene [ sphere (Vec3.v 0. 101. 10.) 100. ] [ Light.ambient 1. ])))
         in
-        let img = Literal.render (Helpers.valid s) in
+        let img = Private.Literal.render (Helpers.valid s) in
         let white = (255, 255, 255) and black = (0, 0, 0) in
         List.iter
           (fun (row, expected) ->
@@ -119,7 +119,7 @@ let tests =
    distance 1 on a [n x n] canvas, [n] a power of 2: pixel (gx, gy)'s ray
    has the direction (gx / n, gy / n, 1), exactly. *)
 let exact_scene ?(lights = [ Light.ambient 1. ]) n shapes =
-  Scene.v ~epsilon:0.001 ~width:n ~height:n ~background:Color.black ~spheres:[] ~shapes ~lights ()
+  Helpers.scene ~epsilon:0.001 ~width:n ~height:n ~background:Color.black ~spheres:[] ~shapes ~lights ()
 
 let pixel_direction n gx gy = Vec3.v (Float.of_int gx /. Float.of_int n) (Float.of_int gy /. Float.of_int n) 1.
 
@@ -173,7 +173,7 @@ let exact_tests =
               | None -> (0, 0, 0))
         in
         Alcotest.(check int) "rays that touch the box" 32 !touching;
-        Helpers.check_images "the oracle" ~expected (Literal.render (Helpers.valid s));
+        Helpers.check_images "the oracle" ~expected (Private.Literal.render (Helpers.valid s));
         Helpers.check_images "the fast renderer" ~expected (Helpers.image_exn s));
     Alcotest.test_case "inside a union of two boxes that share a face, the shared face is not seen" `Quick
       (fun () ->
@@ -193,8 +193,8 @@ let exact_tests =
               List.fold_left Q.min (Q.of_int 8)
                 (List.filter_map (fun c -> if c = 0. then None else Some (Q.div (Q.of_int 3) (Q.of_float (Float.abs c)))) [ d.x; d.y ])
             in
-            match Literal.closest_hit s ~origin:Vec3.zero ~direction:d ~t_min:1. ~t_max:infinity with
-            | Some (Literal.Csg_surface (_, leaf, _), t) ->
+            match Private.Literal.closest_hit s ~origin:Vec3.zero ~direction:d ~t_min:1. ~t_max:infinity with
+            | Some (Private.Literal.Csg_surface (_, leaf, _), t) ->
                 if not (leaf == b) then Alcotest.failf "pixel (%d, %d): the surface of A is seen" gx gy;
                 if not (Q.equal (Q.of_float t) exit) then
                   Alcotest.failf "pixel (%d, %d): t = %h, exactly %s" gx gy t (Q.to_string exit)
@@ -202,10 +202,10 @@ let exact_tests =
           done
         done;
         Helpers.check_images "ambient light: all green" ~expected:(expected_image n (fun _ _ -> (0, 255, 0)))
-          (Literal.render (Helpers.valid s));
+          (Private.Literal.render (Helpers.valid s));
         (* Lit from a point: the shared face would be lit differently. *)
-        let lit = { s with lights = [ Light.ambient 0.2; Light.point 0.8 (Vec3.v 1. 1. 1.) ] } in
-        Helpers.check_images "the fast renderer, lit" ~max_abs:1 ~expected:(Literal.render (Helpers.valid lit)) (Helpers.image_exn lit));
+        let lit = (Scene.with_overrides ~lights:([ Light.ambient 0.2; Light.point 0.8 (Vec3.v 1. 1. 1.) ]) s) in
+        Helpers.check_images "the fast renderer, lit" ~max_abs:1 ~expected:(Private.Literal.render (Helpers.valid lit)) (Helpers.image_exn lit));
   ]
 
 let mesh_exn ~positions ~triangles =
@@ -248,7 +248,7 @@ let mesh_tests =
         List.iter
           (fun (what, m, inside) ->
             let expected = expected_image 16 (fun gx gy -> if inside gx gy then (255, 255, 255) else (0, 0, 0)) in
-            Helpers.check_images what ~expected (Literal.render (Helpers.valid (mesh_operand_scene m))))
+            Helpers.check_images what ~expected (Private.Literal.render (Helpers.valid (mesh_operand_scene m))))
           closed_meshes);
     Alcotest.test_case "the watertight crossing counts a line through a closed mesh's edge or vertex once" `Quick
       (fun () ->
@@ -279,14 +279,14 @@ let mesh_tests =
            tests per ray, 16384 at least for the primary rays; the bound
            is 5000 and the render stops at test 5001. *)
         let rec tree lo n =
-          if n = 1 then Csg.Sphere (Sphere.v ~center:(Vec3.v (Float.of_int (lo mod 8) -. 3.5) (Float.of_int (lo / 8) -. 3.5) 10.) ~radius:0.4 Color.white)
+          if n = 1 then Csg.Sphere (Helpers.sphere ~center:(Vec3.v (Float.of_int (lo mod 8) -. 3.5) (Float.of_int (lo / 8) -. 3.5) 10.) ~radius:0.4 Color.white)
           else Csg.Csg (Csg.v Csg.Union (tree lo (n / 2)) (tree (lo + (n / 2)) (n / 2)))
         in
         let solid = match tree 0 64 with Csg.Csg c -> c | _ -> assert false in
         let limits = Limits.with_bound Limits.default `Work 5000. in
         List.iter
           (fun (what, shape) ->
-            match Literal.render ~limits (Helpers.valid (exact_scene 16 [ shape ])) with
+            match Private.Literal.render ~limits (Helpers.valid (exact_scene 16 [ shape ])) with
             | exception Limits.Work_exceeded n -> Alcotest.(check int) what 5001 n
             | _ -> Alcotest.failf "%s: not stopped" what)
           [ ("64 spheres", Shape.Csg solid); ("a mesh", Shape.Csg (Csg.v Csg.Union (Csg.Mesh cube) (Csg.Mesh octahedron))) ]);
@@ -317,8 +317,8 @@ let disagreement_tests =
         Alcotest.(check string) "exact edge function of a b" (Q.to_string (Q.of_ints 1 562949953421312)) (Q.to_string (edge ~o ~d a b));
         Alcotest.(check bool) "the others negative" true (Q.sign (edge ~o ~d b c) < 0 && Q.sign (edge ~o ~d c a) < 0);
         let tri = Shape.Triangle (Triangle.v a b c (Material.v Color.white)) in
-        let s = Scene.v ~epsilon:0.001 ~spheres:[] ~shapes:[ tri ] ~lights:[] () in
-        Alcotest.(check bool) "the oracle: no blocker" true (Literal.closest_hit s ~origin:o ~direction:d ~t_min:0.001 ~t_max:1. = None));
+        let s = Helpers.scene ~epsilon:0.001 ~spheres:[] ~shapes:[ tri ] ~lights:[] () in
+        Alcotest.(check bool) "the oracle: no blocker" true (Private.Literal.closest_hit s ~origin:o ~direction:d ~t_min:0.001 ~t_max:1. = None));
     Alcotest.test_case "a ray beside a mesh's silhouette vertex hits the triangle it meets first, exactly" `Quick
       (fun () ->
         (* Along (1/4 - 2^-55, 0, 1) the line passes 2^-53 inside the
@@ -328,7 +328,7 @@ let disagreement_tests =
            rounded. Front: triangles 4 and 7; back: 0 and 3, listed first.
            The nearest exactly is triangle 4. *)
         let d = Vec3.v (Float.pred 0.25) 0. 1. in
-        let s = Scene.v ~epsilon:0.001 ~spheres:[] ~shapes:[ Shape.Mesh octahedron ] ~lights:[] () in
+        let s = Helpers.scene ~epsilon:0.001 ~spheres:[] ~shapes:[ Shape.Mesh octahedron ] ~lights:[] () in
         let hits =
           List.filter
             (fun k ->
@@ -338,8 +338,8 @@ let disagreement_tests =
             (List.init (Mesh.triangle_count octahedron) Fun.id)
         in
         Alcotest.(check (list int)) "the triangles met" [ 0; 3; 4; 7 ] hits;
-        match Literal.closest_hit s ~origin:Vec3.zero ~direction:d ~t_min:1. ~t_max:infinity with
-        | Some (Literal.Mesh_triangle (_, k), _) -> Alcotest.(check int) "the first met" 4 k
+        match Private.Literal.closest_hit s ~origin:Vec3.zero ~direction:d ~t_min:1. ~t_max:infinity with
+        | Some (Private.Literal.Mesh_triangle (_, k), _) -> Alcotest.(check int) "the first met" 4 k
         | _ -> Alcotest.fail "no triangle");
   ]
 
@@ -396,7 +396,7 @@ let range_tests =
         let tr = Trace.create (Helpers.prepare ~skips:true s) in
         List.iter
           (fun (gx, gy, seen) ->
-            let c = Literal.pixel s gx gy in
+            let c = Private.Literal.pixel s gx gy in
             Trace.pixel tr gx gy;
             let expected = if seen then 255. else 0. in
             Alcotest.(check (float 0.)) (Printf.sprintf "the oracle's red at (%d, %d)" gx gy) expected c.r;

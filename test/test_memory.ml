@@ -45,7 +45,7 @@ let spheres_gone_while_tracing render =
   let valid =
     (fun [@inline never] () ->
       let s = Scene.with_overrides ~width:16 ~height:16 (Scene.grid 5000) in
-      Weak.set weak 0 (Some s.spheres);
+      Weak.set weak 0 (Some (Scene.spheres s));
       match Scene.validate s with Ok v -> v | Error (`Msg m) -> Alcotest.fail m)
       ()
   in
@@ -62,7 +62,7 @@ let spheres_gone_while_tracing render =
 (* A torus knot of [2 * segments * 16] triangles, smooth, on a plane, as
    the scene [Scene.cgfs] lights: the million-triangle case of
    docs/performance.md, smaller. *)
-let knot_obj segments = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments ~sides:16
+let knot_obj segments = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments ~sides:16
 
 let knot_mesh segments =
   let o = knot_obj segments in
@@ -198,7 +198,7 @@ let tests =
            triangles), instead. *)
         let m = knot_mesh 3125 in
         let floor = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy (Material.v (Color.v 120. 120. 130.))) in
-        let s = Scene.with_overrides ~width:8 ~height:8 { Scene.cgfs with spheres = Spheres.empty; shapes = [ floor; Shape.Mesh m ] } in
+        let s = Scene.with_overrides ~width:8 ~height:8 ~objects:[ floor; Shape.Mesh m ] Scene.cgfs in
         let p = Helpers.prepare s in
         let n = Mesh.triangle_count m in
         Alcotest.(check int) "triangles" 100_000 n;
@@ -247,7 +247,7 @@ let tests =
         (* Its OBJ text is 42 MB; main before this round peaked at 198 MB
            with either, now 124 MB. The 1M-triangle knot: 382 -> 235 MB. *)
         let dir = Helpers.temp_dir () in
-        write (Filename.concat dir "knot.obj") (Obj_file.to_string (knot_obj 15625));
+        write (Filename.concat dir "knot.obj") (Mesh.Obj.to_string (knot_obj 15625));
         let scene = Filename.concat dir "knot.scene" in
         write scene
           "(canvas (width 40) (height 30)) (camera (position 0 2.2 -4.5) (look-at 0 0.9 3))\n\

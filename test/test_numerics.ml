@@ -48,7 +48,7 @@ let measure (roots : Hard_cases.case -> float * float) cases =
 (* The roots the renderer computes: the tracer's own test, in the robust
    mode. *)
 let robust (c : Hard_cases.case) =
-  let tr = Trace.create (Helpers.prepare (Scene.v ~spheres:[ c.sphere ] ~lights:[] ())) in
+  let tr = Trace.create (Helpers.prepare (Helpers.scene ~spheres:[ c.sphere ] ~lights:[] ())) in
   Trace.roots tr 0 c.origin c.direction
 
 (* [Sphere.roots], the library's readable copy, is held to the same bound. *)
@@ -64,7 +64,7 @@ let cases gen = QCheck.Gen.generate ~rand:(Random.State.make [| 1121 |]) ~n:case
    sphere under ambient light 1: the mask of pixels that see it. *)
 let hit_mask scene =
   let tr = Trace.create (Helpers.prepare scene) in
-  let w = scene.Scene.width and h = scene.height in
+  let w = (Scene.width scene) and h = (Scene.height scene) in
   Array.init h (fun row ->
       Array.init w (fun col ->
           Trace.pixel tr (Canvas.x_of_column ~width:w col) (Canvas.y_of_row ~height:h row);
@@ -74,14 +74,14 @@ let hit_mask scene =
    distance from its center to the pixel's float ray is <= r. Pixels within
    the documented rounding band of the silhouette are left out. *)
 let exact_mask (scene : Scene.t) (s : Sphere.t) =
-  let w = scene.width and h = scene.height in
+  let w = (Scene.width scene) and h = (Scene.height scene) in
   Array.init h (fun row ->
       Array.init w (fun col ->
           let v =
-            Viewport.of_canvas scene.viewport ~canvas_width:w ~canvas_height:h
+            Viewport.of_canvas (Scene.viewport scene) ~canvas_width:w ~canvas_height:h
               (Canvas.x_of_column ~width:w col) (Canvas.y_of_row ~height:h row)
           in
-          let direction = Camera.direction scene.camera v and origin = scene.camera.position in
+          let direction = Camera.direction (Scene.camera scene) v and origin = (Scene.camera scene).position in
           let line = sqrt (Q.to_float (Exact.line_distance2 s ~origin ~direction)) in
           let band = bound *. u *. (Vec3.norm (Vec3.sub origin s.center) +. s.radius) in
           if line <= s.radius -. band then `In else if line > s.radius +. band then `Out else `Edge))
@@ -96,7 +96,7 @@ let tiny_far_scene ?(epsilon : float option) ?aim ?(translate = Vec3.zero) () =
   let r = 1e-3 in
   let dist = 1e7 *. r in
   let center = Vec3.add translate (Vec3.v (0.3 *. dist) (-0.2 *. dist) dist) in
-  let sphere = Sphere.v ~center ~radius:r Color.white in
+  let sphere = Helpers.sphere ~center ~radius:r Color.white in
   (* The disk spans 2 r / dist = 2e-7 of the viewport distance. *)
   let vp, target =
     match aim with
@@ -110,7 +110,7 @@ let tiny_far_scene ?(epsilon : float option) ?aim ?(translate = Vec3.zero) () =
     match Camera.look_at ~up ~position:translate target with Ok c -> c | Error (`Msg e) -> failwith e
   in
   let scene =
-    Scene.v ~width:90 ~height:90 ~viewport:vp ~camera ?epsilon ~spheres:[ sphere ]
+    Helpers.scene ~width:90 ~height:90 ~viewport:vp ~camera ?epsilon ~spheres:[ sphere ]
       ~lights:[ Light.ambient 1. ] ()
   in
   (scene, sphere)
@@ -124,16 +124,14 @@ let transform ~scale ~translate (s : Scene.t) =
      anew at scale 1: its cells would be the world's; no scene has a
      patterned mesh.) *)
   let pattern = Option.map (fun (Pattern.Checker c) -> Pattern.checker ~size:(scale *. c.size) c.color) in
-  let material (m : Material.t) = { m with pattern = pattern m.pattern } in
-  {
-    s with
-    epsilon = None;
-    viewport =
-      Viewport.v ~width:(scale *. s.viewport.width) ~height:(scale *. s.viewport.height)
-        ~distance:(scale *. s.viewport.distance);
-    camera = { s.camera with position = p s.camera.position };
-    spheres = List.map (fun (sp : Sphere.t) -> { sp with center = p sp.center; radius = scale *. sp.radius; pattern = pattern sp.pattern }) (Spheres.to_list s.spheres) |> Spheres.of_list;
-    shapes =
+  let material (m : Material.t) = Material.update ~pattern:(pattern m.pattern) m in
+  let sphere (sp : Sphere.t) = Sphere.v ~center:(p sp.center) ~radius:(scale *. sp.radius) (material sp.material) in
+  Scene.with_overrides ~epsilon:None
+    ~viewport:
+      (Viewport.v ~width:(scale *. (Scene.viewport s).width) ~height:(scale *. (Scene.viewport s).height)
+        ~distance:(scale *. (Scene.viewport s).distance))
+    ~camera:{ (Scene.camera s) with position = p (Scene.camera s).position }
+    ~objects:
       (let mesh (m : Mesh.t) =
          let positions = Array.copy m.positions in
          for i = 0 to (Array.length positions / 3) - 1 do
@@ -149,31 +147,32 @@ let transform ~scale ~translate (s : Scene.t) =
          | Ok m -> m
          | Error (`Msg e) -> Alcotest.fail e
        in
-       let box (b : Box.t) : Box.t = { min = p b.min; max = p b.max; material = material b.material } in
+       let box (b : Box.t) : Box.t = Box.v ~min:(p b.min) ~max:(p b.max) (material b.material) in
        let rec csg (c : Csg.t) =
          let solid = function
-           | Csg.Sphere sp -> Csg.Sphere { sp with center = p sp.center; radius = scale *. sp.radius; pattern = pattern sp.pattern }
+           | Csg.Sphere sp -> Csg.Sphere (sphere sp)
            | Csg.Box b -> Csg.Box (box b)
            | Csg.Mesh m -> Csg.Mesh (mesh m)
            | Csg.Csg c -> Csg.Csg (csg c)
          in
-         { c with a = solid c.a; b = solid c.b }
+         Csg.v c.op (solid c.a) (solid c.b)
        in
        List.map
          (function
-           | Shape.Plane pl -> Shape.Plane { pl with point = p pl.point; material = material pl.material }
-           | Shape.Triangle t -> Shape.Triangle { v0 = p t.v0; v1 = p t.v1; v2 = p t.v2; material = material t.material }
+           | Shape.Sphere sp -> Shape.Sphere (sphere sp)
+           | Shape.Plane pl -> Shape.Plane (Plane.v ~point:(p pl.point) ~normal:pl.normal (material pl.material))
+           | Shape.Triangle t -> Shape.Triangle (Triangle.v (p t.v0) (p t.v1) (p t.v2) (material t.material))
            | Shape.Box b -> Shape.Box (box b)
            | Shape.Mesh m -> Shape.Mesh (mesh m)
            | Shape.Csg c -> Shape.Csg (csg c))
-         s.shapes);
-    lights =
-      List.map
-        (function
-          | Light.Point { intensity; position } -> Light.point intensity (p position)
-          | l -> l)
-        s.lights;
-  }
+         (Scene.objects s))
+    ~lights:
+      (List.map
+         (function
+           | Light.Point { intensity; position } -> Light.point intensity (p position)
+           | l -> l)
+         (Scene.lights s))
+    s
 
 let small (s : Scene.t) = Scene.with_overrides ~width:64 ~height:64 s
 
@@ -203,7 +202,7 @@ let tests =
     Helpers.qcheck ~count:500 "a ray leaving a surface outward does not re-hit it; inward it does"
       (QCheck.make (List.assoc "rays from a surface point" Hard_cases.families))
       (fun c ->
-        let scene = Scene.v ~spheres:[ c.sphere ] ~lights:[] () in
+        let scene = Helpers.scene ~spheres:[ c.sphere ] ~lights:[] () in
         let tr = Trace.create (Helpers.prepare scene) in
         let n = Vec3.sub c.origin c.sphere.center in
         let cos = Vec3.dot (Vec3.unit n) (Vec3.unit c.direction) in
@@ -218,7 +217,7 @@ let tests =
           List.length
             (List.filter
                (fun (hc : Hard_cases.case) ->
-                 let scene = Scene.v ~epsilon:1e-12 ~spheres:[ hc.sphere ] ~lights:[] () in
+                 let scene = Helpers.scene ~epsilon:1e-12 ~spheres:[ hc.sphere ] ~lights:[] () in
                  let tr = Trace.create (Helpers.prepare scene) in
                  let n = Vec3.sub hc.origin hc.sphere.center in
                  Vec3.dot n hc.direction > 0. && Trace.cast tr ~from:0 hc.origin hc.direction = 0)
@@ -235,13 +234,13 @@ let tests =
            scale; a fixed epsilon of 0.001 (in t units) skips it. *)
         List.iter
           (fun scale ->
-            let a = Sphere.v ~center:Vec3.zero ~radius:scale Color.white in
+            let a = Helpers.sphere ~center:Vec3.zero ~radius:scale Color.white in
             let b =
-              Sphere.v ~center:(Vec3.v 0. (scale *. (1. +. 1.1e-9)) 0.) ~radius:(scale *. 1e-10) Color.white
+              Helpers.sphere ~center:(Vec3.v 0. (scale *. (1. +. 1.1e-9)) 0.) ~radius:(scale *. 1e-10) Color.white
             in
             let top = Vec3.v 0. scale 0. and up = Vec3.v 0. scale 0. in
             let cast epsilon =
-              let scene = Scene.v ?epsilon ~spheres:[ a; b ] ~lights:[] () in
+              let scene = Helpers.scene ?epsilon ~spheres:[ a; b ] ~lights:[] () in
               Trace.cast (Trace.create (Helpers.prepare scene)) ~from:0 top up
             in
             Alcotest.(check int) (Printf.sprintf "robust, scale %g" scale) 1 (cast None);
@@ -281,11 +280,11 @@ let tests =
               ])
           (Helpers.scene_names ()));
     Alcotest.test_case "degenerate scenes render finite colours" `Quick (fun () ->
-        let ball = Sphere.v ~center:(Vec3.v 0. 0. 3.) ~radius:1. ~specular:10. ~reflective:0.5 Color.white in
+        let ball = Helpers.sphere ~center:(Vec3.v 0. 0. 3.) ~radius:1. ~specular:10. ~reflective:0.5 Color.white in
         let lights = [ Light.ambient 0.1; Light.point 0.5 (Vec3.v 0. 0. 2.); Light.directional 0.4 Vec3.ox ] in
         List.iter
           (fun (what, spheres, lights, camera, epsilon) ->
-            let scene = Scene.v ~width:33 ~height:33 ~camera ?epsilon ~spheres ~lights () in
+            let scene = Helpers.scene ~width:33 ~height:33 ~camera ?epsilon ~spheres ~lights () in
             let tr = Trace.create (Helpers.prepare scene) in
             for gx = Canvas.min_x 33 to Canvas.max_x 33 do
               for gy = Canvas.min_y 33 to Canvas.max_y 33 do
@@ -294,7 +293,7 @@ let tests =
                 then Alcotest.failf "%s: pixel (%d, %d) is not finite" what gx gy
               done
             done;
-            let lit = Literal.pixel scene 0 0 in
+            let lit = Private.Literal.pixel scene 0 0 in
             if not (Color.is_finite lit) then Alcotest.failf "%s: the oracle is not finite" what)
           (List.concat_map
              (fun epsilon ->
@@ -304,8 +303,8 @@ let tests =
                  ("the camera inside a sphere", [ ball ], lights, Camera.v (Vec3.v 0. 0. 3.), epsilon);
                  ("the camera on a surface", [ ball ], lights, Camera.v (Vec3.v 0. 0. 2.), epsilon);
                  ("two identical spheres", [ ball; ball ], lights, Camera.default, epsilon);
-                 ("touching spheres", [ ball; { ball with center = Vec3.v 2. 0. 3. } ], lights, Camera.default, epsilon);
-                 ("concentric spheres", [ ball; { ball with radius = 0.5 } ], lights, Camera.default, epsilon);
+                 ("touching spheres", [ ball; Sphere.v ~center:(Vec3.v 2. 0. 3.) ~radius:ball.radius ball.material ], lights, Camera.default, epsilon);
+                 ("concentric spheres", [ ball; Sphere.v ~center:ball.center ~radius:0.5 ball.material ], lights, Camera.default, epsilon);
                  ("zero intensities", [ ball ], [ Light.point 0. Vec3.oy; Light.ambient 0. ], Camera.default, epsilon);
                  ("lights parallel to the view", [ ball ], [ Light.directional 1. (Vec3.v 0. 0. (-1.)) ], Camera.default, epsilon);
                  ("a huge intensity", [ ball ], [ Light.point 1e6 (Vec3.v 0. 5. 0.) ], Camera.default, epsilon);

@@ -1,7 +1,7 @@
 open Raytrace
 
 let parse ?(max_vertices = 1000) ?(max_triangles = 1000) s =
-  Obj_file.of_string ~name:"t.obj" ~max_vertices ~max_triangles s
+  Mesh.Obj.of_string ~name:"t.obj" ~max_vertices ~max_triangles s
 
 let mesh s = match parse s with Ok m -> m | Error (`Msg e) -> Alcotest.failf "refused %S: %s" s e
 let error ?max_vertices ?max_triangles s =
@@ -14,16 +14,16 @@ let ints = Alcotest.(array int)
 
 (* [s] fed in chunks that end at the offsets [cuts] (sorted, in range). *)
 let chunked ?(max_vertices = 1000) ?(max_triangles = 1000) s cuts =
-  let p = Obj_file.create ~name:"t.obj" ~max_vertices ~max_triangles in
+  let p = Mesh.Obj.create ~name:"t.obj" ~max_vertices ~max_triangles in
   let rec go start = function
-    | [] -> (match Obj_file.feed p s start (String.length s - start) with Error _ as e -> e | Ok () -> Obj_file.finish p)
-    | c :: rest -> (match Obj_file.feed p s start (c - start) with Error _ as e -> e | Ok () -> go c rest)
+    | [] -> (match Mesh.Obj.feed p s start (String.length s - start) with Error _ as e -> e | Ok () -> Mesh.Obj.finish p)
+    | c :: rest -> (match Mesh.Obj.feed p s start (c - start) with Error _ as e -> e | Ok () -> go c rest)
   in
   go 0 cuts
 
 let same_result a b =
   match (a, b) with
-  | Ok a, Ok b -> Obj_file.equal a b
+  | Ok a, Ok b -> Mesh.Obj.equal a b
   | Error (`Msg a), Error (`Msg b) -> String.equal a b
   | _ -> false
 
@@ -49,8 +49,8 @@ let same_whole_and_joined ~max_vertices fast slow ~cut =
   let joined ls =
     let cut = min cut (List.length ls) in
     let a = text (List.filteri (fun k _ -> k < cut) ls) and b = text (List.filteri (fun k _ -> k >= cut) ls) in
-    let p = Obj_file.create ~name:"t.obj" ~max_vertices ~max_triangles:1000 in
-    match Obj_file.feed p a 0 (String.length a) with
+    let p = Mesh.Obj.create ~name:"t.obj" ~max_vertices ~max_triangles:1000 in
+    match Mesh.Obj.feed p a 0 (String.length a) with
     | Ok () ->
         Option.map (fun m -> Ok m)
           (Helpers.obj_part_joined p ~name:"t.obj" ~max_vertices ~max_triangles:1000 b 0 (String.length b))
@@ -69,13 +69,13 @@ let tests =
         Alcotest.check ints __LOC__ [| 0; 1; 2 |] m.triangles;
         Alcotest.check ints __LOC__ [| -1; -1; -1 |] m.triangle_normals;
         Alcotest.check floats __LOC__ [||] m.normals;
-        Alcotest.(check int) __LOC__ 0 (Obj_file.skipped_total m));
+        Alcotest.(check int) __LOC__ 0 (Mesh.Obj.skipped_total m));
     Alcotest.test_case "a quad is two triangles and a pentagon three, fanned from the first vertex" `Quick
       (fun () ->
         let m = mesh (square ^ "v 0.5 2 0\nf 1 2 3 4\nf 5 4 3 2 1\n") in
         (* 1 2 3 4 -> (1 2 3) (1 3 4); 5 4 3 2 1 -> (5 4 3) (5 3 2) (5 2 1); minus 1 each. *)
         Alcotest.check ints __LOC__ [| 0; 1; 2; 0; 2; 3; 4; 3; 2; 4; 2; 1; 4; 1; 0 |] m.triangles;
-        Alcotest.(check int) __LOC__ 5 (Obj_file.triangle_count m));
+        Alcotest.(check int) __LOC__ 5 (Mesh.Obj.triangle_count m));
     Alcotest.test_case "negative indices count back from the last one defined so far" `Quick (fun () ->
         (* After 4 vertices -1 is vertex 4 (0-based 3); after the 5th, -1 is the 5th. *)
         let m = mesh (square ^ "f -4 -3 -1\nvn 0 0 1\nv 9 9 9\nf -1//-1 -2//1 -5//-1\n") in
@@ -121,7 +121,7 @@ let tests =
           __LOC__
           [ ("#", 1); ("vt", 2); ("o", 1); ("g", 1); ("s", 1); ("usemtl", 1); ("mtllib", 1); ("l", 1); ("p", 1); ("other", 1) ]
           m.skipped;
-        Alcotest.(check int) __LOC__ 11 (Obj_file.skipped_total m));
+        Alcotest.(check int) __LOC__ 11 (Mesh.Obj.skipped_total m));
     Alcotest.test_case "CRLF line ends, blank lines and a last line without line end are read" `Quick (fun () ->
         let m = mesh rich in
         Alcotest.check floats __LOC__ [| 0.; 0.; 0.; 1.5; 0.; 0.; 1.; 1.; 0.; -10.; 0.25; 0.5; 3.; -0.; 7. |] m.positions;
@@ -170,9 +170,9 @@ let tests =
           (error ~max_vertices:2 "vn 0 0 1\nvn 1 1 1\n vn 2 2 2\n");
         Alcotest.(check string) __LOC__ "t.obj:6:1: more than 2 triangles (the limit of triangles)"
           (error ~max_triangles:2 (square ^ "f 1 2 3\nf 1 2 3 4\n"));
-        Alcotest.(check int) __LOC__ 2 (Obj_file.triangle_count (mesh (square ^ "f 1 2 3 4\n"))));
+        Alcotest.(check int) __LOC__ 2 (Mesh.Obj.triangle_count (mesh (square ^ "f 1 2 3 4\n"))));
     Alcotest.test_case "a line longer than max_line_bytes is refused, whole or in chunks" `Quick (fun () ->
-        let long = "v 0 0 0\n#" ^ String.make Obj_file.max_line_bytes ' ' ^ "\nv 1 1 1\n" in
+        let long = "v 0 0 0\n#" ^ String.make Mesh.Obj.max_line_bytes ' ' ^ "\nv 1 1 1\n" in
         let e = error long in
         Alcotest.(check bool) e true (String.length e > 12 && String.sub e 0 12 = "t.obj:2:1048");
         let cuts = List.init 16 (fun k -> (k * 65536) + 3) in
@@ -180,32 +180,32 @@ let tests =
         | Ok _ -> Alcotest.fail "chunked: accepted"
         | Error (`Msg e) -> Alcotest.(check bool) e true (String.sub e 0 8 = "t.obj:2:"));
     Alcotest.test_case "after an error every feed and finish return it" `Quick (fun () ->
-        let p = Obj_file.create ~name:"t.obj" ~max_vertices:10 ~max_triangles:10 in
-        let first = Obj_file.feed p "v 1 2 x\n" 0 8 in
-        let later = Obj_file.feed p "v 1 2 3\n" 0 8 in
-        let last = Obj_file.finish p in
+        let p = Mesh.Obj.create ~name:"t.obj" ~max_vertices:10 ~max_triangles:10 in
+        let first = Mesh.Obj.feed p "v 1 2 x\n" 0 8 in
+        let later = Mesh.Obj.feed p "v 1 2 3\n" 0 8 in
+        let last = Mesh.Obj.finish p in
         let msg = function Ok _ -> "ok" | Error (`Msg m) -> m in
         Alcotest.(check string) __LOC__ "t.obj:1:7: expected a number, found \"x\"" (msg first);
         Alcotest.(check string) __LOC__ (msg first) (msg later);
         Alcotest.(check string) __LOC__ (msg first) (match last with Ok _ -> "ok" | Error (`Msg m) -> m));
     Alcotest.test_case "an empty text is an empty mesh" `Quick (fun () ->
         let m = mesh "" in
-        Alcotest.(check int) __LOC__ 0 (Obj_file.vertex_count m + Obj_file.triangle_count m));
-    Alcotest.test_case "Obj_file.v refuses arrays that do not make a mesh" `Quick (fun () ->
+        Alcotest.(check int) __LOC__ 0 (Mesh.Obj.vertex_count m + Mesh.Obj.triangle_count m));
+    Alcotest.test_case "Mesh.Obj.v refuses arrays that do not make a mesh" `Quick (fun () ->
         let bad f = match f () with _ -> Alcotest.fail "accepted" | exception Invalid_argument _ -> () in
         let p = [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] in
-        bad (fun () -> Obj_file.v ~positions:p ~normals:[||] ~triangles:[| 0; 1; 3 |] ~triangle_normals:[| -1; -1; -1 |]);
-        bad (fun () -> Obj_file.v ~positions:p ~normals:[||] ~triangles:[| 0; 1; 2 |] ~triangle_normals:[| -1; -1; 0 |]);
-        bad (fun () -> Obj_file.v ~positions:p ~normals:[||] ~triangles:[| 0; 1 |] ~triangle_normals:[| -1; -1 |]);
-        bad (fun () -> Obj_file.v ~positions:p ~normals:[||] ~triangles:[| 0; 1; 2 |] ~triangle_normals:[||]));
+        bad (fun () -> Mesh.Obj.v ~positions:p ~normals:[||] ~triangles:[| 0; 1; 3 |] ~triangle_normals:[| -1; -1; -1 |]);
+        bad (fun () -> Mesh.Obj.v ~positions:p ~normals:[||] ~triangles:[| 0; 1; 2 |] ~triangle_normals:[| -1; -1; 0 |]);
+        bad (fun () -> Mesh.Obj.v ~positions:p ~normals:[||] ~triangles:[| 0; 1 |] ~triangle_normals:[| -1; -1 |]);
+        bad (fun () -> Mesh.Obj.v ~positions:p ~normals:[||] ~triangles:[| 0; 1; 2 |] ~triangle_normals:[||]));
     Alcotest.test_case "the OBJ text of a mesh reads back equal, floats bit for bit" `Quick (fun () ->
         let m = mesh rich in
-        let back = mesh (Obj_file.to_string m) in
-        Alcotest.(check bool) __LOC__ true (Obj_file.equal (Obj_file.v ~positions:m.positions ~normals:m.normals
+        let back = mesh (Mesh.Obj.to_string m) in
+        Alcotest.(check bool) __LOC__ true (Mesh.Obj.equal (Mesh.Obj.v ~positions:m.positions ~normals:m.normals
           ~triangles:m.triangles ~triangle_normals:m.triangle_normals) back);
-        let m = Obj_file.v ~positions:[| 0.1; 1. /. 3.; -1e-300; 4.9e-324; 1.7976931348623157e308; -0.; 1.; 2.; 3. |]
+        let m = Mesh.Obj.v ~positions:[| 0.1; 1. /. 3.; -1e-300; 4.9e-324; 1.7976931348623157e308; -0.; 1.; 2.; 3. |]
             ~normals:[||] ~triangles:[| 0; 1; 2 |] ~triangle_normals:[| -1; -1; -1 |] in
-        Alcotest.(check bool) __LOC__ true (Obj_file.equal m (mesh (Obj_file.to_string m))));
+        Alcotest.(check bool) __LOC__ true (Mesh.Obj.equal m (mesh (Mesh.Obj.to_string m))));
     Helpers.qcheck ~count:300 "chunks cut anywhere read as the whole text, errors included"
       QCheck.(pair (int_range 0 3) (small_list (int_bound 10_000)))
       (fun (variant, cuts) ->
@@ -308,7 +308,7 @@ let tests =
               ]))
       (fun text ->
         match parse ~max_vertices:5 ~max_triangles:5 text with
-        | Ok m -> Obj_file.vertex_count m <= 5 && Obj_file.triangle_count m <= 5
+        | Ok m -> Mesh.Obj.vertex_count m <= 5 && Mesh.Obj.triangle_count m <= 5
         | Error (`Msg e) ->
             String.length e > 6 && String.sub e 0 6 = "t.obj:" && not (String.contains e '\n' || String.contains e '\r'));
     Alcotest.test_case "one byte at a time reads as the whole text" `Quick (fun () ->
@@ -335,13 +335,13 @@ let tests =
         Alcotest.check floats __LOC__ [| 0.; 0.; 0.; 1.; 0.; 0.; 1.; 1.; 0.; 0.; 1.; 0. |] m.positions;
         Alcotest.check ints __LOC__ [| 0; 1; 2 |] m.triangles;
         (* Only at the start of the text: elsewhere it is an unknown statement. *)
-        Alcotest.(check int) __LOC__ 1 (Obj_file.skipped_total (mesh (square ^ bom ^ "v 1 1 1\n")));
+        Alcotest.(check int) __LOC__ 1 (Mesh.Obj.skipped_total (mesh (square ^ bom ^ "v 1 1 1\n")));
         (* Columns count bytes, the mark's included: 3 + "v 0 0 " (6), then x at 10. *)
         Alcotest.(check string) __LOC__ "t.obj:1:10: expected a number, found \"x\"" (error (bom ^ "v 0 0 x\n")));
     Alcotest.test_case "a mesh file with a byte order mark reads the same on one core and on two" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let path = Filename.concat dir "bom.obj" in
-        let text = Obj_file.to_string (Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.3 ~segments:40 ~sides:8) in
+        let text = Mesh.Obj.to_string (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.3 ~segments:40 ~sides:8) in
         let oc = open_out_bin path in
         output_string oc ("\xef\xbb\xbf" ^ text);
         close_out oc;
@@ -349,24 +349,24 @@ let tests =
         List.iter
           (fun jobs ->
             match Raytrace_unix.Files.read_mesh ~jobs ~split_bytes:1 path with
-            | Ok m -> Alcotest.(check bool) (Printf.sprintf "%d jobs: the mesh without the mark" jobs) true (Obj_file.equal m expected)
+            | Ok m -> Alcotest.(check bool) (Printf.sprintf "%d jobs: the mesh without the mark" jobs) true (Mesh.Obj.equal m expected)
             | Error (`Msg e) -> Alcotest.fail e)
           [ 1; 2 ]);
     Alcotest.test_case "feed_bytes reads from a buffer the caller then reuses" `Quick (fun () ->
-        let p = Obj_file.create ~name:"t.obj" ~max_vertices:10 ~max_triangles:10 in
+        let p = Mesh.Obj.create ~name:"t.obj" ~max_vertices:10 ~max_triangles:10 in
         let buf = Bytes.create 7 in
         let text = square ^ "f 1 2 3 4\n" in
         let k = ref 0 in
         while !k < String.length text do
           let n = min 7 (String.length text - !k) in
           Bytes.blit_string text !k buf 0 n;
-          (match Obj_file.feed_bytes p buf 0 n with Ok () -> () | Error (`Msg e) -> Alcotest.fail e);
+          (match Mesh.Obj.feed_bytes p buf 0 n with Ok () -> () | Error (`Msg e) -> Alcotest.fail e);
           Bytes.fill buf 0 7 'X';
           k := !k + n
         done;
-        match Obj_file.finish p with
+        match Mesh.Obj.finish p with
         | Error (`Msg e) -> Alcotest.fail e
-        | Ok m -> Alcotest.(check bool) __LOC__ true (Obj_file.equal m (mesh text)));
+        | Ok m -> Alcotest.(check bool) __LOC__ true (Mesh.Obj.equal m (mesh text)));
     Alcotest.test_case "reading a large mesh allocates no string per number" `Quick (fun () ->
         let lines = 20_000 in
         let b = Buffer.create (lines * 40) in
@@ -381,7 +381,7 @@ let tests =
         let before = Gc.minor_words () in
         let m = parse ~max_vertices:lines ~max_triangles:lines text in
         let words = Gc.minor_words () -. before in
-        (match m with Ok m -> Alcotest.(check int) __LOC__ (lines - 2) (Obj_file.triangle_count m) | Error (`Msg e) -> Alcotest.fail e);
+        (match m with Ok m -> Alcotest.(check int) __LOC__ (lines - 2) (Mesh.Obj.triangle_count m) | Error (`Msg e) -> Alcotest.fail e);
         (* A string per token would be 3 words for each of the 3 numbers and
            3 indices of a line; floats boxed between functions take 2. *)
         let per_line = words /. Float.of_int (2 * lines) in
@@ -389,7 +389,7 @@ let tests =
     Alcotest.test_case "Mesh.of_obj makes the mesh the scene form (mesh (file ...) ...) makes" `Quick (fun () ->
         let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n# note\n" in
         let obj = mesh text in
-        let load _ = Obj_file.of_string ~name:"m.obj" ~max_vertices:1000 ~max_triangles:1000 text in
+        let load _ = Mesh.Obj.of_string ~name:"m.obj" ~max_vertices:1000 ~max_triangles:1000 text in
         let scene =
           "(light ambient (intensity 1))\n\
            (mesh (file \"m.obj\") (scale 2) (translate 1 2 3) (smooth true) (color 10 20 30) (specular 5))"
@@ -398,7 +398,7 @@ let tests =
           match Scene_file.of_string ~load_mesh:load scene with
           | Error (`Msg e) -> Alcotest.failf "scene refused: %s" e
           | Ok s -> (
-              match (Scene.of_valid s).shapes with
+              match (Scene.shapes (Scene.of_valid s)) with
               | [ Shape.Mesh m ] -> m
               | _ -> Alcotest.fail "expected one mesh")
         in

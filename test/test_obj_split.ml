@@ -1,13 +1,13 @@
 (* An OBJ text read on two cores: the part after a line start read apart
-   (Obj_file.create_part) and joined to the reader of the text before
-   (Obj_file.join), as Files.read_mesh does with a child process. The
+   (Mesh.Obj.create_part) and joined to the reader of the text before
+   (Mesh.Obj.join), as Files.read_mesh does with a child process. The
    mesh, its skipped counts and its errors must be one reader's. *)
 open Raytrace
 
 let name = "t.obj"
 
 let one ?(max_vertices = 1000) ?(max_triangles = 1000) text =
-  Obj_file.of_string ~name ~max_vertices ~max_triangles text
+  Mesh.Obj.of_string ~name ~max_vertices ~max_triangles text
 
 (* [text] cut at line start [split]: the part after it read apart, then
    joined, or read by the first reader where it cannot be joined (the
@@ -15,9 +15,9 @@ let one ?(max_vertices = 1000) ?(max_triangles = 1000) text =
    joined. *)
 let two ?(max_vertices = 1000) ?(max_triangles = 1000) text split =
   let n = String.length text in
-  let p = Obj_file.create ~name ~max_vertices ~max_triangles in
-  let rest () = match Obj_file.feed p text split (n - split) with Error _ as e -> e | Ok () -> Obj_file.finish p in
-  match Obj_file.feed p text 0 split with
+  let p = Mesh.Obj.create ~name ~max_vertices ~max_triangles in
+  let rest () = match Mesh.Obj.feed p text split (n - split) with Error _ as e -> e | Ok () -> Mesh.Obj.finish p in
+  match Mesh.Obj.feed p text 0 split with
   | Error _ as e -> (e, false)
   | Ok () -> (
       match Helpers.obj_part_joined p ~name ~max_vertices ~max_triangles text split (n - split) with
@@ -28,8 +28,8 @@ let two ?(max_vertices = 1000) ?(max_triangles = 1000) text split =
    triangle rather than 72), or equal errors. *)
 let same what a b =
   match (a, b) with
-  | Ok (a : Obj_file.t), Ok (b : Obj_file.t) ->
-      if not (Obj_file.equal a b) then Alcotest.failf "%s: the meshes differ" what;
+  | Ok (a : Mesh.Obj.t), Ok (b : Mesh.Obj.t) ->
+      if not (Mesh.Obj.equal a b) then Alcotest.failf "%s: the meshes differ" what;
       if (a.triangle_normals == a.triangles) <> (b.triangle_normals == b.triangles) then
         Alcotest.failf "%s: the numberings are shared by one read only" what
   | Error (`Msg a), Error (`Msg b) -> if a <> b then Alcotest.failf "%s: error %S, not %S" what b a
@@ -72,8 +72,8 @@ let valid =
     ("rich", Test_obj_file.rich);
   ]
 
-let knot = Obj_file.to_string (Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.2 ~segments:9 ~sides:4)
-let terrain = Obj_file.to_string (Mesh_gen.terrain ~seed:3 ~nx:5 ~nz:4 ~size:2. ~height:0.5)
+let knot = Mesh.Obj.to_string (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.2 ~segments:9 ~sides:4)
+let terrain = Mesh.Obj.to_string (Mesh.Gen.terrain ~seed:3 ~nx:5 ~nz:4 ~size:2. ~height:0.5)
 
 (* Errors that only the text before tells: each is one reader's, at its
    line and column, wherever the cut. *)
@@ -148,9 +148,9 @@ let tests =
         let text = knot in
         let split = String.index_from text (String.length text / 2) '\n' + 1 in
         let sent = Buffer.create 4096 in
-        let q = Obj_file.create_part ~output:(Buffer.add_subbytes sent) ~name ~max_vertices:1000 ~max_triangles:1000 in
+        let q = Mesh.Obj.create_part ~output:(Buffer.add_subbytes sent) ~name ~max_vertices:1000 ~max_triangles:1000 in
         let part =
-          match Result.bind (Obj_file.feed q text split (String.length text - split)) (fun () -> Obj_file.finish_part q) with
+          match Result.bind (Mesh.Obj.feed q text split (String.length text - split)) (fun () -> Mesh.Obj.finish_part q) with
           | Ok part -> part
           | Error (`Msg e) -> Alcotest.fail e
         in
@@ -166,13 +166,13 @@ let tests =
         Bytes.set corrupt 0 '\009';
         List.iter
           (fun (what, bytes, raised) ->
-            let p = Obj_file.create ~name ~max_vertices:1000 ~max_triangles:1000 in
-            ignore (Obj_file.feed p text 0 split);
-            (match Obj_file.join p part ~input:(input bytes) with
+            let p = Mesh.Obj.create ~name ~max_vertices:1000 ~max_triangles:1000 in
+            ignore (Mesh.Obj.feed p text 0 split);
+            (match Mesh.Obj.join p part ~input:(input bytes) with
             | _ -> Alcotest.failf "%s: joined" what
             | exception e -> if not (raised e) then Alcotest.failf "%s: raised %s" what (Printexc.to_string e));
             (* The reader reads the rest itself, as it would have. *)
-            same what (one text) (Result.bind (Obj_file.feed p text split (String.length text - split)) (fun () -> Obj_file.finish p)))
+            same what (one text) (Result.bind (Mesh.Obj.feed p text split (String.length text - split)) (fun () -> Mesh.Obj.finish p)))
           [ ("cut short", Bytes.sub bytes 0 (Bytes.length bytes - 8), ( = ) End_of_file);
             ("not a part's", corrupt, function Failure _ -> true | _ -> false) ]);
     Alcotest.test_case "an error after the cut is one reader's, at its line and column" `Quick (fun () ->
@@ -198,8 +198,8 @@ let tests =
           [ (12, 20); (11, 20); (12, 19); (6, 20); (12, 10); (1, 1) ]);
     Alcotest.test_case "join refuses a reader that is finished, failed or not at a line start" `Quick (fun () ->
         let reader text =
-          let p = Obj_file.create ~name ~max_vertices:10 ~max_triangles:10 in
-          ignore (Obj_file.feed p text 0 (String.length text));
+          let p = Mesh.Obj.create ~name ~max_vertices:10 ~max_triangles:10 in
+          ignore (Mesh.Obj.feed p text 0 (String.length text));
           p
         in
         let join p = Helpers.obj_part_joined p ~name ~max_vertices:10 ~max_triangles:10 "f 1 2 3\n" 0 8 in
@@ -207,10 +207,10 @@ let tests =
         Alcotest.(check bool) "mid-line" true (Option.is_none (join (reader (v3 ^ "v 1"))));
         Alcotest.(check bool) "failed" true (Option.is_none (join (reader (v3 ^ "v 1 2 x\n"))));
         let p = reader v3 in
-        ignore (Obj_file.finish p);
+        ignore (Mesh.Obj.finish p);
         Alcotest.(check bool) "finished" true (Option.is_none (join p));
         Alcotest.(check bool) "out of range" true (Option.is_none (join (reader "v 1 1 1\n")));
-        match Obj_file.finish_part (Obj_file.create ~name ~max_vertices:1 ~max_triangles:1) with
+        match Mesh.Obj.finish_part (Mesh.Obj.create ~name ~max_vertices:1 ~max_triangles:1) with
         | _ -> Alcotest.fail "finish_part of a whole text's reader"
         | exception Invalid_argument _ -> ());
     Alcotest.test_case "a mesh file read on two cores is the one read on one, from a child process" `Quick (fun () ->
@@ -223,7 +223,7 @@ let tests =
         in
         let read ?jobs ?on_part () = Raytrace_unix.Files.read_mesh ?jobs ~split_bytes:1 ?on_part path in
         Fun.protect ~finally:(fun () -> (try Sys.remove path with Sys_error _ -> ()); Unix.rmdir dir) @@ fun () ->
-        let big = Obj_file.to_string (Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.2 ~segments:60 ~sides:8) in
+        let big = Mesh.Obj.to_string (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.2 ~segments:60 ~sides:8) in
         write big;
         let parts = ref [] in
         same "a knot of 960 triangles" (read ~jobs:1 ()) (read ~jobs:2 ~on_part:(fun ~pid k -> parts := (pid, k) :: !parts) ());
@@ -272,7 +272,7 @@ let tests =
           output_string oc text;
           close_out oc
         in
-        let big = Obj_file.to_string (Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.2 ~segments:400 ~sides:64) in
+        let big = Mesh.Obj.to_string (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.2 ~segments:400 ~sides:64) in
         (* Big enough for render to read it on two cores. *)
         if String.length big < Raytrace_unix.Files.split_bytes then Alcotest.failf "the mesh has only %d bytes" (String.length big);
         write "t.scene"

@@ -19,7 +19,7 @@ let up = Vec3.oy
 
 (* The invisible objects added to a scene: transparency 1, index 1. *)
 let invisible_ball center radius =
-  Sphere.v ~specular:40. ~transparency:1. ~center ~radius (Color.v 10. 200. 30.)
+  Helpers.sphere ~specular:40. ~transparency:1. ~center ~radius (Color.v 10. 200. 30.)
 
 let invisible m = Material.v ~specular:10. ~transparency:1. m
 
@@ -29,30 +29,33 @@ let small (s : Scene.t) = Scene.with_overrides ~width:64 ~height:48 s
 let forward (c : Camera.t) = Camera.direction c (Vec3.v 0. 0. 1.)
 
 let has_glass (s : Scene.t) =
-  Spheres.exists (fun (sp : Sphere.t) -> sp.transparency > 0.) s.spheres
-  || List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.transparency > 0.) (Shape.materials sh)) s.shapes
+  Private.Spheres.exists (fun (sp : Sphere.t) -> sp.material.transparency > 0.) (Scene.spheres s)
+  || List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.transparency > 0.) (Shape.materials sh)) (Scene.shapes s)
 
 (* [s] with [f] applied to every material. *)
 let map_materials ~sphere ~material (s : Scene.t) =
   let shape = function
-    | Shape.Plane p -> Shape.Plane { p with material = material p.material }
-    | Shape.Triangle t -> Shape.Triangle { t with material = material t.material }
-    | Shape.Box b -> Shape.Box { b with material = material b.material }
+    | Shape.Sphere sp -> Shape.Sphere (sphere sp)
+    | Shape.Plane p -> Shape.Plane (Plane.v ~point:p.point ~normal:p.normal (material p.material))
+    | Shape.Triangle t -> Shape.Triangle (Triangle.v t.v0 t.v1 t.v2 (material t.material))
+    | Shape.Box b -> Shape.Box (Box.v ~min:b.min ~max:b.max (material b.material))
     | (Shape.Mesh _ | Shape.Csg _) as sh -> sh (* no mesh or CSG in the scenes changed here *)
   in
-  { s with spheres = Spheres.of_list (List.map sphere (Spheres.to_list s.spheres)); shapes = List.map shape s.shapes }
+  Scene.with_overrides ~objects:(List.map shape (Scene.objects s)) s
 
-let opaque_material (m : Material.t) = { m with transparency = 0. }
+let opaque_material (m : Material.t) = Material.update ~transparency:0. m
 
 (* [s] without its glass: every transparency 0. *)
-let opaque = map_materials ~sphere:(fun sp -> { sp with transparency = 0. }) ~material:opaque_material
+let opaque = map_materials ~sphere:(fun sp -> Helpers.with_sphere_material sp opaque_material) ~material:opaque_material
 
 (* Every object of [s] glass: transparency as the reflectivity allows. *)
 let all_glass =
   let glass r t = if r +. t > 1. then 1. -. r else t in
   map_materials
-    ~sphere:(fun sp -> { sp with transparency = glass sp.reflective 0.8; refractive_index = 1.33 })
-    ~material:(fun m -> { m with transparency = glass m.reflective 0.8; refractive_index = 1.5 })
+    ~sphere:(fun sp ->
+      Helpers.with_sphere_material sp (fun m ->
+          Material.update ~transparency:(glass m.reflective 0.8) ~refractive_index:1.33 m))
+    ~material:(fun m -> Material.update ~transparency:(glass m.reflective 0.8) ~refractive_index:1.5 m)
 
 let glass_scenes = QCheck.map ~rev:Fun.id all_glass Gen_scene.arbitrary
 
@@ -272,26 +275,25 @@ let tests =
         List.iter
           (fun name ->
             let s = small (Helpers.load_scene name) in
-            let f = forward s.camera and o = s.camera.position in
+            let f = forward (Scene.camera s) and o = (Scene.camera s).position in
             let at d = Vec3.add o (Vec3.smul d f) in
             (* Glass scenes: a small ball near the camera, in the air; the
                others: a ball, a box and a plane through everything. *)
             let extra =
-              if has_glass s then { s with spheres = Spheres.of_list (invisible_ball (at 1.6) 0.4 :: Spheres.to_list s.spheres) }
+              if has_glass s then Helpers.with_objects ~spheres:(invisible_ball (at 1.6) 0.4 :: Helpers.scene_spheres s) s
               else
                 let c = at 4. in
-                {
-                  s with
-                  spheres = Spheres.of_list (Spheres.to_list s.spheres @ [ invisible_ball c 1.2 ]);
-                  shapes =
-                    Shape.Box (Box.v ~min:(Vec3.sub c (Vec3.v 2. 0.5 0.5)) ~max:(Vec3.add c (Vec3.v 0. 1. 3.)) (invisible Color.white))
+                Helpers.with_objects
+                  ~spheres:(Helpers.scene_spheres s @ [ invisible_ball c 1.2 ])
+                  ~shapes:
+                    (Shape.Box (Box.v ~min:(Vec3.sub c (Vec3.v 2. 0.5 0.5)) ~max:(Vec3.add c (Vec3.v 0. 1. 3.)) (invisible Color.white))
                     :: Shape.Plane (Plane.v ~point:c ~normal:(Vec3.v 1. 2. 0.5) (invisible Color.white))
-                    :: s.shapes;
-                }
+                    :: (Scene.shapes s))
+                  s
             in
             List.iter
               (fun (mode, epsilon) ->
-                let s = { s with epsilon } and extra = { extra with epsilon } in
+                let s = Scene.with_overrides ~epsilon s and extra = Scene.with_overrides ~epsilon extra in
                 List.iter
                   (fun skips ->
                     same (Printf.sprintf "%s, %s, skips %b" name mode skips) ~expected:(Helpers.image_exn ~skips s)
@@ -306,26 +308,24 @@ let tests =
         let c = Vec3.v (Float.rem a 3.) (Float.rem b 3.) (5. +. Float.rem c 4.) in
         let c = if Float.is_finite (Vec3.norm c) then c else Vec3.v 0. 0. 5. in
         let extra =
-          {
-            s with
-            spheres = Spheres.of_list (invisible_ball c 1. :: Spheres.to_list s.spheres);
-            shapes = s.shapes @ [ Shape.Plane (Plane.v ~point:c ~normal:(Vec3.v 0.3 1. (-0.2)) (invisible Color.white)) ];
-          }
+          Helpers.with_objects
+            ~spheres:(invisible_ball c 1. :: Helpers.scene_spheres s)
+            ~shapes:(Scene.shapes s @ [ Shape.Plane (Plane.v ~point:c ~normal:(Vec3.v 0.3 1. (-0.2)) (invisible Color.white)) ])
+            s
         in
         Image.equal (Helpers.image_exn ~skips s) (Helpers.image_exn ~skips extra));
     Helpers.qcheck ~count:100 "an invisible ball around camera and scene changes no byte of random glass scenes"
       Gen_scene.arbitrary (fun s ->
         (* Glass planes cut every sphere around the scene: opaque here. *)
         let s =
-          {
-            s with
-            shapes =
-              List.map
-                (function Shape.Plane p -> Shape.Plane { p with material = opaque_material p.material } | sh -> sh)
-                s.shapes;
-          }
+          Helpers.with_objects
+            ~shapes:
+              (List.map
+                 (function Shape.Plane p -> Shape.Plane (Plane.v ~point:p.point ~normal:p.normal (opaque_material p.material)) | sh -> sh)
+                 (Scene.shapes s))
+            s
         in
-        let extra = { s with spheres = Spheres.of_list (Spheres.to_list s.spheres @ [ invisible_ball s.camera.position 1000. ]) } in
+        let extra = Helpers.with_objects ~spheres:(Helpers.scene_spheres s @ [ invisible_ball (Scene.camera s).position 1000. ]) s in
         Image.equal (Helpers.image_exn s) (Helpers.image_exn extra));
     Alcotest.test_case "a glass ball lets through t^2 of the light, one t per surface" `Quick (fun () ->
         (* The camera looks down at the origin of a white floor lit from
@@ -334,9 +334,9 @@ let tests =
            radius 0.5, which the camera's ray misses (it passes 1.41 from
            its center). Red = 255 * t^2 * <N, L> = 255 * t^2. *)
         let scene t =
-          Scene.v ~width:3 ~height:3
+          Helpers.scene ~width:3 ~height:3
             ~camera:(ok (Camera.look_at ~position:(Vec3.v 0. 5. (-5.)) Vec3.zero))
-            ~spheres:[ Sphere.v ~transparency:t ~refractive_index:1.5 ~center:(Vec3.v 0. 2. 0.) ~radius:0.5 Color.white ]
+            ~spheres:[ Helpers.sphere ~transparency:t ~refractive_index:1.5 ~center:(Vec3.v 0. 2. 0.) ~radius:0.5 Color.white ]
             ~shapes:[ Shape.Plane (Plane.v ~point:Vec3.zero ~normal:up (Material.v (Color.v 255. 255. 255.))) ]
             ~lights:[ Light.directional 1. up ] ()
         in
@@ -344,12 +344,12 @@ let tests =
           (fun (t, expected) ->
             List.iter
               (fun epsilon ->
-                let s = { (scene t) with epsilon } in
+                let s = (Scene.with_overrides ~epsilon (scene t)) in
                 let tr = Trace.create (Helpers.prepare s) in
                 Trace.pixel tr 0 0;
                 Alcotest.check (Helpers.float_near 1e-9) (Printf.sprintf "t = %g: fast" t) expected (Trace.red tr);
                 Alcotest.check (Helpers.float_near 1e-9) (Printf.sprintf "t = %g: oracle" t) expected
-                  (Literal.pixel s 0 0).r)
+                  (Private.Literal.pixel s 0 0).r)
               [ None; Some 0.001 ])
           [ (0.5, 255. *. 0.25); (0.8, 255. *. 0.8 *. 0.8); (1., 255.); (0., 0.) ]);
     Alcotest.test_case "light through two glass slabs 1e-10 apart is scaled by each of their four faces" `Quick
@@ -363,7 +363,7 @@ let tests =
         List.iter
           (fun epsilon ->
             let s =
-              Scene.v ~width:3 ~height:3 ?epsilon
+              Helpers.scene ~width:3 ~height:3 ?epsilon
                 ~camera:(ok (Camera.look_at ~position:(Vec3.v 0. 5. (-5.)) Vec3.zero))
                 ~spheres:[]
                 ~shapes:[ slab 2. 3.; slab (3. +. 1e-10) 4.; Shape.Plane (Plane.v ~point:Vec3.zero ~normal:up (Material.v (Color.v 255. 255. 255.))) ]
@@ -376,11 +376,11 @@ let tests =
     Alcotest.test_case "one depth for both kinds of ray: at depth 0 glass shows its local colour, as a mirror does"
       `Quick (fun () ->
         (* Ambient light alone: no shadow, which glass lets light through. *)
-        let s = { (small (Helpers.load_scene "glass.scene")) with lights = [ Light.ambient 1. ] } in
-        let s0 = { s with depth = 0 } in
+        let s = (Scene.with_overrides ~lights:([ Light.ambient 1. ]) ((small (Helpers.load_scene "glass.scene")))) in
+        let s0 = (Scene.with_overrides ~depth:0 s) in
         same "depth 0" ~expected:(Helpers.image_exn (opaque s0)) (Helpers.image_exn s0);
         (* With depth 1, the refracted rays see the scene behind: not so. *)
-        let differ = not (Image.equal (Helpers.image_exn (opaque { s with depth = 1 })) (Helpers.image_exn { s with depth = 1 })) in
+        let differ = not (Image.equal (Helpers.image_exn (opaque (Scene.with_overrides ~depth:1 s))) (Helpers.image_exn (Scene.with_overrides ~depth:1 s))) in
         Alcotest.(check bool) "depth 1 sees through" true differ);
     Helpers.qcheck ~count:100 "random glass scenes: switching the skips off changes no byte" glass_scenes (fun s ->
         Image.equal (Helpers.image_exn ~skips:false s) (Helpers.image_exn s)
@@ -390,16 +390,16 @@ let tests =
       (fun s -> Image.equal (Helpers.image_exn ~skips:false s) (Helpers.image_exn s));
     Helpers.qcheck ~count:100 "random glass scenes in the document's mode render as the oracle does" glass_scenes
       (fun s ->
-        let s = { s with epsilon = Some 0.001 } in
-        Image.equal (Literal.render (Helpers.valid s)) (Helpers.image_exn s));
+        let s = (Scene.with_overrides ~epsilon:(Some 0.001) s) in
+        Image.equal (Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s));
     Alcotest.test_case "the glass scenes in the document's mode render as the oracle does, byte for byte" `Quick
       (fun () ->
         (* Smooth glass included: where a corner-interpolated normal would
            bend the ray back, both take the flat normal. *)
         List.iter
           (fun name ->
-            let s = { (Scene.with_overrides ~width:48 ~height:36 (Helpers.load_scene name)) with epsilon = Some 0.001 } in
-            same name ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
+            let s = (Scene.with_overrides ~epsilon:(Some 0.001) ((Scene.with_overrides ~width:48 ~height:36 (Helpers.load_scene name)))) in
+            same name ~expected:(Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s))
           [ "glass.scene"; "glass-knot.scene"; "glass-lens.scene" ]);
     Alcotest.test_case "the tree stops early: deep glass traces fewer rays with the skips, for the same bytes"
       `Quick (fun () ->
@@ -408,11 +408,17 @@ let tests =
            bounces. *)
         let s = small (Helpers.load_scene "glass.scene") in
         let mirror = function
-          | Shape.Plane p -> Shape.Plane { p with material = { p.material with reflective = 0.6 } }
+          | Shape.Plane p -> Shape.Plane (Plane.v ~point:p.point ~normal:p.normal (Material.update ~reflective:0.6 p.material))
           | sh -> sh
         in
-        let glass (b : Sphere.t) = if b.transparency > 0. then { b with transparency = 0.4; reflective = 0.4 } else b in
-        let s = { s with depth = 24; spheres = Spheres.of_list (List.map glass (Spheres.to_list s.spheres)); shapes = List.map mirror s.shapes } in
+        let glass (b : Sphere.t) =
+          if b.material.transparency > 0. then Helpers.with_sphere_material b (Material.update ~transparency:0.4 ~reflective:0.4)
+          else b
+        in
+        let s =
+          Helpers.with_objects ~spheres:(List.map glass (Helpers.scene_spheres s)) ~shapes:(List.map mirror (Scene.shapes s))
+            (Scene.with_overrides ~depth:24 s)
+        in
         (* The estimate bounds the full tree, 2^25 - 1 rays a pixel
            (1.55e12 tests): most paths leave the scene long before. *)
         let limits = Limits.with_bound Limits.default `Work 1e13 in
@@ -426,7 +432,7 @@ let tests =
           (fun name ->
             List.iter
               (fun epsilon ->
-                let s = { (small (Helpers.load_scene name)) with epsilon } in
+                let s = (Scene.with_overrides ~epsilon (small (Helpers.load_scene name))) in
                 match Helpers.render s with
                 | Ok (_, st) -> Alcotest.(check (float 0.)) name 0. st.minor_words
                 | Error (`Msg m) -> Alcotest.fail m)
@@ -437,9 +443,9 @@ let tests =
            balls of center x = +-1, radius 1, and along the face x = 0 of
            the box. Inside the dense ball, rays meet its surface past the
            critical angle (sin c = 1/2.4). *)
-        let glass = Sphere.v ~transparency:0.9 ~refractive_index:2.4 ~fresnel:true Color.white in
+        let glass = Helpers.sphere ~transparency:0.9 ~refractive_index:2.4 ~fresnel:true Color.white in
         let scene epsilon =
-          Scene.v ~width:41 ~height:41 ?epsilon ~depth:8
+          Helpers.scene ~width:41 ~height:41 ?epsilon ~depth:8
             ~spheres:[ glass ~center:(Vec3.v 1. 0. 5.) ~radius:1.; glass ~center:(Vec3.v (-1.) 0.5 7.) ~radius:1. ]
             ~shapes:
               [
@@ -459,7 +465,7 @@ let tests =
                 then Alcotest.failf "pixel (%d, %d) is not finite" gx gy
               done
             done;
-            if not (Color.is_finite (Literal.pixel s 0 0)) then Alcotest.fail "the oracle is not finite")
+            if not (Color.is_finite (Private.Literal.pixel s 0 0)) then Alcotest.fail "the oracle is not finite")
           [ None; Some 0.001 ]);
     Alcotest.test_case
       "nested glass slabs, the inner left before the outer: the edge behind them is where Snell's law puts it with \
@@ -483,7 +489,7 @@ let tests =
         in
         let wall = Shape.Box (Box.v ~min:(Vec3.v 6. (-80.) 22.) ~max:(Vec3.v 90. 80. 22.001) (Material.v (Color.v 255. 0. 0.))) in
         let scene ~outer ~inner epsilon =
-          Scene.v ~width ~height:3 ?epsilon ~viewport:(Viewport.v ~width:vw ~height:(3. *. vw /. float width) ~distance:1.) ~depth:6
+          Helpers.scene ~width ~height:3 ?epsilon ~viewport:(Viewport.v ~width:vw ~height:(3. *. vw /. float width) ~distance:1.) ~depth:6
             ~shapes:[ glass ~lo:2. ~hi:20. ~half:60. outer; glass ~lo:6. ~hi:16. ~half:50. inner; wall ] ~spheres:[] ~lights:[ Light.ambient 1. ] ()
         in
         let x_at u =
@@ -521,7 +527,7 @@ let tests =
         let width = 401 in
         let wall = Shape.Box (Box.v ~min:(Vec3.v 2. (-50.) 10.) ~max:(Vec3.v 60. 50. 10.001) (Material.v (Color.v 255. 0. 0.))) in
         let slab n = Shape.Box (Box.v ~min:(Vec3.v (-50.) (-50.) 3.) ~max:(Vec3.v 50. 50. 7.) (Material.v ~transparency:1. ~refractive_index:n Color.white)) in
-        let scene n epsilon = Scene.v ~width ~height:3 ?epsilon ~viewport:(Viewport.v ~width:1. ~height:(3. /. 401.) ~distance:1.) ~depth:4 ~shapes:[ slab n; wall ] ~spheres:[] ~lights:[ Light.ambient 1. ] () in
+        let scene n epsilon = Helpers.scene ~width ~height:3 ?epsilon ~viewport:(Viewport.v ~width:1. ~height:(3. /. 401.) ~distance:1.) ~depth:4 ~shapes:[ slab n; wall ] ~spheres:[] ~lights:[ Light.ambient 1. ] () in
         let x_at u =
           let sin_a = u /. sqrt (1. +. (u *. u)) in
           let sin_b = sin_a /. 1.5 in

@@ -7,27 +7,27 @@ let error = function Ok _ -> Alcotest.fail "expected an error" | Error (`Msg m) 
 let scene = Scene.with_overrides ~width:37 ~height:23 Scene.cgfs_camera
 let region_image ?jobs s r = fst (ok (Helpers.render_region ?jobs s r))
 
-let part ?(s = scene) ?settings (r : Region.t) =
+let part ?(s = scene) ?settings (r : Render.Region.t) =
   let settings = match settings with Some st -> st | None -> Part.settings s in
-  Part.v ~canvas_width:s.width ~canvas_height:s.height ~region:r ~settings (region_image s r)
+  Part.v ~canvas_width:(Scene.width s) ~canvas_height:(Scene.height s) ~region:r ~settings (region_image s r)
 
 let tiles ?(s = scene) n =
   List.init n (fun i ->
-      let r = ok (Region.tile ~width:s.width ~height:s.height ~index:(i + 1) ~count:n) in
+      let r = ok (Render.Region.tile ~width:(Scene.width s) ~height:(Scene.height s) ~index:(i + 1) ~count:n) in
       (Printf.sprintf "part-%d.ppm" (i + 1), part ~s r))
 
 let tests =
   [
     Alcotest.test_case "a region renders as the same region of the whole image" `Quick (fun () ->
         let whole = Helpers.image_exn scene in
-        let r = Region.{ x = 5; y = 3; w = 20; h = 11 } in
+        let r = Render.Region.{ x = 5; y = 3; w = 20; h = 11 } in
         Helpers.check_images __LOC__ ~expected:(Image.sub whole ~x:5 ~y:3 ~w:20 ~h:11) (region_image scene r);
         Helpers.check_images __LOC__ ~expected:(Image.sub whole ~x:5 ~y:3 ~w:20 ~h:11) (region_image ~jobs:3 scene r));
     Helpers.qcheck ~count:60 "any region of any scene is byte for byte that part of the whole"
       QCheck.(pair Gen_scene.arbitrary (quad small_nat small_nat small_nat small_nat))
       (fun ((s : Scene.t), (a, b, c, d)) ->
-        let x = a mod s.width and y = b mod s.height in
-        let w = 1 + (c mod (s.width - x)) and h = 1 + (d mod (s.height - y)) in
+        let x = a mod (Scene.width s) and y = b mod (Scene.height s) in
+        let w = 1 + (c mod ((Scene.width s) - x)) and h = 1 + (d mod ((Scene.height s) - y)) in
         Image.equal (Image.sub (Helpers.image_exn s) ~x ~y ~w ~h) (region_image s { x; y; w; h }));
     Alcotest.test_case "seven tiles merge into the whole image, byte for byte" `Quick (fun () ->
         Helpers.check_images __LOC__ ~expected:(Helpers.image_exn scene) (ok (Part.merge (tiles 7))));
@@ -44,12 +44,12 @@ let tests =
           "P6\n# raytrace-part 1\n# canvas 4 3\n# region 1 2 3 3\n# depth 3\n# scene abc\n2 1\n255\n\000\000\000\001\002\003"
           (Part.to_string p);
         (* Any PPM reader sees the pixels. *)
-        Alcotest.(check bool) __LOC__ true (Image.equal img (ok (Ppm.of_string (Part.to_string p)))));
+        Alcotest.(check bool) __LOC__ true (Image.equal img (ok (Image.Ppm.of_string (Part.to_string p)))));
     Alcotest.test_case "a part reads back as written" `Quick (fun () ->
         let p = snd (List.nth (tiles 3) 1) in
         let q = ok (Part.of_string (Part.to_string p)) in
         Alcotest.(check (pair int int)) __LOC__ (37, 23) (q.canvas_width, q.canvas_height);
-        Alcotest.(check bool) __LOC__ true (Region.equal p.region q.region);
+        Alcotest.(check bool) __LOC__ true (Render.Region.equal p.region q.region);
         Alcotest.(check (list (pair string string))) __LOC__ p.settings q.settings;
         Alcotest.(check bool) __LOC__ true (Image.equal p.image q.image));
     Alcotest.test_case "the settings name depth, samples, renderer, frame and a scene digest" `Quick (fun () ->
@@ -60,7 +60,7 @@ let tests =
         let digest s = List.assoc "scene" (Part.settings s) in
         Alcotest.(check string) __LOC__ (Digest.to_hex (Digest.string (Scene_file.to_string Scene.cgfs))) (digest Scene.cgfs);
         Alcotest.(check bool) __LOC__ false (digest Scene.cgfs = digest Scene.cgfs_camera);
-        Alcotest.(check bool) __LOC__ false (digest Scene.cgfs = digest { Scene.cgfs with epsilon = Some 0.01 }));
+        Alcotest.(check bool) __LOC__ false (digest Scene.cgfs = digest (Scene.with_overrides ~epsilon:(Some 0.01) Scene.cgfs)));
     Alcotest.test_case "the scene digest covers the contents of the files the scene read, as they were read" `Quick
       (fun () ->
         let dir = Helpers.temp_dir () in
@@ -100,13 +100,13 @@ let tests =
         Alcotest.(check string) __LOC__
           (Printf.sprintf
              "c.ppm was rendered from a different scene than part-1.ppm (scene digests %s and %s): they do not fit together"
-             (List.assoc "scene" (Part.settings { scene with camera = Camera.default }))
+             (List.assoc "scene" (Part.settings (Scene.with_overrides ~camera:Camera.default scene)))
              (List.assoc "scene" (Part.settings scene)))
-          (error (Part.merge (with_part 1 ("c.ppm", part ~s:{ scene with camera = Camera.default } r2))));
+          (error (Part.merge (with_part 1 ("c.ppm", part ~s:(Scene.with_overrides ~camera:Camera.default scene) r2))));
         let wider = Scene.with_overrides ~width:38 scene in
         Alcotest.(check string) __LOC__
           "w.ppm is a part of a 38x23 image, part-1.ppm of a 37x23 one: they do not fit together"
-          (error (Part.merge (with_part 1 ("w.ppm", part ~s:wider (ok (Region.tile ~width:38 ~height:23 ~index:2 ~count:3))))));
+          (error (Part.merge (with_part 1 ("w.ppm", part ~s:wider (ok (Render.Region.tile ~width:38 ~height:23 ~index:2 ~count:3))))));
         Alcotest.(check string) __LOC__
           "s.ppm was rendered with samples 4, part-1.ppm with samples 1: they do not fit together"
           (error (Part.merge (with_part 1 ("s.ppm", part ~settings:(Part.settings ~samples:4 scene) r2))));
@@ -127,8 +127,8 @@ let tests =
         let img = Image.create 2 1 in
         Alcotest.(check string) __LOC__
           "a.ppm: not a part of a raytrace render (its header has no \"# raytrace-part 1\" line); render parts with raytrace render --tile or --region"
-          (error (Part.of_string ~file:"a.ppm" (Ppm.to_string img)));
-        let header lines = Ppm.to_string ~comments:("raytrace-part 1" :: lines) img in
+          (error (Part.of_string ~file:"a.ppm" (Image.Ppm.to_string img)));
+        let header lines = Image.Ppm.to_string ~comments:("raytrace-part 1" :: lines) img in
         Alcotest.(check string) __LOC__ "b.ppm: the part's pixels are 2x1 but its region 0 0 2 2 is 2x2"
           (error (Part.of_string ~file:"b.ppm" (header [ "canvas 4 4"; "region 0 0 2 2" ])));
         Alcotest.(check string) __LOC__ "b.ppm: region columns 3 to 5: need 0 <= x0 < x1 <= 4 (the canvas width)"

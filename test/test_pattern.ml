@@ -31,11 +31,11 @@ let floor_scene ~camera ~epsilon =
    the pattern's colour. Returns the pixels checked and those wrong. *)
 let check_floor (s : Scene.t) img ~y_cell =
   let checked = ref 0 and wrong = ref 0 in
-  let o = s.camera.position in
-  for gx = Canvas.min_x s.width to Canvas.max_x s.width do
-    for gy = Canvas.min_y s.height to Canvas.max_y s.height do
-      let v = Viewport.of_canvas s.viewport ~canvas_width:s.width ~canvas_height:s.height gx gy in
-      let d = Camera.direction s.camera v in
+  let o = (Scene.camera s).position in
+  for gx = Canvas.min_x (Scene.width s) to Canvas.max_x (Scene.width s) do
+    for gy = Canvas.min_y (Scene.height s) to Canvas.max_y (Scene.height s) do
+      let v = Viewport.of_canvas (Scene.viewport s) ~canvas_width:(Scene.width s) ~canvas_height:(Scene.height s) gx gy in
+      let d = Camera.direction (Scene.camera s) v in
       let t = (-1. -. o.y) /. d.y in
       if t > 1. && t < 1e3 then begin
         let x = o.x +. (t *. d.x) and z = o.z +. (t *. d.z) in
@@ -44,7 +44,7 @@ let check_floor (s : Scene.t) img ~y_cell =
           incr checked;
           let odd = (int_of_float (Float.floor x) + int_of_float (Float.floor z) + y_cell) land 1 = 1 in
           let expected = if odd then dark else light_grey in
-          let got = Image.get img (Canvas.column ~width:s.width gx) (Canvas.row ~height:s.height gy) in
+          let got = Image.get img (Canvas.column ~width:(Scene.width s) gx) (Canvas.row ~height:(Scene.height s) gy) in
           if got <> expected then incr wrong
         end
       end
@@ -154,9 +154,9 @@ let tests =
           | Ok m -> m
           | Error (`Msg m) -> Alcotest.fail m
         in
-        let world size = List.init 2 (fun k -> Shape.Triangle { (Mesh.triangle mesh k) with material = material size }) in
+        let world size = List.init 2 (fun k -> (let t = Mesh.triangle mesh k in Shape.Triangle (Triangle.v t.v0 t.v1 t.v2 (material size)))) in
         let scene shapes =
-          Scene.v ~width:64 ~height:64 ~camera:(Camera.v (Vec3.v 2.1 2.2 0.)) ~lights:[ Light.ambient 1. ] ~spheres:[]
+          Helpers.scene ~width:64 ~height:64 ~camera:(Camera.v (Vec3.v 2.1 2.2 0.)) ~lights:[ Light.ambient 1. ] ~spheres:[]
             ~shapes ()
         in
         let m = Helpers.image_exn (scene [ Shape.Mesh mesh ]) in
@@ -184,8 +184,8 @@ let tests =
         let scenes = QCheck.Gen.generate ~rand ~n:80 Gen_scene.gen in
         List.iteri
           (fun i (s : Scene.t) ->
-            let s = Gen_scene.with_patterns rand { s with epsilon = Some 0.001 } in
-            let expected = Literal.render (Helpers.valid s) in
+            let s = Gen_scene.with_patterns rand (Scene.with_overrides ~epsilon:(Some 0.001) s) in
+            let expected = Private.Literal.render (Helpers.valid s) in
             Helpers.check_images (Printf.sprintf "scene %d:\n%s" i (Scene.show s)) ~expected (Helpers.image_exn s))
           scenes);
     Alcotest.test_case "with patterns, switching the skips off changes no byte" `Quick (fun () ->
@@ -217,7 +217,7 @@ let tests =
     Alcotest.test_case "tracing a patterned scene allocates nothing per pixel" `Quick (fun () ->
         List.iter
           (fun epsilon ->
-            let s = { (Scene.with_overrides ~width:64 ~height:64 (Helpers.load_scene "checker.scene")) with epsilon } in
+            let s = Scene.with_overrides ~epsilon (Scene.with_overrides ~width:64 ~height:64 (Helpers.load_scene "checker.scene")) in
             match Helpers.render ~samples:2 s with
             | Ok (_, stats) -> Alcotest.(check (float 0.)) __LOC__ 0. stats.minor_words
             | Error (`Msg m) -> Alcotest.fail m)

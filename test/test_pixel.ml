@@ -6,11 +6,11 @@ let image v = match Render.image v with Ok (img, _) -> img | Error (`Msg m) -> A
 
 (* [None] if every pixel of [p] is [img]'s, else the first that is not. *)
 let first_difference p img =
-  let s = Scene.of_valid (Pixel.scene p) in
+  let s = Scene.of_valid (Render.Pixel.scene p) in
   let found = ref None in
-  for y = 0 to s.height - 1 do
-    for x = 0 to s.width - 1 do
-      let c = Pixel.color p x y in
+  for y = 0 to (Scene.height s) - 1 do
+    for x = 0 to (Scene.width s) - 1 do
+      let c = Render.Pixel.color p x y in
       let mine = (Color.to_byte c.r, Color.to_byte c.g, Color.to_byte c.b) in
       if !found = None && mine <> Image.get img x y then found := Some (x, y)
     done
@@ -23,22 +23,22 @@ let tests =
       Gen_scene.arbitrary (fun s ->
         List.for_all
           (fun epsilon ->
-            let v = Helpers.valid { s with epsilon } in
-            let p = Pixel.v v in
+            let v = Helpers.valid (Scene.with_overrides ~epsilon s) in
+            let p = Render.Pixel.v v in
             match first_difference p (image v) with
             | None -> true
             | Some (x, y) -> QCheck.Test.fail_reportf "pixel (%d, %d) differs" x y)
-          [ s.epsilon; Some 0.001; Some Scene.document_epsilon; None ]);
+          [ (Scene.epsilon s); Some 0.001; Some Scene.document_epsilon; None ]);
     Alcotest.test_case "the reference scenes' pixels, one at a time, are their images" `Quick (fun () ->
         List.iter
           (fun s ->
             let v = Helpers.valid (Scene.with_overrides ~width:64 ~height:48 s) in
-            Alcotest.(check (option (pair int int))) __LOC__ None (first_difference (Pixel.v v) (image v)))
-          [ Scene.cgfs; Scene.cgfs_camera; { Scene.cgfs with epsilon = None } ]);
+            Alcotest.(check (option (pair int int))) __LOC__ None (first_difference (Render.Pixel.v v) (image v)))
+          [ Scene.cgfs; Scene.cgfs_camera; (Scene.with_overrides ~epsilon:None Scene.cgfs) ]);
     Alcotest.test_case "a pixel outside the canvas is a programmer error naming the function" `Quick (fun () ->
-        let p = Pixel.v (Helpers.valid (Scene.with_overrides ~width:4 ~height:3 Scene.cgfs)) in
-        Alcotest.check_raises __LOC__ (Invalid_argument "Pixel.color: (4, 0) is outside the 4x3 canvas")
-          (fun () -> ignore (Pixel.color p 4 0)));
+        let p = Render.Pixel.v (Helpers.valid (Scene.with_overrides ~width:4 ~height:3 Scene.cgfs)) in
+        Alcotest.check_raises __LOC__ (Invalid_argument "Render.Pixel.color: (4, 0) is outside the 4x3 canvas")
+          (fun () -> ignore (Render.Pixel.color p 4 0)));
     Alcotest.test_case "render_string renders scene text in one call, or says what is wrong" `Quick (fun () ->
         let text = Scene_file.to_string (Scene.with_overrides ~width:32 ~height:24 Scene.cgfs) in
         (match render_string text with
@@ -74,7 +74,7 @@ let tests =
         List.iter
           (fun samples ->
             let img = match Render.image ~samples small with Ok (i, _) -> i | Error (`Msg m) -> Alcotest.fail m in
-            match first_difference (Pixel.v ~samples small) img with
+            match first_difference (Render.Pixel.v ~samples small) img with
             | None -> ()
             | Some (x, y) -> Alcotest.failf "%dx%d samples: pixel (%d, %d) differs" samples samples x y)
           [ 2; 3 ];
@@ -82,23 +82,23 @@ let tests =
            reflections, against Render.image of the whole image. *)
         let samples = 4 in
         let img = match Render.image ~samples cgfs with Ok (i, _) -> i | Error (`Msg m) -> Alcotest.fail m in
-        let p = Pixel.v ~samples cgfs in
+        let p = Render.Pixel.v ~samples cgfs in
         List.iter
           (fun (x, y) ->
-            let c = Pixel.color p x y in
+            let c = Render.Pixel.color p x y in
             let rgb = Color.to_rgb8 c in
             Alcotest.(check (triple int int int))
               (Printf.sprintf "pixel (%d, %d)" x y)
               (Image.get img x y)
               (rgb lsr 16, (rgb lsr 8) land 0xFF, rgb land 0xFF))
           [ (0, 0); (300, 300); (250, 320); (380, 250); (430, 300); (200, 400); (599, 599) ]);
-    Alcotest.test_case "Pixel.v refuses a grid of 0 or more than Sampling.max_samples samples" `Quick (fun () ->
+    Alcotest.test_case "Render.Pixel.v refuses a grid of 0 or more than Render.Sampling.max_samples samples" `Quick (fun () ->
         let v = Helpers.valid (Helpers.load_scene "cgfs.scene") in
         List.iter
           (fun samples ->
-            match Pixel.v ~samples v with
+            match Render.Pixel.v ~samples v with
             | _ -> Alcotest.failf "accepted %d samples" samples
             | exception Invalid_argument _ -> ())
-          [ 0; Sampling.max_samples + 1 ];
-        Alcotest.(check int) __LOC__ 5 (Pixel.samples (Pixel.v ~samples:5 v)));
+          [ 0; Render.Sampling.max_samples + 1 ];
+        Alcotest.(check int) __LOC__ 5 (Render.Pixel.samples (Render.Pixel.v ~samples:5 v)));
   ]

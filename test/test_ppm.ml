@@ -6,16 +6,16 @@ let image_2x1 () =
   Image.set img 1 0 1 2 3;
   img
 
-let decode s = match Ppm.of_string s with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
-let error s = match Ppm.of_string s with Ok _ -> Alcotest.failf "accepted %S" s | Error (`Msg m) -> m
+let decode s = match Image.Ppm.of_string s with Ok img -> img | Error (`Msg m) -> Alcotest.fail m
+let error s = match Image.Ppm.of_string s with Ok _ -> Alcotest.failf "accepted %S" s | Error (`Msg m) -> m
 
 let tests =
   [
     Alcotest.test_case "P6 is the header then the bytes, rows top-down" `Quick (fun () ->
-        Alcotest.(check string) __LOC__ "P6\n2 1\n255\n\255\000\010\001\002\003" (Ppm.to_string (image_2x1 ())));
+        Alcotest.(check string) __LOC__ "P6\n2 1\n255\n\255\000\010\001\002\003" (Image.Ppm.to_string (image_2x1 ())));
     Alcotest.test_case "P6 reads back what it wrote" `Quick (fun () ->
         let img = image_2x1 () in
-        Alcotest.(check bool) __LOC__ true (Image.equal img (decode (Ppm.to_string img))));
+        Alcotest.(check bool) __LOC__ true (Image.equal img (decode (Image.Ppm.to_string img))));
     Alcotest.test_case "P6 holds every byte at any size, by string and by channel" `Quick (fun () ->
         (* Sizes around the 8-byte words of the copy and the 64 KiB chunks
            of [output]: 21845 pixels are 65535 bytes. *)
@@ -29,10 +29,10 @@ let tests =
             done;
             let expected = Printf.sprintf "P6\n%d %d\n255\n" w h ^ String.init n (fun k -> Char.chr buf.{k}) in
             let what = Printf.sprintf "%dx%d" w h in
-            Alcotest.(check bool) (what ^ " to_string") true (String.equal expected (Ppm.to_string img));
+            Alcotest.(check bool) (what ^ " to_string") true (String.equal expected (Image.Ppm.to_string img));
             let path = Filename.temp_file "ppm" ".ppm" in
             let oc = open_out_bin path in
-            Ppm.output oc img;
+            Image.Ppm.output oc img;
             close_out oc;
             let written = match File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m in
             Sys.remove path;
@@ -40,16 +40,16 @@ let tests =
             (* In parts, as a render writes it while it traces: the header,
                then rows 0, 1 to h/2, the rest, and nothing. *)
             let oc = open_out_bin path in
-            output_string oc (Ppm.header img);
+            output_string oc (Image.Ppm.header img);
             let mid = max 1 (h / 2) in
             List.iter
-              (fun (first, stop) -> Ppm.output_rows oc img ~first ~stop)
+              (fun (first, stop) -> Image.Ppm.output_rows oc img ~first ~stop)
               [ (0, 1); (1, mid); (mid, h); (h, h) ];
             close_out oc;
             let written = match File_io.read path with Ok s -> s | Error (`Msg m) -> Alcotest.fail m in
             Sys.remove path;
             Alcotest.(check bool) (what ^ " output_rows") true (String.equal expected written);
-            match Ppm.output_rows stdout img ~first:1 ~stop:0 with
+            match Image.Ppm.output_rows stdout img ~first:1 ~stop:0 with
             | () -> Alcotest.fail "rows 1 to 0 written"
             | exception Invalid_argument _ -> ())
           [ (1, 1); (2, 1); (3, 1); (8, 3); (21845, 1); (21846, 1); (21848, 1); (97, 61) ]);

@@ -54,14 +54,14 @@ let check_same what (a : Prepared.t) (b : Prepared.t) =
 (* [s] with copies of some of its spheres, one of them at -0. where it had
    0., far from their originals in scene order. *)
 let with_twins (s : Scene.t) =
-  let l = Spheres.to_list s.spheres in
+  let l = Private.Spheres.to_list (Scene.spheres s) in
   let negative_zero x = if x = 0. then -0. else x in
   let copies =
     List.filteri (fun i _ -> i mod 997 = 3) l
     |> List.map (fun (sp : Sphere.t) ->
-           { sp with center = Vec3.v (negative_zero sp.center.x) (negative_zero sp.center.y) sp.center.z })
+           Sphere.v ~center:(Vec3.v (negative_zero sp.center.x) (negative_zero sp.center.y) sp.center.z) ~radius:sp.radius sp.material)
   in
-  { s with spheres = Spheres.of_list (l @ copies) }
+  Helpers.with_objects ~spheres:(l @ copies) s
 
 let plane = Shape.Plane (Plane.v ~point:(Vec3.v 0. (-1000.) 0.) ~normal:(Vec3.v 0. 1. 0.) (Material.v Color.white))
 
@@ -83,16 +83,16 @@ let tests =
             check_same (what ^ ", a beside that fails") alone (prepare ~beside:failing s);
             let image p =
               let tr = Trace.create p in
-              Array.init (s.width * s.height) (fun i ->
-                  Trace.pixel tr ((i mod s.width) - (s.width / 2)) ((s.height / 2) - (i / s.width));
+              Array.init ((Scene.width s) * (Scene.height s)) (fun i ->
+                  Trace.pixel tr ((i mod (Scene.width s)) - ((Scene.width s) / 2)) (((Scene.height s) / 2) - (i / (Scene.width s)));
                   (Trace.red tr, Trace.green tr, Trace.blue tr))
             in
             Alcotest.(check bool) (what ^ ": the same pixels") true (image alone = image forked))
           [
             ("grid:3000", grid, 0);
             ("grid:3000 with twins", with_twins grid, 4);
-            ("grid:3000 and a plane", { grid with shapes = [ plane ] }, 0);
-            ("grid:3000 with twins and a plane", { (with_twins grid) with shapes = [ plane ] }, 4);
+            ("grid:3000 and a plane", Helpers.with_objects ~shapes:[ plane ] grid, 0);
+            ("grid:3000 with twins and a plane", Helpers.with_objects ~shapes:[ plane ] (with_twins grid), 4);
           ]);
     Alcotest.test_case "a mesh's boxes: each triangle inside every node above it, degenerate ones left out" `Quick
       (fun () ->
@@ -120,8 +120,8 @@ let tests =
         let m1 = mesh 700 and m2 = mesh 300 in
         let lone = Shape.Triangle (Triangle.v (Vec3.v 0. 0. 5.) (Vec3.v 1. 0. 5.) (Vec3.v 0. 1. 5.) (Material.v Color.white)) in
         let s =
-          Scene.v ~width:32 ~height:32
-            ~spheres:[ Sphere.v ~center:(Vec3.v 0. 0. 20.) ~radius:1. Color.white ]
+          Helpers.scene ~width:32 ~height:32
+            ~spheres:[ Helpers.sphere ~center:(Vec3.v 0. 0. 20.) ~radius:1. Color.white ]
             ~shapes:[ Shape.Mesh m1; plane; lone; Shape.Mesh m2 ]
             ~lights:[ Light.ambient 0.3; Light.point 0.7 (Vec3.v 2. 5. (-3.)) ] ()
         in
@@ -140,7 +140,7 @@ let tests =
                   end
                 done
             | _ -> incr k)
-          s.shapes;
+          (Scene.shapes s);
         Alcotest.(check int) "objects: the degenerate triangles left out" !k p.n_scene_objects;
         Alcotest.(check int) "every seventh triangle degenerate" (1000 - 100 - 43) (Hashtbl.length triangle_of);
         let b = match p.bvh with Some b -> b | None -> Alcotest.fail "no hierarchy" in
@@ -178,7 +178,7 @@ let tests =
            the planes are: the same nodes, and the slots' objects those
            of the mesh first, moved by the planes before it. *)
         let m =
-          let o = Mesh_gen.torus_knot ~p:2 ~q:3 ~radius:1.5 ~tube:0.2 ~segments:120 ~sides:8 in
+          let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1.5 ~tube:0.2 ~segments:120 ~sides:8 in
           match
             Mesh.v ~smooth:true ~translate:(Vec3.v 0. 0. 3.) ~positions:o.positions ~triangles:o.triangles
               ~normals:o.normals ~triangle_normals:o.triangle_normals (Material.v ~specular:50. Color.white)
@@ -189,7 +189,7 @@ let tests =
         let t = Mesh.objects m in
         let floor = Shape.Plane (Plane.v ~point:(Vec3.v 0. (-2.) 0.) ~normal:(Vec3.v 0. 1. 0.) (Material.v ~reflective:0.3 Color.white)) in
         let scene shapes =
-          Scene.v ~width:48 ~height:36 ~camera:(Camera.v (Vec3.v 0. 1. (-3.))) ~shapes ~spheres:[]
+          Helpers.scene ~width:48 ~height:36 ~camera:(Camera.v (Vec3.v 0. 1. (-3.))) ~shapes ~spheres:[]
             ~lights:[ Light.ambient 0.3; Light.point 0.7 (Vec3.v 2. 5. (-3.)) ] ()
         in
         let first = scene [ Shape.Mesh m; floor ] and after = scene [ floor; plane; Shape.Mesh m ] in

@@ -49,11 +49,11 @@ let tests =
            textbook discriminant is 0. *)
         List.iter
           (fun (center, radius, origin, direction, t) ->
-            let sphere = Sphere.v ~center ~radius Color.white in
+            let sphere = Helpers.sphere ~center ~radius Color.white in
             Alcotest.check infinite "Sphere.roots" (t, t) (Sphere.roots sphere ~origin ~direction);
             List.iter
               (fun epsilon ->
-                let tr = Trace.create (Helpers.prepare (Scene.v ?epsilon ~spheres:[ sphere ] ~lights:[] ())) in
+                let tr = Trace.create (Helpers.prepare (Helpers.scene ?epsilon ~spheres:[ sphere ] ~lights:[] ())) in
                 Alcotest.check infinite (Printf.sprintf "Trace.roots, epsilon %b" (epsilon <> None)) (t, t) (Trace.roots tr 0 origin direction))
               [ None; Some 0.001 ])
           [ (v 0. 0. 5., 1., v 1. 0. 0., v 0. 0. 1., 5.); (Vec3.zero, 2., v 2. (-3.) 0., v 0. 1. 0., 3.);
@@ -185,7 +185,7 @@ let tests =
                         disjoint), the first operand's for a difference"
       `Quick (fun () ->
         let a = Csg.Box (Box.v ~min:(v 0. 0. 0.) ~max:(v 2. 2. 2.) white)
-        and b = Csg.Sphere (Sphere.v ~center:(v 2. 1. 1.) ~radius:1. Color.white)
+        and b = Csg.Sphere (Helpers.sphere ~center:(v 2. 1. 1.) ~radius:1. Color.white)
         and far = Csg.Box (Box.v ~min:(v 5. 5. 5.) ~max:(v 6. 6. 6.) white) in
         let bounds op x y = Csg.bounds (Csg.v op x y) in
         let pair = Alcotest.pair Helpers.vec3 Helpers.vec3 in
@@ -223,27 +223,27 @@ let tests =
         let floor = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy (Material.v (Color.v 200. 200. 200.))) in
         (* Or a ground sphere, for scenes of spheres alone: the document's
            own kernel and its shadow loop. *)
-        let ground = Sphere.v ~center:(v 0. (-1000.) 0.) ~radius:1000. (Color.v 200. 200. 200.) in
+        let ground = Helpers.sphere ~center:(v 0. (-1000.) 0.) ~radius:1000. (Color.v 200. 200. 200.) in
         let scene ~on_sphere ?(spheres = []) shapes =
           let spheres, shapes = if on_sphere then (ground :: spheres, shapes) else (spheres, floor :: shapes) in
-          Scene.v ~width:32 ~height:32 ~camera ~spheres ~shapes ~lights:[ Light.ambient 0.2; Light.point 0.8 (v 0. 2. 2.) ] ()
+          Helpers.scene ~width:32 ~height:32 ~camera ~spheres ~shapes ~lights:[ Light.ambient 0.2; Light.point 0.8 (v 0. 2. 2.) ] ()
         in
         let grey = Material.v (Color.v 90. 90. 90.) in
         let terrain y =
-          let o = Mesh_gen.terrain ~seed:1 ~nx:4 ~nz:4 ~size:30. ~height:0. in
+          let o = Mesh.Gen.terrain ~seed:1 ~nx:4 ~nz:4 ~size:30. ~height:0. in
           match Mesh.v ~translate:(v 0. y 2.) ~positions:o.positions ~triangles:o.triangles ~normals:o.normals ~triangle_normals:o.triangle_normals grey with
           | Ok m -> Shape.Mesh m
           | Error (`Msg m) -> Alcotest.fail m
         in
-        let many_spheres y = List.init 40 (fun k -> Sphere.v ~center:(v (float (k mod 8) -. 3.5) y (float (k / 8) -. 0.5)) ~radius:0.4 Color.white) in
+        let many_spheres y = List.init 40 (fun k -> Helpers.sphere ~center:(v (float (k mod 8) -. 3.5) y (float (k / 8) -. 0.5)) ~radius:0.4 Color.white) in
         (* Each kind at height [y] (the middle of it), wide enough to cover
            every shadow ray's continuation. *)
         let kinds y =
           [ ("triangle", false, [], [ Shape.Triangle (Triangle.v (v (-20.) y (-20.)) (v 20. y (-20.)) (v 0. y 30.) grey) ]);
             ("box", false, [], [ Shape.Box (Box.v ~min:(v (-20.) (y -. 0.5) (-20.)) ~max:(v 20. (y +. 0.5) 30.) grey) ]);
             ("plane", false, [], [ Shape.Plane (Plane.v ~point:(v 0. y 0.) ~normal:Vec3.oy grey) ]);
-            ("sphere", false, [ Sphere.v ~center:(v 0. y 2.) ~radius:0.5 Color.white ], []);
-            ("sphere, on a ground sphere", true, [ Sphere.v ~center:(v 0. y 2.) ~radius:0.5 Color.white ], []);
+            ("sphere", false, [ Helpers.sphere ~center:(v 0. y 2.) ~radius:0.5 Color.white ], []);
+            ("sphere, on a ground sphere", true, [ Helpers.sphere ~center:(v 0. y 2.) ~radius:0.5 Color.white ], []);
             ("mesh", false, [], [ terrain y ]);
             (* Many spheres: the hierarchy's shadow traversal. *)
             ("spheres", false, many_spheres y, []); ("spheres, on a ground sphere", true, many_spheres y, []) ]
@@ -252,7 +252,7 @@ let tests =
           (fun epsilon ->
             List.iter
               (fun skips ->
-                let render s = Helpers.image_exn ~skips { s with epsilon } in
+                let render s = Helpers.image_exn ~skips (Scene.with_overrides ~epsilon s) in
                 List.iter2
                   (fun (name, on_sphere, spheres, shapes) (_, _, spheres_below, shapes_below) ->
                     let bare = render (scene ~on_sphere []) in
@@ -276,9 +276,9 @@ let tests =
         let camera = match Camera.look_at ~position:(v 0. 2.5 (-1.)) (v 0. 0. 2.) with Ok c -> c | Error (`Msg m) -> Alcotest.fail m in
         let floor = Shape.Plane (Plane.v ~point:Vec3.zero ~normal:Vec3.oy (Material.v (Color.v 200. 200. 200.))) in
         let grey = Material.v (Color.v 90. 90. 90.) in
-        let far = List.init 12 (fun k -> Sphere.v ~center:(v (float k) 10. (-10.)) ~radius:0.3 Color.white) in
+        let far = List.init 12 (fun k -> Helpers.sphere ~center:(v (float k) 10. (-10.)) ~radius:0.3 Color.white) in
         let small_mesh =
-          let o = Mesh_gen.terrain ~seed:2 ~nx:3 ~nz:3 ~size:0.8 ~height:0.1 in
+          let o = Mesh.Gen.terrain ~seed:2 ~nx:3 ~nz:3 ~size:0.8 ~height:0.1 in
           match Mesh.v ~translate:(v 0. 1. 2.) ~positions:o.positions ~triangles:o.triangles ~normals:o.normals ~triangle_normals:o.triangle_normals grey with
           | Ok m -> Shape.Mesh m
           | Error (`Msg m) -> Alcotest.fail m
@@ -287,7 +287,7 @@ let tests =
           [ ("plane", [], [ Shape.Plane (Plane.v ~point:(v 0. 0. 1.5) ~normal:Vec3.oz grey) ]);
             ("box", [], [ Shape.Box (Box.v ~min:(v (-0.3) 0.8 1.7) ~max:(v 0.3 1.2 2.3) grey) ]);
             ("triangle", [], [ Shape.Triangle (Triangle.v (v (-0.4) 1. 1.6) (v 0.4 1. 1.6) (v 0. 1. 2.4) grey) ]);
-            ("sphere", [ Sphere.v ~center:(v 0. 1. 2.) ~radius:0.3 Color.white ], []); ("mesh", [], [ small_mesh ]) ]
+            ("sphere", [ Helpers.sphere ~center:(v 0. 1. 2.) ~radius:0.3 Color.white ], []); ("mesh", [], [ small_mesh ]) ]
         in
         List.iter
           (fun (name, spheres, shapes) ->
@@ -296,7 +296,7 @@ let tests =
                 List.iter
                   (fun epsilon ->
                     let scene spheres shapes =
-                      Scene.v ~width:32 ~height:32 ?epsilon ~camera ~spheres:(spheres @ extra) ~shapes:(floor :: shapes)
+                      Helpers.scene ~width:32 ~height:32 ?epsilon ~camera ~spheres:(spheres @ extra) ~shapes:(floor :: shapes)
                         ~lights:[ Light.ambient 0.2; Light.point 0.8 (v 0. 2. 2.) ] ()
                     in
                     let s = scene spheres shapes in
@@ -326,7 +326,7 @@ let tests =
             List.iter
               (fun epsilon ->
                 let scene shapes =
-                  Scene.v ~width:24 ~height:24 ?epsilon ~camera ~spheres:[] ~shapes
+                  Helpers.scene ~width:24 ~height:24 ?epsilon ~camera ~spheres:[] ~shapes
                     ~lights:[ Light.ambient 0.3; Light.point 0.7 (v 5. 1.5 2.5); Light.directional 0.2 (v (-1.) 1. (-1.)) ] ()
                 in
                 List.iter
@@ -353,7 +353,7 @@ let tests =
           (fun (position, epsilon) ->
             let camera = match Camera.look_at ~position (v 1. 1. 2.) with Ok c -> c | Error (`Msg e) -> Alcotest.fail e in
             let scene c =
-              Scene.v ~width:24 ~height:24 ?epsilon ~camera ~spheres:[] ~shapes:[ Shape.Csg c ]
+              Helpers.scene ~width:24 ~height:24 ?epsilon ~camera ~spheres:[] ~shapes:[ Shape.Csg c ]
                 ~lights:[ Light.ambient 0.4; Light.directional 0.6 (v 0.3 0.5 (-1.)) ] ()
             in
             Helpers.check_images ~max_abs:0
@@ -380,7 +380,7 @@ let tests =
         let camera = match Camera.look_at ~position:(v 1. 1. (-3.)) (v 1. 1. 2.) with Ok c -> c | Error (`Msg e) -> Alcotest.fail e in
         let image x y =
           Helpers.image_exn
-            (Scene.v ~width:24 ~height:24 ~camera ~spheres:[] ~shapes:[ Shape.Csg (Csg.v Csg.Intersection x y) ]
+            (Helpers.scene ~width:24 ~height:24 ~camera ~spheres:[] ~shapes:[ Shape.Csg (Csg.v Csg.Intersection x y) ]
                ~lights:[ Light.ambient 0.4; Light.directional 0.6 (v 0.3 0.5 (-1.)) ] ())
         in
         let front_red = image a b' and front_blue = image b a' in
@@ -414,10 +414,10 @@ let tests =
            the reflection were skipped. With samples averaged, the early
            stop may stop only when both extremes clamp alike (lo >= 255,
            hi <= 0, or lo = hi): here lo = 254.1 < 255 <= hi. *)
-        let ball x = Sphere.v ~reflective:0.0035 ~center:(v x 0. 5.) ~radius:1. Color.white in
+        let ball x = Helpers.sphere ~reflective:0.0035 ~center:(v x 0. 5.) ~radius:1. Color.white in
         let camera = match Camera.look_at ~position:Vec3.zero (v 1. 0. 5.) with Ok c -> c | Error (`Msg e) -> Alcotest.fail e in
         let s =
-          Scene.v ~width:16 ~height:16 ~depth:3 ~background:Color.white ~camera ~spheres:[ ball 1.1; ball (-1.1) ]
+          Helpers.scene ~width:16 ~height:16 ~depth:3 ~background:Color.white ~camera ~spheres:[ ball 1.1; ball (-1.1) ]
             ~lights:[ Light.ambient 1. ] ()
         in
         List.iter

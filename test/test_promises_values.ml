@@ -107,7 +107,7 @@ let viewport_camera_tests =
             let m = error what (Viewport.validate vp) in
             let name = List.hd (String.split_on_char ' ' what) in
             if not (contains ~sub:name m) then Alcotest.failf "%s: %S does not name it" what m)
-          [ ("width 0", { Viewport.default with width = 0. }); ("height -1", { Viewport.default with height = -1. });
+          [ ("width 0", { Viewport.default with width = 0. }); ("height -1", { Viewport.default with height = (-1.) });
             ("distance nan", { Viewport.default with distance = nan }); ("width inf", { Viewport.default with width = infinity }) ]);
     Alcotest.test_case "Camera.direction is M v, each row dotted with v" `Quick (fun () ->
         (* rows (1 2 3) (0 1 0) (-1 0 2) times (1, -1, 2) = (5, -1, 3). *)
@@ -136,10 +136,10 @@ let viewport_camera_tests =
         refused "inf" (Camera.check_rotation { m with row2 = v 0. 0. infinity });
         refused "position nan" (Camera.validate (Camera.v (v nan 0. 0.)));
         refused "position beyond the limit" (Camera.validate (Camera.v (v 1e300 0. 0.)));
-        ignore (ok (Camera.validate Scene.cgfs_camera.camera)));
+        ignore (ok (Camera.validate (Scene.camera Scene.cgfs_camera))));
     Alcotest.test_case "Camera.pp leaves out an identity rotation and writes any other" `Quick (fun () ->
         let plain = Camera.show (Camera.v (v 1. 2. 3.)) in
-        let turned = Camera.show Scene.cgfs_camera.camera in
+        let turned = Camera.show (Scene.camera Scene.cgfs_camera) in
         Alcotest.(check bool) plain false (contains ~sub:"rotation" plain);
         Alcotest.(check bool) turned true (contains ~sub:"(rotation (0.7071 0 -0.7071) (0 1 0) (0.7071 0 0.7071))" turned));
   ]
@@ -253,20 +253,20 @@ let limits_light_material_tests =
         starts "material's pattern" "mesh" m);
   ]
 
-let region = Alcotest.testable Region.pp Region.equal
+let region = Alcotest.testable Render.Region.pp Render.Region.equal
 
 let image_tests =
   [
-    Alcotest.test_case "Region.contains: non-empty and inside the canvas; pixels is w h; pp_corners is x0 y0 x1 y1" `Quick
+    Alcotest.test_case "Render.Region.contains: non-empty and inside the canvas; pixels is w h; pp_corners is x0 y0 x1 y1" `Quick
       (fun () ->
-        let r x y w h = Region.{ x; y; w; h } in
+        let r x y w h = Render.Region.{ x; y; w; h } in
         List.iter
-          (fun (what, reg, expected) -> Alcotest.(check bool) what expected (Region.contains reg ~width:10 ~height:5))
+          (fun (what, reg, expected) -> Alcotest.(check bool) what expected (Render.Region.contains reg ~width:10 ~height:5))
           [ ("whole", r 0 0 10 5, true); ("corner pixel", r 9 4 1 1, true); ("empty", r 2 2 0 1, false);
             ("one column too wide", r 1 0 10 5, false); ("one row too low", r 0 1 10 5, false); ("x = -1", r (-1) 0 2 2, false) ];
-        Alcotest.(check int) "pixels" 15 (Region.pixels (r 1 2 5 3));
-        Alcotest.(check string) "pp_corners" "0 86 600 172" (Format.asprintf "%a" Region.pp_corners (r 0 86 600 86));
-        let back = ok (Region.of_corners ~width:600 ~height:600 0 86 600 172) in
+        Alcotest.(check int) "pixels" 15 (Render.Region.pixels (r 1 2 5 3));
+        Alcotest.(check string) "pp_corners" "0 86 600 172" (Format.asprintf "%a" Render.Region.pp_corners (r 0 86 600 86));
+        let back = ok (Render.Region.of_corners ~width:600 ~height:600 0 86 600 172) in
         Alcotest.check region "of_corners reads pp_corners back" (r 0 86 600 86) back);
     Alcotest.test_case "Image: create, of_buffer, get, set, blit and sub raise Invalid_argument outside their domain"
       `Quick (fun () ->
@@ -310,17 +310,17 @@ let image_tests =
                         reads the comments back" `Quick (fun () ->
         let img = Image.create 2 1 in
         Image.set img 1 0 1 2 3;
-        raises_invalid "to_string" (fun () -> Ppm.to_string ~comments:[ "a\nb" ] img);
-        raises_invalid "header" (fun () -> Ppm.header ~comments:[ "a\rb" ] img);
+        raises_invalid "to_string" (fun () -> Image.Ppm.to_string ~comments:[ "a\nb" ] img);
+        raises_invalid "header" (fun () -> Image.Ppm.header ~comments:[ "a\rb" ] img);
         let comments = [ "made by raytrace"; " two spaces"; "" ] in
-        let text = Ppm.to_string ~comments img in
+        let text = Image.Ppm.to_string ~comments img in
         Alcotest.(check string) "the bytes" "P6\n# made by raytrace\n#  two spaces\n# \n2 1\n255\n\000\000\000\001\002\003" text;
-        let header = Ppm.header ~comments img in
+        let header = Image.Ppm.header ~comments img in
         Alcotest.(check string) "header" (String.sub text 0 (String.length text - 6)) header;
-        Alcotest.(check (list string)) "header_comments" comments (Ppm.header_comments text);
-        Alcotest.(check (list string)) "not a PPM" [] (Ppm.header_comments "P5\n# x\n1 1\n255\n\000");
-        Alcotest.(check bool) "reads back" true (Image.equal img (ok (Ppm.of_string text))));
-    Alcotest.test_case "Ppm.of_string never raises: every prefix of a file cut inside its data is an Error, the file is Ok" `Quick
+        Alcotest.(check (list string)) "header_comments" comments (Image.Ppm.header_comments text);
+        Alcotest.(check (list string)) "not a PPM" [] (Image.Ppm.header_comments "P5\n# x\n1 1\n255\n\000");
+        Alcotest.(check bool) "reads back" true (Image.equal img (ok (Image.Ppm.of_string text))));
+    Alcotest.test_case "Image.Ppm.of_string never raises: every prefix of a file cut inside its data is an Error, the file is Ok" `Quick
       (fun () ->
         let img = Image.create 3 2 in
         Image.set img 2 1 255 128 7;
@@ -331,49 +331,49 @@ let image_tests =
             let complete = String.length (String.trim text) in
             for n = 0 to String.length text do
               let prefix = String.sub text 0 n in
-              match Ppm.of_string prefix with
+              match Image.Ppm.of_string prefix with
               | Ok back -> if n < complete || not (Image.equal back img) then Alcotest.failf "%S read" prefix
               | Error _ -> if n = String.length text then Alcotest.failf "the whole file %S refused" text
               | exception e -> Alcotest.failf "%S raised %s" prefix (Printexc.to_string e)
             done)
-          [ Ppm.to_string ~comments:[ "c" ] img; "P3\n3 2\n255\n0 0 0 0 0 0 0 0 0\n0 0 0 0 0 0 255 128 7\n" ]);
-    Alcotest.test_case "Ppm.check_file_size allows 3 bytes a pixel plus 1 MiB, and names the variable beyond" `Quick
+          [ Image.Ppm.to_string ~comments:[ "c" ] img; "P3\n3 2\n255\n0 0 0 0 0 0 0 0 0\n0 0 0 0 0 0 255 128 7\n" ]);
+    Alcotest.test_case "Image.Ppm.check_file_size allows 3 bytes a pixel plus 1 MiB, and names the variable beyond" `Quick
       (fun () ->
         let limits = Limits.with_bound Limits.default `Pixels 100. in
         let bound = (3 * 100) + (1024 * 1024) in
-        Alcotest.(check int) "at the bound" bound (ok (Ppm.check_file_size ~limits bound));
-        let m = error "a byte more" (Ppm.check_file_size ~limits (bound + 1)) in
+        Alcotest.(check int) "at the bound" bound (ok (Image.Ppm.check_file_size ~limits bound));
+        let m = error "a byte more" (Image.Ppm.check_file_size ~limits (bound + 1)) in
         if not (contains ~sub:"RAYTRACE_MAX_PIXELS" m) then Alcotest.failf "%S does not name RAYTRACE_MAX_PIXELS" m);
-    Alcotest.test_case "Ppm.output_rows refuses rows outside 0 <= first <= stop <= height" `Quick (fun () ->
+    Alcotest.test_case "Image.Ppm.output_rows refuses rows outside 0 <= first <= stop <= height" `Quick (fun () ->
         let img = Image.create 2 3 in
         let dev_null = open_out_bin Filename.null in
         Fun.protect ~finally:(fun () -> close_out dev_null) (fun () ->
             List.iter
               (fun (first, stop) ->
-                raises_invalid (Printf.sprintf "rows %d to %d" first stop) (fun () -> Ppm.output_rows dev_null img ~first ~stop))
+                raises_invalid (Printf.sprintf "rows %d to %d" first stop) (fun () -> Image.Ppm.output_rows dev_null img ~first ~stop))
               [ (-1, 1); (2, 1); (0, 4) ];
-            Ppm.output_rows dev_null img ~first:3 ~stop:3));
-    Alcotest.test_case "Image_diff.compare of images of different sizes is an Error; pp_summary is one line of the figures"
+            Image.Ppm.output_rows dev_null img ~first:3 ~stop:3));
+    Alcotest.test_case "Image.Diff.compare of images of different sizes is an Error; pp_summary is one line of the figures"
       `Quick (fun () ->
-        refused "2 x 1 and 1 x 2" (Image_diff.compare (Image.create 2 1) (Image.create 1 2));
+        refused "2 x 1 and 1 x 2" (Image.Diff.compare (Image.create 2 1) (Image.create 1 2));
         let a = Image.create 2 1 and b = Image.create 2 1 in
         Image.set b 1 0 0 0 3;
-        let d = ok (Image_diff.compare a b) in
-        let line = Format.asprintf "%a" Image_diff.pp_summary d in
+        let d = ok (Image.Diff.compare a b) in
+        let line = Format.asprintf "%a" Image.Diff.pp_summary d in
         let prefix = "pixels=2 differing=1 differing_gt1=1 max_abs=3 mean_abs=0.5" in
         if not (String.length line >= String.length prefix && String.sub line 0 (String.length prefix) = prefix) then
           Alcotest.failf "%S" line;
         Alcotest.(check bool) "one line" false (String.contains line '\n');
         Alcotest.(check bool) "psnr" true (contains ~sub:" psnr=" line));
-    Alcotest.test_case "Stats.rays is primary + shadow + reflection; pp_table of no time and no pixel has no nan or inf" `Quick (fun () ->
+    Alcotest.test_case "Render.Stats.rays is primary + shadow + reflection; pp_table of no time and no pixel has no nan or inf" `Quick (fun () ->
         let s =
-          Stats.{ pixels = 1; primary = 3; shadow = 50; reflection = 700; tests = 9; box_tests = 9; early_stops = 9; jobs = 1;
+          Render.Stats.{ pixels = 1; primary = 3; shadow = 50; reflection = 700; tests = 9; box_tests = 9; early_stops = 9; jobs = 1;
                   prepare_s = 0.; trace_s = 0.; minor_words = 0. }
         in
-        Alcotest.(check int) "rays" 753 (Stats.rays s);
+        Alcotest.(check int) "rays" 753 (Render.Stats.rays s);
         (* No time and no pixel (a render of nothing, a clock too coarse):
            the table shows "-" and 0, never nan or inf. *)
-        let table = Format.asprintf "%a" Stats.pp_table { s with pixels = 0; trace_s = 0.; minor_words = 5. } in
+        let table = Format.asprintf "%a" Render.Stats.pp_table { s with pixels = 0; trace_s = 0.; minor_words = 5. } in
         List.iter
           (fun bad -> if contains ~sub:bad table then Alcotest.failf "%S in\n%s" bad table)
           [ "nan"; "inf" ];
@@ -381,34 +381,34 @@ let image_tests =
         Alcotest.(check bool) "tests per ray: 9 / 753" true (contains ~sub:(Printf.sprintf "%.2f" (9. /. 753.)) table));
   ]
 
-let sphere_at x = Sphere.v ~center:(v x 0. 5.) ~radius:1. Color.white
+let sphere_at x = Helpers.sphere ~center:(v x 0. 5.) ~radius:1. Color.white
 
 let scene_tests =
   [
-    Alcotest.test_case "Scene.v is the document's scene: 600 x 600, default viewport and camera, black, depth 3, robust"
+    Alcotest.test_case "Helpers.scene is the document's scene: 600 x 600, default viewport and camera, black, depth 3, robust"
       `Quick (fun () ->
-        let s = Scene.v ~spheres:[] ~lights:[] () in
-        Alcotest.(check (pair int int)) "canvas" (600, 600) (s.width, s.height);
-        Alcotest.(check bool) "viewport" true (Viewport.equal s.viewport Viewport.default);
-        Alcotest.(check bool) "camera" true (Camera.equal s.camera Camera.default);
-        Alcotest.(check bool) "background" true (Color.equal s.background Color.black);
-        Alcotest.(check int) "depth" 3 s.depth;
-        Alcotest.(check bool) "no epsilon, no path, no shapes" true (s.epsilon = None && s.camera_path = None && s.shapes = []));
+        let s = Helpers.scene ~spheres:[] ~lights:[] () in
+        Alcotest.(check (pair int int)) "canvas" (600, 600) ((Scene.width s), (Scene.height s));
+        Alcotest.(check bool) "viewport" true (Viewport.equal (Scene.viewport s) Viewport.default);
+        Alcotest.(check bool) "camera" true (Camera.equal (Scene.camera s) Camera.default);
+        Alcotest.(check bool) "background" true (Color.equal (Scene.background s) Color.black);
+        Alcotest.(check int) "depth" 3 (Scene.depth s);
+        Alcotest.(check bool) "no epsilon, no path, no shapes" true ((Scene.epsilon s) = None && (Scene.camera_path s) = None && (Scene.shapes s) = []));
     Alcotest.test_case "Scene.validate refuses a bad canvas, depth, epsilon, background, viewport or camera" `Quick
       (fun () ->
-        let base = Scene.v ~spheres:[ sphere_at 0. ] ~lights:[ Light.ambient 1. ] () in
+        let base = Helpers.scene ~spheres:[ sphere_at 0. ] ~lights:[ Light.ambient 1. ] () in
         ignore (ok (Scene.validate base));
         List.iter
           (fun (what, s) -> refused what (Scene.validate s))
-          [ ("width 0", { base with width = 0 }); ("height 65537", { base with height = 65537 });
-            ("depth -1", { base with depth = -1 }); ("depth 65", { base with depth = 65 });
-            ("epsilon nan", { base with epsilon = Some nan }); ("epsilon -0.5", { base with epsilon = Some (-0.5) });
-            ("background 256", { base with background = Color.v 0. 256. 0. });
-            ("background nan", { base with background = Color.v nan 0. 0. });
-            ("viewport 0", { base with viewport = { Viewport.default with distance = 0. } });
-            ("camera nan", { base with camera = Camera.v (v 0. nan 0.) });
-            ("light", { base with lights = [ Light.point 0.5 (v infinity 0. 0.) ] });
-            ("sphere radius 0", { base with spheres = Spheres.of_list [ Sphere.v ~center:Vec3.zero ~radius:0. Color.white ] }) ];
+          [ ("width 0", (Scene.with_overrides ~width:0 base)); ("height 65537", (Scene.with_overrides ~height:65537 base));
+            ("depth -1", (Scene.with_overrides ~depth:(-1) base)); ("depth 65", (Scene.with_overrides ~depth:65 base));
+            ("epsilon nan", (Scene.with_overrides ~epsilon:(Some nan) base)); ("epsilon -0.5", (Scene.with_overrides ~epsilon:(Some (-0.5)) base));
+            ("background 256", (Scene.with_overrides ~background:(Color.v 0. 256. 0.) base));
+            ("background nan", (Scene.with_overrides ~background:(Color.v nan 0. 0.) base));
+            ("viewport 0", (Scene.with_overrides ~viewport:({ Viewport.default with distance = 0. }) base));
+            ("camera nan", (Scene.with_overrides ~camera:(Camera.v (v 0. nan 0.)) base));
+            ("light", (Scene.with_overrides ~lights:([ Light.point 0.5 (v infinity 0. 0.) ]) base));
+            ("sphere radius 0", Helpers.with_objects ~spheres:[ Helpers.sphere ~center:Vec3.zero ~radius:0. Color.white ] base) ];
         ignore (ok (Scene.check_epsilon 0.));
         refused "epsilon infinity" (Scene.check_epsilon infinity);
         ignore (ok (Scene.check_background Color.white)));
@@ -423,24 +423,24 @@ let scene_tests =
           (Scene.override ~limits:(Limits.with_bound Limits.default `Pixels 99.) ~width:10 ~height:10 valid);
         let s = Scene.of_valid (ok (Scene.override ~width:7 ~depth:0 valid)) in
         Alcotest.(check bool) "the rest kept" true
-          (Scene.equal s { Scene.cgfs with width = 7; depth = 0 } && Scene.equal s (Scene.with_overrides ~width:7 ~depth:0 Scene.cgfs)));
+          (Scene.equal s (Scene.with_overrides ~width:7 ~depth:0 Scene.cgfs) && Scene.equal s (Scene.with_overrides ~width:7 ~depth:0 Scene.cgfs)));
     Alcotest.test_case "Scene.grid: sphere i at (i mod k - (k - 1) / 2, i / k - 0.6, 2 k); grid 0 raises" `Quick (fun () ->
         raises_invalid "grid 0" (fun () -> Scene.grid 0);
         (* n = 5: k = 3 (9 >= 5), centers x in {-1, 0, 1}, z = 6; sphere 4 is
            (4 mod 3 - 1, 4 / 3 - 0.6, 6) = (0, 0.4, 6), then the ground. *)
         let s = Scene.grid 5 in
-        Alcotest.(check int) "5 spheres and the ground" 6 (Spheres.length s.spheres);
-        let c = (Spheres.get s.spheres 4).center in
+        Alcotest.(check int) "5 spheres and the ground" 6 (Private.Spheres.length (Scene.spheres s));
+        let c = (Private.Spheres.get (Scene.spheres s) 4).center in
         Alcotest.check Helpers.vec3 "sphere 4" (v 0. (1. -. 0.6) 6.) c;
-        Alcotest.check exact "radius" 0.4 (Spheres.get s.spheres 4).radius;
-        Alcotest.(check (pair int int)) "800 x 800" (800, 800) (s.width, s.height));
+        Alcotest.check exact "radius" 0.4 (Private.Spheres.get (Scene.spheres s) 4).radius;
+        Alcotest.(check (pair int int)) "800 x 800" (800, 800) ((Scene.width s), (Scene.height s)));
     Alcotest.test_case "Scene.at_frame of a scene without a camera path is an Error" `Quick (fun () ->
         refused "no path" (Scene.at_frame (Helpers.valid Scene.cgfs) 0));
     Alcotest.test_case "Scene_file.to_string then of_string gives the same floats bit for bit: -0., the smallest \
                         subnormal, 1e12, 1e-30, 0.1 + 0.2" `Quick (fun () ->
-        let sphere = Sphere.v ~center:(v (-0.) 5e-324 1e12) ~radius:1e-30 ~specular:0. ~reflective:(0.1 +. 0.2) (Color.v 254.99999999999997 0. 1e-300) in
+        let sphere = Helpers.sphere ~center:(v (-0.) 5e-324 1e12) ~radius:1e-30 ~specular:0. ~reflective:(0.1 +. 0.2) (Color.v 254.99999999999997 0. 1e-300) in
         let s =
-          Scene.v ~width:3 ~height:2 ~epsilon:(-0.) ~background:(Color.v 0.1 (-0.) 255.)
+          Helpers.scene ~width:3 ~height:2 ~epsilon:(-0.) ~background:(Color.v 0.1 (-0.) 255.)
             ~viewport:(Viewport.v ~width:(1. /. 3.) ~height:1e-30 ~distance:1e12)
             ~spheres:[ sphere ] ~lights:[ Light.directional 1e6 (v (-0.) 1e-30 (-1e12)) ] ()
         in
@@ -448,37 +448,37 @@ let scene_tests =
         let back = Scene.of_valid (ok (Scene_file.of_string text)) in
         Alcotest.(check string) "prints the same" text (Scene_file.to_string back);
         let bits = Alcotest.testable (fun ppf x -> Format.fprintf ppf "%h" x) (fun a b -> Int64.equal (Int64.bits_of_float a) (Int64.bits_of_float b)) in
-        let b = Spheres.get back.spheres 0 in
+        let b = Private.Spheres.get (Scene.spheres back) 0 in
         Alcotest.(check (list bits)) "sphere"
           [ -0.; 5e-324; 1e12; 1e-30; 0.; 0.1 +. 0.2; 254.99999999999997; 1e-300 ]
-          [ b.center.x; b.center.y; b.center.z; b.radius; b.specular; b.reflective; b.color.r; b.color.b ];
+          [ b.center.x; b.center.y; b.center.z; b.radius; b.material.specular; b.material.reflective; b.material.color.r; b.material.color.b ];
         Alcotest.(check (list bits)) "scene" [ -0.; 0.1; -0.; 1. /. 3. ]
-          [ Option.get back.epsilon; back.background.r; back.background.g; back.viewport.width ]);
-    Alcotest.test_case "Spheres.append_fields refuses a short array or a bad material and appends nothing; blit_fields \
+          [ Option.get (Scene.epsilon back); (Scene.background back).r; (Scene.background back).g; (Scene.viewport back).width ]);
+    Alcotest.test_case "Private.Spheres.append_fields refuses a short array or a bad material and appends nothing; blit_fields \
                         refuses short arrays" `Quick (fun () ->
-        let b = Spheres.builder () in
-        let m = Spheres.material b (Material.v Color.white) in
+        let b = Private.Spheres.builder () in
+        let m = Private.Spheres.material b (Material.v Color.white) in
         let a n = Array.make n 1. in
         raises_invalid "short radius" (fun () ->
-            Spheres.append_fields b ~x:(a 2) ~y:(a 2) ~z:(a 2) ~radius:(a 1) ~material:[| m; m |] 2);
+            Private.Spheres.append_fields b ~x:(a 2) ~y:(a 2) ~z:(a 2) ~radius:(a 1) ~material:[| m; m |] 2);
         raises_invalid "material 1" (fun () ->
-            Spheres.append_fields b ~x:(a 2) ~y:(a 2) ~z:(a 2) ~radius:(a 2) ~material:[| m; m + 1 |] 2);
-        Alcotest.(check int) "nothing appended" 0 (Spheres.builder_length b);
-        let s = Spheres.of_list [ sphere_at 1.; sphere_at 2. ] in
+            Private.Spheres.append_fields b ~x:(a 2) ~y:(a 2) ~z:(a 2) ~radius:(a 2) ~material:[| m; m + 1 |] 2);
+        Alcotest.(check int) "nothing appended" 0 (Private.Spheres.builder_length b);
+        let s = Private.Spheres.of_list [ sphere_at 1.; sphere_at 2. ] in
         raises_invalid "blit into 1" (fun () ->
-            Spheres.blit_fields s ~x:(a 2) ~y:(a 2) ~z:(a 1) ~radius:(a 2) ~material:[| 0; 0 |]);
+            Private.Spheres.blit_fields s ~x:(a 2) ~y:(a 2) ~z:(a 1) ~radius:(a 2) ~material:[| 0; 0 |]);
         let x = a 2 in
-        Spheres.blit_fields s ~x ~y:(a 2) ~z:(a 2) ~radius:(a 2) ~material:[| 7; 7 |];
+        Private.Spheres.blit_fields s ~x ~y:(a 2) ~z:(a 2) ~radius:(a 2) ~material:[| 7; 7 |];
         Alcotest.(check (array (float 0.))) "x" [| 1.; 2. |] x);
     Alcotest.test_case "Render.image refuses bad sampling settings; region_image raises for a region outside the canvas"
       `Quick (fun () ->
-        let s = Helpers.valid { Scene.cgfs with width = 4; height = 3 } in
+        let s = Helpers.valid (Scene.with_overrides ~width:4 ~height:3 Scene.cgfs) in
         refused "samples 0" (Render.image ~samples:0 s);
         refused "adaptive with 2 x 2" (Render.image ~samples:2 ~adaptive:8 s);
         refused "subsampled 2 x 2" (Render.image ~samples:2 ~subsample:true s);
-        raises_invalid "5 wide" (fun () -> Render.region_image s Region.{ x = 0; y = 0; w = 5; h = 1 });
-        raises_invalid "from row 3" (fun () -> Render.region_image s Region.{ x = 0; y = 3; w = 1; h = 1 });
-        let img, _ = ok (Render.region_image s Region.{ x = 3; y = 2; w = 1; h = 1 }) in
+        raises_invalid "5 wide" (fun () -> Render.region_image s Render.Region.{ x = 0; y = 0; w = 5; h = 1 });
+        raises_invalid "from row 3" (fun () -> Render.region_image s Render.Region.{ x = 0; y = 3; w = 1; h = 1 });
+        let img, _ = ok (Render.region_image s Render.Region.{ x = 3; y = 2; w = 1; h = 1 }) in
         let whole, _ = ok (Render.image s) in
         Alcotest.(check (triple int int int)) "the corner pixel" (Image.get whole 3 2) (Image.get img 0 0));
   ]
@@ -521,88 +521,88 @@ let kernel_tests =
         Alcotest.(check (list (float 0.))) "the scratch is unchanged" [ 11.; 0.5; 0.; 0.; 0.; 1.; 3. ]
           [ s.px; s.py; s.pz; s.nx; s.ny; s.nz; s.t ]);
     Alcotest.test_case "Sampling: to_string, is_one, averaging and the passes of each mode" `Quick (fun () ->
-        let sv ?samples ?adaptive ?subsample () = ok (Sampling.v ?samples ?adaptive ?subsample ()) in
-        let modes = [ Sampling.one; sv ~samples:4 (); sv ~samples:5 ~adaptive:8 (); sv ~subsample:true () ] in
+        let sv ?samples ?adaptive ?subsample () = ok (Render.Sampling.v ?samples ?adaptive ?subsample ()) in
+        let modes = [ Render.Sampling.one; sv ~samples:4 (); sv ~samples:5 ~adaptive:8 (); sv ~subsample:true () ] in
         Alcotest.(check (list string)) "to_string" [ "1x1"; "4x4"; "adaptive 5x5 t=8"; "subsampled" ]
-          (List.map Sampling.to_string modes);
-        Alcotest.(check (list bool)) "is_one" [ true; false; false; false ] (List.map Sampling.is_one modes);
-        Alcotest.(check bool) "v () is one" true (Sampling.is_one (sv ()));
-        Alcotest.(check (list bool)) "averaging" [ false; true; true; false ] (List.map Sampling.averaging modes);
+          (List.map Render.Sampling.to_string modes);
+        Alcotest.(check (list bool)) "is_one" [ true; false; false; false ] (List.map Render.Sampling.is_one modes);
+        Alcotest.(check bool) "v () is one" true (Render.Sampling.is_one (sv ()));
+        Alcotest.(check (list bool)) "averaging" [ false; true; true; false ] (List.map Render.Sampling.averaging modes);
         let img = Image.create 4 3 in
-        let passes = List.map (fun m -> Sampling.passes (Sampling.plan m img ~canvas:(4, 3) ~at:(0, 0))) modes in
+        let passes = List.map (fun m -> Render.Sampling.passes (Render.Sampling.plan m img ~canvas:(4, 3) ~at:(0, 0))) modes in
         Alcotest.(check (list int)) "passes" [ 1; 1; 2; 2 ] passes;
-        let pl = Sampling.plan Sampling.one img ~canvas:(4, 3) ~at:(0, 0) in
-        Alcotest.(check int) "pass 0 works on the 3 rows" 3 (Sampling.pass_rows pl 0);
-        raises_invalid "pass 1 of a one-pass plan" (fun () -> Sampling.pass_rows pl 1);
-        raises_invalid "a rectangle past the canvas" (fun () -> Sampling.plan Sampling.one img ~canvas:(4, 3) ~at:(1, 0));
+        let pl = Render.Sampling.plan Render.Sampling.one img ~canvas:(4, 3) ~at:(0, 0) in
+        Alcotest.(check int) "pass 0 works on the 3 rows" 3 (Render.Sampling.pass_rows pl 0);
+        raises_invalid "pass 1 of a one-pass plan" (fun () -> Render.Sampling.pass_rows pl 1);
+        raises_invalid "a rectangle past the canvas" (fun () -> Render.Sampling.plan Render.Sampling.one img ~canvas:(4, 3) ~at:(1, 0));
         Alcotest.(check (list bool)) "64 and 65 samples" [ true; false ]
-          (List.map (fun samples -> Result.is_ok (Sampling.v ~samples ())) [ Sampling.max_samples; Sampling.max_samples + 1 ]);
+          (List.map (fun samples -> Result.is_ok (Render.Sampling.v ~samples ())) [ Render.Sampling.max_samples; Render.Sampling.max_samples + 1 ]);
         Alcotest.(check (list bool)) "adaptive 0, 255, 256, -1" [ true; true; false; false ]
-          (List.map (fun adaptive -> Result.is_ok (Sampling.v ~samples:3 ~adaptive ())) [ 0; 255; 256; -1 ]);
-        (* Sampling.rows: a step below 1, another canvas, another averaging. *)
+          (List.map (fun adaptive -> Result.is_ok (Render.Sampling.v ~samples:3 ~adaptive ())) [ 0; 255; 256; -1 ]);
+        (* Render.Sampling.rows: a step below 1, another canvas, another averaging. *)
         let scene w = Helpers.prepare (Scene.with_overrides ~width:w ~height:3 Scene.cgfs) in
         let four = sv ~samples:4 () in
-        let pl4 = Sampling.plan four img ~canvas:(4, 3) ~at:(0, 0) in
+        let pl4 = Render.Sampling.plan four img ~canvas:(4, 3) ~at:(0, 0) in
         let averaging = Trace.create ~averaging:true (scene 4) in
-        raises_invalid "step 0" (fun () -> Sampling.rows pl4 0 averaging ~first:0 ~step:0);
-        raises_invalid "pass 1" (fun () -> Sampling.rows pl4 1 averaging ~first:0 ~step:1);
-        raises_invalid "a 5-wide canvas" (fun () -> Sampling.rows pl4 0 (Trace.create ~averaging:true (scene 5)) ~first:0 ~step:1);
-        raises_invalid "a tracer that does not average" (fun () -> Sampling.rows pl4 0 (Trace.create (scene 4)) ~first:0 ~step:1);
-        Sampling.rows pl4 0 averaging ~first:0 ~step:1);
+        raises_invalid "step 0" (fun () -> Render.Sampling.rows pl4 0 averaging ~first:0 ~step:0);
+        raises_invalid "pass 1" (fun () -> Render.Sampling.rows pl4 1 averaging ~first:0 ~step:1);
+        raises_invalid "a 5-wide canvas" (fun () -> Render.Sampling.rows pl4 0 (Trace.create ~averaging:true (scene 5)) ~first:0 ~step:1);
+        raises_invalid "a tracer that does not average" (fun () -> Render.Sampling.rows pl4 0 (Trace.create (scene 4)) ~first:0 ~step:1);
+        Render.Sampling.rows pl4 0 averaging ~first:0 ~step:1);
     Alcotest.test_case "Obj_file: feed raises outside its string and after finish; finish twice raises; ~digits writes %g"
       `Quick (fun () ->
-        let p = Obj_file.create ~name:"m.obj" ~max_vertices:10 ~max_triangles:10 in
-        raises_invalid "off 4 len 2 of 5 bytes" (fun () -> Obj_file.feed p "v 1 " 4 2);
-        raises_invalid "len -1" (fun () -> Obj_file.feed p "v" 0 (-1));
+        let p = Mesh.Obj.create ~name:"m.obj" ~max_vertices:10 ~max_triangles:10 in
+        raises_invalid "off 4 len 2 of 5 bytes" (fun () -> Mesh.Obj.feed p "v 1 " 4 2);
+        raises_invalid "len -1" (fun () -> Mesh.Obj.feed p "v" 0 (-1));
         let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3" in
-        ok (Obj_file.feed p text 0 (String.length text));
-        let m = ok (Obj_file.finish p) in
-        Alcotest.(check int) "one triangle, the last line without line end" 1 (Obj_file.triangle_count m);
-        raises_invalid "feed after finish" (fun () -> Obj_file.feed p "\n" 0 1);
-        raises_invalid "finish twice" (fun () -> Obj_file.finish p);
-        let m = Obj_file.v ~positions:[| 1. /. 3.; 2.; -0.5 |] ~normals:[||] ~triangles:[||] ~triangle_normals:[||] in
-        Alcotest.(check string) "3 digits" "v 0.333 2 -0.5\n" (Obj_file.to_string ~digits:3 m));
+        ok (Mesh.Obj.feed p text 0 (String.length text));
+        let m = ok (Mesh.Obj.finish p) in
+        Alcotest.(check int) "one triangle, the last line without line end" 1 (Mesh.Obj.triangle_count m);
+        raises_invalid "feed after finish" (fun () -> Mesh.Obj.feed p "\n" 0 1);
+        raises_invalid "finish twice" (fun () -> Mesh.Obj.finish p);
+        let m = Mesh.Obj.v ~positions:[| 1. /. 3.; 2.; -0.5 |] ~normals:[||] ~triangles:[||] ~triangle_normals:[||] in
+        Alcotest.(check string) "3 digits" "v 0.333 2 -0.5\n" (Mesh.Obj.to_string ~digits:3 m));
     Alcotest.test_case "Literal: of two spheres hit at the same t the first wins; a point light at the point adds nothing"
       `Quick (fun () ->
-        let red = Sphere.v ~center:(v 0. 0. 5.) ~radius:1. (Color.v 255. 0. 0.) in
-        let blue = Sphere.v ~center:(v 0. 0. 5.) ~radius:1. (Color.v 0. 0. 255.) in
+        let red = Helpers.sphere ~center:(v 0. 0. 5.) ~radius:1. (Color.v 255. 0. 0.) in
+        let blue = Helpers.sphere ~center:(v 0. 0. 5.) ~radius:1. (Color.v 0. 0. 255.) in
         let first spheres =
-          match Literal.closest_intersection spheres ~origin:Vec3.zero ~direction:Vec3.oz ~t_min:1. ~t_max:infinity with
-          | Some (s, t) -> Alcotest.check exact "t" 4. t; s.color
+          match Private.Literal.closest_intersection spheres ~origin:Vec3.zero ~direction:Vec3.oz ~t_min:1. ~t_max:infinity with
+          | Some (s, t) -> Alcotest.check exact "t" 4. t; s.material.color
           | None -> Alcotest.fail "missed"
         in
-        Alcotest.check Helpers.color "red first" red.color (first [ red; blue ]);
-        Alcotest.check Helpers.color "blue first" blue.color (first [ blue; red ]);
-        let scene = Scene.v ~spheres:[] ~lights:[ Light.ambient 0.25; Light.point 0.5 (v 0. 0. 4.) ] () in
+        Alcotest.check Helpers.color "red first" red.material.color (first [ red; blue ]);
+        Alcotest.check Helpers.color "blue first" blue.material.color (first [ blue; red ]);
+        let scene = Helpers.scene ~spheres:[] ~lights:[ Light.ambient 0.25; Light.point 0.5 (v 0. 0. 4.) ] () in
         let lighting point =
-          Literal.compute_lighting scene ~epsilon:0.001 ~point ~normal:(v 0. 0. (-1.)) ~view:(v 0. 0. (-1.)) ~specular:Sphere.matte
+          Private.Literal.compute_lighting scene ~epsilon:0.001 ~point ~normal:(v 0. 0. (-1.)) ~view:(v 0. 0. (-1.)) ~specular:Sphere.matte
         in
         Alcotest.check exact "L = 0: ambient only" 0.25 (lighting (v 0. 0. 4.));
         (* From (0, 0, 5) the light is at L = (0, 0, -1): <N, L> / |N| |L| = 1. *)
         Alcotest.check exact "facing the light" 0.75 (lighting (v 0. 0. 5.)));
-    Alcotest.test_case "Literal.normal turns a plane's or a triangle's normal toward the ray, never a sphere's" `Quick
+    Alcotest.test_case "Private.Literal.normal turns a plane's or a triangle's normal toward the ray, never a sphere's" `Quick
       (fun () ->
         let floor = Plane.v ~point:Vec3.zero ~normal:Vec3.oy white_material in
-        let n d = Literal.normal (Literal.Shape (Shape.Plane floor, Vec3.oy)) ~point:Vec3.zero ~direction:d in
+        let n d = Private.Literal.normal (Private.Literal.Shape (Shape.Plane floor, Vec3.oy)) ~point:Vec3.zero ~direction:d in
         Alcotest.check Helpers.vec3 "from above" Vec3.oy (n (v 1. (-1.) 0.));
         Alcotest.check Helpers.vec3 "from below" (v 0. (-1.) 0.) (n (v 0. 1. 3.));
-        let ball = Sphere.v ~center:Vec3.zero ~radius:2. Color.white in
+        let ball = Helpers.sphere ~center:Vec3.zero ~radius:2. Color.white in
         Alcotest.check Helpers.vec3 "a sphere from inside: outward" (v 0. 0. 1.)
-          (Literal.normal (Literal.Sphere ball) ~point:(v 0. 0. 2.) ~direction:Vec3.oz));
+          (Private.Literal.normal (Private.Literal.Sphere ball) ~point:(v 0. 0. 2.) ~direction:Vec3.oz));
     Alcotest.test_case "Camera_path: frames in [0, max_frame]; pp_key leaves out up = (0 1 0); first and last frames" `Quick
       (fun () ->
-        let key ?up frame = Camera_path.key ?up ~frame ~position:Vec3.zero (v 0. 0. 1.) in
+        let key ?up frame = Camera.Path.key ?up ~frame ~position:Vec3.zero (v 0. 0. 1.) in
         Alcotest.(check (list bool)) "frames -1, 0, 1000000, 1000001" [ false; true; true; false ]
-          (List.map (fun f -> Result.is_ok (Camera_path.check_key (key f))) [ -1; 0; Camera_path.max_frame; Camera_path.max_frame + 1 ]);
-        refused "up along the view" (Camera_path.check_key (key ~up:(v 0. 0. 2.) 0));
-        let plain = Camera_path.show_key (key 3) and tilted = Camera_path.show_key (key ~up:(v 1. 1. 0.) 3) in
+          (List.map (fun f -> Result.is_ok (Camera.Path.check_key (key f))) [ -1; 0; Camera.Path.max_frame; Camera.Path.max_frame + 1 ]);
+        refused "up along the view" (Camera.Path.check_key (key ~up:(v 0. 0. 2.) 0));
+        let plain = Camera.Path.show_key (key 3) and tilted = Camera.Path.show_key (key ~up:(v 1. 1. 0.) 3) in
         Alcotest.(check bool) plain false (contains ~sub:"up" plain);
         Alcotest.(check bool) tilted true (contains ~sub:"(up 1 1 0)" tilted);
-        let path = ok (Camera_path.v [ key 2; key 10 ]) in
-        Alcotest.(check (pair int int)) "frames" (2, 10) (Camera_path.first_frame path, Camera_path.last_frame path);
-        refused "frame 1" (Camera_path.camera path 1);
-        refused "frame 11" (Camera_path.camera path 11);
-        refused "equal frames" (Camera_path.v [ key 2; key 2 ]));
+        let path = ok (Camera.Path.v [ key 2; key 10 ]) in
+        Alcotest.(check (pair int int)) "frames" (2, 10) (Camera.Path.first_frame path, Camera.Path.last_frame path);
+        refused "frame 1" (Camera.Path.camera path 1);
+        refused "frame 11" (Camera.Path.camera path 11);
+        refused "equal frames" (Camera.Path.v [ key 2; key 2 ]));
     Alcotest.test_case "adaptive sampling: each pixel is exactly the document's or exactly full supersampling's, and it \
                         traces 1 + (n^2 - 1) k rays for k refined pixels" `Quick (fun () ->
         let s = Helpers.valid (Scene.with_overrides ~width:48 ~height:48 Scene.cgfs) in

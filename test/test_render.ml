@@ -14,23 +14,23 @@ let render ?jobs ?skips s = Helpers.image_exn ?jobs ?skips s
    neighbouring triangle just past it) that the robust mode does not have:
    0.4% of the pixels of scenes/mesh.scene, each darker in the oracle. *)
 let robust_share (s : Scene.t) =
-  if List.exists (function Shape.Mesh m -> m.smooth && m.material.transparency > 0. | _ -> false) s.shapes then
+  if List.exists (function Shape.Mesh m -> m.smooth && m.material.transparency > 0. | _ -> false) (Scene.shapes s) then
     (* Seen through glass, each such speck is seen again, bent: 1.0% of
        the pixels of scenes/glass-knot.scene at 80 x 80, 0.95% at 120 x 120
        (in the document's mode the two are equal byte for byte). *)
     0.98
-  else if List.exists (function Shape.Mesh m -> m.smooth | _ -> false) s.shapes then 0.99
+  else if List.exists (function Shape.Mesh m -> m.smooth | _ -> false) (Scene.shapes s) then 0.99
   else 0.999
 
 let check_against_oracle what (s : Scene.t) =
-  match s.epsilon with
-  | Some _ -> Helpers.check_images what ~expected:(Literal.render (Helpers.valid s)) (render s)
-  | None -> Helpers.check_images ~min_share:(robust_share s) what ~expected:(Literal.render (Helpers.valid s)) (render s)
+  match (Scene.epsilon s) with
+  | Some _ -> Helpers.check_images what ~expected:(Private.Literal.render (Helpers.valid s)) (render s)
+  | None -> Helpers.check_images ~min_share:(robust_share s) what ~expected:(Private.Literal.render (Helpers.valid s)) (render s)
 
 (* Random scenes in the document's mode. *)
 let document_mode =
   QCheck.map ~rev:Fun.id
-    (fun (s : Scene.t) -> if s.epsilon = None then { s with epsilon = Some 0.001 } else s)
+    (fun (s : Scene.t) -> if (Scene.epsilon s) = None then (Scene.with_overrides ~epsilon:(Some 0.001) s) else s)
     Gen_scene.arbitrary
 
 let tests =
@@ -44,20 +44,20 @@ let tests =
         List.iter
           (fun name ->
             check_against_oracle (name ^ " without epsilon")
-              { (Scene.with_overrides ~width:120 ~height:120 (Helpers.load_scene name)) with epsilon = None })
+              (Scene.with_overrides ~epsilon:None ((Scene.with_overrides ~width:120 ~height:120 (Helpers.load_scene name)))))
           (Helpers.scene_names ()));
     Alcotest.test_case "the reference scene at full size matches the oracle" `Slow (fun () ->
-        Helpers.check_images "cgfs 600x600" ~expected:(Literal.render (Helpers.valid Scene.cgfs)) (render Scene.cgfs));
+        Helpers.check_images "cgfs 600x600" ~expected:(Private.Literal.render (Helpers.valid Scene.cgfs)) (render Scene.cgfs));
     Helpers.qcheck ~count:150 "random scenes in the document's mode render as the oracle does"
-      document_mode (fun s -> Image.equal (Literal.render (Helpers.valid s)) (render s));
+      document_mode (fun s -> Image.equal (Private.Literal.render (Helpers.valid s)) (render s));
     Alcotest.test_case "random scenes in the robust mode are within 1 of the oracle on 99.9% of pixels"
       `Quick (fun () ->
         let scenes = QCheck.Gen.generate ~rand:(Random.State.make [| 7 |]) ~n:300 Gen_scene.gen in
         let pixels = ref 0 and off = ref 0 in
         List.iter
           (fun (s : Scene.t) ->
-            let s = { s with epsilon = None } in
-            match Image_diff.compare (Literal.render (Helpers.valid s)) (render s) with
+            let s = (Scene.with_overrides ~epsilon:None s) in
+            match Image.Diff.compare (Private.Literal.render (Helpers.valid s)) (render s) with
             | Ok d ->
                 pixels := !pixels + d.pixels;
                 off := !off + d.differing_gt1
@@ -186,7 +186,7 @@ let tests =
     Helpers.qcheck ~count:1000 "below a sphere's specular threshold, cos ** s is exactly 0"
       QCheck.(pair (float_range 0. 1.) (oneofl [ 0.; 0.5; 1.; 10.; 500.; 1000.; 1e5; 1e12; 1e300 ]))
       (fun (u, specular) ->
-        let p = Helpers.prepare (Scene.v ~spheres:[ Sphere.v ~specular ~center:Vec3.oz ~radius:1. Color.white ] ~lights:[] ()) in
+        let p = Helpers.prepare (Helpers.scene ~spheres:[ Helpers.sphere ~specular ~center:Vec3.oz ~radius:1. Color.white ] ~lights:[] ()) in
         let zero = p.specular_zero.(0) in
         (* every cosine at or below the threshold, here u times it *)
         zero >= 0. && zero < 1. && (zero = 0. || Float.pow (u *. zero) specular = 0.)

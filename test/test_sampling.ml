@@ -15,7 +15,7 @@ let image ?jobs ?skips ?samples ?adaptive ?subsample s = fst (render ?jobs ?skip
    ~n:1 on an averaging tracer, then store_average ~count:1. *)
 let averaged_one ?skips (scene : Scene.t) =
   let tr = Trace.create ~averaging:true (Helpers.prepare ?skips scene) in
-  let width = scene.width and height = scene.height in
+  let width = (Scene.width scene) and height = (Scene.height scene) in
   let img = Image.create width height in
   for r = 0 to height - 1 do
     for c = 0 to width - 1 do
@@ -31,8 +31,8 @@ let averaged_one ?skips (scene : Scene.t) =
    plane z = 5 at x = -0.05: rays with V_x < 0 enter it, rays with V_x >= 0
    move away from it and never do. *)
 let half_covered =
-  Scene.v ~width:1 ~height:1 ~background:(Color.v 0. 0. 255.)
-    ~spheres:[ Sphere.v ~center:(Vec3.v (-1000.) 0. 5.) ~radius:999.95 (Color.v 200. 0. 0.) ]
+  Helpers.scene ~width:1 ~height:1 ~background:(Color.v 0. 0. 255.)
+    ~spheres:[ Helpers.sphere ~center:(Vec3.v (-1000.) 0. 5.) ~radius:999.95 (Color.v 200. 0. 0.) ]
     ~lights:[ Light.ambient 2. ] ()
 
 let pixel0 img = Image.get img 0 0
@@ -43,11 +43,11 @@ let rgb = Alcotest.(triple int int int)
    382.5 * (1 - 0.2) = 306 is already >= 255 whatever the reflection adds:
    the weight bound may stop even averaged samples there. *)
 let saturated =
-  Scene.v ~width:24 ~height:24 ~depth:4
+  Helpers.scene ~width:24 ~height:24 ~depth:4
     ~spheres:
       [
-        Sphere.v ~center:(Vec3.v 0. 0. 4.) ~radius:1.2 ~specular:50. ~reflective:0.2 (Color.v 255. 255. 255.);
-        Sphere.v ~center:(Vec3.v 0. (-1001.) 0.) ~radius:1000. ~reflective:0.3 (Color.v 255. 200. 255.);
+        Helpers.sphere ~center:(Vec3.v 0. 0. 4.) ~radius:1.2 ~specular:50. ~reflective:0.2 (Color.v 255. 255. 255.);
+        Helpers.sphere ~center:(Vec3.v 0. (-1001.) 0.) ~radius:1000. ~reflective:0.3 (Color.v 255. 200. 255.);
       ]
     ~lights:[ Light.ambient 1.5; Light.point 0.5 (Vec3.v 2. 3. 0.) ]
     ()
@@ -61,12 +61,12 @@ let sampling_settings =
    to half a byte each, and their mean would round differently. *)
 let faint_mirrors =
   let faint (s : Scene.t) =
-    {
-      s with
-      depth = max 2 s.depth;
-      spheres = Spheres.of_list (List.map (fun (sp : Sphere.t) -> { sp with reflective = sp.reflective *. 0.01 }) (Spheres.to_list s.spheres));
-      lights = Light.ambient 0.3 :: s.lights;
-    }
+    Helpers.with_objects
+      ~spheres:
+        (List.map
+           (fun (sp : Sphere.t) -> Helpers.with_sphere_material sp (fun m -> Material.update ~reflective:(m.reflective *. 0.01) m))
+           (Helpers.scene_spheres s))
+      (Scene.with_overrides ~depth:(max 2 (Scene.depth s)) ~lights:(Light.ambient 0.3 :: Scene.lights s) s)
   in
   QCheck.map ~rev:Fun.id faint Gen_scene.arbitrary
 
@@ -87,10 +87,10 @@ let tests =
         List.iter
           (fun name ->
             let s = small (Helpers.load_scene name) in
-            let expected = Literal.render (Helpers.valid s) in
+            let expected = Private.Literal.render (Helpers.valid s) in
             (* A robust scene's differences from the oracle are those of
                test_render; the sampling paths add none. *)
-            let min_share = if s.epsilon = None then Some (Test_render.robust_share s) else None in
+            let min_share = if (Scene.epsilon s) = None then Some (Test_render.robust_share s) else None in
             Helpers.check_images ?min_share (name ^ ", samples 1") ~expected (image ~samples:1 s);
             Helpers.check_images ?min_share (name ^ ", averaging path") ~expected (averaged_one s);
             Helpers.check_images (name ^ ", averaging path against samples 1") ~expected:(image ~samples:1 s)
@@ -124,13 +124,13 @@ let tests =
     Helpers.qcheck ~count:100 "adaptive sampling never traces more rays than full sampling" sampling_settings
       (fun (s, n, th) ->
         let _, full = render ~samples:n s and _, adaptive = render ~samples:n ~adaptive:th s in
-        adaptive.primary <= full.primary && Stats.rays adaptive <= Stats.rays full);
+        adaptive.primary <= full.primary && Render.Stats.rays adaptive <= Render.Stats.rays full);
     Helpers.qcheck ~count:100 "each adaptive pixel is the full-sampling pixel or the document's pixel"
       sampling_settings (fun (s, n, th) ->
         let full = image ~samples:n s and one = image s and adaptive = image ~samples:n ~adaptive:th s in
         let ok = ref true in
-        for y = 0 to s.height - 1 do
-          for x = 0 to s.width - 1 do
+        for y = 0 to (Scene.height s) - 1 do
+          for x = 0 to (Scene.width s) - 1 do
             let a = Image.get adaptive x y in
             if a <> Image.get full x y && a <> Image.get one x y then ok := false
           done
@@ -175,33 +175,33 @@ let tests =
           ]);
     Alcotest.test_case "a region is the same region of the whole image in every sampling mode" `Quick (fun () ->
         let s = Scene.with_overrides ~width:37 ~height:23 Scene.cgfs_camera in
-        let full = Region.full ~width:37 ~height:23 in
+        let full = Render.Region.full ~width:37 ~height:23 in
         List.iter
           (fun (what, render) ->
             let whole = region_of render s full in
             List.iter
-              (fun (r : Region.t) ->
+              (fun (r : Render.Region.t) ->
                 let expected = Image.sub whole ~x:r.x ~y:r.y ~w:r.w ~h:r.h in
-                let name = Format.asprintf "%s, region %a" what Region.pp r in
+                let name = Format.asprintf "%s, region %a" what Render.Region.pp r in
                 Helpers.check_images name ~expected (region_of render s r);
                 Helpers.check_images (name ^ ", 2 jobs") ~expected (region_of render ~jobs:2 s r))
-              Region.[ { x = 5; y = 3; w = 20; h = 11 }; { x = 0; y = 0; w = 1; h = 1 }; { x = 36; y = 22; w = 1; h = 1 };
+              Render.Region.[ { x = 5; y = 3; w = 20; h = 11 }; { x = 0; y = 0; w = 1; h = 1 }; { x = 36; y = 22; w = 1; h = 1 };
                        { x = 1; y = 1; w = 35; h = 21 }; { x = 0; y = 7; w = 37; h = 4 }; { x = 10; y = 0; w = 3; h = 23 } ])
           modes);
     Helpers.qcheck ~count:60 "any region of any scene is that part of the whole, in every sampling mode"
       QCheck.(pair Gen_scene.arbitrary (quad small_nat small_nat small_nat small_nat))
       (fun ((s : Scene.t), (a, b, c, d)) ->
-        let x = a mod s.width and y = b mod s.height in
-        let w = 1 + (c mod (s.width - x)) and h = 1 + (d mod (s.height - y)) in
+        let x = a mod (Scene.width s) and y = b mod (Scene.height s) in
+        let w = 1 + (c mod ((Scene.width s) - x)) and h = 1 + (d mod ((Scene.height s) - y)) in
         List.for_all
           (fun (_, render) ->
-            let whole = region_of render s (Region.full ~width:s.width ~height:s.height) in
+            let whole = region_of render s (Render.Region.full ~width:(Scene.width s) ~height:(Scene.height s)) in
             Image.equal (Image.sub whole ~x ~y ~w ~h) (region_of render s { x; y; w; h }))
           modes);
     Alcotest.test_case "tracing allocates nothing per pixel, whatever the sampling" `Quick (fun () ->
         let s = Scene.with_overrides ~width:60 ~height:60 Scene.cgfs in
         List.iter
-          (fun (what, (_, (st : Stats.t))) -> Alcotest.(check (float 0.)) what 0. st.minor_words)
+          (fun (what, (_, (st : Render.Stats.t))) -> Alcotest.(check (float 0.)) what 0. st.minor_words)
           [
             ("samples 3", render ~samples:3 s);
             ("adaptive", render ~samples:3 ~adaptive:4 s);
@@ -211,8 +211,8 @@ let tests =
       Gen_scene.arbitrary (fun s ->
         let tr = Trace.create (Helpers.prepare s) in
         let ok = ref true in
-        for gy = Canvas.min_y s.height to Canvas.max_y s.height do
-          for gx = Canvas.min_x s.width to Canvas.max_x s.width do
+        for gy = Canvas.min_y (Scene.height s) to Canvas.max_y (Scene.height s) do
+          for gx = Canvas.min_x (Scene.width s) to Canvas.max_x (Scene.width s) do
             Trace.pixel tr gx gy;
             let hit = Trace.hit_object tr and c = (Trace.red tr, Trace.green tr, Trace.blue tr) in
             Trace.pixel_assuming tr gx gy hit;
@@ -231,8 +231,8 @@ let tests =
            3.3 units from its centre). Subsampling traces the outer columns,
            which both see the background, and assumes the middle one does. *)
         let s =
-          Scene.v ~width:3 ~height:1
-            ~spheres:[ Sphere.v ~center:(Vec3.v 0. 0. 10.) ~radius:0.5 (Color.v 255. 255. 255.) ]
+          Helpers.scene ~width:3 ~height:1
+            ~spheres:[ Helpers.sphere ~center:(Vec3.v 0. 0. 10.) ~radius:0.5 (Color.v 255. 255. 255.) ]
             ~lights:[ Light.ambient 1. ] ()
         in
         Alcotest.check rgb __LOC__ (255, 255, 255) (Image.get (image s) 1 0);
@@ -240,7 +240,7 @@ let tests =
     Alcotest.test_case "bad sampling settings are refused with a message" `Quick (fun () ->
         List.iter
           (fun (samples, adaptive, subsample, expected) ->
-            match Sampling.v ~samples ?adaptive ~subsample () with
+            match Render.Sampling.v ~samples ?adaptive ~subsample () with
             | Ok _ -> Alcotest.failf "accepted %S" expected
             | Error (`Msg m) -> Alcotest.(check string) __LOC__ expected m)
           [

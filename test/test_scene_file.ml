@@ -16,12 +16,27 @@ let error text =
    what was expected. *)
 let bad_inputs =
   [
+    ("(material glass (color 1 1 1))\n(material glass (color 2 2 2))",
+     "t.scene:2:11: material glass is defined twice (first at 1:11); a name may be defined only once");
+    ("(sphere (center 0 0 3) (radius 1) (material glass))\n(material glass (color 1 1 1))",
+     "t.scene:1:45: unknown material glass: no (material glass ...) form comes before it");
+    ("(material glass (color 1 1 1))\n(box (min 0 0 3) (max 1 1 4) (material glas))",
+     "t.scene:2:40: unknown material glas; defined before it: glass (did you mean glass?)");
+    ("(material glass (color 1 1 1) (transparency 2))", "t.scene:1:45: material glass transparency must lie in [0, 1], got 2");
+    ("(material glass (color 1 1 1) (reflective 0.5))\n(sphere (center 0 0 3) (radius 1) (material glass) (transparency 0.6))",
+     "t.scene:2:66: sphere reflective + transparency must be <= 1, got 0.5 + 0.6");
+    ("(material glass (specular 10))", "t.scene:1:1: material glass is missing its (color ...) field");
+    ("(material glass (color 1 1 1) (material metal))",
+     "t.scene:1:32: unknown material glass field material; expected color, specular, reflective, transparency, refractive-index, fresnel or pattern");
+    ("(material (color 1 1 1))", "t.scene:1:1: material: expected its name first, e.g. (material glass (color 230 230 255) (transparency 0.9))");
+    ("(sphere (center 0 0 3) (radius 1) (material 1 2))",
+     "t.scene:1:35: sphere material: expected the name of a material, e.g. (material glass)");
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3)", "t.scene:1:48: syntax error: unclosed parentheses at end of input");
     ("(sphere (center 0 0 3) (radius -1) (color 1 2 3))", "t.scene:1:32: sphere radius must be > 0, got -1");
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 1.5))",
      "t.scene:1:61: sphere reflective must lie in [0, 1], got 1.5");
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflectiv 0.5))",
-     "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, color, specular, reflective, transparency, refractive-index, fresnel or pattern (did you mean reflective?)");
+     "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, material, color, specular, reflective, transparency, refractive-index, fresnel or pattern (did you mean reflective?)");
      ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (transparency 1.5))",
       "t.scene:1:63: sphere transparency must lie in [0, 1], got 1.5");
      ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 0.6) (transparency 0.5))",
@@ -55,9 +70,9 @@ let bad_inputs =
     ("(canvas (width 65536) (height 65536))", "t.scene:1:1: canvas 65536x65536 has 4294967296 pixels, more than the limit of 268435456 (set RAYTRACE_MAX_PIXELS to raise it)");
     ("(recursion-depth -1)", "t.scene:1:18: recursion depth must be >= 0, got -1");
     ("(epsilon 0.001)\n(epsilon 0.01)", "t.scene:2:2: duplicate epsilon form (first given at 1:2); it may appear only once");
-    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light (did you mean sphere?)");
+    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected material, canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light (did you mean sphere?)");
     ("sphere", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got sphere");
-    ("()", "t.scene:1:1: empty form (); expected one of canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light");
+    ("()", "t.scene:1:1: empty form (); expected one of material, canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light");
     ("(camera (look-at 0 0 0))", "t.scene:1:9: the camera looks at its own position");
     ("(camera (rotation (1 0 0) (1 0 0) (0 0 1)))",
      "t.scene:1:9: camera rotation must be invertible, but its rows are (nearly) linearly dependent");
@@ -101,7 +116,7 @@ let meshes =
 
 let load_mesh path =
   match List.assoc_opt path meshes with
-  | Some text -> Obj_file.of_string ~name:path ~max_vertices:100 ~max_triangles:100 text
+  | Some text -> Mesh.Obj.of_string ~name:path ~max_vertices:100 ~max_triangles:100 text
   | None -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s: No such file or directory" path))
 
 let with_mesh text = Result.map Scene.of_valid (Scene_file.of_string ~load_mesh ~file:"dir/t.scene" text)
@@ -116,53 +131,98 @@ let tests =
         List.iter (fun name -> ignore (Helpers.load_scene name)) (Helpers.scene_names ()));
     Alcotest.test_case "omitted forms take the document's values" `Quick (fun () ->
         let s = parse "(light ambient (intensity 1))" in
-        Alcotest.(check (pair int int)) __LOC__ (600, 600) (s.width, s.height);
-        Alcotest.(check int) __LOC__ 3 s.depth;
-        Alcotest.(check bool) __LOC__ true (Viewport.equal s.viewport Viewport.default);
-        Alcotest.(check bool) __LOC__ true (Camera.equal s.camera Camera.default);
-        Alcotest.(check (option (float 0.))) __LOC__ None s.epsilon;
-        Alcotest.check Helpers.color __LOC__ Color.black s.background);
+        Alcotest.(check (pair int int)) __LOC__ (600, 600) ((Scene.width s), (Scene.height s));
+        Alcotest.(check int) __LOC__ 3 (Scene.depth s);
+        Alcotest.(check bool) __LOC__ true (Viewport.equal (Scene.viewport s) Viewport.default);
+        Alcotest.(check bool) __LOC__ true (Camera.equal (Scene.camera s) Camera.default);
+        Alcotest.(check (option (float 0.))) __LOC__ None (Scene.epsilon s);
+        Alcotest.check Helpers.color __LOC__ Color.black (Scene.background s));
     Alcotest.test_case "specular and reflective default to matte and 0" `Quick (fun () ->
         let s = parse "(sphere (center 0 0 3) (radius 1) (color 1 2 3))" in
-        match Spheres.to_list s.spheres with
+        match Private.Spheres.to_list (Scene.spheres s) with
         | [ sp ] ->
-            Alcotest.(check (float 0.)) __LOC__ (-1.) sp.specular;
-            Alcotest.(check (float 0.)) __LOC__ 0. sp.reflective
+            Alcotest.(check (float 0.)) __LOC__ (-1.) sp.material.specular;
+            Alcotest.(check (float 0.)) __LOC__ 0. sp.material.reflective
         | _ -> Alcotest.fail "one sphere expected");
     Alcotest.test_case "the optical fields default to opaque, index 1, no Fresnel, and print only when set" `Quick
       (fun () ->
         let plain = "(sphere (center 0 0 3) (radius 1) (color 1 2 3))" in
-        (match Spheres.to_list (parse plain).spheres with
+        (match Helpers.scene_spheres (parse plain) with
         | [ sp ] ->
-            Alcotest.(check (float 0.)) __LOC__ 0. sp.transparency;
-            Alcotest.(check (float 0.)) __LOC__ 1. sp.refractive_index;
-            Alcotest.(check bool) __LOC__ false sp.fresnel;
+            Alcotest.(check (float 0.)) __LOC__ 0. sp.material.transparency;
+            Alcotest.(check (float 0.)) __LOC__ 1. sp.material.refractive_index;
+            Alcotest.(check bool) __LOC__ false sp.material.fresnel;
             Alcotest.(check string) "a sphere without them prints as before" plain (Sphere.show sp)
         | _ -> Alcotest.fail "one sphere expected");
         let glass =
           "(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 0.1) (transparency 0.9) (refractive-index 1.5) (fresnel true))"
         in
-        (match Spheres.to_list (parse glass).spheres with
+        (match Helpers.scene_spheres (parse glass) with
         | [ sp ] -> Alcotest.(check string) "a glass sphere prints its fields" glass (Sphere.show sp)
         | _ -> Alcotest.fail "one sphere expected");
         let box = "(box (min 0 0 3) (max 1 1 4) (color 1 2 3) (transparency 1) (refractive-index 1.33))" in
-        match (parse box).shapes with
+        match Scene.shapes (parse box) with
         | [ sh ] -> Alcotest.(check string) "a glass box prints its fields" box (Shape.show sh)
         | _ -> Alcotest.fail "one shape expected");
+    Alcotest.test_case "a named material is defined once and used by any object; inline fields override it" `Quick
+      (fun () ->
+        let text =
+          "(material glass (color 230 230 255) (transparency 0.9) (refractive-index 1.5) (fresnel true))\n\
+           (material checked (color 200 200 200) (pattern checker (color 20 20 20) (size 0.5)))\n\
+           (sphere (center 0 0 3) (radius 1) (material glass))\n\
+           (plane (point 0 -1 0) (normal 0 1 0) (material checked) (specular 50))\n\
+           (box (min 1 0 4) (max 2 1 5) (material glass) (transparency 0.5) (reflective 0.3) (color 1 2 3))\n\
+           (light ambient (intensity 1))"
+        in
+        let glass = Material.v ~transparency:0.9 ~refractive_index:1.5 ~fresnel:true (Color.v 230. 230. 255.) in
+        let checked = Material.v ~pattern:(Pattern.checker ~size:0.5 (Color.v 20. 20. 20.)) (Color.v 200. 200. 200.) in
+        let expected =
+          [
+            Shape.Sphere (Sphere.v ~center:(Vec3.v 0. 0. 3.) ~radius:1. glass);
+            Shape.Plane (Plane.v ~point:(Vec3.v 0. (-1.) 0.) ~normal:(Vec3.v 0. 1. 0.) (Material.update ~specular:50. checked));
+            Shape.Box
+              (Box.v ~min:(Vec3.v 1. 0. 4.) ~max:(Vec3.v 2. 1. 5.)
+                 (Material.update ~transparency:0.5 ~reflective:0.3 ~color:(Color.v 1. 2. 3.) glass));
+          ]
+        in
+        List.iter
+          (fun reader ->
+            match Scene_file.of_string ~reader ~file:"t.scene" text with
+            | Error (`Msg m) -> Alcotest.fail m
+            | Ok v ->
+                let s = Scene.of_valid v in
+                Alcotest.(check (list (testable Shape.pp Shape.equal))) __LOC__ expected (Scene.objects s);
+                (* The names are gone once read: the scene prints each
+                   object's fields, and reads back equal. *)
+                Alcotest.check scene "round trip" s (parse (Scene.show s)))
+          [ `Fast; `Parsexp ]);
+    Alcotest.test_case "Scene_file.located gives the error's file, line and column beside its message" `Quick (fun () ->
+        let text = "(light ambient (intensity 1))\n(sphere (center 0 0 3) (radius -1) (color 1 1 1))" in
+        (match Scene_file.located ~file:"t.scene" text with
+        | Ok _ -> Alcotest.fail "accepted"
+        | Error e ->
+            Alcotest.(check (list string)) __LOC__
+              [ "t.scene"; "2"; "32"; "sphere radius must be > 0, got -1" ]
+              [ e.file; string_of_int e.line; string_of_int e.column; e.message ];
+            Alcotest.(check string) "the message of_string gives" (error text) (Scene_file.error_message e));
+        let limits = Limits.with_bound Limits.default `Scene_bytes 10. in
+        match Scene_file.located ~limits ~file:"t.scene" text with
+        | Ok _ -> Alcotest.fail "accepted"
+        | Error e -> Alcotest.(check (pair int int)) "a whole-text error has no line" (0, 0) (e.line, e.column));
     Alcotest.test_case "comments of every kind are ignored" `Quick (fun () ->
         let s =
           parse
             "; line\n#| block |#\n#;(sphere (center 0 0 0))\n(recursion-depth 2) ; trailing\n"
         in
-        Alcotest.(check int) __LOC__ 2 s.depth;
-        Alcotest.(check int) __LOC__ 0 (Spheres.length s.spheres));
+        Alcotest.(check int) __LOC__ 2 (Scene.depth s);
+        Alcotest.(check int) __LOC__ 0 (Private.Spheres.length (Scene.spheres s)));
     Alcotest.test_case "a UTF-8 byte order mark at the start reads as blanks, in both readers and in windows" `Quick
       (fun () ->
         let bom = "\xef\xbb\xbf" in
         let text = "(canvas (width 8) (height 6))\n(sphere (center 0 0 3) (radius 1) (color 1 2 3))\n" in
         let read ?(window_bytes = 1 lsl 20) reader t =
           Result.map Scene.of_valid
-            (Scene_file.of_source ~file:"t.scene" ~reader ~window_bytes (Scene_file.string_source t))
+            (Private.Scene_text.of_source ~file:"t.scene" ~reader ~window_bytes (Private.Scene_text.string_source t))
         in
         List.iter
           (fun (what, reader, window_bytes) ->
@@ -182,7 +242,7 @@ let tests =
         Alcotest.(check bool) __LOC__ true (Result.is_error (read `Fast (" " ^ bom ^ text))));
     Alcotest.test_case "look-at builds the camera" `Quick (fun () ->
         let s = parse "(camera (position 3 0 1) (look-at 2 0 2) (up 0 1 0))" in
-        let d = Camera.direction s.camera Vec3.oz in
+        let d = Camera.direction (Scene.camera s) Vec3.oz in
         let k = 1. /. sqrt 2. in
         Alcotest.check (Helpers.vec3_near 1e-15) __LOC__ (Vec3.v (-.k) 0. k) d);
     Alcotest.test_case "bad input gets one located line" `Quick (fun () ->
@@ -207,20 +267,20 @@ let tests =
             "(camera-path (key (frame 2) (position 0 1 -2) (look-at 0 0 4))\n\
              (key (frame 10) (position 1 1 -2) (look-at 0 0 4) (up 0 1 0.5)))"
         in
-        match s.camera_path with
+        match (Scene.camera_path s) with
         | None -> Alcotest.fail "no camera path"
         | Some p ->
-            Alcotest.(check (list int)) __LOC__ [ 2; 10 ] (List.map (fun (k : Camera_path.key) -> k.frame) (Camera_path.keys p));
-            Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 1. 0.5) (List.nth (Camera_path.keys p) 1).up;
-            Alcotest.check Helpers.vec3 __LOC__ Vec3.oy (List.hd (Camera_path.keys p)).up;
+            Alcotest.(check (list int)) __LOC__ [ 2; 10 ] (List.map (fun (k : Camera.Path.key) -> k.frame) (Camera.Path.keys p));
+            Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 1. 0.5) (List.nth (Camera.Path.keys p) 1).up;
+            Alcotest.check Helpers.vec3 __LOC__ Vec3.oy (List.hd (Camera.Path.keys p)).up;
             (match Camera.look_at ~position:(Vec3.v 0. 1. (-2.)) (Vec3.v 0. 0. 4.) with
-            | Ok c -> Alcotest.(check bool) __LOC__ true (Camera.equal c s.camera)
+            | Ok c -> Alcotest.(check bool) __LOC__ true (Camera.equal c (Scene.camera s))
             | Error (`Msg m) -> Alcotest.fail m);
             let with_camera = parse "(camera (position 0 0 -1))\n(camera-path (key (frame 0) (position 0 0 0) (look-at 0 0 1)))" in
-            Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 0. (-1.)) with_camera.camera.position);
+            Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 0. 0. (-1.)) (Scene.camera with_camera).position);
     Alcotest.test_case "a scene with a camera path prints and parses back equal" `Quick (fun () ->
         let s = Helpers.load_scene "orbit.scene" in
-        Alcotest.(check bool) __LOC__ true (Option.is_some s.camera_path);
+        Alcotest.(check bool) __LOC__ true (Option.is_some (Scene.camera_path s));
         Alcotest.check scene __LOC__ s (parse (Scene_file.to_string s)));
     Helpers.qcheck ~count:300 "any valid scene prints and parses back equal" Gen_scene.arbitrary
       (fun s ->
@@ -243,18 +303,18 @@ let tests =
         let has_line what form =
           if not (List.mem form lines) then QCheck.Test.fail_reportf "%s prints %S, not a line of:\n%s" what form text
         in
-        has_line "Viewport.show" (Viewport.show s.viewport);
-        has_line "Camera.show" (Camera.show s.camera);
-        Spheres.iter (fun x -> has_line "Sphere.show" (Sphere.show x)) s.spheres;
-        List.iter (fun x -> has_line "Shape.show" (Shape.show x)) s.shapes;
-        List.iter (fun x -> has_line "Light.show" (Light.show x)) s.lights;
+        has_line "Viewport.show" (Viewport.show (Scene.viewport s));
+        has_line "Camera.show" (Camera.show (Scene.camera s));
+        Private.Spheres.iter (fun x -> has_line "Sphere.show" (Sphere.show x)) (Scene.spheres s);
+        List.iter (fun x -> has_line "Shape.show" (Shape.show x)) (Scene.shapes s);
+        List.iter (fun x -> has_line "Light.show" (Light.show x)) (Scene.lights s);
         Option.iter
           (fun p ->
-            let form = Camera_path.show p in
+            let form = Camera.Path.show p in
             let n = String.length form and t = String.length text in
             let rec found i = i + n <= t && (String.sub text i n = form || found (i + 1)) in
-            if not (found 0) then QCheck.Test.fail_reportf "Camera_path.show prints %S, not in:\n%s" form text)
-          s.camera_path;
+            if not (found 0) then QCheck.Test.fail_reportf "Camera.Path.show prints %S, not in:\n%s" form text)
+          (Scene.camera_path s);
         true);
       Alcotest.test_case "the new shapes read with their fields and defaults" `Quick (fun () ->
         let s =
@@ -263,7 +323,7 @@ let tests =
              (triangle (vertices (-1 0 4) (1 0 4) (0 1.5 4)) (color 4 5 6) (specular 10))\n\
              (box (min -1 -1 3) (max 1 1 5) (color 7 8 9) (reflective 0.5))"
         in
-        match s.Scene.shapes with
+        match (Scene.shapes s) with
         | [ Shape.Plane p; Shape.Triangle t; Shape.Box b ] ->
             Alcotest.(check (float 0.)) "plane normal as given" 2. p.normal.y;
             Alcotest.(check (float 0.)) "plane matte" Sphere.matte p.material.specular;
@@ -290,7 +350,7 @@ let tests =
         match with_mesh "(mesh (file \"quad.obj\") (color 1 2 3) (scale 2) (translate 10 0 0) (smooth true))" with
         | Error (`Msg m) -> Alcotest.fail m
         | Ok s -> (
-            match s.Scene.shapes with
+            match (Scene.shapes s) with
             | [ Shape.Mesh m ] ->
                 Alcotest.(check string) "source as given" "quad.obj" m.source;
                 Alcotest.(check int) "fan-triangulated" 2 (Mesh.triangle_count m);

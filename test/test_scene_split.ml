@@ -1,5 +1,5 @@
 (* A scene read on two cores: the second half's spheres read beside
-   (Scene_file.read_part), used only where they are what the sequential
+   (Private.Scene_text.read_part), used only where they are what the sequential
    read would read. The same scene (spheres, their order, the material
    table's order) and the same errors as one core, wherever the split
    falls. *)
@@ -10,18 +10,18 @@ let sphere = "(sphere (center 0 -1 3) (radius 1) (color 255 0 0) (specular 500) 
 (* Scene.equal compares spheres whatever their materials' numbering;
    here the table's order counts too. *)
 let same_spheres what a b =
-  let n = Spheres.length a in
-  if Spheres.length b <> n then Alcotest.failf "%s: %d spheres, not %d" what (Spheres.length b) n;
+  let n = Private.Spheres.length a in
+  if Private.Spheres.length b <> n then Alcotest.failf "%s: %d spheres, not %d" what (Private.Spheres.length b) n;
   let bits x = Int64.bits_of_float x in
   for i = 0 to n - 1 do
     let same f = Int64.equal (bits (f a i)) (bits (f b i)) in
-    if not (same Spheres.center_x && same Spheres.center_y && same Spheres.center_z && same Spheres.radius) then
+    if not (same Private.Spheres.center_x && same Private.Spheres.center_y && same Private.Spheres.center_z && same Private.Spheres.radius) then
       Alcotest.failf "%s: sphere %d differs" what i;
-    if Spheres.material_index a i <> Spheres.material_index b i then
-      Alcotest.failf "%s: sphere %d has material %d, not %d" what i (Spheres.material_index b i)
-        (Spheres.material_index a i)
+    if Private.Spheres.material_index a i <> Private.Spheres.material_index b i then
+      Alcotest.failf "%s: sphere %d has material %d, not %d" what i (Private.Spheres.material_index b i)
+        (Private.Spheres.material_index a i)
   done;
-  let ma = Spheres.materials a and mb = Spheres.materials b in
+  let ma = Private.Spheres.materials a and mb = Private.Spheres.materials b in
   if Array.length ma <> Array.length mb || not (Array.for_all2 Material.equal ma mb) then
     Alcotest.failf "%s: the material tables differ (%d and %d materials)" what (Array.length ma) (Array.length mb)
 
@@ -30,7 +30,7 @@ let same_result what one two =
   | Ok a, Ok b ->
       let a = Scene.of_valid a and b = Scene.of_valid b in
       if not (Scene.equal a b) then Alcotest.failf "%s: a different scene" what;
-      same_spheres what a.spheres b.spheres
+      same_spheres what (Scene.spheres a) (Scene.spheres b)
   | Error (`Msg a), Error (`Msg b) -> Alcotest.(check string) what a b
   | Ok _, Error (`Msg m) -> Alcotest.failf "%s: read on one core, but on two: %s" what m
   | Error (`Msg m), Ok _ -> Alcotest.failf "%s: read on two cores, but on one: %s" what m
@@ -48,7 +48,7 @@ let seekable text =
       k
     in
     if !first = None then first := Some at;
-    { Scene_file.read; close = ignore }
+    { Private.Scene_text.read; close = ignore }
   in
   let seek o =
     incr seeks;
@@ -58,11 +58,11 @@ let seekable text =
 
 (* The part of [text] from [from] on, read as a child would. *)
 let part ?limits ~window text from =
-  let r = Scene_file.string_source (String.sub text from (String.length text - from)) () in
-  Scene_file.read_part ?limits ~window_bytes:window r ~from
+  let r = Private.Scene_text.string_source (String.sub text from (String.length text - from)) () in
+  Private.Scene_text.read_part ?limits ~window_bytes:window r ~from
 
 let one ?limits ?(load_mesh = Raytrace_unix.Files.read_mesh) ?(file = "t.scene") ~window text =
-  Scene_file.of_source ?limits ~load_mesh ~file ~window_bytes:window (Scene_file.string_source text)
+  Private.Scene_text.of_source ?limits ~load_mesh ~file ~window_bytes:window (Private.Scene_text.string_source text)
 
 (* [text] read with the part from [split] beside, and whether the part was
    used (the read seeked past it). *)
@@ -70,8 +70,8 @@ let two ?limits ?(load_mesh = Raytrace_unix.Files.read_mesh) ?(file = "t.scene")
   let p = match given with Some p -> p | None -> part ?limits ~window text split in
   let source, seek, seeks = seekable text in
   let waited = ref 0 in
-  let beside = { Scene_file.split; wait = (fun () -> incr waited; Some p); append = Scene_file.append_part; seek } in
-  let r = Scene_file.of_source ?limits ~load_mesh ~file ~window_bytes:window ~beside source in
+  let beside = { Private.Scene_text.split; wait = (fun () -> incr waited; Some p); append = Private.Scene_text.append_part; seek } in
+  let r = Private.Scene_text.of_source ?limits ~load_mesh ~file ~window_bytes:window ~beside source in
   if !waited <> 1 then Alcotest.failf "split at %d: the part waited for %d times, not once" split !waited;
   (r, !seeks > 0)
 
@@ -166,9 +166,9 @@ let tests =
         let other = header ^ String.map (fun c -> if c = '6' then '5' else c) (spheres 20) in
         let split = List.nth (line_starts text) 4 in
         let p = part ~window:(1 lsl 20) other split in
-        if Scene_file.part_length p < 10 then Alcotest.failf "a part of %d spheres" (Scene_file.part_length p);
+        if Private.Scene_text.part_length p < 10 then Alcotest.failf "a part of %d spheres" (Private.Scene_text.part_length p);
         match (two ~part:p ~window:(1 lsl 20) text split, one ~window:(1 lsl 20) other) with
-        | (Ok a, true), Ok b -> same_spheres "the other text's spheres" (Scene.of_valid b).spheres (Scene.of_valid a).spheres
+        | (Ok a, true), Ok b -> same_spheres "the other text's spheres" (Scene.spheres (Scene.of_valid b)) (Scene.spheres (Scene.of_valid a))
         | (_, false), _ -> Alcotest.fail "the part was not used"
         | (Error (`Msg m), _), _ | _, Error (`Msg m) -> Alcotest.fail m);
     Alcotest.test_case "without the part (its process failed or died), the read is one core's" `Quick (fun () ->
@@ -179,8 +179,8 @@ let tests =
             List.iter
               (fun split ->
                 let source, seek, seeks = seekable text in
-                let beside = { Scene_file.split; wait = (fun () -> None); append = Scene_file.append_part; seek } in
-                let r = Scene_file.of_source ~load_mesh:Raytrace_unix.Files.read_mesh ~file:"t.scene" ~window_bytes:window ~beside source in
+                let beside = { Private.Scene_text.split; wait = (fun () -> None); append = Private.Scene_text.append_part; seek } in
+                let r = Private.Scene_text.of_source ~load_mesh:Raytrace_unix.Files.read_mesh ~file:"t.scene" ~window_bytes:window ~beside source in
                 if !seeks > 0 then Alcotest.failf "%s: a seek without a part" what;
                 same_result (Printf.sprintf "%s, split at %d, no part" what split) expected r)
               (line_starts text))

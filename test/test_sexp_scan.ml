@@ -28,10 +28,10 @@ let sphere = "(sphere (center 0 -1 3) (radius 1) (color 255 0 0) (specular 500) 
 let windowed ?limits ~reader ~window ~step ~opens text =
   let source () =
     incr opens;
-    let r = Scene_file.string_source text () in
+    let r = Private.Scene_text.string_source text () in
     { r with read = (fun buf pos len -> r.read buf pos (min len step)) }
   in
-  match Scene_file.of_source ?limits ~file:"t.scene" ~reader ~window_bytes:window source with
+  match Private.Scene_text.of_source ?limits ~file:"t.scene" ~reader ~window_bytes:window source with
   | Ok v -> Ok (Scene.of_valid v)
   | Error (`Msg m) -> Error m
 
@@ -81,12 +81,12 @@ let tests =
         match read `Fast text with
         | Error m -> Alcotest.fail m
         | Ok scene ->
-            Alcotest.(check int) "spheres" 64 (Spheres.length scene.Scene.spheres);
-            Spheres.iteri
+            Alcotest.(check int) "spheres" 64 (Private.Spheres.length (Scene.spheres scene));
+            Private.Spheres.iteri
               (fun i (s : Sphere.t) ->
-                let c = Printf.sprintf "%g %g %g" s.color.r s.color.g s.color.b in
+                let c = Printf.sprintf "%g %g %g" s.material.color.r s.material.color.g s.material.color.b in
                 Alcotest.(check string) (Printf.sprintf "sphere %d's color" i) colors.(i mod Array.length colors) c)
-              scene.Scene.spheres);
+              (Scene.spheres scene));
     Alcotest.test_case "text the fast path leaves to parsexp reads alike" `Quick (fun () ->
         List.iter
           (fun (what, text) -> same what text)
@@ -159,8 +159,8 @@ let tests =
         match Scene_file.of_string text with
         | Error (`Msg m) -> Alcotest.fail m
         | Ok v ->
-            let spheres = (Scene.of_valid v).spheres in
-            let words = Obj.reachable_words (Obj.repr spheres) / Spheres.length spheres in
+            let spheres = (Scene.spheres (Scene.of_valid v)) in
+            let words = Obj.reachable_words (Obj.repr spheres) / Private.Spheres.length spheres in
             if words > 6 then Alcotest.failf "%d words per sphere, more than 6" words);
     Alcotest.test_case "plain forms are read without parsexp, the rest left to it" `Quick (fun () ->
         let form text =

@@ -22,7 +22,7 @@ let white = Material.v Color.white
 
 (* The tracer of a scene holding [shapes] alone, robust mode. *)
 let tracer ?epsilon ?(spheres = []) shapes =
-  Trace.create (Helpers.prepare (Scene.v ?epsilon ~spheres ~shapes ~lights:[] ()))
+  Trace.create (Helpers.prepare (Helpers.scene ?epsilon ~spheres ~shapes ~lights:[] ()))
 
 (* The exact point O + t D. *)
 let exact_point ~origin ~direction t = add (qv origin) (scale (q t) (qv direction))
@@ -103,14 +103,14 @@ let hit_mask = Test_numerics.hit_mask
 
 (* The pixels' float rays, classified in exact arithmetic by [classify]. *)
 let exact_mask (scene : Scene.t) classify =
-  let w = scene.width and h = scene.height in
+  let w = (Scene.width scene) and h = (Scene.height scene) in
   Array.init h (fun row ->
       Array.init w (fun col ->
           let v =
-            Viewport.of_canvas scene.viewport ~canvas_width:w ~canvas_height:h
+            Viewport.of_canvas (Scene.viewport scene) ~canvas_width:w ~canvas_height:h
               (Canvas.x_of_column ~width:w col) (Canvas.y_of_row ~height:h row)
           in
-          classify ~origin:scene.camera.position ~direction:(Camera.direction scene.camera v)))
+          classify ~origin:(Scene.camera scene).position ~direction:(Camera.direction (Scene.camera scene) v)))
 
 (* `In, `Out or `Edge for the exact line of a ray and a triangle. *)
 let triangle_class (tri : Triangle.t) ~origin ~direction =
@@ -187,12 +187,12 @@ let tiny_far ~translate shape_of =
   let center = Vec3.add translate (Vec3.v (0.3 *. dist) (-0.2 *. dist) dist) in
   let shape = shape_of center r in
   let camera = match Camera.look_at ~up:(Vec3.v 0.3 1. 0.2) ~position:translate center with Ok c -> c | Error (`Msg e) -> failwith e in
-  (Scene.v ~width:90 ~height:90 ~viewport:(Viewport.v ~width:6e-7 ~height:6e-7 ~distance:1.) ~camera ~spheres:[] ~shapes:[ shape ] ~lights:[ Light.ambient 1. ] (), shape)
+  (Helpers.scene ~width:90 ~height:90 ~viewport:(Viewport.v ~width:6e-7 ~height:6e-7 ~distance:1.) ~camera ~spheres:[] ~shapes:[ shape ] ~lights:[ Light.ambient 1. ] (), shape)
 
 
 let document_mode =
   QCheck.map ~rev:Fun.id
-    (fun (s : Scene.t) -> if s.epsilon = None then { s with epsilon = Some 0.001 } else s)
+    (fun (s : Scene.t) -> if (Scene.epsilon s) = None then (Scene.with_overrides ~epsilon:(Some 0.001) s) else s)
     Gen_scene.arbitrary
 
 let stats (s : Scene.t) = match Helpers.render s with Ok (_, st) -> st | Error (`Msg m) -> Alcotest.fail m
@@ -448,7 +448,7 @@ let tests =
         List.iter
           (fun (what, center, radius) ->
             let vs, shapes, faces = icosphere ~center ~radius 3 in
-            let tr = Trace.create (Helpers.prepare (Scene.v ~spheres:[] ~shapes ~lights:[] ())) in
+            let tr = Trace.create (Helpers.prepare (Helpers.scene ~spheres:[] ~shapes ~lights:[] ())) in
             let targets =
               Array.to_list vs
               @ List.concat_map
@@ -485,7 +485,7 @@ let tests =
                lies inside the mesh. *)
             let d = radius /. 10. in
             let s =
-              Scene.v ?epsilon ~width:96 ~height:96 ~viewport:(Viewport.v ~width:d ~height:d ~distance:d)
+              Helpers.scene ?epsilon ~width:96 ~height:96 ~viewport:(Viewport.v ~width:d ~height:d ~distance:d)
                 ~camera:(Camera.v center) ~spheres:[] ~shapes ~lights:[ Light.ambient 1. ] ()
             in
             let img = Helpers.image_exn s in
@@ -536,8 +536,8 @@ let tests =
             let s = Scene.with_overrides ~width:96 ~height:96 s in
             List.iter
               (fun (mode, epsilon) ->
-                let s = { s with epsilon } in
-                let twice = { s with spheres = Spheres.of_list (List.concat_map (fun sp -> [ sp; sp ]) (Spheres.to_list s.spheres)); shapes = List.concat_map (fun sh -> [ sh; sh ]) s.shapes } in
+                let s = Scene.with_overrides ~epsilon s in
+                let twice = Helpers.with_objects ~spheres:(List.concat_map (fun sp -> [ sp; sp ]) (Helpers.scene_spheres s)) ~shapes:(List.concat_map (fun sh -> [ sh; sh ]) (Scene.shapes s)) s in
                 Helpers.check_images (what ^ ", " ^ mode ^ ", every object twice") ~expected:(Helpers.image_exn s)
                   (Helpers.image_exn twice))
               [ ("robust", None); ("epsilon 0.001", Some 0.001) ])
@@ -554,17 +554,17 @@ let tests =
         let s = Scene.with_overrides ~width:64 ~height:64 (Scene.grid count) in
         let negative_zero x = if x = 0. then -0. else x in
         let copy (sp : Sphere.t) =
-          { sp with center = Vec3.v (negative_zero sp.center.x) (negative_zero sp.center.y) (negative_zero sp.center.z) }
+          Sphere.v ~center:(Vec3.v (negative_zero sp.center.x) (negative_zero sp.center.y) (negative_zero sp.center.z)) ~radius:sp.radius sp.material
         in
-        let twice = { s with spheres = Spheres.of_list (Spheres.to_list s.spheres @ List.rev_map copy (Spheres.to_list s.spheres)) } in
+        let twice = Helpers.with_objects ~spheres:(Helpers.scene_spheres s @ List.rev_map copy (Helpers.scene_spheres s)) s in
         Alcotest.(check bool) "some centre has a 0 coordinate" true
-          (List.exists (fun (sp : Sphere.t) -> sp.center.x = 0. || sp.center.y = 0. || sp.center.z = 0.) (Spheres.to_list s.spheres));
+          (List.exists (fun (sp : Sphere.t) -> sp.center.x = 0. || sp.center.y = 0. || sp.center.z = 0.) (Private.Spheres.to_list (Scene.spheres s)));
         List.iter
           (fun (mode, epsilon) ->
-            let s = { s with epsilon } and twice = { twice with epsilon } in
+            let s = (Scene.with_overrides ~epsilon s) and twice = (Scene.with_overrides ~epsilon twice) in
             Alcotest.(check int) (mode ^ ": one slot per distinct sphere") (Helpers.prepare s).n_objects
               (Helpers.prepare twice).n_objects;
-            Alcotest.(check int) (mode ^ ": every sphere counted") (2 * Spheres.length s.spheres)
+            Alcotest.(check int) (mode ^ ": every sphere counted") (2 * Private.Spheres.length (Scene.spheres s))
               (Helpers.prepare twice).n_scene_objects;
             Helpers.check_images (mode ^ ", every sphere twice") ~expected:(Helpers.image_exn s) (Helpers.image_exn twice))
           [ ("robust", None); ("epsilon 0.001", Some 0.001) ])
@@ -583,9 +583,9 @@ let tests =
         let scene (ux, uy, uz) exponent =
           let u = Vec3.unit (Vec3.v ux uy uz) in
           let mirror = Shape.Plane (Plane.v ~point:(Vec3.smul 5. u) ~normal:(Vec3.neg u) (Material.v ~reflective:0.001 Color.black)) in
-          let ball = Sphere.v ~center:(Vec3.smul (-5.) u) ~radius:1. ~specular:exponent Color.white in
+          let ball = Helpers.sphere ~center:(Vec3.smul (-5.) u) ~radius:1. ~specular:exponent Color.white in
           let camera = match Camera.look_at ~position:Vec3.zero (Vec3.smul 5. u) with Ok c -> c | Error (`Msg e) -> failwith e in
-          Scene.v ~epsilon:0.001 ~width:2 ~height:2 ~camera ~spheres:[ ball ] ~shapes:[ mirror ]
+          Helpers.scene ~epsilon:0.001 ~width:2 ~height:2 ~camera ~spheres:[ ball ] ~shapes:[ mirror ]
             ~lights:[ Light.ambient 0.2; Light.point 0.6 Vec3.zero ] ()
         in
         let exploded = ref 0 in
@@ -594,10 +594,10 @@ let tests =
             List.iter
               (fun u ->
                 let s = scene u exponent in
-                if (Literal.pixel s 0 0).r > 1. then incr exploded;
+                if (Private.Literal.pixel s 0 0).r > 1. then incr exploded;
                 let x, y, z = u in
                 Helpers.check_images (Printf.sprintf "u = (%g %g %g), specular %g" x y z exponent)
-                  ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
+                  ~expected:(Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s))
               [ (1., -3., 4.); (1., 4., 3.); (2., 0., 6.); (2., 1., 1.); (2., 2., 3.); (1., 2., 3.) ])
           [ 1e15; 1e16; 1e17; 1e18; 1e20; 1e300 ];
         (* The cases do reach the colours that broke the bound. *)
@@ -605,8 +605,8 @@ let tests =
         List.iter
           (fun exponent ->
             let s = Scene.with_overrides ~width:64 ~height:64 Scene.cgfs in
-            let s = { s with spheres = List.map (fun (sp : Sphere.t) -> { sp with specular = exponent }) (Spheres.to_list s.spheres) |> Spheres.of_list } in
-            Helpers.check_images (Printf.sprintf "cgfs, specular %g" exponent) ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
+            let s = Helpers.with_objects ~spheres:(List.map (fun sp -> Helpers.with_sphere_material sp (Material.update ~specular:exponent)) (Helpers.scene_spheres s)) s in
+            Helpers.check_images (Printf.sprintf "cgfs, specular %g" exponent) ~expected:(Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s))
           [ 1e16; 1e300 ]);
     Alcotest.test_case "roots exactly at t_min are not seen, just above they are, as in the oracle" `Quick (fun () ->
         (* A ceiling 0.25 above the floor point (1, 0, 5): the ray straight
@@ -615,21 +615,21 @@ let tests =
         let origin = Vec3.v 1. 0. 5. and up = Vec3.oy in
         List.iter
           (fun epsilon ->
-            let s = Scene.v ~epsilon ~spheres:[] ~shapes:[ Shape.Plane ceiling ] ~lights:[] () in
+            let s = Helpers.scene ~epsilon ~spheres:[] ~shapes:[ Shape.Plane ceiling ] ~lights:[] () in
             let fast = Trace.cast (Trace.create (Helpers.prepare s)) ~from:(-1) origin up in
-            let literal = Literal.closest_hit s ~origin ~direction:up ~t_min:epsilon ~t_max:infinity in
+            let literal = Private.Literal.closest_hit s ~origin ~direction:up ~t_min:epsilon ~t_max:infinity in
             Alcotest.(check bool) (Printf.sprintf "epsilon %h: the oracle's answer" epsilon) (literal <> None) (fast >= 0);
             Alcotest.(check bool) (Printf.sprintf "epsilon %h: seen" epsilon) (epsilon < 0.25) (fast >= 0))
           [ 0.25; Float.pred 0.25; Float.succ 0.25 ];
         (* A camera ray meets the plane z = 1 at t = 1 exactly: primary rays
            see t > 1 only, so the sphere behind it shows. *)
         let s =
-          Scene.v ~epsilon:0.001 ~width:16 ~height:16 ~spheres:[ Sphere.v ~center:(Vec3.v 0. 0. 4.) ~radius:2. (Color.v 0. 255. 0.) ]
+          Helpers.scene ~epsilon:0.001 ~width:16 ~height:16 ~spheres:[ Helpers.sphere ~center:(Vec3.v 0. 0. 4.) ~radius:2. (Color.v 0. 255. 0.) ]
             ~shapes:[ Shape.Plane (Plane.v ~point:(Vec3.v 0. 0. 1.) ~normal:(Vec3.v 0. 0. (-1.)) (Material.v (Color.v 255. 0. 0.))) ]
             ~lights:[ Light.ambient 1. ] ()
         in
         Alcotest.(check bool) "the plane at t = 1: floats as the oracle's" true (Helpers.oracle_floats s);
-        let c = Literal.pixel s 0 0 in
+        let c = Private.Literal.pixel s 0 0 in
         Alcotest.(check (float 0.)) "the sphere behind shows" 255. c.g);
     Alcotest.test_case "coincident shapes of different colours: the first wins, as in the oracle" `Quick (fun () ->
         let red = Material.v ~specular:100. (Color.v 255. 0. 0.) and blue = Material.v ~reflective:0.3 (Color.v 0. 0. 255.) in
@@ -642,7 +642,7 @@ let tests =
            (docs/testing.md, the oracle). *)
         let tri m = Shape.Triangle (Triangle.v (Vec3.v (-2.1) (-1.) 2.) (Vec3.v 2. 1. 6.) (Vec3.v 0. 1.5 4.) m) in
         let box m = Shape.Box (Box.v ~min:(Vec3.v (-1.) (-1.) 3.) ~max:(Vec3.v 1. 0. 5.) m) in
-        let ball = Sphere.v ~center:(Vec3.v 0. 0. 4.) ~radius:1. (Color.v 0. 255. 0.) in
+        let ball = Helpers.sphere ~center:(Vec3.v 0. 0. 4.) ~radius:1. (Color.v 0. 255. 0.) in
         List.iter
           (fun (what, spheres, shapes) ->
             (* The camera a little off the origin: from it, the rays of the
@@ -651,11 +651,11 @@ let tests =
                whose slab the ray enters last, the kernel the face nearest
                the rounded point). *)
             let s =
-              Scene.v ~epsilon:0.001 ~width:40 ~height:40 ~camera:(Camera.v (Vec3.v 0.0011 0.0013 0.)) ~spheres ~shapes
+              Helpers.scene ~epsilon:0.001 ~width:40 ~height:40 ~camera:(Camera.v (Vec3.v 0.0011 0.0013 0.)) ~spheres ~shapes
                 ~lights:[ Light.ambient 0.3; Light.point 0.6 (Vec3.v 2. 3. 0.); Light.directional 0.2 (Vec3.v 1. 4. 4.) ] ()
             in
             if not (Helpers.oracle_floats s) then Alcotest.failf "%s: the fast colours differ from the oracle's" what;
-            Helpers.check_images (what ^ ": bytes, with the skips") ~expected:(Literal.render (Helpers.valid s)) (Helpers.image_exn s))
+            Helpers.check_images (what ^ ": bytes, with the skips") ~expected:(Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s))
           [
             ("two floors", [], [ floor red; floor blue ]);
             ("two floors, the other order", [], [ floor blue; floor red ]);
@@ -668,13 +668,13 @@ let tests =
         (* Counted on the commit that introduced the shapes' kernel; a change
            here means the tracer does more or less work than it did: say
            why in the commit. *)
-        let counts (st : Stats.t) = [ st.primary; st.shadow; st.reflection; st.tests; st.box_tests; st.early_stops ] in
+        let counts (st : Render.Stats.t) = [ st.primary; st.shadow; st.reflection; st.tests; st.box_tests; st.early_stops ] in
         let fails = ref [] in
         List.iter
           (fun (name, expected) ->
             let s = Helpers.load_scene name in
-            let longest = max s.width s.height in
-            let s = Scene.with_overrides ~width:(s.width * 64 / longest) ~height:(s.height * 64 / longest) s in
+            let longest = max (Scene.width s) (Scene.height s) in
+            let s = Scene.with_overrides ~width:((Scene.width s) * 64 / longest) ~height:((Scene.height s) * 64 / longest) s in
             let got = counts (stats s) in
             if got <> expected then
               fails :=
@@ -724,9 +724,9 @@ let tests =
         in
         let flat = mesh false and mesh = mesh true in
         ignore tris;
-        let doc = Scene.with_overrides ~width:40 ~height:40 { Scene.cgfs with shapes = [ Shape.Mesh mesh ] } in
+        let doc = Scene.with_overrides ~width:40 ~height:40 (Helpers.with_objects ~shapes:[ Shape.Mesh mesh ] Scene.cgfs) in
         if not (Helpers.oracle_floats doc) then Alcotest.fail "a smooth mesh: the fast colours differ from the oracle's";
-        if not (Helpers.oracle_floats { doc with shapes = [ Shape.Mesh flat ] }) then
+        if not (Helpers.oracle_floats (Helpers.with_objects ~shapes:[ Shape.Mesh flat ] doc)) then
           Alcotest.fail "a flat mesh: the fast colours differ from the oracle's";
         (* The kernel reads a corner's normal where its vertex is when the
            corners name their normals by their vertices' numbers (above),
@@ -743,9 +743,9 @@ let tests =
           | Ok m -> m
           | Error (`Msg m) -> Alcotest.fail m
         in
-        if not (Helpers.oracle_floats { doc with shapes = [ Shape.Mesh backwards ] }) then
+        if not (Helpers.oracle_floats (Helpers.with_objects ~shapes:[ Shape.Mesh backwards ] doc)) then
           Alcotest.fail "a smooth mesh whose normals are not named by its vertices' numbers: the colours differ";
-        if Helpers.image_exn { doc with shapes = [ Shape.Mesh backwards ] } <> Helpers.image_exn doc then
+        if Helpers.image_exn (Helpers.with_objects ~shapes:[ Shape.Mesh backwards ] doc) <> Helpers.image_exn doc then
           Alcotest.fail "the same normals named two ways give two images";
         (* Two meshes and lone triangles: their vertices in one array. *)
         let lone =
@@ -764,19 +764,19 @@ let tests =
           | Ok m -> m
           | Error (`Msg m) -> Alcotest.fail m
         in
-        if not (Helpers.oracle_floats { doc with shapes = [ lone; Shape.Mesh mesh; Shape.Mesh moved; lone2 ] })
+        if not (Helpers.oracle_floats (Helpers.with_objects ~shapes:[ lone; Shape.Mesh mesh; Shape.Mesh moved; lone2 ] doc))
         then Alcotest.fail "two meshes and lone triangles: the fast colours differ from the oracle's";
         List.iter
           (fun (what, s) ->
             List.iter
               (fun epsilon ->
-                let s = Scene.with_overrides ~width:64 ~height:64 { s with Scene.epsilon } in
+                let s = Scene.with_overrides ~width:64 ~height:64 (Scene.with_overrides ~epsilon s) in
                 Alcotest.(check (float 0.)) what 0. (stats s).minor_words)
               [ None; Some 0.001 ])
           [
             ("room", Helpers.load_scene "room.scene");
             ("boxes", Helpers.load_scene "boxes.scene");
-            ("a smooth mesh", { Scene.cgfs with shapes = [ Shape.Mesh mesh ] });
+            ("a smooth mesh", (Helpers.with_objects ~shapes:[ Shape.Mesh mesh ] Scene.cgfs));
           ]);
       Alcotest.test_case "a floor tiled by coplanar triangles shows no acne: it renders as the plane it tiles" `Quick
       (fun () ->
@@ -800,7 +800,7 @@ let tests =
         (* Every pixel sees the tiled part of the floor (up to z = 35). *)
         let camera = match Camera.look_at ~position:(Vec3.v 0. 6. 2.) (Vec3.v 0. 0. 10.) with Ok c -> c | Error (`Msg e) -> failwith e in
         let scene shapes =
-          Scene.v ~width:64 ~height:64 ~camera ~spheres:[] ~shapes
+          Helpers.scene ~width:64 ~height:64 ~camera ~spheres:[] ~shapes
             ~lights:[ Light.ambient 0.1; Light.point 0.6 (Vec3.v 0. 0.05 10.); Light.directional 0.3 (Vec3.v 1. 0.01 0.3) ]
             ()
         in

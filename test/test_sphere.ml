@@ -1,6 +1,6 @@
 open Raytrace
 
-let unit_sphere_at z = Sphere.v ~center:(Vec3.v 0. 0. z) ~radius:1. Color.white
+let unit_sphere_at z = Helpers.sphere ~center:(Vec3.v 0. 0. z) ~radius:1. Color.white
 let triple = Alcotest.(triple (float 0.) (float 0.) (float 0.))
 let pair = Alcotest.(pair (float 0.) (float 0.))
 

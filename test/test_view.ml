@@ -14,8 +14,8 @@ let effect =
         View.(match e with Nothing -> "Nothing" | Render -> "Render" | Redraw -> "Redraw" | Save -> "Save" | Quit -> "Quit"))
     ( = )
 
-let position (v : View.t) = v.scene.camera.position
-let forward (v : View.t) = Camera.direction v.scene.camera Vec3.oz
+let position (v : View.t) = (Scene.camera v.scene).position
+let forward (v : View.t) = Camera.direction (Scene.camera v.scene) Vec3.oz
 
 let tests =
   [
@@ -48,9 +48,9 @@ let tests =
         let v, _ = press (View.v (Helpers.valid Scene.cgfs_camera)) [ 'W' ] in
         let h = 0.5 /. sqrt 2. in
         vec __LOC__ (Vec3.v (3. -. h) 0. (1. +. h)) (position v);
-        Alcotest.(check bool) __LOC__ true (Camera.equal_rotation v.scene.camera.rotation Scene.cgfs_camera.camera.rotation));
+        Alcotest.(check bool) __LOC__ true (Camera.equal_rotation (Scene.camera v.scene).rotation (Scene.camera Scene.cgfs_camera).rotation));
     Alcotest.test_case "the step scales with the scene" `Quick (fun () ->
-        let big = { Scene.cgfs with viewport = Viewport.v ~width:1000. ~height:1000. ~distance:1000. } in
+        let big = (Scene.with_overrides ~viewport:(Viewport.v ~width:1000. ~height:1000. ~distance:1000.) Scene.cgfs) in
         vec __LOC__ (Vec3.v 0. 0. 500.) (position (fst (press (View.v (Helpers.valid big)) [ 'W' ]))));
     Alcotest.test_case "lower-case w, d and e are not moves: letters that move need Shift" `Quick (fun () ->
         vec __LOC__ Vec3.zero (position (fst (press cgfs [ 'w'; 'd'; 'e' ]))));
@@ -66,7 +66,7 @@ let tests =
         List.iter (fun k -> vec __LOC__ (forward (fst (press cgfs [ 'Q' ]))) (forward (fst (press cgfs [ k ])))) [ '<'; ',' ]);
     Alcotest.test_case "72 turns of 5 degrees make a full circle" `Quick (fun () ->
         let v, _ = press cgfs (List.init 72 (fun _ -> '<')) in
-        let m = v.scene.camera.rotation in
+        let m = (Scene.camera v.scene).rotation in
         vec __LOC__ Vec3.ox m.row0;
         vec __LOC__ Vec3.oy m.row1;
         vec __LOC__ Vec3.oz m.row2);
@@ -81,19 +81,19 @@ let tests =
         Alcotest.check (Helpers.vec3_near 1e-7) __LOC__ (Vec3.v 0. (-0.0998334) 0.9950042) (forward up);
         Alcotest.check effect __LOC__ View.Nothing (snd (View.handle cgfs (View.Drag (0, 0)))));
     Alcotest.test_case "tilting keeps the camera's right axis horizontal" `Quick (fun () ->
-        let v = View.(cgfs.scene.camera |> pitch 0.3 |> yaw 0.7) in
+        let v = View.((Scene.camera cgfs.scene) |> pitch 0.3 |> yaw 0.7) in
         Alcotest.(check (float 1e-15)) __LOC__ 0. (Camera.direction v Vec3.ox).y;
         Alcotest.(check (float 1e-12)) __LOC__ 1. (Camera.determinant v.rotation));
     Alcotest.test_case "+ and - change the depth within its bounds" `Quick (fun () ->
         let v, e = press cgfs [ '+' ] in
         Alcotest.check effect __LOC__ View.Render e;
-        Alcotest.(check int) __LOC__ 4 v.scene.depth;
-        Alcotest.(check int) __LOC__ 5 (fst (press v [ '=' ])).scene.depth;
-        Alcotest.(check int) __LOC__ 0 (fst (press cgfs [ '-'; '_'; '-' ])).scene.depth;
+        Alcotest.(check int) __LOC__ 4 (Scene.depth v.scene);
+        Alcotest.(check int) __LOC__ 5 (Scene.depth (fst (press v [ '=' ])).scene);
+        Alcotest.(check int) __LOC__ 0 (Scene.depth (fst (press cgfs [ '-'; '_'; '-' ])).scene);
         let v, e = press cgfs [ '-'; '-'; '-'; '-' ] in
         Alcotest.check effect __LOC__ View.Nothing e;
-        Alcotest.(check int) __LOC__ 0 v.scene.depth;
-        let deep = View.v (Helpers.valid { Scene.cgfs with depth = Limits.max_depth }) in
+        Alcotest.(check int) __LOC__ 0 (Scene.depth v.scene);
+        let deep = View.v (Helpers.valid (Scene.with_overrides ~depth:Limits.max_depth Scene.cgfs)) in
         Alcotest.check effect __LOC__ View.Nothing (snd (press deep [ '+' ])));
     Alcotest.test_case "a toggles antialiasing, h the help" `Quick (fun () ->
         let v, e = press cgfs [ 'a' ] in
@@ -109,7 +109,7 @@ let tests =
           (fun (k, e) -> Alcotest.check effect (Printf.sprintf "key %C" k) e (snd (press cgfs [ k ])))
           [ ('r', View.Render); ('s', Save); ('q', Quit); ('\027', Quit); ('x', Nothing); (' ', Nothing) ]);
     Alcotest.test_case "a move beyond the coordinate limit is refused" `Quick (fun () ->
-        let far = { Scene.cgfs with camera = Camera.v (Vec3.v Limits.max_coordinate 0. 0.) } in
+        let far = (Scene.with_overrides ~camera:(Camera.v (Vec3.v Limits.max_coordinate 0. 0.)) Scene.cgfs) in
         let v, e = press (View.v (Helpers.valid far)) [ 'D' ] in
         Alcotest.check effect __LOC__ View.Nothing e;
         vec __LOC__ (Vec3.v Limits.max_coordinate 0. 0.) (position v));
@@ -126,22 +126,22 @@ let tests =
         check 300 300 (1., 1.);
         check 900 600 (1.5, 1.);
         check 400 300 (4. /. 3., 1.);
-        Alcotest.(check bool) __LOC__ true (Viewport.equal Scene.cgfs.viewport (fit 600 600)));
+        Alcotest.(check bool) __LOC__ true (Viewport.equal (Scene.viewport Scene.cgfs) (fit 600 600)));
     Helpers.qcheck "after any resize, pixels keep their shape and the first view stays inside"
       QCheck.(pair (int_range 1 3000) (int_range 1 3000))
       (fun (w, h) ->
-        let base = { Scene.cgfs with width = 640; height = 480; viewport = Viewport.v ~width:2. ~height:1. ~distance:1. } in
+        let base = (Scene.with_overrides ~width:640 ~height:480 ~viewport:(Viewport.v ~width:2. ~height:1. ~distance:1.) Scene.cgfs) in
         let vp = View.fit base ~width:w ~height:h in
         let aspect (vp : Viewport.t) w h = vp.width /. Float.of_int w /. (vp.height /. Float.of_int h) in
-        Float.abs (aspect vp w h -. aspect base.viewport 640 480) <= 1e-12 *. aspect base.viewport 640 480
+        Float.abs (aspect vp w h -. aspect (Scene.viewport base) 640 480) <= 1e-12 *. aspect (Scene.viewport base) 640 480
         && vp.width >= 2. *. (1. -. 1e-15)
         && vp.height >= 1. *. (1. -. 1e-15)
         && (Float.abs (vp.width -. 2.) <= 1e-15 *. 2. || Float.abs (vp.height -. 1.) <= 1e-15));
     Alcotest.test_case "a resize renders at the new size, the same size does nothing" `Quick (fun () ->
         let v, e = View.handle cgfs (View.Resize (400, 300)) in
         Alcotest.check effect __LOC__ View.Render e;
-        Alcotest.(check (pair int int)) __LOC__ (400, 300) (v.scene.width, v.scene.height);
-        Alcotest.(check (float 1e-15)) __LOC__ (4. /. 3.) v.scene.viewport.width;
+        Alcotest.(check (pair int int)) __LOC__ (400, 300) ((Scene.width v.scene), (Scene.height v.scene));
+        Alcotest.(check (float 1e-15)) __LOC__ (4. /. 3.) (Scene.viewport v.scene).width;
         Alcotest.check effect __LOC__ View.Nothing (snd (View.handle v (View.Resize (400, 300))));
         Alcotest.check effect __LOC__ View.Nothing (snd (View.handle v (View.Resize (0, 300))));
         let back, _ = View.handle v (View.Resize (600, 600)) in

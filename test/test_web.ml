@@ -354,7 +354,7 @@ let tests =
             let dir = Lazy.force main in
             let text = shown dir "typed" in
             let scene = match Helpers.of_string text with Ok s -> s | Error (`Msg m) -> Alcotest.fail m in
-            Alcotest.(check int) "spheres" 5 (Spheres.length scene.spheres);
+            Alcotest.(check int) "spheres" 5 (Private.Spheres.length (Scene.spheres scene));
             Alcotest.(check string) "typed error cleared" "" (json_string dir "typed" "error");
             Helpers.check_images __LOC__ ~expected:(native ~samples:2 text) (shot dir "typed")));
     Alcotest.test_case "coarse blocks come first: after the first pass, 16 x 16 blocks of the image" `Slow

@@ -97,7 +97,7 @@ let tests =
         | Ok () -> ()
         | Error (`Msg m) -> Alcotest.failf "4096 x 4096 was refused: %s" m);
         Alcotest.(check (pair int int)) "the size chosen stays" (60, 40)
-          ((Session.view p).scene.width, (Session.view p).scene.height));
+          (Scene.width (Session.view p).scene, Scene.height (Session.view p).scene));
     Alcotest.test_case "the finished picture of the default text is raytrace render's" `Quick (fun () ->
         let p = session (cgfs_text ()) in
         Helpers.check_images __LOC__ ~expected:(Helpers.image_exn Scene.cgfs) (finish p);
@@ -133,9 +133,9 @@ let tests =
         ignore (Session.input p (View.Key 'D'));
         ok (Session.edit p (Scene_file.to_string Scene.cgfs_camera));
         let shown = (Session.view p).scene in
-        Alcotest.(check (pair int int)) "size" (60, 40) (shown.width, shown.height);
+        Alcotest.(check (pair int int)) "size" (60, 40) (Scene.width shown, Scene.height shown);
         Alcotest.(check int) "samples" 2 (Session.samples p);
-        Alcotest.(check bool) "camera of the text" true (Camera.equal Scene.cgfs_camera.camera shown.camera);
+        Alcotest.(check bool) "camera of the text" true (Camera.equal (Scene.camera Scene.cgfs_camera) (Scene.camera shown));
         Helpers.check_images __LOC__ ~expected:(Helpers.image_exn ~samples:2 shown) (finish p));
     Alcotest.test_case "keys change the view as in the window; a is 3 x 3 samples or 1" `Quick (fun () ->
         let p = session (cgfs_text ()) in
@@ -165,13 +165,13 @@ let tests =
         refused "too wide" (Session.set_size p (Some (65537, 10)));
         Alcotest.(check (option (pair int int))) "size unchanged" None (Session.size p);
         ignore (Session.input p (View.Key 'D'));
-        let moved = (Session.view p).scene.camera in
+        let moved = (Scene.camera (Session.view p).scene) in
         small p;
         ok (Session.set_size p None);
         let shown = (Session.view p).scene in
-        Alcotest.(check (pair int int)) "the scene's canvas again" (600, 600) (shown.width, shown.height);
-        Alcotest.(check bool) "its viewport" true (Viewport.equal Scene.cgfs.viewport shown.viewport);
-        Alcotest.(check bool) "the camera moved stays" true (Camera.equal moved shown.camera));
+        Alcotest.(check (pair int int)) "the scene's canvas again" (600, 600) (Scene.width shown, Scene.height shown);
+        Alcotest.(check bool) "its viewport" true (Viewport.equal (Scene.viewport Scene.cgfs) (Scene.viewport shown));
+        Alcotest.(check bool) "the camera moved stays" true (Camera.equal moved (Scene.camera shown)));
     Alcotest.test_case "browser key names are the window's characters" `Quick (fun () ->
         List.iter
           (fun (name, expected) -> Alcotest.(check (option char)) name expected (Key.to_char name))

@@ -200,11 +200,9 @@ let tests =
           (Limits.work ~pixels:1 ~samples:1 ~depth:max_int ~spheres:1 ~lights:0 () > 4e18);
         (* A scene where nothing reflects keeps no storage for its depth. *)
         let matte =
-          {
-            Scene.cgfs with
-            depth = 1 lsl 20;
-            spheres = Spheres.of_list (List.map (fun (s : Sphere.t) -> { s with reflective = 0. }) (Spheres.to_list Scene.cgfs.spheres));
-          }
+          Helpers.with_objects
+            ~spheres:(List.map (fun s -> Helpers.with_sphere_material s (Material.update ~reflective:0.)) (Helpers.scene_spheres Scene.cgfs))
+            (Scene.with_overrides ~depth:(1 lsl 20) Scene.cgfs)
         in
         let limits = Limits.with_bound Limits.default `Depth (Float.of_int (1 lsl 20)) in
         match Scene.validate ~limits matte with

@@ -57,7 +57,7 @@ let feed_mesh ~check ~path p ic ~start ~stop =
       | n -> (
           match check (at + n) with
           | Error (`Msg m) -> Error (`Msg m)
-          | Ok _ -> ( match Obj_file.feed_bytes p chunk 0 n with Ok () -> go (at + n) | Error e -> Error e))
+          | Ok _ -> ( match Mesh.Obj.feed_bytes p chunk 0 n with Ok () -> go (at + n) | Error e -> Error e))
       | exception Sys_error m -> Error (`Msg (Printf.sprintf "cannot read mesh file: %s: %s" path m))
   in
   go start
@@ -65,7 +65,7 @@ let feed_mesh ~check ~path p ic ~start ~stop =
 (* The mesh from line start [split] of file [path] to its end, read in a
    child process (Parallel.beside); [wait ()] is the part, the id of the
    process that read it and the temporary file that holds its arrays
-   (Obj_file.join reads them), or [None] where the child failed, whatever
+   (Mesh.Obj.join reads them), or [None] where the child failed, whatever
    the reason: the caller then reads that part itself. The child writes
    its arrays to the file as it reads (a block at a time: it holds a few
    blocks, never the part, and its collector has little to do) and sends
@@ -85,10 +85,10 @@ let mesh_part ~check path split =
           (fun () ->
             seek_in ic split;
             let p =
-              Obj_file.create_part ~output:(write_all fd) ~name:path ~max_vertices:Limits.max_triangles
+              Mesh.Obj.create_part ~output:(write_all fd) ~name:path ~max_vertices:Limits.max_triangles
                 ~max_triangles:Limits.max_triangles
             in
-            match Result.bind (feed_mesh ~check ~path p ic ~start:split ~stop:max_int) (fun () -> Obj_file.finish_part p) with
+            match Result.bind (feed_mesh ~check ~path p ic ~start:split ~stop:max_int) (fun () -> Mesh.Obj.finish_part p) with
             | Error _ -> None
             | Ok part -> Some (Unix.getpid (), part))
       in
@@ -98,7 +98,7 @@ let mesh_part ~check path split =
         | Ok (Some (pid, part)) -> (
             match
               ignore (Unix.lseek fd 0 SEEK_SET);
-              (Unix.fstat fd).st_size = Obj_file.part_bytes part
+              (Unix.fstat fd).st_size = Mesh.Obj.part_bytes part
             with
             | true -> Some (pid, part, fd)
             | false | (exception Unix.Unix_error _) ->
@@ -131,13 +131,13 @@ let read_mesh_paced ~limits ~jobs ~split_bytes ~on_part path (o : File_io.opened
       match check o.stats.st_size with
       | Error _ as e -> e
       | Ok n ->
-          let p = Obj_file.create ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
+          let p = Mesh.Obj.create ~name:path ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles in
           let split =
             if jobs <= 1 || n < split_bytes || n = 0 then None
             else
               match line_after path (n / 100 * mesh_split_percent) with Some split when split < n -> Some split | Some _ | None -> None
           in
-          let rest at = match feed_mesh ~check ~path p ic ~start:at ~stop:max_int with Ok () -> Obj_file.finish p | Error e -> Error e in
+          let rest at = match feed_mesh ~check ~path p ic ~start:at ~stop:max_int with Ok () -> Mesh.Obj.finish p | Error e -> Error e in
           match split with
           | None -> rest 0
           | Some split -> (
@@ -152,14 +152,14 @@ let read_mesh_paced ~limits ~jobs ~split_bytes ~on_part path (o : File_io.opened
                   | None -> rest split
                   | Some (pid, part, fd) -> (
                       let joined =
-                        match Obj_file.join p part ~input:(read_all fd) with
+                        match Mesh.Obj.join p part ~input:(read_all fd) with
                         | m -> m
                         | exception (Unix.Unix_error _ | End_of_file | Failure _) -> None
                       in
                       (try Unix.close fd with Unix.Unix_error _ -> ());
                       match joined with
                       | Some m ->
-                          on_part ~pid (Obj_file.part_triangle_count part);
+                          on_part ~pid (Mesh.Obj.part_triangle_count part);
                           Ok m
                       | None -> rest split))))
 
@@ -206,18 +206,18 @@ let[@inline] get_float buf at = Int64.float_of_bits (Bytes.get_int64_le buf at)
 
 (* Block after block: the [len] x, then y, z, radius and material. *)
 let write_spheres fd s =
-  let n = Spheres.length s in
+  let n = Private.Spheres.length s in
   let buf = Bytes.create (block * sphere_bytes) in
   let at = ref 0 in
   while !at < n do
     let len = min block (n - !at) in
     for i = 0 to len - 1 do
       let k = !at + i in
-      put_float buf (8 * i) (Spheres.center_x s k);
-      put_float buf (8 * (len + i)) (Spheres.center_y s k);
-      put_float buf (8 * ((2 * len) + i)) (Spheres.center_z s k);
-      put_float buf (8 * ((3 * len) + i)) (Spheres.radius s k);
-      Bytes.set_int64_le buf (8 * ((4 * len) + i)) (Int64.of_int (Spheres.material_index s k))
+      put_float buf (8 * i) (Private.Spheres.center_x s k);
+      put_float buf (8 * (len + i)) (Private.Spheres.center_y s k);
+      put_float buf (8 * ((2 * len) + i)) (Private.Spheres.center_z s k);
+      put_float buf (8 * ((3 * len) + i)) (Private.Spheres.radius s k);
+      Bytes.set_int64_le buf (8 * ((4 * len) + i)) (Int64.of_int (Private.Spheres.material_index s k))
     done;
     write_all fd buf 0 (sphere_bytes * len);
     at := !at + len
@@ -226,8 +226,8 @@ let write_spheres fd s =
 (* The part's spheres, read back into [b] with its materials mapped to
    [b]'s table. Its size was checked: a failure here is the system's. *)
 let append_spheres fd b part =
-  let n = Scene_file.part_length part in
-  let index = Array.map (Spheres.material b) (Scene_file.part_materials part) in
+  let n = Private.Scene_text.part_length part in
+  let index = Array.map (Private.Spheres.material b) (Private.Scene_text.part_materials part) in
   let buf = Bytes.create (block * sphere_bytes) in
   let x = Array.make block 0. and y = Array.make block 0. and z = Array.make block 0. in
   let r = Array.make block 0. and m = Array.make block 0 in
@@ -245,7 +245,7 @@ let append_spheres fd b part =
         let k = Int64.to_int (Bytes.get_int64_le buf (8 * ((4 * len) + i))) in
         m.(i) <- (if k >= 0 && k < Array.length index then index.(k) else -1)
       done;
-      Spheres.append_fields b ~x ~y ~z ~radius:r ~material:m len;
+      Private.Spheres.append_fields b ~x ~y ~z ~radius:r ~material:m len;
       at := !at + len
     done
   with
@@ -274,26 +274,26 @@ let beside ~limits ~on_part path ic n =
                 ~finally:(fun () -> close_in_noerr ic)
                 (fun () ->
                   seek_in ic split;
-                  Scene_file.read_part ~limits { Scene_file.read = input ic; close = ignore } ~from:split)
+                  Private.Scene_text.read_part ~limits { Private.Scene_text.read = input ic; close = ignore } ~from:split)
             in
-            write_spheres fd (Scene_file.part_spheres part);
-            Scene_file.part_header part
+            write_spheres fd (Private.Scene_text.part_spheres part);
+            Private.Scene_text.part_header part
           in
           let wait = Parallel.beside read in
           let wait () =
             match wait () with
-            | Ok part when (Unix.fstat fd).st_size = sphere_bytes * Scene_file.part_length part ->
-                on_part (Scene_file.part_length part);
+            | Ok part when (Unix.fstat fd).st_size = sphere_bytes * Private.Scene_text.part_length part ->
+                on_part (Private.Scene_text.part_length part);
                 Some part
             | Ok _ | Error _ -> None
             | exception Unix.Unix_error _ -> None
           in
-          Some ({ Scene_file.split; wait; append = append_spheres fd; seek = seek_in ic }, fd))
+          Some ({ Private.Scene_text.split; wait; append = append_spheres fd; seek = seek_in ic }, fd))
 
 type input = { what : string; path : string; stats : Unix.stats }
 type loaded = { scene : Scene.valid; inputs : input list }
 
-(* A regular file is read a window at a time (Scene_file.of_source): the
+(* A regular file is read a window at a time (Private.Scene_text.of_source): the
    text of a million spheres (88 MB) is never held whole. Other files
    (pipes, /proc files), whose text cannot be read a second time to
    locate an error, are read whole, from the descriptor opened here (a
@@ -330,14 +330,14 @@ let load_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_byte
                   ic
               | None -> ( match File_io.open_read ~regular:true path with Ok o -> o.channel | Error (`Msg m) -> raise (Sys_error m))
             in
-            { Scene_file.read = input ic; close = (fun () -> close_in_noerr ic) }
+            { Private.Scene_text.read = input ic; close = (fun () -> close_in_noerr ic) }
           in
           let beside = if jobs > 1 && n >= split_bytes then beside ~limits ~on_part path ic n else None in
           let close () =
             Option.iter close_in_noerr !first;
             Option.iter (fun (_, fd) -> try Unix.close fd with Unix.Unix_error _ -> ()) beside
           in
-          match Scene_file.of_source ~limits ~load_mesh ~file:path ?beside:(Option.map fst beside) source with
+          match Private.Scene_text.of_source ~limits ~load_mesh ~file:path ?beside:(Option.map fst beside) source with
           | r ->
               close ();
               loaded r
@@ -389,12 +389,12 @@ let inputs_digest inputs =
   | _ -> Result.map (fun ds -> Digest.to_hex (Digest.string (String.concat "\n" ds))) (all [] inputs)
 
 let read_ppm ?(limits = Limits.default) path =
-  match File_io.read ~check_size:(Ppm.check_file_size ~limits) path with
+  match File_io.read ~check_size:(Image.Ppm.check_file_size ~limits) path with
   | Error (`Msg e) -> Error (`Msg e)
   | Ok s -> (
-      match Ppm.of_string ~limits s with Ok img -> Ok img | Error (`Msg m) -> Error (`Msg (path ^ ": " ^ m)))
+      match Image.Ppm.of_string ~limits s with Ok img -> Ok img | Error (`Msg m) -> Error (`Msg (path ^ ": " ^ m)))
 
-let write_ppm ?comments path img = File_io.write_atomic path (fun oc -> Ppm.output ?comments oc img)
+let write_ppm ?comments path img = File_io.write_atomic path (fun oc -> Image.Ppm.output ?comments oc img)
 
 let render_file ?limits ?jobs path =
   match read_scene ?limits ?jobs path with

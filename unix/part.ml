@@ -1,7 +1,7 @@
 type t = {
   canvas_width : int;
   canvas_height : int;
-  region : Region.t;
+  region : Render.Region.t;
   settings : (string * string) list;
   image : Image.t;
 }
@@ -14,7 +14,7 @@ let has_break s = String.contains s '\n' || String.contains s '\r'
 
 let v ~canvas_width ~canvas_height ~region ~settings image =
   let bad m = invalid_arg ("Part.v: " ^ m) in
-  if not (Region.contains region ~width:canvas_width ~height:canvas_height) then
+  if not (Render.Region.contains region ~width:canvas_width ~height:canvas_height) then
     bad "region outside the canvas";
   if Image.width image <> region.w || Image.height image <> region.h then bad "image size differs from the region";
   List.iteri
@@ -30,7 +30,7 @@ let settings ?frame ?(samples = 1) ?adaptive ?(subsample = false) ?(renderer = "
      files were digested: such parts still merge with them. *)
   let text = Scene_file.to_string scene in
   let digest = if files = "" then Digest.string text else Digest.string (text ^ "\nfiles " ^ files) in
-  [ ("depth", string_of_int scene.depth); ("samples", string_of_int samples) ]
+  [ ("depth", string_of_int (Scene.depth scene)); ("samples", string_of_int samples) ]
   @ (match adaptive with Some th -> [ ("adaptive", string_of_int th) ] | None -> [])
   @ (if subsample then [ ("subsample", "true") ] else [])
   @ [ ("renderer", renderer) ]
@@ -41,10 +41,10 @@ let comments p =
   let r = p.region in
   magic
   :: Printf.sprintf "canvas %d %d" p.canvas_width p.canvas_height
-  :: Format.asprintf "region %a" Region.pp_corners r
+  :: Format.asprintf "region %a" Render.Region.pp_corners r
   :: List.map (fun (k, v) -> k ^ " " ^ v) p.settings
 
-let to_string p = Ppm.to_string ~comments:(comments p) p.image
+let to_string p = Image.Ppm.to_string ~comments:(comments p) p.image
 let write_file path p = Files.write_ppm ~comments:(comments p) path p.image
 
 (* "key value" -> (key, value); the value may be empty or hold spaces. *)
@@ -60,8 +60,8 @@ let ints what value =
   else msg "bad %s line %S in the part's header" what value
 
 let decode ~limits s =
-  let* image = Ppm.of_string ~limits s in
-  match Ppm.header_comments s with
+  let* image = Image.Ppm.of_string ~limits s in
+  match Image.Ppm.header_comments s with
   | first :: rest when first = magic -> (
       let fields = List.map split rest in
       let find k = List.assoc_opt k fields in
@@ -80,10 +80,10 @@ let decode ~limits s =
             | Ok () -> Ok ()
             | Error (`Msg m) -> msg "bad canvas in the part's header: %s" m
           in
-          let* region = Region.of_corners ~width ~height x0 y0 x1 y1 in
+          let* region = Render.Region.of_corners ~width ~height x0 y0 x1 y1 in
           if Image.width image <> region.w || Image.height image <> region.h then
             msg "the part's pixels are %dx%d but its region %a is %dx%d" (Image.width image) (Image.height image)
-              (fun () r -> Format.asprintf "%a" Region.pp_corners r) region region.w region.h
+              (fun () r -> Format.asprintf "%a" Render.Region.pp_corners r) region region.w region.h
           else if List.exists (fun (k, _) -> k = "") settings then msg "an empty setting in the part's header"
           else Ok { canvas_width = width; canvas_height = height; region; settings; image }
       | [ _; _ ], _ -> msg "the part's region line needs 4 numbers: x0 y0 x1 y1"
@@ -97,7 +97,7 @@ let of_string ?(limits = Limits.default) ?(file = "<string>") s =
   Result.map_error (fun (`Msg m) -> `Msg (file ^ ": " ^ m)) (decode ~limits s)
 
 let read_file ?(limits = Limits.default) path =
-  let* s = File_io.read ~check_size:(Ppm.check_file_size ~limits) path in
+  let* s = File_io.read ~check_size:(Image.Ppm.check_file_size ~limits) path in
   of_string ~limits ~file:path s
 
 let merge parts =
@@ -138,7 +138,7 @@ let merge parts =
       match (Bytes.make (width * height) '\000', Image.create width height) with
       | exception Out_of_memory -> msg "not enough memory to merge a %dx%d image (%d MiB)" width height (mib bytes)
       | covered, image ->
-      let inside (r : Region.t) x y = x >= r.x && x < r.x + r.w && y >= r.y && y < r.y + r.h in
+      let inside (r : Render.Region.t) x y = x >= r.x && x < r.x + r.w && y >= r.y && y < r.y + r.h in
       let exception Overlap of int * int in
       let place placed (name, p) =
         let* placed = placed in

@@ -1,6 +1,6 @@
 (** Parts of an image rendered separately, and their assembly.
 
-    A part is a rectangle ({!Raytrace.Region.t}) of a canvas, rendered by one
+    A part is a rectangle ({!Raytrace.Render.Region.t}) of a canvas, rendered by one
     process on one machine, together with every setting that changes its
     pixels: a digest of the scene, the recursion depth, the samples per
     pixel, the renderer, the frame. Parts are stored as binary PPM files
@@ -24,7 +24,7 @@ v}
 type t = {
   canvas_width : int;  (** Width of the whole image, in pixels. *)
   canvas_height : int;  (** Height of the whole image, in pixels. *)
-  region : Region.t;  (** Where the part lies in the whole image. *)
+  region : Render.Region.t;  (** Where the part lies in the whole image. *)
   settings : (string * string) list;
       (** The settings that change pixels, in order, as [(key, value)]:
           keys are non-empty words without spaces, values one line. *)
@@ -33,7 +33,7 @@ type t = {
 (** The type for parts. *)
 
 val v :
-  canvas_width:int -> canvas_height:int -> region:Region.t -> settings:(string * string) list ->
+  canvas_width:int -> canvas_height:int -> region:Render.Region.t -> settings:(string * string) list ->
   Image.t -> t
 (** [v ~canvas_width ~canvas_height ~region ~settings img] is a part.
     @raise Invalid_argument if [region] is not inside the canvas, [img] is
@@ -53,7 +53,7 @@ val settings :
 (** [settings ~frame ~samples ~adaptive ~subsample ~renderer ~files scene]
     is the settings of a part of [scene]: [depth], [samples] (default
     [1]), [adaptive] (the threshold) when given, [subsample] when [true]
-    ({!Raytrace.Sampling.v}), [renderer] (default ["fast"]), [frame] when
+    ({!Raytrace.Render.Sampling.v}), [renderer] (default ["fast"]), [frame] when
     given, and last [scene], the MD5 digest of
     {!Raytrace.Scene_file.to_string}[ scene] (which covers every field of
     the scene, the canvas and the camera of the frame included, but of a
@@ -76,7 +76,7 @@ val of_string : ?limits:Limits.t -> ?file:string -> string -> (t, [> `Msg of str
 val read_file : ?limits:Limits.t -> string -> (t, [> `Msg of string ]) result
 (** [read_file ~limits path] reads the part stored in file [path]; a file
     too large for an image within [limits] is refused before it is read
-    ({!Raytrace.Ppm.check_file_size}). *)
+    ({!Raytrace.Image.Ppm.check_file_size}). *)
 
 val write_file : string -> t -> (unit, [> `Msg of string ]) result
 (** [write_file path p] writes [to_string p] to [path] atomically

@@ -28,11 +28,11 @@ let while_rendering path render a =
       try
         Signals.without_sigxfsz (fun () ->
             if !written < 0 then begin
-              output_string oc (Ppm.header img);
+              output_string oc (Image.Ppm.header img);
               written := 0
             end;
             if r > !written then begin
-              Ppm.output_rows oc img ~first:!written ~stop:r;
+              Image.Ppm.output_rows oc img ~first:!written ~stop:r;
               unsynced := !unsynced + (3 * Image.width img * (r - !written));
               written := r;
               if !unsynced >= sync_bytes && r < Image.height img then begin

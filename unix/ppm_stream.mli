@@ -12,7 +12,7 @@ val render_to :
   ('a * float, [> `Msg of string ]) result
 (** [render_to path render] is [Ok (x, s)] where [Ok x] is
     [render ~rows_done], whose image has been written to [path] as a PPM
-    file ({!Raytrace.Ppm.output}) and [s] is the seconds the writing took
+    file ({!Raytrace.Image.Ppm.output}) and [s] is the seconds the writing took
     after [render] returned. [render] must call [rows_done img r] as
     {!Render_jobs.image} does: whenever the first [r] rows of [img] are
     final, the last time with [r] its height, before it returns [Ok]. Where

@@ -1,5 +1,5 @@
-let check_memory (region : Region.t) =
-  let bytes = 3 * Region.pixels region in
+let check_memory (region : Render.Region.t) =
+  let bytes = 3 * Render.Region.pixels region in
   match Parallel.available_memory () with
   | Some available when bytes > available ->
       let gib n = Float.of_int n /. 1073741824. in
@@ -11,7 +11,7 @@ let check_memory (region : Region.t) =
 
 let shared_memory =
   {
-    Sampling.bytes = Parallel.shared_bytes;
+    Render.Sampling.bytes = Parallel.shared_bytes;
     floats = Parallel.shared_floats;
     ints = Parallel.shared_ints;
     at_row = Parallel.exit_if_orphaned;
@@ -86,16 +86,16 @@ let bvh_beside ?(min_objects = 1 lsl 16) () =
    which needs none. Nothing here holds the scene past
    [Prepared.prepare], which lets its spheres go as it builds the
    hierarchy ([one_process] does not hold it either). *)
-let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling scene (region : Region.t) =
-  let canvas = (let s = Scene.of_valid scene in (s.width, s.height)) in
-  match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Region.pixels region)) with
+let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling scene (region : Render.Region.t) =
+  let canvas = (let s = Scene.of_valid scene in (Scene.width s, Scene.height s)) in
+  match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Render.Region.pixels region)) with
   | exception Out_of_memory -> Render_work.out_of_memory region
   | exception Failure _ -> one_process scene
   | img -> (
-      match Sampling.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y) with
+      match Render.Sampling.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y) with
       | exception Failure _ -> one_process scene
       | plan ->
-      let passes = Sampling.passes plan in
+      let passes = Render.Sampling.passes plan in
       match Parallel.shared_ints (passes * jobs * Render_work.counter_fields) with
       | exception Out_of_memory -> Render_work.out_of_memory region
       | exception Failure _ -> one_process scene
@@ -120,7 +120,7 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
                 progress ~rows:(sum_slots slots 0 jobs) ~total ~rays:(sum_slots slots jobs jobs)
             | _ -> ()
           in
-          let averaging = Sampling.averaging sampling in
+          let averaging = Render.Sampling.averaging sampling in
           let budget = Limits.work_budget limits in
           (* Tests and box tests of every slot; a loop, since workers call it
              between bands and their allocation is measured. *)
@@ -140,10 +140,10 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
               let t2 = Unix.gettimeofday () in
               Ok
                 ( img,
-                  Render_work.stats ints ~slots:(passes * jobs) ~pixels:(Region.pixels region) ~jobs
+                  Render_work.stats ints ~slots:(passes * jobs) ~pixels:(Render.Region.pixels region) ~jobs
                     ~prepare_s:(t1 -. t0) ~trace_s:(t2 -. t1) )
             else
-              let n = Sampling.pass_rows plan i in
+              let n = Render.Sampling.pass_rows plan i in
               let bands = bands ~jobs n in
               let count = Array.length bands - 1 in
               let queue = Parallel.queue count in
@@ -178,7 +178,7 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
                       | None -> 0
                     in
                     for r = bands.(b) to bands.(b + 1) - 1 do
-                      Sampling.rows plan i tr ~first:r ~step:n;
+                      Render.Sampling.rows plan i tr ~first:r ~step:n;
                       match slots with
                       | Some slots -> count_row slots ~jobs w ~rays:(earlier + Render_work.rays tr)
                       | None -> ()
@@ -210,12 +210,12 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
           run 0))
 
 let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress ?rows_done
-    scene (region : Region.t) =
+    scene (region : Render.Region.t) =
   if jobs < 1 then invalid_arg "Render_jobs.region_image: jobs < 1";
   Render_work.inside "Render_jobs.region_image" scene region;
   (* Matches, not [let*]: a closure would hold [scene] through the render
      with [rows_done] (see [Render.region_image]). *)
-  match Sampling.v ?samples ?adaptive ?subsample () with
+  match Render.Sampling.v ?samples ?adaptive ?subsample () with
   | Error _ as e -> e
   | Ok sampling -> (
       match Render_work.check ~limits scene region sampling with
@@ -244,4 +244,4 @@ let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress ?rows_don
   if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";
   let s = Scene.of_valid scene in
   region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene
-    (Region.full ~width:s.width ~height:s.height)
+    (Render.Region.full ~width:(Scene.width s) ~height:(Scene.height s))

@@ -13,7 +13,7 @@ val image :
   ?progress:(rows:int -> total:int -> rays:int -> unit) ->
   ?rows_done:(Image.t -> int -> unit) ->
   Scene.valid ->
-  (Image.t * Stats.t, [> `Msg of string ]) result
+  (Image.t * Render.Stats.t, [> `Msg of string ]) result
 (** [image ~limits ~jobs ~skips ~samples ~adaptive ~subsample ~progress ~rows_done scene] is
     {!Raytrace.Render.image} traced by [jobs] processes (default 1: this one), timed
     by the wall clock. With several jobs, [progress] is called about ten
@@ -22,7 +22,7 @@ val image :
     [rows_done img r] is called by this process whenever the first [r]
     rows of [img], the image being rendered, are final, with [r]
     increasing and last the image's height, before [image] returns [Ok img]:
-    with several jobs and a single pass ({!Raytrace.Sampling.passes}), while the
+    with several jobs and a single pass ([Raytrace.Render.Sampling.passes]), while the
     workers trace the rest (to write the image as it is made); otherwise
     once, at the end. It must not raise. Besides {!Raytrace.Render.image}'s errors, [Error] before
     anything is allocated if the image needs more memory than the system
@@ -40,8 +40,8 @@ val region_image :
   ?progress:(rows:int -> total:int -> rays:int -> unit) ->
   ?rows_done:(Image.t -> int -> unit) ->
   Scene.valid ->
-  Region.t ->
-  (Image.t * Stats.t, [> `Msg of string ]) result
+  Render.Region.t ->
+  (Image.t * Render.Stats.t, [> `Msg of string ]) result
 (** [region_image ~limits ~jobs ~skips ~samples ~adaptive ~subsample ~progress ~rows_done scene r]
     is {!Raytrace.Render.region_image} traced by [jobs] processes, with the errors
     of {!image}.

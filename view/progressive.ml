@@ -44,9 +44,9 @@ let create ?(limits = Limits.default) ?(samples = 1) ?workers valid =
   Trace.set_budget tr (Limits.work_budget limits);
   let img =
     match workers with
-    | None -> Image.create scene.width scene.height
+    | None -> Image.create (Scene.width scene) (Scene.height scene)
     | Some w ->
-        if Image.width w.image <> scene.width || Image.height w.image <> scene.height then
+        if Image.width w.image <> (Scene.width scene) || Image.height w.image <> (Scene.height scene) then
           invalid_arg "Progressive.create: the workers' image is not of the canvas size";
         w.image
   in

@@ -32,9 +32,9 @@ type workers = {
           worker, and is their results in order, or [Error] if a worker
           failed. A result is the work counters of that worker. *)
   budget : Render_work.counters;
-      (** Memory shared with the workers, {!Render_work.counter_fields}
+      (** Memory shared with the workers, {!Raytrace.Private.Render_work.counter_fields}
           per worker: their share of the work budget
-          ({!Render_work.refill}). *)
+          ({!Raytrace.Private.Render_work.refill}). *)
 }
 (** The type for workers that trace rows of full-resolution passes. One
     value serves frame after frame of the same size. *)

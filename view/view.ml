@@ -19,7 +19,7 @@ let arrow_down = '\x83'
 
 (* Camera motion. *)
 
-let move_step (scene : Scene.t) = 0.5 *. scene.viewport.distance
+let move_step (scene : Scene.t) = 0.5 *. (Scene.viewport scene).distance
 let turn_step = Float.pi /. 36.
 
 (* The column of the matrix that [pick] selects: where that camera axis points. *)
@@ -47,20 +47,21 @@ let pitch a (cam : Camera.t) =
   { cam with rotation = Camera.{ row0 = row m.row0; row1 = row m.row1; row2 = row m.row2 } }
 
 let drag_angles (scene : Scene.t) dx dy =
-  let vp = scene.viewport in
-  let per_x = vp.width /. (Float.of_int scene.width *. vp.distance) in
-  let per_y = vp.height /. (Float.of_int scene.height *. vp.distance) in
+  let vp = (Scene.viewport scene) in
+  let per_x = vp.width /. (Float.of_int (Scene.width scene) *. vp.distance) in
+  let per_y = vp.height /. (Float.of_int (Scene.height scene) *. vp.distance) in
   (-.Float.of_int dx *. per_x, -.Float.of_int dy *. per_y)
 
 (* Window size. *)
 
 let fit (base : Scene.t) ~width ~height =
-  if width = base.width && height = base.height then base.viewport
+  let vp = Scene.viewport base in
+  if width = Scene.width base && height = Scene.height base then vp
   else
     let w = Float.of_int width and h = Float.of_int height in
-    let gw = Float.of_int base.width and gh = Float.of_int base.height in
+    let gw = Float.of_int (Scene.width base) and gh = Float.of_int (Scene.height base) in
     let k = Float.max (gw /. w) (gh /. h) in
-    { base.viewport with width = base.viewport.width *. (k *. w /. gw); height = base.viewport.height *. (k *. h /. gh) }
+    { vp with width = vp.width *. (k *. w /. gw); height = vp.height *. (k *. h /. gh) }
 
 (* Input. *)
 
@@ -74,17 +75,17 @@ let with_camera view camera = overridden view ~camera ()
 
 let moved view ~right ~forward =
   let step = move_step view.scene in
-  with_camera view (move ~right:(right *. step) ~forward:(forward *. step) view.scene.camera)
+  with_camera view (move ~right:(right *. step) ~forward:(forward *. step) (Scene.camera view.scene))
 
-let turned view ~yaw:y ~pitch:p = with_camera view (pitch p (yaw y view.scene.camera))
+let turned view ~yaw:y ~pitch:p = with_camera view (pitch p (yaw y (Scene.camera view.scene)))
 
 let with_depth view delta =
-  let depth = view.scene.depth + delta in
+  let depth = (Scene.depth view.scene) + delta in
   if depth < 0 || depth > Limits.max_depth then (view, Nothing) else overridden view ~depth ()
 
 let resized view width height =
   let scene = view.scene in
-  if width = scene.width && height = scene.height then (view, Nothing)
+  if width = (Scene.width scene) && height = (Scene.height scene) then (view, Nothing)
   else
     match Limits.check_canvas view.limits width height with
     | Error _ -> (view, Nothing)
@@ -127,11 +128,11 @@ let title ~name ?frame () =
 
 let help_lines view =
   let s = view.scene in
-  let p = s.camera.position in
+  let p = (Scene.camera s).position in
   [
     "arrows, W A S D   move (Shift for letters)";
     "Q E, < >, drag    turn";
-    Printf.sprintf "+ -               recursion depth (now %d)" s.depth;
+    Printf.sprintf "+ -               recursion depth (now %d)" (Scene.depth s);
     Printf.sprintf "a                 antialiasing %dx%d (now %s)" antialias_samples antialias_samples
       (if view.antialias then "on" else "off");
     "r                 render again";

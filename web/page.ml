@@ -171,10 +171,10 @@ let new_frame () =
     set_text error_line "";
   transient := None;
   let view = Session.view session in
-  fit_canvas view.scene.width view.scene.height;
-  let p = view.scene.camera.position in
+  fit_canvas (Scene.width view.scene) (Scene.height view.scene);
+  let p = (Scene.camera view.scene).position in
   set_text camera_line
-    (Printf.sprintf "Camera at %g %g %g, recursion depth %d." p.x p.y p.z view.scene.depth);
+    (Printf.sprintf "Camera at %g %g %g, recursion depth %d." p.x p.y p.z (Scene.depth view.scene));
   set_text shown (Session.shown_text session);
   samples_select##.value := Js.string (string_of_int (Session.samples session));
   show_frame ();
@@ -257,8 +257,8 @@ let () =
           ("traceSeconds", inject (match frame with Some f -> f.trace_seconds | None -> -1.));
           ("slices", inject (match frame with Some f -> f.slices | None -> 0));
           ("longestSlice", inject (match frame with Some f -> f.longest_slice | None -> -1.));
-          ("width", inject view.scene.width);
-          ("height", inject view.scene.height);
+          ("width", inject (Scene.width view.scene));
+          ("height", inject (Scene.height view.scene));
           ("samples", inject (Session.samples session));
           ("bands", inject (Session.bands session));
           ("sliceSoFar", inject (Session.longest_slice session));

@@ -143,7 +143,7 @@ let set_size p size =
   if size = p.size then Ok ()
   else
     let base = p.view.base in
-    let* view = resized p.view (Option.value size ~default:(base.width, base.height)) in
+    let* view = resized p.view (Option.value size ~default:(Scene.width base, Scene.height base)) in
     commit p view ~size ~samples:p.samples
 
 let set_samples p n =
@@ -243,8 +243,8 @@ let step p ~until =
     p.last_frame <-
       Some
         {
-          width = scene.width;
-          height = scene.height;
+          width = (Scene.width scene);
+          height = (Scene.height scene);
           frame_samples = p.samples;
           seconds = t1 -. p.started;
           trace_seconds = p.trace_seconds;

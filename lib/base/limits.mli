@@ -44,7 +44,7 @@ val max_dimension : int
 
 val max_grid : int
 (** [max_grid] is [64]: the largest side of a pixel's grid of samples
-    ({!Sampling.max_samples}), a fixed bound. *)
+    ({!Raytrace.Render.Sampling.max_samples}), a fixed bound. *)
 
 (** {1:defaults Defaults of the resource bounds} *)
 

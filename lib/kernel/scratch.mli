@@ -52,7 +52,7 @@ type t = {
           leave, along its normal (a bound on the rounding error of the
           hit point; see {!Trace}). *)
   mutable sx : float;
-      (** The ray in the frame of the triangle test ({!Triangle.shear}):
+      (** The ray in the frame of the triangle test ([Triangle.shear]):
           the shear [sx], [sy], [sz] and the origin's coordinates [okx],
           [oky], [okz] on its axes. Found once per ray, not per
           triangle. *)

@@ -148,7 +148,7 @@ val roots : t -> int -> Vec3.t -> Vec3.t -> float * float
     [origin + t direction]: the cancellation-free roots of a sphere in the
     robust mode, the textbook roots in the document's mode, the shape
     module's routine for the others (for a CSG solid, its first crossing
-    of its surface as both, {!Csg.roots}); [(infinity, infinity)] for a miss. It
+    of its surface as both, [Csg.roots]); [(infinity, infinity)] for a miss. It
     runs the code the renderer runs, for the tests of its accuracy.
     @raise Invalid_argument if [k] is not an object of the scene. *)
 

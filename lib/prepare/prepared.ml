@@ -99,6 +99,7 @@ type objects = {
   n_spheres : int;
   spheres : Spheres.t;  (* [Spheres.empty] once they are copied ([prepare_scene]). *)
   shapes : Shape.t list;  (* The objects after the spheres, in order. *)
+  placed : (int * Shape.t) list;  (* [shapes], each with the number of spheres before it in the list. *)
   any_mesh : bool;
   csg_triangles : int;  (* The triangles of the meshes inside CSG solids. *)
 }
@@ -121,13 +122,14 @@ let iter_shapes o ~single ~mesh =
     o.shapes;
   !k
 
-let read_objects (scene : Scene.t) =
+let read_objects (scene : Scene.view) =
   let o =
     {
       n = 0;
       n_spheres = Spheres.length scene.spheres;
       spheres = scene.spheres;
       shapes = scene.shapes;
+      placed = scene.placed;
       any_mesh = List.exists (function Shape.Mesh _ -> true | _ -> false) scene.shapes;
       csg_triangles = List.fold_left (fun t -> function Shape.Csg c -> t + Csg.triangles c | _ -> t) 0 scene.shapes;
     }
@@ -136,11 +138,11 @@ let read_objects (scene : Scene.t) =
 
 (* The scene without its objects: what the steps read of it after
    [read_objects]. *)
-let settings (scene : Scene.t) = { scene with spheres = Spheres.empty; shapes = [] }
+let settings (scene : Scene.view) = { scene with spheres = Spheres.empty; shapes = []; placed = [] }
 
 (* The objects of [scene], each triangle of a mesh counted: known before
    [read_objects], to choose the collector's settings ([prepare]). *)
-let object_count (s : Scene.t) =
+let object_count (s : Scene.view) =
   List.fold_left
     (fun a sh -> match sh with Shape.Mesh m -> a + Mesh.triangle_count m | _ -> a + 1)
     (Spheres.length s.spheres) s.shapes
@@ -160,7 +162,7 @@ let specular_bound s = if s = Sphere.matte then 0. else Float.pow (1. +. (8. *. 
    they stay below it. The margin covers the rounding of cosines and
    blends, each off by a few ulps at most. Infinite (no early stop) when a
    specular term can be. *)
-let max_channel (scene : Scene.t) o =
+let max_channel (scene : Scene.view) o =
   let ambient, direct =
     List.fold_left
       (fun (a, d) l ->
@@ -502,7 +504,7 @@ let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~first ~
    then each box is padded where it is, with no array of margins, centers
    or half sides of a million triangles between, and no second reading
    of the corners. *)
-let mesh_boxes o (scene : Scene.t) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius =
+let mesh_boxes o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius =
   (* Every element is written below. *)
   let f () = Array.create_float nb in
   let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
@@ -626,7 +628,7 @@ let material_table r =
       (fun j (i, p, (origin, scale, extent)) ->
         alternate.(i) <- n_own + j;
         Pattern.store p ~origin ~scale ~extent pattern (Pattern.stride * i);
-        { (materials.(i)) with Material.color = Pattern.color p; pattern = None })
+        Material.update ~color:(Pattern.color p) ~pattern:None materials.(i))
       (List.rev r.frames)
   in
   (Array.append materials (Array.of_list extra), alternate, pattern)
@@ -850,7 +852,7 @@ let compact_after_loading o =
 
 (* The boxes of the selected objects, each padded by its margin, as
    [Bvh.build_boxes] takes them; [None] without a hierarchy. *)
-let boxes ~skips o (scene : Scene.t) c sel =
+let boxes ~skips o (scene : Scene.view) c sel =
   if not (skips && sel.nb > bvh_threshold) then None
   else
     let all = Array.length sel.bounded = 0 and nb = sel.nb and bounded = sel.bounded in
@@ -1189,11 +1191,37 @@ let camera_constants pool (eye : Vec3.t) (cx, cy, cz, radius) =
   done;
   { cx; cy; cz; radius; r2; primary_ocx; primary_ocy; primary_ocz; primary_k3 }
 
+(* Objects are numbered above spheres first; the kernel's numbers
+   ([index], [slot]: ties, hits) count them in the scene's list. [rank]
+   maps the one to the other, where they differ (a shape placed before a
+   sphere). *)
+let in_list_order o ~index ~slot =
+  if List.for_all (fun (j, _) -> j = o.n_spheres) o.placed then (index, slot)
+  else begin
+    let n = Array.length slot in
+    let rank = Array.make n 0 and r = ref 0 and sphere = ref 0 and k = ref o.n_spheres in
+    let next a =
+      rank.(!a) <- !r;
+      incr r;
+      incr a
+    in
+    let spheres_upto j = while !sphere < j do next sphere done in
+    List.iter
+      (fun (j, sh) ->
+        spheres_upto j;
+        for _ = 1 to match sh with Shape.Mesh m -> Mesh.objects m | _ -> 1 do next k done)
+      o.placed;
+    spheres_upto o.n_spheres;
+    let listed = Array.make n 0 in
+    Array.iteri (fun k i -> listed.(rank.(k)) <- i) slot;
+    (Array.map (fun k -> rank.(k)) index, listed)
+  end
+
 (* {2 The prepared scene} *)
 
 (* The record, from the steps' results; the lights' and the materials'
    arrays made here. *)
-let assemble ~skips (scene : Scene.t) o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg sl g sp
+let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg sl g sp
     ~vertex ~vsource ~vnormal =
   let lights =
     Array.of_list (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
@@ -1210,6 +1238,7 @@ let assemble ~skips (scene : Scene.t) o ~max_channel ~materials ~alternate ~patt
      glass), few enough for no hierarchy, in the document's mode. *)
   let textbook_all = o.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None in
   let n_kept = Array.length sl.index in
+  let index, slot = in_list_order o ~index:sl.index ~slot:sl.slot in
   {
     n_spheres = o.n_spheres;
     n_objects = n_kept;
@@ -1218,8 +1247,8 @@ let assemble ~skips (scene : Scene.t) o ~max_channel ~materials ~alternate ~patt
     alternate;
     pattern;
     textbook_all;
-    index = sl.index;
-    slot = sl.slot;
+    index;
+    slot;
     bvh;
     unbounded = Array.map (fun i -> sl.slot.(i)) unbounded;
     kind = sl.kind;
@@ -1329,7 +1358,7 @@ let assemble ~skips (scene : Scene.t) o ~max_channel ~materials ~alternate ~patt
 (* The steps in order. Each big array is let go as soon as no step needs
    it any more: the steps' results are taken apart here, not held whole. *)
 let prepare_scene ~skips ?beside scene =
-  let scene = Scene.of_valid scene in
+  let scene = Scene.view (Scene.of_valid scene) in
   let o = read_objects scene in
   let scene = settings scene in
   compact_after_loading o;
@@ -1379,7 +1408,7 @@ let prepare_scene ~skips ?beside scene =
 let big_increment = 32 * 1024 * 1024
 
 let prepare ?(skips = true) ?beside scene =
-  if object_count (Scene.of_valid scene) <= big_scene then prepare_scene ~skips ?beside scene
+  if object_count (Scene.view (Scene.of_valid scene)) <= big_scene then prepare_scene ~skips ?beside scene
   else begin
     let gc = Gc.get () in
     Gc.set { gc with major_heap_increment = big_increment };

@@ -27,7 +27,7 @@ type t = private {
           colour. *)
   pattern : float array;
       (** Per material [m], at [Pattern.stride * m], its pattern as
-          {!Pattern.store} writes it, on its object's {!Shape.pattern_frame}
+          [Pattern.store] writes it, on its object's {!Shape.pattern_frame}
           (zeros where [alternate] is [-1]; empty when no material has a
           pattern). *)
   textbook_all : bool;
@@ -35,9 +35,10 @@ type t = private {
           no hierarchy, the document's mode: the tracer's fastest loop
           (the reference scene). *)
   index : int array;
-      (** The index of the object in each slot, objects counted spheres
-          first, then the scene's [shapes]: the per-object arrays below are
-          in slot order (the hierarchy's leaf order, then the planes). *)
+      (** The index of the object in each slot, objects counted in the
+          order of the scene's list ({!Scene.objects}, a mesh one object per
+          triangle): the per-object arrays below are in slot order (the
+          hierarchy's leaf order, then the planes). *)
   slot : int array;
       (** The slot of each object: the inverse of [index], but for the
           identical spheres of [n_scene_objects], which share a slot. *)

@@ -15,7 +15,7 @@ let store tr buffer gx gy ~n k =
 let image ?(n = 3) valid =
   if n < 1 then invalid_arg "Antialias.image: n < 1";
   let tr = Trace.create ~averaging:(n > 1) (Prepared.prepare valid) in
-  let scene = Scene.of_valid valid in
+  let scene = Scene.view (Scene.of_valid valid) in
   let img = Image.create scene.width scene.height in
   let buffer = Image.buffer img and width = scene.width and height = scene.height in
   for row = 0 to height - 1 do

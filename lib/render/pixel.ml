@@ -4,9 +4,9 @@ let v ?skips ?(samples = 1) scene =
   let sampling =
     match Sampling.v ~samples () with
     | Ok s -> s
-    | Error (`Msg m) -> invalid_arg ("Pixel.v: " ^ m)
+    | Error (`Msg m) -> invalid_arg ("Render.Pixel.v: " ^ m)
   in
-  let s = Scene.of_valid scene in
+  let s = Scene.view (Scene.of_valid scene) in
   let tr = Trace.create ~averaging:(Sampling.averaging sampling) (Prepared.prepare ?skips scene) in
   (* One pixel at a time, for as long as the caller likes: no work bound
      across calls (the ray tree of glass checks one at every hit). *)
@@ -35,7 +35,7 @@ let average p gx gy =
 
 let color p x y =
   if x < 0 || y < 0 || x >= p.width || y >= p.height then
-    invalid_arg (Printf.sprintf "Pixel.color: (%d, %d) is outside the %dx%d canvas" x y p.width p.height);
+    invalid_arg (Printf.sprintf "Render.Pixel.color: (%d, %d) is outside the %dx%d canvas" x y p.width p.height);
   let gx = Canvas.x_of_column ~width:p.width x and gy = Canvas.y_of_row ~height:p.height y in
   if p.samples = 1 then begin
     Trace.pixel p.tr gx gy;

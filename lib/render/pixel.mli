@@ -30,7 +30,7 @@ val color : t -> int -> int -> Color.t
     sample, the colour of the ray through the pixel's centre, unclamped
     (channels may exceed [255]); with [n x n] samples ({!v}), the mean of
     the samples' colours each clamped to [\[0, 255\]] first, as
-    {!Trace.average} sums them. Either way {!Color.to_byte} of its
+    the tracer sums them. Either way {!Color.to_byte} of its
     channels ({!Color.to_rgb8} of it) are the bytes that {!Render.image}
     with the same [samples] stores there.
     @raise Invalid_argument if [(x, y)] is outside the canvas. *)

@@ -11,7 +11,7 @@ let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples 
   match Render_work.check ~limits scene region sampling with
   | Error _ as e -> e
   | Ok () ->
-  let canvas = (let s = Scene.of_valid scene in (s.width, s.height)) in
+  let canvas = (let s = Scene.of_valid scene in (Scene.width s, Scene.height s)) in
   match Image.create region.w region.h with
   | exception Out_of_memory -> Render_work.out_of_memory region
   | img ->
@@ -56,6 +56,6 @@ let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples 
                 ~trace_s:(t2 -. t1) ))
 
 let image ?limits ?clock ?skips ?samples ?adaptive ?subsample ?progress scene =
-  let s = Scene.of_valid scene in
+  let s = Scene.view (Scene.of_valid scene) in
   region_image ?limits ?clock ?skips ?samples ?adaptive ?subsample ?progress scene
     (Region.full ~width:s.width ~height:s.height)

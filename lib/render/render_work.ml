@@ -1,7 +1,7 @@
 let ( let* ) = Result.bind
 
 let inside fn scene (region : Region.t) =
-  let s = Scene.of_valid scene in
+  let s = Scene.view (Scene.of_valid scene) in
   if not (Region.contains region ~width:s.width ~height:s.height) then
     invalid_arg (fn ^ ": region outside the canvas")
 

@@ -71,4 +71,4 @@ val rays : Trace.t -> int
 
 val total_rows : Sampling.plan -> int
 (** [total_rows pl] is the number of rows of work of [pl]: the rows of
-    every pass ({!Sampling.pass_rows}). *)
+    every pass ([Raytrace.Render.Sampling.pass_rows]). *)

@@ -62,11 +62,15 @@ val to_string : t -> string
 (** [to_string s] is a short description, e.g. ["1x1"], ["4x4"],
     ["adaptive 5x5 t=8"], ["subsampled"]. *)
 
-(** {1:plans Plans} *)
-
 type plan
 (** The type for the work of rendering one image with some settings: its
     passes, and the buffers through which they pass results on. *)
+
+(**/**)
+
+(* Internal: the kernel's side of this module, for the tracer and the tests, hidden from the documentation. Not for users: it changes without notice. *)
+
+(** {1:plans Plans} *)
 
 type memory = {
   bytes : int -> Image.buffer;  (** [bytes n] is [n] bytes. *)
@@ -75,7 +79,7 @@ type memory = {
   at_row : unit -> unit;  (** Called before each row: a worker may stop there. *)
 }
 (** The type for where a plan keeps the buffers that carry results from
-    pass to pass: process memory ({!local}) or memory shared with worker
+    pass to pass: process memory ([local]) or memory shared with worker
     processes (the system library [raytrace.unix]). *)
 
 val local : memory
@@ -89,7 +93,7 @@ val plan : ?memory:memory -> t -> Image.t -> canvas:int * int -> at:int * int ->
     and subsampling also trace the first rays of a one-pixel margin around
     the rectangle, so that they decide as the whole image does. The
     buffers that carry results from pass to pass come from [memory]
-    (default {!local}): with memory shared with forked processes, passes
+    (default [local]): with memory shared with forked processes, passes
     may run in workers.
     @raise Invalid_argument if the rectangle is not inside the canvas.
     @raise Failure or [Out_of_memory] if [memory] does. *)

@@ -9,7 +9,9 @@ type t = {
 }
 [@@deriving eq]
 
-let v ?(specular = Sphere.matte) ?(reflective = 0.) ?(transparency = 0.) ?(refractive_index = 1.) ?(fresnel = false)
+let matte = -1.
+
+let v ?(specular = matte) ?(reflective = 0.) ?(transparency = 0.) ?(refractive_index = 1.) ?(fresnel = false)
     ?pattern color =
   { color; specular; reflective; transparency; refractive_index; fresnel; pattern }
 
@@ -26,25 +28,55 @@ module Plain = Hashtbl.Make (struct
   let hash = Hashtbl.hash
 end)
 
-let of_sphere (s : Sphere.t) =
-  v ~specular:s.specular ~reflective:s.reflective ~transparency:s.transparency ~refractive_index:s.refractive_index
-    ~fresnel:s.fresnel ?pattern:s.pattern s.color
+let update ?color ?specular ?reflective ?transparency ?refractive_index ?fresnel ?pattern m =
+  let pick o d = match o with Some x -> x | None -> d in
+  {
+    color = pick color m.color;
+    specular = pick specular m.specular;
+    reflective = pick reflective m.reflective;
+    transparency = pick transparency m.transparency;
+    refractive_index = pick refractive_index m.refractive_index;
+    fresnel = pick fresnel m.fresnel;
+    pattern = pick pattern m.pattern;
+  }
 
-(* The sphere's checks hold for every material; only the form they name
-   differs. *)
-let rename ~form m =
-  let prefix = "sphere " in
-  let n = String.length prefix in
-  if String.length m >= n && String.sub m 0 n = prefix then form ^ " " ^ String.sub m n (String.length m - n)
-  else m
+let color m = m.color
+let specular m = m.specular
+let reflective m = m.reflective
+let transparency m = m.transparency
+let refractive_index m = m.refractive_index
+let fresnel m = m.fresnel
+let pattern m = m.pattern
+let is_matte m = m.specular = matte
+let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
+let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
+let num = Float_text.to_string
 
-let named ~form r = Result.map_error (fun (`Msg e) -> `Msg (rename ~form e)) r
-let check_color ~form c = named ~form (Sphere.check_color c)
-let check_specular ~form x = named ~form (Sphere.check_specular x)
-let check_reflective ~form x = named ~form (Sphere.check_reflective x)
-let check_transparency ~form x = named ~form (Sphere.check_transparency x)
-let check_refractive_index ~form x = named ~form (Sphere.check_refractive_index x)
-let check_split ~form ~reflective ~transparency = named ~form (Sphere.check_split ~reflective ~transparency)
+let check_color ~form c =
+  if Color.in_gamut c then Ok c else error_pp "%s color channels must lie in [0, 255], got %a" form Color.pp c
+
+let specular_ok s = Float.is_finite s && (s = matte || s >= 0.)
+
+let check_specular ~form s =
+  if specular_ok s then Ok s else error "%s specular must be -1 (matte) or >= 0, got %s" form (num s)
+
+let reflective_ok r = r >= 0. && r <= 1.
+
+let check_reflective ~form r =
+  if reflective_ok r then Ok r else error "%s reflective must lie in [0, 1], got %s" form (num r)
+
+let check_transparency ~form x =
+  if x >= 0. && x <= 1. then Ok x else error "%s transparency must lie in [0, 1], got %s" form (num x)
+
+let check_refractive_index ~form n =
+  if n > 0. && Float.is_finite n then Ok n
+  else error "%s refractive-index must be > 0 and finite, got %s" form (num n)
+
+(* Each part of a hit's colour has its own weight (local 1 - r - t): the
+   sum may not exceed 1. *)
+let check_split ~form ~reflective ~transparency =
+  if reflective +. transparency <= 1. then Ok ()
+  else error "%s reflective + transparency must be <= 1, got %s + %s" form (num reflective) (num transparency)
 
 let validate ~form m =
   let ( let* ) = Result.bind in
@@ -57,10 +89,22 @@ let validate ~form m =
   let* () = check_split ~form ~reflective:m.reflective ~transparency:m.transparency in
   Ok m
 
-let pp ppf m =
-  Format.fprintf ppf "(color %a)" Color.pp_components m.color;
-  Sphere.pp_optional_material ~transparency:m.transparency ~refractive_index:m.refractive_index ~fresnel:m.fresnel ppf
+(* The optional fields print only when they differ from their defaults, as
+   a scene file would write them. *)
+let pp_optional ?(transparency = 0.) ?(refractive_index = 1.) ?(fresnel = false) ppf ~specular ~reflective =
+  if specular <> matte then Format.fprintf ppf " (specular %s)" (num specular);
+  if reflective <> 0. then Format.fprintf ppf " (reflective %s)" (num reflective);
+  if transparency <> 0. then Format.fprintf ppf " (transparency %s)" (num transparency);
+  if refractive_index <> 1. then Format.fprintf ppf " (refractive-index %s)" (num refractive_index);
+  if fresnel then Format.pp_print_string ppf " (fresnel true)"
+
+let pp_fields ppf m =
+  pp_optional ~transparency:m.transparency ~refractive_index:m.refractive_index ~fresnel:m.fresnel ppf
     ~specular:m.specular ~reflective:m.reflective;
   Pattern.pp_optional ppf m.pattern
+
+let pp ppf m =
+  Format.fprintf ppf "(color %a)" Color.pp_components m.color;
+  pp_fields ppf m
 
 let show m = Format.asprintf "%a" pp m

@@ -1,10 +1,12 @@
-(** Materials of the shapes other than spheres (document sections 7.5
-    to 7.8): the colour, specular exponent and reflectivity that a sphere
-    carries in its own fields. *)
+(** Materials (document sections 7.5 to 7.8): what every object is made
+    of -- a colour, a specular exponent, a reflectivity, and the optics of
+    glass. One value may be shared by any number of objects of any shape
+    (a sphere and a mesh alike); scene text may name one
+    ([(material glass ...)]) and use it by name. *)
 
-type t = {
+type t = private {
   color : Color.t;  (** Channels in [\[0, 255\]]. *)
-  specular : float;  (** [s >= 0], or {!Sphere.matte} for no specular term. *)
+  specular : float;  (** [s >= 0], or {!matte} for no specular term. *)
   reflective : float;  (** Reflectivity in [\[0, 1\]]. *)
   transparency : float;  (** Transparency in [\[0, 1\]], [reflective + transparency <= 1]. *)
   refractive_index : float;  (** Index of refraction, [> 0] and finite. *)
@@ -38,6 +40,10 @@ module Plain : Hashtbl.S with type key = t
 (** Hash tables keyed by materials compared with {!same_plain}: a table
     finds only materials without a pattern. *)
 
+val matte : float
+(** [matte] is [-1.], the specular exponent that means "no specular term"
+    (as in CGFS). An exponent of [0] is not matte. *)
+
 val v :
   ?specular:float ->
   ?reflective:float ->
@@ -48,37 +54,105 @@ val v :
   Color.t ->
   t
 (** [v ~specular ~reflective ~transparency ~refractive_index ~fresnel ~pattern color]
-    is a material; [specular] defaults to {!Sphere.matte}, [reflective]
+    is a material; [specular] defaults to {!matte}, [reflective]
     and [transparency] to [0], [refractive_index] to [1], [fresnel] to
-    [false], [pattern] to none (the fields of {!Sphere.t}). *)
+    [false], [pattern] to none. It is not validated: see {!validate}. *)
 
-val of_sphere : Sphere.t -> t
-(** [of_sphere s] is the material of sphere [s]. *)
+val update :
+  ?color:Color.t ->
+  ?specular:float ->
+  ?reflective:float ->
+  ?transparency:float ->
+  ?refractive_index:float ->
+  ?fresnel:bool ->
+  ?pattern:Pattern.t option ->
+  t ->
+  t
+(** [update ~color ... m] is [m] with the given fields replaced (how a
+    scene file's inline fields override a named material's); [~pattern:None]
+    removes [m]'s pattern. *)
+
+(** {1:fields Fields} *)
+
+val color : t -> Color.t
+(** [color m] is [m]'s colour. *)
+
+val specular : t -> float
+(** [specular m] is [m]'s specular exponent, or {!matte}. *)
+
+val reflective : t -> float
+(** [reflective m] is [m]'s reflectivity. *)
+
+val transparency : t -> float
+(** [transparency m] is [m]'s transparency. *)
+
+val refractive_index : t -> float
+(** [refractive_index m] is [m]'s index of refraction. *)
+
+val fresnel : t -> bool
+(** [fresnel m] is [true] iff [m] follows Schlick's approximation. *)
+
+val pattern : t -> Pattern.t option
+(** [pattern m] is [m]'s pattern, if any. *)
+
+val is_matte : t -> bool
+(** [is_matte m] is [true] iff [specular m = matte]. *)
+
+val pp_fields : Format.formatter -> t -> unit
+(** [pp_fields ppf m] is {!pp} without the colour: the optional fields,
+    each with its leading space. *)
+
+val pp_optional :
+  ?transparency:float ->
+  ?refractive_index:float ->
+  ?fresnel:bool ->
+  Format.formatter ->
+  specular:float ->
+  reflective:float ->
+  unit
+(** [pp_optional ~transparency ~refractive_index ~fresnel ppf ~specular ~reflective]
+    prints the fields [ (specular e)], [ (reflective r)],
+    [ (transparency t)], [ (refractive-index n)] and [ (fresnel true)] of an
+    object's form, each with its leading space and only when it is not the
+    default ({!matte}, [0], [0], [1], [false]). *)
+
+(** {1:validation Validation}
+
+    Each check returns its argument, or an error message that names the
+    form, the field and the value, such as
+    ["plane color channels must lie in \[0, 255\], got ..."]. *)
+
+val specular_ok : float -> bool
+(** [specular_ok s] is [true] iff {!check_specular} accepts [s]; it
+    allocates nothing. *)
+
+val reflective_ok : float -> bool
+(** [reflective_ok r] is [true] iff {!check_reflective} accepts [r]; it
+    allocates nothing. *)
 
 val check_color : form:string -> Color.t -> (Color.t, [> `Msg of string ]) result
-(** [check_color ~form c] is {!Sphere.check_color}, its message naming [form]. *)
+(** [check_color ~form c] checks {!Color.in_gamut}. *)
 
 val check_specular : form:string -> float -> (float, [> `Msg of string ]) result
-(** [check_specular ~form s] is {!Sphere.check_specular}, its message naming [form]. *)
+(** [check_specular ~form s] checks that [s] is finite and [-1] or [>= 0]. *)
 
 val check_reflective : form:string -> float -> (float, [> `Msg of string ]) result
-(** [check_reflective ~form r] is {!Sphere.check_reflective}, its message naming [form]. *)
+(** [check_reflective ~form r] checks [0 <= r <= 1]. *)
 
 val check_transparency : form:string -> float -> (float, [> `Msg of string ]) result
-(** [check_transparency ~form t] is {!Sphere.check_transparency}, its message naming [form]. *)
+(** [check_transparency ~form t] checks [0 <= t <= 1]. *)
 
 val check_refractive_index : form:string -> float -> (float, [> `Msg of string ]) result
-(** [check_refractive_index ~form n] is {!Sphere.check_refractive_index}, its message naming [form]. *)
+(** [check_refractive_index ~form n] checks that [n] is finite and [> 0]. *)
 
 val check_split :
   form:string -> reflective:float -> transparency:float -> (unit, [> `Msg of string ]) result
-(** [check_split ~form ~reflective ~transparency] is {!Sphere.check_split}, its message naming [form]. *)
+(** [check_split ~form ~reflective ~transparency] checks
+    [reflective + transparency <= 1]: the local colour's weight
+    [1 - reflective - transparency] is not negative. *)
 
 val validate : form:string -> t -> (t, [> `Msg of string ]) result
-(** [validate ~form m] is [Ok m] if its fields pass the checks of
-    {!Sphere.check_color}, {!Sphere.check_specular} and
-    {!Sphere.check_reflective}, {!Sphere.check_transparency},
-    {!Sphere.check_refractive_index} and {!Sphere.check_split}, and its
-    pattern {!Pattern.validate}, and otherwise the first error, with the
-    word [sphere] of their messages replaced by [form] (e.g.
-    ["plane color channels must lie in [0, 255], got ..."]). *)
+(** [validate ~form m] is [Ok m] if its fields pass the checks above and
+    its pattern {!Pattern.validate}, and otherwise the first error, its
+    message naming [form] (e.g.
+    ["plane color channels must lie in \[0, 255\], got ..."]). *)

@@ -60,15 +60,19 @@ val validate : form:string -> t -> (t, [> `Msg of string ]) result
 (** [validate ~form p] is [Ok p] if its colour is in gamut and its size
     passes {!check_size}, and otherwise the first error, naming [form]. *)
 
+(**/**)
+
+(* Internal: the kernel's side of this module, for the tracer and the tests, hidden from the documentation. Not for users: it changes without notice. *)
+
 (** {1:kernel For the tracers} *)
 
 val stride : int
 (** [stride] is [6], the floats per pattern in a table written by
-    {!store}. *)
+    [store]. *)
 
 val store : t -> origin:Vec3.t -> scale:float -> extent:float -> float array -> int -> unit
 (** [store p ~origin ~scale ~extent table o] writes, at offset [o] of
-    [table], what {!odd} needs to look [p] up on one object: the object's
+    [table], what [odd] needs to look [p] up on one object: the object's
     coordinates of a world point [W] are [(W - origin) / scale], and
     [extent] is the largest magnitude of a coordinate of the object (in
     world units, for the error bound). *)

@@ -1,4 +1,8 @@
-type t = {
+(* The spheres, however many, are kept compactly ([Spheres], 40 bytes
+   each); every other object is placed after as many spheres as came
+   before it in the scene's list, so that the list's order is kept
+   without a list of a million spheres. *)
+type view = {
   width : int;
   height : int;
   viewport : Viewport.t;
@@ -7,11 +11,56 @@ type t = {
   depth : int;
   epsilon : float option;
   spheres : Spheres.t;
-  shapes : Shape.t list;
+  shapes : Shape.t list;  (* [placed]'s shapes, for the readers that want them alone. *)
+  placed : (int * Shape.t) list;
   lights : Light.t list;
   camera_path : Camera_path.t option;
 }
 [@@deriving eq]
+
+type t = view
+
+let equal = equal_view
+let view s = s
+
+let width s = s.width
+let height s = s.height
+let viewport s = s.viewport
+let camera s = s.camera
+let background s = s.background
+let depth s = s.depth
+let epsilon s = s.epsilon
+let lights s = s.lights
+let camera_path s = s.camera_path
+let spheres s = s.spheres
+let placed s = s.placed
+let shapes s = s.shapes
+
+(* [iter_objects s ~sphere ~shape] walks the objects in the list's order:
+   [sphere i] for sphere [i] of [s.spheres], [shape sh] for the others. *)
+let iter_objects s ~sphere ~shape =
+  let next = ref 0 in
+  let upto j =
+    while !next < j do
+      sphere !next;
+      incr next
+    done
+  in
+  List.iter
+    (fun (j, sh) ->
+      upto j;
+      shape sh)
+    s.placed;
+  upto (Spheres.length s.spheres)
+
+let objects s =
+  let l = ref [] in
+  iter_objects s ~sphere:(fun i -> l := Shape.Sphere (Spheres.get s.spheres i) :: !l) ~shape:(fun sh -> l := sh :: !l);
+  List.rev !l
+
+let n_objects s = Spheres.length s.spheres + List.length s.placed
+
+let with_objects s ~spheres ~placed = { s with spheres; placed; shapes = List.map snd placed }
 
 (* One form a line, in the order a scene file is usually written; the
    parts print their own forms, so the scene and its parts print alike. *)
@@ -24,26 +73,39 @@ let pp ppf s =
   Format.fprintf ppf "(background %a)\n" Color.pp_components s.background;
   Format.fprintf ppf "(recursion-depth %d)\n" s.depth;
   Option.iter (Format.fprintf ppf "(epsilon %s)\n") (Option.map Float_text.to_string s.epsilon);
-  Spheres.pp ppf s.spheres;
-  List.iter (line Shape.pp) s.shapes;
+  iter_objects s ~sphere:(fun i -> line Sphere.pp (Spheres.get s.spheres i)) ~shape:(line Shape.pp);
   List.iter (line Light.pp) s.lights
 
 let show s = Format.asprintf "%a" pp s
 
 let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
+let split objects =
+  let b = Spheres.builder () in
+  let placed =
+    List.fold_left
+      (fun placed -> function
+        | Shape.Sphere sp ->
+            Spheres.add b sp;
+            placed
+        | sh -> (Spheres.builder_length b, sh) :: placed)
+      [] objects
+  in
+  (Spheres.build b, List.rev placed)
+
 let v ?(width = 600) ?(height = 600) ?(viewport = Viewport.default) ?(camera = Camera.default)
-    ?(background = Color.black) ?(depth = 3) ?epsilon ?camera_path ?(shapes = []) ~spheres ~lights () =
-  { width; height; viewport; camera; background; depth; epsilon; spheres = Spheres.of_list spheres; shapes; lights; camera_path }
+    ?(background = Color.black) ?(depth = 3) ?epsilon ?camera_path ~objects ~lights () =
+  let spheres, placed = split objects in
+  { width; height; viewport; camera; background; depth; epsilon; spheres; shapes = List.map snd placed; placed; lights; camera_path }
 
 let document_epsilon = 0.0001
 
 let cgfs =
   let sphere ~center ~color ~specular ~reflective radius =
-    Sphere.v ~specular ~reflective ~center ~radius color
+    Shape.Sphere (Sphere.v ~center ~radius (Material.v ~specular ~reflective color))
   in
   v ~epsilon:0.001
-    ~spheres:
+    ~objects:
       [
         sphere 1. ~center:(Vec3.v 0. (-1.) 3.) ~color:(Color.v 255. 0. 0.) ~specular:500.
           ~reflective:0.2;
@@ -90,7 +152,8 @@ let grid n =
       Vec3.v (Float.of_int col -. (Float.of_int (k - 1) /. 2.)) (Float.of_int row -. 0.6) (2. *. Float.of_int k)
     in
     Spheres.add b
-      (Sphere.v ~specular:specular.(i mod 4) ~reflective:reflective.(i mod 3) ~center ~radius:0.4 palette.(i mod 6))
+      (Sphere.v ~center ~radius:0.4
+         (Material.v ~specular:specular.(i mod 4) ~reflective:reflective.(i mod 3) palette.(i mod 6)))
   done;
   Spheres.add b (Spheres.get cgfs.spheres 3);
   { cgfs with width = 800; height = 800; spheres = Spheres.build b }
@@ -107,22 +170,13 @@ type valid = t
 
 let of_valid v = v
 
-(* Sphere by sphere, the first error first, as [Sphere.validate] finds it;
-   each material is checked once, not once per sphere. *)
+(* Sphere by sphere, the first error first, as [Sphere.validate] finds it:
+   [Error (i, e)] for sphere [i]; each material is checked once, not once
+   per sphere. *)
 let valid_spheres spheres =
-  let materials = Spheres.materials spheres in
-  (* A sphere at the origin of radius 1 passes the other checks. *)
-  let checked =
-    Array.map
-      (fun (m : Material.t) ->
-        Sphere.validate
-          (Sphere.v ~specular:m.specular ~reflective:m.reflective ~transparency:m.transparency
-             ~refractive_index:m.refractive_index ~fresnel:m.fresnel ?pattern:m.pattern ~center:Vec3.zero ~radius:1.
-             m.color))
-      materials
-  in
+  let checked = Array.map (Material.validate ~form:"sphere") (Spheres.materials spheres) in
   (* The checks' own predicates first: a million spheres that pass make
-     no vector and no result (50 ms). *)
+     no vector and no result. *)
   let ok i =
     Limits.coordinate_ok (Spheres.center_x spheres i)
     && Limits.coordinate_ok (Spheres.center_y spheres i)
@@ -135,24 +189,39 @@ let valid_spheres spheres =
     else if ok i then go (i + 1)
     else
       let center = Vec3.v (Spheres.center_x spheres i) (Spheres.center_y spheres i) (Spheres.center_z spheres i) in
-      let named (`Msg m) = Error (`Msg (Printf.sprintf "object %d (sphere): %s" (i + 1) m)) in
       match (Sphere.check_center center, Sphere.check_radius (Spheres.radius spheres i)) with
-      | Error e, _ | _, Error e -> named e
+      | Error e, _ | _, Error e -> Error (i, e)
       | Ok _, Ok _ -> (
-          match checked.(Spheres.material_index spheres i) with Ok _ -> go (i + 1) | Error e -> named e)
+          match checked.(Spheres.material_index spheres i) with Ok _ -> go (i + 1) | Error e -> Error (i, e))
   in
   go 0
 
-(* The shapes count on from the spheres, as in [Scene.pp]'s order. *)
-let valid_shapes ~first shapes =
-  let rec go k = function
-    | [] -> Ok ()
-    | sh :: rest -> (
-        match Shape.validate sh with
-        | Ok _ -> go (k + 1) rest
-        | Error (`Msg m) -> Error (`Msg (Printf.sprintf "object %d (%s): %s" k (Shape.name sh) m)))
+(* The first object that fails, in the list's order: sphere [i] is object
+   [i + 1] plus the other objects placed before it; the [p]-th other
+   object, placed after [j] spheres, is object [j + p + 1]. *)
+let valid_objects s =
+  let sphere_error = valid_spheres s.spheres in
+  let rec shapes p = function
+    | [] -> None
+    | (j, sh) :: rest -> (
+        match sphere_error with
+        | Error (i, e) when i < j -> Some (i + p + 1, "sphere", e)
+        | _ -> (
+            match Shape.validate sh with
+            | Ok _ -> shapes (p + 1) rest
+            | Error e -> Some (j + p + 1, Shape.name sh, e)))
   in
-  go first shapes
+  let first =
+    match shapes 0 s.placed with
+    | Some _ as found -> found
+    | None -> (
+        match sphere_error with
+        | Ok () -> None
+        | Error (i, e) -> Some (i + List.length s.placed + 1, "sphere", e))
+  in
+  match first with
+  | None -> Ok ()
+  | Some (k, name, `Msg m) -> Error (`Msg (Printf.sprintf "object %d (%s): %s" k name m))
 
 let light_kind = function Light.Ambient _ -> "ambient" | Point _ -> "point" | Directional _ -> "directional"
 
@@ -196,21 +265,36 @@ let validate ?(limits = Limits.default) s =
     let* _ = Limits.check_depth limits s.depth in
     let* _ = match s.epsilon with Some e -> check_epsilon e | None -> Ok 0. in
     let* _ =
-      Limits.check_count limits
-        (match s.shapes with [] -> `Spheres | _ :: _ -> `Objects)
-        (Spheres.length s.spheres + List.length s.shapes)
+      Limits.check_count limits (match s.placed with [] -> `Spheres | _ :: _ -> `Objects) (n_objects s)
     in
     let* _ = Limits.check_count limits `Lights (List.length s.lights) in
     let* _ = Limits.check_triangles limits (mesh_triangles s.shapes) in
-    let* () = valid_spheres s.spheres in
-    let* () = valid_lights s.lights in
-    valid_shapes ~first:(Spheres.length s.spheres + 1) s.shapes
+    let* () = valid_objects s in
+    valid_lights s.lights
   in
   match result with Ok () -> Ok s | Error _ as e -> e
 
-let with_overrides ?width ?height ?depth s =
+let with_overrides ?width ?height ?depth ?viewport ?camera ?camera_path ?background ?epsilon ?objects ?lights s =
   let pick o d = match o with Some x -> x | None -> d in
-  { s with width = pick width s.width; height = pick height s.height; depth = pick depth s.depth }
+  let s =
+    {
+      s with
+      width = pick width s.width;
+      height = pick height s.height;
+      depth = pick depth s.depth;
+      viewport = pick viewport s.viewport;
+      camera = pick camera s.camera;
+      camera_path = pick camera_path s.camera_path;
+      background = pick background s.background;
+      epsilon = pick epsilon s.epsilon;
+      lights = pick lights s.lights;
+    }
+  in
+  match objects with
+  | None -> s
+  | Some objects ->
+      let spheres, placed = split objects in
+      with_objects s ~spheres ~placed
 
 (* Only what changed is checked: the rest was validated. *)
 let override ?(limits = Limits.default) ?width ?height ?depth ?viewport ?camera (s : valid) =
@@ -241,7 +325,8 @@ let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
   (* No list of a million spheres' materials: each array and list is read
      where it is. *)
   let exists p =
-    Array.exists p (Spheres.materials s.spheres) || List.exists (fun sh -> List.exists p (Shape.materials sh)) s.shapes
+    Array.exists p (Spheres.materials s.spheres)
+    || List.exists (fun (_, sh) -> List.exists p (Shape.materials sh)) s.placed
   in
   (* A hit bounces on a reflective or a transparent surface; it may spawn
      two rays where some of the light is reflected and some refracted. *)
@@ -249,11 +334,12 @@ let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
   let split = exists (fun (m : Material.t) -> m.transparency > 0. && (m.reflective > 0. || m.fresnel)) in
   let objects, leaves =
     List.fold_left
-      (fun (o, l) -> function
+      (fun (o, l) (_, sh) ->
+        match sh with
         | Shape.Mesh m -> (o + Mesh.objects m, l)
         | Csg c -> (o + 1, l + csg_leaves c)
-        | Plane _ | Triangle _ | Box _ -> (o + 1, l))
-      (Spheres.length s.spheres, 0) s.shapes
+        | Sphere _ | Plane _ | Triangle _ | Box _ -> (o + 1, l))
+      (Spheres.length s.spheres, 0) s.placed
   in
   let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in
   if s.depth > Limits.max_tree_levels && exists (fun (m : Material.t) -> m.transparency > 0.) then

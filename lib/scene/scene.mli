@@ -1,51 +1,17 @@
 (** Scenes (document section 3): what to render and how.
 
-    A scene is a canvas size, a viewport, a camera, a background colour,
-    a recursion depth, an optional epsilon, and lists of spheres and lights.
-    Scenes are plain values: build them in code with {!v} or load them from
-    files with {!Scene_file}. *)
+    A scene is its settings (a canvas size, a viewport, a camera or a
+    camera path, a background colour, a recursion depth, an optional
+    epsilon), one list of objects ({!Shape.t}: spheres and every other
+    shape, each with its {!Material.t}) in the order given, and its
+    lights. Build one in code with {!v} or load it from text with
+    {!Scene_file}. Where two objects give a ray equal roots, the earlier
+    object in the list is the one seen. *)
 
 (** {1:scenes Scenes} *)
 
-type t = {
-  width : int;  (** Canvas width [G_w] in pixels, [>= 1]. *)
-  height : int;  (** Canvas height [G_h] in pixels, [>= 1]. *)
-  viewport : Viewport.t;
-  camera : Camera.t;
-  background : Color.t;  (** Colour of rays that hit nothing. *)
-  depth : int;
-      (** Recursion depth, [>= 0]: how many times a ray may be followed after its
-          first hit, reflected (7.8) or refracted through glass, one level for either. *)
-  epsilon : float option;
-      (** [Some e]: the document's semantics, shadow and reflection rays
-          see objects at [t > e] only. [None]: the robust mode, which needs
-          no scene-dependent constant. *)
-  spheres : Spheres.t;
-      (** A {!Spheres.t} since issue 15.3 (it was a
-          [Sphere.t list]): {!Spheres.to_list} and {!Spheres.of_list}
-          convert ({!v} still takes a list). *)
-  shapes : Shape.t list;
-      (** The other objects (planes, triangles, boxes). For ties between
-          equal roots, objects count in the order spheres, then shapes. *)
-  lights : Light.t list;
-  camera_path : Camera_path.t option;
-      (** The camera of each frame of an animation ({!at_frame}); [camera]
-          is the camera of a still picture. *)
-}
+type t
 (** The type for scenes. *)
-
-val pp : Format.formatter -> t -> unit
-(** [pp ppf s] prints [s] in the scene-file syntax, one form a line, every
-    number written so that it reads back as the same float:
-    {!Scene_file.of_string} reads [show s] back as a scene equal to [s]
-    (a mesh prints as its [mesh] form, which reads its file again). *)
-
-val show : t -> string
-(** [show x] is [x] formatted by {!pp}. *)
-
-val equal : t -> t -> bool
-(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
-    compared with [=]. *)
 
 val v :
   ?width:int ->
@@ -56,16 +22,85 @@ val v :
   ?depth:int ->
   ?epsilon:float ->
   ?camera_path:Camera_path.t ->
-  ?shapes:Shape.t list ->
-  spheres:Sphere.t list ->
+  objects:Shape.t list ->
   lights:Light.t list ->
   unit ->
   t
-(** [v ~spheres ~lights ()] is a scene with the given objects and lights,
+(** [v ~objects ~lights ()] is a scene with the given objects and lights,
     and otherwise the document's values: a 600 x 600 canvas,
-    {!Viewport.default}, {!Camera.default}, a black background, depth 3, and
-    the robust mode (no epsilon), no camera path, no [shapes]. The result is not
+    {!Viewport.default}, {!Camera.default}, a black background, depth 3,
+    the robust mode (no epsilon) and no camera path. The result is not
     validated: see {!validate}. *)
+
+val width : t -> int
+(** [width s] is the canvas width [G_w] in pixels, [>= 1]. *)
+
+val height : t -> int
+(** [height s] is the canvas height [G_h] in pixels, [>= 1]. *)
+
+val viewport : t -> Viewport.t
+(** [viewport s] is the viewport of [s]. *)
+
+val camera : t -> Camera.t
+(** [camera s] is the camera of a still picture of [s]. *)
+
+val camera_path : t -> Camera_path.t option
+(** [camera_path s] is the camera of each frame of an animation
+    ({!at_frame}), if any. *)
+
+val background : t -> Color.t
+(** [background s] is the colour of rays that hit nothing. *)
+
+val depth : t -> int
+(** [depth s] is the recursion depth, [>= 0]: how many times a ray may be
+    followed after its first hit, reflected (7.8) or refracted through
+    glass, one level for either. *)
+
+val epsilon : t -> float option
+(** [epsilon s] is [Some e] for the document's semantics (shadow and
+    reflection rays see objects at [t > e] only), [None] for the robust
+    mode, which needs no scene-dependent constant. *)
+
+val objects : t -> Shape.t list
+(** [objects s] is the objects of [s], in order (a new list at each
+    call: a scene of a million spheres keeps them compactly). *)
+
+val n_objects : t -> int
+(** [n_objects s] is [List.length (objects s)], without the list. *)
+
+val lights : t -> Light.t list
+(** [lights s] is the lights of [s], in order. *)
+
+val with_overrides :
+  ?width:int ->
+  ?height:int ->
+  ?depth:int ->
+  ?viewport:Viewport.t ->
+  ?camera:Camera.t ->
+  ?camera_path:Camera_path.t option ->
+  ?background:Color.t ->
+  ?epsilon:float option ->
+  ?objects:Shape.t list ->
+  ?lights:Light.t list ->
+  t ->
+  t
+(** [with_overrides ~width ... s] is [s] with the given parts replaced,
+    not validated. *)
+
+val pp : Format.formatter -> t -> unit
+(** [pp ppf s] prints [s] in the scene-file syntax, one form a line, the
+    objects in order, every number written so that it reads back as the
+    same float: {!Scene_file.of_string} reads [show s] back as a scene
+    equal to [s] (a mesh prints as its [mesh] form, which reads its file
+    again). *)
+
+val show : t -> string
+(** [show x] is [x] formatted by {!pp}. *)
+
+val equal : t -> t -> bool
+(** [equal a b] is [true] iff [a] and [b] have equal settings, equal
+    objects in the same order and equal lights, floats compared with
+    [=]. *)
 
 val cgfs : t
 (** [cgfs] is the reference scene of CGFS's demos (and of
@@ -92,7 +127,7 @@ val grid : int -> t
 
 val document_epsilon : float
 (** [document_epsilon] is [0.0001], the document's lower bound of [t] for
-    shadow rays (7.7), used by {!Literal} for scenes without an epsilon. *)
+    shadow rays (7.7), used by {!Raytrace.Private.Literal} for scenes without an epsilon. *)
 
 (** {1:validation Validation} *)
 
@@ -109,22 +144,19 @@ type valid
 
 val validate : ?limits:Limits.t -> t -> (valid, [> `Msg of string ]) result
 (** [validate ~limits s] is [Ok s] if every part of [s] passes its check
-    (canvas, depth and the numbers of spheres, lights and triangles of
-    meshes within [limits],
-    default {!Limits.default}; {!Viewport.validate}, {!Camera.validate},
-    {!Sphere.validate}, {!Light.validate}, {!Shape.validate}), and
-    otherwise [Error (`Msg m)] with the first failure. A failure of one
-    object or light names it before the part's own message, e.g.
-    [object 3 (sphere): sphere radius must be > 0, got -1] or
-    [light 2 (point): ...]: objects are numbered from [1] in the order
-    [spheres] (their list order), then [shapes] (so the first shape is
-    object [n + 1] after [n] spheres), a mesh or a CSG solid counting as
-    one object; lights from [1] in the order of [lights]; the kind in
-    parentheses is the scene-file form ({!Shape.name}, or [ambient],
-    [point], [directional]). A scene read by {!Scene_file} has each object
-    checked where it is read, so its messages name [file:line:column]
-    instead. The error carries no structured location: [Error] stays
-    [`Msg] for every caller. *)
+    (canvas, depth and the numbers of objects, lights and triangles of
+    meshes within [limits], default {!Limits.default};
+    {!Viewport.validate}, {!Camera.validate}, {!Shape.validate},
+    {!Light.validate}), and otherwise [Error (`Msg m)] with the first
+    failure. A failure of one object or light names it before the part's
+    own message, e.g. [object 3 (sphere): sphere radius must be > 0, got -1]
+    or [light 2 (point): ...]: objects are numbered from [1] in the order
+    of {!objects} (the first failing one is reported), a mesh or a CSG
+    solid counting as one object; lights from [1] in the order of
+    {!val-lights}; the kind in parentheses is the scene-file form
+    ({!Shape.name}, or [ambient], [point], [directional]). A scene read by
+    {!Scene_file} has each object checked where it is read, so its
+    messages name [file:line:column] instead. *)
 
 val of_valid : valid -> t
 (** [of_valid v] is the scene [v]. *)
@@ -157,14 +189,52 @@ val check_work : ?limits:Limits.t -> ?samples:int -> ?pixels:int -> valid -> (un
     objects deeper than {!Limits.max_tree_levels} is an [Error] too.
     {!Render.image} checks it before it allocates anything. *)
 
-val with_overrides : ?width:int -> ?height:int -> ?depth:int -> t -> t
-(** [with_overrides ~width ~height ~depth s] is [s] with the given fields
-    replaced. *)
-
 (** {1:animation Animation} *)
 
 val at_frame : valid -> int -> (valid, [> `Msg of string ]) result
 (** [at_frame s f] is the still scene of frame [f] of [s]'s camera path:
-    [s] with the path's camera of frame [f] ({!Camera_path.camera}) and no
+    [s] with the path's camera of frame [f] ({!Raytrace.Camera.Path.camera}) and no
     camera path. [Error] if [s] has no camera path or [f] lies outside
     it. *)
+
+(**/**)
+
+(* For the library's own readers and its preparation: the spheres kept
+   compactly, and each other object with the number of spheres before it
+   in the list. Not for users: it changes without notice. *)
+
+type view = {
+  width : int;
+  height : int;
+  viewport : Viewport.t;
+  camera : Camera.t;
+  background : Color.t;
+  depth : int;
+  epsilon : float option;
+  spheres : Spheres.t;
+  shapes : Shape.t list;  (** The objects but the spheres, in order. *)
+  placed : (int * Shape.t) list;  (** Each with the number of spheres before it. *)
+  lights : Light.t list;
+  camera_path : Camera_path.t option;
+}
+
+val view : t -> view
+(** [view s] is [s]'s parts as a record (no copy). *)
+
+val spheres : t -> Spheres.t
+(** [spheres s] is the spheres of [s], in order. *)
+
+val placed : t -> (int * Shape.t) list
+(** [placed s] is the other objects of [s], in order, each with the
+    number of spheres before it in the list. *)
+
+val shapes : t -> Shape.t list
+(** [shapes s] is the other objects of [s], in order. *)
+
+val with_objects : t -> spheres:Spheres.t -> placed:(int * Shape.t) list -> t
+(** [with_objects s ~spheres ~placed] is [s] with these objects (as a
+    reader builds them, without a list of the spheres). *)
+
+val iter_objects : t -> sphere:(int -> unit) -> shape:(Shape.t -> unit) -> unit
+(** [iter_objects s ~sphere ~shape] walks the objects of [s] in order:
+    [sphere i] for sphere [i] of {!spheres}, [shape sh] for the others. *)

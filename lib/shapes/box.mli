@@ -5,8 +5,9 @@
 
 (** {1:boxes Boxes} *)
 
-type t = { min : Vec3.t; max : Vec3.t; material : Material.t }
-(** The type for boxes: [min] and [max] are opposite corners, in world units. *)
+type t = private { min : Vec3.t; max : Vec3.t; material : Material.t }
+(** The type for boxes: [min] and [max] are opposite corners, in world units.
+    Read its fields, make one with {!v}. *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf x] prints [x] as its form in the scene-file syntax,
@@ -25,6 +26,14 @@ val v : min:Vec3.t -> max:Vec3.t -> Material.t -> t
 val validate : t -> (t, [> `Msg of string ]) result
 (** [validate b] checks the corners ({!Limits.check_point}), that
     [min < max] on every axis, and the material. *)
+
+val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float * float
+(** [intersect b ~origin ~direction] is [(near, far)] of [roots], or
+    [(infinity, infinity)]. *)
+
+(**/**)
+
+(* Internal: the kernel's side of this module, for the tracer and the tests, hidden from the documentation. Not for users: it changes without notice. *)
 
 (** {1:kernel The kernel's routines}
 
@@ -53,13 +62,13 @@ val normal : Scratch.t -> float array -> int -> unit
     of the face of the box nearest to the hit point [s.px], [s.py],
     [s.pz] (faces tried in the order -x, +x, -y, +y, -z, +z; the first of
     equally near ones wins, at edges and corners). With a point alone
-    ({!Shape.normal}); the kernel's hits take {!hit_normal}, which knows
+    ({!Shape.normal}); the kernel's hits take [hit_normal], which knows
     the ray. *)
 
 val hit_normal : Scratch.t -> float array -> int -> unit
 (** [hit_normal s g o] sets [s.nx], [s.ny], [s.nz] to the outward unit
     normal of the face of the box stored at [o] that the ray of [s]
-    crosses at its root [s.near] (one of those {!roots} found, for the
+    crosses at its root [s.near] (one of those [roots] found, for the
     same ray): the slab method's face, the one whose slab decides the
     root. Where the ray enters ([s.near] at or before the entry, as for a
     line that only touches an edge), the face of the slab it enters last;
@@ -67,9 +76,6 @@ val hit_normal : Scratch.t -> float array -> int -> unit
     entered or left at the same parameter (a ray through an edge or a
     corner), the first axis in the order x, y, z. A ray sliding along a
     face, or leaving through an edge, so never gets the normal of a face
-    it does not cross, as the nearest face to the hit point ({!normal})
+    it does not cross, as the nearest face to the hit point ([normal])
     may be. Allocates nothing. *)
 
-val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float * float
-(** [intersect b ~origin ~direction] is [(near, far)] of {!roots}, or
-    [(infinity, infinity)]. *)

@@ -9,7 +9,7 @@ let op_name op = fst (List.find (fun (_, o) -> o = op) ops)
 let op_of_string s = List.assoc_opt s ops
 let max_depth = 32
 
-let sphere_material = Material.of_sphere
+let sphere_material = Sphere.material
 
 let rec fold_solids f acc = function
   | Csg c -> fold_solids f (fold_solids f acc c.a) c.b

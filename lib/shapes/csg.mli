@@ -12,7 +12,7 @@
     is a list of [entry, exit] intervals of the line; an operation merges
     its children's lists into its own (one sweep over both lists' ends in
     order); the first end of the solid's list beyond [t_min] is the hit.
-    Every list has room reserved once per tracer ({!val-work}), so that a ray
+    Every list has room reserved once per tracer ([work]), so that a ray
     allocates nothing. {!literal_hit} is the oracle: it classifies every
     crossing of every leaf by evaluating the boolean expression just before
     and just after it. *)
@@ -21,8 +21,8 @@
 
 type op = Union | Intersection | Difference  (** The type for operations. *)
 
-type t = { op : op; a : solid; b : solid }
-(** The type for CSG solids: [a op b]. *)
+type t = private { op : op; a : solid; b : solid }
+(** The type for CSG solids: [a op b]; read its fields, make one with {!v}. *)
 
 and solid = Sphere of Sphere.t | Box of Box.t | Mesh of Mesh.t | Csg of t
 (** The type for the operands. A mesh must be closed ({!check_closed}). *)
@@ -80,96 +80,12 @@ val bounds : t -> Vec3.t * Vec3.t
 
 val triangles : t -> int
 (** [triangles c] is the number of triangles of [c]'s mesh leaves that the
-    kernel keeps ({!Mesh.objects}). *)
+    kernel keeps ({!Mesh.val-objects}). *)
 
 val extent : t -> float
 (** [extent c] is the largest magnitude of a coordinate of the boxes of
     [c]'s leaves, the scale of its geometry for the error-bound offsets of
     secondary rays. *)
-
-(** {1:kernel The kernel's table}
-
-    The CSG solids of a prepared scene are stored in one table of nodes
-    (operations and leaves) and surfaces (a sphere, a box or a mesh, each
-    with its material's number). A mesh leaf keeps the mesh's own
-    positions (no copy), its kept triangles' corners (3 ints a triangle)
-    and a bounding volume hierarchy ({!Bvh}) over them, which a ray
-    descends along its whole line: its crossings anywhere are the parity
-    of the points along it, and a triangle's box is grown so that no
-    crossing the triangle test reports is missed (see [csg.ml]). *)
-
-type table
-(** The type for tables of CSG solids. *)
-
-type builder
-(** The type for tables being built. *)
-
-val builder : unit -> builder
-(** [builder ()] is an empty table being built. *)
-
-val add : builder -> material:(solid -> int) -> t -> int
-(** [add b ~material c] adds [c] to [b], numbering its leaves' materials
-    by [material] (called once per leaf, given the leaf, left to right);
-    the number of its root node, for {!roots}. *)
-
-val table : builder -> table
-(** [table b] is the table built by [b].
-    @raise Invalid_argument if its leaves, numbered with room for the
-    triangles of its largest mesh operand, do not fit the platform's
-    integers: never with 63-bit integers within {!Limits}; in JavaScript
-    (32-bit), past [2^31] leaves without a mesh operand, fewer beside one. *)
-
-val empty : table
-(** [empty] is the table of no solid. *)
-
-type work
-(** The type for the per-tracer room of the interval lists, and the
-    surface of the last hit found by {!roots}. *)
-
-val work : table -> work
-(** [work tb] is room for tracing the solids of [tb], allocated once. *)
-
-val roots : table -> work -> Scratch.t -> int -> bool
-(** [roots tb w s root] is [true] iff the ray of [s] crosses the surface
-    of the solid of root node [root] at some [t > s.t_min]; then the first
-    such [t] is in both [s.near] and [s.far], and [w] remembers the
-    surface crossed there and whether the ray enters or leaves the solid
-    ({!entering}). Otherwise [s.near] and [s.far] are [infinity]. Leaves'
-    roots are their modules' kernel routines ({!Box.roots},
-    {!Triangle.crosses}, {!Sphere.roots}'s arithmetic), so a CSG silhouette
-    is exactly its leaves' silhouettes, combined; a mesh's crossings are
-    counted once each ({!Triangle.crosses}), so that its inside is right
-    along rays through its shared edges and corners. Allocates nothing. *)
-
-val normal : table -> work -> Scratch.t -> unit
-(** [normal tb w s] sets [s.nx], [s.ny], [s.nz] to the outward unit
-    normal of the solid at the hit point [s.px], [s.py], [s.pz] found by
-    the last {!roots} with [w] for the ray still in [s]: against the ray
-    where it enters the solid, along it where it leaves. *)
-
-val material : table -> work -> int
-(** [material tb w] is the material's number of the surface of the last
-    hit found by {!roots} with [w]. *)
-
-val take_tests : work -> int
-(** [take_tests w] is the number of leaf tests (a sphere, a box, a mesh's
-    triangle) the calls of {!roots} with [w] made since the last
-    [take_tests w], and restarts that count: the kernel adds them to its
-    count of intersection tests whenever it reads it (the statistics, the
-    work bound), at no cost per ray. *)
-
-val take_boxes : work -> int
-(** [take_boxes w] is {!take_tests} for the boxes of the mesh leaves'
-    hierarchies, counted as the kernel's box tests. *)
-
-val pending : work -> int
-(** [pending w] is the leaf and box tests that {!take_tests} and
-    {!take_boxes} would take now, without taking them: the kernel's check
-    of its work bound reads it. *)
-
-val entering : work -> bool
-(** [entering w] is [true] iff the last hit found by {!roots} with [w] is
-    where the ray enters the solid, [false] where it leaves it. *)
 
 (** {1:literal The literal algorithm} *)
 
@@ -183,3 +99,91 @@ val literal_hit :
     in order, each classified by evaluating [c]'s boolean expression on
     its leaves just before and just after it (a leaf is inside between
     its entry and exit; a mesh after an odd number of crossings). *)
+
+type table
+(** The type for tables of CSG solids. *)
+
+type builder
+(** The type for tables being built. *)
+
+type work
+(** The type for the per-tracer room of the interval lists, and the
+    surface of the last hit found by [roots]. *)
+
+(**/**)
+
+(* Internal: the kernel's side of this module, for the tracer and the tests, hidden from the documentation. Not for users: it changes without notice. *)
+
+(** {1:kernel The kernel's table}
+
+    The CSG solids of a prepared scene are stored in one table of nodes
+    (operations and leaves) and surfaces (a sphere, a box or a mesh, each
+    with its material's number). A mesh leaf keeps the mesh's own
+    positions (no copy), its kept triangles' corners (3 ints a triangle)
+    and a bounding volume hierarchy ({!Raytrace.Private.Bvh}) over them, which a ray
+    descends along its whole line: its crossings anywhere are the parity
+    of the points along it, and a triangle's box is grown so that no
+    crossing the triangle test reports is missed (see [csg.ml]). *)
+
+val builder : unit -> builder
+(** [builder ()] is an empty table being built. *)
+
+val add : builder -> material:(solid -> int) -> t -> int
+(** [add b ~material c] adds [c] to [b], numbering its leaves' materials
+    by [material] (called once per leaf, given the leaf, left to right);
+    the number of its root node, for [roots]. *)
+
+val table : builder -> table
+(** [table b] is the table built by [b].
+    @raise Invalid_argument if its leaves, numbered with room for the
+    triangles of its largest mesh operand, do not fit the platform's
+    integers: never with 63-bit integers within {!Limits}; in JavaScript
+    (32-bit), past [2^31] leaves without a mesh operand, fewer beside one. *)
+
+val empty : table
+(** [empty] is the table of no solid. *)
+
+val work : table -> work
+(** [work tb] is room for tracing the solids of [tb], allocated once. *)
+
+val roots : table -> work -> Scratch.t -> int -> bool
+(** [roots tb w s root] is [true] iff the ray of [s] crosses the surface
+    of the solid of root node [root] at some [t > s.t_min]; then the first
+    such [t] is in both [s.near] and [s.far], and [w] remembers the
+    surface crossed there and whether the ray enters or leaves the solid
+    ([entering]). Otherwise [s.near] and [s.far] are [infinity]. Leaves'
+    roots are their modules' kernel routines ([Box.roots],
+    [Triangle.crosses], {!Sphere.roots}'s arithmetic), so a CSG silhouette
+    is exactly its leaves' silhouettes, combined; a mesh's crossings are
+    counted once each ([Triangle.crosses]), so that its inside is right
+    along rays through its shared edges and corners. Allocates nothing. *)
+
+val normal : table -> work -> Scratch.t -> unit
+(** [normal tb w s] sets [s.nx], [s.ny], [s.nz] to the outward unit
+    normal of the solid at the hit point [s.px], [s.py], [s.pz] found by
+    the last [roots] with [w] for the ray still in [s]: against the ray
+    where it enters the solid, along it where it leaves. *)
+
+val material : table -> work -> int
+(** [material tb w] is the material's number of the surface of the last
+    hit found by [roots] with [w]. *)
+
+val take_tests : work -> int
+(** [take_tests w] is the number of leaf tests (a sphere, a box, a mesh's
+    triangle) the calls of [roots] with [w] made since the last
+    [take_tests w], and restarts that count: the kernel adds them to its
+    count of intersection tests whenever it reads it (the statistics, the
+    work bound), at no cost per ray. *)
+
+val take_boxes : work -> int
+(** [take_boxes w] is [take_tests] for the boxes of the mesh leaves'
+    hierarchies, counted as the kernel's box tests. *)
+
+val pending : work -> int
+(** [pending w] is the leaf and box tests that [take_tests] and
+    [take_boxes] would take now, without taking them: the kernel's check
+    of its work bound reads it. *)
+
+val entering : work -> bool
+(** [entering w] is [true] iff the last hit found by [roots] with [w] is
+    where the ray enters the solid, [false] where it leaves it. *)

@@ -1,3 +1,7 @@
+(* What the mesh found of its triangles when it was made, for the
+   kernel: kept out of the fields users read. *)
+type found = { flat : Bytes.t; objects : int }
+
 type t = {
   positions : float array;
   triangles : int array;
@@ -9,8 +13,7 @@ type t = {
   scale : float;
   translate : Vec3.t;
   skipped : int;
-  flat : Bytes.t;
-  objects : int;
+  found : found;
 }
 
 (* Whether the triangle of corners [a], [b], [c] (offsets in [p]) has no
@@ -89,8 +92,7 @@ let v ?(smooth = false) ?(scale = 1.) ?(translate = Vec3.zero) ?(source = "") ?(
           scale;
           translate;
           skipped;
-          flat;
-          objects = !objects;
+          found = { flat; objects = !objects };
         }
 
 let of_obj ?smooth ?scale ?translate ?source (obj : Obj_file.t) material =
@@ -105,8 +107,8 @@ let vertex m k c =
 
 let triangle m k = Triangle.v (vertex m k 0) (vertex m k 1) (vertex m k 2) m.material
 
-let degenerate m k = Bytes.unsafe_get m.flat k <> '\000'
-let objects m = m.objects
+let degenerate m k = Bytes.unsafe_get m.found.flat k <> '\000'
+let objects m = m.found.objects
 
 
 let unit_normal m j g o =

@@ -4,11 +4,15 @@
     optional normal per triangle corner for smooth shading, and the
     placement of its file in the scene ([scale], then [translate]). Each
     of its triangles is an object of the kernel of its own, so that meshes
-    share the watertight test ({!Triangle.roots_at}), the hierarchy and
+    share the watertight test ([Triangle.roots_at]), the hierarchy and
     everything else with the other shapes; the kernel reads its corners
     in [positions], where neighbouring triangles read them too: a shared
     edge is computed from the same floats in both triangles, and leaks no
     ray. *)
+
+type found
+(** The type for what a mesh finds of its triangles when it is made
+    (which are degenerate, how many are not), for the tracer. *)
 
 type t = private {
   positions : float array;  (** [x y z] per vertex, already scaled and translated. *)
@@ -25,11 +29,7 @@ type t = private {
   scale : float;  (** The scale applied to the file's positions. *)
   translate : Vec3.t;  (** The translation applied after the scale. *)
   skipped : int;  (** Statements of the file that were skipped (not v, vn or f). *)
-  flat : Bytes.t;
-      (** Per triangle, ['\001'] if it is degenerate ({!degenerate}),
-          ['\000'] if not: found once, when the mesh is made, for the
-          kernel that asks it of each triangle several times. *)
-  objects : int;  (** The triangles that are not degenerate ({!val-objects}). *)
+  found : found;  (** What the mesh found of its triangles: {!degenerate}, {!val-objects}. *)
 }
 (** The type for meshes. *)
 
@@ -65,7 +65,7 @@ val of_obj :
   (t, [> `Msg of string ]) result
 (** [of_obj ~smooth ~scale ~translate ~source obj m] is the mesh of
     [obj]'s arrays placed as {!v} places them, with [skipped] set to
-    {!Obj_file.skipped_total}[ obj]: the mesh the scene form
+    {!Raytrace.Mesh.Obj.skipped_total}[ obj]: the mesh the scene form
     [(mesh (file source) (scale ...) (translate ...) (smooth ...))]
     makes of its file, and the errors of {!v}. The placed positions are
     a new array; the index and normal arrays are [obj]'s, shared. *)

@@ -6,12 +6,12 @@
 
 (** {1:planes Planes} *)
 
-type t = {
+type t = private {
   point : Vec3.t;  (** [P0], a point of the plane, in world units. *)
   normal : Vec3.t;  (** [N], not zero; any length (it is normalised when used). *)
   material : Material.t;
 }
-(** The type for planes. *)
+(** The type for planes: read its fields, make one with {!v}. *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf x] prints [x] as its form in the scene-file syntax,
@@ -31,13 +31,20 @@ val validate : t -> (t, [> `Msg of string ]) result
 (** [validate p] checks the point ({!Limits.check_point}), that the normal is
     finite and of a length that can be normalised, and the material. *)
 
+val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float
+(** [intersect p ~origin ~direction] is the root of [roots], or [infinity]. *)
+
+(**/**)
+
+(* Internal: the kernel's side of this module, for the tracer and the tests, hidden from the documentation. Not for users: it changes without notice. *)
+
 (** {1:kernel The kernel's routines}
 
     A plane is stored in a float array at an offset [o]: [P0] at
     [o .. o + 2], the unit normal at [o + 3 .. o + 5], the normal as
     given times a power of two (its largest coordinate in [\[1/4, 1/2)])
     at [o + 6 .. o + 8]. The tracer calls these routines, and so do
-    {!Literal} and the tests. *)
+    {!Raytrace.Private.Literal} and the tests. *)
 
 val store : t -> float array -> int -> unit
 (** [store p g o] writes [p] to [g] at offset [o] (9 floats). *)
@@ -59,5 +66,3 @@ val normal : Scratch.t -> float array -> int -> unit
 (** [normal s g o] sets [s.nx], [s.ny], [s.nz] to the unit normal of the
     plane (the side it was given with). *)
 
-val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float
-(** [intersect p ~origin ~direction] is the root of {!roots}, or [infinity]. *)

@@ -1,6 +1,7 @@
-type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t [@@deriving eq]
+type t = Sphere of Sphere.t | Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t [@@deriving eq]
 
 let material = function
+  | Sphere s -> s.material
   | Plane p -> p.material
   | Triangle t -> t.material
   | Box b -> b.material
@@ -12,6 +13,9 @@ let materials = function Csg c -> Csg.materials c | s -> [ material s ]
 let validate s =
   let ( let* ) = Result.bind in
   match s with
+  | Sphere sp ->
+      let* sp = Sphere.validate sp in
+      Ok (Sphere sp)
   | Plane p ->
       let* p = Plane.validate p in
       Ok (Plane p)
@@ -29,20 +33,25 @@ let validate s =
       let* c = Csg.validate c in
       Ok (Csg c)
 
-let name = function Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg"
+let name = function Sphere _ -> "sphere" | Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg"
 let one fn = invalid_arg (Printf.sprintf "Shape.%s: a mesh is many objects" fn)
 let own fn = invalid_arg (Printf.sprintf "Shape.%s: a CSG solid is in the kernel's CSG table" fn)
-let kind = function Plane _ -> Kind.Plane | Triangle _ -> Kind.Triangle | Box _ -> Kind.Box | Mesh _ -> one "kind" | Csg _ -> Kind.Csg
+let kind = function Sphere _ -> Kind.Sphere | Plane _ -> Kind.Plane | Triangle _ -> Kind.Triangle | Box _ -> Kind.Box | Mesh _ -> one "kind" | Csg _ -> Kind.Csg
 
 let store s g o =
   match s with
+  | Sphere sp ->
+      g.(o) <- sp.center.x;
+      g.(o + 1) <- sp.center.y;
+      g.(o + 2) <- sp.center.z;
+      g.(o + 3) <- sp.radius
   | Plane p -> Plane.store p g o
   | Triangle t -> Triangle.store t g o
   | Box b -> Box.store b g o
   | Mesh _ -> one "store"
   | Csg _ -> own "store"
 
-let bounded = function Plane _ -> false | Triangle _ | Box _ | Mesh _ | Csg _ -> true
+let bounded = function Plane _ -> false | Sphere _ | Triangle _ | Box _ | Mesh _ | Csg _ -> true
 
 (* [sub_le a b x] is [true] iff the exact [a - b <= x]: the rounded
    difference and its rounding error, recovered exactly by Knuth's
@@ -71,6 +80,12 @@ let bounds = function
   | Plane _ -> invalid_arg "Shape.bounds: a plane is unbounded"
   | Mesh _ -> one "bounds"
   | Box b -> cube b.min b.max
+  | Sphere sp ->
+      (* An ulp outward: the rounded [c - r] may lie inside the sphere. *)
+      let c = sp.center and r = sp.radius in
+      cube
+        (Vec3.v (Float.pred (c.x -. r)) (Float.pred (c.y -. r)) (Float.pred (c.z -. r)))
+        (Vec3.v (Float.succ (c.x +. r)) (Float.succ (c.y +. r)) (Float.succ (c.z +. r)))
   | Csg c ->
       let lo, hi = Csg.bounds c in
       cube lo hi
@@ -87,10 +102,14 @@ let with_table s f =
   f sc g
 
 let roots s ~origin ~direction =
+  match s with
+  | Sphere sp -> Sphere.roots sp ~origin ~direction
+  | _ ->
   with_table s (fun sc g ->
       Scratch.set_ray sc origin direction;
       let hit =
         match s with
+        | Sphere _ -> assert false
         | Plane _ -> Plane.roots sc g 0
         | Triangle _ -> Triangle.roots sc g 0
         | Box _ -> Box.roots sc g 0
@@ -100,11 +119,15 @@ let roots s ~origin ~direction =
       if hit then (sc.near, sc.far) else (infinity, infinity))
 
 let normal s (p : Vec3.t) =
+  match s with
+  | Sphere sp -> Sphere.normal sp p
+  | _ ->
   with_table s (fun sc g ->
       sc.px <- p.x;
       sc.py <- p.y;
       sc.pz <- p.z;
       (match s with
+      | Sphere _ -> assert false
       | Plane _ -> Plane.normal sc g 0
       | Triangle _ -> Triangle.normal sc g 0
       | Box _ -> Box.normal sc g 0
@@ -113,6 +136,7 @@ let normal s (p : Vec3.t) =
       Vec3.v sc.nx sc.ny sc.nz)
 
 let pp ppf = function
+  | Sphere s -> Sphere.pp ppf s
   | Plane p -> Plane.pp ppf p
   | Triangle t -> Triangle.pp ppf t
   | Box b -> Box.pp ppf b
@@ -129,6 +153,7 @@ let stored_extent sh =
   Array.fold_left (fun e x -> Float.max e (Float.abs x)) 0. g
 
 let pattern_frame = function
+  | Sphere s -> (Vec3.zero, 1., Sphere.extent s)
   | (Plane _ | Triangle _) as sh -> (Vec3.zero, 1., stored_extent sh)
   | Box b as sh -> (b.min, 1., stored_extent sh)
   | Mesh m -> (m.translate, m.scale, Array.fold_left (fun e x -> Float.max e (Float.abs x)) 0. m.positions)

@@ -1,22 +1,22 @@
-(** The shapes besides spheres, as one type.
+(** Every object's shape, as one type: a sphere is a shape like the others.
 
     The kernel ({!Raytrace.Private.Prepared}, {!Raytrace.Private.Trace}) stores every shape in a table: a
     kind, and its geometry in a float array ({!Raytrace.Private.Kind.stride} floats per shape,
     written by the shape module's [store]; a triangle's three corners in
     an array of vertices, a mesh's shared by its triangles). This module
     ties the kinds to the shape modules, for the kernel and for
-    {!Literal}. *)
+    {!Raytrace.Private.Literal}. *)
 
-type t = Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t
+type t = Sphere of Sphere.t | Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t
 (** The type for shapes. *)
 
 val equal : t -> t -> bool
 (** [equal a b] is [true] iff [a] and [b] are the same kind of shape with
-    equal fields ({!Plane.equal}, {!Triangle.equal}, {!Box.equal},
+    equal fields ({!Sphere.equal}, {!Plane.equal}, {!Triangle.equal}, {!Box.equal},
     {!Mesh.equal}, {!Csg.equal}). *)
 
 val pp : Format.formatter -> t -> unit
-(** [pp ppf s] prints [s] as its form in the scene-file syntax ([plane],
+(** [pp ppf s] prints [s] as its form in the scene-file syntax ([sphere], [plane],
     [triangle], [box], [mesh] or [csg]; a mesh as the form that reads its
     file again), [specular] and [reflective] only when they are not the
     defaults. *)
@@ -36,7 +36,7 @@ val validate : t -> (t, [> `Msg of string ]) result
 (** [validate s] is the shape module's [validate]. *)
 
 val name : t -> string
-(** [name s] is the scene-file form of [s]: ["plane"], ["triangle"], ["box"], ["mesh"] or ["csg"]. *)
+(** [name s] is the scene-file form of [s]: ["sphere"], ["plane"], ["triangle"], ["box"], ["mesh"] or ["csg"]. *)
 
 (** {1:kinds Kinds} *)
 
@@ -59,7 +59,7 @@ val bounds : t -> Vec3.t * float
     @raise Invalid_argument on a plane. *)
 
 val pattern_frame : t -> Vec3.t * float * float
-(** [pattern_frame s] is [(origin, scale, extent)] for {!Pattern.store}:
+(** [pattern_frame s] is [(origin, scale, extent)] for [Pattern.store]:
     the world origin and scale of the coordinates a pattern on [s] uses
     (world coordinates for planes and triangles; the [min] corner for
     boxes; the mesh's [translate] and [scale] for meshes), and the

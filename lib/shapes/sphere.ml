@@ -1,74 +1,25 @@
-type t = {
-  center : Vec3.t;
-  radius : float;
-  color : Color.t;
-  specular : float;
-  reflective : float;
-  transparency : float;
-  refractive_index : float;
-  fresnel : bool;
-  pattern : Pattern.t option;
-}
-[@@deriving eq]
+type t = { center : Vec3.t; radius : float; material : Material.t } [@@deriving eq]
 
-let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
-let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
-let matte = -1.
-
-let v ?(specular = matte) ?(reflective = 0.) ?(transparency = 0.) ?(refractive_index = 1.) ?(fresnel = false)
-    ?pattern ~center ~radius color =
-  { center; radius; color; specular; reflective; transparency; refractive_index; fresnel; pattern }
-
-let is_matte s = s.specular = matte
-let num = Float_text.to_string
+let matte = Material.matte
+let v ~center ~radius material = { center; radius; material }
+let center s = s.center
+let radius s = s.radius
+let material s = s.material
+let is_matte s = Material.is_matte s.material
 let check_center c = Limits.check_point "sphere center" c
-
 let check_radius r = Limits.check_size "sphere radius" r
-
-let check_color c =
-  if Color.in_gamut c then Ok c
-  else (error_pp "sphere color channels must lie in [0, 255], got %a" Color.pp c)
-
-let specular_ok s = Float.is_finite s && (s = matte || s >= 0.)
-
-let check_specular s =
-  if specular_ok s then Ok s
-  else (error "sphere specular must be -1 (matte) or >= 0, got %s" (num s))
-
-let reflective_ok r = r >= 0. && r <= 1.
-
-let check_reflective r =
-  if reflective_ok r then Ok r
-  else (error "sphere reflective must lie in [0, 1], got %s" (num r))
-
-let check_pattern = function
-  | None -> Ok None
-  | Some p -> Result.map Option.some (Pattern.validate ~form:"sphere" p)
-let check_transparency x =
-  if x >= 0. && x <= 1. then Ok x
-  else (error "sphere transparency must lie in [0, 1], got %s" (num x))
-
-let check_refractive_index n =
-  if n > 0. && Float.is_finite n then Ok n
-  else (error "sphere refractive-index must be > 0 and finite, got %s" (num n))
-
-(* Each part of a hit's colour has its own weight (local 1 - r - t): the
-   sum may not exceed 1. *)
-let check_split ~reflective ~transparency =
-  if reflective +. transparency <= 1. then Ok ()
-  else (error "sphere reflective + transparency must be <= 1, got %s + %s" (num reflective) (num transparency))
+let check_color c = Material.check_color ~form:"sphere" c
+let check_specular x = Material.check_specular ~form:"sphere" x
+let check_reflective x = Material.check_reflective ~form:"sphere" x
+let check_transparency x = Material.check_transparency ~form:"sphere" x
+let check_refractive_index x = Material.check_refractive_index ~form:"sphere" x
+let check_split ~reflective ~transparency = Material.check_split ~form:"sphere" ~reflective ~transparency
 
 let validate s =
   let ( let* ) = Result.bind in
   let* _ = check_center s.center in
   let* _ = check_radius s.radius in
-  let* _ = check_color s.color in
-  let* _ = check_specular s.specular in
-  let* _ = check_reflective s.reflective in
-  let* _ = check_transparency s.transparency in
-  let* _ = check_refractive_index s.refractive_index in
-  let* () = check_split ~reflective:s.reflective ~transparency:s.transparency in
-  let* _ = check_pattern s.pattern in
+  let* _ = Material.validate ~form:"sphere" s.material in
   Ok s
 
 let extent s = Float.max (Float.abs s.center.x) (Float.max (Float.abs s.center.y) (Float.abs s.center.z)) +. s.radius
@@ -110,22 +61,8 @@ let normal s p =
   let n = Vec3.sub p s.center in
   Vec3.smul (1. /. Vec3.norm n) n
 
-(* The optional fields print only when they differ from their defaults, as
-   a scene file would write them. *)
-let pp_optional_material ?(transparency = 0.) ?(refractive_index = 1.) ?(fresnel = false) ppf ~specular ~reflective =
-  if specular <> matte then Format.fprintf ppf " (specular %s)" (Float_text.to_string specular);
-  if reflective <> 0. then Format.fprintf ppf " (reflective %s)" (Float_text.to_string reflective);
-  if transparency <> 0. then Format.fprintf ppf " (transparency %s)" (Float_text.to_string transparency);
-  if refractive_index <> 1. then
-    Format.fprintf ppf " (refractive-index %s)" (Float_text.to_string refractive_index);
-  if fresnel then Format.pp_print_string ppf " (fresnel true)"
-
 let pp ppf s =
-  Format.fprintf ppf "(sphere (center %a) (radius %s) (color %a)" Vec3.pp_components s.center
-    (Float_text.to_string s.radius) Color.pp_components s.color;
-  pp_optional_material ~transparency:s.transparency ~refractive_index:s.refractive_index ~fresnel:s.fresnel ppf
-    ~specular:s.specular ~reflective:s.reflective;
-  Pattern.pp_optional ppf s.pattern;
-  Format.pp_print_string ppf ")"
+  Format.fprintf ppf "(sphere (center %a) (radius %s) %a)" Vec3.pp_components s.center
+    (Float_text.to_string s.radius) Material.pp s.material
 
 let show s = Format.asprintf "%a" pp s

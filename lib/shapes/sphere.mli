@@ -1,80 +1,48 @@
 (** Spheres (document sections 5 and 6.1).
 
-    A sphere is the set of points [P] with [<P - C, P - C> = r^2]. Besides
-    its shape it carries its material: a colour, a specular exponent (section
-    7.6) and a reflectivity (section 7.8). *)
+    A sphere is the set of points [P] with [<P - C, P - C> = r^2], made of
+    a {!Material.t} like every other object. *)
 
 (** {1:spheres Spheres} *)
 
-type t = {
+type t = private {
   center : Vec3.t;  (** [C], in world units. *)
   radius : float;  (** [r > 0], in world units. *)
-  color : Color.t;  (** Channels in [\[0, 255\]]. *)
-  specular : float;  (** [s >= 0], or {!matte} for no specular term. *)
-  reflective : float;  (** Reflectivity in [\[0, 1\]]; [0] is no mirror. *)
-  transparency : float;
-      (** Transparency in [\[0, 1\]]; [0] is opaque; [reflective + transparency <= 1]. *)
-  refractive_index : float;  (** Index of refraction, [> 0] and finite; [1] is air's. *)
-  fresnel : bool;
-      (** [true]: the reflected and refracted parts of the transparency
-          follow Schlick's approximation of Fresnel's equations. *)
-  pattern : Pattern.t option;
-      (** A second colour laid over [color] in world coordinates, or
-          [None] (the default). *)
+  material : Material.t;
 }
-(** The type for spheres. The invariants in the field comments are checked
-    by {!validate} and by scene loading, not by the constructor. *)
+(** The type for spheres: read its fields, make one with {!v}. *)
+
+val v : center:Vec3.t -> radius:float -> Material.t -> t
+(** [v ~center ~radius m] is the sphere of center [center] and radius
+    [radius] made of [m]. It is not validated: see {!validate} ([radius > 0]
+    and finite, the center within {!Limits}). *)
+
+val center : t -> Vec3.t
+(** [center s] is [C], in world units. *)
+
+val radius : t -> float
+(** [radius s] is [r], in world units. *)
+
+val material : t -> Material.t
+(** [material s] is the material of [s]. *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf s] prints [s] as its [sphere] form in the scene-file syntax,
-    [specular], [reflective] and [pattern] only when they are not the
-    defaults. *)
+    the material's optional fields only when they are not the defaults
+    ({!Material.pp}). *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)
 
 val equal : t -> t -> bool
-(** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
-    compared with [=]. *)
+(** [equal a b] is [true] iff [a] and [b] have equal centers, radii and
+    materials, floats compared with [=]. *)
 
 val matte : float
-(** [matte] is [-1.], the specular exponent that means "no specular term"
-    (as in CGFS). An exponent of [0] is not matte. *)
-
-val v :
-  ?specular:float ->
-  ?reflective:float ->
-  ?transparency:float ->
-  ?refractive_index:float ->
-  ?fresnel:bool ->
-  ?pattern:Pattern.t ->
-  center:Vec3.t ->
-  radius:float ->
-  Color.t ->
-  t
-(** [v ~specular ~reflective ~transparency ~refractive_index ~fresnel ~pattern ~center ~radius color]
-    is a sphere. [specular] defaults to {!matte}, [reflective] and
-    [transparency] to [0], [refractive_index] to [1], [fresnel] to [false],
-    [pattern] to none. *)
+(** [matte] is {!Material.matte}. *)
 
 val is_matte : t -> bool
-(** [is_matte s] is [true] iff [s.specular = matte]. *)
-
-val pp_optional_material :
-  ?transparency:float ->
-  ?refractive_index:float ->
-  ?fresnel:bool ->
-  Format.formatter ->
-  specular:float ->
-  reflective:float ->
-  unit
-(** [pp_optional_material ~transparency ~refractive_index ~fresnel ppf ~specular ~reflective]
-    prints the fields [ (specular e)], [ (reflective r)],
-    [ (transparency t)], [ (refractive-index n)] and [ (fresnel true)] of an
-    object's form, each with its leading space and only when it is not the
-    default ({!matte}, [0], [0], [1], [false]): the spheres' and the other
-    shapes' forms end alike, and a scene without the optical fields prints
-    as it did before they existed. *)
+(** [is_matte s] is {!Material.is_matte} of [s]'s material. *)
 
 (** {1:validation Validation}
 
@@ -88,15 +56,7 @@ val check_radius : float -> (float, [> `Msg of string ]) result
 (** [check_radius r] checks [Limits.min_size <= r <= Limits.max_coordinate]. *)
 
 val check_color : Color.t -> (Color.t, [> `Msg of string ]) result
-(** [check_color c] checks {!Color.in_gamut}. *)
-
-val specular_ok : float -> bool
-(** [specular_ok s] is [true] iff {!check_specular} accepts [s]; it
-    allocates nothing. *)
-
-val reflective_ok : float -> bool
-(** [reflective_ok r] is [true] iff {!check_reflective} accepts [r]; it
-    allocates nothing. *)
+(** [check_color c] checks {!Color.in_gamut} ({!Material.check_color}, naming [sphere]). *)
 
 val check_specular : float -> (float, [> `Msg of string ]) result
 (** [check_specular s] checks that [s] is finite and [-1] or [>= 0]. *)
@@ -104,12 +64,9 @@ val check_specular : float -> (float, [> `Msg of string ]) result
 val check_reflective : float -> (float, [> `Msg of string ]) result
 (** [check_reflective r] checks [0 <= r <= 1]. *)
 
-val check_pattern : Pattern.t option -> (Pattern.t option, [> `Msg of string ]) result
-(** [check_pattern p] checks {!Pattern.validate} on [p] if it is some. *)
-
 val extent : t -> float
 (** [extent s] is [max |c_x| |c_y| |c_z| + r]: no coordinate of a point
-    of [s] is larger in magnitude (for {!Pattern.store}). *)
+    of [s] is larger in magnitude (for [Pattern.store]). *)
 val check_transparency : float -> (float, [> `Msg of string ]) result
 (** [check_transparency t] checks [0 <= t <= 1]. *)
 
@@ -122,8 +79,9 @@ val check_split : reflective:float -> transparency:float -> (unit, [> `Msg of st
     [1 - reflective - transparency] is not negative. *)
 
 val validate : t -> (t, [> `Msg of string ]) result
-(** [validate s] is [Ok s] if every field passes its check, and otherwise
-    the first field's error. *)
+(** [validate s] is [Ok s] if its center, its radius and its material
+    ({!Material.validate}) pass their checks, and otherwise the first
+    error. *)
 
 (** {1:geometry Geometry} *)
 

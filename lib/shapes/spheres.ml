@@ -46,10 +46,7 @@ let get s i =
   check s i "get";
   let b = i lsr bits and k = i land mask in
   let m = s.table.(s.m.(b).(k)) in
-  Sphere.v ~specular:m.specular ~reflective:m.reflective ~transparency:m.transparency
-    ~refractive_index:m.refractive_index ~fresnel:m.fresnel ?pattern:m.pattern
-    ~center:(Vec3.v s.x.(b).(k) s.y.(b).(k) s.z.(b).(k))
-    ~radius:s.r.(b).(k) m.color
+  Sphere.v ~center:(Vec3.v s.x.(b).(k) s.y.(b).(k) s.z.(b).(k)) ~radius:s.r.(b).(k) m
 
 let iteri f s =
   for i = 0 to s.length - 1 do
@@ -166,8 +163,9 @@ let add_fields b ~x ~y ~z ~radius m =
   b.cur_m.(k) <- m;
   b.n <- b.n + 1
 
-let add b (s : Sphere.t) =
-  add_fields b ~x:s.center.x ~y:s.center.y ~z:s.center.z ~radius:s.radius (material b (Material.of_sphere s))
+let add b s =
+  let c = Sphere.center s in
+  add_fields b ~x:c.x ~y:c.y ~z:c.z ~radius:(Sphere.radius s) (material b (Sphere.material s))
 
 (* A block at a time where it can: appending the half million spheres of
    a file's second half took 35 ms a sphere at a time. The sphere that

@@ -1,6 +1,6 @@
 (** Sequences of spheres, stored compactly.
 
-    A scene's spheres ({!Scene.t}[.spheres]): their centers and radii in
+    A scene's spheres (inside a {!Scene.t}): their centers and radii in
     float arrays, their materials as indices into a table of distinct
     materials. A million spheres of a dozen materials take 40 bytes each
     (a list of {!Sphere.t} took about 140, and the garbage collector

@@ -16,8 +16,9 @@
 
 (** {1:triangles Triangles} *)
 
-type t = { v0 : Vec3.t; v1 : Vec3.t; v2 : Vec3.t; material : Material.t }
-(** The type for triangles, vertices in world units. *)
+type t = private { v0 : Vec3.t; v1 : Vec3.t; v2 : Vec3.t; material : Material.t }
+(** The type for triangles, vertices in world units: read its fields,
+    make one with {!v}. *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf x] prints [x] as its form in the scene-file syntax,
@@ -38,6 +39,16 @@ val validate : t -> (t, [> `Msg of string ]) result
     triangle is not degenerate (its normal can be normalised: the vertices
     are not on a line) and the material. *)
 
+val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float
+(** [intersect tri ~origin ~direction] is the root of [roots], or [infinity]. *)
+
+val crossing : t -> origin:Vec3.t -> direction:Vec3.t -> float
+(** [crossing tri ~origin ~direction] is the crossing of [crosses], or [infinity]. *)
+
+(**/**)
+
+(* Internal: the kernel's side of this module, for the tracer and the tests, hidden from the documentation. Not for users: it changes without notice. *)
+
 (** {1:kernel The kernel's routines}
 
     A triangle is stored in a float array at an offset [o]: [v0] at
@@ -48,12 +59,12 @@ val store : t -> float array -> int -> unit
 
 val shear : Scratch.t -> int
 (** [shear s] writes to [s.sx] .. [s.okz] the ray of [s] in the frame of
-    the triangle test and is its axes, packed ({!axis_x}, {!axis_y},
-    {!axis_z}): what {!roots_at} reads, found once for all the triangles
+    the triangle test and is its axes, packed ([axis_x], [axis_y],
+    [axis_z]): what [roots_at] reads, found once for all the triangles
     a ray is tested against. *)
 
 val axis_x : int -> int
-(** [axis_x a] is the axis (0 to 2) of the test's x in the axes [a] of {!shear}. *)
+(** [axis_x a] is the axis (0 to 2) of the test's x in the axes [a] of [shear]. *)
 
 val axis_y : int -> int
 (** [axis_y a] is the axis of the test's y. *)
@@ -66,18 +77,18 @@ val hit : Scratch.t -> float array -> int -> int -> int -> int -> int -> int -> 
     meets the triangle whose vertices [v0], [v1], [v2] are stored at [o0],
     [o1], [o2] in [g] (3 floats each), with its root then in [s.near]
     ([s] unchanged on a miss): the tracer's test, inlined into its loops
-    with its axes as constants. The arithmetic is {!roots}'s, operation
+    with its axes as constants. The arithmetic is [roots]'s, operation
     for operation, and its bits are the same; a miss is decided from two
     edge functions of opposite signs before the third is computed.
-    [s.sx] .. [s.okz] and [kx], [ky], [kz] must be {!shear}'s for the ray
+    [s.sx] .. [s.okz] and [kx], [ky], [kz] must be [shear]'s for the ray
     of [s]. *)
 
 val roots_at : Scratch.t -> float array -> int -> int -> int -> int -> int -> int -> bool
-(** [roots_at s g o0 o1 o2 kx ky kz] is {!hit}, with its root in [s.near]
-    and [s.far] ([infinity] in both for a miss): {!roots} for a mesh's
+(** [roots_at s g o0 o1 o2 kx ky kz] is [hit], with its root in [s.near]
+    and [s.far] ([infinity] in both for a miss): [roots] for a mesh's
     triangle, read where its vertices are, shared with the triangles
-    around it. {!roots} is [roots_at s g o (o + 3) (o + 6) kx ky kz] with
-    {!shear}'s axes. *)
+    around it. [roots] is [roots_at s g o (o + 3) (o + 6) kx ky kz] with
+    [shear]'s axes. *)
 
 val roots : Scratch.t -> float array -> int -> bool
 (** [roots s g o] is [true] iff the line of the ray of [s] meets the
@@ -98,13 +109,13 @@ val roots : Scratch.t -> float array -> int -> bool
 
 (** {2:parity Crossings counted once: the parity of a closed mesh}
 
-    {!roots} is watertight for the closest hit: a ray through an edge
+    [roots] is watertight for the closest hit: a ray through an edge
     shared by two triangles hits one of them {e or both}. Inside and
     outside of a closed mesh (CSG's leaves) is the parity of the number of
-    crossings along the line, where "both" is one too many. {!crosses}
+    crossings along the line, where "both" is one too many. [crosses]
     counts each crossing exactly once.
 
-    {b The rule.} In the frame of the test (after {!shear}, the ray's
+    {b The rule.} In the frame of the test (after [shear], the ray's
     origin at [(0, 0)] of the plane its direction is the normal of), the
     corners of every triangle are the same floats wherever they are read:
     a corner shared by triangles is moved into the frame once, by the same
@@ -148,23 +159,23 @@ val roots : Scratch.t -> float array -> int -> bool
 val crosses : Scratch.t -> float array -> int -> bool
 (** [crosses s g o] is [true] iff the line of the ray of [s] crosses the
     triangle stored at [o] in [g] under the rule above, with the crossing's
-    [t] in [s.near] and [s.far] ({!roots}'s formula; the mean depth of the
+    [t] in [s.near] and [s.far] ([roots]'s formula; the mean depth of the
     corners for a triangle whose three edge functions are computed 0), and
-    [infinity] in both otherwise. Where {!roots} hits a triangle away
+    [infinity] in both otherwise. Where [roots] hits a triangle away
     from its edges, [crosses] does too, at the same [t]. *)
 
 val crosses_at : Scratch.t -> float array -> int -> int -> int -> int -> int -> int -> bool
-(** [crosses_at s g o0 o1 o2 kx ky kz] is {!crosses} for the triangle
-    with vertices at [o0], [o1], [o2] in [g], with {!shear}'s axes (see
-    {!roots_at}). *)
+(** [crosses_at s g o0 o1 o2 kx ky kz] is [crosses] for the triangle
+    with vertices at [o0], [o1], [o2] in [g], with [shear]'s axes (see
+    [roots_at]). *)
 
 val normal : Scratch.t -> float array -> int -> unit
 (** [normal s g o] sets [s.nx], [s.ny], [s.nz] to the unit normal
     [(v1 - v0) x (v2 - v0) / |(v1 - v0) x (v2 - v0)|] of the triangle. *)
 
 val normal_at : Scratch.t -> float array -> int -> int -> int -> unit
-(** [normal_at s g o0 o1 o2] is {!normal} for the triangle with vertices
-    at [o0], [o1], [o2] in [g] (see {!roots_at}). *)
+(** [normal_at s g o0 o1 o2] is [normal] for the triangle with vertices
+    at [o0], [o1], [o2] in [g] (see [roots_at]). *)
 
 val smooth_normal : Scratch.t -> float array -> int -> float array -> int -> int -> int -> bool
 (** [smooth_normal s g o vn k0 k1 k2] is [true] after setting [s.nx], [s.ny],
@@ -176,12 +187,7 @@ val smooth_normal : Scratch.t -> float array -> int -> float array -> int -> int
     unchanged, if the interpolated normal is zero or not finite. *)
 
 val smooth_normal_at : Scratch.t -> float array -> int -> int -> int -> float array -> int -> int -> int -> bool
-(** [smooth_normal_at s g o0 o1 o2 vn k0 k1 k2] is {!smooth_normal} for
+(** [smooth_normal_at s g o0 o1 o2 vn k0 k1 k2] is [smooth_normal] for
     the triangle with vertices at [o0], [o1], [o2] in [g] (see
-    {!roots_at}). *)
+    [roots_at]). *)
 
-val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float
-(** [intersect tri ~origin ~direction] is the root of {!roots}, or [infinity]. *)
-
-val crossing : t -> origin:Vec3.t -> direction:Vec3.t -> float
-(** [crossing tri ~origin ~direction] is the crossing of {!crosses}, or [infinity]. *)

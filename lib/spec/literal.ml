@@ -34,13 +34,13 @@ let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
 type obj = Sphere of Sphere.t | Shape of Shape.t * Vec3.t | Mesh_triangle of Mesh.t * int | Csg_surface of Csg.t * Csg.solid * Vec3.t
 
 let material = function
-  | Sphere s -> Material.of_sphere s
+  | Sphere s | Shape (Shape.Sphere s, _) -> Sphere.material s
   | Shape (Shape.Plane p, _) -> p.material
   | Shape (Shape.Triangle t, _) -> t.material
   | Shape (Shape.Box b, _) -> b.material
   | Shape ((Shape.Mesh _ | Shape.Csg _), _) -> invalid_arg "Literal.material: not a single surface"
   | Mesh_triangle (m, _) -> m.material
-  | Csg_surface (_, Csg.Sphere s, _) -> Material.of_sphere s
+  | Csg_surface (_, Csg.Sphere s, _) -> Sphere.material s
   | Csg_surface (_, Csg.Box b, _) -> b.material
   | Csg_surface (_, Csg.Mesh m, _) -> m.material
   | Csg_surface (_, Csg.Csg _, _) -> invalid_arg "Literal.material: a CSG node is not a leaf"
@@ -62,6 +62,7 @@ type item =
   | Csg_item of Csg.t
 
 let items_of_shape = function
+  | Shape.Sphere _ -> invalid_arg "Literal.items_of_shape: spheres are listed apart"
   | Shape.Plane p -> [ Plane_item p ]
   | Shape.Triangle t -> [ Triangle_item t ]
   | Shape.Box b -> [ Box_item b ]
@@ -70,13 +71,20 @@ let items_of_shape = function
 
 let items_cache = ref ([], [||])
 
-let items (shapes : Shape.t list) =
+(* Each item with its object's number in the scene's list: the [k]-th
+   shape placed after [j] spheres is object [j + k]. *)
+let items (placed : (int * Shape.t) list) =
   match !items_cache with
-  | cached, items when cached == shapes -> items
+  | cached, items when cached == placed -> items
   | _ ->
-      let items = Array.of_list (List.concat (List.mapi (fun k sh -> List.map (fun i -> (i, k)) (items_of_shape sh)) shapes)) in
-      items_cache := (shapes, items);
+      let items =
+        Array.of_list (List.concat (List.mapi (fun k (j, sh) -> List.map (fun i -> (i, j + k)) (items_of_shape sh)) placed))
+      in
+      items_cache := (placed, items);
       items
+
+(* Sphere [i]'s number in the scene's list: [i] plus the shapes before it. *)
+let sphere_number (placed : (int * Shape.t) list) i = List.fold_left (fun n (j, _) -> if j <= i then n + 1 else n) i placed
 
 (* The position of [x] in [l], by physical equality: of spheres given
    twice, the first is the one hit. *)
@@ -125,11 +133,10 @@ let item_roots ~continued item ~origin ~direction ~t_min ~t_max =
       | Some h -> [ (h.key, Csg_surface (c, h.leaf, h.normal)) ]
       | None -> [])
 
-(* The closest hit with its object's number: the spheres in order, then
-   the shapes, a mesh one number (the numbers name the media a ray is
-   in). Roots are ordered exactly, strictly: of equal roots, the first
-   object in that order wins. *)
-let closest_numbered ?(continued = false) (scene : Scene.t) ~origin ~direction ~t_min ~t_max =
+(* The closest hit with its object's number in the scene's list, a mesh
+   one number (the numbers name the media a ray is in). Roots are ordered
+   exactly: of equal roots, the first object in the list wins. *)
+let closest_numbered ?(continued = false) (scene : Scene.view) ~origin ~direction ~t_min ~t_max =
   let near0, ties0 = G.undecided () in
   (* A camera ray's origin is the camera's own value, continued or not:
      every other ray leaves a computed point. *)
@@ -137,20 +144,25 @@ let closest_numbered ?(continued = false) (scene : Scene.t) ~origin ~direction ~
   let spheres = sphere_list scene.spheres in
   let best =
     match closest_intersection spheres ~origin ~direction ~t_min ~t_max with
-    | Some (sphere, t) -> Some (Sphere sphere, position sphere spheres, G.key_of_float t)
+    | Some (sphere, t) -> Some (Sphere sphere, sphere_number scene.placed (position sphere spheres), G.key_of_float t)
     | None -> None
   in
-  let n_spheres = Spheres.length scene.spheres in
   let best =
     Array.fold_left
-      (fun best (item, k) ->
+      (fun best (item, id) ->
         let in_range ((t : G.key), _) =
-          G.in_range ~continued ~t_min ~t_max t && match best with Some (_, _, b) -> G.compare_keys t b < 0 | None -> true
+          G.in_range ~continued ~t_min ~t_max t
+          &&
+          match best with
+          | Some (_, best_id, b) ->
+              let c = G.compare_keys t b in
+              c < 0 || (c = 0 && id < best_id)
+          | None -> true
         in
         match List.find_opt in_range (item_roots ~continued item ~origin ~direction ~t_min ~t_max) with
-        | Some (t, obj) -> Some (obj, n_spheres + k, t)
+        | Some (t, obj) -> Some (obj, id, t)
         | None -> best)
-      best (items scene.shapes)
+      best (items scene.placed)
   in
   let near1, ties1 = G.undecided () in
   if near1 > near0 || (secondary && ties1 > ties0) then incr dependent;
@@ -211,7 +223,7 @@ let mesh_frame (m : Mesh.t) =
 (* Where an object's pattern lies: its origin and scale, and its largest
    coordinate (docs/scene-format.md, Patterns). *)
 let pattern_frame = function
-  | Sphere s | Csg_surface (_, Csg.Sphere s, _) -> sphere_frame s
+  | Sphere s | Shape (Shape.Sphere s, _) | Csg_surface (_, Csg.Sphere s, _) -> sphere_frame s
   | Shape (Shape.Plane p, _) -> (Vec3.zero, 1., Float.max (largest p.point) (largest (Vec3.unit p.normal)))
   | Shape (Shape.Triangle t, _) -> (Vec3.zero, 1., Float.max (largest t.v0) (Float.max (largest t.v1) (largest t.v2)))
   | Shape (Shape.Box b, _) | Csg_surface (_, Csg.Box b, _) -> box_frame b
@@ -239,7 +251,7 @@ let rec transmitted ?(continued = false) scene ~origin ~direction ~t_min ~t_max 
       let f = f *. (medium_material obj).transparency in
       if f > 0. then transmitted ~continued:true scene ~origin ~direction ~t_min:t ~t_max f else f
 
-let lighting_through ~through (scene : Scene.t) ~epsilon ~point ~normal ~view ~specular =
+let lighting_through ~through (scene : Scene.view) ~epsilon ~point ~normal ~view ~specular =
   let intensity = ref 0. in
   List.iter
     (fun light ->
@@ -275,7 +287,7 @@ let compute_lighting = lighting_through ~through:false
    the mirror rays are followed down, each level's local colour and
    reflectivity kept, then blended back up from the deepest colour, in the
    order of the document's recursion (the same floating-point operations). *)
-let trace_ray (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~t_max ~depth =
+let trace_ray (scene : Scene.view) ~epsilon ~origin ~direction ~t_min ~t_max ~depth =
   let rec follow levels ~origin ~direction ~t_min ~t_max ~depth =
     match closest_hit scene ~origin ~direction ~t_min ~t_max with
     | None -> (levels, scene.background)
@@ -332,7 +344,7 @@ let optics obj (m : Material.t) ~near ~far ~direction ~normal =
    the same index on both sides) is crossed on the same ray, without a
    bounce. At [level = depth], or without either ray, the local colour
    alone (section 7.8). *)
-let rec shade ?(continued = false) (scene : Scene.t) ~epsilon ~origin ~direction ~t_min ~level ~media =
+let rec shade ?(continued = false) (scene : Scene.view) ~epsilon ~origin ~direction ~t_min ~level ~media =
   match closest_numbered ~continued scene ~origin ~direction ~t_min ~t_max:infinity with
   | None -> scene.background
   | Some (obj, id, t) ->
@@ -373,11 +385,11 @@ let rec shade ?(continued = false) (scene : Scene.t) ~epsilon ~origin ~direction
               Color.add c (Color.smul wt refracted)
           | _ -> c
 
-let transparent (scene : Scene.t) =
-  Spheres.exists (fun (s : Sphere.t) -> s.transparency > 0.) scene.spheres
+let transparent (scene : Scene.view) =
+  Spheres.exists (fun (s : Sphere.t) -> s.material.transparency > 0.) scene.spheres
   || List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.transparency > 0.) (Shape.materials sh)) scene.shapes
 
-let pixel (scene : Scene.t) gx gy =
+let pixel (scene : Scene.view) gx gy =
   let epsilon = Option.value scene.epsilon ~default:Scene.document_epsilon in
   let v =
     Viewport.of_canvas scene.viewport ~canvas_width:scene.width ~canvas_height:scene.height gx gy
@@ -389,7 +401,7 @@ let pixel (scene : Scene.t) gx gy =
       ~depth:scene.depth
 
 let render ?(limits = Limits.default) valid =
-  let scene = Scene.of_valid valid in
+  let scene = Scene.view (Scene.of_valid valid) in
   tests := 0;
   Fun.protect ~finally:(fun () -> budget := max_int) @@ fun () ->
   budget := Limits.work_budget limits;
@@ -404,3 +416,21 @@ let render ?(limits = Limits.default) valid =
     done
   done;
   img
+
+(* The public entry points take scenes; the last scene's view is kept,
+   so that its lists (and the items made of them) are the same from one
+   pixel to the next. *)
+let last_view = ref None
+
+let view s =
+  match !last_view with
+  | Some (s', v) when s' == s -> v
+  | _ ->
+      let v = Scene.view s in
+      last_view := Some (s, v);
+      v
+
+let closest_hit scene = closest_hit (view scene)
+let compute_lighting scene = compute_lighting (view scene)
+let trace_ray scene = trace_ray (view scene)
+let pixel scene = pixel (view scene)

@@ -14,8 +14,8 @@
     CSG membership and mesh parity, the refraction and Fresnel split of
     glass and the pattern cells are computed here and in
     {!Raytrace.Private.Literal_geometry}, from the definitions, by code
-    that shares nothing with the kernel's shape modules ({!Sphere},
-    {!Plane}, {!Triangle}, {!Box}, {!Mesh}, {!Csg}, {!Shape},
+    that shares nothing with the kernel's shape modules ({!module-Sphere},
+    {!Plane}, {!Triangle}, {!Box}, {!Mesh}, {!Csg}, {!module-Shape},
     {!Pattern} are read for their data only; the ray tree's
     {!Raytrace.Private.Ray_tree} is not used): a mistake in the kernel's shape
     code cannot also be here. Every comparison that decides whether a ray
@@ -52,7 +52,7 @@
 
     {b Work.} Every ray-object test (a sphere, plane, triangle, box, a
     mesh's triangle, a CSG solid's leaf or mesh triangle) is counted as it
-    is done and checked against the work bound of {!render}: a render
+    is done and checked against the work bound of {!val-render}: a render
     stops within one test of its bound. *)
 
 val closest_intersection :

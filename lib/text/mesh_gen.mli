@@ -1,7 +1,7 @@
 (** Generated triangle meshes for tests and benchmarks.
 
     Scenes and benchmarks generate their meshes rather than ship large
-    OBJ files; {!Obj_file.to_buffer} writes them as OBJ text. Both
+    OBJ files; {!Raytrace.Mesh.Obj.to_buffer} writes them as OBJ text. Both
     generators are deterministic: the same arguments give the same floats
     on every 64-bit platform (only [+ - * /], [sqrt], [sin] and [cos] of
     the OCaml runtime's C library are used). Triangles are counter-clockwise

@@ -113,13 +113,30 @@ val of_string : name:string -> max_vertices:int -> max_triangles:int -> string -
 (** [of_string ~name ~max_vertices ~max_triangles s] is the mesh of the
     OBJ text [s] (see {!create}). *)
 
+(** {1:writing Writing} *)
+
+val to_buffer : ?digits:int -> Buffer.t -> t -> unit
+(** [to_buffer ~digits b m] appends the OBJ text of [m] to [b]: the [v]
+    lines, the [vn] lines, then one [f] line per triangle ([a b c],
+    [a//n b//n c//n] or a mix). Numbers have [digits] significant digits
+    ([%g]), like the 6 to 9 of most exporters; without [digits] (or with
+    [digits <= 0]) they read back as the same floats, so that
+    {!of_string} of the text is {!equal} to [m] but for [skipped]. *)
+
+val to_string : ?digits:int -> t -> string
+(** [to_string ~digits m] is the text of {!to_buffer}. *)
+
+(**/**)
+
+(* Internal: the kernel's side of this module, for the tracer and the tests, hidden from the documentation. Not for users: it changes without notice. *)
+
 (** {2:parts Reading on two cores}
 
     A text cut at a line start reads as its two parts read apart, then
     joined: the part after the cut by a reader that knows nothing of the
-    text before ({!create_part}, {!finish_part}), which sends its arrays
+    text before ([create_part], [finish_part]), which sends its arrays
     as bytes while it reads, the part before by a reader of the whole text
-    ({!create}), which then {!join}s the first's result, reading those
+    ({!create}), which then [join]s the first's result, reading those
     bytes. Where the join cannot tell the mesh, the whole text's reader
     reads the second part itself: the mesh and the errors are always those
     of one reader. The core forks nothing: [Raytrace_unix.Files.read_mesh]
@@ -135,9 +152,9 @@ type part
 val create_part :
   output:(Bytes.t -> int -> int -> unit) -> name:string -> max_vertices:int -> max_triangles:int -> parser
 (** [create_part ~output ~name ~max_vertices ~max_triangles] is a reader,
-    fed with {!feed} and ended with {!finish_part}, of the text that
+    fed with {!feed} and ended with [finish_part], of the text that
     starts at a line start of a larger text. It reads as {!create}'s would
-    but leaves the indices to check and resolve to {!join}, which knows
+    but leaves the indices to check and resolve to [join], which knows
     how many vertices, normals and texture coordinates the text before
     defined: a negative index is never out of range here, nor a positive
     one. Its errors (a bad number, an index 0, a bound crossed by the
@@ -148,7 +165,7 @@ val create_part :
     each of which must take all of [b.[off] .. b.[off+len-1]] (e.g. write
     it to a file) before it returns, 512 KiB at most at a time (a block of
     65536 numbers, 8 bytes each, in the machine's byte order), during
-    {!feed} and {!finish_part}, which raise what [output] raises. The
+    {!feed} and [finish_part], which raise what [output] raises. The
     reader then holds a few blocks, whatever the size of the text.
     @raise Invalid_argument where integers have fewer than 63 bits
     (JavaScript). *)
@@ -184,16 +201,3 @@ val join : parser -> part -> input:(Bytes.t -> int -> int -> unit) -> t option
     read, mesh or error.
     @raise Failure if the bytes are not a part's, and what [input]
     raises; [p] is then unchanged too. *)
-
-(** {1:writing Writing} *)
-
-val to_buffer : ?digits:int -> Buffer.t -> t -> unit
-(** [to_buffer ~digits b m] appends the OBJ text of [m] to [b]: the [v]
-    lines, the [vn] lines, then one [f] line per triangle ([a b c],
-    [a//n b//n c//n] or a mix). Numbers have [digits] significant digits
-    ([%g]), like the 6 to 9 of most exporters; without [digits] (or with
-    [digits <= 0]) they read back as the same floats, so that
-    {!of_string} of the text is {!equal} to [m] but for [skipped]. *)
-
-val to_string : ?digits:int -> t -> string
-(** [to_string ~digits m] is the text of {!to_buffer}. *)

@@ -17,7 +17,7 @@ v}
     Every form but [sphere] and [light] may appear at most once and has a
     default ({!Scene.v}). A [camera] gives [position] (default the origin)
     and either [rotation] (three rows) or [look-at] with an optional [up].
-    A [camera-path] animates the camera ({!Camera_path}):
+    A [camera-path] animates the camera ({!Raytrace.Camera.Path}):
 {v
 (camera-path
  (key (frame 0) (position 0 0 -1) (look-at 0 0 3))
@@ -28,7 +28,10 @@ v}
     come in increasing frame order. Without a [camera] form, a still
     picture of such a scene is the path's first frame.
     In a [sphere], [center], [radius] and [color] are required; [specular]
-    defaults to [-1] (matte) and [reflective] to [0]. Numbers are OCaml
+    defaults to [-1] (matte) and [reflective] to [0]. A material may be
+    named once, [(material glass (color 230 230 255) (transparency 0.9))],
+    and used by any later object as [(material glass)] in place of
+    [color]; fields written on the object override the named material's. Numbers are OCaml
     floats ([1], [-0.5], [1e-3]), finite; sizes and depths are integers.
 
     A UTF-8 byte order mark (bytes [EF BB BF], which some editors write)
@@ -41,6 +44,31 @@ v}
     and fields, duplicates, missing fields, wrong arities and values out of
     their domain ({!Sphere.validate}, {!Light.validate}, ...) are all
     errors. *)
+
+type error = {
+  file : string;  (** The source's name, the [file] argument. *)
+  line : int;  (** 1-based; [0] for an error of the whole text (too long). *)
+  column : int;  (** 1-based, in bytes; [0] with [line]. *)
+  message : string;  (** What is wrong, without the location. *)
+}
+(** The type for errors with their location, beside their message. *)
+
+val error_message : error -> string
+(** [error_message e] is the one line [file:line:column: message] (or
+    [file: message] without a line) that {!of_string} gives. *)
+
+val pp_error : Format.formatter -> error -> unit
+(** [pp_error ppf e] prints {!error_message}[ e]. *)
+
+val located :
+  ?limits:Limits.t ->
+  ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
+  ?file:string ->
+  ?reader:[ `Fast | `Parsexp ] ->
+  string ->
+  (Scene.valid, error) result
+(** [located] is {!of_string} with the error's location as numbers: an
+    editor can put its cursor there. *)
 
 val of_string :
   ?limits:Limits.t ->
@@ -65,108 +93,6 @@ val of_string :
     [reader] (default [`Fast]) is [`Parsexp], which reads every form with
     parsexp: the same scenes and the same errors, slower (the tests
     compare the two). Never raises. *)
-
-(** {1:streams Reading a text a window at a time} *)
-
-type reader = { read : Bytes.t -> int -> int -> int; close : unit -> unit }
-(** The type for texts being read: [read buf pos len] puts at most [len]
-    bytes of the text, the next ones, in [buf] from [pos] and is how many,
-    [0] at the end only (as [input] does); [close ()] is called once
-    reading is done, or has failed. *)
-
-type source = unit -> reader
-(** The type for texts that can be read again: each call reads the text
-    from its start (a failed load reads it a second time, to locate its
-    error). *)
-
-val string_source : string -> source
-(** [string_source s] reads [s]. *)
-
-(** {1:parts Reading the second half beside}
-
-    A big scene of plain spheres is read on two cores: another process
-    reads the spheres from a line start near the middle of the text
-    ({!read_part}) while {!of_source} reads up to there, then uses that
-    part instead of reading it, if it is exactly what it would have read.
-    The core library forks nothing: [Raytrace_unix.Files.read_scene] does. *)
-
-type part
-(** The type for the spheres read from a point of a text on: a sequence of
-    plain sphere forms that the sequential read would read on its fast
-    path, with where it starts and stops. It holds no function (it can be
-    sent between processes with [Marshal]). *)
-
-val read_part : ?limits:Limits.t -> ?window_bytes:int -> reader -> from:int -> part
-(** [read_part ~limits ~window_bytes r ~from] is the part of the text that
-    [r] reads, which must be the text from absolute offset [from] on, read
-    [window_bytes] (default 1 MiB) at a time: its plain sphere forms
-    (parentheses, plain atoms, blanks, line comments, the fields of a
-    sphere once each, finite numbers, values that pass the checks of
-    {!of_string}) from the first form at or after [from] up to the first
-    thing that is not one, or a form bound ([`Form_bytes] of [limits],
-    default {!Limits.default}) that would be crossed. It makes no error:
-    what it does not read is left to {!of_source}. Exceptions of [r.read]
-    end the part where it got to; [r.close] is not called. *)
-
-val part_length : part -> int
-(** [part_length p] is the number of spheres of [p]. *)
-
-val part_spheres : part -> Spheres.t
-(** [part_spheres p] is the spheres of [p], in order, their material
-    table {!part_materials}; {!Spheres.empty} for a {!part_header}. *)
-
-val part_materials : part -> Material.t array
-(** [part_materials p] is the table of the materials of [p]'s spheres, in
-    the order of first use. *)
-
-val part_header : part -> part
-(** [part_header p] is [p] without its spheres' fields ({!part_spheres} is
-    empty), its length and materials kept: what a process that sends the
-    fields another way sends by [Marshal]. *)
-
-val append_part : Spheres.builder -> part -> unit
-(** [append_part b p] is {!Spheres.append}[ b (part_spheres p)]. *)
-
-type beside = {
-  split : int;  (** The absolute offset, a line start, of the part's [from]. *)
-  wait : unit -> part option;
-      (** Waits for the part ([None] if it could not be read), once. *)
-  append : Spheres.builder -> part -> unit;
-      (** [append b p] appends the spheres of the part [p] that [wait] gave
-          to [b], materials first, as {!append_part} does: [wait] may give a
-          {!part_header} whose fields [append] reads from elsewhere. *)
-  seek : int -> unit;
-      (** [seek o] makes the next read of the source's first reader start at
-          absolute offset [o]. *)
-}
-(** The type for a part being read beside a read of the whole text. *)
-
-val of_source :
-  ?limits:Limits.t ->
-  ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
-  ?file:string ->
-  ?reader:[ `Fast | `Parsexp ] ->
-  ?window_bytes:int ->
-  ?beside:beside ->
-  source ->
-  (Scene.valid, [> `Msg of string ]) result
-(** [of_source ~limits ~load_mesh ~file ~reader ~window_bytes ~beside src] is
-    {!of_string} on the text of [src], read [window_bytes] (default 1 MiB;
-    tests use a few) at a time: a big scene is never held whole as text,
-    only its current window (more for a form longer than one). The same
-    scenes, the same errors, positions included. The text's size is
-    checked against its [`Scene_bytes] bound as it is read; a caller that
-    knows it (a file's) checks it first. Exceptions of [src]'s functions
-    ([Sys_error]) are not caught.
-
-    With [beside], the read waits for the part when it gets to
-    [beside.split] (or at its end, if it ends before), and if it is then
-    between two forms, outside any comment, with the part's first sphere
-    next, and the part's spheres keep within the [`Spheres] bound, it
-    appends them, their materials in order of first use, seeks past them
-    and reads on from there: the same scene and errors as without
-    [beside]. Otherwise the part is not used. [beside] is not used with
-    [~reader:`Parsexp]. *)
 
 val to_string : Scene.t -> string
 (** [to_string s] is {!Scene.show}[ s]: [s] in the scene-file syntax, every number written so

@@ -26,10 +26,10 @@ let () =
       match Raytrace.Render.image scene with
       | Error (`Msg m) -> failwith m
       | Ok (img, stats) -> (
-          let ppm = Raytrace.Ppm.to_string img in
+          let ppm = Raytrace.Image.Ppm.to_string img in
           Printf.printf "ppm %d bytes, md5 %s\n" (String.length ppm) (Digest.to_hex (Digest.string ppm));
           Printf.printf "primary rays %d\n" stats.primary;
-          (match Raytrace.Ppm.of_string ppm with
+          (match Raytrace.Image.Ppm.of_string ppm with
           | Ok back -> Printf.printf "decoded back equal: %b\n" (Raytrace.Image.equal img back)
           | Error (`Msg m) -> failwith m);
           let view, _ = Raytrace_view.View.handle (Raytrace_view.View.v scene) (Raytrace_view.View.Key 'E') in
@@ -37,8 +37,8 @@ let () =
           let rec go bands = match Raytrace_view.Progressive.step ~rows:4 r with Some _ -> go (bands + 1) | None -> bands in
           let bands = go 0 in
           Printf.printf "progressive: %d bands, md5 %s\n" bands
-            (Digest.to_hex (Digest.string (Raytrace.Ppm.to_string (Raytrace_view.Progressive.image r))));
-          let c = Raytrace.Pixel.color (Raytrace.Pixel.v scene) 24 20 in
+            (Digest.to_hex (Digest.string (Raytrace.Image.Ppm.to_string (Raytrace_view.Progressive.image r))));
+          let c = Raytrace.Render.Pixel.color (Raytrace.Render.Pixel.v scene) 24 20 in
           Printf.printf "pixel (24, 20): %d %d %d\n" (Raytrace.Color.to_byte c.r) (Raytrace.Color.to_byte c.g)
             (Raytrace.Color.to_byte c.b);
           match Raytrace.render_string "(canvas (width 2) (height 2)) (sphere (radius 1))" with
@@ -63,8 +63,8 @@ let () =
   Printf.printf "sphere %d %s\n" e
     (String.concat " " (List.map (fun x -> Printf.sprintf "%Lx" (Int64.bits_of_float x)) (Array.to_list f.values)));
   let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4294967299\n" in
-  match Raytrace.Obj_file.of_string ~name:"js.obj" ~max_vertices:10 ~max_triangles:10 obj with
-  | Ok m -> Printf.printf "obj %d triangles\n" (Raytrace.Obj_file.triangle_count m)
+  match Raytrace.Mesh.Obj.of_string ~name:"js.obj" ~max_vertices:10 ~max_triangles:10 obj with
+  | Ok m -> Printf.printf "obj %d triangles\n" (Raytrace.Mesh.Obj.triangle_count m)
   | Error (`Msg m) -> Printf.printf "obj %s\n" m
 
 (* The text of [header], then a balanced union of the [n] spheres that
@@ -90,7 +90,7 @@ let balanced_union ~what ~file header n sphere =
       match Raytrace.Render.image scene with
       | Error (`Msg m) -> Printf.printf "%s: %s\n" what m
       | Ok (img, stats) ->
-          Printf.printf "%s: md5 %s, %d tests\n" what (Digest.to_hex (Digest.string (Raytrace.Ppm.to_string img))) stats.tests)
+          Printf.printf "%s: md5 %s, %d tests\n" what (Digest.to_hex (Digest.string (Raytrace.Image.Ppm.to_string img))) stats.tests)
 
 (* A union of 4096 spheres in a spiral, on 16 x 16 pixels: the surfaces'
    numbers in the kernel's intervals once wrapped JavaScript's 32-bit
