@@ -1,8 +1,9 @@
-(** Bounding volume hierarchies over spheres.
+(** Bounding volume hierarchies over a scene's bounded objects.
 
-    A binary tree of axis-aligned boxes, each leaf holding a few spheres,
-    so that a ray is tested only against the spheres whose boxes it meets:
-    about [log n] boxes per ray instead of [n] spheres. Built top-down
+    A binary tree of axis-aligned boxes, each leaf holding a few objects
+    (spheres, triangles, boxes, CSG solids; the planes, unbounded, stay
+    outside), so that a ray is tested only against the objects whose boxes
+    it meets: about [log n] boxes per ray instead of [n] objects. Built top-down
     ({!build_boxes}): each node's objects binned by their centers along the
     longest axis of the centers' bounds and split where the surface area
     heuristic is lowest (at the median when the centers coincide), in one
@@ -11,14 +12,14 @@
 
     Nodes are stored depth-first, 8 floats each in one array, so that the
     tracer reads a node from one cache line: the left child of inner node
-    [k] is [k + 1], the right child is its [link]. Spheres are referred
+    [k] is [k + 1], the right child is its [link]. Objects are referred
     to by slot: leaf [k] holds [tag] slots from its [link], and
-    [order.(slot)] is the sphere's index in the input.
+    [order.(slot)] is the object's index in the input.
 
     @canonical Raytrace.Private.Bvh *)
 
 type t = private {
-  order : int array;  (** Input index of the sphere in each slot. *)
+  order : int array;  (** Input index of the object in each slot. *)
   n_nodes : int;  (** The number of nodes. *)
   nodes : float array;
       (** Node [k] at offset [root + 8 k] ({!offset}), [node_floats]

@@ -2,11 +2,7 @@
    ROOT/docs/*.md. Prints one line per broken link, "FILE:LINE: ...", and
    exits 1 if there is any. *)
 
-let read path =
-  let ic = open_in_bin path in
-  Fun.protect ~finally:(fun () -> close_in_noerr ic) (fun () -> really_input_string ic (in_channel_length ic))
-
-let lines path = String.split_on_char '\n' (read path)
+open Pages
 
 (* GitHub's anchor of a heading: lower case, letters, digits, spaces,
    hyphens and underscores kept, spaces made hyphens. *)
@@ -22,21 +18,6 @@ let slug heading =
     (String.trim heading);
   Buffer.contents b
 
-let is_fence line =
-  let l = String.trim line in
-  String.length l >= 3 && String.sub l 0 3 = "```"
-
-(* The lines of a page outside fenced code blocks, with their numbers. *)
-let prose path =
-  let fenced = ref false in
-  lines path
-  |> List.mapi (fun i l -> (i + 1, l))
-  |> List.filter (fun (_, l) ->
-         if is_fence l then begin
-           fenced := not !fenced;
-           false
-         end
-         else not !fenced)
 
 let anchors path =
   List.filter_map
@@ -93,12 +74,7 @@ let check root file =
 
 let () =
   let root = if Array.length Sys.argv > 1 then Sys.argv.(1) else "." in
-  let docs = Filename.concat root "docs" in
-  let pages =
-    "README.md"
-    :: (Sys.readdir docs |> Array.to_list |> List.filter (fun f -> Filename.check_suffix f ".md") |> List.sort compare
-       |> List.map (Filename.concat "docs"))
-  in
+  let pages = Pages.all root in
   match List.concat_map (check root) pages with
   | [] -> ()
   | broken ->
