@@ -7,8 +7,9 @@ let header ?(comments = []) img =
   Printf.sprintf "P6\n%s%d %d\n255\n" (String.concat "" (List.map comment comments)) (Image.width img)
     (Image.height img)
 
-(* The buffer's bytes are copied 8 at a time: byte by byte, the copy took
-   most of the time of writing an image. The compiler's primitives read and
+(* The buffer's bytes are copied 8 at a time: byte by byte, the copy was
+   most of the time of writing an image (docs/performance.md, "Numbers
+   moved out of the library's comments"). The compiler's primitives read and
    write the 64-bit words unboxed, both little-endian, so the bytes keep
    their order; [copy] checks the bounds once for all of them. *)
 external unsafe_get64 : Image.buffer -> int -> int64 = "%caml_bigstring_get64u"

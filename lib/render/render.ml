@@ -4,7 +4,7 @@ let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples 
   (* Nothing here holds the scene past [Prepared.prepare], which lets its
      spheres go as it builds the hierarchy: matches, not [let*], whose
      closure would keep [scene] with the values the render reads after it
-     (a million spheres: 324 MB at the peak instead of 232). *)
+     (docs/performance.md, "Numbers moved out of the library's comments"). *)
   match Sampling.v ?samples ?adaptive ?subsample () with
   | Error _ as e -> e
   | Ok sampling -> (

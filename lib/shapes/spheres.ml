@@ -99,8 +99,9 @@ type builder = {
    spheres allocates 16 of each array, not a block); the next ones are
    made whole. *)
 let new_block b size =
-  (* Not [Array.init] with a closure: 36 instructions an element, 2% of
-     loading a big scene. *)
+  (* Not [Array.init] with a closure: a call per element, measurable on
+     loading a big scene (docs/performance.md, "Numbers moved out of the
+     library's comments"). *)
   let grow a zero =
     let a' = Array.make size zero in
     Array.blit a 0 a' 0 (min size (Array.length a));
@@ -168,7 +169,8 @@ let add b s =
   add_fields b ~x:c.x ~y:c.y ~z:c.z ~radius:(Sphere.radius s) (material b (Sphere.material s))
 
 (* A block at a time where it can: appending the half million spheres of
-   a file's second half took 35 ms a sphere at a time. The sphere that
+   a file's second half a sphere at a time was slow (docs/performance.md,
+   "Numbers moved out of the library's comments"). The sphere that
    [add_fields] puts in opens a block if need be; as many as fit follow
    it. *)
 let append_fields b ~x ~y ~z ~radius ~material n =

@@ -125,7 +125,7 @@ let max_digits = if Sys.int_size >= 63 then 18 else 9
    is summed in lanes: pairs [10 d0 + d1] in the even bytes, then
    quadruples in 16-bit lanes, then the eight in the low 32 bits; no lane
    overflows into the next. The fractions of a mesh's coordinates have 8
-   to 10 digits, where a byte loop took 15 instructions a digit; integer
+   to 10 digits, where a byte loop pays a test and a multiply a digit; integer
    parts are short (a scene's fractions too, but the test costs them a
    few instructions only). *)
 external get64 : Bytes.t -> int -> int64 = "%caml_bytes_get64u"
