@@ -181,10 +181,9 @@ let shape_roots tr s i =
       shear_once tr s;
       Triangle.roots_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i) tr.kx
         tr.ky tr.kz
-  | Plane -> Plane.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
-  | Box -> Box.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
   | Csg -> Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom (Kind.stride * Array.unsafe_get p.at0 i)))
   | Sphere -> sphere_roots tr s i
+  | k -> Kind_dispatch.roots k s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
 
 (* Tests the ray in [s] against the shape (not a sphere) in slot [i],
    keeping the better hit. Secondary rays of the robust mode start off
@@ -227,7 +226,7 @@ let[@inline] test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1
     match Array.unsafe_get tr.p.kind i with
     | Triangle | Smooth_triangle -> if triangle_hit tr s i ~sheared:false then keep tr s i s.near
     | Sphere -> test_sphere tr s i ~primary dx dy dz a inv_a two_k1 k1x4
-    | Plane | Box | Csg -> shape_test tr s i
+    | _ -> shape_test tr s i
 
 (* The reciprocal of a direction coordinate for the slab test; a zero
    coordinate gets a huge finite value instead of an infinity, so that
@@ -465,7 +464,7 @@ let[@inline] blocks tr i ~spheres ~triangles a inv_a =
     match Array.unsafe_get tr.p.kind i with
     | Triangle | Smooth_triangle -> triangle_blocks tr tr.s i ~sheared:false
     | Sphere -> sphere_blocks tr i a inv_a
-    | Plane | Box | Csg -> shape_blocks tr i
+    | _ -> shape_blocks tr i
 
 (* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
 let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
