@@ -30,7 +30,7 @@ let[@inline] normal_of (p : Prepared.t) o = if Array.length p.vsource = 0 then o
    exactly, not offset. *)
 let not_here fn = invalid_arg ("Trace." ^ fn ^ ": a sphere")
 
-let shape_hit tr i =
+let[@warning "-11"] shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let px = s.px and py = s.py and pz = s.pz in
@@ -49,8 +49,13 @@ let shape_hit tr i =
       ignore (Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o)));
       Csg.normal p.csg tr.csg s
   | Sphere -> not_here "shape_hit"
+  (* The first kinds' arms inline, as in [Traversal.shape_roots]. *)
+  | Plane -> Plane.normal s p.geom o
+  | Box ->
+      (* The root kept, for the face whose slab decides it. *)
+      s.near <- s.t;
+      Box.hit_normal s p.geom o
   | k ->
-      (* The root kept, for the face it crosses (a box's slab decides). *)
       s.near <- s.t;
       Kind_dispatch.normal k s p.geom o);
   let flip = (s.nx *. dx) +. (s.ny *. dy) +. (s.nz *. dz) > 0. in

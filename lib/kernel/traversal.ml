@@ -174,7 +174,7 @@ let[@inline] triangle_hit tr s i ~sheared =
 (* The roots of the shape (not a sphere) in slot [i], by its module's
    routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
    gives its first crossing beyond [s.t_min] as both. *)
-let shape_roots tr s i =
+let[@warning "-11"] shape_roots tr s i =
   let p = tr.p in
   match Array.unsafe_get p.kind i with
   | Triangle | Smooth_triangle ->
@@ -183,6 +183,12 @@ let shape_roots tr s i =
         tr.ky tr.kz
   | Csg -> Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom (Kind.stride * Array.unsafe_get p.at0 i)))
   | Sphere -> sphere_roots tr s i
+  (* The first kinds' arms in this match's jump table, as [Kind_dispatch]
+     has them: a second match per ray cost more than the gate allows.
+     The catch-all sends a described kind to [Kind_dispatch]; it is
+     unused until one is (warning 11 off). *)
+  | Plane -> Plane.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
+  | Box -> Box.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
   | k -> Kind_dispatch.roots k s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
 
 (* Tests the ray in [s] against the shape (not a sphere) in slot [i],

@@ -667,7 +667,7 @@ let merge w op node base na nb ba bb =
    {!add_solid} makes no other. *)
 let not_a_leaf () = invalid_arg "Csg: a leaf of a kind that is not closed"
 
-let rec eval tb w (s : Scratch.t) node =
+let[@warning "-11"] rec eval tb w (s : Scratch.t) node =
   let k = Array.unsafe_get tb.node_kind node and base = Array.unsafe_get tb.base node in
   if k = leaf_node then begin
     (* The CSG table's dispatch on a leaf's kind. *)
@@ -676,8 +676,11 @@ let rec eval tb w (s : Scratch.t) node =
     | Kind.Sphere ->
         w.tests <- w.tests + 1;
         leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (sphere_roots s tb.geom (stride * sf))
+    | Kind.Box ->
+        w.tests <- w.tests + 1;
+        leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (Box.roots s tb.geom (stride * sf))
     | Kind.Triangle -> mesh_intervals tb w s node base
-    | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ()
+    | Kind.Plane | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ()
     | k ->
         (* Every other closed kind, by the kernel's dispatch. *)
         w.tests <- w.tests + 1;
@@ -724,7 +727,7 @@ let roots tb w (s : Scratch.t) root =
   s.far <- s.near;
   !found
 
-let normal tb w (s : Scratch.t) =
+let[@warning "-11"] normal tb w (s : Scratch.t) =
   let sf = w.surface lsr tb.slot_bits in
   let o = stride * sf in
   (match Array.unsafe_get tb.surface_kind sf with
@@ -735,10 +738,11 @@ let normal tb w (s : Scratch.t) =
       s.nx <- nx *. inv;
       s.ny <- ny *. inv;
       s.nz <- nz *. inv
+  | Kind.Box -> Box.hit_normal s tb.geom o
   | Kind.Triangle ->
       let leaf = tb.meshes.(truncate tb.geom.(o)) and c = 3 * (w.surface land ((1 lsl tb.slot_bits) - 1)) in
       Triangle.normal_at s leaf.vertex leaf.corners.(c) leaf.corners.(c + 1) leaf.corners.(c + 2)
-  | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ()
+  | Kind.Plane | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ()
   | k -> Kind_dispatch.normal k s tb.geom o);
   (* Outward from the solid: against the ray where it enters, along it
      where it leaves. This turns a subtracted solid's normal around. *)
