@@ -391,6 +391,11 @@ let primitive_solid (Shape_desc.Any d) ~where ~named form_node nodes =
 let closed_primitive kw =
   match Primitives.find kw with Some (Shape_desc.Any d as a) when Kind.closed d.kind -> Some a | _ -> None
 
+(* The operands a CSG form takes, for its messages. *)
+let operands =
+  let described = List.filter_map (fun (Shape_desc.Any d) -> if Kind.closed d.kind then Some (d.name ^ ", ") else None) Primitives.all in
+  "a sphere, box, " ^ String.concat "" described ^ "closed mesh or csg"
+
 (* A mesh: its file is read by [load] (the path as the scene gives it). *)
 let mesh_solid ~where ~named ~load ~add_triangles form_node nodes =
   let form = "mesh" in
@@ -459,10 +464,9 @@ and csg_operand ~where ~named ~load ~add_triangles ~depth node =
   | Sexp.List (Sexp.Atom "csg" :: rest) -> Csg.Csg (csg ~where ~named ~load ~add_triangles ~depth:(depth + 1) node rest)
   | Sexp.List (Sexp.Atom kw :: rest) when closed_primitive kw <> None ->
       Csg.Primitive (primitive_solid (Option.get (closed_primitive kw)) ~where ~named node rest)
-  | Sexp.List (Sexp.Atom ("plane" | "triangle" as kw) :: _) ->
-      fail node "csg: a %s is not a closed solid; an operand is a sphere, box, closed mesh or csg" kw
-  | Sexp.List (Sexp.Atom kw :: _) ->
-      fail node "csg: unknown solid %s; an operand is a sphere, box, closed mesh or csg" (show_atom kw)
+  | Sexp.List (Sexp.Atom kw :: _) when kw = "plane" || kw = "triangle" || Primitives.find kw <> None ->
+      fail node "csg: a %s is not a closed solid; an operand is %s" kw operands
+  | Sexp.List (Sexp.Atom kw :: _) -> fail node "csg: unknown solid %s; an operand is %s" (show_atom kw) operands
   | _ -> fail node "csg: expected a solid in parentheses, e.g. (sphere ...), (box ...), (mesh ...) or (csg ...)"
 
 let light ~where form_node nodes =
