@@ -15,8 +15,8 @@ type t =
   | Mesh of Mesh.t
   | Csg of Csg.t
   | Primitive of Shape_desc.primitive
-      (** A shape of a kind its module describes ({!Shape_desc}, listed in
-          {!Primitives}): every function here takes it from the description. *)
+      (** A shape of a kind its module describes ({!Raytrace.Private.Shape_desc}, listed in
+          {!Raytrace.Private.Primitives}): every function here takes it from the description. *)
 (** The type for shapes. *)
 
 val equal : t -> t -> bool

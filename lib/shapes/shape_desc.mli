@@ -15,7 +15,7 @@
 type (_, _) eq = Equal : ('a, 'a) eq  (** A proof that two types are one. *)
 
 type _ id = ..
-(** The witnesses' constructors, one per {!witness}. *)
+(** The witnesses' constructors, one per {!val-witness}. *)
 
 module type ID = sig
   type t
