@@ -194,6 +194,9 @@ module Private : sig
   module Shading = Shading
   module Bvh = Bvh
   module Kind = Kind
+  module Kind_dispatch = Kind_dispatch
+  module Shape_desc = Shape_desc
+  module Primitives = Primitives
   module Prepared = Prepared
   module Trace = Trace
   module Scratch = Scratch

@@ -81,5 +81,6 @@ let roots (s : Scene.t) =
              List.filter_map
                (fun k -> if Mesh.degenerate m k then None else Some (triangle_of (Mesh.triangle m k)))
                (List.init (Mesh.triangle_count m) Fun.id)
-         | Csg _ -> invalid_arg "Exact_hits.roots: a CSG solid")
+         | Csg _ -> invalid_arg "Exact_hits.roots: a CSG solid"
+         | Primitive _ -> invalid_arg "Exact_hits.roots: a described kind has its own exact tests")
        (Scene.shapes s))

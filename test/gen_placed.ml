@@ -94,7 +94,7 @@ let quad m (p : Vec3.t) (u : Vec3.t) (v : Vec3.t) =
 let rec solid_meshes = function
   | Csg.Mesh m -> [ m ]
   | Csg.Csg c -> solid_meshes c.a @ solid_meshes c.b
-  | Csg.Sphere _ | Csg.Box _ -> []
+  | Csg.Sphere _ | Csg.Box _ | Csg.Primitive _ -> []
 
 let obj_files (s : Scene.t) =
   let meshes =

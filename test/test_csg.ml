@@ -388,7 +388,12 @@ let tests =
         Alcotest.(check int) "exit status" 1 code;
         Alcotest.(check string) "nothing on stdout" "" stdout;
         Alcotest.(check string) "one line"
-          (Printf.sprintf "raytrace: %s:3:3: csg: a plane is not a closed solid; an operand is a sphere, box, closed mesh or csg\n" scene)
+          (Printf.sprintf "raytrace: %s:3:3: csg: a plane is not a closed solid; an operand is a sphere, box, %sclosed mesh or csg\n" scene
+             (* The described closed kinds join the list of operands. *)
+             (String.concat ""
+                (List.filter_map
+                   (fun (Private.Shape_desc.Any d) -> if Private.Kind.closed d.kind then Some (d.name ^ ", ") else None)
+                   Private.Primitives.all)))
           stderr;
         Alcotest.(check bool) "no output file" false (Sys.file_exists out));
     Alcotest.test_case "random CSG scenes: the kernel's colours are the literal algorithm's, to rounding" `Quick

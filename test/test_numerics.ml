@@ -154,6 +154,7 @@ let transform ~scale ~translate (s : Scene.t) =
            | Csg.Box b -> Csg.Box (box b)
            | Csg.Mesh m -> Csg.Mesh (mesh m)
            | Csg.Csg c -> Csg.Csg (csg c)
+           | Csg.Primitive _ -> invalid_arg "no described kind in these scenes"
          in
          Csg.v c.op (solid c.a) (solid c.b)
        in
@@ -164,7 +165,8 @@ let transform ~scale ~translate (s : Scene.t) =
            | Shape.Triangle t -> Shape.Triangle (Triangle.v (p t.v0) (p t.v1) (p t.v2) (material t.material))
            | Shape.Box b -> Shape.Box (box b)
            | Shape.Mesh m -> Shape.Mesh (mesh m)
-           | Shape.Csg c -> Shape.Csg (csg c))
+           | Shape.Csg c -> Shape.Csg (csg c)
+           | Shape.Primitive _ -> invalid_arg "no described kind in these scenes")
          (Scene.objects s))
     ~lights:
       (List.map

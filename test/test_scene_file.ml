@@ -14,6 +14,10 @@ let error text =
 
 (* Each bad input, and the exact message: file:line:column (1-based) and
    what was expected. *)
+(* The forms of the described kinds ({!Private.Primitives}) follow csg's in
+   the messages that list the forms: a new kind's name joins them there. *)
+let described_forms = String.concat "" (List.map (fun (Private.Shape_desc.Any d) -> ", " ^ d.name) Private.Primitives.all)
+
 let bad_inputs =
   [
     ("(material glass (color 1 1 1))\n(material glass (color 2 2 2))",
@@ -70,9 +74,13 @@ let bad_inputs =
     ("(canvas (width 65536) (height 65536))", "t.scene:1:1: canvas 65536x65536 has 4294967296 pixels, more than the limit of 268435456 (set RAYTRACE_MAX_PIXELS to raise it)");
     ("(recursion-depth -1)", "t.scene:1:18: recursion depth must be >= 0, got -1");
     ("(epsilon 0.001)\n(epsilon 0.01)", "t.scene:2:2: duplicate epsilon form (first given at 1:2); it may appear only once");
-    ("(spere (center 0 0 3))", "t.scene:1:2: unknown form spere; expected material, canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light (did you mean sphere?)");
+    ( "(spere (center 0 0 3))",
+      "t.scene:1:2: unknown form spere; expected material, canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg"
+      ^ described_forms ^ " or light (did you mean sphere?)" );
     ("sphere", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got sphere");
-    ("()", "t.scene:1:1: empty form (); expected one of material, canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg or light");
+    ( "()",
+      "t.scene:1:1: empty form (); expected one of material, canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg"
+      ^ described_forms ^ " or light" );
     ("(camera (look-at 0 0 0))", "t.scene:1:9: the camera looks at its own position");
     ("(camera (rotation (1 0 0) (1 0 0) (0 0 1)))",
      "t.scene:1:9: camera rotation must be invertible, but its rows are (nearly) linearly dependent");

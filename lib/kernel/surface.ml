@@ -30,7 +30,7 @@ let[@inline] normal_of (p : Prepared.t) o = if Array.length p.vsource = 0 then o
    exactly, not offset. *)
 let not_here fn = invalid_arg ("Trace." ^ fn ^ ": a sphere")
 
-let shape_hit tr i =
+let[@warning "-11"] shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let px = s.px and py = s.py and pz = s.pz in
@@ -42,18 +42,22 @@ let shape_hit tr i =
   let o = Kind.stride * o0 in
   (match k with
   | Triangle | Smooth_triangle -> Triangle.normal_at s p.vertex o0 o1 o2
-  | Plane -> Plane.normal s p.geom o
-  | Box ->
-      (* The root kept, for the face whose slab decides it. *)
-      s.near <- s.t;
-      Box.hit_normal s p.geom o
   | Csg ->
       (* The surface hit, found again for the ray still in [s]: the same
          first crossing that [closest] kept. The normal is the solid's
          outward one, as a box's, before it is turned toward the ray. *)
       ignore (Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o)));
       Csg.normal p.csg tr.csg s
-  | Sphere -> not_here "shape_hit");
+  | Sphere -> not_here "shape_hit"
+  (* The first kinds' arms inline, as in [Traversal.shape_roots]. *)
+  | Plane -> Plane.normal s p.geom o
+  | Box ->
+      (* The root kept, for the face whose slab decides it. *)
+      s.near <- s.t;
+      Box.hit_normal s p.geom o
+  | k ->
+      s.near <- s.t;
+      Kind_dispatch.normal k s p.geom o);
   let flip = (s.nx *. dx) +. (s.ny *. dy) +. (s.nz *. dz) > 0. in
   if flip then begin
     s.nx <- -.s.nx;
@@ -108,7 +112,7 @@ let shape_hit tr i =
   end;
   match k with
   | Csg -> Csg.material p.csg tr.csg
-  | Sphere | Plane | Triangle | Smooth_triangle | Box -> Array.unsafe_get p.material i
+  | _ -> Array.unsafe_get p.material i
 
 (* The material whose colour the hit of the ray in [s] at [s.t] shows:
    [m], or the material of its pattern's second colour. {!Pattern.odd}

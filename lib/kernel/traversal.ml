@@ -174,17 +174,22 @@ let[@inline] triangle_hit tr s i ~sheared =
 (* The roots of the shape (not a sphere) in slot [i], by its module's
    routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
    gives its first crossing beyond [s.t_min] as both. *)
-let shape_roots tr s i =
+let[@warning "-11"] shape_roots tr s i =
   let p = tr.p in
   match Array.unsafe_get p.kind i with
   | Triangle | Smooth_triangle ->
       shear_once tr s;
       Triangle.roots_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i) tr.kx
         tr.ky tr.kz
-  | Plane -> Plane.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
-  | Box -> Box.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
   | Csg -> Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom (Kind.stride * Array.unsafe_get p.at0 i)))
   | Sphere -> sphere_roots tr s i
+  (* The first kinds' arms in this match's jump table, as [Kind_dispatch]
+     has them: a second match per ray cost more than the gate allows.
+     The catch-all sends a described kind to [Kind_dispatch]; it is
+     unused until one is (warning 11 off). *)
+  | Plane -> Plane.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
+  | Box -> Box.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
+  | k -> Kind_dispatch.roots k s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
 
 (* Tests the ray in [s] against the shape (not a sphere) in slot [i],
    keeping the better hit. Secondary rays of the robust mode start off
@@ -227,7 +232,7 @@ let[@inline] test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1
     match Array.unsafe_get tr.p.kind i with
     | Triangle | Smooth_triangle -> if triangle_hit tr s i ~sheared:false then keep tr s i s.near
     | Sphere -> test_sphere tr s i ~primary dx dy dz a inv_a two_k1 k1x4
-    | Plane | Box | Csg -> shape_test tr s i
+    | _ -> shape_test tr s i
 
 (* The reciprocal of a direction coordinate for the slab test; a zero
    coordinate gets a huge finite value instead of an infinity, so that
@@ -465,7 +470,7 @@ let[@inline] blocks tr i ~spheres ~triangles a inv_a =
     match Array.unsafe_get tr.p.kind i with
     | Triangle | Smooth_triangle -> triangle_blocks tr tr.s i ~sheared:false
     | Sphere -> sphere_blocks tr i a inv_a
-    | Plane | Box | Csg -> shape_blocks tr i
+    | _ -> shape_blocks tr i
 
 (* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
 let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =

@@ -338,7 +338,7 @@ let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
         match sh with
         | Shape.Mesh m -> (o + Mesh.objects m, l)
         | Csg c -> (o + 1, l + csg_leaves c)
-        | Sphere _ | Plane _ | Triangle _ | Box _ -> (o + 1, l))
+        | Sphere _ | Plane _ | Triangle _ | Box _ | Primitive _ -> (o + 1, l))
       (Spheres.length s.spheres, 0) s.placed
   in
   let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in

@@ -1,7 +1,7 @@
 type op = Union | Intersection | Difference [@@deriving eq]
 
 type t = { op : op; a : solid; b : solid } [@@deriving eq]
-and solid = Sphere of Sphere.t | Box of Box.t | Mesh of Mesh.t | Csg of t
+and solid = Sphere of Sphere.t | Box of Box.t | Mesh of Mesh.t | Csg of t | Primitive of Shape_desc.primitive
 
 let v op a b = { op; a; b }
 let ops = [ ("union", Union); ("intersection", Intersection); ("difference", Difference) ]
@@ -21,6 +21,7 @@ let leaf_material = function
   | Sphere s -> sphere_material s
   | Box b -> b.material
   | Mesh m -> m.material
+  | Primitive p -> Shape_desc.material p
   | Csg _ -> invalid_arg "Csg.leaf_material: not a leaf"
 
 (* Every pass over a tree recurses as deep as it nests, and no deeper:
@@ -155,6 +156,9 @@ let rec validate c =
         let* _ = Material.validate ~form:"mesh" m.material in
         let* () = check_closed m in
         Ok (Mesh m)
+    | Primitive p when not (Kind.closed (Shape_desc.kind p)) ->
+        Error (`Msg (Printf.sprintf "csg: a %s is not a closed solid" (Shape_desc.name p)))
+    | Primitive p -> Result.map (fun p -> Primitive p) (Shape_desc.validate p)
     | Csg c -> Result.map (fun c -> Csg c) (validate c)
   in
   let* a = child c.a in
@@ -167,6 +171,7 @@ let rec solid_box = function
       let r = Vec3.v s.radius s.radius s.radius in
       (Vec3.sub s.center r, Vec3.add s.center r)
   | Box b -> (b.min, b.max)
+  | Primitive p -> Shape_desc.bounds p
   | Mesh m ->
       let lo = Array.make 3 infinity and hi = Array.make 3 neg_infinity in
       Array.iteri
@@ -203,6 +208,7 @@ let rec pp ppf c =
     | Sphere s -> Sphere.pp ppf s
     | Box b -> Box.pp ppf b
     | Mesh m -> Mesh.pp_form ppf m
+    | Primitive p -> Shape_desc.pp_primitive ppf p
     | Csg c -> pp ppf c
   in
   Format.fprintf ppf "(csg %s %a %a)" (op_name c.op) solid c.a solid c.b
@@ -340,6 +346,12 @@ let rec add_solid b ~material s =
       let g = Array.make stride 0. in
       Box.store bx g 0;
       add_surface b Kind.Box g (material s);
+      (add_node b leaf_node first 0 1, 1)
+  | Primitive p ->
+      let first = b.n_surfaces in
+      let g = Array.make stride 0. in
+      Shape_desc.store p g 0;
+      add_surface b (Shape_desc.kind p) g (material s);
       (add_node b leaf_node first 0 1, 1)
   | Mesh m ->
       let sf = b.n_surfaces and leaf = mesh_leaf m in
@@ -655,7 +667,7 @@ let merge w op node base na nb ba bb =
    {!add_solid} makes no other. *)
 let not_a_leaf () = invalid_arg "Csg: a leaf of a kind that is not closed"
 
-let rec eval tb w (s : Scratch.t) node =
+let[@warning "-11"] rec eval tb w (s : Scratch.t) node =
   let k = Array.unsafe_get tb.node_kind node and base = Array.unsafe_get tb.base node in
   if k = leaf_node then begin
     (* The CSG table's dispatch on a leaf's kind. *)
@@ -669,6 +681,10 @@ let rec eval tb w (s : Scratch.t) node =
         leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (Box.roots s tb.geom (stride * sf))
     | Kind.Triangle -> mesh_intervals tb w s node base
     | Kind.Plane | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ()
+    | k ->
+        (* Every other closed kind, by the kernel's dispatch. *)
+        w.tests <- w.tests + 1;
+        leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (Kind_dispatch.roots k s tb.geom (stride * sf))
   end
   else begin
     let na = Array.unsafe_get tb.left node and nb = Array.unsafe_get tb.right node in
@@ -711,7 +727,7 @@ let roots tb w (s : Scratch.t) root =
   s.far <- s.near;
   !found
 
-let normal tb w (s : Scratch.t) =
+let[@warning "-11"] normal tb w (s : Scratch.t) =
   let sf = w.surface lsr tb.slot_bits in
   let o = stride * sf in
   (match Array.unsafe_get tb.surface_kind sf with
@@ -726,7 +742,8 @@ let normal tb w (s : Scratch.t) =
   | Kind.Triangle ->
       let leaf = tb.meshes.(truncate tb.geom.(o)) and c = 3 * (w.surface land ((1 lsl tb.slot_bits) - 1)) in
       Triangle.normal_at s leaf.vertex leaf.corners.(c) leaf.corners.(c + 1) leaf.corners.(c + 2)
-  | Kind.Plane | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ());
+  | Kind.Plane | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ()
+  | k -> Kind_dispatch.normal k s tb.geom o);
   (* Outward from the solid: against the ray where it enters, along it
      where it leaves. This turns a subtracted solid's normal around. *)
   let along = (s.nx *. s.dx) +. (s.ny *. s.dy) +. (s.nz *. s.dz) > 0. in
@@ -776,6 +793,10 @@ let literal_hit c ~origin ~direction ~t_min ~t_max =
         | Box b ->
             let near, far = Box.intersect b ~origin ~direction in
             if near < far then [ (near, i, -1); (far, i, -1) ] else []
+        | Primitive p -> (
+            match Shape_desc.literal p ~origin ~direction with
+            | [ (near, _); (far, _) ] when near < far -> [ (near, i, 0); (far, i, 1) ]
+            | _ -> [])
         | Mesh m ->
             let xs =
               List.filter_map
@@ -841,6 +862,7 @@ let literal_hit c ~origin ~direction ~t_min ~t_max =
             Triangle.store (Mesh.triangle m k) g 0;
             Triangle.normal sc g 0;
             Vec3.v sc.nx sc.ny sc.nz
+        | Primitive p -> snd (List.nth (Shape_desc.literal p ~origin ~direction) k)
         | Csg _ -> assert false
       in
       let along = Vec3.dot n direction > 0. in

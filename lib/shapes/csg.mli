@@ -24,7 +24,7 @@ type op = Union | Intersection | Difference  (** The type for operations. *)
 type t = private { op : op; a : solid; b : solid }
 (** The type for CSG solids: [a op b]; read its fields, make one with {!v}. *)
 
-and solid = Sphere of Sphere.t | Box of Box.t | Mesh of Mesh.t | Csg of t
+and solid = Sphere of Sphere.t | Box of Box.t | Mesh of Mesh.t | Csg of t | Primitive of Shape_desc.primitive
 (** The type for the operands. A mesh must be closed ({!check_closed}). *)
 
 val v : op -> solid -> solid -> t

@@ -4,25 +4,34 @@ type t = Sphere | Triangle | Smooth_triangle | Plane | Box | Csg
 
 let all = [ Sphere; Triangle; Smooth_triangle; Plane; Box; Csg ]
 
-let to_string = function
-  | Sphere -> "sphere"
-  | Plane -> "plane"
-  | Triangle -> "triangle"
-  | Smooth_triangle -> "smooth triangle"
-  | Box -> "box"
-  | Csg -> "csg"
+(* Each kind's facts in one match: its name, whether it is bounded (in the
+   hierarchy), closed (a CSG operand, a medium) and the floats of geometry
+   its module stores. A new kind is one line here, and the compiler names
+   it in the kernel's dispatch ([Kind_dispatch]). *)
+let facts = function
+  | Sphere -> ("sphere", true, true, 4)
+  | Triangle -> ("triangle", true, false, 9)
+  | Smooth_triangle -> ("smooth triangle", true, false, 9)
+  | Plane -> ("plane", false, false, 9)
+  | Box -> ("box", true, true, 6)
+  | Csg -> ("csg", true, true, 1)
 
-(* Each kind's facts in one match: a new kind is one line here, and the
-   compiler names it in every other match of the kernel. *)
-let bounded = function Plane -> false | Sphere | Triangle | Smooth_triangle | Box | Csg -> true
-let closed = function Sphere | Box | Csg -> true | Plane | Triangle | Smooth_triangle -> false
+let to_string k =
+  let name, _, _, _ = facts k in
+  name
 
-let floats = function
-  | Sphere -> 4
-  | Plane -> 9
-  | Triangle | Smooth_triangle -> 9
-  | Box -> 6
-  | Csg -> 1
+let bounded k =
+  let _, b, _, _ = facts k in
+  b
+
+let closed k =
+  let _, _, c, _ = facts k in
+  c
+
+let floats k =
+  let _, _, _, n = facts k in
+  n
 
 let stride = List.fold_left (fun m k -> max m (floats k)) 0 all
-let[@inline] is_triangle = function Triangle | Smooth_triangle -> true | Sphere | Plane | Box | Csg -> false
+(* Every other kind, a new one too, is not a triangle. *)
+let[@inline] is_triangle = function Triangle | Smooth_triangle -> true | _ -> false

@@ -3,12 +3,12 @@
     that every [match] on a kind is one the compiler checks: a new kind
     makes it name each match that misses it.
 
-    The kernel's matches on a kind: for the scene's slots, the kernel's
-    [Traversal] (which test a slot takes, and the roots of the shapes that
-    are not spheres or triangles) and [Surface] (the normal, offset and
-    material at a hit); for a CSG solid's leaves, {!module-Csg} (roots and
-    normal). None has a catch-all case. Everything else here is a cold
-    fact, read when a scene is prepared, never per ray.
+    The kernel's matches on a kind: {!Kind_dispatch} (the roots and the
+    normal of every kind stored in a geometry table), and the paths of
+    the kinds that have their own (spheres and triangles in [Traversal]
+    and [Surface], CSG solids in {!module-Csg}), which send every other
+    kind to {!Kind_dispatch}. Everything else here is a cold fact
+    ({!facts}), read when a scene is prepared, never per ray.
 
     @canonical Raytrace.Private.Kind *)
 
@@ -17,7 +17,7 @@ type t =
   | Triangle  (** A triangle, alone or a mesh's, shaded with its flat normal. *)
   | Smooth_triangle
       (** A mesh's triangle shaded with normals interpolated from its
-          corners ({!module-Triangle.smooth_normal}). *)
+          corners ([Triangle.smooth_normal]). *)
   | Plane  (** A plane: unbounded, outside the hierarchy. *)
   | Box  (** An axis-aligned box. *)
   | Csg
@@ -29,6 +29,10 @@ type t =
 
 val all : t list
 (** [all] is every kind, in the order of the type's constructors. *)
+
+val facts : t -> string * bool * bool * int
+(** [facts k] is [k]'s name, whether it is {!bounded}, whether it is
+    {!closed}, and its {!floats}: one line per kind. *)
 
 val to_string : t -> string
 (** [to_string k] is [k]'s name in lower case (["sphere"], ["plane"],

@@ -1,4 +1,6 @@
-type t = Sphere of Sphere.t | Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t [@@deriving eq]
+type t = Sphere of Sphere.t | Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t
+  | Primitive of Shape_desc.primitive
+[@@deriving eq]
 
 let material = function
   | Sphere s -> s.material
@@ -7,6 +9,7 @@ let material = function
   | Box b -> b.material
   | Mesh m -> m.material
   | Csg c -> List.hd (Csg.materials c)
+  | Primitive p -> Shape_desc.material p
 
 let materials = function Csg c -> Csg.materials c | s -> [ material s ]
 
@@ -32,11 +35,14 @@ let validate s =
   | Csg c ->
       let* c = Csg.validate c in
       Ok (Csg c)
+  | Primitive p ->
+      let* p = Shape_desc.validate p in
+      Ok (Primitive p)
 
-let name = function Sphere _ -> "sphere" | Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg"
+let name = function Sphere _ -> "sphere" | Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg" | Primitive p -> Shape_desc.name p
 let one fn = invalid_arg (Printf.sprintf "Shape.%s: a mesh is many objects" fn)
 let own fn = invalid_arg (Printf.sprintf "Shape.%s: a CSG solid is in the kernel's CSG table" fn)
-let kind = function Sphere _ -> Kind.Sphere | Plane _ -> Kind.Plane | Triangle _ -> Kind.Triangle | Box _ -> Kind.Box | Mesh _ -> one "kind" | Csg _ -> Kind.Csg
+let kind = function Sphere _ -> Kind.Sphere | Plane _ -> Kind.Plane | Triangle _ -> Kind.Triangle | Box _ -> Kind.Box | Mesh _ -> one "kind" | Csg _ -> Kind.Csg | Primitive p -> Shape_desc.kind p
 
 let store s g o =
   match s with
@@ -48,10 +54,14 @@ let store s g o =
   | Plane p -> Plane.store p g o
   | Triangle t -> Triangle.store t g o
   | Box b -> Box.store b g o
+  | Primitive p -> Shape_desc.store p g o
   | Mesh _ -> one "store"
   | Csg _ -> own "store"
 
-let bounded = function Plane _ -> false | Sphere _ | Triangle _ | Box _ | Mesh _ | Csg _ -> true
+let bounded = function
+  | Plane _ -> false
+  | Sphere _ | Triangle _ | Box _ | Mesh _ | Csg _ -> true
+  | Primitive p -> Kind.bounded (Shape_desc.kind p)
 
 (* [sub_le a b x] is [true] iff the exact [a - b <= x]: the rounded
    difference and its rounding error, recovered exactly by Knuth's
@@ -80,6 +90,10 @@ let bounds = function
   | Plane _ -> invalid_arg "Shape.bounds: a plane is unbounded"
   | Mesh _ -> one "bounds"
   | Box b -> cube b.min b.max
+  | Primitive p ->
+      if not (Kind.bounded (Shape_desc.kind p)) then invalid_arg ("Shape.bounds: a " ^ Shape_desc.name p ^ " is unbounded");
+      let lo, hi = Shape_desc.bounds p in
+      cube lo hi
   | Sphere sp ->
       (* An ulp outward: the rounded [c - r] may lie inside the sphere. *)
       let c = sp.center and r = sp.radius in
@@ -110,9 +124,8 @@ let roots s ~origin ~direction =
       let hit =
         match s with
         | Sphere _ -> assert false
-        | Plane _ -> Plane.roots sc g 0
         | Triangle _ -> Triangle.roots sc g 0
-        | Box _ -> Box.roots sc g 0
+        | Plane _ | Box _ | Primitive _ -> Kind_dispatch.roots (kind s) sc g 0
         | Mesh _ -> one "roots"
         | Csg _ -> own "roots"
       in
@@ -131,6 +144,7 @@ let normal s (p : Vec3.t) =
       | Plane _ -> Plane.normal sc g 0
       | Triangle _ -> Triangle.normal sc g 0
       | Box _ -> Box.normal sc g 0
+      | Primitive p -> Kind_dispatch.normal (Shape_desc.kind p) sc g 0
       | Mesh _ -> one "normal"
       | Csg _ -> own "normal");
       Vec3.v sc.nx sc.ny sc.nz)
@@ -142,6 +156,7 @@ let pp ppf = function
   | Box b -> Box.pp ppf b
   | Mesh m -> Mesh.pp_form ppf m
   | Csg c -> Csg.pp ppf c
+  | Primitive p -> Shape_desc.pp_primitive ppf p
 
 let show s = Format.asprintf "%a" pp s
 
@@ -154,7 +169,7 @@ let stored_extent sh =
 
 let pattern_frame = function
   | Sphere s -> (Vec3.zero, 1., Sphere.extent s)
-  | (Plane _ | Triangle _) as sh -> (Vec3.zero, 1., stored_extent sh)
+  | (Plane _ | Triangle _ | Primitive _) as sh -> (Vec3.zero, 1., stored_extent sh)
   | Box b as sh -> (b.min, 1., stored_extent sh)
   | Mesh m -> (m.translate, m.scale, Array.fold_left (fun e x -> Float.max e (Float.abs x)) 0. m.positions)
   | Csg _ -> invalid_arg "Shape.pattern_frame: a CSG solid's patterns are its leaves' (Shape.leaf_pattern_frame)"
@@ -163,4 +178,5 @@ let leaf_pattern_frame = function
   | Csg.Sphere s -> (Vec3.zero, 1., Sphere.extent s)
   | Csg.Box b -> pattern_frame (Box b)
   | Csg.Mesh m -> pattern_frame (Mesh m)
+  | Csg.Primitive p -> pattern_frame (Primitive p)
   | Csg.Csg _ -> invalid_arg "Shape.leaf_pattern_frame: a CSG node is not a leaf"

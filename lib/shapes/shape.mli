@@ -7,7 +7,16 @@
     ties the kinds to the shape modules, for the kernel and for
     {!Raytrace.Private.Literal}. *)
 
-type t = Sphere of Sphere.t | Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t
+type t =
+  | Sphere of Sphere.t
+  | Plane of Plane.t
+  | Triangle of Triangle.t
+  | Box of Box.t
+  | Mesh of Mesh.t
+  | Csg of Csg.t
+  | Primitive of Shape_desc.primitive
+      (** A shape of a kind its module describes ({!Raytrace.Private.Shape_desc}, listed in
+          {!Raytrace.Private.Primitives}): every function here takes it from the description. *)
 (** The type for shapes. *)
 
 val equal : t -> t -> bool

@@ -38,6 +38,7 @@ let material = function
   | Shape (Shape.Plane p, _) -> p.material
   | Shape (Shape.Triangle t, _) -> t.material
   | Shape (Shape.Box b, _) -> b.material
+  | Shape (Shape.Primitive p, _) | Csg_surface (_, Csg.Primitive p, _) -> Shape_desc.material p
   | Shape ((Shape.Mesh _ | Shape.Csg _), _) -> invalid_arg "Literal.material: not a single surface"
   | Mesh_triangle (m, _) -> m.material
   | Csg_surface (_, Csg.Sphere s, _) -> Sphere.material s
@@ -58,6 +59,7 @@ type item =
   | Plane_item of Plane.t
   | Triangle_item of Triangle.t
   | Box_item of Box.t
+  | Primitive_item of Shape_desc.primitive
   | Facet_item of Mesh.t * int * Vec3.t * Vec3.t * Vec3.t
   | Csg_item of Csg.t
 
@@ -66,6 +68,7 @@ let items_of_shape = function
   | Shape.Plane p -> [ Plane_item p ]
   | Shape.Triangle t -> [ Triangle_item t ]
   | Shape.Box b -> [ Box_item b ]
+  | Shape.Primitive p -> [ Primitive_item p ]
   | Shape.Mesh m -> List.init (Mesh.triangle_count m) (fun k -> Facet_item (m, k, Mesh.vertex m k 0, Mesh.vertex m k 1, Mesh.vertex m k 2))
   | Shape.Csg c -> [ Csg_item c ]
 
@@ -128,6 +131,10 @@ let item_roots ~continued item ~origin ~direction ~t_min ~t_max =
       match G.box_hit b ~origin ~direction with
       | Some h -> [ (h.enter, Shape (Shape.Box b, h.enter_normal)); (h.exit, Shape (Shape.Box b, h.exit_normal)) ]
       | None -> [])
+  | Primitive_item p ->
+      (* The kind's own literal crossings, from its definition. *)
+      tested 1;
+      List.map (fun (t, n) -> (G.key_of_float t, Shape (Shape.Primitive p, n))) (Shape_desc.literal p ~origin ~direction)
   | Csg_item c -> (
       match G.csg_hit ~continued ~tested c ~origin ~direction ~t_min ~t_max with
       | Some h -> [ (h.key, Csg_surface (c, h.leaf, h.normal)) ]
@@ -209,6 +216,14 @@ let largest (v : Vec3.t) = Float.max (Float.abs v.x) (Float.max (Float.abs v.y) 
 let sphere_frame (s : Sphere.t) = (Vec3.zero, 1., largest s.center +. s.radius)
 let box_frame (b : Box.t) = (b.min, 1., Float.max (largest b.min) (largest b.max))
 
+(* A described kind's frame: its stored floats' largest magnitude, as
+   the scene's documentation defines it for every kind but the sphere,
+   box and mesh. *)
+let primitive_frame p =
+  let g = Array.make Kind.stride 0. in
+  Shape_desc.store p g 0;
+  (Vec3.zero, 1., Array.fold_left (fun e x -> Float.max e (Float.abs x)) 0. g)
+
 (* A mesh's frame scans every vertex: kept for the mesh's next triangle. *)
 let last_frame = ref None
 
@@ -228,6 +243,7 @@ let pattern_frame = function
   | Shape (Shape.Triangle t, _) -> (Vec3.zero, 1., Float.max (largest t.v0) (Float.max (largest t.v1) (largest t.v2)))
   | Shape (Shape.Box b, _) | Csg_surface (_, Csg.Box b, _) -> box_frame b
   | Mesh_triangle (m, _) | Csg_surface (_, Csg.Mesh m, _) -> mesh_frame m
+  | Shape (Shape.Primitive p, _) | Csg_surface (_, Csg.Primitive p, _) -> primitive_frame p
   | Shape ((Shape.Mesh _ | Shape.Csg _), _) | Csg_surface (_, Csg.Csg _, _) -> invalid_arg "Literal.pattern_frame"
 
 (* The colour the hit shows: the material's, or its pattern's second

@@ -336,6 +336,13 @@ let leaf_crossings ~tested ~origin ~direction i = function
           ( Interval (h.enter, h.exit),
             [ { key = h.enter; leaf = i; surface = Flat h.enter_normal }; { key = h.exit; leaf = i; surface = Flat h.exit_normal } ] )
       | _ -> (Crossings [], []))
+  | Csg.Primitive p -> (
+      tested 1;
+      match Shape_desc.literal p ~origin ~direction with
+      | [ (t0, n0); (t1, n1) ] when t0 < t1 ->
+          let a = key_of_float t0 and b = key_of_float t1 in
+          (Interval (a, b), [ { key = a; leaf = i; surface = Flat n0 }; { key = b; leaf = i; surface = Flat n1 } ])
+      | _ -> (Crossings [], []))
   | Csg.Mesh m ->
       let xs = List.stable_sort (fun x y -> compare_keys x.key y.key) (mesh_crossings ~tested m ~origin ~direction i) in
       (Crossings (List.map (fun x -> x.key) xs), xs)

@@ -367,6 +367,35 @@ let box_solid ~where ~named form_node nodes =
 
 let box ~where ~named form_node nodes = Shape.Box (box_solid ~where ~named form_node nodes)
 
+(* A form of a kind its module describes ({!Primitives}): the fields the
+   description lists, read on its demand, and the material's. *)
+let primitive_solid (Shape_desc.Any d) ~where ~named form_node nodes =
+  let form = d.name in
+  let fs = fields ~where ~form ~allowed:(List.map fst d.fields @ material_fields) nodes in
+  let flag name =
+    match List.assoc_opt name d.fields with
+    | Some (Shape_desc.Flag default) -> Option.fold ~none:default ~some:(bool_field form name) (find fs name)
+    | _ -> invalid_arg (Printf.sprintf "Scene_text: %s's field %s is not a flag" form name)
+  in
+  let reader =
+    {
+      Shape_desc.point = (fun name -> snd (point_field ~form ~form_node fs name));
+      number = (fun name -> require ~form ~form_node name (checked_float form fs name Result.ok));
+      flag;
+    }
+  in
+  let m = material ~where ~named ~form ~form_node fs in
+  check form_node (Shape_desc.validate (Shape_desc.Primitive (d, d.read reader m)))
+
+(* The described kind a CSG operand [kw] names, if it is closed. *)
+let closed_primitive kw =
+  match Primitives.find kw with Some (Shape_desc.Any d as a) when Kind.closed d.kind -> Some a | _ -> None
+
+(* The operands a CSG form takes, for its messages. *)
+let operands =
+  let described = List.filter_map (fun (Shape_desc.Any d) -> if Kind.closed d.kind then Some (d.name ^ ", ") else None) Primitives.all in
+  "a sphere, box, " ^ String.concat "" described ^ "closed mesh or csg"
+
 (* A mesh: its file is read by [load] (the path as the scene gives it). *)
 let mesh_solid ~where ~named ~load ~add_triangles form_node nodes =
   let form = "mesh" in
@@ -433,10 +462,11 @@ and csg_operand ~where ~named ~load ~add_triangles ~depth node =
       check node (Csg.check_closed m);
       Csg.Mesh m
   | Sexp.List (Sexp.Atom "csg" :: rest) -> Csg.Csg (csg ~where ~named ~load ~add_triangles ~depth:(depth + 1) node rest)
-  | Sexp.List (Sexp.Atom ("plane" | "triangle" as kw) :: _) ->
-      fail node "csg: a %s is not a closed solid; an operand is a sphere, box, closed mesh or csg" kw
-  | Sexp.List (Sexp.Atom kw :: _) ->
-      fail node "csg: unknown solid %s; an operand is a sphere, box, closed mesh or csg" (show_atom kw)
+  | Sexp.List (Sexp.Atom kw :: rest) when closed_primitive kw <> None ->
+      Csg.Primitive (primitive_solid (Option.get (closed_primitive kw)) ~where ~named node rest)
+  | Sexp.List (Sexp.Atom kw :: _) when kw = "plane" || kw = "triangle" || Primitives.find kw <> None ->
+      fail node "csg: a %s is not a closed solid; an operand is %s" kw operands
+  | Sexp.List (Sexp.Atom kw :: _) -> fail node "csg: unknown solid %s; an operand is %s" (show_atom kw) operands
   | _ -> fail node "csg: expected a solid in parentheses, e.g. (sphere ...), (box ...), (mesh ...) or (csg ...)"
 
 let light ~where form_node nodes =
@@ -646,8 +676,11 @@ let forms =
       shape (fun b node rest ->
           Shape.Csg (csg ~where:b.where ~named:b.named ~load:b.load ~add_triangles:(add_triangles b) ~depth:1 node rest))
     );
-    ("light", light_form);
   ]
+  @ List.map
+      (fun (Shape_desc.Any d as a) -> (d.name, shape (fun b node rest -> Shape.Primitive (primitive_solid a ~where:b.where ~named:b.named node rest))))
+      Primitives.all
+  @ [ ("light", light_form) ]
 
 let top_level = List.map fst forms
 
