@@ -76,8 +76,8 @@ let points (p : float array) =
    them, the kernel drops them. The edges are sorted by their lower end
    into buckets (counting), and each bucket, a vertex's few edges, by the
    upper end: linear time, ints alone. A hash table of coordinate tuples
-   took about 400 bytes an edge, and most of the load time of a million
-   triangles. *)
+   cost a block per edge and most of the load time of a big mesh
+   (docs/performance.md, "Numbers moved out of the library's comments"). *)
 let check_closed (m : Mesh.t) =
   let p = m.positions and tri = m.triangles in
   let point, first, np = points p in

@@ -37,8 +37,9 @@ let suggestion name candidates =
   let near c =
     let bound = max 1 (String.length c / 3) in
     (* The distance is at least the difference of the lengths: checking that
-       first keeps a hostile 10 MB name from costing a 10 MB x 15 table
-       (it took 51 s and 2.4 GB). *)
+       first keeps a hostile name of megabytes from costing a table of its
+       length times the candidate's (docs/performance.md, "Numbers moved
+       out of the library's comments"). *)
     abs (String.length name - String.length c) <= bound && distance name c <= bound
   in
   let close = List.filter near candidates in
@@ -53,8 +54,8 @@ let one_of names =
 (* Values *)
 
 (* [what] names the value in error messages. It is a function so that the
-   name is built only for an error: concatenating it for every value took a
-   quarter of the loading time of big scenes. *)
+   name is built only for an error: concatenating it for every value was a
+   large part of the loading time of big scenes (docs/performance.md). *)
 let number (what : unit -> string) node =
   match node with
   | Sexp.Atom atom -> (
@@ -874,8 +875,8 @@ type window = { mutable text : string; mutable base : int; mutable eof : bool }
 (* A text being read: its window, the line count up to absolute offset
    [at] ([line], and [bol] the start of that line), and the size of the
    next window, which grows from 4 KiB to [window_bytes] by doubling: a
-   small scene costs no big buffer (its allocation made the garbage
-   collector work 0.6% of rendering the reference scene). *)
+   small scene costs no big buffer, whose allocation the garbage
+   collector would pay on every small render (docs/performance.md). *)
 type stream = {
   r : reader;
   w : window;
