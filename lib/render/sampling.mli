@@ -27,7 +27,9 @@
       benchmark.
 
     Every mode gives the same image whatever the number of processes: a
-    plan runs in passes, and a pass reads only what earlier passes wrote. *)
+    plan runs in passes, and a pass reads only what earlier passes wrote.
+
+    @canonical Raytrace.Render.Sampling *)
 
 (** {1:settings Settings} *)
 
@@ -36,7 +38,9 @@ type t = private {
   adaptive : int option;  (** Adaptive threshold, in [\[0, 255\]] (then [samples] is odd, [>= 3]), or full sampling. *)
   subsample : bool;  (** CGFS's subsampling (then [samples = 1], not adaptive). *)
 }
-(** The type for sampling settings. *)
+(** The type for sampling settings.
+
+    @canonical Raytrace.Render.Sampling.t *)
 
 val max_samples : int
 (** [max_samples] is [64]: the largest grid side, 4096 rays per pixel. *)
@@ -64,7 +68,9 @@ val to_string : t -> string
 
 type plan
 (** The type for the work of rendering one image with some settings: its
-    passes, and the buffers through which they pass results on. *)
+    passes, and the buffers through which they pass results on.
+
+    @canonical Raytrace.Render.Sampling.plan *)
 
 (**/**)
 

@@ -4,11 +4,15 @@
     rows [y] to [y + h - 1], rows counted from the top as in {!Image} and
     PPM files. Parts of an image rendered separately ([Raytrace_unix.Part]) are regions;
     since every pixel is traced alone, a region renders to exactly the
-    bytes that the whole image has there. *)
+    bytes that the whole image has there.
+
+    @canonical Raytrace.Render.Region *)
 
 type t = { x : int; y : int; w : int; h : int }
 (** The type for regions: top-left pixel [(x, y)], [w x h] pixels, [w] and
-    [h] positive. *)
+    [h] positive.
+
+    @canonical Raytrace.Render.Region.t *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf x] prints [x] as an OCaml record (derived). *)

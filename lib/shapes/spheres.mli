@@ -5,12 +5,16 @@
     materials. A million spheres of a dozen materials take 40 bytes each
     (a list of {!Sphere.t} took about 140, and the garbage collector
     scanned every one of them). The order is the scene's: sphere [i] is
-    the [i]-th sphere given. *)
+    the [i]-th sphere given.
+
+    @canonical Raytrace.Private.Spheres *)
 
 (** {1:spheres Spheres} *)
 
 type t
-(** The type for sequences of spheres. *)
+(** The type for sequences of spheres.
+
+    @canonical Raytrace.Private.Spheres.t *)
 
 val empty : t
 (** [empty] holds no sphere. *)
@@ -85,7 +89,9 @@ val materials : t -> Material.t array
 type builder
 (** The type for sequences being built, for readers that do not know how
     many spheres will come. It grows by blocks: no array is copied to a
-    larger one, so the peak memory is the spheres' own. *)
+    larger one, so the peak memory is the spheres' own.
+
+    @canonical Raytrace.Private.Spheres.builder *)
 
 val builder : unit -> builder
 (** [builder ()] is an empty builder. *)

@@ -34,7 +34,9 @@
     Loading builds the arrays in blocks, then concatenates them: its peak
     is about twice the mesh. Measured on a torus knot of 1M triangles
     (bench/obj_load.ml): 45.8 MB of mesh, a peak heap of 157 MB, a peak
-    resident size of 121 MB. *)
+    resident size of 121 MB.
+
+    @canonical Raytrace.Mesh.Obj *)
 
 (** {1:mesh Meshes} *)
 
@@ -53,7 +55,9 @@ type t = private {
           ["vt"], ["vp"], ["o"], ["g"], ["s"], ["usemtl"], ["mtllib"],
           ["l"], ["p"], then ["other"] for any other keyword. *)
 }
-(** The type for triangle meshes. Every index is within its array. *)
+(** The type for triangle meshes. Every index is within its array.
+
+    @canonical Raytrace.Mesh.Obj.t *)
 
 val v : positions:float array -> normals:float array -> triangles:int array -> triangle_normals:int array -> t
 (** [v ~positions ~normals ~triangles ~triangle_normals] is the mesh of
