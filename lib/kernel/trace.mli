@@ -144,7 +144,7 @@ val cast : t -> from:int -> Vec3.t -> Vec3.t -> int
 val roots : t -> int -> Vec3.t -> Vec3.t -> float * float
 (** [roots tr k origin direction] is [(near, far)], the roots that the
     tracer's own intersection test computes for object [k] (objects
-    counted spheres first, then the scene's shapes) and the secondary ray
+    counted in the order of the scene's list, from 0) and the secondary ray
     [origin + t direction]: the cancellation-free roots of a sphere in the
     robust mode, the textbook roots in the document's mode, the shape
     module's routine for the others (for a CSG solid, its first crossing
@@ -163,8 +163,8 @@ val blue : t -> float
 
 val hit_object : t -> int
 (** [hit_object tr] is the index of the object the primary ray of the last
-    {!pixel} hit (objects counted spheres first, then the scene's
-    [shapes]), or [-1] if it hit nothing. *)
+    {!pixel} hit (objects counted in the order of the scene's list,
+    from 0), or [-1] if it hit nothing. *)
 
 (** {1:sampling Several rays per pixel}
 
