@@ -67,6 +67,7 @@ module Private = struct
   module Antialias = Antialias
   module Render_work = Render_work
   module Sampling_rows = Sampling_rows
+  module Obj_parts = Obj_parts
   module Exact_float = Exact_float
   module Literal_geometry = Literal_geometry
 end
