@@ -17,7 +17,7 @@ type t =
   | Triangle  (** A triangle, alone or a mesh's, shaded with its flat normal. *)
   | Smooth_triangle
       (** A mesh's triangle shaded with normals interpolated from its
-          corners ({!module-Triangle.smooth_normal}). *)
+          corners ([Triangle.smooth_normal]). *)
   | Plane  (** A plane: unbounded, outside the hierarchy. *)
   | Box  (** An axis-aligned box. *)
   | Csg
