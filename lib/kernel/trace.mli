@@ -5,7 +5,7 @@
     {!Literal}, so it produces the same bytes; it only skips work whose
     result provably cannot change them (see {!Raytrace.Private.Prepared.prepare}). Rays,
     hit points and colours live in a mutable all-float record (stored
-    unboxed), hits are returned as sphere indices ([-1] for none), and
+    unboxed), hits are returned as object indices ([-1] for none), and
     reflection is a loop over a small stack instead of recursion, because
     in OCaml 4.13 without flambda a float crossing a function call that is
     not inlined is boxed.
@@ -135,8 +135,9 @@ val to_byte : float -> int
     per-ray path passes no float across modules. *)
 
 val cast : t -> from:int -> Vec3.t -> Vec3.t -> int
-(** [cast tr ~from origin direction] is the sphere that the secondary ray
-    [origin + t direction] leaving sphere [from] ([-1]: none) meets first
+(** [cast tr ~from origin direction] is the object (counted as
+    {!hit_object} counts them) that the secondary ray
+    [origin + t direction] leaving object [from] ([-1]: none) meets first
     with [t > epsilon] (the scene's epsilon, or [0] in the robust mode, where
     [from] is handled exactly: the ray can meet it only by going into it),
     or [-1] if it meets none: the test behind shadow and mirror rays. *)
@@ -144,7 +145,8 @@ val cast : t -> from:int -> Vec3.t -> Vec3.t -> int
 val roots : t -> int -> Vec3.t -> Vec3.t -> float * float
 (** [roots tr k origin direction] is [(near, far)], the roots that the
     tracer's own intersection test computes for object [k] (objects
-    counted in the order of the scene's list, from 0) and the secondary ray
+    counted in the order of {!Scene.objects}, a mesh one object per
+    triangle) and the secondary ray
     [origin + t direction]: the cancellation-free roots of a sphere in the
     robust mode, the textbook roots in the document's mode, the shape
     module's routine for the others (for a CSG solid, its first crossing
@@ -163,8 +165,8 @@ val blue : t -> float
 
 val hit_object : t -> int
 (** [hit_object tr] is the index of the object the primary ray of the last
-    {!pixel} hit (objects counted in the order of the scene's list,
-    from 0), or [-1] if it hit nothing. *)
+    {!pixel} hit (objects counted in the order of {!Scene.objects}, a
+    mesh one object per triangle), or [-1] if it hit nothing. *)
 
 (** {1:sampling Several rays per pixel}
 
@@ -225,11 +227,11 @@ val store_average : t -> Image.buffer -> int -> count:int -> unit
 
 val pixel_assuming : t -> int -> int -> int -> unit
 (** [pixel_assuming tr gx gy k] is {!pixel} [tr gx gy] for CGFS's
-    subsampling: the primary ray is assumed to hit sphere [k] (or nothing
-    if [k = -1]), as the rays of two neighbouring pixels did, and is
-    intersected with that sphere alone; if it misses it, all spheres are
-    searched as usual. Shading, shadows and reflections are traced as
-    usual. Approximate: a sphere in front of sphere [k], or a sphere
+    subsampling: the primary ray is assumed to hit object [k] (counted as
+    {!hit_object} counts them; nothing if [k = -1]), as the rays of two
+    neighbouring pixels did, and is intersected with that object alone; if
+    it misses it, all objects are searched as usual. Shading, shadows and
+    reflections are traced as usual. Approximate: an object in front of object [k], or an object
     where both neighbours saw nothing, is missed.
-    @raise Invalid_argument if [k < -1] or [k] is not a sphere of the
+    @raise Invalid_argument if [k < -1] or [k] is not an object of the
     scene. *)

@@ -2,12 +2,9 @@
 
     A scene's spheres (inside a {!Scene.t}): their centers and radii in
     float arrays, their materials as indices into a table of distinct
-    materials. A million spheres of a dozen materials take 40 bytes each
-    (a list of {!Sphere.t} took about 140, and the garbage collector
-    scanned every one of them). The order is the scene's: sphere [i] is
-    the [i]-th sphere given.
-
-    @canonical Raytrace.Private.Spheres *)
+    materials: five words a sphere, against a block per field of a
+    list of {!Sphere.t}, each scanned by the garbage collector. The order is the scene's: sphere [i] is
+    the [i]-th sphere given. *)
 
 (** {1:spheres Spheres} *)
 
