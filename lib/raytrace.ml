@@ -69,6 +69,8 @@ module Private = struct
   module Sphere_scan = Sphere_scan
   module Antialias = Antialias
   module Render_work = Render_work
+  module Sampling_rows = Sampling_rows
+  module Obj_parts = Obj_parts
   module Exact_float = Exact_float
   module Literal_geometry = Literal_geometry
 end

@@ -183,17 +183,17 @@ let oracle_floats (s : Scene.t) =
 
 let obj_part_joined p ~name ~max_vertices ~max_triangles s off len =
   let sent = Buffer.create 4096 in
-  let q = Raytrace.Mesh.Obj.create_part ~output:(Buffer.add_subbytes sent) ~name ~max_vertices ~max_triangles in
-  match Result.bind (Raytrace.Mesh.Obj.feed q s off len) (fun () -> Raytrace.Mesh.Obj.finish_part q) with
+  let q = Raytrace.Private.Obj_parts.create_part ~output:(Buffer.add_subbytes sent) ~name ~max_vertices ~max_triangles in
+  match Result.bind (Raytrace.Mesh.Obj.feed q s off len) (fun () -> Raytrace.Private.Obj_parts.finish_part q) with
   | Error _ -> None
   | Ok part ->
       let bytes = Buffer.to_bytes sent and at = ref 0 in
-      if Raytrace.Mesh.Obj.part_bytes part <> Bytes.length bytes then Alcotest.fail "the part's bytes are not those sent";
+      if Raytrace.Private.Obj_parts.part_bytes part <> Bytes.length bytes then Alcotest.fail "the part's bytes are not those sent";
       let input b off len =
         Bytes.blit bytes !at b off len;
         at := !at + len
       in
-      let m = Raytrace.Mesh.Obj.join p part ~input in
+      let m = Raytrace.Private.Obj_parts.join p part ~input in
       if Option.is_some m && !at <> Bytes.length bytes then Alcotest.failf "the join read %d of %d bytes" !at (Bytes.length bytes);
       m
 

@@ -140,8 +140,8 @@ val obj_part_joined :
   Raytrace.Mesh.Obj.t option
 (** [obj_part_joined p ~name ~max_vertices ~max_triangles s off len] is
     the bytes [s.[off] .. s.[off+len-1]] read as a part
-    ({!Raytrace.Mesh.Obj.create_part}, its output kept in a buffer) and
-    joined to [p] ({!Raytrace.Mesh.Obj.join}, its input that buffer), as
+    ({!Raytrace.Private.Obj_parts.create_part}, its output kept in a buffer) and
+    joined to [p] ({!Raytrace.Private.Obj_parts.join}, its input that buffer), as
     [Files.read_mesh] does without the fork; [None] where the part is an
     error or the join declines. *)
 

@@ -130,7 +130,7 @@ let transform ~scale ~translate (s : Scene.t) =
     ~viewport:
       (Viewport.v ~width:(scale *. (Scene.viewport s).width) ~height:(scale *. (Scene.viewport s).height)
         ~distance:(scale *. (Scene.viewport s).distance))
-    ~camera:{ (Scene.camera s) with position = p (Scene.camera s).position }
+    ~camera:(Camera.v ~rotation:(Scene.camera s).rotation (p (Scene.camera s).position))
     ~objects:
       (let mesh (m : Mesh.t) =
          let positions = Array.copy m.positions in

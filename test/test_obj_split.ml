@@ -1,6 +1,6 @@
 (* An OBJ text read on two cores: the part after a line start read apart
-   (Mesh.Obj.create_part) and joined to the reader of the text before
-   (Mesh.Obj.join), as Files.read_mesh does with a child process. The
+   (Obj_parts.create_part) and joined to the reader of the text before
+   (Obj_parts.join), as Files.read_mesh does with a child process. The
    mesh, its skipped counts and its errors must be one reader's. *)
 open Raytrace
 
@@ -148,9 +148,9 @@ let tests =
         let text = knot in
         let split = String.index_from text (String.length text / 2) '\n' + 1 in
         let sent = Buffer.create 4096 in
-        let q = Mesh.Obj.create_part ~output:(Buffer.add_subbytes sent) ~name ~max_vertices:1000 ~max_triangles:1000 in
+        let q = Obj_parts.create_part ~output:(Buffer.add_subbytes sent) ~name ~max_vertices:1000 ~max_triangles:1000 in
         let part =
-          match Result.bind (Mesh.Obj.feed q text split (String.length text - split)) (fun () -> Mesh.Obj.finish_part q) with
+          match Result.bind (Mesh.Obj.feed q text split (String.length text - split)) (fun () -> Obj_parts.finish_part q) with
           | Ok part -> part
           | Error (`Msg e) -> Alcotest.fail e
         in
@@ -168,7 +168,7 @@ let tests =
           (fun (what, bytes, raised) ->
             let p = Mesh.Obj.create ~name ~max_vertices:1000 ~max_triangles:1000 in
             ignore (Mesh.Obj.feed p text 0 split);
-            (match Mesh.Obj.join p part ~input:(input bytes) with
+            (match Obj_parts.join p part ~input:(input bytes) with
             | _ -> Alcotest.failf "%s: joined" what
             | exception e -> if not (raised e) then Alcotest.failf "%s: raised %s" what (Printexc.to_string e));
             (* The reader reads the rest itself, as it would have. *)
@@ -210,7 +210,7 @@ let tests =
         ignore (Mesh.Obj.finish p);
         Alcotest.(check bool) "finished" true (Option.is_none (join p));
         Alcotest.(check bool) "out of range" true (Option.is_none (join (reader "v 1 1 1\n")));
-        match Mesh.Obj.finish_part (Mesh.Obj.create ~name ~max_vertices:1 ~max_triangles:1) with
+        match Obj_parts.finish_part (Mesh.Obj.create ~name ~max_vertices:1 ~max_triangles:1) with
         | _ -> Alcotest.fail "finish_part of a whole text's reader"
         | exception Invalid_argument _ -> ());
     Alcotest.test_case "a mesh file read on two cores is the one read on one, from a child process" `Quick (fun () ->

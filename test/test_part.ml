@@ -20,7 +20,7 @@ let tests =
   [
     Alcotest.test_case "a region renders as the same region of the whole image" `Quick (fun () ->
         let whole = Helpers.image_exn scene in
-        let r = Render.Region.{ x = 5; y = 3; w = 20; h = 11 } in
+        let r = (Render.Region.v ~x:5 ~y:3 ~w:20 ~h:11) in
         Helpers.check_images __LOC__ ~expected:(Image.sub whole ~x:5 ~y:3 ~w:20 ~h:11) (region_image scene r);
         Helpers.check_images __LOC__ ~expected:(Image.sub whole ~x:5 ~y:3 ~w:20 ~h:11) (region_image ~jobs:3 scene r));
     Helpers.qcheck ~count:60 "any region of any scene is byte for byte that part of the whole"
@@ -28,7 +28,7 @@ let tests =
       (fun ((s : Scene.t), (a, b, c, d)) ->
         let x = a mod (Scene.width s) and y = b mod (Scene.height s) in
         let w = 1 + (c mod ((Scene.width s) - x)) and h = 1 + (d mod ((Scene.height s) - y)) in
-        Image.equal (Image.sub (Helpers.image_exn s) ~x ~y ~w ~h) (region_image s { x; y; w; h }));
+        Image.equal (Image.sub (Helpers.image_exn s) ~x ~y ~w ~h) (region_image s (Render.Region.v ~x ~y ~w ~h)));
     Alcotest.test_case "seven tiles merge into the whole image, byte for byte" `Quick (fun () ->
         Helpers.check_images __LOC__ ~expected:(Helpers.image_exn scene) (ok (Part.merge (tiles 7))));
     Alcotest.test_case "the parts may come in any order" `Quick (fun () ->
@@ -37,7 +37,7 @@ let tests =
         let img = Image.create 2 1 in
         Image.set img 1 0 1 2 3;
         let p =
-          Part.v ~canvas_width:4 ~canvas_height:3 ~region:{ x = 1; y = 2; w = 2; h = 1 }
+          Part.v ~canvas_width:4 ~canvas_height:3 ~region:(Render.Region.v ~x:1 ~y:2 ~w:2 ~h:1)
             ~settings:[ ("depth", "3"); ("scene", "abc") ] img
         in
         Alcotest.(check string) __LOC__
@@ -144,9 +144,9 @@ let tests =
            error (Part.of_string ~file:"b.ppm" (String.sub full 0 (String.length full - 3)))));
     Alcotest.test_case "a malformed part is a programming error" `Quick (fun () ->
         Alcotest.check_raises __LOC__ (Invalid_argument "Part.v: image size differs from the region") (fun () ->
-            ignore (Part.v ~canvas_width:4 ~canvas_height:4 ~region:{ x = 0; y = 0; w = 2; h = 2 } ~settings:[] (Image.create 1 1)));
+            ignore (Part.v ~canvas_width:4 ~canvas_height:4 ~region:(Render.Region.v ~x:0 ~y:0 ~w:2 ~h:2) ~settings:[] (Image.create 1 1)));
         Alcotest.check_raises __LOC__ (Invalid_argument "Part.v: repeated or reserved setting region") (fun () ->
             ignore
-              (Part.v ~canvas_width:4 ~canvas_height:4 ~region:{ x = 0; y = 0; w = 1; h = 1 } ~settings:[ ("region", "x") ]
+              (Part.v ~canvas_width:4 ~canvas_height:4 ~region:(Render.Region.v ~x:0 ~y:0 ~w:1 ~h:1) ~settings:[ ("region", "x") ]
                  (Image.create 1 1))));
   ]

@@ -107,8 +107,8 @@ let viewport_camera_tests =
             let m = error what (Viewport.validate vp) in
             let name = List.hd (String.split_on_char ' ' what) in
             if not (contains ~sub:name m) then Alcotest.failf "%s: %S does not name it" what m)
-          [ ("width 0", { Viewport.default with width = 0. }); ("height -1", { Viewport.default with height = (-1.) });
-            ("distance nan", { Viewport.default with distance = nan }); ("width inf", { Viewport.default with width = infinity }) ]);
+          [ ("width 0", (Viewport.v ~width:0. ~height:1. ~distance:1.)); ("height -1", (Viewport.v ~width:1. ~height:(-1.) ~distance:1.));
+            ("distance nan", (Viewport.v ~width:1. ~height:1. ~distance:nan)); ("width inf", (Viewport.v ~width:infinity ~height:1. ~distance:1.)) ]);
     Alcotest.test_case "Camera.direction is M v, each row dotted with v" `Quick (fun () ->
         (* rows (1 2 3) (0 1 0) (-1 0 2) times (1, -1, 2) = (5, -1, 3). *)
         let m = Camera.{ row0 = Vec3.v 1. 2. 3.; row1 = Vec3.v 0. 1. 0.; row2 = Vec3.v (-1.) 0. 2. } in
@@ -259,7 +259,7 @@ let image_tests =
   [
     Alcotest.test_case "Render.Region.contains: non-empty and inside the canvas; pixels is w h; pp_corners is x0 y0 x1 y1" `Quick
       (fun () ->
-        let r x y w h = Render.Region.{ x; y; w; h } in
+        let r x y w h = Render.Region.v ~x ~y ~w ~h in
         List.iter
           (fun (what, reg, expected) -> Alcotest.(check bool) what expected (Render.Region.contains reg ~width:10 ~height:5))
           [ ("whole", r 0 0 10 5, true); ("corner pixel", r 9 4 1 1, true); ("empty", r 2 2 0 1, false);
@@ -405,7 +405,7 @@ let scene_tests =
             ("epsilon nan", (Scene.with_overrides ~epsilon:(Some nan) base)); ("epsilon -0.5", (Scene.with_overrides ~epsilon:(Some (-0.5)) base));
             ("background 256", (Scene.with_overrides ~background:(Color.v 0. 256. 0.) base));
             ("background nan", (Scene.with_overrides ~background:(Color.v nan 0. 0.) base));
-            ("viewport 0", (Scene.with_overrides ~viewport:({ Viewport.default with distance = 0. }) base));
+            ("viewport 0", (Scene.with_overrides ~viewport:(Viewport.v ~width:1. ~height:1. ~distance:0.) base));
             ("camera nan", (Scene.with_overrides ~camera:(Camera.v (v 0. nan 0.)) base));
             ("light", (Scene.with_overrides ~lights:([ Light.point 0.5 (v infinity 0. 0.) ]) base));
             ("sphere radius 0", Helpers.with_objects ~spheres:[ Helpers.sphere ~center:Vec3.zero ~radius:0. Color.white ] base) ];
@@ -416,7 +416,7 @@ let scene_tests =
         let valid = Helpers.valid Scene.cgfs in
         refused "width 0" (Scene.override ~width:0 valid);
         refused "depth 65" (Scene.override ~depth:65 valid);
-        refused "viewport nan" (Scene.override ~viewport:{ Viewport.default with width = nan } valid);
+        refused "viewport nan" (Scene.override ~viewport:(Viewport.v ~width:nan ~height:1. ~distance:1.) valid);
         refused "singular camera"
           (Scene.override ~camera:(Camera.v ~rotation:{ Camera.identity with row2 = Vec3.ox } Vec3.zero) valid);
         refused "pixels beyond the limits"
@@ -476,9 +476,9 @@ let scene_tests =
         refused "samples 0" (Render.image ~samples:0 s);
         refused "adaptive with 2 x 2" (Render.image ~samples:2 ~adaptive:8 s);
         refused "subsampled 2 x 2" (Render.image ~samples:2 ~subsample:true s);
-        raises_invalid "5 wide" (fun () -> Render.region_image s Render.Region.{ x = 0; y = 0; w = 5; h = 1 });
-        raises_invalid "from row 3" (fun () -> Render.region_image s Render.Region.{ x = 0; y = 3; w = 1; h = 1 });
-        let img, _ = ok (Render.region_image s Render.Region.{ x = 3; y = 2; w = 1; h = 1 }) in
+        raises_invalid "5 wide" (fun () -> Render.region_image s (Render.Region.v ~x:0 ~y:0 ~w:5 ~h:1));
+        raises_invalid "from row 3" (fun () -> Render.region_image s (Render.Region.v ~x:0 ~y:3 ~w:1 ~h:1));
+        let img, _ = ok (Render.region_image s (Render.Region.v ~x:3 ~y:2 ~w:1 ~h:1)) in
         let whole, _ = ok (Render.image s) in
         Alcotest.(check (triple int int int)) "the corner pixel" (Image.get whole 3 2) (Image.get img 0 0));
   ]
@@ -529,26 +529,26 @@ let kernel_tests =
         Alcotest.(check bool) "v () is one" true (Render.Sampling.is_one (sv ()));
         Alcotest.(check (list bool)) "averaging" [ false; true; true; false ] (List.map Render.Sampling.averaging modes);
         let img = Image.create 4 3 in
-        let passes = List.map (fun m -> Render.Sampling.passes (Render.Sampling.plan m img ~canvas:(4, 3) ~at:(0, 0))) modes in
+        let passes = List.map (fun m -> Sampling_rows.passes (Sampling_rows.plan m img ~canvas:(4, 3) ~at:(0, 0))) modes in
         Alcotest.(check (list int)) "passes" [ 1; 1; 2; 2 ] passes;
-        let pl = Render.Sampling.plan Render.Sampling.one img ~canvas:(4, 3) ~at:(0, 0) in
-        Alcotest.(check int) "pass 0 works on the 3 rows" 3 (Render.Sampling.pass_rows pl 0);
-        raises_invalid "pass 1 of a one-pass plan" (fun () -> Render.Sampling.pass_rows pl 1);
-        raises_invalid "a rectangle past the canvas" (fun () -> Render.Sampling.plan Render.Sampling.one img ~canvas:(4, 3) ~at:(1, 0));
+        let pl = Sampling_rows.plan Render.Sampling.one img ~canvas:(4, 3) ~at:(0, 0) in
+        Alcotest.(check int) "pass 0 works on the 3 rows" 3 (Sampling_rows.pass_rows pl 0);
+        raises_invalid "pass 1 of a one-pass plan" (fun () -> Sampling_rows.pass_rows pl 1);
+        raises_invalid "a rectangle past the canvas" (fun () -> Sampling_rows.plan Render.Sampling.one img ~canvas:(4, 3) ~at:(1, 0));
         Alcotest.(check (list bool)) "64 and 65 samples" [ true; false ]
           (List.map (fun samples -> Result.is_ok (Render.Sampling.v ~samples ())) [ Render.Sampling.max_samples; Render.Sampling.max_samples + 1 ]);
         Alcotest.(check (list bool)) "adaptive 0, 255, 256, -1" [ true; true; false; false ]
           (List.map (fun adaptive -> Result.is_ok (Render.Sampling.v ~samples:3 ~adaptive ())) [ 0; 255; 256; -1 ]);
-        (* Render.Sampling.rows: a step below 1, another canvas, another averaging. *)
+        (* Sampling_rows.rows: a step below 1, another canvas, another averaging. *)
         let scene w = Helpers.prepare (Scene.with_overrides ~width:w ~height:3 Scene.cgfs) in
         let four = sv ~samples:4 () in
-        let pl4 = Render.Sampling.plan four img ~canvas:(4, 3) ~at:(0, 0) in
+        let pl4 = Sampling_rows.plan four img ~canvas:(4, 3) ~at:(0, 0) in
         let averaging = Trace.create ~averaging:true (scene 4) in
-        raises_invalid "step 0" (fun () -> Render.Sampling.rows pl4 0 averaging ~first:0 ~step:0);
-        raises_invalid "pass 1" (fun () -> Render.Sampling.rows pl4 1 averaging ~first:0 ~step:1);
-        raises_invalid "a 5-wide canvas" (fun () -> Render.Sampling.rows pl4 0 (Trace.create ~averaging:true (scene 5)) ~first:0 ~step:1);
-        raises_invalid "a tracer that does not average" (fun () -> Render.Sampling.rows pl4 0 (Trace.create (scene 4)) ~first:0 ~step:1);
-        Render.Sampling.rows pl4 0 averaging ~first:0 ~step:1);
+        raises_invalid "step 0" (fun () -> Sampling_rows.rows pl4 0 averaging ~first:0 ~step:0);
+        raises_invalid "pass 1" (fun () -> Sampling_rows.rows pl4 1 averaging ~first:0 ~step:1);
+        raises_invalid "a 5-wide canvas" (fun () -> Sampling_rows.rows pl4 0 (Trace.create ~averaging:true (scene 5)) ~first:0 ~step:1);
+        raises_invalid "a tracer that does not average" (fun () -> Sampling_rows.rows pl4 0 (Trace.create (scene 4)) ~first:0 ~step:1);
+        Sampling_rows.rows pl4 0 averaging ~first:0 ~step:1);
     Alcotest.test_case "Obj_file: feed raises outside its string and after finish; finish twice raises; ~digits writes %g"
       `Quick (fun () ->
         let p = Mesh.Obj.create ~name:"m.obj" ~max_vertices:10 ~max_triangles:10 in

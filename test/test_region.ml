@@ -12,9 +12,9 @@ let tests =
   [
     Alcotest.test_case "tile 2 of 7 of 600 rows is rows 85 to 170" `Quick (fun () ->
         (* (2 - 1) * 600 / 7 = 85 and 2 * 600 / 7 = 171 (1200 / 7 = 171.4) *)
-        Alcotest.check region __LOC__ { x = 0; y = 85; w = 600; h = 86 }
+        Alcotest.check region __LOC__ (Render.Region.v ~x:0 ~y:85 ~w:600 ~h:86)
           (ok (Render.Region.tile ~width:600 ~height:600 ~index:2 ~count:7));
-        Alcotest.check region __LOC__ { x = 0; y = 514; w = 600; h = 86 }
+        Alcotest.check region __LOC__ (Render.Region.v ~x:0 ~y:514 ~w:600 ~h:86)
           (ok (Render.Region.tile ~width:600 ~height:600 ~index:7 ~count:7)));
     Helpers.qcheck "the tiles cover the canvas top to bottom, within one row of each other"
       QCheck.(pair (int_range 1 300) (int_range 1 300))
@@ -35,7 +35,7 @@ let tests =
         Alcotest.(check string) __LOC__ "tile 1/6: the canvas has only 5 rows, fewer than 6 tiles" (tile 1 6);
         Alcotest.(check string) __LOC__ "tile 1/0: the number of tiles must be at least 1" (tile 1 0));
     Alcotest.test_case "corners are half-open and must lie in the canvas" `Quick (fun () ->
-        Alcotest.check region __LOC__ { x = 10; y = 20; w = 20; h = 5 }
+        Alcotest.check region __LOC__ (Render.Region.v ~x:10 ~y:20 ~w:20 ~h:5)
           (ok (Render.Region.of_corners ~width:40 ~height:30 10 20 30 25));
         Alcotest.check region __LOC__ (Render.Region.full ~width:40 ~height:30)
           (ok (Render.Region.of_corners ~width:40 ~height:30 0 0 40 30));

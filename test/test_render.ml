@@ -123,7 +123,7 @@ let tests =
         let progress ~rows ~total ~rays:_ = last := (rows, total) in
         List.iter
           (fun jobs ->
-            match Helpers.render_region ~jobs ~progress s { x = 3; y = 5; w = 20; h = 7 } with
+            match Helpers.render_region ~jobs ~progress s (Render.Region.v ~x:3 ~y:5 ~w:20 ~h:7) with
             | Ok _ -> Alcotest.(check (pair int int)) __LOC__ (7, 7) !last
             | Error (`Msg m) -> Alcotest.fail m)
           [ 1; 2 ]);

@@ -185,8 +185,8 @@ let tests =
                 let name = Format.asprintf "%s, region %a" what Render.Region.pp r in
                 Helpers.check_images name ~expected (region_of render s r);
                 Helpers.check_images (name ^ ", 2 jobs") ~expected (region_of render ~jobs:2 s r))
-              Render.Region.[ { x = 5; y = 3; w = 20; h = 11 }; { x = 0; y = 0; w = 1; h = 1 }; { x = 36; y = 22; w = 1; h = 1 };
-                       { x = 1; y = 1; w = 35; h = 21 }; { x = 0; y = 7; w = 37; h = 4 }; { x = 10; y = 0; w = 3; h = 23 } ])
+              [ (Render.Region.v ~x:5 ~y:3 ~w:20 ~h:11); (Render.Region.v ~x:0 ~y:0 ~w:1 ~h:1); (Render.Region.v ~x:36 ~y:22 ~w:1 ~h:1);
+                       (Render.Region.v ~x:1 ~y:1 ~w:35 ~h:21); (Render.Region.v ~x:0 ~y:7 ~w:37 ~h:4); (Render.Region.v ~x:10 ~y:0 ~w:3 ~h:23) ])
           modes);
     Helpers.qcheck ~count:60 "any region of any scene is that part of the whole, in every sampling mode"
       QCheck.(pair Gen_scene.arbitrary (quad small_nat small_nat small_nat small_nat))
@@ -196,7 +196,7 @@ let tests =
         List.for_all
           (fun (_, render) ->
             let whole = region_of render s (Render.Region.full ~width:(Scene.width s) ~height:(Scene.height s)) in
-            Image.equal (Image.sub whole ~x ~y ~w ~h) (region_of render s { x; y; w; h }))
+            Image.equal (Image.sub whole ~x ~y ~w ~h) (region_of render s (Render.Region.v ~x ~y ~w ~h)))
           modes);
     Alcotest.test_case "tracing allocates nothing per pixel, whatever the sampling" `Quick (fun () ->
         let s = Scene.with_overrides ~width:60 ~height:60 Scene.cgfs in

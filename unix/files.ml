@@ -65,7 +65,7 @@ let feed_mesh ~check ~path p ic ~start ~stop =
 (* The mesh from line start [split] of file [path] to its end, read in a
    child process (Parallel.beside); [wait ()] is the part, the id of the
    process that read it and the temporary file that holds its arrays
-   (Mesh.Obj.join reads them), or [None] where the child failed, whatever
+   (Obj_parts.join reads them), or [None] where the child failed, whatever
    the reason: the caller then reads that part itself. The child writes
    its arrays to the file as it reads (a block at a time: it holds a few
    blocks, never the part, and its collector has little to do) and sends
@@ -85,10 +85,10 @@ let mesh_part ~check path split =
           (fun () ->
             seek_in ic split;
             let p =
-              Mesh.Obj.create_part ~output:(write_all fd) ~name:path ~max_vertices:Limits.max_triangles
+              Obj_parts.create_part ~output:(write_all fd) ~name:path ~max_vertices:Limits.max_triangles
                 ~max_triangles:Limits.max_triangles
             in
-            match Result.bind (feed_mesh ~check ~path p ic ~start:split ~stop:max_int) (fun () -> Mesh.Obj.finish_part p) with
+            match Result.bind (feed_mesh ~check ~path p ic ~start:split ~stop:max_int) (fun () -> Obj_parts.finish_part p) with
             | Error _ -> None
             | Ok part -> Some (Unix.getpid (), part))
       in
@@ -98,7 +98,7 @@ let mesh_part ~check path split =
         | Ok (Some (pid, part)) -> (
             match
               ignore (Unix.lseek fd 0 SEEK_SET);
-              (Unix.fstat fd).st_size = Mesh.Obj.part_bytes part
+              (Unix.fstat fd).st_size = Obj_parts.part_bytes part
             with
             | true -> Some (pid, part, fd)
             | false | (exception Unix.Unix_error _) ->
@@ -152,14 +152,14 @@ let read_mesh_paced ~limits ~jobs ~split_bytes ~on_part path (o : File_io.opened
                   | None -> rest split
                   | Some (pid, part, fd) -> (
                       let joined =
-                        match Mesh.Obj.join p part ~input:(read_all fd) with
+                        match Obj_parts.join p part ~input:(read_all fd) with
                         | m -> m
                         | exception (Unix.Unix_error _ | End_of_file | Failure _) -> None
                       in
                       (try Unix.close fd with Unix.Unix_error _ -> ());
                       match joined with
                       | Some m ->
-                          on_part ~pid (Mesh.Obj.part_triangle_count part);
+                          on_part ~pid (Obj_parts.part_triangle_count part);
                           Ok m
                       | None -> rest split))))
 

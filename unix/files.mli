@@ -91,8 +91,8 @@ val read_mesh :
     With [jobs > 1] (default [1]), a regular file of [split_bytes] bytes
     or more (default {!split_bytes}) is read on two cores: a child process
     ({!Parallel.beside}) reads from the first line start after the middle
-    to the end ([Raytrace.Mesh.Obj.create_part]) while this one reads the
-    first half, then joins the two ([Raytrace.Mesh.Obj.join]). The mesh
+    to the end ([Raytrace.Private.Obj_parts.create_part]) while this one reads the
+    first half, then joins the two ([Raytrace.Private.Obj_parts.join]). The mesh
     and the errors are those of a read on one core, whatever the file
     holds: where the child failed or its part cannot be joined, this
     process reads the second half itself. [on_part ~pid k] is called when

@@ -11,7 +11,7 @@ let check_memory (region : Render.Region.t) =
 
 let shared_memory =
   {
-    Render.Sampling.bytes = Parallel.shared_bytes;
+    Sampling_rows.bytes = Parallel.shared_bytes;
     floats = Parallel.shared_floats;
     ints = Parallel.shared_ints;
     at_row = Parallel.exit_if_orphaned;
@@ -92,10 +92,10 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
   | exception Out_of_memory -> Render_work.out_of_memory region
   | exception Failure _ -> one_process scene
   | img -> (
-      match Render.Sampling.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y) with
+      match Sampling_rows.plan ~memory:shared_memory sampling img ~canvas ~at:(region.x, region.y) with
       | exception Failure _ -> one_process scene
       | plan ->
-      let passes = Render.Sampling.passes plan in
+      let passes = Sampling_rows.passes plan in
       match Parallel.shared_ints (passes * jobs * Render_work.counter_fields) with
       | exception Out_of_memory -> Render_work.out_of_memory region
       | exception Failure _ -> one_process scene
@@ -143,7 +143,7 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
                   Render_work.stats ints ~slots:(passes * jobs) ~pixels:(Render.Region.pixels region) ~jobs
                     ~prepare_s:(t1 -. t0) ~trace_s:(t2 -. t1) )
             else
-              let n = Render.Sampling.pass_rows plan i in
+              let n = Sampling_rows.pass_rows plan i in
               let bands = bands ~jobs n in
               let count = Array.length bands - 1 in
               let queue = Parallel.queue count in
@@ -178,7 +178,7 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
                       | None -> 0
                     in
                     for r = bands.(b) to bands.(b + 1) - 1 do
-                      Render.Sampling.rows plan i tr ~first:r ~step:n;
+                      Sampling_rows.rows plan i tr ~first:r ~step:n;
                       match slots with
                       | Some slots -> count_row slots ~jobs w ~rays:(earlier + Render_work.rays tr)
                       | None -> ()

@@ -22,7 +22,7 @@ val image :
     [rows_done img r] is called by this process whenever the first [r]
     rows of [img], the image being rendered, are final, with [r]
     increasing and last the image's height, before [image] returns [Ok img]:
-    with several jobs and a single pass ([Raytrace.Render.Sampling.passes]), while the
+    with several jobs and a single pass ([Raytrace.Private.Sampling_rows.passes]), while the
     workers trace the rest (to write the image as it is made); otherwise
     once, at the end. It must not raise. Besides {!Raytrace.Render.image}'s errors, [Error] before
     anything is allocated if the image needs more memory than the system

@@ -28,7 +28,7 @@ let column (m : Camera.rotation) pick = Vec3.v (pick m.row0) (pick m.row1) (pick
 let move ~right ~forward (cam : Camera.t) =
   let r = Vec3.unit (column cam.rotation (fun (v : Vec3.t) -> v.x)) in
   let f = Vec3.unit (column cam.rotation (fun (v : Vec3.t) -> v.z)) in
-  { cam with position = Vec3.(cam.position + (right * r) + (forward * f)) }
+  Camera.v ~rotation:cam.rotation Vec3.(cam.position + (right * r) + (forward * f))
 
 let yaw a (cam : Camera.t) =
   (* R_y(a) M: rows 0 and 2 mix, row 1 (the y of every direction) stays. *)
@@ -37,14 +37,14 @@ let yaw a (cam : Camera.t) =
   let rotation =
     Camera.{ row0 = Vec3.((c * m.row0) + (s * m.row2)); row1 = m.row1; row2 = Vec3.((c * m.row2) - (s * m.row0)) }
   in
-  { cam with rotation }
+  Camera.v ~rotation cam.position
 
 let pitch a (cam : Camera.t) =
   (* M R_x(a): in each row, the y and z entries mix. *)
   let c = cos a and s = sin a in
   let row (r : Vec3.t) = Vec3.v r.x ((c *. r.y) -. (s *. r.z)) ((s *. r.y) +. (c *. r.z)) in
   let m = cam.rotation in
-  { cam with rotation = Camera.{ row0 = row m.row0; row1 = row m.row1; row2 = row m.row2 } }
+  Camera.v ~rotation:Camera.{ row0 = row m.row0; row1 = row m.row1; row2 = row m.row2 } cam.position
 
 let drag_angles (scene : Scene.t) dx dy =
   let vp = (Scene.viewport scene) in
@@ -61,7 +61,7 @@ let fit (base : Scene.t) ~width ~height =
     let w = Float.of_int width and h = Float.of_int height in
     let gw = Float.of_int (Scene.width base) and gh = Float.of_int (Scene.height base) in
     let k = Float.max (gw /. w) (gh /. h) in
-    { vp with width = vp.width *. (k *. w /. gw); height = vp.height *. (k *. h /. gh) }
+    Viewport.v ~width:(vp.width *. (k *. w /. gw)) ~height:(vp.height *. (k *. h /. gh)) ~distance:vp.distance
 
 (* Input. *)
 

@@ -2,7 +2,9 @@
 
     The figures of [raytrace diff] and of the image tests: how many pixels
     differ, and by how much. A channel difference is the absolute
-    difference of two bytes, in [\[0, 255\]]. *)
+    difference of two bytes, in [\[0, 255\]].
+
+    @canonical Raytrace.Image.Diff *)
 
 type t = {
   pixels : int;  (** Pixels compared: [width * height]. *)

@@ -2,7 +2,9 @@
 
     Images are written as binary P6 with maxval 255. The reader accepts P6
     and plain P3, with [#] comments in the header, and maxval from 1 to 255
-    (values are rescaled to 0-255). *)
+    (values are rescaled to 0-255).
+
+    @canonical Raytrace.Image.Ppm *)
 
 val to_string : ?comments:string list -> Image.t -> string
 (** [to_string ~comments img] is [img] as a binary P6 file: the header

@@ -3,7 +3,9 @@
 
     A value of type {!t} holds the prepared scene and a tracer, made once;
     each {!color} then traces one pixel with the renderer's own code, in
-    the scene's mode (the document's epsilon, or robust without one). *)
+    the scene's mode (the document's epsilon, or robust without one).
+
+    @canonical Raytrace.Render.Pixel *)
 
 type t
 (** The type for tracers of single pixels of one scene. *)

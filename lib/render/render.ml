@@ -18,7 +18,7 @@ let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples 
       let t0 = clock () in
       let p = Prepared.prepare ?skips scene in
       let t1 = clock () in
-      let plan = Sampling.plan sampling img ~canvas ~at:(region.x, region.y) in
+      let plan = Sampling_rows.plan sampling img ~canvas ~at:(region.x, region.y) in
       let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout Render_work.counter_fields in
       (* One tracer for every pass. *)
       let tr = Trace.create ~averaging:(Sampling.averaging sampling) p in
@@ -29,16 +29,16 @@ let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples 
       match
       match progress with
       | None ->
-          for i = 0 to Sampling.passes plan - 1 do
-            Sampling.rows plan i tr ~first:0 ~step:1
+          for i = 0 to Sampling_rows.passes plan - 1 do
+            Sampling_rows.rows plan i tr ~first:0 ~step:1
           done
       | Some progress ->
           let total = Render_work.total_rows plan in
           let finished = ref 0 in
-          for i = 0 to Sampling.passes plan - 1 do
-            let n = Sampling.pass_rows plan i in
+          for i = 0 to Sampling_rows.passes plan - 1 do
+            let n = Sampling_rows.pass_rows plan i in
             for r = 0 to n - 1 do
-              Sampling.rows plan i tr ~first:r ~step:n;
+              Sampling_rows.rows plan i tr ~first:r ~step:n;
               incr finished;
               let w = Gc.minor_words () in
               progress ~rows:!finished ~total ~rays:(Render_work.rays tr);

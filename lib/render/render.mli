@@ -29,7 +29,7 @@ val image :
 
     [progress ~rows ~total ~rays], if given, is called after each row:
     [rows] of the [total] rows of work (the rows of every pass of
-    [Sampling.passes]: [total] is the image height or more) are finished
+    the sampling, one or two: [total] is the image height or more) are finished
     and [rays] were cast so far. [rows] never decreases, and the last call
     has [rows = total]. What [progress] allocates is not counted in the
     statistics' [minor_words]; it must not raise. *)

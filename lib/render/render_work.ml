@@ -105,7 +105,7 @@ let rays tr =
 
 let total_rows plan =
   let t = ref 0 in
-  for i = 0 to Sampling.passes plan - 1 do
-    t := !t + Sampling.pass_rows plan i
+  for i = 0 to Sampling_rows.passes plan - 1 do
+    t := !t + Sampling_rows.pass_rows plan i
   done;
   !t

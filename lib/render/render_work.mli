@@ -69,6 +69,6 @@ val stats :
 val rays : Trace.t -> int
 (** [rays tr] is the number of rays [tr] has cast so far. *)
 
-val total_rows : Sampling.plan -> int
+val total_rows : Sampling_rows.plan -> int
 (** [total_rows pl] is the number of rows of work of [pl]: the rows of
-    every pass ([Raytrace.Render.Sampling.pass_rows]). *)
+    every pass ([Raytrace.Sampling_rows.pass_rows]). *)

@@ -1,4 +1,6 @@
-(** What a render cost: rays by kind, intersection tests, time, allocation. *)
+(** What a render cost: rays by kind, intersection tests, time, allocation.
+
+    @canonical Raytrace.Render.Stats *)
 
 type t = {
   pixels : int;  (** Pixels rendered. *)
@@ -16,7 +18,9 @@ type t = {
           command line's renders (all their processes together) read the wall clock. *)
   minor_words : float;  (** Minor-heap words allocated by the tracing loops. *)
 }
-(** The type for render statistics. *)
+(** The type for render statistics.
+
+    @canonical Raytrace.Render.Stats.t *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf x] prints [x] as an OCaml record (derived). *)

@@ -4,6 +4,8 @@ type t = { position : Vec3.t; rotation : rotation } [@@deriving eq]
 let identity = { row0 = Vec3.ox; row1 = Vec3.oy; row2 = Vec3.oz }
 let v ?(rotation = identity) position = { position; rotation }
 let default = v Vec3.zero
+let position c = c.position
+let rotation c = c.rotation
 let is_identity m = equal_rotation m identity
 let determinant m = Vec3.dot m.row0 (Vec3.cross m.row1 m.row2)
 

@@ -23,7 +23,7 @@ val equal_rotation : rotation -> rotation -> bool
 (** [equal_rotation a b] is [true] iff [a] and [b] are equal field by field, floats
     compared with [=]. *)
 
-type t = { position : Vec3.t; rotation : rotation }
+type t = private { position : Vec3.t; rotation : rotation }
 (** The type for cameras: where the camera is, and how it is turned. *)
 
 val pp : Format.formatter -> t -> unit
@@ -47,6 +47,12 @@ val default : t
 val v : ?rotation:rotation -> Vec3.t -> t
 (** [v ~rotation position] is a camera at [position] turned by [rotation]
     (default {!identity}). *)
+
+val position : t -> Vec3.t
+(** [position c] is where [c] is, in world coordinates. *)
+
+val rotation : t -> rotation
+(** [rotation c] is the orientation matrix of [c]. *)
 
 val look_at : ?up:Vec3.t -> position:Vec3.t -> Vec3.t -> (t, [> `Msg of string ]) result
 (** [look_at ~up ~position target] is the camera at [position] whose

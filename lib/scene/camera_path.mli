@@ -6,7 +6,9 @@
     move linearly with the frame number; at a key's frame the camera is
     exactly the key's. Frames are integers in [\[0, max_frame\]]; a path
     defines the frames from its first key to its last, and each of them is
-    checked when the path is built, so that every frame renders. *)
+    checked when the path is built, so that every frame renders.
+
+    @canonical Raytrace.Camera.Path *)
 
 type key = {
   frame : int;  (** Frame number, in [\[0, max_frame\]]. *)
@@ -29,7 +31,9 @@ val equal_key : key -> key -> bool
 
 type t
 (** The type for camera paths: at least one key, frames strictly
-    increasing. *)
+    increasing.
+
+    @canonical Raytrace.Camera.Path.t *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf p] prints [p] as its [camera-path] form in the scene-file

@@ -6,7 +6,7 @@
 
 (** {1:lights Lights} *)
 
-type t =
+type t = private
   | Ambient of { intensity : float }
       (** Lights every point of every object equally (7.3). *)
   | Point of { intensity : float; position : Vec3.t }

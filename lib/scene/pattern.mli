@@ -15,7 +15,7 @@
     unit normal the shading uses, turned to face the ray) by twice the
     bound on [P]'s rounding error, [e = 64 u (|O|_1 + |P|_1 + extent)]
     ([u = 2^-53], [O] the ray's origin, [extent] the largest coordinate
-    of the object, {!Raytrace.Private.Trace}'s bound for secondary rays).
+    of the object: the tracer's bound for secondary rays).
     So a plane that lies exactly on a boundary, such as [y = -1] with
     [size 1], shows one cell's colour everywhere on the side the camera
     sees (seen from above, the cell above the plane: index [-1]), where

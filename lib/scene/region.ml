@@ -1,6 +1,11 @@
 type t = { x : int; y : int; w : int; h : int } [@@deriving show, eq]
 
 let msg fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
+let v ~x ~y ~w ~h = { x; y; w; h }
+let x r = r.x
+let y r = r.y
+let w r = r.w
+let h r = r.h
 let full ~width ~height = { x = 0; y = 0; w = width; h = height }
 let pixels r = r.w * r.h
 

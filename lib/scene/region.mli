@@ -4,11 +4,15 @@
     rows [y] to [y + h - 1], rows counted from the top as in {!Image} and
     PPM files. Parts of an image rendered separately ([Raytrace_unix.Part]) are regions;
     since every pixel is traced alone, a region renders to exactly the
-    bytes that the whole image has there. *)
+    bytes that the whole image has there.
 
-type t = { x : int; y : int; w : int; h : int }
+    @canonical Raytrace.Render.Region *)
+
+type t = private { x : int; y : int; w : int; h : int }
 (** The type for regions: top-left pixel [(x, y)], [w x h] pixels, [w] and
-    [h] positive. *)
+    [h] positive.
+
+    @canonical Raytrace.Render.Region.t *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf x] prints [x] as an OCaml record (derived). *)
@@ -18,6 +22,24 @@ val show : t -> string
 
 val equal : t -> t -> bool
 (** [equal a b] is [true] iff [a] and [b] are equal field by field. *)
+
+val v : x:int -> y:int -> w:int -> h:int -> t
+(** [v ~x ~y ~w ~h] is the region of [w x h] pixels whose top-left pixel
+    is [(x, y)]. It checks nothing: the renderers check a region against
+    their canvas ({!contains}) and raise [Invalid_argument] on one outside
+    it. *)
+
+val x : t -> int
+(** [x r] is the column of [r]'s left edge. *)
+
+val y : t -> int
+(** [y r] is the row of [r]'s top edge, counted from the top. *)
+
+val w : t -> int
+(** [w r] is the width of [r], in pixels. *)
+
+val h : t -> int
+(** [h r] is the height of [r], in pixels. *)
 
 val full : width:int -> height:int -> t
 (** [full ~width ~height] is the whole canvas, [{x = 0; y = 0; w = width;

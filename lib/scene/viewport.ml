@@ -1,6 +1,9 @@
 type t = { width : float; height : float; distance : float } [@@deriving eq]
 
 let v ~width ~height ~distance = { width; height; distance }
+let width vp = vp.width
+let height vp = vp.height
+let distance vp = vp.distance
 let default = v ~width:1. ~height:1. ~distance:1.
 
 let check_dimension what x = Limits.check_size ("viewport " ^ what) x

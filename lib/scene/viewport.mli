@@ -5,7 +5,7 @@
     looks. The document's values [V_w = V_h = d = 1] give a field of view of
     about 53 degrees. *)
 
-type t = { width : float; height : float; distance : float }
+type t = private { width : float; height : float; distance : float }
 (** The type for viewports: [V_w], [V_h] and [d], all positive. *)
 
 val pp : Format.formatter -> t -> unit
@@ -21,6 +21,16 @@ val equal : t -> t -> bool
 
 val v : width:float -> height:float -> distance:float -> t
 (** [v ~width ~height ~distance] is the viewport with these dimensions. *)
+
+val width : t -> float
+(** [width vp] is [V_w], in world units. *)
+
+val height : t -> float
+(** [height vp] is [V_h], in world units. *)
+
+val distance : t -> float
+(** [distance vp] is [d], the distance from the camera to the viewport,
+    in world units. *)
 
 val default : t
 (** [default] is the document's viewport, [V_w = V_h = d = 1]. *)

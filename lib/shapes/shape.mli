@@ -1,8 +1,8 @@
 (** Every object's shape, as one type: a sphere is a shape like the others.
 
-    The kernel ({!Raytrace.Private.Prepared}, {!Raytrace.Private.Trace}) stores every shape in a table: a
-    kind, and its geometry in a float array ({!Raytrace.Private.Kind.stride} floats per shape,
-    written by the shape module's [store]; a triangle's three corners in
+    The kernel stores every shape in a table: a kind, and its geometry in
+    a float array (a fixed number of floats per shape, written by the
+    shape module's [store]; a triangle's three corners in
     an array of vertices, a mesh's shared by its triangles). This module
     ties the kinds to the shape modules, for the kernel and for
     {!Raytrace.Private.Literal}. *)
@@ -47,15 +47,6 @@ val validate : t -> (t, [> `Msg of string ]) result
 val name : t -> string
 (** [name s] is the scene-file form of [s]: ["sphere"], ["plane"], ["triangle"], ["box"], ["mesh"] or ["csg"]. *)
 
-(** {1:kinds Kinds} *)
-
-val kind : t -> Kind.t
-(** [kind s] is the kind of [s] in the kernel's table.
-    @raise Invalid_argument on a mesh, which is many objects of kind
-    {!Raytrace.Private.Kind.Triangle} or {!Raytrace.Private.Kind.Smooth_triangle} (so are {!store}, {!bounds},
-    {!roots} and {!normal}); {!store}, {!roots} and {!normal} raise it
-    on a CSG solid too, which the kernel traces from its own table. *)
-
 val store : t -> float array -> int -> unit
 (** [store s g o] writes the geometry of [s] to [g] at offset [o]. *)
 
@@ -92,3 +83,15 @@ val normal : t -> Vec3.t -> Vec3.t
 (** [normal s p] is the unit normal of [s] at its point [p], by the
     kernel's routine (outward for boxes; for planes and triangles the side
     they were given with). *)
+
+(**/**)
+
+(* The kernel's side, hidden from the documentation: which kind of the
+   kernel's table a shape is. *)
+
+val kind : t -> Kind.t
+(** [kind s] is the kind of [s] in the kernel's table.
+    @raise Invalid_argument on a mesh, which is many objects of kind
+    {!Raytrace.Private.Kind.Triangle} or {!Raytrace.Private.Kind.Smooth_triangle} (so are {!store}, {!bounds},
+    {!roots} and {!normal}); {!store}, {!roots} and {!normal} raise it
+    on a CSG solid too, which the kernel traces from its own table. *)

@@ -9,7 +9,9 @@
 (** {1:spheres Spheres} *)
 
 type t
-(** The type for sequences of spheres. *)
+(** The type for sequences of spheres.
+
+    @canonical Raytrace.Private.Spheres.t *)
 
 val empty : t
 (** [empty] holds no sphere. *)
@@ -84,7 +86,9 @@ val materials : t -> Material.t array
 type builder
 (** The type for sequences being built, for readers that do not know how
     many spheres will come. It grows by blocks: no array is copied to a
-    larger one, so the peak memory is the spheres' own. *)
+    larger one, so the peak memory is the spheres' own.
+
+    @canonical Raytrace.Private.Spheres.builder *)
 
 val builder : unit -> builder
 (** [builder ()] is an empty builder. *)

@@ -15,10 +15,14 @@
     Exactness holds while no partial product underflows or overflows: for
     the oracle's polynomials (degree 6 at most) in coordinates of
     magnitude below [1e12] ({!Limits.max_coordinate}), and differences of
-    coordinates either [0] or above about [1e-40] in magnitude. *)
+    coordinates either [0] or above about [1e-40] in magnitude.
+
+    @canonical Raytrace.Private.Exact_float *)
 
 type t
-(** The type for exact values: sums of floats. *)
+(** The type for exact values: sums of floats.
+
+    @canonical Raytrace.Private.Exact_float.t *)
 
 val of_float : float -> t
 (** [of_float x] is [x], exactly. [x] must be finite. *)

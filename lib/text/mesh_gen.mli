@@ -5,7 +5,9 @@
     generators are deterministic: the same arguments give the same floats
     on every 64-bit platform (only [+ - * /], [sqrt], [sin] and [cos] of
     the OCaml runtime's C library are used). Triangles are counter-clockwise
-    seen from the front, the side the vertex normals point to. *)
+    seen from the front, the side the vertex normals point to.
+
+    @canonical Raytrace.Mesh.Gen *)
 
 val torus_knot : p:int -> q:int -> radius:float -> tube:float -> segments:int -> sides:int -> Obj_file.t
 (** [torus_knot ~p ~q ~radius ~tube ~segments ~sides] is a tube of radius

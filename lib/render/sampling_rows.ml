@@ -1,0 +1,221 @@
+type ints = (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t
+
+type memory = {
+  bytes : int -> Image.buffer;
+  floats : int -> Trace.samples;
+  ints : int -> ints;
+  at_row : unit -> unit;
+}
+
+let local =
+  {
+    bytes = (fun n -> Bigarray.Array1.create Bigarray.int8_unsigned Bigarray.c_layout n);
+    floats = (fun n -> Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout n);
+    ints = (fun n -> Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout n);
+    at_row = ignore;
+  }
+
+(* A plan renders the [w x h] rectangle of the canvas at [(x, y)] into
+   [img]. Adaptive sampling and subsampling decide a pixel from its
+   neighbours' first rays, so their first pass also traces a margin of one
+   pixel around the rectangle (clipped to the canvas): the rectangle
+   [(mx, my)], [mw x mh], whose pixels the buffers hold, row by row. *)
+type plan = {
+  s : Sampling.t;
+  img : Image.t;
+  cw : int;  (** Canvas size. *)
+  ch : int;
+  x : int;
+  y : int;
+  w : int;
+  h : int;
+  mx : int;
+  my : int;
+  mw : int;
+  mh : int;
+  first : Image.buffer;  (** Adaptive: the bytes of each pixel's first ray. *)
+  saved : Trace.samples;  (** Adaptive: its clamped colour. *)
+  hits : ints;  (** The sphere each pixel's (first) ray hit, [-1] for none. *)
+  at_row : unit -> unit;
+}
+
+let plan ?(memory = local) (s : Sampling.t) img ~canvas:(cw, ch) ~at:(x, y) =
+  let w = Image.width img and h = Image.height img in
+  if x < 0 || y < 0 || x + w > cw || y + h > ch then invalid_arg "Sampling_rows.plan: rectangle outside the canvas";
+  let mx = max 0 (x - 1) and my = max 0 (y - 1) in
+  let mw = min cw (x + w + 1) - mx and mh = min ch (y + h + 1) - my in
+  let adaptive = s.adaptive <> None in
+  let margin = if adaptive || s.subsample then mw * mh else 0 in
+  (* Empty buffers need no shared memory. *)
+  let bytes n = if n > 0 then memory.bytes n else local.bytes 0 in
+  let floats n = if n > 0 then memory.floats n else local.floats 0 in
+  let ints n = if n > 0 then memory.ints n else local.ints 0 in
+  (* Every element a pass reads was written by an earlier pass. *)
+  {
+    s;
+    img;
+    cw;
+    ch;
+    x;
+    y;
+    w;
+    h;
+    mx;
+    my;
+    mw;
+    mh;
+    first = bytes (if adaptive then 3 * margin else 0);
+    saved = floats (if adaptive then 3 * margin else 0);
+    hits = ints margin;
+    at_row = memory.at_row;
+  }
+
+let passes pl = if pl.s.adaptive <> None || pl.s.subsample then 2 else 1
+
+(* Indices: [out] of canvas pixel [(cx, cy)] in [img] (times 3 for its
+   bytes), [m] in the margin buffers. *)
+let[@inline] out pl cx cy = ((cy - pl.y) * pl.w) + (cx - pl.x)
+let[@inline] m pl cx cy = ((cy - pl.my) * pl.mw) + (cx - pl.mx)
+let[@inline] inside pl cx cy = cx >= pl.x && cx < pl.x + pl.w && cy >= pl.y && cy < pl.y + pl.h
+let[@inline] gx pl cx = Canvas.x_of_column ~width:pl.cw cx
+let[@inline] gy pl cy = Canvas.y_of_row ~height:pl.ch cy
+
+(* One ray per pixel, or the full grid: canvas row [cy] of the rectangle. *)
+let full pl tr cy =
+  let buffer = Image.buffer pl.img and n = pl.s.samples in
+  let gy = gy pl cy in
+  if n = 1 then Trace.row tr buffer (3 * out pl pl.x cy) (gx pl pl.x) gy pl.w
+  else
+    for cx = pl.x to pl.x + pl.w - 1 do
+      Trace.average tr (gx pl cx) gy ~n;
+      Trace.store_average tr buffer (3 * out pl cx cy) ~count:(n * n)
+    done
+
+(* Per pixel, not per ray: these accesses keep their bounds checks, so that
+   a wrong neighbour index fails loudly rather than reading past a mapped
+   buffer. *)
+let set_hit (hits : ints) i tr = Bigarray.Array1.set hits i (Int64.of_int (Trace.hit_object tr))
+let hit (hits : ints) i = Int64.to_int (Bigarray.Array1.get hits i)
+
+(* Adaptive, pass 0: the first ray of each pixel of canvas row [cy] of the
+   margin, kept three ways. *)
+let first_rays pl tr cy =
+  let gy = gy pl cy in
+  for cx = pl.mx to pl.mx + pl.mw - 1 do
+    let i = m pl cx cy in
+    Trace.pixel tr (gx pl cx) gy;
+    Trace.store tr pl.first (3 * i);
+    Trace.save tr pl.saved (3 * i);
+    set_hit pl.hits i tr
+  done
+
+(* Do the first rays of margin pixels [p] and [q] differ: another sphere,
+   or a channel more than [th] apart? *)
+let[@inline] apart (f : Image.buffer) th p q c =
+  abs (Bigarray.Array1.get f ((3 * p) + c) - Bigarray.Array1.get f ((3 * q) + c)) > th
+
+let differ pl th p q =
+  hit pl.hits p <> hit pl.hits q || apart pl.first th p q 0 || apart pl.first th p q 1 || apart pl.first th p q 2
+
+(* Adaptive, pass 1: refine the pixels of canvas row [cy] that differ from a
+   neighbour in the canvas, copy the others' first bytes. Reads only what
+   pass 0 wrote. *)
+let refine pl th tr cy =
+  let buffer = Image.buffer pl.img and n = pl.s.samples and mw = pl.mw in
+  let gy = gy pl cy in
+  for cx = pl.x to pl.x + pl.w - 1 do
+    let i = m pl cx cy and k = 3 * out pl cx cy in
+    if
+      (cx > 0 && differ pl th i (i - 1))
+      || (cx < pl.cw - 1 && differ pl th i (i + 1))
+      || (cy > 0 && differ pl th i (i - mw))
+      || (cy < pl.ch - 1 && differ pl th i (i + mw))
+    then begin
+      Trace.average_reusing tr pl.saved (3 * i) (gx pl cx) gy ~n;
+      Trace.store_average tr buffer k ~count:(n * n)
+    end
+    else
+      for c = 0 to 2 do
+        Bigarray.Array1.set buffer (k + c) (Bigarray.Array1.get pl.first ((3 * i) + c))
+      done
+  done
+
+(* Subsampling: the pixel at margin index [i] from its neighbours [a] and
+   [b], when both exist ([both]) and hit the same sphere; traced in full
+   otherwise. Stored if it lies in the rectangle. *)
+let subsampled pl tr cx cy i a b ~both =
+  (* [a] and [b] may lie outside the margin when not [both]: read only then
+     (an unchecked read before a mapped buffer can fault). *)
+  if both && hit pl.hits a = hit pl.hits b then
+    Trace.pixel_assuming tr (gx pl cx) (gy pl cy) (hit pl.hits a)
+  else Trace.pixel tr (gx pl cx) (gy pl cy);
+  if inside pl cx cy then Trace.store tr (Image.buffer pl.img) (3 * out pl cx cy);
+  set_hit pl.hits i tr
+
+(* Subsampling, pass 0, even canvas rows of the margin: even columns
+   traced, odd ones from their left and right neighbours. An odd column at
+   the margin's edge lacks a neighbour that the whole canvas has; it is
+   traced in full, and only ever read by nobody: pass 1 reads the columns
+   of the rectangle only. *)
+let even_row pl tr cy =
+  let x0 = pl.mx and x1 = pl.mx + pl.mw in
+  let cx = ref (x0 + (x0 land 1)) in
+  while !cx < x1 do
+    let i = m pl !cx cy in
+    Trace.pixel tr (gx pl !cx) (gy pl cy);
+    if inside pl !cx cy then Trace.store tr (Image.buffer pl.img) (3 * out pl !cx cy);
+    set_hit pl.hits i tr;
+    cx := !cx + 2
+  done;
+  let cx = ref (x0 + 1 - (x0 land 1)) in
+  while !cx < x1 do
+    let i = m pl !cx cy in
+    subsampled pl tr !cx cy i (i - 1) (i + 1) ~both:(!cx > x0 && !cx + 1 < x1);
+    cx := !cx + 2
+  done
+
+(* Subsampling, pass 1, odd canvas rows of the rectangle: every pixel from
+   the pixels above and below, written by pass 0. *)
+let odd_row pl tr cy =
+  for cx = pl.x to pl.x + pl.w - 1 do
+    let i = m pl cx cy in
+    subsampled pl tr cx cy i (i - pl.mw) (i + pl.mw) ~both:(cy + 1 < pl.ch)
+  done
+
+(* The canvas rows pass [i] works on are [start], [start + every], ...
+   below [stop]: the rectangle's, or the margin's for the first rays of
+   adaptive sampling, every other one for subsampling. Three functions, not
+   a tuple: [rows] may run once per row, and must not allocate. *)
+let[@inline] on_margin pl i = i = 0 && (pl.s.adaptive <> None || pl.s.subsample)
+let[@inline] stop pl i = if on_margin pl i then pl.my + pl.mh else pl.y + pl.h
+let[@inline] every pl = if pl.s.subsample then 2 else 1
+
+let[@inline] start pl i =
+  let lo = if on_margin pl i then pl.my else pl.y in
+  (* Subsampling: even canvas rows in pass 0, odd ones in pass 1. *)
+  if pl.s.subsample && lo land 1 <> i then lo + 1 else lo
+
+let pass_rows pl i =
+  if i < 0 || i >= passes pl then invalid_arg "Sampling_rows.pass_rows: no such pass";
+  let span = stop pl i - start pl i in
+  if span <= 0 then 0 else (span + every pl - 1) / every pl
+
+let rows pl i tr ~first ~step =
+  let p = Trace.prepared tr in
+  if p.width <> pl.cw || p.height <> pl.ch then invalid_arg "Sampling_rows.rows: the canvas sizes differ";
+  if Trace.averaging tr <> Sampling.averaging pl.s then invalid_arg "Sampling_rows.rows: the tracer's averaging differs";
+  if step < 1 then invalid_arg "Sampling_rows.rows: step < 1";
+  if i < 0 || i >= passes pl then invalid_arg "Sampling_rows.rows: no such pass";
+  (* A plain loop: a closure per pass would show in the allocation test. *)
+  let stop = stop pl i and every = every pl in
+  let r = ref (start pl i + (every * first)) in
+  while !r < stop do
+    (* A worker whose parent was killed stops here, within one row. *)
+    pl.at_row ();
+    (match pl.s.adaptive with
+    | Some _ when i = 0 -> first_rays pl tr !r
+    | Some th -> refine pl th tr !r
+    | None -> if not pl.s.subsample then full pl tr !r else if i = 0 then even_row pl tr !r else odd_row pl tr !r);
+    Trace.check_budget tr;
+    r := !r + (every * step)
+  done
