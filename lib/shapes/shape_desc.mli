@@ -69,7 +69,10 @@ type 'a t = {
 
 type primitive = Primitive : 'a t * 'a -> primitive  (** A shape of some described kind. *)
 
-type any = Any : 'a t -> any  (** A description of some kind, for lists of them ({!Primitives.all}). *)
+(** The type for a description of some kind, for lists of them ({!Primitives.all}).
+
+    @canonical Raytrace.Private.Shape_desc.any *)
+type any = Any : 'a t -> any
 
 (** {1:prim Primitives} *)
 
