@@ -113,18 +113,20 @@ bench: deps
 # Raytrace against Intel's Embree 3 (issue 28; bench/embree/compare.sh): build time, ns per
 # camera ray, hit-mask agreement and peak bytes per triangle, one thread each, on the same
 # rays, for a torus knot and a terrain of each size in EMBREE_SIZES (triangles), on an
-# EMBREE_WIDTH x EMBREE_HEIGHT canvas. A benchmark, not a test (make test only checks the
-# masks of a small mesh, test/test_embree.ml). Release build in _build-release; the driver is
-# built with cc against Debian's libembree-dev. Minutes at 4M triangles.
+# EMBREE_WIDTH x EMBREE_HEIGHT canvas, medians of EMBREE_REPEATS runs in alternation. A
+# benchmark, not a test (make test only checks the masks of a small mesh,
+# test/test_embree.ml). Release build in _build-release; the driver is built with cc
+# against Debian's libembree-dev. Minutes with 4000000 in EMBREE_SIZES.
 EMBREE_SIZES ?= 100000 1000000
 EMBREE_WIDTH ?= 400
 EMBREE_HEIGHT ?= 300
+EMBREE_REPEATS ?= 3
 bench-embree: deps
 	dune build --profile release --build-dir _build-release bench/gen.exe bench/embree/raytrace_rays.exe
 	cc -O2 -Wall -o _build-release/embree_rays bench/embree/embree_rays.c -lembree3
 	$(BENCH_NICE) bench/embree/compare.sh _build-release/default/bench/gen.exe \
 	  _build-release/default/bench/embree/raytrace_rays.exe _build-release/embree_rays \
-	  _build-release/embree-bench $(EMBREE_WIDTH) $(EMBREE_HEIGHT) $(EMBREE_SIZES)
+	  _build-release/embree-bench $(EMBREE_WIDTH) $(EMBREE_HEIGHT) $(EMBREE_REPEATS) $(EMBREE_SIZES)
 
 # A coverage-guided fuzzing campaign (AFL++ driving the crowbar target
 # fuzz/fuzz_raytrace.ml, built instrumented in _build_fuzz) on the scene

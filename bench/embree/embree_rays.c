@@ -183,7 +183,7 @@ int main(int argc, char **argv) {
     snprintf(differ, sizeof differ, "%zu", d);
     free(other);
   }
-  printf("%-16s %8.3f %8.3f %8.0f %7.2f%% %7.0f %8s\n", robust ? "embree robust" : "embree default", t1 - t0,
+  printf("%-16s %8.3f %8.3f %8.0f %7.2f%% %7.0f %8s\n", robust ? "embree-robust" : "embree", t1 - t0,
          t2 - t1, n ? (t4 - t3) * 1e9 / (double)n : 0., n ? 100. * (double)hits / (double)n : 0.,
          m.nt ? (double)ru.ru_maxrss * 1024. / (double)m.nt : 0., differ);
 
