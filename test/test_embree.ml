@@ -21,7 +21,8 @@ let read path =
   close_in ic;
   s
 
-(* The driver, built once per run in [dir]; [None] if Embree is not here. *)
+(* The driver, built once per run in a fresh directory; [None] if Embree's
+   header is not here. *)
 let driver =
   lazy
     (if not (Sys.file_exists header) then None
@@ -77,11 +78,11 @@ let same_masks name (mesh : Mesh.Obj.t) camera () =
 
 let tests =
   [
-    Alcotest.test_case "torus knot, 2048 triangles" `Quick
+    Alcotest.test_case "Embree's two modes find raytrace's hit mask on a 2048-triangle knot" `Quick
       (same_masks "knot"
          (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.35 ~segments:128 ~sides:8)
          "(camera (position 0 0.8333333333333334 -8.333333333333334) (look-at 0 -0.6111111111111112 0))");
-    Alcotest.test_case "terrain, 2048 triangles" `Quick
+    Alcotest.test_case "Embree's two modes find raytrace's hit mask on a 2048-triangle terrain" `Quick
       (same_masks "terrain"
          (Mesh.Gen.terrain ~seed:1 ~nx:32 ~nz:32 ~size:10. ~height:1.)
          "(camera (position 0 3 -7) (look-at 0 0 0))");

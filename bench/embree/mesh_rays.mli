@@ -27,4 +27,5 @@ val cast : Prepared.t -> Bytes.t -> result
     [mask] to [1] where the camera ray hit an object, [0] elsewhere.
     [mask] has [width * height] bytes. The scene should be the mesh alone,
     an ambient light and recursion depth 0, so that the time is the camera
-    ray's. *)
+    ray's.
+    @raise Invalid_argument if [mask] does not have [width * height] bytes. *)
