@@ -15,13 +15,13 @@ BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-oca
   libx11-dev js-of-ocaml libjs-of-ocaml-dev
 TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev libcrowbar-ocaml-dev xvfb \
   x11-apps xdotool imagemagick parallel rsync slurmctld slurmd slurm-client munge openssh-server \
-  openssh-client chromium
+  openssh-client chromium libembree-dev
 # The plot of the run time against error benchmark (make bench-quality only).
 BENCH_PKGS = gnuplot-nox
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: run test deps deps-build build golden screenshot web web-screenshot clean bench bench-quality fuzz
+.PHONY: run test deps deps-build build golden screenshot web web-screenshot clean bench bench-quality bench-embree fuzz
 
 # Only what the program needs (dune build's default would build the tests too,
 # and their libraries come with `make deps`).
@@ -109,6 +109,24 @@ clean:
 bench: deps
 	dune build --profile release bin/main.exe bench/speed.exe
 	./_build/default/bench/speed.exe --raytrace ./_build/default/bin/main.exe
+
+# Raytrace against Intel's Embree 3 (issue 28; bench/embree/compare.sh): build time, ns per
+# camera ray, hit-mask agreement and peak bytes per triangle, one thread each, on the same
+# rays, for a torus knot and a terrain of each size in EMBREE_SIZES (triangles), on an
+# EMBREE_WIDTH x EMBREE_HEIGHT canvas, medians of EMBREE_REPEATS runs in alternation. A
+# benchmark, not a test (make test only checks the masks of a small mesh,
+# test/test_embree.ml). Release build in _build-release; the driver is built with cc
+# against Debian's libembree-dev. Minutes with 4000000 in EMBREE_SIZES.
+EMBREE_SIZES ?= 100000 1000000
+EMBREE_WIDTH ?= 400
+EMBREE_HEIGHT ?= 300
+EMBREE_REPEATS ?= 3
+bench-embree: deps
+	dune build --profile release --build-dir _build-release bench/gen.exe bench/embree/raytrace_rays.exe
+	cc -O2 -Wall -o _build-release/embree_rays bench/embree/embree_rays.c -lembree3
+	$(BENCH_NICE) bench/embree/compare.sh _build-release/default/bench/gen.exe \
+	  _build-release/default/bench/embree/raytrace_rays.exe _build-release/embree_rays \
+	  _build-release/embree-bench $(EMBREE_WIDTH) $(EMBREE_HEIGHT) $(EMBREE_REPEATS) $(EMBREE_SIZES)
 
 # A coverage-guided fuzzing campaign (AFL++ driving the crowbar target
 # fuzz/fuzz_raytrace.ml, built instrumented in _build_fuzz) on the scene

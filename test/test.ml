@@ -69,6 +69,7 @@ let () =
       ("obj_file", Test_obj_file.tests);
       ("obj_split", Test_obj_split.tests);
       ("mesh_gen", Test_mesh_gen.tests);
+      ("embree", Test_embree.tests);
       ("optics", Test_optics.tests);
       ("promises", Test_promises.tests @ Test_promises_values.tests);
     ]
