@@ -105,13 +105,16 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
           | exception Failure _ -> one_process scene
           | slots ->
           let t0 = Unix.gettimeofday () in
-          (* A part of a big hierarchy is built by a child process meanwhile
-             (grid:1000000 with two jobs, alternating runs on a quiet 2-core
-             machine: 2.66 -> 2.39 s, its peak 209 -> 214 MB). On a machine
-             whose cores are all busy the child waits for one, and preparing
-             takes longer (docs/performance.md). *)
-          let beside = if jobs > 1 then Some (bvh_beside ()) else None in
-          let p = Prepared.prepare ?skips ?beside scene in
+          (* Prepared in this process alone, not with [bvh_beside]: a child
+             forked from a big heap write-protects all of it, and every
+             page this process writes after the fork (the boxes, the
+             build's partitions, the slot-order arrays) is a page fault,
+             as is every page the child writes. For a million spheres that
+             nearly doubles the faults of the whole render, which the
+             child's half of the work pays for only where a second core is
+             idle and faults are cheap; where one is not, [--jobs 2] was
+             slower than [--jobs 1] (issue 31, docs/performance.md). *)
+          let p = Prepared.prepare ?skips scene in
           let t1 = Unix.gettimeofday () in
           let total = Render_work.total_rows plan in
           let report () =

@@ -55,11 +55,11 @@ val bvh_beside : ?min_objects:int -> unit -> Bvh.beside
     child's leaves' boxes come back in memory shared with it, which the
     child reserves as it writes ({!Parallel.shared_floats_later}). A child
     that fails (killed, out of memory) costs the time it took: its part
-    is built here. {!image} and {!region_image} use it with more than one
-    job: on a quiet 2-core machine grid:1000000 renders 0.27 s sooner
-    with it; on a loaded one, where the child finds no idle core, the
-    fork and its copy-on-write faults cost more than they save
-    (docs/performance.md); [bench/load.exe --jobs 2] measures it. *)
+    is built here. {!image} and {!region_image} do not use it: the
+    fork write-protects the whole heap, and the page faults of both
+    processes' writes after it cost more than the child saves wherever
+    the second core is not idle (docs/performance.md, issue 31);
+    [bench/load.exe --jobs 2] measures it. *)
 
 val bands : jobs:int -> int -> int array
 (** [bands ~jobs n] is how a pass of [n] rows is cut for [jobs] workers:
