@@ -63,6 +63,13 @@ let colours img =
 
 let tests =
   [
+    Alcotest.test_case "a checker made by Pattern.checker reads back its colour and size" `Quick (fun () ->
+        let c = Color.v 1. 2. 3. in
+        let p = Pattern.checker ~size:0.25 c in
+        Alcotest.(check bool) "colour" true (Color.equal c (Pattern.color p));
+        Alcotest.(check (float 0.)) "size" 0.25 (Pattern.size p);
+        Alcotest.(check bool) "equal to itself, not to another size" true
+          (Pattern.equal p (Pattern.checker ~size:0.25 c) && not (Pattern.equal p (Pattern.checker ~size:0.5 c))));
     Alcotest.test_case "a pattern prints as it reads, and a scene reads back equal" `Quick (fun () ->
         let text =
           "(sphere (center 0 0 4) (radius 1) (color 255 0 0) (pattern checker (color 0 0 255) (size 0.25)))\n\

@@ -2,6 +2,7 @@ type t = Checker of { color : Color.t; size : float }
 
 let checker ~size color = Checker { color; size }
 let color (Checker { color; _ }) = color
+let size (Checker { size; _ }) = size
 
 let equal (Checker a) (Checker b) = Color.equal a.color b.color && a.size = b.size
 

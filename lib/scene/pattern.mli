@@ -27,8 +27,8 @@
 
 (** {1:patterns Patterns} *)
 
-type t = Checker of { color : Color.t; size : float }
-(** The type for patterns: [Checker {color; size}] alternates [color]
+type t = private Checker of { color : Color.t; size : float }
+(** The type for patterns, made by {!checker}: [Checker {color; size}] alternates [color]
     (channels in [\[0, 255\]]) with the object's colour in cells of side
     [size > 0] (in the object's coordinates). *)
 
@@ -37,6 +37,9 @@ val checker : size:float -> Color.t -> t
 
 val color : t -> Color.t
 (** [color p] is the second colour of [p]. *)
+
+val size : t -> float
+(** [size p] is the side of [p]'s cells. *)
 
 val equal : t -> t -> bool
 (** [equal a b] is [true] iff [a] and [b] are equal field by field, floats
