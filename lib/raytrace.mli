@@ -197,6 +197,8 @@ module Private : sig
   module Kind_dispatch = Kind_dispatch
   module Shape_desc = Shape_desc
   module Primitives = Primitives
+  module Cylinder = Cylinder
+  module Disk = Disk
   module Prepared = Prepared
   module Trace = Trace
   module Scratch = Scratch

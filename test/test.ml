@@ -36,6 +36,7 @@ let () =
       ("sampling", Test_sampling.tests);
       ("numerics", Test_numerics.tests);
       ("shapes", Test_shapes.tests);
+      ("cylinder", Test_cylinder.tests);
       ("csg", Test_csg.tests);
       ("bvh", Test_bvh.tests);
       ("prepared", Test_prepared.tests);

@@ -148,13 +148,14 @@ let transform ~scale ~translate (s : Scene.t) =
          | Error (`Msg e) -> Alcotest.fail e
        in
        let box (b : Box.t) : Box.t = Box.v ~min:(p b.min) ~max:(p b.max) (material b.material) in
+       let primitive prim = Shape_kinds.map_primitive ~point:p ~length:(fun x -> scale *. x) ~material prim in
        let rec csg (c : Csg.t) =
          let solid = function
            | Csg.Sphere sp -> Csg.Sphere (sphere sp)
            | Csg.Box b -> Csg.Box (box b)
            | Csg.Mesh m -> Csg.Mesh (mesh m)
            | Csg.Csg c -> Csg.Csg (csg c)
-           | Csg.Primitive _ -> invalid_arg "no described kind in these scenes"
+           | Csg.Primitive q -> Csg.Primitive (primitive q)
          in
          Csg.v c.op (solid c.a) (solid c.b)
        in
@@ -166,7 +167,7 @@ let transform ~scale ~translate (s : Scene.t) =
            | Shape.Box b -> Shape.Box (box b)
            | Shape.Mesh m -> Shape.Mesh (mesh m)
            | Shape.Csg c -> Shape.Csg (csg c)
-           | Shape.Primitive _ -> invalid_arg "no described kind in these scenes")
+           | Shape.Primitive q -> Shape.Primitive (primitive q))
          (Scene.objects s))
     ~lights:
       (List.map

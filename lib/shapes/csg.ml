@@ -156,8 +156,8 @@ let rec validate c =
         let* _ = Material.validate ~form:"mesh" m.material in
         let* () = check_closed m in
         Ok (Mesh m)
-    | Primitive p when not (Kind.closed (Shape_desc.kind p)) ->
-        Error (`Msg (Printf.sprintf "csg: a %s is not a closed solid" (Shape_desc.name p)))
+    | Primitive p when not (Shape_desc.closed p) ->
+        Error (`Msg (Printf.sprintf "csg: %s is not a closed solid" (Shape_desc.not_closed p)))
     | Primitive p -> Result.map (fun p -> Primitive p) (Shape_desc.validate p)
     | Csg c -> Result.map (fun c -> Csg c) (validate c)
   in

@@ -23,6 +23,8 @@ type t =
   | Csg
       (** A CSG solid, whose geometry is the number of its root node in
           the kernel's {!module-Csg.type-table}. *)
+  | Cylinder  (** A cylinder, capped (closed) or open ({!module-Cylinder}). *)
+  | Disk  (** A flat disk, seen from both sides ({!module-Disk}). *)
 (** The type for kinds. The order of the constructors is the kernel's:
     spheres, then triangles, then the rest, so that the traversal's
     three-way [match] compiles to two comparisons. *)

@@ -7,10 +7,14 @@ let[@inline] roots k (s : Scratch.t) g o =
   match (k : Kind.t) with
   | Plane -> Plane.roots s g o
   | Box -> Box.roots s g o
+  | Cylinder -> Cylinder.roots s g o
+  | Disk -> Disk.roots s g o
   | Sphere | Triangle | Smooth_triangle | Csg -> own_path k
 
 let[@inline] normal k (s : Scratch.t) g o =
   match (k : Kind.t) with
   | Plane -> Plane.normal s g o
   | Box -> Box.hit_normal s g o
+  | Cylinder -> Cylinder.normal s g o
+  | Disk -> Disk.normal s g o
   | Sphere | Triangle | Smooth_triangle | Csg -> own_path k

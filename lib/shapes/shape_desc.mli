@@ -52,6 +52,10 @@ type 'a t = {
   read : reader -> Material.t -> 'a;  (** [read r m] is the shape of the form's fields, not yet validated. *)
   validate : 'a -> ('a, [ `Msg of string ]) result;  (** Checks a shape, as the scene does before preparing it. *)
   material : 'a -> Material.t;  (** A shape's material. *)
+  closed : 'a -> bool;
+      (** [closed x] is [true] iff [x] bounds a volume, when its kind
+          ({!Kind.closed}) may: a cylinder's kind is closed, an open one
+          (without its caps) is not, and a CSG operand must be. *)
   bounds : 'a -> Vec3.t * Vec3.t;
       (** The lower and upper corners of a box that holds the shape, rounded outward (a bounded kind). *)
   store : 'a -> float array -> int -> unit;
@@ -99,6 +103,15 @@ val store : primitive -> float array -> int -> unit
 
 val literal : primitive -> origin:Vec3.t -> direction:Vec3.t -> (float * Vec3.t) list
 (** [literal p ~origin ~direction] is [p]'s crossings by its kind's [literal]. *)
+
+val closed : primitive -> bool
+(** [closed p] is [true] iff [p]'s kind is closed ({!Kind.closed}) and
+    [p] itself is, by its kind's [closed]: a CSG operand must be. *)
+
+val not_closed : primitive -> string
+(** [not_closed p] names [p] in the message that refuses it as a CSG
+    operand when it is not {!closed}: ["a disk"], or ["a cylinder without
+    its caps (capped false)"] for a shape of a closed kind left open. *)
 
 val validate : primitive -> (primitive, [> `Msg of string ]) result
 (** [validate p] is [p] checked by its kind's [validate]. *)

@@ -1,0 +1,14 @@
+(** The described kinds of issue 26's cylinder lane ({!Raytrace.Private.Cylinder},
+    {!Raytrace.Private.Disk}) seen through their descriptions, for the tests
+    that move every object of a scene. *)
+
+val map_primitive :
+  point:(Raytrace.Vec3.t -> Raytrace.Vec3.t) ->
+  length:(float -> float) ->
+  material:(Raytrace.Material.t -> Raytrace.Material.t) ->
+  Raytrace.Private.Shape_desc.primitive ->
+  Raytrace.Private.Shape_desc.primitive
+(** [map_primitive ~point ~length ~material p] is the cylinder or disk [p]
+    with its points mapped by [point] (a scaling and a translation), its
+    radius by [length] and its material by [material]; a disk's normal is
+    kept. Raises [Invalid_argument] for another kind. *)
