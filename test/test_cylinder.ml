@@ -150,11 +150,51 @@ let trace_roots c =
   let scene = Helpers.scene ~spheres:[] ~shapes:[ c.shape ] ~lights:[] () in
   Trace.roots (Trace.create (Helpers.prepare scene)) 0 c.origin c.direction
 
-let cases n f = let rand = Random.State.make [| 2026; n |] in List.init n (fun _ -> f rand)
+let cases ~seed n f =
+  let rand = Random.State.make [| 2026; seed |] in
+  List.init n (fun _ -> f rand)
 
 (* {1 The tests} *)
 
-type tally = { mutable worst : float; mutable wrong : int; mutable roots : int; mutable misses : int }
+(* Does the exact line meet the cylinder? The side's quadratic across the
+   axis has exact rational coefficients ([p], [q] the projections of
+   [O - B] and [D]): the sign of its discriminant says whether the line
+   meets the infinite cylinder; its roots, to a few ulps, and their points'
+   places along the axis then say whether they fall on the segment (or,
+   capped, whether the line's stretch inside the infinite cylinder meets
+   the slab between the caps). [`Unsure] within [band] of the radius, or
+   within [1e-9] of the axis's length of a cap's plane: there the kernel
+   may answer either way. *)
+let expected_hit (c : Cylinder.t) ~origin ~direction ~band =
+  let a = sub (qv c.top) (qv c.base) in
+  let h2 = dot a a in
+  let w = sub (qv origin) (qv c.base) and d = qv direction in
+  let across v = sub v (scale (Q.div (dot v a) h2) a) in
+  let p = across w and qd = across d in
+  let qa = dot qd qd and pq = dot p qd in
+  let cc = Q.(sub (dot p p) (mul (q c.radius) (q c.radius))) in
+  let disc = Q.(sub (mul pq pq) (mul qa cc)) in
+  let line = fsqrt (axis_line_distance2 c ~origin ~direction) in
+  if Float.abs (line -. c.radius) <= band || Q.equal qa Q.zero then `Unsure
+  else if Q.sign disc < 0 then `Miss
+  else
+    let len = fsqrt h2 in
+    let along t = (Q.to_float (dot w a) +. (t *. Q.to_float (dot d a))) /. len in
+    let sq = fsqrt disc and qaf = Q.to_float qa and pqf = Q.to_float pq in
+    let t0 = (-.pqf -. sq) /. qaf and t1 = (-.pqf +. sq) /. qaf in
+    let y0 = along t0 and y1 = along t1 in
+    let margin = 1e-9 *. len in
+    let near_cap y = Float.abs y <= margin || Float.abs (y -. len) <= margin in
+    if near_cap y0 || near_cap y1 then `Unsure
+    else
+      let on y = 0. <= y && y <= len in
+      if c.capped then
+        (* The stretch [y0, y1] (in either order) against [0, len]. *)
+        if Float.max y0 y1 < 0. || Float.min y0 y1 > len then `Miss else `Hit
+      else if on y0 || on y1 then `Hit
+      else `Miss
+
+type tally = { mutable worst : float; mutable wrong : int; mutable roots : int; mutable misses : int; mutable sure : int }
 
 let cylinder_accuracy () =
   let families =
@@ -166,9 +206,9 @@ let cylinder_accuracy () =
       ("aimed at the side's middle", fun r -> cylinder_case ~middle:true r);
     ]
   in
-  List.iter
-    (fun (name, gen) ->
-      let t = { worst = 0.; wrong = 0; roots = 0; misses = 0 } in
+  List.iteri
+    (fun seed (name, gen) ->
+      let t = { worst = 0.; wrong = 0; roots = 0; misses = 0; sure = 0 } in
       List.iter
         (fun (c, case) ->
           let s = Vec3.norm (Vec3.sub case.origin c.Cylinder.base) +. Vec3.norm (Vec3.sub c.top c.base) +. c.radius in
@@ -183,29 +223,25 @@ let cylinder_accuracy () =
                 let e = cylinder_distance c (exact_point ~origin:case.origin ~direction:case.direction root) /. unit in
                 if e > t.worst then t.worst <- e)
               [ near; far ];
-          (* Where the line crosses the side away from the caps (rays aimed
-             at the middle, not along the axis), hit or miss is the exact
-             line's distance from the axis against the radius. *)
-          let a = Vec3.unit (Vec3.sub c.top c.base) in
-          if
-            Float.abs (Vec3.dot (Vec3.unit case.direction) a) < 0.5
-            && (name = "aimed at the side's middle" || name = "grazing the side (within 1e-12)" || name = "far and grazing")
-          then begin
-            let line = fsqrt (axis_line_distance2 c ~origin:case.origin ~direction:case.direction) in
-            let off = (line -. c.radius) /. unit in
-            if (near = infinity && off < -.cylinder_bound) || (near < infinity && off > cylinder_bound) then t.wrong <- t.wrong + 1
-          end)
-        (cases 1500 gen);
-      Printf.printf "%-40s %5d roots, %4d misses: worst %.3g u S, %d wrong\n" name t.roots t.misses t.worst t.wrong;
+          (* Hit or miss as the exact line says, beyond the band. *)
+          let expected = expected_hit c ~origin:case.origin ~direction:case.direction ~band:(cylinder_bound *. unit) in
+          if expected <> `Unsure then t.sure <- t.sure + 1;
+          match expected with
+          | `Hit when near = infinity -> t.wrong <- t.wrong + 1
+          | `Miss when near < infinity -> t.wrong <- t.wrong + 1
+          | _ -> ())
+        (cases ~seed 1500 gen);
+      Printf.printf "%-40s %5d roots, %4d misses: worst %.3g u S; %d rays decided, %d wrong\n" name t.roots t.misses t.worst t.sure t.wrong;
+      if t.sure < 100 then Alcotest.failf "%s: only %d rays decided by exact arithmetic" name t.sure;
       if t.worst > cylinder_bound then Alcotest.failf "%s: a root %.3g u S off the surface > %g" name t.worst cylinder_bound;
       Alcotest.(check int) (name ^ ": hit or miss as the exact line") 0 t.wrong;
       if t.roots < 500 then Alcotest.failf "%s: only %d roots" name t.roots)
     families
 
 let disk_accuracy () =
-  List.iter
-    (fun (name, gen) ->
-      let t = { worst = 0.; wrong = 0; roots = 0; misses = 0 } in
+  List.iteri
+    (fun seed (name, gen) ->
+      let t = { worst = 0.; wrong = 0; roots = 0; misses = 0; sure = 0 } in
       List.iter
         (fun (d, case) ->
           let near, far = trace_roots case in
@@ -223,7 +259,7 @@ let disk_accuracy () =
             let e = disk_plane_distance d (exact_point ~origin:case.origin ~direction:case.direction near) /. (u *. s near) in
             if e > t.worst then t.worst <- e
           end)
-        (cases 1500 gen);
+        (cases ~seed 1500 gen);
       Printf.printf "%-40s %5d roots, %4d misses: worst %.3g u S, %d wrong\n" name t.roots t.misses t.worst t.wrong;
       if t.worst > disk_bound then Alcotest.failf "%s: a root %.3g u S off the plane > %g" name t.worst disk_bound;
       Alcotest.(check int) (name ^ ": hit or miss as the exact line") 0 t.wrong)

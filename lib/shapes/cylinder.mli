@@ -62,12 +62,13 @@ val roots : Scratch.t -> float array -> int -> bool
 
     Accuracy (checked by the test suite in exact rational arithmetic,
     test/test_cylinder.ml, with [u = 2^-53] and
-    [S = |O - B| + |A| + r]): a side root [t] puts the exact point
-    [O + t D] within [16 u S] of the exact side's surface, and a cap root
-    within [16 u S] of the exact cap's plane; a ray reported as missing
-    the side passes no closer to the axis than [r - 16 u S] (so the
+    [S = |O - B| + |A| + r]): every root [t] puts the exact point
+    [O + t D] within [16 u S] of the cylinder's surface (the side, or a
+    cap's plane); and a ray is reported as a hit or a miss as the exact
+    line says, unless the line passes within [16 u S] of the radius from
+    the axis, or crosses a cap's plane at the side's edge: so the
     silhouette of a cylinder [1e7] times thinner than its distance is
-    exact beyond that band). *)
+    exact beyond that band. No constant of the scene's scale enters. *)
 
 val normal : Scratch.t -> float array -> int -> unit
 (** [normal s g o] sets [s.nx], [s.ny], [s.nz] to the outward unit normal
