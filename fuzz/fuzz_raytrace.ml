@@ -48,6 +48,7 @@ let names =
     "specular"; "reflective"; "intensity"; "direction"; "ambient"; "point"; "directional";
     "plane"; "triangle"; "box"; "mesh"; "csg"; "normal"; "vertices"; "min"; "max"; "file"; "scale"; "translate";
     "smooth"; "transparency"; "refractive-index"; "fresnel"; "pattern"; "checker"; "size";
+    "cylinder"; "base"; "top"; "capped"; "disk";
   |]
 
 let field =
@@ -134,17 +135,27 @@ let mesh_form =
       optional "translate" (triple (-2.) 2.); optional "smooth" (choose [ const "true"; const "false" ]); material ]
     (Printf.sprintf "(mesh (file %S)%s%s%s %s)")
 
+(* Issue 26's kinds: a cylinder, capped or open (refused as an operand),
+   and a disk. *)
+let cylinder_form =
+  map [ triple (-2.) 2.; triple (-2.) 2.; value 0.1 1.5; optional "capped" (choose [ const "true"; const "false" ]); material ]
+    (Printf.sprintf "(cylinder (base %s) (top %s) (radius %s)%s %s)")
+
+let disk_form =
+  map [ triple (-2.) 2.; triple (-1.) 1.; value 0.1 2.; material ] (Printf.sprintf "(disk (center %s) (normal %s) (radius %s) %s)")
+
 let csg_form =
   fix (fun csg ->
       map
         [ choose [ const "union"; const "intersection"; const "difference"; token Hostile.scene_tokens ];
-          choose [ sphere_form; box_form; mesh_form; csg ]; choose [ sphere_form; box_form; mesh_form; csg ] ]
+          choose [ sphere_form; box_form; mesh_form; cylinder_form; csg ];
+          choose [ sphere_form; box_form; mesh_form; cylinder_form; csg ] ]
         (Printf.sprintf "(csg %s %s %s)"))
 
 let shape_form =
   choose
     [
-      sphere_form; box_form; mesh_form; csg_form;
+      sphere_form; box_form; mesh_form; csg_form; cylinder_form; disk_form;
       map [ triple (-2.) 2.; triple (-1.) 1.; material ] (Printf.sprintf "(plane (point %s) (normal %s) %s)");
       map [ triple (-2.) 2.; triple (-2.) 2.; triple 1. 5.; material ]
         (Printf.sprintf "(triangle (vertices (%s) (%s) (%s)) %s)");

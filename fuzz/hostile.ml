@@ -214,6 +214,18 @@ module Gen = struct
       (if chance rand 30 then "nan" else f (x +. Random.State.float rand 2.))
       (f (y +. Random.State.float rand 2.)) (f (z +. Random.State.float rand 2.)) (material rand)
 
+  (* Issue 26's kinds: a capped or open cylinder (an open one refused as
+     a CSG operand), a disk. *)
+  let cylinder rand =
+    Printf.sprintf "(cylinder (base %s) (top %s) (radius %s)%s %s)" (triple rand (-2.) 2.) (triple rand (-2.) 2.)
+      (num rand 0.1 1.5)
+      (opt rand "capped" (fun () -> if odd rand then "maybe" else pick rand [| "true"; "false" |]))
+      (material rand)
+
+  let disk rand =
+    Printf.sprintf "(disk (center %s) (normal %s) (radius %s) %s)" (triple rand (-2.) 2.) (triple rand (-1.) 1.)
+      (num rand 0.1 2.) (material rand)
+
   let mesh rand names =
     Printf.sprintf "(mesh (file %S)%s%s%s %s)" (if odd rand then "missing.obj" else pick rand names)
       (opt rand "scale" (fun () -> num rand 0.1 3.))
@@ -225,16 +237,19 @@ module Gen = struct
 
   let rec csg rand names depth =
     let operand () =
-      match int rand (if depth > 0 then 4 else 3) with
+      match int rand (if depth > 0 then 5 else 4) with
       | 0 -> sphere rand
       | 1 -> box rand
       | 2 -> mesh rand (if odd rand then names else [| "closed.obj" |])
+      | 3 -> cylinder rand
       | _ -> csg rand names (depth - 1)
     in
     Printf.sprintf "(csg %s %s %s)" (pick rand ops) (operand ()) (operand ())
 
   let shape rand names =
-    match int rand 7 with
+    match int rand 9 with
+    | 7 -> cylinder rand
+    | 8 -> disk rand
     | 0 -> sphere rand
     | 1 -> Printf.sprintf "(plane (point %s) (normal %s) %s)" (triple rand (-2.) 2.) (triple rand (-1.) 1.) (material rand)
     | 2 ->

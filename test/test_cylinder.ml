@@ -636,6 +636,70 @@ let invariant () =
         [ (1e-6, Vec3.zero); (1e6, Vec3.zero); (1., Vec3.v 1e6 0. 0.); (1., Vec3.v (-1e6) 1e6 (-1e6)) ])
     [ "cylinder.scene"; "disk.scene" ]
 
+(* {1 Promises at the boundaries, exact in floats} *)
+
+let roots shape origin direction = Shape.roots shape ~origin ~direction
+let pair = Alcotest.(pair (float 0.) (float 0.))
+
+(* The kernel's normal for the root [t] of the ray, as [Surface] asks it. *)
+let hit_normal shape origin direction t =
+  let g = Array.make Private.Kind.stride 0. and sc = Private.Scratch.create () in
+  let (Private.Shape_desc.Primitive (d, x)) = match shape with Shape.Primitive p -> p | _ -> assert false in
+  d.store x g 0;
+  Private.Scratch.set_ray sc origin direction;
+  sc.near <- t;
+  let p = Vec3.add origin (Vec3.smul t direction) in
+  sc.px <- p.x;
+  sc.py <- p.y;
+  sc.pz <- p.z;
+  Private.Kind_dispatch.normal d.kind sc g 0;
+  Vec3.v sc.nx sc.ny sc.nz
+
+let boundaries () =
+  let v = Vec3.v in
+  (* The cylinder of axis z from 0 to 2, radius 1, capped and open. *)
+  let capped = cylinder ~base:Vec3.zero ~top:(v 0. 0. 2.) ~radius:1. white in
+  let tube = cylinder ~capped:false ~base:Vec3.zero ~top:(v 0. 0. 2.) ~radius:1. white in
+  Alcotest.check pair "along the axis, capped: the caps" (1., 3.) (roots capped (v 0.5 0. (-1.)) Vec3.oz);
+  Alcotest.check pair "along the axis, open: nothing" (infinity, infinity) (roots tube (v 0.5 0. (-1.)) Vec3.oz);
+  Alcotest.check pair "across, capped: the side twice" (4., 6.) (roots capped (v (-5.) 0. 1.) Vec3.ox);
+  Alcotest.check pair "across, open: the same" (4., 6.) (roots tube (v (-5.) 0. 1.) Vec3.ox);
+  Alcotest.check pair "from inside, open: behind and ahead" (-1., 1.) (roots tube (v 0. 0. 1.) Vec3.ox);
+  Alcotest.check pair "tangent to the side: a double root" (5., 5.) (roots capped (v 1. (-5.) 1.) Vec3.oy);
+  Alcotest.check pair "just outside the side: a miss" (infinity, infinity)
+    (roots capped (v (Float.succ 1.) (-5.) 1.) Vec3.oy);
+  Alcotest.check pair "in a cap's plane, within the radius: the whole chord" (4., 6.) (roots capped (v (-5.) 0. 2.) Vec3.ox);
+  Alcotest.check pair "just above the top cap: a miss" (infinity, infinity)
+    (roots capped (v (-5.) 0. (Float.succ 2.)) Vec3.ox);
+  (* The open tube: a slanted ray in through the bottom opening, out
+     through the side: one crossing, as both roots. *)
+  Alcotest.check pair "open, in through an end: the side's crossing alone" (2., 2.)
+    (roots tube (v 0. 0. (-1.)) (v 0.5 0. 0.5));
+  (* Through the rim of the top cap, from above at 45 degrees: the root
+     is the cap's and the side's at once; entering, the cap decides
+     (its slab is entered last), so the normal is the cap's. *)
+  let o = v 0. 0. 3. and d = v 1. 0. (-1.) in
+  Alcotest.check pair "through the top rim: touching at one point" (1., 1.) (roots capped o d);
+  Alcotest.check Helpers.vec3 "a root on a cap gets the cap's normal" (v 0. 0. (-1.))
+    (hit_normal capped (v 0.5 0. (-1.)) Vec3.oz 1.);
+  Alcotest.check Helpers.vec3 "and the far cap's on the way out" (v 0. 0. 1.) (hit_normal capped (v 0.5 0. (-1.)) Vec3.oz 3.);
+  Alcotest.check Helpers.vec3 "a root on the side gets the side's" (v (-1.) 0. 0.) (hit_normal capped (v (-5.) 0. 1.9) Vec3.ox 4.);
+  Alcotest.check Helpers.vec3 "a point alone: the nearest surface" (v 0. 0. 1.) (Shape.normal capped (v 0.5 0. 1.96875));
+  Alcotest.check Helpers.vec3 "an open tube's point alone: the side" (v 1. 0. 0.) (Shape.normal tube (v 1. 0. 1.96875));
+  (* The disk of radius 1 about (0, 0, 5), facing -z. *)
+  let d = disk ~center:(v 0. 0. 5.) ~normal:(v 0. 0. (-4.)) ~radius:1. white in
+  Alcotest.check pair "through the centre" (5., 5.) (roots d Vec3.zero Vec3.oz);
+  Alcotest.check pair "through the rim: a hit" (5., 5.) (roots d (v 1. 0. 0.) Vec3.oz);
+  Alcotest.check pair "just past the rim: a miss" (infinity, infinity) (roots d (v (Float.succ 1.) 0. 0.) Vec3.oz);
+  Alcotest.check pair "in its plane: a miss" (infinity, infinity) (roots d (v (-3.) 0. 5.) Vec3.ox);
+  Alcotest.check pair "from behind" (5., 5.) (roots d (v 0. 0. 10.) (Vec3.neg Vec3.oz));
+  Alcotest.check Helpers.vec3 "its unit normal, as given" (v 0. 0. (-1.)) (Shape.normal d (v 0. 0. 5.));
+  (* Bounds: rounded outward, the box of the spheres about the ends. *)
+  let (Private.Shape_desc.Primitive (cd, cx)) = match capped with Shape.Primitive p -> p | _ -> assert false in
+  let lo, hi = cd.bounds cx in
+  Alcotest.check Helpers.vec3 "lower corner" (v (Float.pred (-1.)) (Float.pred (-1.)) (Float.pred (-1.))) lo;
+  Alcotest.check Helpers.vec3 "upper corner" (v (Float.succ 1.) (Float.succ 1.) (Float.succ 3.)) hi
+
 let tests =
   [
     Alcotest.test_case "a cylinder's roots lie within 16 u S of its surface, and hit or miss as the exact line, at scales 1e-6..1e6"
@@ -650,6 +714,7 @@ let tests =
     Alcotest.test_case "the example scenes and random scenes of cylinders, tubes, disks, glass, checkers and CSG render as the oracle does" `Quick as_the_oracle;
     Alcotest.test_case "an open tube shows its inner wall, a disk both its sides, each lit on the side seen" `Quick both_sides;
     Alcotest.test_case "a cylinder's and a disk's bounds hold their rims" `Quick bounded;
+    Alcotest.test_case "rays along the axis, across it, tangent, in a cap's plane, through the rim, and a disk's rim and plane: the roots and normals promised" `Quick boundaries;
     Alcotest.test_case "tracing cylinders and disks allocates nothing per pixel" `Quick allocates_nothing;
     Alcotest.test_case "the cylinder and disk scenes are the same picture scaled by 1e-6 and 1e6 and moved by 1e6" `Quick invariant;
   ]
