@@ -3,7 +3,12 @@
    they are the caller's error. *)
 let own_path k = invalid_arg ("Kind_dispatch: a " ^ Kind.to_string k ^ " has its own path in the kernel")
 
-let[@inline] roots k (s : Scratch.t) g o =
+(* Not inlined: the traversal's, the surface's and the CSG table's
+   matches call these for the described kinds alone, and a call keeps their
+   arm small, so that the callers stay as the compiler inlined them before
+   a described kind existed (docs/performance.md, "Described kinds cost
+   the others nothing"). *)
+let[@inline never] roots k (s : Scratch.t) g o =
   match (k : Kind.t) with
   | Plane -> Plane.roots s g o
   | Box -> Box.roots s g o
@@ -11,7 +16,7 @@ let[@inline] roots k (s : Scratch.t) g o =
   | Disk -> Disk.roots s g o
   | Sphere | Triangle | Smooth_triangle | Csg -> own_path k
 
-let[@inline] normal k (s : Scratch.t) g o =
+let[@inline never] normal k (s : Scratch.t) g o =
   match (k : Kind.t) with
   | Plane -> Plane.normal s g o
   | Box -> Box.hit_normal s g o
