@@ -38,7 +38,8 @@ val facts : t -> string * bool * bool * int
 
 val to_string : t -> string
 (** [to_string k] is [k]'s name in lower case (["sphere"], ["plane"],
-    ["triangle"], ["smooth triangle"], ["box"], ["csg"]). *)
+    ["triangle"], ["smooth triangle"], ["box"], ["csg"], ["cylinder"],
+    ["disk"]). *)
 
 val bounded : t -> bool
 (** [bounded k] is [true] iff an object of kind [k] fits in a box: it is
@@ -47,8 +48,9 @@ val bounded : t -> bool
 
 val closed : t -> bool
 (** [closed k] is [true] iff an object of kind [k] bounds a volume (a
-    sphere, a box, a CSG solid): it may be a CSG operand, and a ray that
-    enters it leaves it. *)
+    sphere, a box, a CSG solid, a cylinder): it may be a CSG operand, and
+    a ray that enters it leaves it. A described kind may leave one shape
+    open (a cylinder without its caps): {!Shape_desc.closed} tells. *)
 
 val floats : t -> int
 (** [floats k] is how many floats of geometry the shape module's [store]
