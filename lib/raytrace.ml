@@ -60,6 +60,7 @@ module Private = struct
   module Kind_dispatch = Kind_dispatch
   module Shape_desc = Shape_desc
   module Primitives = Primitives
+  module Cone = Cone
   module Prepared = Prepared
   module Trace = Trace
   module Scratch = Scratch

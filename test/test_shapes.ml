@@ -292,6 +292,7 @@ let described_box : Box.t Desc.t =
     read = (fun r m -> Box.v ~min:(r.point "min") ~max:(r.point "max") m);
     validate = Box.validate;
     material = (fun b -> b.material);
+    closed = (fun _ -> true);
     bounds = (fun b -> (b.min, b.max));
     store = Box.store;
     pp = Box.pp;

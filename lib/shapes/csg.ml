@@ -156,7 +156,7 @@ let rec validate c =
         let* _ = Material.validate ~form:"mesh" m.material in
         let* () = check_closed m in
         Ok (Mesh m)
-    | Primitive p when not (Kind.closed (Shape_desc.kind p)) ->
+    | Primitive p when not (Shape_desc.closed p) ->
         Error (`Msg (Printf.sprintf "csg: a %s is not a closed solid" (Shape_desc.name p)))
     | Primitive p -> Result.map (fun p -> Primitive p) (Shape_desc.validate p)
     | Csg c -> Result.map (fun c -> Csg c) (validate c)

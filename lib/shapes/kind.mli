@@ -23,6 +23,7 @@ type t =
   | Csg
       (** A CSG solid, whose geometry is the number of its root node in
           the kernel's {!module-Csg.type-table}. *)
+  | Cone  (** A cone, capped or open ({!module-Cone}). *)
 (** The type for kinds. The order of the constructors is the kernel's:
     spheres, then triangles, then the rest, so that the traversal's
     three-way [match] compiles to two comparisons. *)

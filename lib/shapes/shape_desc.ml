@@ -31,6 +31,7 @@ type 'a t = {
   read : reader -> Material.t -> 'a;
   validate : 'a -> ('a, [ `Msg of string ]) result;
   material : 'a -> Material.t;
+  closed : 'a -> bool;
   bounds : 'a -> Vec3.t * Vec3.t;
   store : 'a -> float array -> int -> unit;
   pp : Format.formatter -> 'a -> unit;
@@ -48,6 +49,7 @@ let pp_primitive ppf (Primitive (d, x)) = d.pp ppf x
 let name (Primitive (d, _)) = d.name
 let kind (Primitive (d, _)) = d.kind
 let material (Primitive (d, x)) = d.material x
+let closed (Primitive (d, x)) = Kind.closed d.kind && d.closed x
 let bounds (Primitive (d, x)) = d.bounds x
 let store (Primitive (d, x)) g o = d.store x g o
 let literal (Primitive (d, x)) ~origin ~direction = d.literal x ~origin ~direction

@@ -52,6 +52,10 @@ type 'a t = {
   read : reader -> Material.t -> 'a;  (** [read r m] is the shape of the form's fields, not yet validated. *)
   validate : 'a -> ('a, [ `Msg of string ]) result;  (** Checks a shape, as the scene does before preparing it. *)
   material : 'a -> Material.t;  (** A shape's material. *)
+  closed : 'a -> bool;
+      (** Whether a shape of a closed kind bounds a volume: [false] for
+          one its form leaves open (a cone without caps), which is then
+          no CSG operand. *)
   bounds : 'a -> Vec3.t * Vec3.t;
       (** The lower and upper corners of a box that holds the shape, rounded outward (a bounded kind). *)
   store : 'a -> float array -> int -> unit;
@@ -90,6 +94,10 @@ val kind : primitive -> Kind.t
 
 val material : primitive -> Material.t
 (** [material p] is [p]'s material. *)
+
+val closed : primitive -> bool
+(** [closed p] is [true] iff [p]'s kind is {!Kind.closed} and [p] is
+    closed by its description's [closed]: a CSG operand. *)
 
 val bounds : primitive -> Vec3.t * Vec3.t
 (** [bounds p] is [p]'s bounds, as its kind's [bounds]. *)

@@ -464,7 +464,9 @@ and csg_operand ~where ~named ~load ~add_triangles ~depth node =
       Csg.Mesh m
   | Sexp.List (Sexp.Atom "csg" :: rest) -> Csg.Csg (csg ~where ~named ~load ~add_triangles ~depth:(depth + 1) node rest)
   | Sexp.List (Sexp.Atom kw :: rest) when closed_primitive kw <> None ->
-      Csg.Primitive (primitive_solid (Option.get (closed_primitive kw)) ~where ~named node rest)
+      let p = primitive_solid (Option.get (closed_primitive kw)) ~where ~named node rest in
+      if not (Shape_desc.closed p) then fail node "csg: an open %s is not a closed solid; an operand is %s" kw operands;
+      Csg.Primitive p
   | Sexp.List (Sexp.Atom kw :: _) when kw = "plane" || kw = "triangle" || Primitives.find kw <> None ->
       fail node "csg: a %s is not a closed solid; an operand is %s" kw operands
   | Sexp.List (Sexp.Atom kw :: _) -> fail node "csg: unknown solid %s; an operand is %s" (show_atom kw) operands
