@@ -85,9 +85,31 @@ let[@inline never] roots (s : Scratch.t) g o =
   let disc = (b *. b) -. (a *. c) in
   let disc = if a < 0. && disc < 0. then 0. else disc in
   let qq = -.(b +. Float.copy_sign (sqrt disc) b) in
-  let t0 = if a = 0. then -.c /. (2. *. b) else if qq = 0. then 0. else c /. qq in
-  let t1 = if a = 0. then t0 else if qq = 0. then 0. else qq /. a in
-  let lo = fmin t0 t1 and hi = fmax t0 t1 in
+  (* A double root (a clamped discriminant among them) is [-B / A]:
+     [C / q] would divide [C]'s noise by [B]'s. *)
+  let t0 = if a = 0. then -.c /. (2. *. b) else if disc = 0. then -.b /. a else c /. qq in
+  let t1 = if a = 0. then t0 else if disc = 0. then -.b /. a else qq /. a in
+  (* Near a double root (a line by the apex, or grazing the side) the
+     roots move by the square root of [C]'s error, which has the scale of
+     the point the coefficients were found at: so they are found again
+     from the middle of the chord, where the side's residual is small
+     and exact to that point's own rounding; [A] and [rhod] depend on the
+     direction alone. Only for a chord whose middle is near the slab: a
+     far one (a line almost along the side) is no better a reference. *)
+  let mid = 0.5 *. (t0 +. t1) in
+  let width = slab_hi -. slab_lo in
+  let refine = a <> 0. && disc >= 0. && slab_lo -. width <= mid && mid <= slab_hi +. width in
+  let mid = if refine then mid else 0. in
+  let wx = wx +. (mid *. dx) and wy = wy +. (mid *. dy) and wz = wz +. (mid *. dz) in
+  let kw = ((wx *. ax) +. (wy *. ay) +. (wz *. az)) /. hh in
+  let px = wx -. (kw *. ax) and py = wy -. (kw *. ay) and pz = wz -. (kw *. az) in
+  let rho0 = r0 +. (dr *. kw) in
+  let b2 = (px *. qx) +. (py *. qy) +. (pz *. qz) -. (rho0 *. rhod) in
+  let c2 = (px *. px) +. (py *. py) +. (pz *. pz) -. (rho0 *. rho0) in
+  let disc2 = fmax 0. ((b2 *. b2) -. (a *. c2)) in
+  let qq2 = -.(b2 +. Float.copy_sign (sqrt disc2) b2) in
+  let u0 = if disc2 = 0. then -.b2 /. a else c2 /. qq2 and u1 = if disc2 = 0. then -.b2 /. a else qq2 /. a in
+  let lo = if refine then mid +. fmin u0 u1 else fmin t0 t1 and hi = if refine then mid +. fmax u0 u1 else fmax t0 t1 in
   let none = a > 0. && disc < 0. in
   let in_lo =
     if a > 0. then if none then infinity else lo
