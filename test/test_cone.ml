@@ -314,6 +314,16 @@ let scenes () =
     ("cones", scaled_scene 1. Vec3.zero);
     ("cones, document's mode", scaled_scene ~epsilon:0.001 1. Vec3.zero);
     ("cones at 1e6", scaled_scene 1. (v 1e6 1e6 (-1e6)));
+    ( "a glass cone and a box less a cone",
+      parse
+        "(canvas (width 48) (height 48)) (camera (position 0 1 -1) (look-at 0 0 4))\n\
+         (plane (point 0 -1 0) (normal 0 1 0) (color 200 200 200))\n\
+         (cone (base -0.6 -0.9 3) (top -0.5 0.8 3.2) (radius 0.6) (top-radius 0.2) (color 230 230 255) (specular 500) (transparency 0.9) (refractive-index 1.5))\n\
+         (csg difference (box (min 0.3 -1 3) (max 1.5 0.27 4.2) (color 120 120 230))\n\
+           (cone (base 0.9 -1.5 3.6) (top 0.9 0.5 3.6) (radius 0.2) (top-radius 0.5) (color 250 250 250)))\n\
+         (csg intersection (sphere (center 0 1.2 5) (radius 0.6) (color 250 200 60))\n\
+           (cone (base 0 0.6 5) (top 0 1.9 5) (radius 0.7) (top-radius 0) (color 60 200 90)))\n\
+         (light ambient (intensity 0.3)) (light point (intensity 0.6) (position 2 3 0))" );
     ( "inside an open cone and a capped one",
       parse
         "(canvas (width 48) (height 48)) (camera (position 0 0 0) (look-at 0 0 5))\n\
