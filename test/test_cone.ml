@@ -241,7 +241,12 @@ let reads_and_prints () =
       let again = parse (Scene_file.to_string s) in
       Alcotest.(check bool) "the printed scene reads back as itself" true (Scene.equal s again);
       let opened = parse "(cone (base 0 0 5) (top 0 2 5) (radius 0.5) (top-radius 0.25) (capped false) (color 1 2 3))" in
-      Alcotest.(check bool) "capped false reads back" true (Scene.equal opened (parse (Scene_file.to_string opened)))
+      Alcotest.(check bool) "capped false reads back" true (Scene.equal opened (parse (Scene_file.to_string opened)));
+      (* The library refuses an open cone as an operand as the text does. *)
+      let box = Csg.Box (Box.v ~min:(v 0. 0. 4.) ~max:(v 1. 1. 5.) white) in
+      let operand capped = Csg.Primitive (Private.Shape_desc.Primitive (Cone.desc, cone ~capped (v 0. 0. 5.) (v 0. 1. 5.) 1. 0.)) in
+      Alcotest.(check bool) "a capped cone is an operand" true (Result.is_ok (Csg.validate (Csg.v Csg.Difference box (operand true))));
+      Alcotest.(check bool) "an open one is not" false (Result.is_ok (Csg.validate (Csg.v Csg.Difference box (operand false))))
   | _ -> Alcotest.fail "expected one cone"
 
 (* Each bad cone and the message's tail; the location is the form's. *)
