@@ -29,7 +29,7 @@
     exact point [O + t D] of each root returned lies within
     [32 u (|O| + |P| + extent)] of the surface it was found on, at any
     scale and any angle ([extent] the largest stored float's magnitude,
-    as {!Surface} offsets the robust mode's secondary rays by twice
+    as the kernel's surfaces ([Surface]) offset the robust mode's secondary rays by twice
     that: they never see the surface they leave). test/test_cone.ml
     checks the bound in exact rational arithmetic, at scales 1e-6..1e6,
     translated by 1e6, for grazing rays and for rays through the apex.
