@@ -223,8 +223,11 @@ let literal c ~origin ~direction =
       let disc = (qb *. qb) -. (4. *. qa *. qc) in
       if disc < 0. then []
       else
-        let sq = sqrt disc in
-        [ (-.qb -. sq) /. (2. *. qa); (-.qb +. sq) /. (2. *. qa) ]
+        (* Numerical Recipes' form: [(-b -+ sqrt disc) / 2a] loses the
+           root near the origin to cancellation when [a] is small (a
+           line almost along the side). *)
+        let h = -0.5 *. (qb +. Float.copy_sign (sqrt disc) qb) in
+        if h = 0. then [ 0. ] else [ qc /. h; h /. qa ]
   in
   let side = List.filter_map (fun t -> if on_side t then Some (t, side_normal t) else None) candidates in
   let cap center radius n =
