@@ -62,6 +62,7 @@ module Private = struct
   module Primitives = Primitives
   module Cylinder = Cylinder
   module Disk = Disk
+  module Cone = Cone
   module Prepared = Prepared
   module Trace = Trace
   module Scratch = Scratch

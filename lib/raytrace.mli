@@ -199,6 +199,7 @@ module Private : sig
   module Primitives = Primitives
   module Cylinder = Cylinder
   module Disk = Disk
+  module Cone = Cone
   module Prepared = Prepared
   module Trace = Trace
   module Scratch = Scratch

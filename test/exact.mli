@@ -14,3 +14,23 @@ val surface_distance : Raytrace.Sphere.t -> origin:Raytrace.Vec3.t -> direction:
     [|g(t)| / (|P - C| + r)] with [g(t) = |P - C|^2 - r^2] exact (the
     division and square root are then rounded once, a relative error of a
     few ulps in the result, which is all a bound check needs). *)
+
+(** {1:q Rationals of floats} *)
+
+val q : float -> Q.t
+(** [q x] is the float [x] as the rational it is exactly. *)
+
+val qv : Raytrace.Vec3.t -> Q.t * Q.t * Q.t
+(** [qv v] is [v]'s coordinates as rationals. *)
+
+val dot : Q.t * Q.t * Q.t -> Q.t * Q.t * Q.t -> Q.t
+(** [dot a b] is the exact dot product. *)
+
+val sub : Q.t * Q.t * Q.t -> Q.t * Q.t * Q.t -> Q.t * Q.t * Q.t
+(** [sub a b] is [a - b], exactly. *)
+
+val add : Q.t * Q.t * Q.t -> Q.t * Q.t * Q.t -> Q.t * Q.t * Q.t
+(** [add a b] is [a + b], exactly. *)
+
+val scale : Q.t -> Q.t * Q.t * Q.t -> Q.t * Q.t * Q.t
+(** [scale k a] is [k a], exactly. *)

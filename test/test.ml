@@ -38,6 +38,7 @@ let () =
       ("shapes", Test_shapes.tests);
       ("cylinder", Test_cylinder.tests);
       ("csg", Test_csg.tests);
+      ("cone", Test_cone.tests);
       ("bvh", Test_bvh.tests);
       ("prepared", Test_prepared.tests);
       ("antialias", Test_antialias.tests);

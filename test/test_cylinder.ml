@@ -455,7 +455,15 @@ let reads_and_prints () =
   Alcotest.(check bool) ("printed and read back: " ^ text) true (Scene.equal scene again);
   Alcotest.(check string) "and printed again, the same" text (Scene_file.to_string again)
 
-let operands = "an operand is a sphere, box, cylinder, closed mesh or csg"
+(* The described closed kinds join the list, read from the registry as
+   the scene text reads it (a cylinder among them). *)
+let operands =
+  let described =
+    List.filter_map
+      (fun (Private.Shape_desc.Any d) -> if Private.Kind.closed d.kind then Some (d.name ^ ", ") else None)
+      Private.Primitives.all
+  in
+  "an operand is a sphere, box, " ^ String.concat "" described ^ "closed mesh or csg"
 
 let bad_forms =
   [

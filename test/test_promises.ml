@@ -28,6 +28,7 @@ let plane_root p origin direction =
 let cube = Box.v ~min:Vec3.zero ~max:(Vec3.v 1. 1. 1.) white
 let slab = Box.v ~min:(Vec3.v 1. 2. (-1.)) ~max:(Vec3.v 3. 5. 0.) white
 let box_normal b p = Shape.normal (Shape.Box b) p
+let cone c = Shape.Primitive (Private.Shape_desc.Primitive (Private.Cone.desc, c))
 let v = Vec3.v
 
 (* The triangle (0, 0, 0), (1, 0, 0), (0, 1, 0) in the plane z = 0. *)
@@ -242,6 +243,7 @@ let tests =
           [ ("triangle", false, [], [ Shape.Triangle (Triangle.v (v (-20.) y (-20.)) (v 20. y (-20.)) (v 0. y 30.) grey) ]);
             ("box", false, [], [ Shape.Box (Box.v ~min:(v (-20.) (y -. 0.5) (-20.)) ~max:(v 20. (y +. 0.5) 30.) grey) ]);
             ("plane", false, [], [ Shape.Plane (Plane.v ~point:(v 0. y 0.) ~normal:Vec3.oy grey) ]);
+            ("cone", false, [], [ cone (Private.Cone.v ~base:(v 0. (y -. 0.5) 2.) ~top:(v 0. (y +. 0.5) 2.) ~radius:40. ~top_radius:30. grey) ]);
             ("sphere", false, [ Helpers.sphere ~center:(v 0. y 2.) ~radius:0.5 Color.white ], []);
             ("sphere, on a ground sphere", true, [ Helpers.sphere ~center:(v 0. y 2.) ~radius:0.5 Color.white ], []);
             ("mesh", false, [], [ terrain y ]);
@@ -287,7 +289,8 @@ let tests =
           [ ("plane", [], [ Shape.Plane (Plane.v ~point:(v 0. 0. 1.5) ~normal:Vec3.oz grey) ]);
             ("box", [], [ Shape.Box (Box.v ~min:(v (-0.3) 0.8 1.7) ~max:(v 0.3 1.2 2.3) grey) ]);
             ("triangle", [], [ Shape.Triangle (Triangle.v (v (-0.4) 1. 1.6) (v 0.4 1. 1.6) (v 0. 1. 2.4) grey) ]);
-            ("sphere", [ Helpers.sphere ~center:(v 0. 1. 2.) ~radius:0.3 Color.white ], []); ("mesh", [], [ small_mesh ]) ]
+            ("sphere", [ Helpers.sphere ~center:(v 0. 1. 2.) ~radius:0.3 Color.white ], []); ("mesh", [], [ small_mesh ]);
+            ("cone", [], [ cone (Private.Cone.v ~base:(v 0. 0.8 2.) ~top:(v 0. 1.2 2.) ~radius:0.3 ~top_radius:0. grey) ]) ]
         in
         List.iter
           (fun (name, spheres, shapes) ->

@@ -1,8 +1,8 @@
 (* In this order, a [match] of the kernel that sets spheres, triangles and
    the other shapes apart compiles to two comparisons, not a jump table. *)
-type t = Sphere | Triangle | Smooth_triangle | Plane | Box | Csg | Cylinder | Disk
+type t = Sphere | Triangle | Smooth_triangle | Plane | Box | Csg | Cylinder | Disk | Cone
 
-let all = [ Sphere; Triangle; Smooth_triangle; Plane; Box; Csg; Cylinder; Disk ]
+let all = [ Sphere; Triangle; Smooth_triangle; Plane; Box; Csg; Cylinder; Disk; Cone ]
 
 (* Each kind's facts in one match: its name, whether it is bounded (in the
    hierarchy), closed (a CSG operand, a medium) and the floats of geometry
@@ -17,6 +17,7 @@ let facts = function
   | Csg -> ("csg", true, true, 1)
   | Cylinder -> ("cylinder", true, true, 7)
   | Disk -> ("disk", true, false, 7)
+  | Cone -> ("cone", true, true, 9)
 
 let to_string k =
   let name, _, _, _ = facts k in

@@ -25,6 +25,7 @@ type t =
           the kernel's {!module-Csg.type-table}. *)
   | Cylinder  (** A cylinder, capped (closed) or open ({!module-Cylinder}). *)
   | Disk  (** A flat disk, seen from both sides ({!module-Disk}). *)
+  | Cone  (** A cone, capped or open ({!module-Cone}). *)
 (** The type for kinds. The order of the constructors is the kernel's:
     spheres, then triangles, then the rest, so that the traversal's
     three-way [match] compiles to two comparisons. *)

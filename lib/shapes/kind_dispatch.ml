@@ -14,6 +14,7 @@ let[@inline never] roots k (s : Scratch.t) g o =
   | Box -> Box.roots s g o
   | Cylinder -> Cylinder.roots s g o
   | Disk -> Disk.roots s g o
+  | Cone -> Cone.roots s g o
   | Sphere | Triangle | Smooth_triangle | Csg -> own_path k
 
 let[@inline never] normal k (s : Scratch.t) g o =
@@ -22,4 +23,5 @@ let[@inline never] normal k (s : Scratch.t) g o =
   | Box -> Box.hit_normal s g o
   | Cylinder -> Cylinder.normal s g o
   | Disk -> Disk.normal s g o
+  | Cone -> Cone.normal s g o
   | Sphere | Triangle | Smooth_triangle | Csg -> own_path k

@@ -69,7 +69,9 @@ type 'a t = {
           definition, never by the kernel's routines: the executable
           specification's answer, which the kernel is tested against. *)
 }
-(** The type for descriptions of a primitive kind of shape ['a]. *)
+(** The type for descriptions of a primitive kind of shape ['a].
+
+    @canonical Raytrace.Private.Shape_desc.t *)
 
 type primitive = Primitive : 'a t * 'a -> primitive  (** A shape of some described kind. *)
 
