@@ -1,8 +1,8 @@
 (* In this order, a [match] of the kernel that sets spheres, triangles and
    the other shapes apart compiles to two comparisons, not a jump table. *)
-type t = Sphere | Triangle | Smooth_triangle | Plane | Box | Csg
+type t = Sphere | Triangle | Smooth_triangle | Plane | Box | Csg | Torus
 
-let all = [ Sphere; Triangle; Smooth_triangle; Plane; Box; Csg ]
+let all = [ Sphere; Triangle; Smooth_triangle; Plane; Box; Csg; Torus ]
 
 (* Each kind's facts in one match: its name, whether it is bounded (in the
    hierarchy), closed (a CSG operand, a medium) and the floats of geometry
@@ -15,6 +15,7 @@ let facts = function
   | Plane -> ("plane", false, false, 9)
   | Box -> ("box", true, true, 6)
   | Csg -> ("csg", true, true, 1)
+  | Torus -> ("torus", true, true, 8)
 
 let to_string k =
   let name, _, _, _ = facts k in
@@ -31,6 +32,10 @@ let closed k =
 let floats k =
   let _, _, _, n = facts k in
   n
+
+(* How many intervals a line meets a closed kind's solid in, at most: a
+   CSG leaf's room in the work arrays. *)
+let spans = function Torus -> 2 | Sphere | Triangle | Smooth_triangle | Plane | Box | Csg -> 1
 
 let stride = List.fold_left (fun m k -> max m (floats k)) 0 all
 (* Every other kind, a new one too, is not a triangle. *)

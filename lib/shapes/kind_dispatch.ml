@@ -7,10 +7,12 @@ let[@inline] roots k (s : Scratch.t) g o =
   match (k : Kind.t) with
   | Plane -> Plane.roots s g o
   | Box -> Box.roots s g o
+  | Torus -> Torus.roots s g o
   | Sphere | Triangle | Smooth_triangle | Csg -> own_path k
 
 let[@inline] normal k (s : Scratch.t) g o =
   match (k : Kind.t) with
   | Plane -> Plane.normal s g o
   | Box -> Box.hit_normal s g o
+  | Torus -> Torus.normal s g o
   | Sphere | Triangle | Smooth_triangle | Csg -> own_path k
