@@ -14,6 +14,7 @@ module Sphere = Sphere
 module Plane = Plane
 module Triangle = Triangle
 module Box = Box
+module Torus = Torus
 
 module Mesh = struct
   include Mesh

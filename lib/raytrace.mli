@@ -117,6 +117,7 @@ module Sphere = Sphere
 module Plane = Plane
 module Triangle = Triangle
 module Box = Box
+module Torus = Torus
 
 module Mesh : sig
   include module type of struct

@@ -126,6 +126,17 @@ let transform ~scale ~translate (s : Scene.t) =
   let pattern = Option.map (fun (Pattern.Checker c) -> Pattern.checker ~size:(scale *. c.size) c.color) in
   let material (m : Material.t) = Material.update ~pattern:(pattern m.pattern) m in
   let sphere (sp : Sphere.t) = Sphere.v ~center:(p sp.center) ~radius:(scale *. sp.radius) (material sp.material) in
+  (* A described kind by its own fields: the torus's. *)
+  let primitive (Shape_desc.Primitive (d, x)) =
+    match Shape_desc.same d.witness Torus.desc.witness with
+    | Some Shape_desc.Equal ->
+        let x : Torus.t = x in
+        Shape_desc.Primitive
+          ( Torus.desc,
+            Torus.v ~center:(p x.center) ~axis:x.axis ~major:(scale *. x.major) ~minor:(scale *. x.minor)
+              (material x.material) )
+    | None -> invalid_arg ("no scaling for a " ^ d.name)
+  in
   Scene.with_overrides ~epsilon:None
     ~viewport:
       (Viewport.v ~width:(scale *. (Scene.viewport s).width) ~height:(scale *. (Scene.viewport s).height)
@@ -154,7 +165,7 @@ let transform ~scale ~translate (s : Scene.t) =
            | Csg.Box b -> Csg.Box (box b)
            | Csg.Mesh m -> Csg.Mesh (mesh m)
            | Csg.Csg c -> Csg.Csg (csg c)
-           | Csg.Primitive _ -> invalid_arg "no described kind in these scenes"
+           | Csg.Primitive x -> Csg.Primitive (primitive x)
          in
          Csg.v c.op (solid c.a) (solid c.b)
        in
@@ -166,7 +177,7 @@ let transform ~scale ~translate (s : Scene.t) =
            | Shape.Box b -> Shape.Box (box b)
            | Shape.Mesh m -> Shape.Mesh (mesh m)
            | Shape.Csg c -> Shape.Csg (csg c)
-           | Shape.Primitive _ -> invalid_arg "no described kind in these scenes")
+           | Shape.Primitive x -> Shape.Primitive (primitive x))
          (Scene.objects s))
     ~lights:
       (List.map
