@@ -129,16 +129,9 @@ let kernel_roots (x : Torus.t) ~origin ~direction =
 
 (* {1 Cases} *)
 
-let random_unit rand =
-  let rec go () =
-    let v = Vec3.v (Random.State.float rand 2. -. 1.) (Random.State.float rand 2. -. 1.) (Random.State.float rand 2. -. 1.) in
-    let n = Vec3.norm v in
-    if n < 0.1 || n > 1. then go () else Vec3.smul (1. /. n) v
-  in
-  go ()
-
-let scales = [ 1e-6; 1e-3; 1.; 1e3; 1e6 ]
-let offsets = [ Vec3.zero; Vec3.v 1e6 (-1e6) 1e6; Vec3.v 0. 0. (-1e6) ]
+let random_unit = Test_shapes.random_unit
+let scales = Test_shapes.scales
+let offsets = Test_shapes.offsets
 
 let random_torus rand sc off =
   let major = sc *. (0.5 +. Random.State.float rand 1.5) in
