@@ -371,4 +371,59 @@ let tests =
               (Printf.sprintf "scaled by %g, moved by %s" scale (Vec3.show translate))
               ~expected (Helpers.image_exn s))
           [ (1., Vec3.zero); (1., Vec3.v 1e6 (-1e6) 1e6) ]);
+    Alcotest.test_case "the torus's scene text reads, prints back, and its errors name file:line:column" `Quick (fun () ->
+        let text = "(torus (center 0 0 5) (axis 0 2 0) (major 1) (minor 0.25) (color 200 50 50))" in
+        let parse text = Helpers.of_string ~file:"t.scene" text in
+        let x = Torus.v ~center:(Vec3.v 0. 0. 5.) ~axis:(Vec3.v 0. 2. 0.) ~major:1. ~minor:0.25 (Material.v (Color.v 200. 50. 50.)) in
+        (match parse text with
+        | Ok sc ->
+            (match Scene.objects sc with
+            | [ Shape.Primitive p ] ->
+                Alcotest.(check bool) "equal to Torus.v" true (Shape_desc.equal_primitive p (Shape_desc.Primitive (Torus.desc, x)));
+                let printed = Format.asprintf "%a" Shape_desc.pp_primitive p in
+                (match parse printed with
+                | Ok sc' -> (
+                    match Scene.objects sc' with
+                    | [ Shape.Primitive p' ] -> Alcotest.(check bool) ("reads back: " ^ printed) true (Shape_desc.equal_primitive p p')
+                    | _ -> Alcotest.fail "one object expected")
+                | Error (`Msg m) -> Alcotest.failf "%s does not read back: %s" printed m)
+            | _ -> Alcotest.fail "one torus expected")
+        | Error (`Msg m) -> Alcotest.fail m);
+        List.iter
+          (fun (text, expected) ->
+            match parse text with
+            | Ok _ -> Alcotest.failf "no error for %s" text
+            | Error (`Msg m) -> Alcotest.(check string) text expected m)
+          [
+            ("\n (torus (center 0 0 5) (axis 0 1 0) (major 1) (minor 1) (color 1 2 3))",
+             "t.scene:2:2: torus minor (1) must be less than major (1)");
+            ("(torus (center 0 0 5) (axis 0 0 0) (major 1) (minor 0.2) (color 1 1 1))", "t.scene:1:1: torus axis must not be zero");
+            ("(torus (center 0 0 5) (axis 0 1 0) (minor 0.2) (color 1 1 1))", "t.scene:1:1: torus is missing its (major ...) field");
+            ("(torus (center 0 0 5) (axis 0 1 0) (major -1) (minor 0.2) (color 1 1 1))", "t.scene:1:1: torus major must be > 0, got -1");
+          ]);
+    Alcotest.test_case "a bad torus stops the command line: exit 1, a located message, no image" `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        let file = Filename.concat dir "bad.scene" and out = Filename.concat dir "out.ppm" in
+        let oc = open_out_bin file in
+        output_string oc "(torus (center 0 0 5) (axis 0 1 0) (major 1) (minor 2) (color 1 2 3))\n";
+        close_out oc;
+        let code, _, err = Helpers.run (Helpers.raytrace ()) [ "render"; file; "-o"; out ] in
+        Alcotest.(check int) "exit" 1 code;
+        Alcotest.(check string) "message" (Printf.sprintf "raytrace: %s:1:1: torus minor (2) must be less than major (1)\n" file) err;
+        Alcotest.(check bool) "no output file" false (Sys.file_exists out));
+    Alcotest.test_case "a torus minus a ball over its near tube is seen through the hole: the second interval" `Quick
+      (fun () ->
+        (* Axis y, R = 2, r = 0.5 at the origin; the ball of radius 1 at
+           (-2, 0, 0) takes the near tube away. From (-10, 0, 0) along x
+           the solid is entered at the far tube's x = 1.5: t = 11.5. *)
+        let x = Torus.v ~center:Vec3.zero ~axis:Vec3.oy ~major:2. ~minor:0.5 white in
+        let ball = Sphere.v ~center:(Vec3.v (-2.) 0. 0.) ~radius:1. white in
+        let c = Csg.v Csg.Difference (Csg.Primitive (Shape_desc.Primitive (Torus.desc, x))) (Csg.Sphere ball) in
+        let scene = Helpers.scene ~spheres:[] ~shapes:[ Shape.Csg c ] ~lights:[] () in
+        let tr = Trace.create (Helpers.prepare scene) in
+        let near, _ = Trace.roots tr 0 (Vec3.v (-10.) 0. 0.) Vec3.ox in
+        Alcotest.(check (float 1e-14)) "kernel" 11.5 near;
+        match Private.Literal.closest_hit scene ~origin:(Vec3.v (-10.) 0. 0.) ~direction:Vec3.ox ~t_min:0. ~t_max:infinity with
+        | Some (_, t) -> Alcotest.(check (float 1e-12)) "oracle" 11.5 t
+        | None -> Alcotest.fail "the oracle sees nothing");
   ]
