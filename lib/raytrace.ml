@@ -14,7 +14,6 @@ module Sphere = Sphere
 module Plane = Plane
 module Triangle = Triangle
 module Box = Box
-module Torus = Torus
 
 module Mesh = struct
   include Mesh
@@ -59,6 +58,7 @@ module Private = struct
   module Bvh = Bvh
   module Kind = Kind
   module Kind_dispatch = Kind_dispatch
+  module Torus = Torus
   module Shape_desc = Shape_desc
   module Primitives = Primitives
   module Prepared = Prepared

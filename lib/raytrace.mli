@@ -117,7 +117,6 @@ module Sphere = Sphere
 module Plane = Plane
 module Triangle = Triangle
 module Box = Box
-module Torus = Torus
 
 module Mesh : sig
   include module type of struct
@@ -196,6 +195,7 @@ module Private : sig
   module Bvh = Bvh
   module Kind = Kind
   module Kind_dispatch = Kind_dispatch
+  module Torus = Torus
   module Shape_desc = Shape_desc
   module Primitives = Primitives
   module Prepared = Prepared
