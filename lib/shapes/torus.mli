@@ -69,14 +69,19 @@ val roots : Scratch.t -> float array -> int -> bool
     between which it is monotone; each change of sign there is refined by
     Newton steps kept in the bracket, with bisection, on
     [F = (rho - major)^2 + z^2 - minor^2], of [G]'s sign but without its
-    cancellation. No closed-form solver: none loses a root at tangency.
+    cancellation. No closed-form solver: those lose roots near tangency
+    and at a distance.
 
-    Accuracy (checked in exact rational arithmetic by the [torus] suite,
-    on this routine): each root is the parameter of a point within
-    [64 u (|O - center| + major + minor)] of the exact surface ([u =
-    2^-53]), the quartic of the exact float data changes sign or touches
-    zero within that bound of it, and every crossing of the exact quartic
-    is found unless the line passes within that bound of tangency. *)
+    Accuracy, with [delta = 8 u (|O - center| + major + minor)] ([u =
+    2^-53]), checked in exact rational arithmetic by the [torus] suite on
+    this routine, over scales 1e-6 to 1e6, translations by 1e6 and
+    grazing rays: each root is the parameter of a point within [delta] of
+    the exact surface (the exact quartic of minor radius [minor + delta]
+    is [<= 0] there, that of [minor - delta] [>= 0]: the quartic touches
+    zero within the bound); between two roots the exact quartic has the
+    sign the intervals say; and the roots are as many as the exact
+    quartic's real roots (Sturm's theorem), unless the line passes within
+    [2 delta] of tangency. *)
 
 val normal : Scratch.t -> float array -> int -> unit
 (** [normal s g o] sets [s.nx, s.ny, s.nz] to the outward unit normal of
