@@ -66,6 +66,12 @@ module P = struct
     let rec go n = function a :: (b :: _ as l) -> go (if a <> b then n + 1 else n) l | _ -> n in
     go 0 signs
 
+  (* The distinct real roots of [p] in [(a, b]], [p] not zero. *)
+  let roots_in p a b =
+    let chain = sturm (trim p) in
+    let at x = List.map (fun c -> Q.sign (eval c x)) chain in
+    variations (at a) - variations (at b)
+
   let real_roots p =
     let p = trim p in
     if Array.length p <= 1 then 0
@@ -436,4 +442,60 @@ let tests =
         match Private.Literal.closest_hit scene ~origin:(Vec3.v (-10.) 0. 0.) ~direction:Vec3.ox ~t_min:0. ~t_max:infinity with
         | Some (_, t) -> Alcotest.(check (float 1e-12)) "oracle" 11.5 t
         | None -> Alcotest.fail "the oracle sees nothing");
+    Alcotest.test_case "a lit torus shadows itself exactly where its exact shadow rays say, at any scale" `Quick (fun () ->
+        (* A matte torus under one point light: a pixel is lit iff the
+           exact segment from its float hit point to the light crosses
+           the exact torus nowhere past a hair of its start (Sturm's
+           count on (1e-6, 1)), where the light is well above the
+           horizon there (cos > 0.05: rays that graze the surface are
+           left out). No epsilon: the robust mode's offset alone. *)
+        List.iter
+          (fun (k, off) ->
+            let p (v : Vec3.t) = Vec3.add off (Vec3.smul k v) in
+            let x = Torus.v ~center:(p (Vec3.v 0. 0. 5.)) ~axis:(Vec3.v 0.3 1. (-0.4)) ~major:k ~minor:(0.35 *. k) white in
+            let light = p (Vec3.v 5.75 (-0.5) 5.) in
+            let camera = match Camera.look_at ~position:(p (Vec3.v 0.8 2.7 3.9)) x.center with Ok c -> c | Error (`Msg e) -> failwith e in
+            let scene =
+              Helpers.scene ~width:48 ~height:48 ~camera
+                ~viewport:(Viewport.v ~width:(0.6 *. k) ~height:(0.6 *. k) ~distance:k)
+                ~spheres:[] ~shapes:[ torus_shape x ] ~lights:[ Light.point 1. light ] ()
+            in
+            let tr = Trace.create (Helpers.prepare scene) in
+            let tested = ref 0 and shadowed = ref 0 and wrong = ref 0 and edge = ref 0 in
+            for row = 0 to 47 do
+              for col = 0 to 47 do
+                let gx = Canvas.x_of_column ~width:48 col and gy = Canvas.y_of_row ~height:48 row in
+                Trace.pixel tr gx gy;
+                if Trace.hit_object tr = 0 then begin
+                  let lit = Trace.red tr > 0. in
+                  let v = Viewport.of_canvas (Scene.viewport scene) ~canvas_width:48 ~canvas_height:48 gx gy in
+                  let origin = (Scene.camera scene).position and direction = Camera.direction (Scene.camera scene) v in
+                  let t, _ = Trace.roots tr 0 origin direction in
+                  let hit = Vec3.add origin (Vec3.smul t direction) in
+                  let g = Array.make Kind.stride 0. and sc = Scratch.create () in
+                  Torus.store x g 0;
+                  sc.px <- hit.x;
+                  sc.py <- hit.y;
+                  sc.pz <- hit.z;
+                  Torus.normal sc g 0;
+                  let l = Vec3.sub light hit in
+                  if Vec3.dot (Vec3.v sc.nx sc.ny sc.nz) l /. Vec3.norm l > 0.05 then begin
+                    incr tested;
+                    let count rr = P.roots_in (quartic x ~origin:hit ~direction:l rr) (Q.of_float 1e-6) Q.one in
+                    let d2 = Q.mul (Q.of_int 2) (q (delta x ~origin:hit)) and r = q x.minor in
+                    let exact = count r in
+                    if exact <> count (Q.add r d2) || exact <> count (Q.sub r d2) then incr edge
+                    else begin
+                      if exact > 0 then incr shadowed;
+                      if lit = (exact > 0) then incr wrong
+                    end
+                  end
+                end
+              done
+            done;
+            Printf.printf "scale %g, moved by %s: %d lit-side pixels, %d in the torus's own shadow, %d within the bound, %d wrong\n" k
+              (Vec3.show off) !tested !shadowed !edge !wrong;
+            if !shadowed < 20 || !tested - !shadowed < 20 then Alcotest.fail "the scene should show both light and shadow";
+            Alcotest.(check int) "pixels lit or shadowed against the exact shadow ray" 0 !wrong)
+          [ (1., Vec3.zero); (1e-6, Vec3.zero); (1e6, Vec3.zero); (1., Vec3.v 1e6 (-1e6) 1e6); (1e-3, Vec3.v 0. 0. 1e6) ]);
   ]
