@@ -340,6 +340,14 @@ let tests =
         run ();
         let words = Gc.minor_words () -. before -. overhead in
         Alcotest.(check (float 0.)) "minor words for 1,000 rays" 0. words);
+    Alcotest.test_case "rendering the tori's scene allocates nothing per pixel: glass, shadows, CSG" `Quick (fun () ->
+        let s = Scene.with_overrides ~width:60 ~height:45 (Helpers.load_scene "torus.scene") in
+        List.iter
+          (fun (what, samples) ->
+            match Helpers.render ?samples s with
+            | Ok (_, (st : Render.Stats.t)) -> Alcotest.(check (float 0.)) what 0. st.minor_words
+            | Error (`Msg m) -> Alcotest.fail m)
+          [ ("one sample", None); ("samples 2", Some 2) ]);
     Alcotest.test_case "a ray from inside the tube meets its exit; one through the hole, two intervals" `Quick (fun () ->
         (* Axis y, R = 2, r = 0.5 about the origin: the x axis crosses the
            tube at x = -2.5, -1.5, 1.5, 2.5. *)
