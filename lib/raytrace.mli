@@ -195,6 +195,7 @@ module Private : sig
   module Bvh = Bvh
   module Kind = Kind
   module Kind_dispatch = Kind_dispatch
+  module Torus = Torus
   module Shape_desc = Shape_desc
   module Primitives = Primitives
   module Cylinder = Cylinder

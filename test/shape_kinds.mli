@@ -1,6 +1,7 @@
-(** The described kinds of issue 26's cylinder lane ({!Raytrace.Private.Cylinder},
-    {!Raytrace.Private.Disk}) seen through their descriptions, for the tests
-    that move every object of a scene. *)
+(** The described kinds of issue 26 ({!Raytrace.Private.Cylinder},
+    {!Raytrace.Private.Disk}, {!Raytrace.Private.Cone},
+    {!Raytrace.Private.Torus}) seen through their descriptions, for the
+    tests that move every object of a scene. *)
 
 val map_primitive :
   point:(Raytrace.Vec3.t -> Raytrace.Vec3.t) ->
@@ -8,7 +9,7 @@ val map_primitive :
   material:(Raytrace.Material.t -> Raytrace.Material.t) ->
   Raytrace.Private.Shape_desc.primitive ->
   Raytrace.Private.Shape_desc.primitive
-(** [map_primitive ~point ~length ~material p] is the cylinder or disk [p]
+(** [map_primitive ~point ~length ~material p] is the described shape [p]
     with its points mapped by [point] (a scaling and a translation), its
-    radius by [length] and its material by [material]; a disk's normal is
-    kept. Raises [Invalid_argument] for another kind. *)
+    radii by [length] and its material by [material]; a disk's normal and
+    a torus's axis are kept. Raises [Invalid_argument] for another kind. *)

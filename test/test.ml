@@ -39,6 +39,7 @@ let () =
       ("cylinder", Test_cylinder.tests);
       ("csg", Test_csg.tests);
       ("cone", Test_cone.tests);
+      ("torus", Test_torus.tests);
       ("bvh", Test_bvh.tests);
       ("prepared", Test_prepared.tests);
       ("antialias", Test_antialias.tests);

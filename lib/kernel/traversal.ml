@@ -193,8 +193,13 @@ let[@warning "-11"] shape_roots tr s i =
 
 (* Tests the ray in [s] against the shape (not a sphere) in slot [i],
    keeping the better hit. Secondary rays of the robust mode start off
-   the surface they leave (see [trace]), so no shape is special here. *)
-let shape_test tr s i =
+   the surface they leave (see [trace]), so no shape is special here.
+   Inlined by request: once a described kind exists, the catch-all of
+   [shape_roots] is live, and this test grows past what OCaml inlines by
+   itself into the loops; a call per shape test then cost the scenes of
+   boxes and planes more than the gate allows (docs/performance.md,
+   "Round 3: the first described kind"). *)
+let[@inline] shape_test tr s i =
   if shape_roots tr s i then begin
     let near = s.near in
     if better tr s i near && s.t_min < near && near < s.t_max then begin

@@ -352,7 +352,8 @@ let rec add_solid b ~material s =
       let g = Array.make stride 0. in
       Shape_desc.store p g 0;
       add_surface b (Shape_desc.kind p) g (material s);
-      (add_node b leaf_node first 0 1, 1)
+      let cap = Kind.spans (Shape_desc.kind p) in
+      (add_node b leaf_node first 0 cap, cap)
   | Mesh m ->
       let sf = b.n_surfaces and leaf = mesh_leaf m in
       let number = b.n_meshes in
@@ -467,6 +468,30 @@ let[@inline] leaf_interval w (s : Scratch.t) node base sf hit =
     Array.unsafe_set w.count node 1
   end
   else Array.unsafe_set w.count node 0
+
+(* The intervals of a leaf of a kind that a line may meet in several
+   ({!Kind.spans}): its routine gives the first interval whose exit lies
+   beyond [s.t_min], so it is asked again from each exit on ([s.t_min]
+   moved there, then put back). Intervals that end before [s.t_min]
+   change no crossing the CSG table answers for. *)
+let leaf_spans w (s : Scratch.t) node base sf k g o =
+  let t_min = s.t_min and n = ref 0 and go = ref true and spans = Kind.spans k in
+  while !go && !n < spans do
+    if Kind_dispatch.roots k s g o then begin
+      if s.near < s.far then begin
+        let i = base + !n in
+        Array.unsafe_set w.t_in i s.near;
+        Array.unsafe_set w.t_out i s.far;
+        Array.unsafe_set w.s_in i sf;
+        Array.unsafe_set w.s_out i sf;
+        incr n
+      end;
+      s.t_min <- s.far
+    end
+    else go := false
+  done;
+  s.t_min <- t_min;
+  Array.unsafe_set w.count node !n
 
 (* The reciprocal of a direction coordinate for the slab test: a zero
    coordinate gets a huge finite value, not an infinity, so that the
@@ -684,7 +709,9 @@ let[@warning "-11"] rec eval tb w (s : Scratch.t) node =
     | k ->
         (* Every other closed kind, by the kernel's dispatch. *)
         w.tests <- w.tests + 1;
-        leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (Kind_dispatch.roots k s tb.geom (stride * sf))
+        if Kind.spans k = 1 then
+          leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (Kind_dispatch.roots k s tb.geom (stride * sf))
+        else leaf_spans w s node base (Array.unsafe_get tb.surface_id sf) k tb.geom (stride * sf)
   end
   else begin
     let na = Array.unsafe_get tb.left node and nb = Array.unsafe_get tb.right node in

@@ -26,6 +26,7 @@ type t =
   | Cylinder  (** A cylinder, capped (closed) or open ({!module-Cylinder}). *)
   | Disk  (** A flat disk, seen from both sides ({!module-Disk}). *)
   | Cone  (** A cone, capped or open ({!module-Cone}). *)
+  | Torus  (** A torus ({!module-Torus}). *)
 (** The type for kinds. The order of the constructors is the kernel's:
     spheres, then triangles, then the rest, so that the traversal's
     three-way [match] compiles to two comparisons. *)
@@ -56,6 +57,12 @@ val closed : t -> bool
 val floats : t -> int
 (** [floats k] is how many floats of geometry the shape module's [store]
     writes for an object of kind [k], at most {!stride}. *)
+
+val spans : t -> int
+(** [spans k] is the most intervals in which a line meets a solid of the
+    closed kind [k] (2 for a torus, 1 for the convex kinds): the room a
+    CSG leaf of kind [k] takes in the work arrays, and how many times
+    the CSG table asks its roots. *)
 
 val stride : int
 (** [stride] is the largest {!floats} of any kind ([9]): the floats of

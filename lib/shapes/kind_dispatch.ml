@@ -15,6 +15,7 @@ let[@inline never] roots k (s : Scratch.t) g o =
   | Cylinder -> Cylinder.roots s g o
   | Disk -> Disk.roots s g o
   | Cone -> Cone.roots s g o
+  | Torus -> Torus.roots s g o
   | Sphere | Triangle | Smooth_triangle | Csg -> own_path k
 
 let[@inline never] normal k (s : Scratch.t) g o =
@@ -24,4 +25,5 @@ let[@inline never] normal k (s : Scratch.t) g o =
   | Cylinder -> Cylinder.normal s g o
   | Disk -> Disk.normal s g o
   | Cone -> Cone.normal s g o
+  | Torus -> Torus.normal s g o
   | Sphere | Triangle | Smooth_triangle | Csg -> own_path k

@@ -342,6 +342,11 @@ let leaf_crossings ~tested ~origin ~direction i = function
       | [ (t0, n0); (t1, n1) ] when t0 < t1 ->
           let a = key_of_float t0 and b = key_of_float t1 in
           (Interval (a, b), [ { key = a; leaf = i; surface = Flat n0 }; { key = b; leaf = i; surface = Flat n1 } ])
+      | xs when List.length xs > 2 ->
+          (* A kind met in several intervals (a torus): inside after an
+             odd number of crossings, as a mesh. *)
+          let xs = List.map (fun (t, n) -> { key = key_of_float t; leaf = i; surface = Flat n }) xs in
+          (Crossings (List.map (fun (x : crossing) -> x.key) xs), xs)
       | _ -> (Crossings [], []))
   | Csg.Mesh m ->
       let xs = List.stable_sort (fun x y -> compare_keys x.key y.key) (mesh_crossings ~tested m ~origin ~direction i) in
