@@ -9,6 +9,8 @@ let all =
     ("glass.scene", "a glass ball over a checkered floor");
     ("glass-lens.scene", "a glass CSG lens over a checkered floor");
     ("glass-knot.scene", "a glass mesh");
+    ("cylinder.scene", "capped and open cylinders, a glass one, a checker, a CSG drill");
+    ("disk.scene", "disks seen from both sides, a mirror, glass, an open tube with a lid");
   ]
 
 let names = List.map fst all

@@ -222,14 +222,15 @@ let literal c ~origin ~direction =
     | first :: _ as l -> [ first; List.nth l (Stdlib.( - ) (List.length l) 1) ]
   else sorted side
 
-(* The box of the spheres of radius [radius] about the two ends, which
-   holds the cylinder; outward by an ulp after the one rounding of each
-   sum, so that the exact corners lie within it. *)
+(* The box of the two caps' circles (the cylinder is their convex hull),
+   outward by an ulp after the one rounding of each sum: a cylinder along
+   an axis ends at its caps along it. *)
 let bounds c =
-  let lo f = Float.pred (Float.min (f c.base) (f c.top) -. c.radius)
-  and hi f = Float.succ (Float.max (f c.base) (f c.top) +. c.radius) in
+  let e = Disk.rim_extent c.radius (Vec3.sub c.top c.base) in
+  let lo f g = Float.pred (Float.min (f c.base) (f c.top) -. g e)
+  and hi f g = Float.succ (Float.max (f c.base) (f c.top) +. g e) in
   let x (v : Vec3.t) = v.x and y (v : Vec3.t) = v.y and z (v : Vec3.t) = v.z in
-  (Vec3.v (lo x) (lo y) (lo z), Vec3.v (hi x) (hi y) (hi z))
+  (Vec3.v (lo x x) (lo y y) (lo z z), Vec3.v (hi x x) (hi y y) (hi z z))
 
 let pp ppf c =
   Format.fprintf ppf "(cylinder (base %a) (top %a) (radius %s)%s %a)" Vec3.pp_components c.base Vec3.pp_components

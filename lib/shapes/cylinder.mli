@@ -33,7 +33,8 @@ val show : t -> string
 
 val desc : t Shape_desc.t
 (** [desc] is the cylinder's description: its form, bounds (the box of
-    the two spheres of radius [radius] about its ends, rounded outward),
+    its caps' circles, {!Disk.rim_extent} either side of each end, rounded
+    outward),
     its stored floats and its literal crossings. *)
 
 (**/**)

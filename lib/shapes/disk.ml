@@ -74,11 +74,24 @@ let literal d ~origin ~direction =
     let off = sub (add origin (smul t direction)) d.center in
     if norm off <= d.radius then [ (t, n) ] else []
 
-(* The box of the sphere that holds the disk, outward by an ulp after the
-   one rounding of each sum. *)
+(* Along axis [i], a circle of radius [r] across [n] reaches
+   [r sqrt ((n_j^2 + n_k^2) / |n|^2)] from its centre (no cancellation: a
+   sum of squares over a sum of squares, each within a few [u] relatively
+   of its exact value, the normal's coordinates rounded or not); [32 u]
+   more covers the rounding. *)
+let rim_extent r (n : Vec3.t) =
+  let x2 = n.x *. n.x and y2 = n.y *. n.y and z2 = n.z *. n.z in
+  let n2 = x2 +. y2 +. z2 in
+  let e a b = r *. sqrt ((a +. b) /. n2) *. (1. +. (32. *. epsilon_float)) in
+  Vec3.v (e y2 z2) (e x2 z2) (e x2 y2)
+
+(* The box of the circle, outward by an ulp after the one rounding of
+   each sum: a disk across an axis is flat along it. *)
 let bounds d =
-  let lo x = Float.pred (x -. d.radius) and hi x = Float.succ (x +. d.radius) in
-  (Vec3.v (lo d.center.x) (lo d.center.y) (lo d.center.z), Vec3.v (hi d.center.x) (hi d.center.y) (hi d.center.z))
+  let e = rim_extent d.radius d.normal in
+  let lo x e = Float.pred (x -. e) and hi x e = Float.succ (x +. e) in
+  ( Vec3.v (lo d.center.x e.x) (lo d.center.y e.y) (lo d.center.z e.z),
+    Vec3.v (hi d.center.x e.x) (hi d.center.y e.y) (hi d.center.z e.z) )
 
 let pp ppf d =
   Format.fprintf ppf "(disk (center %a) (normal %a) (radius %s) %a)" Vec3.pp_components d.center Vec3.pp_components

@@ -27,9 +27,16 @@ val show : t -> string
 (** [show d] is [d] formatted by {!pp}. *)
 
 val desc : t Shape_desc.t
-(** [desc] is the disk's description: its form, bounds (the box of the
-    sphere of radius [radius] about the centre, rounded outward), its
+(** [desc] is the disk's description: its form, bounds (the box of its
+    circle, {!rim_extent} either side of the centre, rounded outward), its
     stored floats and its literal crossing. *)
+
+val rim_extent : float -> Vec3.t -> Vec3.t
+(** [rim_extent r n] is how far a circle of radius [r] across the
+    non-zero vector [n] reaches from its centre along x, y and z, each
+    [r sqrt (1 - n_i^2 / |n|^2)] rounded up (by [32 u] relatively; the
+    test suite checks in exact arithmetic that it is never below): [0]
+    along an axis that [n] points along. *)
 
 (**/**)
 
