@@ -148,13 +148,25 @@ let transform ~scale ~translate (s : Scene.t) =
          | Error (`Msg e) -> Alcotest.fail e
        in
        let box (b : Box.t) : Box.t = Box.v ~min:(p b.min) ~max:(p b.max) (material b.material) in
+       (* A described kind's shape, told by its witness: the cone's. *)
+       let primitive (Private.Shape_desc.Primitive (d, x)) =
+         let module D = Private.Shape_desc in
+         match D.same d.witness Private.Cone.desc.witness with
+         | Some D.Equal ->
+             let c : Private.Cone.t = x in
+             D.Primitive
+               ( Private.Cone.desc,
+                 Private.Cone.v ~capped:c.capped ~base:(p c.base) ~top:(p c.top) ~radius:(scale *. c.radius)
+                   ~top_radius:(scale *. c.top_radius) (material c.material) )
+         | None -> invalid_arg ("no " ^ d.name ^ " in these scenes")
+       in
        let rec csg (c : Csg.t) =
          let solid = function
            | Csg.Sphere sp -> Csg.Sphere (sphere sp)
            | Csg.Box b -> Csg.Box (box b)
            | Csg.Mesh m -> Csg.Mesh (mesh m)
            | Csg.Csg c -> Csg.Csg (csg c)
-           | Csg.Primitive _ -> invalid_arg "no described kind in these scenes"
+           | Csg.Primitive pr -> Csg.Primitive (primitive pr)
          in
          Csg.v c.op (solid c.a) (solid c.b)
        in
@@ -166,7 +178,7 @@ let transform ~scale ~translate (s : Scene.t) =
            | Shape.Box b -> Shape.Box (box b)
            | Shape.Mesh m -> Shape.Mesh (mesh m)
            | Shape.Csg c -> Shape.Csg (csg c)
-           | Shape.Primitive _ -> invalid_arg "no described kind in these scenes")
+           | Shape.Primitive pr -> Shape.Primitive (primitive pr))
          (Scene.objects s))
     ~lights:
       (List.map
