@@ -143,7 +143,7 @@ let roots_within_bound () =
     (fun sc ->
       List.iter
         (fun off ->
-          for _ = 1 to 300 do
+          for _ = 1 to 1000 do
             let c = random_cone rand sc off in
             match Cone.validate c with
             | Error _ -> ()
@@ -156,6 +156,14 @@ let roots_within_bound () =
                 let d = Vec3.add d (Vec3.smul (Vec3.norm d *. (10. ** -.Random.State.float rand 12.)) (random_unit rand)) in
                 let direction = Vec3.smul (10. ** (Random.State.float rand 6. -. 3.)) d in
                 let near, far = Cone.intersect c ~origin ~direction in
+                (* The tracer's own test (Traversal, Kind_dispatch) gives
+                   the same bits, one case in ten. *)
+                if Random.State.int rand 10 = 0 then begin
+                  let tr = Trace.create (Helpers.prepare (Helpers.scene ~spheres:[] ~shapes:[ shape c ] ~lights:[] ())) in
+                  let t, t' = Trace.roots tr 0 origin direction in
+                  if Int64.bits_of_float t <> Int64.bits_of_float near || Int64.bits_of_float t' <> Int64.bits_of_float far then
+                    Alcotest.failf "Trace.roots %h %h, Cone.roots %h %h" t t' near far
+                end;
                 (* A capped cone: hit where the exact line passes through
                    the solid, missed where it passes beside it, beyond
                    the margin of [cone_class]. *)
@@ -187,7 +195,7 @@ let roots_within_bound () =
         offsets)
     scales;
   Printf.printf "cones: %d hits, %d misses (%d capped within the margin of an edge), worst root %.3g u (|O| + |P| + extent)\n" !hits !misses !edges !worst;
-  if !hits < 1500 || !misses < 200 then Alcotest.failf "too few hits (%d) or misses (%d)" !hits !misses
+  if !hits < 5000 || !misses < 1000 then Alcotest.failf "too few hits (%d) or misses (%d)" !hits !misses
 
 (* Pointed cones hit at the apex along their axis, where every quantity
    is exact: a ray down the axis of a cone with its point at y = 2 from

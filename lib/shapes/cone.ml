@@ -106,11 +106,16 @@ let[@inline never] roots (s : Scratch.t) g o =
   let rho0 = r0 +. (dr *. kw) in
   let b2 = (px *. qx) +. (py *. qy) +. (pz *. qz) -. (rho0 *. rhod) in
   let c2 = (px *. px) +. (py *. py) +. (pz *. pz) -. (rho0 *. rho0) in
-  let disc2 = fmax 0. ((b2 *. b2) -. (a *. c2)) in
+  let disc2_raw = (b2 *. b2) -. (a *. c2) in
+  let disc2 = fmax 0. disc2_raw in
   let qq2 = -.(b2 +. Float.copy_sign (sqrt disc2) b2) in
   let u0 = if disc2 = 0. then -.b2 /. a else c2 /. qq2 and u1 = if disc2 = 0. then -.b2 /. a else qq2 /. a in
   let lo = if refine then mid +. fmin u0 u1 else fmin t0 t1 and hi = if refine then mid +. fmax u0 u1 else fmax t0 t1 in
-  let none = a > 0. && disc < 0. in
+  (* No root where [A > 0] and the discriminant is negative: the second
+     one's sign when it was found again (the first is noise for a line
+     by the apex, where a tangent point -B / A would lie off the surface
+     by more than the bound). *)
+  let none = a > 0. && (disc < 0. || (refine && disc2_raw < 0.)) in
   let in_lo =
     if a > 0. then if none then infinity else lo
     else if a < 0. then if rhod > 0. then hi else neg_infinity
@@ -126,7 +131,7 @@ let[@inline never] roots (s : Scratch.t) g o =
     else infinity
   in
   (* An open cone: the side's roots within the slab. *)
-  let lo_in = slab_lo <= lo && lo <= slab_hi and hi_in = slab_lo <= hi && hi <= slab_hi in
+  let lo_in = (not none) && slab_lo <= lo && lo <= slab_hi and hi_in = (not none) && slab_lo <= hi && hi <= slab_hi in
   let near =
     if capped then fmax slab_lo in_lo else if lo_in then lo else if hi_in then hi else infinity
   in

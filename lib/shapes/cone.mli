@@ -18,7 +18,15 @@
     [|p + tau q|^2 = (rho0 + tau rhod)^2] in the parts [p], [q] of the
     moved origin and the direction across the axis, by the stable
     formula ([q = -(B + sign(B) sqrt disc)], roots [C / q] and [q / A]).
-    For a capped cone the entry and exit are the slab's part of the
+    Near a double root (a line by the apex, or grazing the side) the
+    roots move by the square root of the coefficients' error, which has
+    the scale of the point they were found at: the quadratic is solved
+    again from the middle of the chord (when that is near the slab),
+    where [C] is small and exact to that point's rounding; where [A > 0]
+    and the discriminant found there is negative, the line misses (the
+    first one's sign was noise: a tangent point [-B / A] by the apex can
+    lie off the surface by far more than the bound). A double root is
+    [-B / A], not [C / q]. For a capped cone the entry and exit are the slab's part of the
     line's part inside the cone (between the roots where [A > 0]; where
     [A < 0] the line crosses both nappes of the double cone and the part
     is the half-line on the nappe of positive radius, the only one in
@@ -29,10 +37,12 @@
     exact point [O + t D] of each root returned lies within
     [32 u (|O| + |P| + extent)] of the surface it was found on, at any
     scale and any angle ([extent] the largest stored float's magnitude,
-    as the kernel's surfaces ([Surface]) offset the robust mode's secondary rays by twice
-    that: they never see the surface they leave). test/test_cone.ml
-    checks the bound in exact rational arithmetic, at scales 1e-6..1e6,
-    translated by 1e6, for grazing rays and for rays through the apex.
+    as the kernel's surfaces ([Surface]) offset the robust mode's
+    secondary rays by twice that: they never see the surface they leave).
+    test/test_cone.ml checks the bound in exact rational arithmetic, at
+    scales 1e-6..1e6, translated by 1e6, for grazing rays and for rays
+    through rims and the apex (docs/numerics.md, "Cones", says what it
+    measured).
 
     {b Apex.} At the point of a pointed cone the side's normal is
     undefined: {!normal} gives the axis's direction out of the point.
