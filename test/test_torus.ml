@@ -207,8 +207,8 @@ let measured x ~origin ~direction t =
   let rec go k = if k > bound then infinity else if near_surface ~k x ~origin ~direction t then k else go (2. *. k) in
   go 0.25
 
-let check (x : Torus.t) ~origin ~direction v =
-  let roots = kernel_roots x ~origin ~direction in
+let check ?(roots_of = kernel_roots) (x : Torus.t) ~origin ~direction v =
+  let roots = roots_of x ~origin ~direction in
   let ks = List.map (measured x ~origin ~direction) roots in
   let off = List.length (List.filter (fun k -> k = infinity) ks) in
   let g = quartic x ~origin ~direction (q x.minor) in
@@ -276,6 +276,16 @@ let tests =
         Alcotest.(check int) "roots off the surface" 0 v.off_surface;
         Alcotest.(check int) "intervals the exact quartic's sign contradicts" 0 v.wrong_sign;
         Alcotest.(check int) "rays whose roots are not as many as the exact quartic's" 0 v.lost);
+    Alcotest.test_case "the oracle's crossings (sphere tracing, not the kernel's method) pass the same exact checks" `Quick
+      (fun () ->
+        let literal x ~origin ~direction = List.map fst (Torus.literal x ~origin ~direction) in
+        let cs = cases 40 in
+        let v = List.fold_left (fun v (x, (origin, direction)) -> check ~roots_of:literal x ~origin ~direction v) zero cs in
+        Printf.printf "%d rays: %d crossings off the surface (worst within %g u (|O - C| + R + r)), %d wrong signs, %d lost, %d grazing\n"
+          (List.length cs) v.off_surface v.worst v.wrong_sign v.lost v.grazes;
+        Alcotest.(check int) "crossings off the surface" 0 v.off_surface;
+        Alcotest.(check int) "wrong signs" 0 v.wrong_sign;
+        Alcotest.(check int) "rays with crossings lost or added" 0 v.lost);
     Alcotest.test_case "a thousand grazing rays lose no root that Sturm's theorem finds in exact arithmetic" `Quick (fun () ->
         let rand = Random.State.make [| 1000 |] in
         let v = ref zero and with_roots = ref 0 in
