@@ -320,6 +320,28 @@ let tests =
             if inside < 200 then Alcotest.failf "the torus covers only %d pixels" inside;
             Alcotest.(check int) "pixels off the exact silhouette" 0 wrong)
           [ Vec3.zero; Vec3.v 1e6 (-1e6) 1e6 ]);
+    Alcotest.test_case "a torus's bounds hold its surface, and are tight along its axis" `Quick (fun () ->
+        let rand = Random.State.make [| 5 |] in
+        List.iter
+          (fun sc ->
+            List.iter
+              (fun off ->
+                for _ = 1 to 20 do
+                  let x = random_torus rand sc off in
+                  let lo, hi = Torus.bounds x in
+                  for _ = 1 to 200 do
+                    let p, _ = surface_point x (Random.State.float rand 6.3) (Random.State.float rand 6.3) in
+                    if p.x < lo.x || p.y < lo.y || p.z < lo.z || p.x > hi.x || p.y > hi.y || p.z > hi.z then
+                      Alcotest.failf "%s outside the bounds of %s" (Vec3.show p) (Torus.desc.name ^ Format.asprintf " %a" Torus.pp x)
+                  done
+                done)
+              offsets)
+          scales;
+        (* Axis y, R = 2, r = 0.5: y in [-0.5, 0.5], x and z in [-2.5, 2.5]. *)
+        let lo, hi = Torus.bounds (Torus.v ~center:Vec3.zero ~axis:Vec3.oy ~major:2. ~minor:0.5 white) in
+        Alcotest.(check (float 1e-12)) "y below" (-0.5) lo.y;
+        Alcotest.(check (float 1e-12)) "y above" 0.5 hi.y;
+        Alcotest.(check (float 1e-12)) "x above" 2.5 hi.x);
     Alcotest.test_case "the torus's roots and normal allocate nothing" `Quick (fun () ->
         let x = Torus.v ~center:(Vec3.v 0. 0. 5.) ~axis:(Vec3.v 0.2 1. 0.1) ~major:1. ~minor:0.3 white in
         let g = Array.make Kind.stride 0. in
