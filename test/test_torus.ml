@@ -538,4 +538,21 @@ let tests =
             if !shadowed < 20 || !tested - !shadowed < 20 then Alcotest.fail "the scene should show both light and shadow";
             Alcotest.(check int) "pixels lit or shadowed against the exact shadow ray" 0 !wrong)
           [ (1., Vec3.zero); (1e-6, Vec3.zero); (1e6, Vec3.zero); (1., Vec3.v 1e6 (-1e6) 1e6); (1e-3, Vec3.v 0. 0. 1e6) ]);
+    Alcotest.test_case "a torus in each CSG operation is the oracle's picture" `Quick (fun () ->
+        let text op =
+          Printf.sprintf
+            "(canvas (width 48) (height 36)) (camera (position 0 2.5 -2) (look-at 0 0 4)) (light ambient (intensity 0.3)) \
+             (light point (intensity 0.7) (position 2 4 0)) \
+             (csg %s (torus (center 0 0 4) (axis 0.2 1 0.1) (major 1.2) (minor 0.4) (color 200 60 50) (specular 100)) \
+             (sphere (center 1 0.2 4) (radius 0.9) (color 60 160 220)))"
+            op
+        in
+        List.iter
+          (fun op ->
+            match Helpers.of_string ~file:"t.scene" (text op) with
+            | Error (`Msg m) -> Alcotest.fail m
+            | Ok s ->
+                let expected = Private.Literal.render (Helpers.valid s) in
+                Helpers.check_images ~min_share:0.995 op ~expected (Helpers.image_exn s))
+          [ "union"; "intersection"; "difference" ]);
   ]
