@@ -207,8 +207,8 @@ let measured x ~origin ~direction t =
   let rec go k = if k > bound then infinity else if near_surface ~k x ~origin ~direction t then k else go (2. *. k) in
   go 0.25
 
-let check (x : Torus.t) ~origin ~direction v =
-  let roots = kernel_roots x ~origin ~direction in
+let check ?(roots_of = kernel_roots) (x : Torus.t) ~origin ~direction v =
+  let roots = roots_of x ~origin ~direction in
   let ks = List.map (measured x ~origin ~direction) roots in
   let off = List.length (List.filter (fun k -> k = infinity) ks) in
   let g = quartic x ~origin ~direction (q x.minor) in
@@ -276,6 +276,16 @@ let tests =
         Alcotest.(check int) "roots off the surface" 0 v.off_surface;
         Alcotest.(check int) "intervals the exact quartic's sign contradicts" 0 v.wrong_sign;
         Alcotest.(check int) "rays whose roots are not as many as the exact quartic's" 0 v.lost);
+    Alcotest.test_case "the oracle's crossings (sphere tracing, not the kernel's method) pass the same exact checks" `Quick
+      (fun () ->
+        let literal x ~origin ~direction = List.map fst (Torus.literal x ~origin ~direction) in
+        let cs = cases 40 in
+        let v = List.fold_left (fun v (x, (origin, direction)) -> check ~roots_of:literal x ~origin ~direction v) zero cs in
+        Printf.printf "%d rays: %d crossings off the surface (worst within %g u (|O - C| + R + r)), %d wrong signs, %d lost, %d grazing\n"
+          (List.length cs) v.off_surface v.worst v.wrong_sign v.lost v.grazes;
+        Alcotest.(check int) "crossings off the surface" 0 v.off_surface;
+        Alcotest.(check int) "wrong signs" 0 v.wrong_sign;
+        Alcotest.(check int) "rays with crossings lost or added" 0 v.lost);
     Alcotest.test_case "a thousand grazing rays lose no root that Sturm's theorem finds in exact arithmetic" `Quick (fun () ->
         let rand = Random.State.make [| 1000 |] in
         let v = ref zero and with_roots = ref 0 in
@@ -310,6 +320,28 @@ let tests =
             if inside < 200 then Alcotest.failf "the torus covers only %d pixels" inside;
             Alcotest.(check int) "pixels off the exact silhouette" 0 wrong)
           [ Vec3.zero; Vec3.v 1e6 (-1e6) 1e6 ]);
+    Alcotest.test_case "a torus's bounds hold its surface, and are tight along its axis" `Quick (fun () ->
+        let rand = Random.State.make [| 5 |] in
+        List.iter
+          (fun sc ->
+            List.iter
+              (fun off ->
+                for _ = 1 to 20 do
+                  let x = random_torus rand sc off in
+                  let lo, hi = Torus.bounds x in
+                  for _ = 1 to 200 do
+                    let p, _ = surface_point x (Random.State.float rand 6.3) (Random.State.float rand 6.3) in
+                    if p.x < lo.x || p.y < lo.y || p.z < lo.z || p.x > hi.x || p.y > hi.y || p.z > hi.z then
+                      Alcotest.failf "%s outside the bounds of %s" (Vec3.show p) (Torus.desc.name ^ Format.asprintf " %a" Torus.pp x)
+                  done
+                done)
+              offsets)
+          scales;
+        (* Axis y, R = 2, r = 0.5: y in [-0.5, 0.5], x and z in [-2.5, 2.5]. *)
+        let lo, hi = Torus.bounds (Torus.v ~center:Vec3.zero ~axis:Vec3.oy ~major:2. ~minor:0.5 white) in
+        Alcotest.(check (float 1e-12)) "y below" (-0.5) lo.y;
+        Alcotest.(check (float 1e-12)) "y above" 0.5 hi.y;
+        Alcotest.(check (float 1e-12)) "x above" 2.5 hi.x);
     Alcotest.test_case "the torus's roots and normal allocate nothing" `Quick (fun () ->
         let x = Torus.v ~center:(Vec3.v 0. 0. 5.) ~axis:(Vec3.v 0.2 1. 0.1) ~major:1. ~minor:0.3 white in
         let g = Array.make Kind.stride 0. in
@@ -506,4 +538,21 @@ let tests =
             if !shadowed < 20 || !tested - !shadowed < 20 then Alcotest.fail "the scene should show both light and shadow";
             Alcotest.(check int) "pixels lit or shadowed against the exact shadow ray" 0 !wrong)
           [ (1., Vec3.zero); (1e-6, Vec3.zero); (1e6, Vec3.zero); (1., Vec3.v 1e6 (-1e6) 1e6); (1e-3, Vec3.v 0. 0. 1e6) ]);
+    Alcotest.test_case "a torus in each CSG operation is the oracle's picture" `Quick (fun () ->
+        let text op =
+          Printf.sprintf
+            "(canvas (width 48) (height 36)) (camera (position 0 2.5 -2) (look-at 0 0 4)) (light ambient (intensity 0.3)) \
+             (light point (intensity 0.7) (position 2 4 0)) \
+             (csg %s (torus (center 0 0 4) (axis 0.2 1 0.1) (major 1.2) (minor 0.4) (color 200 60 50) (specular 100)) \
+             (sphere (center 1 0.2 4) (radius 0.9) (color 60 160 220)))"
+            op
+        in
+        List.iter
+          (fun op ->
+            match Helpers.of_string ~file:"t.scene" (text op) with
+            | Error (`Msg m) -> Alcotest.fail m
+            | Ok s ->
+                let expected = Private.Literal.render (Helpers.valid s) in
+                Helpers.check_images ~min_share:0.995 op ~expected (Helpers.image_exn s))
+          [ "union"; "intersection"; "difference" ]);
   ]

@@ -65,8 +65,9 @@ type 'a t = {
   literal : 'a -> origin:Vec3.t -> direction:Vec3.t -> (float * Vec3.t) list;
       (** [literal x ~origin ~direction] is the line's crossings of the
           surface, nearer first, each with the surface's unit normal there
-          (outward for a closed kind: its entry and exit), computed from the
-          definition, never by the kernel's routines: the executable
+          (outward for a closed kind: its entries and exits, alternating,
+          two for a convex one), computed from the definition, never by
+          the kernel's routines: the executable
           specification's answer, which the kernel is tested against. *)
 }
 (** The type for descriptions of a primitive kind of shape ['a].

@@ -239,60 +239,64 @@ let[@inline never] normal (s : Scratch.t) g o =
    [d(P) = sqrt ((rho - major)^2 + z^2) - minor] is the exact signed
    distance to its surface ([rho] from the axis, [z] along it). Marching
    along the line by [|d| / |D|] never steps over the surface (sphere
-   tracing); each change of sign is then bisected. *)
+   tracing); each change of side is then bisected. Points are taken
+   from the center, [(O - C) + t D], and a side counts only where [d] is
+   beyond its rounding error: the surface's own noise makes no
+   crossings. *)
 let literal x ~origin ~direction =
   let open Vec3 in
   let a = unit_axis x in
-  let dist p =
-    let v = sub p x.center in
+  let w = sub origin x.center in
+  let from_center t = add w (smul t direction) in
+  let dist t =
+    let v = from_center t in
     let z = dot v a in
     let rho = norm (sub v (smul z a)) in
     sqrt (((rho -. x.major) *. (rho -. x.major)) +. (z *. z)) -. x.minor
   in
-  let at t = add origin (smul t direction) in
-  let outward p =
-    let v = sub p x.center in
-    let z = dot v a in
-    let radial = sub v (smul z a) in
+  let outward t =
+    let v = from_center t in
+    let radial = sub v (smul (dot v a) a) in
     let rho = norm radial in
     let core = if rho > 0. then smul (x.major /. rho) radial else zero in
     unit (sub v core)
   in
   let len = norm direction and size = x.major +. x.minor in
+  let noise = 2. *. epsilon_float *. (norm w +. size) in
   (* The line within the sphere of radius [2 size]: the torus lies in the
      one of radius [size]. *)
-  let w = sub origin x.center in
   let b = dot w direction /. (len *. len) in
   let foot = sub w (smul b direction) in
   let reach = (4. *. size *. size) -. dot foot foot in
   if reach <= 0. then []
   else begin
     let half = sqrt reach /. len in
-    let t_end = -.b +. half in
+    let t_start = -.b -. half and t_end = -.b +. half in
+    (* A crossing between [t_out] (outside) and [t_in] (inside). *)
     let bisect t_out t_in =
       let rec go t_out t_in n =
         let m = 0.5 *. (t_out +. t_in) in
-        if n = 0 || m = t_out || m = t_in then m else if dist (at m) > 0. then go m t_in (pred n) else go t_out m (pred n)
+        if n = 0 || m = t_out || m = t_in then m else if dist m > 0. then go m t_in (pred n) else go t_out m (pred n)
       in
       go t_out t_in 200
     in
-    let floor_step = 1e-13 *. size /. len in
-    let rec march t d acc n =
+    (* Steps of at least [1e-9 size]: a pair of crossings closer than
+       that is a graze deeper than no rounding band notices. *)
+    let floor_step = Float.max (1e-9 *. size) noise /. len in
+    (* [outside] is the side last seen beyond the noise, at [t_side]. *)
+    let rec march t d outside t_side acc n =
       if t >= t_end || n = 0 then List.rev acc
       else
         let step = Float.max (Float.abs d /. len) (Float.max floor_step (8. *. epsilon_float *. Float.abs t)) in
         let t' = Float.min t_end (t +. step) in
-        let d' = dist (at t') in
-        if d > 0. && d' <= 0. then
-          let c = bisect t t' in
-          march t' d' ((c, outward (at c)) :: acc) (pred n)
-        else if d <= 0. && d' > 0. then
-          let c = bisect t' t in
-          march t' d' ((c, outward (at c)) :: acc) (pred n)
-        else march t' d' acc (pred n)
+        let d' = dist t' in
+        if Float.abs d' <= noise then march t' d' outside t_side acc (pred n)
+        else if d' > 0. = outside then march t' d' outside t' acc (pred n)
+        else
+          let c = if outside then bisect t_side t' else bisect t' t_side in
+          march t' d' (not outside) t' ((c, outward c) :: acc) (pred n)
     in
-    let t_start = -.b -. half in
-    march t_start (dist (at t_start)) [] 1_000_000
+    march t_start (dist t_start) true t_start [] 1_000_000
   end
 
 let bounds x =

@@ -36,7 +36,10 @@ val literal : t -> origin:Vec3.t -> direction:Vec3.t -> (float * Vec3.t) list
 (** [literal x ~origin ~direction] is the line's crossings of [x]'s
     surface, nearer first, with the outward unit normals: the executable
     specification's answer, by sphere tracing the exact distance to the
-    surface and bisecting each change of sign (not the kernel's method). *)
+    surface and bisecting each change of side, a side counted only where
+    the distance exceeds its rounding error (not the kernel's method).
+    The [torus] suite checks its crossings in exact arithmetic as it
+    checks the kernel's roots. *)
 
 val desc : t Shape_desc.t
 (** [desc] is the torus's description ({!Shape_desc.t}). *)
