@@ -37,6 +37,7 @@ let () =
       ("numerics", Test_numerics.tests);
       ("shapes", Test_shapes.tests);
       ("csg", Test_csg.tests);
+      ("transform", Test_transform.tests);
       ("bvh", Test_bvh.tests);
       ("prepared", Test_prepared.tests);
       ("antialias", Test_antialias.tests);

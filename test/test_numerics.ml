@@ -166,7 +166,7 @@ let transform ~scale ~translate (s : Scene.t) =
            | Shape.Box b -> Shape.Box (box b)
            | Shape.Mesh m -> Shape.Mesh (mesh m)
            | Shape.Csg c -> Shape.Csg (csg c)
-           | Shape.Primitive _ -> invalid_arg "no described kind in these scenes")
+           | Shape.Primitive _ | Shape.Instance _ -> invalid_arg "no described kind or instance in these scenes")
          (Scene.objects s))
     ~lights:
       (List.map

@@ -1,8 +1,8 @@
 (* In this order, a [match] of the kernel that sets spheres, triangles and
    the other shapes apart compiles to two comparisons, not a jump table. *)
-type t = Sphere | Triangle | Smooth_triangle | Plane | Box | Csg
+type t = Sphere | Triangle | Smooth_triangle | Plane | Box | Csg | Instance
 
-let all = [ Sphere; Triangle; Smooth_triangle; Plane; Box; Csg ]
+let all = [ Sphere; Triangle; Smooth_triangle; Plane; Box; Csg; Instance ]
 
 (* Each kind's facts in one match: its name, whether it is bounded (in the
    hierarchy), closed (a CSG operand, a medium) and the floats of geometry
@@ -15,6 +15,7 @@ let facts = function
   | Plane -> ("plane", false, false, 9)
   | Box -> ("box", true, true, 6)
   | Csg -> ("csg", true, true, 1)
+  | Instance -> ("instance", true, true, 1)
 
 let to_string k =
   let name, _, _, _ = facts k in

@@ -7,10 +7,10 @@ let[@inline] roots k (s : Scratch.t) g o =
   match (k : Kind.t) with
   | Plane -> Plane.roots s g o
   | Box -> Box.roots s g o
-  | Sphere | Triangle | Smooth_triangle | Csg -> own_path k
+  | Sphere | Triangle | Smooth_triangle | Csg | Instance -> own_path k
 
 let[@inline] normal k (s : Scratch.t) g o =
   match (k : Kind.t) with
   | Plane -> Plane.normal s g o
   | Box -> Box.hit_normal s g o
-  | Sphere | Triangle | Smooth_triangle | Csg -> own_path k
+  | Sphere | Triangle | Smooth_triangle | Csg | Instance -> own_path k
