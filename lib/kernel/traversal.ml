@@ -201,7 +201,11 @@ let[@inline] carry tr s n =
   ss.dy <- (a10 *. dx) +. (a11 *. dy) +. (a12 *. dz);
   ss.dz <- (a20 *. dx) +. (a21 *. dy) +. (a22 *. dz);
   ss.t_min <- s.t_min;
-  ss.t_max <- s.t_max;
+  (* No hit beyond the best so far can be kept: the bottom level's search
+     stops there (its boxes entered beyond it are skipped). A hit exactly
+     there may still win a tie: the bound is the next float up. Every
+     search over shapes sets [s.t] to [infinity] before its first test. *)
+  ss.t_max <- (let best = Float.succ s.t in if best < s.t_max then best else s.t_max);
   (* The bottom level's surfaces are left by no secondary ray of its own:
      the top level offsets an instance's hit point. *)
   sub.origin_sphere <- -1;
@@ -593,7 +597,11 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
    of scene, so that spheres alone ask the kind once per shadow ray. *)
 let[@inline] blocked_from tr l ~spheres ~triangles =
   let s = tr.s in
-  if not spheres then tr.kz <- -1;
+  if not spheres then begin
+    tr.kz <- -1;
+    (* No best hit: an instance's search is bounded by none ([carry]). *)
+    s.t <- infinity
+  end;
   let last = Array.unsafe_get tr.last_blocker l in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
@@ -660,6 +668,7 @@ let roots tr k (o : Vec3.t) (d : Vec3.t) =
   if p.kind.(i) <> Kind.Sphere then begin
     (* A CSG solid's root is its first crossing beyond [t_min]: all of them. *)
     s.t_min <- neg_infinity;
+    s.t <- infinity;
     tr.kz <- -1;
     if shape_roots tr s i then (s.near, s.far) else (infinity, infinity)
   end

@@ -130,8 +130,25 @@ let cube (lo : Vec3.t) (hi : Vec3.t) =
   let rec grow h = if holds h c.x lo.x hi.x && holds h c.y lo.y hi.y && holds h c.z lo.z hi.z then h else grow (Float.succ h) in
   (c, grow h)
 
+(* The last mesh's box: the instances of one mesh, a thousand of a
+   million triangles, ask for it once each (a mesh's positions are not
+   changed once it is made). *)
+let last_mesh_box = ref None
+
 let rec box_bounds = function
-  | Mesh m ->
+  | Mesh m -> (
+      match !last_mesh_box with
+      | Some (m', box) when m' == m -> box
+      | _ ->
+          let box = mesh_box m in
+          last_mesh_box := Some (m, box);
+          box)
+  | Instance i -> Transform.bounds i.transform (box_bounds i.shape)
+  | s ->
+      let (c : Vec3.t), h = bounds s in
+      (Vec3.v (c.x -. h) (c.y -. h) (c.z -. h), Vec3.v (c.x +. h) (c.y +. h) (c.z +. h))
+
+and mesh_box (m : Mesh.t) =
       let p = m.positions in
       let lo = Array.make 3 infinity and hi = Array.make 3 neg_infinity in
       for k = 0 to (Array.length p / 3) - 1 do
@@ -143,10 +160,6 @@ let rec box_bounds = function
       done;
       (* The placed positions are rounded as [Mesh] rounds them: an ulp of room. *)
       (Vec3.v (Float.pred lo.(0)) (Float.pred lo.(1)) (Float.pred lo.(2)), Vec3.v (Float.succ hi.(0)) (Float.succ hi.(1)) (Float.succ hi.(2)))
-  | Instance i -> Transform.bounds i.transform (box_bounds i.shape)
-  | s ->
-      let (c : Vec3.t), h = bounds s in
-      (Vec3.v (c.x -. h) (c.y -. h) (c.z -. h), Vec3.v (c.x +. h) (c.y +. h) (c.z +. h))
 
 and bounds = function
   | Plane _ -> invalid_arg "Shape.bounds: a plane is unbounded"
