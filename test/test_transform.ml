@@ -47,6 +47,21 @@ let box_triangles t (lo : Vec3.t) (hi : Vec3.t) m =
   let quad a b cc d = [ Shape.Triangle (Triangle.v (c a) (c b) (c cc) m); Shape.Triangle (Triangle.v (c a) (c cc) (c d) m) ] in
   List.concat [ quad 0 1 3 2; quad 4 5 7 6; quad 0 1 5 4; quad 2 3 7 6; quad 0 2 6 4; quad 1 3 7 5 ]
 
+(* A transformed CSG solid, a smooth mesh with a material of its own, an
+   ellipsoid, and a transform of a transform of a box. *)
+let every_kind () =
+  let knot = Shape.Mesh (Mesh.of_obj ~smooth:true ~scale:0.5 ~translate:Vec3.zero ~source:"knot" (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.3 ~segments:24 ~sides:6) red |> Result.get_ok) in
+  let csg =
+    Shape.Csg (Csg.v Csg.Difference (Csg.Box (Box.v ~min:(v (-1.) (-1.) (-1.)) ~max:(v 1. 1. 1.) blue)) (Csg.Sphere (Sphere.v ~center:(v 0. 0. (-1.)) ~radius:0.8 red)))
+  in
+  let small_box = Shape.instance (transform [ Rotate_z 30. ]) (Shape.Box (Box.v ~min:(v (-0.3) (-0.3) (-0.3)) ~max:(v 0.3 0.3 0.3) blue)) in
+  [
+    Shape.instance (transform [ Rotate_y 40.; Translate (v (-2.) 0. 9.) ]) csg;
+    Shape.instance ~material:(mat (Color.v 50. 200. 50.)) (transform [ Rotate_x 70.; Translate (v 1.8 0.5 8.) ]) knot;
+    Shape.instance (transform [ Scale (v 1. 0.4 1.); Translate (v 0. (-1.) 6.) ]) (Shape.Sphere (Sphere.v ~center:Vec3.zero ~radius:1. red));
+    Shape.instance (transform [ Rotate_x 45.; Translate (v 0.2 1.2 5.) ]) small_box;
+  ]
+
 let tests =
   [
     Alcotest.test_case "operations apply in the order written" `Quick (fun () ->
@@ -98,21 +113,16 @@ let tests =
             [ Rotate_z 90.; Rotate_x 90.; Translate (v 0.0123 0.0071 5.) ];
           ]);
     Alcotest.test_case "the fast tracer matches the literal oracle on transformed objects of every kind" `Quick (fun () ->
-        let knot = Shape.Mesh (Mesh.of_obj ~smooth:true ~scale:0.5 ~translate:Vec3.zero ~source:"knot" (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.3 ~segments:24 ~sides:6) red |> Result.get_ok) in
-        let csg =
-          Shape.Csg (Csg.v Csg.Difference (Csg.Box (Box.v ~min:(v (-1.) (-1.) (-1.)) ~max:(v 1. 1. 1.) blue)) (Csg.Sphere (Sphere.v ~center:(v 0. 0. (-1.)) ~radius:0.8 red)))
-        in
-        let shapes =
-          [
-            Shape.instance (transform [ Rotate_y 40.; Translate (v (-2.) 0. 9.) ]) csg;
-            Shape.instance ~material:(mat (Color.v 50. 200. 50.)) (transform [ Rotate_x 70.; Translate (v 1.8 0.5 8.) ]) knot;
-            Shape.instance (transform [ Scale (v 1. 0.4 1.); Translate (v 0. (-1.) 6.) ]) (Shape.Sphere (Sphere.v ~center:Vec3.zero ~radius:1. red));
-          ]
-        in
         List.iter
           (fun epsilon ->
-            let s = scene ?epsilon ~width:48 ~height:36 shapes in
+            let s = scene ?epsilon ~width:48 ~height:36 (every_kind ()) in
             Helpers.check_images ~max_abs:2 "fast against literal" ~expected:(Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s))
+          [ None; Some 0.001 ]);
+    Alcotest.test_case "transformed meshes, CSG solids and nested transforms allocate nothing per pixel" `Quick (fun () ->
+        List.iter
+          (fun epsilon ->
+            let s = scene ?epsilon ~width:48 ~height:36 (every_kind ()) in
+            Alcotest.(check (float 0.)) "minor words" 0. (stats s).minor_words)
           [ None; Some 0.001 ]);
     Alcotest.test_case "instances of one definition share one bottom level" `Quick (fun () ->
         let s =
