@@ -166,7 +166,11 @@ let transform ~scale ~translate (s : Scene.t) =
            | Shape.Box b -> Shape.Box (box b)
            | Shape.Mesh m -> Shape.Mesh (mesh m)
            | Shape.Csg c -> Shape.Csg (csg c)
-           | Shape.Primitive _ | Shape.Instance _ -> invalid_arg "no described kind or instance in these scenes")
+           | Shape.Instance i ->
+               (* The same object, its transform followed by the scene's. *)
+               let scene_map = Result.get_ok (Shape.Transform.v [ Scale (Vec3.v scale scale scale); Translate translate ]) in
+               Shape.instance ?material:(Option.map material i.own_material) ?name:i.name (Shape.Transform.compose i.transform scene_map) i.shape
+           | Shape.Primitive _ -> invalid_arg "no described kind in these scenes")
          (Scene.objects s))
     ~lights:
       (List.map

@@ -136,7 +136,8 @@ let rec create ?(averaging = false) (p : Prepared.t) =
     corners = Array.make 12 0.;
     cand_first = (if p.cull && p.textbook_all then tiles_across p * p.n_objects else 0);
     cand_count = p.n_objects;
-    inner = Array.map (fun b -> create ~averaging b) p.instances.bottoms;
+    (* No closure made where there is no instance. *)
+    inner = (if Array.length p.instances.bottoms = 0 then [||] else Array.map (fun b -> create ~averaging b) p.instances.bottoms);
     inner_material = 0;
   }
 
@@ -148,15 +149,16 @@ let rec counters tr =
   let c = tr.counters in
   c.tests <- c.tests + Csg.take_tests tr.csg;
   c.box_tests <- c.box_tests + Csg.take_boxes tr.csg;
-  (* The instances' tests, counted by their bottom levels' tracers. *)
-  Array.iter
-    (fun inner ->
-      let i = counters inner in
-      c.tests <- c.tests + i.tests;
-      c.box_tests <- c.box_tests + i.box_tests;
-      i.tests <- 0;
-      i.box_tests <- 0)
-    tr.inner;
+  (* The instances' tests, counted by their bottom levels' tracers: a
+     loop, not [Array.iter] (its closure would be allocated at each read,
+     once a row). *)
+  for k = 0 to Array.length tr.inner - 1 do
+    let i = counters (Array.unsafe_get tr.inner k) in
+    c.tests <- c.tests + i.tests;
+    c.box_tests <- c.box_tests + i.box_tests;
+    i.tests <- 0;
+    i.box_tests <- 0
+  done;
   c
 
 let work tr =

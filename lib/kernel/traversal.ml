@@ -183,6 +183,9 @@ let[@inline] triangle_hit tr s i ~sheared =
    is initialised: a call through it allocates nothing. *)
 let closest_ref : (Tracer.t -> int) ref = ref (fun _ -> -1)
 
+(* The same for the shadow rays' search for any blocker ([blocked]). *)
+let blocked_ref : (Tracer.t -> bool) ref = ref (fun _ -> false)
+
 (* Carries the ray in [s] into the frame of instance [n], in the per-ray
    record of its bottom level's tracer, which it returns. *)
 let[@inline] carry tr s n =
@@ -203,9 +206,12 @@ let[@inline] carry tr s n =
   ss.t_min <- s.t_min;
   (* No hit beyond the best so far can be kept: the bottom level's search
      stops there (its boxes entered beyond it are skipped). A hit exactly
-     there may still win a tie: the bound is the next float up. Every
-     search over shapes sets [s.t] to [infinity] before its first test. *)
-  ss.t_max <- (let best = Float.succ s.t in if best < s.t_max then best else s.t_max);
+     there may still win a tie: the bound is above it, [t (1 + 2^-52)]
+     rounded, at least the next float up for a normal [t > 0] (not
+     [Float.succ]: a call to C's [nextafter] per instance test).
+     Every search over shapes sets [s.t] to [infinity] before its first
+     test. *)
+  ss.t_max <- (let t = s.t in let best = t +. (t *. epsilon_float) in if best < s.t_max then best else s.t_max);
   (* The bottom level's surfaces are left by no secondary ray of its own:
      the top level offsets an instance's hit point. *)
   sub.origin_sphere <- -1;
@@ -223,6 +229,11 @@ let[@inline never] instance_roots tr s i =
   s.near <- t;
   s.far <- t;
   true
+
+(* Does the instance in slot [i] block the shadow ray in [s]? Any blocker
+   of its bottom level in range: that level's own shadow search, which
+   stops at the first and tries the last one it found first. *)
+let[@inline never] instance_blocks tr i = !blocked_ref (carry tr tr.s (instance_number tr i))
 
 (* The roots of the shape (not a sphere) in slot [i], by its module's
    routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
@@ -532,6 +543,7 @@ let[@inline] blocks tr i ~spheres ~triangles a inv_a =
     match Array.unsafe_get tr.p.kind i with
     | Triangle | Smooth_triangle -> triangle_blocks tr tr.s i ~sheared:false
     | Sphere -> sphere_blocks tr i a inv_a
+    | Instance -> instance_blocks tr i
     | _ -> shape_blocks tr i
 
 (* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
@@ -619,6 +631,12 @@ let[@inline] blocked_from tr l ~spheres ~triangles =
 let[@inline] blocked_objects tr l =
   if tr.triangles then blocked_from tr l ~spheres:false ~triangles:true
   else blocked_from tr l ~spheres:false ~triangles:false
+
+(* A bottom level has no lights: its one [last_blocker] serves every
+   shadow ray that meets its instances. *)
+let () =
+  blocked_ref :=
+    fun tr -> if tr.p.all_spheres then blocked_from tr 0 ~spheres:true ~triangles:false else blocked_objects tr 0
 
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
