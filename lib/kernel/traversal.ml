@@ -183,9 +183,6 @@ let[@inline] triangle_hit tr s i ~sheared =
    is initialised: a call through it allocates nothing. *)
 let closest_ref : (Tracer.t -> int) ref = ref (fun _ -> -1)
 
-(* The same for the shadow rays' search for any blocker ([blocked]). *)
-let blocked_ref : (Tracer.t -> bool) ref = ref (fun _ -> false)
-
 (* Carries the ray in [s] into the frame of instance [n], in the per-ray
    record of its bottom level's tracer, which it returns. *)
 let[@inline] carry tr s n =
@@ -229,11 +226,6 @@ let[@inline never] instance_roots tr s i =
   s.near <- t;
   s.far <- t;
   true
-
-(* Does the instance in slot [i] block the shadow ray in [s]? Any blocker
-   of its bottom level in range: that level's own shadow search, which
-   stops at the first and tries the last one it found first. *)
-let[@inline never] instance_blocks tr i = !blocked_ref (carry tr tr.s (instance_number tr i))
 
 (* The roots of the shape (not a sphere) in slot [i], by its module's
    routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
@@ -543,7 +535,6 @@ let[@inline] blocks tr i ~spheres ~triangles a inv_a =
     match Array.unsafe_get tr.p.kind i with
     | Triangle | Smooth_triangle -> triangle_blocks tr tr.s i ~sheared:false
     | Sphere -> sphere_blocks tr i a inv_a
-    | Instance -> instance_blocks tr i
     | _ -> shape_blocks tr i
 
 (* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
@@ -631,12 +622,6 @@ let[@inline] blocked_from tr l ~spheres ~triangles =
 let[@inline] blocked_objects tr l =
   if tr.triangles then blocked_from tr l ~spheres:false ~triangles:true
   else blocked_from tr l ~spheres:false ~triangles:false
-
-(* A bottom level has no lights: its one [last_blocker] serves every
-   shadow ray that meets its instances. *)
-let () =
-  blocked_ref :=
-    fun tr -> if tr.p.all_spheres then blocked_from tr 0 ~spheres:true ~triangles:false else blocked_objects tr 0
 
 (* Is the shadow ray in [s] blocked (section 7.7)? With skips, it stops at
    the first blocker and tries light [l]'s last blocker first; without, it
