@@ -6,8 +6,9 @@
 # ray crosses the boxes of ten knots or more) and in one layer of 40x25
 # facing the camera (wall: a ray meets one knot's box, or two). Renders
 # each at WIDTHxHEIGHT with --jobs JOBS, in alternation REPEATS times, and
-# prints per scene the median wall-clock seconds and the largest peak
-# resident memory (GNU time's maximum resident set size).
+# prints per scene the median wall-clock seconds, the median CPU seconds
+# (user + system: steadier than wall-clock on a busy machine) and the
+# largest peak resident memory (GNU time's maximum resident set size).
 #
 #   bench/instances.sh [REPEATS] [WIDTH] [HEIGHT] [JOBS]
 #   dune build --profile release && bench/instances.sh 3 1920 1080 1
@@ -61,14 +62,15 @@ SCENE
 median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 for ((r = 1; r <= repeats; r++)); do
   for s in one block wall; do
-    /usr/bin/time -f "%e %M" -o "$work/$s.t" "$raytrace" render "$work/$s.scene" --jobs "$jobs" -o "$work/$s.ppm" 2>/dev/null
+    /usr/bin/time -f "%e %M %U %S" -o "$work/$s.t" "$raytrace" render "$work/$s.scene" --jobs "$jobs" -o "$work/$s.ppm" 2>/dev/null
     cat "$work/$s.t" >>"$work/$s.times"
   done
 done
-printf '%-10s %10s %12s\n' scene "wall (s)" "peak (MB)"
+printf '%-10s %10s %10s %12s\n' scene "wall (s)" "cpu (s)" "peak (MB)"
 for s in one block wall; do
   wall=$(awk '{ print $1 }' "$work/$s.times" | median)
+  cpu=$(awk '{ print $3 + $4 }' "$work/$s.times" | median)
   peak=$(awk '{ if ($2 > m) m = $2 } END { printf "%.1f", m / 1024 }' "$work/$s.times")
-  printf '%-10s %10s %12s\n' "$s" "$wall" "$peak"
+  printf '%-10s %10s %10s %12s\n' "$s" "$wall" "$cpu" "$peak"
 done
 if [ -n "${KEEP:-}" ]; then cp "$work"/*.ppm "$work"/*.scene "$KEEP"/; fi

@@ -77,6 +77,19 @@ let tests =
         let m = Transform.to_object t in
         let back (p : Vec3.t) = v ((m.(0) *. p.x) +. (m.(1) *. p.y) +. (m.(2) *. p.z) +. m.(3)) ((m.(4) *. p.x) +. (m.(5) *. p.y) +. (m.(6) *. p.z) +. m.(7)) ((m.(8) *. p.x) +. (m.(9) *. p.y) +. (m.(10) *. p.z) +. m.(11)) in
         Alcotest.check Helpers.vec3 "the inverse" (v 1. 0. 0.) (back (v 1. 2. 0.)));
+    Alcotest.test_case "angles: quarter turns exact, others as the C library's cos and sin within their argument's rounding" `Quick (fun () ->
+        List.iter
+          (fun (d, c, s) -> Alcotest.(check (pair (float 0.) (float 0.))) (Printf.sprintf "%g degrees" d) (c, s) (Transform.cos_sin d))
+          [ (0., 1., 0.); (90., 0., 1.); (180., -1., 0.); (270., 0., -1.); (-90., 0., -1.); (450., 0., 1.); (360., 1., 0.) ];
+        List.iter
+          (fun d ->
+            let c, s = Transform.cos_sin d and a = d *. Float.pi /. 180. in
+            (* [a] itself is rounded, by up to 2^-53 |a|: the C library's
+               values are off by that much; ours reduce the degrees exactly. *)
+            let bound = 4e-16 *. (1. +. Float.abs a) in
+            if Float.abs (c -. cos a) > bound || Float.abs (s -. sin a) > bound then
+              Alcotest.failf "%g degrees: %h %h against %h %h" d c s (cos a) (sin a))
+          [ 1.; 10.; 29.5; 30.; 44.9; 45.; 45.1; 60.; 89.9; 91.; 135.; 200.; 300.; 359.; -30.; -170.; 1234.5 ]);
     Alcotest.test_case "normals go by the inverse transpose" `Quick (fun () ->
         (* The plane x = y (normal (1 -1 0)/sqrt 2) scaled by (2 1 1) is the
            plane x = 2y, of normal (1 -2 0)/sqrt 5, not the normal scaled. *)

@@ -12,18 +12,45 @@ let ops t = t.ops
 let to_world t = Array.copy t.world
 let to_object t = Array.copy t.obj
 
-(* Multiples of 90 degrees exactly: [cos (pi / 2)] in floats is 6e-17, not
-   0, and a quarter-turned box would have faces off the axes' planes. *)
+(* The cosine and sine of [x] in [0, pi/4] by their Taylor series to
+   x^18 and x^17 (the next terms are below 1e-19), in Horner's form: plain
+   IEEE arithmetic, so that the native program and the web page (whose
+   [Math.sin] is not the C library's) turn objects by the same bits. *)
+let taylor_cos_sin x =
+  let x2 = x *. x in
+  let f n = 1. /. n in
+  (* 1/n! by products of exact small integers: the same rounding everywhere. *)
+  let c2 = f 2. and c4 = f 24. and c6 = f 720. and c8 = f 40320. and c10 = f 3628800. in
+  let c12 = f 479001600. and c14 = f 87178291200. and c16 = f 20922789888000. and c18 = f 6402373705728000. in
+  let s3 = f 6. and s5 = f 120. and s7 = f 5040. and s9 = f 362880. and s11 = f 39916800. in
+  let s13 = f 6227020800. and s15 = f 1307674368000. and s17 = f 355687428096000. in
+  let c =
+    1. -. (x2 *. (c2 -. (x2 *. (c4 -. (x2 *. (c6 -. (x2 *. (c8 -. (x2 *. (c10 -. (x2 *. (c12 -. (x2 *. (c14 -. (x2 *. (c16 -. (x2 *. c18)))))))))))))))))
+  in
+  let s =
+    x *. (1. -. (x2 *. (s3 -. (x2 *. (s5 -. (x2 *. (s7 -. (x2 *. (s9 -. (x2 *. (s11 -. (x2 *. (s13 -. (x2 *. (s15 -. (x2 *. s17))))))))))))))))
+  in
+  (c, s)
+
+(* Reduced exactly to [0, 45] degrees by the quadrant and the complement
+   (each subtraction is exact: its operands are within a factor 2), so
+   that multiples of 90 give 0, 1 and -1 exactly ([cos (pi / 2)] in
+   floats is 6e-17: a quarter-turned box would have faces off the axes'
+   planes). *)
 let cos_sin deg =
   let r = Float.rem deg 360. in
   let r = if r < 0. then r +. 360. else r in
-  if r = 0. then (1., 0.)
-  else if r = 90. then (0., 1.)
-  else if r = 180. then (-1., 0.)
-  else if r = 270. then (0., -1.)
-  else
-    let a = deg *. (Float.pi /. 180.) in
-    (cos a, sin a)
+  let r = if r >= 360. then 0. else r in
+  let q = Float.to_int (r /. 90.) in
+  let q = if q > 3 then 3 else q in
+  let a = r -. (90. *. Float.of_int q) in
+  let c, s =
+    if a <= 45. then taylor_cos_sin (a *. (Float.pi /. 180.))
+    else
+      let c', s' = taylor_cos_sin ((90. -. a) *. (Float.pi /. 180.)) in
+      (s', c')
+  in
+  match q with 0 -> (c, s) | 1 -> (-.s, c) | 2 -> (-.c, -.s) | _ -> (s, -.c)
 
 let identity_matrix () = [| 1.; 0.; 0.; 0.; 0.; 1.; 0.; 0.; 0.; 0.; 1.; 0. |]
 
