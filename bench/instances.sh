@@ -1,7 +1,8 @@
 #!/bin/bash
 # A thousand instances of the 1M-triangle torus knot against one knot
 # (issue 26, item 4): writes the knot (bench/gen.exe), a scene of one knot
-# (one), and two of 1,000 instances of it ((define knot ...), then 1,000
+# (one), the same picture made by one instance of it (use: the cost of the
+# indirection alone), and two of 1,000 instances of it ((define knot ...), then 1,000
 # (use knot ...), each turned its own way): in a 10x10x10 block (block: a
 # ray crosses the boxes of ten knots or more) and in one layer of 40x25
 # facing the camera (wall: a ray meets one knot's box, or two). Renders
@@ -39,6 +40,11 @@ SCENE
 {
   head
   echo '(define knot (mesh (file "knot.obj") (color 200 120 60) (specular 100) (smooth true)))'
+  echo '(use knot (transform ((scale 1.2))))'
+} >"$work/use.scene"
+{
+  head
+  echo '(define knot (mesh (file "knot.obj") (color 200 120 60) (specular 100) (smooth true)))'
   for ((i = 0; i < 10; i++)); do
     for ((j = 0; j < 10; j++)); do
       for ((k = 0; k < 10; k++)); do
@@ -61,13 +67,13 @@ SCENE
 
 median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 for ((r = 1; r <= repeats; r++)); do
-  for s in one block wall; do
+  for s in one use block wall; do
     /usr/bin/time -f "%e %M %U %S" -o "$work/$s.t" "$raytrace" render "$work/$s.scene" --jobs "$jobs" -o "$work/$s.ppm" 2>/dev/null
     cat "$work/$s.t" >>"$work/$s.times"
   done
 done
 printf '%-10s %10s %10s %12s\n' scene "wall (s)" "cpu (s)" "peak (MB)"
-for s in one block wall; do
+for s in one use block wall; do
   wall=$(awk '{ print $1 }' "$work/$s.times" | median)
   cpu=$(awk '{ print $3 + $4 }' "$work/$s.times" | median)
   peak=$(awk '{ if ($2 > m) m = $2 } END { printf "%.1f", m / 1024 }' "$work/$s.times")
