@@ -186,6 +186,21 @@ let tests =
             ( "(transform ((rotate-y 30)) (box (min 0 0 0) (max 1 1 1) (color 1 2 3) (pattern checker (color 20 20 20) (size 1))))",
               "t.scene:1:1: a transformed object cannot have a pattern (patterns are not carried into an object's frame yet)" );
           ]);
+    Alcotest.test_case "an instance's tests count against the work bound" `Quick (fun () ->
+        (* About 3,700 rays, each tested against the 5 objects of the top
+           level (no hierarchy for so few): under 19,000 tests there; with
+           the bottom levels' (the knot's hierarchy, the CSG solid's
+           leaves), over 30,000. A bound of 25,000 stops the render only
+           if the bottom levels' tests count ([Tracer.counters] takes
+           them in, and the budget reads them, once a row). *)
+        let s = scene ~width:48 ~height:36 (every_kind ()) in
+        let st = stats s in
+        let rays = st.primary + st.shadow + st.reflection in
+        if rays * 5 >= 25_000 || st.tests <= 30_000 then Alcotest.failf "%d rays, %d tests" rays st.tests;
+        let limits = Limits.with_bound Limits.default `Work 25_000. in
+        match Helpers.render ~limits ~jobs:1 s with
+        | Ok _ -> Alcotest.fail "rendered past a bound of 25,000 tests"
+        | Error (`Msg _) -> ());
     Alcotest.test_case "a scene of instances allocates nothing per pixel, in both modes" `Quick (fun () ->
         let s =
           parse
