@@ -22,7 +22,11 @@ module Mesh = struct
 end
 
 module Csg = Csg
-module Shape = Shape
+
+module Shape = struct
+  include Shape
+  module Transform = Transform
+end
 module Scene = Scene
 module Scene_file = Scene_file
 module Limits = Limits

@@ -131,7 +131,15 @@ module Mesh : sig
 end
 
 module Csg = Csg
-module Shape = Shape
+
+module Shape : sig
+  include module type of struct
+    include Shape
+  end
+
+  module Transform = Transform
+  (** Scales, rotations and translations of objects ({!Shape.instance}). *)
+end
 module Scene = Scene
 module Scene_file = Scene_file
 module Limits = Limits

@@ -82,5 +82,6 @@ let roots (s : Scene.t) =
                (fun k -> if Mesh.degenerate m k then None else Some (triangle_of (Mesh.triangle m k)))
                (List.init (Mesh.triangle_count m) Fun.id)
          | Csg _ -> invalid_arg "Exact_hits.roots: a CSG solid"
-         | Primitive _ -> invalid_arg "Exact_hits.roots: a described kind has its own exact tests")
+         | Primitive _ -> invalid_arg "Exact_hits.roots: a described kind has its own exact tests"
+         | Instance _ -> invalid_arg "Exact_hits.roots: an instance")
        (Scene.shapes s))

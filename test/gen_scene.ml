@@ -156,6 +156,6 @@ let with_patterns rand (s : Scene.t) =
     | Plane p -> Shape.Plane (Plane.v ~point:p.point ~normal:p.normal (material p.material))
     | Triangle t -> Triangle (Triangle.v t.v0 t.v1 t.v2 (material t.material))
     | Box b -> Box (Box.v ~min:b.min ~max:b.max (material b.material))
-    | (Mesh _ | Csg _ | Primitive _) as m -> m
+    | (Mesh _ | Csg _ | Primitive _ | Instance _) as m -> m
   in
   Scene.with_overrides ~objects:(List.map shape (Scene.objects s)) s

@@ -40,6 +40,7 @@ let () =
       ("csg", Test_csg.tests);
       ("cone", Test_cone.tests);
       ("torus", Test_torus.tests);
+      ("transform", Test_transform.tests);
       ("bvh", Test_bvh.tests);
       ("prepared", Test_prepared.tests);
       ("antialias", Test_antialias.tests);

@@ -167,6 +167,10 @@ let transform ~scale ~translate (s : Scene.t) =
            | Shape.Box b -> Shape.Box (box b)
            | Shape.Mesh m -> Shape.Mesh (mesh m)
            | Shape.Csg c -> Shape.Csg (csg c)
+           | Shape.Instance i ->
+               (* The same object, its transform followed by the scene's. *)
+               let scene_map = Result.get_ok (Shape.Transform.v [ Scale (Vec3.v scale scale scale); Translate translate ]) in
+               Shape.instance ?material:(Option.map material i.own_material) ?name:i.name (Shape.Transform.compose i.transform scene_map) i.shape
            | Shape.Primitive q -> Shape.Primitive (primitive q))
          (Scene.objects s))
     ~lights:

@@ -76,11 +76,11 @@ let bad_inputs =
     ("(epsilon 0.001)\n(epsilon 0.01)", "t.scene:2:2: duplicate epsilon form (first given at 1:2); it may appear only once");
     ( "(spere (center 0 0 3))",
       "t.scene:1:2: unknown form spere; expected material, canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg"
-      ^ described_forms ^ " or light (did you mean sphere?)" );
+      ^ described_forms ^ ", transform, define, use or light (did you mean sphere?)" );
     ("sphere", "t.scene:1:1: expected a form in parentheses such as (sphere ...), got sphere");
     ( "()",
       "t.scene:1:1: empty form (); expected one of material, canvas, viewport, camera, camera-path, background, recursion-depth, epsilon, sphere, plane, triangle, box, mesh, csg"
-      ^ described_forms ^ " or light" );
+      ^ described_forms ^ ", transform, define, use or light" );
     ("(camera (look-at 0 0 0))", "t.scene:1:9: the camera looks at its own position");
     ("(camera (rotation (1 0 0) (1 0 0) (0 0 1)))",
      "t.scene:1:9: camera rotation must be invertible, but its rows are (nearly) linearly dependent");

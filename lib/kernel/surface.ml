@@ -30,7 +30,24 @@ let[@inline] normal_of (p : Prepared.t) o = if Array.length p.vsource = 0 then o
    exactly, not offset. *)
 let not_here fn = invalid_arg ("Trace." ^ fn ^ ": a sphere")
 
-let[@warning "-11"] shape_hit tr i =
+(* The hit point [px, py, pz] (already in [s]) on the sphere in slot
+   [i], for a ray of direction [dx, dy, dz]: its outward normal and the
+   view vector, in [s]. *)
+let[@inline] sphere_hit tr i =
+  let p = tr.p and s = tr.s in
+  let px = s.px and py = s.py and pz = s.pz and dx = s.dx and dy = s.dy and dz = s.dz in
+  let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
+  let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
+  s.nx <- nx *. inv;
+  s.ny <- ny *. inv;
+  s.nz <- nz *. inv;
+  s.vx <- -.dx;
+  s.vy <- -.dy;
+  s.vz <- -.dz;
+  (* Shadow and mirror rays leave sphere i. *)
+  tr.origin_sphere <- i
+
+let[@warning "-11"] rec shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let px = s.px and py = s.py and pz = s.pz in
@@ -49,6 +66,7 @@ let[@warning "-11"] shape_hit tr i =
       ignore (Csg.roots p.csg tr.csg s (truncate (Array.unsafe_get p.geom o)));
       Csg.normal p.csg tr.csg s
   | Sphere -> not_here "shape_hit"
+  | Instance -> instance_normal tr i
   (* The first kinds' arms inline, as in [Traversal.shape_roots]. *)
   | Plane -> Plane.normal s p.geom o
   | Box ->
@@ -112,7 +130,49 @@ let[@warning "-11"] shape_hit tr i =
   end;
   match k with
   | Csg -> Csg.material p.csg tr.csg
+  | Instance -> Array.unsafe_get (Array.unsafe_get p.instances.material_map (Traversal.instance_number tr i)) tr.inner_material
   | _ -> Array.unsafe_get p.material i
+
+(* The normal of the instance in slot [i] at the hit that [closest] kept:
+   the hit found again in the bottom level (the same search on the same
+   carried ray), its surface's normal there, as that level's own
+   [shape_hit] or [sphere_hit] makes it, brought to the world by the
+   inverse transpose of the linear part (the transpose of the
+   world-to-object matrix's) and divided by its length. Its material, in
+   the bottom level's numbering, is left in [tr.inner_material]. *)
+and instance_normal tr i =
+  let sub = Traversal.instance_hit tr i in
+  let s = tr.s and ss = sub.s in
+  let j = sub.hit in
+  if j < 0 then begin
+    (* Not found again (no ray gets here: the search is the same); the
+       normal faces the ray. *)
+    ss.nx <- -.ss.dx;
+    ss.ny <- -.ss.dy;
+    ss.nz <- -.ss.dz;
+    tr.inner_material <- 0
+  end
+  else begin
+    let t = ss.t in
+    ss.px <- ss.ox +. (ss.dx *. t);
+    ss.py <- ss.oy +. (ss.dy *. t);
+    ss.pz <- ss.oz +. (ss.dz *. t);
+    tr.inner_material <-
+      (if Array.unsafe_get sub.p.kind j = Kind.Sphere then begin
+         sphere_hit sub j;
+         Array.unsafe_get sub.p.material j
+       end
+       else shape_hit sub j)
+  end;
+  let m = tr.p.instances.to_object and o = 12 * Traversal.instance_number tr i in
+  let nx = ss.nx and ny = ss.ny and nz = ss.nz in
+  let wx = (Array.unsafe_get m o *. nx) +. (Array.unsafe_get m (o + 4) *. ny) +. (Array.unsafe_get m (o + 8) *. nz) in
+  let wy = (Array.unsafe_get m (o + 1) *. nx) +. (Array.unsafe_get m (o + 5) *. ny) +. (Array.unsafe_get m (o + 9) *. nz) in
+  let wz = (Array.unsafe_get m (o + 2) *. nx) +. (Array.unsafe_get m (o + 6) *. ny) +. (Array.unsafe_get m (o + 10) *. nz) in
+  let inv = 1. /. sqrt ((wx *. wx) +. (wy *. wy) +. (wz *. wz)) in
+  s.nx <- wx *. inv;
+  s.ny <- wy *. inv;
+  s.nz <- wz *. inv
 
 (* The material whose colour the hit of the ray in [s] at [s.t] shows:
    [m], or the material of its pattern's second colour. {!Pattern.odd}
@@ -139,23 +199,6 @@ let[@inline never] local_material tr m =
     s.pz <- sz;
     if odd then alt else m
   end
-
-(* The hit point [px, py, pz] (already in [s]) on the sphere in slot
-   [i], for a ray of direction [dx, dy, dz]: its outward normal and the
-   view vector, in [s]. *)
-let[@inline] sphere_hit tr i =
-  let p = tr.p and s = tr.s in
-  let px = s.px and py = s.py and pz = s.pz and dx = s.dx and dy = s.dy and dz = s.dz in
-  let nx = px -. Array.unsafe_get p.cx i and ny = py -. Array.unsafe_get p.cy i and nz = pz -. Array.unsafe_get p.cz i in
-  let inv = 1. /. sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
-  s.nx <- nx *. inv;
-  s.ny <- ny *. inv;
-  s.nz <- nz *. inv;
-  s.vx <- -.dx;
-  s.vy <- -.dy;
-  s.vz <- -.dz;
-  (* Shadow and mirror rays leave sphere i. *)
-  tr.origin_sphere <- i
 
 (* The mirror ray R = 2 <V, N> N - V from the hit point, in [s]. *)
 let[@inline] mirror_ray (p : Prepared.t) s =

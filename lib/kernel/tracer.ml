@@ -64,6 +64,13 @@ type t = {
   corners : float array;  (** Scratch: the four corner directions of a tile. *)
   mutable cand_first : int;  (** The next camera ray tests [cand] from here on... *)
   mutable cand_count : int;  (** ...this many spheres. *)
+  inner : t array;
+      (** Per bottom level of the scene's instances ([Prepared.instances]'s
+          [bottoms]): a tracer of its own, whose per-ray record holds the
+          ray carried into an instance's frame. *)
+  mutable inner_material : int;
+      (** The material, in the bottom level's numbering, of the surface
+          last hit in an instance ({!Surface}). *)
 }
 
 (* The tracing loops, chosen once per tracer. *)
@@ -91,7 +98,7 @@ let hierarchy_of_triangles (p : Prepared.t) =
 
 let exhausted w = raise (Limits.Work_exceeded w)
 
-let create ?(averaging = false) (p : Prepared.t) =
+let rec create ?(averaging = false) (p : Prepared.t) =
   {
     p;
     s = Scratch.create ();
@@ -129,16 +136,29 @@ let create ?(averaging = false) (p : Prepared.t) =
     corners = Array.make 12 0.;
     cand_first = (if p.cull && p.textbook_all then tiles_across p * p.n_objects else 0);
     cand_count = p.n_objects;
+    (* No closure made where there is no instance. *)
+    inner = (if Array.length p.instances.bottoms = 0 then [||] else Array.map (fun b -> create ~averaging b) p.instances.bottoms);
+    inner_material = 0;
   }
 
 let prepared tr = tr.p
 let averaging tr = tr.averaging
 (* A CSG solid's leaf tests are counted in its work room, and taken into
    the counters whenever they are read: nothing per ray. *)
-let counters tr =
+let rec counters tr =
   let c = tr.counters in
   c.tests <- c.tests + Csg.take_tests tr.csg;
   c.box_tests <- c.box_tests + Csg.take_boxes tr.csg;
+  (* The instances' tests, counted by their bottom levels' tracers: a
+     loop, not [Array.iter] (its closure would be allocated at each read,
+     once a row). *)
+  for k = 0 to Array.length tr.inner - 1 do
+    let i = counters (Array.unsafe_get tr.inner k) in
+    c.tests <- c.tests + i.tests;
+    c.box_tests <- c.box_tests + i.box_tests;
+    i.tests <- 0;
+    i.box_tests <- 0
+  done;
   c
 
 let work tr =

@@ -71,6 +71,13 @@ type t = {
   corners : float array;  (** Scratch: the four corner directions of a tile. *)
   mutable cand_first : int;  (** The next camera ray tests [cand] from here on... *)
   mutable cand_count : int;  (** ...this many spheres. *)
+  inner : t array;
+      (** Per bottom level of the scene's instances ([Prepared.instances]'s
+          [bottoms]): a tracer of its own, whose per-ray record holds the
+          ray carried into an instance's frame. *)
+  mutable inner_material : int;
+      (** The material, in the bottom level's numbering, of the surface
+          last hit in an instance ({!Surface}). *)
 }
 (** The type for tracers: one per worker, reused for every ray. *)
 

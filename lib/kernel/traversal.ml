@@ -171,6 +171,62 @@ let[@inline] triangle_hit tr s i ~sheared =
   | 4 -> Triangle.hit s g o0 o1 o2 0 1 2
   | _ -> Triangle.hit s g o0 o1 o2 1 0 2
 
+(* {2 Instances}
+
+   An instance's roots are the closest hit of its bottom level (its own
+   prepared scene, traced by its own tracer [tr.inner]) for the ray
+   carried into the object's frame: the origin by the world-to-object
+   matrix, the direction by its linear part, not renormalised, so that
+   the root [t] is the same number in both frames and the range
+   [t_min, t_max] carries over unchanged. The closest search is defined
+   below ([closest]); this reference to it is set once, when the module
+   is initialised: a call through it allocates nothing. *)
+let closest_ref : (Tracer.t -> int) ref = ref (fun _ -> -1)
+
+(* Carries the ray in [s] into the frame of instance [n], in the per-ray
+   record of its bottom level's tracer, which it returns. *)
+let[@inline] carry tr s n =
+  let inst = tr.p.instances in
+  let sub = Array.unsafe_get tr.inner (Array.unsafe_get inst.bottom n) in
+  let m = inst.to_object and o = 12 * n in
+  let ss = sub.s in
+  let x = s.ox and y = s.oy and z = s.oz and dx = s.dx and dy = s.dy and dz = s.dz in
+  let a00 = Array.unsafe_get m o and a01 = Array.unsafe_get m (o + 1) and a02 = Array.unsafe_get m (o + 2) in
+  let a10 = Array.unsafe_get m (o + 4) and a11 = Array.unsafe_get m (o + 5) and a12 = Array.unsafe_get m (o + 6) in
+  let a20 = Array.unsafe_get m (o + 8) and a21 = Array.unsafe_get m (o + 9) and a22 = Array.unsafe_get m (o + 10) in
+  ss.ox <- (a00 *. x) +. (a01 *. y) +. (a02 *. z) +. Array.unsafe_get m (o + 3);
+  ss.oy <- (a10 *. x) +. (a11 *. y) +. (a12 *. z) +. Array.unsafe_get m (o + 7);
+  ss.oz <- (a20 *. x) +. (a21 *. y) +. (a22 *. z) +. Array.unsafe_get m (o + 11);
+  ss.dx <- (a00 *. dx) +. (a01 *. dy) +. (a02 *. dz);
+  ss.dy <- (a10 *. dx) +. (a11 *. dy) +. (a12 *. dz);
+  ss.dz <- (a20 *. dx) +. (a21 *. dy) +. (a22 *. dz);
+  ss.t_min <- s.t_min;
+  (* No hit beyond the best so far can be kept: the bottom level's search
+     stops there (its boxes entered beyond it are skipped). A hit exactly
+     there may still win a tie: the bound is above it, [t (1 + 2^-52)]
+     rounded, at least the next float up for a normal [t > 0] (not
+     [Float.succ]: a call to C's [nextafter] per instance test).
+     Every search over shapes sets [s.t] to [infinity] before its first
+     test. *)
+  ss.t_max <- (let t = s.t in let best = t +. (t *. epsilon_float) in if best < s.t_max then best else s.t_max);
+  (* The bottom level's surfaces are left by no secondary ray of its own:
+     the top level offsets an instance's hit point. *)
+  sub.origin_sphere <- -1;
+  sub
+
+(* The instance in slot [i]: its closest hit in range in [s.near] and
+   [s.far]; [false] if it has none. *)
+let[@inline] instance_number tr i = truncate (Array.unsafe_get tr.p.geom (Kind.stride * Array.unsafe_get tr.p.at0 i))
+
+let[@inline never] instance_roots tr s i =
+  let sub = carry tr s (instance_number tr i) in
+  !closest_ref sub >= 0
+  &&
+  let t = sub.s.t in
+  s.near <- t;
+  s.far <- t;
+  true
+
 (* The roots of the shape (not a sphere) in slot [i], by its module's
    routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
    gives its first crossing beyond [s.t_min] as both. *)
@@ -189,6 +245,7 @@ let[@warning "-11"] shape_roots tr s i =
      unused until one is (warning 11 off). *)
   | Plane -> Plane.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
   | Box -> Box.roots s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
+  | Instance -> instance_roots tr s i
   | k -> Kind_dispatch.roots k s p.geom (Kind.stride * Array.unsafe_get p.at0 i)
 
 (* Tests the ray in [s] against the shape (not a sphere) in slot [i],
@@ -421,6 +478,12 @@ let[@inline] closest_primary_in tr ~spheres =
   else closest_from tr ~primary:true ~spheres:true ~triangles:false
 
 let[@inline] closest tr = if tr.p.all_spheres then closest_in tr ~spheres:true else closest_in tr ~spheres:false
+let () = closest_ref := fun tr -> closest tr
+
+let instance_hit tr i =
+  let sub = carry tr tr.s (instance_number tr i) in
+  ignore (closest sub);
+  sub
 
 (* Does the shape (not a sphere) in slot [i] meet the ray in [s] with
    [t_min < t < t_max]? *)
@@ -540,7 +603,11 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
    of scene, so that spheres alone ask the kind once per shadow ray. *)
 let[@inline] blocked_from tr l ~spheres ~triangles =
   let s = tr.s in
-  if not spheres then tr.kz <- -1;
+  if not spheres then begin
+    tr.kz <- -1;
+    (* No best hit: an instance's search is bounded by none ([carry]). *)
+    s.t <- infinity
+  end;
   let last = Array.unsafe_get tr.last_blocker l in
   let dx = s.dx and dy = s.dy and dz = s.dz in
   let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
@@ -607,6 +674,7 @@ let roots tr k (o : Vec3.t) (d : Vec3.t) =
   if p.kind.(i) <> Kind.Sphere then begin
     (* A CSG solid's root is its first crossing beyond [t_min]: all of them. *)
     s.t_min <- neg_infinity;
+    s.t <- infinity;
     tr.kz <- -1;
     if shape_roots tr s i then (s.near, s.far) else (infinity, infinity)
   end

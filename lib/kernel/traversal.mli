@@ -46,5 +46,15 @@ val shadowed : Tracer.t -> int -> bool
     the closest hit as the document does. The same answer: [blocks] has
     [closest]'s roots. *)
 
+val instance_number : Tracer.t -> int -> int
+(** [instance_number tr i] is the number, in [tr.p.instances], of the
+    instance in slot [i]. *)
+
+val instance_hit : Tracer.t -> int -> Tracer.t
+(** [instance_hit tr i] is the tracer of the bottom level of the instance
+    in slot [i], its per-ray record holding the ray of [tr.s] carried into
+    the instance's frame and the closest hit there ([hit], and [t] in its
+    record): the hit that {!closest} found in that instance. *)
+
 val roots : Tracer.t -> int -> Vec3.t -> Vec3.t -> float * float
 (** [roots tr k o d] is {!Trace.roots}. *)

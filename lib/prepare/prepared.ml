@@ -71,6 +71,15 @@ type t = {
   light6 : float array;
   column_vx : float array;
   row_vy : float array;
+  instances : instances;
+  materials : Material.t array;
+}
+
+and instances = {
+  bottoms : t array;
+  bottom : int array;
+  to_object : float array;
+  material_map : int array array;
 }
 
 let bvh_threshold = 8
@@ -706,6 +715,57 @@ let sphere_objects o r omat c =
          i)
   done
 
+(* {2 Instances}
+
+   Each instance is a number in the table of instances: its bottom level
+   (the prepared scene of its object, one per object however many
+   instances share it: compared physically), its world-to-object matrix,
+   and its materials in this scene's numbering. *)
+type instancing = {
+  mutable objects : (Shape.t * int) list;  (* Each bottom's object, and its number. *)
+  mutable bottoms_rev : t list;
+  mutable rows : (int * float array * int array) list;  (* Reversed: bottom, matrix, materials. *)
+  mutable count : int;
+  numbers : (int, int) Hashtbl.t;  (* Object [k]'s instance number. *)
+  bottom_of : Shape.t -> t;
+}
+
+let instancing bottom_of = { objects = []; bottoms_rev = []; rows = []; count = 0; numbers = Hashtbl.create 8; bottom_of }
+
+(* Adds object [k]'s instance [i]; its material number in this scene. *)
+let add_instance r inst k (i : Shape.instance) =
+  let b =
+    match List.assq_opt i.shape inst.objects with
+    | Some b -> b
+    | None ->
+        let b = List.length inst.objects in
+        inst.objects <- (i.shape, b) :: inst.objects;
+        inst.bottoms_rev <- inst.bottom_of i.shape :: inst.bottoms_rev;
+        b
+  in
+  let bottom = List.nth inst.bottoms_rev (List.length inst.bottoms_rev - 1 - b) in
+  let frame () = invalid_arg "Prepared: a transformed object has no pattern (Shape.validate)" in
+  let map =
+    match i.own_material with
+    | Some m ->
+        let j = new_material r m frame in
+        Array.make (max 1 (Array.length bottom.materials)) j
+    | None -> Array.map (fun m -> new_material r m frame) bottom.materials
+  in
+  inst.rows <- (b, Transform.to_object i.transform, map) :: inst.rows;
+  Hashtbl.replace inst.numbers k inst.count;
+  inst.count <- inst.count + 1;
+  map.(0)
+
+let instance_table inst =
+  let rows = Array.of_list (List.rev inst.rows) in
+  {
+    bottoms = Array.of_list (List.rev inst.bottoms_rev);
+    bottom = Array.map (fun (b, _, _) -> b) rows;
+    to_object = Array.concat (List.map (fun (_, m, _) -> m) (Array.to_list rows));
+    material_map = Array.map (fun (_, _, m) -> m) rows;
+  }
+
 (* CSG solids go to their own table; [roots] maps object [k] to its
    solid's root node. *)
 type solids = { builder : Csg.builder; roots : (int, int) Hashtbl.t }
@@ -776,14 +836,18 @@ let mesh_objects r v runs okind omat k (m : Mesh.t) =
 
 (* The kinds, materials and cubes of the objects after the spheres; the
    result is the base of each smooth mesh's normals ([runs.normal_base]). *)
-let shape_objects o r v s okind omat c =
+let shape_objects o r v s inst okind omat c =
   let runs = { last = None; next_normal = 0; normal_base = Hashtbl.create 8 } in
   ignore
     (iter_shapes o
        ~single:(fun k sh ->
          let (center : Vec3.t), h = single_bounds sh in
          okind.(k) <- Shape.kind sh;
-         omat.(k) <- (match sh with Shape.Csg cs -> add_csg r s k cs | _ -> new_material r (Shape.material sh) (fun () -> Shape.pattern_frame sh));
+         omat.(k) <-
+           (match sh with
+           | Shape.Csg cs -> add_csg r s k cs
+           | Shape.Instance i -> add_instance r inst k i
+           | _ -> new_material r (Shape.material sh) (fun () -> Shape.pattern_frame sh));
          if k < Array.length c.ocx then begin
            c.ocx.(k) <- center.x;
            c.ocy.(k) <- center.y;
@@ -1079,7 +1143,7 @@ let store_mesh v normal_base sl g ~any_smooth run k (m : Mesh.t) =
 (* Each shape's geometry where its slot says: a lone triangle's corners
    in [vertex], and their offsets; a mesh's ([store_mesh]); another
    shape's in [geom] and [extent] (a CSG solid's root node in [geom]). *)
-let store_geometry o v s normal_base sl g ~any_smooth =
+let store_geometry o v s inst normal_base sl g ~any_smooth =
   let stride = Kind.stride in
   let next_geom = ref 0 and next_lone = ref v.lone_base in
   let extent_of i =
@@ -1109,6 +1173,14 @@ let store_geometry o v s normal_base sl g ~any_smooth =
              | Shape.Csg c ->
                  g.geom.(stride * j) <- Float.of_int (Hashtbl.find s.roots k);
                  g.extent.(j) <- Csg.extent c
+             | Shape.Instance i ->
+                 g.geom.(stride * j) <- Float.of_int (Hashtbl.find inst.numbers k);
+                 (* The hit point's rounding grows with the world's
+                    coordinates and with how much the transform can
+                    stretch a relative error ([Transform.stretch]). *)
+                 let (lo : Vec3.t), (hi : Vec3.t) = Shape.box_bounds sh in
+                 let big (p : Vec3.t) = Float.max (Float.abs p.x) (Float.max (Float.abs p.y) (Float.abs p.z)) in
+                 g.extent.(j) <- Float.max (big lo) (big hi) *. Transform.stretch i.transform
              | _ ->
                  Shape.store sh g.geom (stride * j);
                  extent_of j))
@@ -1221,7 +1293,7 @@ let in_list_order o ~index ~slot =
 
 (* The record, from the steps' results; the lights' and the materials'
    arrays made here. *)
-let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg sl g sp
+let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg ~instances sl g sp
     ~vertex ~vsource ~vnormal =
   let lights =
     Array.of_list (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
@@ -1353,11 +1425,14 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     row_vy =
       Array.init scene.height (fun r ->
           Float.of_int (r - (scene.height / 2)) *. scene.viewport.height /. Float.of_int scene.height);
+    instances;
+    materials;
   }
 
 (* The steps in order. Each big array is let go as soon as no step needs
    it any more: the steps' results are taken apart here, not held whole. *)
-let prepare_scene ~skips ?beside scene =
+let rec prepare_scene ~skips ?beside scene =
+  let valid = scene in
   let scene = Scene.view (Scene.of_valid scene) in
   let o = read_objects scene in
   let scene = settings scene in
@@ -1374,7 +1449,8 @@ let prepare_scene ~skips ?beside scene =
      scene's, and a caller that holds the scene no longer either (the
      renderers) lets them go while the hierarchy is built. *)
   let o = { o with spheres = Spheres.empty } in
-  let normal_base = shape_objects o r v s okind omat c in
+  let inst = instancing (bottom ~skips valid) in
+  let normal_base = shape_objects o r v s inst okind omat c in
   let materials, alternate, pattern = material_table r in
   (* The hierarchy over the bounded objects kept, then the slots. *)
   let collections = ref 0 in
@@ -1389,15 +1465,21 @@ let prepare_scene ~skips ?beside scene =
   let vnormal = if any_smooth then v.vnormal else [||] in
   let g = geometry_arrays o sl ~any_smooth ~follow:v.follow in
   let sp = camera_constants pool scene.camera.position (sphere_arrays o pool sl okind c) in
-  store_geometry o v s normal_base sl g ~any_smooth;
+  store_geometry o v s inst normal_base sl g ~any_smooth;
   (* The triangles' vertices in the order the leaves read them
      (Vertex_order); the normals stay where they are. *)
   let vertex, vsource =
     if bvh = None || Array.length v.vertex = 0 then (v.vertex, [||])
     else Vertex_order.gather ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
   in
-  assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder) sl g
-    sp ~vertex ~vsource ~vnormal
+  assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)
+    ~instances:(instance_table inst) sl g sp ~vertex ~vsource ~vnormal
+
+(* The bottom level of an instance: its object alone, prepared as a scene
+   of the top's mode (epsilon) with no lights; the kernel traces it in
+   the object's frame. *)
+and bottom ~skips valid shape =
+  prepare_scene ~skips (Scene.bottom valid shape)
 
 (* The major heap grows by 256 MB of address space at a time while a big
    scene is prepared, not by 15% of its size: the pieces freed between

@@ -190,8 +190,27 @@ type t = private {
       (** The viewport x of the pixel centres of each canvas column, left to right. *)
   row_vy : float array;
       (** The viewport y of the pixel centres whose [gy] is [r - height / 2], for [r] from [0]. *)
+  instances : instances;  (** The transformed objects ({!Kind.Instance}). *)
+  materials : Material.t array;  (** The materials by number, for the scenes that instance this one. *)
 }
 (** The type for prepared scenes. *)
+
+and instances = {
+  bottoms : t array;
+      (** The bottom level: one prepared scene per object that instances
+          place (physically one value, shared by any number of them: a
+          mesh's triangles and hierarchy are there once), with no lights. *)
+  bottom : int array;  (** Per instance: its number in [bottoms]. *)
+  to_object : float array;
+      (** Per instance [n], at [12 n]: the world-to-object matrix
+          ({!Transform.to_object}), rows [[a00 a01 a02 b0; ...]]. *)
+  material_map : int array array;
+      (** Per instance: the material, in this scene's numbering, of each
+          material of its bottom level (all one where the instance gives
+          its own). *)
+}
+(** The type for the table of instances. A slot of kind {!Kind.Instance}
+    stores its instance's number in [geom]. *)
 
 val bvh_threshold : int
 (** [bvh_threshold] is [8]: with at most this many spheres, testing every

@@ -73,6 +73,15 @@ let pp ppf s =
   Format.fprintf ppf "(background %a)\n" Color.pp_components s.background;
   Format.fprintf ppf "(recursion-depth %d)\n" s.depth;
   Option.iter (Format.fprintf ppf "(epsilon %s)\n") (Option.map Float_text.to_string s.epsilon);
+  (* A named instance prints as a [use]: its definition first, once. *)
+  let defined = Hashtbl.create 8 in
+  List.iter
+    (function
+      | _, Shape.Instance { name = Some n; shape; _ } when not (Hashtbl.mem defined n) ->
+          Hashtbl.add defined n ();
+          Format.fprintf ppf "(define %s %a)\n" n Shape.pp shape
+      | _ -> ())
+    s.placed;
   iter_objects s ~sphere:(fun i -> line Sphere.pp (Spheres.get s.spheres i)) ~shape:(line Shape.pp);
   List.iter (line Light.pp) s.lights
 
@@ -170,6 +179,10 @@ type valid = t
 
 let of_valid v = v
 
+let bottom v shape =
+  let spheres, placed = split [ shape ] in
+  { v with spheres; placed; shapes = List.map snd placed; lights = []; camera_path = None }
+
 (* Sphere by sphere, the first error first, as [Sphere.validate] finds it:
    [Error (i, e)] for sphere [i]; each material is checked once, not once
    per sphere. *)
@@ -251,9 +264,18 @@ let csg_leaves = csg_sum (function Csg.Mesh m -> Mesh.triangle_count m | _ -> 1)
 (* The triangles of the scene's meshes, CSG operands included. *)
 let mesh_triangles shapes =
   let of_leaf = function Csg.Mesh m -> Mesh.triangle_count m | _ -> 0 in
-  List.fold_left
-    (fun n -> function Shape.Mesh m -> n + Mesh.triangle_count m | Csg c -> n + csg_sum of_leaf c | _ -> n)
-    0 shapes
+  (* The instances of one definition share its object: counted once. *)
+  let seen = ref [] in
+  let rec count n = function
+    | Shape.Mesh m -> n + Mesh.triangle_count m
+    | Csg c -> n + csg_sum of_leaf c
+    | Instance { shape; _ } when List.memq shape !seen -> n
+    | Instance { shape; _ } ->
+        seen := shape :: !seen;
+        count n shape
+    | _ -> n
+  in
+  List.fold_left count 0 shapes
 
 let validate ?(limits = Limits.default) s =
   let ( let* ) = Result.bind in
@@ -338,7 +360,7 @@ let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
         match sh with
         | Shape.Mesh m -> (o + Mesh.objects m, l)
         | Csg c -> (o + 1, l + csg_leaves c)
-        | Sphere _ | Plane _ | Triangle _ | Box _ | Primitive _ -> (o + 1, l))
+        | Sphere _ | Plane _ | Triangle _ | Box _ | Primitive _ | Instance _ -> (o + 1, l))
       (Spheres.length s.spheres, 0) s.placed
   in
   let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in

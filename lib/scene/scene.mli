@@ -161,6 +161,11 @@ val validate : ?limits:Limits.t -> t -> (valid, [> `Msg of string ]) result
 val of_valid : valid -> t
 (** [of_valid v] is the scene [v]. *)
 
+val bottom : valid -> Shape.t -> valid
+(** [bottom v s] is the scene of [v]'s settings with [s] its one object
+    and no lights: the bottom level of an instance of [s] (a part of
+    [v], validated with it), which [Prepared] prepares once per object. *)
+
 val override :
   ?limits:Limits.t ->
   ?width:int ->

@@ -1,8 +1,8 @@
 (* In this order, a [match] of the kernel that sets spheres, triangles and
    the other shapes apart compiles to two comparisons, not a jump table. *)
-type t = Sphere | Triangle | Smooth_triangle | Plane | Box | Csg | Cylinder | Disk | Cone | Torus
+type t = Sphere | Triangle | Smooth_triangle | Plane | Box | Csg | Cylinder | Disk | Cone | Torus | Instance
 
-let all = [ Sphere; Triangle; Smooth_triangle; Plane; Box; Csg; Cylinder; Disk; Cone; Torus ]
+let all = [ Sphere; Triangle; Smooth_triangle; Plane; Box; Csg; Cylinder; Disk; Cone; Torus; Instance ]
 
 (* Each kind's facts in one match: its name, whether it is bounded (in the
    hierarchy), closed (a CSG operand, a medium) and the floats of geometry
@@ -19,6 +19,7 @@ let facts = function
   | Disk -> ("disk", true, false, 7)
   | Cone -> ("cone", true, true, 9)
   | Torus -> ("torus", true, true, 8)
+  | Instance -> ("instance", true, true, 1)
 
 let to_string k =
   let name, _, _, _ = facts k in
@@ -38,7 +39,7 @@ let floats k =
 
 (* How many intervals a line meets a closed kind's solid in, at most: a
    CSG leaf's room in the work arrays. *)
-let spans = function Torus -> 2 | Sphere | Triangle | Smooth_triangle | Plane | Box | Csg | Cylinder | Disk | Cone -> 1
+let spans = function Torus -> 2 | Sphere | Triangle | Smooth_triangle | Plane | Box | Csg | Cylinder | Disk | Cone | Instance -> 1
 
 let stride = List.fold_left (fun m k -> max m (floats k)) 0 all
 (* Every other kind, a new one too, is not a triangle. *)

@@ -27,6 +27,12 @@ type t =
   | Disk  (** A flat disk, seen from both sides ({!module-Disk}). *)
   | Cone  (** A cone, capped or open ({!module-Cone}). *)
   | Torus  (** A torus ({!module-Torus}). *)
+  | Instance
+      (** A transformed object, whose geometry is its number in the
+          prepared scene's table of instances: the kernel traces it in its
+          own prepared scene (the bottom level), the ray carried into the
+          object's frame. Closed for the media of glass: an instance of an
+          open surface is seen as a sheet. *)
 (** The type for kinds. The order of the constructors is the kernel's:
     spheres, then triangles, then the rest, so that the traversal's
     three-way [match] compiles to two comparisons. *)

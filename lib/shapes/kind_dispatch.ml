@@ -16,7 +16,7 @@ let[@inline never] roots k (s : Scratch.t) g o =
   | Disk -> Disk.roots s g o
   | Cone -> Cone.roots s g o
   | Torus -> Torus.roots s g o
-  | Sphere | Triangle | Smooth_triangle | Csg -> own_path k
+  | Sphere | Triangle | Smooth_triangle | Csg | Instance -> own_path k
 
 let[@inline never] normal k (s : Scratch.t) g o =
   match (k : Kind.t) with
@@ -26,4 +26,4 @@ let[@inline never] normal k (s : Scratch.t) g o =
   | Disk -> Disk.normal s g o
   | Cone -> Cone.normal s g o
   | Torus -> Torus.normal s g o
-  | Sphere | Triangle | Smooth_triangle | Csg -> own_path k
+  | Sphere | Triangle | Smooth_triangle | Csg | Instance -> own_path k

@@ -1,8 +1,32 @@
 type t = Sphere of Sphere.t | Plane of Plane.t | Triangle of Triangle.t | Box of Box.t | Mesh of Mesh.t | Csg of Csg.t
   | Primitive of Shape_desc.primitive
+  | Instance of instance
+
+and instance = {
+  transform : Transform.t;
+  shape : t;
+  own_material : Material.t option;
+  name : string option;
+}
 [@@deriving eq]
 
-let material = function
+(* A plane stays a plane when transformed (it is unbounded: no box of the
+   hierarchy holds it): its point mapped, its normal by the inverse
+   transpose. *)
+let rec instance ?material ?name transform shape =
+  match shape with
+  | Plane p ->
+      let m = Option.value material ~default:p.material in
+      Plane (Plane.v ~point:(Transform.point transform p.point) ~normal:(Transform.normal_to_world transform p.normal) m)
+  | Instance { transform = inner; shape; own_material; name = _ } ->
+      (* A transform of a transform: one transform, the inner's first. *)
+      let material = match material with Some _ -> material | None -> own_material in
+      instance ?material ?name (Transform.compose inner transform) shape
+  | _ -> Instance { transform; shape; own_material = material; name }
+
+let rec material = function
+  | Instance { own_material = Some m; _ } -> m
+  | Instance { shape; _ } -> material shape
   | Sphere s -> s.material
   | Plane p -> p.material
   | Triangle t -> t.material
@@ -11,11 +35,30 @@ let material = function
   | Csg c -> List.hd (Csg.materials c)
   | Primitive p -> Shape_desc.material p
 
-let materials = function Csg c -> Csg.materials c | s -> [ material s ]
+let rec materials = function
+  | Csg c -> Csg.materials c
+  | Instance { own_material = Some m; _ } -> [ m ]
+  | Instance { shape; _ } -> materials shape
+  | s -> [ material s ]
 
-let validate s =
+(* A pattern lies in its object's frame, which the kernel does not carry
+   through a transform yet: refused rather than drawn wrong. *)
+let no_pattern ms =
+  if List.exists (fun (m : Material.t) -> Option.is_some m.pattern) ms then
+    Error (`Msg "a transformed object cannot have a pattern (patterns are not carried into an object's frame yet)")
+  else Ok ()
+
+let rec validate s =
   let ( let* ) = Result.bind in
   match s with
+  | Instance i ->
+      let* () = no_pattern (materials s) in
+      let* () = match i.shape with Plane _ -> Error (`Msg "a plane is transformed as a plane (Shape.instance), not an instance") | _ -> Ok () in
+      let* () = match i.own_material with Some m -> Result.map ignore (Material.validate ~form:"transform" m) | None -> Ok () in
+      (* Checked, not rebuilt: the object stays the value its instances
+         share (one bottom level). *)
+      let* _ = validate i.shape in
+      Ok s
   | Sphere sp ->
       let* sp = Sphere.validate sp in
       Ok (Sphere sp)
@@ -39,10 +82,10 @@ let validate s =
       let* p = Shape_desc.validate p in
       Ok (Primitive p)
 
-let name = function Sphere _ -> "sphere" | Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg" | Primitive p -> Shape_desc.name p
+let name = function Instance _ -> "transform" | Sphere _ -> "sphere" | Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg" | Primitive p -> Shape_desc.name p
 let one fn = invalid_arg (Printf.sprintf "Shape.%s: a mesh is many objects" fn)
 let own fn = invalid_arg (Printf.sprintf "Shape.%s: a CSG solid is in the kernel's CSG table" fn)
-let kind = function Sphere _ -> Kind.Sphere | Plane _ -> Kind.Plane | Triangle _ -> Kind.Triangle | Box _ -> Kind.Box | Mesh _ -> one "kind" | Csg _ -> Kind.Csg | Primitive p -> Shape_desc.kind p
+let kind = function Instance _ -> Kind.Instance | Sphere _ -> Kind.Sphere | Plane _ -> Kind.Plane | Triangle _ -> Kind.Triangle | Box _ -> Kind.Box | Mesh _ -> one "kind" | Csg _ -> Kind.Csg | Primitive p -> Shape_desc.kind p
 
 let store s g o =
   match s with
@@ -57,10 +100,11 @@ let store s g o =
   | Primitive p -> Shape_desc.store p g o
   | Mesh _ -> one "store"
   | Csg _ -> own "store"
+  | Instance _ -> invalid_arg "Shape.store: an instance is in the kernel's table of instances"
 
 let bounded = function
   | Plane _ -> false
-  | Sphere _ | Triangle _ | Box _ | Mesh _ | Csg _ -> true
+  | Sphere _ | Triangle _ | Box _ | Mesh _ | Csg _ | Instance _ -> true
   | Primitive p -> Kind.bounded (Shape_desc.kind p)
 
 (* [sub_le a b x] is [true] iff the exact [a - b <= x]: the rounded
@@ -86,9 +130,43 @@ let cube (lo : Vec3.t) (hi : Vec3.t) =
   let rec grow h = if holds h c.x lo.x hi.x && holds h c.y lo.y hi.y && holds h c.z lo.z hi.z then h else grow (Float.succ h) in
   (c, grow h)
 
-let bounds = function
+(* The last mesh's box: the instances of one mesh, a thousand of a
+   million triangles, ask for it once each (a mesh's positions are not
+   changed once it is made). *)
+let last_mesh_box = ref None
+
+let rec box_bounds = function
+  | Mesh m -> (
+      match !last_mesh_box with
+      | Some (m', box) when m' == m -> box
+      | _ ->
+          let box = mesh_box m in
+          last_mesh_box := Some (m, box);
+          box)
+  | Instance i -> Transform.bounds i.transform (box_bounds i.shape)
+  | s ->
+      let (c : Vec3.t), h = bounds s in
+      (Vec3.v (c.x -. h) (c.y -. h) (c.z -. h), Vec3.v (c.x +. h) (c.y +. h) (c.z +. h))
+
+and mesh_box (m : Mesh.t) =
+      let p = m.positions in
+      let lo = Array.make 3 infinity and hi = Array.make 3 neg_infinity in
+      for k = 0 to (Array.length p / 3) - 1 do
+        for a = 0 to 2 do
+          let x = (p.((3 * k) + a) *. m.scale) +. (match a with 0 -> m.translate.x | 1 -> m.translate.y | _ -> m.translate.z) in
+          lo.(a) <- Float.min lo.(a) x;
+          hi.(a) <- Float.max hi.(a) x
+        done
+      done;
+      (* The placed positions are rounded as [Mesh] rounds them: an ulp of room. *)
+      (Vec3.v (Float.pred lo.(0)) (Float.pred lo.(1)) (Float.pred lo.(2)), Vec3.v (Float.succ hi.(0)) (Float.succ hi.(1)) (Float.succ hi.(2)))
+
+and bounds = function
   | Plane _ -> invalid_arg "Shape.bounds: a plane is unbounded"
   | Mesh _ -> one "bounds"
+  | Instance _ as s ->
+      let lo, hi = box_bounds s in
+      cube lo hi
   | Box b -> cube b.min b.max
   | Primitive p ->
       if not (Kind.bounded (Shape_desc.kind p)) then invalid_arg ("Shape.bounds: a " ^ Shape_desc.name p ^ " is unbounded");
@@ -127,7 +205,7 @@ let roots s ~origin ~direction =
         | Triangle _ -> Triangle.roots sc g 0
         | Plane _ | Box _ | Primitive _ -> Kind_dispatch.roots (kind s) sc g 0
         | Mesh _ -> one "roots"
-        | Csg _ -> own "roots"
+        | Csg _ | Instance _ -> own "roots"
       in
       if hit then (sc.near, sc.far) else (infinity, infinity))
 
@@ -146,10 +224,18 @@ let normal s (p : Vec3.t) =
       | Box _ -> Box.normal sc g 0
       | Primitive p -> Kind_dispatch.normal (Shape_desc.kind p) sc g 0
       | Mesh _ -> one "normal"
-      | Csg _ -> own "normal");
+      | Csg _ | Instance _ -> own "normal");
       Vec3.v sc.nx sc.ny sc.nz)
 
-let pp ppf = function
+let rec pp ppf = function
+  | Instance { transform; shape; own_material; name } ->
+      (* A named instance prints as the [use] of its definition, which
+         {!Scene.pp} prints before the first; an anonymous one as its
+         [transform] form. A material given to the instance follows. *)
+      let pp_material ppf = function Some m -> Format.fprintf ppf " %a" Material.pp m | None -> () in
+      (match name with
+      | Some n -> Format.fprintf ppf "(use %s (transform %a)%a)" n Transform.pp transform pp_material own_material
+      | None -> Format.fprintf ppf "(transform %a %a%a)" Transform.pp transform pp shape pp_material own_material)
   | Sphere s -> Sphere.pp ppf s
   | Plane p -> Plane.pp ppf p
   | Triangle t -> Triangle.pp ppf t
@@ -173,6 +259,7 @@ let pattern_frame = function
   | Box b as sh -> (b.min, 1., stored_extent sh)
   | Mesh m -> (m.translate, m.scale, Array.fold_left (fun e x -> Float.max e (Float.abs x)) 0. m.positions)
   | Csg _ -> invalid_arg "Shape.pattern_frame: a CSG solid's patterns are its leaves' (Shape.leaf_pattern_frame)"
+  | Instance _ -> invalid_arg "Shape.pattern_frame: a transformed object has no pattern"
 
 let leaf_pattern_frame = function
   | Csg.Sphere s -> (Vec3.zero, 1., Sphere.extent s)

@@ -17,12 +17,43 @@ type t =
   | Primitive of Shape_desc.primitive
       (** A shape of a kind its module describes ({!Raytrace.Private.Shape_desc}, listed in
           {!Raytrace.Private.Primitives}): every function here takes it from the description. *)
+  | Instance of instance
+      (** An object placed by a transform ({!instance}): scene text's
+          [transform] and [use] forms. *)
 (** The type for shapes. *)
+
+and instance = {
+  transform : Transform.t;  (** Object frame to world. *)
+  shape : t;
+      (** The object in its own frame: shared, the same value, by every
+          instance of one definition, and then prepared once (the
+          hierarchy's bottom level). *)
+  own_material : Material.t option;
+      (** The instance's material for every surface of [shape], or [None]
+          for [shape]'s own (a CSG solid's leaves keep theirs). *)
+  name : string option;  (** The name of its definition ([define]), printed as [use]; [None] for [transform]. *)
+}
+(** The type for a transformed object. *)
+
+val instance : ?material:Material.t -> ?name:string -> Transform.t -> t -> t
+(** [instance ~material ~name tr s] is [s] placed by [tr]: an
+    {!constructor-Instance}, except that a plane is mapped to a plane
+    (its point by [tr], its normal by the inverse transpose) and an
+    instance of an instance is one instance, the inner transform
+    first. *)
+
+val box_bounds : t -> Vec3.t * Vec3.t
+(** [box_bounds s] is a box (lower and upper corners) that holds [s],
+    rounded outward; a mesh's from its placed positions.
+    @raise Invalid_argument on a plane. *)
 
 val equal : t -> t -> bool
 (** [equal a b] is [true] iff [a] and [b] are the same kind of shape with
     equal fields ({!Sphere.equal}, {!Plane.equal}, {!Triangle.equal}, {!Box.equal},
-    {!Mesh.equal}, {!Csg.equal}). *)
+    {!Mesh.equal}, {!Csg.equal}, {!Transform.equal}). *)
+
+val equal_instance : instance -> instance -> bool
+(** [equal_instance a b] is {!equal} on instances. *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf s] prints [s] as its form in the scene-file syntax ([sphere], [plane],
@@ -42,7 +73,9 @@ val materials : t -> Material.t list
     leaves ({!Csg.materials}). *)
 
 val validate : t -> (t, [> `Msg of string ]) result
-(** [validate s] is the shape module's [validate]. *)
+(** [validate s] is the shape module's [validate]; an instance's object
+    is validated, and an instance is refused if one of its materials has a
+    pattern, or if it is of a plane (see {!instance}). *)
 
 val name : t -> string
 (** [name s] is the scene-file form of [s]: ["sphere"], ["plane"], ["triangle"], ["box"], ["mesh"] or ["csg"]. *)
@@ -51,7 +84,8 @@ val store : t -> float array -> int -> unit
 (** [store s g o] writes the geometry of [s] to [g] at offset [o]. *)
 
 val bounded : t -> bool
-(** [bounded s] is [false] for planes, [true] otherwise. *)
+(** [bounded s] is [false] for planes, [true] otherwise (an instance too:
+    a plane is never one). *)
 
 val bounds : t -> Vec3.t * float
 (** [bounds s] is [(c, h)]: the cube of center [c] and half-side [h] holds

@@ -31,15 +31,24 @@ let closest_intersection spheres ~origin ~direction ~t_min ~t_max =
     spheres;
   match !closest with Some sphere -> Some (sphere, !closest_t) | None -> None
 
-type obj = Sphere of Sphere.t | Shape of Shape.t * Vec3.t | Mesh_triangle of Mesh.t * int | Csg_surface of Csg.t * Csg.solid * Vec3.t
+type obj =
+  | Sphere of Sphere.t
+  | Shape of Shape.t * Vec3.t
+  | Mesh_triangle of Mesh.t * int
+  | Csg_surface of Csg.t * Csg.solid * Vec3.t
+  | Placed of Shape.instance * obj * Vec3.t
+      (** A transformed object's surface: the surface hit in the object's
+          frame, and the normal in the world. *)
 
-let material = function
+let rec material = function
+  | Placed ({ own_material = Some m; _ }, _, _) -> m
+  | Placed (_, inner, _) -> material inner
   | Sphere s | Shape (Shape.Sphere s, _) -> Sphere.material s
   | Shape (Shape.Plane p, _) -> p.material
   | Shape (Shape.Triangle t, _) -> t.material
   | Shape (Shape.Box b, _) -> b.material
   | Shape (Shape.Primitive p, _) | Csg_surface (_, Csg.Primitive p, _) -> Shape_desc.material p
-  | Shape ((Shape.Mesh _ | Shape.Csg _), _) -> invalid_arg "Literal.material: not a single surface"
+  | Shape ((Shape.Mesh _ | Shape.Csg _ | Shape.Instance _), _) -> invalid_arg "Literal.material: not a single surface"
   | Mesh_triangle (m, _) -> m.material
   | Csg_surface (_, Csg.Sphere s, _) -> Sphere.material s
   | Csg_surface (_, Csg.Box b, _) -> b.material
@@ -48,8 +57,10 @@ let material = function
 
 (* The medium inside an object: a CSG solid is one medium, its first
    operand's (leftmost leaf's) material. *)
-let medium_material = function
+let rec medium_material = function
   | Csg_surface (c, _, n) -> material (Csg_surface (c, List.hd (G.leaves c), n))
+  | Placed ({ own_material = Some m; _ }, _, _) -> m
+  | Placed (_, inner, _) -> medium_material inner
   | obj -> material obj
 
 (* The objects other than spheres, each with the number of its shape in
@@ -62,8 +73,10 @@ type item =
   | Primitive_item of Shape_desc.primitive
   | Facet_item of Mesh.t * int * Vec3.t * Vec3.t * Vec3.t
   | Csg_item of Csg.t
+  | Instance_item of Shape.instance
 
 let items_of_shape = function
+  | Shape.Instance i -> [ Instance_item i ]
   | Shape.Sphere _ -> invalid_arg "Literal.items_of_shape: spheres are listed apart"
   | Shape.Plane p -> [ Plane_item p ]
   | Shape.Triangle t -> [ Triangle_item t ]
@@ -108,13 +121,104 @@ let sphere_list spheres =
     l
   end
 
+(* {1 Transforms, this module's own way}
+
+   The matrix of a transform from its operations, composed here (the
+   kernel's [Transform] composes each operation's exact inverse instead),
+   and its inverse by the adjugate over the determinant. Rows of
+   [[a b c tx]]. *)
+
+let rotation_matrix (axis : Vec3.t) deg =
+  (* The angle's cosine and sine are the definition's: exact at quarter turns. *)
+  let c, s = Transform.cos_sin deg in
+  let a = Vec3.unit axis in
+  let cross = [| 0.; -.a.z; a.y; a.z; 0.; -.a.x; -.a.y; a.x; 0. |] in
+  let outer = [| a.x *. a.x; a.x *. a.y; a.x *. a.z; a.y *. a.x; a.y *. a.y; a.y *. a.z; a.z *. a.x; a.z *. a.y; a.z *. a.z |] in
+  (* R = c I + s [a]x + (1 - c) a a^T. *)
+  Array.init 12 (fun k ->
+      let r = k / 4 and col = k mod 4 in
+      if col = 3 then 0.
+      else
+        let j = (3 * r) + col in
+        (if r = col then c else 0.) +. (s *. cross.(j)) +. ((1. -. c) *. outer.(j)))
+
+let op_matrix = function
+  | Transform.Scale v -> [| v.x; 0.; 0.; 0.; 0.; v.y; 0.; 0.; 0.; 0.; v.z; 0. |]
+  | Translate v -> [| 1.; 0.; 0.; v.x; 0.; 1.; 0.; v.y; 0.; 0.; 1.; v.z |]
+  | Rotate_x a -> rotation_matrix Vec3.ox a
+  | Rotate_y a -> rotation_matrix Vec3.oy a
+  | Rotate_z a -> rotation_matrix Vec3.oz a
+  | Rotate (axis, a) -> rotation_matrix axis a
+
+let at m r c = m.((4 * r) + c)
+
+(* [then_ m n] is [m] applied after [n]. *)
+let then_ m n =
+  Array.init 12 (fun k ->
+      let r = k / 4 and c = k mod 4 in
+      (at m r 0 *. at n 0 c) +. (at m r 1 *. at n 1 c) +. (at m r 2 *. at n 2 c) +. if c = 3 then at m r 3 else 0.)
+
+let world_matrix t = List.fold_left (fun m op -> then_ (op_matrix op) m) (op_matrix (Transform.Scale (Vec3.v 1. 1. 1.))) (Transform.ops t)
+
+let inverse m =
+  let a i j = at m i j in
+  let cof i j =
+    let r0 = if i = 0 then 1 else 0 and r1 = if i = 2 then 1 else 2 in
+    let c0 = if j = 0 then 1 else 0 and c1 = if j = 2 then 1 else 2 in
+    let minor = (a r0 c0 *. a r1 c1) -. (a r0 c1 *. a r1 c0) in
+    if (i + j) mod 2 = 0 then minor else -.minor
+  in
+  let det = (a 0 0 *. cof 0 0) +. (a 0 1 *. cof 0 1) +. (a 0 2 *. cof 0 2) in
+  (* The inverse's linear part is the adjugate (the transposed cofactors)
+     over the determinant; its translation takes the inverse's linear part
+     to minus the translation. *)
+  let l = Array.init 9 (fun k -> cof (k mod 3) (k / 3) /. det) in
+  let t r = -.((l.(3 * r) *. a 0 3) +. (l.((3 * r) + 1) *. a 1 3) +. (l.((3 * r) + 2) *. a 2 3)) in
+  Array.init 12 (fun k -> let r = k / 4 and c = k mod 4 in if c = 3 then t r else l.((3 * r) + c))
+
+let affine_point m (p : Vec3.t) =
+  Vec3.v
+    ((at m 0 0 *. p.x) +. (at m 0 1 *. p.y) +. (at m 0 2 *. p.z) +. at m 0 3)
+    ((at m 1 0 *. p.x) +. (at m 1 1 *. p.y) +. (at m 1 2 *. p.z) +. at m 1 3)
+    ((at m 2 0 *. p.x) +. (at m 2 1 *. p.y) +. (at m 2 2 *. p.z) +. at m 2 3)
+
+let linear m (d : Vec3.t) =
+  Vec3.v
+    ((at m 0 0 *. d.x) +. (at m 0 1 *. d.y) +. (at m 0 2 *. d.z))
+    ((at m 1 0 *. d.x) +. (at m 1 1 *. d.y) +. (at m 1 2 *. d.z))
+    ((at m 2 0 *. d.x) +. (at m 2 1 *. d.y) +. (at m 2 2 *. d.z))
+
+let transposed m (n : Vec3.t) =
+  Vec3.v
+    ((at m 0 0 *. n.x) +. (at m 1 0 *. n.y) +. (at m 2 0 *. n.z))
+    ((at m 0 1 *. n.x) +. (at m 1 1 *. n.y) +. (at m 2 1 *. n.z))
+    ((at m 0 2 *. n.x) +. (at m 1 2 *. n.y) +. (at m 2 2 *. n.z))
+
+(* An object's normal at a point, as [normal] below finds it (defined
+   after the roots): set once [normal] is. *)
+let inner_normal_ref : (obj -> point:Vec3.t -> direction:Vec3.t -> Vec3.t) ref = ref (fun _ ~point:_ ~direction:_ -> Vec3.zero)
+let inner_normal obj ~point ~direction = !inner_normal_ref obj ~point ~direction
+
 (* Ray-object searches whose answer rounding may decide (see the .mli). *)
 let dependent = ref 0
 let rounding_dependent () = !dependent
 
 (* The roots of an item, nearer first, each with its object. *)
-let item_roots ~continued item ~origin ~direction ~t_min ~t_max =
+let rec item_roots ~continued item ~origin ~direction ~t_min ~t_max =
   match item with
+  | Instance_item i -> (
+      (* The ray in the object's frame, by this module's own inverse; [t]
+         is the same number in both frames. *)
+      let m = world_matrix i.transform in
+      let inv = inverse m in
+      let o = affine_point inv origin and d = linear inv direction in
+      match inner_closest ~continued i.shape ~origin:o ~direction:d ~t_min ~t_max with
+      | None -> []
+      | Some (key, inner) ->
+          let point = Vec3.add o (Vec3.smul key.G.t d) in
+          let n = inner_normal inner ~point ~direction:d in
+          (* Normals by the inverse transpose. *)
+          [ (key, Placed (i, inner, Vec3.unit (transposed inv n))) ])
   | Plane_item p -> (
       tested 1;
       match G.plane_key p ~origin ~direction with Some k -> [ (k, Shape (Shape.Plane p, G.plane_normal p)) ] | None -> [])
@@ -139,6 +243,25 @@ let item_roots ~continued item ~origin ~direction ~t_min ~t_max =
       match G.csg_hit ~continued ~tested c ~origin ~direction ~t_min ~t_max with
       | Some h -> [ (h.key, Csg_surface (c, h.leaf, h.normal)) ]
       | None -> [])
+
+(* The closest hit in range of an instance's object (in its frame). *)
+and inner_closest ~continued shape ~origin ~direction ~t_min ~t_max =
+  match shape with
+  | Shape.Sphere s -> (
+      match closest_intersection [ s ] ~origin ~direction ~t_min ~t_max with
+      | Some (s, t) -> Some (G.key_of_float t, Sphere s)
+      | None -> None)
+  | _ ->
+      List.fold_left
+        (fun best item ->
+          let in_range ((t : G.key), _) =
+            G.in_range ~continued ~t_min ~t_max t
+            && match best with Some (b, _) -> G.compare_keys t b < 0 | None -> true
+          in
+          match List.find_opt in_range (item_roots ~continued item ~origin ~direction ~t_min ~t_max) with
+          | Some hit -> Some hit
+          | None -> best)
+        None (items_of_shape shape)
 
 (* The closest hit with its object's number in the scene's list, a mesh
    one number (the numbers name the media a ray is in). Roots are ordered
@@ -195,7 +318,7 @@ let turn n direction = if Vec3.dot n direction > 0. then Vec3.neg n else n
 let normal obj ~point ~direction =
   match obj with
   | Sphere sphere -> G.sphere_normal sphere point
-  | Shape (_, n) | Csg_surface (_, _, n) -> turn n direction
+  | Shape (_, n) | Csg_surface (_, _, n) | Placed (_, _, n) -> turn n direction
   | Mesh_triangle (m, k) -> (
       let a = Mesh.vertex m k 0 and b = Mesh.vertex m k 1 and c = Mesh.vertex m k 2 in
       let n = G.triangle_normal a b c in
@@ -209,6 +332,8 @@ let normal obj ~point ~direction =
           | _ -> None
       in
       match smooth with Some s -> turned s | None -> turned n)
+
+let () = inner_normal_ref := normal
 
 (* {1 Pattern frames} *)
 
@@ -244,7 +369,7 @@ let pattern_frame = function
   | Shape (Shape.Box b, _) | Csg_surface (_, Csg.Box b, _) -> box_frame b
   | Mesh_triangle (m, _) | Csg_surface (_, Csg.Mesh m, _) -> mesh_frame m
   | Shape (Shape.Primitive p, _) | Csg_surface (_, Csg.Primitive p, _) -> primitive_frame p
-  | Shape ((Shape.Mesh _ | Shape.Csg _), _) | Csg_surface (_, Csg.Csg _, _) -> invalid_arg "Literal.pattern_frame"
+  | Shape ((Shape.Mesh _ | Shape.Csg _ | Shape.Instance _), _) | Csg_surface (_, Csg.Csg _, _) | Placed _ -> invalid_arg "Literal.pattern_frame"
 
 (* The colour the hit shows: the material's, or its pattern's second
    colour. *)

@@ -74,6 +74,12 @@ type obj =
   | Csg_surface of Csg.t * Csg.solid * Vec3.t
       (** The point hit on a CSG solid: the solid, the leaf whose surface it is and the
           solid's outward normal there. *)
+  | Placed of Shape.instance * obj * Vec3.t
+      (** The point hit on a transformed object: the instance, the surface
+          hit in the object's frame (the ray carried there by this module's
+          own inverse of the transform's matrix, its adjugate over its
+          determinant) and the unit normal in the world (the object's by
+          the inverse transpose). *)
 (** The type for the objects of a scene: a mesh is one object per
     triangle. *)
 

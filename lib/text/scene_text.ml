@@ -567,6 +567,7 @@ type builder = {
   mutable n_spheres : int;
   mutable n_lights : int;
   mutable n_triangles : int;  (** Of every mesh form so far. *)
+  defined : (string, Shape.t * Positions.pos option) Hashtbl.t;  (** The objects [define]d so far. *)
 }
 
 let builder ~limits ~load where =
@@ -583,6 +584,7 @@ let builder ~limits ~load where =
     n_spheres = 0;
     n_lights = 0;
     n_triangles = 0;
+    defined = Hashtbl.create 8;
   }
 
 let add_triangles b n =
@@ -646,6 +648,135 @@ let light_form b ~kw_node:_ node rest =
   ignore (check node (Limits.check_count b.limits `Lights b.n_lights));
   b.lights <- light ~where:b.where node rest :: b.lights
 
+(* {2 Transforms, definitions and instances} *)
+
+let transform_ops_named = [ "scale"; "rotate-x"; "rotate-y"; "rotate-z"; "rotate"; "translate" ]
+
+(* One operation of a transform's list, checked alone so that its error
+   points at it. *)
+let transform_op ~where node =
+  let op =
+    match node with
+    | Sexp.List ((Sexp.Atom name as name_node) :: args) -> (
+        let what () = "transform " ^ name in
+        let angle () =
+          match args with
+          | [ a ] -> number what a
+          | _ -> fail node "%s takes 1 angle in degrees, got %d values" name (List.length args)
+        in
+        match name with
+        | "scale" -> (
+            match args with
+            | [ k ] ->
+                let k = number what k in
+                Transform.Scale (Vec3.v k k k)
+            | _ -> Transform.Scale (vec3_of_nodes what node args))
+        | "translate" -> Transform.Translate (vec3_of_nodes what node args)
+        | "rotate-x" -> Transform.Rotate_x (angle ())
+        | "rotate-y" -> Transform.Rotate_y (angle ())
+        | "rotate-z" -> Transform.Rotate_z (angle ())
+        | "rotate" ->
+            let fs = fields ~where ~form:"transform rotate" ~allowed:[ "axis"; "angle" ] args in
+            let form = "transform rotate" in
+            let axis = required ~form ~form_node:node fs "axis" (fun _ f -> vec3_field form "axis" f) in
+            let angle = required ~form ~form_node:node fs "angle" (fun _ f -> float_field form "angle" f) in
+            Transform.Rotate (axis, angle)
+        | _ ->
+            fail name_node "unknown transform operation %s; expected %s%s" (show_atom name) (one_of transform_ops_named)
+              (suggestion name transform_ops_named))
+    | _ -> fail node "transform: expected an operation such as (rotate-y 30) or (translate 0 0 5)"
+  in
+  ignore (check node (Transform.v [ op ]));
+  op
+
+(* A transform's list of operations, [((scale 2) (rotate-y 30))]. *)
+let transform_of ~where node =
+  match node with
+  | Sexp.List ops -> check node (Transform.v (List.map (transform_op ~where) ops))
+  | Sexp.Atom a ->
+      fail node "transform: expected a list of operations in parentheses, e.g. ((rotate-y 30) (translate 0 0 5)), got %s"
+        (show_atom a)
+
+(* Material fields written on a [transform] or [use]: they make the
+   instance's material, for every surface of its object. *)
+let instance_material b ~form ~form_node fs =
+  if List.exists (fun name -> Option.is_some (find fs name)) material_fields then
+    Some (material ~where:b.where ~named:b.named ~form ~form_node fs)
+  else None
+
+let object_forms = [ "sphere"; "plane"; "triangle"; "box"; "mesh"; "csg" ] @ List.map (fun (Shape_desc.Any d) -> d.name) Primitives.all @ [ "transform"; "use" ]
+
+(* Any object's form, as a value: what [transform] and [define] take. *)
+let rec object_of b node =
+  match node with
+  | Sexp.List ((Sexp.Atom kw as kw_node) :: rest) -> (
+      let where = b.where and named = b.named in
+      match kw with
+      | "sphere" -> Shape.Sphere (sphere ~where ~named node rest)
+      | "plane" -> plane ~where ~named node rest
+      | "triangle" -> triangle ~where ~named node rest
+      | "box" -> box ~where ~named node rest
+      | "mesh" -> mesh ~where ~named ~load:b.load ~add_triangles:(add_triangles b) node rest
+      | "csg" -> Shape.Csg (csg ~where ~named ~load:b.load ~add_triangles:(add_triangles b) ~depth:1 node rest)
+      | "transform" -> transform_form b node rest
+      | "use" -> use_form b node rest
+      | _ -> (
+          match Primitives.find kw with
+          | Some d -> Shape.Primitive (primitive_solid d ~where ~named node rest)
+          | None ->
+              fail kw_node "unknown object %s; expected %s%s" (show_atom kw) (one_of object_forms) (suggestion kw object_forms)))
+  | _ -> fail node "expected an object in parentheses, e.g. (sphere ...), (box ...) or (use NAME)"
+
+(* [(transform (OPS...) OBJECT material-fields...)]. *)
+and transform_form b node rest =
+  match rest with
+  | ops :: obj :: fields_nodes ->
+      let t = transform_of ~where:b.where ops in
+      let shape = object_of b obj in
+      let fs = fields ~where:b.where ~form:"transform" ~allowed:material_fields fields_nodes in
+      let material = instance_material b ~form:"transform" ~form_node:node fs in
+      check node (Shape.validate (Shape.instance ?material t shape))
+  | _ ->
+      fail node "transform takes a list of operations and an object, e.g. (transform ((rotate-y 30)) (box (min -1 -1 -1) (max 1 1 1) (color 0 0 255)))"
+
+(* [(use NAME (transform (OPS...)) material-fields...)]. *)
+and use_form b node rest =
+  match rest with
+  | (Sexp.Atom name as name_node) :: fields_nodes ->
+      let shape =
+        match Hashtbl.find_opt b.defined name with
+        | Some (sh, _) -> sh
+        | None ->
+            let known = Hashtbl.fold (fun n _ acc -> n :: acc) b.defined [] |> List.sort String.compare in
+            if known = [] then fail name_node "unknown object %s: no (define %s ...) form comes before it" (show_atom name) name
+            else fail name_node "unknown object %s; defined before it: %s%s" (show_atom name) (one_of known) (suggestion name known)
+      in
+      let form = "use " ^ name in
+      let fs = fields ~where:b.where ~form ~allowed:("transform" :: material_fields) fields_nodes in
+      let t =
+        match find fs "transform" with
+        | Some f -> (
+            match f.args with
+            | [ ops ] -> transform_of ~where:b.where ops
+            | _ -> fail f.node "%s transform takes one list of operations, e.g. (transform ((rotate-y 30) (translate 0 0 5)))" form)
+        | None -> Transform.identity
+      in
+      let material = instance_material b ~form ~form_node:node fs in
+      check node (Shape.validate (Shape.instance ?material ~name t shape))
+  | _ -> fail node "use: expected the name of a defined object first, e.g. (use knot (transform ((rotate-x 90))))"
+
+(* [(define NAME OBJECT)]: named, not placed. *)
+let define_object b node = function
+  | [ (Sexp.Atom name as name_node); obj ] ->
+      (match Hashtbl.find_opt b.defined name with
+      | Some (_, first) ->
+          fail name_node "object %s is defined twice (first at %s); a name may be defined only once" (show_atom name)
+            (Option.fold ~none:"?" ~some:position first)
+      | None -> ());
+      let shape = check obj (Shape.validate (object_of b obj)) in
+      Hashtbl.add b.defined name (shape, b.where name_node)
+  | _ -> fail node "define: expected a name and one object, e.g. (define knot (mesh (file \"knot.obj\") (color 200 200 200)))"
+
 (* The forms of the top level, in the order their names are listed. *)
 let forms =
   [
@@ -684,7 +815,12 @@ let forms =
   @ List.map
       (fun (Shape_desc.Any d as a) -> (d.name, shape (fun b node rest -> Shape.Primitive (primitive_solid a ~where:b.where ~named:b.named node rest))))
       Primitives.all
-  @ [ ("light", light_form) ]
+  @ [
+      ("transform", shape transform_form);
+      ("define", fun b ~kw_node:_ node rest -> define_object b node rest);
+      ("use", shape use_form);
+      ("light", light_form);
+    ]
 
 let top_level = List.map fst forms
 
