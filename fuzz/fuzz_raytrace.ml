@@ -48,7 +48,7 @@ let names =
     "specular"; "reflective"; "intensity"; "direction"; "ambient"; "point"; "directional";
     "plane"; "triangle"; "box"; "mesh"; "csg"; "normal"; "vertices"; "min"; "max"; "file"; "scale"; "translate";
     "smooth"; "transparency"; "refractive-index"; "fresnel"; "pattern"; "checker"; "size";
-    "cylinder"; "base"; "top"; "capped"; "disk";
+    "cylinder"; "base"; "top"; "capped"; "disk"; "cone"; "top-radius"; "torus"; "axis"; "major"; "minor";
   |]
 
 let field =
@@ -109,8 +109,8 @@ let valid_scene =
 
 (* The forms of round 2 and 3: glass (transparency, refractive index,
    Fresnel), mirrors and patterns on every shape; planes, triangles,
-   boxes, meshes of files the test makes, CSG solids nested with every
-   operation. *)
+   boxes, meshes of files the test makes, issue 26's cylinders, disks,
+   cones and tori, CSG solids nested with every operation. *)
 let material =
   map
     [ triple 0. 255.; optional "specular" (choose [ const "-1"; value 0. 1000. ]); optional "reflective" (value 0. 0.5);
@@ -135,8 +135,8 @@ let mesh_form =
       optional "translate" (triple (-2.) 2.); optional "smooth" (choose [ const "true"; const "false" ]); material ]
     (Printf.sprintf "(mesh (file %S)%s%s%s %s)")
 
-(* Issue 26's kinds: a cylinder, capped or open (refused as an operand),
-   and a disk. *)
+(* Issue 26's kinds: a cylinder, capped or open (an open one refused as
+   an operand), and a disk. *)
 let cylinder_form =
   map [ triple (-2.) 2.; triple (-2.) 2.; value 0.1 1.5; optional "capped" (choose [ const "true"; const "false" ]); material ]
     (Printf.sprintf "(cylinder (base %s) (top %s) (radius %s)%s %s)")
@@ -144,18 +144,37 @@ let cylinder_form =
 let disk_form =
   map [ triple (-2.) 2.; triple (-1.) 1.; value 0.1 2.; material ] (Printf.sprintf "(disk (center %s) (normal %s) (radius %s) %s)")
 
+(* A cone, capped or open, pointed (top radius 0) one time in three; a
+   torus whose minor radius is a fraction of its major one (a ring torus),
+   or any value now and then (refused when not below the major). *)
+let cone_form =
+  map
+    [ triple (-2.) 2.; triple (-2.) 2.; value 0.1 1.5; optional "top-radius" (choose [ const "0"; value 0. 1.5; value 0. 1.5 ]);
+      optional "capped" (choose [ const "true"; const "false" ]); material ]
+    (Printf.sprintf "(cone (base %s) (top %s) (radius %s)%s%s %s)")
+
+let torus_form =
+  map [ triple (-2.) 2.; triple (-1.) 1.; range ~min:1 65535; range ~min:1 65535; choose [ const None; map [ number ] Option.some ]; material ]
+    (fun c axis major fraction odd_minor m ->
+      let major = 0.2 +. (2. *. Float.of_int major /. 65535.) in
+      let minor =
+        match odd_minor with Some x -> x | None -> Raytrace.Private.Float_text.to_string (major *. Float.of_int fraction /. 65536.)
+      in
+      Printf.sprintf "(torus (center %s) (axis %s) (major %s) (minor %s) %s)" c axis
+        (Raytrace.Private.Float_text.to_string major) minor m)
+
 let csg_form =
   fix (fun csg ->
       map
         [ choose [ const "union"; const "intersection"; const "difference"; token Hostile.scene_tokens ];
-          choose [ sphere_form; box_form; mesh_form; cylinder_form; csg ];
-          choose [ sphere_form; box_form; mesh_form; cylinder_form; csg ] ]
+          choose [ sphere_form; box_form; mesh_form; cylinder_form; cone_form; torus_form; csg ];
+          choose [ sphere_form; box_form; mesh_form; cylinder_form; cone_form; torus_form; csg ] ]
         (Printf.sprintf "(csg %s %s %s)"))
 
 let shape_form =
   choose
     [
-      sphere_form; box_form; mesh_form; csg_form; cylinder_form; disk_form;
+      sphere_form; box_form; mesh_form; csg_form; cylinder_form; disk_form; cone_form; torus_form;
       map [ triple (-2.) 2.; triple (-1.) 1.; material ] (Printf.sprintf "(plane (point %s) (normal %s) %s)");
       map [ triple (-2.) 2.; triple (-2.) 2.; triple 1. 5.; material ]
         (Printf.sprintf "(triangle (vertices (%s) (%s) (%s)) %s)");

@@ -133,7 +133,15 @@ let scene_tokens =
     "(light directional (intensity 0.2) (direction 1 4 4))"; "(recursion-depth 64)"; "(recursion-depth 65)";
     "(epsilon 0.001)"; "(camera (position 0 0 0) (look-at 0 0 0))";
     "(camera-path (key (frame 0) (position 0 0 -1) (look-at 0 0 3)) (key (frame 48) (position 3 1 1) (look-at 0 0 3)))";
-    "(key (frame 10) (position 1 0 0) (look-at 0 0 3) (up 0 1 0))"; "\xff"; "\x00"; "\xc3\xa9";
+    "(key (frame 10) (position 1 0 0) (look-at 0 0 3) (up 0 1 0))";
+    (* Issue 26's kinds and their fields. *)
+    "cylinder"; "disk"; "cone"; "torus"; "base"; "top"; "top-radius"; "capped"; "axis"; "major"; "minor";
+    "(capped false)"; "(top-radius 0)"; "(axis 0 1 0)"; "(major 1)"; "(minor 0.25)";
+    "(cylinder (base 0 0 5) (top 0 2 5) (radius 0.5) (color 200 50 50))";
+    "(disk (center 0 0 5) (normal 0 1 0) (radius 1) (color 200 50 50))";
+    "(cone (base 0 0 5) (top 0 2 5) (radius 0.5) (top-radius 0) (capped false) (color 200 50 50))";
+    "(torus (center 0 0 5) (axis 0 1 0) (major 1) (minor 0.25) (color 200 50 50))";
+    "\xff"; "\x00"; "\xc3\xa9";
   |]
 
 let ppm_tokens =
@@ -226,6 +234,25 @@ module Gen = struct
     Printf.sprintf "(disk (center %s) (normal %s) (radius %s) %s)" (triple rand (-2.) 2.) (triple rand (-1.) 1.)
       (num rand 0.1 2.) (material rand)
 
+  (* A cone, capped or open (an open one refused as a CSG operand), its
+     top radius 0 (pointed) one time in three, now and then both radii 0
+     (refused); a torus, now and then with [minor >= major] (refused). *)
+  let cone rand =
+    let top_radius () = if chance rand 3 then "0" else num rand 0. 1.5 in
+    Printf.sprintf "(cone (base %s) (top %s) (radius %s)%s%s %s)" (triple rand (-2.) 2.) (triple rand (-2.) 2.)
+      (if odd rand then "0" else num rand 0.1 1.5)
+      (opt rand "top-radius" top_radius)
+      (opt rand "capped" (fun () -> if odd rand then "maybe" else pick rand [| "true"; "false" |]))
+      (material rand)
+
+  let torus rand =
+    let major = 0.3 +. Random.State.float rand 1.5 in
+    let minor = if odd rand then major *. (1. +. Random.State.float rand 1.) else major *. (0.05 +. Random.State.float rand 0.9) in
+    let f = Raytrace.Private.Float_text.to_string in
+    Printf.sprintf "(torus (center %s) (axis %s) (major %s) (minor %s) %s)" (triple rand (-2.) 2.) (triple rand (-1.) 1.)
+      (if odd rand then pick rand edges else f major)
+      (f minor) (material rand)
+
   let mesh rand names =
     Printf.sprintf "(mesh (file %S)%s%s%s %s)" (if odd rand then "missing.obj" else pick rand names)
       (opt rand "scale" (fun () -> num rand 0.1 3.))
@@ -237,19 +264,23 @@ module Gen = struct
 
   let rec csg rand names depth =
     let operand () =
-      match int rand (if depth > 0 then 5 else 4) with
+      match int rand (if depth > 0 then 7 else 6) with
       | 0 -> sphere rand
       | 1 -> box rand
       | 2 -> mesh rand (if odd rand then names else [| "closed.obj" |])
       | 3 -> cylinder rand
+      | 4 -> cone rand
+      | 5 -> torus rand
       | _ -> csg rand names (depth - 1)
     in
     Printf.sprintf "(csg %s %s %s)" (pick rand ops) (operand ()) (operand ())
 
   let shape rand names =
-    match int rand 9 with
+    match int rand 11 with
     | 7 -> cylinder rand
     | 8 -> disk rand
+    | 9 -> cone rand
+    | 10 -> torus rand
     | 0 -> sphere rand
     | 1 -> Printf.sprintf "(plane (point %s) (normal %s) %s)" (triple rand (-2.) 2.) (triple rand (-1.) 1.) (material rand)
     | 2 ->

@@ -34,8 +34,9 @@ val work_budget : int
 
 val random_scene : Random.State.t -> string * (string * string) list
 (** [random_scene rand] is a scene text of every form (spheres, planes,
-    triangles, boxes, meshes, CSG solids nested up to 4 deep with every
-    operation, glass with transparency, refractive index and the Fresnel
+    triangles, boxes, meshes, capped and open cylinders and cones (pointed
+    or not), disks, tori, CSG solids nested up to 4 deep with every
+    operation on every closed kind (and, now and then, an open one), glass with transparency, refractive index and the Fresnel
     term, mirrors, checker patterns, every light) with its mesh files
     (name, OBJ text: a closed tetrahedron or loose triangles, now and then
     a broken line), most of it valid, with values at or beyond the edges
@@ -51,7 +52,7 @@ val ppm : string -> (unit, string) result
 
 val scene_tokens : string array
 (** [scene_tokens] are fragments of scene files, valid and hostile (form
-    and field names, numbers at and beyond every bound, NaN, comments,
+    and field names, every shape's form among them, numbers at and beyond every bound, NaN, comments,
     strings, parentheses), from which fuzzers and mutators build inputs. *)
 
 val ppm_tokens : string array
