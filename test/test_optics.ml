@@ -39,7 +39,8 @@ let map_materials ~sphere ~material (s : Scene.t) =
     | Shape.Plane p -> Shape.Plane (Plane.v ~point:p.point ~normal:p.normal (material p.material))
     | Shape.Triangle t -> Shape.Triangle (Triangle.v t.v0 t.v1 t.v2 (material t.material))
     | Shape.Box b -> Shape.Box (Box.v ~min:b.min ~max:b.max (material b.material))
-    | (Shape.Mesh _ | Shape.Csg _ | Shape.Primitive _ | Shape.Instance _) as sh -> sh (* no mesh or CSG in the scenes changed here *)
+    | Shape.Primitive p -> Shape.Primitive (Shape_kinds.map_primitive ~point:Fun.id ~length:Fun.id ~material p)
+    | (Shape.Mesh _ | Shape.Csg _ | Shape.Instance _) as sh -> sh (* no mesh, CSG or instance in the scenes changed here *)
   in
   Scene.with_overrides ~objects:(List.map shape (Scene.objects s)) s
 

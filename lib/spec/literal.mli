@@ -51,7 +51,8 @@
     traced with {!Scene.document_epsilon}.
 
     {b Work.} Every ray-object test (a sphere, plane, triangle, box, a
-    mesh's triangle, a CSG solid's leaf or mesh triangle) is counted as it
+    described kind's shape (cylinder, disk, cone, torus), a mesh's
+    triangle, a CSG solid's leaf or mesh triangle) is counted as it
     is done and checked against the work bound of {!val-render}: a render
     stops within one test of its bound. *)
 
