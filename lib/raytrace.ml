@@ -9,7 +9,11 @@ end
 
 module Light = Light
 module Pattern = Pattern
-module Material = Material
+module Material = struct
+  include Material
+  module Texture = Texture_map
+end
+
 module Sphere = Sphere
 module Plane = Plane
 module Triangle = Triangle
@@ -43,6 +47,7 @@ module Image = struct
   include Image
   module Ppm = Ppm
   module Diff = Image_diff
+  module Texture = Texture
 end
 
 let render_string ?limits ?file text =

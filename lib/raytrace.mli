@@ -112,7 +112,15 @@ end
 
 module Light = Light
 module Pattern = Pattern
-module Material = Material
+module Material : sig
+  include module type of struct
+    include Material
+  end
+
+  module Texture = Texture_map
+  (** Image textures on objects: the mappings, a material's texture. *)
+end
+
 module Sphere = Sphere
 module Plane = Plane
 module Triangle = Triangle
@@ -174,6 +182,9 @@ module Image : sig
 
   module Diff = Image_diff
   (** Differences between two images. *)
+
+  module Texture = Texture
+  (** Decoded images looked up with bilinear filtering, for textures. *)
 end
 
 (** {1:one_call One call} *)

@@ -476,7 +476,7 @@ let bad_forms =
     ("(cylinder (base 0 0 5) (top 0 1 nan) (radius 1) (color 1 2 3))",
      "t.scene:1:33: cylinder top must be a finite number, got nan");
     ("(cylinder (base 0 0 5) (top 0 1 5) (radius 1) (cap true) (color 1 2 3))",
-     "t.scene:1:48: unknown cylinder field cap; expected base, top, radius, capped, material, color, specular, reflective, transparency, refractive-index, fresnel or pattern");
+     "t.scene:1:48: unknown cylinder field cap; expected base, top, radius, capped, material, color, specular, reflective, transparency, refractive-index, fresnel, pattern or texture");
     ("(disk (center 0 0 5) (normal 0 0 0) (radius 1) (color 1 2 3))", "t.scene:1:1: disk normal must not be zero, got (0 0 0)");
     ("(disk (center 0 0 5) (normal 0 1 0) (radius 0) (color 1 2 3))", "t.scene:1:1: disk radius must be > 0, got 0");
     ("(csg union (sphere (center 0 0 5) (radius 1) (color 1 1 1))\n  (cylinder (base 0 0 5) (top 0 1 5) (radius 1) (capped false) (color 1 2 3)))",

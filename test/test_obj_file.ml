@@ -86,7 +86,9 @@ let tests =
         Alcotest.check ints __LOC__ [| 0; 1; 2; 0; 1; 2 |] m.triangles;
         Alcotest.check ints __LOC__ [| -1; -1; 1; 0; 1; 1 |] m.triangle_normals;
         Alcotest.check floats __LOC__ [| 0.; 0.; 1.; 0.; 0.; -1. |] m.normals;
-        Alcotest.(check (list (pair string int))) __LOC__ [ ("vt", 1) ] m.skipped);
+        (* vt is kept, not skipped; 3/-1/-1 is texture 1 (the last). *)
+        Alcotest.check ints __LOC__ [| -1; 0; -1; 0; 0; 0 |] m.triangle_texcoords;
+        Alcotest.(check (list (pair string int))) __LOC__ [] m.skipped);
     Alcotest.test_case "normals numbered as the vertices share the vertices' array, and only then" `Quick (fun () ->
         let normals = "vn 0 0 1\nvn 0 1 0\nvn 1 0 0\nvn 0 0 -1\n" in
         (* Over more than one of the reader's blocks of numbers. *)
@@ -117,11 +119,12 @@ let tests =
         Alcotest.check floats __LOC__ [| 1.; 2.; 3.; 4.; 5.; 6. |] m.positions);
     Alcotest.test_case "every other statement is skipped and counted by kind" `Quick (fun () ->
         let m = mesh rich in
+        (* vt is kept ({!Test_texture}), not skipped. *)
         Alcotest.(check (list (pair string int)))
           __LOC__
-          [ ("#", 1); ("vt", 2); ("o", 1); ("g", 1); ("s", 1); ("usemtl", 1); ("mtllib", 1); ("l", 1); ("p", 1); ("other", 1) ]
+          [ ("#", 1); ("o", 1); ("g", 1); ("s", 1); ("usemtl", 1); ("mtllib", 1); ("l", 1); ("p", 1); ("other", 1) ]
           m.skipped;
-        Alcotest.(check int) __LOC__ 11 (Mesh.Obj.skipped_total m));
+        Alcotest.(check int) __LOC__ 9 (Mesh.Obj.skipped_total m));
     Alcotest.test_case "CRLF line ends, blank lines and a last line without line end are read" `Quick (fun () ->
         let m = mesh rich in
         Alcotest.check floats __LOC__ [| 0.; 0.; 0.; 1.5; 0.; 0.; 1.; 1.; 0.; -10.; 0.25; 0.5; 3.; -0.; 7. |] m.positions;
@@ -201,8 +204,9 @@ let tests =
     Alcotest.test_case "the OBJ text of a mesh reads back equal, floats bit for bit" `Quick (fun () ->
         let m = mesh rich in
         let back = mesh (Mesh.Obj.to_string m) in
-        Alcotest.(check bool) __LOC__ true (Mesh.Obj.equal (Mesh.Obj.v ~positions:m.positions ~normals:m.normals
-          ~triangles:m.triangles ~triangle_normals:m.triangle_normals) back);
+        Alcotest.(check bool) __LOC__ true (Mesh.Obj.equal (Mesh.Obj.with_texcoords ~texcoords:m.texcoords
+          ~triangle_texcoords:m.triangle_texcoords (Mesh.Obj.v ~positions:m.positions ~normals:m.normals
+          ~triangles:m.triangles ~triangle_normals:m.triangle_normals)) back);
         let m = Mesh.Obj.v ~positions:[| 0.1; 1. /. 3.; -1e-300; 4.9e-324; 1.7976931348623157e308; -0.; 1.; 2.; 3. |]
             ~normals:[||] ~triangles:[| 0; 1; 2 |] ~triangle_normals:[| -1; -1; -1 |] in
         Alcotest.(check bool) __LOC__ true (Mesh.Obj.equal m (mesh (Mesh.Obj.to_string m))));

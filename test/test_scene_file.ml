@@ -31,7 +31,7 @@ let bad_inputs =
      "t.scene:2:66: sphere reflective + transparency must be <= 1, got 0.5 + 0.6");
     ("(material glass (specular 10))", "t.scene:1:1: material glass is missing its (color ...) field");
     ("(material glass (color 1 1 1) (material metal))",
-     "t.scene:1:32: unknown material glass field material; expected color, specular, reflective, transparency, refractive-index, fresnel or pattern");
+     "t.scene:1:32: unknown material glass field material; expected color, specular, reflective, transparency, refractive-index, fresnel, pattern or texture");
     ("(material (color 1 1 1))", "t.scene:1:1: material: expected its name first, e.g. (material glass (color 230 230 255) (transparency 0.9))");
     ("(sphere (center 0 0 3) (radius 1) (material 1 2))",
      "t.scene:1:35: sphere material: expected the name of a material, e.g. (material glass)");
@@ -40,7 +40,7 @@ let bad_inputs =
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 1.5))",
      "t.scene:1:61: sphere reflective must lie in [0, 1], got 1.5");
     ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflectiv 0.5))",
-     "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, material, color, specular, reflective, transparency, refractive-index, fresnel or pattern (did you mean reflective?)");
+     "t.scene:1:50: unknown sphere field reflectiv; expected center, radius, material, color, specular, reflective, transparency, refractive-index, fresnel, pattern or texture (did you mean reflective?)");
      ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (transparency 1.5))",
       "t.scene:1:63: sphere transparency must lie in [0, 1], got 1.5");
      ("(sphere (center 0 0 3) (radius 1) (color 1 2 3) (reflective 0.6) (transparency 0.5))",

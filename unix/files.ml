@@ -291,6 +291,15 @@ let beside ~limits ~on_part path ic n =
           Some ({ Private.Scene_text.split; wait; append = append_spheres fd; seek = seek_in ic }, fd))
 
 type input = { what : string; path : string; stats : Unix.stats }
+
+(* A texture's image as this library reads it: PPM only, PNG being
+   raytrace-png's (its [Image_file.read_file] is the reader to pass). *)
+let read_ppm ?(limits = Limits.default) path =
+  match File_io.read ~check_size:(Image.Ppm.check_file_size ~limits) path with
+  | Error e -> Error e
+  | Ok contents -> (
+      match Image.Ppm.of_string ~limits contents with Ok img -> Ok img | Error (`Msg m) -> Error (`Msg (path ^ ": " ^ m)))
+
 type loaded = { scene : Scene.valid; inputs : input list }
 
 (* A regular file is read a window at a time (Private.Scene_text.of_source): the
@@ -299,10 +308,23 @@ type loaded = { scene : Scene.valid; inputs : input list }
    locate an error, are read whole, from the descriptor opened here (a
    FIFO closed and opened again would lose what its writer wrote
    meanwhile). The errors are File_io.read's. *)
-let load_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = ignore) path =
+let load_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = ignore) ?read_image
+    ?accept_textures path =
   (* Every file the scene reads, as it reads it (Scene_file reads each
      path once). *)
   let inputs = ref [] in
+  let read_image = match read_image with Some r -> r | None -> read_ppm ~limits in
+  let load_texture file =
+    match File_io.open_read ~regular:true file with
+    | Error (`Msg m) -> Error (`Msg ("cannot read texture file: " ^ m))
+    | Ok o -> (
+        close_in_noerr o.channel;
+        match read_image file with
+        | Error (`Msg m) -> Error (`Msg ("cannot read texture file: " ^ m))
+        | Ok img ->
+            inputs := { what = "texture"; path = file; stats = o.stats } :: !inputs;
+            Ok (Image.Texture.of_image img))
+  in
   let load_mesh mesh =
     match open_mesh mesh with
     | Error _ as e -> e
@@ -337,7 +359,7 @@ let load_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_byte
             Option.iter close_in_noerr !first;
             Option.iter (fun (_, fd) -> try Unix.close fd with Unix.Unix_error _ -> ()) beside
           in
-          match Private.Scene_text.of_source ~limits ~load_mesh ~file:path ?beside:(Option.map fst beside) source with
+          match Private.Scene_text.of_source ~limits ~load_mesh ~load_texture ?accept_textures ~file:path ?beside:(Option.map fst beside) source with
           | r ->
               close ();
               loaded r
@@ -347,10 +369,10 @@ let load_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_byte
   | Ok o -> (
       match File_io.read_opened ~check_size:(Limits.check_scene_bytes limits) path o with
       | Error e -> Error e
-      | Ok text -> loaded (Scene_file.of_string ~limits ~load_mesh ~file:path text))
+      | Ok text -> loaded (Scene_file.of_string ~limits ~load_mesh ~load_texture ?accept_textures ~file:path text))
 
-let read_scene ?limits ?jobs ?split_bytes ?on_part path =
-  Result.map (fun l -> l.scene) (load_scene ?limits ?jobs ?split_bytes ?on_part path)
+let read_scene ?limits ?jobs ?split_bytes ?on_part ?read_image ?accept_textures path =
+  Result.map (fun l -> l.scene) (load_scene ?limits ?jobs ?split_bytes ?on_part ?read_image ?accept_textures path)
 
 (* The identity and version of a file: another file, or the same one
    written to, differs in one of them. *)

@@ -5,7 +5,7 @@
 (** {1:scenes Scenes and the files they read} *)
 
 type input = {
-  what : string;  (** What it is to the scene, for messages: ["mesh"] (later ["texture"]). *)
+  what : string;  (** What it is to the scene, for messages: ["mesh"] or ["texture"]. *)
   path : string;  (** The path it was read from (joined to the scene file's directory). *)
   stats : Unix.stats;  (** Its identity and version when it was opened. *)
 }
@@ -14,7 +14,7 @@ type input = {
 type loaded = {
   scene : Scene.valid;
   inputs : input list;
-      (** Every file the scene read (its meshes), once each, in the order
+      (** Every file the scene read (its meshes and textures), once each, in the order
           first read; not the scene file itself. No output may replace one
           ({!Io_plan.check}), and a part's digest covers their contents
           ({!inputs_digest}). *)
@@ -26,10 +26,12 @@ val load_scene :
   ?jobs:int ->
   ?split_bytes:int ->
   ?on_part:(int -> unit) ->
+  ?read_image:(string -> (Image.t, [ `Msg of string ]) result) ->
+  ?accept_textures:bool ->
   string ->
   (loaded, [> `Msg of string ]) result
-(** [load_scene ~limits ~jobs ~split_bytes ~on_part path] is {!read_scene}
-    with the files the scene read. *)
+(** [load_scene ~limits ~jobs ~split_bytes ~on_part ~read_image ~accept_textures path]
+    is {!read_scene} with the files the scene read. *)
 
 val inputs_digest : input list -> (string, [> `Msg of string ]) result
 (** [inputs_digest inputs] is [""] if [inputs] is empty, and otherwise the
@@ -44,11 +46,18 @@ val read_scene :
   ?jobs:int ->
   ?split_bytes:int ->
   ?on_part:(int -> unit) ->
+  ?read_image:(string -> (Image.t, [ `Msg of string ]) result) ->
+  ?accept_textures:bool ->
   string ->
   (Scene.valid, [> `Msg of string ]) result
-(** [read_scene ~limits ~jobs ~split_bytes ~on_part path] is the scene in
-    file [path] ({!Raytrace.Scene_file.of_string} with [~file:path], its
-    meshes read by {!read_mesh} with [jobs] and [split_bytes]); a file larger than the [`Scene_bytes]
+(** [read_scene ~limits ~jobs ~split_bytes ~on_part ~read_image ~accept_textures path]
+    is the scene in file [path] ({!Raytrace.Scene_file.of_string} with
+    [~file:path] and [accept_textures], default [false]: textures are
+    not drawn yet, and refused), its meshes read by {!read_mesh} with
+    [jobs] and [split_bytes], its textures' images by [read_image]
+    (default: PPM files only, {!Raytrace.Image.Ppm} within [limits]; pass
+    [Raytrace_png.Image_file.read_file] for PNG too), a texture file's
+    error prefixed by ["cannot read texture file: "]; a file larger than the [`Scene_bytes]
     bound of [limits] (default {!Raytrace.Limits.default}) is refused
     before it is read. A regular file is read a window at a time
     ({!Raytrace.Private.Scene_text.of_source}, the file opened again to locate an

@@ -6,20 +6,22 @@ type t = {
   refractive_index : float;
   fresnel : bool;
   pattern : Pattern.t option;
+  texture : Texture_map.t option;
 }
 [@@deriving eq]
 
 let matte = -1.
 
 let v ?(specular = matte) ?(reflective = 0.) ?(transparency = 0.) ?(refractive_index = 1.) ?(fresnel = false)
-    ?pattern color =
-  { color; specular; reflective; transparency; refractive_index; fresnel; pattern }
+    ?pattern ?texture color =
+  { color; specular; reflective; transparency; refractive_index; fresnel; pattern; texture }
 
 let same_plain a b =
   let same x y = Int64.equal (Int64.bits_of_float x) (Int64.bits_of_float y) in
   same a.color.r b.color.r && same a.color.g b.color.g && same a.color.b b.color.b && same a.specular b.specular
   && same a.reflective b.reflective && same a.transparency b.transparency
   && same a.refractive_index b.refractive_index && a.fresnel = b.fresnel && a.pattern = None && b.pattern = None
+  && Option.is_none a.texture && Option.is_none b.texture
 
 module Plain = Hashtbl.Make (struct
   type nonrec t = t
@@ -28,7 +30,7 @@ module Plain = Hashtbl.Make (struct
   let hash = Hashtbl.hash
 end)
 
-let update ?color ?specular ?reflective ?transparency ?refractive_index ?fresnel ?pattern m =
+let update ?color ?specular ?reflective ?transparency ?refractive_index ?fresnel ?pattern ?texture m =
   let pick o d = match o with Some x -> x | None -> d in
   {
     color = pick color m.color;
@@ -38,6 +40,7 @@ let update ?color ?specular ?reflective ?transparency ?refractive_index ?fresnel
     refractive_index = pick refractive_index m.refractive_index;
     fresnel = pick fresnel m.fresnel;
     pattern = pick pattern m.pattern;
+    texture = pick texture m.texture;
   }
 
 let color m = m.color
@@ -47,6 +50,7 @@ let transparency m = m.transparency
 let refractive_index m = m.refractive_index
 let fresnel m = m.fresnel
 let pattern m = m.pattern
+let texture m = m.texture
 let is_matte m = m.specular = matte
 let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let error_pp fmt = Format.kasprintf (fun m -> Error (`Msg m)) fmt
@@ -84,6 +88,7 @@ let validate ~form m =
   let* _ = check_specular ~form m.specular in
   let* _ = check_reflective ~form m.reflective in
   let* _ = match m.pattern with None -> Ok None | Some p -> Result.map Option.some (Pattern.validate ~form p) in
+  let* _ = match m.texture with None -> Ok None | Some t -> Result.map Option.some (Texture_map.validate ~form t) in
   let* _ = check_transparency ~form m.transparency in
   let* _ = check_refractive_index ~form m.refractive_index in
   let* () = check_split ~form ~reflective:m.reflective ~transparency:m.transparency in
@@ -101,7 +106,8 @@ let pp_optional ?(transparency = 0.) ?(refractive_index = 1.) ?(fresnel = false)
 let pp_fields ppf m =
   pp_optional ~transparency:m.transparency ~refractive_index:m.refractive_index ~fresnel:m.fresnel ppf
     ~specular:m.specular ~reflective:m.reflective;
-  Pattern.pp_optional ppf m.pattern
+  Pattern.pp_optional ppf m.pattern;
+  Texture_map.pp_optional ppf m.texture
 
 let pp ppf m =
   Format.fprintf ppf "(color %a)" Color.pp_components m.color;

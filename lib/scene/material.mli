@@ -13,6 +13,9 @@ type t = private {
   fresnel : bool;  (** Schlick's approximation splits the transparency. *)
   pattern : Pattern.t option;
       (** A second colour laid over [color] ({!Pattern}), or [None]. *)
+  texture : Texture_map.t option;
+      (** An image whose colour replaces [color] ({!Texture_map}), or
+          [None]. Not drawn yet: see {!Texture_map}. *)
 }
 (** The type for materials. *)
 
@@ -20,8 +23,8 @@ val pp : Format.formatter -> t -> unit
 (** [pp ppf m] prints [m] as the fields that give an object's material in
     the scene-file syntax: [(color r g b)], then [(specular e)],
     [(reflective r)], [(transparency t)], [(refractive-index n)],
-    [(fresnel true)] and [(pattern ...)], each only when it is not the
-    default. *)
+    [(fresnel true)], [(pattern ...)] and [(texture ...)], each only when
+    it is not the default. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)
@@ -31,14 +34,15 @@ val equal : t -> t -> bool
     compared with [=]. *)
 
 val same_plain : t -> t -> bool
-(** [same_plain a b] is [true] iff neither [a] nor [b] has a pattern and
+(** [same_plain a b] is [true] iff neither [a] nor [b] has a pattern or a
+    texture and
     their fields are equal bit for bit (so [0.] and [-0.] differ): two
     objects can share such materials without changing one bit of
     arithmetic. *)
 
 module Plain : Hashtbl.S with type key = t
 (** Hash tables keyed by materials compared with {!same_plain}: a table
-    finds only materials without a pattern. *)
+    finds only materials without a pattern or a texture. *)
 
 val matte : float
 (** [matte] is [-1.], the specular exponent that means "no specular term"
@@ -51,12 +55,13 @@ val v :
   ?refractive_index:float ->
   ?fresnel:bool ->
   ?pattern:Pattern.t ->
+  ?texture:Texture_map.t ->
   Color.t ->
   t
-(** [v ~specular ~reflective ~transparency ~refractive_index ~fresnel ~pattern color]
+(** [v ~specular ~reflective ~transparency ~refractive_index ~fresnel ~pattern ~texture color]
     is a material; [specular] defaults to {!matte}, [reflective]
     and [transparency] to [0], [refractive_index] to [1], [fresnel] to
-    [false], [pattern] to none. It is not validated: see {!validate}. *)
+    [false], [pattern] and [texture] to none. It is not validated: see {!validate}. *)
 
 val update :
   ?color:Color.t ->
@@ -66,11 +71,12 @@ val update :
   ?refractive_index:float ->
   ?fresnel:bool ->
   ?pattern:Pattern.t option ->
+  ?texture:Texture_map.t option ->
   t ->
   t
 (** [update ~color ... m] is [m] with the given fields replaced (how a
     scene file's inline fields override a named material's); [~pattern:None]
-    removes [m]'s pattern. *)
+    removes [m]'s pattern, [~texture:None] its texture. *)
 
 (** {1:fields Fields} *)
 
@@ -94,6 +100,9 @@ val fresnel : t -> bool
 
 val pattern : t -> Pattern.t option
 (** [pattern m] is [m]'s pattern, if any. *)
+
+val texture : t -> Texture_map.t option
+(** [texture m] is [m]'s texture, if any. *)
 
 val is_matte : t -> bool
 (** [is_matte m] is [true] iff [specular m = matte]. *)
@@ -153,6 +162,7 @@ val check_split :
 
 val validate : form:string -> t -> (t, [> `Msg of string ]) result
 (** [validate ~form m] is [Ok m] if its fields pass the checks above and
-    its pattern {!Pattern.validate}, and otherwise the first error, its
+    its pattern {!Pattern.validate} and its texture
+    {!Texture_map.validate}, and otherwise the first error, its
     message naming [form] (e.g.
     ["plane color channels must lie in \[0, 255\], got ..."]). *)

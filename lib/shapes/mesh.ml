@@ -7,6 +7,8 @@ type t = {
   triangles : int array;
   normals : float array;
   triangle_normals : int array;
+  texcoords : float array;
+  triangle_texcoords : int array;
   smooth : bool;
   material : Material.t;
   source : string;
@@ -40,15 +42,19 @@ let within lo hi (a : int array) =
   done;
   !ok
 
-let v ?(smooth = false) ?(scale = 1.) ?(translate = Vec3.zero) ?(source = "") ?(skipped = 0) ~positions ~triangles
-    ~normals ~triangle_normals material =
+let v ?(smooth = false) ?(scale = 1.) ?(translate = Vec3.zero) ?(source = "") ?(skipped = 0) ?(texcoords = [||])
+    ?(triangle_texcoords = [||]) ~positions ~triangles ~normals ~triangle_normals material =
   let np = Array.length positions and nt = Array.length triangles and nn = Array.length normals in
-  if np mod 3 <> 0 || nt mod 3 <> 0 || nn mod 3 <> 0 || Array.length triangle_normals <> nt then
-    error "mesh arrays have inconsistent lengths"
+  if np mod 3 <> 0 || nt mod 3 <> 0 || nn mod 3 <> 0 || Array.length triangle_normals <> nt
+     || Array.length texcoords mod 2 <> 0
+     || (triangle_texcoords <> [||] && Array.length triangle_texcoords <> nt)
+  then error "mesh arrays have inconsistent lengths"
   else if nt = 0 then error "mesh %s has no triangle" (if source = "" then "" else source)
   else if not (within 0 (np / 3) triangles) then error "mesh triangle refers to a vertex that does not exist"
   else if not (within (-1) (nn / 3) triangle_normals) then
     error "mesh triangle refers to a normal that does not exist"
+  else if not (within (-1) (Array.length texcoords / 2) triangle_texcoords) then
+    error "mesh triangle refers to a texture coordinate that does not exist"
   else if not (Float.is_finite scale && scale > 0.) then
     error "mesh scale must be finite and > 0, got %s" (Float_text.to_string scale)
   else
@@ -86,6 +92,8 @@ let v ?(smooth = false) ?(scale = 1.) ?(translate = Vec3.zero) ?(source = "") ?(
           triangles;
           normals;
           triangle_normals;
+          texcoords;
+          triangle_texcoords;
           smooth;
           material;
           source;
@@ -97,7 +105,8 @@ let v ?(smooth = false) ?(scale = 1.) ?(translate = Vec3.zero) ?(source = "") ?(
 
 let of_obj ?smooth ?scale ?translate ?source (obj : Obj_file.t) material =
   v ?smooth ?scale ?translate ?source ~skipped:(Obj_file.skipped_total obj) ~positions:obj.positions
-    ~triangles:obj.triangles ~normals:obj.normals ~triangle_normals:obj.triangle_normals material
+    ~triangles:obj.triangles ~normals:obj.normals ~triangle_normals:obj.triangle_normals ~texcoords:obj.texcoords
+    ~triangle_texcoords:obj.triangle_texcoords material
 
 let triangle_count m = Array.length m.triangles / 3
 
@@ -106,6 +115,19 @@ let vertex m k c =
   Vec3.v m.positions.(i) m.positions.(i + 1) m.positions.(i + 2)
 
 let triangle m k = Triangle.v (vertex m k 0) (vertex m k 1) (vertex m k 2) m.material
+
+let has_texcoords m = m.triangle_texcoords <> [||]
+
+let texcoord m k ~b1 ~b2 =
+  if k < 0 || k >= triangle_count m then invalid_arg "Mesh.texcoord: no such triangle";
+  if m.triangle_texcoords = [||] then None
+  else
+    let t c = m.triangle_texcoords.((3 * k) + c) in
+    let t0 = t 0 and t1 = t 1 and t2 = t 2 in
+    if t0 < 0 || t1 < 0 || t2 < 0 then None
+    else
+      let uv j = (m.texcoords.(2 * j), m.texcoords.((2 * j) + 1)) in
+      Some (Texture_map.interpolate ~b1 ~b2 (uv t0) (uv t1) (uv t2))
 
 let degenerate m k = Bytes.unsafe_get m.found.flat k <> '\000'
 let objects m = m.found.objects
@@ -149,7 +171,8 @@ let equal a b =
   let fa x y = Array.length x = Array.length y && Array.for_all2 Float.equal x y in
   let ia x y = Array.length x = Array.length y && Array.for_all2 Int.equal x y in
   fa a.positions b.positions && ia a.triangles b.triangles && fa a.normals b.normals
-  && ia a.triangle_normals b.triangle_normals && a.smooth = b.smooth && Material.equal a.material b.material
+  && ia a.triangle_normals b.triangle_normals && fa a.texcoords b.texcoords
+  && ia a.triangle_texcoords b.triangle_texcoords && a.smooth = b.smooth && Material.equal a.material b.material
   && String.equal a.source b.source && Float.equal a.scale b.scale && Vec3.equal a.translate b.translate
   && a.skipped = b.skipped
 

@@ -21,6 +21,11 @@ type t = private {
   triangle_normals : int array;
       (** Three 0-based normal numbers per triangle, parallel to
           [triangles]; [-1] where a corner has none. *)
+  texcoords : float array;  (** [u v] per texture coordinate (the file's [vt]), as given. *)
+  triangle_texcoords : int array;
+      (** Three 0-based texture numbers per triangle, parallel to
+          [triangles], [-1] where a corner has none; or [\[||\]] when no
+          triangle has any. *)
   smooth : bool;
       (** Shade with the normals interpolated across each triangle (where
           all three corners have a usable one), not the flat normal. *)
@@ -39,6 +44,8 @@ val v :
   ?translate:Vec3.t ->
   ?source:string ->
   ?skipped:int ->
+  ?texcoords:float array ->
+  ?triangle_texcoords:int array ->
   positions:float array ->
   triangles:int array ->
   normals:float array ->
@@ -52,7 +59,8 @@ val v :
     error if the arrays are inconsistent (lengths not multiples of 3, an
     index outside its array), if [scale] is not finite and [> 0], if a
     placed coordinate is beyond {!Limits.max_coordinate}, or if there is
-    no triangle. Degenerate triangles (their vertices on a line) are kept
+    no triangle; [texcoords] and [triangle_texcoords] (default none) are
+    checked likewise. Degenerate triangles (their vertices on a line) are kept
     here and dropped by the kernel, which can never hit them. *)
 
 val of_obj :
@@ -67,7 +75,8 @@ val of_obj :
     [obj]'s arrays placed as {!v} places them, with [skipped] set to
     {!Raytrace.Mesh.Obj.skipped_total}[ obj]: the mesh the scene form
     [(mesh (file source) (scale ...) (translate ...) (smooth ...))]
-    makes of its file, and the errors of {!v}. The placed positions are
+    makes of its file, its texture coordinates included, and the errors
+    of {!v}. The placed positions are
     a new array; the index and normal arrays are [obj]'s, shared. *)
 
 val triangle_count : t -> int
@@ -78,6 +87,18 @@ val vertex : t -> int -> int -> Vec3.t
 
 val triangle : t -> int -> Triangle.t
 (** [triangle m k] is triangle [k] of [m], with [m]'s material. *)
+
+val has_texcoords : t -> bool
+(** [has_texcoords m] is [true] iff some triangle of [m] has texture
+    numbers ([m.triangle_texcoords] is not empty). *)
+
+val texcoord : t -> int -> b1:float -> b2:float -> (float * float) option
+(** [texcoord m k ~b1 ~b2] is the texture coordinates [(u, v)] of the
+    point of triangle [k] of barycentric weights [(1 - b1 - b2, b1, b2)]
+    (those of {!Texture_map.barycentric} on its placed corners, corner 0
+    first): {!Texture_map.interpolate} of its corners' [vt]; [None] if a
+    corner has none.
+    @raise Invalid_argument if [k] is not a triangle of [m]. *)
 
 val degenerate : t -> int -> bool
 (** [degenerate m k] is [true] iff triangle [k] has no normal: its

@@ -7,15 +7,16 @@
     - [v x y z [w]] a position (also [v x y z r g b], the common
       extension with a vertex colour; [w] and colours are ignored);
     - [vn x y z] a normal (kept as written, not normalised);
+    - [vt u [v [w]]] a texture coordinate ([v] defaults to [0], [w] is
+      ignored; they count against the bound of vertices);
     - [f] with 3 or more vertices, each [v], [v/vt], [v//vn] or
       [v/vt/vn], forms mixed freely, indices from 1 or negative (relative:
       [-1] is the last one defined); a polygon is fan-triangulated from
       its first vertex: [f 1 2 3 4] gives the triangles [1 2 3] and
       [1 3 4].
 
-    Every other statement ([vt], [o], [g], [s], [usemtl], [mtllib], [l],
-    [p], comments...) is skipped and counted ({!skipped}); texture indices
-    are checked against the [vt] statements seen, then dropped. Lines end
+    Every other statement ([o], [g], [s], [usemtl], [mtllib], [l], [p],
+    comments...) is skipped and counted ({!skipped}). Lines end
     with LF or CRLF; the last line needs no line end. A UTF-8 byte order
     mark (bytes [EF BB BF]) at the start of the text is skipped.
 
@@ -49,10 +50,16 @@ type t = Obj_text.t = private {
   triangle_normals : int array;
       (** Three 0-based normal numbers per triangle, parallel to
           [triangles]; [-1] where the face's vertex gives no normal. *)
+  texcoords : float array;  (** [u v] of each [vt], 2 floats per texture coordinate. *)
+  triangle_texcoords : int array;
+      (** Three 0-based texture numbers per triangle, parallel to
+          [triangles], [-1] where the face's vertex gives none; or [\[||\]]
+          when no face of the file gives one (most meshes: no memory is
+          spent on them). *)
   skipped : (string * int) list;
       (** How many statements of each skipped kind were read, in a fixed
           order of kinds, only those read at least once: ["#"] (comments),
-          ["vt"], ["vp"], ["o"], ["g"], ["s"], ["usemtl"], ["mtllib"],
+          ["vp"], ["o"], ["g"], ["s"], ["usemtl"], ["mtllib"],
           ["l"], ["p"], then ["other"] for any other keyword. *)
 }
 (** The type for triangle meshes. Every index is within its array.
@@ -65,6 +72,16 @@ val v : positions:float array -> normals:float array -> triangles:int array -> t
     @raise Invalid_argument if a length is not a multiple of 3, the two
     triangle arrays differ in length, a vertex number is outside the
     positions or a normal number (other than [-1]) outside the normals. *)
+
+val with_texcoords : texcoords:float array -> triangle_texcoords:int array -> t -> t
+(** [with_texcoords ~texcoords ~triangle_texcoords m] is [m] with these
+    texture coordinates and numbers.
+    @raise Invalid_argument if [texcoords]'s length is odd,
+    [triangle_texcoords] is neither empty nor as long as [m.triangles], or
+    a number (other than [-1]) is outside [texcoords]. *)
+
+val texcoord_count : t -> int
+(** [texcoord_count m] is [Array.length m.texcoords / 2]. *)
 
 val vertex_count : t -> int
 (** [vertex_count m] is [Array.length m.positions / 3]. *)

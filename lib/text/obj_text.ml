@@ -3,6 +3,8 @@ type t = {
   normals : float array;
   triangles : int array;
   triangle_normals : int array;
+  texcoords : float array;
+  triangle_texcoords : int array;
   skipped : (string * int) list;
 }
 
@@ -24,6 +26,7 @@ let equal a b =
   let floats x y = Array.length x = Array.length y && Array.for_all2 Float.equal x y in
   floats a.positions b.positions && floats a.normals b.normals
   && a.triangles = b.triangles && a.triangle_normals = b.triangle_normals
+  && floats a.texcoords b.texcoords && a.triangle_texcoords = b.triangle_texcoords
   && a.skipped = b.skipped
 
 let v ~positions ~normals ~triangles ~triangle_normals =
@@ -35,7 +38,18 @@ let v ~positions ~normals ~triangles ~triangle_normals =
   let nv = Array.length positions / 3 and nn = Array.length normals / 3 in
   Array.iter (fun i -> if i < 0 || i >= nv then bad "vertex number out of range") triangles;
   Array.iter (fun i -> if i < -1 || i >= nn then bad "normal number out of range") triangle_normals;
-  { positions; normals; triangles; triangle_normals; skipped = [] }
+  { positions; normals; triangles; triangle_normals; texcoords = [||]; triangle_texcoords = [||]; skipped = [] }
+
+let with_texcoords ~texcoords ~triangle_texcoords m =
+  let bad what = invalid_arg ("Obj_file.with_texcoords: " ^ what) in
+  if Array.length texcoords mod 2 <> 0 then bad "texcoords not 2 per coordinate";
+  if triangle_texcoords <> [||] && Array.length triangle_texcoords <> Array.length m.triangles then
+    bad "triangle_texcoords and triangles differ in length";
+  let nt = Array.length texcoords / 2 in
+  Array.iter (fun i -> if i < -1 || i >= nt then bad "texture number out of range") triangle_texcoords;
+  { m with texcoords; triangle_texcoords }
+
+let texcoord_count m = Array.length m.texcoords / 2
 
 (* The arrays of the mesh are built in blocks of [block] elements (the
    first grows to that size by doubling, for small meshes) and
@@ -206,8 +220,12 @@ type parser = {
   nrm : floats;
   tris : ints;
   tri_nrm : ints;
-  face_v : face;  (* the vertices and normals of the face being read *)
+  tex : floats;  (* u v of each [vt] *)
+  tri_tex : ints;  (* empty until a face gives a texture index: see [face] *)
+  mutable textured : bool;  (* a face gave a texture index *)
+  face_v : face;  (* the vertices, normals and texture numbers of the face being read *)
   face_n : face;
+  face_t : face;
   counts : int array;  (* per kind of skipped statement *)
   mutable texcoords : int;
   mutable line : int;  (* the number of the line being read, from 1 *)
@@ -237,7 +255,9 @@ let make ~offset ~output ~name ~max_vertices ~max_triangles =
   {
     name; max_vertices; max_triangles; offset; needs = no_needs ();
     pos = floats (); nrm = floats (); tris = ints (); tri_nrm = ints ();
+    tex = floats (); tri_tex = ints (); textured = false;
     face_v = { fa = Array.make 16 0; len = 0 }; face_n = { fa = Array.make 16 0; len = 0 };
+    face_t = { fa = Array.make 16 0; len = 0 };
     counts = Array.make (Array.length kinds) 0;
     texcoords = 0; line = 1; carry = Bytes.create 256; carry_len = 0;
     error = None; finished = false; num = [| 0.; 0.; 0. |]; output; sent = 0; send_buffer = Bytes.empty;
@@ -379,6 +399,28 @@ let vertex3 p b k j ~normal =
        true
      end
 
+(* [vt u [v [w]]] after the keyword at [kw]: pushes u and v ([0] when
+   absent); [w] is ignored. Texture coordinates count against the bound
+   of vertices. *)
+let texcoord p b i kw k j =
+  if p.texcoords >= p.max_vertices then
+    fail p i kw "more than %d texture coordinates (the limit of vertices)" p.max_vertices;
+  let k = ref (skip_spaces b k j) and n = ref 0 in
+  p.num.(1) <- 0.;
+  while !k < j && Bytes.unsafe_get b !k <> '#' do
+    let e = token_end b !k j in
+    if !n >= 3 then fail p i !k "expected at most 3 numbers (vt u [v [w]]), found %S" (shown b !k e);
+    number p b i !k e;
+    (* [number] reads into [num.(0)]: u stays there, v moves to 1. *)
+    if !n = 0 then p.num.(2) <- p.num.(0) else if !n = 1 then p.num.(1) <- p.num.(0);
+    incr n;
+    k := skip_spaces b e j
+  done;
+  if !n < 1 then fail p i !k "expected 1 to 3 numbers (vt u [v [w]]), found none";
+  push_float p.tex p.num 2;
+  push_float p.tex p.num 1;
+  p.texcoords <- p.texcoords + 1
+
 (* The digits of an index that fit an integer: 63 bits, or the 32 of
    JavaScript's integers. *)
 let index_digits = if Sys.int_size >= 63 then 18 else 9
@@ -430,16 +472,18 @@ let[@inline] fast_index p b i k j ~count ~what =
 let face p b i f k j =
   p.face_v.len <- 0;
   p.face_n.len <- 0;
+  p.face_t.len <- 0;
   let nv = (float_length p.pos / 3) + p.offset and nn = (float_length p.nrm / 3) + p.offset in
   let k = ref (skip_spaces b k j) in
   while !k < j && Bytes.unsafe_get b !k <> '#' do
     push_face p.face_v (fast_index p b i k j ~count:nv ~what:"vertex");
-    let n = ref (-1) in
+    let n = ref (-1) and tx = ref (-1) in
     if !k < j && Bytes.unsafe_get b !k = '/' then begin
       incr k;
       if !k < j && Bytes.unsafe_get b !k <> '/' && not (is_space (Bytes.unsafe_get b !k)) then begin
         let t = index p b i k j ~count:(p.texcoords + p.offset) ~what:"texture" in
-        if p.offset > 0 then note p need_texture ~own:p.texcoords t
+        if p.offset > 0 then note p need_texture ~own:p.texcoords t;
+        tx := t
       end;
       if !k < j && Bytes.unsafe_get b !k = '/' then begin
         incr k;
@@ -450,6 +494,7 @@ let face p b i f k j =
       fail p i !k "expected a space or the end of the line after a face vertex, found %S"
         (shown b !k (token_end b !k j));
     push_face p.face_n !n;
+    push_face p.face_t !tx;
     k := skip_spaces b !k j
   done;
   let n = p.face_v.len in
@@ -457,10 +502,21 @@ let face p b i f k j =
   if (int_length p.tris / 3) + (n - 2) > p.max_triangles then
     fail p i f "more than %d triangles (the limit of triangles)" p.max_triangles;
   if p.offset > 0 then note_face p ~nv ~nn;
-  let v = p.face_v.fa and vn = p.face_n.fa in
+  let v = p.face_v.fa and vn = p.face_n.fa and vt = p.face_t.fa in
+  (* Meshes without texture coordinates (most) keep no texture numbers:
+     the first face that gives one gives the triangles before it none. *)
+  let any = ref false in
+  for c = 0 to n - 1 do if vt.(c) >= 0 then any := true done;
+  if (not p.textured) && !any then begin
+    for _ = 1 to int_length p.tris do push_int p.tri_tex (-1) done;
+    p.textured <- true
+  end;
   for t = 1 to n - 2 do
     push_int p.tris v.(0); push_int p.tris v.(t); push_int p.tris v.(t + 1);
-    push_int p.tri_nrm vn.(0); push_int p.tri_nrm vn.(t); push_int p.tri_nrm vn.(t + 1)
+    push_int p.tri_nrm vn.(0); push_int p.tri_nrm vn.(t); push_int p.tri_nrm vn.(t + 1);
+    if p.textured then begin
+      push_int p.tri_tex vt.(0); push_int p.tri_tex vt.(t); push_int p.tri_tex vt.(t + 1)
+    end
   done
 
 let[@inline] push3 g x y z =
@@ -514,6 +570,8 @@ let triangle p b k j =
        end;
        push3 p.tris (Array.unsafe_get v 0) (Array.unsafe_get v 1) (Array.unsafe_get v 2);
        push3 p.tri_nrm (Array.unsafe_get vn 0) (Array.unsafe_get vn 1) (Array.unsafe_get vn 2);
+       (* This layout has no texture numbers. *)
+       if p.textured then push3 p.tri_tex (-1) (-1) (-1);
        true
      end
 
@@ -562,8 +620,7 @@ let line p b i j =
       else if len = 1 && c = 'f' then (if not (triangle p b e j) then face p b i k e j)
       else begin
         let kind = kind_of b k e in
-        if kind = kind_vt then p.texcoords <- p.texcoords + 1;
-        p.counts.(kind) <- p.counts.(kind) + 1
+        if kind = kind_vt then texcoord p b i k e j else p.counts.(kind) <- p.counts.(kind) + 1
       end
     end
   end;
@@ -621,6 +678,8 @@ let record_normals = 1
 let record_triangles = 2
 let record_triangle_normals = 3
 let record_same = 4
+let record_texcoords = 5
+let record_triangle_texcoords = 6
 let record_header = 16
 
 let send p out kind n =
@@ -673,6 +732,14 @@ let spill p ~last =
       in
       floats record_positions p.pos;
       floats record_normals p.nrm;
+      floats record_texcoords p.tex;
+      (* A part's texture numbers, once it has any, are as many as its
+         triangles' vertex numbers; sent a block at a time likewise. *)
+      let tt = p.tri_tex in
+      List.iter (fun a -> send_ints p out record_triangle_texcoords a block) (List.rev tt.iblocks);
+      tt.ifree <- List.rev_append tt.iblocks tt.ifree;
+      tt.iblocks <- [];
+      if last && tt.inn > 0 then send_ints p out record_triangle_texcoords tt.icur tt.inn;
       let t = p.tris and tn = p.tri_nrm in
       List.iter2 (fun a b -> send_pair p out a b block) (List.rev t.iblocks) (List.rev tn.iblocks);
       t.ifree <- List.rev_append t.iblocks t.ifree;
@@ -706,7 +773,9 @@ let feed_bytes p b off len =
           if nl < stop then line_before p b !k nl else append_carry p b !k nl;
           k := nl + 1
         done;
-        if p.pos.fblocks != [] || p.nrm.fblocks != [] || p.tris.iblocks != [] then spill p ~last:false;
+        if p.pos.fblocks != [] || p.nrm.fblocks != [] || p.tris.iblocks != [] || p.tex.fblocks != []
+           || p.tri_tex.iblocks != []
+        then spill p ~last:false;
         Ok ()
       with Error_at m ->
         p.error <- Some m;
@@ -721,6 +790,8 @@ type part = {
   part_counts : int array;
   part_needs : int array;
   part_bytes : int;  (* sent to the output *)
+  part_tex_floats : int;  (* the texture coordinates' floats *)
+  part_textured : bool;  (* a face gave a texture number: as many as [part_numbers] were sent *)
 }
 
 let skipped_of counts =
@@ -755,7 +826,9 @@ let finish p =
       let same = same_stores p.tri_nrm p.tris in
       let triangles = int_array p.tris in
       let triangle_normals = if same then triangles else int_array p.tri_nrm in
-      Ok { positions; normals; triangles; triangle_normals; skipped = skipped_of p.counts }
+      let texcoords = float_array p.tex in
+      let triangle_texcoords = if p.textured then int_array p.tri_tex else [||] in
+      Ok { positions; normals; triangles; triangle_normals; texcoords; triangle_texcoords; skipped = skipped_of p.counts }
 
 let finish_part p =
   if p.offset = 0 then invalid_arg "Obj_parts.finish_part: not a part";
@@ -765,7 +838,8 @@ let finish_part p =
       spill p ~last:true;
       Ok
         { part_floats = float_length p.pos; part_normal_floats = float_length p.nrm; part_numbers = int_length p.tris;
-          part_counts = p.counts; part_needs = p.needs; part_bytes = p.sent }
+          part_counts = p.counts; part_needs = p.needs; part_bytes = p.sent;
+          part_tex_floats = float_length p.tex; part_textured = p.textured }
 
 let part_triangle_count part = part.part_numbers / 3
 let part_bytes part = part.part_bytes
@@ -784,12 +858,15 @@ let same_ints (a : int array) (b : int array) =
    [tn] is [[||]] while the triangle normals read are the triangles (the
    text before's and the records' so far): it is made at the first
    record that differs. The result is the triangle normals. *)
-let read_records ~input ~nv ~nn ~positions ~normals ~triangles ~tn ~at_p ~at_n ~at_t =
+let read_records ~input ~nv ~nn ~ntx ~positions ~normals ~triangles ~tn ~texcoords ~ttx ~at_p ~at_n ~at_t ~at_x
+    ~at_tt =
   let bad () = failwith "Obj_parts.join: not the part's bytes" in
   let buf = Bytes.create (record_header + (8 * block)) in
   let cp = ref at_p and cn = ref at_n and ct = ref at_t and ctn = ref at_t and tn = ref tn in
+  let cx = ref at_x and ctt = ref at_tt in
   let np = Array.length positions and nn_floats = Array.length normals and nt = Array.length triangles in
-  while !cp < np || !cn < nn_floats || !ct < nt || !ctn < nt do
+  let nx = Array.length texcoords and ntt = Array.length ttx in
+  while !cp < np || !cn < nn_floats || !ct < nt || !ctn < nt || !cx < nx || !ctt < ntt do
     input buf 0 record_header;
     let kind = int_at buf 0 and n = int_at buf 1 in
     if n <= 0 || n > block then bad ();
@@ -809,23 +886,29 @@ let read_records ~input ~nv ~nn ~positions ~normals ~triangles ~tn ~at_p ~at_n ~
         else if kind = record_normals then (cn, nn_floats)
         else if kind = record_triangles then (ct, nt)
         else if kind = record_triangle_normals then (ctn, nt)
+        else if kind = record_texcoords then (cx, nx)
+        else if kind = record_triangle_texcoords then (ctt, ntt)
         else bad ()
       in
       let c = !at in
       if c + n > length then bad ();
       input buf record_header (8 * n);
-      if kind = record_positions then
+      if kind = record_positions || kind = record_normals || kind = record_texcoords then begin
+        let (dst : float array) =
+          if kind = record_positions then positions else if kind = record_normals then normals else texcoords
+        in
         for k = 0 to n - 1 do
-          Array.unsafe_set positions (c + k) (float_at buf (k + 2))
+          Array.unsafe_set dst (c + k) (float_at buf (k + 2))
         done
-      else if kind = record_normals then
+      end
+      else if kind = record_triangles || kind = record_triangle_texcoords then begin
+        (* Vertex numbers rebase on the vertices before, texture numbers
+           on the texture coordinates before. *)
+        let dst, before = if kind = record_triangles then (triangles, nv) else (ttx, ntx) in
         for k = 0 to n - 1 do
-          Array.unsafe_set normals (c + k) (float_at buf (k + 2))
+          Array.unsafe_set dst (c + k) (rebased (int_at buf (k + 2)) before)
         done
-      else if kind = record_triangles then
-        for k = 0 to n - 1 do
-          Array.unsafe_set triangles (c + k) (rebased (int_at buf (k + 2)) nv)
-        done
+      end
       else begin
         if !tn == [||] then begin
           (* Until here the normals' numbers were the triangles'. *)
@@ -855,6 +938,8 @@ let join p part ~input =
       && part.part_floats >= 0 && part.part_normal_floats >= 0 && part.part_numbers >= 0
       && nv + (part.part_floats / 3) <= p.max_vertices
       && nn + (part.part_normal_floats / 3) <= p.max_vertices
+      && part.part_tex_floats >= 0 && part.part_tex_floats mod 2 = 0
+      && p.texcoords + (part.part_tex_floats / 2) <= p.max_vertices
       && (int_length p.tris / 3) + part_triangle_count part <= p.max_triangles)
   then None
   else begin
@@ -873,15 +958,30 @@ let join p part ~input =
         a
       end
     in
+    let at_x = float_length p.tex in
+    let texcoords = Array.create_float (at_x + part.part_tex_floats) in
+    blit_float_store p.tex texcoords;
+    (* The texture numbers, if either text has any: [-1] for the
+       triangles of a text without. The part's are read after the text
+       before's, at [at_t]. *)
+    let textured = p.textured || part.part_textured in
+    let ttx = if textured then Array.make (Array.length triangles) (-1) else [||] in
+    if p.textured then blit_int_store p.tri_tex ttx;
+    let records_ttx = if part.part_textured then ttx else [||] in
     (* The reader is left as it was until the records are read. *)
-    let triangle_normals = read_records ~input ~nv ~nn ~positions ~normals ~triangles ~tn ~at_p ~at_n ~at_t in
+    let triangle_normals =
+      read_records ~input ~nv ~nn ~ntx:p.texcoords ~positions ~normals ~triangles ~tn ~texcoords ~ttx:records_ttx ~at_p
+        ~at_n ~at_t ~at_x ~at_tt:at_t
+    in
     p.finished <- true;
     p.pos.fblocks <- [];
     p.nrm.fblocks <- [];
     p.tris.iblocks <- [];
     p.tri_nrm.iblocks <- [];
+    p.tex.fblocks <- [];
+    p.tri_tex.iblocks <- [];
     let counts = Array.map2 ( + ) p.counts part.part_counts in
-    Some { positions; normals; triangles; triangle_normals; skipped = skipped_of counts }
+    Some { positions; normals; triangles; triangle_normals; texcoords; triangle_texcoords = ttx; skipped = skipped_of counts }
   end
 
 let of_string ~name ~max_vertices ~max_triangles s =
@@ -909,14 +1009,26 @@ let to_buffer ?(digits = 0) b m =
   in
   triple "v" m.positions (vertex_count m);
   triple "vn" m.normals (Array.length m.normals / 3);
+  for t = 0 to (Array.length m.texcoords / 2) - 1 do
+    Buffer.add_string b "vt ";
+    add_float digits b m.texcoords.(2 * t);
+    Buffer.add_char b ' ';
+    add_float digits b m.texcoords.((2 * t) + 1);
+    Buffer.add_char b '\n'
+  done;
   for t = 0 to triangle_count m - 1 do
     Buffer.add_char b 'f';
     for c = 0 to 2 do
       Buffer.add_char b ' ';
       Buffer.add_string b (string_of_int (m.triangles.((3 * t) + c) + 1));
       let n = m.triangle_normals.((3 * t) + c) in
+      let x = if m.triangle_texcoords = [||] then -1 else m.triangle_texcoords.((3 * t) + c) in
+      if x >= 0 then begin
+        Buffer.add_char b '/';
+        Buffer.add_string b (string_of_int (x + 1))
+      end;
       if n >= 0 then begin
-        Buffer.add_string b "//";
+        Buffer.add_string b (if x >= 0 then "/" else "//");
         Buffer.add_string b (string_of_int (n + 1))
       end
     done;

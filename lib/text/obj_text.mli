@@ -14,6 +14,8 @@ type t = private {
   normals : float array;
   triangles : int array;
   triangle_normals : int array;
+  texcoords : float array;
+  triangle_texcoords : int array;
   skipped : (string * int) list;
 }
 (** The type for triangle meshes: {!Raytrace.Mesh.Obj.t}.
@@ -22,6 +24,12 @@ type t = private {
 
 val v : positions:float array -> normals:float array -> triangles:int array -> triangle_normals:int array -> t
 (** {!Raytrace.Mesh.Obj.v}. *)
+
+val with_texcoords : texcoords:float array -> triangle_texcoords:int array -> t -> t
+(** {!Raytrace.Mesh.Obj.with_texcoords}. *)
+
+val texcoord_count : t -> int
+(** {!Raytrace.Mesh.Obj.texcoord_count}. *)
 
 val vertex_count : t -> int
 (** {!Raytrace.Mesh.Obj.vertex_count}. *)

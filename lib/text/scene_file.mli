@@ -34,6 +34,19 @@ v}
     [color]; fields written on the object override the named material's. Numbers are OCaml
     floats ([1], [-0.5], [1e-3]), finite; sizes and depths are integers.
 
+    An object's material may take an image texture (DESIGN.md, "Round 3:
+    soft light, lenses, textures"):
+    [(texture (file "earth.png") (mapping spherical))], the file (PPM or
+    PNG) named relative to the scene file as a mesh's is and read by
+    [load_texture], the mapping the one that fits the object
+    ({!Texture_map.mapping_for}: [spherical] on a sphere, [planar] on a
+    plane, which also takes [(size s)], [box] on a box, [uv] on a mesh).
+    {b Textures are not drawn yet}: unless [accept_textures] is [true]
+    (for the tests of this reading and printing, until the renderer draws
+    them), a texture field, once its file is read, is an error at the
+    field: ["sphere texture: textures are read but not drawn yet by this
+    renderer; ..."], so that no scene loses its texture silently.
+
     A UTF-8 byte order mark (bytes [EF BB BF], which some editors write)
     at the start of the text is read as blanks: columns still count its
     bytes.
@@ -63,6 +76,8 @@ val pp_error : Format.formatter -> error -> unit
 val located :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
+  ?load_texture:(string -> (Texture.t, [ `Msg of string ]) result) ->
+  ?accept_textures:bool ->
   ?file:string ->
   ?reader:[ `Fast | `Parsexp ] ->
   string ->
@@ -73,6 +88,8 @@ val located :
 val of_string :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
+  ?load_texture:(string -> (Texture.t, [ `Msg of string ]) result) ->
+  ?accept_textures:bool ->
   ?file:string ->
   ?reader:[ `Fast | `Parsexp ] ->
   string ->
@@ -88,6 +105,10 @@ val of_string :
     path; its error becomes the form's (the default refuses every mesh:
     text alone names no file it can read;
     [Raytrace_unix.Files.read_scene] reads scene files and their meshes).
+    A texture's file is read by [load_texture] likewise, once per path,
+    its error told at the file's name (the default refuses every file);
+    [accept_textures] (default [false]) keeps textures in the scene
+    rather than refusing them (see above).
     Plain forms (parentheses, plain atoms, blanks and line comments) are
     read without parsexp, spheres straight into their values, unless
     [reader] (default [`Fast]) is [`Parsexp], which reads every form with

@@ -268,21 +268,87 @@ let optics ~form ?base fs ~reflective =
 
 (* The material fields that every object takes: a named material
    [(material glass)], and fields that override it or stand alone. *)
-let material_fields = [ "material"; "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern" ]
+let material_fields = [ "material"; "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern"; "texture" ]
 
-(* Named materials, as [(material name ...)] defined them. *)
-type named = (string, Material.t * Positions.pos option) Hashtbl.t
+(* How texture fields are read: [load] reads an image file (the path as
+   the scene gives it), and [accept] says whether a texture may stay in
+   the scene: the kernel does not draw textures yet, so a renderer's read
+   refuses them rather than lose them silently. *)
+type textures = { load : string -> (Texture.t, [ `Msg of string ]) result; accept : bool }
+
+(* Named materials, as [(material name ...)] defined them, and how the
+   textures of materials are read. *)
+type named = { materials : (string, Material.t * Positions.pos option) Hashtbl.t; textures : textures }
 
 let named_material ~(named : named) ~form f =
   match f.args with
   | [ (Sexp.Atom name as node) ] -> (
-      match Hashtbl.find_opt named name with
+      match Hashtbl.find_opt named.materials name with
       | Some (m, _) -> m
       | None ->
-          let known = Hashtbl.fold (fun n _ acc -> n :: acc) named [] |> List.sort String.compare in
+          let known = Hashtbl.fold (fun n _ acc -> n :: acc) named.materials [] |> List.sort String.compare in
           if known = [] then fail node "unknown material %s: no (material %s ...) form comes before it" (show_atom name) name
           else fail node "unknown material %s; defined before it: %s%s" (show_atom name) (one_of known) (suggestion name known))
   | _ -> fail f.node "%s material: expected the name of a material, e.g. (material glass)" form
+
+(* [(texture (file "earth.png") (mapping spherical) (size s))], the
+   optional field of every object's material, with its node; [size] only
+   for a planar mapping. The file is read, its errors told at the file's
+   name. *)
+let texture ~where ~(named : named) ~form fs =
+  Option.map
+    (fun f ->
+      let tform = form ^ " texture" in
+      let tfs = fields ~where ~form:tform ~allowed:[ "file"; "mapping"; "size" ] f.args in
+      let file_node, file =
+        required ~form:tform ~form_node:f.node tfs "file" (fun what f ->
+            match f.args with
+            | [ Sexp.Atom a ] when a <> "" -> (f.node, a)
+            | _ -> fail f.node "%s: expected a file name, e.g. (file \"earth.png\")" (what ()))
+      in
+      let mapping =
+        required ~form:tform ~form_node:f.node tfs "mapping" (fun what f ->
+            let names = Texture_map.mapping_names in
+            match f.args with
+            | [ (Sexp.Atom a as node) ] -> (
+                match Texture_map.mapping_of_string a with
+                | Some m -> m
+                | None -> fail node "unknown %s %s; expected %s%s" (what ()) (show_atom a) (one_of names) (suggestion a names))
+            | _ -> fail f.node "%s: expected one of %s" (what ()) (one_of names))
+      in
+      let size =
+        match find tfs "size" with
+        | None -> 1.
+        | Some sf when mapping <> Texture_map.Planar ->
+            fail sf.name_node "%s size: only a planar mapping takes a size (one copy of the image per size x size square)" tform
+        | Some sf ->
+            let x = float_field tform "size" sf in
+            check (single tform "size" sf) (Limits.check_size (tform ^ " size") x)
+      in
+      let image = check file_node (named.textures.load file) in
+      (f.node, Texture_map.v ~size ~file mapping image))
+    (find fs "texture")
+
+(* The kernel does not draw textures yet: a renderer's read refuses one,
+   once it is read and checked, where it is written. *)
+let refuse_undrawn ~(named : named) ~form node =
+  if not named.textures.accept then
+    fail node "%s texture: textures are read but not drawn yet by this renderer; remove the texture field (it would be ignored)"
+      form
+
+(* Whether [form] names a [(material name ...)] definition rather than an
+   object. *)
+let is_definition form = String.length form > 9 && String.sub form 0 9 = "material "
+
+(* An object of kind [form] takes the one mapping that fits its surface;
+   a named material's texture is checked where an object uses it. *)
+let check_mapping ~form ~node (t : Texture_map.t) =
+  let names = "spheres (spherical), planes (planar), boxes (box) and meshes (uv)" in
+  match Texture_map.mapping_for form with
+  | None -> fail node "a %s takes no texture; textures map onto %s" form names
+  | Some m when m <> t.mapping ->
+      fail node "%s texture mapping must be %s, got %s" form (Texture_map.mapping_name m) (Texture_map.mapping_name t.mapping)
+  | Some _ -> ()
 
 let material ~where ~named ~form ~form_node fs =
   let base = Option.map (named_material ~named ~form) (find fs "material") in
@@ -307,7 +373,18 @@ let material ~where ~named ~form ~form_node fs =
   in
   let transparency, refractive_index, fresnel = optics ~form ?base fs ~reflective in
   let pattern = match pattern ~where ~form fs with Some _ as p -> p | None -> default Material.pattern None in
-  Material.v ~specular ~reflective ~transparency ~refractive_index ~fresnel ?pattern color
+  let texture =
+    match texture ~where ~named ~form fs with
+    | Some (node, t) ->
+        if not (is_definition form) then check_mapping ~form ~node t;
+        refuse_undrawn ~named ~form node;
+        Some t
+    | None ->
+        let t = default Material.texture None in
+        Option.iter (check_mapping ~form ~node:(Option.fold ~none:form_node ~some:(fun f -> f.node) (find fs "material"))) t;
+        t
+  in
+  Material.v ~specular ~reflective ~transparency ~refractive_index ~fresnel ?pattern ?texture color
 
 let sphere ~where ~named form_node nodes =
   let form = "sphere" in
@@ -423,6 +500,12 @@ let mesh_solid ~where ~named ~load ~add_triangles form_node nodes =
   let smooth = Option.fold ~none:false ~some:(bool_field form "smooth") (find fs "smooth") in
   let m = material ~where ~named ~form ~form_node fs in
   let obj = check file_node (load file) in
+  (match Material.texture m with
+  | Some t when Obj_file.texcoord_count obj = 0 || obj.triangle_texcoords = [||] ->
+      let node = match (find fs "texture", find fs "material") with Some f, _ | None, Some f -> f.node | None, None -> form_node in
+      fail node "mesh texture mapping %s needs the file's texture coordinates (vt and f v/vt), which %s does not give"
+        (Texture_map.mapping_name t.mapping) file
+  | _ -> ());
   (* Each form places its own copy of the file's triangles: counted over
      the whole scene before this one is made. *)
   check form_node (add_triangles (Array.length obj.Obj_file.triangles / 3));
@@ -570,13 +653,13 @@ type builder = {
   defined : (string, Shape.t * Positions.pos option) Hashtbl.t;  (** The objects [define]d so far. *)
 }
 
-let builder ~limits ~load where =
+let builder ~limits ~load ~textures where =
   {
     limits;
     where;
     load;
     seen = Hashtbl.create 8;
-    named = Hashtbl.create 8;
+    named = { materials = Hashtbl.create 8; textures };
     scene = Scene.v ~objects:[] ~lights:[] ();
     spheres = Spheres.builder ();
     shapes = [];
@@ -608,7 +691,7 @@ let place b sh = b.shapes <- (Spheres.builder_length b.spheres, sh) :: b.shapes
 (* [(material name field...)]: defined once, before the objects that use it. *)
 let define_material b node = function
   | (Sexp.Atom name as name_node) :: nodes ->
-      (match Hashtbl.find_opt b.named name with
+      (match Hashtbl.find_opt b.named.materials name with
       | Some (_, first) ->
           fail name_node "material %s is defined twice (first at %s); a name may be defined only once" (show_atom name)
             (Option.fold ~none:"?" ~some:position first)
@@ -617,7 +700,7 @@ let define_material b node = function
       let allowed = List.filter (fun f -> f <> "material") material_fields in
       let fs = fields ~where:b.where ~form ~allowed nodes in
       let m = material ~where:b.where ~named:b.named ~form ~form_node:node fs in
-      Hashtbl.add b.named name (m, b.where name_node)
+      Hashtbl.add b.named.materials name (m, b.where name_node)
   | _ ->
       fail node "material: expected its name first, e.g. (material glass (color 230 230 255) (transparency 0.9))"
 
@@ -922,7 +1005,7 @@ let position_index form ~sub =
   in
   go 0 [ form ] []
 
-let locate_error ~limits ~load (src : source) =
+let locate_error ~limits ~load ~textures (src : source) =
   let module P = Parsexp.Eager_and_positions in
   let current = ref None in
   let where node =
@@ -933,7 +1016,7 @@ let locate_error ~limits ~load (src : source) =
           (fun i -> Positions.Iterator.advance_exn (Positions.Iterator.create positions) ~skip:i)
           (position_index form ~sub:node)
   in
-  let b = builder ~limits ~load where in
+  let b = builder ~limits ~load ~textures where in
   let state =
     P.State.create (fun _ (form, positions) ->
         current := Some (form, positions);
@@ -1187,11 +1270,14 @@ let add_sphere b f =
   b.n_spheres <- b.n_spheres + 1;
   Spheres.add_fields b.spheres ~x ~y ~z ~radius m
 
-(* Without a loader, a scene names no mesh file it can read. *)
-let no_loader path =
+(* Without a loader, a scene names no mesh or image file it can read. *)
+let no_file what path =
   Error
     (`Msg
-      (Printf.sprintf "cannot read mesh file %s: this scene was given as text, with no way to read files" path))
+      (Printf.sprintf "cannot read %s file %s: this scene was given as text, with no way to read files" what path))
+
+let no_loader path = no_file "mesh" path
+let no_texture_loader path = no_file "texture" path
 
 (* The smallest multiple of [chunk] at or after [e]: the next point where
    the form bound is checked once a form has ended at [e]. *)
@@ -1226,7 +1312,7 @@ let append_part b p = Spheres.append b p.spheres
 let read_part ?(limits = Limits.default) ?(window_bytes = 1 lsl 20) (r : reader) ~from =
   let st = stream ~limits ~window_bytes r ~from in
   let w = st.w in
-  let b = builder ~limits ~load:no_loader (fun _ -> None) in
+  let b = builder ~limits ~load:no_loader ~textures:{ load = no_texture_loader; accept = false } (fun _ -> None) in
   let fast = fast_state () in
   let first = ref (-1) and first_end = ref (-1) and first_line = ref 1 in
   let stop = ref from and stop_pos = ref (line_at st from) in
@@ -1304,9 +1390,10 @@ type beside = {
   seek : int -> unit;
 }
 
-(* Mesh files are named relative to the scene file; each is read once,
-   even when an error makes a second, located pass over the text. *)
-let mesh_loader ~file load_mesh =
+(* Mesh and image files are named relative to the scene file; each is
+   read once, even when an error makes a second, located pass over the
+   text. *)
+let file_loader ~file load_mesh =
   let loaded = Hashtbl.create 4 in
   fun path ->
     let dir = Filename.dirname file in
@@ -1503,7 +1590,7 @@ let read_all r ~file ~origin ~error ~syntax =
       with
       | () -> (
           (* Every field was checked where it was read; this is a net. *)
-          match Scene.validate ~limits:r.limits (finish r.b) with
+          match Scene.validate ~limits:r.limits ~accept_textures:r.b.named.textures.accept (finish r.b) with
           | Ok s -> `Done (Ok s)
           | Error (`Msg m) -> `Done (error origin m))
       | exception Too_big message -> `Done (Error { file; line = 0; column = 0; message })
@@ -1511,10 +1598,11 @@ let read_all r ~file ~origin ~error ~syntax =
       | exception Parsexp.Parse_error.Parse_error e -> `Done (syntax e)
       | exception Located _ -> `Locate)
 
-let of_source_located ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file = "<string>") ?(reader = `Fast)
-    ?(window_bytes = 1 lsl 20) ?beside (src : source) =
+let of_source_located ?(limits = Limits.default) ?(load_mesh = no_loader) ?(load_texture = no_texture_loader)
+    ?(accept_textures = false) ?(file = "<string>") ?(reader = `Fast) ?(window_bytes = 1 lsl 20) ?beside (src : source) =
   let src = without_byte_order_mark src in
-  let load = mesh_loader ~file load_mesh in
+  let load = file_loader ~file load_mesh in
+  let textures = { load = file_loader ~file load_texture; accept = accept_textures } in
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) message = Error { file; line = p.line; column = p.col + 1; message } in
   let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
@@ -1523,7 +1611,7 @@ let of_source_located ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file
       limits;
       reader;
       beside;
-      b = builder ~limits ~load (fun _ -> None);
+      b = builder ~limits ~load ~textures (fun _ -> None);
       fast = fast_state ();
       st = stream ~limits ~window_bytes (src ()) ~from:0;
       form_end = 0;
@@ -1538,19 +1626,20 @@ let of_source_located ?(limits = Limits.default) ?(load_mesh = no_loader) ?(file
   | `Done result -> result
   | `Form_too_long m -> error (form_start src r.form_end) m
   | `Locate -> (
-      match locate_error ~limits ~load src with
+      match locate_error ~limits ~load ~textures src with
       | `Syntax e -> syntax e
       | `Located (pos, m) -> error (Option.value pos ~default:origin) m
       | `Not_found -> error origin "internal error: the located pass found no error")
 
-let of_source ?limits ?load_mesh ?file ?reader ?window_bytes ?beside src =
-  msg (of_source_located ?limits ?load_mesh ?file ?reader ?window_bytes ?beside src)
+let of_source ?limits ?load_mesh ?load_texture ?accept_textures ?file ?reader ?window_bytes ?beside src =
+  msg (of_source_located ?limits ?load_mesh ?load_texture ?accept_textures ?file ?reader ?window_bytes ?beside src)
 
-let located ?(limits = Limits.default) ?load_mesh ?(file = "<string>") ?reader text =
+let located ?(limits = Limits.default) ?load_mesh ?load_texture ?accept_textures ?(file = "<string>") ?reader text =
   match Limits.check_scene_bytes limits (String.length text) with
   | Error (`Msg message) -> Error { file; line = 0; column = 0; message }
-  | Ok _ -> of_source_located ~limits ?load_mesh ~file ?reader (string_source text)
+  | Ok _ -> of_source_located ~limits ?load_mesh ?load_texture ?accept_textures ~file ?reader (string_source text)
 
-let of_string ?limits ?load_mesh ?file ?reader text = msg (located ?limits ?load_mesh ?file ?reader text)
+let of_string ?limits ?load_mesh ?load_texture ?accept_textures ?file ?reader text =
+  msg (located ?limits ?load_mesh ?load_texture ?accept_textures ?file ?reader text)
 
 let to_string = Scene.show

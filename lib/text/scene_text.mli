@@ -14,6 +14,8 @@ val error_message : error -> string
 val located :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
+  ?load_texture:(string -> (Texture.t, [ `Msg of string ]) result) ->
+  ?accept_textures:bool ->
   ?file:string ->
   ?reader:[ `Fast | `Parsexp ] ->
   string ->
@@ -23,6 +25,8 @@ val located :
 val of_string :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
+  ?load_texture:(string -> (Texture.t, [ `Msg of string ]) result) ->
+  ?accept_textures:bool ->
   ?file:string ->
   ?reader:[ `Fast | `Parsexp ] ->
   string ->
@@ -107,6 +111,8 @@ type beside = {
 val of_source :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
+  ?load_texture:(string -> (Texture.t, [ `Msg of string ]) result) ->
+  ?accept_textures:bool ->
   ?file:string ->
   ?reader:[ `Fast | `Parsexp ] ->
   ?window_bytes:int ->
