@@ -182,7 +182,7 @@ let tests =
             ("(transform ((rotate-y 30)))", "t.scene:1:1: transform takes a list of operations and an object, e.g. (transform ((rotate-y 30)) (box (min -1 -1 -1) (max 1 1 1) (color 0 0 255)))");
             ("(transform ((rotate-y 30)) (light ambient (intensity 1)))", "t.scene:1:29: unknown object light; expected sphere, plane, triangle, box, mesh, csg" ^ String.concat "" (List.map (fun (Private.Shape_desc.Any d) -> ", " ^ d.name) Private.Primitives.all) ^ ", transform or use");
             ( "(define c (box (min 0 0 0) (max 1 1 1) (color 1 2 3)))\n(use c (scale 2))",
-              "t.scene:2:9: unknown use c field scale; expected transform, material, color, specular, reflective, transparency, refractive-index, fresnel or pattern" );
+              "t.scene:2:9: unknown use c field scale; expected transform, material, color, specular, reflective, transparency, refractive-index, fresnel, pattern or texture" );
             ( "(transform ((rotate-y 30)) (box (min 0 0 0) (max 1 1 1) (color 1 2 3) (pattern checker (color 20 20 20) (size 1))))",
               "t.scene:1:1: a transformed object cannot have a pattern (patterns are not carried into an object's frame yet)" );
           ]);
