@@ -153,12 +153,13 @@ and mesh_box (m : Mesh.t) =
       let lo = Array.make 3 infinity and hi = Array.make 3 neg_infinity in
       for k = 0 to (Array.length p / 3) - 1 do
         for a = 0 to 2 do
-          let x = (p.((3 * k) + a) *. m.scale) +. (match a with 0 -> m.translate.x | 1 -> m.translate.y | _ -> m.translate.z) in
+          (* The positions are placed already ([Mesh.t]): their own scale
+             and translation are not applied twice. *)
+          let x = p.((3 * k) + a) in
           lo.(a) <- Float.min lo.(a) x;
           hi.(a) <- Float.max hi.(a) x
         done
       done;
-      (* The placed positions are rounded as [Mesh] rounds them: an ulp of room. *)
       (Vec3.v (Float.pred lo.(0)) (Float.pred lo.(1)) (Float.pred lo.(2)), Vec3.v (Float.succ hi.(0)) (Float.succ hi.(1)) (Float.succ hi.(2)))
 
 and bounds = function
