@@ -80,6 +80,48 @@ let normal_at_rim () =
   Alcotest.(check (float 1e-12)) "n.z" n.z s.nz;
   Alcotest.(check (float 0.)) "the root is kept" t s.near
 
+(* A camera ray exactly through the front rim of a cylinder seen along
+   its axis touches it there alone: it enters by the cap (against whose
+   normal it goes) and leaves by the side; the oracle lists both at the
+   same [t], and takes for the entry the one the ray goes in by, as the
+   kernel does. The same through a cone's rim, and for the exit through
+   a back rim. *)
+let touching_a_rim () =
+  let m = Material.v Color.white in
+  let check what literal kernel_normal direction =
+    match literal ~origin:Vec3.zero ~direction with
+    | [ (t0, (n0 : Vec3.t)); (t1, n1) ] ->
+        let (kn : Vec3.t), entry = kernel_normal direction in
+        Alcotest.(check (float 0.)) (what ^ ": the entry's root") entry t0;
+        if t1 < t0 then Alcotest.failf "%s: the exit before the entry" what;
+        Alcotest.(check bool) (what ^ ": the oracle's entry goes in") true (Vec3.dot n0 direction < 0.);
+        Alcotest.(check bool) (what ^ ": the oracle's exit goes out") true (Vec3.dot n1 direction > 0.);
+        Alcotest.(check (list (float 1e-12))) (what ^ ": the kernel's entry normal is the oracle's") [ n0.x; n0.y; n0.z ] [ kn.x; kn.y; kn.z ]
+    | l -> Alcotest.failf "%s: %d crossings" what (List.length l)
+  in
+  let kernel roots normal store n direction =
+    let g = Array.make n 0. and s = Private.Scratch.create () in
+    store g;
+    Private.Scratch.set_ray s Vec3.zero direction;
+    if not (roots s g 0) then Alcotest.fail "missed";
+    let t = s.near in
+    s.px <- t *. s.dx;
+    s.py <- t *. s.dy;
+    s.pz <- t *. s.dz;
+    normal s g 0;
+    (Vec3.v s.nx s.ny s.nz, t)
+  in
+  let cyl = Private.Cylinder.v ~base:(Vec3.v 0. 0. 6.) ~top:(Vec3.v 0. 0. 8.) ~radius:0.5 m in
+  let cone = Cone.v ~base:(Vec3.v 0. 0. 6.) ~top:(Vec3.v 0. 0. 8.) ~radius:0.5 ~top_radius:0.25 m in
+  List.iter
+    (fun (x, y) ->
+      let d = Vec3.v x y 1. in
+      check "cylinder, front rim" (Private.Cylinder.desc.literal cyl)
+        (kernel Private.Cylinder.roots Private.Cylinder.normal (fun g -> Private.Cylinder.store cyl g 0) 7)
+        d;
+      check "cone, front rim" (Cone.desc.literal cone) (kernel Cone.roots Cone.normal (fun g -> Cone.store cone g 0) 9) d)
+    [ (1. /. 12., 0.); (0., -1. /. 12.); (-0.0625, 0.) ]
+
 (* {1 Transformed shapes} *)
 
 (* Each kind four times: scaled unevenly, turned and moved by [transform],
@@ -184,6 +226,8 @@ let tests =
       `Quick edges_match_oracle;
     Alcotest.test_case "a ray in a cone's cap's plane enters through the side at the rim, and takes the side's normal" `Quick
       normal_at_rim;
+    Alcotest.test_case "a ray touching a cylinder's or a cone's rim enters by the cap and leaves by the side, in the oracle as in the kernel"
+      `Quick touching_a_rim;
     Alcotest.test_case
       "cylinders, disks, cones and tori scaled unevenly, turned, moved and used: the fast tracer is the oracle within 1, in both modes"
       `Quick transformed_match_oracle;

@@ -367,9 +367,7 @@ let literal c ~origin ~direction =
   in
   let by_t = List.sort (fun (x, _) (y, _) -> Float.compare x y) in
   if c.capped then
-    match by_t (side @ cap c.base c.radius (neg u) @ cap c.top c.top_radius u) with
-    | [] -> []
-    | first :: _ as l -> [ first; List.nth l (Stdlib.( - ) (List.length l) 1) ]
+    Cylinder.solid_ends ~direction (by_t (side @ cap c.base c.radius (neg u) @ cap c.top c.top_radius u))
   else by_t side
 
 (* Each cap's disk lies within its radius of its centre on every axis;
