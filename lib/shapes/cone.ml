@@ -87,7 +87,8 @@ let[@inline] solve (s : Scratch.t) g o =
   let rho0 = r0 +. (dr *. kw) and rhod = dr *. kd in
   let a = (qx *. qx) +. (qy *. qy) +. (qz *. qz) -. (rhod *. rhod) in
   let b = (px *. qx) +. (py *. qy) +. (pz *. qz) -. (rho0 *. rhod) in
-  let c = (px *. px) +. (py *. py) +. (pz *. pz) -. (rho0 *. rho0) in
+  let pp = (px *. px) +. (py *. py) +. (pz *. pz) in
+  let c = pp -. (rho0 *. rho0) in
   (* The side's two roots [lo <= hi] (none: [nan], which no comparison
      keeps), and the part of the line inside the (double) cone, [in_lo,
      in_hi]: between the roots where [A > 0]; where [A < 0] the
@@ -107,12 +108,23 @@ let[@inline] solve (s : Scratch.t) g o =
      and exact to that point's own rounding; [A] and [rhod] depend on the
      direction alone. Only for a chord whose middle is near the slab: a
      far one (a line almost along the side) is no better a reference.
-     Where [A > 0] and the first discriminant is negative, from [-B / A],
-     the line's closest approach to the side: a tangent line's first
-     discriminant is noise of either sign. *)
+     Where [A > 0] and the first discriminant is negative within a bound
+     of its rounding ([C]'s, of the scale of [|p|^2], [rho0^2] and the
+     moved origin's [|w|^2], times [A], and [B^2]'s), from [-B / A], the
+     line's closest approach to the side: a tangent line's first
+     discriminant is noise of either sign. (The bound is found only for
+     such lines: most lines that miss are not solved again.) *)
   let mid = if a > 0. && disc < 0. then -.b /. a else 0.5 *. (t0 +. t1) in
   let width = slab_hi -. slab_lo in
-  let refine = a <> 0. && slab_lo -. width <= mid && mid <= slab_hi +. width in
+  let refine =
+    a <> 0.
+    && slab_lo -. width <= mid
+    && mid <= slab_hi +. width
+    && (disc >= 0.
+       || disc
+          >= -.(64. *. epsilon_float
+               *. ((a *. (pp +. (rho0 *. rho0) +. (wx *. wx) +. (wy *. wy) +. (wz *. wz))) +. (b *. b))))
+  in
   let mid = if refine then mid else 0. in
   let wx = wx +. (mid *. dx) and wy = wy +. (mid *. dy) and wz = wz +. (mid *. dz) in
   let kw = ((wx *. ax) +. (wy *. ay) +. (wz *. az)) /. hh in
@@ -126,12 +138,13 @@ let[@inline] solve (s : Scratch.t) g o =
      |dr|)], times [2 rho0]. A discriminant within [A] times it of 0 is a
      tangent line's (a double root): its point's residual is at most that
      bound, within [16 u (|w| + |r0| + |dr|)] of the side. *)
-  let tol =
-    16. *. epsilon_float
-    *. (Float.abs px +. Float.abs py +. Float.abs pz +. Float.abs rho0)
-    *. (Float.abs wx +. Float.abs wy +. Float.abs wz +. Float.abs r0 +. Float.abs dr)
+  let tangent =
+    refine && a > 0. && disc2_raw < 0.
+    && disc2_raw
+       >= -.(a *. 16. *. epsilon_float
+            *. (Float.abs px +. Float.abs py +. Float.abs pz +. Float.abs rho0)
+            *. (Float.abs wx +. Float.abs wy +. Float.abs wz +. Float.abs r0 +. Float.abs dr))
   in
-  let tangent = refine && a > 0. && disc2_raw < 0. && disc2_raw >= -.(a *. tol) in
   let disc2 = if tangent then 0. else fmax 0. disc2_raw in
   let qq2 = -.(b2 +. Float.copy_sign (sqrt disc2) b2) in
   let u0 = if disc2 = 0. then -.b2 /. a else c2 /. qq2 and u1 = if disc2 = 0. then -.b2 /. a else qq2 /. a in

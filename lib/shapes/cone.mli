@@ -30,9 +30,9 @@
     double root's point is then within [16 u (|w| + |r0| + |dr|)] of the
     side (a line in a tangent plane of the side touches it, as
     [literal] decides exactly). Where [A > 0] and the first discriminant
-    is negative the roots are found again from [-B / A], the line's
-    closest approach to the side, as a tangent line's first
-    discriminant is noise of either sign. A double root is
+    is negative within a bound of its rounding, the roots are found again
+    from [-B / A], the line's closest approach to the side, as a tangent
+    line's first discriminant is noise of either sign. A double root is
     [-B / A], not [C / q]. For a capped cone the entry and exit are the slab's part of the
     line's part inside the cone (between the roots where [A > 0]; where
     [A < 0] the line crosses both nappes of the double cone and the part
