@@ -39,6 +39,7 @@ let () =
       ("cylinder", Test_cylinder.tests);
       ("csg", Test_csg.tests);
       ("cone", Test_cone.tests);
+      ("edges", Test_edges.tests);
       ("torus", Test_torus.tests);
       ("transform", Test_transform.tests);
       ("bvh", Test_bvh.tests);

@@ -47,10 +47,21 @@ let store c g o =
 let[@inline] fmin (x : float) y = if x < y then x else y
 let[@inline] fmax (x : float) y = if x > y then x else y
 
+(* The surfaces a root is on, as [solve] tells them. *)
+let side = 0
+let base_cap = 1
+let top_cap = 2
+
 (* The roots: see the .mli for the method and its bound. Every float is
-   a local [let] (unboxed); the two results go out through [s], so the
-   routine allocates nothing. *)
-let[@inline never] roots (s : Scratch.t) g o =
+   a local [let] (unboxed); the two crossings go out through [s] and
+   which surface each is on as the int result ([near_surface + 3
+   far_surface], 9 more for a line tangent to the side, or [-1] for a
+   miss), so the routine allocates nothing.
+   Inlined in [roots] and [normal] alone: the normal is the surface's
+   that gave the root kept, not the one nearest the point, which at a
+   rim is either (a ray in a cap's plane crosses the side there, and
+   never the cap). *)
+let[@inline] solve (s : Scratch.t) g o =
   let bx = Array.unsafe_get g o and by = Array.unsafe_get g (o + 1) and bz = Array.unsafe_get g (o + 2) in
   let ax = Array.unsafe_get g (o + 3) -. bx and ay = Array.unsafe_get g (o + 4) -. by and az = Array.unsafe_get g (o + 5) -. bz in
   let r0 = Array.unsafe_get g (o + 6) and dr = Array.unsafe_get g (o + 7) -. Array.unsafe_get g (o + 6) in
@@ -76,7 +87,8 @@ let[@inline never] roots (s : Scratch.t) g o =
   let rho0 = r0 +. (dr *. kw) and rhod = dr *. kd in
   let a = (qx *. qx) +. (qy *. qy) +. (qz *. qz) -. (rhod *. rhod) in
   let b = (px *. qx) +. (py *. qy) +. (pz *. qz) -. (rho0 *. rhod) in
-  let c = (px *. px) +. (py *. py) +. (pz *. pz) -. (rho0 *. rho0) in
+  let pp = (px *. px) +. (py *. py) +. (pz *. pz) in
+  let c = pp -. (rho0 *. rho0) in
   (* The side's two roots [lo <= hi] (none: [nan], which no comparison
      keeps), and the part of the line inside the (double) cone, [in_lo,
      in_hi]: between the roots where [A > 0]; where [A < 0] the
@@ -95,10 +107,24 @@ let[@inline never] roots (s : Scratch.t) g o =
      from the middle of the chord, where the side's residual is small
      and exact to that point's own rounding; [A] and [rhod] depend on the
      direction alone. Only for a chord whose middle is near the slab: a
-     far one (a line almost along the side) is no better a reference. *)
-  let mid = 0.5 *. (t0 +. t1) in
+     far one (a line almost along the side) is no better a reference.
+     Where [A > 0] and the first discriminant is negative within a bound
+     of its rounding ([C]'s, of the scale of [|p|^2], [rho0^2] and the
+     moved origin's [|w|^2], times [A], and [B^2]'s), from [-B / A], the
+     line's closest approach to the side: a tangent line's first
+     discriminant is noise of either sign. (The bound is found only for
+     such lines: most lines that miss are not solved again.) *)
+  let mid = if a > 0. && disc < 0. then -.b /. a else 0.5 *. (t0 +. t1) in
   let width = slab_hi -. slab_lo in
-  let refine = a <> 0. && disc >= 0. && slab_lo -. width <= mid && mid <= slab_hi +. width in
+  let refine =
+    a <> 0.
+    && slab_lo -. width <= mid
+    && mid <= slab_hi +. width
+    && (disc >= 0.
+       || disc
+          >= -.(64. *. epsilon_float
+               *. ((a *. (pp +. (rho0 *. rho0) +. (wx *. wx) +. (wy *. wy) +. (wz *. wz))) +. (b *. b))))
+  in
   let mid = if refine then mid else 0. in
   let wx = wx +. (mid *. dx) and wy = wy +. (mid *. dy) and wz = wz +. (mid *. dz) in
   let kw = ((wx *. ax) +. (wy *. ay) +. (wz *. az)) /. hh in
@@ -107,15 +133,27 @@ let[@inline never] roots (s : Scratch.t) g o =
   let b2 = (px *. qx) +. (py *. qy) +. (pz *. qz) -. (rho0 *. rhod) in
   let c2 = (px *. px) +. (py *. py) +. (pz *. pz) -. (rho0 *. rho0) in
   let disc2_raw = (b2 *. b2) -. (a *. c2) in
-  let disc2 = fmax 0. disc2_raw in
+  (* [C2]'s rounding: the point's coordinates, each within a few [u |w|]
+     of the line's, times [2 |p|], and [rho0]'s, within a few [u (|r0| +
+     |dr|)], times [2 rho0]. A discriminant within [A] times it of 0 is a
+     tangent line's (a double root): its point's residual is at most that
+     bound, within [16 u (|w| + |r0| + |dr|)] of the side. *)
+  let tangent =
+    refine && a > 0. && disc2_raw < 0.
+    && disc2_raw
+       >= -.(a *. 16. *. epsilon_float
+            *. (Float.abs px +. Float.abs py +. Float.abs pz +. Float.abs rho0)
+            *. (Float.abs wx +. Float.abs wy +. Float.abs wz +. Float.abs r0 +. Float.abs dr))
+  in
+  let disc2 = if tangent then 0. else fmax 0. disc2_raw in
   let qq2 = -.(b2 +. Float.copy_sign (sqrt disc2) b2) in
   let u0 = if disc2 = 0. then -.b2 /. a else c2 /. qq2 and u1 = if disc2 = 0. then -.b2 /. a else qq2 /. a in
   let lo = if refine then mid +. fmin u0 u1 else fmin t0 t1 and hi = if refine then mid +. fmax u0 u1 else fmax t0 t1 in
   (* No root where [A > 0] and the discriminant is negative: the second
      one's sign when it was found again (the first is noise for a line
      by the apex, where a tangent point -B / A would lie off the surface
-     by more than the bound). *)
-  let none = a > 0. && (disc < 0. || (refine && disc2_raw < 0.)) in
+     by more than the bound), beyond the tangent line's tolerance. *)
+  let none = a > 0. && if refine then disc2_raw < 0. && not tangent else disc < 0. in
   let in_lo =
     if a > 0. then if none then infinity else lo
     else if a < 0. then if rhod > 0. then hi else neg_infinity
@@ -141,21 +179,31 @@ let[@inline never] roots (s : Scratch.t) g o =
   if near <= far then begin
     s.near <- tc +. near;
     s.far <- tc +. far;
-    true
+    (* A cap's plane decides a crossing only where it is strictly beyond
+       the side's (the first of equals is the side, as [literal] sorts
+       them); a ray along the caps' planes ([da = 0]) crosses neither. *)
+    let near_surface = if capped && slab_lo > in_lo then if da > 0. then base_cap else top_cap else side in
+    let far_surface = if capped && slab_hi < in_hi then if da > 0. then top_cap else base_cap else side in
+    (* A double root of the side is a tangent line's: [normal] turns its
+       normal off the ray (9 more). *)
+    near_surface + (3 * far_surface) + if lo = hi then 9 else 0
   end
+  else -1
+
+let[@inline never] roots (s : Scratch.t) g o =
+  if solve s g o >= 0 then true
   else begin
     s.near <- infinity;
     s.far <- infinity;
     false
   end
 
-(* The outward normal of the surface nearest the point: the side or, on
-   a capped cone, a cap. *)
-let[@inline never] normal (s : Scratch.t) g o =
+(* The surface nearest the point alone (a root [solve] did not find
+   again): the side, a cap, or the first of equally near ones. *)
+let[@inline] nearest_surface (s : Scratch.t) g o =
   let bx = Array.unsafe_get g o and by = Array.unsafe_get g (o + 1) and bz = Array.unsafe_get g (o + 2) in
   let ax = Array.unsafe_get g (o + 3) -. bx and ay = Array.unsafe_get g (o + 4) -. by and az = Array.unsafe_get g (o + 5) -. bz in
-  let r0 = Array.unsafe_get g (o + 6) and r1 = Array.unsafe_get g (o + 7) in
-  let dr = r1 -. r0 in
+  let r0 = Array.unsafe_get g (o + 6) and dr = Array.unsafe_get g (o + 7) -. Array.unsafe_get g (o + 6) in
   let capped = Array.unsafe_get g (o + 8) > 0. in
   let hh = (ax *. ax) +. (ay *. ay) +. (az *. az) in
   let h = sqrt hh in
@@ -166,13 +214,29 @@ let[@inline never] normal (s : Scratch.t) g o =
   let radial = sqrt ((px *. px) +. (py *. py) +. (pz *. pz)) in
   let slope = dr /. h in
   (* Distances to the side (along its normal) and to the caps' planes. *)
-  let side = Float.abs (radial -. (r0 +. (dr *. kw))) /. sqrt (1. +. (slope *. slope)) in
-  let bottom = Float.abs wa /. h and top = Float.abs (wa -. hh) /. h in
-  if (not capped) || (side <= bottom && side <= top) then begin
+  let off_side = Float.abs (radial -. (r0 +. (dr *. kw))) /. sqrt (1. +. (slope *. slope)) in
+  let off_base = Float.abs wa /. h and off_top = Float.abs (wa -. hh) /. h in
+  if (not capped) || (off_side <= off_base && off_side <= off_top) then side
+  else if off_base < off_top then base_cap
+  else top_cap
+
+(* The outward normal of one surface at the point [s.px, s.py, s.pz]:
+   the side's, or a cap's along the axis. *)
+let[@inline] surface_normal (s : Scratch.t) g o surface =
+  let bx = Array.unsafe_get g o and by = Array.unsafe_get g (o + 1) and bz = Array.unsafe_get g (o + 2) in
+  let ax = Array.unsafe_get g (o + 3) -. bx and ay = Array.unsafe_get g (o + 4) -. by and az = Array.unsafe_get g (o + 5) -. bz in
+  let dr = Array.unsafe_get g (o + 7) -. Array.unsafe_get g (o + 6) in
+  let hh = (ax *. ax) +. (ay *. ay) +. (az *. az) in
+  let h = sqrt hh in
+  if surface = side then begin
+    let wx = s.px -. bx and wy = s.py -. by and wz = s.pz -. bz in
+    let kw = ((wx *. ax) +. (wy *. ay) +. (wz *. az)) /. hh in
+    let px = wx -. (kw *. ax) and py = wy -. (kw *. ay) and pz = wz -. (kw *. az) in
+    let radial = sqrt ((px *. px) +. (py *. py) +. (pz *. pz)) in
     if radial > 0. then begin
       (* The gradient of [|p| - rho]: the unit radial minus the slope
          along the unit axis. *)
-      let k = slope /. h in
+      let k = dr /. hh in
       let nx = (px /. radial) -. (k *. ax) and ny = (py /. radial) -. (k *. ay) and nz = (pz /. radial) -. (k *. az) in
       let l = sqrt ((nx *. nx) +. (ny *. ny) +. (nz *. nz)) in
       s.nx <- nx /. l;
@@ -189,10 +253,37 @@ let[@inline never] normal (s : Scratch.t) g o =
     end
   end
   else begin
-    let sign = if bottom < top then -1. else 1. in
+    let sign = if surface = base_cap then -1. else 1. in
     s.nx <- sign *. ax /. h;
     s.ny <- sign *. ay /. h;
     s.nz <- sign *. az /. h
+  end
+
+(* The root the caller keeps is in [s.near] (the traversal's [s.t], a
+   CSG solid's crossing): the surface [solve] found it on, for the same
+   ray, gives the normal. *)
+let[@inline never] normal (s : Scratch.t) g o =
+  let t = s.near and far = s.far in
+  let code = solve s g o in
+  let surface =
+    if code >= 0 && t = s.near then code mod 3
+    else if code >= 0 && t = s.far then code mod 9 / 3
+    else nearest_surface s g o
+  in
+  s.near <- t;
+  s.far <- far;
+  surface_normal s g o surface;
+  (* A tangent line touches the outside: its normal, across the ray up
+     to rounding, is reflected off the ray where it leans along it, so
+     that the side seen is the outside whatever the rounding. *)
+  if code >= 9 && surface = side then begin
+    let e = (s.nx *. s.dx) +. (s.ny *. s.dy) +. (s.nz *. s.dz) in
+    if e > 0. then begin
+      let k = 2. *. e /. ((s.dx *. s.dx) +. (s.dy *. s.dy) +. (s.dz *. s.dz)) in
+      s.nx <- s.nx -. (k *. s.dx);
+      s.ny <- s.ny -. (k *. s.dy);
+      s.nz <- s.nz -. (k *. s.dz)
+    end
   end
 
 (* The executable specification's crossings, from the definition, with
@@ -203,6 +294,28 @@ let[@inline never] normal (s : Scratch.t) g o =
    textbook's form; on a cap when it is in the cap's plane within its
    radius. A capped cone is convex: its entry and exit are the first and
    last of those points. *)
+(* The sign of the side's discriminant, exactly: with the axis [a = T -
+   B] unnormalised, [w = O - B], the side's equation times [|a|^4] is
+   [hh^2 |w + t D|^2 - hh y^2 = (r0 hh + dr y)^2], [hh = a.a], [y = (w +
+   t D).a], [dr = r1 - r0]: a quadratic [A t^2 + 2 B t + C] whose
+   coefficients are polynomials in the scene's floats, and whose
+   discriminant [B^2 - A C] has the sign of [literal]'s. *)
+let exact_discriminant c ~(origin : Vec3.t) ~(direction : Vec3.t) =
+  let open Exact_float in
+  let ( + ) = add and ( - ) = sub and ( * ) = mul in
+  let dot (x1, y1, z1) (x2, y2, z2) = (x1 * x2) + (y1 * y2) + (z1 * z2) in
+  let a = (diff c.top.x c.base.x, diff c.top.y c.base.y, diff c.top.z c.base.z) in
+  let w = (diff origin.x c.base.x, diff origin.y c.base.y, diff origin.z c.base.z) in
+  let d = (of_float direction.x, of_float direction.y, of_float direction.z) in
+  let hh = dot a a and wa = dot w a and da = dot d a in
+  let r0 = of_float c.radius and dr = diff c.top_radius c.radius in
+  let m = (r0 * hh) + (dr * wa) in
+  let hh2 = hh * hh in
+  let qa = (hh2 * dot d d) - (hh * da * da) - (dr * dr * da * da) in
+  let qb = (hh2 * dot w d) - (hh * wa * da) - (m * dr * da) in
+  let qc = (hh2 * dot w w) - (hh * wa * wa) - (m * m) in
+  sign ((qb * qb) - (qa * qc))
+
 let literal c ~origin ~direction =
   let open Vec3 in
   let axis = sub c.top c.base in
@@ -223,18 +336,40 @@ let literal c ~origin ~direction =
     if r = 0. then if k < 0. then u else neg u else Vec3.unit (sub (smul (1. /. r) radial) (smul k u))
   in
   let candidates =
-    if qa = 0. then if qb = 0. then [] else [ -.qc /. qb ]
+    if qa = 0. then if qb = 0. then [] else [ (-.qc /. qb, false) ]
     else
       let disc = (qb *. qb) -. (4. *. qa *. qc) in
-      if disc < 0. then []
+      (* The discriminant's sign from the floats where it is far above
+         their rounding (the terms' magnitudes, times a margin that no
+         rounding reaches); near 0, exactly ([exact_discriminant]): a line
+         tangent to the side touches it, whatever the noise. *)
+      let scale =
+        let qa_m = dot direction direction +. (du *. du *. (1. +. (k *. k))) in
+        let qb_m = 2. *. ((norm w *. norm direction) +. Float.abs (wu *. du) +. Float.abs (k *. du *. (Float.abs c.radius +. Float.abs (k *. wu)))) in
+        let qc_m = dot w w +. (wu *. wu) +. ((Float.abs c.radius +. Float.abs (k *. wu)) ** 2.) in
+        (qb_m *. qb_m) +. (4. *. qa_m *. qc_m)
+      in
+      let sign = if Float.abs disc > 1e-6 *. scale then Float.compare disc 0. else exact_discriminant c ~origin ~direction in
+      if sign < 0 then []
+      else if sign = 0 || disc <= 0. then [ (-.qb /. (2. *. qa), true) ]
       else
         (* Numerical Recipes' form: [(-b -+ sqrt disc) / 2a] loses the
            root near the origin to cancellation when [a] is small (a
            line almost along the side). *)
         let h = -0.5 *. (qb +. Float.copy_sign (sqrt disc) qb) in
-        if h = 0. then [ 0. ] else [ qc /. h; h /. qa ]
+        if h = 0. then [ (0., false) ] else [ (qc /. h, false); (h /. qa, false) ]
   in
-  let side = List.filter_map (fun t -> if on_side t then Some (t, side_normal t) else None) candidates in
+  (* A tangent line touches the side's outside: a normal leaning along
+     the ray (by rounding) is reflected off it. *)
+  let off_ray n =
+    let e = dot n direction in
+    if e > 0. then sub n (smul (2. *. e /. dot direction direction) direction) else n
+  in
+  let side =
+    List.filter_map
+      (fun (t, tangent) -> if on_side t then Some (t, if tangent then off_ray (side_normal t) else side_normal t) else None)
+      candidates
+  in
   let cap center radius n =
     let dn = dot direction n in
     if dn = 0. then []
@@ -245,9 +380,7 @@ let literal c ~origin ~direction =
   in
   let by_t = List.sort (fun (x, _) (y, _) -> Float.compare x y) in
   if c.capped then
-    match by_t (side @ cap c.base c.radius (neg u) @ cap c.top c.top_radius u) with
-    | [] -> []
-    | first :: _ as l -> [ first; List.nth l (Stdlib.( - ) (List.length l) 1) ]
+    Cylinder.solid_ends ~direction (by_t (side @ cap c.base c.radius (neg u) @ cap c.top c.top_radius u))
   else by_t side
 
 (* Each cap's disk lies within its radius of its centre on every axis;

@@ -25,7 +25,14 @@
     where [C] is small and exact to that point's rounding; where [A > 0]
     and the discriminant found there is negative, the line misses (the
     first one's sign was noise: a tangent point [-B / A] by the apex can
-    lie off the surface by far more than the bound). A double root is
+    lie off the surface by far more than the bound), unless it is within
+    [A] times the rounding of [C] there of 0: a tangent line, whose
+    double root's point is then within [16 u (|w| + |r0| + |dr|)] of the
+    side (a line in a tangent plane of the side touches it, as
+    [literal] decides exactly). Where [A > 0] and the first discriminant
+    is negative within a bound of its rounding, the roots are found again
+    from [-B / A], the line's closest approach to the side, as a tangent
+    line's first discriminant is noise of either sign. A double root is
     [-B / A], not [C / q]. For a capped cone the entry and exit are the slab's part of the
     line's part inside the cone (between the roots where [A > 0]; where
     [A < 0] the line crosses both nappes of the double cone and the part
@@ -89,10 +96,18 @@ val roots : Scratch.t -> float array -> int -> bool
     [infinity]. Allocates nothing. *)
 
 val normal : Scratch.t -> float array -> int -> unit
-(** [normal s g o] is the outward unit normal, in [s.nx, s.ny, s.nz], of
-    the surface of the cone at [g.(o)] nearest the point [s.px, s.py,
-    s.pz]: the side or, if capped, a cap's plane; at the apex, the axis
-    out of the point. Allocates nothing. *)
+(** [normal s g o] is the outward unit normal, in [s.nx, s.ny, s.nz], at
+    the point [s.px, s.py, s.pz] of the root [s.near] of the ray in [s]
+    (the root kept: the traversal's [s.t], a CSG crossing), of the
+    surface that {!roots} found that root on, found again for the same
+    ray: the side or, if capped, a cap. A ray through a rim thus takes
+    the normal of the surface it crosses there: a ray in a cap's plane
+    crosses the side (never the cap, whose plane it runs in), as in
+    [literal]. On a line tangent to the side the normal is turned off
+    the ray where rounding leans it along it (the outside is seen). A
+    root {!roots} does not give again takes the surface nearest the
+    point. At the apex, the axis out of the point. [s.near] and [s.far]
+    are kept. Allocates nothing. *)
 
 val intersect : t -> origin:Vec3.t -> direction:Vec3.t -> float * float
 (** [intersect c ~origin ~direction] is {!roots} on [c] alone:

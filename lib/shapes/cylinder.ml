@@ -174,6 +174,22 @@ let[@inline never] normal (s : Scratch.t) g o =
   s.far <- far;
   surface_normal s g o surface
 
+(* The entry and the exit of a convex solid among its crossings sorted
+   by [t]: at a tie of crossings (a ray through a rim), the first of
+   those where the ray goes in (against the outward normal) and of those
+   where it goes out; the side first, as the list has it. A ray touching
+   a rim alone enters by one surface and leaves by the other. *)
+let solid_ends ~direction = function
+  | [] -> []
+  | first :: _ as l ->
+      let last = List.nth l (List.length l - 1) in
+      let pick (t, n) sign =
+        match List.find_opt (fun (t', n') -> t' = t && Float.compare (Vec3.dot n' direction) 0. = sign) l with
+        | Some x -> x
+        | None -> (t, n)
+      in
+      [ pick first (-1); pick last 1 ]
+
 (* The executable specification's crossings, from the definition: the
    points of the line at distance [radius] from the axis line (a
    quadratic in the cross products [(O - B) x u] and [D x u], [u] the unit
@@ -217,9 +233,7 @@ let literal c ~origin ~direction =
   in
   let sorted l = List.sort (fun (x, _) (y, _) -> Float.compare x y) l in
   if c.capped then
-    match sorted (side @ cap c.base (neg u) @ cap c.top u) with
-    | [] -> []
-    | first :: _ as l -> [ first; List.nth l (Stdlib.( - ) (List.length l) 1) ]
+    solid_ends ~direction (sorted (side @ cap c.base (neg u) @ cap c.top u))
   else sorted side
 
 (* The box of the two caps' circles (the cylinder is their convex hull),

@@ -42,6 +42,15 @@ val desc : t Shape_desc.t
 (* Internal: the kernel's side of this module, hidden from the
    documentation. Not for users: it changes without notice. *)
 
+val solid_ends : direction:Vec3.t -> (float * Vec3.t) list -> (float * Vec3.t) list
+(** [solid_ends ~direction l] is the entry and the exit, in that order,
+    of a convex solid whose surfaces a line of direction [direction]
+    crosses at [l] (roots with their outward normals, sorted by root;
+    [[]] for none): the first and the last, but at a tie of roots (a line
+    through a rim) the first of those the line goes in by (against the
+    normal) and the first of those it goes out by. The capped cylinder's
+    and cone's [literal] (the oracle's, cold path). *)
+
 val store : t -> float array -> int -> unit
 (** [store c g o] writes [c] at [g.(o)] (7 floats): [base], [top], and
     the radius, negated for an open cylinder. *)
