@@ -47,6 +47,25 @@ let[@inline] sphere_hit tr i =
   (* Shadow and mirror rays leave sphere i. *)
   tr.origin_sphere <- i
 
+(* The material whose colour the hit of the ray in [s] at [s.t] shows:
+   [m], or the material [alt >= 0] of its pattern's second colour, stored
+   at [m] in [table]. {!Pattern.odd} reads the hit point as [trace_in]
+   computed it, before the robust mode moved it off a shape (the pattern
+   moves it its own way): recomputed here with the same operations, put
+   in [s] for the call, and the moved point put back. *)
+let[@inline] second_colour s table m alt =
+  let t = s.t in
+  let px = s.ox +. (s.dx *. t) and py = s.oy +. (s.dy *. t) and pz = s.oz +. (s.dz *. t) in
+  let sx = s.px and sy = s.py and sz = s.pz in
+  s.px <- px;
+  s.py <- py;
+  s.pz <- pz;
+  let odd = Pattern.odd s table (Pattern.stride * m) in
+  s.px <- sx;
+  s.py <- sy;
+  s.pz <- sz;
+  if odd then alt else m
+
 let[@warning "-11"] rec shape_hit tr i =
   let p = tr.p and s = tr.s in
   let dx = s.dx and dy = s.dy and dz = s.dz in
@@ -130,7 +149,7 @@ let[@warning "-11"] rec shape_hit tr i =
   end;
   match k with
   | Csg -> Csg.material p.csg tr.csg
-  | Instance -> Array.unsafe_get (Array.unsafe_get p.instances.material_map (Traversal.instance_number tr i)) tr.inner_material
+  | Instance -> instance_material tr i
   | _ -> Array.unsafe_get p.material i
 
 (* The normal of the instance in slot [i] at the hit that [closest] kept:
@@ -174,31 +193,29 @@ and instance_normal tr i =
   s.ny <- wy *. inv;
   s.nz <- wz *. inv
 
-(* The material whose colour the hit of the ray in [s] at [s.t] shows:
-   [m], or the material of its pattern's second colour. {!Pattern.odd}
-   reads the hit point as [trace_in] computed it, before the robust mode
-   moved it off a shape (the pattern moves it its own way): recomputed
-   here with the same operations, put in [s] for the call, and the moved
-   point put back. Not inlined: its code would make [trace_objects] too
-   big for OCaml to inline into the render loop. *)
+(* The material of the instance in slot [i] at the hit that
+   [instance_normal] found again: its bottom level's material
+   ([tr.inner_material]) in this scene's numbering, or, where that has a
+   pattern, its second colour's if the pattern says so. The pattern lies
+   in the object's frame: looked up on the ray still carried there, in
+   the bottom level's record, with the normal in that frame. *)
+and[@inline never] instance_material tr i =
+  let inst = tr.p.instances in
+  let n = Traversal.instance_number tr i in
+  let m = Array.unsafe_get (Array.unsafe_get inst.material_map n) tr.inner_material in
+  let placed = inst.placed_alternate in
+  if Array.length placed = 0 then m
+  else
+    let alt = Array.unsafe_get placed m in
+    if alt < 0 then m
+    else second_colour (Array.unsafe_get tr.inner (Array.unsafe_get inst.bottom n)).s tr.p.pattern m alt
+
+(* The material whose colour the hit of the ray in [tr.s] shows, by the
+   world's patterns ([second_colour]). Not inlined: its code would make
+   [trace_objects] too big for OCaml to inline into the render loop. *)
 let[@inline never] local_material tr m =
-  let p = tr.p in
-  let alt = Array.unsafe_get p.alternate m in
-  if alt < 0 then m
-  else begin
-    let s = tr.s in
-    let t = s.t in
-    let px = s.ox +. (s.dx *. t) and py = s.oy +. (s.dy *. t) and pz = s.oz +. (s.dz *. t) in
-    let sx = s.px and sy = s.py and sz = s.pz in
-    s.px <- px;
-    s.py <- py;
-    s.pz <- pz;
-    let odd = Pattern.odd s p.pattern (Pattern.stride * m) in
-    s.px <- sx;
-    s.py <- sy;
-    s.pz <- sz;
-    if odd then alt else m
-  end
+  let alt = Array.unsafe_get tr.p.alternate m in
+  if alt < 0 then m else second_colour tr.s tr.p.pattern m alt
 
 (* The mirror ray R = 2 <V, N> N - V from the hit point, in [s]. *)
 let[@inline] mirror_ray (p : Prepared.t) s =

@@ -80,6 +80,7 @@ and instances = {
   bottom : int array;
   to_object : float array;
   material_map : int array array;
+  placed_alternate : int array;
 }
 
 let bvh_threshold = 8
@@ -591,23 +592,46 @@ let cubes o =
 (* {2 Materials} *)
 
 (* The prepared scene's materials, numbered as the objects are read. *)
+type frame = Vec3.t * float * float
+
 type registry = {
   mutable added : Material.t list;  (* The last first. *)
   mutable count : int;
-  mutable frames : (int * Pattern.t * (Vec3.t * float * float)) list;
+  mutable frames : (int * Pattern.t * frame) list;
       (* Each patterned material's number, pattern and object's frame. *)
+  mutable placed : (int * Pattern.t * frame) list;
+      (* The same for the patterns looked up in an instance's object frame. *)
+  every_frame : bool;
+      (* A bottom level: the frame of every material is kept ([plain]),
+         for the patterns its instances give it. *)
+  mutable plain : (int * frame) list;
   known : int Materials.t;
 }
 
-let registry () = { added = []; count = 0; frames = []; known = Materials.create 64 }
+let registry ~every_frame = { added = []; count = 0; frames = []; placed = []; every_frame; plain = []; known = Materials.create 64 }
 
 (* A new material: [frame ()] is its object's [Shape.pattern_frame], asked
-   only if it has a pattern (a mesh's scans every vertex). *)
+   only if it has a pattern (a mesh's scans every vertex), or in a bottom
+   level (one object). *)
 let add_material r (m : Material.t) frame =
   r.added <- m :: r.added;
-  (match m.pattern with Some p -> r.frames <- (r.count, p, frame ()) :: r.frames | None -> ());
+  (match m.pattern with
+  | Some p -> r.frames <- (r.count, p, frame ()) :: r.frames
+  | None -> if r.every_frame then r.plain <- (r.count, frame ()) :: r.plain);
   r.count <- r.count + 1;
   r.count - 1
+
+(* A material seen through an instance, whose pattern, if any, lies in
+   the object's frame [frame]: the kernel looks it up on the ray carried
+   there, with [Prepared.instances]'s [placed_alternate]. *)
+let placed_material r (m : Material.t) frame =
+  match m.pattern with
+  | None -> None
+  | Some p ->
+      r.added <- m :: r.added;
+      r.placed <- (r.count, p, frame) :: r.placed;
+      r.count <- r.count + 1;
+      Some (r.count - 1)
 
 (* Equal materials share one: a million spheres use a dozen. Equal bit
    for bit, so that sharing changes no arithmetic. Plain ones only: a
@@ -630,17 +654,23 @@ let new_material r (m : Material.t) frame =
 let material_table r =
   let materials = Array.of_list (List.rev r.added) in
   let n_own = Array.length materials in
-  let alternate = if r.frames = [] then [||] else Array.make n_own (-1) in
-  let pattern = Array.make (if r.frames = [] then 0 else Pattern.stride * n_own) 0. in
-  let extra =
-    List.mapi
-      (fun j (i, p, (origin, scale, extent)) ->
-        alternate.(i) <- n_own + j;
-        Pattern.store p ~origin ~scale ~extent pattern (Pattern.stride * i);
-        Material.update ~color:(Pattern.color p) ~pattern:None materials.(i))
-      (List.rev r.frames)
+  let n = n_own + List.length r.frames + List.length r.placed in
+  (* Over every material, the second colours' too: the kernel asks the
+     world's table about a material an instance's pattern chose. *)
+  let alternates l = if l = [] then [||] else Array.make n (-1) in
+  let alternate = alternates r.frames and placed = alternates r.placed in
+  let pattern = Array.make (if r.frames = [] && r.placed = [] && not r.every_frame then 0 else Pattern.stride * n_own) 0. in
+  (* A bottom level's frames: its instances' patterns lie there. *)
+  List.iter (fun (i, (origin, scale, extent)) -> Pattern.store_frame ~origin ~scale ~extent pattern (Pattern.stride * i)) r.plain;
+  let second alternate j (i, p, (origin, scale, extent)) =
+    alternate.(i) <- n_own + j;
+    Pattern.store p ~origin ~scale ~extent pattern (Pattern.stride * i);
+    Material.update ~color:(Pattern.color p) ~pattern:None materials.(i)
   in
-  (Array.append materials (Array.of_list extra), alternate, pattern)
+  let extra = List.mapi (second alternate) (List.rev r.frames) in
+  let n_world = List.length extra in
+  let extra' = List.mapi (fun j f -> second placed (n_world + j) f) (List.rev r.placed) in
+  (Array.concat [ materials; Array.of_list extra; Array.of_list extra' ], alternate, placed, pattern)
 
 (* {2 Vertices and normals} *)
 
@@ -744,26 +774,35 @@ let add_instance r inst k (i : Shape.instance) =
         b
   in
   let bottom = List.nth inst.bottoms_rev (List.length inst.bottoms_rev - 1 - b) in
-  let frame () = invalid_arg "Prepared: a transformed object has no pattern (Shape.validate)" in
+  (* The frame of the bottom level's material [j] (its object's, or its
+     CSG leaf's): where a pattern on it lies. A second colour's material
+     there ([j] past the frames) is never a hit's. *)
+  let frame j = if Pattern.stride * j < Array.length bottom.pattern then Pattern.frame bottom.pattern (Pattern.stride * j) else (Vec3.zero, 1., 0.) in
+  let plain () = invalid_arg "Prepared: a plain material has no frame" in
+  let placed m j = match placed_material r m (frame j) with Some k -> k | None -> new_material r m plain in
   let map =
     match i.own_material with
+    | Some m when Option.is_some m.pattern ->
+        (* Its pattern on each surface of the object, in that surface's frame. *)
+        Array.init (max 1 (Array.length bottom.materials)) (placed m)
     | Some m ->
-        let j = new_material r m frame in
+        let j = new_material r m plain in
         Array.make (max 1 (Array.length bottom.materials)) j
-    | None -> Array.map (fun m -> new_material r m frame) bottom.materials
+    | None -> Array.mapi (fun j m -> placed m j) bottom.materials
   in
   inst.rows <- (b, Transform.to_object i.transform, map) :: inst.rows;
   Hashtbl.replace inst.numbers k inst.count;
   inst.count <- inst.count + 1;
   map.(0)
 
-let instance_table inst =
+let instance_table inst placed_alternate =
   let rows = Array.of_list (List.rev inst.rows) in
   {
     bottoms = Array.of_list (List.rev inst.bottoms_rev);
     bottom = Array.map (fun (b, _, _) -> b) rows;
     to_object = Array.concat (List.map (fun (_, m, _) -> m) (Array.to_list rows));
     material_map = Array.map (fun (_, _, m) -> m) rows;
+    placed_alternate;
   }
 
 (* CSG solids go to their own table; [roots] maps object [k] to its
@@ -1431,7 +1470,7 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
 
 (* The steps in order. Each big array is let go as soon as no step needs
    it any more: the steps' results are taken apart here, not held whole. *)
-let rec prepare_scene ~skips ?beside scene =
+let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
   let valid = scene in
   let scene = Scene.view (Scene.of_valid scene) in
   let o = read_objects scene in
@@ -1440,7 +1479,7 @@ let rec prepare_scene ~skips ?beside scene =
   (* Per object, in object order: kind, material, and the cube around it. *)
   let okind = Array.make o.n Kind.Sphere and omat = Array.make o.n 0 in
   let c = cubes o in
-  let r = registry () in
+  let r = registry ~every_frame in
   let v = vertices o in
   let s = { builder = Csg.builder (); roots = Hashtbl.create 8 } in
   sphere_objects o r omat c;
@@ -1451,7 +1490,7 @@ let rec prepare_scene ~skips ?beside scene =
   let o = { o with spheres = Spheres.empty } in
   let inst = instancing (bottom ~skips valid) in
   let normal_base = shape_objects o r v s inst okind omat c in
-  let materials, alternate, pattern = material_table r in
+  let materials, alternate, placed, pattern = material_table r in
   (* The hierarchy over the bounded objects kept, then the slots. *)
   let collections = ref 0 in
   let twin_of, sel, boxes = twins_and_boxes ~skips ?beside o scene okind c collections in
@@ -1473,13 +1512,13 @@ let rec prepare_scene ~skips ?beside scene =
     else Vertex_order.gather ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
   in
   assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)
-    ~instances:(instance_table inst) sl g sp ~vertex ~vsource ~vnormal
+    ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal
 
 (* The bottom level of an instance: its object alone, prepared as a scene
    of the top's mode (epsilon) with no lights; the kernel traces it in
    the object's frame. *)
 and bottom ~skips valid shape =
-  prepare_scene ~skips (Scene.bottom valid shape)
+  prepare_scene ~every_frame:true ~skips (Scene.bottom valid shape)
 
 (* The major heap grows by 256 MB of address space at a time while a big
    scene is prepared, not by 15% of its size: the pieces freed between

@@ -20,16 +20,19 @@ type t = private {
           hit (the loop for spheres alone never asks; the other asks this
           field once per hit). *)
   alternate : int array;
-      (** Per material: the material (an index into [red] to [reflective])
-          of its pattern's second colour, or [-1] if it has no pattern;
-          empty when no material has one. The second colours' materials
+      (** Per material (second colours included): the material (an index
+          into [red] to [reflective]) of its pattern's second colour, or
+          [-1] if it has no pattern in the world's frame; empty when no
+          material has one. The second colours' materials
           follow the scene's, each a copy of its own with the pattern's
           colour. *)
   pattern : float array;
       (** Per material [m], at [Pattern.stride * m], its pattern as
           [Pattern.store] writes it, on its object's {!Shape.pattern_frame}
           (zeros where [alternate] is [-1]; empty when no material has a
-          pattern). *)
+          pattern). A bottom level of instances keeps every material's
+          frame there (its size [0] where it has no pattern of its own):
+          its instances' patterns lie on it. *)
   textbook_all : bool;
       (** Spheres only, of plain materials (no pattern, no transparency),
           no hierarchy, the document's mode: the tracer's fastest loop
@@ -207,7 +210,16 @@ and instances = {
   material_map : int array array;
       (** Per instance: the material, in this scene's numbering, of each
           material of its bottom level (all one where the instance gives
-          its own). *)
+          its own; one per material of the bottom level where its own
+          has a pattern). *)
+  placed_alternate : int array;
+      (** Per material of this scene (second colours included): the
+          material of its pattern's second colour where that pattern lies
+          in an instance's object frame, or [-1]; empty when no instance
+          shows a pattern. Such a pattern is stored in [pattern] on the
+          frame of the bottom level's surface (its material's
+          [Shape.pattern_frame]) and looked up on the ray carried into the
+          object's frame; [alternate] gives these materials [-1]. *)
 }
 (** The type for the table of instances. A slot of kind {!Kind.Instance}
     stores its instance's number in [geom]. *)

@@ -23,13 +23,18 @@ let validate ~form p =
 (* The table: size, the object's origin (3), its scale, its extent. *)
 let stride = 6
 
-let store (Checker { size; _ }) ~(origin : Vec3.t) ~scale ~extent table o =
-  table.(o) <- size;
+let store_frame ~(origin : Vec3.t) ~scale ~extent table o =
   table.(o + 1) <- origin.x;
   table.(o + 2) <- origin.y;
   table.(o + 3) <- origin.z;
   table.(o + 4) <- scale;
   table.(o + 5) <- extent
+
+let store (Checker { size; _ }) ~(origin : Vec3.t) ~scale ~extent table o =
+  table.(o) <- size;
+  store_frame ~origin ~scale ~extent table o
+
+let frame table o = (Vec3.v table.(o + 1) table.(o + 2) table.(o + 3), table.(o + 4), table.(o + 5))
 
 (* The same bound as the tracer's offset of secondary rays off a surface
    (64 u): twice what the rounding of [P] can account for. *)

@@ -7,7 +7,10 @@
     coordinates are world coordinates for spheres, planes and triangles,
     and object coordinates for boxes (relative to the box's [min] corner)
     and meshes (the file's coordinates, before the mesh's [scale] and
-    [translate]).
+    [translate]). On a transformed object they are the object's own, in
+    its frame before the transform (the cells move, turn and scale with
+    it); a transform's or use's own material lays its pattern where the
+    object's own would lie.
 
     Which cell a hit point belongs to, on a cell boundary: the point
     looked up is not the hit point [P] as computed but [Q = P + e N],
@@ -79,6 +82,16 @@ val store : t -> origin:Vec3.t -> scale:float -> extent:float -> float array -> 
     coordinates of a world point [W] are [(W - origin) / scale], and
     [extent] is the largest magnitude of a coordinate of the object (in
     world units, for the error bound). *)
+
+val store_frame : origin:Vec3.t -> scale:float -> extent:float -> float array -> int -> unit
+(** [store_frame ~origin ~scale ~extent table o] writes the object's frame
+    as [store] does, and not the pattern's size: the frame of a material
+    with no pattern of its own, in a bottom level of instances, whose
+    instances may give it one. *)
+
+val frame : float array -> int -> Vec3.t * float * float
+(** [frame table o] is the [(origin, scale, extent)] that [store] or
+    [store_frame] wrote at offset [o] of [table]. *)
 
 val odd : Scratch.t -> float array -> int -> bool
 (** [odd s table o] is [true] iff the pattern stored at offset [o] of

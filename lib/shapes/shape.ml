@@ -41,18 +41,10 @@ let rec materials = function
   | Instance { shape; _ } -> materials shape
   | s -> [ material s ]
 
-(* A pattern lies in its object's frame, which the kernel does not carry
-   through a transform yet: refused rather than drawn wrong. *)
-let no_pattern ms =
-  if List.exists (fun (m : Material.t) -> Option.is_some m.pattern) ms then
-    Error (`Msg "a transformed object cannot have a pattern (patterns are not carried into an object's frame yet)")
-  else Ok ()
-
 let rec validate s =
   let ( let* ) = Result.bind in
   match s with
   | Instance i ->
-      let* () = no_pattern (materials s) in
       let* () = match i.shape with Plane _ -> Error (`Msg "a plane is transformed as a plane (Shape.instance), not an instance") | _ -> Ok () in
       let* () = match i.own_material with Some m -> Result.map ignore (Material.validate ~form:"transform" m) | None -> Ok () in
       (* Checked, not rebuilt: the object stays the value its instances
@@ -260,7 +252,7 @@ let pattern_frame = function
   | Box b as sh -> (b.min, 1., stored_extent sh)
   | Mesh m -> (m.translate, m.scale, Array.fold_left (fun e x -> Float.max e (Float.abs x)) 0. m.positions)
   | Csg _ -> invalid_arg "Shape.pattern_frame: a CSG solid's patterns are its leaves' (Shape.leaf_pattern_frame)"
-  | Instance _ -> invalid_arg "Shape.pattern_frame: a transformed object has no pattern"
+  | Instance _ -> invalid_arg "Shape.pattern_frame: a transformed object's pattern lies in its object's frame (Prepared)"
 
 let leaf_pattern_frame = function
   | Csg.Sphere s -> (Vec3.zero, 1., Sphere.extent s)

@@ -74,8 +74,8 @@ val materials : t -> Material.t list
 
 val validate : t -> (t, [> `Msg of string ]) result
 (** [validate s] is the shape module's [validate]; an instance's object
-    is validated, and an instance is refused if one of its materials has a
-    pattern, or if it is of a plane (see {!instance}). *)
+    is validated, and an instance is refused if it is of a plane (see
+    {!instance}). *)
 
 val name : t -> string
 (** [name s] is the scene-file form of [s]: ["sphere"], ["plane"], ["triangle"], ["box"], ["mesh"] or ["csg"]. *)

@@ -371,12 +371,22 @@ let pattern_frame = function
   | Shape (Shape.Primitive p, _) | Csg_surface (_, Csg.Primitive p, _) -> primitive_frame p
   | Shape ((Shape.Mesh _ | Shape.Csg _ | Shape.Instance _), _) | Csg_surface (_, Csg.Csg _, _) | Placed _ -> invalid_arg "Literal.pattern_frame"
 
-(* The colour the hit shows: the material's, or its pattern's second
-   colour. *)
-let local_color obj (m : Material.t) ~origin ~direction ~point ~normal =
-  match m.pattern with
-  | None -> m.color
-  | Some p ->
+(* The colour the hit at [t] shows: the material's, or its pattern's
+   second colour. A transformed object's pattern lies in its frame
+   (docs/scene-format.md, Patterns): the ray carried there by this
+   module's own inverse, the point at the same [t] on it, and the
+   surface's normal there; the frame is the surface's (an instance's own
+   material's pattern lies where the surface's own would). *)
+let rec local_color obj (m : Material.t) ~t ~origin ~direction ~point ~normal =
+  match (m.pattern, obj) with
+  | None, _ -> m.color
+  | Some _, Placed (i, inner, _) ->
+      let inv = inverse (world_matrix i.transform) in
+      let origin = affine_point inv origin and direction = linear inv direction in
+      let point = Vec3.add origin (Vec3.smul t direction) in
+      let normal = inner_normal inner ~point ~direction in
+      local_color inner m ~t ~origin ~direction ~point ~normal
+  | Some p, _ ->
       let near0, _ = G.undecided () in
       let odd = G.odd p ~frame:(pattern_frame obj) ~origin ~direction ~point ~normal in
       if fst (G.undecided ()) > near0 then incr dependent;
@@ -438,7 +448,7 @@ let trace_ray (scene : Scene.view) ~epsilon ~origin ~direction ~t_min ~t_max ~de
         let normal = normal obj ~point ~direction in
         let view = Vec3.neg direction in
         let lighting = compute_lighting scene ~epsilon ~point ~normal ~view ~specular:m.specular in
-        let local = Color.smul lighting (local_color obj m ~origin ~direction ~point ~normal) in
+        let local = Color.smul lighting (local_color obj m ~t ~origin ~direction ~point ~normal) in
         if m.reflective <= 0. || depth <= 0 then (levels, local)
         else
           let mirror = Shading.reflect view normal in
@@ -505,7 +515,7 @@ let rec shade ?(continued = false) (scene : Scene.view) ~epsilon ~origin ~direct
         let local () =
           Color.smul
             (lighting_through ~through:true scene ~epsilon ~point ~normal ~view ~specular:m.specular)
-            (local_color obj m ~origin ~direction ~point ~normal)
+            (local_color obj m ~t ~origin ~direction ~point ~normal)
         in
         if level >= scene.depth || (wr <= 0. && wt <= 0.) then local ()
         else
