@@ -269,6 +269,77 @@ let tests =
         match Helpers.render ~limits ~jobs:1 s with
         | Ok _ -> Alcotest.fail "rendered past a bound of 25,000 tests"
         | Error (`Msg _) -> ());
+    Alcotest.test_case "an instance's box in the top level is its box carried by the transform, not a cube" `Quick (fun () ->
+        (* Twenty thin rods (a knot squashed, about 9 long and 0.1
+           thick), one above the other 0.5 apart, seen from the side: a
+           cube around a rod is 9 high and holds most other rods, so
+           that a camera ray between two rods entered many rods' boxes
+           and walked their bottom levels (4.5 tests a ray, in leaves of
+           up to 16); each rod's own box is about 0.1 high, and a ray
+           enters one or two (1.5 tests a ray). *)
+        let knot = Shape.Mesh (Mesh.of_obj ~smooth:false ~scale:0.5 ~translate:Vec3.zero ~source:"knot" (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.3 ~segments:24 ~sides:6) blue |> Result.get_ok) in
+        let rods =
+          List.init 20 (fun k -> Shape.instance (transform [ Scale (v 7. 0.07 0.07); Rotate_y 20.; Translate (v 0. ((0.5 *. float k) -. 4.75) 12.) ]) knot)
+        in
+        let s = Scene.v ~width:48 ~height:36 ~objects:rods ~lights:[ Light.ambient 1. ] () in
+        let st = stats s in
+        let per_ray = float st.tests /. float st.primary in
+        if per_ray > 2.5 then Alcotest.failf "%.2f tests a camera ray" per_ray);
+    Alcotest.test_case "an instance's box holds its object's every vertex, mapped exactly (Zarith)" `Quick (fun () ->
+        (* A knot placed far from its frame's origin (1e6), turned,
+           scaled unevenly and brought back near the world's origin: the
+           corners round at the translation's scale, far above the box's. *)
+        let knot far = Mesh.of_obj ~smooth:false ~scale:0.5 ~translate:(v far (-.far) 0.) ~source:"knot" (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.3 ~segments:24 ~sides:6) red |> Result.get_ok in
+        List.iter
+          (fun (far, ops) ->
+            let m = knot far in
+            let t = transform ops in
+            let s = scene [ Shape.instance t (Shape.Mesh m) ] in
+            let p = Helpers.prepare s in
+            let i = match Shape.instance t (Shape.Mesh m) with Shape.Instance i -> i | _ -> Alcotest.fail "not an instance" in
+            let (lo : Vec3.t), (hi : Vec3.t) = Private.Prepared.instance_box p.instances.bottoms.(0) i in
+            let a = Transform.to_world t and q = Q.of_float in
+            let pos = m.positions in
+            for k = 0 to (Array.length pos / 3) - 1 do
+              let x = q pos.(3 * k) and y = q pos.((3 * k) + 1) and z = q pos.((3 * k) + 2) in
+              let row r =
+                let e j = q a.((4 * r) + j) in
+                Q.add (Q.add (Q.mul (e 0) x) (Q.mul (e 1) y)) (Q.add (Q.mul (e 2) z) (e 3))
+              in
+              List.iteri
+                (fun r (l, h) ->
+                  let w = row r in
+                  if Q.lt w (q l) || Q.gt w (q h) then Alcotest.failf "vertex %d, axis %d: %g outside [%g, %g]" k r (Q.to_float w) l h)
+                [ (lo.x, hi.x); (lo.y, hi.y); (lo.z, hi.z) ]
+            done)
+          [
+            (0., [ Rotate_x 37.; Scale (v 0.11 0.11 0.11); Translate (v 1. 2. 3.) ]);
+            (1e6, [ Scale (v 3. 0.01 0.5); Rotate_y 23.; Rotate_z 71.; Translate (v (-1e6) (-1e6) 0.) ]);
+            (1e6, [ Translate (v (-1e6) 1e6 0.); Rotate (v 1. 2. 3., 41.); Scale (v 1e-3 2e3 1.) ]);
+          ]);
+    Alcotest.test_case "tight instance boxes lose no hit: fast against literal, with and without a mesh beside" `Quick (fun () ->
+        (* Twelve instances (a top-level hierarchy), turned and scaled
+           unevenly, of a box, a sphere, a mesh and a CSG solid; once
+           alone (the top level's boxes from its objects' cubes) and once
+           beside a mesh (its boxes from the triangles' corners). *)
+        let knot = Shape.Mesh (Mesh.of_obj ~smooth:true ~scale:0.5 ~translate:Vec3.zero ~source:"knot" (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.3 ~segments:24 ~sides:6) red |> Result.get_ok) in
+        let shapes = [| Shape.Box (Box.v ~min:(v (-0.5) (-0.2) (-0.1)) ~max:(v 0.5 0.2 0.1) blue); Shape.Sphere (Sphere.v ~center:(v 0.1 0. 0.) ~radius:0.4 red); knot |] in
+        let placed =
+          List.init 12 (fun k ->
+              let x = float (k mod 4) -. 1.5 and y = float (k / 4) -. 1. in
+              Shape.instance
+                (transform [ Scale (v (0.4 +. (0.1 *. float (k mod 3))) 0.6 (0.3 +. (0.2 *. float (k mod 2)))); Rotate_x (float (37 * k)); Rotate_z (float (23 * k)); Translate (v x y 7.) ])
+                shapes.(k mod 3))
+        in
+        let small = Shape.Mesh (Mesh.of_obj ~smooth:false ~scale:0.3 ~translate:(v 0. 1.8 6.) ~source:"small" (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.3 ~segments:12 ~sides:4) blue |> Result.get_ok) in
+        List.iter
+          (fun objects ->
+            List.iter
+              (fun epsilon ->
+                let s = scene ?epsilon ~width:64 ~height:48 objects in
+                Helpers.check_images ~max_abs:2 "fast against literal" ~expected:(Private.Literal.render (Helpers.valid s)) (Helpers.image_exn s))
+              [ None; Some 0.001 ])
+          [ placed; small :: placed ]);
     Alcotest.test_case "a scene of instances allocates nothing per pixel, in both modes" `Quick (fun () ->
         let s =
           parse

@@ -500,6 +500,22 @@ let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~first ~
   bounds.(5) <- !b5;
   pos := !i
 
+(* The margin of an instance's box [b] ([instance_half_box]): a cube's of
+   its largest half side, times its transform's stretch (the rounding of
+   the ray carried into its frame, seen in the world: see
+   [Prepared.instance_box] in the interface). *)
+let instance_margin terms (b : float array) = Bvh.margin terms (fmax b.(3) (fmax b.(4) b.(5))) *. b.(6)
+
+(* The position of object [k] in [bounded] (increasing). *)
+let slot_of (bounded : int array) k =
+  let rec find lo hi =
+    if lo >= hi then lo
+    else
+      let mid = (lo + hi) / 2 in
+      if bounded.(mid) < k then find (mid + 1) hi else find lo mid
+  in
+  find 0 (Array.length bounded)
+
 (* For a scene with a mesh: the boxes of the [nb] objects [bounded]
    (increasing object numbers; objects [first] to [first + nb - 1] if
    [all]), as [build_boxes] takes them, each padded by its
@@ -514,7 +530,7 @@ let mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 (bounds : float array) ~all ~first ~
    then each box is padded where it is, with no array of margins, centers
    or half sides of a million triangles between, and no second reading
    of the corners. *)
-let mesh_boxes o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius =
+let mesh_boxes o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius ~oboxes =
   (* Every element is written below. *)
   let f () = Array.create_float nb in
   let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
@@ -535,8 +551,11 @@ let mesh_boxes o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radi
     (iter_shapes o
        ~single:(fun k sh ->
          if next k then begin
-           let (c : Vec3.t), h = single_bounds sh in
-           half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos c.x c.y c.z h h h;
+           (match Hashtbl.find_opt oboxes k with
+           | Some b -> half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos b.(0) b.(1) b.(2) b.(3) b.(4) b.(5)
+           | None ->
+               let (c : Vec3.t), h = single_bounds sh in
+               half_box ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds !pos c.x c.y c.z h h h);
            incr pos
          end)
        ~mesh:(fun k m -> mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds ~all ~first ~bounded ~nb ~pos m k));
@@ -552,6 +571,18 @@ let mesh_boxes o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radi
     y1.(i) <- cy +. (hy +. m);
     z1.(i) <- cz +. (hz +. m)
   done;
+  (* The instances' boxes padded again, by their own margin: few. *)
+  Hashtbl.iter
+    (fun k b ->
+      let i = if all then k - first else slot_of bounded k in
+      let m = instance_margin terms b in
+      x0.(i) <- b.(0) -. (b.(3) +. m);
+      y0.(i) <- b.(1) -. (b.(4) +. m);
+      z0.(i) <- b.(2) -. (b.(5) +. m);
+      x1.(i) <- b.(0) +. (b.(3) +. m);
+      y1.(i) <- b.(1) +. (b.(4) +. m);
+      z1.(i) <- b.(2) +. (b.(5) +. m))
+    oboxes;
   (x0, y0, z0, x1, y1, z1)
 
 (* The [count] numbers [k] of [0 .. n - 1] for which [p k] holds, in
@@ -579,7 +610,16 @@ let indices_where n count p =
    mesh has them for its spheres alone: the boxes of its shapes, found
    again from their geometry when the hierarchy is built ([mesh_boxes]),
    take no 56 bytes a triangle meanwhile. *)
-type cubes = { ocx : float array; ocy : float array; ocz : float array; ohalf : float array }
+type cubes = {
+  ocx : float array;
+  ocy : float array;
+  ocz : float array;
+  ohalf : float array;
+  oboxes : (int, float array) Hashtbl.t;
+      (* Object [k]'s center, half sides and transform's stretch, if it
+         is an instance ([instance_half_box]): its box, not its cube.
+         Empty in a scene without instances. *)
+}
 
 let cubes o =
   let nc = if o.any_mesh then o.n_spheres else o.n in
@@ -587,7 +627,7 @@ let cubes o =
      [Spheres.blit_fields], the other shapes' by [shape_objects]. *)
   let f () = Array.create_float nc in
   let ocx = f () and ocy = f () and ocz = f () and ohalf = f () in
-  { ocx; ocy; ocz; ohalf }
+  { ocx; ocy; ocz; ohalf; oboxes = Hashtbl.create 0 }
 
 (* {2 Materials} *)
 
@@ -795,6 +835,56 @@ let add_instance r inst k (i : Shape.instance) =
   inst.count <- inst.count + 1;
   map.(0)
 
+(* The bottom level of the instance [add_instance] added last (its row is
+   the first: a thousand instances, no walk down the list). *)
+let last_bottom inst =
+  let b, _, _ = List.hd inst.rows in
+  List.nth inst.bottoms_rev (List.length inst.bottoms_rev - 1 - b)
+
+(* The box in the world of instance [i] whose bottom level is [bottom]
+   (see [Prepared.instance_box] in the interface for why it holds every
+   hit the bottom level reports): the root box of the bottom level's
+   hierarchy (its object's box where it has none), its eight corners
+   carried by the transform and rounded outward ([Transform.bounds]). *)
+let instance_box (bottom : t) (i : Shape.instance) =
+  let ((lo : Vec3.t), (hi : Vec3.t)) as box =
+    match bottom.bvh with
+    | Some b when Array.length bottom.unbounded = 0 ->
+        let n = b.nodes and o = b.root in
+        (Vec3.v n.(o) n.(o + 1) n.(o + 2), Vec3.v n.(o + 3) n.(o + 4) n.(o + 5))
+    | _ -> Shape.box_bounds i.shape
+  in
+  let (lo' : Vec3.t), (hi' : Vec3.t) = Transform.bounds i.transform box in
+  (* The corners' rounding, bounded from the terms of each product:
+     [Transform.bounds]'s room scales with the world's coordinates, and a
+     translation that brings a far object near the origin rounds at the
+     scale of the translation. *)
+  let m = Transform.to_world i.transform in
+  let terms = ref 0. in
+  List.iter
+    (fun (x, y, z) ->
+      for r = 0 to 2 do
+        let o = 4 * r in
+        let sum = Float.abs (m.(o) *. x) +. Float.abs (m.(o + 1) *. y) +. Float.abs (m.(o + 2) *. z) +. Float.abs m.(o + 3) in
+        terms := Float.max !terms sum
+      done)
+    [ (lo.x, lo.y, lo.z); (lo.x, lo.y, hi.z); (lo.x, hi.y, lo.z); (lo.x, hi.y, hi.z); (hi.x, lo.y, lo.z); (hi.x, lo.y, hi.z); (hi.x, hi.y, lo.z); (hi.x, hi.y, hi.z) ];
+  let room = 8. *. epsilon_float *. !terms in
+  (Vec3.v (lo'.x -. room) (lo'.y -. room) (lo'.z -. room), Vec3.v (hi'.x +. room) (hi'.y +. room) (hi'.z +. room))
+
+(* [instance_box] as its center, its half sides [hx, hy, hz] and its
+   transform's stretch, in 7 floats, each half side grown an ulp at a time
+   until the center minus it and plus it, rounded, hold the box (as
+   [Shape.bounds] grows a cube's). *)
+let instance_half_box bottom (i : Shape.instance) =
+  let (lo : Vec3.t), (hi : Vec3.t) = instance_box bottom i in
+  let c = Vec3.smul 0.5 (Vec3.add lo hi) in
+  let half c lo hi =
+    let rec grow h = if c -. h <= lo && c +. h >= hi then h else grow (Float.succ h) in
+    grow (Float.max (c -. lo) (hi -. c))
+  in
+  [| c.x; c.y; c.z; half c.x lo.x hi.x; half c.y lo.y hi.y; half c.z lo.z hi.z; Transform.stretch i.transform |]
+
 let instance_table inst placed_alternate =
   let rows = Array.of_list (List.rev inst.rows) in
   {
@@ -880,13 +970,21 @@ let shape_objects o r v s inst okind omat c =
   ignore
     (iter_shapes o
        ~single:(fun k sh ->
-         let (center : Vec3.t), h = single_bounds sh in
          okind.(k) <- Shape.kind sh;
          omat.(k) <-
            (match sh with
            | Shape.Csg cs -> add_csg r s k cs
            | Shape.Instance i -> add_instance r inst k i
            | _ -> new_material r (Shape.material sh) (fun () -> Shape.pattern_frame sh));
+         let (center : Vec3.t), h =
+           match sh with
+           | Shape.Instance i ->
+               (* After [add_instance]: its bottom level is prepared. *)
+               let b = instance_half_box (last_bottom inst) i in
+               Hashtbl.replace c.oboxes k b;
+               (Vec3.v b.(0) b.(1) b.(2), Float.max b.(3) (Float.max b.(4) b.(5)))
+           | _ -> single_bounds sh
+         in
          if k < Array.length c.ocx then begin
            c.ocx.(k) <- center.x;
            c.ocy.(k) <- center.y;
@@ -959,9 +1057,9 @@ let boxes ~skips o (scene : Scene.view) c sel =
   if not (skips && sel.nb > bvh_threshold) then None
   else
     let all = Array.length sel.bounded = 0 and nb = sel.nb and bounded = sel.bounded in
-    let { ocx; ocy; ocz; ohalf } = c in
+    let { ocx; ocy; ocz; ohalf; _ } = c in
     if o.any_mesh then
-      Some (mesh_boxes o scene ~all ~first:sel.first ~bounded ~nb ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf)
+      Some (mesh_boxes o scene ~all ~first:sel.first ~bounded ~nb ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~oboxes:c.oboxes)
     else begin
       (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
       let terms =
@@ -972,16 +1070,33 @@ let boxes ~skips o (scene : Scene.view) c sel =
          function would return each float boxed. *)
       let f () = Array.create_float nb in
       let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
-      for i = 0 to nb - 1 do
-        let k = if all then i else bounded.(i) in
-        let e = ohalf.(k) +. Bvh.margin terms ohalf.(k) in
-        x0.(i) <- ocx.(k) -. e;
-        y0.(i) <- ocy.(k) -. e;
-        z0.(i) <- ocz.(k) -. e;
-        x1.(i) <- ocx.(k) +. e;
-        y1.(i) <- ocy.(k) +. e;
-        z1.(i) <- ocz.(k) +. e
-      done;
+      if Hashtbl.length c.oboxes = 0 then
+        for i = 0 to nb - 1 do
+          let k = if all then i else bounded.(i) in
+          let e = ohalf.(k) +. Bvh.margin terms ohalf.(k) in
+          x0.(i) <- ocx.(k) -. e;
+          y0.(i) <- ocy.(k) -. e;
+          z0.(i) <- ocz.(k) -. e;
+          x1.(i) <- ocx.(k) +. e;
+          y1.(i) <- ocy.(k) +. e;
+          z1.(i) <- ocz.(k) +. e
+        done
+      else
+        for i = 0 to nb - 1 do
+          let k = if all then i else bounded.(i) in
+          let h = ohalf.(k) in
+          let hx, hy, hz, m =
+            match Hashtbl.find_opt c.oboxes k with
+            | Some b -> (b.(3), b.(4), b.(5), instance_margin terms b)
+            | None -> (h, h, h, Bvh.margin terms h)
+          in
+          x0.(i) <- ocx.(k) -. (hx +. m);
+          y0.(i) <- ocy.(k) -. (hy +. m);
+          z0.(i) <- ocz.(k) -. (hz +. m);
+          x1.(i) <- ocx.(k) +. (hx +. m);
+          y1.(i) <- ocy.(k) +. (hy +. m);
+          z1.(i) <- ocz.(k) +. (hz +. m)
+        done;
       Some (x0, y0, z0, x1, y1, z1)
     end
 
@@ -1033,16 +1148,22 @@ let floats pool len =
    slot: the arrays of their number made later fit the boxes'), the
    boxes' arrays go to [pool]; otherwise they are let go, for the arrays
    of other lengths made later. *)
-let hierarchy ?beside ~reuse pool boxes =
+let hierarchy ?beside ~reuse ~instances pool boxes =
   match boxes with
   | None -> None
   | Some (x0, y0, z0, x1, y1, z1) ->
+      (* Where instances are most of the objects, leaves of one: the
+         heuristic prices a test as one box test, but an instance's is a
+         walk of its bottom level's hierarchy (tens of box tests and
+         more), and a leaf of 16 instances walked 16 of them
+         (docs/performance.md, "Round 3: a thousand instances"). *)
+      let leaf_size = if instances then 1 else 16 in
       (* Leaves of up to 16, where the surface area heuristic finds no
          cheaper split: a mesh's thin triangles overlap, and below 16 more
          boxes buy no fewer triangle tests (docs/performance.md, issue
          15's fifth round). The grids of spheres build the same trees as with 4.
          The image never depends on the tree (see [Trace.better]). *)
-      let b = Bvh.build_boxes ?beside ~leaf_size:16 ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
+      let b = Bvh.build_boxes ?beside ~leaf_size ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
       if reuse then pool.spare <- [ x0; y0; z0; x1; y1; z1 ];
       Some b
 
@@ -1242,7 +1363,7 @@ type spheres_by_slot = {
 (* The spheres' centers and radii by slot, from [c]. *)
 let sphere_arrays o pool sl okind c =
   let n = o.n and n_kept = Array.length sl.index and index = sl.index in
-  let { ocx; ocy; ocz; ohalf } = c in
+  let { ocx; ocy; ocz; ohalf; _ } = c in
   if sl.in_place && List.length pool.spare >= 5 then begin
     (* Into four of the build's arrays, in one walk of [index]; the
        object-order arrays then serve the arrays made later. *)
@@ -1495,7 +1616,7 @@ let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
   let collections = ref 0 in
   let twin_of, sel, boxes = twins_and_boxes ~skips ?beside o scene okind c collections in
   let pool = { spare = [] } in
-  let bvh = hierarchy ?beside ~reuse:(o.shapes = [] && sel.nb = o.n) pool boxes in
+  let bvh = hierarchy ?beside ~reuse:(o.shapes = [] && sel.nb = o.n) ~instances:(2 * Hashtbl.length c.oboxes >= sel.nb) pool boxes in
   collect o collections;
   let unbounded = sel.unbounded in
   let sl = slots o (index_of_slots o bvh sel twin_of) okind omat twin_of in

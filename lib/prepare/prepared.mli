@@ -224,6 +224,46 @@ and instances = {
 (** The type for the table of instances. A slot of kind {!Kind.Instance}
     stores its instance's number in [geom]. *)
 
+val instance_box : t -> Shape.instance -> Vec3.t * Vec3.t
+(** [instance_box bottom i] is the box, in the world, of instance [i]
+    whose bottom level is [bottom]: the root box [B] of [bottom]'s
+    hierarchy (where it has none, {!Shape.box_bounds} of [i]'s object),
+    its eight corners carried by [i]'s transform, their extremes taken,
+    and moved outward by {!Transform.bounds}'s room and by [8 e S]
+    ([e = 2^-52], [S] the largest of [|a_r0 x| + |a_r1 y| + |a_r2 z| +
+    |b_r|] over the rows [r] of the object-to-world matrix and the
+    corners [(x, y, z)]). The top level's box of the instance is this
+    box, not the cube around it, padded by the margin of a cube of its
+    largest half side ({!Bvh.margin}) times the transform's
+    {!Transform.stretch}.
+
+    Why it holds every hit the bottom level reports. (1) The bottom
+    level reports a hit only where the carried ray meets [B]: its walk
+    starts with [B]'s slab test, and [B] holds every node's box below
+    it, each padded so that no test reports a hit outside it
+    ({!Bvh.ray_box_margin}); a bottom level without a hierarchy is its
+    one object, inside its box. (2) The map [q -> A q + b] is affine, so
+    the image of [B] is the convex hull of its eight corners' images,
+    inside the box of their extremes. Each corner's image is computed
+    with three products and three sums per coordinate, an error of at
+    most [3u/(1 - 3u)] ([u = e / 2]) times that coordinate's [|a_r0 x| +
+    |a_r1 y| + |a_r2 z| + |b_r|] <= [S] (Higham's bound for a dot
+    product): [2 e S] covers it, and the rest of [8 e S] covers the
+    rounding of the room and of the corners moved by it (each at most
+    half an ulp of a coordinate, itself at most [S]). So the box holds
+    [A B + b] exactly. (3) The kernel carries the world ray into the
+    object's frame by the world-to-object matrix (each operation's exact
+    inverse, composed), not by an inverse of [A]: the carried point at a
+    root [t] is the exact preimage of a world point within a few [u]
+    times [stretch] of the ray's point at [t], with [u] relative to the
+    ray's origin and the distance it travelled, both at most the
+    world's largest coordinate [M] and diameter [D] (rays start at the
+    camera or on a surface of the scene). The margin [64 u (D^2 / r +
+    M)] ([r <= D] the half side) times [stretch] exceeds that by a
+    factor of ten or more for up to a dozen operations: the world ray
+    meets the padded box at every [t] where the carried ray's hit lies
+    in [B]. *)
+
 val bvh_threshold : int
 (** [bvh_threshold] is [8]: with at most this many spheres, testing every
     one is cheaper than walking a hierarchy. *)
