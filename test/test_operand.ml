@@ -40,6 +40,12 @@ let cube_mesh (lo : Vec3.t) (hi : Vec3.t) m =
   let triangles = Array.concat [ quad 0 2 3 1; quad 4 5 7 6; quad 0 1 5 4; quad 2 6 7 3; quad 0 4 6 2; quad 1 3 7 5 ] in
   match Mesh.v ~positions ~triangles ~normals:[||] ~triangle_normals:(Array.make 36 (-1)) m with Ok m -> m | Error (`Msg e) -> Alcotest.fail e
 
+(* A union whose every ray through its box is carried into a closed
+   mesh operand's frame. *)
+let wide () =
+  Csg.v Csg.Union (sphere (v (-2.5) (-1.) 7.) 0.3 green)
+    (Csg.placed (transform [ Rotate_y 20.; Translate (v 2.5 1. 7.) ]) (Csg.Mesh (cube_mesh (v (-0.3) (-0.3) (-0.3)) (v 0.3 0.3 0.3) red)))
+
 (* Union, intersection and difference with rotated, scaled and nested
    transformed operands of every closed kind the library builds here:
    spheres, boxes, a closed mesh, a CSG solid, a capped cylinder (by
@@ -60,10 +66,11 @@ let solids () =
       (sphere (v 0.6 (-0.6) 5.5) 0.3 green)
   in
   let lens = Csg.v Csg.Intersection (Csg.placed ~material:glass (transform [ Scale (v 1. 1. 0.4); Translate (v 0. 1.1 5.) ]) (sphere Vec3.zero 0.7 glass)) (sphere (v 0. 1.1 5.) 0.65 glass) in
-  let knot =
-    Shape.Mesh (Mesh.of_obj ~scale:0.3 ~translate:(v 0. 1.6 8.) ~source:"knot" (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.3 ~segments:24 ~sides:6) red |> Result.get_ok)
+  let knot scale at =
+    Shape.Mesh (Mesh.of_obj ~scale ~translate:at ~source:"knot" (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:1. ~tube:0.3 ~segments:24 ~sides:6) red |> Result.get_ok)
   in
-  [ Shape.Csg cut; Shape.Csg meet; Shape.Csg nested; Shape.Csg lens; knot ]
+  (* Knots before and behind the wide union. *)
+  [ knot 0.4 (v 0. 0.1 4.); Shape.Csg cut; Shape.Csg meet; Shape.Csg nested; Shape.Csg lens; Shape.Csg (wide ()); knot 1.2 (v 0. 0. 10.) ]
 
 let text_scene =
   "(canvas (width 48) (height 36))\n\
@@ -98,6 +105,24 @@ let quarter_turned ops (lo : Vec3.t) (hi : Vec3.t) m =
 
 let tests =
   [
+    Alcotest.test_case "a transformed operand puts back the ray and the triangle test's shear" `Quick (fun () ->
+        (* The traversal finds the shear once per ray and reads it after
+           a CSG test: the operand's frame must not leak out. *)
+        let b = Csg.builder () in
+        let root = Csg.add b ~material:(fun _ _ -> 0) (wide ()) in
+        let tb = Csg.table b in
+        let w = Csg.work tb and s = Scratch.create () in
+        Scratch.set_ray s Vec3.zero (v (2.5 /. 7.) (1. /. 7.) 1.);
+        s.t_min <- 0.;
+        s.sx <- 0.125;
+        s.sy <- 0.25;
+        s.sz <- 0.5;
+        s.okx <- 1.;
+        s.oky <- 2.;
+        s.okz <- 3.;
+        Alcotest.(check bool) "hits the cube" true (Csg.roots tb w s root);
+        Alcotest.(check (list (float 0.))) "ray and shear" [ 0.; 0.; 0.; 2.5 /. 7.; 1. /. 7.; 1.; 0.125; 0.25; 0.5; 1.; 2.; 3. ]
+          [ s.ox; s.oy; s.oz; s.dx; s.dy; s.dz; s.sx; s.sy; s.sz; s.okx; s.oky; s.okz ]);
     Alcotest.test_case "the fast tracer matches the literal oracle on rotated, scaled and nested operands, glass too" `Quick (fun () ->
         against_literal "library solids" (scene (solids ()));
         against_literal "scene text: a box, a cylinder, a torus and a cone placed" (parse text_scene));
