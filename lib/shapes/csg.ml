@@ -268,7 +268,6 @@ let union = 0
 let intersection = 1
 let difference = 2
 let leaf_node = 3
-let transform_node = 4
 
 (* Surfaces, one a leaf, of a closed kind ({!Kind.closed}): a sphere
    [cx cy cz r], a box as {!Box.store} writes it, a mesh (kind
@@ -458,9 +457,13 @@ let rec add_solid b ~material fr s =
       b.frame_depth <- max b.frame_depth level;
       let over = match fr.over with Some _ -> fr.over | None -> p.own_material in
       let child, cap = add_solid b ~material { index; composed; over; level } p.solid in
-      (* The node shares its child's intervals: [eval] copies only the count. *)
+      (* A leaf of a surface of kind [Instance] holding the frame's number
+         (see [eval_placed]), that shares its child's intervals: [eval]
+         copies only the count. *)
+      let sf = b.n_surfaces in
+      add_surface b world Kind.Instance [| Float.of_int index |] (-1);
       let _, _, _, child_base = List.hd b.nodes in
-      b.nodes <- (transform_node, child, index, child_base) :: b.nodes;
+      b.nodes <- (leaf_node, sf, child, child_base) :: b.nodes;
       b.n_nodes <- b.n_nodes + 1;
       (b.n_nodes - 1, cap)
 
@@ -840,6 +843,27 @@ let[@inline] carry m o r (s : Scratch.t) =
   s.dy <- (a10 *. dx) +. (a11 *. dy) +. (a12 *. dz);
   s.dz <- (a20 *. dx) +. (a21 *. dy) +. (a22 *. dz)
 
+(* A transformed operand: a leaf node whose surface, of kind [Instance]
+   (no solid's kind here), holds its frame's number, and whose [right] is
+   its child, so that [eval]'s other paths are as they were (one more arm
+   in the leaves' jump table). It calls [eval] through a reference, set
+   once: a group of mutually recursive functions made [Csg.roots] bigger
+   where the traversal inlines it. *)
+let eval_ref : (table -> work -> Scratch.t -> int -> unit) ref = ref (fun _ _ _ _ -> ())
+
+let[@inline never] eval_placed tb w (s : Scratch.t) node sf =
+  let child = Array.unsafe_get tb.right node in
+  let level = w.level in
+  save w.rays (12 * level) s;
+  (* The world's ray (level 0's, just saved if this is the outermost
+     operand) carried by the composed matrix. *)
+  carry tb.frames (12 * truncate (Array.unsafe_get tb.geom (stride * sf))) w.rays s;
+  w.level <- level + 1;
+  !eval_ref tb w s child;
+  w.level <- level;
+  restore w.rays (12 * level) s;
+  Array.unsafe_set w.count node (Array.unsafe_get w.count child)
+
 (* A CSG leaf is closed ({!Kind.closed}), and its triangles are flat:
    {!add_solid} makes no other. *)
 let not_a_leaf () = invalid_arg "Csg: a leaf of a kind that is not closed"
@@ -857,6 +881,7 @@ let[@warning "-11"] rec eval tb w (s : Scratch.t) node =
         w.tests <- w.tests + 1;
         leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (Box.roots s tb.geom (stride * sf))
     | Kind.Triangle -> mesh_intervals tb w s node base
+    | Kind.Instance -> eval_placed tb w s node sf
     | Kind.Plane | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ()
     | k ->
         (* Every other closed kind, by the kernel's dispatch. *)
@@ -864,19 +889,6 @@ let[@warning "-11"] rec eval tb w (s : Scratch.t) node =
         if Kind.spans k = 1 then
           leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (Kind_dispatch.roots k s tb.geom (stride * sf))
         else leaf_spans w s node base (Array.unsafe_get tb.surface_id sf) k tb.geom (stride * sf)
-  end
-  else if k = transform_node then begin
-    let child = Array.unsafe_get tb.left node in
-    let level = w.level in
-    save w.rays (12 * level) s;
-    (* The world's ray (level 0's, just saved if this is the outermost
-       operand) carried by the composed matrix. *)
-    carry tb.frames (12 * Array.unsafe_get tb.right node) w.rays s;
-    w.level <- level + 1;
-    eval tb w s child;
-    w.level <- level;
-    restore w.rays (12 * level) s;
-    Array.unsafe_set w.count node (Array.unsafe_get w.count child)
   end
   else begin
     let na = Array.unsafe_get tb.left node and nb = Array.unsafe_get tb.right node in
@@ -889,6 +901,9 @@ let[@warning "-11"] rec eval tb w (s : Scratch.t) node =
       merge w k node base na nb (Array.unsafe_get tb.base na) (Array.unsafe_get tb.base nb)
     end
   end
+
+
+let () = eval_ref := eval
 
 let roots tb w (s : Scratch.t) root =
   eval tb w s root;
@@ -942,7 +957,7 @@ let[@warning "-11"] leaf_normal tb w (s : Scratch.t) sf =
    transpose of the linear part (the transpose of the world-to-object
    matrix's) and divided by its length; the world's ray and point put
    back. *)
-let framed_normal (tb : table) w (s : Scratch.t) sf f =
+let[@inline never] framed_normal (tb : table) w (s : Scratch.t) sf f =
   let r = w.rays in
   save r 0 s;
   let px = s.px and py = s.py and pz = s.pz in
