@@ -160,7 +160,12 @@ type work
     and a bounding volume hierarchy ({!Raytrace.Private.Bvh}) over them, which a ray
     descends along its whole line: its crossings anywhere are the parity
     of the points along it, and a triangle's box is grown so that no
-    crossing the triangle test reports is missed (see [csg.ml]). *)
+    crossing the triangle test reports is missed (see [csg.ml]). A
+    transformed operand is a leaf of a surface of kind [Instance] (no
+    solid's kind), whose geometry is its frame's number (the world-to-object
+    matrix of its transforms and those around it, composed) and whose
+    child is the operand's node: the ray is carried into that frame for
+    the child and put back after. *)
 
 val builder : unit -> builder
 (** [builder ()] is an empty table being built. *)
