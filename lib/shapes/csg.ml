@@ -905,7 +905,11 @@ let[@warning "-11"] rec eval tb w (s : Scratch.t) node =
 
 let () = eval_ref := eval
 
-let roots tb w (s : Scratch.t) root =
+(* Not inlined: inlined into the traversal's [shape_roots], it made the
+   traversal's shape tests too big for OCaml to inline into its loops,
+   which then cost the scenes of boxes and planes more than the gate
+   allows (docs/performance.md, "Round 3: transformed CSG operands"). *)
+let[@inline never] roots tb w (s : Scratch.t) root =
   eval tb w s root;
   let base = Array.unsafe_get tb.base root and n = Array.unsafe_get w.count root in
   let t_min = s.t_min in
