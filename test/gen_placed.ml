@@ -94,6 +94,7 @@ let quad m (p : Vec3.t) (u : Vec3.t) (v : Vec3.t) =
 let rec solid_meshes = function
   | Csg.Mesh m -> [ m ]
   | Csg.Csg c -> solid_meshes c.a @ solid_meshes c.b
+  | Csg.Transformed p -> solid_meshes p.solid
   | Csg.Sphere _ | Csg.Box _ | Csg.Primitive _ -> []
 
 let obj_files (s : Scene.t) =

@@ -42,6 +42,7 @@ let () =
       ("edges", Test_edges.tests);
       ("torus", Test_torus.tests);
       ("transform", Test_transform.tests);
+      ("operand", Test_operand.tests);
       ("bvh", Test_bvh.tests);
       ("prepared", Test_prepared.tests);
       ("antialias", Test_antialias.tests);

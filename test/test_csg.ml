@@ -196,7 +196,7 @@ let exact_mask (scene : Scene.t) classify =
    whether the ray enters, by the routines the tracer runs. *)
 let kernel_hit c ~origin ~direction =
   let b = Csg.builder () in
-  let root = Csg.add b ~material:(fun _ -> 0) c in
+  let root = Csg.add b ~material:(fun _ _ -> 0) c in
   let tb = Csg.table b in
   let w = Csg.work tb and s = Private.Scratch.create () in
   Private.Scratch.set_ray s origin direction;
@@ -388,7 +388,7 @@ let tests =
         Alcotest.(check int) "exit status" 1 code;
         Alcotest.(check string) "nothing on stdout" "" stdout;
         Alcotest.(check string) "one line"
-          (Printf.sprintf "raytrace: %s:3:3: csg: a plane is not a closed solid; an operand is a sphere, box, %sclosed mesh or csg\n" scene
+          (Printf.sprintf "raytrace: %s:3:3: csg: a plane is not a closed solid; an operand is a sphere, box, %sclosed mesh, csg, or a transform or use of one\n" scene
              (* The described closed kinds join the list of operands. *)
              (String.concat ""
                 (List.filter_map

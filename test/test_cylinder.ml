@@ -463,7 +463,7 @@ let operands =
       (fun (Private.Shape_desc.Any d) -> if Private.Kind.closed d.kind then Some (d.name ^ ", ") else None)
       Private.Primitives.all
   in
-  "an operand is a sphere, box, " ^ String.concat "" described ^ "closed mesh or csg"
+  "an operand is a sphere, box, " ^ String.concat "" described ^ "closed mesh, csg, or a transform or use of one"
 
 let bad_forms =
   [

@@ -156,6 +156,7 @@ let transform ~scale ~translate (s : Scene.t) =
            | Csg.Mesh m -> Csg.Mesh (mesh m)
            | Csg.Csg c -> Csg.Csg (csg c)
            | Csg.Primitive q -> Csg.Primitive (primitive q)
+           | Csg.Transformed _ -> Alcotest.fail "no scene here has a transformed operand"
          in
          Csg.v c.op (solid c.a) (solid c.b)
        in

@@ -904,9 +904,10 @@ type solids = { builder : Csg.builder; roots : (int, int) Hashtbl.t }
    object's is its first leaf's. *)
 let add_csg r s k c =
   let first = ref (-1) in
-  let material leaf =
-    (* Not shared: the first leaf's number names the solid's medium. *)
-    let i = add_material r (Csg.leaf_material leaf) (fun () -> Shape.leaf_pattern_frame leaf) in
+  let material leaf m =
+    (* Not shared: the first leaf's number names the solid's medium. [m]
+       is the leaf's own, or a transformed operand's around it. *)
+    let i = add_material r m (fun () -> Shape.leaf_pattern_frame leaf) in
     if !first < 0 then first := i;
     i
   in

@@ -73,15 +73,32 @@ let pp ppf s =
   Format.fprintf ppf "(background %a)\n" Color.pp_components s.background;
   Format.fprintf ppf "(recursion-depth %d)\n" s.depth;
   Option.iter (Format.fprintf ppf "(epsilon %s)\n") (Option.map Float_text.to_string s.epsilon);
-  (* A named instance prints as a [use]: its definition first, once. *)
+  (* A named instance prints as a [use]: its definition first, once; so
+     does a named CSG operand, and the definitions those use, first. *)
   let defined = Hashtbl.create 8 in
-  List.iter
-    (function
-      | _, Shape.Instance { name = Some n; shape; _ } when not (Hashtbl.mem defined n) ->
-          Hashtbl.add defined n ();
-          Format.fprintf ppf "(define %s %a)\n" n Shape.pp shape
-      | _ -> ())
-    s.placed;
+  let define n pp x =
+    if not (Hashtbl.mem defined n) then begin
+      Hashtbl.add defined n ();
+      Format.fprintf ppf "(define %s %a)\n" n pp x
+    end
+  in
+  let rec in_solid = function
+    | Csg.Csg c ->
+        in_solid c.a;
+        in_solid c.b
+    | Csg.Transformed p ->
+        in_solid p.solid;
+        Option.iter (fun n -> define n Csg.pp_solid p.solid) p.name
+    | _ -> ()
+  in
+  let rec in_shape = function
+    | Shape.Instance { name; shape; _ } ->
+        in_shape shape;
+        Option.iter (fun n -> define n Shape.pp shape) name
+    | Shape.Csg c -> in_solid (Csg.Csg c)
+    | _ -> ()
+  in
+  List.iter (fun (_, sh) -> in_shape sh) s.placed;
   iter_objects s ~sphere:(fun i -> line Sphere.pp (Spheres.get s.spheres i)) ~shape:(line Shape.pp);
   List.iter (line Light.pp) s.lights
 
@@ -254,6 +271,7 @@ let csg_sum leaf (c : Csg.t) =
   let rec sum n = function
     | [] -> n
     | Csg.Csg c :: rest -> sum n (c.a :: c.b :: rest)
+    | Csg.Transformed p :: rest -> sum n (p.solid :: rest)
     | solid :: rest -> sum (n + leaf solid) rest
   in
   sum 0 [ c.a; c.b ]

@@ -1,9 +1,18 @@
 type op = Union | Intersection | Difference [@@deriving eq]
 
 type t = { op : op; a : solid; b : solid } [@@deriving eq]
-and solid = Sphere of Sphere.t | Box of Box.t | Mesh of Mesh.t | Csg of t | Primitive of Shape_desc.primitive
+and solid =
+  | Sphere of Sphere.t
+  | Box of Box.t
+  | Mesh of Mesh.t
+  | Csg of t
+  | Primitive of Shape_desc.primitive
+  | Transformed of placed
+
+and placed = { transform : Transform.t; solid : solid; own_material : Material.t option; name : string option }
 
 let v op a b = { op; a; b }
+let placed ?material ?name transform solid = Transformed { transform; solid; own_material = material; name }
 let ops = [ ("union", Union); ("intersection", Intersection); ("difference", Difference) ]
 let op_name op = fst (List.find (fun (_, o) -> o = op) ops)
 let op_of_string s = List.assoc_opt s ops
@@ -13,27 +22,39 @@ let sphere_material = Sphere.material
 
 let rec fold_solids f acc = function
   | Csg c -> fold_solids f (fold_solids f acc c.a) c.b
+  | Transformed p -> fold_solids f acc p.solid
   | leaf -> f acc leaf
-
-let leaves c = List.rev (fold_solids (fun acc l -> l :: acc) [] (Csg c))
 
 let leaf_material = function
   | Sphere s -> sphere_material s
   | Box b -> b.material
   | Mesh m -> m.material
   | Primitive p -> Shape_desc.material p
-  | Csg _ -> invalid_arg "Csg.leaf_material: not a leaf"
+  | Csg _ | Transformed _ -> invalid_arg "Csg.leaf_material: not a leaf"
+
+(* Each leaf with the material it shows (the outermost enclosing
+   operand's own material, as an instance's covers every surface of its
+   object, else its own) and the transforms around it, innermost first. *)
+let rec fold_placed f acc over frames = function
+  | Csg c -> fold_placed f (fold_placed f acc over frames c.a) over frames c.b
+  | Transformed p ->
+      let over = match over with Some _ -> over | None -> p.own_material in
+      fold_placed f acc over (p.transform :: frames) p.solid
+  | leaf -> f acc (leaf, (match over with Some m -> m | None -> leaf_material leaf), frames)
+
+let leaves c = List.rev (fold_placed (fun acc l -> l :: acc) [] None [] (Csg c))
 
 (* Every pass over a tree recurses as deep as it nests, and no deeper:
    never along a list of its leaves (a balanced tree of 2^18 leaves nests
    18 deep, and [List.map] over its leaves overflowed the stack, the
    JavaScript one long before the native one). *)
-let materials c = List.rev (fold_solids (fun acc l -> leaf_material l :: acc) [] (Csg c))
+let materials c = List.rev (fold_placed (fun acc (_, m, _) -> m :: acc) [] None [] (Csg c))
 
 (* Whether [s] nests more than [limit] CSG forms, found without going
    deeper than [limit + 1]: a tree built in code may nest a million deep. *)
 let rec deeper_than limit = function
   | Csg c -> limit <= 0 || deeper_than (limit - 1) c.a || deeper_than (limit - 1) c.b
+  | Transformed p -> limit <= 0 || deeper_than (limit - 1) p.solid
   | _ -> false
 
 (* The number of each vertex of [p] ([x y z] each), equal points one
@@ -143,13 +164,27 @@ let check_closed (m : Mesh.t) =
              "csg: mesh %S is not a closed solid: its edge from (%s %s %s) to (%s %s %s) borders %d triangle%s, not 2"
              m.source (num ax) (num ay) (num az) (num bx) (num by) (num bz) n (if n = 1 then "" else "s")))
 
+(* A pattern lies in its object's frame, which the kernel does not carry
+   patterns into (as {!Shape.validate} refuses for instances). *)
+let no_pattern p =
+  if List.exists (fun (m : Material.t) -> Option.is_some m.pattern) (materials (v Union p.solid p.solid)) then
+    Error (`Msg "csg: a transformed operand cannot have a pattern (patterns are not carried into an object's frame yet)")
+  else Ok ()
+
 let rec validate c =
   let ( let* ) = Result.bind in
   let* () =
-    if deeper_than max_depth (Csg c) then Error (`Msg (Printf.sprintf "csg nested deeper than %d levels" max_depth))
+    if deeper_than max_depth (Csg c) then Error (`Msg (Printf.sprintf "csg nested deeper than %d levels (transforms count)" max_depth))
     else Ok ()
   in
-  let child = function
+  let rec child = function
+    | Transformed p ->
+        let* solid = child p.solid in
+        let* () = no_pattern p in
+        let* _ =
+          match p.own_material with Some m -> Result.map Option.some (Material.validate ~form:"transform" m) | None -> Ok None
+        in
+        Ok (Transformed { p with solid })
     | Sphere s -> Result.map (fun s -> Sphere s) (Sphere.validate s)
     | Box b -> Result.map (fun b -> Box b) (Box.validate b)
     | Mesh m ->
@@ -172,6 +207,7 @@ let rec solid_box = function
       (Vec3.sub s.center r, Vec3.add s.center r)
   | Box b -> (b.min, b.max)
   | Primitive p -> Shape_desc.bounds p
+  | Transformed p -> Transform.bounds p.transform (solid_box p.solid)
   | Mesh m ->
       let lo = Array.make 3 infinity and hi = Array.make 3 neg_infinity in
       Array.iteri
@@ -195,23 +231,33 @@ let bounds c = solid_box (Csg c)
 
 let extent c =
   let ext (p : Vec3.t) = Float.max (Float.abs p.x) (Float.max (Float.abs p.y) (Float.abs p.z)) in
-  fold_solids
-    (fun acc l ->
-      let lo, hi = solid_box l in
-      Float.max acc (Float.max (ext lo) (ext hi)))
-    0. (Csg c)
+  (* A transformed operand's box in the world, not its leaves' in their
+     own frames. *)
+  let rec go acc = function
+    | Csg c -> go (go acc c.a) c.b
+    | l ->
+        let lo, hi = solid_box l in
+        Float.max acc (Float.max (ext lo) (ext hi))
+  in
+  go 0. (Csg c)
 
 let triangles c = fold_solids (fun n l -> match l with Mesh m -> n + Mesh.objects m | _ -> n) 0 (Csg c)
 
-let rec pp ppf c =
-  let solid ppf = function
-    | Sphere s -> Sphere.pp ppf s
-    | Box b -> Box.pp ppf b
-    | Mesh m -> Mesh.pp_form ppf m
-    | Primitive p -> Shape_desc.pp_primitive ppf p
-    | Csg c -> pp ppf c
-  in
-  Format.fprintf ppf "(csg %s %a %a)" (op_name c.op) solid c.a solid c.b
+let rec pp ppf c = Format.fprintf ppf "(csg %s %a %a)" (op_name c.op) pp_solid c.a pp_solid c.b
+
+and pp_solid ppf = function
+  | Sphere s -> Sphere.pp ppf s
+  | Box b -> Box.pp ppf b
+  | Mesh m -> Mesh.pp_form ppf m
+  | Primitive p -> Shape_desc.pp_primitive ppf p
+  | Csg c -> pp ppf c
+  | Transformed { transform; solid; own_material; name } -> (
+      (* As {!Shape.pp} prints an instance: a named one as the [use] of its
+         definition (which {!Scene.pp} prints first). *)
+      let pp_material ppf = function Some m -> Format.fprintf ppf " %a" Material.pp m | None -> () in
+      match name with
+      | Some n -> Format.fprintf ppf "(use %s (transform %a)%a)" n Transform.pp transform pp_material own_material
+      | None -> Format.fprintf ppf "(transform %a %a%a)" Transform.pp transform pp_solid solid pp_material own_material)
 
 let show c = Format.asprintf "%a" pp c
 
@@ -264,12 +310,21 @@ type table = {
   depth : int;  (** The deepest hierarchy of a mesh leaf. *)
   slot_bits : int;  (** Of a surface's number: see [bits_for]. *)
   surface_id : int array;  (** [sf lsl slot_bits] for each surface [sf]: a load, not a shift, per leaf test. *)
+  frames : float array;
+      (** 12 floats per transformed operand: the world-to-object matrix
+          ({!Transform.to_object}) of all the transforms around it,
+          composed, so that every level carries the world's ray itself. *)
+  surface_frame : int array;  (** The frame of each surface's innermost transformed operand; [-1] for none. *)
+  frame_depth : int;  (** The most transformed operands nested in one another. *)
 }
 
 type builder = {
   mutable nodes : (int * int * int * int) list;  (** kind, left, right, base; reversed. *)
   mutable n_nodes : int;
-  mutable surfaces : (Kind.t * float array * int) list;  (** Reversed. *)
+  mutable surfaces : (Kind.t * float array * int * int) list;  (** Kind, geometry, material, frame; reversed. *)
+  mutable frames : float array list;  (** Reversed. *)
+  mutable n_frames : int;
+  mutable frame_depth : int;
   mutable n_surfaces : int;
   mutable meshes : mesh_leaf list;  (** Reversed. *)
   mutable n_meshes : int;
@@ -278,10 +333,29 @@ type builder = {
 }
 
 let builder () =
-  { nodes = []; n_nodes = 0; surfaces = []; n_surfaces = 0; meshes = []; n_meshes = 0; n_intervals = 0; max_depth = 0 }
+  {
+    nodes = [];
+    n_nodes = 0;
+    surfaces = [];
+    n_surfaces = 0;
+    frames = [];
+    n_frames = 0;
+    frame_depth = 0;
+    meshes = [];
+    n_meshes = 0;
+    n_intervals = 0;
+    max_depth = 0;
+  }
 
-let add_surface b kind g mat =
-  b.surfaces <- (kind, g, mat) :: b.surfaces;
+(* The frame in which the leaves being added lie: [index] in [frames]
+   ([-1] for the world), the composed transform, the material that covers
+   them, and how many transformed operands enclose them. *)
+type frame = { index : int; composed : Transform.t; over : Material.t option; level : int }
+
+let world = { index = -1; composed = Transform.identity; over = None; level = 0 }
+
+let add_surface b fr kind g mat =
+  b.surfaces <- (kind, g, mat, fr.index) :: b.surfaces;
   b.n_surfaces <- b.n_surfaces + 1
 
 (* A node with room for [cap] intervals; its number. *)
@@ -335,29 +409,30 @@ let mesh_leaf (m : Mesh.t) =
 
 (* Adds [s] with its leaves' materials numbered by [material] (given the
    leaf); its node and its capacity in intervals. *)
-let rec add_solid b ~material s =
+let rec add_solid b ~material fr s =
+  let mat s = material s (match fr.over with Some m -> m | None -> leaf_material s) in
   match s with
   | Sphere sp ->
       let first = b.n_surfaces in
-      add_surface b Kind.Sphere [| sp.center.x; sp.center.y; sp.center.z; sp.radius |] (material s);
+      add_surface b fr Kind.Sphere [| sp.center.x; sp.center.y; sp.center.z; sp.radius |] (mat s);
       (add_node b leaf_node first 0 1, 1)
   | Box bx ->
       let first = b.n_surfaces in
       let g = Array.make stride 0. in
       Box.store bx g 0;
-      add_surface b Kind.Box g (material s);
+      add_surface b fr Kind.Box g (mat s);
       (add_node b leaf_node first 0 1, 1)
   | Primitive p ->
       let first = b.n_surfaces in
       let g = Array.make stride 0. in
       Shape_desc.store p g 0;
-      add_surface b (Shape_desc.kind p) g (material s);
+      add_surface b fr (Shape_desc.kind p) g (mat s);
       let cap = Kind.spans (Shape_desc.kind p) in
       (add_node b leaf_node first 0 cap, cap)
   | Mesh m ->
       let sf = b.n_surfaces and leaf = mesh_leaf m in
       let number = b.n_meshes in
-      add_surface b Kind.Triangle [| Float.of_int number |] (material s);
+      add_surface b fr Kind.Triangle [| Float.of_int number |] (mat s);
       b.meshes <- leaf :: b.meshes;
       b.n_meshes <- number + 1;
       let n = Array.length leaf.corners / 3 in
@@ -367,17 +442,37 @@ let rec add_solid b ~material s =
       let cap = (n / 2) + 1 in
       (add_node b leaf_node sf number cap, cap)
   | Csg c ->
-      let a, ca = add_solid b ~material c.a in
-      let bn, cb = add_solid b ~material c.b in
+      let a, ca = add_solid b ~material fr c.a in
+      let bn, cb = add_solid b ~material fr c.b in
       let kind = match c.op with Union -> union | Intersection -> intersection | Difference -> difference in
       (add_node b kind a bn (ca + cb), ca + cb)
+  | Transformed p ->
+      (* The object's frame from the world's: the transform, then those
+         around it. *)
+      let composed = Transform.compose p.transform fr.composed in
+      let index = b.n_frames in
+      b.frames <- Transform.to_object composed :: b.frames;
+      b.n_frames <- index + 1;
+      let level = fr.level + 1 in
+      b.frame_depth <- max b.frame_depth level;
+      let over = match fr.over with Some _ -> fr.over | None -> p.own_material in
+      let child, cap = add_solid b ~material { index; composed; over; level } p.solid in
+      (* A leaf of a surface of kind [Instance] holding the frame's number
+         (see [eval_placed]), that shares its child's intervals: [eval]
+         copies only the count. *)
+      let sf = b.n_surfaces in
+      add_surface b world Kind.Instance [| Float.of_int index |] (-1);
+      let _, _, _, child_base = List.hd b.nodes in
+      b.nodes <- (leaf_node, sf, child, child_base) :: b.nodes;
+      b.n_nodes <- b.n_nodes + 1;
+      (b.n_nodes - 1, cap)
 
-let add b ~material c = fst (add_solid b ~material (Csg c))
+let add b ~material c = fst (add_solid b ~material world (Csg c))
 
 let table b =
   let nodes = Array.of_list (List.rev b.nodes) and surfaces = Array.of_list (List.rev b.surfaces) in
   let geom = Array.make (stride * Array.length surfaces) 0. in
-  Array.iteri (fun i (_, g, _) -> Array.blit g 0 geom (stride * i) (Array.length g)) surfaces;
+  Array.iteri (fun i (_, g, _, _) -> Array.blit g 0 geom (stride * i) (Array.length g)) surfaces;
   let slots = List.fold_left (fun m leaf -> max m (Array.length leaf.corners / 3)) 0 b.meshes in
   let slot_bits = bits_for slots in
   if Array.length surfaces > max_int lsr slot_bits then
@@ -389,14 +484,17 @@ let table b =
     left = Array.map (fun (_, l, _, _) -> l) nodes;
     right = Array.map (fun (_, _, r, _) -> r) nodes;
     base = Array.map (fun (_, _, _, o) -> o) nodes;
-    surface_kind = Array.map (fun (k, _, _) -> k) surfaces;
+    surface_kind = Array.map (fun (k, _, _, _) -> k) surfaces;
     geom;
-    surface_material = Array.map (fun (_, _, m) -> m) surfaces;
+    surface_material = Array.map (fun (_, _, m, _) -> m) surfaces;
     meshes = Array.of_list (List.rev b.meshes);
     intervals = b.n_intervals;
     depth = b.max_depth;
     slot_bits;
     surface_id = Array.init (Array.length surfaces) (fun sf -> sf lsl slot_bits);
+    frames = Array.concat (List.rev b.frames);
+    surface_frame = Array.map (fun (_, _, _, f) -> f) surfaces;
+    frame_depth = b.frame_depth;
   }
 
 let empty = table (builder ())
@@ -408,6 +506,12 @@ type work = {
   s_out : int array;
   count : int array;
   stack : int array;  (** The nodes of a mesh's hierarchy still to visit. *)
+  rays : float array;
+      (** 12 floats a level of transformed operands: the ray and its
+          triangle-test frame ([Scratch]'s [sx] .. [okz]) of the frame
+          around, put back when the operand is done; level 0 is the
+          world's. *)
+  mutable level : int;  (** Of the transformed operand being traced. *)
   mutable surface : int;
   mutable entering : bool;
   mutable tests : int;
@@ -423,6 +527,8 @@ let work tb =
     s_out = Array.make n 0;
     count = Array.make (max 1 (Array.length tb.node_kind)) 0;
     stack = Array.make ((2 * tb.depth) + 2) 0;
+    rays = Array.make (12 * (tb.frame_depth + 1)) 0.;
+    level = 0;
     surface = -1;
     entering = true;
     tests = 0;
@@ -688,6 +794,76 @@ let merge w op node base na nb ba bb =
   done;
   Array.unsafe_set w.count node !n
 
+(* The ray of [s] and its triangle-test frame, saved in [r] at [o]: a
+   transformed operand changes them, and the traversal around the CSG
+   solid reads them after ([Triangle.shear]'s, found once per ray). *)
+let[@inline] save r o (s : Scratch.t) =
+  Array.unsafe_set r o s.ox;
+  Array.unsafe_set r (o + 1) s.oy;
+  Array.unsafe_set r (o + 2) s.oz;
+  Array.unsafe_set r (o + 3) s.dx;
+  Array.unsafe_set r (o + 4) s.dy;
+  Array.unsafe_set r (o + 5) s.dz;
+  Array.unsafe_set r (o + 6) s.sx;
+  Array.unsafe_set r (o + 7) s.sy;
+  Array.unsafe_set r (o + 8) s.sz;
+  Array.unsafe_set r (o + 9) s.okx;
+  Array.unsafe_set r (o + 10) s.oky;
+  Array.unsafe_set r (o + 11) s.okz
+
+let[@inline] restore r o (s : Scratch.t) =
+  s.ox <- Array.unsafe_get r o;
+  s.oy <- Array.unsafe_get r (o + 1);
+  s.oz <- Array.unsafe_get r (o + 2);
+  s.dx <- Array.unsafe_get r (o + 3);
+  s.dy <- Array.unsafe_get r (o + 4);
+  s.dz <- Array.unsafe_get r (o + 5);
+  s.sx <- Array.unsafe_get r (o + 6);
+  s.sy <- Array.unsafe_get r (o + 7);
+  s.sz <- Array.unsafe_get r (o + 8);
+  s.okx <- Array.unsafe_get r (o + 9);
+  s.oky <- Array.unsafe_get r (o + 10);
+  s.okz <- Array.unsafe_get r (o + 11)
+
+(* The world's ray, saved at the start of [r], into [s] in the frame of
+   the matrix at [o] of [m], as the kernel carries a ray into an
+   instance: the origin by the world-to-object matrix, the direction by
+   its linear part, not renormalised, so that a root [t] is the same
+   number in both frames. *)
+let[@inline] carry m o r (s : Scratch.t) =
+  let x = Array.unsafe_get r 0 and y = Array.unsafe_get r 1 and z = Array.unsafe_get r 2 in
+  let dx = Array.unsafe_get r 3 and dy = Array.unsafe_get r 4 and dz = Array.unsafe_get r 5 in
+  let a00 = Array.unsafe_get m o and a01 = Array.unsafe_get m (o + 1) and a02 = Array.unsafe_get m (o + 2) in
+  let a10 = Array.unsafe_get m (o + 4) and a11 = Array.unsafe_get m (o + 5) and a12 = Array.unsafe_get m (o + 6) in
+  let a20 = Array.unsafe_get m (o + 8) and a21 = Array.unsafe_get m (o + 9) and a22 = Array.unsafe_get m (o + 10) in
+  s.ox <- (a00 *. x) +. (a01 *. y) +. (a02 *. z) +. Array.unsafe_get m (o + 3);
+  s.oy <- (a10 *. x) +. (a11 *. y) +. (a12 *. z) +. Array.unsafe_get m (o + 7);
+  s.oz <- (a20 *. x) +. (a21 *. y) +. (a22 *. z) +. Array.unsafe_get m (o + 11);
+  s.dx <- (a00 *. dx) +. (a01 *. dy) +. (a02 *. dz);
+  s.dy <- (a10 *. dx) +. (a11 *. dy) +. (a12 *. dz);
+  s.dz <- (a20 *. dx) +. (a21 *. dy) +. (a22 *. dz)
+
+(* A transformed operand: a leaf node whose surface, of kind [Instance]
+   (no solid's kind here), holds its frame's number, and whose [right] is
+   its child, so that [eval]'s other paths are as they were (one more arm
+   in the leaves' jump table). It calls [eval] through a reference, set
+   once: a group of mutually recursive functions made [Csg.roots] bigger
+   where the traversal inlines it. *)
+let eval_ref : (table -> work -> Scratch.t -> int -> unit) ref = ref (fun _ _ _ _ -> ())
+
+let[@inline never] eval_placed tb w (s : Scratch.t) node sf =
+  let child = Array.unsafe_get tb.right node in
+  let level = w.level in
+  save w.rays (12 * level) s;
+  (* The world's ray (level 0's, just saved if this is the outermost
+     operand) carried by the composed matrix. *)
+  carry tb.frames (12 * truncate (Array.unsafe_get tb.geom (stride * sf))) w.rays s;
+  w.level <- level + 1;
+  !eval_ref tb w s child;
+  w.level <- level;
+  restore w.rays (12 * level) s;
+  Array.unsafe_set w.count node (Array.unsafe_get w.count child)
+
 (* A CSG leaf is closed ({!Kind.closed}), and its triangles are flat:
    {!add_solid} makes no other. *)
 let not_a_leaf () = invalid_arg "Csg: a leaf of a kind that is not closed"
@@ -705,6 +881,7 @@ let[@warning "-11"] rec eval tb w (s : Scratch.t) node =
         w.tests <- w.tests + 1;
         leaf_interval w s node base (Array.unsafe_get tb.surface_id sf) (Box.roots s tb.geom (stride * sf))
     | Kind.Triangle -> mesh_intervals tb w s node base
+    | Kind.Instance -> eval_placed tb w s node sf
     | Kind.Plane | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ()
     | k ->
         (* Every other closed kind, by the kernel's dispatch. *)
@@ -725,7 +902,14 @@ let[@warning "-11"] rec eval tb w (s : Scratch.t) node =
     end
   end
 
-let roots tb w (s : Scratch.t) root =
+
+let () = eval_ref := eval
+
+(* Not inlined: inlined into the traversal's [shape_roots], it made the
+   traversal's shape tests too big for OCaml to inline into its loops,
+   which then cost the scenes of boxes and planes more than the gate
+   allows (docs/performance.md, "Round 3: transformed CSG operands"). *)
+let[@inline never] roots tb w (s : Scratch.t) root =
   eval tb w s root;
   let base = Array.unsafe_get tb.base root and n = Array.unsafe_get w.count root in
   let t_min = s.t_min in
@@ -754,10 +938,9 @@ let roots tb w (s : Scratch.t) root =
   s.far <- s.near;
   !found
 
-let[@warning "-11"] normal tb w (s : Scratch.t) =
-  let sf = w.surface lsr tb.slot_bits in
+let[@warning "-11"] leaf_normal tb w (s : Scratch.t) sf =
   let o = stride * sf in
-  (match Array.unsafe_get tb.surface_kind sf with
+  match Array.unsafe_get tb.surface_kind sf with
   | Kind.Sphere ->
       let g = tb.geom in
       let nx = s.px -. Array.unsafe_get g o and ny = s.py -. Array.unsafe_get g (o + 1) and nz = s.pz -. Array.unsafe_get g (o + 2) in
@@ -770,7 +953,42 @@ let[@warning "-11"] normal tb w (s : Scratch.t) =
       let leaf = tb.meshes.(truncate tb.geom.(o)) and c = 3 * (w.surface land ((1 lsl tb.slot_bits) - 1)) in
       Triangle.normal_at s leaf.vertex leaf.corners.(c) leaf.corners.(c + 1) leaf.corners.(c + 2)
   | Kind.Plane | Kind.Smooth_triangle | Kind.Csg -> not_a_leaf ()
-  | k -> Kind_dispatch.normal k s tb.geom o);
+  | k -> Kind_dispatch.normal k s tb.geom o
+
+(* A transformed operand's surface: the ray carried into its frame as
+   [eval] carried it (the same bits), the hit point there at the same
+   [t], the surface's normal there, brought to the world by the inverse
+   transpose of the linear part (the transpose of the world-to-object
+   matrix's) and divided by its length; the world's ray and point put
+   back. *)
+let[@inline never] framed_normal (tb : table) w (s : Scratch.t) sf f =
+  let r = w.rays in
+  save r 0 s;
+  let px = s.px and py = s.py and pz = s.pz in
+  let m = tb.frames and o = 12 * f in
+  carry m o r s;
+  let t = s.near in
+  s.px <- s.ox +. (s.dx *. t);
+  s.py <- s.oy +. (s.dy *. t);
+  s.pz <- s.oz +. (s.dz *. t);
+  leaf_normal tb w s sf;
+  let nx = s.nx and ny = s.ny and nz = s.nz in
+  let wx = (Array.unsafe_get m o *. nx) +. (Array.unsafe_get m (o + 4) *. ny) +. (Array.unsafe_get m (o + 8) *. nz) in
+  let wy = (Array.unsafe_get m (o + 1) *. nx) +. (Array.unsafe_get m (o + 5) *. ny) +. (Array.unsafe_get m (o + 9) *. nz) in
+  let wz = (Array.unsafe_get m (o + 2) *. nx) +. (Array.unsafe_get m (o + 6) *. ny) +. (Array.unsafe_get m (o + 10) *. nz) in
+  let inv = 1. /. sqrt ((wx *. wx) +. (wy *. wy) +. (wz *. wz)) in
+  s.nx <- wx *. inv;
+  s.ny <- wy *. inv;
+  s.nz <- wz *. inv;
+  restore r 0 s;
+  s.px <- px;
+  s.py <- py;
+  s.pz <- pz
+
+let normal tb w (s : Scratch.t) =
+  let sf = w.surface lsr tb.slot_bits in
+  let f = Array.unsafe_get tb.surface_frame sf in
+  if f < 0 then leaf_normal tb w s sf else framed_normal tb w s sf f;
   (* Outward from the solid: against the ray where it enters, along it
      where it leaves. This turns a subtracted solid's normal around. *)
   let along = (s.nx *. s.dx) +. (s.ny *. s.dy) +. (s.nz *. s.dz) > 0. in
@@ -799,7 +1017,22 @@ let[@inline] pending w = w.tests + w.boxes
 type tree = Leaf of int | Node of op * tree * tree
 
 let literal_hit c ~origin ~direction ~t_min ~t_max =
-  let leaves = Array.of_list (leaves c) in
+  let placed = Array.of_list (leaves c) in
+  let leaves = Array.map (fun (l, _, _) -> l) placed in
+  (* Each leaf's line in its own frame: the world's carried through the
+     transforms around it, outermost first; [t] is the same in each. *)
+  let lines =
+    Array.map
+      (fun (_, _, frames) ->
+        List.fold_left
+          (fun (o, d) tr ->
+            let m = Transform.to_object tr in
+            let row k (v : Vec3.t) = (m.(4 * k) *. v.x) +. (m.((4 * k) + 1) *. v.y) +. (m.((4 * k) + 2) *. v.z) in
+            ( Vec3.v (row 0 o +. m.(3)) (row 1 o +. m.(7)) (row 2 o +. m.(11)),
+              Vec3.v (row 0 d) (row 1 d) (row 2 d) ))
+          (origin, direction) (List.rev frames))
+      placed
+  in
   let rec tree next = function
     | Csg c ->
         let a, next = tree next c.a in
@@ -813,6 +1046,7 @@ let literal_hit c ~origin ~direction ~t_min ~t_max =
   let crossings =
     Array.mapi
       (fun i leaf ->
+        let origin, direction = lines.(i) in
         match leaf with
         | Sphere s ->
             let near, far = Sphere.roots s ~origin ~direction in
@@ -837,7 +1071,7 @@ let literal_hit c ~origin ~direction ~t_min ~t_max =
             let xs = List.stable_sort (fun (a, _, _) (b, _, _) -> Float.compare a b) xs in
             (* An odd count: the last crossing does not count. *)
             if List.length xs mod 2 = 1 then List.filteri (fun j _ -> j < List.length xs - 1) xs else xs
-        | Csg _ -> assert false)
+        | Csg _ | Transformed _ -> assert false)
       leaves
   in
   (* Is parameter [t] inside leaf [i], just before it or just after? *)
@@ -870,6 +1104,8 @@ let literal_hit c ~origin ~direction ~t_min ~t_max =
   match boundary with
   | Some (t, i, k) when t < t_max ->
       let entering = inside ~after:true t tree in
+      let world_direction = direction in
+      let origin, direction = lines.(i) in
       let point = Vec3.add origin (Vec3.smul t direction) in
       let sc = Scratch.create () in
       sc.px <- point.x;
@@ -890,8 +1126,11 @@ let literal_hit c ~origin ~direction ~t_min ~t_max =
             Triangle.normal sc g 0;
             Vec3.v sc.nx sc.ny sc.nz
         | Primitive p -> snd (List.nth (Shape_desc.literal p ~origin ~direction) k)
-        | Csg _ -> assert false
+        | Csg _ | Transformed _ -> assert false
       in
+      let _, _, frames = placed.(i) in
+      let n = List.fold_left (fun n tr -> Transform.normal_to_world tr n) n frames in
+      let direction = world_direction in
       let along = Vec3.dot n direction > 0. in
       let n = if along <> not entering then Vec3.neg n else n in
       Some (t, leaves.(i), n)

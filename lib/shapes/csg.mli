@@ -2,7 +2,8 @@
     closed solids.
 
     A CSG solid combines two closed solids (spheres, boxes, closed meshes,
-    or CSG solids themselves) by a boolean operation on their insides.
+    the closed described kinds, CSG solids themselves, or any of these
+    placed by a transform) by a boolean operation on their insides.
     Each point of its surface lies on the surface of one of its leaves and
     shows that leaf's material; its outward normal is the leaf's outward
     normal, reversed where the leaf is subtracted (the inside of a cavity
@@ -24,11 +25,34 @@ type op = Union | Intersection | Difference  (** The type for operations. *)
 type t = private { op : op; a : solid; b : solid }
 (** The type for CSG solids: [a op b]; read its fields, make one with {!v}. *)
 
-and solid = Sphere of Sphere.t | Box of Box.t | Mesh of Mesh.t | Csg of t | Primitive of Shape_desc.primitive
+and solid =
+  | Sphere of Sphere.t
+  | Box of Box.t
+  | Mesh of Mesh.t
+  | Csg of t
+  | Primitive of Shape_desc.primitive
+  | Transformed of placed  (** A closed solid placed by a transform: scene text's [transform] and [use] as operands. *)
 (** The type for the operands. A mesh must be closed ({!check_closed}). *)
+
+and placed = {
+  transform : Transform.t;  (** The operand's frame to the frame around it. *)
+  solid : solid;  (** The operand in its own frame. *)
+  own_material : Material.t option;
+      (** The material of every surface of [solid], or [None] for their
+          own; an outer operand's covers an inner one's, as an instance's
+          does. *)
+  name : string option;  (** The name of its definition ([define]), printed as [use]; [None] for [transform]. *)
+}
+(** The type for transformed operands. The kernel carries the ray into
+    the operand's frame inside the CSG table ([t] unchanged: the direction
+    is not renormalised) and brings its normals back by the inverse
+    transpose. *)
 
 val v : op -> solid -> solid -> t
 (** [v op a b] is [a op b], not validated. *)
+
+val placed : ?material:Material.t -> ?name:string -> Transform.t -> solid -> solid
+(** [placed ~material ~name tr s] is [s] placed by [tr] ({!constructor-Transformed}). *)
 
 val equal : t -> t -> bool
 (** [equal a b] is [true] iff [a] and [b] are the same operation on equal
@@ -47,6 +71,11 @@ val pp : Format.formatter -> t -> unit
 (** [pp ppf c] prints [c] as its form in the scene-file syntax,
     [(csg union A B)], each operand as its own form. *)
 
+val pp_solid : Format.formatter -> solid -> unit
+(** [pp_solid ppf s] prints the operand [s] as its form: a named
+    transformed operand as [(use NAME (transform OPS) ...)], whose
+    definition {!Raytrace.Scene.pp} prints first. *)
+
 val show : t -> string
 (** [show c] is [c] formatted by {!pp}. *)
 
@@ -61,17 +90,25 @@ val check_closed : Mesh.t -> (unit, [> `Msg of string ]) result
 
 val validate : t -> (t, [> `Msg of string ]) result
 (** [validate c] checks every operand as its module's [validate] does,
-    that every mesh is closed ({!check_closed}), and that [c] nests at most
-    {!max_depth} levels deep. *)
+    that every mesh is closed ({!check_closed}), that no transformed
+    operand's material has a pattern (patterns are not carried into an
+    object's frame), and that [c] nests at most {!max_depth} levels deep
+    (CSG forms and transformed operands each count one). *)
 
 val leaf_material : solid -> Material.t
 (** [leaf_material l] is the material of the leaf [l] (a sphere's own
     fields as a material, pattern included).
-    @raise Invalid_argument if [l] is a [Csg] node. *)
+    @raise Invalid_argument if [l] is a [Csg] or [Transformed] node. *)
+
+val leaves : t -> (solid * Material.t * Transform.t list) list
+(** [leaves c] is [c]'s leaves, left to right, each with the material
+    it shows (that of the outermost transformed operand around it that
+    has its own, else {!leaf_material}) and the transforms around it,
+    innermost first. *)
 
 val materials : t -> Material.t list
-(** [materials c] is the materials of [c]'s leaves (spheres, boxes and
-    meshes), left to right. *)
+(** [materials c] is the materials of [c]'s leaves as {!leaves} gives
+    them, left to right. *)
 
 val bounds : t -> Vec3.t * Vec3.t
 (** [bounds c] is [(lo, hi)], a box that holds [c]: for a union the box
@@ -123,15 +160,24 @@ type work
     and a bounding volume hierarchy ({!Raytrace.Private.Bvh}) over them, which a ray
     descends along its whole line: its crossings anywhere are the parity
     of the points along it, and a triangle's box is grown so that no
-    crossing the triangle test reports is missed (see [csg.ml]). *)
+    crossing the triangle test reports is missed (see [csg.ml]). A
+    transformed operand is a leaf of a surface of kind [Instance] (no
+    solid's kind), whose geometry is its frame's number (the world-to-object
+    matrix of its transforms and those around it, composed) and whose
+    child is the operand's node: the ray is carried into that frame for
+    the child and put back after. *)
 
 val builder : unit -> builder
 (** [builder ()] is an empty table being built. *)
 
-val add : builder -> material:(solid -> int) -> t -> int
+val add : builder -> material:(solid -> Material.t -> int) -> t -> int
 (** [add b ~material c] adds [c] to [b], numbering its leaves' materials
-    by [material] (called once per leaf, given the leaf, left to right);
-    the number of its root node, for [roots]. *)
+    by [material] (called once per leaf, given the leaf and the material
+    it shows, as {!leaves} gives them, left to right); the number of its
+    root node, for [roots]. A transformed operand is a node of the table
+    that carries the ray into its frame (its transforms composed with
+    those around it, so that each level carries the world's ray) for its
+    child and puts it back after. *)
 
 val table : builder -> table
 (** [table b] is the table built by [b].

@@ -259,4 +259,4 @@ let leaf_pattern_frame = function
   | Csg.Box b -> pattern_frame (Box b)
   | Csg.Mesh m -> pattern_frame (Mesh m)
   | Csg.Primitive p -> pattern_frame (Primitive p)
-  | Csg.Csg _ -> invalid_arg "Shape.leaf_pattern_frame: a CSG node is not a leaf"
+  | Csg.Csg _ | Csg.Transformed _ -> invalid_arg "Shape.leaf_pattern_frame: a CSG node is not a leaf"

@@ -53,6 +53,8 @@ let rec material = function
   | Csg_surface (_, Csg.Sphere s, _) -> Sphere.material s
   | Csg_surface (_, Csg.Box b, _) -> b.material
   | Csg_surface (_, Csg.Mesh m, _) -> m.material
+  | Csg_surface (_, Csg.Transformed { own_material = Some m; _ }, _) -> m
+  | Csg_surface (c, Csg.Transformed p, n) -> material (Csg_surface (c, p.solid, n))
   | Csg_surface (_, Csg.Csg _, _) -> invalid_arg "Literal.material: a CSG node is not a leaf"
 
 (* The medium inside an object: a CSG solid is one medium, its first
@@ -194,6 +196,14 @@ let transposed m (n : Vec3.t) =
     ((at m 0 1 *. n.x) +. (at m 1 1 *. n.y) +. (at m 2 1 *. n.z))
     ((at m 0 2 *. n.x) +. (at m 1 2 *. n.y) +. (at m 2 2 *. n.z))
 
+(* A CSG operand's transform, this module's own way: the ray into its
+   frame, and a normal from it by the inverse transpose. *)
+let carry_into tr origin direction =
+  let inv = inverse (world_matrix tr) in
+  (affine_point inv origin, linear inv direction)
+
+let normal_out tr n = Vec3.unit (transposed (inverse (world_matrix tr)) n)
+
 (* An object's normal at a point, as [normal] below finds it (defined
    after the roots): set once [normal] is. *)
 let inner_normal_ref : (obj -> point:Vec3.t -> direction:Vec3.t -> Vec3.t) ref = ref (fun _ ~point:_ ~direction:_ -> Vec3.zero)
@@ -240,7 +250,7 @@ let rec item_roots ~continued item ~origin ~direction ~t_min ~t_max =
       tested 1;
       List.map (fun (t, n) -> (G.key_of_float t, Shape (Shape.Primitive p, n))) (Shape_desc.literal p ~origin ~direction)
   | Csg_item c -> (
-      match G.csg_hit ~continued ~tested c ~origin ~direction ~t_min ~t_max with
+      match G.csg_hit ~continued ~tested ~into:carry_into ~out:normal_out c ~origin ~direction ~t_min ~t_max with
       | Some h -> [ (h.key, Csg_surface (c, h.leaf, h.normal)) ]
       | None -> [])
 
@@ -369,7 +379,7 @@ let pattern_frame = function
   | Shape (Shape.Box b, _) | Csg_surface (_, Csg.Box b, _) -> box_frame b
   | Mesh_triangle (m, _) | Csg_surface (_, Csg.Mesh m, _) -> mesh_frame m
   | Shape (Shape.Primitive p, _) | Csg_surface (_, Csg.Primitive p, _) -> primitive_frame p
-  | Shape ((Shape.Mesh _ | Shape.Csg _ | Shape.Instance _), _) | Csg_surface (_, Csg.Csg _, _) | Placed _ -> invalid_arg "Literal.pattern_frame"
+  | Shape ((Shape.Mesh _ | Shape.Csg _ | Shape.Instance _), _) | Csg_surface (_, (Csg.Csg _ | Csg.Transformed _), _) | Placed _ -> invalid_arg "Literal.pattern_frame"
 
 (* The colour the hit at [t] shows: the material's, or its pattern's
    second colour. A transformed object's pattern lies in its frame

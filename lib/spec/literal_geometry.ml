@@ -306,9 +306,11 @@ type crossing = { key : key; leaf : int; surface : surface }
    closed mesh's crossings in order. *)
 type leaf_line = Interval of key * key | Crossings of key list
 
-let leaves (c : Csg.t) =
-  let rec go acc = function Csg.Csg c -> go (go acc c.a) c.b | l -> l :: acc in
-  List.rev (go [] (Csg.Csg c))
+(* Each leaf as it shows: wrapped in an identity placement with the
+   material that covers it, if that is not its own. *)
+let shown (l, m, _) = if m == Csg.leaf_material l then l else Csg.placed ~material:m Transform.identity l
+
+let leaves (c : Csg.t) = List.map shown (Csg.leaves c)
 
 let mesh_crossings ~tested (m : Mesh.t) ~origin ~direction i =
   List.filter_map
@@ -351,7 +353,7 @@ let leaf_crossings ~tested ~origin ~direction i = function
   | Csg.Mesh m ->
       let xs = List.stable_sort (fun x y -> compare_keys x.key y.key) (mesh_crossings ~tested m ~origin ~direction i) in
       (Crossings (List.map (fun x -> x.key) xs), xs)
-  | Csg.Csg _ -> invalid_arg "Literal_geometry: a CSG node is not a leaf"
+  | Csg.Csg _ | Csg.Transformed _ -> invalid_arg "Literal_geometry: a CSG node is not a leaf"
 
 (* Is the point of parameter [t] inside the leaf, just before [t] or just
    after it? An interval holds its ends' sides; a mesh, after an odd
@@ -372,13 +374,27 @@ let rec inside lines ~after t next (s : Csg.solid) =
       | Union -> (a || b, next)
       | Intersection -> (a && b, next)
       | Difference -> (a && not b, next))
+  | Csg.Transformed p -> inside lines ~after t next p.solid
   | _ -> (inside_leaf ~after t lines.(next), next + 1)
 
 type csg_hit = { key : key; leaf : Csg.solid; normal : Vec3.t; entering : bool }
 
-let csg_hit ?(continued = false) ~tested (c : Csg.t) ~origin ~direction ~t_min ~t_max =
-  let leaves = Array.of_list (leaves c) in
-  let per_leaf = Array.mapi (fun i l -> leaf_crossings ~tested ~origin ~direction i l) leaves in
+let csg_hit ?(continued = false) ~tested ~into ~out (c : Csg.t) ~origin ~direction ~t_min ~t_max =
+  let placed = Array.of_list (Csg.leaves c) in
+  let leaves = Array.map (fun (l, _, _) -> l) placed in
+  (* Each leaf's line in its frame: the world's carried through the
+     transforms around it, outermost first; [t] is the same number in
+     every frame. *)
+  let lines_in =
+    Array.map (fun (_, _, frames) -> List.fold_left (fun (o, d) tr -> into tr o d) (origin, direction) (List.rev frames)) placed
+  in
+  let per_leaf =
+    Array.mapi
+      (fun i l ->
+        let origin, direction = lines_in.(i) in
+        leaf_crossings ~tested ~origin ~direction i l)
+      leaves
+  in
   let lines = Array.map fst per_leaf in
   let all =
     List.stable_sort (fun (x : crossing) (y : crossing) -> compare_keys x.key y.key) (List.concat_map snd (Array.to_list per_leaf))
@@ -393,13 +409,16 @@ let csg_hit ?(continued = false) ~tested (c : Csg.t) ~origin ~direction ~t_min ~
   match boundary with
   | Some (x : crossing) when below t_max x.key ->
       let entering = state ~after:true x.key in
-      let point = Vec3.add origin (Vec3.smul x.key.t direction) in
+      let o, d = lines_in.(x.leaf) in
+      let point = Vec3.add o (Vec3.smul x.key.t d) in
       let n =
         match x.surface with Round s -> sphere_normal s point | Flat n -> n | Facet (a, b, c) -> triangle_normal a b c
       in
+      let _, _, frames = placed.(x.leaf) in
+      let n = List.fold_left (fun n tr -> out tr n) n frames in
       (* Outward from the solid: against the ray where it enters. *)
       let n = if Vec3.dot n direction > 0. = entering then Vec3.neg n else n in
-      Some { key = x.key; leaf = leaves.(x.leaf); normal = n; entering }
+      Some { key = x.key; leaf = shown placed.(x.leaf); normal = n; entering }
   | _ -> None
 
 (* {1 Patterns} *)

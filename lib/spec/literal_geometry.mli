@@ -143,7 +143,9 @@ val box_hit : Box.t -> origin:Vec3.t -> direction:Vec3.t -> box_hit option
 (** {1:csg CSG solids} *)
 
 val leaves : Csg.t -> Csg.solid list
-(** [leaves c] is the spheres, boxes and meshes of [c], left to right. *)
+(** [leaves c] is the leaves of [c], left to right; one that a
+    transformed operand's material covers wrapped in an identity
+    placement with that material. *)
 
 type csg_hit = {
   key : key;  (** The parameter of the hit. *)
@@ -156,6 +158,8 @@ type csg_hit = {
 val csg_hit :
   ?continued:bool ->
   tested:(int -> unit) ->
+  into:(Transform.t -> Vec3.t -> Vec3.t -> Vec3.t * Vec3.t) ->
+  out:(Transform.t -> Vec3.t -> Vec3.t) ->
   Csg.t ->
   origin:Vec3.t ->
   direction:Vec3.t ->
@@ -171,7 +175,11 @@ val csg_hit :
     before and just after it; of crossings at the same parameter, the
     leftmost leaf's. [tested n] is called for every [n] tests done (one
     per sphere or box leaf, one per mesh triangle) before they are done;
-    an exception it raises stops the search and passes through. *)
+    an exception it raises stops the search and passes through. A leaf
+    inside transformed operands is crossed by the line [into tr o d]
+    carries into its frame through each, outermost first (the caller's
+    own matrices; [t] is the same number in every frame), and its normal
+    is brought back by [out tr n] through each, innermost first. *)
 
 (** {1:patterns Patterns} *)
 

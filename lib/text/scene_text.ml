@@ -472,7 +472,7 @@ let closed_primitive kw =
 (* The operands a CSG form takes, for its messages. *)
 let operands =
   let described = List.filter_map (fun (Shape_desc.Any d) -> if Kind.closed d.kind then Some (d.name ^ ", ") else None) Primitives.all in
-  "a sphere, box, " ^ String.concat "" described ^ "closed mesh or csg"
+  "a sphere, box, " ^ String.concat "" described ^ "closed mesh, csg, or a transform or use of one"
 
 (* A mesh: its file is read by [load] (the path as the scene gives it). *)
 let mesh_solid ~where ~named ~load ~add_triangles form_node nodes =
@@ -516,9 +516,27 @@ let mesh ~where ~named ~load ~add_triangles form_node nodes = Shape.Mesh (mesh_s
 
 let csg_ops = [ "union"; "intersection"; "difference" ]
 
+(* The CSG operand that a [transform] or [use] form at [node] made: its
+   object must be a closed solid, at any depth of placement. *)
+let rec operand_of_shape node = function
+  | Shape.Sphere s -> Csg.Sphere s
+  | Shape.Box b -> Csg.Box b
+  | Shape.Mesh m ->
+      check node (Csg.check_closed m);
+      Csg.Mesh m
+  | Shape.Csg c -> Csg.Csg c
+  | Shape.Primitive p ->
+      if not (Shape_desc.closed p) then
+        fail node "csg: the object placed here, %s, is not a closed solid; an operand is %s" (Shape_desc.not_closed p) operands;
+      Csg.Primitive p
+  | Shape.Instance i -> Csg.placed ?material:i.own_material ?name:i.name i.transform (operand_of_shape node i.shape)
+  | (Shape.Plane _ | Shape.Triangle _) as sh ->
+      fail node "csg: the object placed here, a %s, is not a closed solid; an operand is %s" (Shape.name sh) operands
+
 (* A CSG form [(csg op A B)], nested [depth] deep: each operand is a
-   closed solid's form. *)
-let rec csg ~where ~named ~load ~add_triangles ~depth form_node nodes =
+   closed solid's form, or a [transform] or [use] of one, which [placed]
+   reads as any object's. *)
+let rec csg ~where ~named ~load ~add_triangles ~placed ~depth form_node nodes =
   if depth > Csg.max_depth then fail form_node "csg nested deeper than %d levels" Csg.max_depth;
   match nodes with
   | Sexp.Atom name :: rest as all -> (
@@ -531,13 +549,13 @@ let rec csg ~where ~named ~load ~add_triangles ~depth form_node nodes =
       in
       match rest with
       | [ a; b ] ->
-          Csg.v op (csg_operand ~where ~named ~load ~add_triangles ~depth a) (csg_operand ~where ~named ~load ~add_triangles ~depth b)
+          Csg.v op (csg_operand ~where ~named ~load ~add_triangles ~placed ~depth a) (csg_operand ~where ~named ~load ~add_triangles ~placed ~depth b)
       | _ -> fail form_node "csg %s takes 2 solids, got %d" name (List.length rest))
   | _ ->
       fail form_node "csg: expected an operation first, e.g. (csg difference (sphere ...) (box ...)); operations are %s"
         (one_of csg_ops)
 
-and csg_operand ~where ~named ~load ~add_triangles ~depth node =
+and csg_operand ~where ~named ~load ~add_triangles ~placed ~depth node =
   match node with
   | Sexp.List (Sexp.Atom "sphere" :: rest) -> Csg.Sphere (sphere ~where ~named node rest)
   | Sexp.List (Sexp.Atom "box" :: rest) -> Csg.Box (box_solid ~where ~named node rest)
@@ -545,7 +563,13 @@ and csg_operand ~where ~named ~load ~add_triangles ~depth node =
       let m = mesh_solid ~where ~named ~load ~add_triangles node rest in
       check node (Csg.check_closed m);
       Csg.Mesh m
-  | Sexp.List (Sexp.Atom "csg" :: rest) -> Csg.Csg (csg ~where ~named ~load ~add_triangles ~depth:(depth + 1) node rest)
+  | Sexp.List (Sexp.Atom "csg" :: rest) -> Csg.Csg (csg ~where ~named ~load ~add_triangles ~placed ~depth:(depth + 1) node rest)
+  | Sexp.List (Sexp.Atom ("transform" | "use") :: _) ->
+      let o = operand_of_shape node (placed node) in
+      (* As [Csg.validate] refuses it, but located at this form. *)
+      if List.exists (fun (_, (m : Material.t), ts) -> ts <> [] && Option.is_some m.pattern) (Csg.leaves (Csg.v Csg.Union o o)) then
+        fail node "csg: a transformed operand cannot have a pattern (patterns are not carried into an object's frame yet)";
+      o
   | Sexp.List (Sexp.Atom kw :: rest) when closed_primitive kw <> None ->
       let p = primitive_solid (Option.get (closed_primitive kw)) ~where ~named node rest in
       (* Of a closed kind, but possibly left open (a cylinder without caps). *)
@@ -554,7 +578,7 @@ and csg_operand ~where ~named ~load ~add_triangles ~depth node =
   | Sexp.List (Sexp.Atom kw :: _) when kw = "plane" || kw = "triangle" || Primitives.find kw <> None ->
       fail node "csg: a %s is not a closed solid; an operand is %s" kw operands
   | Sexp.List (Sexp.Atom kw :: _) -> fail node "csg: unknown solid %s; an operand is %s" (show_atom kw) operands
-  | _ -> fail node "csg: expected a solid in parentheses, e.g. (sphere ...), (box ...), (mesh ...) or (csg ...)"
+  | _ -> fail node "csg: expected a solid in parentheses, e.g. (sphere ...), (box ...), (mesh ...), (csg ...) or (transform ...)"
 
 let light ~where form_node nodes =
   let kinds = [ "ambient"; "point"; "directional" ] in
@@ -800,7 +824,7 @@ let rec object_of b node =
       | "triangle" -> triangle ~where ~named node rest
       | "box" -> box ~where ~named node rest
       | "mesh" -> mesh ~where ~named ~load:b.load ~add_triangles:(add_triangles b) node rest
-      | "csg" -> Shape.Csg (csg ~where ~named ~load:b.load ~add_triangles:(add_triangles b) ~depth:1 node rest)
+      | "csg" -> Shape.Csg (csg ~where ~named ~load:b.load ~add_triangles:(add_triangles b) ~placed:(object_of b) ~depth:1 node rest)
       | "transform" -> transform_form b node rest
       | "use" -> use_form b node rest
       | _ -> (
@@ -892,7 +916,8 @@ let forms =
     ("mesh", shape (fun b -> mesh ~where:b.where ~named:b.named ~load:b.load ~add_triangles:(add_triangles b)));
     ( "csg",
       shape (fun b node rest ->
-          Shape.Csg (csg ~where:b.where ~named:b.named ~load:b.load ~add_triangles:(add_triangles b) ~depth:1 node rest))
+          Shape.Csg
+            (csg ~where:b.where ~named:b.named ~load:b.load ~add_triangles:(add_triangles b) ~placed:(object_of b) ~depth:1 node rest))
     );
   ]
   @ List.map
