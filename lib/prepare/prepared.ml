@@ -1593,7 +1593,8 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
 (* The steps in order. Each big array is let go as soon as no step needs
    it any more: the steps' results are taken apart here, not held whole. *)
 let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
-  let valid = scene in
+  (* The settings alone: the objects of [scene] are let go below. *)
+  let bottom_scene = Scene.bottom scene in
   let scene = Scene.view (Scene.of_valid scene) in
   let o = read_objects scene in
   let scene = settings scene in
@@ -1610,7 +1611,7 @@ let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
      scene's, and a caller that holds the scene no longer either (the
      renderers) lets them go while the hierarchy is built. *)
   let o = { o with spheres = Spheres.empty } in
-  let inst = instancing (bottom ~skips valid) in
+  let inst = instancing (bottom ~skips bottom_scene) in
   let normal_base = shape_objects o r v s inst okind omat c in
   let materials, alternate, placed, pattern = material_table r in
   (* The hierarchy over the bounded objects kept, then the slots. *)
@@ -1639,8 +1640,8 @@ let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
 (* The bottom level of an instance: its object alone, prepared as a scene
    of the top's mode (epsilon) with no lights; the kernel traces it in
    the object's frame. *)
-and bottom ~skips valid shape =
-  prepare_scene ~every_frame:true ~skips (Scene.bottom valid shape)
+and bottom ~skips bottom_scene shape =
+  prepare_scene ~every_frame:true ~skips (bottom_scene shape)
 
 (* The major heap grows by 256 MB of address space at a time while a big
    scene is prepared, not by 15% of its size: the pieces freed between

@@ -196,9 +196,14 @@ type valid = t
 
 let of_valid v = v
 
-let bottom v shape =
-  let spheres, placed = split [ shape ] in
-  { v with spheres; placed; shapes = List.map snd placed; lights = []; camera_path = None }
+(* Staged: [bottom v] keeps [v]'s settings alone, not its objects, so
+   that a million spheres are let go while [Prepared] builds the
+   hierarchy with this function at hand. *)
+let bottom v =
+  let settings = { v with spheres = Spheres.empty; placed = []; shapes = []; lights = []; camera_path = None } in
+  fun shape ->
+    let spheres, placed = split [ shape ] in
+    { settings with spheres; placed; shapes = List.map snd placed }
 
 (* Sphere by sphere, the first error first, as [Sphere.validate] finds it:
    [Error (i, e)] for sphere [i]; each material is checked once, not once

@@ -169,7 +169,8 @@ val of_valid : valid -> t
 val bottom : valid -> Shape.t -> valid
 (** [bottom v s] is the scene of [v]'s settings with [s] its one object
     and no lights: the bottom level of an instance of [s] (a part of
-    [v], validated with it), which [Prepared] prepares once per object. *)
+    [v], validated with it), which [Prepared] prepares once per object.
+    [bottom v] holds none of [v]'s objects. *)
 
 val override :
   ?limits:Limits.t ->
