@@ -53,3 +53,13 @@ let set_ray s (o : Vec3.t) (d : Vec3.t) =
   s.dx <- d.x;
   s.dy <- d.y;
   s.dz <- d.z
+
+let normal_to_world s (m : float array) o =
+  let nx = s.nx and ny = s.ny and nz = s.nz in
+  let wx = (Array.unsafe_get m o *. nx) +. (Array.unsafe_get m (o + 4) *. ny) +. (Array.unsafe_get m (o + 8) *. nz) in
+  let wy = (Array.unsafe_get m (o + 1) *. nx) +. (Array.unsafe_get m (o + 5) *. ny) +. (Array.unsafe_get m (o + 9) *. nz) in
+  let wz = (Array.unsafe_get m (o + 2) *. nx) +. (Array.unsafe_get m (o + 6) *. ny) +. (Array.unsafe_get m (o + 10) *. nz) in
+  let inv = 1. /. sqrt ((wx *. wx) +. (wy *. wy) +. (wz *. wz)) in
+  s.nx <- wx *. inv;
+  s.ny <- wy *. inv;
+  s.nz <- wz *. inv

@@ -69,3 +69,10 @@ val create : unit -> t
 
 val set_ray : t -> Vec3.t -> Vec3.t -> unit
 (** [set_ray s o d] sets the ray of [s] to [O = o], [D = d]. *)
+
+val normal_to_world : t -> float array -> int -> unit
+(** [normal_to_world s m o] turns the normal in [s], found in an object's
+    frame, into the world's: by the transpose of the world-to-object
+    matrix [m] stored at [m.(o)] (12 floats, 3 rows of [a b c t]), which
+    is the inverse transpose of the object's transform, then to unit
+    length. Reads and writes [s] alone: nothing boxed crosses the call. *)

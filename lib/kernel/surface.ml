@@ -184,14 +184,10 @@ and instance_normal tr i =
        else shape_hit sub j)
   end;
   let m = tr.p.instances.to_object and o = 12 * Traversal.instance_number tr i in
-  let nx = ss.nx and ny = ss.ny and nz = ss.nz in
-  let wx = (Array.unsafe_get m o *. nx) +. (Array.unsafe_get m (o + 4) *. ny) +. (Array.unsafe_get m (o + 8) *. nz) in
-  let wy = (Array.unsafe_get m (o + 1) *. nx) +. (Array.unsafe_get m (o + 5) *. ny) +. (Array.unsafe_get m (o + 9) *. nz) in
-  let wz = (Array.unsafe_get m (o + 2) *. nx) +. (Array.unsafe_get m (o + 6) *. ny) +. (Array.unsafe_get m (o + 10) *. nz) in
-  let inv = 1. /. sqrt ((wx *. wx) +. (wy *. wy) +. (wz *. wz)) in
-  s.nx <- wx *. inv;
-  s.ny <- wy *. inv;
-  s.nz <- wz *. inv
+  s.nx <- ss.nx;
+  s.ny <- ss.ny;
+  s.nz <- ss.nz;
+  Scratch.normal_to_world s m o
 
 (* The material of the instance in slot [i] at the hit that
    [instance_normal] found again: its bottom level's material

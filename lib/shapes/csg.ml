@@ -972,14 +972,7 @@ let[@inline never] framed_normal (tb : table) w (s : Scratch.t) sf f =
   s.py <- s.oy +. (s.dy *. t);
   s.pz <- s.oz +. (s.dz *. t);
   leaf_normal tb w s sf;
-  let nx = s.nx and ny = s.ny and nz = s.nz in
-  let wx = (Array.unsafe_get m o *. nx) +. (Array.unsafe_get m (o + 4) *. ny) +. (Array.unsafe_get m (o + 8) *. nz) in
-  let wy = (Array.unsafe_get m (o + 1) *. nx) +. (Array.unsafe_get m (o + 5) *. ny) +. (Array.unsafe_get m (o + 9) *. nz) in
-  let wz = (Array.unsafe_get m (o + 2) *. nx) +. (Array.unsafe_get m (o + 6) *. ny) +. (Array.unsafe_get m (o + 10) *. nz) in
-  let inv = 1. /. sqrt ((wx *. wx) +. (wy *. wy) +. (wz *. wz)) in
-  s.nx <- wx *. inv;
-  s.ny <- wy *. inv;
-  s.nz <- wz *. inv;
+  Scratch.normal_to_world s m o;
   restore r 0 s;
   s.px <- px;
   s.py <- py;
