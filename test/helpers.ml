@@ -105,6 +105,12 @@ let prepare ?skips s = Raytrace.Private.Prepared.prepare ?skips (valid s)
 let read_scene path = Result.map Scene.of_valid (Raytrace_unix.Files.read_scene path)
 let of_string ?limits ?file text = Result.map Scene.of_valid (Scene_file.of_string ?limits ?file text)
 
+let parse_ok text =
+  match of_string ~file:"t.scene" text with Ok s -> s | Error (`Msg m) -> Alcotest.failf "unexpected error: %s" m
+
+let parse_error text =
+  match of_string ~file:"t.scene" text with Ok _ -> Alcotest.failf "expected an error for %S" text | Error (`Msg m) -> m
+
 (* Alcotest sends what a test prints to stdout and stderr into the test's
    output file; a skip must reach the console, so it writes to a copy of
    stderr taken before any test runs. *)

@@ -100,6 +100,14 @@ val of_string : ?limits:Raytrace.Limits.t -> ?file:string -> string -> (Raytrace
 (** [of_string ~limits ~file text] is {!Raytrace.Scene_file.of_string} as a plain
     scene. *)
 
+val parse_ok : string -> Raytrace.Scene.t
+(** [parse_ok text] is the scene of [text], read as the file [t.scene];
+    the test fails on an error. *)
+
+val parse_error : string -> string
+(** [parse_error text] is the message of [text]'s error, read as the file
+    [t.scene]; the test fails if it reads. *)
+
 (** {1:skips Skips}
 
     A check that cannot run here (a tool missing, no root) is skipped

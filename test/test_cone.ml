@@ -242,8 +242,7 @@ let silhouettes () =
 
 (* {1 Scene text} *)
 
-let parse text =
-  match Helpers.of_string ~file:"t.scene" text with Ok s -> s | Error (`Msg m) -> Alcotest.failf "unexpected error: %s" m
+let parse = Helpers.parse_ok
 
 let form = "(cone (base 0 0 5) (top 0 2 5) (radius 0.5) (top-radius 0) (color 200 50 50))"
 

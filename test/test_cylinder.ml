@@ -417,13 +417,9 @@ let no_self_shadowing () =
 
 (* {1 Scene text} *)
 
-let parse text =
-  match Helpers.of_string ~file:"t.scene" text with Ok s -> s | Error (`Msg m) -> Alcotest.failf "unexpected error: %s" m
+let parse = Helpers.parse_ok
 
-let error text =
-  match Helpers.of_string ~file:"t.scene" text with
-  | Ok _ -> Alcotest.failf "expected an error for %S" text
-  | Error (`Msg m) -> m
+let error = Helpers.parse_error
 
 let forms =
   "(cylinder (base 0 0 5) (top 0 2 5) (radius 0.5) (color 200 50 50))\n\

@@ -13,8 +13,7 @@ open Raytrace
 module Cone = Private.Cone
 module Transform = Shape.Transform
 
-let parse text =
-  match Helpers.of_string ~file:"t.scene" text with Ok s -> s | Error (`Msg m) -> Alcotest.failf "unexpected error: %s" m
+let parse = Helpers.parse_ok
 
 let stats (s : Scene.t) = match Helpers.render s with Ok (_, st) -> st | Error (`Msg m) -> Alcotest.fail m
 let modes = [ None; Some 0.001 ]

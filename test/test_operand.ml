@@ -21,13 +21,9 @@ let lights = [ Light.ambient 0.2; Light.point 0.6 (v 2. 3. 0.); Light.directiona
 let scene ?epsilon ?(width = 48) ?(height = 36) shapes =
   Scene.v ~width ~height ?epsilon ~objects:(Shape.Plane (Plane.v ~point:(v 0. (-2.) 0.) ~normal:(v 0. 1. 0.) grey) :: shapes) ~lights ()
 
-let parse text =
-  match Helpers.of_string ~file:"t.scene" text with Ok s -> s | Error (`Msg m) -> Alcotest.failf "unexpected error: %s" m
+let parse = Helpers.parse_ok
 
-let error text =
-  match Helpers.of_string ~file:"t.scene" text with
-  | Ok _ -> Alcotest.failf "expected an error for %S" text
-  | Error (`Msg m) -> m
+let error = Helpers.parse_error
 
 let stats (s : Scene.t) = match Helpers.render s with Ok (_, st) -> st | Error (`Msg m) -> Alcotest.fail m
 let sphere c r m = Csg.Sphere (Sphere.v ~center:c ~radius:r m)
