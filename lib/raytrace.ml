@@ -86,4 +86,5 @@ module Private = struct
   module Obj_parts = Obj_parts
   module Exact_float = Exact_float
   module Literal_geometry = Literal_geometry
+  module Sample_key = Sample_key
 end

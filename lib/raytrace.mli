@@ -233,4 +233,5 @@ module Private : sig
   module Obj_parts = Obj_parts
   module Exact_float = Exact_float
   module Literal_geometry = Literal_geometry
+  module Sample_key = Sample_key
 end

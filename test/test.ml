@@ -13,6 +13,7 @@ let () =
   Alcotest.run "raytrace"
     [
       ("vec3", Test_vec3.tests);
+      ("sample-key", Test_sample_key.tests);
       ("color", Test_color.tests);
       ("canvas", Test_canvas.tests);
       ("viewport", Test_viewport.tests);

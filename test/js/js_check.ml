@@ -128,3 +128,13 @@ let () =
   match Raytrace.Scene_file.of_string ~file:"deep.scene" (Buffer.contents b) with
   | Ok _ -> print_endline "csg nested 100000 deep: accepted"
   | Error (`Msg m) -> Printf.printf "csg nested 100000 deep: %s\n" m
+
+(* Sample keys (area lights, lenses) on both builds: the same numbers, or
+   the web page's soft shadows would differ from the command line's. *)
+let () =
+  let open Raytrace.Private.Sample_key in
+  List.iter
+    (fun (col, row, sample) ->
+      let h = pixel ~col ~row ~sample in
+      Printf.printf "sample key %d %d %d: %d %h %h\n" col row sample h (unit h) (stratum h ~n:7 3))
+    [ (0, 0, 0); (1, 0, 0); (0, 1, 0); (-300, 299, 15); (1_000_000, -7, 4095); (0x3FFF_FFFF, -0x4000_0000, -1) ]

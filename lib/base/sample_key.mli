@@ -1,0 +1,41 @@
+(** Deterministic sample numbers for the integrals of round 3 (area lights,
+    lenses): every number is a function of integers that name the sample
+    (the pixel, the antialiasing sample, the light, the cell), never of a
+    generator's state, so an image is the same bytes for every [--jobs],
+    every tile, every order of the pixels and on the web page.
+
+    The same bits on the web: js_of_ocaml's [int] is 32 bits wide and its
+    [*] keeps the low 32 bits of the product, as native code does below
+    bit 63. Every value here is kept in [\[0, 2{^31})] and every constant
+    below [2{^31}], so the low 31 bits that survive each step are the same
+    on both (the test "sample keys are pinned" holds both to the same
+    numbers). *)
+
+(** {1:keys Keys} *)
+
+val mix : int -> int
+(** [mix h] is a well-mixed hash of the low 31 bits of [h], in
+    [\[0, 2{^31})]: each input bit changes about half the output bits. *)
+
+val key : int -> int -> int
+(** [key h v] is the key [h] extended by the integer [v] (any sign; its low
+    31 bits count), in [\[0, 2{^31})]. Keys are built by chains:
+    [key (key (key 0 col) row) sample]. *)
+
+val pixel : col:int -> row:int -> sample:int -> int
+(** [pixel ~col ~row ~sample] is [key (key (key 0 col) row) sample]: the key
+    of antialiasing sample [sample] of the pixel at canvas column [col] and
+    row [row]. *)
+
+(** {1:numbers Numbers} *)
+
+val unit : int -> float
+(** [unit h] is [mix h] scaled into [\[0, 1)]: a multiple of [2{^-31}],
+    exact in a float. *)
+
+val stratum : int -> n:int -> int -> float
+(** [stratum h ~n i] is [(i + unit (key h i)) / n], a point jittered in
+    stratum [i] of [\[0, 1)] cut in [n] equal strata: in
+    [\[i/n, (i+1)/n)] up to the division's rounding, and in [\[0, 1)].
+    [n] sample points [stratum h ~n 0 .. stratum h ~n (n-1)] cover [\[0, 1)]
+    evenly (stratified sampling). *)
