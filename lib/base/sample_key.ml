@@ -12,6 +12,7 @@ let[@inline] mix h =
 (* The constant keeps 0 from being a fixed point: [key 0 0] is not 0. *)
 let[@inline] key h v = mix ((mix h * 0x2C92_77B5) land low lxor (v land low) lxor 0x5BD1_E995)
 let pixel ~col ~row ~sample = key (key (key 0 col) row) sample
+let camera ~gx ~gy ~di ~dj = key (key (pixel ~col:gx ~row:gy ~sample:0) di) dj
 let[@inline] unit h = Float.of_int (mix h) *. 0x1p-31
 
 let[@inline] stratum h ~n i =

@@ -23,9 +23,17 @@ val key : int -> int -> int
     [key (key (key 0 col) row) sample]. *)
 
 val pixel : col:int -> row:int -> sample:int -> int
-(** [pixel ~col ~row ~sample] is [key (key (key 0 col) row) sample]: the key
-    of antialiasing sample [sample] of the pixel at canvas column [col] and
-    row [row]. *)
+(** [pixel ~col ~row ~sample] is [key (key (key 0 col) row) sample]. *)
+
+val camera : gx:int -> gy:int -> di:int -> dj:int -> int
+(** [camera ~gx ~gy ~di ~dj] is [key (key (pixel ~col:gx ~row:gy ~sample:0)
+    di) dj]: the key of the camera sample of the pixel at canvas point
+    [(gx, gy)] (section 1's coordinates, the origin in the middle) whose
+    offset from the pixel's centre is [(di / 2n, dj / 2n)] in an [n x n]
+    grid ([di = 2 i + 1 - n], {!Raytrace.Render.Sampling}). The centre is
+    [di = dj = 0] whatever [n]: the centre ray that adaptive sampling
+    traces first and reuses as the middle sample of an odd grid has one
+    key, so a refined pixel stays exactly the pixel of full sampling. *)
 
 (** {1:numbers Numbers} *)
 

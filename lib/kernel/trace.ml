@@ -50,6 +50,7 @@ let[@inline] pixel tr gx gy =
   let p = tr.p in
   check_budget tr;
   let col = gx + (p.width / 2) and row = gy + (p.height / 2) in
+  if p.sampled then tr.key <- Sample_key.camera ~gx ~gy ~di:0 ~dj:0;
   if col >= 0 && col < p.width && row >= 0 && row < p.height then begin
     if p.cull && p.textbook_all then Textbook.use_tile tr col row;
     Camera_ray.set_pixel tr col row;
@@ -73,6 +74,7 @@ let row tr buffer k gx gy count =
       let c = tr.counters in
       for col = col0 to col0 + count - 1 do
         check_budget tr;
+        if p.sampled then tr.key <- Sample_key.camera ~gx:(gx + col - col0) ~gy ~di:0 ~dj:0;
         Camera_ray.set_pixel tr col r;
         c.primary <- c.primary + 1;
         trace tr;
@@ -86,6 +88,7 @@ let row tr buffer k gx gy count =
     done
 
 let sample tr gx gy ~i ~j ~n =
+  if tr.p.sampled then tr.key <- Sample_key.camera ~gx ~gy ~di:((2 * i) + 1 - n) ~dj:((2 * j) + 1 - n);
   let n = Float.of_int n in
   (* For n = 1 the offsets are 0.5 /. 1. -. 0.5 = 0 exactly: [pixel]. *)
   tr.s.gx <- Float.of_int gx +. (((Float.of_int i +. 0.5) /. n) -. 0.5);

@@ -71,6 +71,11 @@ type t = {
   mutable inner_material : int;
       (** The material, in the bottom level's numbering, of the surface
           last hit in an instance ({!Surface}). *)
+  mutable key : int;
+      (** With [p.sampled]: the {!Sample_key.camera} key of the camera
+          sample being traced, from which the integrals over a light or a
+          lens draw their numbers. An int of the tracer, not of [Scratch]:
+          an int field would unflatten that all-float record. *)
 }
 
 (* The tracing loops, chosen once per tracer. *)
@@ -139,6 +144,7 @@ let rec create ?(averaging = false) (p : Prepared.t) =
     (* No closure made where there is no instance. *)
     inner = (if Array.length p.instances.bottoms = 0 then [||] else Array.map (fun b -> create ~averaging b) p.instances.bottoms);
     inner_material = 0;
+    key = 0;
   }
 
 let prepared tr = tr.p

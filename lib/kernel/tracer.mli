@@ -78,6 +78,12 @@ type t = {
   mutable inner_material : int;
       (** The material, in the bottom level's numbering, of the surface
           last hit in an instance ({!Surface}). *)
+  mutable key : int;
+      (** With [p.sampled]: the {!Sample_key.camera} key of the camera
+          sample being traced, set by {!Trace}'s [pixel], [row] and
+          [sample]; the integrals over a light or a lens draw their numbers
+          from it, so that they are the same for every [--jobs], tiling and
+          order of the pixels. [0] without [p.sampled]. *)
 }
 (** The type for tracers: one per worker, reused for every ray. *)
 

@@ -63,6 +63,7 @@ type t = {
   behind : bool;
   shadow_skip : bool;
   cull : bool;
+  sampled : bool;
   specular_cut : float array;
   ambient_lead : float;
   first_light : int;
@@ -1543,6 +1544,8 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     behind = skips;
     shadow_skip = skips;
     cull = skips;
+    (* No light or camera of this scene draws numbers yet. *)
+    sampled = false;
     specular_cut = specular_cut ~skips materials lights;
     ambient_lead = fst (ambient_lead lights);
     first_light = snd (ambient_lead lights);

@@ -167,6 +167,11 @@ type t = private {
   cull : bool;
       (** The skips are on: the document's kernel tests a camera ray only
           against the spheres that can meet some ray of its 8 x 8 tile. *)
+  sampled : bool;
+      (** Some pixel is an integral that draws numbers (an area light, a
+          lens): the tracer keeps the key of each camera sample
+          ([Tracer.key]). [false] keeps the loops of other scenes as they
+          were. *)
   specular_cut : float array;
       (** With the skips, per
           material [m] and light [l] at [m * n_lights + l]: the cosine at or below which the specular
