@@ -34,4 +34,51 @@ let tests =
     Alcotest.test_case "a singular rotation is rejected" `Quick (fun () ->
         let m = Camera.{ row0 = Vec3.ox; row1 = Vec3.ox; row2 = Vec3.oz } in
         Alcotest.(check bool) __LOC__ true (Result.is_error (Camera.check_rotation m)));
+      Alcotest.test_case "a pinhole has no focus: its focal distance is 1 whatever is given" `Quick (fun () ->
+        let c = Camera.v ~focal_distance:7. Vec3.zero in
+        Alcotest.(check (float 0.)) __LOC__ 1. (Camera.focal_distance c);
+        Alcotest.(check bool) __LOC__ true (Camera.equal c Camera.default);
+        Alcotest.(check bool) __LOC__ false (Camera.has_lens c));
+    Alcotest.test_case "look-at focuses on its target unless told otherwise" `Quick (fun () ->
+        (* |(3, 4, 0) - 0| = 5. *)
+        (match Camera.look_at ~aperture:0.1 ~position:Vec3.zero (Vec3.v 3. 4. 0.) with
+        | Ok c -> Alcotest.(check (float 0.)) __LOC__ 5. (Camera.focal_distance c)
+        | Error (`Msg m) -> Alcotest.fail m);
+        match Camera.look_at ~aperture:0.1 ~focal_distance:2. ~position:Vec3.zero (Vec3.v 3. 4. 0.) with
+        | Ok c -> Alcotest.(check (float 0.)) __LOC__ 2. (Camera.focal_distance c)
+        | Error (`Msg m) -> Alcotest.fail m);
+    Alcotest.test_case "a lens camera prints as a camera form that reads back" `Quick (fun () ->
+        let rotation = Camera.{ row0 = Vec3.v 0.7071 0. (-0.7071); row1 = Vec3.oy; row2 = Vec3.v 0.7071 0. 0.7071 } in
+        List.iter
+          (fun c ->
+            let text = Camera.show c in
+            let read = Scene.camera (Helpers.parse_ok text) in
+            if not (Camera.equal c read) then Alcotest.failf "%s read back as %s" text (Camera.show read))
+          [
+            Camera.v ~aperture:0.25 ~focal_distance:6.5 (Vec3.v 0. 1. (-2.));
+            Camera.v ~rotation ~aperture:0.1 ~focal_distance:1. (Vec3.v 3. 0. 1.);
+            Camera.v ~aperture:0.1 ~focal_distance:0.1 Vec3.zero;
+            Camera.v (Vec3.v 1. 2. 3.);
+          ]);
+    Alcotest.test_case "an aperture is 0 or a size; a focal distance a size" `Quick (fun () ->
+        let bad r = Alcotest.(check bool) __LOC__ true (Result.is_error r) in
+        let good r = Alcotest.(check bool) __LOC__ true (Result.is_ok r) in
+        good (Camera.check_aperture 0.);
+        good (Camera.check_aperture 0.5);
+        bad (Camera.check_aperture (-0.5));
+        bad (Camera.check_aperture Float.nan);
+        bad (Camera.check_aperture Float.infinity);
+        bad (Camera.check_focal_distance 0.);
+        bad (Camera.check_focal_distance (-1.));
+        bad (Camera.validate (Camera.v ~aperture:0.5 ~focal_distance:Float.nan Vec3.zero)));
+    Alcotest.test_case "scene text: a lens without a focus or a target is refused where it is written" `Quick
+      (fun () ->
+        let m = Helpers.parse_error "(camera (position 0 0 0)\n (aperture 0.2))" in
+        Alcotest.(check string) __LOC__
+          "t.scene:2:2: camera (aperture ...) needs a (focal-distance ...), or a (look-at ...) target to focus on" m;
+        let m = Helpers.parse_error "(camera (aperture 0.2) (focal-distance 0))" in
+        Alcotest.(check string) __LOC__ "t.scene:1:40: camera focal-distance must be > 0, got 0" m;
+        let c = Scene.camera (Helpers.parse_ok "(camera (position 0 0 -1) (look-at 0 0 4) (aperture 0.2))") in
+        (* Focused on the target, 5 away. *)
+        Alcotest.(check (float 0.)) __LOC__ 5. (Camera.focal_distance c));
   ]

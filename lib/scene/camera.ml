@@ -1,11 +1,19 @@
 type rotation = { row0 : Vec3.t; row1 : Vec3.t; row2 : Vec3.t } [@@deriving eq]
-type t = { position : Vec3.t; rotation : rotation } [@@deriving eq]
+type t = { position : Vec3.t; rotation : rotation; aperture : float; focal_distance : float } [@@deriving eq]
 
 let identity = { row0 = Vec3.ox; row1 = Vec3.oy; row2 = Vec3.oz }
-let v ?(rotation = identity) position = { position; rotation }
+
+(* A pinhole focuses everywhere: its focal distance is the default, so
+   that two pinholes are equal and [pp] reads back whatever was given. *)
+let v ?(rotation = identity) ?(aperture = 0.) ?(focal_distance = 1.) position =
+  { position; rotation; aperture; focal_distance = (if aperture = 0. then 1. else focal_distance) }
+
 let default = v Vec3.zero
 let position c = c.position
 let rotation c = c.rotation
+let aperture c = c.aperture
+let focal_distance c = c.focal_distance
+let has_lens c = c.aperture > 0.
 let is_identity m = equal_rotation m identity
 let determinant m = Vec3.dot m.row0 (Vec3.cross m.row1 m.row2)
 
@@ -13,7 +21,7 @@ let direction cam v =
   let m = cam.rotation in
   Vec3.v (Vec3.dot v m.row0) (Vec3.dot v m.row1) (Vec3.dot v m.row2)
 
-let look_at ?(up = Vec3.oy) ~position target =
+let look_at ?(up = Vec3.oy) ?aperture ?focal_distance ~position target =
   let forward = Vec3.sub target position in
   if Vec3.norm2 forward = 0. then Error (`Msg "the camera looks at its own position")
   else
@@ -29,7 +37,9 @@ let look_at ?(up = Vec3.oy) ~position target =
       let rotation =
         { row0 = Vec3.v r.x u.x f.x; row1 = Vec3.v r.y u.y f.y; row2 = Vec3.v r.z u.z f.z }
       in
-      Ok { position; rotation }
+      (* Focused on what it looks at unless told otherwise. *)
+      let focal_distance = match focal_distance with Some f -> f | None -> Vec3.norm forward in
+      Ok (v ~rotation ?aperture ~focal_distance position)
 
 let check_position p = Limits.check_point "camera position" p
 
@@ -44,10 +54,18 @@ let check_rotation m =
       Error (`Msg "camera rotation must be invertible, but its rows are (nearly) linearly dependent")
     else Ok m
 
+let check_aperture a =
+  if a = 0. || Limits.size_ok a then Ok a
+  else Error (`Msg (Printf.sprintf "camera aperture must be 0 or in [%g, %g], got %g" Limits.min_size Limits.max_coordinate a))
+
+let check_focal_distance f = Limits.check_size "camera focal-distance" f
+
 let validate cam =
-  match (check_position cam.position, check_rotation cam.rotation) with
-  | Ok _, Ok _ -> Ok cam
-  | (Error e, _ | _, Error e) -> Error e
+  match
+    (check_position cam.position, check_rotation cam.rotation, check_aperture cam.aperture, check_focal_distance cam.focal_distance)
+  with
+  | Ok _, Ok _, Ok _, Ok _ -> Ok cam
+  | (Error e, _, _, _ | _, Error e, _, _ | _, _, Error e, _ | _, _, _, Error e) -> Error e
 
 let pp_rotation ppf m =
   Format.fprintf ppf "(rotation (%a) (%a) (%a))" Vec3.pp_components m.row0 Vec3.pp_components m.row1
@@ -55,9 +73,14 @@ let pp_rotation ppf m =
 
 let show_rotation m = Format.asprintf "%a" pp_rotation m
 
-(* The identity is the default: a scene file leaves it out. *)
+(* The identity and the pinhole are the defaults: a scene file leaves
+   them out. *)
 let pp ppf c =
-  if is_identity c.rotation then Format.fprintf ppf "(camera (position %a))" Vec3.pp_components c.position
-  else Format.fprintf ppf "(camera (position %a) %a)" Vec3.pp_components c.position pp_rotation c.rotation
+  Format.fprintf ppf "(camera (position %a)" Vec3.pp_components c.position;
+  if not (is_identity c.rotation) then Format.fprintf ppf " %a" pp_rotation c.rotation;
+  if has_lens c then
+    Format.fprintf ppf " (aperture %s) (focal-distance %s)" (Float_text.to_string c.aperture)
+      (Float_text.to_string c.focal_distance);
+  Format.fprintf ppf ")"
 
 let show c = Format.asprintf "%a" pp c

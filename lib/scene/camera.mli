@@ -4,7 +4,19 @@
     here also has a position and an orientation: a 3 x 3 matrix applied to
     every ray direction, [D = M (V_x, V_y, d)], exactly as the CGFS demo
     applies its rotation. The matrix need not be exactly orthonormal (the
-    demo's [0.7071] is not), but it must be invertible. *)
+    demo's [0.7071] is not), but it must be invertible.
+
+    A camera may also have a thin lens (depth of field): a disc of
+    diameter [aperture] centred on the position, in the plane spanned by
+    the matrix's first two columns, [M (x, y, 0)]. The ray of a lens point
+    [L = M (l_x, l_y, 0)] through viewport point [V] leaves [position + L]
+    towards the point that the pinhole ray [position + t M V] meets at
+    [t = focal_distance / d] ([d] the viewport distance): its direction is
+    [(d / f) (F - (position + L))], so that the viewport plane is still
+    [t = 1] and the focal point [t = f / d]. Points at that distance
+    (along the view axis, with an orthonormal matrix) are sharp; the
+    others are spread over a circle that grows with [aperture]. Aperture
+    [0] is the pinhole. *)
 
 (** {1:cameras Cameras} *)
 
@@ -23,12 +35,15 @@ val equal_rotation : rotation -> rotation -> bool
 (** [equal_rotation a b] is [true] iff [a] and [b] are equal field by field, floats
     compared with [=]. *)
 
-type t = private { position : Vec3.t; rotation : rotation }
-(** The type for cameras: where the camera is, and how it is turned. *)
+type t = private { position : Vec3.t; rotation : rotation; aperture : float; focal_distance : float }
+(** The type for cameras: where the camera is, how it is turned, the
+    diameter of its lens ([0] for a pinhole) and the distance of its plane
+    of focus, in scene units ([1] for a pinhole). *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf c] prints [c] as its [camera] form in the scene-file syntax,
-    without the rotation when it is {!identity}. *)
+    without the rotation when it is {!identity} and without the lens for a
+    pinhole; it reads back as [c]. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)
@@ -42,11 +57,15 @@ val identity : rotation
 
 val default : t
 (** [default] is the document's camera: at the origin, oriented by
-    {!identity}. *)
+    {!identity}, a pinhole. *)
 
-val v : ?rotation:rotation -> Vec3.t -> t
-(** [v ~rotation position] is a camera at [position] turned by [rotation]
-    (default {!identity}). *)
+val v : ?rotation:rotation -> ?aperture:float -> ?focal_distance:float -> Vec3.t -> t
+(** [v ~rotation ~aperture ~focal_distance position] is a camera at
+    [position] turned by [rotation] (default {!identity}), with a lens of
+    diameter [aperture] (default [0.], a pinhole) focused at
+    [focal_distance] (default [1.]; a pinhole's is always [1.], whatever
+    is given, since it focuses everywhere). Nothing is checked:
+    {!validate}. *)
 
 val position : t -> Vec3.t
 (** [position c] is where [c] is, in world coordinates. *)
@@ -54,12 +73,31 @@ val position : t -> Vec3.t
 val rotation : t -> rotation
 (** [rotation c] is the orientation matrix of [c]. *)
 
-val look_at : ?up:Vec3.t -> position:Vec3.t -> Vec3.t -> (t, [> `Msg of string ]) result
-(** [look_at ~up ~position target] is the camera at [position] whose
-    viewport center lies in the direction of [target], with [up] (default
-    [Vec3.oy]) pointing up in the picture as far as it can. The matrix is
-    orthonormal. [Error] explains why when [target = position] or [up] is
-    zero or parallel to the view direction. *)
+val aperture : t -> float
+(** [aperture c] is the diameter of [c]'s lens, [0.] for a pinhole. *)
+
+val focal_distance : t -> float
+(** [focal_distance c] is the distance from [c] of its plane of focus,
+    along the view axis ([1.] for a pinhole). *)
+
+val has_lens : t -> bool
+(** [has_lens c] is [aperture c > 0.]: [c]'s rays start on a lens, and its
+    pixels are integrals ({!Raytrace.Prepared}'s [sampled]). *)
+
+val look_at :
+  ?up:Vec3.t ->
+  ?aperture:float ->
+  ?focal_distance:float ->
+  position:Vec3.t ->
+  Vec3.t ->
+  (t, [> `Msg of string ]) result
+(** [look_at ~up ~aperture ~focal_distance ~position target] is the
+    camera at [position] whose viewport center lies in the direction of
+    [target], with [up] (default [Vec3.oy]) pointing up in the picture as
+    far as it can, and the lens of {!v} (focused by default on [target]:
+    [focal_distance] is [|target - position|]). The matrix is orthonormal.
+    [Error] explains why when [target = position] or [up] is zero or
+    parallel to the view direction. *)
 
 (** {1:validation Validation} *)
 
@@ -70,8 +108,16 @@ val check_rotation : rotation -> (rotation, [> `Msg of string ]) result
 (** [check_rotation m] checks that [m] is finite and invertible: a singular
     matrix would send some rays in no direction at all. *)
 
+val check_aperture : float -> (float, [> `Msg of string ]) result
+(** [check_aperture a] is [Ok a] if [a = 0.] or {!Limits.check_size}
+    accepts it (NaN and infinities are refused). *)
+
+val check_focal_distance : float -> (float, [> `Msg of string ]) result
+(** [check_focal_distance f] is {!Limits.check_size}. *)
+
 val validate : t -> (t, [> `Msg of string ]) result
-(** [validate cam] checks position and rotation. *)
+(** [validate cam] checks position, rotation, aperture and focal
+    distance. *)
 
 (** {1:functions Functions} *)
 

@@ -186,7 +186,9 @@ let rotation form name f =
 
 let camera ~where nodes =
   let form = "camera" in
-  let fs = fields ~where ~form ~allowed:[ "position"; "rotation"; "look-at"; "up" ] nodes in
+  let fs =
+    fields ~where ~form ~allowed:[ "position"; "rotation"; "look-at"; "up"; "aperture"; "focal-distance" ] nodes
+  in
   let with_node name parse = get ~form fs name (fun _ f -> (f.node, parse f)) in
   let position =
     match with_node "position" (vec3_field form "position") with
@@ -196,16 +198,25 @@ let camera ~where nodes =
   let rot = with_node "rotation" (rotation form "rotation") in
   let look = with_node "look-at" (vec3_field form "look-at") in
   let up = with_node "up" (vec3_field form "up") in
+  let aperture = checked_float form fs "aperture" Camera.check_aperture in
+  let focal_distance = checked_float form fs "focal-distance" Camera.check_focal_distance in
+  (* Without a target, a lens has nothing to focus on by default. *)
+  (match (find fs "aperture", aperture, focal_distance, look) with
+  | Some f, Some a, None, None when a > 0. ->
+      fail f.node "camera (aperture ...) needs a (focal-distance ...), or a (look-at ...) target to focus on"
+  | _ -> ());
   match (rot, look, up) with
   | Some _, Some (node, _), _ -> fail node "camera takes either (rotation ...) or (look-at ...), not both"
   | _, None, Some (node, _) -> fail node "camera (up ...) needs a (look-at ...) target"
-  | Some (node, rotation), None, None -> Camera.v ~rotation:(check node (Camera.check_rotation rotation)) position
+  | Some (node, rotation), None, None ->
+      Camera.v ~rotation:(check node (Camera.check_rotation rotation)) ?aperture ?focal_distance position
   | None, Some (node, target), up -> (
       ignore (check node (Limits.check_point "camera look-at" target));
-      match Camera.look_at ?up:(Option.map snd up) ~position target with
-      | Ok cam -> cam
+      match Camera.look_at ?up:(Option.map snd up) ?aperture ?focal_distance ~position target with
+      (* The default focal distance, the target's, may be out of range. *)
+      | Ok cam -> check node (Camera.validate cam)
       | Error (`Msg m) -> fail node "%s" m)
-  | None, None, _ -> Camera.v position
+  | None, None, _ -> Camera.v ?aperture ?focal_distance position
 
 (* [(pattern checker (color r g b) (size s))], the optional field of
    every object's material. *)
