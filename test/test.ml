@@ -18,6 +18,7 @@ let () =
       ("canvas", Test_canvas.tests);
       ("viewport", Test_viewport.tests);
       ("camera", Test_camera.tests);
+      ("lens", Test_lens.tests);
       ("sphere", Test_sphere.tests);
       ("spheres", Test_spheres.tests);
       ("light", Test_light.tests);

@@ -879,9 +879,9 @@ let margin_of_bounds (b : float array) =
   done;
   { d2; m = !m }
 
-let margin_terms ?among ~cx ~cy ~cz ~radius (camera : Vec3.t) =
-  let x0 = ref camera.x and y0 = ref camera.y and z0 = ref camera.z in
-  let x1 = ref camera.x and y1 = ref camera.y and z1 = ref camera.z in
+let margin_terms ?among ?(reach = 0.) ~cx ~cy ~cz ~radius (camera : Vec3.t) =
+  let x0 = ref (camera.x -. reach) and y0 = ref (camera.y -. reach) and z0 = ref (camera.z -. reach) in
+  let x1 = ref (camera.x +. reach) and y1 = ref (camera.y +. reach) and z1 = ref (camera.z +. reach) in
   (* A loop, not a function over [among]: the refs would be captured,
      and each float boxed as it changes. *)
   let n = match among with Some a -> Array.length a | None -> Array.length cx in

@@ -157,9 +157,18 @@ type margin = private { d2 : float; m : float }
     spheres: [D^2] and [M]. *)
 
 val margin_terms :
-  ?among:int array -> cx:float array -> cy:float array -> cz:float array -> radius:float array -> Vec3.t -> margin
-(** [margin_terms ~among ~cx ~cy ~cz ~radius camera] is [D^2] and [M] of
-    {!ray_box_margin} for the same arguments. *)
+  ?among:int array ->
+  ?reach:float ->
+  cx:float array ->
+  cy:float array ->
+  cz:float array ->
+  radius:float array ->
+  Vec3.t ->
+  margin
+(** [margin_terms ~among ~reach ~cx ~cy ~cz ~radius camera] is [D^2] and
+    [M] of {!ray_box_margin} for the same arguments, with camera rays
+    starting anywhere in the cube of half side [reach] (default [0.], the
+    point [camera]) around [camera]: a lens's disc inside it. *)
 
 val margin_of_bounds : float array -> margin
 (** [margin_of_bounds b] is [D^2] and [M] of {!ray_box_margin} for the

@@ -44,23 +44,40 @@ let primary tr =
   tr.counters.primary <- tr.counters.primary + 1;
   trace tr
 
+(* [primary] for a scene that samples ([p.sampled]): the ray from the
+   lens point of the camera sample [tr.key], if the camera has a lens. A
+   copy, not a test in [primary]: the pinhole's rays take no new
+   instruction. *)
+let primary_sampled tr =
+  Textbook.untiled tr;
+  Camera_ray.set_lens_point tr;
+  tr.counters.primary <- tr.counters.primary + 1;
+  trace tr
+
 (* A pixel's centre: its viewport point is the frame's (the same
    operations as [primary]'s), and its tile's spheres are the candidates. *)
 let[@inline] pixel tr gx gy =
   let p = tr.p in
   check_budget tr;
   let col = gx + (p.width / 2) and row = gy + (p.height / 2) in
-  if p.sampled then tr.key <- Sample_key.camera ~gx ~gy ~di:0 ~dj:0;
   if col >= 0 && col < p.width && row >= 0 && row < p.height then begin
     if p.cull && p.textbook_all then Textbook.use_tile tr col row;
-    Camera_ray.set_pixel tr col row;
+    if p.sampled then begin
+      tr.key <- Sample_key.camera ~gx ~gy ~di:0 ~dj:0;
+      Camera_ray.set_lens_pixel tr col row
+    end
+    else Camera_ray.set_pixel tr col row;
     tr.counters.primary <- tr.counters.primary + 1;
     trace tr
   end
   else begin
     tr.s.gx <- Float.of_int gx;
     tr.s.gy <- Float.of_int gy;
-    primary tr
+    if p.sampled then begin
+      tr.key <- Sample_key.camera ~gx ~gy ~di:0 ~dj:0;
+      primary_sampled tr
+    end
+    else primary tr
   end
 
 let row tr buffer k gx gy count =
@@ -74,8 +91,11 @@ let row tr buffer k gx gy count =
       let c = tr.counters in
       for col = col0 to col0 + count - 1 do
         check_budget tr;
-        if p.sampled then tr.key <- Sample_key.camera ~gx:(gx + col - col0) ~gy ~di:0 ~dj:0;
-        Camera_ray.set_pixel tr col r;
+        if p.sampled then begin
+          tr.key <- Sample_key.camera ~gx:(gx + col - col0) ~gy ~di:0 ~dj:0;
+          Camera_ray.set_lens_pixel tr col r
+        end
+        else Camera_ray.set_pixel tr col r;
         c.primary <- c.primary + 1;
         trace tr;
         store tr buffer (k + (3 * (col - col0)))
@@ -88,12 +108,15 @@ let row tr buffer k gx gy count =
     done
 
 let sample tr gx gy ~i ~j ~n =
-  if tr.p.sampled then tr.key <- Sample_key.camera ~gx ~gy ~di:((2 * i) + 1 - n) ~dj:((2 * j) + 1 - n);
-  let n = Float.of_int n in
+  let fn = Float.of_int n in
   (* For n = 1 the offsets are 0.5 /. 1. -. 0.5 = 0 exactly: [pixel]. *)
-  tr.s.gx <- Float.of_int gx +. (((Float.of_int i +. 0.5) /. n) -. 0.5);
-  tr.s.gy <- Float.of_int gy +. (((Float.of_int j +. 0.5) /. n) -. 0.5);
-  primary tr
+  tr.s.gx <- Float.of_int gx +. (((Float.of_int i +. 0.5) /. fn) -. 0.5);
+  tr.s.gy <- Float.of_int gy +. (((Float.of_int j +. 0.5) /. fn) -. 0.5);
+  if tr.p.sampled then begin
+    tr.key <- Sample_key.camera ~gx ~gy ~di:((2 * i) + 1 - n) ~dj:((2 * j) + 1 - n);
+    primary_sampled tr
+  end
+  else primary tr
 
 let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
   let s = tr.s in
@@ -118,9 +141,14 @@ type samples = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.
 
 let pixel_assuming tr gx gy k =
   if k < -1 || k >= tr.p.n_scene_objects then invalid_arg "Trace.pixel_assuming: no such object";
-  tr.assumed <- k;
-  pixel tr gx gy;
-  tr.assumed <- no_assumption
+  (* A lens's rays assume nothing: an assumed sphere's test reads the
+     per-frame constants of rays from the camera's position. *)
+  if tr.assumed = lens_rays then pixel tr gx gy
+  else begin
+    tr.assumed <- k;
+    pixel tr gx gy;
+    tr.assumed <- no_assumption
+  end
 
 (* [Color.clamp] without the NaN case (no NaN reaches a colour here). *)
 let[@inline] clamp x = if x >= 255. then 255. else if x > 0. then x else 0.

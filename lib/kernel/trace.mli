@@ -102,7 +102,10 @@ val check_budget : t -> unit
 val pixel : t -> int -> int -> unit
 (** [pixel tr gx gy] traces the primary ray through canvas pixel
     [(gx, gy)] (centered coordinates, {!Raytrace.Private.Canvas}) from the camera, [t > 1],
-    with the scene's recursion depth (section 8). The unclamped colour is
+    with the scene's recursion depth (section 8). With a lens
+    ({!Camera.has_lens}), the ray leaves the lens point of the pixel's
+    centre sample, key [Sample_key.camera ~gx ~gy ~di:0 ~dj:0]
+    ({!Raytrace.Private.Camera_ray.set_lens_pixel}). The unclamped colour is
     then in {!red}, {!green} and {!blue}, and {!store} writes it.
     @raise Limits.Work_exceeded once the work counted ({!work}) has
     passed the budget ({!set_budget}) before the pixel; in a scene with
@@ -122,7 +125,9 @@ val sample : t -> int -> int -> i:int -> j:int -> n:int -> unit
     [(gx + (i + 1/2) / n - 1/2, gy + (j + 1/2) / n - 1/2)], sample [(i, j)]
     of a regular [n x n] grid centered on the pixel ([i] to the right, [j]
     up, both in [\[0, n)]). [sample tr gx gy ~i:0 ~j:0 ~n:1] is exactly
-    [pixel tr gx gy]. *)
+    [pixel tr gx gy]. With a lens, each sample has its own lens point,
+    keyed by [Sample_key.camera ~gx ~gy ~di:(2i+1-n) ~dj:(2j+1-n)]: the
+    grid's samples average over the lens as over the pixel. *)
 
 val store : t -> Image.buffer -> int -> unit
 (** [store tr buf k] writes the colour of the last {!pixel}, each channel
@@ -232,6 +237,7 @@ val pixel_assuming : t -> int -> int -> int -> unit
     neighbouring pixels did, and is intersected with that object alone; if
     it misses it, all objects are searched as usual. Shading, shadows and
     reflections are traced as usual. Approximate: an object in front of object [k], or an object
-    where both neighbours saw nothing, is missed.
+    where both neighbours saw nothing, is missed. With a lens (whose rays
+    do not start at the camera's position) no object is assumed: {!pixel}.
     @raise Invalid_argument if [k < -1] or [k] is not an object of the
     scene. *)

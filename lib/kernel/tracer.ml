@@ -86,6 +86,12 @@ let tree = 2
 (* [assumed] when the primary ray searches every sphere. *)
 let no_assumption = -2
 
+(* [assumed] for good with a lens: its camera rays start off the
+   camera's position, where the per-frame constants of the primary
+   search do not hold. Tested where an assumption is, so that the
+   pinhole's rays take no new instruction. *)
+let lens_rays = -3
+
 (* Camera rays are culled by square tiles of this many pixels a side. *)
 let tile = 8
 
@@ -126,7 +132,7 @@ let rec create ?(averaging = false) (p : Prepared.t) =
     kz = -1;
     order = 0;
     averaging;
-    assumed = no_assumption;
+    assumed = (if Camera.has_lens p.camera then lens_rays else no_assumption);
     budget = Limits.work_budget Limits.default;
     refill = exhausted;
     tracer = (if p.transparent then tree else if p.all_spheres then spheres_chain else objects_chain);

@@ -99,6 +99,12 @@ val tree : int
 val no_assumption : int
 (** [no_assumption] is [assumed] when the primary ray searches every object. *)
 
+val lens_rays : int
+(** [lens_rays] is [assumed], from {!create} on, when the camera has a
+    lens: the primary ray searches every object as any other ray does,
+    without the per-frame constants of a ray from the camera's position
+    ([Prepared]'s [primary_ocx] ...), since it starts on the lens. *)
+
 val tile : int
 (** [tile] is the side, in pixels, of the square tiles by which the document's kernel culls camera rays ({!Textbook}). *)
 

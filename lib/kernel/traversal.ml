@@ -643,6 +643,7 @@ let shadowed tr l =
 let[@inline] primary_hit_in tr ~spheres =
   let k = tr.assumed in
   if k = no_assumption then closest_primary_in tr ~spheres
+  else if k = lens_rays then closest_in tr ~spheres
   else if k < 0 then begin
     tr.hit <- -1;
     tr.s.t <- infinity;

@@ -427,6 +427,17 @@ module Materials = Material.Plain
 let[@inline] fmax (a : float) b = if a > b then a else b
 let[@inline] fmin (a : float) b = if a < b then a else b
 
+(* How far from the camera's position a camera ray may start: the lens's
+   radius, stretched by the longest row of the matrix, which bounds each
+   coordinate of [M (l_x, l_y, 0)]. A camera ray starts within this of the
+   position, and the boxes' margins must cover it as they cover the
+   position. [0.] for a pinhole: its bounds unchanged. *)
+let lens_reach (c : Camera.t) =
+  if not (Camera.has_lens c) then 0.
+  else
+    let m = c.rotation in
+    0.5 *. c.aperture *. Float.max (Vec3.norm m.row0) (Float.max (Vec3.norm m.row1) (Vec3.norm m.row2))
+
 (* The cube around a shape (not a sphere): its center and half side. *)
 let single_bounds sh = if Shape.bounded sh then Shape.bounds sh else (Vec3.zero, 0.)
 
@@ -535,8 +546,8 @@ let mesh_boxes o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radi
   (* Every element is written below. *)
   let f () = Array.create_float nb in
   let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
-  let p = scene.camera.position in
-  let bounds = [| p.x; p.y; p.z; p.x; p.y; p.z |] in
+  let p = scene.camera.position and e = lens_reach scene.camera in
+  let bounds = [| p.x -. e; p.y -. e; p.z -. e; p.x +. e; p.y +. e; p.z +. e |] in
   let pos = ref 0 in
   let next k = !pos < nb && if all then k >= first else bounded.(!pos) = k in
   for k = 0 to o.n_spheres - 1 do
@@ -1065,8 +1076,9 @@ let boxes ~skips o (scene : Scene.view) c sel =
     else begin
       (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
       let terms =
-        if all then Bvh.margin_terms ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position
-        else Bvh.margin_terms ~among:bounded ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position
+        let reach = lens_reach scene.camera in
+        if all then Bvh.margin_terms ~reach ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position
+        else Bvh.margin_terms ~among:bounded ~reach ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf scene.camera.position
       in
       (* Each box padded by its margin, in a loop: [Array.mapi]'s
          function would return each float boxed. *)
@@ -1470,7 +1482,10 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
   let transparent = Array.exists (fun (m : Material.t) -> m.transparency > 0.) materials in
   (* The document's own scenes: spheres of plain materials (no pattern, no
      glass), few enough for no hierarchy, in the document's mode. *)
-  let textbook_all = o.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None in
+  let textbook_all =
+    o.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None
+    && not (Camera.has_lens scene.camera)
+  in
   let n_kept = Array.length sl.index in
   let index, slot = in_list_order o ~index:sl.index ~slot:sl.slot in
   {
@@ -1544,8 +1559,8 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     behind = skips;
     shadow_skip = skips;
     cull = skips;
-    (* No light or camera of this scene draws numbers yet. *)
-    sampled = false;
+    (* A lens draws a point of its disc per camera sample. *)
+    sampled = Camera.has_lens scene.camera;
     specular_cut = specular_cut ~skips materials lights;
     ambient_lead = fst (ambient_lead lights);
     first_light = snd (ambient_lead lights);

@@ -35,8 +35,8 @@ type t = private {
           its instances' patterns lie on it. *)
   textbook_all : bool;
       (** Spheres only, of plain materials (no pattern, no transparency),
-          no hierarchy, the document's mode: the tracer's fastest loop
-          (the reference scene). *)
+          no hierarchy, the document's mode, a pinhole camera: the
+          tracer's fastest loop (the reference scene). *)
   index : int array;
       (** The index of the object in each slot, objects counted in the
           order of the scene's list ({!Scene.objects}, a mesh one object per
@@ -139,7 +139,10 @@ type t = private {
   camera : Camera.t;
   identity_rotation : bool;  (** The camera matrix is exactly the identity. *)
   background : Color.t;
-  primary_ocx : float array;  (** [camera - center], per sphere. *)
+  primary_ocx : float array;
+      (** [camera - center], per sphere: the rays of a pinhole. (A lens's
+          rays start elsewhere: the tracer never reads these for them,
+          {!Raytrace.Private.Traversal}'s [lens_rays].) *)
   primary_ocy : float array;
   primary_ocz : float array;
   primary_k3 : float array;  (** [<CO, CO> - r^2] for the camera origin. *)

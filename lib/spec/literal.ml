@@ -550,16 +550,56 @@ let transparent (scene : Scene.view) =
   Spheres.exists (fun (s : Sphere.t) -> s.material.transparency > 0.) scene.spheres
   || List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.transparency > 0.) (Shape.materials sh)) scene.shapes
 
-let pixel (scene : Scene.view) gx gy =
+(* The thin lens, from its definition (Camera): a point of the unit disc
+   for the camera sample keyed [key], the first pair of its numbers that
+   falls inside, [(0, 0)] if none of 32 does. *)
+let lens_point key =
+  let h = Sample_key.key key (-1) in
+  let rec pair k =
+    if k >= 32 then (0., 0.)
+    else
+      let u = (2. *. Sample_key.unit (Sample_key.key h (2 * k))) -. 1. in
+      let v = (2. *. Sample_key.unit (Sample_key.key h ((2 * k) + 1))) -. 1. in
+      if (u *. u) +. (v *. v) < 1. then (u, v) else pair (k + 1)
+  in
+  pair 0
+
+(* The camera ray through viewport point [v]: from the camera's position
+   (the value itself, which [closest_numbered] recognises) for a pinhole;
+   with a lens, from [position + M (r u, r w, 0)] towards the point
+   [position + (f / d) M v] where the pinhole ray meets the plane of
+   focus, scaled so that [t = 1] is the viewport plane. *)
+let camera_ray (scene : Scene.view) ~key v =
+  let cam = scene.camera in
+  let direction = Camera.direction cam v in
+  if not (Camera.has_lens cam) then (cam.position, direction)
+  else
+    let f = Camera.focal_distance cam and d = Viewport.distance scene.viewport in
+    let focus = Vec3.add cam.position (Vec3.smul (f /. d) direction) in
+    let u, w = lens_point key in
+    let r = Camera.aperture cam /. 2. in
+    let origin = Vec3.add cam.position (Camera.direction cam (Vec3.v (r *. u) (r *. w) 0.)) in
+    (origin, Vec3.smul (d /. f) (Vec3.sub focus origin))
+
+let camera_colour (scene : Scene.view) ~key v =
   let epsilon = Option.value scene.epsilon ~default:Scene.document_epsilon in
+  let origin, direction = camera_ray scene ~key v in
+  if transparent scene then shade scene ~epsilon ~origin ~direction ~t_min:1. ~level:0 ~media:[]
+  else trace_ray scene ~epsilon ~origin ~direction ~t_min:1. ~t_max:infinity ~depth:scene.depth
+
+let pixel (scene : Scene.view) gx gy =
   let v =
     Viewport.of_canvas scene.viewport ~canvas_width:scene.width ~canvas_height:scene.height gx gy
   in
-  let direction = Camera.direction scene.camera (Vec3.sub v Vec3.zero) in
-  if transparent scene then shade scene ~epsilon ~origin:scene.camera.position ~direction ~t_min:1. ~level:0 ~media:[]
-  else
-    trace_ray scene ~epsilon ~origin:scene.camera.position ~direction ~t_min:1. ~t_max:infinity
-      ~depth:scene.depth
+  camera_colour scene ~key:(Sample_key.camera ~gx ~gy ~di:0 ~dj:0) v
+
+let sample (scene : Scene.view) gx gy ~i ~j ~n =
+  let offset k = ((Float.of_int k +. 0.5) /. Float.of_int n) -. 0.5 in
+  let v =
+    Viewport.of_canvas_f scene.viewport ~canvas_width:scene.width ~canvas_height:scene.height
+      (Float.of_int gx +. offset i) (Float.of_int gy +. offset j)
+  in
+  camera_colour scene ~key:(Sample_key.camera ~gx ~gy ~di:((2 * i) + 1 - n) ~dj:((2 * j) + 1 - n)) v
 
 let render ?(limits = Limits.default) valid =
   let scene = Scene.view (Scene.of_valid valid) in
@@ -595,3 +635,4 @@ let closest_hit scene = closest_hit (view scene)
 let compute_lighting scene = compute_lighting (view scene)
 let trace_ray scene = trace_ray (view scene)
 let pixel scene = pixel (view scene)
+let sample scene = sample (view scene)

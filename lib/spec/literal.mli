@@ -157,7 +157,22 @@ val pixel : Scene.t -> int -> int -> Color.t
     kinds of ray; shadow rays scaled by the transparency of every surface
     they cross, nearest first; a surface of transparency 1 between equal
     indices crossed on the same ray. docs/scene-format.md states the
-    rules. *)
+    rules. With a lens ({!Camera.has_lens}), the ray of the pixel's centre
+    sample ({!sample} with [n = 1]). *)
+
+val sample : Scene.t -> int -> int -> i:int -> j:int -> n:int -> Color.t
+(** [sample scene gx gy ~i ~j ~n] is {!pixel} for camera sample [(i, j)]
+    of the [n x n] grid of pixel [(gx, gy)]: the ray through canvas point
+    [(gx + (i + 1/2) / n - 1/2, gy + (j + 1/2) / n - 1/2)]. With a lens of
+    diameter [a] focused at [f], a viewport at distance [d] and the
+    camera's matrix [M], the ray leaves [O' = O + M (a u / 2, a w / 2, 0)]
+    for the point [F = O + (f / d) M V] of the plane of focus, in
+    direction [(d / f) (F - O')] ([t = 1] on the viewport plane, as the
+    pinhole's), where [(u, w)] is the first pair
+    [(2 unit (key h 2k) - 1, 2 unit (key h (2k+1)) - 1)], [k = 0 .. 31],
+    inside the unit disc ([(0, 0)] if none), [h = key (camera ~gx ~gy
+    ~di:(2i+1-n) ~dj:(2j+1-n)) (-1)] ({!Sample_key}). Written from that
+    definition, not with the kernel's {!Raytrace.Private.Camera_ray}. *)
 
 val render : ?limits:Limits.t -> Scene.valid -> Image.t
 (** [render ~limits scene] is the image of [scene]: every pixel of the canvas
