@@ -81,8 +81,8 @@ val focal_distance : t -> float
     along the view axis ([1.] for a pinhole). *)
 
 val has_lens : t -> bool
-(** [has_lens c] is [aperture c > 0.]: [c]'s rays start on a lens, and its
-    pixels are integrals ({!Raytrace.Prepared}'s [sampled]). *)
+(** [has_lens c] is [aperture c > 0.]: [c]'s rays start on a lens, and
+    each camera sample draws its own point of it. *)
 
 val look_at :
   ?up:Vec3.t ->

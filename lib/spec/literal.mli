@@ -172,7 +172,7 @@ val sample : Scene.t -> int -> int -> i:int -> j:int -> n:int -> Color.t
     [(2 unit (key h 2k) - 1, 2 unit (key h (2k+1)) - 1)], [k = 0 .. 31],
     inside the unit disc ([(0, 0)] if none), [h = key (camera ~gx ~gy
     ~di:(2i+1-n) ~dj:(2j+1-n)) (-1)] ({!Sample_key}). Written from that
-    definition, not with the kernel's {!Raytrace.Private.Camera_ray}. *)
+    definition, not with the kernel's camera rays. *)
 
 val render : ?limits:Limits.t -> Scene.valid -> Image.t
 (** [render ~limits scene] is the image of [scene]: every pixel of the canvas
