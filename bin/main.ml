@@ -68,7 +68,9 @@ let sampling =
           ~doc:
             "Antialiasing: trace a regular $(docv) x $(docv) grid of rays in every pixel and \
              average them (each clamped to 0-255 first). 1, the default, is the document's \
-             image. With $(b,--adaptive), the largest grid.")
+             image. With $(b,--adaptive), the largest grid. Under a camera with a lens \
+             (aperture), each ray leaves its own point of the lens: this is how to get a smooth \
+             depth of field instead of a grainy one.")
   in
   let adaptive =
     Arg.(

@@ -19,6 +19,11 @@ let forward (v : View.t) = Camera.direction (Scene.camera v.scene) Vec3.oz
 
 let tests =
   [
+    Alcotest.test_case "moving and turning keep the camera's lens" `Quick (fun () ->
+        let s = Helpers.parse_ok "(camera (position 0 1 -2) (look-at 0 0 6) (aperture 0.3) (focal-distance 7.5))" in
+        let v, _ = press (View.v (Helpers.valid s)) [ View.arrow_up; 'E'; 'D'; View.arrow_down ] in
+        let c = Scene.camera v.scene in
+        Alcotest.(check (pair (float 0.) (float 0.))) __LOC__ (0.3, 7.5) (Camera.aperture c, Camera.focal_distance c));
     Alcotest.test_case "a new view shows the scene as loaded" `Quick (fun () ->
         Alcotest.(check bool) __LOC__ true (Scene.equal cgfs.scene Scene.cgfs);
         Alcotest.(check int) __LOC__ 1 (View.samples cgfs);

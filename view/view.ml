@@ -25,10 +25,15 @@ let turn_step = Float.pi /. 36.
 (* The column of the matrix that [pick] selects: where that camera axis points. *)
 let column (m : Camera.rotation) pick = Vec3.v (pick m.row0) (pick m.row1) (pick m.row2)
 
+(* [cam] moved to [position] and turned by [rotation]: its lens goes with
+   it, so that the window and the page keep a scene's depth of field. *)
+let posed (cam : Camera.t) ~rotation position =
+  Camera.v ~rotation ~aperture:cam.aperture ~focal_distance:cam.focal_distance position
+
 let move ~right ~forward (cam : Camera.t) =
   let r = Vec3.unit (column cam.rotation (fun (v : Vec3.t) -> v.x)) in
   let f = Vec3.unit (column cam.rotation (fun (v : Vec3.t) -> v.z)) in
-  Camera.v ~rotation:cam.rotation Vec3.(cam.position + (right * r) + (forward * f))
+  posed cam ~rotation:cam.rotation Vec3.(cam.position + (right * r) + (forward * f))
 
 let yaw a (cam : Camera.t) =
   (* R_y(a) M: rows 0 and 2 mix, row 1 (the y of every direction) stays. *)
@@ -37,14 +42,14 @@ let yaw a (cam : Camera.t) =
   let rotation =
     Camera.{ row0 = Vec3.((c * m.row0) + (s * m.row2)); row1 = m.row1; row2 = Vec3.((c * m.row2) - (s * m.row0)) }
   in
-  Camera.v ~rotation cam.position
+  posed cam ~rotation cam.position
 
 let pitch a (cam : Camera.t) =
   (* M R_x(a): in each row, the y and z entries mix. *)
   let c = cos a and s = sin a in
   let row (r : Vec3.t) = Vec3.v r.x ((c *. r.y) -. (s *. r.z)) ((s *. r.y) +. (c *. r.z)) in
   let m = cam.rotation in
-  Camera.v ~rotation:Camera.{ row0 = row m.row0; row1 = row m.row1; row2 = row m.row2 } cam.position
+  posed cam ~rotation:Camera.{ row0 = row m.row0; row1 = row m.row1; row2 = row m.row2 } cam.position
 
 let drag_angles (scene : Scene.t) dx dy =
   let vp = (Scene.viewport scene) in

@@ -106,8 +106,9 @@ val turn_step : float
 val move : right:float -> forward:float -> Camera.t -> Camera.t
 (** [move ~right ~forward cam] is [cam] moved by [right] world units along
     its unit right axis [M (1, 0, 0) / |M (1, 0, 0)|] and [forward] along
-    its unit view axis [M (0, 0, 1) / |M (0, 0, 1)|]; the orientation is
-    unchanged. *)
+    its unit view axis [M (0, 0, 1) / |M (0, 0, 1)|]; the orientation and
+    the lens ([Camera.aperture], [Camera.focal_distance]) are unchanged,
+    as they are by {!yaw} and {!pitch}. *)
 
 val yaw : float -> Camera.t -> Camera.t
 (** [yaw a cam] is [cam] turned by [a] radians about the world's vertical
