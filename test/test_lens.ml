@@ -212,6 +212,18 @@ let tests =
               ])
           [ ("turned", row lens); ("robust", row ~robust:true lens); ("glass", row ~glass:true lens);
             ("wall", wall ~aperture:0.5 ~focus:5. ~wall:5.) ]);
+    Alcotest.test_case "every frame of a camera path takes the camera form's lens" `Quick (fun () ->
+        let s =
+          Helpers.parse_ok
+            "(camera (position 0 0 0) (aperture 0.3) (focal-distance 5))\n\
+             (camera-path (key (frame 0) (position 0 0 0) (look-at 0 0 3)) (key (frame 4) (position 4 0 0) (look-at 0 0 3)))"
+        in
+        match Scene.at_frame (Helpers.valid s) 2 with
+        | Error (`Msg m) -> Alcotest.fail m
+        | Ok f ->
+            let c = Scene.camera (Scene.of_valid f) in
+            Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 2. 0. 0.) c.position;
+            Alcotest.(check (pair (float 0.) (float 0.))) __LOC__ (0.3, 5.) (Camera.aperture c, Camera.focal_distance c));
     Alcotest.test_case "focus.scene at --samples 4 is its golden image" `Quick (fun () ->
         let s = Helpers.load_scene "focus.scene" in
         let s = Scene.with_overrides ~width:96 ~height:54 s in

@@ -374,7 +374,15 @@ let at_frame (s : valid) f =
   | None -> Error (`Msg "the scene has no camera-path, so it has no frames to render")
   | Some path -> (
       match Camera_path.camera path f with
-      | Ok camera -> Ok { s with camera; camera_path = None }
+      | Ok camera ->
+          (* A path's keys have no lens: the camera form's carries over. *)
+          let camera =
+            if Camera.has_lens s.camera then
+              Camera.v ~rotation:camera.rotation ~aperture:s.camera.aperture ~focal_distance:s.camera.focal_distance
+                camera.position
+            else camera
+          in
+          Ok { s with camera; camera_path = None }
       | Error e -> Error e)
 
 let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =

@@ -205,8 +205,9 @@ val check_work : ?limits:Limits.t -> ?samples:int -> ?pixels:int -> valid -> (un
 val at_frame : valid -> int -> (valid, [> `Msg of string ]) result
 (** [at_frame s f] is the still scene of frame [f] of [s]'s camera path:
     [s] with the path's camera of frame [f] ({!Raytrace.Camera.Path.camera}) and no
-    camera path. [Error] if [s] has no camera path or [f] lies outside
-    it. *)
+    camera path; the lens of [s]'s camera (its aperture and focal
+    distance), if it has one, goes on the path's camera. [Error] if [s]
+    has no camera path or [f] lies outside it. *)
 
 (**/**)
 
