@@ -11,6 +11,7 @@ let all =
     ("glass-knot.scene", "a glass mesh");
     ("cylinder.scene", "capped and open cylinders, a glass one, a checker, a CSG drill");
     ("disk.scene", "disks seen from both sides, a mirror, glass, an open tube with a lid");
+    ("focus.scene", "a thin lens, focused on the middle of a row of balls");
   ]
 
 let names = List.map fst all
