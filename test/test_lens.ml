@@ -1,7 +1,8 @@
 (* The thin lens (issue 27, depth of field): the kernel's lens rays
    against the literal definition (Literal.sample), the plane of focus
    sharp, aperture 0 the pinhole, the same bytes for every --jobs and
-   region, blur that grows with the aperture, no allocation per ray. *)
+   region, blur that grows with the aperture, no allocation per ray.
+   focus.scene's golden images are the golden suite's. *)
 open Raytrace
 module Trace = Private.Trace
 module Literal = Private.Literal
@@ -224,18 +225,4 @@ let tests =
             let c = Scene.camera (Scene.of_valid f) in
             Alcotest.check Helpers.vec3 __LOC__ (Vec3.v 2. 0. 0.) c.position;
             Alcotest.(check (pair (float 0.) (float 0.))) __LOC__ (0.3, 5.) (Camera.aperture c, Camera.focal_distance c));
-    Alcotest.test_case "focus.scene at --samples 4 is its golden image" `Quick (fun () ->
-        let s = Helpers.load_scene "focus.scene" in
-        let s = Scene.with_overrides ~width:96 ~height:54 s in
-        let img = image ~samples:4 s in
-        let path = Filename.concat "golden" "focus-samples4.ppm" in
-        match Sys.getenv_opt "RAYTRACE_WRITE_GOLDEN" with
-        | Some dir -> (
-            match Raytrace_unix.Files.write_ppm (Filename.concat dir (Filename.basename path)) img with
-            | Ok () -> ()
-            | Error (`Msg m) -> Alcotest.fail m)
-        | None -> (
-            match Raytrace_unix.Files.read_ppm path with
-            | Error (`Msg m) -> Alcotest.failf "no golden image (%s)" m
-            | Ok expected -> Helpers.check_images ~max_abs:1 "focus.scene, samples 4" ~expected img));
   ]
