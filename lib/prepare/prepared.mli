@@ -141,8 +141,8 @@ type t = private {
   background : Color.t;
   primary_ocx : float array;
       (** [camera - center], per sphere: the rays of a pinhole. (A lens's
-          rays start elsewhere: the tracer never reads these for them,
-          {!Raytrace.Private.Traversal}'s [lens_rays].) *)
+          rays start elsewhere: the tracer never reads these for them, its
+          primary search being every other ray's: [Tracer.lens_rays].) *)
   primary_ocy : float array;
   primary_ocz : float array;
   primary_k3 : float array;  (** [<CO, CO> - r^2] for the camera origin. *)
