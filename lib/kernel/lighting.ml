@@ -39,6 +39,142 @@ let[@inline] add_terms s ~specular_of m li n_dot_l cos length_n =
   end;
   if cos > 0. then s.intensity <- s.intensity +. (li *. Float.pow cos (Array.unsafe_get specular_of m))
 
+(* {1 Area, sphere and spot lights}
+
+   Each sample of these lights is a point light at a point [Q] of its own
+   (Light, "Sample points"). Their code is apart from the loop of the
+   document's lights, which keeps its instructions: a scene without them
+   pays one comparison of the light's kind. *)
+
+(* [Sample_key.stratum h ~n i], here so that its float is not boxed (a
+   float returned by another module's function is, without flambda): the
+   same operations, pinned against [Literal], which calls [Sample_key]. *)
+let[@inline] stratum h n i =
+  let x = (Float.of_int i +. (Float.of_int (Sample_key.mix (Sample_key.key h i)) *. 0x1p-31)) /. Float.of_int n in
+  if x < 1. then x else 0x1.fffffffffffffp-1
+
+(* The terms of one sample, of intensity [li]: the point light at
+   [s.px.. + s.dx..], with its shadow ray (range [(epsilon, 1)]). As the
+   document's point light in [lighting_with]: both terms decided first, a
+   sample that would add neither casts no shadow ray with the skips. The
+   specular cut of light [l] was found for its whole intensity: a sample's
+   term, no larger, is no more able to change the sum. *)
+let[@inline] sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v =
+  let p = tr.p and s = tr.s in
+  s.ox <- s.px;
+  s.oy <- s.py;
+  s.oz <- s.pz;
+  s.t_min <- p.epsilon;
+  s.t_max <- 1.;
+  let nx = s.nx and ny = s.ny and nz = s.nz in
+  let lx = s.dx and ly = s.dy and lz = s.dz in
+  let n_dot_l = (nx *. lx) +. (ny *. ly) +. (nz *. lz) in
+  let cos =
+    if shiny then begin
+      let k = 2. *. n_dot_l in
+      let rx = (nx *. k) -. lx and ry = (ny *. k) -. ly and rz = (nz *. k) -. lz in
+      let r_dot_v = (rx *. s.vx) +. (ry *. s.vy) +. (rz *. s.vz) in
+      let cos = if r_dot_v > 0. then r_dot_v /. (sqrt ((rx *. rx) +. (ry *. ry) +. (rz *. rz)) *. length_v) else 0. in
+      if cos > Array.unsafe_get p.specular_cut ((m * p.n_lights) + l) then cos else 0.
+    end
+    else 0.
+  in
+  if if p.shadow_skip then n_dot_l > 0. || cos > 0. else lx <> 0. || ly <> 0. || lz <> 0. then begin
+    if through then begin
+      transmit tr;
+      let f = Array.unsafe_get tr.tree.attenuation 0 in
+      if f > 0. then add_terms s ~specular_of m (li *. f) n_dot_l cos length_n
+    end
+    else if not (Traversal.shadowed tr l) then add_terms s ~specular_of m li n_dot_l cos length_n
+  end
+
+(* An area light: its [u x v] cells in order, [a] along edge1 outside. *)
+let area tr ~through ~shiny ~specular_of m l length_n length_v =
+  let p = tr.p and s = tr.s in
+  let g = Prepared.light_stride * l and geom = p.light_geom in
+  let u = Array.unsafe_get p.light_su l and v = Array.unsafe_get p.light_sv l in
+  let li = Array.unsafe_get p.light_intensity l /. Float.of_int (u * v) in
+  let hl = Sample_key.key tr.key (Array.unsafe_get p.light_number l) in
+  let cx = Array.unsafe_get geom g and cy = Array.unsafe_get geom (g + 1) and cz = Array.unsafe_get geom (g + 2) in
+  let ax = Array.unsafe_get geom (g + 3) and ay = Array.unsafe_get geom (g + 4) and az = Array.unsafe_get geom (g + 5) in
+  let bx = Array.unsafe_get geom (g + 6) and by = Array.unsafe_get geom (g + 7) and bz = Array.unsafe_get geom (g + 8) in
+  let px = s.px and py = s.py and pz = s.pz in
+  for a = 0 to u - 1 do
+    for b = 0 to v - 1 do
+      let h = Sample_key.key hl ((a * v) + b) in
+      let su = stratum (Sample_key.key h 0) u a and sv = stratum (Sample_key.key h 1) v b in
+      s.dx <- cx +. (su *. ax) +. (sv *. bx) -. px;
+      s.dy <- cy +. (su *. ay) +. (sv *. by) -. py;
+      s.dz <- cz +. (su *. az) +. (sv *. bz) -. pz;
+      sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v
+    done
+  done
+
+(* A sphere light: [n] rings of equal area of the disc facing the point. *)
+let sphere tr ~through ~shiny ~specular_of m l length_n length_v =
+  let p = tr.p and s = tr.s in
+  let g = Prepared.light_stride * l and geom = p.light_geom in
+  let n = Array.unsafe_get p.light_su l in
+  let li = Array.unsafe_get p.light_intensity l /. Float.of_int n in
+  let hl = Sample_key.key tr.key (Array.unsafe_get p.light_number l) in
+  let cx = Array.unsafe_get geom g and cy = Array.unsafe_get geom (g + 1) and cz = Array.unsafe_get geom (g + 2) in
+  let radius = Array.unsafe_get geom (g + 3) in
+  let px = s.px and py = s.py and pz = s.pz in
+  let wx = cx -. px and wy = cy -. py and wz = cz -. pz in
+  let len = sqrt ((wx *. wx) +. (wy *. wy) +. (wz *. wz)) in
+  (* At the centre the disc has no facing: no light, as Literal. *)
+  if len > 0. then begin
+    (* Scaled by the reciprocal, as [Vec3.unit] (Literal's) does. *)
+    let inv = 1. /. len in
+    let wx = inv *. wx and wy = inv *. wy and wz = inv *. wz in
+    (* e1 = a x w, a the axis least along w. *)
+    let along_x = Float.abs wx > 0.9 in
+    let e1x = if along_x then wz else 0. and e1y = if along_x then 0. else -.wz and e1z = if along_x then -.wx else wy in
+    let l1 = sqrt ((e1x *. e1x) +. (e1y *. e1y) +. (e1z *. e1z)) in
+    let inv = 1. /. l1 in
+    let e1x = inv *. e1x and e1y = inv *. e1y and e1z = inv *. e1z in
+    let e2x = (wy *. e1z) -. (wz *. e1y) and e2y = (wz *. e1x) -. (wx *. e1z) and e2z = (wx *. e1y) -. (wy *. e1x) in
+    for j = 0 to n - 1 do
+      let h = Sample_key.key hl j in
+      let rho = radius *. sqrt (stratum (Sample_key.key h 0) n j) in
+      let phi = 2. *. Float.pi *. (Float.of_int (Sample_key.mix (Sample_key.key h 1)) *. 0x1p-31) in
+      let c1 = rho *. cos phi and c2 = rho *. sin phi in
+      s.dx <- cx +. (c1 *. e1x) +. (c2 *. e2x) -. px;
+      s.dy <- cy +. (c1 *. e1y) +. (c2 *. e2y) -. py;
+      s.dz <- cz +. (c1 *. e1z) +. (c2 *. e2z) -. pz;
+      sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v
+    done
+  end
+
+(* A spotlight: a point light scaled by [cos^falloff] of the angle off its
+   axis, dark outside its cone (where it casts no shadow ray). *)
+let spot tr ~through ~shiny ~specular_of m l length_n length_v =
+  let p = tr.p and s = tr.s in
+  let g = Prepared.light_stride * l and geom = p.light_geom in
+  let lx = Array.unsafe_get geom g -. s.px and ly = Array.unsafe_get geom (g + 1) -. s.py
+  and lz = Array.unsafe_get geom (g + 2) -. s.pz in
+  let dist = sqrt ((lx *. lx) +. (ly *. ly) +. (lz *. lz)) in
+  let cos_off =
+    -.((lx *. Array.unsafe_get geom (g + 3)) +. (ly *. Array.unsafe_get geom (g + 4)) +. (lz *. Array.unsafe_get geom (g + 5)))
+    /. dist
+  in
+  if dist > 0. && cos_off >= Array.unsafe_get geom (g + 6) then begin
+    s.dx <- lx;
+    s.dy <- ly;
+    s.dz <- lz;
+    let li = Array.unsafe_get p.light_intensity l *. Float.pow cos_off (Array.unsafe_get geom (g + 7)) in
+    sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v
+  end
+
+let[@inline never] soft_light tr ~through ~shiny ~specular_of m l =
+  let s = tr.s in
+  let length_n = sqrt ((s.nx *. s.nx) +. (s.ny *. s.ny) +. (s.nz *. s.nz)) in
+  let length_v = sqrt ((s.vx *. s.vx) +. (s.vy *. s.vy) +. (s.vz *. s.vz)) in
+  let kind = Array.unsafe_get tr.p.light_kind l in
+  if kind = Prepared.area then area tr ~through ~shiny ~specular_of m l length_n length_v
+  else if kind = Prepared.sphere then sphere tr ~through ~shiny ~specular_of m l length_n length_v
+  else spot tr ~through ~shiny ~specular_of m l length_n length_v
+
 (* The total intensity at the hit point [s.px..] with unit normal [s.nx..]
    and view vector [s.vx..] (sections 7.4 to 7.7), left in [s.intensity].
    The shadow rays reuse [s]'s ray fields. [through]: shadow rays pass
@@ -46,7 +182,7 @@ let[@inline] add_terms s ~specular_of m li n_dot_l cos length_n =
    them. Both terms of a light are decided before its shadow ray: with
    [p.shadow_skip], a light that would add neither casts none (lit or
    not, it leaves the sum as it is), as in the document's kernel. *)
-let[@inline] lighting_with tr ~through ~shiny ~specular_of m =
+let[@inline] lighting_with tr ~through ~soft ~shiny ~specular_of m =
   let p = tr.p and s = tr.s in
   let px = s.px and py = s.py and pz = s.pz in
   let nx = s.nx and ny = s.ny and nz = s.nz in
@@ -58,6 +194,7 @@ let[@inline] lighting_with tr ~through ~shiny ~specular_of m =
   for l = 0 to p.n_lights - 1 do
     let li = Array.unsafe_get p.light_intensity l in
     if Array.unsafe_get p.light_kind l = Prepared.ambient then s.intensity <- s.intensity +. li
+    else if soft && Array.unsafe_get p.light_kind l > Prepared.directional then soft_light tr ~through ~shiny ~specular_of m l
     else begin
       let point = Array.unsafe_get p.light_kind l = Prepared.point in
       if point then begin
@@ -111,6 +248,14 @@ let[@inline] lighting_with tr ~through ~shiny ~specular_of m =
     end
   done
 
-let lighting tr ~shiny ~specular_of m = lighting_with tr ~through:false ~shiny ~specular_of m
-let lighting_through tr ~shiny ~specular_of m = lighting_with tr ~through:true ~shiny ~specular_of m
+(* Two copies of the loop: with [soft] false (a constant here) the
+   document's lights' loop has no test of the new kinds, whose scenes
+   take the other copy: one test per hit, not per light. *)
+let lighting tr ~shiny ~specular_of m =
+  if tr.p.soft_lights then lighting_with tr ~through:false ~soft:true ~shiny ~specular_of m
+  else lighting_with tr ~through:false ~soft:false ~shiny ~specular_of m
+
+let lighting_through tr ~shiny ~specular_of m =
+  if tr.p.soft_lights then lighting_with tr ~through:true ~soft:true ~shiny ~specular_of m
+  else lighting_with tr ~through:true ~soft:false ~shiny ~specular_of m
 

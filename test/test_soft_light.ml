@@ -1,0 +1,158 @@
+(* Area, sphere and spot lights (issue 27): the scene forms and their
+   errors, the kernel against the oracle's own transcription of the
+   definition (Light, "Sample points"), soft shadows that are soft,
+   the same bytes for every --jobs and tile, and no allocation. *)
+open Raytrace
+
+(* A floor, a ball over it and the light [light] (scene text), in the
+   document's mode (an epsilon), so that the kernel and the oracle do the
+   same arithmetic. *)
+let scene ?(size = 48) ?(extra = "") light =
+  Helpers.parse_ok
+    (Printf.sprintf
+       {|(canvas (width %d) (height %d)) (epsilon 0.001)
+(camera (position 0 2 -3) (look-at 0 0 2))
+(plane (point 0 -1 0) (normal 0 1 0) (color 200 200 200) (specular 20))
+(sphere (center 0 0 2) (radius 0.7) (color 255 80 80) (specular 300) %s)
+(box (min 0.9 -1 2.5) (max 1.5 -0.2 3.1) (color 80 80 255))
+(light ambient (intensity 0.1))
+%s|}
+       size size extra light)
+
+let area = "(light area (intensity 0.7) (corner -1 3 1) (edge1 2 0 0) (edge2 0 0 2) (samples 3 4))"
+let sphere = "(light sphere (intensity 0.7) (position 1 3 1) (radius 0.8) (samples 9))"
+let spot = "(light spot (intensity 0.8) (position 0 4 1) (direction 0 -1 0.3) (angle 30) (falloff 3))"
+
+(* The oracle's image of [s], pixel by pixel. *)
+let oracle (s : Scene.t) =
+  let v = Scene.of_valid (Helpers.valid s) in
+  let img = Image.create (Scene.width v) (Scene.height v) in
+  for gx = Canvas.min_x (Scene.width v) to Canvas.max_x (Scene.width v) do
+    for gy = Canvas.min_y (Scene.height v) to Canvas.max_y (Scene.height v) do
+      let c = Private.Literal.pixel v gx gy in
+      Image.set img (Canvas.column ~width:(Scene.width v) gx) (Canvas.row ~height:(Scene.height v) gy)
+        (Color.to_byte c.r) (Color.to_byte c.g) (Color.to_byte c.b)
+    done
+  done;
+  img
+
+(* The share of pixels that differ at all, and the most they differ by. *)
+let difference ~expected actual =
+  match Image.Diff.compare expected actual with
+  | Ok d -> (d.differing, d.max_abs)
+  | Error (`Msg m) -> Alcotest.fail m
+
+let as_the_oracle what s =
+  let expected = oracle s in
+  List.iter
+    (fun skips ->
+      let differing, most = difference ~expected (Helpers.image_exn ~skips s) in
+      (* The kernel and the oracle do the same operations on every
+         sample: any pixel that differs is a mistake, but for a
+         last-bit difference of a cosine's power rounding a byte. *)
+      if differing > 2 || most > 1 then
+        Alcotest.failf "%s, skips %b: %d pixels differ from the oracle's, by up to %d" what skips differing most)
+    [ true; false ]
+
+let light_of text = match Scene.lights (Helpers.parse_ok ("(canvas (width 2) (height 2)) " ^ text)) with [ l ] -> l | _ -> Alcotest.fail "one light"
+
+let parse_cases =
+  [
+    ("(light area (intensity 0.5) (corner 0 3 0) (edge1 1 0 0) (edge2 1 0 0) (samples 2 2))", "1:1", "must not be parallel");
+    ("(light area (intensity 0.5) (corner 0 3 0) (edge1 1 0 0) (edge2 0 0 1) (samples 2 0))", "1:83", "samples must lie in [1, 4096], got 0");
+    ("(light area (intensity 0.5) (corner 0 3 0) (edge1 1 0 0) (edge2 0 0 1) (samples 2))", "1:72", "takes 2 integers, got 1");
+    ("(light area (intensity 0.5) (corner 0 3 0) (edge1 1 0 0) (samples 2 2))", "1:1", "missing its (edge2 ...) field");
+    ("(light sphere (intensity 0.5) (position 0 3 0) (radius 0) (samples 4))", "1:1", "radius must lie in");
+    ("(light sphere (intensity 0.5) (position 0 3 0) (radius 1) (samples 1.5))", "1:68", "expected an integer, got 1.5");
+    ("(light spot (intensity 0.5) (position 0 3 0) (direction 0 0 0) (angle 20) (falloff 1))", "1:1", "direction must not be the zero vector");
+    ("(light spot (intensity 0.5) (position 0 3 0) (direction 0 -1 0) (angle 200) (falloff 1))", "1:1", "angle must lie in (0, 180]");
+    ("(light spot (intensity 0.5) (position 0 3 0) (direction 0 -1 0) (angle 20))", "1:1", "missing its (falloff ...) field");
+    ("(light spot (intensity 0.5) (position 0 3 0) (direction 0 -1 0) (angle 20) (falloff 1) (radius 2))", "1:89", "unknown light spot field radius");
+  ]
+
+let contains s sub = Astring_free.contains s sub
+
+let tests =
+  [
+    Alcotest.test_case "each new light prints as a form that reads back as the same light" `Quick (fun () ->
+        List.iter
+          (fun text ->
+            let l = light_of text in
+            Alcotest.(check string) __LOC__ text (Light.show l);
+            Alcotest.(check bool) text true (Light.equal l (light_of (Light.show l))))
+          [ area; sphere; spot ]);
+    Alcotest.test_case "a bad area, sphere or spot light is one located line" `Quick (fun () ->
+        List.iter
+          (fun (text, at, expected) ->
+            let m = Helpers.parse_error text in
+            if not (contains m ("t.scene:" ^ at ^ ":") && contains m expected) then
+              Alcotest.failf "%S: expected t.scene:%s: ... %S, got %S" text at expected m)
+          parse_cases);
+    Alcotest.test_case "the kernel draws area, sphere and spot lights as the oracle does, skips on and off" `Quick
+      (fun () ->
+        List.iter (fun (what, l) -> as_the_oracle what (scene l)) [ ("area", area); ("sphere", sphere); ("spot", spot) ];
+        as_the_oracle "all three" (scene (String.concat "\n" [ area; sphere; spot ])));
+    Alcotest.test_case "through glass too (the ray tree's lighting)" `Quick (fun () ->
+        as_the_oracle "area, glass ball" (scene ~extra:"(transparency 0.5) (refractive-index 1.3)" area));
+    Alcotest.test_case "an area light's shadow is soft: the floor under the ball's edge takes values between" `Quick
+      (fun () ->
+        (* With a point light at the panel's centre the floor is lit or in
+           shadow: two values (at the ball's shadow, where the plane's
+           shading is almost flat). Under the panel, the penumbra fills
+           the values between. Count the distinct bytes along the row. *)
+        let distinct light =
+          let img = Helpers.image_exn (scene ~size:96 light) in
+          let row = 90 in
+          List.length (List.sort_uniq compare (List.init 96 (fun x -> let r, _, _ = Image.get img x row in r)))
+        in
+        let hard = distinct "(light point (intensity 0.7) (position 0 3 2))" and soft = distinct area in
+        if soft < hard + 5 then Alcotest.failf "%d shades under the area light, %d under the point light" soft hard);
+    Alcotest.test_case "a 1 x 1 area light of no extent is the point light at its jittered corner cell" `Quick (fun () ->
+        (* Tiny edges: every sample lies within 1e-9 of the corner. *)
+        let tiny = "(light area (intensity 0.7) (corner 0 3 2) (edge1 1e-9 0 0) (edge2 0 0 1e-9) (samples 1 1))" in
+        let differing, most =
+          difference ~expected:(Helpers.image_exn (scene "(light point (intensity 0.7) (position 0 3 2))"))
+            (Helpers.image_exn (scene tiny))
+        in
+        if most > 1 then Alcotest.failf "%d pixels differ, by up to %d" differing most);
+    Alcotest.test_case "the samples are the same for every --jobs, tile and sampling grid" `Quick (fun () ->
+        let s = scene ~size:40 (String.concat "\n" [ area; sphere ]) in
+        let whole = Helpers.image_exn s in
+        Helpers.check_images "4 jobs" ~expected:whole (Helpers.image_exn ~jobs:4 s);
+        (match Helpers.render_region ~jobs:2 s (Render.Region.v ~x:7 ~y:11 ~w:20 ~h:13) with
+        | Ok (img, _) -> Helpers.check_images "a tile" ~expected:(Image.sub whole ~x:7 ~y:11 ~w:20 ~h:13) img
+        | Error (`Msg m) -> Alcotest.fail m);
+        let grid = Helpers.image_exn ~samples:3 s in
+        Helpers.check_images "3 x 3, 3 jobs" ~expected:grid (Helpers.image_exn ~jobs:3 ~samples:3 s);
+        Helpers.check_images "adaptive, 2 jobs" ~expected:(Helpers.image_exn ~samples:3 ~adaptive:4 s)
+          (Helpers.image_exn ~jobs:2 ~samples:3 ~adaptive:4 s));
+    Alcotest.test_case "the camera samples draw different light samples: the grid smooths the penumbra" `Quick (fun () ->
+        let s = scene ~size:40 area in
+        let one = Helpers.image_exn s and grid = Helpers.image_exn ~samples:3 s in
+        if Image.equal one grid then Alcotest.fail "3 x 3 camera samples gave the image of one");
+    Alcotest.test_case "tracing soft lights allocates nothing per pixel" `Quick (fun () ->
+        List.iter
+          (fun (what, s, samples) ->
+            match Helpers.render ~samples s with
+            | Ok (_, st) -> Alcotest.(check (float 0.)) what 0. st.minor_words
+            | Error (`Msg m) -> Alcotest.fail m)
+          [
+            ("area, sphere, spot", scene ~size:30 (String.concat "\n" [ area; sphere; spot ]), 1);
+            ("with glass", scene ~size:30 ~extra:"(transparency 0.5)" (String.concat "\n" [ area; sphere; spot ]), 1);
+            ("3 x 3 samples", scene ~size:20 area, 3);
+          ]);
+    Alcotest.test_case "a scene with a soft light does not take the document's kernel" `Quick (fun () ->
+        (* Spheres alone, plain, with an epsilon: the document's kernel's
+           scenes, but for the light. *)
+        let spheres light =
+          Helpers.parse_ok
+            ("(canvas (width 8) (height 8)) (epsilon 0.001) (sphere (center 0 0 3) (radius 1) (color 255 0 0)) " ^ light)
+        in
+        Alcotest.(check bool) "a point light: the document's kernel" true (Helpers.prepare (spheres "(light point (intensity 1) (position 0 3 0))")).textbook_all;
+        let p = Helpers.prepare (spheres area) in
+        Alcotest.(check bool) "sampled" true p.sampled;
+        Alcotest.(check bool) "textbook_all" false p.textbook_all;
+        let q = Helpers.prepare (spheres spot) in
+        Alcotest.(check bool) "a spot: not the document's kernel" false q.textbook_all;
+        Alcotest.(check bool) "a spot draws no numbers" false q.sampled);
+  ]
