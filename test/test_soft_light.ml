@@ -20,6 +20,7 @@ let scene ?(size = 48) ?(extra = "") light =
        size size extra light)
 
 let area = "(light area (intensity 0.7) (corner -1 3 1) (edge1 2 0 0) (edge2 0 0 2) (samples 3 4))"
+let adaptive = "(light area (intensity 0.7) (corner -1 3 1) (edge1 2 0 0) (edge2 0 0 2) (samples 3 4) (adaptive true))"
 let sphere = "(light sphere (intensity 0.7) (position 1 3 1) (radius 0.8) (samples 9))"
 let spot = "(light spot (intensity 0.8) (position 0 4 1) (direction 0 -1 0.3) (angle 30) (falloff 3))"
 
@@ -80,7 +81,7 @@ let tests =
             let l = light_of text in
             Alcotest.(check string) __LOC__ text (Light.show l);
             Alcotest.(check bool) text true (Light.equal l (light_of (Light.show l))))
-          [ area; sphere; spot ]);
+          [ area; adaptive; sphere; spot ]);
     Alcotest.test_case "a bad area, sphere or spot light is one located line" `Quick (fun () ->
         List.iter
           (fun (text, at, expected) ->
@@ -91,9 +92,11 @@ let tests =
     Alcotest.test_case "the kernel draws area, sphere and spot lights as the oracle does, skips on and off" `Quick
       (fun () ->
         List.iter (fun (what, l) -> as_the_oracle what (scene l)) [ ("area", area); ("sphere", sphere); ("spot", spot) ];
-        as_the_oracle "all three" (scene (String.concat "\n" [ area; sphere; spot ])));
+        as_the_oracle "all three" (scene (String.concat "\n" [ area; sphere; spot ]));
+        as_the_oracle "adaptive area" (scene adaptive));
     Alcotest.test_case "through glass too (the ray tree's lighting)" `Quick (fun () ->
-        as_the_oracle "area, glass ball" (scene ~extra:"(transparency 0.5) (refractive-index 1.3)" area));
+        as_the_oracle "area, glass ball" (scene ~extra:"(transparency 0.5) (refractive-index 1.3)" area);
+        as_the_oracle "adaptive area, glass ball" (scene ~extra:"(transparency 0.5) (refractive-index 1.3)" adaptive));
     Alcotest.test_case "an area light's shadow is soft: the floor under the ball's edge takes values between" `Quick
       (fun () ->
         (* With a point light at the panel's centre the floor is lit or in
@@ -140,6 +143,22 @@ let tests =
             ("area, sphere, spot", scene ~size:30 (String.concat "\n" [ area; sphere; spot ]), 1);
             ("with glass", scene ~size:30 ~extra:"(transparency 0.5)" (String.concat "\n" [ area; sphere; spot ]), 1);
             ("3 x 3 samples", scene ~size:20 area, 3);
+          ];
+        (* And counted here, in this process, pixel by pixel. *)
+        List.iter
+          (fun (what, s) ->
+            let tr = Trace.create (Helpers.prepare s) in
+            Trace.pixel tr 0 0;
+            let before = Gc.minor_words () in
+            for gy = -10 to 9 do
+              for gx = -10 to 9 do
+                Trace.pixel tr gx gy
+              done
+            done;
+            Alcotest.(check (float 0.)) what 0. (Gc.minor_words () -. before))
+          [
+            ("each kind", scene ~size:20 (String.concat "\n" [ area; adaptive; sphere; spot ]));
+            ("each kind, glass", scene ~size:20 ~extra:"(transparency 0.5)" (String.concat "\n" [ area; adaptive; sphere; spot ]));
           ]);
     Alcotest.test_case "a scene with a soft light does not take the document's kernel" `Quick (fun () ->
         (* Spheres alone, plain, with an epsilon: the document's kernel's
@@ -155,4 +174,31 @@ let tests =
         let q = Helpers.prepare (spheres spot) in
         Alcotest.(check bool) "a spot: not the document's kernel" false q.textbook_all;
         Alcotest.(check bool) "a spot draws no numbers" false q.sampled);
+      Alcotest.test_case "an adaptive area light traces its samples only in the penumbra, and --stats counts it" `Quick
+      (fun () ->
+        let stats light =
+          match Helpers.render (scene ~size:64 light) with Ok (img, st) -> (img, st) | Error (`Msg m) -> Alcotest.fail m
+        in
+        let full, st_full = stats area and img, st = stats adaptive in
+        Alcotest.(check (list int)) "full sampling counts nothing" [ 0; 0 ] [ st_full.decided; st_full.penumbra ];
+        if st.decided = 0 || st.penumbra = 0 then Alcotest.failf "decided %d, penumbra %d" st.decided st.penumbra;
+        (* 12 samples a point: 4 corner rays instead where they agree. *)
+        if st.shadow * 2 > st_full.shadow then Alcotest.failf "%d shadow rays, %d without" st.shadow st_full.shadow;
+        (* The ball and the box are larger than the light seen from the
+           floor: the corners miss no shadow here. *)
+        let differing, most = difference ~expected:full img in
+        if most > 1 then Alcotest.failf "%d pixels differ from full sampling's, by up to %d" differing most);
+    Alcotest.test_case "the estimate: a blocker that hides no corner of an adaptive light casts no shadow" `Quick (fun () ->
+        (* A 0.1 ball 1 under the middle of a 4 x 4 panel 2 above the
+           floor: from the floor below, every corner is seen past it. *)
+        let s light =
+          Helpers.parse_ok
+            ("(canvas (width 16) (height 16)) (epsilon 0.001) (camera (position 0 1.5 -0.01) (look-at 0 0 0))\n\
+              (plane (point 0 0 0) (normal 0 1 0) (color 200 200 200))\n\
+              (sphere (center 0 1 0) (radius 0.1) (color 255 0 0))\n" ^ light)
+        in
+        let panel extra = "(light area (intensity 1) (corner -2 2 -2) (edge1 4 0 0) (edge2 0 0 4) (samples 8 8)" ^ extra ^ ")" in
+        let sharp = Helpers.image_exn (s (panel "")) and estimated = Helpers.image_exn (s (panel " (adaptive true)")) in
+        let differing, _ = difference ~expected:sharp estimated in
+        if differing = 0 then Alcotest.fail "the small ball's faint shadow should be missed");
   ]

@@ -58,8 +58,10 @@ let[@inline] stratum h n i =
    document's point light in [lighting_with]: both terms decided first, a
    sample that would add neither casts no shadow ray with the skips. The
    specular cut of light [l] was found for its whole intensity: a sample's
-   term, no larger, is no more able to change the sum. *)
-let[@inline] sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v =
+   term, no larger, is no more able to change the sum. [lit]: the sample
+   is taken as seen without a shadow ray (an adaptive area light whose
+   corners are all seen). *)
+let[@inline] sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v ~lit =
   let p = tr.p and s = tr.s in
   s.ox <- s.px;
   s.oy <- s.py;
@@ -80,7 +82,8 @@ let[@inline] sample_terms tr ~through ~shiny ~specular_of m l li length_n length
     else 0.
   in
   if if p.shadow_skip then n_dot_l > 0. || cos > 0. else lx <> 0. || ly <> 0. || lz <> 0. then begin
-    if through then begin
+    if lit then add_terms s ~specular_of m li n_dot_l cos length_n
+    else if through then begin
       transmit tr;
       let f = Array.unsafe_get tr.tree.attenuation 0 in
       if f > 0. then add_terms s ~specular_of m (li *. f) n_dot_l cos length_n
@@ -88,8 +91,39 @@ let[@inline] sample_terms tr ~through ~shiny ~specular_of m l li length_n length
     else if not (Traversal.shadowed tr l) then add_terms s ~specular_of m li n_dot_l cos length_n
   end
 
-(* An area light: its [u x v] cells in order, [a] along edge1 outside. *)
-let area tr ~through ~shiny ~specular_of m l length_n length_v =
+(* How an adaptive area light's four corners are seen from [s.px..]:
+   [0] all hidden, [1] all seen (through glass: a factor of exactly 1),
+   [2] in doubt (Light, "Penumbra-only sampling"). *)
+let hidden = 0
+let seen = 1
+let doubt = 2
+
+let[@inline] corners tr ~through l cx cy cz ax ay az bx by bz =
+  let p = tr.p and s = tr.s in
+  let n_seen = ref 0 and n_hidden = ref 0 in
+  for c = 0 to 3 do
+    let fa = Float.of_int (c land 1) and fb = Float.of_int (c lsr 1) in
+    s.dx <- cx +. (fa *. ax) +. (fb *. bx) -. s.px;
+    s.dy <- cy +. (fa *. ay) +. (fb *. by) -. s.py;
+    s.dz <- cz +. (fa *. az) +. (fb *. bz) -. s.pz;
+    s.ox <- s.px;
+    s.oy <- s.py;
+    s.oz <- s.pz;
+    s.t_min <- p.epsilon;
+    s.t_max <- 1.;
+    if through then begin
+      transmit tr;
+      let f = Array.unsafe_get tr.tree.attenuation 0 in
+      if f = 1. then incr n_seen else if f = 0. then incr n_hidden
+    end
+    else if Traversal.shadowed tr l then incr n_hidden
+    else incr n_seen
+  done;
+  if !n_seen = 4 then seen else if !n_hidden = 4 then hidden else doubt
+
+(* An area light: its [u x v] cells in order, [a] along edge1 outside;
+   adaptive, only where its corners leave the point in doubt. *)
+let[@inline] area tr ~through ~shiny ~specular_of m l length_n length_v =
   let p = tr.p and s = tr.s in
   let g = Prepared.light_stride * l and geom = p.light_geom in
   let u = Array.unsafe_get p.light_su l and v = Array.unsafe_get p.light_sv l in
@@ -99,19 +133,29 @@ let area tr ~through ~shiny ~specular_of m l length_n length_v =
   let ax = Array.unsafe_get geom (g + 3) and ay = Array.unsafe_get geom (g + 4) and az = Array.unsafe_get geom (g + 5) in
   let bx = Array.unsafe_get geom (g + 6) and by = Array.unsafe_get geom (g + 7) and bz = Array.unsafe_get geom (g + 8) in
   let px = s.px and py = s.py and pz = s.pz in
-  for a = 0 to u - 1 do
-    for b = 0 to v - 1 do
-      let h = Sample_key.key hl ((a * v) + b) in
-      let su = stratum (Sample_key.key h 0) u a and sv = stratum (Sample_key.key h 1) v b in
-      s.dx <- cx +. (su *. ax) +. (sv *. bx) -. px;
-      s.dy <- cy +. (su *. ay) +. (sv *. by) -. py;
-      s.dz <- cz +. (su *. az) +. (sv *. bz) -. pz;
-      sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v
+  let verdict =
+    if Array.unsafe_get p.light_adaptive l then begin
+      let v = corners tr ~through l cx cy cz ax ay az bx by bz in
+      if v = doubt then tr.counters.penumbra <- tr.counters.penumbra + 1
+      else tr.counters.decided <- tr.counters.decided + 1;
+      v
+    end
+    else doubt
+  in
+  if verdict <> hidden then
+    for a = 0 to u - 1 do
+      for b = 0 to v - 1 do
+        let h = Sample_key.key hl ((a * v) + b) in
+        let su = stratum (Sample_key.key h 0) u a and sv = stratum (Sample_key.key h 1) v b in
+        s.dx <- cx +. (su *. ax) +. (sv *. bx) -. px;
+        s.dy <- cy +. (su *. ay) +. (sv *. by) -. py;
+        s.dz <- cz +. (su *. az) +. (sv *. bz) -. pz;
+        sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v ~lit:(verdict = seen)
+      done
     done
-  done
 
 (* A sphere light: [n] rings of equal area of the disc facing the point. *)
-let sphere tr ~through ~shiny ~specular_of m l length_n length_v =
+let[@inline] sphere tr ~through ~shiny ~specular_of m l length_n length_v =
   let p = tr.p and s = tr.s in
   let g = Prepared.light_stride * l and geom = p.light_geom in
   let n = Array.unsafe_get p.light_su l in
@@ -142,13 +186,13 @@ let sphere tr ~through ~shiny ~specular_of m l length_n length_v =
       s.dx <- cx +. (c1 *. e1x) +. (c2 *. e2x) -. px;
       s.dy <- cy +. (c1 *. e1y) +. (c2 *. e2y) -. py;
       s.dz <- cz +. (c1 *. e1z) +. (c2 *. e2z) -. pz;
-      sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v
+      sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v ~lit:false
     done
   end
 
 (* A spotlight: a point light scaled by [cos^falloff] of the angle off its
    axis, dark outside its cone (where it casts no shadow ray). *)
-let spot tr ~through ~shiny ~specular_of m l length_n length_v =
+let[@inline] spot tr ~through ~shiny ~specular_of m l length_n length_v =
   let p = tr.p and s = tr.s in
   let g = Prepared.light_stride * l and geom = p.light_geom in
   let lx = Array.unsafe_get geom g -. s.px and ly = Array.unsafe_get geom (g + 1) -. s.py
@@ -163,7 +207,7 @@ let spot tr ~through ~shiny ~specular_of m l length_n length_v =
     s.dy <- ly;
     s.dz <- lz;
     let li = Array.unsafe_get p.light_intensity l *. Float.pow cos_off (Array.unsafe_get geom (g + 7)) in
-    sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v
+    sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v ~lit:false
   end
 
 let[@inline never] soft_light tr ~through ~shiny ~specular_of m l =

@@ -8,6 +8,8 @@ type counters = Tracer.counters = {
   mutable tests : int;
   mutable box_tests : int;
   mutable early_stops : int;
+  mutable decided : int;
+  mutable penumbra : int;
 }
 
 type t = Tracer.t

@@ -33,6 +33,8 @@ type counters = {
   mutable tests : int;  (** Ray-object intersection tests. *)
   mutable box_tests : int;  (** Ray-box tests in the object hierarchy. *)
   mutable early_stops : int;  (** Reflections (and refractions) stopped by the weight bound. *)
+  mutable decided : int;  (** Points an adaptive area light's corners decided. *)
+  mutable penumbra : int;  (** Points an adaptive area light's corners left in doubt. *)
 }
 (** The type for work counters. *)
 

@@ -67,6 +67,7 @@ type t = {
   light_geom : float array;
   light_su : int array;
   light_sv : int array;
+  light_adaptive : bool array;
   soft_lights : bool;
   sampled : bool;
   specular_cut : float array;
@@ -1558,6 +1559,7 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     light_geom = Array.concat (List.map light_geom (Array.to_list lights));
     light_su = lf (function Light.Area { samples_u; _ } -> samples_u | Sphere { samples; _ } -> samples | _ -> 1);
     light_sv = lf (function Light.Area { samples_v; _ } -> samples_v | _ -> 1);
+    light_adaptive = lf (function Light.Area { adaptive; _ } -> adaptive | _ -> false);
     light_intensity = lf Light.intensity;
     lx = lf (fun l -> (vector l).x);
     ly = lf (fun l -> (vector l).y);

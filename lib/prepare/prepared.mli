@@ -182,6 +182,9 @@ type t = private {
       (** Per light: an area light's samples along edge1, a sphere
           light's samples, [1] otherwise. *)
   light_sv : int array;  (** Per light: an area light's samples along edge2, [1] otherwise. *)
+  light_adaptive : bool array;
+      (** Per light: an area light samples only the points its corners
+          leave in doubt ({!Light}, "Penumbra-only sampling"). *)
   soft_lights : bool;
       (** Some light is an area, sphere or spot light: the lighting loop
           that asks each light's kind for them (the other never asks). *)

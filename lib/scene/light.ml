@@ -2,7 +2,15 @@ type t =
   | Ambient of { intensity : float }
   | Point of { intensity : float; position : Vec3.t }
   | Directional of { intensity : float; direction : Vec3.t }
-  | Area of { intensity : float; corner : Vec3.t; edge1 : Vec3.t; edge2 : Vec3.t; samples_u : int; samples_v : int }
+  | Area of {
+      intensity : float;
+      corner : Vec3.t;
+      edge1 : Vec3.t;
+      edge2 : Vec3.t;
+      samples_u : int;
+      samples_v : int;
+      adaptive : bool;
+    }
   | Sphere of { intensity : float; position : Vec3.t; radius : float; samples : int }
   | Spot of { intensity : float; position : Vec3.t; direction : Vec3.t; angle : float; falloff : float }
 [@@deriving eq]
@@ -14,8 +22,8 @@ let ambient intensity = Ambient { intensity }
 let point intensity position = Point { intensity; position }
 let directional intensity direction = Directional { intensity; direction }
 
-let area intensity ~corner ~edge1 ~edge2 ~samples:(samples_u, samples_v) =
-  Area { intensity; corner; edge1; edge2; samples_u; samples_v }
+let area ?(adaptive = false) intensity ~corner ~edge1 ~edge2 ~samples:(samples_u, samples_v) =
+  Area { intensity; corner; edge1; edge2; samples_u; samples_v; adaptive }
 
 let sphere intensity ~position ~radius ~samples = Sphere { intensity; position; radius; samples }
 let spot intensity ~position ~direction ~angle ~falloff = Spot { intensity; position; direction; angle; falloff }
@@ -155,10 +163,11 @@ let pp ppf = function
   | Directional { intensity; direction } ->
       Format.fprintf ppf "(light directional (intensity %s) (direction %a))" (Float_text.to_string intensity)
         Vec3.pp_components direction
-  | Area { intensity; corner; edge1; edge2; samples_u; samples_v } ->
-      Format.fprintf ppf "(light area (intensity %s) (corner %a) (edge1 %a) (edge2 %a) (samples %d %d))"
+  | Area { intensity; corner; edge1; edge2; samples_u; samples_v; adaptive } ->
+      Format.fprintf ppf "(light area (intensity %s) (corner %a) (edge1 %a) (edge2 %a) (samples %d %d)%s)"
         (Float_text.to_string intensity) Vec3.pp_components corner Vec3.pp_components edge1 Vec3.pp_components edge2
         samples_u samples_v
+        (if adaptive then " (adaptive true)" else "")
   | Sphere { intensity; position; radius; samples } ->
       Format.fprintf ppf "(light sphere (intensity %s) (position %a) (radius %s) (samples %d))"
         (Float_text.to_string intensity) Vec3.pp_components position (Float_text.to_string radius) samples

@@ -15,14 +15,24 @@ type t = private
       (** Shines from infinitely far away: [direction] points from the
           scene {e toward} the light, and is the same vector [L] at every
           point (7.2). It need not be unit length but must not be zero. *)
-  | Area of { intensity : float; corner : Vec3.t; edge1 : Vec3.t; edge2 : Vec3.t; samples_u : int; samples_v : int }
+  | Area of {
+      intensity : float;
+      corner : Vec3.t;
+      edge1 : Vec3.t;
+      edge2 : Vec3.t;
+      samples_u : int;
+      samples_v : int;
+      adaptive : bool;
+    }
       (** A rectangle [corner + a edge1 + b edge2], [a, b] in [\[0, 1\]],
           that shines from each of its points: the light at a point [P] is
           that of [samples_u x samples_v] point lights, each of intensity
           [intensity / (samples_u samples_v)], one in each cell of the
           rectangle cut in [samples_u] strips along [edge1] and [samples_v]
           along [edge2], at a point jittered in its cell by {!Sample_key}
-          (see {!section-samples_def}). Its shadows are soft. *)
+          (see {!section-samples_def}). Its shadows are soft. With
+          [adaptive], the penumbra alone is sampled (see
+          {!section-adaptive}). *)
   | Sphere of { intensity : float; position : Vec3.t; radius : float; samples : int }
       (** A ball of light: seen from [P], the disc of radius [radius]
           through [position] facing [P], sampled by [samples] point lights
@@ -58,9 +68,11 @@ val directional : float -> Vec3.t -> t
 (** [directional i l] is the directional light of intensity [i] toward
     [l]. *)
 
-val area : float -> corner:Vec3.t -> edge1:Vec3.t -> edge2:Vec3.t -> samples:int * int -> t
-(** [area i ~corner ~edge1 ~edge2 ~samples:(u, v)] is the rectangle light
-    of intensity [i] with [u x v] samples. *)
+val area : ?adaptive:bool -> float -> corner:Vec3.t -> edge1:Vec3.t -> edge2:Vec3.t -> samples:int * int -> t
+(** [area ~adaptive i ~corner ~edge1 ~edge2 ~samples:(u, v)] is the
+    rectangle light of intensity [i] with [u x v] samples; [adaptive]
+    (default [false]) samples only the points its corners leave in
+    doubt. *)
 
 val sphere : float -> position:Vec3.t -> radius:float -> samples:int -> t
 (** [sphere i ~position ~radius ~samples] is the sphere light of intensity
@@ -154,6 +166,27 @@ val shadow_t_max : t -> float
 
     The stratified points give each ring or cell one sample: the error of
     a soft shadow falls faster with [n] than independent samples'. *)
+
+(** {1:adaptive Penumbra-only sampling}
+
+    An area light with [adaptive] first sends a shadow ray from [P] to
+    each of its four corners, [corner], [corner + edge1], [corner + edge2]
+    and [corner + edge1 + edge2] (each [(corner + a edge1) + b edge2], [a],
+    [b] in [{0, 1}], as the samples'). If all four pass freely (through
+    glass: a factor of exactly 1), every sample's terms are added without
+    its shadow ray; if all four are stopped (factor 0), the light adds
+    nothing; otherwise (the penumbra) the samples are traced as above.
+
+    What is exact and what is an estimate: the samples' terms, and the
+    samples of the points in doubt, are exactly those of full sampling. A
+    point whose four corner rays agree is taken as fully lit or fully
+    shadowed: an estimate, wrong where a blocker smaller than the light
+    (as seen from [P]) hides part of it but none of its corners, or where
+    a hole in a blocker lets part of it through; such a blocker's shadow
+    is then missed or incomplete. The tests hold the kernel to this
+    definition ({!Raytrace.Private.Literal} transcribes it), and
+    docs/run-time-against-error.md measures the error and the rays
+    saved. *)
 
 (** {1:document The document's light record}
 

@@ -423,7 +423,7 @@ let light_samples ~key ~number light point =
   | Light.Ambient _ -> []
   | Point { intensity; position } -> [ (intensity, Vec3.sub position point) ]
   | Directional { intensity; direction } -> [ (intensity, direction) ]
-  | Area { intensity; corner; edge1; edge2; samples_u = u; samples_v = v } ->
+  | Area { intensity; corner; edge1; edge2; samples_u = u; samples_v = v; adaptive = _ } ->
       let i = intensity /. Float.of_int (u * v) in
       List.concat
         (List.init u (fun a ->
@@ -455,13 +455,33 @@ let light_samples ~key ~number light point =
       if dist > 0. && cos_off >= Float.cos (angle *. Float.pi /. 180.) then [ (intensity *. (cos_off ** falloff), l) ]
       else []
 
+(* An adaptive area light's corners seen from [point]: [`Seen] if every
+   corner's shadow ray passes freely (a factor of exactly 1), [`Hidden]
+   if every one is stopped (0), [`Doubt] otherwise (Light, "Penumbra-only
+   sampling"). *)
+let corners ~passes light point =
+  match light with
+  | Light.Area { corner; edge1; edge2; adaptive = true; _ } ->
+      let at a b = Vec3.sub (Vec3.add (Vec3.add corner (Vec3.smul a edge1)) (Vec3.smul b edge2)) point in
+      let f = List.map passes [ at 0. 0.; at 1. 0.; at 0. 1.; at 1. 1. ] in
+      if List.for_all (fun x -> x = 1.) f then `Seen else if List.for_all (fun x -> x = 0.) f then `Hidden else `Doubt
+  | _ -> `Doubt
+
 let lighting_through ?(key = 0) ~through (scene : Scene.view) ~epsilon ~point ~normal ~view ~specular =
   let intensity = ref 0. in
+  (* How much of a light at [point + l] reaches [point]: 0 or 1, or
+     through glass the product of the transparencies crossed. *)
+  let passes l =
+    if through then transmitted scene ~origin:point ~direction:l ~t_min:epsilon ~t_max:1. 1.
+    else if closest_hit scene ~origin:point ~direction:l ~t_min:epsilon ~t_max:1. <> None then 0.
+    else 1.
+  in
   List.iteri
     (fun number light ->
-      match light with
-      | Light.Ambient _ -> intensity := !intensity +. Light.intensity light
-      | _ ->
+      match (light, corners ~passes light point) with
+      | Light.Ambient _, _ -> intensity := !intensity +. Light.intensity light
+      | _, `Hidden -> ()
+      | _, verdict ->
           List.iter
             (fun (li, l) ->
               if Vec3.norm2 l = 0. then
@@ -475,7 +495,8 @@ let lighting_through ?(key = 0) ~through (scene : Scene.view) ~epsilon ~point ~n
                    passes? *)
                 let t_max = Light.shadow_t_max light in
                 let passes =
-                  if through then transmitted scene ~origin:point ~direction:l ~t_min:epsilon ~t_max 1.
+                  if verdict = `Seen then 1.
+                  else if through then transmitted scene ~origin:point ~direction:l ~t_min:epsilon ~t_max 1.
                   else if closest_hit scene ~origin:point ~direction:l ~t_min:epsilon ~t_max <> None then 0.
                   else 1.
                 in

@@ -589,7 +589,7 @@ let light ~where form_node nodes =
         match kind with
         | "point" -> [ "position" ]
         | "directional" -> [ "direction" ]
-        | "area" -> [ "corner"; "edge1"; "edge2"; "samples" ]
+        | "area" -> [ "corner"; "edge1"; "edge2"; "samples"; "adaptive" ]
         | "sphere" -> [ "position"; "radius"; "samples" ]
         | "spot" -> [ "position"; "direction"; "angle"; "falloff" ]
         | _ -> []
@@ -630,7 +630,8 @@ let light ~where form_node nodes =
       | "area" ->
           let corner = point "corner" and edge1 = point "edge1" and edge2 = point "edge2" in
           let u, v = match samples 2 with [ u; v ] -> (u, v) | _ -> (1, 1) in
-          whole (Light.area intensity ~corner ~edge1 ~edge2 ~samples:(u, v))
+          let adaptive = Option.fold ~none:false ~some:(bool_field form "adaptive") (find fs "adaptive") in
+          whole (Light.area ~adaptive intensity ~corner ~edge1 ~edge2 ~samples:(u, v))
       | "sphere" ->
           let position = point "position" and radius = num "radius" in
           let n = match samples 1 with [ n ] -> n | _ -> 1 in
