@@ -201,4 +201,35 @@ let tests =
         let sharp = Helpers.image_exn (s (panel "")) and estimated = Helpers.image_exn (s (panel " (adaptive true)")) in
         let differing, _ = difference ~expected:sharp estimated in
         if differing = 0 then Alcotest.fail "the small ball's faint shadow should be missed");
+      Alcotest.test_case "in the umbra of one convex object, the samples inside the corner cells' cast no shadow ray" `Quick
+      (fun () ->
+        (* The ball hides the whole panel from the floor under it (0.7 at
+           distance 1: 44 degrees; the panel's corners 19.5 degrees off
+           the vertical). The image is the one without the skips, and the
+           oracle's (tested above). *)
+        List.iter
+          (fun (what, light, boxed) ->
+            let s = scene ~size:64 ~extra:boxed light in
+            match (Helpers.render s, Helpers.render ~skips:false s) with
+            | Ok (img, st), Ok (plain, st_plain) ->
+                if st.umbra = 0 then Alcotest.failf "%s: no sample skipped" what;
+                Alcotest.(check int) (what ^ ": nothing skipped without the skips") 0 st_plain.umbra;
+                if st.shadow >= st_plain.shadow then Alcotest.failf "%s: %d shadow rays, %d without the skips" what st.shadow st_plain.shadow;
+                let differing, most = difference ~expected:plain img in
+                if differing > 0 then Alcotest.failf "%s: %d pixels differ, by up to %d" what differing most
+            | Error (`Msg m), _ | _, Error (`Msg m) -> Alcotest.fail m)
+          [ ("3 x 4 samples", area, ""); ("8 x 8 samples", "(light area (intensity 0.7) (corner -1 3 1) (edge1 2 0 0) (edge2 0 0 2) (samples 8 8))", "") ]);
+    Alcotest.test_case "a blocker that is not convex decides nothing: a torus" `Quick (fun () ->
+        let s =
+          Helpers.parse_ok
+            "(canvas (width 24) (height 24)) (epsilon 0.001) (camera (position 0 3 -3) (look-at 0 0 0))\n\
+             (plane (point 0 0 0) (normal 0 1 0) (color 200 200 200))\n\
+             (torus (center 0 1 0) (axis 0 1 0) (major 0.6) (minor 0.3) (color 255 0 0))\n\
+             (light area (intensity 1) (corner -0.2 3 -0.2) (edge1 0.4 0 0) (edge2 0 0 0.4) (samples 4 4))"
+        in
+        match Helpers.render s with
+        | Ok (img, st) ->
+            Alcotest.(check int) "no umbra skip" 0 st.umbra;
+            Helpers.check_images "skips on and off" ~expected:(Helpers.image_exn ~skips:false s) img
+        | Error (`Msg m) -> Alcotest.fail m);
   ]

@@ -98,19 +98,23 @@ let hidden = 0
 let seen = 1
 let doubt = 2
 
+(* The shadow ray from [s.px..] to the point [(su, sv)] of the area light
+   at corner [c..] with edges [a..], [b..], in [s]; range [(epsilon, 1)]. *)
+let[@inline] aim tr cx cy cz ax ay az bx by bz su sv =
+  let s = tr.s in
+  s.dx <- cx +. (su *. ax) +. (sv *. bx) -. s.px;
+  s.dy <- cy +. (su *. ay) +. (sv *. by) -. s.py;
+  s.dz <- cz +. (su *. az) +. (sv *. bz) -. s.pz;
+  s.ox <- s.px;
+  s.oy <- s.py;
+  s.oz <- s.pz;
+  s.t_min <- tr.p.epsilon;
+  s.t_max <- 1.
+
 let[@inline] corners tr ~through l cx cy cz ax ay az bx by bz =
-  let p = tr.p and s = tr.s in
   let n_seen = ref 0 and n_hidden = ref 0 in
   for c = 0 to 3 do
-    let fa = Float.of_int (c land 1) and fb = Float.of_int (c lsr 1) in
-    s.dx <- cx +. (fa *. ax) +. (fb *. bx) -. s.px;
-    s.dy <- cy +. (fa *. ay) +. (fb *. by) -. s.py;
-    s.dz <- cz +. (fa *. az) +. (fb *. bz) -. s.pz;
-    s.ox <- s.px;
-    s.oy <- s.py;
-    s.oz <- s.pz;
-    s.t_min <- p.epsilon;
-    s.t_max <- 1.;
+    aim tr cx cy cz ax ay az bx by bz (Float.of_int (c land 1)) (Float.of_int (c lsr 1));
     if through then begin
       transmit tr;
       let f = Array.unsafe_get tr.tree.attenuation 0 in
@@ -121,8 +125,45 @@ let[@inline] corners tr ~through l cx cy cz ax ay az bx by bz =
   done;
   if !n_seen = 4 then seen else if !n_hidden = 4 then hidden else doubt
 
+(* The sample of cell [(a, b)] of an area light of [u x v] cells whose
+   key is [hl]: its place [(s, t)] on the rectangle. *)
+let[@inline] cell_s hl u v a b = stratum (Sample_key.key (Sample_key.key hl ((a * v) + b)) 0) u a
+let[@inline] cell_t hl v a b = stratum (Sample_key.key (Sample_key.key hl ((a * v) + b)) 1) v b
+
+(* Is the shadow ray from [s.px..] to the point [(su, sv)] of the area
+   light stopped? *)
+let[@inline] blocked_at tr l cx cy cz ax ay az bx by bz su sv =
+  aim tr cx cy cz ax ay az bx by bz su sv;
+  Traversal.shadowed tr l
+
+(* Kinds of object that are convex sets (a plane's blocked side is a
+   half-space): the points of the light whose shadow rays one of them
+   stops form a convex set (see [area]). *)
+let[@inline] convex (k : Kind.t) =
+  match k with
+  | Sphere | Triangle | Smooth_triangle | Plane | Box | Disk -> true
+  | Csg | Cylinder | Cone | Torus | Instance -> false
+
+(* [(x, y)] lies strictly left of the line from [(x0, y0)] to [(x1, y1)],
+   by a margin that covers the rounding of the sample points. *)
+let[@inline] left x0 y0 x1 y1 x y = ((x1 -. x0) *. (y -. y0)) -. ((y1 -. y0) *. (x -. x0)) > 1e-9
+
 (* An area light: its [u x v] cells in order, [a] along edge1 outside;
-   adaptive, only where its corners leave the point in doubt. *)
+   adaptive, only where its corners leave the point in doubt.
+
+   The exact umbra skip (with the skips, opaque shadow rays, [u, v >= 2]):
+   the samples of the four corner cells are traced first (their answers
+   kept and used in their turn, so the terms are summed in the same
+   order). If one convex object [K] stops all four, it stops the ray to
+   every point of their convex hull: for rays stopped at [t1] and [t2] in
+   [(epsilon, 1)] toward [Q1] and [Q2], the segment between the two hit
+   points lies in [K] and crosses the ray toward any point between [Q1]
+   and [Q2] at the weighted harmonic mean of [t1] and [t2], also in
+   [(epsilon, 1)] (the light outside [K], as lights are). The samples
+   strictly inside that hull (in the rectangle's coordinates [(s, t)],
+   which the sample points follow affinely) add nothing, and cast no ray.
+   Exact up to the rounding of the sample points and of the kernel's own
+   hit tests near [K]'s outline (the margin of [left] covers the first). *)
 let[@inline] area tr ~through ~shiny ~specular_of m l length_n length_v =
   let p = tr.p and s = tr.s in
   let g = Prepared.light_stride * l and geom = p.light_geom in
@@ -142,7 +183,27 @@ let[@inline] area tr ~through ~shiny ~specular_of m l length_n length_v =
     end
     else doubt
   in
-  if verdict <> hidden then
+  if verdict <> hidden then begin
+    (* Facing the rectangle's centre: elsewhere the samples mostly add no
+       term and cast no ray, and the corners' rays would be extra. *)
+    let early =
+      verdict = doubt && (not through) && p.skips && u >= 2 && v >= 2
+      && (s.nx *. (cx +. (0.5 *. (ax +. bx)) -. px)) +. (s.ny *. (cy +. (0.5 *. (ay +. by)) -. py))
+         +. (s.nz *. (cz +. (0.5 *. (az +. bz)) -. pz))
+         > 0.
+    in
+    let u1 = u - 1 and v1 = v - 1 in
+    let s00 = cell_s hl u v 0 0 and t00 = cell_t hl v 0 0 and s10 = cell_s hl u v u1 0 and t10 = cell_t hl v u1 0 in
+    let s11 = cell_s hl u v u1 v1 and t11 = cell_t hl v u1 v1 and s01 = cell_s hl u v 0 v1 and t01 = cell_t hl v 0 v1 in
+    (* Per corner cell: stopped, and by which object ([-1]: seen). *)
+    let k00 = ref (-1) and k10 = ref (-1) and k11 = ref (-1) and k01 = ref (-1) in
+    if early then begin
+      if blocked_at tr l cx cy cz ax ay az bx by bz s00 t00 then k00 := Array.unsafe_get tr.last_blocker l;
+      if blocked_at tr l cx cy cz ax ay az bx by bz s10 t10 then k10 := Array.unsafe_get tr.last_blocker l;
+      if blocked_at tr l cx cy cz ax ay az bx by bz s11 t11 then k11 := Array.unsafe_get tr.last_blocker l;
+      if blocked_at tr l cx cy cz ax ay az bx by bz s01 t01 then k01 := Array.unsafe_get tr.last_blocker l
+    end;
+    let umbra = early && !k00 >= 0 && !k10 = !k00 && !k11 = !k00 && !k01 = !k00 && convex (Array.unsafe_get p.kind !k00) in
     for a = 0 to u - 1 do
       for b = 0 to v - 1 do
         let h = Sample_key.key hl ((a * v) + b) in
@@ -150,9 +211,19 @@ let[@inline] area tr ~through ~shiny ~specular_of m l length_n length_v =
         s.dx <- cx +. (su *. ax) +. (sv *. bx) -. px;
         s.dy <- cy +. (su *. ay) +. (sv *. by) -. py;
         s.dz <- cz +. (su *. az) +. (sv *. bz) -. pz;
-        sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v ~lit:(verdict = seen)
+        if early && (a = 0 || a = u1) && (b = 0 || b = v1) then begin
+          (* A corner cell, traced above: its answer in its turn. *)
+          let k = if a = 0 then if b = 0 then !k00 else !k01 else if b = 0 then !k10 else !k11 in
+          if k < 0 then sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v ~lit:true
+        end
+        else if
+          umbra && left s00 t00 s10 t10 su sv && left s10 t10 s11 t11 su sv && left s11 t11 s01 t01 su sv
+          && left s01 t01 s00 t00 su sv
+        then tr.counters.umbra <- tr.counters.umbra + 1
+        else sample_terms tr ~through ~shiny ~specular_of m l li length_n length_v ~lit:(verdict = seen)
       done
     done
+  end
 
 (* A sphere light: [n] rings of equal area of the disc facing the point. *)
 let[@inline] sphere tr ~through ~shiny ~specular_of m l length_n length_v =

@@ -10,6 +10,7 @@ type counters = Tracer.counters = {
   mutable early_stops : int;
   mutable decided : int;
   mutable penumbra : int;
+  mutable umbra : int;
 }
 
 type t = Tracer.t

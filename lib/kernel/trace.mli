@@ -35,6 +35,7 @@ type counters = {
   mutable early_stops : int;  (** Reflections (and refractions) stopped by the weight bound. *)
   mutable decided : int;  (** Points an adaptive area light's corners decided. *)
   mutable penumbra : int;  (** Points an adaptive area light's corners left in doubt. *)
+  mutable umbra : int;  (** Area light samples in an exact umbra: no shadow ray. *)
 }
 (** The type for work counters. *)
 

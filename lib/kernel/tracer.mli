@@ -21,6 +21,9 @@ type counters = {
       (** Points that an adaptive area light's corners decided lit or
           shadowed, its samples cast no shadow ray. *)
   mutable penumbra : int;  (** Points whose adaptive area light's corners disagreed: all samples traced. *)
+  mutable umbra : int;
+      (** Area light samples that cast no shadow ray: inside the corner
+          cells' samples, all stopped by one convex object (exact). *)
 }
 (** The type for the work counters ({!Trace.counters}). *)
 

@@ -18,7 +18,7 @@ let out_of_memory (region : Region.t) =
   let mib = Float.of_int (3 * Region.pixels region) /. 1048576. in
   Error (`Msg (Printf.sprintf "not enough memory for a %dx%d image (%.0f MiB)" region.w region.h mib))
 
-let counter_fields = 10
+let counter_fields = 11
 
 type counters = (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t
 
@@ -35,7 +35,8 @@ let save ints w tr words =
   set 5 (truncate words);
   set 6 c.box_tests;
   set 8 c.decided;
-  set 9 c.penumbra
+  set 9 c.penumbra;
+  set 10 c.umbra
 
 let save_work ?(base = 0) ints w tr =
   let c = Trace.counters tr in
@@ -97,6 +98,7 @@ let stats ints ~slots ~pixels ~jobs ~prepare_s ~trace_s =
       early_stops = sum 4;
       decided = sum 8;
       penumbra = sum 9;
+      umbra = sum 10;
       jobs;
       prepare_s;
       trace_s;

@@ -8,6 +8,7 @@ type t = {
   early_stops : int;
   decided : int;
   penumbra : int;
+  umbra : int;
   jobs : int;
   prepare_s : float;
   trace_s : float;
@@ -34,6 +35,7 @@ let pp_table ppf s =
     row "soft light, by corners" (int s.decided);
     row "soft light, penumbra" (int s.penumbra)
   end;
+  if s.umbra > 0 then row "soft light, umbra" (int s.umbra);
   row "jobs" (int s.jobs);
   row "time, prepare (s)" (Printf.sprintf "%.4f" s.prepare_s);
   row "time, trace (s)" (Printf.sprintf "%.4f" s.trace_s);

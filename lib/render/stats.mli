@@ -15,6 +15,10 @@ type t = {
           (all seen or all hidden): its samples cast no shadow ray there
           (an estimate, {!Light}, "Penumbra-only sampling"). *)
   penumbra : int;  (** Lit points where they disagreed: every sample traced. *)
+  umbra : int;
+      (** Area light samples that cast no shadow ray because one convex
+          object stops the rays of the corner cells' samples around them
+          (exact: the kernel's [Lighting] (lib/kernel/lighting.mli)). *)
   jobs : int;  (** Processes that traced. *)
   prepare_s : float;  (** Seconds spent preparing the scene, by the render's clock (below). *)
   trace_s : float;

@@ -29,7 +29,7 @@ type t = private
           that of [samples_u x samples_v] point lights, each of intensity
           [intensity / (samples_u samples_v)], one in each cell of the
           rectangle cut in [samples_u] strips along [edge1] and [samples_v]
-          along [edge2], at a point jittered in its cell by {!Sample_key}
+          along [edge2], at a point jittered in its cell by {!Raytrace.Private.Sample_key}
           (see {!section-samples_def}). Its shadows are soft. With
           [adaptive], the penumbra alone is sampled (see
           {!section-adaptive}). *)
@@ -91,7 +91,7 @@ val samples : t -> int
 
 val sampled : t -> bool
 (** [sampled l] is [true] iff [l] is an area or sphere light, whose light
-    is an integral that draws numbers ({!Sample_key}). *)
+    is an integral that draws numbers ({!Raytrace.Private.Sample_key}). *)
 
 val max_samples : int
 (** [max_samples] is [4096]: the most samples of a sphere light and along
@@ -145,8 +145,8 @@ val shadow_t_max : t -> float
     order below, of the terms (diffuse and specular, sections 7.4 to 7.6)
     of point lights of intensity [intensity / n] at sample points [Q]
     ([n] the number of samples), each with its own shadow ray from [P] to
-    [Q] ([t] in [(epsilon, 1)]). The numbers come from {!Sample_key},
-    keyed by the camera sample [k] ({!Sample_key.camera}; the centre ray
+    [Q] ([t] in [(epsilon, 1)]). The numbers come from {!Raytrace.Private.Sample_key},
+    keyed by the camera sample [k] ({!Raytrace.Private.Sample_key.camera}; the centre ray
     of a pixel [(gx, gy)] has [camera ~gx ~gy ~di:0 ~dj:0]) and the
     light's place [l] in the scene's list of lights (from 0, every kind
     counted), so a pixel's image depends on nothing else:
@@ -186,7 +186,12 @@ val shadow_t_max : t -> float
     is then missed or incomplete. The tests hold the kernel to this
     definition ({!Raytrace.Private.Literal} transcribes it), and
     docs/run-time-against-error.md measures the error and the rays
-    saved. *)
+    saved.
+
+    Without [adaptive], the kernel's exact umbra skip (with the skips on)
+    changes no byte: where one convex object stops the shadow rays of the
+    four corner cells' samples, the samples inside their hull cast none
+    (the kernel's [Lighting] (lib/kernel/lighting.mli)). *)
 
 (** {1:document The document's light record}
 

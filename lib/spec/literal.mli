@@ -132,7 +132,7 @@ val compute_lighting :
     located exactly at [point] ([L = 0]) is skipped: it has no direction.
     An area or sphere light is its samples, each a point light at a
     point of its own, numbered by [key] (default [0]; the camera sample's
-    {!Sample_key.camera} key) and the light's place in the list ({!Light},
+    {!Raytrace.Private.Sample_key.camera} key) and the light's place in the list ({!Light},
     "Sample points"); a spotlight is a point light scaled by its cone. *)
 
 val trace_ray :
