@@ -232,4 +232,48 @@ let tests =
             Alcotest.(check int) "no umbra skip" 0 st.umbra;
             Helpers.check_images "skips on and off" ~expected:(Helpers.image_exn ~skips:false s) img
         | Error (`Msg m) -> Alcotest.fail m);
+      Alcotest.test_case "a spotlight gives intensity cos^falloff of the angle off its axis, none outside its cone" `Quick
+      (fun () ->
+        (* Spot at (0, 1, 0) aimed down, cone 60 degrees, falloff 2, over
+           the floor y = 0 (N = (0, 1, 0)), nothing else. At P = (1, 0, 0):
+           L = (-1, 1, 0), 45 degrees off the axis, cos^2 = 1/2; diffuse
+           <N, L> / |L| = 1/sqrt 2: 0.5 / sqrt 2 = 0.35355... At (2, 0, 0):
+           atan 2 = 63.4 degrees > 60: nothing. *)
+        let s =
+          Helpers.parse_ok
+            "(canvas (width 2) (height 2)) (light spot (intensity 1) (position 0 1 0) (direction 0 -1 0) (angle 60) (falloff 2))"
+        in
+        let at x = Private.Literal.compute_lighting s ~epsilon:0.001 ~point:(Vec3.v x 0. 0.) ~normal:Vec3.oy ~view:Vec3.oy ~specular:Sphere.matte in
+        Alcotest.(check (float 1e-12)) __LOC__ (0.5 /. sqrt 2.) (at 1.);
+        Alcotest.(check (float 0.)) __LOC__ 0. (at 2.);
+        (* Straight below: cos 0 = 1, diffuse 1. *)
+        Alcotest.(check (float 1e-15)) __LOC__ 1. (at 0.));
+    Alcotest.test_case "an unshadowed area light is the mean of its samples' point lights: a 1 x 1 light is one point" `Quick
+      (fun () ->
+        (* A 2 x 2 panel at height 1 over P = 0, 1 x 1 sample: a point
+           light at (-1 + 2 s, 1, -1 + 2 t) for the cell's jittered (s, t)
+           = Sample_key.stratum (key h 0) ~n:1 0, with h = key (key k 0) 0,
+           k the key given: diffuse 1 / |L|, L = Q - P. *)
+        let s =
+          Helpers.parse_ok
+            "(canvas (width 2) (height 2)) (light area (intensity 1) (corner -1 1 -1) (edge1 2 0 0) (edge2 0 0 2) (samples 1 1))"
+        in
+        let key = 12345 in
+        let h = Private.Sample_key.(key (key 12345 0) 0) in
+        let su = Private.Sample_key.(stratum (key h 0) ~n:1 0) and sv = Private.Sample_key.(stratum (key h 1) ~n:1 0) in
+        let l = Vec3.v (-1. +. (su *. 2.)) 1. (-1. +. (sv *. 2.)) in
+        Alcotest.(check (float 1e-15)) __LOC__ (1. /. Vec3.norm l)
+          (Private.Literal.compute_lighting ~key s ~epsilon:0.001 ~point:Vec3.zero ~normal:Vec3.oy ~view:Vec3.oy
+             ~specular:Sphere.matte));
+    Alcotest.test_case "the work bound counts every sample's shadow ray" `Quick (fun () ->
+        let s samples =
+          Helpers.parse_ok
+            (Printf.sprintf
+               "(canvas (width 600) (height 600)) (sphere (center 0 0 3) (radius 1) (color 255 0 0))\n\
+                (light area (intensity 1) (corner -1 3 1) (edge1 2 0 0) (edge2 0 0 2) (samples %d %d))" samples samples)
+        in
+        (match Scene.check_work (Helpers.valid (s 4)) with Ok () -> () | Error (`Msg m) -> Alcotest.fail m);
+        match Scene.check_work (Helpers.valid (s 4096)) with
+        | Ok () -> Alcotest.fail "16 million shadow rays a point passed the work bound"
+        | Error (`Msg m) -> if not (contains m "(1 + 16777216 lights)") then Alcotest.failf "%S" m);
   ]
