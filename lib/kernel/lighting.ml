@@ -187,7 +187,7 @@ let[@inline] area tr ~through ~shiny ~specular_of m l length_n length_v =
     (* Facing the rectangle's centre: elsewhere the samples mostly add no
        term and cast no ray, and the corners' rays would be extra. *)
     let early =
-      verdict = doubt && (not through) && p.skips && u >= 2 && v >= 2
+      verdict = doubt && (not through) && p.umbra_skip && u >= 2 && v >= 2
       && (s.nx *. (cx +. (0.5 *. (ax +. bx)) -. px)) +. (s.ny *. (cy +. (0.5 *. (ay +. by)) -. py))
          +. (s.nz *. (cz +. (0.5 *. (az +. bz)) -. pz))
          > 0.

@@ -69,6 +69,7 @@ type t = {
   light_sv : int array;
   light_adaptive : bool array;
   soft_lights : bool;
+  umbra_skip : bool;
   sampled : bool;
   specular_cut : float array;
   ambient_lead : float;
@@ -1595,6 +1596,7 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     (* An area or sphere light draws numbers; no camera does yet. *)
     sampled = Array.exists Light.sampled lights;
     soft_lights = soft;
+    umbra_skip = skips;
     specular_cut = specular_cut ~skips materials lights;
     ambient_lead = fst (ambient_lead lights);
     first_light = snd (ambient_lead lights);
@@ -1712,13 +1714,14 @@ let prepare ?(skips = true) ?beside scene =
       (fun () -> prepare_scene ~skips ?beside scene)
   end
 
-type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms
+type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms | Umbra
 
 let without k p =
   match k with
   | Behind -> { p with behind = false }
   | Shadow_rays -> { p with shadow_skip = false }
   | Culling -> { p with cull = false }
+  | Umbra -> { p with umbra_skip = false }
   | Negligible_terms ->
       {
         p with

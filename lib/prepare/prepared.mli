@@ -188,6 +188,10 @@ type t = private {
   soft_lights : bool;
       (** Some light is an area, sphere or spot light: the lighting loop
           that asks each light's kind for them (the other never asks). *)
+  umbra_skip : bool;
+      (** The skips are on: an area light's samples inside the hull of its
+          corner cells' samples, all four stopped by one convex object,
+          cast no shadow ray (the kernel's [Lighting], exact). *)
   sampled : bool;
       (** Some pixel is an integral that draws numbers (an area light, a
           lens): the tracer keeps the key of each camera sample
@@ -335,12 +339,14 @@ val prepare : ?skips:bool -> ?beside:Bvh.beside -> Scene.valid -> t
 
 (** The skips of the tracer's kernel, each exact on its own: [Behind] and
     [Culling] for the document's scenes (spheres alone, an epsilon, no
-    hierarchy), [Shadow_rays] and [Negligible_terms] for every scene. *)
+    hierarchy), [Shadow_rays] and [Negligible_terms] for every scene,
+    [Umbra] for scenes with area lights. *)
 type kernel_skip =
   | Behind  (** [behind]: no roots computed for a sphere behind the ray. *)
   | Shadow_rays  (** [shadow_skip]: no shadow ray for a light that adds nothing. *)
   | Culling  (** [cull]: camera rays test only their tile's spheres. *)
   | Negligible_terms  (** [specular_cut]: no specular term too small to count. *)
+  | Umbra  (** [umbra_skip]: no shadow ray for an area light's samples in one convex object's umbra. *)
 
 val without : kernel_skip -> t -> t
 (** [without k p] is [p] with the skip [k] off and the others as they
