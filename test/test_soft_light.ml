@@ -277,16 +277,9 @@ let tests =
         | Ok () -> Alcotest.fail "16 million shadow rays a point passed the work bound"
         | Error (`Msg m) -> if not (contains m "(1 + 16777216 lights)") then Alcotest.failf "%S" m);
       Alcotest.test_case "Prepared.without Umbra turns the umbra skip off alone: the same bytes, more rays" `Quick (fun () ->
-        let image (p : Private.Prepared.t) =
+        let image p =
           let tr = Trace.create p in
-          let img = Image.create p.width p.height in
-          let buf = Image.buffer img in
-          for c = 0 to p.width - 1 do
-            for r = 0 to p.height - 1 do
-              Trace.pixel tr (Canvas.x_of_column ~width:p.width c) (Canvas.y_of_row ~height:p.height r);
-              Trace.store tr buf (3 * ((r * p.width) + c))
-            done
-          done;
+          let img = Helpers.by_pixels tr in
           (img, Trace.counters tr)
         in
         let p = Helpers.prepare (scene ~size:40 area) in
