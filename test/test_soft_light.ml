@@ -213,6 +213,9 @@ let tests =
             match (Helpers.render s, Helpers.render ~skips:false s) with
             | Ok (img, st), Ok (plain, st_plain) ->
                 if st.umbra = 0 then Alcotest.failf "%s: no sample skipped" what;
+                let table = Format.asprintf "%a" Render.Stats.pp_table st in
+                if not (contains table (Printf.sprintf "soft light, umbra        %d" st.umbra)) then
+                  Alcotest.failf "%s: --stats's table has no umbra row:\n%s" what table;
                 Alcotest.(check int) (what ^ ": nothing skipped without the skips") 0 st_plain.umbra;
                 if st.shadow >= st_plain.shadow then Alcotest.failf "%s: %d shadow rays, %d without the skips" what st.shadow st_plain.shadow;
                 let differing, most = difference ~expected:plain img in
