@@ -241,7 +241,20 @@ let placed_light ~kinds ~plain (receiver : Vec3.t) =
         ]
     in
     let* objects = list_size (int_range 1 2) (object_at ~kinds ~plain ~toward:d p size) in
-    return (Light.point intensity at, objects)
+    (* Or, for some places, a light of issue 27 there: a small panel
+       around it, a ball of light on it, a spot aimed at the receiver.
+       Chosen from the place, not drawn: the other scenes stay the ones
+       the generator made before. *)
+    let light =
+      match abs (Float.to_int (at.x *. 4.) + (3 * Float.to_int (at.z *. 4.))) mod 6 with
+      | 0 ->
+          Light.area intensity ~corner:(Vec3.sub at (Vec3.v 0.25 0. 0.25)) ~edge1:(Vec3.v 0.5 0. 0.)
+            ~edge2:(Vec3.v 0. 0.1 0.5) ~samples:(3, 2)
+      | 1 -> Light.sphere intensity ~position:at ~radius:0.2 ~samples:5
+      | 2 -> Light.spot intensity ~position:at ~direction:(Vec3.sub receiver at) ~angle:35. ~falloff:2.
+      | _ -> Light.point intensity at
+    in
+    return (light, objects)
   else
     let* direction = oneof [ return Vec3.oy; return (Vec3.v 1. 4. 4.); map nonzero (qvec (-1) 1) ] in
     let* toward = bool and* s = float_range 1. 4. and* size = float_range 0.2 0.8 in

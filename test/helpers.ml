@@ -252,3 +252,17 @@ let with_objects ?spheres ?shapes s =
   let spheres = match spheres with Some l -> l | None -> scene_spheres s in
   let shapes = match shapes with Some l -> l | None -> Scene.shapes s in
   Scene.with_overrides ~objects:(List.map (fun sp -> Shape.Sphere sp) spheres @ shapes) s
+
+(* The image that tracer [tr] makes a pixel at a time, in columns (tiles
+   are entered in another order than by rows). *)
+let by_pixels (tr : Raytrace.Private.Trace.t) =
+  let p = Raytrace.Private.Trace.prepared tr in
+  let img = Image.create p.width p.height in
+  let buf = Image.buffer img in
+  for c = 0 to p.width - 1 do
+    for r = 0 to p.height - 1 do
+      Raytrace.Private.Trace.pixel tr (Canvas.x_of_column ~width:p.width c) (Canvas.y_of_row ~height:p.height r);
+      Raytrace.Private.Trace.store tr buf (3 * ((r * p.width) + c))
+    done
+  done;
+  img

@@ -207,3 +207,7 @@ val scene_spheres : Raytrace.Scene.t -> Raytrace.Sphere.t list
 val with_objects : ?spheres:Raytrace.Sphere.t list -> ?shapes:Raytrace.Shape.t list -> Raytrace.Scene.t -> Raytrace.Scene.t
 (** [with_objects ~spheres ~shapes s] is [s] with the objects [spheres]
     then [shapes], each list by default [s]'s own. *)
+
+val by_pixels : Raytrace.Private.Trace.t -> Raytrace.Image.t
+(** [by_pixels tr] is the image [tr] traces a pixel at a time, column by
+    column ({!Raytrace.Private.Trace.pixel}). *)

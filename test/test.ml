@@ -22,6 +22,7 @@ let () =
       ("sphere", Test_sphere.tests);
       ("spheres", Test_spheres.tests);
       ("light", Test_light.tests);
+      ("soft-light", Test_soft_light.tests);
       ("shading", Test_shading.tests);
       ("literal", Test_literal.tests);
       ("pattern", Test_pattern.tests);

@@ -21,17 +21,7 @@ let by_rows p = by_rows_with (Trace.create p)
 
 (* The same, a pixel at a time, in columns (tiles are entered in another
    order). *)
-let by_pixels (p : Prepared.t) =
-  let tr = Trace.create p in
-  let img = Image.create p.width p.height in
-  let buf = Image.buffer img in
-  for c = 0 to p.width - 1 do
-    for r = 0 to p.height - 1 do
-      Trace.pixel tr (Canvas.x_of_column ~width:p.width c) (Canvas.y_of_row ~height:p.height r);
-      Trace.store tr buf (3 * ((r * p.width) + c))
-    done
-  done;
-  img
+let by_pixels p = Helpers.by_pixels (Trace.create p)
 
 let variants (p : Prepared.t) =
   [

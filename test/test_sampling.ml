@@ -206,6 +206,20 @@ let tests =
             ("samples 3", render ~samples:3 s);
             ("adaptive", render ~samples:3 ~adaptive:4 s);
             ("subsampling", render ~subsample:true s);
+          ];
+        (* A scene whose lights draw numbers keeps each camera sample's key. *)
+        let soft =
+          Helpers.parse_ok
+            "(canvas (width 30) (height 30)) (sphere (center 0 0 3) (radius 1) (color 255 0 0) (specular 10)) (plane \
+             (point 0 -1 0) (normal 0 1 0) (color 200 200 200)) (light area (intensity 0.8) (corner -1 3 1) (edge1 2 0 0) \
+             (edge2 0 0 2) (samples 2 3)) (light sphere (intensity 0.2) (position 2 2 0) (radius 0.5) (samples 4))"
+        in
+        List.iter
+          (fun (what, (_, (st : Render.Stats.t))) -> Alcotest.(check (float 0.)) what 0. st.minor_words)
+          [
+            ("soft lights, samples 3", render ~samples:3 soft);
+            ("soft lights, adaptive", render ~samples:3 ~adaptive:4 soft);
+            ("soft lights, subsampling", render ~subsample:true soft);
           ]);
     Helpers.qcheck ~count:100 "a primary ray assumed to hit the sphere it hits is traced as without the assumption"
       Gen_scene.arbitrary (fun s ->

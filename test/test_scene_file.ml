@@ -63,7 +63,7 @@ let bad_inputs =
      "t.scene:1:36: duplicate sphere field radius (first given at 1:25)");
     ("(sphere (center 0 0 3) (radius one) (color 1 2 3))", "t.scene:1:32: sphere radius: expected a number, got one");
     ("(light point (intensity 0.6))", "t.scene:1:1: light point is missing its (position ...) field");
-    ("(light spot (intensity 0.6))", "t.scene:1:8: unknown light kind spot; expected ambient, point or directional");
+    ("(light spots (intensity 0.6))", "t.scene:1:8: unknown light kind spots; expected ambient, point, directional, area, sphere or spot (did you mean spot?)");
     ("(light directional (intensity 0.2) (direction 0 0 0))",
      "t.scene:1:36: directional light direction must not be the zero vector (its length must be at least 1e-30)");
     ("(light ambient (intensity -1))", "t.scene:1:27: light intensity must lie in [0, 1e6], got -1");

@@ -9,7 +9,18 @@ val lighting : Tracer.t -> shiny:bool -> specular_of:float array -> int -> unit
     specular terms are decided before its shadow ray, and with the skips
     ({!Prepared.t}'s [shadow_skip]) a light that would add neither casts
     none; any object stops a shadow ray ({!Traversal.shadowed}). The
-    shadow rays reuse the ray fields of [s]. *)
+    shadow rays reuse the ray fields of [s].
+
+    Area, sphere and spot lights ({!Light}) are summed sample by sample,
+    each sample a point light of its own ({!Light}, "Sample points"), the
+    numbers drawn from [tr.key]; an adaptive area light first asks its
+    corners ({!Light}, "Penumbra-only sampling"). With the skips, an area
+    light's samples that lie inside the hull of its four corner cells'
+    samples, when one convex object (sphere, plane, box, triangle, disk)
+    stops all four of those, cast no shadow ray: that object stops theirs
+    too (the proof is at [area] in the implementation), so the sum is the
+    same; [tr.counters.umbra] counts them. The document's lights take a
+    copy of the loop that never asks for the new kinds. *)
 
 val lighting_through : Tracer.t -> shiny:bool -> specular_of:float array -> int -> unit
 (** [lighting_through] is {!lighting} with shadow rays that pass through

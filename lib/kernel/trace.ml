@@ -8,6 +8,9 @@ type counters = Tracer.counters = {
   mutable tests : int;
   mutable box_tests : int;
   mutable early_stops : int;
+  mutable decided : int;
+  mutable penumbra : int;
+  mutable umbra : int;
 }
 
 type t = Tracer.t

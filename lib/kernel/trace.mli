@@ -33,6 +33,9 @@ type counters = {
   mutable tests : int;  (** Ray-object intersection tests. *)
   mutable box_tests : int;  (** Ray-box tests in the object hierarchy. *)
   mutable early_stops : int;  (** Reflections (and refractions) stopped by the weight bound. *)
+  mutable decided : int;  (** Points an adaptive area light's corners decided. *)
+  mutable penumbra : int;  (** Points an adaptive area light's corners left in doubt. *)
+  mutable umbra : int;  (** Area light samples in an exact umbra: no shadow ray. *)
 }
 (** The type for work counters. *)
 

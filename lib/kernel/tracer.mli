@@ -17,6 +17,13 @@ type counters = {
   mutable tests : int;  (** Ray-object intersection tests. *)
   mutable box_tests : int;  (** Ray-box tests in the object hierarchy. *)
   mutable early_stops : int;  (** Reflections (and refractions) stopped by the weight bound. *)
+  mutable decided : int;
+      (** Points that an adaptive area light's corners decided lit or
+          shadowed, its samples cast no shadow ray. *)
+  mutable penumbra : int;  (** Points whose adaptive area light's corners disagreed: all samples traced. *)
+  mutable umbra : int;
+      (** Area light samples that cast no shadow ray: inside the corner
+          cells' samples, all stopped by one convex object (exact). *)
 }
 (** The type for the work counters ({!Trace.counters}). *)
 

@@ -63,6 +63,13 @@ type t = {
   behind : bool;
   shadow_skip : bool;
   cull : bool;
+  light_number : int array;
+  light_geom : float array;
+  light_su : int array;
+  light_sv : int array;
+  light_adaptive : bool array;
+  soft_lights : bool;
+  umbra_skip : bool;
   sampled : bool;
   specular_cut : float array;
   ambient_lead : float;
@@ -94,6 +101,10 @@ let big_scene = 1 lsl 18
 let ambient = 0
 let point = 1
 let directional = 2
+let area = 3
+let sphere = 4
+let spot = 5
+let light_stride = 10
 
 (* {1 The scene's objects}
 
@@ -179,7 +190,11 @@ let max_channel (scene : Scene.view) o =
       (fun (a, d) l ->
         match l with
         | Light.Ambient { intensity } -> (a +. intensity, d)
-        | Point { intensity; _ } | Directional { intensity; _ } -> (a, d +. intensity))
+        | Point { intensity; _ } | Directional { intensity; _ } | Area { intensity; _ } | Sphere { intensity; _ }
+        | Spot { intensity; _ } ->
+            (* An area or sphere light's samples share its intensity; a
+               spotlight's cone scales it by at most 1. *)
+            (a, d +. intensity))
       (0., 0.) scene.lights
   in
   (* One pow per run of equal exponents: scenes repeat a few. *)
@@ -1465,26 +1480,47 @@ let in_list_order o ~index ~slot =
 
 (* {2 The prepared scene} *)
 
+(* The [light_stride] floats of a light's geometry in [light_geom]. *)
+let light_geom l =
+  let v3 (v : Vec3.t) = [ v.x; v.y; v.z ] in
+  let fields =
+    match l with
+    | Light.Area { corner; edge1; edge2; _ } -> v3 corner @ v3 edge1 @ v3 edge2
+    | Sphere { position; radius; _ } -> v3 position @ [ radius ]
+    | Spot { position; direction; angle; falloff; _ } ->
+        (* The cone's edge as a cosine: the kernel compares cosines. *)
+        v3 position @ v3 (Vec3.unit direction) @ [ Float.cos (angle *. Float.pi /. 180.); falloff ]
+    | Ambient _ | Point _ | Directional _ -> []
+  in
+  Array.of_list (fields @ List.init (light_stride - List.length fields) (fun _ -> 0.))
+
 (* The record, from the steps' results; the lights' and the materials'
    arrays made here. *)
 let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg ~instances sl g sp
     ~vertex ~vsource ~vnormal =
-  let lights =
-    Array.of_list (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
+  (* Each light with its place in the scene's list, which keys its
+     samples (Light, "Sample points"): dropping a dark light changes no
+     other light's numbers. *)
+  let numbered =
+    Array.of_list
+      (List.filter (fun (_, l) -> (not skips) || Light.intensity l > 0.) (List.mapi (fun k l -> (k, l)) scene.lights))
   in
+  let lights = Array.map snd numbered in
   let lf f = Array.map f lights and mf f = Array.map f materials in
   let vector l =
     match l with
     | Light.Ambient _ -> Vec3.zero
-    | Point { position; _ } -> position
+    | Point { position; _ } | Sphere { position; _ } | Spot { position; _ } -> position
+    | Area { corner; _ } -> corner
     | Directional { direction; _ } -> direction
   in
+  let soft = Array.exists (function Light.Ambient _ | Point _ | Directional _ -> false | _ -> true) lights in
   let transparent = Array.exists (fun (m : Material.t) -> m.transparency > 0.) materials in
   (* The document's own scenes: spheres of plain materials (no pattern, no
      glass), few enough for no hierarchy, in the document's mode. *)
   let textbook_all =
     o.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None
-    && not (Camera.has_lens scene.camera)
+    && (not (Camera.has_lens scene.camera)) && not soft
   in
   let n_kept = Array.length sl.index in
   let index, slot = in_list_order o ~index:sl.index ~slot:sl.slot in
@@ -1526,7 +1562,18 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     reflective = mf (fun m -> m.reflective);
     n_lights = Array.length lights;
     light_kind =
-      lf (function Light.Ambient _ -> ambient | Point _ -> point | Directional _ -> directional);
+      lf (function
+        | Light.Ambient _ -> ambient
+        | Point _ -> point
+        | Directional _ -> directional
+        | Area _ -> area
+        | Sphere _ -> sphere
+        | Spot _ -> spot);
+    light_number = Array.map fst numbered;
+    light_geom = Array.concat (List.map light_geom (Array.to_list lights));
+    light_su = lf (function Light.Area { samples_u; _ } -> samples_u | Sphere { samples; _ } -> samples | _ -> 1);
+    light_sv = lf (function Light.Area { samples_v; _ } -> samples_v | _ -> 1);
+    light_adaptive = lf (function Light.Area { adaptive; _ } -> adaptive | _ -> false);
     light_intensity = lf Light.intensity;
     lx = lf (fun l -> (vector l).x);
     ly = lf (fun l -> (vector l).y);
@@ -1559,8 +1606,11 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     behind = skips;
     shadow_skip = skips;
     cull = skips;
-    (* A lens draws a point of its disc per camera sample. *)
-    sampled = Camera.has_lens scene.camera;
+    (* A lens draws a point of its disc per camera sample; an area or
+       sphere light, points of its surface. *)
+    sampled = Camera.has_lens scene.camera || Array.exists Light.sampled lights;
+    soft_lights = soft;
+    umbra_skip = skips;
     specular_cut = specular_cut ~skips materials lights;
     ambient_lead = fst (ambient_lead lights);
     first_light = snd (ambient_lead lights);
@@ -1588,7 +1638,7 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
            (fun l ->
              let v = vector l in
              [|
-               (match l with Light.Ambient _ -> 0. | Point _ -> 1. | Directional _ -> infinity);
+               (match l with Light.Ambient _ -> 0. | Directional _ -> infinity | _ -> 1.);
                Light.intensity l;
                v.x;
                v.y;
@@ -1678,13 +1728,14 @@ let prepare ?(skips = true) ?beside scene =
       (fun () -> prepare_scene ~skips ?beside scene)
   end
 
-type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms
+type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms | Umbra
 
 let without k p =
   match k with
   | Behind -> { p with behind = false }
   | Shadow_rays -> { p with shadow_skip = false }
   | Culling -> { p with cull = false }
+  | Umbra -> { p with umbra_skip = false }
   | Negligible_terms ->
       {
         p with

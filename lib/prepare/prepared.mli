@@ -122,9 +122,11 @@ type t = private {
           nothing; [0.] when no cosine in [(0, 1\]] qualifies. *)
   reflective : float array;
   n_lights : int;
-  light_kind : int array;  (** {!ambient}, {!point} or {!directional}. *)
+  light_kind : int array;  (** {!ambient}, {!point}, {!directional}, {!area}, {!sphere} or {!spot}. *)
   light_intensity : float array;
-  lx : float array;  (** Position (point) or direction (directional). *)
+  lx : float array;
+      (** Position (point, sphere, spot), direction (directional) or
+          corner (area). *)
   ly : float array;
   lz : float array;
   robust : bool;  (** The robust mode: the scene gives no epsilon. *)
@@ -170,6 +172,29 @@ type t = private {
   cull : bool;
       (** The skips are on: the document's kernel tests a camera ray only
           against the spheres that can meet some ray of its 8 x 8 tile. *)
+  light_number : int array;
+      (** Per light: its place in the scene's list of lights (from 0, every
+          light counted, the dropped ones too), which keys its samples
+          ({!Light}, "Sample points"). *)
+  light_geom : float array;
+      (** Per light [l], at [light_stride * l]: an area light's corner,
+          edge1 and edge2 (9 floats); a sphere light's position and
+          radius; a spotlight's position, unit direction, the cosine of
+          its angle and its falloff; zeros otherwise. *)
+  light_su : int array;
+      (** Per light: an area light's samples along edge1, a sphere
+          light's samples, [1] otherwise. *)
+  light_sv : int array;  (** Per light: an area light's samples along edge2, [1] otherwise. *)
+  light_adaptive : bool array;
+      (** Per light: an area light samples only the points its corners
+          leave in doubt ({!Light}, "Penumbra-only sampling"). *)
+  soft_lights : bool;
+      (** Some light is an area, sphere or spot light: the lighting loop
+          that asks each light's kind for them (the other never asks). *)
+  umbra_skip : bool;
+      (** The skips are on: an area light's samples inside the hull of its
+          corner cells' samples, all four stopped by one convex object,
+          cast no shadow ray (the kernel's [Lighting], exact). *)
   sampled : bool;
       (** Some pixel is an integral that draws numbers (an area light, a
           lens): the tracer keeps the key of each camera sample
@@ -285,6 +310,18 @@ val point : int
 val directional : int
 (** [directional] is the [light_kind] of directional lights. *)
 
+val area : int
+(** [area] is the [light_kind] of area lights; [area > directional]. *)
+
+val sphere : int
+(** [sphere] is the [light_kind] of sphere lights; [sphere > directional]. *)
+
+val spot : int
+(** [spot] is the [light_kind] of spotlights; [spot > directional]. *)
+
+val light_stride : int
+(** [light_stride] is [10], the floats per light in [light_geom]. *)
+
 val prepare : ?skips:bool -> ?beside:Bvh.beside -> Scene.valid -> t
 (** [prepare ~skips ~beside scene] is [scene] prepared for {!Raytrace.Private.Trace}. With [skips]
     (default [true]) the tracer skips work that provably cannot change an
@@ -305,12 +342,14 @@ val prepare : ?skips:bool -> ?beside:Bvh.beside -> Scene.valid -> t
 
 (** The skips of the tracer's kernel, each exact on its own: [Behind] and
     [Culling] for the document's scenes (spheres alone, an epsilon, no
-    hierarchy), [Shadow_rays] and [Negligible_terms] for every scene. *)
+    hierarchy), [Shadow_rays] and [Negligible_terms] for every scene,
+    [Umbra] for scenes with area lights. *)
 type kernel_skip =
   | Behind  (** [behind]: no roots computed for a sphere behind the ray. *)
   | Shadow_rays  (** [shadow_skip]: no shadow ray for a light that adds nothing. *)
   | Culling  (** [cull]: camera rays test only their tile's spheres. *)
   | Negligible_terms  (** [specular_cut]: no specular term too small to count. *)
+  | Umbra  (** [umbra_skip]: no shadow ray for an area light's samples in one convex object's umbra. *)
 
 val without : kernel_skip -> t -> t
 (** [without k p] is [p] with the skip [k] off and the others as they

@@ -18,7 +18,7 @@ let out_of_memory (region : Region.t) =
   let mib = Float.of_int (3 * Region.pixels region) /. 1048576. in
   Error (`Msg (Printf.sprintf "not enough memory for a %dx%d image (%.0f MiB)" region.w region.h mib))
 
-let counter_fields = 8
+let counter_fields = 11
 
 type counters = (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t
 
@@ -33,7 +33,10 @@ let save ints w tr words =
   set 3 c.tests;
   set 4 c.early_stops;
   set 5 (truncate words);
-  set 6 c.box_tests
+  set 6 c.box_tests;
+  set 8 c.decided;
+  set 9 c.penumbra;
+  set 10 c.umbra
 
 let save_work ?(base = 0) ints w tr =
   let c = Trace.counters tr in
@@ -93,6 +96,9 @@ let stats ints ~slots ~pixels ~jobs ~prepare_s ~trace_s =
       tests = sum 3;
       box_tests = sum 6;
       early_stops = sum 4;
+      decided = sum 8;
+      penumbra = sum 9;
+      umbra = sum 10;
       jobs;
       prepare_s;
       trace_s;

@@ -6,6 +6,9 @@ type t = {
   tests : int;
   box_tests : int;
   early_stops : int;
+  decided : int;
+  penumbra : int;
+  umbra : int;
   jobs : int;
   prepare_s : float;
   trace_s : float;
@@ -28,6 +31,11 @@ let pp_table ppf s =
   row "tests per ray" (Printf.sprintf "%.2f" (Float.of_int s.tests /. Float.of_int (max 1 (rays s))));
   row "box tests" (int s.box_tests);
   row "reflections cut short" (int s.early_stops);
+  if s.decided + s.penumbra > 0 then begin
+    row "soft light, by corners" (int s.decided);
+    row "soft light, penumbra" (int s.penumbra)
+  end;
+  if s.umbra > 0 then row "soft light, umbra" (int s.umbra);
   row "jobs" (int s.jobs);
   row "time, prepare (s)" (Printf.sprintf "%.4f" s.prepare_s);
   row "time, trace (s)" (Printf.sprintf "%.4f" s.trace_s);

@@ -10,6 +10,15 @@ type t = {
   tests : int;  (** Ray-sphere intersection tests. *)
   box_tests : int;  (** Ray-box tests in the sphere hierarchy. *)
   early_stops : int;  (** Reflections stopped by the exact weight bound. *)
+  decided : int;
+      (** Lit points where an adaptive area light's four corners agreed
+          (all seen or all hidden): its samples cast no shadow ray there
+          (an estimate, {!Light}, "Penumbra-only sampling"). *)
+  penumbra : int;  (** Lit points where they disagreed: every sample traced. *)
+  umbra : int;
+      (** Area light samples that cast no shadow ray because one convex
+          object stops the rays of the corner cells' samples around them
+          (exact: the kernel's [Lighting] (lib/kernel/lighting.mli)). *)
   jobs : int;  (** Processes that traced. *)
   prepare_s : float;  (** Seconds spent preparing the scene, by the render's clock (below). *)
   trace_s : float;

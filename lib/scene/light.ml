@@ -2,15 +2,47 @@ type t =
   | Ambient of { intensity : float }
   | Point of { intensity : float; position : Vec3.t }
   | Directional of { intensity : float; direction : Vec3.t }
+  | Area of {
+      intensity : float;
+      corner : Vec3.t;
+      edge1 : Vec3.t;
+      edge2 : Vec3.t;
+      samples_u : int;
+      samples_v : int;
+      adaptive : bool;
+    }
+  | Sphere of { intensity : float; position : Vec3.t; radius : float; samples : int }
+  | Spot of { intensity : float; position : Vec3.t; direction : Vec3.t; angle : float; falloff : float }
 [@@deriving eq]
+
+let max_samples = 4096
 
 let error fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 let ambient intensity = Ambient { intensity }
 let point intensity position = Point { intensity; position }
 let directional intensity direction = Directional { intensity; direction }
 
+let area ?(adaptive = false) intensity ~corner ~edge1 ~edge2 ~samples:(samples_u, samples_v) =
+  Area { intensity; corner; edge1; edge2; samples_u; samples_v; adaptive }
+
+let sphere intensity ~position ~radius ~samples = Sphere { intensity; position; radius; samples }
+let spot intensity ~position ~direction ~angle ~falloff = Spot { intensity; position; direction; angle; falloff }
+
 let intensity = function
-  | Ambient { intensity } | Point { intensity; _ } | Directional { intensity; _ } -> intensity
+  | Ambient { intensity }
+  | Point { intensity; _ }
+  | Directional { intensity; _ }
+  | Area { intensity; _ }
+  | Sphere { intensity; _ }
+  | Spot { intensity; _ } ->
+      intensity
+
+let samples = function
+  | Ambient _ | Point _ | Directional _ | Spot _ -> 1
+  | Area { samples_u; samples_v; _ } -> samples_u * samples_v
+  | Sphere { samples; _ } -> samples
+
+let sampled = function Area _ | Sphere _ -> true | Ambient _ | Point _ | Directional _ | Spot _ -> false
 
 let check_intensity i =
   if i >= 0. && i <= Limits.max_intensity then Ok i
@@ -26,24 +58,75 @@ let check_direction l =
       Error (`Msg "directional light direction must not be the zero vector (its length must be at least 1e-30)")
   | r -> r
 
+let check_vector what l =
+  match Limits.check_point what l with
+  | Ok l when Vec3.norm l < Limits.min_size ->
+      error "%s must not be the zero vector (its length must be at least 1e-30)" what
+  | r -> r
+
+let check_samples what n =
+  if n >= 1 && n <= max_samples then Ok n else error "%s must lie in [1, %d], got %d" what max_samples n
+
+(* The rectangle's edges must span a plane: parallel edges make a segment,
+   whose samples would all lie on one line. *)
+let check_edges e1 e2 =
+  let ( let* ) = Result.bind in
+  let* e1 = check_vector "area light edge1" e1 in
+  let* e2 = check_vector "area light edge2" e2 in
+  if Vec3.norm (Vec3.cross e1 e2) = 0. then
+    Error (`Msg "area light edge1 and edge2 must not be parallel (they span the rectangle)")
+  else Ok (e1, e2)
+
+let check_radius r =
+  if r >= Limits.min_size && r <= Limits.max_coordinate then Ok r
+  else error "sphere light radius must lie in [1e-30, 1e12], got %s" (Float_text.to_string r)
+
+let check_angle a =
+  if a > 0. && a <= 180. then Ok a
+  else error "spot light angle must lie in (0, 180] degrees, got %s" (Float_text.to_string a)
+
+let check_falloff k =
+  if k >= 0. && k <= Limits.max_intensity then Ok k
+  else error "spot light falloff must lie in [0, 1e6], got %s" (Float_text.to_string k)
+
 let validate l =
   let ( let* ) = Result.bind in
   let* _ = check_intensity (intensity l) in
-  let* _ =
+  let* () =
     match l with
-    | Ambient _ -> Ok Vec3.zero
-    | Point { position; _ } -> check_position position
-    | Directional { direction; _ } -> check_direction direction
+    | Ambient _ -> Ok ()
+    | Point { position; _ } -> Result.map ignore (check_position position)
+    | Directional { direction; _ } -> Result.map ignore (check_direction direction)
+    | Area { corner; edge1; edge2; samples_u; samples_v; _ } ->
+        let* _ = Limits.check_point "area light corner" corner in
+        let* _ = check_edges edge1 edge2 in
+        let* _ = check_samples "area light samples (along edge1)" samples_u in
+        Result.map ignore (check_samples "area light samples (along edge2)" samples_v)
+    | Sphere { position; radius; samples; _ } ->
+        let* _ = Limits.check_point "sphere light position" position in
+        let* _ = check_radius radius in
+        Result.map ignore (check_samples "sphere light samples" samples)
+    | Spot { position; direction; angle; falloff; _ } ->
+        let* _ = Limits.check_point "spot light position" position in
+        let* _ = check_vector "spot light direction" direction in
+        let* _ = check_angle angle in
+        Result.map ignore (check_falloff falloff)
   in
   Ok l
+
+let centre = function
+  | Area { corner; edge1; edge2; _ } -> Some (Vec3.add corner (Vec3.smul 0.5 (Vec3.add edge1 edge2)))
+  | Sphere { position; _ } | Spot { position; _ } | Point { position; _ } -> Some position
+  | Ambient _ | Directional _ -> None
 
 let vector l p =
   match l with
   | Ambient _ -> None
   | Point { position; _ } -> Some (Vec3.sub position p)
   | Directional { direction; _ } -> Some direction
+  | (Area _ | Sphere _ | Spot _) as l -> Option.map (fun c -> Vec3.sub c p) (centre l)
 
-let shadow_t_max = function Point _ -> 1. | Ambient _ | Directional _ -> infinity
+let shadow_t_max = function Point _ | Area _ | Sphere _ | Spot _ -> 1. | Ambient _ | Directional _ -> infinity
 
 type point = float * float * float
 type document = { k : char; i : float; v : point option }
@@ -65,6 +148,8 @@ let of_document_exn d =
   match of_document d with Ok l -> l | Error (`Msg e) -> invalid_arg ("Light.of_document: " ^ e)
 
 let to_document = function
+  | Area _ | Sphere _ | Spot _ ->
+      invalid_arg "Light.to_document: the document has no area, sphere or spot light"
   | Ambient { intensity } -> { k = 'a'; i = intensity; v = None }
   | Point { intensity; position } -> { k = 'p'; i = intensity; v = Some (Vec3.to_tuple position) }
   | Directional { intensity; direction } ->
@@ -78,5 +163,17 @@ let pp ppf = function
   | Directional { intensity; direction } ->
       Format.fprintf ppf "(light directional (intensity %s) (direction %a))" (Float_text.to_string intensity)
         Vec3.pp_components direction
+  | Area { intensity; corner; edge1; edge2; samples_u; samples_v; adaptive } ->
+      Format.fprintf ppf "(light area (intensity %s) (corner %a) (edge1 %a) (edge2 %a) (samples %d %d)%s)"
+        (Float_text.to_string intensity) Vec3.pp_components corner Vec3.pp_components edge1 Vec3.pp_components edge2
+        samples_u samples_v
+        (if adaptive then " (adaptive true)" else "")
+  | Sphere { intensity; position; radius; samples } ->
+      Format.fprintf ppf "(light sphere (intensity %s) (position %a) (radius %s) (samples %d))"
+        (Float_text.to_string intensity) Vec3.pp_components position (Float_text.to_string radius) samples
+  | Spot { intensity; position; direction; angle; falloff } ->
+      Format.fprintf ppf "(light spot (intensity %s) (position %a) (direction %a) (angle %s) (falloff %s))"
+        (Float_text.to_string intensity) Vec3.pp_components position Vec3.pp_components direction
+        (Float_text.to_string angle) (Float_text.to_string falloff)
 
 let show l = Format.asprintf "%a" pp l

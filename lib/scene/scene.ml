@@ -258,7 +258,13 @@ let valid_objects s =
   | None -> Ok ()
   | Some (k, name, `Msg m) -> Error (`Msg (Printf.sprintf "object %d (%s): %s" k name m))
 
-let light_kind = function Light.Ambient _ -> "ambient" | Point _ -> "point" | Directional _ -> "directional"
+let light_kind = function
+  | Light.Ambient _ -> "ambient"
+  | Point _ -> "point"
+  | Directional _ -> "directional"
+  | Area _ -> "area"
+  | Sphere _ -> "sphere"
+  | Spot _ -> "spot"
 
 let valid_lights lights =
   let rec go k = function
@@ -405,7 +411,8 @@ let check_work ?(limits = Limits.default) ?(samples = 1) ?pixels (s : valid) =
         | Sphere _ | Plane _ | Triangle _ | Box _ | Primitive _ | Instance _ -> (o + 1, l))
       (Spheres.length s.spheres, 0) s.placed
   in
-  let lights = List.length (List.filter (function Light.Ambient _ -> false | _ -> true) s.lights) in
+  (* Each sample of an area or sphere light casts its own shadow ray. *)
+  let lights = List.fold_left (fun n l -> match l with Light.Ambient _ -> n | _ -> n + Light.samples l) 0 s.lights in
   if s.depth > Limits.max_tree_levels && exists (fun (m : Material.t) -> m.transparency > 0.) then
     Error
       (`Msg

@@ -412,43 +412,113 @@ let rec transmitted ?(continued = false) scene ~origin ~direction ~t_min ~t_max 
       let f = f *. (medium_material obj).transparency in
       if f > 0. then transmitted ~continued:true scene ~origin ~direction ~t_min:t ~t_max f else f
 
-let lighting_through ~through (scene : Scene.view) ~epsilon ~point ~normal ~view ~specular =
+(* The point lights that light [light] numbered [number] in the scene's
+   list stands for at [point], as (intensity, vector from [point]): itself
+   for a point or directional light; for an area or sphere light its
+   samples, and for a spotlight itself scaled, or nothing outside its cone
+   (Light, "Sample points", transcribed here from the definition). *)
+let light_samples ~key ~number light point =
+  let hl = Sample_key.key key number in
+  match light with
+  | Light.Ambient _ -> []
+  | Point { intensity; position } -> [ (intensity, Vec3.sub position point) ]
+  | Directional { intensity; direction } -> [ (intensity, direction) ]
+  | Area { intensity; corner; edge1; edge2; samples_u = u; samples_v = v; adaptive = _ } ->
+      let i = intensity /. Float.of_int (u * v) in
+      List.concat
+        (List.init u (fun a ->
+             List.init v (fun b ->
+                 let h = Sample_key.key hl ((a * v) + b) in
+                 let s = Sample_key.stratum (Sample_key.key h 0) ~n:u a in
+                 let t = Sample_key.stratum (Sample_key.key h 1) ~n:v b in
+                 let q = Vec3.add (Vec3.add corner (Vec3.smul s edge1)) (Vec3.smul t edge2) in
+                 (i, Vec3.sub q point))))
+  | Sphere { intensity; position; radius; samples = n } ->
+      let toward = Vec3.sub position point in
+      if Vec3.norm toward = 0. then []
+      else
+        let w = Vec3.unit toward in
+        let a = if Float.abs w.x > 0.9 then Vec3.oy else Vec3.ox in
+        let e1 = Vec3.unit (Vec3.cross a w) in
+        let e2 = Vec3.cross w e1 in
+        List.init n (fun j ->
+            let h = Sample_key.key hl j in
+            let rho = radius *. sqrt (Sample_key.stratum (Sample_key.key h 0) ~n j) in
+            let phi = 2. *. Float.pi *. Sample_key.unit (Sample_key.key h 1) in
+            let q = Vec3.add (Vec3.add position (Vec3.smul (rho *. cos phi) e1)) (Vec3.smul (rho *. sin phi) e2) in
+            (intensity /. Float.of_int n, Vec3.sub q point))
+  | Spot { intensity; position; direction; angle; falloff } ->
+      let l = Vec3.sub position point in
+      let dist = Vec3.norm l in
+      (* theta <= angle, compared as cosines. *)
+      let cos_off = -.Vec3.dot l (Vec3.unit direction) /. dist in
+      if dist > 0. && cos_off >= Float.cos (angle *. Float.pi /. 180.) then [ (intensity *. (cos_off ** falloff), l) ]
+      else []
+
+(* An adaptive area light's corners seen from [point]: [`Seen] if every
+   corner's shadow ray passes freely (a factor of exactly 1), [`Hidden]
+   if every one is stopped (0), [`Doubt] otherwise (Light, "Penumbra-only
+   sampling"). *)
+let corners ~passes light point =
+  match light with
+  | Light.Area { corner; edge1; edge2; adaptive = true; _ } ->
+      let at a b = Vec3.sub (Vec3.add (Vec3.add corner (Vec3.smul a edge1)) (Vec3.smul b edge2)) point in
+      let f = List.map passes [ at 0. 0.; at 1. 0.; at 0. 1.; at 1. 1. ] in
+      if List.for_all (fun x -> x = 1.) f then `Seen else if List.for_all (fun x -> x = 0.) f then `Hidden else `Doubt
+  | _ -> `Doubt
+
+let lighting_through ?(key = 0) ~through (scene : Scene.view) ~epsilon ~point ~normal ~view ~specular =
   let intensity = ref 0. in
-  List.iter
-    (fun light ->
-      match Light.vector light point with
-      | None -> intensity := !intensity +. Light.intensity light
-      | Some l when Vec3.norm2 l = 0. ->
-          (* A point light exactly at the point: L has no direction, and the
-             formulas would divide by zero. The document is silent; the light
-             is skipped. *)
-          ()
-      | Some l ->
-          (* Shadow check (7.7): is any object between the point and the
-             light? Through transparent objects, how much light passes? *)
-          let t_max = Light.shadow_t_max light in
-          let passes =
-            if through then transmitted scene ~origin:point ~direction:l ~t_min:epsilon ~t_max 1.
-            else if closest_hit scene ~origin:point ~direction:l ~t_min:epsilon ~t_max <> None then 0.
-            else 1.
-          in
-          if passes > 0. then begin
-            let i = Light.intensity light *. passes in
-            intensity := !intensity +. Shading.diffuse ~intensity:i ~l ~n:normal;
-            if specular <> Sphere.matte then
-              let r = Shading.reflect l normal in
-              intensity := !intensity +. Shading.specular ~intensity:i ~s:specular ~r ~v:view
-          end)
+  (* How much of a light at [point + l] reaches [point]: 0 or 1, or
+     through glass the product of the transparencies crossed. *)
+  let passes l =
+    if through then transmitted scene ~origin:point ~direction:l ~t_min:epsilon ~t_max:1. 1.
+    else if closest_hit scene ~origin:point ~direction:l ~t_min:epsilon ~t_max:1. <> None then 0.
+    else 1.
+  in
+  List.iteri
+    (fun number light ->
+      match (light, corners ~passes light point) with
+      | Light.Ambient _, _ -> intensity := !intensity +. Light.intensity light
+      | _, `Hidden -> ()
+      | _, verdict ->
+          List.iter
+            (fun (li, l) ->
+              if Vec3.norm2 l = 0. then
+                (* A point light exactly at the point: L has no direction,
+                   and the formulas would divide by zero. The document is
+                   silent; the light is skipped. *)
+                ()
+              else begin
+                (* Shadow check (7.7): is any object between the point and
+                   the light? Through transparent objects, how much light
+                   passes? *)
+                let t_max = Light.shadow_t_max light in
+                let passes =
+                  if verdict = `Seen then 1.
+                  else if through then transmitted scene ~origin:point ~direction:l ~t_min:epsilon ~t_max 1.
+                  else if closest_hit scene ~origin:point ~direction:l ~t_min:epsilon ~t_max <> None then 0.
+                  else 1.
+                in
+                if passes > 0. then begin
+                  let i = li *. passes in
+                  intensity := !intensity +. Shading.diffuse ~intensity:i ~l ~n:normal;
+                  if specular <> Sphere.matte then
+                    let r = Shading.reflect l normal in
+                    intensity := !intensity +. Shading.specular ~intensity:i ~s:specular ~r ~v:view
+                end
+              end)
+            (light_samples ~key ~number light point))
     scene.lights;
   !intensity
 
-let compute_lighting = lighting_through ~through:false
+let compute_lighting ?key = lighting_through ?key ~through:false
 
 (* Iterative, so that no depth the limits allow can overflow the stack:
    the mirror rays are followed down, each level's local colour and
    reflectivity kept, then blended back up from the deepest colour, in the
    order of the document's recursion (the same floating-point operations). *)
-let trace_ray (scene : Scene.view) ~epsilon ~origin ~direction ~t_min ~t_max ~depth =
+let trace_ray ?key (scene : Scene.view) ~epsilon ~origin ~direction ~t_min ~t_max ~depth =
   let rec follow levels ~origin ~direction ~t_min ~t_max ~depth =
     match closest_hit scene ~origin ~direction ~t_min ~t_max with
     | None -> (levels, scene.background)
@@ -457,7 +527,7 @@ let trace_ray (scene : Scene.view) ~epsilon ~origin ~direction ~t_min ~t_max ~de
         let point = Vec3.add origin (Vec3.smul t direction) in
         let normal = normal obj ~point ~direction in
         let view = Vec3.neg direction in
-        let lighting = compute_lighting scene ~epsilon ~point ~normal ~view ~specular:m.specular in
+        let lighting = compute_lighting ?key scene ~epsilon ~point ~normal ~view ~specular:m.specular in
         let local = Color.smul lighting (local_color obj m ~t ~origin ~direction ~point ~normal) in
         if m.reflective <= 0. || depth <= 0 then (levels, local)
         else
@@ -505,13 +575,13 @@ let optics obj (m : Material.t) ~near ~far ~direction ~normal =
    the same index on both sides) is crossed on the same ray, without a
    bounce. At [level = depth], or without either ray, the local colour
    alone (section 7.8). *)
-let rec shade ?(continued = false) (scene : Scene.view) ~epsilon ~origin ~direction ~t_min ~level ~media =
+let rec shade ?(continued = false) ?key (scene : Scene.view) ~epsilon ~origin ~direction ~t_min ~level ~media =
   match closest_numbered ~continued scene ~origin ~direction ~t_min ~t_max:infinity with
   | None -> scene.background
   | Some (obj, id, t) ->
       let m = material obj and medium = medium_material obj in
       let near, far, beyond = cross media ~id ~index:medium.refractive_index in
-      if medium.transparency = 1. && near = far then shade ~continued:true scene ~epsilon ~origin ~direction ~t_min:t ~level ~media:beyond
+      if medium.transparency = 1. && near = far then shade ~continued:true ?key scene ~epsilon ~origin ~direction ~t_min:t ~level ~media:beyond
       else
         let point = Vec3.add origin (Vec3.smul t direction) in
         let normal = normal obj ~point ~direction in
@@ -524,7 +594,7 @@ let rec shade ?(continued = false) (scene : Scene.view) ~epsilon ~origin ~direct
         let wt = m.transparency *. (1. -. sp.reflectance) in
         let local () =
           Color.smul
-            (lighting_through ~through:true scene ~epsilon ~point ~normal ~view ~specular:m.specular)
+            (lighting_through ?key ~through:true scene ~epsilon ~point ~normal ~view ~specular:m.specular)
             (local_color obj m ~t ~origin ~direction ~point ~normal)
         in
         if level >= scene.depth || (wr <= 0. && wt <= 0.) then local ()
@@ -534,7 +604,7 @@ let rec shade ?(continued = false) (scene : Scene.view) ~epsilon ~origin ~direct
           let c =
             if wr > 0. then
               let reflected =
-                shade scene ~epsilon ~origin:point ~direction:(Shading.reflect view normal) ~t_min:epsilon
+                shade ?key scene ~epsilon ~origin:point ~direction:(Shading.reflect view normal) ~t_min:epsilon
                   ~level:(level + 1) ~media
               in
               Color.add c (Color.smul wr reflected)
@@ -542,7 +612,7 @@ let rec shade ?(continued = false) (scene : Scene.view) ~epsilon ~origin ~direct
           in
           match sp.refracted with
           | Some direction when wt > 0. ->
-              let refracted = shade scene ~epsilon ~origin:point ~direction ~t_min:epsilon ~level:(level + 1) ~media:beyond in
+              let refracted = shade ?key scene ~epsilon ~origin:point ~direction ~t_min:epsilon ~level:(level + 1) ~media:beyond in
               Color.add c (Color.smul wt refracted)
           | _ -> c
 
@@ -584,8 +654,8 @@ let camera_ray (scene : Scene.view) ~key v =
 let camera_colour (scene : Scene.view) ~key v =
   let epsilon = Option.value scene.epsilon ~default:Scene.document_epsilon in
   let origin, direction = camera_ray scene ~key v in
-  if transparent scene then shade scene ~epsilon ~origin ~direction ~t_min:1. ~level:0 ~media:[]
-  else trace_ray scene ~epsilon ~origin ~direction ~t_min:1. ~t_max:infinity ~depth:scene.depth
+  if transparent scene then shade ~key scene ~epsilon ~origin ~direction ~t_min:1. ~level:0 ~media:[]
+  else trace_ray ~key scene ~epsilon ~origin ~direction ~t_min:1. ~t_max:infinity ~depth:scene.depth
 
 let pixel (scene : Scene.view) gx gy =
   let v =
@@ -632,7 +702,7 @@ let view s =
       v
 
 let closest_hit scene = closest_hit (view scene)
-let compute_lighting scene = compute_lighting (view scene)
-let trace_ray scene = trace_ray (view scene)
+let compute_lighting ?key scene = compute_lighting ?key (view scene)
+let trace_ray ?key scene = trace_ray ?key (view scene)
 let pixel scene = pixel (view scene)
 let sample scene = sample (view scene)

@@ -121,7 +121,7 @@ val normal : obj -> point:Vec3.t -> direction:Vec3.t -> Vec3.t
     normal is. *)
 
 val compute_lighting :
-  Scene.t -> epsilon:float -> point:Vec3.t -> normal:Vec3.t -> view:Vec3.t -> specular:float ->
+  ?key:int -> Scene.t -> epsilon:float -> point:Vec3.t -> normal:Vec3.t -> view:Vec3.t -> specular:float ->
   float
 (** [compute_lighting scene ~epsilon ~point ~normal ~view ~specular] is the
     total intensity [I_total] at [point] (sections 7.4 to 7.7): the ambient
@@ -129,20 +129,27 @@ val compute_lighting :
     shadows, its diffuse term and (unless [specular] is {!Sphere.matte}) its
     specular term. An object shadows a light if it meets the shadow ray
     [P + t L] with [epsilon < t < Light.shadow_t_max]. A point light
-    located exactly at [point] ([L = 0]) is skipped: it has no direction. *)
+    located exactly at [point] ([L = 0]) is skipped: it has no direction.
+    An area or sphere light is its samples, each a point light at a
+    point of its own, numbered by [key] (default [0]; the camera sample's
+    {!Raytrace.Private.Sample_key.camera} key) and the light's place in the list ({!Light},
+    "Sample points"); a spotlight is a point light scaled by its cone. *)
 
 val trace_ray :
-  Scene.t -> epsilon:float -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float ->
+  ?key:int -> Scene.t -> epsilon:float -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float ->
   depth:int -> Color.t
 (** [trace_ray scene ~epsilon ~origin ~direction ~t_min ~t_max ~depth] is the
     unclamped colour seen along the ray: the background if it hits nothing,
     else the hit object's colour times the lighting at the hit point,
     blended with the colour seen along the mirror ray (section 7.8,
     [t > epsilon], [depth - 1]) when the object is reflective and
-    [depth > 0]. *)
+    [depth > 0]. [key] numbers the samples of area and sphere lights as in
+    {!compute_lighting}. *)
 
 val pixel : Scene.t -> int -> int -> Color.t
-(** [pixel scene gx gy] is the unclamped colour of canvas pixel [(gx, gy)]
+(** [pixel scene gx gy] is the unclamped colour of canvas pixel [(gx, gy)],
+    its area and sphere lights sampled with the key of the pixel's centre
+    ray, [Sample_key.camera ~gx ~gy ~di:0 ~dj:0]
     (centered coordinates, {!Raytrace.Private.Canvas}): the primary ray from the camera
     through the viewport point of the pixel, [t > 1] (section 8), by
     {!trace_ray}; or, when some object has [transparency > 0], by the

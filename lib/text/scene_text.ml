@@ -592,15 +592,23 @@ and csg_operand ~where ~named ~load ~add_triangles ~placed ~depth node =
   | _ -> fail node "csg: expected a solid in parentheses, e.g. (sphere ...), (box ...), (mesh ...), (csg ...) or (transform ...)"
 
 let light ~where form_node nodes =
-  let kinds = [ "ambient"; "point"; "directional" ] in
+  let kinds = [ "ambient"; "point"; "directional"; "area"; "sphere"; "spot" ] in
   match nodes with
   | (Sexp.Atom kind as kind_node) :: rest ->
       let form = "light " ^ kind in
-      let vector = match kind with "point" -> [ "position" ] | "directional" -> [ "direction" ] | _ -> [] in
+      let others =
+        match kind with
+        | "point" -> [ "position" ]
+        | "directional" -> [ "direction" ]
+        | "area" -> [ "corner"; "edge1"; "edge2"; "samples"; "adaptive" ]
+        | "sphere" -> [ "position"; "radius"; "samples" ]
+        | "spot" -> [ "position"; "direction"; "angle"; "falloff" ]
+        | _ -> []
+      in
       if not (List.exists (String.equal kind) kinds) then
         fail kind_node "unknown light kind %s; expected %s%s" (show_atom kind) (one_of kinds)
           (suggestion kind kinds);
-      let fs = fields ~where ~form ~allowed:("intensity" :: vector) rest in
+      let fs = fields ~where ~form ~allowed:("intensity" :: others) rest in
       let intensity =
         require ~form ~form_node "intensity" (checked_float form fs "intensity" Light.check_intensity)
       in
@@ -608,9 +616,41 @@ let light ~where form_node nodes =
         let node, p = required ~form ~form_node fs name (fun _ f -> (f.node, vec3_field form name f)) in
         check node (check_v p)
       in
+      let point name = vec name (Limits.check_point (field_what form name ())) in
+      let num name = require ~form ~form_node name (checked_float form fs name Result.ok) in
+      (* The samples' counts, each checked where it is written. *)
+      let samples n =
+        let f = require ~form ~form_node "samples" (find fs "samples") in
+        if List.length f.args <> n then
+          fail f.node "%s takes %d integer%s, got %d values" (field_what form "samples" ()) n
+            (if n = 1 then "" else "s") (List.length f.args);
+        List.map
+          (fun a ->
+            let k = integer (field_what form "samples") a in
+            if k < 1 || k > Light.max_samples then
+              fail a "%s must lie in [1, %d], got %d" (field_what form "samples" ()) Light.max_samples k;
+            k)
+          f.args
+      in
+      (* The checks of the whole light (edges not parallel, the ranges of
+         radius, angle, falloff), located at the form. *)
+      let whole l = check form_node (Light.validate l) in
       (match kind with
       | "point" -> Light.point intensity (vec "position" Light.check_position)
       | "directional" -> Light.directional intensity (vec "direction" Light.check_direction)
+      | "area" ->
+          let corner = point "corner" and edge1 = point "edge1" and edge2 = point "edge2" in
+          let u, v = match samples 2 with [ u; v ] -> (u, v) | _ -> (1, 1) in
+          let adaptive = Option.fold ~none:false ~some:(bool_field form "adaptive") (find fs "adaptive") in
+          whole (Light.area ~adaptive intensity ~corner ~edge1 ~edge2 ~samples:(u, v))
+      | "sphere" ->
+          let position = point "position" and radius = num "radius" in
+          let n = match samples 1 with [ n ] -> n | _ -> 1 in
+          whole (Light.sphere intensity ~position ~radius ~samples:n)
+      | "spot" ->
+          let position = point "position" and direction = point "direction" in
+          let angle = num "angle" and falloff = num "falloff" in
+          whole (Light.spot intensity ~position ~direction ~angle ~falloff)
       | _ -> Light.ambient intensity)
   | _ ->
       fail form_node
