@@ -5,6 +5,11 @@ type t = {
   patterned : bool;
   alternate : int array;
   pattern : float array;
+  texture_of : int array;
+  texture_table : int array;
+  texture_size : float array;
+  texels : float array;
+  uv : float array;
   textbook_all : bool;
   index : int array;
   slot : int array;
@@ -94,6 +99,11 @@ let big_scene = 1 lsl 18
 let ambient = 0
 let point = 1
 let directional = 2
+let texture_stride = 4
+let spherical = 0
+let planar = 1
+let box_mapping = 2
+let uv_mapping = 3
 
 (* {1 The scene's objects}
 
@@ -699,7 +709,11 @@ let material_table r =
   (* Over every material, the second colours' too: the kernel asks the
      world's table about a material an instance's pattern chose. *)
   let alternates l = if l = [] then [||] else Array.make n (-1) in
-  let alternate = alternates r.frames and placed = alternates r.placed in
+  (* A textured material's colour is looked up where [alternate] is: a
+     textured scene has one, so that the tracer takes the same path. *)
+  let textured = List.exists (fun (m : Material.t) -> Option.is_some m.texture) r.added in
+  let alternate = if textured && r.frames = [] then Array.make n (-1) else alternates r.frames in
+  let placed = alternates r.placed in
   let pattern = Array.make (if r.frames = [] && r.placed = [] && not r.every_frame then 0 else Pattern.stride * n_own) 0. in
   (* A bottom level's frames: its instances' patterns lie there. *)
   List.iter (fun (i, (origin, scale, extent)) -> Pattern.store_frame ~origin ~scale ~extent pattern (Pattern.stride * i)) r.plain;
@@ -712,6 +726,96 @@ let material_table r =
   let n_world = List.length extra in
   let extra' = List.mapi (fun j f -> second placed (n_world + j) f) (List.rev r.placed) in
   (Array.concat [ materials; Array.of_list extra; Array.of_list extra' ], alternate, placed, pattern)
+
+(* {2 Textures} *)
+
+let mapping_code = function
+  | Texture_map.Spherical -> spherical
+  | Planar -> planar
+  | Box -> box_mapping
+  | Uv -> uv_mapping
+
+(* Each material's texture number, and the textures: an image that
+   several materials show (a named material on many objects) is stored
+   once, found by physical equality. *)
+let texture_tables (materials : Material.t array) =
+  if not (Array.exists (fun (m : Material.t) -> Option.is_some m.texture) materials) then ([||], [||], [||], [||])
+  else begin
+    let seen = ref [] and n = ref 0 and texels = ref 0 in
+    let texture_of =
+      Array.map
+        (fun (m : Material.t) ->
+          match m.texture with
+          | None -> -1
+          | Some t -> (
+              match List.find_opt (fun (t', _) -> t' == t) !seen with
+              | Some (_, k) -> k
+              | None ->
+                  seen := (t, !n) :: !seen;
+                  texels := !texels + (3 * Texture.width t.image * Texture.height t.image);
+                  incr n;
+                  !n - 1))
+        materials
+    in
+    let table = Array.make (texture_stride * !n) 0 and size = Array.make !n 1. and texels = Array.make !texels 0. in
+    let next = ref 0 in
+    List.iter
+      (fun ((t : Texture_map.t), k) ->
+        let w = Texture.width t.image and h = Texture.height t.image in
+        let o = texture_stride * k in
+        table.(o) <- !next;
+        table.(o + 1) <- w;
+        table.(o + 2) <- h;
+        table.(o + 3) <- mapping_code t.mapping;
+        size.(k) <- t.size;
+        for y = 0 to h - 1 do
+          for x = 0 to w - 1 do
+            let c = Texture.pixel t.image x y and j = !next + (3 * ((y * w) + x)) in
+            texels.(j) <- c.r;
+            texels.(j + 1) <- c.g;
+            texels.(j + 2) <- c.b
+          done
+        done;
+        next := !next + (3 * w * h))
+      (List.rev !seen);
+    (texture_of, table, size, texels)
+  end
+
+(* Per slot, the [vt] of the corners of each triangle of a mesh whose
+   material has a uv texture, in the order of its corners (the order of
+   [at0], [at1], [at2]); empty when no such mesh. *)
+let uv_table o (sl_slot : int array) n_slots =
+  let uv_mesh = function
+    | Shape.Mesh (m : Mesh.t) -> (
+        match m.material.texture with Some { mapping = Texture_map.Uv; _ } -> Mesh.has_texcoords m | _ -> false)
+    | _ -> false
+  in
+  if not (List.exists uv_mesh o.shapes) then [||]
+  else begin
+    let uv = Array.make (6 * n_slots) 0. in
+    ignore
+      (iter_shapes o
+         ~single:(fun _ _ -> ())
+         ~mesh:(fun k m ->
+           if uv_mesh (Shape.Mesh m) then begin
+             let k = ref k in
+             for t = 0 to Mesh.triangle_count m - 1 do
+               if not (Mesh.degenerate m t) then begin
+                 let i = sl_slot.(!k) in
+                 if i >= 0 && i < n_slots then
+                   for c = 0 to 2 do
+                     let j = m.triangle_texcoords.((3 * t) + c) in
+                     if j >= 0 then begin
+                       uv.((6 * i) + (2 * c)) <- m.texcoords.(2 * j);
+                       uv.((6 * i) + (2 * c) + 1) <- m.texcoords.((2 * j) + 1)
+                     end
+                   done;
+                 incr k
+               end
+             done
+           end));
+    uv
+  end
 
 (* {2 Vertices and normals} *)
 
@@ -1456,7 +1560,7 @@ let in_list_order o ~index ~slot =
 (* The record, from the steps' results; the lights' and the materials'
    arrays made here. *)
 let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg ~instances sl g sp
-    ~vertex ~vsource ~vnormal =
+    ~vertex ~vsource ~vnormal ~uv =
   let lights =
     Array.of_list (if skips then List.filter (fun l -> Light.intensity l > 0.) scene.lights else scene.lights)
   in
@@ -1471,6 +1575,7 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
   (* The document's own scenes: spheres of plain materials (no pattern, no
      glass), few enough for no hierarchy, in the document's mode. *)
   let textbook_all = o.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None in
+  let texture_of, texture_table, texture_size, texels = texture_tables materials in
   let n_kept = Array.length sl.index in
   let index, slot = in_list_order o ~index:sl.index ~slot:sl.slot in
   {
@@ -1480,6 +1585,11 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     patterned = alternate <> [||];
     alternate;
     pattern;
+    texture_of;
+    texture_table;
+    texture_size;
+    texels;
+    uv;
     textbook_all;
     index;
     slot;
@@ -1637,8 +1747,9 @@ let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
     if bvh = None || Array.length v.vertex = 0 then (v.vertex, [||])
     else Vertex_order.gather ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
   in
+  let uv = uv_table o sl.slot (Array.length sl.kind) in
   assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)
-    ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal
+    ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal ~uv
 
 (* The bottom level of an instance: its object alone, prepared as a scene
    of the top's mode (epsilon) with no lights; the kernel traces it in

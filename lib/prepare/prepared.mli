@@ -16,14 +16,14 @@ type t = private {
           pattern: the tracer's loops for spheres alone, which ask no
           object its kind nor its pattern. *)
   patterned : bool;
-      (** Some material has a {!Pattern}: the tracer looks it up at each
-          hit (the loop for spheres alone never asks; the other asks this
-          field once per hit). *)
+      (** Some material has a {!Pattern} or a texture ({!Texture_map}):
+          the tracer looks it up at each hit (the loop for spheres alone
+          never asks; the other asks this field once per hit). *)
   alternate : int array;
       (** Per material (second colours included): the material (an index
           into [red] to [reflective]) of its pattern's second colour, or
           [-1] if it has no pattern in the world's frame; empty when no
-          material has one. The second colours' materials
+          material has a pattern or a texture. The second colours' materials
           follow the scene's, each a copy of its own with the pattern's
           colour. *)
   pattern : float array;
@@ -33,8 +33,26 @@ type t = private {
           pattern). A bottom level of instances keeps every material's
           frame there (its size [0] where it has no pattern of its own):
           its instances' patterns lie on it. *)
+  texture_of : int array;
+      (** Per material: the number of its texture in [texture_table], or
+          [-1] if it has none; empty when no material has one. *)
+  texture_table : int array;
+      (** Per texture [k], at [texture_stride * k]: the offset of its
+          first channel in [texels], its width, its height and its mapping
+          ([spherical], [planar], [box_mapping] or [uv_mapping]). A texture
+          that several materials share is stored once. *)
+  texture_size : float array;  (** Per texture: the side of one copy of a planar mapping's image. *)
+  texels : float array;
+      (** Every texture's pixels, [r g b] per pixel in [\[0, 255\]], rows
+          top-down as in {!Texture.v}: a float per channel, read without
+          a conversion per lookup. *)
+  uv : float array;
+      (** Per slot [i], at [6 i], the [vt] coordinates [u0 v0 u1 v1 u2
+          v2] of the corners [at0], [at1], [at2] of a triangle whose
+          material has a [uv] texture (zeros for the other slots); empty
+          when no material has one. *)
   textbook_all : bool;
-      (** Spheres only, of plain materials (no pattern, no transparency),
+      (** Spheres only, of plain materials (no pattern, no texture, no transparency),
           no hierarchy, the document's mode: the tracer's fastest loop
           (the reference scene). *)
   index : int array;
@@ -281,6 +299,21 @@ val point : int
 
 val directional : int
 (** [directional] is the [light_kind] of directional lights. *)
+
+val texture_stride : int
+(** [texture_stride] is [4], the ints of a texture in [texture_table]. *)
+
+val spherical : int
+(** [spherical] is the mapping code of {!Texture_map.Spherical} in [texture_table]. *)
+
+val planar : int
+(** [planar] is the mapping code of {!Texture_map.Planar}. *)
+
+val box_mapping : int
+(** [box_mapping] is the mapping code of {!Texture_map.Box}. *)
+
+val uv_mapping : int
+(** [uv_mapping] is the mapping code of {!Texture_map.Uv}. *)
 
 val prepare : ?skips:bool -> ?beside:Bvh.beside -> Scene.valid -> t
 (** [prepare ~skips ~beside scene] is [scene] prepared for {!Raytrace.Private.Trace}. With [skips]
