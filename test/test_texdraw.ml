@@ -77,6 +77,22 @@ let tests =
           (scene ~extra:"(sphere (center 0.2 -0.6 2.5) (radius 0.4) (color 200 200 200) (reflective 0.6))" ());
         as_the_oracle "glass"
           (scene ~extra:"(sphere (center 0.2 -0.6 2.5) (radius 0.4) (color 200 200 200) (transparency 0.8) (refractive-index 1.3))" ()));
+    Alcotest.test_case "a uv texture on a mesh of many triangles, in a hierarchy, is drawn as the oracle draws it" `Quick (fun () ->
+        (* 12 x 12 squares of 2 triangles, each vertex's vt its place in
+           the grid: the hierarchy's order of triangles and corners is not
+           the file's, and every corner must keep its own vt. *)
+        let grid = Test_texture.textured_grid 12 in
+        let load_mesh _ = Mesh.Obj.of_string ~name:"g.obj" ~max_vertices:1000 ~max_triangles:1000 grid in
+        let s =
+          match
+            Scene_file.of_string ~load_texture ~load_mesh ~file:"t.scene"
+              ("(canvas (width 48) (height 48)) (epsilon 0.001) (mesh (file \"g.obj\") (scale 0.25) (translate -1.5 -1.5 4) "
+             ^ "(color 9 9 9) " ^ texture ^ "uv))) (light ambient (intensity 1))")
+          with
+          | Ok s -> Scene.of_valid s
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        as_the_oracle "grid" s);
     Alcotest.test_case "a texture's pixel centre shows its colour exactly: the globe's front is the image's centre" `Quick (fun () ->
         (* A 2 x 2 image under ambient light 1 alone: the globe's point
            facing the camera is (u, v) = (0.5, 0.5), the corner where the
