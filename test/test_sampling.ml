@@ -206,6 +206,8 @@ let tests =
             ("samples 3", render ~samples:3 s);
             ("adaptive", render ~samples:3 ~adaptive:4 s);
             ("subsampling", render ~subsample:true s);
+            (* Textures: every mapping but uv (texdraw's test has it). *)
+            ("globe, adaptive", render ~samples:3 ~adaptive:4 (Scene.with_overrides ~width:60 ~height:45 (Helpers.load_scene "globe.scene")));
           ]);
     Helpers.qcheck ~count:100 "a primary ray assumed to hit the sphere it hits is traced as without the assumption"
       Gen_scene.arbitrary (fun s ->
