@@ -90,7 +90,7 @@ let[@inline] triangle_uv (p : Prepared.t) s i px py pz =
   s.tu <- u0 +. (b1 *. (Array.unsafe_get uv (j + 2) -. u0)) +. (b2 *. (Array.unsafe_get uv (j + 4) -. u0));
   s.tv <- v0 +. (b1 *. (Array.unsafe_get uv (j + 3) -. v0)) +. (b2 *. (Array.unsafe_get uv (j + 5) -. v0))
 
-(* {!Texture}'s lookup, on the flat texels: the pixel coordinate of a
+(* {!Texture}'s lookup, on the image's bytes: the pixel coordinate of a
    texture coordinate (a NaN or infinity looks up 0; far out, [repeat]
    keeps the coordinate's fraction), then the column brought inside. *)
 let[@inline] pixel_coordinate repeat (c : float) n =
@@ -106,10 +106,12 @@ let[@inline] inside repeat n i =
   else if i >= n then n - 1
   else i
 
-let[@inline] blend (x : float array) k00 k10 k01 k11 tx ty =
-  let a = Array.unsafe_get x k00 and b = Array.unsafe_get x k01 in
-  let top = a +. (tx *. (Array.unsafe_get x k10 -. a)) in
-  let bottom = b +. (tx *. (Array.unsafe_get x k11 -. b)) in
+let[@inline] byte x k = float (Char.code (String.unsafe_get x k))
+
+let[@inline] blend x k00 k10 k01 k11 tx ty =
+  let a = byte x k00 and b = byte x k01 in
+  let top = a +. (tx *. (byte x k10 -. a)) in
+  let bottom = b +. (tx *. (byte x k11 -. b)) in
   top +. (ty *. (bottom -. top))
 
 let[@inline never] colour tr i m =
@@ -128,16 +130,16 @@ let[@inline never] colour tr i m =
   (* Texture_map.wraps: [Repeat, Clamp] on a sphere, [Clamp, Clamp] on a
      box, [Repeat, Repeat] on a plane or a mesh. *)
   let repeat_u = mapping <> Prepared.box_mapping and repeat_v = mapping = Prepared.planar || mapping = Prepared.uv_mapping in
-  let base = Array.unsafe_get table e and w = Array.unsafe_get table (e + 1) and h = Array.unsafe_get table (e + 2) in
+  let w = Array.unsafe_get table (e + 1) and h = Array.unsafe_get table (e + 2) in
   let fx = pixel_coordinate repeat_u s.tu w and fy = pixel_coordinate repeat_v (1. -. s.tv) h in
   let x0 = Float.floor fx and y0 = Float.floor fy in
   let tx = fx -. x0 and ty = fy -. y0 in
   let x0 = int_of_float x0 and y0 = int_of_float y0 in
   let xa = inside repeat_u w x0 and xb = inside repeat_u w (x0 + 1) in
   let ya = inside repeat_v h y0 and yb = inside repeat_v h (y0 + 1) in
-  let k00 = base + (3 * ((ya * w) + xa)) and k10 = base + (3 * ((ya * w) + xb)) in
-  let k01 = base + (3 * ((yb * w) + xa)) and k11 = base + (3 * ((yb * w) + xb)) in
-  let x = p.texels in
+  let k00 = 3 * ((ya * w) + xa) and k10 = 3 * ((ya * w) + xb) in
+  let k01 = 3 * ((yb * w) + xa) and k11 = 3 * ((yb * w) + xb) in
+  let x = Array.unsafe_get p.texels (Array.unsafe_get table e) in
   Array.unsafe_set tr.red m (blend x k00 k10 k01 k11 tx ty);
   Array.unsafe_set tr.green m (blend x (k00 + 1) (k10 + 1) (k01 + 1) (k11 + 1) tx ty);
   Array.unsafe_set tr.blue m (blend x (k00 + 2) (k10 + 2) (k01 + 2) (k11 + 2) tx ty)

@@ -8,7 +8,7 @@ type t = {
   texture_of : int array;
   texture_table : int array;
   texture_size : float array;
-  texels : float array;
+  texels : string array;
   uv : float array;
   textbook_all : bool;
   index : int array;
@@ -735,49 +735,49 @@ let mapping_code = function
   | Box -> box_mapping
   | Uv -> uv_mapping
 
-(* Each material's texture number, and the textures: an image that
-   several materials show (a named material on many objects) is stored
-   once, found by physical equality. *)
+(* Each material's texture number, and the textures: a texture that
+   several materials show (a named material on many objects) is one, an
+   image that several textures show (one file, which the reader reads
+   once) is one, found by physical equality. *)
 let texture_tables (materials : Material.t array) =
   if not (Array.exists (fun (m : Material.t) -> Option.is_some m.texture) materials) then ([||], [||], [||], [||])
   else begin
-    let seen = ref [] and n = ref 0 and texels = ref 0 in
+    let entries = ref [] and n = ref 0 and images = ref [] and n_images = ref 0 in
+    let image_number img =
+      match List.find_opt (fun (i, _) -> i == img) !images with
+      | Some (_, k) -> k
+      | None ->
+          images := (img, !n_images) :: !images;
+          incr n_images;
+          !n_images - 1
+    in
+    let same (a : Texture_map.t) (b : Texture_map.t) = a.image == b.image && a.mapping = b.mapping && Float.equal a.size b.size in
     let texture_of =
       Array.map
         (fun (m : Material.t) ->
           match m.texture with
           | None -> -1
           | Some t -> (
-              match List.find_opt (fun (t', _) -> t' == t) !seen with
+              match List.find_opt (fun (t', _) -> same t' t) !entries with
               | Some (_, k) -> k
               | None ->
-                  seen := (t, !n) :: !seen;
-                  texels := !texels + (3 * Texture.width t.image * Texture.height t.image);
+                  entries := (t, !n) :: !entries;
                   incr n;
                   !n - 1))
         materials
     in
-    let table = Array.make (texture_stride * !n) 0 and size = Array.make !n 1. and texels = Array.make !texels 0. in
-    let next = ref 0 in
+    let table = Array.make (texture_stride * !n) 0 and size = Array.make !n 1. in
     List.iter
       (fun ((t : Texture_map.t), k) ->
-        let w = Texture.width t.image and h = Texture.height t.image in
         let o = texture_stride * k in
-        table.(o) <- !next;
-        table.(o + 1) <- w;
-        table.(o + 2) <- h;
+        table.(o) <- image_number t.image;
+        table.(o + 1) <- Texture.width t.image;
+        table.(o + 2) <- Texture.height t.image;
         table.(o + 3) <- mapping_code t.mapping;
-        size.(k) <- t.size;
-        for y = 0 to h - 1 do
-          for x = 0 to w - 1 do
-            let c = Texture.pixel t.image x y and j = !next + (3 * ((y * w) + x)) in
-            texels.(j) <- c.r;
-            texels.(j + 1) <- c.g;
-            texels.(j + 2) <- c.b
-          done
-        done;
-        next := !next + (3 * w * h))
-      (List.rev !seen);
+        size.(k) <- t.size)
+      (List.rev !entries);
+    let texels = Array.make !n_images "" in
+    List.iter (fun (img, k) -> texels.(k) <- Texture.bytes img) !images;
     (texture_of, table, size, texels)
   end
 

@@ -37,15 +37,16 @@ type t = private {
       (** Per material: the number of its texture in [texture_table], or
           [-1] if it has none; empty when no material has one. *)
   texture_table : int array;
-      (** Per texture [k], at [texture_stride * k]: the offset of its
-          first channel in [texels], its width, its height and its mapping
+      (** Per texture [k], at [texture_stride * k]: the number of its
+          image in [texels], its width, its height and its mapping
           ([spherical], [planar], [box_mapping] or [uv_mapping]). A texture
-          that several materials share is stored once. *)
+          that several materials share is one; an image that several
+          textures show (one file, read once) is one. *)
   texture_size : float array;  (** Per texture: the side of one copy of a planar mapping's image. *)
-  texels : float array;
-      (** Every texture's pixels, [r g b] per pixel in [\[0, 255\]], rows
-          top-down as in {!Texture.v}: a float per channel, read without
-          a conversion per lookup. *)
+  texels : string array;
+      (** Each image's channels, {!Texture.bytes}: the scene's own
+          strings, not copies (a float per channel would take eight times
+          their memory, for a conversion saved per channel read). *)
   uv : float array;
       (** Per slot [i], at [6 i], the [vt] coordinates [u0 v0 u1 v1 u2
           v2] of the corners [at0], [at1], [at2] of a triangle whose

@@ -49,12 +49,12 @@ let rec any_material f = function
   | Csg c -> List.exists f (Csg.materials c)
   | s -> f (material s)
 
+let name = function Instance _ -> "transform" | Sphere _ -> "sphere" | Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg" | Primitive p -> Shape_desc.name p
+
 (* The kernel draws a texture on an object placed as written, of a kind
    that has a mapping ({!Texture_map.mapping_for}): not through a
    transform or an instance, nor on a CSG solid's operands, whose hits it
    finds in another frame or through another object's slot. *)
-let name = function Instance _ -> "transform" | Sphere _ -> "sphere" | Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg" | Primitive p -> Shape_desc.name p
-
 let check_texture s =
   let name = name s in
   match s with

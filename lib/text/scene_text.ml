@@ -271,9 +271,7 @@ let optics ~form ?base fs ~reflective =
 let material_fields = [ "material"; "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern"; "texture" ]
 
 (* How texture fields are read: [load] reads an image file (the path as
-   the scene gives it), and [accept] says whether a texture may stay in
-   the scene: the kernel does not draw textures yet, so a renderer's read
-   refuses them rather than lose them silently. *)
+   the scene gives it). *)
 type textures = { load : string -> (Texture.t, [ `Msg of string ]) result }
 
 (* Named materials, as [(material name ...)] defined them, and how the
