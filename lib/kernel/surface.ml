@@ -212,15 +212,13 @@ and[@inline never] instance_material tr i =
    Not inlined: its code would make [trace_objects] too big for OCaml to
    inline into the render loop. *)
 let[@inline never] local_material tr i m =
-  let p = tr.p in
-  let textures = p.texture_of in
-  if Array.length textures > 0 && Array.unsafe_get textures m >= 0 then begin
+  let alt = Array.unsafe_get tr.p.alternate m in
+  if alt >= 0 then second_colour tr.s tr.p.pattern m alt
+  else if alt = Prepared.textured_material then begin
     Texturing.colour tr i m;
     m
   end
-  else
-    let alt = Array.unsafe_get p.alternate m in
-    if alt < 0 then m else second_colour tr.s p.pattern m alt
+  else m
 
 (* The mirror ray R = 2 <V, N> N - V from the hit point, in [s]. *)
 let[@inline] mirror_ray (p : Prepared.t) s =

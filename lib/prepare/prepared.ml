@@ -5,11 +5,6 @@ type t = {
   patterned : bool;
   alternate : int array;
   pattern : float array;
-  texture_of : int array;
-  texture_table : int array;
-  texture_size : float array;
-  texels : string array;
-  uv : float array;
   textbook_all : bool;
   index : int array;
   slot : int array;
@@ -79,6 +74,11 @@ type t = {
   row_vy : float array;
   instances : instances;
   materials : Material.t array;
+  texture_of : int array;
+  texture_table : int array;
+  texture_size : float array;
+  texels : string array;
+  uv : float array;
 }
 
 and instances = {
@@ -99,6 +99,7 @@ let big_scene = 1 lsl 18
 let ambient = 0
 let point = 1
 let directional = 2
+let textured_material = -2
 let texture_stride = 4
 let spherical = 0
 let planar = 1
@@ -709,10 +710,13 @@ let material_table r =
   (* Over every material, the second colours' too: the kernel asks the
      world's table about a material an instance's pattern chose. *)
   let alternates l = if l = [] then [||] else Array.make n (-1) in
-  (* A textured material's colour is looked up where [alternate] is: a
-     textured scene has one, so that the tracer takes the same path. *)
+  (* A textured material's colour is looked up where a pattern's is: a
+     textured scene has an [alternate], which marks its textured
+     materials, so that the tracer takes the same path, and a hit on an
+     untextured material there asks nothing more than before. *)
   let textured = List.exists (fun (m : Material.t) -> Option.is_some m.texture) r.added in
   let alternate = if textured && r.frames = [] then Array.make n (-1) else alternates r.frames in
+  Array.iteri (fun i (m : Material.t) -> if Option.is_some m.texture then alternate.(i) <- textured_material) materials;
   let placed = alternates r.placed in
   let pattern = Array.make (if r.frames = [] && r.placed = [] && not r.every_frame then 0 else Pattern.stride * n_own) 0. in
   (* A bottom level's frames: its instances' patterns lie there. *)
@@ -1585,11 +1589,6 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     patterned = alternate <> [||];
     alternate;
     pattern;
-    texture_of;
-    texture_table;
-    texture_size;
-    texels;
-    uv;
     textbook_all;
     index;
     slot;
@@ -1701,6 +1700,11 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
           Float.of_int (r - (scene.height / 2)) *. scene.viewport.height /. Float.of_int scene.height);
     instances;
     materials;
+    texture_of;
+    texture_table;
+    texture_size;
+    texels;
+    uv;
   }
 
 (* The steps in order. Each big array is let go as soon as no step needs

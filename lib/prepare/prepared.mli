@@ -22,7 +22,8 @@ type t = private {
   alternate : int array;
       (** Per material (second colours included): the material (an index
           into [red] to [reflective]) of its pattern's second colour, or
-          [-1] if it has no pattern in the world's frame; empty when no
+          [-1] if it has no pattern in the world's frame, or
+          {!textured_material} if it has a texture; empty when no
           material has a pattern or a texture. The second colours' materials
           follow the scene's, each a copy of its own with the pattern's
           colour. *)
@@ -33,25 +34,6 @@ type t = private {
           pattern). A bottom level of instances keeps every material's
           frame there (its size [0] where it has no pattern of its own):
           its instances' patterns lie on it. *)
-  texture_of : int array;
-      (** Per material: the number of its texture in [texture_table], or
-          [-1] if it has none; empty when no material has one. *)
-  texture_table : int array;
-      (** Per texture [k], at [texture_stride * k]: the number of its
-          image in [texels], its width, its height and its mapping
-          ([spherical], [planar], [box_mapping] or [uv_mapping]). A texture
-          that several materials share is one; an image that several
-          textures show (one file, read once) is one. *)
-  texture_size : float array;  (** Per texture: the side of one copy of a planar mapping's image. *)
-  texels : string array;
-      (** Each image's channels, {!Texture.bytes}: the scene's own
-          strings, not copies (a float per channel would take eight times
-          their memory, for a conversion saved per channel read). *)
-  uv : float array;
-      (** Per slot [i], at [6 i], the [vt] coordinates [u0 v0 u1 v1 u2
-          v2] of the corners [at0], [at1], [at2] of a triangle whose
-          material has a [uv] texture (zeros for the other slots); empty
-          when no material has one. *)
   textbook_all : bool;
       (** Spheres only, of plain materials (no pattern, no texture, no transparency),
           no hierarchy, the document's mode: the tracer's fastest loop
@@ -219,6 +201,25 @@ type t = private {
       (** The viewport y of the pixel centres whose [gy] is [r - height / 2], for [r] from [0]. *)
   instances : instances;  (** The transformed objects ({!Kind.Instance}). *)
   materials : Material.t array;  (** The materials by number, for the scenes that instance this one. *)
+  texture_of : int array;
+      (** Per material: the number of its texture in [texture_table], or
+          [-1] if it has none; empty when no material has one. *)
+  texture_table : int array;
+      (** Per texture [k], at [texture_stride * k]: the number of its
+          image in [texels], its width, its height and its mapping
+          ([spherical], [planar], [box_mapping] or [uv_mapping]). A texture
+          that several materials share is one; an image that several
+          textures show (one file, read once) is one. *)
+  texture_size : float array;  (** Per texture: the side of one copy of a planar mapping's image. *)
+  texels : string array;
+      (** Each image's channels, {!Texture.bytes}: the scene's own
+          strings, not copies (a float per channel would take eight times
+          their memory, for a conversion saved per channel read). *)
+  uv : float array;
+      (** Per slot [i], at [6 i], the [vt] coordinates [u0 v0 u1 v1 u2
+          v2] of the corners [at0], [at1], [at2] of a triangle whose
+          material has a [uv] texture (zeros for the other slots); empty
+          when no material has one. *)
 }
 (** The type for prepared scenes. *)
 
@@ -300,6 +301,9 @@ val point : int
 
 val directional : int
 (** [directional] is the [light_kind] of directional lights. *)
+
+val textured_material : int
+(** [textured_material] is [-2], the [alternate] of a textured material. *)
 
 val texture_stride : int
 (** [texture_stride] is [4], the ints of a texture in [texture_table]. *)
