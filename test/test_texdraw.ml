@@ -93,6 +93,18 @@ let tests =
           | Error (`Msg m) -> Alcotest.fail m
         in
         as_the_oracle "grid" s);
+    Alcotest.test_case "random textured scenes are drawn as the oracle draws them, and the skips change no byte" `Slow (fun () ->
+        (* The property tests' scenes (every light, material and shape, both
+           modes), textures on half their spheres, planes and boxes. *)
+        let rand = Random.State.make [| 27 |] in
+        let scenes = QCheck.Gen.generate ~rand ~n:40 Gen_scene.gen in
+        List.iteri
+          (fun i (s : Scene.t) ->
+            let s = Gen_scene.with_textures rand s in
+            let what = Printf.sprintf "scene %d:\n%s" i (Scene.show s) in
+            as_the_oracle what s;
+            Helpers.check_images what ~expected:(Helpers.image_exn ~skips:false s) (Helpers.image_exn s))
+          scenes);
     Alcotest.test_case "a texture's pixel centre shows its colour exactly: the globe's front is the image's centre" `Quick (fun () ->
         (* A 2 x 2 image under ambient light 1 alone: the globe's point
            facing the camera is (u, v) = (0.5, 0.5), the corner where the
