@@ -12,15 +12,14 @@ let image =
   Texture.v ~width:4 ~height:2
     "\255\000\000\000\255\000\000\000\255\255\255\000\000\255\255\255\000\255\128\064\032\032\064\128"
 
-let load_texture _ = Ok image
-
-(* A 2 x 1 quad at z = 6, its corners' vt the unit square's. *)
+(* A 2 x 2 quad, its corners' vt the unit square's. *)
 let quad_obj = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"
 
-let load_mesh _ =
-  Mesh.Obj.of_string ~name:"q.obj" ~max_vertices:100 ~max_triangles:100 quad_obj
-
-let read text =
+(* The scene [text], whose every texture file is [image] and every mesh
+   file [mesh]. *)
+let read ?(image = image) ?(mesh = quad_obj) text =
+  let load_texture _ = Ok image in
+  let load_mesh _ = Mesh.Obj.of_string ~name:"m.obj" ~max_vertices:1000 ~max_triangles:1000 mesh in
   match Scene_file.of_string ~load_texture ~load_mesh ~file:"t.scene" text with
   | Ok s -> Scene.of_valid s
   | Error (`Msg m) -> Alcotest.failf "refused: %s" m
@@ -81,18 +80,10 @@ let tests =
         (* 12 x 12 squares of 2 triangles, each vertex's vt its place in
            the grid: the hierarchy's order of triangles and corners is not
            the file's, and every corner must keep its own vt. *)
-        let grid = Test_texture.textured_grid 12 in
-        let load_mesh _ = Mesh.Obj.of_string ~name:"g.obj" ~max_vertices:1000 ~max_triangles:1000 grid in
-        let s =
-          match
-            Scene_file.of_string ~load_texture ~load_mesh ~file:"t.scene"
-              ("(canvas (width 48) (height 48)) (epsilon 0.001) (mesh (file \"g.obj\") (scale 0.25) (translate -1.5 -1.5 4) "
-             ^ "(color 9 9 9) " ^ texture ^ "uv))) (light ambient (intensity 1))")
-          with
-          | Ok s -> Scene.of_valid s
-          | Error (`Msg m) -> Alcotest.fail m
-        in
-        as_the_oracle "grid" s);
+        as_the_oracle "grid"
+          (read ~mesh:(Test_texture.textured_grid 12)
+             ("(canvas (width 48) (height 48)) (epsilon 0.001) (mesh (file \"g.obj\") (scale 0.25) (translate -1.5 -1.5 4) "
+            ^ "(color 9 9 9) " ^ texture ^ "uv))) (light ambient (intensity 1))")));
     Alcotest.test_case "random textured scenes are drawn as the oracle draws them, and the skips change no byte" `Slow (fun () ->
         (* The property tests' scenes (every light, material and shape, both
            modes), textures on half their spheres, planes and boxes. *)
@@ -105,21 +96,29 @@ let tests =
             as_the_oracle what s;
             Helpers.check_images what ~expected:(Helpers.image_exn ~skips:false s) (Helpers.image_exn s))
           scenes);
-    Alcotest.test_case "a texture's pixel centre shows its colour exactly: the globe's front is the image's centre" `Quick (fun () ->
-        (* A 2 x 2 image under ambient light 1 alone: the globe's point
-           facing the camera is (u, v) = (0.5, 0.5), the corner where the
-           four pixels meet, their mean; the sphere's leftmost point,
-           d = (-1, 0, 0), is u = 0.25, v = 0.5: between the left column's
-           two pixels, red (255, 0, 0) and blue (0, 0, 255), half each. *)
-        let quad = Texture.v ~width:2 ~height:2 "\255\000\000\000\255\000\000\000\255\255\255\255" in
+    Alcotest.test_case "a faint mirror shows a black wall's white texture: the early stop counts the image's colours" `Quick
+      (fun () ->
+        (* Behind the camera, the wall z = -1, of colour black and a white
+           texture, seen only in a mirror of reflectivity 0.02:
+           0.02 * 255 = 5.1 per channel, which an early stop that took the
+           wall's colour field for its brightest would drop. *)
         let s =
-          match
-            Scene_file.of_string ~load_texture:(fun _ -> Ok quad) ~file:"t.scene"
-              ("(canvas (width 3) (height 3)) (viewport (width 1) (height 1) (distance 1)) (epsilon 0.001) "
-             ^ "(sphere (center 0 0 3) (radius 1) (color 9 9 9) " ^ texture ^ "spherical))) (light ambient (intensity 1))")
-          with
-          | Ok s -> Scene.of_valid s
-          | Error (`Msg m) -> Alcotest.fail m
+          read ~image:(Texture.v ~width:1 ~height:1 "\255\255\255")
+            ("(canvas (width 24) (height 24)) (sphere (center 0 0 3) (radius 1) (color 0 0 0) (reflective 0.02))\n"
+           ^ "(plane (point 0 0 -1) (normal 0 0 1) (color 0 0 0) " ^ texture ^ "planar)))\n(light ambient (intensity 1))")
+        in
+        let img = Helpers.image_exn s in
+        Alcotest.(check bool) "the white wall is seen" true (Hashtbl.mem (Test_pattern.colours img) (5, 5, 5));
+        Helpers.check_images "skips on and off" ~expected:(Helpers.image_exn ~skips:false s) img);
+    Alcotest.test_case "a texture's pixel centre shows its colour exactly: the globe's front is the image's centre" `Quick (fun () ->
+        (* A 2 x 2 image (red, green; blue, white) under ambient light 1
+           alone: the globe's point facing the camera, the centre pixel's,
+           is (u, v) = (0.5, 0.5), the corner where the four pixels meet:
+           their mean. *)
+        let s =
+          read ~image:(Texture.v ~width:2 ~height:2 "\255\000\000\000\255\000\000\000\255\255\255\255")
+            ("(canvas (width 3) (height 3)) (viewport (width 1) (height 1) (distance 1)) (epsilon 0.001) "
+           ^ "(sphere (center 0 0 3) (radius 1) (color 9 9 9) " ^ texture ^ "spherical))) (light ambient (intensity 1))")
         in
         let img = Helpers.image_exn s in
         (* (255 + 0 + 0 + 255) / 4 = 127.5, (0 + 255 + 0 + 255) / 4, (0 + 0 + 255 + 255) / 4. *)

@@ -203,23 +203,40 @@ let max_channel (scene : Scene.view) o =
     Float.max c.r (Float.max c.g c.b) *. (ambient +. direct +. (direct *. !last_bound))
   in
   let bg = scene.background in
+  (* A texture's colours replace the material's: its brightest channel,
+     found once per image. *)
+  let brightest = ref [] in
+  let texture_channel (t : Texture_map.t) =
+    match List.assq_opt t.image !brightest with
+    | Some c -> c
+    | None ->
+        let b = Texture.bytes t.image and c = ref 0 in
+        String.iter (fun ch -> c := max !c (Char.code ch)) b;
+        let c = Float.of_int !c in
+        brightest := (t.image, c) :: !brightest;
+        c
+  in
   (* A pattern's colour is an object's colour too. *)
-  let channels color pattern s =
-    match pattern with
-    | None -> channel color s
-    | Some p -> Float.max (channel color s) (channel (Pattern.color p) s)
+  let channels (m : Material.t) =
+    let s = m.specular in
+    match (m.pattern, m.texture) with
+    | None, None -> channel m.color s
+    | Some p, _ -> Float.max (channel m.color s) (channel (Pattern.color p) s)
+    | None, Some t ->
+        let c = texture_channel t in
+        channel (Color.v c c c) s
   in
   let bound =
     (* Every material of the spheres' table is some sphere's. *)
     Array.fold_left
-      (fun acc (m : Material.t) -> Float.max acc (channels m.color m.pattern m.specular))
+      (fun acc (m : Material.t) -> Float.max acc (channels m))
       (Float.max bg.r (Float.max bg.g bg.b))
       (Spheres.materials o.spheres)
   in
   let bound =
     List.fold_left
       (fun acc sh ->
-        List.fold_left (fun acc (m : Material.t) -> Float.max acc (channels m.color m.pattern m.specular)) acc (Shape.materials sh))
+        List.fold_left (fun acc (m : Material.t) -> Float.max acc (channels m)) acc (Shape.materials sh))
       bound o.shapes
   in
   (bound *. (1. +. 1e-6)) +. 1e-6

@@ -145,8 +145,10 @@ type t = private {
   primary_ocz : float array;
   primary_k3 : float array;  (** [<CO, CO> - r^2] for the camera origin. *)
   max_channel : float;
-      (** An upper bound of every colour channel a ray can return, used to
-          stop reflections that can no longer change an 8-bit value;
+      (** An upper bound of every colour channel a ray can return (a
+          material's colour, its pattern's, its texture's brightest
+          channel), used to stop reflections that can no longer change an
+          8-bit value;
           [infinity] if a huge specular exponent leaves none (the cosine,
           rounded, may exceed 1 by a few ulps, and its power explodes). *)
   early_stop : bool;  (** The skips are on and [max_channel] is finite. *)
