@@ -33,7 +33,8 @@ val local_material : Tracer.t -> int -> int -> int
     material of its pattern's second colour in the cells that show it
     ({!Pattern.odd}, at the hit point before the robust mode moved it).
     A textured [m] is [m], its colour at the hit written to [tr.red],
-    [tr.green] and [tr.blue] ({!Texturing.colour}). Out of line: its code
+    [tr.green] and [tr.blue] ({!Texturing.colour}; on an instance, by
+    {!shape_hit}, which looked it up in the object's frame). Out of line: its code
     would make the loops too big to inline where they are called. *)
 
 val mirror_ray : Prepared.t -> Scratch.t -> unit

@@ -13,9 +13,10 @@
     that an image seen from the front of a surface reads left to right,
     not mirrored.
 
-    The renderer draws them on objects placed as written (not through a
-    transform or an instance, nor on a CSG solid's operands, which
-    {!Shape.validate} refuses): the kernel's own copy of these mappings
+    The renderer draws them on objects placed as written and on
+    transformed and instanced ones (in the object's own frame), not on a
+    CSG solid's operands nor as an instance's own material, which
+    {!Shape.validate} refuses: the kernel's own copy of these mappings
     and of {!Texture}'s lookup is [Texturing], and the executable
     specification [Literal] calls the functions below.
 

@@ -51,15 +51,17 @@ let rec any_material f = function
 
 let name = function Instance _ -> "transform" | Sphere _ -> "sphere" | Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg" | Primitive p -> Shape_desc.name p
 
-(* The kernel draws a texture on an object placed as written, of a kind
-   that has a mapping ({!Texture_map.mapping_for}): not through a
-   transform or an instance, nor on a CSG solid's operands, whose hits it
-   finds in another frame or through another object's slot. *)
+(* The kernel draws a texture on an object of a kind that has a mapping
+   ({!Texture_map.mapping_for}), placed as written or through a transform
+   or an instance (the object's own texture, in its frame), but not an
+   instance's own material's, which would lie on every surface of the
+   object, nor on a CSG solid's operands, whose hits it finds through
+   another object's slot. *)
 let check_texture s =
   let name = name s in
   match s with
-  | Instance _ when any_material has_texture s ->
-      Error (`Msg "a transformed or instanced object cannot have a texture yet (textures are drawn on objects placed as written)")
+  | Instance { own_material = Some m; _ } when has_texture m ->
+      Error (`Msg "a transform's or use's own material cannot have a texture yet (give the object its texture)")
   | Csg _ when any_material has_texture s -> Error (`Msg "a CSG solid's operands cannot have a texture yet")
   | Instance _ | Csg _ -> Ok ()
   | s -> (

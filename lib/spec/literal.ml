@@ -383,10 +383,10 @@ let pattern_frame = function
 
 (* {1 Textures} *)
 
-(* The texture coordinates of [point] on [obj], by the mappings'
+(* The texture coordinates of [point] on [obj] (in its own frame: a
+   placed object's is looked up there, [local_color]), by the mappings'
    definitions (Texture_map); a mesh's corner without a [vt] counts as
-   [(0, 0)]. The kernel draws textures on objects placed as written only
-   (Shape.validate). *)
+   [(0, 0)]. *)
 let texture_uv obj (tex : Texture_map.t) point =
   match obj with
   | Sphere s | Shape (Shape.Sphere s, _) -> Texture_map.spherical ~center:s.center point
@@ -410,21 +410,23 @@ let texture_color obj (tex : Texture_map.t) point =
   let wrap_u, wrap_v = Texture_map.wraps tex.mapping in
   Texture.color ~wrap_u ~wrap_v tex.image u v
 
-(* The colour the hit at [t] shows: the material's, or its pattern's
-   second colour. A transformed object's pattern lies in its frame
+(* The colour the hit at [t] shows: the material's, its pattern's second
+   colour, or its texture's. A transformed object's pattern or texture
+   lies in its frame
    (docs/scene-format.md, Patterns): the ray carried there by this
    module's own inverse, the point at the same [t] on it, and the
    surface's normal there; the frame is the surface's (an instance's own
    material's pattern lies where the surface's own would). *)
 let rec local_color obj (m : Material.t) ~t ~origin ~direction ~point ~normal =
   match (m.pattern, obj) with
-  | None, _ -> ( match m.texture with Some tex -> texture_color obj tex point | None -> m.color)
-  | Some _, Placed (i, inner, _) ->
+  | None, Placed _ when Option.is_none m.texture -> m.color
+  | _, Placed (i, inner, _) ->
       let inv = inverse (world_matrix i.transform) in
       let origin = affine_point inv origin and direction = linear inv direction in
       let point = Vec3.add origin (Vec3.smul t direction) in
       let normal = inner_normal inner ~point ~direction in
       local_color inner m ~t ~origin ~direction ~point ~normal
+  | None, _ -> ( match m.texture with Some tex -> texture_color obj tex point | None -> m.color)
   | Some p, _ ->
       let near0, _ = G.undecided () in
       let odd = G.odd p ~frame:(pattern_frame obj) ~origin ~direction ~point ~normal in

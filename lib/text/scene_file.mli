@@ -41,9 +41,10 @@ v}
     [load_texture], the mapping the one that fits the object
     ({!Texture_map.mapping_for}: [spherical] on a sphere, [planar] on a
     plane, which also takes [(size s)], [box] on a box, [uv] on a mesh).
-    A texture on a transformed or instanced object, or on a CSG solid's
-    operand, is an error at the form: the renderer does not draw it
-    there yet.
+    A transformed or instanced object shows its own texture in its own
+    frame; a [transform] or [use] takes none of its own (an error at the
+    field), and a CSG solid's operand none (an error at the form): the
+    renderer does not draw them there yet.
 
     A UTF-8 byte order mark (bytes [EF BB BF], which some editors write)
     at the start of the text is read as blanks: columns still count its
