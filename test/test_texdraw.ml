@@ -2,7 +2,9 @@
    lookup (Texturing) against the executable specification's (Literal,
    which calls Texture_map's mappings and Texture's lookup), on every
    mapping, in the document's mode and the robust one, through mirrors and
-   glass; and tracing a textured scene allocates nothing. *)
+   glass, in a hierarchy, on transformed and instanced objects, on random
+   scenes; the early stop's bound counts the images' colours; and tracing
+   a textured scene allocates nothing. *)
 open Raytrace
 module Texture = Image.Texture
 
