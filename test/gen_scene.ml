@@ -159,3 +159,28 @@ let with_patterns rand (s : Scene.t) =
     | (Mesh _ | Csg _ | Primitive _ | Instance _) as m -> m
   in
   Scene.with_overrides ~objects:(List.map shape (Scene.objects s)) s
+
+(* [s] with a random image texture on about half of its spheres, planes
+   and boxes (the kinds a texture maps onto without a file's [vt]): 1 to
+   5 pixels a side of random colours, a plane's copies 0.05 to 2 wide;
+   an object with a pattern keeps it. *)
+let with_textures rand (s : Scene.t) =
+  let texture mapping =
+    if Random.State.bool rand then None
+    else
+      let w = 1 + Random.State.int rand 5 and h = 1 + Random.State.int rand 5 in
+      let image = Image.Texture.v ~width:w ~height:h (String.init (3 * w * h) (fun _ -> Char.chr (Random.State.int rand 256))) in
+      let size = 0.05 +. Random.State.float rand 2. in
+      Some (Material.Texture.v ~size ~file:"random.ppm" mapping image)
+  in
+  let material mapping (m : Material.t) =
+    if Option.is_some m.pattern then m else Material.update ~texture:(texture mapping) m
+  in
+  let shape = function
+    | Shape.Sphere sp -> Shape.Sphere (Helpers.with_sphere_material sp (material Material.Texture.Spherical))
+    | Plane p -> Shape.Plane (Plane.v ~point:p.point ~normal:p.normal (material Material.Texture.Planar p.material))
+    | Box b -> Box (Box.v ~min:b.min ~max:b.max (material Material.Texture.Box b.material))
+    | (Triangle _ | Mesh _ | Csg _ | Primitive _ | Instance _) as m -> m
+  in
+  Scene.with_overrides ~objects:(List.map shape (Scene.objects s)) s
+

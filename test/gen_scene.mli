@@ -32,3 +32,9 @@ val with_patterns : Random.State.t -> Raytrace.Scene.t -> Raytrace.Scene.t
 (** [with_patterns rand s] is [s] with a checker of a random colour and
     size (0.05 to 2.05) on about half of its spheres, planes, triangles
     and boxes, drawn from [rand]. *)
+
+val with_textures : Random.State.t -> Raytrace.Scene.t -> Raytrace.Scene.t
+(** [with_textures rand s] is [s] with a random image (1 to 5 pixels a
+    side) on about half of its spheres, planes and boxes that have no
+    pattern, by the mapping of each kind, a plane's copies 0.05 to 2.05
+    wide, drawn from [rand]. *)

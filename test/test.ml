@@ -77,6 +77,7 @@ let () =
       ("float_scan", Test_float_scan.tests);
       ("obj_file", Test_obj_file.tests);
       ("texture", Test_texture.tests);
+      ("texdraw", Test_texdraw.tests);
       ("obj_split", Test_obj_split.tests);
       ("mesh_gen", Test_mesh_gen.tests);
       ("embree", Test_embree.tests);

@@ -124,7 +124,12 @@ let transform ~scale ~translate (s : Scene.t) =
      anew at scale 1: its cells would be the world's; no scene has a
      patterned mesh.) *)
   let pattern = Option.map (fun (Pattern.Checker c) -> Pattern.checker ~size:(scale *. c.size) c.color) in
-  let material (m : Material.t) = Material.update ~pattern:(pattern m.pattern) m in
+  (* A planar texture's copies likewise; the other mappings are relative
+     to their object. *)
+  let texture =
+    Option.map (fun (t : Material.Texture.t) -> Material.Texture.v ~size:(scale *. t.size) ~file:t.file t.mapping t.image)
+  in
+  let material (m : Material.t) = Material.update ~pattern:(pattern m.pattern) ~texture:(texture m.texture) m in
   let sphere (sp : Sphere.t) = Sphere.v ~center:(p sp.center) ~radius:(scale *. sp.radius) (material sp.material) in
   Scene.with_overrides ~epsilon:None
     ~viewport:

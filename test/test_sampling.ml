@@ -206,6 +206,8 @@ let tests =
             ("samples 3", render ~samples:3 s);
             ("adaptive", render ~samples:3 ~adaptive:4 s);
             ("subsampling", render ~subsample:true s);
+            (* Textures: every mapping but uv (texdraw's test has it). *)
+            ("globe, adaptive", render ~samples:3 ~adaptive:4 (Scene.with_overrides ~width:60 ~height:45 (Helpers.load_scene "globe.scene")));
           ];
         (* A scene whose lights draw numbers keeps each camera sample's key. *)
         let soft =

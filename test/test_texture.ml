@@ -1,6 +1,6 @@
 (* Image textures outside the kernel: the pixels and their bilinear
    lookup, the mappings, OBJ texture coordinates, the scene-text field
-   and its refusal while the renderer does not draw textures. *)
+   and where the renderer refuses one. *)
 open Raytrace
 module Texture = Image.Texture
 module Texture_map = Material.Texture
@@ -218,11 +218,10 @@ let load_texture path =
   | None -> Error (`Msg ("cannot read texture file: " ^ path ^ ": No such file or directory"))
 
 let load_mesh _ = Ok (obj textured)
-let read ?(accept = true) text =
-  Scene_file.of_string ~load_texture ~load_mesh ~accept_textures:accept ~file:"s.scene" text
+let read text = Scene_file.of_string ~load_texture ~load_mesh ~file:"s.scene" text
 
-let read_error ?accept text =
-  match read ?accept text with Ok _ -> Alcotest.failf "accepted %S" text | Error (`Msg m) -> m
+let read_error text =
+  match read text with Ok _ -> Alcotest.failf "accepted %S" text | Error (`Msg m) -> m
 
 let scene_tests =
   [
@@ -248,16 +247,25 @@ let scene_tests =
             (match read printed with
             | Error (`Msg m) -> Alcotest.failf "printed scene refused: %s\n%s" m printed
             | Ok back -> Alcotest.(check bool) __LOC__ true (Scene.equal s (Scene.of_valid back))));
-    Alcotest.test_case "the renderer's read refuses a texture where it is written, once its file is read" `Quick (fun () ->
-        Alcotest.(check string) __LOC__
-          "s.scene:1:49: sphere texture: textures are read but not drawn yet by this renderer; remove the texture field (it would be ignored)"
-          (read_error ~accept:false {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical)))|});
-        Alcotest.(check string) __LOC__
-          "s.scene:1:31: material globe texture: textures are read but not drawn yet by this renderer; remove the texture field (it would be ignored)"
-          (read_error ~accept:false {|(material globe (color 1 2 3) (texture (file "earth.ppm") (mapping spherical)))|});
+    Alcotest.test_case "a texture is refused where the renderer does not draw it: a transform's own, a CSG operand's" `Quick (fun () ->
+        (* An object's own texture, transformed or used, is drawn in its frame. *)
+        List.iter
+          (fun text -> match read text with Ok _ -> () | Error (`Msg m) -> Alcotest.failf "%s: %s" text m)
+          [
+            {|(transform ((translate 0 0 1)) (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))))|};
+            "(define ball (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file \"earth.ppm\") (mapping spherical))))\n(use ball)";
+          ];
+        Alcotest.(check string) __LOC__ "s.scene:1:90: a transform takes no texture; textures map onto spheres (spherical), planes (planar), boxes (box) and meshes (uv)"
+          (read_error {|(transform ((translate 0 0 1)) (box (min 0 0 0) (max 1 1 1) (color 1 1 1)) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|});
+        Alcotest.(check string) __LOC__ "s.scene:1:1: object 1 (csg): a CSG solid's operands cannot have a texture yet"
+          (read_error
+             {|(csg union (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))) (box (min 0 0 0) (max 1 1 1) (color 1 1 1)))|});
+        Alcotest.(check string) __LOC__ "s.scene:1:90: sphere has a pattern and a texture; a material's colour comes from one of them"
+          (read_error
+             {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) (pattern checker (color 0 0 0) (size 1)) (texture (file "earth.ppm") (mapping spherical)))|});
         (* A missing file is told first, at its name. *)
         Alcotest.(check string) __LOC__ "s.scene:1:58: cannot read texture file: no.ppm: No such file or directory"
-          (read_error ~accept:false {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "no.ppm") (mapping spherical)))|}));
+          (read_error {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "no.ppm") (mapping spherical)))|}));
     Alcotest.test_case "texture errors are located: mapping, kind, size, fields" `Quick (fun () ->
         let sphere t = {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) |} ^ t ^ ")" in
         Alcotest.(check string) __LOC__ "s.scene:1:49: sphere texture mapping must be spherical, got planar"
@@ -279,7 +287,7 @@ let scene_tests =
     Alcotest.test_case "a uv mapping needs the mesh file's texture coordinates" `Quick (fun () ->
         let load_mesh _ = Ok (obj "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n") in
         match
-          Scene_file.of_string ~load_texture ~load_mesh ~accept_textures:true ~file:"s.scene"
+          Scene_file.of_string ~load_texture ~load_mesh ~file:"s.scene"
             {|(mesh (file "m.obj") (color 9 9 9) (texture (file "earth.ppm") (mapping uv)))|}
         with
         | Ok _ -> Alcotest.fail "accepted"
@@ -326,7 +334,7 @@ let file_tests =
             | None -> Alcotest.failf "not joined at %d" cut
             | Some m -> if not (Mesh.Obj.equal whole m) then Alcotest.failf "cut at %d: the meshes differ" cut)
           [ 1; 3; 5; 9 ]);
-    Alcotest.test_case "the command line refuses a textured scene (PNG and PPM), located, exit 1, no image" `Quick (fun () ->
+    Alcotest.test_case "the command line renders a textured scene (PNG and PPM); a missing or broken file is one located line, exit 1, no image" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let img = Image.create 2 2 in
         Image.set img 0 0 255 0 0;
@@ -348,9 +356,9 @@ let file_tests =
         let path = Filename.concat dir "s.scene" in
         List.iter
           (fun tex ->
-            Alcotest.(check (triple int string bool)) __LOC__
-              (1, "raytrace: " ^ path ^ ":1:49: sphere texture: textures are read but not drawn yet by this renderer; remove the texture field (it would be ignored)", false)
-              (run "s.scene" tex))
+            let code, _, out = run "s.scene" tex in
+            Alcotest.(check (pair int bool)) __LOC__ (0, true) (code, out);
+            Sys.remove (Filename.concat dir "out.ppm"))
           [ "earth.png"; "t.ppm" ];
         let code, err, out = run "s.scene" "missing.png" in
         Alcotest.(check (triple int string bool)) __LOC__
@@ -361,16 +369,13 @@ let file_tests =
         let prefix = "raytrace: " ^ path ^ ":1:58: cannot read texture file: " in
         if not (String.length err > String.length prefix && String.sub err 0 (String.length prefix) = prefix && not (String.contains err '\n'))
         then Alcotest.failf "not one located line: %S" err);
-    Alcotest.test_case "a scene built in code with a texture is not valid: no renderer draws it without" `Quick (fun () ->
-        let t = Texture_map.v ~file:"e.ppm" Spherical quad in
-        let ball = Shape.Sphere (Sphere.v ~center:(v 0. 0. 3.) ~radius:1. (Material.v ~texture:t (Color.v 1. 1. 1.))) in
-        let s = Scene.v ~objects:[ ball ] ~lights:[] () in
-        (match Scene.validate s with
-        | Ok _ -> Alcotest.fail "a textured scene passed"
-        | Error (`Msg m) ->
-            Alcotest.(check string) __LOC__
-              "an object's material has a texture, which this renderer does not draw yet; remove it (it would be ignored)" m);
-        Alcotest.(check bool) __LOC__ true (Result.is_ok (Scene.validate ~accept_textures:true s)));
+    Alcotest.test_case "a scene built in code with a texture is valid where its mapping fits the object" `Quick (fun () ->
+        let ball t = Shape.Sphere (Sphere.v ~center:(v 0. 0. 3.) ~radius:1. (Material.v ~texture:t (Color.v 1. 1. 1.))) in
+        let valid t = Scene.validate (Scene.v ~objects:[ ball t ] ~lights:[] ()) in
+        Alcotest.(check bool) __LOC__ true (Result.is_ok (valid (Texture_map.v ~file:"e.ppm" Spherical quad)));
+        match valid (Texture_map.v ~file:"e.ppm" Planar quad) with
+        | Ok _ -> Alcotest.fail "a planar texture on a sphere passed"
+        | Error (`Msg m) -> Alcotest.(check bool) __LOC__ true (Astring_free.contains m "texture mapping must be spherical"));
     Alcotest.test_case "a material with a texture is not plain; pp prints the field" `Quick (fun () ->
         let t = Texture_map.v ~file:"a b.ppm" Planar quad ~size:0.5 in
         let m = Material.v ~texture:t (Color.v 1. 2. 3.) in

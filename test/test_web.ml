@@ -235,6 +235,9 @@ let native ?(samples = 1) text =
   let dir = Helpers.temp_dir () in
   let scene = Filename.concat dir "shown.scene" and out = Filename.concat dir "native.ppm" in
   write scene text;
+  (* The textures that the page holds built in, beside the scene, where
+     the command line reads them. *)
+  List.iter (fun (name, contents) -> write (Filename.concat dir name) contents) Raytrace_web.Example_textures.files;
   let code, _, err =
     Helpers.run (Helpers.raytrace ()) [ "render"; scene; "--samples"; string_of_int samples; "-o"; out ]
   in

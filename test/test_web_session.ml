@@ -102,6 +102,26 @@ let tests =
         let p = session (cgfs_text ()) in
         Helpers.check_images __LOC__ ~expected:(Helpers.image_exn Scene.cgfs) (finish p);
         Alcotest.(check string) __LOC__ (Scene_file.to_string Scene.cgfs) (Session.shown_text p));
+    Alcotest.test_case "the textured globe renders as raytrace render's, its textures built in; another texture file is refused at its name" `Quick
+      (fun () ->
+        let text = match File_io.read (Helpers.scene_path "globe.scene") with Ok t -> t | Error (`Msg m) -> Alcotest.fail m in
+        let p = session text in
+        small p;
+        let expected = Helpers.image_exn (Session.view p).scene in
+        Helpers.check_images __LOC__ ~expected (finish p);
+        (* The built-in images are the checked-in files. *)
+        List.iter
+          (fun (name, contents) ->
+            match File_io.read (Helpers.scene_path name) with
+            | Ok t -> Alcotest.(check string) name t contents
+            | Error (`Msg m) -> Alcotest.fail m)
+          Raytrace_web.Example_textures.files;
+        match Session.edit p {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "moon.png") (mapping spherical)))|} with
+        | Ok () -> Alcotest.fail "a texture the page does not have was accepted"
+        | Error (`Msg m) ->
+            Alcotest.(check string) __LOC__
+              "scene:1:58: cannot read texture file moon.png: the page reads no files; its textures are the example scenes' earth.ppm and tiles.ppm"
+              m);
     Alcotest.test_case "a step traces at least one band and stops at its deadline" `Quick (fun () ->
         let p = session (cgfs_text ()) in
         (* The ticking clock passes [until] at the first reading after a band. *)

@@ -309,7 +309,7 @@ type loaded = { scene : Scene.valid; inputs : input list }
    FIFO closed and opened again would lose what its writer wrote
    meanwhile). The errors are File_io.read's. *)
 let load_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_bytes) ?(on_part = ignore) ?read_image
-    ?accept_textures path =
+    path =
   (* Every file the scene reads, as it reads it (Scene_file reads each
      path once). *)
   let inputs = ref [] in
@@ -359,7 +359,7 @@ let load_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_byte
             Option.iter close_in_noerr !first;
             Option.iter (fun (_, fd) -> try Unix.close fd with Unix.Unix_error _ -> ()) beside
           in
-          match Private.Scene_text.of_source ~limits ~load_mesh ~load_texture ?accept_textures ~file:path ?beside:(Option.map fst beside) source with
+          match Private.Scene_text.of_source ~limits ~load_mesh ~load_texture ~file:path ?beside:(Option.map fst beside) source with
           | r ->
               close ();
               loaded r
@@ -369,10 +369,10 @@ let load_scene ?(limits = Limits.default) ?(jobs = 1) ?(split_bytes = split_byte
   | Ok o -> (
       match File_io.read_opened ~check_size:(Limits.check_scene_bytes limits) path o with
       | Error e -> Error e
-      | Ok text -> loaded (Scene_file.of_string ~limits ~load_mesh ~load_texture ?accept_textures ~file:path text))
+      | Ok text -> loaded (Scene_file.of_string ~limits ~load_mesh ~load_texture ~file:path text))
 
-let read_scene ?limits ?jobs ?split_bytes ?on_part ?read_image ?accept_textures path =
-  Result.map (fun l -> l.scene) (load_scene ?limits ?jobs ?split_bytes ?on_part ?read_image ?accept_textures path)
+let read_scene ?limits ?jobs ?split_bytes ?on_part ?read_image path =
+  Result.map (fun l -> l.scene) (load_scene ?limits ?jobs ?split_bytes ?on_part ?read_image path)
 
 (* The identity and version of a file: another file, or the same one
    written to, differs in one of them. *)

@@ -27,10 +27,9 @@ val load_scene :
   ?split_bytes:int ->
   ?on_part:(int -> unit) ->
   ?read_image:(string -> (Image.t, [ `Msg of string ]) result) ->
-  ?accept_textures:bool ->
   string ->
   (loaded, [> `Msg of string ]) result
-(** [load_scene ~limits ~jobs ~split_bytes ~on_part ~read_image ~accept_textures path]
+(** [load_scene ~limits ~jobs ~split_bytes ~on_part ~read_image path]
     is {!read_scene} with the files the scene read. *)
 
 val inputs_digest : input list -> (string, [> `Msg of string ]) result
@@ -47,13 +46,11 @@ val read_scene :
   ?split_bytes:int ->
   ?on_part:(int -> unit) ->
   ?read_image:(string -> (Image.t, [ `Msg of string ]) result) ->
-  ?accept_textures:bool ->
   string ->
   (Scene.valid, [> `Msg of string ]) result
-(** [read_scene ~limits ~jobs ~split_bytes ~on_part ~read_image ~accept_textures path]
+(** [read_scene ~limits ~jobs ~split_bytes ~on_part ~read_image path]
     is the scene in file [path] ({!Raytrace.Scene_file.of_string} with
-    [~file:path] and [accept_textures], default [false]: textures are
-    not drawn yet, and refused), its meshes read by {!read_mesh} with
+    [~file:path]), its meshes read by {!read_mesh} with
     [jobs] and [split_bytes], its textures' images by [read_image]
     (default: PPM files only, {!Raytrace.Image.Ppm} within [limits]; pass
     [Raytrace_png.Image_file.read_file] for PNG too), a texture file's

@@ -71,8 +71,22 @@ let check_work samples (view : View.t) =
 let check_canvas w h =
   Result.map_error (fun (`Msg m) -> `Msg (located (page_bounds m))) (Limits.check_canvas limits w h)
 
+(* A texture is one of the example scenes', by the name they give it; a
+   page reads no other file. *)
+let load_texture path =
+  match List.assoc_opt path Example_textures.files with
+  | Some text -> (
+      match Image.Ppm.of_string ~limits text with
+      | Ok img -> Ok (Image.Texture.of_image img)
+      | Error (`Msg m) -> Error (`Msg (Printf.sprintf "cannot read texture file %s: %s" path m)))
+  | None ->
+      Error
+        (`Msg
+          (Printf.sprintf "cannot read texture file %s: the page reads no files; its textures are the example scenes' %s" path
+             (String.concat " and " (List.map fst Example_textures.files))))
+
 let of_string text =
-  Result.map_error (fun (`Msg m) -> `Msg (page_bounds m)) (Scene_file.of_string ~limits ~file text)
+  Result.map_error (fun (`Msg m) -> `Msg (page_bounds m)) (Scene_file.of_string ~limits ~load_texture ~file text)
 
 let restart p render =
   p.render <- render;

@@ -61,7 +61,11 @@ val edit : t -> string -> (unit, [> `Msg of string ]) result
     [scene:LINE:COLUMN: message] from {!Scene_file.of_string} within
     {!limits}, a render beyond {!Scene.check_work}, or a scene that the
     browser's stack or memory cannot prepare), [p] is unchanged and keeps
-    its picture. *)
+    its picture. A page reads no files: a texture's file must be one of
+    the example scenes' images, built in ({!Example_textures.files}: the
+    scene [scenes/globe.scene] renders as it is), and any other is an
+    error at its name that says so; a mesh's file is refused likewise
+    ({!Scene_file.of_string}'s default). *)
 
 val input : t -> View.input -> View.effect
 (** [input p i] applies [i] to the view ({!View.handle}) and is what the

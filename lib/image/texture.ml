@@ -12,6 +12,7 @@ let of_image img =
 
 let width t = t.width
 let height t = t.height
+let bytes t = t.bytes
 
 let pixel t x y =
   if x < 0 || y < 0 || x >= t.width || y >= t.height then

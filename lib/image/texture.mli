@@ -52,6 +52,11 @@ val width : t -> int
 val height : t -> int
 (** [height t] is [t]'s height in pixels, [>= 1]. *)
 
+val bytes : t -> string
+(** [bytes t] is [t]'s channels as {!v} takes them: [r g b] per pixel,
+    rows top-down, [3 * width t * height t] bytes. The string itself, not
+    a copy: the renderer reads its lookups there. *)
+
 val pixel : t -> int -> int -> Color.t
 (** [pixel t x y] is the colour of pixel [(x, y)], channels in
     [\[0, 255\]].

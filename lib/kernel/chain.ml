@@ -47,11 +47,11 @@ let[@inline] trace_in tr ~spheres =
       (* A pattern's second colour is a material that differs from the
          object's in its colour alone. Looked up before the lighting, whose
          shadow rays reuse [s]'s ray. *)
-      let m = if (not spheres) && p.patterned then Surface.local_material tr m else m
+      let m = if (not spheres) && p.patterned then Surface.local_material tr i m else m
       in
       Lighting.lighting tr ~shiny:(Array.unsafe_get p.specular m <> Sphere.matte) ~specular_of:p.specular m;
       let light = s.intensity in
-      let lr = Array.unsafe_get p.red m *. light and lg = Array.unsafe_get p.green m *. light and lb = Array.unsafe_get p.blue m *. light in
+      let lr = Array.unsafe_get tr.red m *. light and lg = Array.unsafe_get tr.green m *. light and lb = Array.unsafe_get tr.blue m *. light in
       let refl = Array.unsafe_get p.reflective m in
       if refl <= 0. || !levels >= p.depth then begin
         s.r <- lr;

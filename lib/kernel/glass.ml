@@ -136,9 +136,9 @@ let[@inline] set_node tr l m keep wr wt =
   if keep > 0. then begin
     Lighting.lighting_through tr ~shiny:(Array.unsafe_get p.specular m <> Sphere.matte) ~specular_of:p.specular m;
     let light = s.intensity in
-    Array.unsafe_set node no (Array.unsafe_get p.red m *. light *. keep);
-    Array.unsafe_set node (no + 1) (Array.unsafe_get p.green m *. light *. keep);
-    Array.unsafe_set node (no + 2) (Array.unsafe_get p.blue m *. light *. keep)
+    Array.unsafe_set node no (Array.unsafe_get tr.red m *. light *. keep);
+    Array.unsafe_set node (no + 1) (Array.unsafe_get tr.green m *. light *. keep);
+    Array.unsafe_set node (no + 2) (Array.unsafe_get tr.blue m *. light *. keep)
   end
   else begin
     Array.unsafe_set node no 0.;
@@ -203,7 +203,7 @@ let rec shade tr l =
        surface bounds, the object's (a CSG solid is one medium, its first
        operand's: Literal.medium_material). *)
     let m = if sphere then (Surface.sphere_hit tr i; Array.unsafe_get p.material i) else Surface.shape_hit tr i in
-    let m = if p.patterned then Surface.local_material tr m else m in
+    let m = if p.patterned then Surface.local_material tr i m else m in
     let medium = Array.unsafe_get p.material i in
     let refl = Array.unsafe_get p.reflective m and tt = Array.unsafe_get p.transparency m in
     let keep = 1. -. refl -. tt in
@@ -212,9 +212,9 @@ let rec shade tr l =
     if l >= p.depth || (wr <= 0. && wt <= 0.) then begin
       Lighting.lighting_through tr ~shiny:(Array.unsafe_get p.specular m <> Sphere.matte) ~specular_of:p.specular m;
       let light = s.intensity in
-      s.r <- Array.unsafe_get p.red m *. light;
-      s.g <- Array.unsafe_get p.green m *. light;
-      s.b <- Array.unsafe_get p.blue m *. light
+      s.r <- Array.unsafe_get tr.red m *. light;
+      s.g <- Array.unsafe_get tr.green m *. light;
+      s.b <- Array.unsafe_get tr.blue m *. light
     end
     else begin
       if wt > 0. then set_aside tr l i medium ~sphere px py pz;

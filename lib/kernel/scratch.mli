@@ -61,6 +61,11 @@ type t = {
   mutable okx : float;
   mutable oky : float;
   mutable okz : float;
+  mutable tu : float;
+      (** The texture coordinates [(u, v)] of the hit point on a
+          textured surface ({!Texturing}), written by its mapping and read
+          by its lookup. *)
+  mutable tv : float;
 }
 (** The type for per-ray state. *)
 

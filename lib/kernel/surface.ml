@@ -194,24 +194,45 @@ and instance_normal tr i =
    ([tr.inner_material]) in this scene's numbering, or, where that has a
    pattern, its second colour's if the pattern says so. The pattern lies
    in the object's frame: looked up on the ray still carried there, in
-   the bottom level's record, with the normal in that frame. *)
+   the bottom level's record, with the normal in that frame. A texture of
+   the object's likewise: its colour found by the bottom level's tracer,
+   on the carried ray, at the hit it found, and copied to this tracer's
+   colour arrays (an instance's own material has no texture:
+   Shape.validate). *)
 and[@inline never] instance_material tr i =
   let inst = tr.p.instances in
   let n = Traversal.instance_number tr i in
-  let m = Array.unsafe_get (Array.unsafe_get inst.material_map n) tr.inner_material in
-  let placed = inst.placed_alternate in
-  if Array.length placed = 0 then m
+  let inner = tr.inner_material in
+  let m = Array.unsafe_get (Array.unsafe_get inst.material_map n) inner in
+  let placed = inst.placed_alternate and world = tr.p.alternate in
+  if Array.length world > 0 && Array.unsafe_get world m = Prepared.textured_material then begin
+    let sub = Array.unsafe_get tr.inner (Array.unsafe_get inst.bottom n) in
+    Texturing.colour sub sub.hit inner;
+    Array.unsafe_set tr.red m (Array.unsafe_get sub.red inner);
+    Array.unsafe_set tr.green m (Array.unsafe_get sub.green inner);
+    Array.unsafe_set tr.blue m (Array.unsafe_get sub.blue inner);
+    m
+  end
+  else if Array.length placed = 0 then m
   else
     let alt = Array.unsafe_get placed m in
     if alt < 0 then m
     else second_colour (Array.unsafe_get tr.inner (Array.unsafe_get inst.bottom n)).s tr.p.pattern m alt
 
-(* The material whose colour the hit of the ray in [tr.s] shows, by the
-   world's patterns ([second_colour]). Not inlined: its code would make
-   [trace_objects] too big for OCaml to inline into the render loop. *)
-let[@inline never] local_material tr m =
+(* The material whose colour the hit of the ray in [tr.s] on slot [i]
+   shows, by the world's patterns ([second_colour]); a textured material's
+   colour there is written to the tracer's colour arrays ({!Texturing}).
+   Not inlined: its code would make [trace_objects] too big for OCaml to
+   inline into the render loop. *)
+let[@inline never] local_material tr i m =
   let alt = Array.unsafe_get tr.p.alternate m in
-  if alt < 0 then m else second_colour tr.s tr.p.pattern m alt
+  if alt >= 0 then second_colour tr.s tr.p.pattern m alt
+  else if alt = Prepared.textured_material then begin
+    (* An instance's hit has its colour already ([instance_material]). *)
+    if Array.unsafe_get tr.p.kind i <> Kind.Instance then Texturing.colour tr i m;
+    m
+  end
+  else m
 
 (* The mirror ray R = 2 <V, N> N - V from the hit point, in [s]. *)
 let[@inline] mirror_ray (p : Prepared.t) s =

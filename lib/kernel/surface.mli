@@ -27,12 +27,15 @@ val shape_hit : Tracer.t -> int -> int
     tied to the scene's scale (Ray Tracing Gems, chapter 6).
     @raise Invalid_argument on a sphere's slot. *)
 
-val local_material : Tracer.t -> int -> int
-(** [local_material tr m] is the material whose colour the hit at [s.t]
-    shows: [m], or the material of its pattern's second colour in the
-    cells that show it ({!Pattern.odd}, at the hit point before the robust
-    mode moved it). Out of line: its code would make the loops too big to
-    inline where they are called. *)
+val local_material : Tracer.t -> int -> int -> int
+(** [local_material tr i m] is the material whose colour the hit at [s.t]
+    on the object in slot [i], of material [m], shows: [m], or the
+    material of its pattern's second colour in the cells that show it
+    ({!Pattern.odd}, at the hit point before the robust mode moved it).
+    A textured [m] is [m], its colour at the hit written to [tr.red],
+    [tr.green] and [tr.blue] ({!Texturing.colour}; on an instance, by
+    {!shape_hit}, which looked it up in the object's frame). Out of line: its code
+    would make the loops too big to inline where they are called. *)
 
 val mirror_ray : Prepared.t -> Scratch.t -> unit
 (** [mirror_ray p s] sets the mirror ray [R = 2 <V, N> N - V] from the hit

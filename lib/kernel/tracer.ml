@@ -79,6 +79,9 @@ type t = {
           sample being traced, from which the integrals over a light or a
           lens draw their numbers. An int of the tracer, not of [Scratch]:
           an int field would unflatten that all-float record. *)
+  red : float array;
+  green : float array;
+  blue : float array;
 }
 
 (* The tracing loops, chosen once per tracer. *)
@@ -154,6 +157,11 @@ let rec create ?(averaging = false) (p : Prepared.t) =
     inner = (if Array.length p.instances.bottoms = 0 then [||] else Array.map (fun b -> create ~averaging b) p.instances.bottoms);
     inner_material = 0;
     key = 0;
+    (* A copy only where a texture writes in it: the other scenes read the
+       prepared scene's own arrays. *)
+    red = (if Array.length p.texture_of = 0 then p.red else Array.copy p.red);
+    green = (if Array.length p.texture_of = 0 then p.green else Array.copy p.green);
+    blue = (if Array.length p.texture_of = 0 then p.blue else Array.copy p.blue);
   }
 
 let prepared tr = tr.p

@@ -91,6 +91,14 @@ type t = {
           [sample]; the integrals over a light or a lens draw their numbers
           from it, so that they are the same for every [--jobs], tiling and
           order of the pixels. [0] without [p.sampled]. *)
+  red : float array;
+      (** The colour channels of each material, read by the tracing loops:
+          [p.red] itself, or, where some material has a texture
+          ([p.texture_of] not empty), this tracer's copy of it, where a
+          textured material's entry is its colour at the latest hit on it
+          ({!Texturing}). *)
+  green : float array;
+  blue : float array;
 }
 (** The type for tracers: one per worker, reused for every ray. *)
 

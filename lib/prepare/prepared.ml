@@ -81,6 +81,11 @@ type t = {
   row_vy : float array;
   instances : instances;
   materials : Material.t array;
+  texture_of : int array;
+  texture_table : int array;
+  texture_size : float array;
+  texels : string array;
+  uv : float array;
 }
 
 and instances = {
@@ -105,6 +110,12 @@ let area = 3
 let sphere = 4
 let spot = 5
 let light_stride = 10
+let textured_material = -2
+let texture_stride = 4
+let spherical = 0
+let planar = 1
+let box_mapping = 2
+let uv_mapping = 3
 
 (* {1 The scene's objects}
 
@@ -207,23 +218,40 @@ let max_channel (scene : Scene.view) o =
     Float.max c.r (Float.max c.g c.b) *. (ambient +. direct +. (direct *. !last_bound))
   in
   let bg = scene.background in
+  (* A texture's colours replace the material's: its brightest channel,
+     found once per image. *)
+  let brightest = ref [] in
+  let texture_channel (t : Texture_map.t) =
+    match List.assq_opt t.image !brightest with
+    | Some c -> c
+    | None ->
+        let b = Texture.bytes t.image and c = ref 0 in
+        String.iter (fun ch -> c := max !c (Char.code ch)) b;
+        let c = Float.of_int !c in
+        brightest := (t.image, c) :: !brightest;
+        c
+  in
   (* A pattern's colour is an object's colour too. *)
-  let channels color pattern s =
-    match pattern with
-    | None -> channel color s
-    | Some p -> Float.max (channel color s) (channel (Pattern.color p) s)
+  let channels (m : Material.t) =
+    let s = m.specular in
+    match (m.pattern, m.texture) with
+    | None, None -> channel m.color s
+    | Some p, _ -> Float.max (channel m.color s) (channel (Pattern.color p) s)
+    | None, Some t ->
+        let c = texture_channel t in
+        channel (Color.v c c c) s
   in
   let bound =
     (* Every material of the spheres' table is some sphere's. *)
     Array.fold_left
-      (fun acc (m : Material.t) -> Float.max acc (channels m.color m.pattern m.specular))
+      (fun acc (m : Material.t) -> Float.max acc (channels m))
       (Float.max bg.r (Float.max bg.g bg.b))
       (Spheres.materials o.spheres)
   in
   let bound =
     List.fold_left
       (fun acc sh ->
-        List.fold_left (fun acc (m : Material.t) -> Float.max acc (channels m.color m.pattern m.specular)) acc (Shape.materials sh))
+        List.fold_left (fun acc (m : Material.t) -> Float.max acc (channels m)) acc (Shape.materials sh))
       bound o.shapes
   in
   (bound *. (1. +. 1e-6)) +. 1e-6
@@ -725,7 +753,14 @@ let material_table r =
   (* Over every material, the second colours' too: the kernel asks the
      world's table about a material an instance's pattern chose. *)
   let alternates l = if l = [] then [||] else Array.make n (-1) in
-  let alternate = alternates r.frames and placed = alternates r.placed in
+  (* A textured material's colour is looked up where a pattern's is: a
+     textured scene has an [alternate], which marks its textured
+     materials, so that the tracer takes the same path, and a hit on an
+     untextured material there asks nothing more than before. *)
+  let textured = List.exists (fun (m : Material.t) -> Option.is_some m.texture) r.added in
+  let alternate = if textured && r.frames = [] then Array.make n (-1) else alternates r.frames in
+  Array.iteri (fun i (m : Material.t) -> if Option.is_some m.texture then alternate.(i) <- textured_material) materials;
+  let placed = alternates r.placed in
   let pattern = Array.make (if r.frames = [] && r.placed = [] && not r.every_frame then 0 else Pattern.stride * n_own) 0. in
   (* A bottom level's frames: its instances' patterns lie there. *)
   List.iter (fun (i, (origin, scale, extent)) -> Pattern.store_frame ~origin ~scale ~extent pattern (Pattern.stride * i)) r.plain;
@@ -738,6 +773,96 @@ let material_table r =
   let n_world = List.length extra in
   let extra' = List.mapi (fun j f -> second placed (n_world + j) f) (List.rev r.placed) in
   (Array.concat [ materials; Array.of_list extra; Array.of_list extra' ], alternate, placed, pattern)
+
+(* {2 Textures} *)
+
+let mapping_code = function
+  | Texture_map.Spherical -> spherical
+  | Planar -> planar
+  | Box -> box_mapping
+  | Uv -> uv_mapping
+
+(* Each material's texture number, and the textures: a texture that
+   several materials show (a named material on many objects) is one, an
+   image that several textures show (one file, which the reader reads
+   once) is one, found by physical equality. *)
+let texture_tables (materials : Material.t array) =
+  if not (Array.exists (fun (m : Material.t) -> Option.is_some m.texture) materials) then ([||], [||], [||], [||])
+  else begin
+    let entries = ref [] and n = ref 0 and images = ref [] and n_images = ref 0 in
+    let image_number img =
+      match List.find_opt (fun (i, _) -> i == img) !images with
+      | Some (_, k) -> k
+      | None ->
+          images := (img, !n_images) :: !images;
+          incr n_images;
+          !n_images - 1
+    in
+    let same (a : Texture_map.t) (b : Texture_map.t) = a.image == b.image && a.mapping = b.mapping && Float.equal a.size b.size in
+    let texture_of =
+      Array.map
+        (fun (m : Material.t) ->
+          match m.texture with
+          | None -> -1
+          | Some t -> (
+              match List.find_opt (fun (t', _) -> same t' t) !entries with
+              | Some (_, k) -> k
+              | None ->
+                  entries := (t, !n) :: !entries;
+                  incr n;
+                  !n - 1))
+        materials
+    in
+    let table = Array.make (texture_stride * !n) 0 and size = Array.make !n 1. in
+    List.iter
+      (fun ((t : Texture_map.t), k) ->
+        let o = texture_stride * k in
+        table.(o) <- image_number t.image;
+        table.(o + 1) <- Texture.width t.image;
+        table.(o + 2) <- Texture.height t.image;
+        table.(o + 3) <- mapping_code t.mapping;
+        size.(k) <- t.size)
+      (List.rev !entries);
+    let texels = Array.make !n_images "" in
+    List.iter (fun (img, k) -> texels.(k) <- Texture.bytes img) !images;
+    (texture_of, table, size, texels)
+  end
+
+(* Per slot, the [vt] of the corners of each triangle of a mesh whose
+   material has a uv texture, in the order of its corners (the order of
+   [at0], [at1], [at2]); empty when no such mesh. *)
+let uv_table o (sl_slot : int array) n_slots =
+  let uv_mesh = function
+    | Shape.Mesh (m : Mesh.t) -> (
+        match m.material.texture with Some { mapping = Texture_map.Uv; _ } -> Mesh.has_texcoords m | _ -> false)
+    | _ -> false
+  in
+  if not (List.exists uv_mesh o.shapes) then [||]
+  else begin
+    let uv = Array.make (6 * n_slots) 0. in
+    ignore
+      (iter_shapes o
+         ~single:(fun _ _ -> ())
+         ~mesh:(fun k m ->
+           if uv_mesh (Shape.Mesh m) then begin
+             let k = ref k in
+             for t = 0 to Mesh.triangle_count m - 1 do
+               if not (Mesh.degenerate m t) then begin
+                 let i = sl_slot.(!k) in
+                 if i >= 0 && i < n_slots then
+                   for c = 0 to 2 do
+                     let j = m.triangle_texcoords.((3 * t) + c) in
+                     if j >= 0 then begin
+                       uv.((6 * i) + (2 * c)) <- m.texcoords.(2 * j);
+                       uv.((6 * i) + (2 * c) + 1) <- m.texcoords.((2 * j) + 1)
+                     end
+                   done;
+                 incr k
+               end
+             done
+           end));
+    uv
+  end
 
 (* {2 Vertices and normals} *)
 
@@ -1497,7 +1622,7 @@ let light_geom l =
 (* The record, from the steps' results; the lights' and the materials'
    arrays made here. *)
 let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg ~instances sl g sp
-    ~vertex ~vsource ~vnormal =
+    ~vertex ~vsource ~vnormal ~uv =
   (* Each light with its place in the scene's list, which keys its
      samples (Light, "Sample points"): dropping a dark light changes no
      other light's numbers. *)
@@ -1522,6 +1647,7 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     o.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None
     && (not (Camera.has_lens scene.camera)) && not soft
   in
+  let texture_of, texture_table, texture_size, texels = texture_tables materials in
   let n_kept = Array.length sl.index in
   let index, slot = in_list_order o ~index:sl.index ~slot:sl.slot in
   {
@@ -1656,6 +1782,11 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
           Float.of_int (r - (scene.height / 2)) *. scene.viewport.height /. Float.of_int scene.height);
     instances;
     materials;
+    texture_of;
+    texture_table;
+    texture_size;
+    texels;
+    uv;
   }
 
 (* The steps in order. Each big array is let go as soon as no step needs
@@ -1702,8 +1833,9 @@ let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
     if bvh = None || Array.length v.vertex = 0 then (v.vertex, [||])
     else Vertex_order.gather ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
   in
+  let uv = uv_table o sl.slot (Array.length sl.kind) in
   assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)
-    ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal
+    ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal ~uv
 
 (* The bottom level of an instance: its object alone, prepared as a scene
    of the top's mode (epsilon) with no lights; the kernel traces it in

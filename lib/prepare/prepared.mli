@@ -16,14 +16,15 @@ type t = private {
           pattern: the tracer's loops for spheres alone, which ask no
           object its kind nor its pattern. *)
   patterned : bool;
-      (** Some material has a {!Pattern}: the tracer looks it up at each
-          hit (the loop for spheres alone never asks; the other asks this
-          field once per hit). *)
+      (** Some material has a {!Pattern} or a texture ({!Texture_map}):
+          the tracer looks it up at each hit (the loop for spheres alone
+          never asks; the other asks this field once per hit). *)
   alternate : int array;
       (** Per material (second colours included): the material (an index
           into [red] to [reflective]) of its pattern's second colour, or
-          [-1] if it has no pattern in the world's frame; empty when no
-          material has one. The second colours' materials
+          [-1] if it has no pattern in the world's frame, or
+          {!textured_material} if it has a texture; empty when no
+          material has a pattern or a texture. The second colours' materials
           follow the scene's, each a copy of its own with the pattern's
           colour. *)
   pattern : float array;
@@ -34,8 +35,9 @@ type t = private {
           frame there (its size [0] where it has no pattern of its own):
           its instances' patterns lie on it. *)
   textbook_all : bool;
-      (** Spheres only, of plain materials (no pattern, no transparency),
-          no hierarchy, the document's mode, a pinhole camera: the
+      (** Spheres only, of plain materials (no pattern, no texture, no
+          transparency), no hierarchy, the document's mode, a pinhole
+          camera, the document's lights: the
           tracer's fastest loop (the reference scene). *)
   index : int array;
       (** The index of the object in each slot, objects counted in the
@@ -149,8 +151,10 @@ type t = private {
   primary_ocz : float array;
   primary_k3 : float array;  (** [<CO, CO> - r^2] for the camera origin. *)
   max_channel : float;
-      (** An upper bound of every colour channel a ray can return, used to
-          stop reflections that can no longer change an 8-bit value;
+      (** An upper bound of every colour channel a ray can return (a
+          material's colour, its pattern's, its texture's brightest
+          channel), used to stop reflections that can no longer change an
+          8-bit value;
           [infinity] if a huge specular exponent leaves none (the cosine,
           rounded, may exceed 1 by a few ulps, and its power explodes). *)
   early_stop : bool;  (** The skips are on and [max_channel] is finite. *)
@@ -228,6 +232,25 @@ type t = private {
       (** The viewport y of the pixel centres whose [gy] is [r - height / 2], for [r] from [0]. *)
   instances : instances;  (** The transformed objects ({!Kind.Instance}). *)
   materials : Material.t array;  (** The materials by number, for the scenes that instance this one. *)
+  texture_of : int array;
+      (** Per material: the number of its texture in [texture_table], or
+          [-1] if it has none; empty when no material has one. *)
+  texture_table : int array;
+      (** Per texture [k], at [texture_stride * k]: the number of its
+          image in [texels], its width, its height and its mapping
+          ([spherical], [planar], [box_mapping] or [uv_mapping]). A texture
+          that several materials share is one; an image that several
+          textures show (one file, read once) is one. *)
+  texture_size : float array;  (** Per texture: the side of one copy of a planar mapping's image. *)
+  texels : string array;
+      (** Each image's channels, {!Texture.bytes}: the scene's own
+          strings, not copies (a float per channel would take eight times
+          their memory, for a conversion saved per channel read). *)
+  uv : float array;
+      (** Per slot [i], at [6 i], the [vt] coordinates [u0 v0 u1 v1 u2
+          v2] of the corners [at0], [at1], [at2] of a triangle whose
+          material has a [uv] texture (zeros for the other slots); empty
+          when no material has one. *)
 }
 (** The type for prepared scenes. *)
 
@@ -321,6 +344,23 @@ val spot : int
 
 val light_stride : int
 (** [light_stride] is [10], the floats per light in [light_geom]. *)
+val textured_material : int
+(** [textured_material] is [-2], the [alternate] of a textured material. *)
+
+val texture_stride : int
+(** [texture_stride] is [4], the ints of a texture in [texture_table]. *)
+
+val spherical : int
+(** [spherical] is the mapping code of {!Texture_map.Spherical} in [texture_table]. *)
+
+val planar : int
+(** [planar] is the mapping code of {!Texture_map.Planar}. *)
+
+val box_mapping : int
+(** [box_mapping] is the mapping code of {!Texture_map.Box}. *)
+
+val uv_mapping : int
+(** [uv_mapping] is the mapping code of {!Texture_map.Uv}. *)
 
 val prepare : ?skips:bool -> ?beside:Bvh.beside -> Scene.valid -> t
 (** [prepare ~skips ~beside scene] is [scene] prepared for {!Raytrace.Private.Trace}. With [skips]

@@ -89,6 +89,11 @@ let validate ~form m =
   let* _ = check_reflective ~form m.reflective in
   let* _ = match m.pattern with None -> Ok None | Some p -> Result.map Option.some (Pattern.validate ~form p) in
   let* _ = match m.texture with None -> Ok None | Some t -> Result.map Option.some (Texture_map.validate ~form t) in
+  let* () =
+    if Option.is_some m.pattern && Option.is_some m.texture then
+      Error (`Msg (form ^ " has a pattern and a texture; a material's colour comes from one of them"))
+    else Ok ()
+  in
   let* _ = check_transparency ~form m.transparency in
   let* _ = check_refractive_index ~form m.refractive_index in
   let* () = check_split ~form ~reflective:m.reflective ~transparency:m.transparency in

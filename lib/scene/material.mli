@@ -15,7 +15,7 @@ type t = private {
       (** A second colour laid over [color] ({!Pattern}), or [None]. *)
   texture : Texture_map.t option;
       (** An image whose colour replaces [color] ({!Texture_map}), or
-          [None]. Not drawn yet: see {!Texture_map}. *)
+          [None]. *)
 }
 (** The type for materials. *)
 
@@ -163,6 +163,7 @@ val check_split :
 val validate : form:string -> t -> (t, [> `Msg of string ]) result
 (** [validate ~form m] is [Ok m] if its fields pass the checks above and
     its pattern {!Pattern.validate} and its texture
-    {!Texture_map.validate}, and otherwise the first error, its
+    {!Texture_map.validate} (and it has not both: its colour comes from one
+    of them), and otherwise the first error, its
     message naming [form] (e.g.
     ["plane color channels must lie in \[0, 255\], got ..."]). *)

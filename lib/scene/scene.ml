@@ -306,17 +306,14 @@ let mesh_triangles shapes =
   in
   List.fold_left count 0 shapes
 
-(* The kernel does not draw textures yet: a scene that has one is refused
-   rather than drawn without it. *)
-let check_untextured s =
-  let textured (m : Material.t) = Option.is_some m.texture in
-  if Array.exists textured (Spheres.materials s.spheres)
-     || List.exists (fun sh -> List.exists textured (Shape.materials sh)) s.shapes
-  then
-    Error (`Msg "an object's material has a texture, which this renderer does not draw yet; remove it (it would be ignored)")
+(* The spheres' textures take the spherical mapping (the other objects'
+   are checked by [Shape.validate]). *)
+let check_sphere_textures s =
+  let wrong (m : Material.t) = match m.texture with Some t -> t.mapping <> Texture_map.Spherical | None -> false in
+  if Array.exists wrong (Spheres.materials s.spheres) then Error (`Msg "sphere texture mapping must be spherical")
   else Ok ()
 
-let validate ?(limits = Limits.default) ?(accept_textures = false) s =
+let validate ?(limits = Limits.default) s =
   let ( let* ) = Result.bind in
   let result =
     let* () = Limits.check_canvas limits s.width s.height in
@@ -331,7 +328,7 @@ let validate ?(limits = Limits.default) ?(accept_textures = false) s =
     let* _ = Limits.check_count limits `Lights (List.length s.lights) in
     let* _ = Limits.check_triangles limits (mesh_triangles s.shapes) in
     let* () = valid_objects s in
-    let* () = if accept_textures then Ok () else check_untextured s in
+    let* () = check_sphere_textures s in
     valid_lights s.lights
   in
   match result with Ok () -> Ok s | Error _ as e -> e

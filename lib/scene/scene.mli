@@ -142,7 +142,7 @@ type valid
     of this type renders without NaN or infinity, within the bounds it was
     validated against. The renderers take only validated scenes. *)
 
-val validate : ?limits:Limits.t -> ?accept_textures:bool -> t -> (valid, [> `Msg of string ]) result
+val validate : ?limits:Limits.t -> t -> (valid, [> `Msg of string ]) result
 (** [validate ~limits s] is [Ok s] if every part of [s] passes its check
     (canvas, depth and the numbers of objects, lights and triangles of
     meshes within [limits], default {!Limits.default};
@@ -156,12 +156,7 @@ val validate : ?limits:Limits.t -> ?accept_textures:bool -> t -> (valid, [> `Msg
     {!val-lights}; the kind in parentheses is the scene-file form
     ({!Shape.name}, or [ambient], [point], [directional]). A scene read by
     {!Scene_file} has each object checked where it is read, so its
-    messages name [file:line:column] instead.
-
-    Textures ({!Texture_map}) are not drawn yet: unless [accept_textures]
-    is [true] (default [false]; for the tests of their reading and
-    printing), a scene whose object's material has one is an [Error]
-    that says so, and no renderer draws it without its texture. *)
+    messages name [file:line:column] instead. A sphere's texture must be [spherical]. *)
 
 val of_valid : valid -> t
 (** [of_valid v] is the scene [v]. *)

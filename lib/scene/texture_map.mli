@@ -13,10 +13,12 @@
     that an image seen from the front of a surface reads left to right,
     not mirrored.
 
-    {b Not drawn yet.} The renderer does not draw textures in this
-    version: {!Raytrace.Scene_file} reads them only when asked
-    ([~accept_textures:true]) and otherwise refuses them with a located
-    error, so that no scene silently loses its texture.
+    The renderer draws them on objects placed as written and on
+    transformed and instanced ones (in the object's own frame), not on a
+    CSG solid's operands nor as an instance's own material, which
+    {!Shape.validate} refuses: the kernel's own copy of these mappings
+    and of {!Texture}'s lookup is [Texturing], and the executable
+    specification [Literal] calls the functions below.
 
     @canonical Raytrace.Material.Texture *)
 

@@ -41,8 +41,49 @@ let rec materials = function
   | Instance { shape; _ } -> materials shape
   | s -> [ material s ]
 
+let has_texture (m : Material.t) = Option.is_some m.texture
+
+(* Every material of [s], an instance's object's as well as its own. *)
+let rec any_material f = function
+  | Instance { own_material; shape; _ } -> Option.fold ~none:false ~some:f own_material || any_material f shape
+  | Csg c -> List.exists f (Csg.materials c)
+  | s -> f (material s)
+
+let name = function Instance _ -> "transform" | Sphere _ -> "sphere" | Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg" | Primitive p -> Shape_desc.name p
+
+(* The kernel draws a texture on an object of a kind that has a mapping
+   ({!Texture_map.mapping_for}), placed as written or through a transform
+   or an instance (the object's own texture, in its frame), but not an
+   instance's own material's, which would lie on every surface of the
+   object, nor on a CSG solid's operands, whose hits it finds through
+   another object's slot. *)
+let check_texture s =
+  let name = name s in
+  match s with
+  | Instance { own_material = Some m; _ } when has_texture m ->
+      Error (`Msg "a transform's or use's own material cannot have a texture yet (give the object its texture)")
+  | Csg _ when any_material has_texture s -> Error (`Msg "a CSG solid's operands cannot have a texture yet")
+  | Instance _ | Csg _ -> Ok ()
+  | s -> (
+      match (material s).texture with
+      | None -> Ok ()
+      | Some t -> (
+          match Texture_map.mapping_for name with
+          | None -> Error (`Msg (Printf.sprintf "a %s takes no texture; textures map onto spheres, planes, boxes and meshes" name))
+          | Some m when m <> t.mapping ->
+              Error
+                (`Msg
+                  (Printf.sprintf "%s texture mapping must be %s, got %s" name (Texture_map.mapping_name m)
+                     (Texture_map.mapping_name t.mapping)))
+          | Some _ -> (
+              match s with
+              | Mesh m when not (Mesh.has_texcoords m) ->
+                  Error (`Msg "mesh texture mapping uv needs the mesh's texture coordinates (vt), which it has none of")
+              | _ -> Ok ())))
+
 let rec validate s =
   let ( let* ) = Result.bind in
+  let* () = check_texture s in
   match s with
   | Instance i ->
       let* () = match i.shape with Plane _ -> Error (`Msg "a plane is transformed as a plane (Shape.instance), not an instance") | _ -> Ok () in
@@ -74,7 +115,6 @@ let rec validate s =
       let* p = Shape_desc.validate p in
       Ok (Primitive p)
 
-let name = function Instance _ -> "transform" | Sphere _ -> "sphere" | Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg" | Primitive p -> Shape_desc.name p
 let one fn = invalid_arg (Printf.sprintf "Shape.%s: a mesh is many objects" fn)
 let own fn = invalid_arg (Printf.sprintf "Shape.%s: a CSG solid is in the kernel's CSG table" fn)
 let kind = function Instance _ -> Kind.Instance | Sphere _ -> Kind.Sphere | Plane _ -> Kind.Plane | Triangle _ -> Kind.Triangle | Box _ -> Kind.Box | Mesh _ -> one "kind" | Csg _ -> Kind.Csg | Primitive p -> Shape_desc.kind p

@@ -75,7 +75,11 @@ val materials : t -> Material.t list
 val validate : t -> (t, [> `Msg of string ]) result
 (** [validate s] is the shape module's [validate]; an instance's object
     is validated, and an instance is refused if it is of a plane (see
-    {!instance}). *)
+    {!instance}). A texture ({!Texture_map}) must take the mapping of its
+    object's kind ({!Texture_map.mapping_for}; a mesh's [uv] needs its
+    texture coordinates), and is refused as an instance's own material
+    (the object's own texture is drawn, in its frame) and on a CSG
+    solid's operands, where the renderer does not draw it yet. *)
 
 val name : t -> string
 (** [name s] is the scene-file form of [s]: ["sphere"], ["plane"], ["triangle"], ["box"], ["mesh"] or ["csg"]. *)

@@ -381,21 +381,52 @@ let pattern_frame = function
   | Shape (Shape.Primitive p, _) | Csg_surface (_, Csg.Primitive p, _) -> primitive_frame p
   | Shape ((Shape.Mesh _ | Shape.Csg _ | Shape.Instance _), _) | Csg_surface (_, (Csg.Csg _ | Csg.Transformed _), _) | Placed _ -> invalid_arg "Literal.pattern_frame"
 
-(* The colour the hit at [t] shows: the material's, or its pattern's
-   second colour. A transformed object's pattern lies in its frame
+(* {1 Textures} *)
+
+(* The texture coordinates of [point] on [obj] (in its own frame: a
+   placed object's is looked up there, [local_color]), by the mappings'
+   definitions (Texture_map); a mesh's corner without a [vt] counts as
+   [(0, 0)]. *)
+let texture_uv obj (tex : Texture_map.t) point =
+  match obj with
+  | Sphere s | Shape (Shape.Sphere s, _) -> Texture_map.spherical ~center:s.center point
+  | Shape (Shape.Plane p, _) -> Texture_map.planar ~point:p.point ~normal:p.normal ~size:tex.size point
+  | Shape (Shape.Box b, _) ->
+      let _, u, v = Texture_map.box ~min:b.min ~max:b.max point in
+      (u, v)
+  | Mesh_triangle (m, k) ->
+      let b1, b2 = Texture_map.barycentric (Mesh.vertex m k 0) (Mesh.vertex m k 1) (Mesh.vertex m k 2) point in
+      let corner c =
+        let j = m.triangle_texcoords.((3 * k) + c) in
+        if j < 0 then (0., 0.) else (m.texcoords.(2 * j), m.texcoords.((2 * j) + 1))
+      in
+      Texture_map.interpolate ~b1 ~b2 (corner 0) (corner 1) (corner 2)
+  | Shape _ | Csg_surface _ | Placed _ -> invalid_arg "Literal.texture_uv: a texture on an object that takes none"
+
+(* The image's colour at the hit: its bilinear lookup at the point's
+   coordinates, with the mapping's wraps. *)
+let texture_color obj (tex : Texture_map.t) point =
+  let u, v = texture_uv obj tex point in
+  let wrap_u, wrap_v = Texture_map.wraps tex.mapping in
+  Texture.color ~wrap_u ~wrap_v tex.image u v
+
+(* The colour the hit at [t] shows: the material's, its pattern's second
+   colour, or its texture's. A transformed object's pattern or texture
+   lies in its frame
    (docs/scene-format.md, Patterns): the ray carried there by this
    module's own inverse, the point at the same [t] on it, and the
    surface's normal there; the frame is the surface's (an instance's own
    material's pattern lies where the surface's own would). *)
 let rec local_color obj (m : Material.t) ~t ~origin ~direction ~point ~normal =
   match (m.pattern, obj) with
-  | None, _ -> m.color
-  | Some _, Placed (i, inner, _) ->
+  | None, Placed _ when Option.is_none m.texture -> m.color
+  | _, Placed (i, inner, _) ->
       let inv = inverse (world_matrix i.transform) in
       let origin = affine_point inv origin and direction = linear inv direction in
       let point = Vec3.add origin (Vec3.smul t direction) in
       let normal = inner_normal inner ~point ~direction in
       local_color inner m ~t ~origin ~direction ~point ~normal
+  | None, _ -> ( match m.texture with Some tex -> texture_color obj tex point | None -> m.color)
   | Some p, _ ->
       let near0, _ = G.undecided () in
       let odd = G.odd p ~frame:(pattern_frame obj) ~origin ~direction ~point ~normal in

@@ -6,10 +6,10 @@ let error_message e =
 
 let pp_error ppf e = Format.pp_print_string ppf (error_message e)
 
-let located ?limits ?load_mesh ?load_texture ?accept_textures ?file ?reader text =
+let located ?limits ?load_mesh ?load_texture ?file ?reader text =
   Result.map_error
     (fun (e : Scene_text.error) -> { file = e.file; line = e.line; column = e.column; message = e.message })
-    (Scene_text.located ?limits ?load_mesh ?load_texture ?accept_textures ?file ?reader text)
+    (Scene_text.located ?limits ?load_mesh ?load_texture ?file ?reader text)
 
 let of_string = Scene_text.of_string
 let to_string = Scene_text.to_string

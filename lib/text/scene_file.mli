@@ -41,11 +41,10 @@ v}
     [load_texture], the mapping the one that fits the object
     ({!Texture_map.mapping_for}: [spherical] on a sphere, [planar] on a
     plane, which also takes [(size s)], [box] on a box, [uv] on a mesh).
-    {b Textures are not drawn yet}: unless [accept_textures] is [true]
-    (for the tests of this reading and printing, until the renderer draws
-    them), a texture field, once its file is read, is an error at the
-    field: ["sphere texture: textures are read but not drawn yet by this
-    renderer; ..."], so that no scene loses its texture silently.
+    A transformed or instanced object shows its own texture in its own
+    frame; a [transform] or [use] takes none of its own (an error at the
+    field), and a CSG solid's operand none (an error at the form): the
+    renderer does not draw them there yet.
 
     A UTF-8 byte order mark (bytes [EF BB BF], which some editors write)
     at the start of the text is read as blanks: columns still count its
@@ -77,7 +76,6 @@ val located :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
   ?load_texture:(string -> (Texture.t, [ `Msg of string ]) result) ->
-  ?accept_textures:bool ->
   ?file:string ->
   ?reader:[ `Fast | `Parsexp ] ->
   string ->
@@ -89,7 +87,6 @@ val of_string :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
   ?load_texture:(string -> (Texture.t, [ `Msg of string ]) result) ->
-  ?accept_textures:bool ->
   ?file:string ->
   ?reader:[ `Fast | `Parsexp ] ->
   string ->
@@ -107,8 +104,6 @@ val of_string :
     [Raytrace_unix.Files.read_scene] reads scene files and their meshes).
     A texture's file is read by [load_texture] likewise, once per path,
     its error told at the file's name (the default refuses every file);
-    [accept_textures] (default [false]) keeps textures in the scene
-    rather than refusing them (see above).
     Plain forms (parentheses, plain atoms, blanks and line comments) are
     read without parsexp, spheres straight into their values, unless
     [reader] (default [`Fast]) is [`Parsexp], which reads every form with

@@ -282,10 +282,8 @@ let optics ~form ?base fs ~reflective =
 let material_fields = [ "material"; "color"; "specular"; "reflective" ] @ optics_fields @ [ "pattern"; "texture" ]
 
 (* How texture fields are read: [load] reads an image file (the path as
-   the scene gives it), and [accept] says whether a texture may stay in
-   the scene: the kernel does not draw textures yet, so a renderer's read
-   refuses them rather than lose them silently. *)
-type textures = { load : string -> (Texture.t, [ `Msg of string ]) result; accept : bool }
+   the scene gives it). *)
+type textures = { load : string -> (Texture.t, [ `Msg of string ]) result }
 
 (* Named materials, as [(material name ...)] defined them, and how the
    textures of materials are read. *)
@@ -340,13 +338,6 @@ let texture ~where ~(named : named) ~form fs =
       (f.node, Texture_map.v ~size ~file mapping image))
     (find fs "texture")
 
-(* The kernel does not draw textures yet: a renderer's read refuses one,
-   once it is read and checked, where it is written. *)
-let refuse_undrawn ~(named : named) ~form node =
-  if not named.textures.accept then
-    fail node "%s texture: textures are read but not drawn yet by this renderer; remove the texture field (it would be ignored)"
-      form
-
 (* Whether [form] names a [(material name ...)] definition rather than an
    object. *)
 let is_definition form = String.length form > 9 && String.sub form 0 9 = "material "
@@ -388,7 +379,7 @@ let material ~where ~named ~form ~form_node fs =
     match texture ~where ~named ~form fs with
     | Some (node, t) ->
         if not (is_definition form) then check_mapping ~form ~node t;
-        refuse_undrawn ~named ~form node;
+        if Option.is_some pattern then fail node "%s has a pattern and a texture; a material's colour comes from one of them" form;
         Some t
     | None ->
         let t = default Material.texture None in
@@ -1388,7 +1379,7 @@ let append_part b p = Spheres.append b p.spheres
 let read_part ?(limits = Limits.default) ?(window_bytes = 1 lsl 20) (r : reader) ~from =
   let st = stream ~limits ~window_bytes r ~from in
   let w = st.w in
-  let b = builder ~limits ~load:no_loader ~textures:{ load = no_texture_loader; accept = false } (fun _ -> None) in
+  let b = builder ~limits ~load:no_loader ~textures:{ load = no_texture_loader } (fun _ -> None) in
   let fast = fast_state () in
   let first = ref (-1) and first_end = ref (-1) and first_line = ref 1 in
   let stop = ref from and stop_pos = ref (line_at st from) in
@@ -1666,7 +1657,7 @@ let read_all r ~file ~origin ~error ~syntax =
       with
       | () -> (
           (* Every field was checked where it was read; this is a net. *)
-          match Scene.validate ~limits:r.limits ~accept_textures:r.b.named.textures.accept (finish r.b) with
+          match Scene.validate ~limits:r.limits (finish r.b) with
           | Ok s -> `Done (Ok s)
           | Error (`Msg m) -> `Done (error origin m))
       | exception Too_big message -> `Done (Error { file; line = 0; column = 0; message })
@@ -1675,10 +1666,10 @@ let read_all r ~file ~origin ~error ~syntax =
       | exception Located _ -> `Locate)
 
 let of_source_located ?(limits = Limits.default) ?(load_mesh = no_loader) ?(load_texture = no_texture_loader)
-    ?(accept_textures = false) ?(file = "<string>") ?(reader = `Fast) ?(window_bytes = 1 lsl 20) ?beside (src : source) =
+    ?(file = "<string>") ?(reader = `Fast) ?(window_bytes = 1 lsl 20) ?beside (src : source) =
   let src = without_byte_order_mark src in
   let load = file_loader ~file load_mesh in
-  let textures = { load = file_loader ~file load_texture; accept = accept_textures } in
+  let textures = { load = file_loader ~file load_texture } in
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) message = Error { file; line = p.line; column = p.col + 1; message } in
   let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
@@ -1707,15 +1698,15 @@ let of_source_located ?(limits = Limits.default) ?(load_mesh = no_loader) ?(load
       | `Located (pos, m) -> error (Option.value pos ~default:origin) m
       | `Not_found -> error origin "internal error: the located pass found no error")
 
-let of_source ?limits ?load_mesh ?load_texture ?accept_textures ?file ?reader ?window_bytes ?beside src =
-  msg (of_source_located ?limits ?load_mesh ?load_texture ?accept_textures ?file ?reader ?window_bytes ?beside src)
+let of_source ?limits ?load_mesh ?load_texture ?file ?reader ?window_bytes ?beside src =
+  msg (of_source_located ?limits ?load_mesh ?load_texture ?file ?reader ?window_bytes ?beside src)
 
-let located ?(limits = Limits.default) ?load_mesh ?load_texture ?accept_textures ?(file = "<string>") ?reader text =
+let located ?(limits = Limits.default) ?load_mesh ?load_texture ?(file = "<string>") ?reader text =
   match Limits.check_scene_bytes limits (String.length text) with
   | Error (`Msg message) -> Error { file; line = 0; column = 0; message }
-  | Ok _ -> of_source_located ~limits ?load_mesh ?load_texture ?accept_textures ~file ?reader (string_source text)
+  | Ok _ -> of_source_located ~limits ?load_mesh ?load_texture ~file ?reader (string_source text)
 
-let of_string ?limits ?load_mesh ?load_texture ?accept_textures ?file ?reader text =
-  msg (located ?limits ?load_mesh ?load_texture ?accept_textures ?file ?reader text)
+let of_string ?limits ?load_mesh ?load_texture ?file ?reader text =
+  msg (located ?limits ?load_mesh ?load_texture ?file ?reader text)
 
 let to_string = Scene.show

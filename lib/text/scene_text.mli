@@ -15,7 +15,6 @@ val located :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
   ?load_texture:(string -> (Texture.t, [ `Msg of string ]) result) ->
-  ?accept_textures:bool ->
   ?file:string ->
   ?reader:[ `Fast | `Parsexp ] ->
   string ->
@@ -26,7 +25,6 @@ val of_string :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
   ?load_texture:(string -> (Texture.t, [ `Msg of string ]) result) ->
-  ?accept_textures:bool ->
   ?file:string ->
   ?reader:[ `Fast | `Parsexp ] ->
   string ->
@@ -112,7 +110,6 @@ val of_source :
   ?limits:Limits.t ->
   ?load_mesh:(string -> (Obj_file.t, [ `Msg of string ]) result) ->
   ?load_texture:(string -> (Texture.t, [ `Msg of string ]) result) ->
-  ?accept_textures:bool ->
   ?file:string ->
   ?reader:[ `Fast | `Parsexp ] ->
   ?window_bytes:int ->

@@ -1,0 +1,159 @@
+(* The kernel draws textures (issue 27, item 3): its own mappings and
+   lookup (Texturing) against the executable specification's (Literal,
+   which calls Texture_map's mappings and Texture's lookup), on every
+   mapping, in the document's mode and the robust one, through mirrors and
+   glass, in a hierarchy, on transformed and instanced objects, on random
+   scenes; the early stop's bound counts the images' colours; and tracing
+   a textured scene allocates nothing. *)
+open Raytrace
+module Texture = Image.Texture
+
+(* A 4 x 2 image of eight distinct colours: every lookup that picks the
+   wrong pixel, or none, shows. *)
+let image =
+  Texture.v ~width:4 ~height:2
+    "\255\000\000\000\255\000\000\000\255\255\255\000\000\255\255\255\000\255\128\064\032\032\064\128"
+
+(* A 2 x 2 quad, its corners' vt the unit square's. *)
+let quad_obj = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"
+
+(* The scene [text], whose every texture file is [image] and every mesh
+   file [mesh]. *)
+let read ?(image = image) ?(mesh = quad_obj) text =
+  let load_texture _ = Ok image in
+  let load_mesh _ = Mesh.Obj.of_string ~name:"m.obj" ~max_vertices:1000 ~max_triangles:1000 mesh in
+  match Scene_file.of_string ~load_texture ~load_mesh ~file:"t.scene" text with
+  | Ok s -> Scene.of_valid s
+  | Error (`Msg m) -> Alcotest.failf "refused: %s" m
+
+let texture = {|(texture (file "t.ppm") (mapping |}
+
+(* Every mapping in one view: a globe, a floor, a box, a textured quad. *)
+let scene ?(extra = "") ?(epsilon = "(epsilon 0.001)") () =
+  read
+    (String.concat "\n"
+       [
+         "(canvas (width 64) (height 48)) (background 20 20 20) " ^ epsilon;
+         "(sphere (center -1.2 0.3 5) (radius 1) (color 9 9 9) (specular 50) " ^ texture ^ "spherical)))";
+         "(plane (point 0 -1 0) (normal 0 1 0) (color 9 9 9) " ^ texture ^ "planar) (size 0.75)))";
+         "(box (min 0.6 -1 3.5) (max 1.6 0 4.5) (color 9 9 9) " ^ texture ^ "box)))";
+         "(mesh (file \"q.obj\") (translate 1.2 1.2 7) (color 9 9 9) " ^ texture ^ "uv)))";
+         extra;
+         "(light ambient (intensity 0.3)) (light point (intensity 0.5) (position 2 3 -1))";
+         "(light directional (intensity 0.2) (direction 1 4 -2))";
+       ])
+
+(* The kernel's image against the oracle's, with the skips on and off:
+   the (u, v) of each is computed by other formulas (a plane's axes from
+   its stored unit normal, a triangle's weights from its stored corners),
+   so a lookup may differ in its last bits, and a byte by one where a
+   channel lies at a rounding boundary. *)
+let as_the_oracle what s =
+  let expected, rounding = Test_fast_oracle.oracle s in
+  List.iter
+    (fun skips ->
+      let actual = Helpers.image_exn ~skips s in
+      match Image.Diff.compare expected actual with
+      | Error (`Msg m) -> Alcotest.failf "%s: %s" what m
+      | Ok d ->
+          let share = float d.differing /. float (Image.width expected * Image.height expected) in
+          if d.max_abs > 1 || share > 0.01 then
+            Alcotest.failf "%s (skips %b): %d pixels differ (%d whose rays rounding may decide), by up to %d" what skips
+              d.differing (Hashtbl.length rounding) d.max_abs)
+    [ true; false ]
+
+let tests =
+  [
+    Alcotest.test_case "every mapping is drawn as the oracle draws it, in the document's mode" `Quick (fun () ->
+        let s = scene () in
+        as_the_oracle "document's mode" s;
+        (* Without the texture every object is (9, 9, 9) under some light:
+           a handful of colours, not hundreds. *)
+        let n = Hashtbl.length (Test_pattern.colours (Helpers.image_exn s)) in
+        if n < 200 then Alcotest.failf "only %d colours: the texture is not drawn" n);
+    Alcotest.test_case "every mapping is drawn as the oracle draws it, in the robust mode" `Quick (fun () ->
+        as_the_oracle "robust mode" (scene ~epsilon:"" ()));
+    Alcotest.test_case "a textured object seen in a mirror and through glass is drawn as the oracle draws it" `Quick (fun () ->
+        as_the_oracle "mirror"
+          (scene ~extra:"(sphere (center 0.2 -0.6 2.5) (radius 0.4) (color 200 200 200) (reflective 0.6))" ());
+        as_the_oracle "glass"
+          (scene ~extra:"(sphere (center 0.2 -0.6 2.5) (radius 0.4) (color 200 200 200) (transparency 0.8) (refractive-index 1.3))" ()));
+    Alcotest.test_case "a uv texture on a mesh of many triangles, in a hierarchy, is drawn as the oracle draws it" `Quick (fun () ->
+        (* 12 x 12 squares of 2 triangles, each vertex's vt its place in
+           the grid: the hierarchy's order of triangles and corners is not
+           the file's, and every corner must keep its own vt. *)
+        as_the_oracle "grid"
+          (read ~mesh:(Test_texture.textured_grid 12)
+             ("(canvas (width 48) (height 48)) (epsilon 0.001) (mesh (file \"g.obj\") (scale 0.25) (translate -1.5 -1.5 4) "
+            ^ "(color 9 9 9) " ^ texture ^ "uv))) (light ambient (intensity 1))")));
+    Alcotest.test_case "textured objects transformed and instanced are drawn as the oracle draws them, their textures in their frames" `Quick
+      (fun () ->
+        (* A globe tilted and moved, two uses of one textured box (turned,
+           scaled), a uv-textured quad turned: the lookups happen on the ray
+           carried into each object's frame. *)
+        let text epsilon =
+          String.concat "\n"
+            [
+              "(canvas (width 64) (height 48)) (background 20 20 20) " ^ epsilon;
+              "(transform ((rotate-z 23) (rotate-y 40) (translate -1.2 0.3 5)) (sphere (center 0 0 0) (radius 1) (color 9 9 9) (specular 50) "
+              ^ texture ^ "spherical))))";
+              "(define crate (box (min -0.5 -0.5 -0.5) (max 0.5 0.5 0.5) (color 9 9 9) " ^ texture ^ "box))))";
+              "(use crate (transform ((rotate-y 30) (translate 1.1 -0.5 4))))";
+              "(use crate (transform ((scale 0.6) (rotate-x 45) (translate 0.2 1.2 6))))";
+              "(transform ((rotate-y 20)) (mesh (file \"q.obj\") (translate 1.2 1.2 7) (color 9 9 9) " ^ texture ^ "uv))))";
+              "(plane (point 0 -1 0) (normal 0 1 0) (color 9 9 9) " ^ texture ^ "planar) (size 0.75)))";
+              "(light ambient (intensity 0.3)) (light point (intensity 0.5) (position 2 3 -1))";
+            ]
+        in
+        as_the_oracle "document's mode" (read (text "(epsilon 0.001)"));
+        as_the_oracle "robust mode" (read (text "")));
+    Alcotest.test_case "random textured scenes are drawn as the oracle draws them, and the skips change no byte" `Slow (fun () ->
+        (* The property tests' scenes (every light, material and shape, both
+           modes), textures on half their spheres, planes and boxes. *)
+        let rand = Random.State.make [| 27 |] in
+        let scenes = QCheck.Gen.generate ~rand ~n:40 Gen_scene.gen in
+        List.iteri
+          (fun i (s : Scene.t) ->
+            let s = Gen_scene.with_textures rand s in
+            let what = Printf.sprintf "scene %d:\n%s" i (Scene.show s) in
+            as_the_oracle what s;
+            Helpers.check_images what ~expected:(Helpers.image_exn ~skips:false s) (Helpers.image_exn s))
+          scenes);
+    Alcotest.test_case "a faint mirror shows a black wall's white texture: the early stop counts the image's colours" `Quick
+      (fun () ->
+        (* Behind the camera, the wall z = -1, of colour black and a white
+           texture, seen only in a mirror of reflectivity 0.02:
+           0.02 * 255 = 5.1 per channel, which an early stop that took the
+           wall's colour field for its brightest would drop. *)
+        let s =
+          read ~image:(Texture.v ~width:1 ~height:1 "\255\255\255")
+            ("(canvas (width 24) (height 24)) (sphere (center 0 0 3) (radius 1) (color 0 0 0) (reflective 0.02))\n"
+           ^ "(plane (point 0 0 -1) (normal 0 0 1) (color 0 0 0) " ^ texture ^ "planar)))\n(light ambient (intensity 1))")
+        in
+        let img = Helpers.image_exn s in
+        Alcotest.(check bool) "the white wall is seen" true (Hashtbl.mem (Test_pattern.colours img) (5, 5, 5));
+        Helpers.check_images "skips on and off" ~expected:(Helpers.image_exn ~skips:false s) img);
+    Alcotest.test_case "a texture's pixel centre shows its colour exactly: the globe's front is the image's centre" `Quick (fun () ->
+        (* A 2 x 2 image (red, green; blue, white) under ambient light 1
+           alone: the globe's point facing the camera, the centre pixel's,
+           is (u, v) = (0.5, 0.5), the corner where the four pixels meet:
+           their mean. *)
+        let s =
+          read ~image:(Texture.v ~width:2 ~height:2 "\255\000\000\000\255\000\000\000\255\255\255\255")
+            ("(canvas (width 3) (height 3)) (viewport (width 1) (height 1) (distance 1)) (epsilon 0.001) "
+           ^ "(sphere (center 0 0 3) (radius 1) (color 9 9 9) " ^ texture ^ "spherical))) (light ambient (intensity 1))")
+        in
+        let img = Helpers.image_exn s in
+        (* (255 + 0 + 0 + 255) / 4 = 127.5, (0 + 255 + 0 + 255) / 4, (0 + 0 + 255 + 255) / 4. *)
+        Alcotest.(check (triple int int int)) __LOC__ (128, 128, 128) (Image.get img 1 1));
+    Alcotest.test_case "tracing a textured scene allocates nothing per pixel, in both modes and through glass" `Quick (fun () ->
+        List.iter
+          (fun s ->
+            match Helpers.render ~samples:2 s with
+            | Ok (_, stats) -> Alcotest.(check (float 0.)) __LOC__ 0. stats.minor_words
+            | Error (`Msg m) -> Alcotest.fail m)
+          [
+            scene (); scene ~epsilon:"" ();
+            scene ~extra:"(sphere (center 0.2 -0.6 2.5) (radius 0.4) (color 200 200 200) (transparency 0.8) (refractive-index 1.3))" ();
+          ]);
+  ]
