@@ -1619,6 +1619,31 @@ let light_geom l =
   in
   Array.of_list (fields @ List.init (light_stride - List.length fields) (fun _ -> 0.))
 
+(* A light's point or vector in [lx], [ly], [lz]: a point light's, sphere
+   light's or spotlight's position, an area light's corner, a directional
+   light's direction. *)
+let light_vector = function
+  | Light.Ambient _ -> Vec3.zero
+  | Point { position; _ } | Sphere { position; _ } | Spot { position; _ } -> position
+  | Area { corner; _ } -> corner
+  | Directional { direction; _ } -> direction
+
+(* The document's kernel's six floats a light ([Prepared.light6]). *)
+let light6 lights =
+  Array.concat
+    (List.map
+       (fun l ->
+         let v = light_vector l in
+         [|
+           (match l with Light.Ambient _ -> 0. | Directional _ -> infinity | _ -> 1.);
+           Light.intensity l;
+           v.x;
+           v.y;
+           v.z;
+           sqrt ((v.x *. v.x) +. (v.y *. v.y) +. (v.z *. v.z));
+         |])
+       (Array.to_list lights))
+
 (* The record, from the steps' results; the lights' and the materials'
    arrays made here. *)
 let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg ~instances sl g sp
@@ -1632,13 +1657,6 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
   in
   let lights = Array.map snd numbered in
   let lf f = Array.map f lights and mf f = Array.map f materials in
-  let vector l =
-    match l with
-    | Light.Ambient _ -> Vec3.zero
-    | Point { position; _ } | Sphere { position; _ } | Spot { position; _ } -> position
-    | Area { corner; _ } -> corner
-    | Directional { direction; _ } -> direction
-  in
   let soft = Array.exists (function Light.Ambient _ | Point _ | Directional _ -> false | _ -> true) lights in
   let transparent = Array.exists (fun (m : Material.t) -> m.transparency > 0.) materials in
   (* The document's own scenes: spheres of plain materials (no pattern, no
@@ -1701,9 +1719,9 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     light_sv = lf (function Light.Area { samples_v; _ } -> samples_v | _ -> 1);
     light_adaptive = lf (function Light.Area { adaptive; _ } -> adaptive | _ -> false);
     light_intensity = lf Light.intensity;
-    lx = lf (fun l -> (vector l).x);
-    ly = lf (fun l -> (vector l).y);
-    lz = lf (fun l -> (vector l).z);
+    lx = lf (fun l -> (light_vector l).x);
+    ly = lf (fun l -> (light_vector l).y);
+    lz = lf (fun l -> (light_vector l).z);
     robust = scene.epsilon = None;
     epsilon = Option.value scene.epsilon ~default:0.;
     (* Nothing bounces off a scene without mirrors or glass, whatever its
@@ -1758,20 +1776,7 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
              | 2 -> sp.primary_ocz.(i)
              | _ -> sp.primary_k3.(i))
        else [||]);
-    light6 =
-      Array.concat
-        (List.map
-           (fun l ->
-             let v = vector l in
-             [|
-               (match l with Light.Ambient _ -> 0. | Directional _ -> infinity | _ -> 1.);
-               Light.intensity l;
-               v.x;
-               v.y;
-               v.z;
-               sqrt ((v.x *. v.x) +. (v.y *. v.y) +. (v.z *. v.z));
-             |])
-           (Array.to_list lights));
+    light6 = light6 lights;
     (* The viewport coordinates of each column and row of pixel centres,
        by the operations [Trace]'s primary ray does for any point. *)
     column_vx =
