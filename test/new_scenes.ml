@@ -12,6 +12,8 @@ let all =
     ("cylinder.scene", "capped and open cylinders, a glass one, a checker, a CSG drill");
     ("disk.scene", "disks seen from both sides, a mirror, glass, an open tube with a lid");
     ("focus.scene", "a thin lens, focused on the middle of a row of balls");
+    ("area-room.scene", "a room under an area light, a sphere light and a spotlight");
+    ("globe.scene", "a textured globe on a tiled floor");
   ]
 
 let names = List.map fst all
@@ -19,7 +21,7 @@ let names = List.map fst all
 let copy_models dir =
   Array.iter
     (fun name ->
-      if Filename.check_suffix name ".obj" then
+      if Filename.check_suffix name ".obj" || Filename.check_suffix name ".ppm" then
         match Raytrace_unix.File_io.read (Helpers.scene_path name) with
         | Ok text ->
             let oc = open_out_bin (Filename.concat dir name) in

@@ -10,5 +10,6 @@ val names : string list
 (** [names] is the scene file names of {!all}. *)
 
 val copy_models : string -> unit
-(** [copy_models dir] copies the OBJ files of [scenes/] into [dir], so that
-    a copy of a scene in [dir] reads its meshes as the original does. *)
+(** [copy_models dir] copies the OBJ and PPM files of [scenes/] into [dir], so that
+    a copy of a scene in [dir] reads its meshes and textures as the original
+    does. *)
