@@ -16,12 +16,12 @@ BUILD_PKGS = ocaml ocaml-dune ocaml-findlib libcmdliner-ocaml-dev libparsexp-oca
 TEST_PKGS = libalcotest-ocaml-dev libqcheck-ocaml-dev libzarith-ocaml-dev libcrowbar-ocaml-dev xvfb \
   x11-apps xdotool imagemagick parallel rsync slurmctld slurmd slurm-client munge openssh-server \
   openssh-client chromium libembree-dev
-# The plot of the run time against error benchmark (make bench-quality only).
+# The plots of the run time against error benchmarks (make bench-quality and bench-soft only).
 BENCH_PKGS = gnuplot-nox
 
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-.PHONY: run test deps deps-build build golden screenshot web web-screenshot clean bench bench-quality bench-embree fuzz
+.PHONY: run test deps deps-build build golden screenshot web web-screenshot clean bench bench-quality bench-soft bench-embree fuzz
 
 # Only what the program needs (dune build's default would build the tests too,
 # and their libraries come with `make deps`).
@@ -101,6 +101,14 @@ bench-quality:
 	@$(MAKE) --no-print-directory deps TEST_PKGS="$(TEST_PKGS) $(BENCH_PKGS)"
 	dune build --profile release --build-dir _build-release bench/quality.exe
 	$(BENCH_NICE) _build-release/default/bench/quality.exe --out docs
+
+# Soft shadows and depth of field, run time against error (bench/quality.ml --soft):
+# regenerates docs/soft.csv, docs/soft.png, docs/soft.md and docs/soft.gp (a few
+# minutes). Release build, as bench-quality.
+bench-soft:
+	@$(MAKE) --no-print-directory deps TEST_PKGS="$(TEST_PKGS) $(BENCH_PKGS)"
+	dune build --profile release --build-dir _build-release bench/quality.exe
+	$(BENCH_NICE) _build-release/default/bench/quality.exe --soft --out docs
 
 clean:
 	dune clean

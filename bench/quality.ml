@@ -8,6 +8,11 @@
 
      make bench-quality
 
+   With --soft (make bench-soft) it measures the integrals of soft
+   shadows and depth of field instead: uniform, stratified and adaptive
+   sampling against a reference of 64 times the samples (see "Soft
+   shadows and depth of field" below).
+
    Times are the CPU seconds (user + system) of [Render.image] in one
    process (jobs 1), the median of several runs: on a machine shared with
    other work they vary far less than wall-clock seconds, which the CSV
@@ -297,8 +302,300 @@ let summary ~runs scenes rows =
             best.diff.mean_abs (psnr_text best.diff.psnr));
   Buffer.contents b
 
+(* Writes the script [script ~png] to [path ".gp"] and runs gnuplot on it;
+   the plot replaces [path ".png"] only once it is whole. *)
+let plot ~path script =
+  let png = path ".png" in
+  let tmp = png ^ ".tmp" in
+  write (path ".gp") (fun oc -> output_string oc (script ~png:tmp));
+  match Sys.command (Printf.sprintf "gnuplot %s" (Filename.quote (path ".gp"))) with
+  | 0 ->
+      Sys.rename tmp png;
+      print_endline ("wrote " ^ png)
+  | n ->
+      prerr_endline (Printf.sprintf "quality: gnuplot failed (status %d); is gnuplot-nox installed?" n);
+      exit 1
+
+(* {1 Soft shadows and depth of field (--soft)}
+
+   The integrals of issue 27: an area light's soft shadows and a thin
+   lens's blur, each a ladder of sample counts per variant, timed as
+   above and compared with a reference of 64 times the samples of the
+   ladder's top rung. Writes docs/soft.{csv,md,gp,png}. *)
+
+(* Soft shadows: the area light's [(samples n n)] for each [n] here,
+   drawn [(sampling uniform)], stratified (the default) or stratified and
+   [(adaptive true)] (corners first, the samples only in the penumbra);
+   the reference is stratified at 64 x 64, 64 times the 8 x 8 top. The
+   scene's other lights are kept: their samples are keyed by the pixel
+   alone (one camera sample), the same in every render, so they add no
+   error. *)
+let soft_sides = [ 1; 2; 3; 4; 5; 6; 8 ]
+let soft_reference_side = 64
+
+(* Depth of field: the pixel's N x N grid, one lens point per camera
+   sample, drawn independently over the lens disc (the only way the
+   kernel draws them: "uniform"), for N = 1-4; and the same under
+   [--adaptive T] for odd N, which refines only pixels that differ from a
+   neighbour. The reference: 48 x 48, 64 times the 6 x 6 top. *)
+let lens_sides = [ 1; 2; 3; 4; 5; 6 ]
+let lens_adaptive = [ (3, 8); (3, 2); (5, 8); (5, 4); (5, 2); (7, 8); (7, 2) ]
+let lens_reference_side = 48
+
+(* A ball over a floor under a 2 x 2 panel (the soft-light tests'
+   scene, larger): most of the floor in view is penumbra. *)
+let ball_scene =
+  {|(canvas (width 160) (height 120))
+(camera (position 0 2 -3) (look-at 0 0 2))
+(plane (point 0 -1 0) (normal 0 1 0) (color 200 200 200) (specular 20))
+(sphere (center 0 0 2) (radius 0.7) (color 255 80 80) (specular 300))
+(box (min 0.9 -1 2.5) (max 1.5 -0.2 3.1) (color 80 80 255))
+(light ambient (intensity 0.1))
+(light area (intensity 0.8) (corner -1 3 1) (edge1 2 0 0) (edge2 0 0 2) (samples 4 4))|}
+
+(* Name, scene, canvas, kind. *)
+let soft_scenes =
+  [
+    ("area-room", `File "scenes/area-room.scene", (160, 120), `Shadow);
+    ("ball", `Text ball_scene, (160, 120), `Shadow);
+    ("focus", `File "scenes/focus.scene", (160, 90), `Lens);
+  ]
+
+type soft_row = {
+  s_scene : string;
+  variant : string;  (** uniform, stratified, adaptive *)
+  side : int;  (** Area light samples per side, or the pixel grid's N. *)
+  threshold : int option;  (** [--adaptive T] of the lens runs. *)
+  s_times : float list;
+  s_wall : float;
+  shadow_pp : float;
+  primary_pp : float;
+  s_diff : Image.Diff.t;
+}
+
+let soft_label r =
+  match r.threshold with
+  | Some t -> Printf.sprintf "a%d t%d" r.side t
+  | None -> Printf.sprintf "%dx%d" r.side r.side
+
+(* The scene with its area lights at [n x n] samples, drawn as
+   [variant] says. *)
+let with_area scene variant n =
+  let lights =
+    List.map
+      (fun (l : Light.t) ->
+        match l with
+        | Area { intensity; corner; edge1; edge2; _ } ->
+            Light.area ~adaptive:(variant = "adaptive")
+              ~sampling:(if variant = "uniform" then Light.Uniform else Light.Stratified)
+              intensity ~corner ~edge1 ~edge2 ~samples:(n, n)
+        | l -> l)
+      (Scene.lights scene)
+  in
+  Scene.with_overrides ~lights scene
+
+let soft_load source (w, h) =
+  let valid =
+    match source with `File path -> Files.read_scene path | `Text text -> Scene_file.of_string ~file:"ball" text
+  in
+  match Result.map Scene.of_valid valid with
+  | Ok s -> Scene.with_overrides ~width:w ~height:h s
+  | Error (`Msg m) -> failwith m
+
+(* Every rung of one scene, against its reference. *)
+let soft_rows ~runs (name, source, size, kind) =
+  let scene = soft_load source size in
+  let setting samples adaptive = { family = "soft"; depth = Scene.depth scene; samples; adaptive; subsample = false } in
+  let reference_scene, reference_setting =
+    match kind with
+    | `Shadow -> (with_area scene "stratified" soft_reference_side, setting 1 None)
+    | `Lens -> (scene, setting lens_reference_side None)
+  in
+  Printf.printf "%s (%dx%d): reference...%!" name (fst size) (snd size);
+  let reference, _, t, _ = render reference_scene reference_setting in
+  Printf.printf " %.1f s\n%!" t;
+  let rung variant side threshold scene s =
+    let img, (stats : Render.Stats.t), times, wall = measure ~runs scene s in
+    let diff = match Image.Diff.compare reference img with Ok d -> d | Error (`Msg m) -> failwith m in
+    let px = Float.of_int stats.pixels in
+    let r =
+      {
+        s_scene = name;
+        variant;
+        side;
+        threshold;
+        s_times = times;
+        s_wall = wall;
+        shadow_pp = Float.of_int stats.shadow /. px;
+        primary_pp = Float.of_int stats.primary /. px;
+        s_diff = diff;
+      }
+    in
+    Printf.printf "  %-10s %-8s %8.4f s  %7.1f shadow/px  mean %.4f  max %3d\n%!" variant (soft_label r) (median times)
+      r.shadow_pp diff.mean_abs diff.max_abs;
+    r
+  in
+  match kind with
+  | `Shadow ->
+      List.concat_map
+        (fun variant -> List.map (fun n -> rung variant n None (with_area scene variant n) (setting 1 None)) soft_sides)
+        [ "uniform"; "stratified"; "adaptive" ]
+  | `Lens ->
+      List.map (fun n -> rung "uniform" n None scene (setting n None)) lens_sides
+      @ List.map (fun (n, t) -> rung "adaptive" n (Some t) scene (setting n (Some t))) lens_adaptive
+
+let soft_time r = median r.s_times
+
+(* The claim: for each uniform rung, the fastest adaptive rung of the
+   same scene at or below its error, and the share of its time. *)
+let soft_claim rows =
+  List.filter_map
+    (fun u ->
+      if u.variant <> "uniform" then None
+      else
+        let best =
+          List.filter (fun a -> a.s_scene = u.s_scene && a.variant = "adaptive" && a.s_diff.mean_abs <= u.s_diff.mean_abs) rows
+          |> List.sort (fun a b -> Float.compare (soft_time a) (soft_time b))
+        in
+        Some (u, match best with [] -> None | a :: _ -> Some a))
+    rows
+
+(* The time at which the adaptive rungs reach error [e]: on their front
+   (each rung more accurate than every faster one), interpolated
+   linearly in log time against log error between the two rungs around
+   [e]; the first rung's own time if it is already below; [None] if no
+   rung reaches it. The ladder's rungs are coarse (from 3 x 3 to 4 x 4 the
+   samples almost double): this is the time a rung in between would
+   take, if time and error vary smoothly. *)
+let interpolated_time rows scene e =
+  let front =
+    rows
+    |> List.filter (fun a -> a.s_scene = scene && a.variant = "adaptive")
+    |> List.sort (fun a b -> Float.compare (soft_time a) (soft_time b))
+    |> List.fold_left
+         (fun acc a -> match acc with b :: _ when b.s_diff.mean_abs <= a.s_diff.mean_abs -> acc | _ -> a :: acc)
+         []
+    |> List.rev
+  in
+  let rec go = function
+    | a :: _ when a.s_diff.mean_abs <= e -> Some (soft_time a)
+    | a :: (b :: _ as rest) ->
+        if b.s_diff.mean_abs <= e then
+          let la = log a.s_diff.mean_abs and lb = log b.s_diff.mean_abs in
+          let f = (log e -. la) /. (lb -. la) in
+          Some (exp (log (soft_time a) +. (f *. (log (soft_time b) -. log (soft_time a)))))
+        else go rest
+    | _ -> None
+  in
+  go front
+
+let soft_variants =
+  [ ("uniform", "uniform", "7", "#1f77b4"); ("stratified", "stratified", "5", "#2ca02c"); ("adaptive", "adaptive", "9", "#d62728") ]
+
+let soft_gnuplot ~png ~runs scenes rows =
+  let b = Buffer.create 16384 in
+  let pr fmt = Printf.bprintf b fmt in
+  List.iteri
+    (fun i (name, _, _, _) ->
+      List.iter
+        (fun (v, _, _, _) ->
+          pr "$d%d_%s << EOD\n" i v;
+          rows
+          |> List.filter (fun r -> r.s_scene = name && r.variant = v)
+          |> List.sort (fun a b -> Float.compare (soft_time a) (soft_time b))
+          |> List.iter (fun r -> pr "%.6f %.6f \"%s\"\n" (soft_time r) (Float.max r.s_diff.mean_abs 1e-3) (soft_label r));
+          pr "EOD\n")
+        soft_variants)
+    scenes;
+  pr "set terminal pngcairo size 1800,600 font 'sans,11' background rgb 'white'\n";
+  pr "set output '%s'\n" png;
+  pr "set multiplot layout 1,%d title" (List.length scenes);
+  pr " 'raytrace: soft shadows and depth of field, run time against error (median CPU time of >= %d runs; error against 64x the top rung''s samples)'\n" runs;
+  pr "set logscale xy\nset grid\nset xlabel 'CPU time (s)'\nset ylabel 'mean absolute error (0-255 per channel)'\n";
+  pr "set key top right font ',10'\n";
+  List.iteri
+    (fun i (name, _, (w, h), kind) ->
+      pr "set title '%s (%dx%d, %s)'\n" name w h
+        (match kind with `Shadow -> "area light n x n samples" | `Lens -> "N x N pixel grid, a lens point each; aN tT: --adaptive");
+      pr "plot ";
+      let parts =
+        List.filter_map
+          (fun (v, title, pt, color) ->
+            if List.exists (fun r -> r.s_scene = name && r.variant = v) rows then
+              Some
+                (Printf.sprintf
+                   "$d%d_%s using 1:2 with linespoints pt %s ps 1.3 lc rgb '%s' title '%s', $d%d_%s using 1:2:3 with labels left offset 0.6,0.5 font ',8' tc rgb '%s' notitle"
+                   i v pt color title i v color)
+            else None)
+          soft_variants
+      in
+      pr "%s\n" (String.concat ", \\\n  " parts))
+    scenes;
+  pr "unset multiplot\n";
+  Buffer.contents b
+
+let soft_csv rows oc =
+  output_string oc
+    "scene,variant,samples_side,adaptive_threshold,cpu_s,cpu_min_s,cpu_max_s,wall_s,runs,primary_per_pixel,shadow_per_pixel,mean_abs,max_abs,psnr_db,share_gt1\n";
+  List.iter
+    (fun r ->
+      Printf.fprintf oc "%s,%s,%d,%s,%.6f,%.6f,%.6f,%.6f,%d,%.4f,%.4f,%.6f,%d,%s,%.6f\n" r.s_scene r.variant r.side
+        (match r.threshold with Some t -> string_of_int t | None -> "")
+        (soft_time r) (List.hd r.s_times)
+        (List.nth r.s_times (List.length r.s_times - 1))
+        r.s_wall (List.length r.s_times) r.primary_pp r.shadow_pp r.s_diff.mean_abs r.s_diff.max_abs
+        (psnr_text r.s_diff.psnr)
+        (Float.of_int r.s_diff.differing_gt1 /. Float.of_int r.s_diff.pixels))
+    rows
+
+let soft_summary ~runs rows =
+  let b = Buffer.create 8192 in
+  let pr fmt = Printf.bprintf b fmt in
+  pr "<!-- Generated by bench/quality.ml --soft (make bench-soft); do not edit. -->\n\n";
+  pr "Median CPU time of `Render.image` in one process over >= %d runs (wall-clock in `soft.csv`); error against %d x %d area light samples (soft shadows) or %d x %d pixel samples (depth of field).\n\n"
+    runs soft_reference_side soft_reference_side lens_reference_side lens_reference_side;
+  pr "| scene | variant | samples | CPU time (s) | primary rays/px | shadow rays/px | mean abs err | max err | PSNR (dB) | pixels off by > 1 |\n";
+  pr "|---|---|---|---|---|---|---|---|---|---|\n";
+  List.iter
+    (fun r ->
+      pr "| %s | %s | %s | %.4f | %.2f | %.1f | %.3f | %d | %s | %.2f%% |\n" r.s_scene r.variant (soft_label r) (soft_time r)
+        r.primary_pp r.shadow_pp r.s_diff.mean_abs r.s_diff.max_abs (psnr_text r.s_diff.psnr)
+        (100. *. Float.of_int r.s_diff.differing_gt1 /. Float.of_int r.s_diff.pixels))
+    rows;
+  pr "\nThe claim, per uniform rung: the fastest adaptive rung at or below its mean error and its share of the uniform rung's time; then the time at which the adaptive rungs reach that error, interpolated between the two around it (log time against log error), and its share. Met: at most 50%%.\n\n";
+  pr "| scene | uniform | its time (s) | its error | fastest adaptive at or below | its time (s) | its error | share of time | interpolated time (s) | share | met |\n";
+  pr "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  List.iter
+    (fun (u, a) ->
+      let interpolated =
+        match interpolated_time rows u.s_scene u.s_diff.mean_abs with
+        | None -> ("", "", "no")
+        | Some t ->
+            let share = t /. soft_time u in
+            (Printf.sprintf "%.4f" t, Printf.sprintf "%.0f%%" (100. *. share), if share <= 0.5 then "yes" else "no")
+      in
+      let it, is, met = interpolated in
+      match a with
+      | None -> pr "| %s | %s | %.4f | %.3f | none | | | | %s | %s | %s |\n" u.s_scene (soft_label u) (soft_time u) u.s_diff.mean_abs it is met
+      | Some a ->
+          pr "| %s | %s | %.4f | %.3f | %s | %.4f | %.3f | %.0f%% | %s | %s | %s |\n" u.s_scene (soft_label u) (soft_time u)
+            u.s_diff.mean_abs (soft_label a) (soft_time a) a.s_diff.mean_abs
+            (100. *. soft_time a /. soft_time u)
+            it is met)
+    (soft_claim rows);
+  Buffer.contents b
+
+let soft_main ~out ~runs ~only =
+  let scenes = List.filter (fun (n, _, _, _) -> only = [] || List.mem n only) soft_scenes in
+  let rows = List.concat_map (soft_rows ~runs) scenes in
+  let path ext = Filename.concat out ("soft" ^ ext) in
+  write (path ".csv") (soft_csv rows);
+  write (path ".md") (fun oc -> output_string oc (soft_summary ~runs rows));
+  plot ~path (soft_gnuplot ~runs scenes rows)
+
 let () =
-  let out = ref "docs" and name = ref "quality" and runs = ref 5 and only = ref [] and half = ref false in
+  let out = ref "docs" and name = ref "quality" and runs = ref 5 and only = ref [] and half = ref false
+  and soft = ref false in
   Arg.parse
     [
       ("--out", Arg.Set_string out, "DIR  where to write quality.csv, quality.png, quality.md (default docs)");
@@ -306,9 +603,14 @@ let () =
       ("--runs", Arg.Set_int runs, "R  at least R timed runs per setting (default 5)");
       ("--scene", Arg.String (fun s -> only := s :: !only), "NAME  only this scene (repeatable)");
       ("--half", Arg.Set half, " at half the scene files' canvas sizes (4 times quicker)");
+      ("--soft", Arg.Set soft, " soft shadows and depth of field instead: writes soft.{csv,png,md,gp}");
     ]
     (fun a -> raise (Arg.Bad ("unexpected argument " ^ a)))
-    "quality [--out DIR] [--name NAME] [--runs R] [--scene NAME] [--half]: run time against error";
+    "quality [--out DIR] [--name NAME] [--runs R] [--scene NAME] [--half] [--soft]: run time against error";
+  if !soft then begin
+    soft_main ~out:!out ~runs:!runs ~only:!only;
+    exit 0
+  end;
   let selected =
     List.filter_map
       (fun (n, path) ->
@@ -368,13 +670,4 @@ let () =
       output_string oc (csv_header ^ "\n");
       List.iter (fun r -> output_string oc (csv_line r ^ "\n")) rows);
   write (path ".md") (fun oc -> output_string oc (summary ~runs:!runs selected rows));
-  let png = path ".png" in
-  let tmp = png ^ ".tmp" in
-  write (path ".gp") (fun oc -> output_string oc (gnuplot_script ~png:tmp ~runs:!runs selected rows));
-  match Sys.command (Printf.sprintf "gnuplot %s" (Filename.quote (path ".gp"))) with
-  | 0 ->
-      Sys.rename tmp png;
-      print_endline ("wrote " ^ png)
-  | n ->
-      prerr_endline (Printf.sprintf "quality: gnuplot failed (status %d); is gnuplot-nox installed?" n);
-      exit 1
+  plot ~path (gnuplot_script ~runs:!runs selected rows)

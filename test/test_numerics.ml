@@ -183,8 +183,8 @@ let transform ~scale ~translate (s : Scene.t) =
       (List.map
          (function
            | Light.Point { intensity; position } -> Light.point intensity (p position)
-           | Light.Area { intensity; corner; edge1; edge2; samples_u; samples_v; adaptive } ->
-               Light.area ~adaptive intensity ~corner:(p corner) ~edge1:(Vec3.smul scale edge1)
+           | Light.Area { intensity; corner; edge1; edge2; samples_u; samples_v; adaptive; sampling } ->
+               Light.area ~adaptive ~sampling intensity ~corner:(p corner) ~edge1:(Vec3.smul scale edge1)
                  ~edge2:(Vec3.smul scale edge2) ~samples:(samples_u, samples_v)
            | Light.Sphere { intensity; position; radius; samples } ->
                Light.sphere intensity ~position:(p position) ~radius:(scale *. radius) ~samples

@@ -21,6 +21,9 @@ let scene ?(size = 48) ?(extra = "") light =
 
 let area = "(light area (intensity 0.7) (corner -1 3 1) (edge1 2 0 0) (edge2 0 0 2) (samples 3 4))"
 let adaptive = "(light area (intensity 0.7) (corner -1 3 1) (edge1 2 0 0) (edge2 0 0 2) (samples 3 4) (adaptive true))"
+let uniform = "(light area (intensity 0.7) (corner -1 3 1) (edge1 2 0 0) (edge2 0 0 2) (samples 3 4) (sampling uniform))"
+let uniform_adaptive =
+  "(light area (intensity 0.7) (corner -1 3 1) (edge1 2 0 0) (edge2 0 0 2) (samples 3 4) (sampling uniform) (adaptive true))"
 let sphere = "(light sphere (intensity 0.7) (position 1 3 1) (radius 0.8) (samples 9))"
 let spot = "(light spot (intensity 0.8) (position 0 4 1) (direction 0 -1 0.3) (angle 30) (falloff 3))"
 
@@ -63,6 +66,10 @@ let parse_cases =
     ("(light area (intensity 0.5) (corner 0 3 0) (edge1 1 0 0) (edge2 0 0 1) (samples 2 0))", "1:83", "samples must lie in [1, 4096], got 0");
     ("(light area (intensity 0.5) (corner 0 3 0) (edge1 1 0 0) (edge2 0 0 1) (samples 2))", "1:72", "takes 2 integers, got 1");
     ("(light area (intensity 0.5) (corner 0 3 0) (edge1 1 0 0) (samples 2 2))", "1:1", "missing its (edge2 ...) field");
+    ("(light area (intensity 0.5) (corner 0 3 0) (edge1 1 0 0) (edge2 0 0 1) (samples 2 2) (sampling random))", "1:96",
+     "sampling: expected stratified or uniform, got random");
+    ("(light area (intensity 0.5) (corner 0 3 0) (edge1 1 0 0) (edge2 0 0 1) (samples 2 2) (sampling uniform true))", "1:86",
+     "sampling takes 1 value, got 2");
     ("(light sphere (intensity 0.5) (position 0 3 0) (radius 0) (samples 4))", "1:1", "radius must lie in");
     ("(light sphere (intensity 0.5) (position 0 3 0) (radius 1) (samples 1.5))", "1:68", "expected an integer, got 1.5");
     ("(light spot (intensity 0.5) (position 0 3 0) (direction 0 0 0) (angle 20) (falloff 1))", "1:1", "direction must not be the zero vector");
@@ -81,7 +88,7 @@ let tests =
             let l = light_of text in
             Alcotest.(check string) __LOC__ text (Light.show l);
             Alcotest.(check bool) text true (Light.equal l (light_of (Light.show l))))
-          [ area; adaptive; sphere; spot ]);
+          [ area; adaptive; uniform; uniform_adaptive; sphere; spot ]);
     Alcotest.test_case "a bad area, sphere or spot light is one located line" `Quick (fun () ->
         List.iter
           (fun (text, at, expected) ->
@@ -93,10 +100,13 @@ let tests =
       (fun () ->
         List.iter (fun (what, l) -> as_the_oracle what (scene l)) [ ("area", area); ("sphere", sphere); ("spot", spot) ];
         as_the_oracle "all three" (scene (String.concat "\n" [ area; sphere; spot ]));
-        as_the_oracle "adaptive area" (scene adaptive));
+        as_the_oracle "adaptive area" (scene adaptive);
+        as_the_oracle "uniform area" (scene uniform);
+        as_the_oracle "uniform adaptive area" (scene uniform_adaptive));
     Alcotest.test_case "through glass too (the ray tree's lighting)" `Quick (fun () ->
         as_the_oracle "area, glass ball" (scene ~extra:"(transparency 0.5) (refractive-index 1.3)" area);
-        as_the_oracle "adaptive area, glass ball" (scene ~extra:"(transparency 0.5) (refractive-index 1.3)" adaptive));
+        as_the_oracle "adaptive area, glass ball" (scene ~extra:"(transparency 0.5) (refractive-index 1.3)" adaptive);
+        as_the_oracle "uniform area, glass ball" (scene ~extra:"(transparency 0.5) (refractive-index 1.3)" uniform));
     Alcotest.test_case "an area light's shadow is soft: the floor under the ball's edge takes values between" `Quick
       (fun () ->
         (* With a point light at the panel's centre the floor is lit or in
@@ -157,7 +167,7 @@ let tests =
             done;
             Alcotest.(check (float 0.)) what 0. (Gc.minor_words () -. before))
           [
-            ("each kind", scene ~size:20 (String.concat "\n" [ area; adaptive; sphere; spot ]));
+            ("each kind", scene ~size:20 (String.concat "\n" [ area; adaptive; uniform; uniform_adaptive; sphere; spot ]));
             ("each kind, glass", scene ~size:20 ~extra:"(transparency 0.5)" (String.concat "\n" [ area; adaptive; sphere; spot ]));
           ]);
     Alcotest.test_case "a scene with a soft light does not take the document's kernel" `Quick (fun () ->
@@ -279,6 +289,32 @@ let tests =
         match Scene.check_work (Helpers.valid (s 4096)) with
         | Ok () -> Alcotest.fail "16 million shadow rays a point passed the work bound"
         | Error (`Msg m) -> if not (contains m "(1 + 16777216 lights)") then Alcotest.failf "%S" m);
+      Alcotest.test_case "a uniform area light draws each sample over the whole panel: unit, not stratum" `Quick (fun () ->
+        (* A 2 x 2 panel at height 1 over P = 0, 2 x 1 uniform samples:
+           point lights at (-1 + 2 s, 1, -1 + 2 t), with s = unit (key h 0)
+           and t = unit (key h 1) for h = key (key k 0) j, j = 0, 1, each
+           of intensity 1/2; stratified, s would be (j + unit (key (key h
+           0) j)) / 2. *)
+        let s sampling =
+          Helpers.parse_ok
+            ("(canvas (width 2) (height 2)) (light area (intensity 1) (corner -1 1 -1) (edge1 2 0 0) (edge2 0 0 2) (samples 2 1)"
+           ^ sampling ^ ")")
+        in
+        let k0 = 777 in
+        let term j =
+          let h = Private.Sample_key.(key (key k0 0) j) in
+          let su = Private.Sample_key.unit (Private.Sample_key.key h 0) and sv = Private.Sample_key.unit (Private.Sample_key.key h 1) in
+          0.5 /. Vec3.norm (Vec3.v (-1. +. (su *. 2.)) 1. (-1. +. (sv *. 2.)))
+        and lighting sc =
+          Private.Literal.compute_lighting ~key:k0 sc ~epsilon:0.001 ~point:Vec3.zero ~normal:Vec3.oy ~view:Vec3.oy
+            ~specular:Sphere.matte
+        in
+        Alcotest.(check (float 1e-15)) __LOC__ (term 0 +. term 1) (lighting (s " (sampling uniform)"));
+        if lighting (s "") = lighting (s " (sampling uniform)") then Alcotest.fail "uniform and stratified agree";
+        (* The kernel: the panel over a floor, unshadowed, differs too. *)
+        let lit sampling = Helpers.image_exn (scene ~size:24 sampling) in
+        let differing, _ = difference ~expected:(lit area) (lit uniform) in
+        if differing = 0 then Alcotest.fail "the kernel draws uniform samples as stratified ones");
       Alcotest.test_case "Prepared.without Umbra turns the umbra skip off alone: the same bytes, more rays" `Quick (fun () ->
         let image p =
           let tr = Trace.create p in

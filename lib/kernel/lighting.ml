@@ -53,6 +53,9 @@ let[@inline] stratum h n i =
   let x = (Float.of_int i +. (Float.of_int (Sample_key.mix (Sample_key.key h i)) *. 0x1p-31)) /. Float.of_int n in
   if x < 1. then x else 0x1.fffffffffffffp-1
 
+(* [Sample_key.unit h], likewise unboxed. *)
+let[@inline] unit h = Float.of_int (Sample_key.mix h) *. 0x1p-31
+
 (* The terms of one sample, of intensity [li]: the point light at
    [s.px.. + s.dx..], with its shadow ray (range [(epsilon, 1)]). As the
    document's point light in [lighting_with]: both terms decided first, a
@@ -174,6 +177,7 @@ let[@inline] area tr ~through ~shiny ~specular_of m l length_n length_v =
   let ax = Array.unsafe_get geom (g + 3) and ay = Array.unsafe_get geom (g + 4) and az = Array.unsafe_get geom (g + 5) in
   let bx = Array.unsafe_get geom (g + 6) and by = Array.unsafe_get geom (g + 7) and bz = Array.unsafe_get geom (g + 8) in
   let px = s.px and py = s.py and pz = s.pz in
+  let uniform = Array.unsafe_get p.light_uniform l in
   let verdict =
     if Array.unsafe_get p.light_adaptive l then begin
       let v = corners tr ~through l cx cy cz ax ay az bx by bz in
@@ -185,9 +189,10 @@ let[@inline] area tr ~through ~shiny ~specular_of m l length_n length_v =
   in
   if verdict <> hidden then begin
     (* Facing the rectangle's centre: elsewhere the samples mostly add no
-       term and cast no ray, and the corners' rays would be extra. *)
+       term and cast no ray, and the corners' rays would be extra. Uniform
+       samples have no corner cells whose hull holds the others. *)
     let early =
-      verdict = doubt && (not through) && p.umbra_skip && u >= 2 && v >= 2
+      verdict = doubt && (not uniform) && (not through) && p.umbra_skip && u >= 2 && v >= 2
       && (s.nx *. (cx +. (0.5 *. (ax +. bx)) -. px)) +. (s.ny *. (cy +. (0.5 *. (ay +. by)) -. py))
          +. (s.nz *. (cz +. (0.5 *. (az +. bz)) -. pz))
          > 0.
@@ -207,7 +212,8 @@ let[@inline] area tr ~through ~shiny ~specular_of m l length_n length_v =
     for a = 0 to u - 1 do
       for b = 0 to v - 1 do
         let h = Sample_key.key hl ((a * v) + b) in
-        let su = stratum (Sample_key.key h 0) u a and sv = stratum (Sample_key.key h 1) v b in
+        let su = if uniform then unit (Sample_key.key h 0) else stratum (Sample_key.key h 0) u a in
+        let sv = if uniform then unit (Sample_key.key h 1) else stratum (Sample_key.key h 1) v b in
         s.dx <- cx +. (su *. ax) +. (sv *. bx) -. px;
         s.dy <- cy +. (su *. ay) +. (sv *. by) -. py;
         s.dz <- cz +. (su *. az) +. (sv *. bz) -. pz;

@@ -68,6 +68,7 @@ type t = {
   light_su : int array;
   light_sv : int array;
   light_adaptive : bool array;
+  light_uniform : bool array;
   soft_lights : bool;
   umbra_skip : bool;
   sampled : bool;
@@ -1718,6 +1719,7 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     light_su = lf (function Light.Area { samples_u; _ } -> samples_u | Sphere { samples; _ } -> samples | _ -> 1);
     light_sv = lf (function Light.Area { samples_v; _ } -> samples_v | _ -> 1);
     light_adaptive = lf (function Light.Area { adaptive; _ } -> adaptive | _ -> false);
+    light_uniform = lf (function Light.Area { sampling = Uniform; _ } -> true | _ -> false);
     light_intensity = lf Light.intensity;
     lx = lf (fun l -> (light_vector l).x);
     ly = lf (fun l -> (light_vector l).y);

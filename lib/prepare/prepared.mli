@@ -192,6 +192,9 @@ type t = private {
   light_adaptive : bool array;
       (** Per light: an area light samples only the points its corners
           leave in doubt ({!Light}, "Penumbra-only sampling"). *)
+  light_uniform : bool array;
+      (** Per light: an area light's samples are drawn independently over
+          its whole rectangle ([Light.Uniform]), not one per cell. *)
   soft_lights : bool;
       (** Some light is an area, sphere or spot light: the lighting loop
           that asks each light's kind for them (the other never asks). *)

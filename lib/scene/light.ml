@@ -1,3 +1,5 @@
+type sampling = Stratified | Uniform [@@deriving eq]
+
 type t =
   | Ambient of { intensity : float }
   | Point of { intensity : float; position : Vec3.t }
@@ -10,6 +12,7 @@ type t =
       samples_u : int;
       samples_v : int;
       adaptive : bool;
+      sampling : sampling;
     }
   | Sphere of { intensity : float; position : Vec3.t; radius : float; samples : int }
   | Spot of { intensity : float; position : Vec3.t; direction : Vec3.t; angle : float; falloff : float }
@@ -22,8 +25,8 @@ let ambient intensity = Ambient { intensity }
 let point intensity position = Point { intensity; position }
 let directional intensity direction = Directional { intensity; direction }
 
-let area ?(adaptive = false) intensity ~corner ~edge1 ~edge2 ~samples:(samples_u, samples_v) =
-  Area { intensity; corner; edge1; edge2; samples_u; samples_v; adaptive }
+let area ?(adaptive = false) ?(sampling = Stratified) intensity ~corner ~edge1 ~edge2 ~samples:(samples_u, samples_v) =
+  Area { intensity; corner; edge1; edge2; samples_u; samples_v; adaptive; sampling }
 
 let sphere intensity ~position ~radius ~samples = Sphere { intensity; position; radius; samples }
 let spot intensity ~position ~direction ~angle ~falloff = Spot { intensity; position; direction; angle; falloff }
@@ -163,10 +166,11 @@ let pp ppf = function
   | Directional { intensity; direction } ->
       Format.fprintf ppf "(light directional (intensity %s) (direction %a))" (Float_text.to_string intensity)
         Vec3.pp_components direction
-  | Area { intensity; corner; edge1; edge2; samples_u; samples_v; adaptive } ->
-      Format.fprintf ppf "(light area (intensity %s) (corner %a) (edge1 %a) (edge2 %a) (samples %d %d)%s)"
+  | Area { intensity; corner; edge1; edge2; samples_u; samples_v; adaptive; sampling } ->
+      Format.fprintf ppf "(light area (intensity %s) (corner %a) (edge1 %a) (edge2 %a) (samples %d %d)%s%s)"
         (Float_text.to_string intensity) Vec3.pp_components corner Vec3.pp_components edge1 Vec3.pp_components edge2
         samples_u samples_v
+        (match sampling with Stratified -> "" | Uniform -> " (sampling uniform)")
         (if adaptive then " (adaptive true)" else "")
   | Sphere { intensity; position; radius; samples } ->
       Format.fprintf ppf "(light sphere (intensity %s) (position %a) (radius %s) (samples %d))"

@@ -6,6 +6,15 @@
 
 (** {1:lights Lights} *)
 
+(** Where an area light's samples lie on its rectangle (see
+    {!section-samples_def}). *)
+type sampling =
+  | Stratified  (** One jittered point in each of the [u x v] cells (the default). *)
+  | Uniform
+      (** [u v] points drawn independently and uniformly over the whole
+          rectangle: the plain Monte Carlo estimate, kept to measure what
+          stratifying gains (docs/run-time-against-error.md). *)
+
 type t = private
   | Ambient of { intensity : float }
       (** Lights every point of every object equally (7.3). *)
@@ -23,6 +32,7 @@ type t = private
       samples_u : int;
       samples_v : int;
       adaptive : bool;
+      sampling : sampling;
     }
       (** A rectangle [corner + a edge1 + b edge2], [a, b] in [\[0, 1\]],
           that shines from each of its points: the light at a point [P] is
@@ -30,7 +40,9 @@ type t = private
           [intensity / (samples_u samples_v)], one in each cell of the
           rectangle cut in [samples_u] strips along [edge1] and [samples_v]
           along [edge2], at a point jittered in its cell by {!Raytrace.Private.Sample_key}
-          (see {!section-samples_def}). Its shadows are soft. With
+          (see {!section-samples_def}); with [sampling = Uniform], at
+          [samples_u x samples_v] points drawn independently over the whole
+          rectangle instead. Its shadows are soft. With
           [adaptive], the penumbra alone is sampled (see
           {!section-adaptive}). *)
   | Sphere of { intensity : float; position : Vec3.t; radius : float; samples : int }
@@ -68,11 +80,12 @@ val directional : float -> Vec3.t -> t
 (** [directional i l] is the directional light of intensity [i] toward
     [l]. *)
 
-val area : ?adaptive:bool -> float -> corner:Vec3.t -> edge1:Vec3.t -> edge2:Vec3.t -> samples:int * int -> t
-(** [area ~adaptive i ~corner ~edge1 ~edge2 ~samples:(u, v)] is the
-    rectangle light of intensity [i] with [u x v] samples; [adaptive]
+val area :
+  ?adaptive:bool -> ?sampling:sampling -> float -> corner:Vec3.t -> edge1:Vec3.t -> edge2:Vec3.t -> samples:int * int -> t
+(** [area ~adaptive ~sampling i ~corner ~edge1 ~edge2 ~samples:(u, v)] is
+    the rectangle light of intensity [i] with [u x v] samples; [adaptive]
     (default [false]) samples only the points its corners leave in
-    doubt. *)
+    doubt; [sampling] (default [Stratified]) places the samples. *)
 
 val sphere : float -> position:Vec3.t -> radius:float -> samples:int -> t
 (** [sphere i ~position ~radius ~samples] is the sphere light of intensity
@@ -154,7 +167,9 @@ val shadow_t_max : t -> float
     - area light, cells [(a, b)] for [a] from [0] to [u - 1], then [b]
       from [0] to [v - 1]: [h = key (key k l) (a v + b)],
       [s = stratum (key h 0) ~n:u a], [t = stratum (key h 1) ~n:v b],
-      [Q = (corner + s edge1) + t edge2];
+      [Q = (corner + s edge1) + t edge2]; with [sampling = Uniform],
+      [s = unit (key h 0)] and [t = unit (key h 1)] instead (the same
+      keys, each point anywhere on the rectangle);
     - sphere light, samples [j] from [0] to [n - 1]: [h = key (key k l) j],
       [rho = radius sqrt (stratum (key h 0) ~n j)],
       [phi = 2 pi unit (key h 1)], [w = (position - P) / |position - P|],

@@ -454,14 +454,18 @@ let light_samples ~key ~number light point =
   | Light.Ambient _ -> []
   | Point { intensity; position } -> [ (intensity, Vec3.sub position point) ]
   | Directional { intensity; direction } -> [ (intensity, direction) ]
-  | Area { intensity; corner; edge1; edge2; samples_u = u; samples_v = v; adaptive = _ } ->
+  | Area { intensity; corner; edge1; edge2; samples_u = u; samples_v = v; adaptive = _; sampling } ->
       let i = intensity /. Float.of_int (u * v) in
       List.concat
         (List.init u (fun a ->
              List.init v (fun b ->
                  let h = Sample_key.key hl ((a * v) + b) in
-                 let s = Sample_key.stratum (Sample_key.key h 0) ~n:u a in
-                 let t = Sample_key.stratum (Sample_key.key h 1) ~n:v b in
+                 let s, t =
+                   match sampling with
+                   | Light.Stratified ->
+                       (Sample_key.stratum (Sample_key.key h 0) ~n:u a, Sample_key.stratum (Sample_key.key h 1) ~n:v b)
+                   | Uniform -> (Sample_key.unit (Sample_key.key h 0), Sample_key.unit (Sample_key.key h 1))
+                 in
                  let q = Vec3.add (Vec3.add corner (Vec3.smul s edge1)) (Vec3.smul t edge2) in
                  (i, Vec3.sub q point))))
   | Sphere { intensity; position; radius; samples = n } ->

@@ -249,6 +249,17 @@ let bool_field form name f =
   | Sexp.Atom "false" -> false
   | node -> fail node "%s: expected true or false" (field_what form name ())
 
+(* An area light's [(sampling stratified)] or [(sampling uniform)]. *)
+let area_sampling form f =
+  let kinds = [ "stratified"; "uniform" ] in
+  match single form "sampling" f with
+  | Sexp.Atom "stratified" -> Light.Stratified
+  | Sexp.Atom "uniform" -> Light.Uniform
+  | Sexp.Atom a as node ->
+      fail node "%s: expected %s, got %s%s" (field_what form "sampling" ()) (one_of kinds) (show_atom a)
+        (suggestion a kinds)
+  | node -> fail node "%s: expected %s" (field_what form "sampling" ()) (one_of kinds)
+
 (* The optical fields of every object: transparency, refractive index,
    Fresnel; the split [reflective + transparency <= 1] is reported at the
    transparency. *)
@@ -591,7 +602,7 @@ let light ~where form_node nodes =
         match kind with
         | "point" -> [ "position" ]
         | "directional" -> [ "direction" ]
-        | "area" -> [ "corner"; "edge1"; "edge2"; "samples"; "adaptive" ]
+        | "area" -> [ "corner"; "edge1"; "edge2"; "samples"; "adaptive"; "sampling" ]
         | "sphere" -> [ "position"; "radius"; "samples" ]
         | "spot" -> [ "position"; "direction"; "angle"; "falloff" ]
         | _ -> []
@@ -633,7 +644,8 @@ let light ~where form_node nodes =
           let corner = point "corner" and edge1 = point "edge1" and edge2 = point "edge2" in
           let u, v = match samples 2 with [ u; v ] -> (u, v) | _ -> (1, 1) in
           let adaptive = Option.fold ~none:false ~some:(bool_field form "adaptive") (find fs "adaptive") in
-          whole (Light.area ~adaptive intensity ~corner ~edge1 ~edge2 ~samples:(u, v))
+          let sampling = Option.fold ~none:Light.Stratified ~some:(area_sampling form) (find fs "sampling") in
+          whole (Light.area ~adaptive ~sampling intensity ~corner ~edge1 ~edge2 ~samples:(u, v))
       | "sphere" ->
           let position = point "position" and radius = num "radius" in
           let n = match samples 1 with [ n ] -> n | _ -> 1 in
