@@ -83,26 +83,29 @@ let[@inline] pixel tr gx gy =
     else primary tr
   end
 
+(* Pixel [col] of a row whose first is [col0]: its camera ray (from the
+   lens point of [tr.key] if [sampled]), traced and stored. *)
+let[@inline] row_pixel tr buffer k col0 col r ~sampled =
+  check_budget tr;
+  if sampled then Camera_ray.set_lens_pixel tr col r else Camera_ray.set_pixel tr col r;
+  tr.counters.primary <- tr.counters.primary + 1;
+  trace tr;
+  store tr buffer (k + (3 * (col - col0)))
+
 let row tr buffer k gx gy count =
   let p = tr.p in
   let col0 = gx + (p.width / 2) and r = gy + (p.height / 2) in
   if r >= 0 && r < p.height && col0 >= 0 && count >= 0 && col0 + count <= p.width then begin
     (* The kernel's row copy takes no assumed sphere (see [Textbook]). *)
     if p.textbook_all && p.skips && tr.assumed = no_assumption then Textbook.row tr buffer k col0 count r
-    else
-      (* [pixel], the row's checks made once. *)
-      let c = tr.counters in
+    (* [pixel], the row's checks made once; [p.sampled] too, outside the
+       loop, whose copy for other scenes has no test of it. *)
+    else if p.sampled then
       for col = col0 to col0 + count - 1 do
-        check_budget tr;
-        if p.sampled then begin
-          tr.key <- Sample_key.camera ~gx:(gx + col - col0) ~gy ~di:0 ~dj:0;
-          Camera_ray.set_lens_pixel tr col r
-        end
-        else Camera_ray.set_pixel tr col r;
-        c.primary <- c.primary + 1;
-        trace tr;
-        store tr buffer (k + (3 * (col - col0)))
+        tr.key <- Sample_key.camera ~gx:(gx + col - col0) ~gy ~di:0 ~dj:0;
+        row_pixel tr buffer k col0 col r ~sampled:true
       done
+    else for col = col0 to col0 + count - 1 do row_pixel tr buffer k col0 col r ~sampled:false done
   end
   else
     for c = 0 to count - 1 do
