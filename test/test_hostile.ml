@@ -98,7 +98,7 @@ let tests =
            text ^ String.concat "" (List.map (fun (n, t) -> Printf.sprintf "\n--- %s\n%s" n t) meshes))
          Hostile.random_scene)
       (fun (text, meshes) ->
-        (match Hostile.scene ~meshes text with Ok () -> () | Error m -> Alcotest.failf "%s\ninput:\n%s" m text);
+        (match Hostile.scene ~files:meshes text with Ok () -> () | Error m -> Alcotest.failf "%s\ninput:\n%s" m text);
         true);
     Helpers.qcheck ~count:400 "mutated images are images or one line"
       (mutated (example_ppms ()) Hostile.ppm_tokens)
