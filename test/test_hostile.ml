@@ -125,6 +125,32 @@ let tests =
             ("(sphere (center 0 0 3) (radius #;) (color 1 2 3))", "t.scene:1:34: syntax error: unterminated sexp comment");
             ("(light ambient\n  (intensity 1) #; ; why\n)", "t.scene:3:1: syntax error: unterminated sexp comment");
           ]);
+    Alcotest.test_case "the textures of a scene count against the pixel bound together" `Quick (fun () ->
+        (* Each texture file is within the pixel bound, but the scene keeps
+           every texture it reads: without a bound on their sum, a scene of
+           many big texture files held them all (a file at the bound is
+           805 MB of pixels). They count as the meshes' triangles do. *)
+        let image = "P6\n3 3\n255\n" ^ String.make 27 '\100' in
+        let load_texture name =
+          if List.mem name [ "a.ppm"; "b.ppm" ] then Result.map Image.Texture.of_image (Image.Ppm.of_string image)
+          else Error (`Msg ("cannot read texture file: " ^ name))
+        in
+        let limits = Limits.with_bound Limits.default `Pixels 10. in
+        let sphere file =
+          Printf.sprintf "(sphere (center 0 0 3) (radius 1) (color 1 2 3) (texture (file %S) (mapping spherical)))" file
+        in
+        let read text = Scene_file.of_string ~limits ~load_texture ~file:"t.scene" ("(canvas (width 1) (height 1))\n" ^ text) in
+        (* One file used twice is read once: 9 pixels. *)
+        (match read (sphere "a.ppm" ^ "\n" ^ sphere "a.ppm") with
+        | Ok _ -> ()
+        | Error (`Msg m) -> Alcotest.failf "one texture of 9 pixels, used twice, refused: %s" m);
+        match read (sphere "a.ppm" ^ "\n" ^ sphere "b.ppm") with
+        | Ok _ -> Alcotest.fail "two textures of 9 pixels accepted under a bound of 10"
+        | Error (`Msg m) ->
+            Alcotest.(check string) __LOC__
+              "t.scene:3:58: texture b.ppm brings the scene's textures to 18 pixels in all, more than the limit of 10 \
+               (set RAYTRACE_MAX_PIXELS to raise it)"
+              m);
     Alcotest.test_case "a megabyte-long unknown name costs no more memory than its text" `Quick (fun () ->
         (* The suggestion for a misspelt name once computed an edit distance
            table of 2 MB x 15 cells for this input (500 MB; 2.4 GB and 51 s

@@ -1472,6 +1472,25 @@ let file_loader ~file load_mesh =
         Hashtbl.add loaded path r;
         r
 
+(* Texture files read as [file_loader] reads them, their pixels counted
+   together against the pixel bound: each file alone is within it (its
+   reader's check), but the scene keeps every texture it reads, so many
+   big files would hold memory without bound. A file read twice (one
+   path) counts once. *)
+let texture_loader ~limits ~file load_texture =
+  let pixels = ref 0 in
+  file_loader ~file (fun path ->
+      match load_texture path with
+      | Error _ as e -> e
+      | Ok t ->
+          pixels := !pixels + (Texture.width t * Texture.height t);
+          if Float.of_int !pixels <= Limits.bound limits `Pixels then Ok t
+          else
+            Error
+              (`Msg
+                (Limits.exceeded limits `Pixels
+                   (Printf.sprintf "texture %s brings the scene's textures to %d pixels in all" path !pixels))))
+
 (* The sequential read of [of_source]: each form is converted as soon as
    it is read, and positions are not recorded, so that big scenes load in
    little time and memory. *)
@@ -1669,7 +1688,7 @@ let of_source_located ?(limits = Limits.default) ?(load_mesh = no_loader) ?(load
     ?(file = "<string>") ?(reader = `Fast) ?(window_bytes = 1 lsl 20) ?beside (src : source) =
   let src = without_byte_order_mark src in
   let load = file_loader ~file load_mesh in
-  let textures = { load = file_loader ~file load_texture } in
+  let textures = { load = texture_loader ~limits ~file load_texture } in
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) message = Error { file; line = p.line; column = p.col + 1; message } in
   let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
