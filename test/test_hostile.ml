@@ -125,6 +125,29 @@ let tests =
             ("(sphere (center 0 0 3) (radius #;) (color 1 2 3))", "t.scene:1:34: syntax error: unterminated sexp comment");
             ("(light ambient\n  (intensity 1) #; ; why\n)", "t.scene:3:1: syntax error: unterminated sexp comment");
           ]);
+    Alcotest.test_case "texture forms and files gone wrong are one located line" `Quick (fun () ->
+        (* Kept here rather than in corpus/scene, whose files the web
+           suite also gives the page, which holds textures of its own. *)
+        let files =
+          [ ("t.ppm", "P6\n2 1\n255\n\001\002\003\004\005\006"); ("empty.ppm", ""); ("truncated.ppm", "P6\n4 4\n255\n\001");
+            ("huge.ppm", "P6\n99999 99999\n255\n"); ("wrong.ppm", "v 0 0 0\n") ]
+        in
+        let sphere t = "(sphere (center 0 0 3) (radius 1) (color 1 2 3) (texture " ^ t ^ "))" in
+        List.iter
+          (fun text -> holds "texture" (Hostile.scene ~files) text)
+          ([ "(box (min -1 -1 2) (max 1 1 4) (color 1 2 3) (texture (file \"t.ppm\") (mapping spherical)))";
+             "(cylinder (base 0 0 3) (top 0 1 3) (radius 1) (color 1 2 3) (texture (file \"t.ppm\") (mapping planar)))";
+             "(plane (point 0 -1 0) (normal 0 1 0) (color 1 2 3) (pattern checker (color 0 0 0) (size 1)) (texture (file \"t.ppm\") (mapping planar)))";
+             "(plane (point 0 -1 0) (normal 0 1 0) (color 1 2 3) (texture (file \"t.ppm\") (mapping planar) (size 1e-30)))";
+             "(csg union (sphere (center 0 0 3) (radius 1) (color 1 2 3) (texture (file \"t.ppm\") (mapping spherical))) (sphere (center 0 0 4) (radius 1) (color 1 2 3)))";
+             "(transform ((translate 0 0 3)) (box (min -1 -1 -1) (max 1 1 1) (color 1 1 1)) (color 1 2 3) (texture (file \"t.ppm\") (mapping box)))";
+           ]
+          @ List.map sphere
+              [ "(file \"t.ppm\") (mapping spherical)"; "(file \"t.ppm\") (mapping spherical) (size 2)"; "(file \"t.ppm\")";
+                "(mapping spherical)"; "(file \"\") (mapping spherical)"; "(file \"missing.ppm\") (mapping spherical)";
+                "(file \"empty.ppm\") (mapping spherical)"; "(file \"truncated.ppm\") (mapping spherical)";
+                "(file \"huge.ppm\") (mapping spherical)"; "(file \"wrong.ppm\") (mapping spherical)";
+                "(file t.ppm) (mapping cubic)"; "(file \"t.ppm\") (mapping spherical) (file \"t.ppm\")"; "" ]));
     Alcotest.test_case "the textures of a scene count against the pixel bound together" `Quick (fun () ->
         (* Each texture file is within the pixel bound, but the scene keeps
            every texture it reads: without a bound on their sum, a scene of
