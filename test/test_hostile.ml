@@ -327,6 +327,34 @@ let tests =
         let env = Array.append [| "RAYTRACE_MAX_WORK=1e8" |] (Unix.environment ()) in
         let code, _, err = Helpers.run ~env (Helpers.raytrace ()) [ "render"; scene; "-o"; out; "--jobs"; "2" ] in
         Alcotest.(check int) ("a raised bound renders: " ^ err) 0 code);
+    Alcotest.test_case "a light's huge sample counts are refused at once, in one line, without output" `Quick (fun () ->
+        (* 4096 x 4096 samples of an area light, or 4096 of a sphere light on
+           a glass scene, at the default bounds: the work estimate refuses
+           them before any pixel (the command must end within seconds). *)
+        let texts =
+          [
+            "(sphere (center 0 0 3) (radius 1) (color 200 100 50))\n\
+             (light area (intensity 0.5) (corner -1 3 4) (edge1 2 0 0) (edge2 0 0 2) (samples 4096 4096) (adaptive true))";
+            "(recursion-depth 8) (sphere (center 0 0 3) (radius 1) (color 200 100 50) (transparency 0.5) (reflective 0.4))\n\
+             (light sphere (intensity 0.5) (position 0 3 0) (radius 1) (samples 4096))";
+          ]
+        in
+        List.iter
+          (fun text ->
+            let dir, scene = scene_file "s.scene" text in
+            let out = Filename.concat dir "out.ppm" in
+            let t0 = Unix.gettimeofday () in
+            let code, _, err = Helpers.run (Helpers.raytrace ()) [ "render"; scene; "-o"; out; "--samples"; "8" ] in
+            Alcotest.(check int) ("exit status: " ^ err) 1 code;
+            let prefix = "raytrace: the render needs about " in
+            Alcotest.(check bool) ("one line: " ^ err) true
+              (String.length err > String.length prefix
+              && String.sub err 0 (String.length prefix) = prefix
+              && List.length (String.split_on_char '\n' err) = 2);
+            Alcotest.(check bool) "no output" false (Sys.file_exists out);
+            let seconds = Unix.gettimeofday () -. t0 in
+            if seconds > 5. then Alcotest.failf "refused after %.1f s" seconds)
+          texts);
     Alcotest.test_case "the progressive render stops at the work bound too" `Quick (fun () ->
         (* 2000 concentric spheres (not identical: those share a slot), 16 x 16 pixels: estimate 256 x 16 x 11
            x (1 + 2 lights) = 135168 tests, within 2e5; a pixel that sees
