@@ -153,6 +153,27 @@ let tests =
                 "(file \"empty.ppm\") (mapping spherical)"; "(file \"truncated.ppm\") (mapping spherical)";
                 "(file \"huge.ppm\") (mapping spherical)"; "(file \"wrong.ppm\") (mapping spherical)";
                 "(file t.ppm) (mapping cubic)"; "(file \"t.ppm\") (mapping spherical) (file \"t.ppm\")"; "" ]));
+    Alcotest.test_case "a file name or a loader's message with a line break is one line" `Quick (fun () ->
+        (* Found by mutating globe.scene: a texture's (or a mesh's) file
+           name holding a newline made a two-line message, with the
+           library's own loader (no files) and with any loader that names
+           the file, as the web page's does. *)
+        let texture = "(sphere (center 0 0 3) (radius 1) (color 1 2 3) (texture (file \"a\nb.ppm\") (mapping spherical)))" in
+        let mesh = "(mesh (file \"a\nb.obj\") (color 1 2 3))" in
+        let read ?load_mesh ?load_texture text =
+          match Scene_file.of_string ?load_mesh ?load_texture ~file:"t.scene" text with
+          | Ok _ -> Alcotest.failf "accepted %S" text
+          | Error (`Msg m) -> m
+        in
+        Alcotest.(check string) __LOC__
+          "t.scene:1:58: cannot read texture file a\\nb.ppm: this scene was given as text, with no way to read files"
+          (read texture);
+        Alcotest.(check string) __LOC__
+          "t.scene:1:7: cannot read mesh file a\\nb.obj: this scene was given as text, with no way to read files" (read mesh);
+        let refuse name = Error (`Msg (Printf.sprintf "cannot read %s:\r\n\tno\000" name)) in
+        Alcotest.(check string) __LOC__ "t.scene:1:58: cannot read a\\nb.ppm:\\r\\n\\tno\\x00"
+          (read ~load_texture:refuse texture);
+        Alcotest.(check string) __LOC__ "t.scene:1:7: cannot read a\\nb.obj:\\r\\n\\tno\\x00" (read ~load_mesh:refuse mesh));
     Alcotest.test_case "the textures of a scene count against the pixel bound together" `Quick (fun () ->
         (* Each texture file is within the pixel bound, but the scene keeps
            every texture it reads: without a bound on their sum, a scene of

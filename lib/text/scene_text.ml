@@ -1460,6 +1460,19 @@ type beside = {
 (* Mesh and image files are named relative to the scene file; each is
    read once, even when an error makes a second, located pass over the
    text. *)
+(* A loader's message, given a file name that may hold any byte, as one
+   line: control characters escaped as the command line escapes them. *)
+let one_line m =
+  if not (String.exists (fun c -> c < ' ' || c = '\127') m) then m
+  else
+    String.concat ""
+      (List.map
+         (function
+           | '\n' -> "\\n" | '\r' -> "\\r" | '\t' -> "\\t"
+           | c when c < ' ' || c = '\127' -> Printf.sprintf "\\x%02x" (Char.code c)
+           | c -> String.make 1 c)
+         (List.init (String.length m) (String.get m)))
+
 let file_loader ~file load_mesh =
   let loaded = Hashtbl.create 4 in
   fun path ->
@@ -1468,7 +1481,7 @@ let file_loader ~file load_mesh =
     match Hashtbl.find_opt loaded path with
     | Some r -> r
     | None ->
-        let r = match load_mesh path with Ok m -> Ok m | Error (`Msg m) -> Error (`Msg m) in
+        let r = match load_mesh path with Ok m -> Ok m | Error (`Msg m) -> Error (`Msg (one_line m)) in
         Hashtbl.add loaded path r;
         r
 
