@@ -238,6 +238,10 @@ module Gen = struct
     let size = if mapping = "planar" || odd rand then opt rand "size" (fun () -> num rand 0.1 3.) else "" in
     Printf.sprintf " (texture (file %S) (mapping %s)%s)" file mapping size
 
+  (* Whether an object may take a texture: not as a CSG operand (refused,
+     "cannot have a texture yet"), but when hostile. *)
+  let textured = ref true
+
   let material ?(form = "") rand =
     let refl = if chance rand 2 then 0. else Random.State.float rand 0.6 in
     let transparency = if chance rand 2 then 0. else Random.State.float rand (1. -. refl) in
@@ -248,7 +252,7 @@ module Gen = struct
       (opt rand "refractive-index" (fun () -> num rand 0.5 2.5))
       (opt rand "fresnel" (fun () -> if odd rand then "maybe" else pick rand [| "true"; "false" |]))
       (if chance rand 4 then Printf.sprintf " (pattern checker (color %s) (size %s))" (triple rand 0. 255.) (num rand 0.1 2.)
-       else if (form <> "" && chance rand 3) || odd rand then texture rand form
+       else if (form <> "" && !textured && chance rand 3) || odd rand then texture rand form
        else "")
 
   let sphere rand =
@@ -313,7 +317,12 @@ module Gen = struct
       | 5 -> torus rand
       | _ -> csg rand names (depth - 1)
     in
-    Printf.sprintf "(csg %s %s %s)" (pick rand ops) (operand ()) (operand ())
+    let outer = !textured in
+    textured := false;
+    let a = operand () in
+    let b = operand () in
+    textured := outer;
+    Printf.sprintf "(csg %s %s %s)" (pick rand ops) a b
 
   let shape rand names =
     match int rand 11 with
