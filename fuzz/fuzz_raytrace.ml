@@ -49,6 +49,8 @@ let names =
     "plane"; "triangle"; "box"; "mesh"; "csg"; "normal"; "vertices"; "min"; "max"; "file"; "scale"; "translate";
     "smooth"; "transparency"; "refractive-index"; "fresnel"; "pattern"; "checker"; "size";
     "cylinder"; "base"; "top"; "capped"; "disk"; "cone"; "top-radius"; "torus"; "axis"; "major"; "minor";
+    "corner"; "edge1"; "edge2"; "samples"; "adaptive"; "angle"; "falloff"; "aperture"; "focal-distance"; "texture";
+    "mapping";
   |]
 
 let field =
@@ -56,7 +58,7 @@ let field =
       "(" ^ n ^ " " ^ String.concat " " values ^ ")")
 
 let form =
-  map [ token names; option (token [| "ambient"; "point"; "directional" |]); list (choose [ field; number ]) ]
+  map [ token names; option (token [| "ambient"; "point"; "directional"; "area"; "sphere"; "spot" |]); list (choose [ field; number ]) ]
     (fun n kind fields ->
       "(" ^ n ^ (match kind with Some k -> " " ^ k | None -> "") ^ " " ^ String.concat " " fields ^ ")")
 
@@ -80,12 +82,24 @@ let valid_sphere =
       optional "reflective" (value 0. 1.) ]
     (fun c r col spec refl -> Printf.sprintf "(sphere (center %s) (radius %s) (color %s)%s%s)" c r col spec refl)
 
+let samples = choose [ map [ range ~min:1 8 ] string_of_int; map [ range ~min:1 8 ] string_of_int; number ]
+
 let valid_light =
   choose
     [
       map [ value 0. 1. ] (Printf.sprintf "(light ambient (intensity %s))");
       map [ value 0. 1.; triple (-10.) 10. ] (Printf.sprintf "(light point (intensity %s) (position %s))");
       map [ value 0. 1.; triple (-10.) 10. ] (Printf.sprintf "(light directional (intensity %s) (direction %s))");
+      (* Issue 27's lights; their sample counts small, or anything now
+         and then (4096 x 4096 is refused by the work estimate). *)
+      map
+        [ value 0. 1.; triple (-5.) 5.; triple (-2.) 2.; triple (-2.) 2.; samples; samples;
+          optional "adaptive" (choose [ const "true"; const "false"; token Hostile.scene_tokens ]) ]
+        (Printf.sprintf "(light area (intensity %s) (corner %s) (edge1 %s) (edge2 %s) (samples %s %s)%s)");
+      map [ value 0. 1.; triple (-5.) 5.; value 0. 2.; samples ]
+        (Printf.sprintf "(light sphere (intensity %s) (position %s) (radius %s) (samples %s))");
+      map [ value 0. 1.; triple (-5.) 5.; triple (-1.) 1.; value 0. 180.; map [ value 0. 100. ] (Printf.sprintf " (falloff %s)") ]
+        (Printf.sprintf "(light spot (intensity %s) (position %s) (direction %s) (angle %s)%s)");
     ]
 
 let valid_setting =
@@ -94,6 +108,9 @@ let valid_setting =
       map [ range ~min:1 40; range ~min:1 40 ] (Printf.sprintf "(canvas (width %d) (height %d))");
       map [ value 0.1 3.; value 0.1 3.; value 0.1 3. ] (Printf.sprintf "(viewport (width %s) (height %s) (distance %s))");
       map [ triple (-5.) 5.; optional "look-at" (triple (-5.) 5.) ] (Printf.sprintf "(camera (position %s)%s)");
+      (* A thin lens: aperture and focal distance, each optional. *)
+      map [ triple (-5.) 5.; optional "look-at" (triple (-5.) 5.); optional "aperture" (value 0. 1.); optional "focal-distance" (value 0. 10.) ]
+        (Printf.sprintf "(camera (position %s)%s%s%s)");
       map [ triple 0. 255. ] (Printf.sprintf "(background %s)");
       map [ range 10 ] (Printf.sprintf "(recursion-depth %d)");
       map
@@ -107,17 +124,27 @@ let valid_scene =
   map [ list valid_setting; list valid_sphere; list valid_light ] (fun settings spheres lights ->
       String.concat "\n" (settings @ spheres @ lights))
 
-(* The forms of round 2 and 3: glass (transparency, refractive index,
+(* The forms of round 2 and 3 and issue 27's textures: glass (transparency, refractive index,
    Fresnel), mirrors and patterns on every shape; planes, triangles,
    boxes, meshes of files the test makes, issue 26's cylinders, disks,
    cones and tori, CSG solids nested with every operation. *)
+(* Issue 27's image textures: every mapping (each fits one kind of
+   object, the others are refused), a size, the files of [files] below. *)
+let texture =
+  map
+    [ token [| "tex.ppm"; "tex.ppm"; "tex3.ppm"; "missing.ppm"; "empty.ppm"; "truncated.ppm"; "huge.ppm"; "wrong.ppm"; "closed.obj" |];
+      token [| "spherical"; "planar"; "box"; "uv" |]; optional "size" (value 0. 4.) ]
+    (Printf.sprintf "(file %S) (mapping %s)%s")
+
 let material =
   map
     [ triple 0. 255.; optional "specular" (choose [ const "-1"; value 0. 1000. ]); optional "reflective" (value 0. 0.5);
       optional "transparency" (value 0. 0.5); optional "refractive-index" (value 0.5 2.5);
       optional "fresnel" (choose [ const "true"; const "false"; token Hostile.scene_tokens ]);
-      optional "pattern" (map [ triple 0. 255.; value 0.1 2. ] (Printf.sprintf "checker (color %s) (size %s)")) ]
-    (fun col spec refl tr idx fres pat -> Printf.sprintf "(color %s)%s%s%s%s%s%s" col spec refl tr idx fres pat)
+      optional "pattern" (map [ triple 0. 255.; value 0.1 2. ] (Printf.sprintf "checker (color %s) (size %s)"));
+      (* Rarer than the rest: a texture fits one kind of object only. *)
+      choose [ const ""; const ""; optional "texture" texture ] ]
+    (fun col spec refl tr idx fres pat tex -> Printf.sprintf "(color %s)%s%s%s%s%s%s%s" col spec refl tr idx fres pat tex)
 
 let sphere_form = map [ triple (-3.) 3.; value 0.1 2.; material ] (Printf.sprintf "(sphere (center %s) (radius %s) %s)")
 
@@ -149,7 +176,7 @@ let disk_form =
    or any value now and then (refused when not below the major). *)
 let cone_form =
   map
-    [ triple (-2.) 2.; triple (-2.) 2.; value 0.1 1.5; optional "top-radius" (choose [ const "0"; value 0. 1.5; value 0. 1.5 ]);
+    [ triple (-2.) 2.; triple (-2.) 2.; value 0.1 1.5; map [ choose [ const "0"; value 0. 1.5; value 0. 1.5 ] ] (Printf.sprintf " (top-radius %s)");
       optional "capped" (choose [ const "true"; const "false" ]); material ]
     (Printf.sprintf "(cone (base %s) (top %s) (radius %s)%s%s %s)")
 
@@ -192,9 +219,22 @@ let obj_files =
         ("loose.obj", String.concat "\n" (v @ faces @ junk) ^ "\n");
       ])
 
+(* Texture files: a P6 image of ours (its size and bytes drawn, the
+   bytes now and then too few) and files the reader refuses. *)
+let texture_files =
+  map [ range ~min:1 5; range ~min:1 5; bytes ] (fun w h data ->
+      let n = 3 * w * h in
+      let pixels = if String.length data >= n then String.sub data 0 n else data ^ String.make (n - String.length data) '\128' in
+      [
+        ("tex.ppm", Printf.sprintf "P6\n%d %d\n255\n%s" w h pixels);
+        ("tex3.ppm", Printf.sprintf "P6\n%d %d\n255\n%s" w h data);
+        ("empty.ppm", ""); ("truncated.ppm", "P6\n4 4\n255\n\001\002\003"); ("huge.ppm", "P6\n99999 99999\n255\n");
+        ("wrong.ppm", "P5\n1 1\n255\n\000");
+      ])
+
 let scene_with_meshes =
-  map [ list valid_setting; list1 shape_form; list valid_light; obj_files ] (fun settings shapes lights meshes ->
-      (String.concat "\n" (settings @ shapes @ lights), meshes))
+  map [ list valid_setting; list1 shape_form; list valid_light; obj_files; texture_files ] (fun settings shapes lights meshes textures ->
+      (String.concat "\n" (settings @ shapes @ lights), meshes @ textures))
 
 (* Deep nesting, balanced or not, around a generated form. *)
 let nested =
@@ -233,9 +273,9 @@ let () =
   add_test ~name:"scene: forms and fields" [ scene_text ] (check ".scene" Hostile.scene);
   add_test ~name:"scene: mostly valid" [ valid_scene ] (check ".scene" Hostile.scene);
   add_test ~name:"scene: deep nesting" [ nested ] (check ".scene" Hostile.scene);
-  add_test ~name:"scene: meshes, CSG, glass, patterns" [ scene_with_meshes ] (fun (text, meshes) ->
+  add_test ~name:"scene: meshes, CSG, glass, patterns, textures" [ scene_with_meshes ] (fun (text, meshes) ->
       dump ".scene" text;
-      match Hostile.scene ~meshes text with Ok () -> () | Error m -> fail m);
+      match Hostile.scene ~files:meshes text with Ok () -> () | Error m -> fail m);
   add_test ~name:"ppm: any bytes" [ bytes ] (check ".ppm" Hostile.ppm);
   add_test ~name:"ppm: headers" [ ppm_text ] (check ".ppm" Hostile.ppm);
   add_test ~name:"ppm: pixels" [ ppm_image ] (check ".ppm" Hostile.ppm)

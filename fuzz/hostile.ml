@@ -50,6 +50,17 @@ let loader meshes name =
   | None -> Error (`Msg (Printf.sprintf "cannot read mesh file %s: no such file" name))
   | Some text -> Mesh.Obj.of_string ~name ~max_vertices:Limits.max_triangles ~max_triangles:Limits.max_triangles text
 
+(* Texture files by name, read from memory as the command line reads them
+   from disk: the same PPM reader and pixel bound, the same prefix. *)
+let texture_loader files name =
+  let cannot m = Error (`Msg ("cannot read texture file: " ^ m)) in
+  match List.assoc_opt name files with
+  | None -> cannot (name ^ ": No such file or directory")
+  | Some bytes -> (
+      match Image.Ppm.of_string ~limits:Limits.default bytes with
+      | Error (`Msg m) -> cannot (name ^ ": " ^ m)
+      | Ok img -> Ok (Image.Texture.of_image img))
+
 let starts_with prefix m = String.length m >= String.length prefix && String.sub m 0 (String.length prefix) = prefix
 
 (* A render at 3 x 2 pixels under a budget of [budget] tests ends with an
@@ -69,10 +80,10 @@ let rendered ~budget ~slack valid =
       else if starts_with "the render needs about" m then Ok ()
       else Error ("rendering the scene at 3x2 failed: " ^ m)
 
-let scene ?(meshes = []) text =
-  let load_mesh = loader meshes in
+let scene ?(files = []) text =
+  let load_mesh = loader files and load_texture = texture_loader files in
   guard "Scene_file.of_string" (fun () ->
-      match Scene_file.of_string ~load_mesh ~file:scene_file text with
+      match Scene_file.of_string ~load_mesh ~load_texture ~file:scene_file text with
       | Error (`Msg m) ->
           let* () = one_line "scene" m in
           located text m
@@ -83,7 +94,7 @@ let scene ?(meshes = []) text =
           in
           let printed = Scene_file.to_string s in
           let* () =
-            match Scene_file.of_string ~load_mesh printed with
+            match Scene_file.of_string ~load_mesh ~load_texture printed with
             | Ok s' when Scene.equal s (Scene.of_valid s') -> Ok ()
             | Ok _ -> Error ("the printed scene reads back different:\n" ^ printed)
             | Error (`Msg m) -> Error (Printf.sprintf "the printed scene does not parse (%s):\n%s" m printed)
@@ -201,7 +212,37 @@ module Gen = struct
 
   (* Glass and mirrors, patterns: reflective + transparency stays within
      1 but for the edges. *)
-  let material rand =
+  let good_textures = [| "tex.ppm"; "tex3.ppm" |]
+
+  (* Texture files that are not images the renderer can take (and one
+     that is absent). *)
+  let bad_texture_files =
+    [
+      ("empty.ppm", ""); ("truncated.ppm", "P6\n4 4\n255\n\001\002\003"); ("huge.ppm", "P6\n99999 99999\n255\n");
+      ("huge-bound.ppm", "P6\n16384 16384\n255\n"); ("zero.ppm", "P6\n0 0\n255\n"); ("maxval.ppm", "P6\n1 1\n65536\n\000\000\000");
+      ("wrong.ppm", "v 0 0 0\nf 1 1 1\n"); ("png.ppm", "\137PNG\r\n\026\n");
+    ]
+
+  let bad_textures = Array.of_list ("missing.ppm" :: "closed.obj" :: List.map fst bad_texture_files)
+
+  (* Issue 27's image textures: the mapping that fits the object (a
+     sphere's spherical, a plane's planar with a size now and then, a
+     box's box, a mesh's uv), a valid P6 or P3 file of ours; hostile, a
+     mapping that does not fit, a size on a non-planar one, a texture on
+     a form that takes none, a file missing, empty, truncated, huge in
+     declared size or of another format. *)
+  let texture rand form =
+    let fits = match form with "sphere" -> "spherical" | "plane" -> "planar" | "box" -> "box" | "mesh" -> "uv" | _ -> "" in
+    let mapping = if fits = "" || odd rand then pick rand [| "spherical"; "planar"; "box"; "uv"; "cubic"; "" |] else fits in
+    let file = if odd rand then pick rand bad_textures else pick rand good_textures in
+    let size = if mapping = "planar" || odd rand then opt rand "size" (fun () -> num rand 0.1 3.) else "" in
+    Printf.sprintf " (texture (file %S) (mapping %s)%s)" file mapping size
+
+  (* Whether an object may take a texture: not as a CSG operand (refused,
+     "cannot have a texture yet"), but when hostile. *)
+  let textured = ref true
+
+  let material ?(form = "") rand =
     let refl = if chance rand 2 then 0. else Random.State.float rand 0.6 in
     let transparency = if chance rand 2 then 0. else Random.State.float rand (1. -. refl) in
     Printf.sprintf "(color %s)%s%s%s%s%s%s" (triple rand 0. 255.)
@@ -211,16 +252,18 @@ module Gen = struct
       (opt rand "refractive-index" (fun () -> num rand 0.5 2.5))
       (opt rand "fresnel" (fun () -> if odd rand then "maybe" else pick rand [| "true"; "false" |]))
       (if chance rand 4 then Printf.sprintf " (pattern checker (color %s) (size %s))" (triple rand 0. 255.) (num rand 0.1 2.)
+       else if (form <> "" && !textured && chance rand 3) || odd rand then texture rand form
        else "")
 
-  let sphere rand = Printf.sprintf "(sphere (center %s) (radius %s) %s)" (triple rand (-3.) 3.) (num rand 0.1 2.) (material rand)
+  let sphere rand =
+    Printf.sprintf "(sphere (center %s) (radius %s) %s)" (triple rand (-3.) 3.) (num rand 0.1 2.) (material ~form:"sphere" rand)
 
   let box rand =
     let x = Random.State.float rand 4. -. 2. and y = Random.State.float rand 4. -. 2. and z = Random.State.float rand 4. +. 1. in
     let f = Raytrace.Private.Float_text.to_string in
     Printf.sprintf "(box (min %s %s %s) (max %s %s %s) %s)" (f x) (f y) (f z)
       (if chance rand 30 then "nan" else f (x +. Random.State.float rand 2.))
-      (f (y +. Random.State.float rand 2.)) (f (z +. Random.State.float rand 2.)) (material rand)
+      (f (y +. Random.State.float rand 2.)) (f (z +. Random.State.float rand 2.)) (material ~form:"box" rand)
 
   (* Issue 26's kinds: a capped or open cylinder (an open one refused as
      a CSG operand), a disk. *)
@@ -241,7 +284,8 @@ module Gen = struct
     let top_radius () = if chance rand 3 then "0" else num rand 0. 1.5 in
     Printf.sprintf "(cone (base %s) (top %s) (radius %s)%s%s %s)" (triple rand (-2.) 2.) (triple rand (-2.) 2.)
       (if odd rand then "0" else num rand 0.1 1.5)
-      (opt rand "top-radius" top_radius)
+      (* Its top radius is required: missing only when hostile. *)
+      (if odd rand then "" else Printf.sprintf " (top-radius %s)" (top_radius ()))
       (opt rand "capped" (fun () -> if odd rand then "maybe" else pick rand [| "true"; "false" |]))
       (material rand)
 
@@ -258,7 +302,7 @@ module Gen = struct
       (opt rand "scale" (fun () -> num rand 0.1 3.))
       (opt rand "translate" (fun () -> triple rand (-2.) 2.))
       (opt rand "smooth" (fun () -> pick rand [| "true"; "false" |]))
-      (material rand)
+      (material ~form:"mesh" rand)
 
   let ops = [| "union"; "intersection"; "difference" |]
 
@@ -273,7 +317,12 @@ module Gen = struct
       | 5 -> torus rand
       | _ -> csg rand names (depth - 1)
     in
-    Printf.sprintf "(csg %s %s %s)" (pick rand ops) (operand ()) (operand ())
+    let outer = !textured in
+    textured := false;
+    let a = operand () in
+    let b = operand () in
+    textured := outer;
+    Printf.sprintf "(csg %s %s %s)" (pick rand ops) a b
 
   let shape rand names =
     match int rand 11 with
@@ -282,7 +331,9 @@ module Gen = struct
     | 9 -> cone rand
     | 10 -> torus rand
     | 0 -> sphere rand
-    | 1 -> Printf.sprintf "(plane (point %s) (normal %s) %s)" (triple rand (-2.) 2.) (triple rand (-1.) 1.) (material rand)
+    | 1 ->
+        Printf.sprintf "(plane (point %s) (normal %s) %s)" (triple rand (-2.) 2.) (triple rand (-1.) 1.)
+          (material ~form:"plane" rand)
     | 2 ->
         Printf.sprintf "(triangle (vertices (%s) (%s) (%s)) %s)" (triple rand (-2.) 2.) (triple rand (-2.) 2.)
           (triple rand 1. 5.) (material rand)
@@ -296,8 +347,11 @@ module Gen = struct
     let v () = Printf.sprintf "v %s\n" (triple rand (-1.) 1.) in
     let text =
       if closed then
-        Printf.sprintf "v %s\nv %s\nv %s\nv %s\nf 1 2 3\nf 1 4 2\nf 2 4 3\nf 3 4 1\n" (triple rand (-1.) 1.)
-          (triple rand (-1.) 1.) (triple rand (-1.) 1.) (triple rand (-1.) 1.)
+        Printf.sprintf "v %s\nv %s\nv %s\nv %s\n%s" (triple rand (-1.) 1.) (triple rand (-1.) 1.) (triple rand (-1.) 1.)
+          (triple rand (-1.) 1.)
+          (* With texture coordinates half the time, for a uv texture. *)
+          (if chance rand 2 then "f 1 2 3\nf 1 4 2\nf 2 4 3\nf 3 4 1\n"
+           else "vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\nf 1/1 2/2 3/3\nf 1/1 4/4 2/2\nf 2/2 4/4 3/3\nf 3/3 4/4 1/1\n")
       else
         let n = 3 + int rand 6 in
         String.concat "" (List.init n (fun _ -> v ()))
@@ -308,22 +362,63 @@ module Gen = struct
     if odd rand then text ^ pick rand [| "f 1 2 99\n"; "v nan 0 0\n"; "f 1\n"; "vn 0 0 0\nf 1//1 2//1 3//1\n" |]
     else text
 
-  let light rand =
+  (* A light's sample count: small, or (hostile) at and beyond its bounds,
+     4096 x 4096 among them, which the work estimate refuses. *)
+  let samples rand = if odd rand then pick rand [| "0"; "-1"; "4096"; "4097"; "64"; "1.5"; "nan"; "9223372036854775807" |]
+    else string_of_int (1 + int rand 6)
+
+  (* Issue 27's kinds: an area light (its edges now and then parallel or
+     zero), a sphere light, a spot light (its angle and falloff anywhere
+     in their domains, now and then beyond). *)
+  let soft_light rand =
     match int rand 3 with
+    | 0 ->
+        let edge () = if odd rand then pick rand [| "0 0 0"; "1 0 0"; "1e-320 0 0"; "1e12 1e12 1e12" |] else triple rand (-2.) 2. in
+        Printf.sprintf "(light area (intensity %s) (corner %s) (edge1 %s) (edge2 %s) (samples %s %s)%s)" (num rand 0. 1.)
+          (triple rand (-5.) 5.) (edge ()) (edge ()) (samples rand) (samples rand)
+          (opt rand "adaptive" (fun () -> if odd rand then "1" else pick rand [| "true"; "false" |]))
+    | 1 ->
+        Printf.sprintf "(light sphere (intensity %s) (position %s) (radius %s) (samples %s))" (num rand 0. 1.)
+          (triple rand (-5.) 5.) (num rand 0.01 2.) (samples rand)
+    | _ ->
+        Printf.sprintf "(light spot (intensity %s) (position %s) (direction %s) (angle %s)%s)" (num rand 0. 1.)
+          (triple rand (-5.) 5.) (triple rand (-1.) 1.)
+          (if odd rand then pick rand [| "0"; "180"; "180.0001"; "-1"; "1e-30" |] else num rand 1. 180.)
+          (* Its falloff is required: missing only when hostile. *)
+          (if odd rand then "" else Printf.sprintf " (falloff %s)" (if odd rand then pick rand [| "1e6"; "1e7"; "-1" |] else num rand 0. 50.))
+
+  let light rand =
+    match int rand 5 with
     | 0 -> Printf.sprintf "(light ambient (intensity %s))" (num rand 0. 1.)
     | 1 -> Printf.sprintf "(light point (intensity %s) (position %s))" (num rand 0. 1.) (triple rand (-5.) 5.)
-    | _ -> Printf.sprintf "(light directional (intensity %s) (direction %s))" (num rand 0. 1.) (triple rand (-5.) 5.)
+    | 2 -> Printf.sprintf "(light directional (intensity %s) (direction %s))" (num rand 0. 1.) (triple rand (-5.) 5.)
+    | _ -> soft_light rand
+
+  (* Texture files of ours: a P6 or P3 image of up to 4 x 4 pixels. *)
+  let ppm rand =
+    let w = 1 + int rand 4 and h = 1 + int rand 4 in
+    let channels = List.init (3 * w * h) (fun _ -> int rand 256) in
+    if chance rand 2 then Printf.sprintf "P6\n%d %d\n255\n%s" w h (String.concat "" (List.map (fun c -> String.make 1 (Char.chr c)) channels))
+    else Printf.sprintf "P3\n%d %d\n255\n%s\n" w h (String.concat " " (List.map string_of_int channels))
 
   let scene rand =
     hostile := chance rand 3;
     let names = [| "closed.obj"; "loose.obj" |] in
-    let meshes = [ ("closed.obj", obj rand ~closed:true); ("loose.obj", obj rand ~closed:false) ] in
+    let meshes =
+      [ ("closed.obj", obj rand ~closed:true); ("loose.obj", obj rand ~closed:false); ("tex.ppm", ppm rand); ("tex3.ppm", ppm rand) ]
+      @ bad_texture_files
+    in
     let settings =
       [
         Printf.sprintf "(canvas (width %d) (height %d))" (1 + int rand 8) (1 + int rand 8);
         Printf.sprintf "(recursion-depth %d)" (int rand 12);
         (if chance rand 3 then Printf.sprintf "(epsilon %s)" (num rand 0. 0.01) else "");
-        (if chance rand 3 then Printf.sprintf "(camera (position %s) (look-at 0 0 3))" (triple rand (-3.) 3.) else "");
+        (if chance rand 3 then
+           Printf.sprintf "(camera (position %s)%s%s%s)" (triple rand (-3.) 3.)
+             (if chance rand 4 && !hostile then "" else " (look-at 0 0 3)")
+             (opt rand "aperture" (fun () -> if odd rand then pick rand [| "-1"; "1e12"; "1e13"; "1e-31" |] else num rand 0. 1.))
+             (opt rand "focal-distance" (fun () -> num rand 0.5 10.))
+         else "");
       ]
     in
     let forms = List.init (1 + int rand 6) (fun _ -> shape rand names) @ List.init (int rand 3) (fun _ -> light rand) in
@@ -343,4 +438,21 @@ let scene_tokens =
       "(csg difference (box (min -1 -1 2) (max 1 1 4) (color 1 2 3)) (sphere (center 0 0 3) (radius 1.4) (color 1 2 3)))";
       "(triangle (vertices (0 0 3) (1 0 3) (0 1 3)) (color 255 0 0))"; "(mesh (file \"closed.obj\") (color 1 2 3))";
       "(recursion-depth 40)";
+      (* Issue 27's lights, lens and textures, their fields and values at
+         their bounds. *)
+      "area"; "corner"; "edge1"; "edge2"; "samples"; "adaptive"; "angle"; "falloff"; "aperture"; "focal-distance";
+      "texture"; "mapping"; "spherical"; "planar"; "uv"; "4096"; "4097"; "(samples 4096 4096)"; "(samples 4097 1)";
+      "(samples 0 0)"; "(samples 64 64)"; "(samples 1)"; "(adaptive true)"; "(angle 180)"; "(angle 0)"; "(falloff 1e6)";
+      "(aperture 0.3)"; "(aperture 1e12)"; "(focal-distance 1e-30)"; "(focal-distance 8)";
+      "(light area (intensity 0.6) (corner -1 3 4) (edge1 2 0 0) (edge2 0 0 2) (samples 4 4))";
+      "(light area (intensity 0.6) (corner -1 3 4) (edge1 2 0 0) (edge2 0 0 2) (samples 4096 4096) (adaptive true))";
+      "(light sphere (intensity 0.6) (position 2 3 0) (radius 0.5) (samples 16))";
+      "(light spot (intensity 0.8) (position 0 4 3) (direction 0 -1 0) (angle 25) (falloff 5))";
+      "(camera (position 0 1 -2) (look-at 0 0.5 6) (aperture 0.3))";
+      "(camera (position 0 1 -2) (aperture 0.3) (focal-distance 8))"; "(texture (file \"tex.ppm\") (mapping spherical))";
+      "(texture (file \"tex.ppm\") (mapping planar) (size 2))"; "(texture (file \"tex3.ppm\") (mapping box))";
+      "(texture (file \"closed.obj\") (mapping uv))"; "(texture (file \"missing.ppm\") (mapping spherical))";
+      "(texture (file \"huge.ppm\") (mapping spherical))"; "(texture (file \"truncated.ppm\") (mapping spherical))";
+      "(texture (file \"empty.ppm\") (mapping spherical))"; "(texture (file \"\") (mapping spherical))";
+      "(sphere (center 0 0 3) (radius 1) (color 255 255 255) (texture (file \"tex.ppm\") (mapping spherical)))";
     |]

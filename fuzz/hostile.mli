@@ -10,8 +10,8 @@
 val scene_file : string
 (** [scene_file] is ["fuzz.scene"], the file name given to the parser. *)
 
-val scene : ?meshes:(string * string) list -> string -> (unit, string) result
-(** [scene ~meshes text] is [Ok ()] if {!Raytrace.Scene_file.of_string} on
+val scene : ?files:(string * string) list -> string -> (unit, string) result
+(** [scene ~files text] is [Ok ()] if {!Raytrace.Scene_file.of_string} on
     [text] returns without raising, and either
     - [Ok s] where [s] passes {!Raytrace.Scene.validate}, prints back
       ({!Raytrace.Scene_file.to_string}) to text that parses to an equal
@@ -24,9 +24,11 @@ val scene : ?meshes:(string * string) list -> string -> (unit, string) result
       [fuzz.scene:LINE:COLUMN: ] (a line and a column that exist in
       [text], 1-based) or, for a text beyond the size bound, with
       [fuzz.scene: ].
-    Its mesh forms read the files of [meshes] (name, OBJ text; default
-    none) with the command line's parser and bounds; another name is a
-    file that cannot be read. *)
+    Its mesh forms and textures read the files of [files] (name, text;
+    default none) as the command line reads them: meshes with its OBJ
+    parser and bounds, textures with its PPM reader and pixel bound and
+    its ["cannot read texture file: "] prefix; another name is a file
+    that cannot be read. *)
 
 val work_budget : int
 (** [work_budget] is [1_000_000]: the [`Work] bound of the renders of
@@ -37,9 +39,14 @@ val random_scene : Random.State.t -> string * (string * string) list
     triangles, boxes, meshes, capped and open cylinders and cones (pointed
     or not), disks, tori, CSG solids nested up to 4 deep with every
     operation on every closed kind (and, now and then, an open one), glass with transparency, refractive index and the Fresnel
-    term, mirrors, checker patterns, every light) with its mesh files
-    (name, OBJ text: a closed tetrahedron or loose triangles, now and then
-    a broken line), most of it valid, with values at or beyond the edges
+    term, mirrors, checker patterns, image textures with every mapping,
+    every light (issue 27's area, sphere and spot lights with all their
+    fields among them), a camera with a lens now and then) with its files
+    (name, text): its meshes (OBJ text: a closed tetrahedron, with
+    texture coordinates or not, or loose triangles, now and then a broken
+    line) and its textures (small P6 and P3 images, and files that are
+    empty, truncated, huge in declared size or of another format),
+    most of it valid, with values at or beyond the edges
     of their domains now and then; for {!scene}. *)
 
 val ppm : string -> (unit, string) result
@@ -52,7 +59,8 @@ val ppm : string -> (unit, string) result
 
 val scene_tokens : string array
 (** [scene_tokens] are fragments of scene files, valid and hostile (form
-    and field names, every shape's form among them, numbers at and beyond every bound, NaN, comments,
+    and field names, every shape's and light's form among them, the
+    lens's and textures' fields, numbers at and beyond every bound, NaN, comments,
     strings, parentheses), from which fuzzers and mutators build inputs. *)
 
 val ppm_tokens : string array

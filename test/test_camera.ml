@@ -76,6 +76,13 @@ let tests =
         let m = Helpers.parse_error "(camera (position 0 0 0)\n (aperture 0.2))" in
         Alcotest.(check string) __LOC__
           "t.scene:2:2: camera (aperture ...) needs a (focal-distance ...), or a (look-at ...) target to focus on" m;
+        (* The number as the scene text writes numbers (shortest exact),
+           not %g's rounding: 0x1p-1074 was "4.94066e-324" and the bound
+           "1e+12", where every other message says 5e-324 and 1e12. *)
+        let m = Helpers.parse_error "(camera (aperture 0x1p-1074) (focal-distance 1))" in
+        Alcotest.(check string) __LOC__ "t.scene:1:19: camera aperture must be 0 or in [1e-30, 1e12], got 5e-324" m;
+        let m = Helpers.parse_error "(camera (aperture -0.30000001) (focal-distance 1))" in
+        Alcotest.(check string) __LOC__ "t.scene:1:19: camera aperture must be 0 or in [1e-30, 1e12], got -0.30000001" m;
         let m = Helpers.parse_error "(camera (aperture 0.2) (focal-distance 0))" in
         Alcotest.(check string) __LOC__ "t.scene:1:40: camera focal-distance must be > 0, got 0" m;
         let c = Scene.camera (Helpers.parse_ok "(camera (position 0 0 -1) (look-at 0 0 4) (aperture 0.2))") in

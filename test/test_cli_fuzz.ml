@@ -25,7 +25,13 @@ let junk rand =
       | 0 -> Char.chr (1 + Random.State.int rand 255)
       | _ -> pick rand [| 'a'; '-'; '='; '%'; 'd'; '/'; '.'; '0'; '9'; ':'; ','; ' '; 'e'; '\n' |])
 
-let files = [| "s.scene"; "orbit.scene"; "bad.scene"; "i.ppm"; "p1.ppm"; "p2.ppm"; "link.scene"; "missing.scene"; "."; "sub"; "/dev/null"; "/dev/stdin"; "-"; "" |]
+(* Issue 27's scenes (soft lights, a lens, textures: globe.scene reads
+   earth.ppm and tiles.ppm) and scenes whose texture file is a directory,
+   empty, truncated, huge in declared size or missing are among them. *)
+let files =
+  [| "s.scene"; "orbit.scene"; "bad.scene"; "i.ppm"; "p1.ppm"; "p2.ppm"; "link.scene"; "missing.scene"; "."; "sub"; "/dev/null";
+     "/dev/stdin"; "-"; ""; "area-room.scene"; "focus.scene"; "globe.scene"; "tex-sub.scene"; "tex-empty.scene";
+     "tex-truncated.scene"; "tex-huge.scene"; "tex-missing.scene"; "earth.ppm"; "empty.ppm" |]
 
 let outputs =
   [| "out.ppm"; "out.png"; "-"; "/dev/null"; "/dev/full"; "/dev/stdout"; "f%d.ppm"; "f%04d.png"; "."; "missing/x.ppm";
@@ -105,6 +111,18 @@ let workspace () =
     [ ("s.scene", scene); ("orbit.scene", In_channel_free.read (Helpers.scene_path "orbit.scene"));
       ("bad.scene", "(sphere (radius -1))\n"); ("i.ppm", render [ "render"; "--width"; "8"; "--height"; "8"; "-o"; "-" ]);
       ("p1.ppm", part "1"); ("p2.ppm", part "2") ]
+    @ List.map
+        (fun f -> (f, In_channel_free.read (Helpers.scene_path f)))
+        [ "area-room.scene"; "focus.scene"; "globe.scene"; "earth.ppm"; "tiles.ppm" ]
+    @ List.map
+        (fun (name, file) ->
+          ( name,
+            Printf.sprintf
+              "(canvas (width 8) (height 6))\n(sphere (center 0 0 3) (radius 1) (color 1 2 3) (texture (file %S) (mapping spherical)))\n"
+              file ))
+        [ ("tex-sub.scene", "sub"); ("tex-empty.scene", "empty.ppm"); ("tex-truncated.scene", "truncated.ppm");
+          ("tex-huge.scene", "huge.ppm"); ("tex-missing.scene", "missing.ppm") ]
+    @ [ ("empty.ppm", ""); ("truncated.ppm", "P6\n4 4\n255\n\001\002\003"); ("huge.ppm", "P6\n16384 16384\n255\n") ]
   in
   let reset () =
     Array.iter

@@ -315,6 +315,25 @@ let tests =
         let lit sampling = Helpers.image_exn (scene ~size:24 sampling) in
         let differing, _ = difference ~expected:(lit area) (lit uniform) in
         if differing = 0 then Alcotest.fail "the kernel draws uniform samples as stratified ones");
+    Alcotest.test_case "the work bound counts an adaptive area light's four corner rays too" `Quick (fun () ->
+        (* An adaptive light sends a shadow ray to each corner, then its
+           u v samples' where the corners disagree: u v + 4 at most. The
+           estimate counted u v, a third of the rays of (samples 1 1), and
+           the render was stopped midway instead of refused at once. *)
+        let s adaptive =
+          Helpers.parse_ok
+            (Printf.sprintf
+               "(canvas (width 600) (height 600)) (sphere (center 0 0 3) (radius 1) (color 255 0 0))\n\
+                (light area (intensity 1) (corner -1 3 1) (edge1 2 0 0) (edge2 0 0 2) (samples 1 1) (adaptive %b))" adaptive)
+        in
+        let limits = Limits.with_bound Limits.default `Work 1e5 in
+        let message adaptive =
+          match Scene.check_work ~limits (Helpers.valid (s adaptive)) with
+          | Ok () -> Alcotest.fail "360000 pixels passed a work bound of 1e5"
+          | Error (`Msg m) -> m
+        in
+        if not (contains (message false) "(1 + 1 lights)") then Alcotest.failf "%S" (message false);
+        if not (contains (message true) "(1 + 5 lights)") then Alcotest.failf "%S" (message true));
       Alcotest.test_case "Prepared.without Umbra turns the umbra skip off alone: the same bytes, more rays" `Quick (fun () ->
         let image p =
           let tr = Trace.create p in

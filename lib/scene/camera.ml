@@ -56,7 +56,10 @@ let check_rotation m =
 
 let check_aperture a =
   if a = 0. || Limits.size_ok a then Ok a
-  else Error (`Msg (Printf.sprintf "camera aperture must be 0 or in [%g, %g], got %g" Limits.min_size Limits.max_coordinate a))
+  else
+    (* The value as the scene text writes numbers, the bounds (Limits.min_size,
+       Limits.max_coordinate) as the lights' messages write them. *)
+    Error (`Msg (Printf.sprintf "camera aperture must be 0 or in [1e-30, 1e12], got %s" (Float_text.to_string a)))
 
 let check_focal_distance f = Limits.check_size "camera focal-distance" f
 

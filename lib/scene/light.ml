@@ -42,7 +42,9 @@ let intensity = function
 
 let samples = function
   | Ambient _ | Point _ | Directional _ | Spot _ -> 1
-  | Area { samples_u; samples_v; _ } -> samples_u * samples_v
+  (* An adaptive light's four corner rays come first, then its samples'
+     where the corners disagree. *)
+  | Area { samples_u; samples_v; adaptive; _ } -> (samples_u * samples_v) + if adaptive then 4 else 0
   | Sphere { samples; _ } -> samples
 
 let sampled = function Area _ | Sphere _ -> true | Ambient _ | Point _ | Directional _ | Spot _ -> false

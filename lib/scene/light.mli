@@ -99,8 +99,9 @@ val intensity : t -> float
 (** [intensity l] is the intensity of [l]. *)
 
 val samples : t -> int
-(** [samples l] is the number of shadow rays [l] casts at a point: [u v]
-    for an area light, [samples] for a sphere light, [1] otherwise. *)
+(** [samples l] is the most shadow rays [l] casts at a point: [u v]
+    for an area light ([u v + 4] if adaptive: its corners' rays first),
+    [samples] for a sphere light, [1] otherwise. *)
 
 val sampled : t -> bool
 (** [sampled l] is [true] iff [l] is an area or sphere light, whose light

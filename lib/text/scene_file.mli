@@ -103,7 +103,12 @@ val of_string :
     text alone names no file it can read;
     [Raytrace_unix.Files.read_scene] reads scene files and their meshes).
     A texture's file is read by [load_texture] likewise, once per path,
-    its error told at the file's name (the default refuses every file);
+    its error told at the file's name (the default refuses every file;
+    a loader's message is made one line, its control characters, which a
+    file name may hold, escaped as [\n], [\r], [\t] or [\xNN]);
+    the textures' pixels count together against [limits]' [`Pixels]
+    bound (a path read twice counts once), refused at the file that
+    passes it.
     Plain forms (parentheses, plain atoms, blanks and line comments) are
     read without parsexp, spheres straight into their values, unless
     [reader] (default [`Fast]) is [`Parsexp], which reads every form with

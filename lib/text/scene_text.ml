@@ -1472,6 +1472,19 @@ type beside = {
 (* Mesh and image files are named relative to the scene file; each is
    read once, even when an error makes a second, located pass over the
    text. *)
+(* A loader's message, given a file name that may hold any byte, as one
+   line: control characters escaped as the command line escapes them. *)
+let one_line m =
+  if not (String.exists (fun c -> c < ' ' || c = '\127') m) then m
+  else
+    String.concat ""
+      (List.map
+         (function
+           | '\n' -> "\\n" | '\r' -> "\\r" | '\t' -> "\\t"
+           | c when c < ' ' || c = '\127' -> Printf.sprintf "\\x%02x" (Char.code c)
+           | c -> String.make 1 c)
+         (List.init (String.length m) (String.get m)))
+
 let file_loader ~file load_mesh =
   let loaded = Hashtbl.create 4 in
   fun path ->
@@ -1480,9 +1493,28 @@ let file_loader ~file load_mesh =
     match Hashtbl.find_opt loaded path with
     | Some r -> r
     | None ->
-        let r = match load_mesh path with Ok m -> Ok m | Error (`Msg m) -> Error (`Msg m) in
+        let r = match load_mesh path with Ok m -> Ok m | Error (`Msg m) -> Error (`Msg (one_line m)) in
         Hashtbl.add loaded path r;
         r
+
+(* Texture files read as [file_loader] reads them, their pixels counted
+   together against the pixel bound: each file alone is within it (its
+   reader's check), but the scene keeps every texture it reads, so many
+   big files would hold memory without bound. A file read twice (one
+   path) counts once. *)
+let texture_loader ~limits ~file load_texture =
+  let pixels = ref 0 in
+  file_loader ~file (fun path ->
+      match load_texture path with
+      | Error _ as e -> e
+      | Ok t ->
+          pixels := !pixels + (Texture.width t * Texture.height t);
+          if Float.of_int !pixels <= Limits.bound limits `Pixels then Ok t
+          else
+            Error
+              (`Msg
+                (Limits.exceeded limits `Pixels
+                   (Printf.sprintf "texture %s brings the scene's textures to %d pixels in all" path !pixels))))
 
 (* The sequential read of [of_source]: each form is converted as soon as
    it is read, and positions are not recorded, so that big scenes load in
@@ -1681,7 +1713,7 @@ let of_source_located ?(limits = Limits.default) ?(load_mesh = no_loader) ?(load
     ?(file = "<string>") ?(reader = `Fast) ?(window_bytes = 1 lsl 20) ?beside (src : source) =
   let src = without_byte_order_mark src in
   let load = file_loader ~file load_mesh in
-  let textures = { load = file_loader ~file load_texture } in
+  let textures = { load = texture_loader ~limits ~file load_texture } in
   let origin = Positions.{ line = 1; col = 0; offset = 0 } in
   let error (p : Positions.pos) message = Error { file; line = p.line; column = p.col + 1; message } in
   let syntax e = error (Parsexp.Parse_error.position e) ("syntax error: " ^ Parsexp.Parse_error.message e) in
