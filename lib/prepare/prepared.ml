@@ -1629,6 +1629,15 @@ let light_vector = function
   | Area { corner; _ } -> corner
   | Directional { direction; _ } -> direction
 
+(* A light's code in [light_kind]. *)
+let light_kind = function
+  | Light.Ambient _ -> ambient
+  | Point _ -> point
+  | Directional _ -> directional
+  | Area _ -> area
+  | Sphere _ -> sphere
+  | Spot _ -> spot
+
 (* The document's kernel's six floats a light ([Prepared.light6]). *)
 let light6 lights =
   Array.concat
@@ -1706,14 +1715,7 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     specular_zero = mf (fun m -> if skips then specular_zero m.specular else 0.);
     reflective = mf (fun m -> m.reflective);
     n_lights = Array.length lights;
-    light_kind =
-      lf (function
-        | Light.Ambient _ -> ambient
-        | Point _ -> point
-        | Directional _ -> directional
-        | Area _ -> area
-        | Sphere _ -> sphere
-        | Spot _ -> spot);
+    light_kind = lf light_kind;
     light_number = Array.map fst numbered;
     light_geom = Array.concat (List.map light_geom (Array.to_list lights));
     light_su = lf (function Light.Area { samples_u; _ } -> samples_u | Sphere { samples; _ } -> samples | _ -> 1);
