@@ -40,9 +40,10 @@ let build ?leaf_size ?beside boxes =
   (t, if beside = None then b else [||])
 
 (* [beside] of the renderer with [min_objects], counting in [built] the
-   parts that another process built. *)
-let counting ~min_objects built =
-  let b = Render_jobs.bvh_beside ~min_objects () in
+   parts that another process built. A core is taken to be idle (unless
+   [idle] says otherwise), whatever else runs beside the tests. *)
+let counting ?(idle = fun () -> true) ~min_objects built =
+  let b = Render_jobs.bvh_beside ~min_objects ~idle () in
   let me = Unix.getpid () in
   let beside f =
     let wait = b.beside (fun () -> (Unix.getpid (), f ())) in
@@ -222,6 +223,19 @@ let tests =
             ("every center the same (one bin, median splits)", `Same_center, 3000, 100);
             ("centers within 1e-9", `One_bin, 3000, 100);
           ]);
+    Alcotest.test_case "with no core idle, the renderer's beside forks nothing: the same tree, built here" `Quick
+      (fun () ->
+        let b = boxes `Random 5000 5000 in
+        let one = build b in
+        let built = ref 0 and asked = ref 0 in
+        let idle () = incr asked; false in
+        check_same "no idle core" one (build ~beside:(counting ~idle ~min_objects:1000 built) b);
+        Alcotest.(check int) "asked at the fork" 1 !asked;
+        Alcotest.(check int) "no part built by another process" 0 !built;
+        (* No child was started: none is left to reap. *)
+        match Unix.waitpid [ WNOHANG ] (-1) with
+        | exception Unix.Unix_error (ECHILD, _, _) -> ()
+        | pid, _ -> Alcotest.failf "a child was started: %d" pid);
     Alcotest.test_case "no part beside below the threshold, or where the beside fails" `Quick (fun () ->
         let b = boxes `Random 3000 3 in
         let one = build b in

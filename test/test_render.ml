@@ -191,6 +191,30 @@ let tests =
         (* every cosine at or below the threshold, here u times it *)
         zero >= 0. && zero < 1. && (zero = 0. || Float.pow (u *. zero) specular = 0.)
         && Float.pow zero specular = (if zero = 0. then Float.pow 0. specular else 0.));
+    Alcotest.test_case "a busy process on every other core is seen: no core is idle" `Quick (fun () ->
+        match Parallel.others_running () with
+        | None -> (* No /proc/loadavg: idle_core assumes a core is free. *) Alcotest.(check bool) __LOC__ true (Parallel.idle_core ())
+        | Some _ ->
+            (* One spinning child per other core (at least one): each is
+               running or ready to run at every look. *)
+            let spinners = max 1 (Parallel.cores () - 1) in
+            let pids =
+              List.init spinners (fun _ ->
+                  match Unix.fork () with
+                  | 0 ->
+                      let t = Unix.gettimeofday () in
+                      while Unix.gettimeofday () -. t < 10. do () done;
+                      Unix._exit 0
+                  | pid -> pid)
+            in
+            Unix.sleepf 0.05;
+            let seen = Parallel.others_running () and idle = Parallel.idle_core () in
+            List.iter (fun pid -> Unix.kill pid Sys.sigkill; ignore (Unix.waitpid [] pid)) pids;
+            (match seen with
+            | Some n when n >= spinners -> ()
+            | Some n -> Alcotest.failf "%d spinning, %d others seen running" spinners n
+            | None -> Alcotest.fail "/proc/loadavg went away");
+            Alcotest.(check bool) __LOC__ false idle);
     Alcotest.test_case "beside computes in another process what the caller would" `Quick (fun () ->
         let me = Unix.getpid () in
         let f () = (Unix.getpid (), Array.init 1_000_000 (fun i -> Float.of_int i *. 0.5)) in

@@ -30,6 +30,36 @@ let cores () =
   | Some n -> n
   | None -> 1
 
+(* "0.52 0.61 0.70 2/84 12345": 2 running or runnable, this process one of
+   them (it runs while it reads). The least of a few looks: a task that
+   wakes for a moment (a shell, a timer) is seldom in all of them, a busy
+   one is in each. *)
+let others_running () =
+  let look () =
+    match File_io.read "/proc/loadavg" with
+    | Error _ -> None
+    | Ok text -> (
+        match String.split_on_char ' ' (String.trim text) with
+        | _ :: _ :: _ :: field :: _ -> (
+            match String.split_on_char '/' field with
+            | [ r; _ ] -> Option.map (fun r -> max 0 (r - 1)) (int_of_string_opt r)
+            | _ -> None)
+        | _ -> None)
+  in
+  let rec looks k least =
+    if k = 0 then least
+    else
+      match look () with
+      | None -> None
+      | Some n ->
+          let least = match least with Some m -> Some (min m n) | None -> Some n in
+          if k > 1 && n > 0 then Unix.sleepf 0.001;
+          if n = 0 then least else looks (k - 1) least
+  in
+  looks 3 None
+
+let idle_core () = match others_running () with Some n -> n < cores () - 1 | None -> true
+
 (* "MemAvailable:   12345678 kB" -> 12345678 * 1024 *)
 let available_memory () =
   proc_field "/proc/meminfo" "MemAvailable" (fun v ->

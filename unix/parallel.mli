@@ -9,6 +9,24 @@ val cores : unit -> int
 (** [cores ()] is the number of processors this process may run on
     (its CPU affinity, as [nproc] reports), at least 1. *)
 
+val others_running : unit -> int option
+(** [others_running ()] is the fewest tasks (processes or threads) other
+    than the caller that the system had running or ready to run in three
+    looks at the fourth field of [/proc/loadavg], about a millisecond
+    apart, or [None] where that file cannot be read or parsed. The count
+    is the whole system's, not only of the cores this process may run
+    on; a task that runs now and then (a shell, a compiler between files)
+    rarely shows in all three looks, a busy one always does. It takes
+    about 2 ms. *)
+
+val idle_core : unit -> bool
+(** [idle_core ()] is [true] if a process forked now would likely find a
+    core of its own: {!others_running} is below [cores () - 1], or cannot
+    be known. A render splits a phase whose split half is waited for (the
+    hierarchy's build) only where it is [true]: with the other core busy,
+    the child's half comes late and the copy-on-write faults of the fork
+    cost more than it saves (docs/performance.md, "Issue 31, round 3"). *)
+
 val available_memory : unit -> int option
 (** [available_memory ()] is the memory, in bytes, that the system can give
     to new allocations without swapping ([MemAvailable] of

@@ -57,7 +57,7 @@ let bands ~jobs n =
    cost more, and the image is complete from the top down as the bands
    come back (the parent is told of each on {!Parallel.reports}), so that
    [rows_done] can write it while the workers still trace. *)
-let bvh_beside ?(min_objects = 1 lsl 16) () =
+let bvh_beside ?(min_objects = 1 lsl 16) ?(idle = Parallel.idle_core) () =
   (* The floats in memory shared with the child: its part's leaves' boxes
      come back in order, no permutation followed through them here. The
      child reserves what it sends, once it knows how much: nothing is
@@ -70,7 +70,11 @@ let bvh_beside ?(min_objects = 1 lsl 16) () =
     pending := r :: !pending;
     (r.floats, r.reserve)
   in
+  (* Decided at each fork, where the other core's state is known best:
+     with it busy, the part is built here ([None]), as with one job. *)
   let beside f =
+    if not (idle ()) then fun () -> None
+    else
     let wait = Parallel.beside f in
     fun () ->
       let r = wait () in
@@ -105,11 +109,10 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
           | exception Failure _ -> one_process scene
           | slots ->
           let t0 = Unix.gettimeofday () in
-          (* A part of a big hierarchy is built by a child process meanwhile
-             (grid:1000000 with two jobs, alternating runs on a quiet 2-core
-             machine: 2.66 -> 2.39 s, its peak 209 -> 214 MB). On a machine
+          (* A part of a big hierarchy is built by a child process meanwhile,
+             where a core is idle when it would be forked: on a machine
              whose cores are all busy the child waits for one, and preparing
-             takes longer (docs/performance.md). *)
+             takes longer (docs/performance.md, issue 31). *)
           let beside = if jobs > 1 then Some (bvh_beside ()) else None in
           let p = Prepared.prepare ?skips ?beside scene in
           let t1 = Unix.gettimeofday () in

@@ -48,18 +48,21 @@ val region_image :
     @raise Invalid_argument if [jobs < 1] or [r] is not inside the
     canvas. *)
 
-val bvh_beside : ?min_objects:int -> unit -> Bvh.beside
-(** [bvh_beside ~min_objects ()] builds the right subtree of a hierarchy's
+val bvh_beside : ?min_objects:int -> ?idle:(unit -> bool) -> unit -> Bvh.beside
+(** [bvh_beside ~min_objects ~idle ()] builds the right subtree of a hierarchy's
     node of at least [min_objects] (default [2^16]) objects in a child
     process ({!Parallel.beside}) while this one builds the rest; the
     child's leaves' boxes come back in memory shared with it, which the
     child reserves as it writes ({!Parallel.shared_floats_later}). A child
     that fails (killed, out of memory) costs the time it took: its part
-    is built here. {!image} and {!region_image} use it with more than one
-    job: on a quiet 2-core machine grid:1000000 renders 0.27 s sooner
-    with it; on a loaded one, where the child finds no idle core, the
-    fork and its copy-on-write faults cost more than they save
-    (docs/performance.md); [bench/load.exe --jobs 2] measures it. *)
+    is built here. It forks only where [idle ()] (default
+    {!Parallel.idle_core}), asked at each fork, says a core is idle;
+    otherwise the part is built here at once, as
+    with one job: on a machine whose other core is busy the child comes
+    late and its copy-on-write faults cost more than it saves, on a quiet
+    one it saves time (docs/performance.md, issue 31). {!image} and
+    {!region_image} use it with more than one job; [bench/load.exe --jobs
+    2] measures it. *)
 
 val bands : jobs:int -> int -> int array
 (** [bands ~jobs n] is how a pass of [n] rows is cut for [jobs] workers:
