@@ -248,16 +248,16 @@ let tests =
         check_same "leaves of 127" (build ~leaf_size:127 b) (build ~leaf_size:127 ~beside:(counting ~min_objects:10 built) b);
         Alcotest.(check int) "a part beside for leaves of 127" 1 !built;
         let calls = ref 0 in
-        let failing = { Bvh.beside = (fun _ () -> incr calls; None); min_objects = 10; floats = own } in
+        let failing = { Bvh.beside = (fun _ () -> incr calls; None); min_objects = 10; floats = own; idle = (fun () -> true) } in
         check_same "a beside that fails" one (build ~beside:failing b);
         Alcotest.(check int) "asked once" 1 !calls;
         (* Parallel.beside computes [f] in the caller when it cannot fork. *)
-        let here = { Bvh.beside = (fun f () -> Some (f ())); min_objects = 10; floats = own } in
+        let here = { Bvh.beside = (fun f () -> Some (f ())); min_objects = 10; floats = own; idle = (fun () -> true) } in
         check_same "a beside that computes here" one (build ~beside:here b);
         (* No shared memory (a full /dev/shm): built here, nothing started. *)
         let calls = ref 0 in
         let no_memory =
-          { Bvh.beside = (fun f () -> incr calls; Some (f ())); min_objects = 10; floats = (fun _ -> failwith "no memory") }
+          { Bvh.beside = (fun f () -> incr calls; Some (f ())); min_objects = 10; floats = (fun _ -> failwith "no memory"); idle = (fun () -> true) }
         in
         check_same "no shared memory" one (build ~beside:no_memory b);
         Alcotest.(check int) "nothing built beside without shared memory" 0 !calls);

@@ -9,8 +9,8 @@ let prepare ?beside s = Prepared.prepare ?beside (Helpers.valid s)
 
 (* A [beside] that computes in this process when waited for, as
    [Parallel.beside] does where it cannot fork, and one that fails. *)
-let here = { Bvh.beside = (fun f () -> Some (f ())); min_objects = 1000; floats = Test_bvh.own }
-let failing = { Bvh.beside = (fun _ () -> None); min_objects = 1000; floats = Test_bvh.own }
+let here = { Bvh.beside = (fun f () -> Some (f ())); min_objects = 1000; floats = Test_bvh.own; idle = (fun () -> true) }
+let failing = { Bvh.beside = (fun _ () -> None); min_objects = 1000; floats = Test_bvh.own; idle = (fun () -> true) }
 
 (* The renderer's [beside] from 1000 objects on, counting in [built] the
    computations another process made. *)
@@ -81,6 +81,11 @@ let tests =
             check_same (what ^ ", a child process") alone forked;
             check_same (what ^ ", beside computing here") alone (prepare ~beside:here s);
             check_same (what ^ ", a beside that fails") alone (prepare ~beside:failing s);
+            (* No idle core: neither the twins nor a part beside. *)
+            let busy =
+              { failing with Bvh.beside = (fun _ () -> Alcotest.fail "beside without an idle core"); idle = (fun () -> false) }
+            in
+            check_same (what ^ ", no idle core") alone (prepare ~beside:busy s);
             let image p =
               let tr = Trace.create p in
               Array.init ((Scene.width s) * (Scene.height s)) (fun i ->

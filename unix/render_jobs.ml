@@ -70,11 +70,7 @@ let bvh_beside ?(min_objects = 1 lsl 16) ?(idle = Parallel.idle_core) () =
     pending := r :: !pending;
     (r.floats, r.reserve)
   in
-  (* Decided at each fork, where the other core's state is known best:
-     with it busy, the part is built here ([None]), as with one job. *)
   let beside f =
-    if not (idle ()) then fun () -> None
-    else
     let wait = Parallel.beside f in
     fun () ->
       let r = wait () in
@@ -82,7 +78,10 @@ let bvh_beside ?(min_objects = 1 lsl 16) ?(idle = Parallel.idle_core) () =
       pending := [];
       Result.to_option r
   in
-  { Bvh.beside; min_objects; floats }
+  (* [idle] is asked at each fork (the twins' child, the hierarchy's
+     half), where the other core's state is known best: with it busy,
+     the part is computed here, as with one job. *)
+  { Bvh.beside; min_objects; floats; idle }
 
 (* Every piece of shared memory is taken before the scene is prepared:
    where one cannot be had (a full /dev/shm, a file-size limit), the

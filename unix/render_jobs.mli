@@ -56,8 +56,8 @@ val bvh_beside : ?min_objects:int -> ?idle:(unit -> bool) -> unit -> Bvh.beside
     child reserves as it writes ({!Parallel.shared_floats_later}). A child
     that fails (killed, out of memory) costs the time it took: its part
     is built here. It forks only where [idle ()] (default
-    {!Parallel.idle_core}), asked at each fork, says a core is idle;
-    otherwise the part is built here at once, as
+    {!Parallel.idle_core}; {!Bvh.beside}'s [idle]), asked before each fork,
+    says a core is idle; otherwise the part is built here at once, as
     with one job: on a machine whose other core is busy the child comes
     late and its copy-on-write faults cost more than it saves, on a quiet
     one it saves time (docs/performance.md, issue 31). {!image} and

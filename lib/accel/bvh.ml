@@ -446,6 +446,7 @@ type beside = {
   beside : 'a. (unit -> 'a) -> unit -> 'a option;
   min_objects : int;
   floats : int -> floats * (int -> unit);
+  idle : unit -> bool;
 }
 
 (* What a subtree built beside sends back on the pipe, small (half a MB
@@ -713,6 +714,10 @@ let share_right b lo split hi =
     when b.alone && hi - split >= s.min_objects && 4 * (hi - split) >= b.n_all && 4 * (split - lo) >= b.n_all
          && b.leaf_size <= 127 && hi - split <= 0x7fff_ffff -> (
       b.alone <- false;
+      (* Asked once, at the node that would be shared: a smaller node
+         later is not shared instead (the halves would be uneven). *)
+      if not (s.idle ()) then None
+      else
       match s.floats (7 * (hi - split)) with
       | sh, reserve -> Some (s, sh, reserve)
       | exception (Failure _ | Out_of_memory) -> (* Built here, as without [beside]. *) None)

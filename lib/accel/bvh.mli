@@ -103,6 +103,13 @@ type beside = {
           an object), for this process to read in order. [floats] may
           raise [Failure] or [Out_of_memory]: the subtree is then built
           here. *)
+  idle : unit -> bool;
+      (** [idle ()] is [true] where a computation that [beside] started
+          now would likely have a core of its own. It is asked once
+          before the one [beside] of a build, and once before a
+          caller's other use ([Prepared]'s twins); where it is [false],
+          neither [floats] nor [beside] is called, and the work is done
+          here in the order it has without [beside]. *)
 }
 (** The type for ways to build a part of a hierarchy on another core. The
     core library forks nothing: a caller that can gives {!build_boxes} a

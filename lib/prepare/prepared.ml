@@ -1264,7 +1264,7 @@ let boxes ~skips o (scene : Scene.view) c sel =
 let twins_and_boxes ~skips ?beside o scene okind c collections =
   let find_twins () = sphere_twins ~cx:c.ocx ~cy:c.ocy ~cz:c.ocz ~radius:c.ohalf ~n_spheres:o.n_spheres in
   match (beside : Bvh.beside option) with
-  | Some b when o.n_spheres >= b.min_objects -> (
+  | Some b when o.n_spheres >= b.min_objects && b.idle () -> (
       (* Started before the collection: started after it, the child
          shares the compacted heap, and writing the boxes there copied
          its pages. *)
