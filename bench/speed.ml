@@ -176,6 +176,13 @@ let instructions dir argv =
 
 let has_valgrind () = Sys.command "valgrind --version >/dev/null 2>&1" = 0
 
+(* The load average and the tasks running now (/proc/loadavg), to judge
+   the times by: the host's state changes over the minutes of a run. *)
+let print_load when_ =
+  match File_io.read "/proc/loadavg" with
+  | Ok text -> Printf.printf "load average %s: %s\n%!" when_ (String.trim text)
+  | Error _ -> ()
+
 type case = { label : string; scene : Scene.t; cref_name : string; literal : bool }
 
 (* The median of each field of [l]. *)
@@ -219,12 +226,12 @@ let side_by_side ~runs argv =
    included), minor page faults, the median of the paired runs' ratios, and
    what issue 31 asks of that scene. *)
 let print_jobs rows =
-  Printf.printf "\n%-18s | %8s %6s %6s %8s | %8s %6s %6s %8s | %7s  %s\n" "-j1 against -j2" "-j1 wall" "user" "sys"
+  Printf.printf "\n%-20s | %8s %6s %6s %8s | %8s %6s %6s %8s | %7s  %s\n" "-j1 against -j2" "-j1 wall" "user" "sys"
     "faults" "-j2 wall" "user" "sys" "faults" "speedup" "issue 31";
   List.iter
     (fun (label, u1, u2, speedup, claim) ->
       let never = if speedup >= 1. then "not slower" else "SLOWER" in
-      Printf.printf "%-18s | %8.3f %6.2f %6.2f %8d | %8.3f %6.2f %6.2f %8d | %6.2fx  %s%s\n" label u1.wall u1.user
+      Printf.printf "%-20s | %8.3f %6.2f %6.2f %8d | %8.3f %6.2f %6.2f %8d | %6.2fx  %s%s\n" label u1.wall u1.user
         u1.sys u1.minflt u2.wall u2.user u2.sys u2.minflt speedup never
         (if claim = "" then "" else "; " ^ claim))
     rows;
@@ -274,6 +281,7 @@ let () =
          (if !quick then [ 100; 10000 ] else [ 100; 1000; 10000; 100000 ])
   in
   Printf.printf "raytrace speed benchmark: whole process, median of %d alternating runs\n" !runs;
+  print_load "at the start";
   let full_speed =
     let file = Filename.concat dir "side-by-side.scene" in
     (match
@@ -465,6 +473,7 @@ let () =
   (* Alternating runs, as above: the knot with 1 and 2 jobs, then the grid
      likewise; each figure the median of --runs runs. *)
   let million = [ ("knot", triangles, scene); ("grid", spheres, grid) ] in
+  print_load "before the million objects";
   let results = Hashtbl.create 4 in
   List.iter
     (fun (label, _, scene) ->
@@ -486,6 +495,7 @@ let () =
       | Ok a, Ok b when Image.equal a b -> ()
       | _ -> Printf.printf "!! %s: the images of -j1 and -j2 differ\n" label)
     million;
+  print_load "after the million objects";
   Printf.printf "\n%-14s %9s %9s %9s %9s %9s %10s\n" "a million" "objects" "load (s)" "build (s)" "trace (s)" "total (s)"
     "peak (MB)";
   let runs_of label jobs = List.rev (Hashtbl.find results (label, jobs)) in
