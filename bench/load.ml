@@ -10,7 +10,8 @@
    --sizes also prints the bytes the scene and the prepared scene hold;
    --jobs 2 reads the scene on two cores (Files.read_scene ~jobs) and
    builds a part of the hierarchy in a child process, as the render
-   command does with two jobs or more. *)
+   command does with two jobs or more, where a core is idle when it
+   would fork (Parallel.idle_core). *)
 
 
 let or_exit = function Ok x -> x | Error (`Msg m) -> prerr_endline m; exit 1
