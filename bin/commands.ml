@@ -97,6 +97,12 @@ let sampling_of (o : sampling_options) =
    show, so that a render without a terminal does no more than before. *)
 let progress meter = match meter with None -> None | Some m -> Some (Meter.update m)
 
+(* RAYTRACE_SPLIT=always: the workers of --jobs N are forked whatever the
+   image and the host (the tests, which exercise them on small images and
+   loaded machines); anything else, or nothing, lets the render judge
+   ({!Render_jobs.least_split_rays}). *)
+let split = match Sys.getenv_opt "RAYTRACE_SPLIT" with Some "always" -> `Always | _ -> `Auto
+
 (* The image, its statistics (none for the oracle) and its tracing time. *)
 let render_image ?rows_done ~limits ~sampling ~literal ~jobs ~meter valid =
   let scene = Scene.of_valid valid in
@@ -113,7 +119,7 @@ let render_image ?rows_done ~limits ~sampling ~literal ~jobs ~meter valid =
       | img -> Ok (img, None, Unix.gettimeofday () -. t0)
   else
     let* img, stats =
-      Render_jobs.image ~limits ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
+      Render_jobs.image ~limits ~jobs ~split ~samples:sampling.samples ?adaptive:sampling.adaptive
         ~subsample:sampling.subsample ?progress:(progress meter) ?rows_done valid
     in
     Ok (img, Some stats, stats.trace_s)
@@ -304,7 +310,7 @@ let render_one ~limits ~literal ~jobs ~stats ~quiet ~meter ~load_s ~files ~frame
             Ok (Image.sub img ~x:r.x ~y:r.y ~w:r.w ~h:r.h, st, seconds)
         | Some r ->
             let* img, st =
-              Render_jobs.region_image ~limits ~jobs ~samples:sampling.samples ?adaptive:sampling.adaptive
+              Render_jobs.region_image ~limits ~jobs ~split ~samples:sampling.samples ?adaptive:sampling.adaptive
                 ~subsample:sampling.subsample ?progress:(progress meter) valid r
             in
             Ok (img, Some st, st.trace_s)

@@ -90,13 +90,16 @@ let temp_dir () =
 
 let valid s = match Scene.validate s with Ok v -> v | Error (`Msg m) -> Alcotest.failf "invalid scene: %s" m
 
-let render ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress s =
+(* With several jobs the workers are forked ([`Always]) unless a test asks
+   otherwise: the suites compare their images with one process's on small
+   images and on loaded machines, where [`Auto] would trace in one. *)
+let render ?limits ?jobs ?(split = `Always) ?skips ?samples ?adaptive ?subsample ?progress s =
   Result.bind (Scene.validate ?limits s)
-    (Raytrace_unix.Render_jobs.image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress)
+    (Raytrace_unix.Render_jobs.image ?limits ?jobs ~split ?skips ?samples ?adaptive ?subsample ?progress)
 
-let render_region ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress s r =
+let render_region ?limits ?jobs ?(split = `Always) ?skips ?samples ?adaptive ?subsample ?progress s r =
   Result.bind (Scene.validate ?limits s) (fun v ->
-      Raytrace_unix.Render_jobs.region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress v r)
+      Raytrace_unix.Render_jobs.region_image ?limits ?jobs ~split ?skips ?samples ?adaptive ?subsample ?progress v r)
 
 let image_exn ?jobs ?skips ?samples ?adaptive ?subsample s =
   match render ?jobs ?skips ?samples ?adaptive ?subsample s with Ok (img, _) -> img | Error (`Msg m) -> Alcotest.fail m

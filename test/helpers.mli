@@ -52,6 +52,7 @@ val valid : Raytrace.Scene.t -> Raytrace.Scene.valid
 val render :
   ?limits:Raytrace.Limits.t ->
   ?jobs:int ->
+  ?split:Raytrace_unix.Render_jobs.split ->
   ?skips:bool ->
   ?samples:int ->
   ?adaptive:int ->
@@ -60,11 +61,14 @@ val render :
   Raytrace.Scene.t ->
   (Raytrace.Image.t * Raytrace.Render.Stats.t, [> `Msg of string ]) result
 (** [render ... s] is {!Raytrace_unix.Render_jobs.image} on [s]
-    validated (with the same [limits]); [Error] if [s] is invalid. *)
+    validated (with the same [limits]), its workers forked whatever the
+    image and the host unless [split] (default [`Always]) says otherwise;
+    [Error] if [s] is invalid. *)
 
 val render_region :
   ?limits:Raytrace.Limits.t ->
   ?jobs:int ->
+  ?split:Raytrace_unix.Render_jobs.split ->
   ?skips:bool ->
   ?samples:int ->
   ?adaptive:int ->
@@ -74,7 +78,7 @@ val render_region :
   Raytrace.Render.Region.t ->
   (Raytrace.Image.t * Raytrace.Render.Stats.t, [> `Msg of string ]) result
 (** [render_region ... s r] is {!Raytrace_unix.Render_jobs.region_image}
-    on [s] validated; [Error] if [s] is invalid. *)
+    on [s] validated, [split] as for {!render}; [Error] if [s] is invalid. *)
 
 val image_exn :
   ?jobs:int -> ?skips:bool -> ?samples:int -> ?adaptive:int -> ?subsample:bool -> Raytrace.Scene.t -> Raytrace.Image.t

@@ -51,6 +51,36 @@ let tests =
         (* No temporary file is left beside them. *)
         Alcotest.(check (list string)) __LOC__ [ "j1.ppm"; "j2.ppm"; "j3.ppm" ]
           (List.sort compare (Array.to_list (Sys.readdir dir))));
+    Alcotest.test_case "render --jobs 2 of a small image traces in one process, in two with RAYTRACE_SPLIT=always"
+      `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        let without =
+          Array.of_list
+            (List.filter
+               (fun v -> not (String.length v >= 15 && String.sub v 0 15 = "RAYTRACE_SPLIT="))
+               (Array.to_list (Unix.environment ())))
+        in
+        let render name env =
+          let out = Filename.concat dir name in
+          let code, _, err =
+            run ~env (exe ()) [ "render"; "--width"; "64"; "--height"; "48"; "--jobs"; "2"; "--stats"; "-o"; out ]
+          in
+          Alcotest.(check int) err 0 code;
+          let jobs =
+            List.find_map
+              (fun l ->
+                match String.split_on_char ' ' l |> List.filter (( <> ) "") with
+                | [ "jobs"; n ] -> Some n
+                | _ -> None)
+              (String.split_on_char '\n' err)
+          in
+          (jobs, match Raytrace_unix.File_io.read out with Ok s -> s | Error (`Msg m) -> Alcotest.fail m)
+        in
+        let auto_jobs, auto = render "auto.ppm" without in
+        let forced_jobs, forced = render "forced.ppm" (Array.append [| "RAYTRACE_SPLIT=always" |] without) in
+        Alcotest.(check (option string)) "auto: processes" (Some "1") auto_jobs;
+        Alcotest.(check (option string)) "always: processes" (Some "2") forced_jobs;
+        Alcotest.(check bool) "the same bytes" true (String.equal auto forced));
     Alcotest.test_case "render writes a P6 image of the canvas size" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let out = Filename.concat dir "x.ppm" in

@@ -101,7 +101,7 @@ let tests =
         let ok = function Ok _ -> () | Error (`Msg m) -> Alcotest.fail m in
         check "Render.image" (fun ~progress v -> ok (Render.image ~progress v));
         check "Render_jobs.image, one job" (fun ~progress v -> ok (Raytrace_unix.Render_jobs.image ~jobs:1 ~progress v));
-        check "Render_jobs.image, two jobs" (fun ~progress v -> ok (Raytrace_unix.Render_jobs.image ~jobs:2 ~progress v)));
+        check "Render_jobs.image, two jobs" (fun ~progress v -> ok (Raytrace_unix.Render_jobs.image ~jobs:2 ~split:`Always ~progress v)));
     Alcotest.test_case "a huge frame range is refused before any memory is taken" `Quick (fun () ->
         (* A list of the 10^9 frames' scenes (or of their file names) was
            built first: with 300 MB of address space, an uncaught

@@ -301,6 +301,24 @@ let tests =
             (0, 2); (1, 2); (7, 2); (100, 1); (100, 2); (1920, 2); (1920, 3); (50_000, 16); (1_000_000, 1024);
             (3, 1024);
           ]);
+    Alcotest.test_case "with two jobs, an image of fewer primary rays than least_split_rays is traced here unless forced"
+      `Quick (fun () ->
+        (* 511 x 512 = 261,632 and 256 x 255 x 2^2 = 261,120 rays, below
+           2^18 = 262,144: no worker is forked, whatever the host. *)
+        List.iter
+          (fun (w, h, samples) ->
+            let scene = Scene.with_overrides ~width:w ~height:h Scene.cgfs in
+            let render split =
+              match Helpers.render ~jobs:2 ~split ~samples scene with
+              | Ok r -> r
+              | Error (`Msg m) -> Alcotest.fail m
+            in
+            let one, (st : Render.Stats.t) = render `Auto and forked, (st2 : Render.Stats.t) = render `Always in
+            Alcotest.(check int) (Printf.sprintf "%dx%d, %d samples: processes, auto" w h samples) 1 st.jobs;
+            Alcotest.(check int) (Printf.sprintf "%dx%d, %d samples: processes, always" w h samples) 2 st2.jobs;
+            Helpers.check_images "auto against always" ~expected:forked one)
+          [ (511, 512, 1); (256, 255, 2) ];
+        Alcotest.(check int) "the threshold" (1 lsl 18) Render_jobs.least_split_rays);
     Alcotest.test_case "with two jobs, rows_done tells of final rows from the top while the workers trace" `Quick
       (fun () ->
         let scene = Scene.with_overrides ~width:90 ~height:160 Scene.cgfs in
@@ -316,7 +334,7 @@ let tests =
             done;
             seen := (r, b) :: !seen
           in
-          match Result.bind (Scene.validate scene) (Render_jobs.image ~jobs ?samples ?adaptive ~rows_done) with
+          match Result.bind (Scene.validate scene) (Render_jobs.image ~jobs ~split:`Always ?samples ?adaptive ~rows_done) with
           | Error (`Msg m) -> Alcotest.fail m
           | Ok (img, _) ->
               let seen = List.rev !seen in

@@ -211,8 +211,28 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
           in
           run 0))
 
-let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptive ?subsample ?progress ?rows_done
-    scene (region : Render.Region.t) =
+type split = [ `Auto | `Always ]
+
+let least_split_rays = 1 lsl 18
+
+(* Splitting the trace costs the workers' fork and the shared memory, paid
+   whatever the image: it pays only where the trace is long enough to
+   halve that cost and more, and where a worker finds a core of its own
+   (with the other core busy, two workers share one and finish no sooner).
+   The trace's length is guessed from its primary rays, before anything is
+   prepared: the scene's cost per ray is not known yet, so the threshold is
+   that of a cheap scene (docs/performance.md, "Issue 31, round 3"). *)
+let splits ~split ~jobs (region : Render.Region.t) (sampling : Render.Sampling.t) =
+  jobs > 1
+  &&
+  match split with
+  | `Always -> true
+  | `Auto ->
+      let n = sampling.samples in
+      Render.Region.pixels region * n * n >= least_split_rays && Parallel.idle_core ()
+
+let region_image ?(limits = Limits.default) ?(jobs = 1) ?(split = `Auto) ?skips ?samples ?adaptive ?subsample
+    ?progress ?rows_done scene (region : Render.Region.t) =
   if jobs < 1 then invalid_arg "Render_jobs.region_image: jobs < 1";
   Render_work.inside "Render_jobs.region_image" scene region;
   (* Matches, not [let*]: a closure would hold [scene] through the render
@@ -239,11 +259,11 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?skips ?samples ?adaptiv
                     Option.iter (fun f -> f img region.h) rows_done;
                     Ok (img, stats)
               in
-              if jobs > 1 then in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling scene region
+              if splits ~split ~jobs region sampling then in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling scene region
               else one_process scene)))
 
-let image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene =
+let image ?limits ?jobs ?split ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene =
   if Option.value jobs ~default:1 < 1 then invalid_arg "Render_jobs.image: jobs < 1";
   let s = Scene.of_valid scene in
-  region_image ?limits ?jobs ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene
+  region_image ?limits ?jobs ?split ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene
     (Render.Region.full ~width:(Scene.width s) ~height:(Scene.height s))

@@ -3,9 +3,23 @@
     ({!Parallel}), taking them from a queue as they go. The image is the same, byte for byte, whatever the
     number of jobs: each pixel is traced alone, by the same code. *)
 
+type split = [ `Auto | `Always ]
+(** The type for when a render with several jobs forks its workers:
+    [`Always], or [`Auto], only where it may pay ({!least_split_rays}). *)
+
+val least_split_rays : int
+(** [least_split_rays] is [2^18]: with [~split:`Auto], a render with several
+    jobs traces in this process, as with one, where its region's pixels
+    times [samples]{^2} are fewer (the workers' fork and shared memory
+    would cost more than half the trace saves), or where
+    {!Parallel.idle_core} is [false] (the workers would share one core).
+    The image is the same bytes either way; the {!Raytrace.Render.Stats.t}'s
+    [jobs] says how many processes traced. *)
+
 val image :
   ?limits:Limits.t ->
   ?jobs:int ->
+  ?split:split ->
   ?skips:bool ->
   ?samples:int ->
   ?adaptive:int ->
@@ -14,15 +28,16 @@ val image :
   ?rows_done:(Image.t -> int -> unit) ->
   Scene.valid ->
   (Image.t * Render.Stats.t, [> `Msg of string ]) result
-(** [image ~limits ~jobs ~skips ~samples ~adaptive ~subsample ~progress ~rows_done scene] is
+(** [image ~limits ~jobs ~split ~skips ~samples ~adaptive ~subsample ~progress ~rows_done scene] is
     {!Raytrace.Render.image} traced by [jobs] processes (default 1: this one), timed
-    by the wall clock. With several jobs, [progress] is called about ten
+    by the wall clock, where [split] (default [`Auto]) says to fork them
+    ({!least_split_rays}; otherwise by this one alone, as with one job). With workers, [progress] is called about ten
     times a second by this process (the workers count their rows in shared
     memory), with the meaning it has for {!Raytrace.Render.image}.
     [rows_done img r] is called by this process whenever the first [r]
     rows of [img], the image being rendered, are final, with [r]
     increasing and last the image's height, before [image] returns [Ok img]:
-    with several jobs and a single pass ([Raytrace.Private.Sampling_rows.passes]), while the
+    with workers and a single pass ([Raytrace.Private.Sampling_rows.passes]), while the
     workers trace the rest (to write the image as it is made); otherwise
     once, at the end. It must not raise. Besides {!Raytrace.Render.image}'s errors, [Error] before
     anything is allocated if the image needs more memory than the system
@@ -33,6 +48,7 @@ val image :
 val region_image :
   ?limits:Limits.t ->
   ?jobs:int ->
+  ?split:split ->
   ?skips:bool ->
   ?samples:int ->
   ?adaptive:int ->
@@ -42,7 +58,7 @@ val region_image :
   Scene.valid ->
   Render.Region.t ->
   (Image.t * Render.Stats.t, [> `Msg of string ]) result
-(** [region_image ~limits ~jobs ~skips ~samples ~adaptive ~subsample ~progress ~rows_done scene r]
+(** [region_image ~limits ~jobs ~split ~skips ~samples ~adaptive ~subsample ~progress ~rows_done scene r]
     is {!Raytrace.Render.region_image} traced by [jobs] processes, with the errors
     of {!image}.
     @raise Invalid_argument if [jobs < 1] or [r] is not inside the
