@@ -226,6 +226,35 @@ let tests =
             Alcotest.(check bool) "the same values" true (a = snd (f ()));
             Alcotest.(check int) __LOC__ 1000 (Array.length mine)
         | Error (`Msg m) -> Alcotest.fail m);
+    Alcotest.test_case "beside ~take_over does the work of a child that had no CPU time, in the caller" `Quick
+      (fun () ->
+        let me = Unix.getpid () in
+        (* The child sleeps (no CPU time) where the caller works 0.1 s:
+           late, it is killed and the caller computes [f ()]. *)
+        let f () = if Unix.getpid () <> me then Unix.sleep 30; Unix.getpid () in
+        let t0 = Unix.gettimeofday () in
+        let wait = Parallel.beside ~take_over:true f in
+        let cpu () = let t = Unix.times () in t.tms_utime +. t.tms_stime in
+        let c0 = cpu () in
+        while cpu () -. c0 < 0.1 do ignore (Sys.opaque_identity (Array.make 100 0.)) done;
+        (match wait () with
+        | Ok pid -> Alcotest.(check int) "computed here" me pid
+        | Error (`Msg m) -> Alcotest.fail m);
+        let took = Unix.gettimeofday () -. t0 in
+        if took > 10. then Alcotest.failf "waited %.1f s for the sleeping child" took);
+    Alcotest.test_case "beside ~take_over waits for a child that is not behind the caller" `Quick (fun () ->
+        let me = Unix.getpid () in
+        (* The caller waits at once (no CPU time of its own since the fork):
+           the child is not late, whatever its pace. *)
+        let f () =
+          let cpu () = let t = Unix.times () in t.tms_utime +. t.tms_stime in
+          let c0 = cpu () in
+          while cpu () -. c0 < 0.05 do ignore (Sys.opaque_identity (Array.make 100 0.)) done;
+          Unix.getpid ()
+        in
+        match (Parallel.beside ~take_over:true f) () with
+        | Ok pid -> Alcotest.(check bool) "computed in the child" true (pid <> me)
+        | Error (`Msg m) -> Alcotest.fail m);
     Alcotest.test_case "beside reports a child that raised, sent a function or was killed" `Quick (fun () ->
         let error_of wait = match wait () with Ok _ -> Alcotest.fail "expected an error" | Error (`Msg m) -> m in
         let contains m sub =

@@ -199,9 +199,39 @@ let child work w me (fds : (Unix.file_descr * Unix.file_descr) array) =
   in
   Unix._exit code
 
+(* The CPU seconds (user and system) that process [pid] has had, from
+   fields 14 and 15 of /proc/PID/stat, in the kernel's USER_HZ ticks (100
+   a second on Linux, whatever the kernel's own tick), counted after the
+   command's name, which may hold spaces and parentheses. *)
+let cpu_of pid =
+  match File_io.read (Printf.sprintf "/proc/%d/stat" pid) with
+  | Error _ -> None
+  | Ok text -> (
+      match String.rindex_opt text ')' with
+      | None -> None
+      | Some i -> (
+          let fields = String.split_on_char ' ' (String.trim (String.sub text (i + 1) (String.length text - i - 1))) in
+          match List.filteri (fun k _ -> k = 11 || k = 12) fields with
+          | [ u; s ] -> (
+              match (int_of_string_opt u, int_of_string_opt s) with
+              | Some u, Some s -> Some (Float.of_int (u + s) /. 100.)
+              | _ -> None)
+          | _ -> None))
+
+let cpu_self () =
+  let t = Unix.times () in
+  t.tms_utime +. t.tms_stime
+
+(* The child is given as much work as the caller did meanwhile ([mine] CPU
+   seconds since the fork): at the rate it has had ([theirs] CPU seconds in
+   [wall]), what it has left takes [(mine - theirs) * wall / theirs];
+   done here it takes [mine]. Under 5 ticks of the caller's CPU time,
+   the counts are too coarse to judge by: not late. *)
+let late ~mine ~theirs ~wall = mine >= 0.05 && mine > theirs && (mine -. theirs) *. wall > mine *. theirs
+
 (* The child sends [Ok v] or [Error message]; a child killed before it
    has sent all of it leaves the parent at the end of the pipe. *)
-let beside f =
+let beside ?(take_over = false) f =
   flush stdout;
   flush stderr;
   match Unix.pipe ~cloexec:true () with
@@ -231,9 +261,27 @@ let beside f =
       | pid ->
           close_quietly w;
           let waited = ref false in
+          let t0 = Unix.gettimeofday () and c0 = cpu_self () in
+          let taken_over () =
+            take_over
+            && (match Unix.select [ r ] [] [] 0. with [], _, _ -> true | _ -> false | exception Unix.Unix_error _ -> false)
+            &&
+            match cpu_of pid with
+            | Some theirs when late ~mine:(cpu_self () -. c0) ~theirs ~wall:(Unix.gettimeofday () -. t0) ->
+                (try Unix.kill pid Sys.sigkill with Unix.Unix_error _ -> ());
+                close_quietly r;
+                let rec reap () =
+                  match Unix.waitpid [] pid with _ -> () | exception Unix.Unix_error (EINTR, _, _) -> reap ()
+                in
+                (try reap () with Unix.Unix_error _ -> ());
+                true
+            | _ -> false
+          in
           fun () ->
             if !waited then invalid_arg "Parallel.beside: waited for twice";
             waited := true;
+            if taken_over () then (match f () with v -> Ok v | exception e -> Error (`Msg (Printexc.to_string e)))
+            else
             let ic = Unix.in_channel_of_descr r in
             let sent = match Marshal.from_channel ic with v -> Some v | exception (End_of_file | Failure _) -> None in
             close_in_noerr ic;

@@ -108,8 +108,8 @@ val exit_if_orphaned : unit -> unit
     {!File_io.remove_temporaries}; outside a worker of {!run} it does
     nothing. It allocates nothing. *)
 
-val beside : (unit -> 'a) -> unit -> ('a, [> `Msg of string ]) result
-(** [beside f] starts computing [f ()] in a forked child process and is
+val beside : ?take_over:bool -> (unit -> 'a) -> unit -> ('a, [> `Msg of string ]) result
+(** [beside ~take_over f] starts computing [f ()] in a forked child process and is
     [wait]: [wait ()] waits for the child and is its result, sent back on
     a pipe with [Marshal] (so [f]'s result must hold no functions). The
     caller works meanwhile: [let wait = beside f in let a = g () in
@@ -118,7 +118,16 @@ val beside : (unit -> 'a) -> unit -> ('a, [> `Msg of string ]) result
     sent (it held a function), or if the child ended without sending it
     (killed by a signal: [the child process was killed by SIGKILL]). If
     no process can be forked, [f ()] is computed by [wait] itself, in the
-    caller. [wait] must be called once: until then the child may wait,
+    caller. With [take_over] (default [false]), a child that has not
+    answered when [wait] is called and is late is killed (SIGKILL), and
+    [f ()] is computed by [wait] in the caller: late where, at the rate
+    of CPU time it has had since the fork ([/proc/PID/stat]), the work
+    the caller did meanwhile (its own CPU time since the fork, which the
+    child's share is assumed to equal) would take it longer to finish
+    than the caller takes to do it all (never before the caller has had
+    0.05 s of CPU time since the fork: the counts are in hundredths of a
+    second); so that a child that finds no
+    core free costs the caller at most the fork. [wait] must be called once: until then the child may wait,
     blocked on a full pipe; a child whose parent ended dies on that
     pipe ([SIGPIPE]). The child leaves with [Unix._exit], never running
     the parent's [at_exit] handlers or flushing its buffers; it allocates

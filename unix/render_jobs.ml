@@ -70,8 +70,11 @@ let bvh_beside ?(min_objects = 1 lsl 16) ?(idle = Parallel.idle_core) () =
     pending := r :: !pending;
     (r.floats, r.reserve)
   in
+  (* A child that has had too little of a core to finish before this
+     process could do its part again is killed and its part built here
+     ([take_over]): a core taken after the fork costs about the fork. *)
   let beside f =
-    let wait = Parallel.beside f in
+    let wait = Parallel.beside ~take_over:true f in
     fun () ->
       let r = wait () in
       List.iter (fun (r : Parallel.reserved_later) -> r.release ()) !pending;
@@ -89,7 +92,7 @@ let bvh_beside ?(min_objects = 1 lsl 16) ?(idle = Parallel.idle_core) () =
    which needs none. Nothing here holds the scene past
    [Prepared.prepare], which lets its spheres go as it builds the
    hierarchy ([one_process] does not hold it either). *)
-let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling scene (region : Render.Region.t) =
+let in_workers ~limits ~jobs ~split ~one_process ?skips ?progress ?rows_done sampling scene (region : Render.Region.t) =
   let canvas = (let s = Scene.of_valid scene in (Scene.width s, Scene.height s)) in
   match Image.of_buffer region.w region.h (Parallel.shared_bytes (3 * Render.Region.pixels region)) with
   | exception Out_of_memory -> Render_work.out_of_memory region
@@ -111,8 +114,11 @@ let in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling s
           (* A part of a big hierarchy is built by a child process meanwhile,
              where a core is idle when it would be forked: on a machine
              whose cores are all busy the child waits for one, and preparing
-             takes longer (docs/performance.md, issue 31). *)
-          let beside = if jobs > 1 then Some (bvh_beside ()) else None in
+             takes longer (docs/performance.md, issue 31). A child that
+             falls behind after the fork is taken over ([bvh_beside]).
+             [`Always] forks it whatever the host (the tests). *)
+          let idle = match split with `Always -> fun () -> true | `Auto -> Parallel.idle_core in
+          let beside = if jobs > 1 then Some (bvh_beside ~idle ()) else None in
           let p = Prepared.prepare ?skips ?beside scene in
           let t1 = Unix.gettimeofday () in
           let total = Render_work.total_rows plan in
@@ -259,7 +265,7 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?(split = `Auto) ?skips 
                     Option.iter (fun f -> f img region.h) rows_done;
                     Ok (img, stats)
               in
-              if splits ~split ~jobs region sampling then in_workers ~limits ~jobs ~one_process ?skips ?progress ?rows_done sampling scene region
+              if splits ~split ~jobs region sampling then in_workers ~limits ~jobs ~split ~one_process ?skips ?progress ?rows_done sampling scene region
               else one_process scene)))
 
 let image ?limits ?jobs ?split ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene =

@@ -13,6 +13,8 @@ val least_split_rays : int
     times [samples]{^2} are fewer (the workers' fork and shared memory
     would cost more than half the trace saves), or where
     {!Parallel.idle_core} is [false] (the workers would share one core).
+    [`Always] forks the hierarchy's child of {!bvh_beside} too, whatever
+    the host.
     The image is the same bytes either way; the {!Raytrace.Render.Stats.t}'s
     [jobs] says how many processes traced. *)
 
@@ -71,7 +73,9 @@ val bvh_beside : ?min_objects:int -> ?idle:(unit -> bool) -> unit -> Bvh.beside
     child's leaves' boxes come back in memory shared with it, which the
     child reserves as it writes ({!Parallel.shared_floats_later}). A child
     that fails (killed, out of memory) costs the time it took: its part
-    is built here. It forks only where [idle ()] (default
+    is built here; so is the part of a child that is late when this
+    process has built the rest ({!Parallel.beside}'s [take_over]): it is
+    killed. It forks only where [idle ()] (default
     {!Parallel.idle_core}; {!Bvh.beside}'s [idle]), asked before each fork,
     says a core is idle; otherwise the part is built here at once, as
     with one job: on a machine whose other core is busy the child comes
