@@ -157,9 +157,13 @@ let instructions dir argv =
   let out = Filename.concat dir "callgrind" in
   if Sys.file_exists out then Array.iter (fun f -> Sys.remove (Filename.concat out f)) (Sys.readdir out)
   else Unix.mkdir out 0o755;
+  (* RAYTRACE_SPLIT=always: the count of two jobs is that of the workers,
+     which a render on a busy host (or under callgrind's slowness) would
+     not fork (docs/usage.md). [env] execs valgrind in its own process. *)
   let argv =
     Array.append
-      [| "valgrind"; "--tool=callgrind"; "--trace-children=yes"; "--callgrind-out-file=" ^ Filename.concat out "%p" |]
+      [| "env"; "RAYTRACE_SPLIT=always"; "valgrind"; "--tool=callgrind"; "--trace-children=yes";
+         "--callgrind-out-file=" ^ Filename.concat out "%p" |]
       argv
   in
   let first = ref 0 in
