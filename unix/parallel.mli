@@ -23,9 +23,10 @@ val idle_core : unit -> bool
 (** [idle_core ()] is [true] if a process forked now would likely find a
     core of its own: {!others_running} is below [cores () - 1], or cannot
     be known. A render splits a phase whose split half is waited for (the
-    hierarchy's build) only where it is [true]: with the other core busy,
-    the child's half comes late and the copy-on-write faults of the fork
-    cost more than it saves (docs/performance.md, "Issue 31, round 3"). *)
+    hierarchy's build, the trace) only where it is [true]: with the other
+    core busy, the child's half comes late and the copy-on-write faults of
+    the fork cost more than it saves (docs/performance.md, "Issue 31,
+    round 3"). *)
 
 val available_memory : unit -> int option
 (** [available_memory ()] is the memory, in bytes, that the system can give

@@ -255,17 +255,23 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?(split = `Auto) ?skips 
               let jobs = min jobs region.h in
               (* A function of the scene, not a closure over it: passed to
                  [in_workers], it would hold the scene through the render. *)
-              let one_process scene =
+              let one_process ?beside scene =
                 match
-                  Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?samples ?adaptive ?subsample ?progress
-                    scene region
+                  Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?beside ?samples ?adaptive ?subsample
+                    ?progress scene region
                 with
                 | Error _ as e -> e
                 | Ok (img, stats) ->
                     Option.iter (fun f -> f img region.h) rows_done;
                     Ok (img, stats)
               in
-              if splits ~split ~jobs region sampling then in_workers ~limits ~jobs ~split ~one_process ?skips ?progress ?rows_done sampling scene region
+              if splits ~split ~jobs region sampling then
+                in_workers ~limits ~jobs ~split ~one_process:(fun s -> one_process s) ?skips ?progress ?rows_done
+                  sampling scene region
+              else if jobs > 1 then
+                (* A trace too short to split may follow a big build: its
+                   child is still forked where a core is idle. *)
+                one_process ~beside:(bvh_beside ()) scene
               else one_process scene)))
 
 let image ?limits ?jobs ?split ?skips ?samples ?adaptive ?subsample ?progress ?rows_done scene =

@@ -9,7 +9,8 @@ type split = [ `Auto | `Always ]
 
 val least_split_rays : int
 (** [least_split_rays] is [2^18]: with [~split:`Auto], a render with several
-    jobs traces in this process, as with one, where its region's pixels
+    jobs traces in this process (its hierarchy's build still shared with
+    a child of {!bvh_beside} where a core is idle), where its region's pixels
     times [samples]{^2} are fewer (the workers' fork and shared memory
     would cost more than half the trace saves), or where
     {!Parallel.idle_core} is [false] (the workers would share one core).

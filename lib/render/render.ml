@@ -1,5 +1,5 @@
-let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples ?adaptive ?subsample ?progress scene
-    (region : Region.t) =
+let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?beside ?samples ?adaptive ?subsample ?progress
+    scene (region : Region.t) =
   Render_work.inside "Render.region_image" scene region;
   (* Nothing here holds the scene past [Prepared.prepare], which lets its
      spheres go as it builds the hierarchy: matches, not [let*], whose
@@ -16,7 +16,7 @@ let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?samples 
   | exception Out_of_memory -> Render_work.out_of_memory region
   | img ->
       let t0 = clock () in
-      let p = Prepared.prepare ?skips scene in
+      let p = Prepared.prepare ?skips ?beside scene in
       let t1 = clock () in
       let plan = Sampling_rows.plan sampling img ~canvas ~at:(region.x, region.y) in
       let ints = Bigarray.Array1.create Bigarray.int64 Bigarray.c_layout Render_work.counter_fields in
