@@ -82,6 +82,7 @@ module Private = struct
   module Sphere_scan = Sphere_scan
   module Antialias = Antialias
   module Render_work = Render_work
+  module Render_region = Render_region
   module Sampling_rows = Sampling_rows
   module Obj_parts = Obj_parts
   module Exact_float = Exact_float

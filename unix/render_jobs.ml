@@ -257,7 +257,7 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?(split = `Auto) ?skips 
                  [in_workers], it would hold the scene through the render. *)
               let one_process ?beside scene =
                 match
-                  Render.region_image ~limits ~clock:Unix.gettimeofday ?skips ?beside ?samples ?adaptive ?subsample
+                  Render_region.region_image ~limits ~clock:Unix.gettimeofday ?skips ?beside ?samples ?adaptive ?subsample
                     ?progress scene region
                 with
                 | Error _ as e -> e

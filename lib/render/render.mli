@@ -38,7 +38,6 @@ val region_image :
   ?limits:Limits.t ->
   ?clock:(unit -> float) ->
   ?skips:bool ->
-  ?beside:Bvh.beside ->
   ?samples:int ->
   ?adaptive:int ->
   ?subsample:bool ->
@@ -46,13 +45,11 @@ val region_image :
   Scene.valid ->
   Region.t ->
   (Image.t * Stats.t, [> `Msg of string ]) result
-(** [region_image ~limits ~clock ~skips ~beside ~samples ~adaptive ~subsample ~progress scene r]
+(** [region_image ~limits ~clock ~skips ~samples ~adaptive ~subsample ~progress scene r]
     is the image of the region [r] of [scene]'s canvas, [r.w x r.h]
     pixels, and what it cost: byte for byte the pixels of {!image} there,
     for every sampling (adaptive sampling and subsampling trace the first
     rays of a one-pixel margin around [r] too, to decide as the whole image
-    does). [beside], if given, builds a part of a big hierarchy elsewhere
-    ({!Prepared.prepare}'s; the image is the same). The other arguments
-    and errors are as for {!image}.
+    does). The arguments and errors are as for {!image}.
     @raise Invalid_argument if [r] is not inside the canvas (make regions
     with {!Region.tile} or {!Region.of_corners}, which check). *)
