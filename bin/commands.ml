@@ -100,7 +100,7 @@ let progress meter = match meter with None -> None | Some m -> Some (Meter.updat
 (* RAYTRACE_SPLIT=always: the workers of --jobs N are forked whatever the
    image and the host (the tests, which exercise them on small images and
    loaded machines); anything else, or nothing, lets the render judge
-   ({!Render_jobs.least_split_rays}). *)
+   ({!Render_jobs.split_work}). *)
 let split = match Sys.getenv_opt "RAYTRACE_SPLIT" with Some "always" -> `Always | _ -> `Auto
 
 (* The image, its statistics (none for the oracle) and its tracing time. *)

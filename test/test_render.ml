@@ -330,10 +330,11 @@ let tests =
             (0, 2); (1, 2); (7, 2); (100, 1); (100, 2); (1920, 2); (1920, 3); (50_000, 16); (1_000_000, 1024);
             (3, 1024);
           ]);
-    Alcotest.test_case "with two jobs, an image of fewer primary rays than least_split_rays is traced here unless forced"
+    Alcotest.test_case "with two jobs, an image of less split_work than least_split_work is traced here unless forced"
       `Quick (fun () ->
-        (* 511 x 512 = 261,632 and 256 x 255 x 2^2 = 261,120 rays, below
-           2^18 = 262,144: no worker is forked, whatever the host. *)
+        (* 511 x 512 = 261,632 and 256 x 255 x 2^2 = 261,120 rays through
+           four spheres (1 + log2 5 = 3.32 levels), below 2^20 / 3.32 =
+           315,800: no worker is forked, whatever the host. *)
         List.iter
           (fun (w, h, samples) ->
             let scene = Scene.with_overrides ~width:w ~height:h Scene.cgfs in
@@ -347,7 +348,22 @@ let tests =
             Alcotest.(check int) (Printf.sprintf "%dx%d, %d samples: processes, always" w h samples) 2 st2.jobs;
             Helpers.check_images "auto against always" ~expected:forked one)
           [ (511, 512, 1); (256, 255, 2) ];
-        Alcotest.(check int) "the threshold" (1 lsl 18) Render_jobs.least_split_rays);
+        Alcotest.(check int) "the threshold" (1 lsl 20) Render_jobs.least_split_work;
+        (* The guess grows with the objects: at 400 x 300, ten thousand
+           spheres split (14.3 levels) where the reference scene's four
+           do not; the reference scene splits at 600 x 600, where it gains
+           from two workers on a quiet host. *)
+        let work ?(samples = 1) w h scene =
+          match Scene.validate (Scene.with_overrides ~width:w ~height:h scene) with
+          | Ok v -> Render_jobs.split_work v (Render.Region.full ~width:w ~height:h) ~samples
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        let least = Float.of_int Render_jobs.least_split_work in
+        let grid = Scene.grid 10_000 in
+        if work 400 300 grid < least then Alcotest.failf "10,000 spheres at 400 x 300: %.0f" (work 400 300 grid);
+        if work 400 300 Scene.cgfs >= least then Alcotest.failf "cgfs at 400 x 300: %.0f" (work 400 300 Scene.cgfs);
+        if work 600 600 Scene.cgfs < least then Alcotest.failf "cgfs at 600 x 600: %.0f" (work 600 600 Scene.cgfs);
+        if work ~samples:2 300 300 Scene.cgfs <> 4. *. work 300 300 Scene.cgfs then Alcotest.fail "samples squared");
     Alcotest.test_case "with two jobs, rows_done tells of final rows from the top while the workers trace" `Quick
       (fun () ->
         let scene = Scene.with_overrides ~width:90 ~height:160 Scene.cgfs in

@@ -219,23 +219,38 @@ let in_workers ~limits ~jobs ~split ~one_process ?skips ?progress ?rows_done sam
 
 type split = [ `Auto | `Always ]
 
-let least_split_rays = 1 lsl 18
+let least_split_work = 1 lsl 20
+
+(* The objects of the hierarchy that a ray descends (each mesh triangle
+   one, a CSG solid or an instance one), counted from the scene's lists:
+   nothing is prepared yet. *)
+let hierarchy_objects scene =
+  let s = Scene.view (Scene.of_valid scene) in
+  List.fold_left
+    (fun n (_, sh) -> match (sh : Shape.t) with Mesh m -> n + Mesh.objects m | _ -> n + 1)
+    (Spheres.length s.spheres) s.placed
 
 (* Splitting the trace costs the workers' fork and the shared memory, paid
    whatever the image: it pays only where the trace is long enough to
    halve that cost and more, and where a worker finds a core of its own
    (with the other core busy, two workers share one and finish no sooner).
-   The trace's length is guessed from its primary rays, before anything is
-   prepared: the scene's cost per ray is not known yet, so the threshold is
-   that of a cheap scene (docs/performance.md, "Issue 31, round 3"). *)
-let splits ~split ~jobs (region : Render.Region.t) (sampling : Render.Sampling.t) =
+   The trace's length is guessed before anything is prepared, from its
+   primary rays times the levels of a hierarchy of the scene's objects
+   (a ray's walk grows with their logarithm): the threshold is where the
+   reference scene's trace, measured, starts to gain from two workers
+   (about 600 x 600), and a million-triangle mesh splits at 200 x 250
+   (docs/performance.md, "Issue 31, round 3"). *)
+let split_work scene (region : Render.Region.t) ~samples =
+  let levels = 1. +. Float.log2 (1. +. Float.of_int (hierarchy_objects scene)) in
+  Float.of_int (Render.Region.pixels region * samples * samples) *. levels
+
+let splits ~split ~jobs scene region (sampling : Render.Sampling.t) =
   jobs > 1
   &&
   match split with
   | `Always -> true
   | `Auto ->
-      let n = sampling.samples in
-      Render.Region.pixels region * n * n >= least_split_rays && Parallel.idle_core ()
+      split_work scene region ~samples:sampling.samples >= Float.of_int least_split_work && Parallel.idle_core ()
 
 let region_image ?(limits = Limits.default) ?(jobs = 1) ?(split = `Auto) ?skips ?samples ?adaptive ?subsample
     ?progress ?rows_done scene (region : Render.Region.t) =
@@ -265,7 +280,7 @@ let region_image ?(limits = Limits.default) ?(jobs = 1) ?(split = `Auto) ?skips 
                     Option.iter (fun f -> f img region.h) rows_done;
                     Ok (img, stats)
               in
-              if splits ~split ~jobs region sampling then
+              if splits ~split ~jobs scene region sampling then
                 in_workers ~limits ~jobs ~split ~one_process:(fun s -> one_process s) ?skips ?progress ?rows_done
                   sampling scene region
               else if jobs > 1 then

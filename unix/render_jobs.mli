@@ -5,19 +5,26 @@
 
 type split = [ `Auto | `Always ]
 (** The type for when a render with several jobs forks its workers:
-    [`Always], or [`Auto], only where it may pay ({!least_split_rays}). *)
+    [`Always], or [`Auto], only where it may pay ({!split_work}). *)
 
-val least_split_rays : int
-(** [least_split_rays] is [2^18]: with [~split:`Auto], a render with several
+val split_work : Scene.valid -> Render.Region.t -> samples:int -> float
+(** [split_work scene r ~samples] is the guess of a trace's length that
+    decides whether to fork workers, made before anything is prepared:
+    [r]'s pixels times [samples]{^2}, times [1 + log2 (1 + n)] for the
+    [n] objects of the scene's hierarchy (each mesh triangle one), the
+    levels that a ray's walk descends. *)
+
+val least_split_work : int
+(** [least_split_work] is [2^20]: with [~split:`Auto], a render with several
     jobs traces in this process (its hierarchy's build still shared with
-    a child of {!bvh_beside} where a core is idle), where its region's pixels
-    times [samples]{^2} are fewer (the workers' fork and shared memory
-    would cost more than half the trace saves), or where
-    {!Parallel.idle_core} is [false] (the workers would share one core).
-    [`Always] forks the hierarchy's child of {!bvh_beside} too, whatever
-    the host.
-    The image is the same bytes either way; the {!Raytrace.Render.Stats.t}'s
-    [jobs] says how many processes traced. *)
+    a child of {!bvh_beside} where a core is idle), where {!split_work} is
+    less (the workers' fork and shared memory would cost more than half
+    the trace saves: the reference scene's four spheres split from about
+    316,000 primary rays, 560 x 560, a million triangles from 50,000), or
+    where {!Parallel.idle_core} is [false] (the workers would share one
+    core). [`Always] forks the hierarchy's child of {!bvh_beside} too,
+    whatever the host. The image is the same bytes either way; the
+    {!Raytrace.Render.Stats.t}'s [jobs] says how many processes traced. *)
 
 val image :
   ?limits:Limits.t ->
@@ -34,7 +41,7 @@ val image :
 (** [image ~limits ~jobs ~split ~skips ~samples ~adaptive ~subsample ~progress ~rows_done scene] is
     {!Raytrace.Render.image} traced by [jobs] processes (default 1: this one), timed
     by the wall clock, where [split] (default [`Auto]) says to fork them
-    ({!least_split_rays}; otherwise by this one alone, as with one job). With workers, [progress] is called about ten
+    ({!split_work}; otherwise by this one alone, as with one job). With workers, [progress] is called about ten
     times a second by this process (the workers count their rows in shared
     memory), with the meaning it has for {!Raytrace.Render.image}.
     [rows_done img r] is called by this process whenever the first [r]
