@@ -218,6 +218,18 @@ val save : t -> samples -> int -> unit
     channel clamped to [\[0, 255\]], to [saved] at [k], [k + 1], [k + 2].
     @raise Invalid_argument if [k + 2] is outside [saved]. *)
 
+val save_blur : t -> samples -> int -> unit
+(** [save_blur tr blur k] writes to [blur] at [k] the diameter, in pixels,
+    of the circle of confusion of the last {!pixel}'s first hit: a point at
+    depth [z] (along the view axis) spreads, through a lens of diameter
+    [A] focused at [f], over a circle of diameter [A |z - f| / z] on the
+    plane of focus, here divided by a pixel's width on that plane. [0.] if
+    the ray hit nothing (the background is one colour) or the camera is a
+    pinhole. An estimate: [z] is the ray's parameter times the viewport
+    distance, exact for an orthonormal camera matrix; reflections and
+    refractions of blurred objects are not counted.
+    @raise Invalid_argument if [k] is outside [blur]. *)
+
 val average_reusing : t -> samples -> int -> int -> int -> n:int -> unit
 (** [average_reusing tr saved k gx gy ~n] is {!average} [tr gx gy ~n] for
     an odd [n], whose grid has the pixel's centre as its middle sample
