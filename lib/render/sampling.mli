@@ -21,6 +21,22 @@
       sampling never traces more rays than full supersampling. (An even
       [n] has no centre sample: the first ray would be wasted or taken off
       centre, which measurably raises the error; it is refused.)
+      Under a thin lens ({!Camera.has_lens}), where one ray per pixel of a
+      blurred region is noise and the neighbour test refines it at random,
+      a pixel is also refined when it is {e blurred}: when the circle of
+      confusion of its first ray's hit, or of a first ray's within 4
+      pixels whose circle reaches it, is wider than half a pixel (the
+      circle's diameter in pixels: [A |z - f| / z] on the plane of focus,
+      for a lens of diameter [A] focused at [f] and the hit at depth [z],
+      over a pixel's width there). What is exact: an unrefined pixel is the
+      one-sample render's, a refined one [--samples n]'s, the same for
+      every [--jobs] and tiling. What is an estimate: the circle is that of
+      the first ray's hit alone (its depth [t d], exact for an orthonormal
+      camera matrix; a reflection of a blurred object, or a blurred object
+      that no first ray within 4 pixels hits, is not seen), and a pixel
+      whose first ray and neighbourhood are in focus keeps one ray (or the
+      full grid at an edge, as for a pinhole). A pinhole's circle is 0:
+      its pixels are decided as without a lens.
     - {e Subsampling} (CGFS, "Performance Optimizations") traces one ray
       per pixel but skips the search for the primary ray's sphere where
       the two neighbours on either side (left and right on even rows, above
