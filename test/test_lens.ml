@@ -133,14 +133,6 @@ let cells ~gx ~gy n =
 
 let tests =
   [
-    Alcotest.test_case "Sample_key.permute is a permutation of [0, n), another for another key" `Quick (fun () ->
-        List.iter
-          (fun n ->
-            let image h = List.init n (fun k -> Private.Sample_key.permute h ~n k) in
-            let a = image 17 and b = image 18 in
-            Alcotest.(check (list int)) (Printf.sprintf "n = %d" n) (List.init n Fun.id) (List.sort compare a);
-            if n >= 8 && a = b then Alcotest.failf "n = %d: keys 17 and 18 give the same permutation" n)
-          [ 1; 2; 3; 8; 9; 24; 25; 48; 63; 64; 1000; 4095; 4096 ]);
     Alcotest.test_case "a pixel's n x n stratified lens points lie one in each cell of its shifted cut" `Quick (fun () ->
         List.iter
           (fun n ->
