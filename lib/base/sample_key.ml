@@ -26,13 +26,14 @@ let[@inline] stratum h ~n i =
    right shift of the masked value), repeated until the value falls in
    [\[0, n)]. Every product is masked to [b <= 31] bits before the next
    step, so native code and js_of_ocaml keep the same bits. *)
-let permute h ~n k =
-  if n < 1 || k < 0 || k >= n then invalid_arg "Sample_key.permute: k outside [0, n)";
+let mask n =
   let w = ref 0 in
   while !w < n - 1 do
     w := (!w lsl 1) lor 1
   done;
-  let w = !w and p = mix h in
+  !w
+
+let walk ~p ~w ~n k =
   let i = ref k and walking = ref true in
   while !walking do
     let x = !i in
@@ -50,3 +51,7 @@ let permute h ~n k =
   done;
   (* [p mod n] first: [p + i] could pass [2^31 - 1], JavaScript's largest int. *)
   ((p mod n) + !i) mod n
+
+let permute h ~n k =
+  if n < 1 || k < 0 || k >= n then invalid_arg "Sample_key.permute: k outside [0, n)";
+  walk ~p:(mix h) ~w:(mask n) ~n k

@@ -57,3 +57,12 @@ val permute : int -> n:int -> int -> int
     web. Takes a few steps (twice the bits of [n] on average at worst),
     allocates nothing.
     @raise Invalid_argument if [k] is outside [\[0, n)] ([n >= 1]). *)
+
+val mask : int -> int
+(** [mask n] is [2{^b} - 1] for the least [b >= 0] with [2{^b} >= n]: the
+    bits {!permute} walks on for a domain of [n]. *)
+
+val walk : p:int -> w:int -> n:int -> int -> int
+(** [walk ~p:(mix h) ~w:(mask n) ~n k] is [permute h ~n k], its key mixed
+    and its mask computed by the caller, who may keep them from call to
+    call (the kernel does, per pixel); not checked. *)

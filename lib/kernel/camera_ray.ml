@@ -158,7 +158,7 @@ let lens tr =
       let hp = Sample_key.pixel ~col:tr.lens_gx ~row:tr.lens_gy ~sample:lens_tag in
       s.lens_u0 <- unit (Sample_key.key hp 0);
       s.lens_v0 <- unit (Sample_key.key hp 1);
-      tr.lens_hc <- Sample_key.key hp 2;
+      tr.lens_hc <- Sample_key.mix (Sample_key.key hp 2);
       tr.lens_px <- tr.lens_gx;
       tr.lens_py <- tr.lens_gy
     end;
@@ -166,11 +166,17 @@ let lens tr =
     let centre = if n land 1 = 1 then ((n / 2) * n) + (n / 2) else -1 in
     let u = ref x0 and v = ref y0 in
     if k <> centre then begin
-      let hc = tr.lens_hc in
-      (* The centre keeps cell 0: the others share the rest. *)
+      (* The centre keeps cell 0: the others share the rest, by
+         [Sample_key.permute (key hp 2)] of that many, its mixed key and
+         mask kept from sample to sample. *)
+      let m = if centre >= 0 then (n * n) - 1 else n * n in
+      if m <> tr.lens_m then begin
+        tr.lens_m <- m;
+        tr.lens_w <- Sample_key.mask m
+      end;
       let c =
-        if centre >= 0 then 1 + Sample_key.permute hc ~n:((n * n) - 1) (if k < centre then k else k - 1)
-        else Sample_key.permute hc ~n:(n * n) k
+        if centre >= 0 then 1 + Sample_key.walk ~p:tr.lens_hc ~w:tr.lens_w ~n:m (if k < centre then k else k - 1)
+        else Sample_key.walk ~p:tr.lens_hc ~w:tr.lens_w ~n:m k
       in
       (* The jitter: two numbers chained from the sample's lens key. *)
       let h = Sample_key.key tr.key lens_tag and fn = Float.of_int n in

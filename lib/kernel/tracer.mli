@@ -104,9 +104,13 @@ type t = {
       (** A stratified lens's numbers of one pixel, kept from sample to
           sample: the pixel [(lens_px, lens_py)] ([min_int] before the
           first) whose offset is in [s.lens_u0], [s.lens_v0] and whose key
-          of the cell permutation is [lens_hc]. *)
+          of the cell permutation, mixed ({!Sample_key.walk}'s [p]), is
+          [lens_hc]; and the permutation's last domain [lens_m] ([0]
+          before the first) and its mask [lens_w]. *)
   mutable lens_py : int;
   mutable lens_hc : int;
+  mutable lens_m : int;
+  mutable lens_w : int;
   red : float array;
       (** The colour channels of each material, read by the tracing loops:
           [p.red] itself, or, where some material has a texture
