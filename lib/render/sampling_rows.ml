@@ -44,8 +44,9 @@ type plan = {
 }
 
 (* How far, in pixels, adaptive sampling looks for a blurred first ray
-   whose circle of confusion covers a pixel: the widest blur it sees in
-   full is [2 (reach - 1)] pixels across (see [blur_grid]). *)
+   whose circle of confusion covers a pixel: a wider circle than
+   [2 (reach - 1)] pixels across is seen up to [reach] only (see
+   [blurred]). *)
 let reach = 4
 
 let plan ?(memory = local) (s : Sampling.t) img ~canvas:(cw, ch) ~at:(x, y) =
