@@ -129,8 +129,10 @@ val sample : t -> int -> int -> i:int -> j:int -> n:int -> unit
     of a regular [n x n] grid centered on the pixel ([i] to the right, [j]
     up, both in [\[0, n)]). [sample tr gx gy ~i:0 ~j:0 ~n:1] is exactly
     [pixel tr gx gy]. With a lens, each sample has its own lens point,
-    keyed by [Sample_key.camera ~gx ~gy ~di:(2i+1-n) ~dj:(2j+1-n)]: the
-    grid's samples average over the lens as over the pixel. *)
+    keyed by [Sample_key.camera ~gx ~gy ~di:(2i+1-n) ~dj:(2j+1-n)] and,
+    stratified (the default), one cell each of the lens's [n x n] cut,
+    the centre of an odd grid taking {!pixel}'s point: the grid's samples
+    average over the lens as over the pixel. *)
 
 val store : t -> Image.buffer -> int -> unit
 (** [store tr buf k] writes the colour of the last {!pixel}, each channel
