@@ -337,9 +337,10 @@ let soft_reference_side = 64
    sample, drawn independently over the lens disc ([(lens-sampling
    uniform)]: "uniform") or stratified (the default: "stratified"), for
    N = 1-6; and stratified under [--adaptive T] for odd N, which refines
-   the pixels that differ from a neighbour or lie in a first ray's circle
-   of confusion, with a grid that grows with the circle. The reference:
-   stratified 48 x 48, 64 times the 6 x 6 top. *)
+   to the full grid the pixels that differ from a neighbour, and those
+   that lie in a first ray's circle of confusion where a probe from the
+   lens's rim sees another object or colour. The reference: stratified
+   48 x 48, 64 times the 6 x 6 top. *)
 let lens_sides = [ 1; 2; 3; 4; 5; 6 ]
 let lens_adaptive = [ (3, 8); (3, 2); (5, 8); (5, 2); (7, 8); (7, 2); (9, 8); (9, 2) ]
 let lens_reference_side = 48

@@ -208,3 +208,12 @@ let set_lens_pixel tr col row =
 let set_lens_point tr =
   set_point tr;
   if tr.p.camera.aperture > 0. then lens tr
+
+(* Probe [k] of adaptive sampling ([k] in [0, 3]): the pixel's centre ray
+   moved to the rim point [(1, 0)], [(-1, 0)], [(0, 1)] or [(0, -1)] of the
+   unit disc. Fixed points, no key: the same ray for every process, tile
+   and region. *)
+let set_probe tr col row k =
+  set_pixel tr col row;
+  if tr.p.camera.aperture > 0. then
+    if k = 0 then move tr 1. 0. else if k = 1 then move tr (-1.) 0. else if k = 2 then move tr 0. 1. else move tr 0. (-1.)

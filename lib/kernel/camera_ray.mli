@@ -43,3 +43,11 @@ val set_lens_pixel : Tracer.t -> int -> int -> unit
 val set_lens_point : Tracer.t -> unit
 (** [set_lens_point tr] is {!set_point}, then the lens as in
     {!set_lens_pixel}. *)
+
+val set_probe : Tracer.t -> int -> int -> int -> unit
+(** [set_probe tr col row k] is {!set_pixel}, then, if the camera has a
+    lens, the ray moved (as {!set_lens_pixel} moves it) to the fixed point
+    [(1, 0)], [(-1, 0)], [(0, 1)] or [(0, -1)] ([k = 0, 1, 2], else) of
+    the unit disc: the lens's rim, through the pixel centre's point on the
+    plane of focus. Adaptive sampling's probes of a blurred pixel
+    ({!Raytrace.Private.Trace.probe}); no key, so the same ray everywhere. *)

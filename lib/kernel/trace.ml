@@ -95,6 +95,22 @@ let[@inline] pixel tr gx gy =
     else primary tr
   end
 
+(* Probe [k] of pixel [(gx, gy)], a canvas pixel: its centre ray from a
+   fixed point of the lens's rim ([Camera_ray.set_probe]); its lights'
+   numbers are those of the pixel's centre sample. Counted as a primary
+   ray: it is one. *)
+let probe tr gx gy k =
+  let p = tr.p in
+  check_budget tr;
+  let col = gx + (p.width / 2) and row = gy + (p.height / 2) in
+  if col < 0 || col >= p.width || row < 0 || row >= p.height || k < 0 || k > 3 then
+    invalid_arg "Trace.probe: no such pixel or probe";
+  if p.cull && p.textbook_all then Textbook.use_tile tr col row;
+  if p.sampled then set_sample tr gx gy ~i:0 ~j:0 ~n:1;
+  Camera_ray.set_probe tr col row k;
+  tr.counters.primary <- tr.counters.primary + 1;
+  trace tr
+
 (* Pixel [col] of a row whose first is [col0]: its camera ray (from the
    lens point of [tr.key] if [sampled]), traced and stored. *)
 let[@inline] row_pixel tr buffer k col0 col r ~sampled =

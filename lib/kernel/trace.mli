@@ -164,6 +164,18 @@ val roots : t -> int -> Vec3.t -> Vec3.t -> float * float
     runs the code the renderer runs, for the tests of its accuracy.
     @raise Invalid_argument if [k] is not an object of the scene. *)
 
+val probe : t -> int -> int -> int -> unit
+(** [probe tr gx gy k] traces, as {!pixel} does, the ray of pixel
+    [(gx, gy)] of the canvas from the fixed point [k] ([0] to [3]) of the
+    lens's rim ({!Raytrace.Private.Camera_ray.set_probe}; for a pinhole,
+    the pixel's ray), counted as a primary ray: adaptive sampling's test
+    of whether a blurred pixel's cone of rays sees more than its first
+    ray. {!hit_object}, {!red}, {!green}, {!blue} and {!store} then
+    describe it. Not a sample: nothing averages it.
+    @raise Invalid_argument if the pixel is outside the canvas or [k] is
+    outside [\[0, 3\]].
+    @raise Limits.Work_exceeded as {!pixel}. *)
+
 val red : t -> float
 (** [red tr] is the red channel of the last {!pixel}, unclamped. *)
 

@@ -40,6 +40,7 @@ type plan = {
   saved : Trace.samples;  (** Adaptive: its clamped colour. *)
   hits : ints;  (** The sphere each pixel's (first) ray hit, [-1] for none. *)
   blur : Trace.samples;  (** Adaptive: the circle of confusion of each first ray, in pixels. *)
+  probe : Image.buffer;  (** Adaptive: the bytes of the last probe. *)
   at_row : unit -> unit;
 }
 
@@ -79,6 +80,7 @@ let plan ?(memory = local) (s : Sampling.t) img ~canvas:(cw, ch) ~at:(x, y) =
     saved = floats (if adaptive then 3 * margin else 0);
     hits = ints margin;
     blur = floats (if adaptive then margin else 0);
+    probe = local.bytes (if adaptive then 3 else 0);
     at_row = memory.at_row;
   }
 
@@ -166,9 +168,33 @@ let blurred pl i cx cy =
   done;
   !found
 
+(* Under a lens, does a probe of pixel [(cx, cy)] (margin index [i]) see
+   another object than its first ray, or a colour more than [th] apart in
+   some channel? The probes go from the four rim points of the lens
+   through the pixel centre's point on the plane of focus, the widest
+   rays of its cone: where all four see what the centre saw, the cone is
+   taken to lie inside one object and one colour. An estimate: an edge
+   can pass between them. *)
+let probes_differ pl th tr i cx cy =
+  let gx = gx pl cx and gy = gy pl cy and h = hit pl.hits i in
+  let found = ref false and k = ref 0 in
+  while (not !found) && !k < 4 do
+    Trace.probe tr gx gy !k;
+    if Trace.hit_object tr <> h then found := true
+    else begin
+      Trace.store tr pl.probe 0;
+      for c = 0 to 2 do
+        if abs (Bigarray.Array1.get pl.probe c - Bigarray.Array1.get pl.first ((3 * i) + c)) > th then found := true
+      done
+    end;
+    incr k
+  done;
+  !found
+
 (* Adaptive, pass 1: refine the pixels of canvas row [cy] that differ from a
-   neighbour in the canvas, or under a lens are blurred: the full grid;
-   copy the others' first bytes. Reads only what pass 0 wrote. *)
+   neighbour in the canvas, or under a lens are blurred and a probe of
+   their lens sees something else: the full grid; copy the others' first
+   bytes. Reads only what pass 0 wrote. *)
 let refine pl th tr cy =
   let buffer = Image.buffer pl.img and n = pl.s.samples and mw = pl.mw in
   let lens = has_lens tr in
@@ -176,11 +202,11 @@ let refine pl th tr cy =
   for cx = pl.x to pl.x + pl.w - 1 do
     let i = m pl cx cy and k = 3 * out pl cx cy in
     if
-      (lens && blurred pl i cx cy)
-      || (cx > 0 && differ pl th i (i - 1))
+      (cx > 0 && differ pl th i (i - 1))
       || (cx < pl.cw - 1 && differ pl th i (i + 1))
       || (cy > 0 && differ pl th i (i - mw))
       || (cy < pl.ch - 1 && differ pl th i (i + mw))
+      || (lens && blurred pl i cx cy && probes_differ pl th tr i cx cy)
     then begin
       Trace.average_reusing tr pl.saved (3 * i) (gx pl cx) gy ~n;
       Trace.store_average tr buffer k ~count:(n * n)
