@@ -334,12 +334,15 @@ let soft_sides = [ 1; 2; 3; 4; 5; 6; 8 ]
 let soft_reference_side = 64
 
 (* Depth of field: the pixel's N x N grid, one lens point per camera
-   sample, drawn independently over the lens disc (the only way the
-   kernel draws them: "uniform"), for N = 1-4; and the same under
-   [--adaptive T] for odd N, which refines only pixels that differ from a
-   neighbour. The reference: 48 x 48, 64 times the 6 x 6 top. *)
+   sample, drawn independently over the lens disc ([(lens-sampling
+   uniform)]: "uniform") or stratified (the default: "stratified"), for
+   N = 1-6; and stratified under [--adaptive T] for odd N, which refines
+   to the full grid the pixels that differ from a neighbour, and those
+   that lie in a first ray's circle of confusion where a probe from the
+   lens's rim sees another object or colour. The reference: stratified
+   48 x 48, 64 times the 6 x 6 top. *)
 let lens_sides = [ 1; 2; 3; 4; 5; 6 ]
-let lens_adaptive = [ (3, 8); (3, 2); (5, 8); (5, 4); (5, 2); (7, 8); (7, 2) ]
+let lens_adaptive = [ (3, 8); (3, 2); (5, 8); (5, 2); (7, 8); (7, 2); (9, 8); (9, 2) ]
 let lens_reference_side = 48
 
 (* A ball over a floor under a 2 x 2 panel (the soft-light tests'
@@ -394,6 +397,15 @@ let with_area scene variant n =
   in
   Scene.with_overrides ~lights scene
 
+(* The scene with its lens sampled as [variant] says. *)
+let with_lens scene variant =
+  let c = Scene.camera scene in
+  let lens_sampling = if variant = "uniform" then Camera.Uniform else Camera.Stratified in
+  let camera =
+    Camera.v ~rotation:c.rotation ~aperture:c.aperture ~focal_distance:c.focal_distance ~lens_sampling c.position
+  in
+  Scene.with_overrides ~camera scene
+
 let soft_load source (w, h) =
   let valid =
     match source with `File path -> Files.read_scene path | `Text text -> Scene_file.of_string ~file:"ball" text
@@ -409,7 +421,7 @@ let soft_rows ~runs (name, source, size, kind) =
   let reference_scene, reference_setting =
     match kind with
     | `Shadow -> (with_area scene "stratified" soft_reference_side, setting 1 None)
-    | `Lens -> (scene, setting lens_reference_side None)
+    | `Lens -> (with_lens scene "stratified", setting lens_reference_side None)
   in
   Printf.printf "%s (%dx%d): reference...%!" name (fst size) (snd size);
   let reference, _, t, _ = render reference_scene reference_setting in
@@ -441,8 +453,12 @@ let soft_rows ~runs (name, source, size, kind) =
         (fun variant -> List.map (fun n -> rung variant n None (with_area scene variant n) (setting 1 None)) soft_sides)
         [ "uniform"; "stratified"; "adaptive" ]
   | `Lens ->
-      List.map (fun n -> rung "uniform" n None scene (setting n None)) lens_sides
-      @ List.map (fun (n, t) -> rung "adaptive" n (Some t) scene (setting n (Some t))) lens_adaptive
+      List.concat_map
+        (fun variant -> List.map (fun n -> rung variant n None (with_lens scene variant) (setting n None)) lens_sides)
+        [ "uniform"; "stratified" ]
+      @ List.map
+          (fun (n, t) -> rung "adaptive" n (Some t) (with_lens scene "stratified") (setting n (Some t)))
+          lens_adaptive
 
 let soft_time r = median r.s_times
 

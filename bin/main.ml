@@ -81,8 +81,9 @@ let sampling =
             "Adaptive supersampling: trace one ray per pixel, through its centre, then the rest \
              of the $(b,--samples) grid (an odd N: 3, 5, 7...) only in pixels whose ray hit \
              another object than a neighbour's, or whose colour differs from a neighbour's by \
-             more than $(docv) (0-255) in some channel. Never traces more rays than full \
-             sampling.")
+             more than $(docv) (0-255) in some channel; under a camera with a lens, also in \
+             blurred pixels where one of four probe rays from the lens's rim sees another \
+             object or colour. Without a lens, never traces more rays than full sampling.")
   in
   let subsample =
     Arg.(

@@ -58,8 +58,34 @@ let tests =
             Camera.v ~aperture:0.25 ~focal_distance:6.5 (Vec3.v 0. 1. (-2.));
             Camera.v ~rotation ~aperture:0.1 ~focal_distance:1. (Vec3.v 3. 0. 1.);
             Camera.v ~aperture:0.1 ~focal_distance:0.1 Vec3.zero;
+            Camera.v ~aperture:0.1 ~focal_distance:2. ~lens_sampling:Camera.Uniform Vec3.zero;
+            Camera.v ~rotation ~aperture:0.3 ~focal_distance:4. ~lens_sampling:Camera.Stratified (Vec3.v 3. 0. 1.);
             Camera.v (Vec3.v 1. 2. 3.);
           ]);
+    Alcotest.test_case "a lens is stratified unless (lens-sampling uniform); a pinhole has nothing to sample" `Quick
+      (fun () ->
+        let sampling text = Camera.lens_sampling (Scene.camera (Helpers.parse_ok text)) in
+        Alcotest.(check bool) __LOC__ true
+          (sampling "(camera (position 0 0 -1) (look-at 0 0 4) (aperture 0.2))" = Camera.Stratified);
+        Alcotest.(check bool) __LOC__ true
+          (sampling "(camera (aperture 0.2) (focal-distance 3) (lens-sampling uniform))" = Camera.Uniform);
+        Alcotest.(check bool) __LOC__ true
+          (sampling "(camera (aperture 0.2) (focal-distance 3) (lens-sampling stratified))" = Camera.Stratified);
+        (* Printed only when uniform: the default reads back as itself. *)
+        Alcotest.(check string) __LOC__ "(camera (position 0 0 0) (aperture 0.2) (focal-distance 3))"
+          (Camera.show (Camera.v ~aperture:0.2 ~focal_distance:3. Vec3.zero));
+        Alcotest.(check string) __LOC__ "(camera (position 0 0 0) (aperture 0.2) (focal-distance 3) (lens-sampling uniform))"
+          (Camera.show (Camera.v ~aperture:0.2 ~focal_distance:3. ~lens_sampling:Camera.Uniform Vec3.zero));
+        (* A pinhole's is the default, whatever is given: two pinholes are equal. *)
+        Alcotest.(check bool) __LOC__ true
+          (Camera.equal Camera.default (Camera.v ~lens_sampling:Camera.Uniform Vec3.zero));
+        Alcotest.(check string) __LOC__
+          "t.scene:1:58: camera lens-sampling: expected stratified or uniform, got unifrom (did you mean uniform?)"
+          (Helpers.parse_error "(camera (aperture 0.2) (focal-distance 3) (lens-sampling unifrom))");
+        Alcotest.(check string) __LOC__ "t.scene:2:2: camera (lens-sampling ...) needs an (aperture ...) above 0"
+          (Helpers.parse_error "(camera (position 0 0 0)\n (lens-sampling uniform))");
+        Alcotest.(check string) __LOC__ "t.scene:1:22: camera (lens-sampling ...) needs an (aperture ...) above 0"
+          (Helpers.parse_error "(camera (aperture 0) (lens-sampling stratified))"));
     Alcotest.test_case "an aperture is 0 or a size; a focal distance a size" `Quick (fun () ->
         let bad r = Alcotest.(check bool) __LOC__ true (Result.is_error r) in
         let good r = Alcotest.(check bool) __LOC__ true (Result.is_ok r) in

@@ -89,10 +89,86 @@ let wall ~aperture ~focus ~wall =
         (light ambient (intensity 0.3)) (light point (intensity 0.7) (position 1 2 0))"
        aperture focus wall (wall -. 0.6))
 
+(* A red ball before a grey wall at depth [wall], in ambient light, seen
+   through a lens of radius 1 focused at 5. *)
+let ball_and_wall ~wall ~ball:(x, y, z) ~radius =
+  Helpers.parse_ok
+    (Printf.sprintf
+       "(canvas (width 40) (height 40)) (camera (position 0 0 0) (aperture 2) (focal-distance 5))\n\
+        (plane (point 0 0 %g) (normal 0 0 -1) (color 230 230 230))\n\
+        (sphere (center %g %g %g) (radius %g) (color 200 40 40))\n\
+        (light ambient (intensity 1))"
+       wall x y z radius)
+
 let lens = "(aperture 0.3)"
+
+(* Shirley and Chiu's concentric map undone: the point of the unit square
+   that [Literal.lens_point] mapped onto [(x, y)] of the unit disc. *)
+let unmap (x, y) =
+  let r = sqrt ((x *. x) +. (y *. y)) in
+  let q = Float.pi /. 4. in
+  let phi = Float.atan2 y x in
+  let phi = if phi < -.q then phi +. (2. *. Float.pi) else phi in
+  let a, b =
+    if r = 0. then (0., 0.)
+    else if phi < q then (r, phi /. q *. r)
+    else if phi < 3. *. q then (-.(phi -. (2. *. q)) /. q *. r, r)
+    else if phi < 5. *. q then (-.r, (phi -. (4. *. q)) /. q *. -.r)
+    else ((phi -. (6. *. q)) /. q *. r, -.r)
+  in
+  ((a +. 1.) /. 2., (b +. 1.) /. 2.)
+
+let stratified = Camera.v ~aperture:1. ~focal_distance:1. Vec3.zero
+
+(* The lens points of the [n x n] camera samples of pixel [(gx, gy)], back
+   on the unit square, less the pixel's offset [u0] modulo 1: one in each
+   cell of the [n x n] cut if stratified. *)
+let cells ~gx ~gy n =
+  let hp = Private.Sample_key.pixel ~col:gx ~row:gy ~sample:(-1) in
+  let u0 = Private.Sample_key.(unit (key hp 0)) and v0 = Private.Sample_key.(unit (key hp 1)) in
+  let seen = Array.make (n * n) 0 in
+  for j = 0 to n - 1 do
+    for i = 0 to n - 1 do
+      let key = Private.Sample_key.camera ~gx ~gy ~di:((2 * i) + 1 - n) ~dj:((2 * j) + 1 - n) in
+      let u, v = unmap (Literal.lens_point stratified ~key ~lens:(gx, gy, n, i, j)) in
+      (* The map and its inverse round: a hair below 0 is 0 (the centre
+         sample lies on the corner of cell 0), and a hair inside the
+         cells. *)
+      let wrap z = if z < -1e-9 then z +. 1. else Float.max 0. z in
+      let cell z = Float.to_int (Float.of_int n *. Float.min (1. -. 1e-12) (wrap z +. 1e-12)) in
+      let c = (cell (v -. v0) * n) + cell (u -. u0) in
+      seen.(c) <- seen.(c) + 1
+    done
+  done;
+  seen
 
 let tests =
   [
+    Alcotest.test_case "a pixel's n x n stratified lens points lie one in each cell of its shifted cut" `Quick (fun () ->
+        List.iter
+          (fun n ->
+            for gx = -3 to 3 do
+              for gy = -2 to 2 do
+                let seen = cells ~gx ~gy n in
+                if Array.exists (fun c -> c <> 1) seen then
+                  Alcotest.failf "n = %d, pixel (%d, %d): cells hold %s" n gx gy
+                    (String.concat " " (Array.to_list (Array.map string_of_int seen)))
+              done
+            done)
+          [ 1; 2; 3; 4; 5; 7 ]);
+    Alcotest.test_case "the centre sample of an odd grid takes the one-sample render's lens point" `Quick (fun () ->
+        let point n i j = Literal.lens_point stratified ~key:0 ~lens:(4, -2, n, i, j) in
+        let one = point 1 0 0 in
+        List.iter (fun n -> Alcotest.(check (pair (float 0.) (float 0.))) (Printf.sprintf "n = %d" n) one (point n (n / 2) (n / 2)))
+          [ 3; 5; 7; 9 ]);
+    Alcotest.test_case "(lens-sampling uniform): the kernel's lens rays are the literal independent draws'" `Quick (fun () ->
+        let s = row (lens ^ " (lens-sampling uniform)") in
+        Alcotest.(check bool) __LOC__ true (Camera.lens_sampling (Scene.camera s) = Camera.Uniform);
+        against_literal "uniform lens" s;
+        (* Not the stratified image. *)
+        match Image.Diff.compare (image ~samples:3 s) (image ~samples:3 (row lens)) with
+        | Error (`Msg m) -> Alcotest.fail m
+        | Ok d -> if d.differing < 100 then Alcotest.failf "uniform and stratified: only %d pixels differ" d.differing);
     Alcotest.test_case "a lens's camera samples are the literal lens rays', to rounding" `Quick (fun () ->
         against_literal "document's mode" (row lens);
         against_literal "robust mode" (row ~robust:true lens);
@@ -213,6 +289,122 @@ let tests =
               ])
           [ ("turned", row lens); ("robust", row ~robust:true lens); ("glass", row ~glass:true lens);
             ("wall", wall ~aperture:0.5 ~focus:5. ~wall:5.) ]);
+    Alcotest.test_case "adaptive under a lens: every blurred pixel is --samples n's, every other the one-sample render's or n's"
+      `Quick (fun () ->
+        (* [classify] counts the pixels of [a] equal to [one]'s, to
+           [full]'s (only), and to neither (there must be none). *)
+        let classify ~one ~full a =
+          let as_one = ref 0 and as_full = ref 0 in
+          for y = 0 to Image.height a - 1 do
+            for x = 0 to Image.width a - 1 do
+              let p = Image.get a x y in
+              if p = Image.get one x y then incr as_one
+              else if p = Image.get full x y then incr as_full
+              else Alcotest.failf "pixel (%d, %d) is neither the one-sample render's nor the full grid's" x y
+            done
+          done;
+          (!as_one, !as_full)
+        in
+        (* Focused at 2, the wall at 5 is blurred over about 6 pixels
+           (0.5 x 40 x 3 / (5 x 1 x 2)): every pixel is blurred, and is
+           refined where a probe of its lens sees another object (the
+           ball), at threshold 255; elsewhere (one object, colours within
+           255) its four probes agree with its first ray and it keeps it.
+           At threshold 8 the checker's cells (5.6 pixels) are no wider
+           than the circle: nearly every cone meets an edge. *)
+        let blurred = wall ~aperture:0.5 ~focus:2. ~wall:5. in
+        let one = image blurred and full = image ~samples:3 blurred in
+        List.iter
+          (fun (th, min_one, min_full) ->
+            let as_one, as_full = classify ~one ~full (image ~samples:3 ~adaptive:th blurred) in
+            Printf.printf "a blurred wall, threshold %d: %d pixels as one sample, %d as 3 x 3\n" th as_one as_full;
+            if as_one < min_one || as_full < min_full then
+              Alcotest.failf "threshold %d: %d pixels as one sample, %d as 3 x 3" th as_one as_full)
+          [ (255, 1000, 50); (8, 0, 1000) ];
+        (* Focused on it, the wall is sharp: its pixels keep their first
+           ray, but for those the ball's blur reaches (0.5 x 40 x 0.6 /
+           (4.4 x 5): 0.55 pixels) and the edges. *)
+        let sharp = wall ~aperture:0.5 ~focus:5. ~wall:5. in
+        let one = image sharp and full = image ~samples:3 sharp in
+        let as_one, as_full = classify ~one ~full (image ~samples:3 ~adaptive:255 sharp) in
+        Printf.printf "focused on the wall, threshold 255: %d pixels as one sample, %d as 3 x 3\n" as_one as_full;
+        if as_one < 1000 || as_full < 20 then Alcotest.failf "%d pixels as one sample, %d as 3 x 3" as_one as_full;
+        (* A ball blurred over about 3 pixels (2 x 40 x 0.6 / (4.4 x 5)) in
+           front of the sharp wall: the wall's pixels around its edge are
+           refined too, though their first rays hit the wall as their
+           neighbours' do and their own circle is 0: the ball's circle
+           reaches them, and a probe from the lens's rim sees the ball. *)
+        let spread = ball_and_wall ~wall:5. ~ball:(0., 0., 4.4) ~radius:0.3 in
+        let one = image spread and full = image ~samples:3 spread in
+        let a = image ~samples:3 ~adaptive:255 spread in
+        ignore (classify ~one ~full a);
+        (* The pixels whose first ray sees the wall (230, ambient 1) but
+           whose full grid sees some of the ball: refined, every one. *)
+        let beside = ref 0 in
+        for y = 0 to 39 do
+          for x = 0 to 39 do
+            if Image.get one x y = (230, 230, 230) && Image.get full x y <> (230, 230, 230) then begin
+              incr beside;
+              if Image.get a x y <> Image.get full x y then
+                Alcotest.failf "pixel (%d, %d): the ball's blur reaches it, but it was not refined" x y
+            end
+          done
+        done;
+        Printf.printf "%d pixels of the wall under the ball's blur, all refined\n" !beside;
+        if !beside < 8 then Alcotest.failf "only %d pixels of the wall under the ball's blur" !beside);
+    Alcotest.test_case "adaptive under a lens: the probes are an estimate, an object between them is missed" `Quick
+      (fun () ->
+        (* Focused at 5 with a lens of radius 1, the cone of the centre
+           pixel's rays crosses z = 10 in the unit disc around the axis
+           (mirrored); a ball of radius 0.25 at (0.55, 0.55, 10) lies inside
+           it but away from its centre and from the four rim probes at
+           distance 1 on the axes. The pixels whose first ray and probes
+           all miss it keep their first ray, though their full grid sees
+           it: at least one does. *)
+        let s = ball_and_wall ~wall:12. ~ball:(0.55, 0.55, 10.) ~radius:0.25 in
+        let one = image s and full = image ~samples:7 s and a = image ~samples:7 ~adaptive:8 s in
+        let missed = ref 0 and refined = ref 0 in
+        for y = 0 to 39 do
+          for x = 0 to 39 do
+            let p = Image.get a x y in
+            if p <> Image.get one x y then begin
+              incr refined;
+              if p <> Image.get full x y then Alcotest.failf "pixel (%d, %d) is neither one sample's nor 7 x 7's" x y
+            end
+            else if Image.get full x y <> p then incr missed
+          done
+        done;
+        Printf.printf "%d pixels refined, %d whose full grid sees the ball kept one ray\n" !refined !missed;
+        if !missed = 0 then Alcotest.fail "no pixel between the probes: the case is not shown";
+        if !refined < 10 then Alcotest.failf "only %d pixels refined" !refined);
+    Alcotest.test_case "Trace.probe: fixed rim rays, counted as primary rays, the pixel's ray for a pinhole" `Quick
+      (fun () ->
+        let colour tr = (Trace.red tr, Trace.green tr, Trace.blue tr) in
+        let s = row lens in
+        let tr = Trace.create (Helpers.prepare ~skips:false s) in
+        let probes () = List.map (fun k -> Trace.probe tr 3 (-2) k; (colour tr, Trace.hit_object tr)) [ 0; 1; 2; 3 ] in
+        let before = (Trace.counters tr).primary in
+        let first = probes () in
+        Alcotest.(check int) "four probes, four primary rays" (before + 4) (Trace.counters tr).primary;
+        (* Whatever was traced before, the same rays. *)
+        Trace.pixel tr (-7) 5;
+        ignore (Trace.average (Trace.create ~averaging:true (Helpers.prepare ~skips:false s)) 3 (-2) ~n:3);
+        if probes () <> first then Alcotest.fail "a probe depends on what was traced before";
+        (* The four rim points see differently placed things. *)
+        if List.length (List.sort_uniq compare first) < 2 then Alcotest.fail "the four probes see the same colour";
+        let pin = row "" in
+        let tp = Trace.create (Helpers.prepare ~skips:false pin) in
+        Trace.pixel tp 3 (-2);
+        let c = colour tp in
+        List.iter
+          (fun k ->
+            Trace.probe tp 3 (-2) k;
+            if colour tp <> c then Alcotest.failf "pinhole probe %d differs from the pixel's ray" k)
+          [ 0; 1; 2; 3 ];
+        Alcotest.check_raises "outside the canvas" (Invalid_argument "Trace.probe: no such pixel or probe") (fun () ->
+            Trace.probe tr 1000 0 0);
+        Alcotest.check_raises "no probe 4" (Invalid_argument "Trace.probe: no such pixel or probe") (fun () ->
+            Trace.probe tr 0 0 4));
     Alcotest.test_case "every frame of a camera path takes the camera form's lens" `Quick (fun () ->
         let s =
           Helpers.parse_ok

@@ -52,4 +52,14 @@ let tests =
         done;
         let mean = Float.of_int !total /. 10_000. in
         if Float.abs (mean -. 15.5) > 0.5 then Alcotest.failf "mean differing bits %.2f" mean);
+    Alcotest.test_case "Sample_key.permute is a permutation of [0, n), another for another key" `Quick (fun () ->
+        List.iter
+          (fun n ->
+            let image h = List.init n (fun k -> Sample_key.permute h ~n k) in
+            let a = image 17 and b = image 18 in
+            Alcotest.(check (list int)) (Printf.sprintf "n = %d" n) (List.init n Fun.id) (List.sort compare a);
+            if n >= 8 && a = b then Alcotest.failf "n = %d: keys 17 and 18 give the same permutation" n)
+          [ 1; 2; 3; 8; 9; 24; 25; 48; 63; 64; 1000; 4095; 4096 ];
+        Alcotest.check_raises "k = n" (Invalid_argument "Sample_key.permute: k outside [0, n)") (fun () ->
+            ignore (Sample_key.permute 0 ~n:4 4)));
   ]

@@ -19,3 +19,39 @@ let[@inline] stratum h ~n i =
   let x = (Float.of_int i +. unit (key h i)) /. Float.of_int n in
   (* The division may round (i + u)/n up to 1 when u is near 1. *)
   if x < 1. then x else Float.pred 1.
+
+(* A keyed permutation by cycle walking (Kensler, "Correlated
+   multi-jittered sampling", 2013): bijective steps on the [b] low bits
+   (xor with a constant, multiplication by an odd constant, xor with a
+   right shift of the masked value), repeated until the value falls in
+   [\[0, n)]. Every product is masked to [b <= 31] bits before the next
+   step, so native code and js_of_ocaml keep the same bits. *)
+let mask n =
+  let w = ref 0 in
+  while !w < n - 1 do
+    w := (!w lsl 1) lor 1
+  done;
+  !w
+
+let walk ~p ~w ~n k =
+  let i = ref k and walking = ref true in
+  while !walking do
+    let x = !i in
+    let x = x lxor p land w in
+    let x = (x * 0x6935_FA69) land w in
+    let x = x lxor (x lsr 4) lxor ((p lsr 8) land w) in
+    let x = (x * (0x0929_EB3F lor ((p lsr 27) lsl 1))) land w in
+    let x = x lxor (x lsr 1) lxor ((p lsr 16) land w) in
+    let x = (x * 0x74DC_B303) land w in
+    let x = x lxor (x lsr 2) in
+    let x = (x * 0x4C60_A3DF) land w in
+    let x = x lxor (x lsr 5) in
+    i := x;
+    walking := x >= n
+  done;
+  (* [p mod n] first: [p + i] could pass [2^31 - 1], JavaScript's largest int. *)
+  ((p mod n) + !i) mod n
+
+let permute h ~n k =
+  if n < 1 || k < 0 || k >= n then invalid_arg "Sample_key.permute: k outside [0, n)";
+  walk ~p:(mix h) ~w:(mask n) ~n k

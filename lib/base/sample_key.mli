@@ -47,3 +47,22 @@ val stratum : int -> n:int -> int -> float
     [\[i/n, (i+1)/n)] up to the division's rounding, and in [\[0, 1)].
     [n] sample points [stratum h ~n 0 .. stratum h ~n (n-1)] cover [\[0, 1)]
     evenly (stratified sampling). *)
+
+val permute : int -> n:int -> int -> int
+(** [permute h ~n k] is the image of [k] under a permutation of
+    [\[0, n)] chosen by the key [h] (a hash-based permutation walked in
+    cycles, Kensler 2013): for a fixed [h] and [n], [k] to [permute h ~n k]
+    is a bijection of [\[0, n)], and different keys give unrelated
+    permutations. Integer operations on at most 31 bits: the same on the
+    web. Takes a few steps (twice the bits of [n] on average at worst),
+    allocates nothing.
+    @raise Invalid_argument if [k] is outside [\[0, n)] ([n >= 1]). *)
+
+val mask : int -> int
+(** [mask n] is [2{^b} - 1] for the least [b >= 0] with [2{^b} >= n]: the
+    bits {!permute} walks on for a domain of [n]. *)
+
+val walk : p:int -> w:int -> n:int -> int -> int
+(** [walk ~p:(mix h) ~w:(mask n) ~n k] is [permute h ~n k], its key mixed
+    and its mask computed by the caller, who may keep them from call to
+    call (the kernel does, per pixel); not checked. *)

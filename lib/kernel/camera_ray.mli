@@ -22,15 +22,32 @@ val set_point : Tracer.t -> unit
 val set_lens_pixel : Tracer.t -> int -> int -> unit
 (** [set_lens_pixel tr col row] is {!set_pixel}, then, if the camera has
     a lens ([aperture > 0]), the ray moved to the lens point of the camera
-    sample whose key is [tr.key] (see {!Camera}): from
-    [O + L], [L = M (l_x, l_y, 0)] with [(l_x, l_y)] uniform over the disc
-    of diameter [aperture] (by rejection from [Sample_key] numbers keyed by
-    [Sample_key.key tr.key (-1)]), in direction [D - (d / f) L], so that it
-    meets the pinhole ray [O + t D] at [t = f / d], on the plane of focus.
-    The same bytes native and in JavaScript: no sine or cosine. For a
-    pinhole, the ray of {!set_pixel}: for scenes that sample ([tr.p.sampled])
-    for another reason. *)
+    sample whose key is [tr.key] (see {!Camera}): from [O + L],
+    [L = M (l_x, l_y, 0)] with [(l_x, l_y)] on the disc of diameter
+    [aperture], in direction [D - (d / f) L], so that it meets the pinhole
+    ray [O + t D] at [t = f / d], on the plane of focus. With
+    [(lens-sampling uniform)], [(l_x, l_y)] is uniform over the disc, by
+    rejection from [Sample_key] numbers keyed by [Sample_key.key tr.key
+    (-1)], independent from sample to sample. Stratified (the default):
+    sample [tr.lens_k] of the [tr.lens_n x tr.lens_n] grid of pixel
+    [(tr.lens_gx, tr.lens_gy)] takes a cell of the [n x n] cut of the unit
+    square (permuted per pixel, the centre of an odd grid in cell 0), a
+    jittered point in it, plus the pixel's offset modulo 1 (the centre:
+    the offset itself, the point of the pixel's one-sample ray), mapped
+    onto the disc by the concentric map: {!Raytrace.Private.Literal.lens_point}
+    states it exactly. The same bytes native and in JavaScript: no libm
+    sine or cosine, but polynomials of sums and products. For a pinhole,
+    the ray of {!set_pixel}: for scenes that sample ([tr.p.sampled]) for
+    another reason. *)
 
 val set_lens_point : Tracer.t -> unit
 (** [set_lens_point tr] is {!set_point}, then the lens as in
     {!set_lens_pixel}. *)
+
+val set_probe : Tracer.t -> int -> int -> int -> unit
+(** [set_probe tr col row k] is {!set_pixel}, then, if the camera has a
+    lens, the ray moved (as {!set_lens_pixel} moves it) to the fixed point
+    [(1, 0)], [(-1, 0)], [(0, 1)] or [(0, -1)] ([k = 0, 1, 2], else) of
+    the unit disc: the lens's rim, through the pixel centre's point on the
+    plane of focus. Adaptive sampling's probes of a blurred pixel
+    ({!Raytrace.Private.Trace.probe}); no key, so the same ray everywhere. *)

@@ -16,7 +16,11 @@ let[@inline] trace_in tr ~spheres =
   while !tracing do
     let i = if !levels = 0 then (if spheres then Traversal.primary_hit_spheres tr else Traversal.primary_hit_objects tr)
       else Traversal.closest_in tr ~spheres in
-    if !levels = 0 then tr.first_hit <- i;
+    if !levels = 0 then begin
+      tr.first_hit <- i;
+      (* For adaptive sampling's circle of confusion (Trace.save_blur). *)
+      s.first_t <- s.t
+    end;
     if i < 0 then begin
       s.r <- p.background.r;
       s.g <- p.background.g;

@@ -184,7 +184,11 @@ let rec shade tr l =
   check_budget tr;
   let p = tr.p and s = tr.s in
   let i = search tr l in
-  if l = 0 then tr.first_hit <- i;
+  if l = 0 then begin
+    tr.first_hit <- i;
+    (* For adaptive sampling's circle of confusion (Trace.save_blur). *)
+    s.first_t <- s.t
+  end;
   if i < 0 then begin
     s.r <- p.background.r;
     s.g <- p.background.g;

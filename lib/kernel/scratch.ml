@@ -37,6 +37,9 @@ type t = {
   mutable okz : float;
   mutable tu : float;
   mutable tv : float;
+  mutable first_t : float;
+  mutable lens_u0 : float;
+  mutable lens_v0 : float;
 }
 
 let create () =
@@ -45,7 +48,7 @@ let create () =
     near = 0.; far = 0.; gx = 0.; gy = 0.; px = 0.; py = 0.; pz = 0.; nx = 0.; ny = 0.;
     nz = 0.; vx = 0.; vy = 0.; vz = 0.; intensity = 0.; r = 0.; g = 0.; b = 0.; acc_r = 0.;
     acc_g = 0.; acc_b = 0.; offset = 0.; sx = 0.; sy = 0.; sz = 0.;
-    okx = 0.; oky = 0.; okz = 0.; tu = 0.; tv = 0.;
+    okx = 0.; oky = 0.; okz = 0.; tu = 0.; tv = 0.; first_t = 0.; lens_u0 = 0.; lens_v0 = 0.;
   }
 
 let set_ray s (o : Vec3.t) (d : Vec3.t) =

@@ -66,6 +66,16 @@ type t = {
           textured surface ({!Texturing}), written by its mapping and read
           by its lookup. *)
   mutable tv : float;
+  mutable first_t : float;
+      (** The distance parameter of the primary ray's hit (along the ray
+          as set, [t = 1] on the viewport plane), written by the tracing
+          loops with the first hit; meaningless when the ray hit nothing.
+          Adaptive sampling reads it for the lens's circle of confusion. *)
+  mutable lens_u0 : float;
+      (** A stratified lens's offset [(lens_u0, lens_v0)] on the unit square
+          for the pixel whose lens numbers the tracer holds
+          ({!Tracer.t}'s [lens_px]): computed once per pixel. *)
+  mutable lens_v0 : float;
 }
 (** The type for per-ray state. *)
 

@@ -57,6 +57,18 @@ let primary_sampled tr =
   tr.counters.primary <- tr.counters.primary + 1;
   trace tr
 
+(* The camera sample [(i, j)] of an [n x n] grid in the pixel at canvas
+   point [(gx, gy)], for a scene that samples: its key, and its pixel and
+   place for a stratified lens. A pixel's centre ray is the sample [(0, 0)]
+   of a [1 x 1] grid, whose key and lens point are those of the centre
+   sample of any odd grid (Sample_key.camera, Camera_ray). *)
+let[@inline] set_sample tr gx gy ~i ~j ~n =
+  tr.key <- Sample_key.camera ~gx ~gy ~di:((2 * i) + 1 - n) ~dj:((2 * j) + 1 - n);
+  tr.lens_gx <- gx;
+  tr.lens_gy <- gy;
+  tr.lens_n <- n;
+  tr.lens_k <- (j * n) + i
+
 (* A pixel's centre: its viewport point is the frame's (the same
    operations as [primary]'s), and its tile's spheres are the candidates. *)
 let[@inline] pixel tr gx gy =
@@ -66,7 +78,7 @@ let[@inline] pixel tr gx gy =
   if col >= 0 && col < p.width && row >= 0 && row < p.height then begin
     if p.cull && p.textbook_all then Textbook.use_tile tr col row;
     if p.sampled then begin
-      tr.key <- Sample_key.camera ~gx ~gy ~di:0 ~dj:0;
+      set_sample tr gx gy ~i:0 ~j:0 ~n:1;
       Camera_ray.set_lens_pixel tr col row
     end
     else Camera_ray.set_pixel tr col row;
@@ -77,11 +89,27 @@ let[@inline] pixel tr gx gy =
     tr.s.gx <- Float.of_int gx;
     tr.s.gy <- Float.of_int gy;
     if p.sampled then begin
-      tr.key <- Sample_key.camera ~gx ~gy ~di:0 ~dj:0;
+      set_sample tr gx gy ~i:0 ~j:0 ~n:1;
       primary_sampled tr
     end
     else primary tr
   end
+
+(* Probe [k] of pixel [(gx, gy)], a canvas pixel: its centre ray from a
+   fixed point of the lens's rim ([Camera_ray.set_probe]); its lights'
+   numbers are those of the pixel's centre sample. Counted as a primary
+   ray: it is one. *)
+let probe tr gx gy k =
+  let p = tr.p in
+  check_budget tr;
+  let col = gx + (p.width / 2) and row = gy + (p.height / 2) in
+  if col < 0 || col >= p.width || row < 0 || row >= p.height || k < 0 || k > 3 then
+    invalid_arg "Trace.probe: no such pixel or probe";
+  if p.cull && p.textbook_all then Textbook.use_tile tr col row;
+  if p.sampled then set_sample tr gx gy ~i:0 ~j:0 ~n:1;
+  Camera_ray.set_probe tr col row k;
+  tr.counters.primary <- tr.counters.primary + 1;
+  trace tr
 
 (* Pixel [col] of a row whose first is [col0]: its camera ray (from the
    lens point of [tr.key] if [sampled]), traced and stored. *)
@@ -102,7 +130,7 @@ let row tr buffer k gx gy count =
        loop, whose copy for other scenes has no test of it. *)
     else if p.sampled then
       for col = col0 to col0 + count - 1 do
-        tr.key <- Sample_key.camera ~gx:(gx + col - col0) ~gy ~di:0 ~dj:0;
+        set_sample tr (gx + col - col0) gy ~i:0 ~j:0 ~n:1;
         row_pixel tr buffer k col0 col r ~sampled:true
       done
     else for col = col0 to col0 + count - 1 do row_pixel tr buffer k col0 col r ~sampled:false done
@@ -119,7 +147,7 @@ let sample tr gx gy ~i ~j ~n =
   tr.s.gx <- Float.of_int gx +. (((Float.of_int i +. 0.5) /. fn) -. 0.5);
   tr.s.gy <- Float.of_int gy +. (((Float.of_int j +. 0.5) /. fn) -. 0.5);
   if tr.p.sampled then begin
-    tr.key <- Sample_key.camera ~gx ~gy ~di:((2 * i) + 1 - n) ~dj:((2 * j) + 1 - n);
+    set_sample tr gx gy ~i ~j ~n;
     primary_sampled tr
   end
   else primary tr
@@ -223,3 +251,21 @@ let average_reusing tr saved k gx gy ~n =
   check_budget tr;
   grid tr gx gy n ~reuse:true saved k
 
+
+(* The circle of confusion of the last primary ray's hit, in pixels: a
+   point at depth [z] along the view axis spreads over a circle of
+   diameter [A |z - f| / z] on the plane of focus, whose pixels are
+   [w f / (W d)] wide ([w], [W]: the viewport's width and the canvas's).
+   The ray from the lens (its direction's axial part is [d], for an
+   orthonormal matrix) meets its hit at depth [z = t d]. A miss shows the
+   background, the same colour everywhere: [0]. *)
+let save_blur tr (blur : samples) k =
+  let p = tr.p in
+  let cam = p.camera in
+  let c =
+    if tr.first_hit < 0 || not (Camera.has_lens cam) then 0.
+    else
+      let t = tr.s.first_t and d = p.viewport.distance and f = cam.focal_distance in
+      cam.aperture *. Float.of_int p.width *. Float.abs ((t *. d) -. f) /. (t *. p.viewport.width *. f)
+  in
+  Bigarray.Array1.set blur k c

@@ -129,8 +129,10 @@ val sample : t -> int -> int -> i:int -> j:int -> n:int -> unit
     of a regular [n x n] grid centered on the pixel ([i] to the right, [j]
     up, both in [\[0, n)]). [sample tr gx gy ~i:0 ~j:0 ~n:1] is exactly
     [pixel tr gx gy]. With a lens, each sample has its own lens point,
-    keyed by [Sample_key.camera ~gx ~gy ~di:(2i+1-n) ~dj:(2j+1-n)]: the
-    grid's samples average over the lens as over the pixel. *)
+    keyed by [Sample_key.camera ~gx ~gy ~di:(2i+1-n) ~dj:(2j+1-n)] and,
+    stratified (the default), one cell each of the lens's [n x n] cut,
+    the centre of an odd grid taking {!pixel}'s point: the grid's samples
+    average over the lens as over the pixel. *)
 
 val store : t -> Image.buffer -> int -> unit
 (** [store tr buf k] writes the colour of the last {!pixel}, each channel
@@ -161,6 +163,18 @@ val roots : t -> int -> Vec3.t -> Vec3.t -> float * float
     of its surface as both, [Csg.roots]); [(infinity, infinity)] for a miss. It
     runs the code the renderer runs, for the tests of its accuracy.
     @raise Invalid_argument if [k] is not an object of the scene. *)
+
+val probe : t -> int -> int -> int -> unit
+(** [probe tr gx gy k] traces, as {!pixel} does, the ray of pixel
+    [(gx, gy)] of the canvas from the fixed point [k] ([0] to [3]) of the
+    lens's rim ({!Raytrace.Private.Camera_ray.set_probe}; for a pinhole,
+    the pixel's ray), counted as a primary ray: adaptive sampling's test
+    of whether a blurred pixel's cone of rays sees more than its first
+    ray. {!hit_object}, {!red}, {!green}, {!blue} and {!store} then
+    describe it. Not a sample: nothing averages it.
+    @raise Invalid_argument if the pixel is outside the canvas or [k] is
+    outside [\[0, 3\]].
+    @raise Limits.Work_exceeded as {!pixel}. *)
 
 val red : t -> float
 (** [red tr] is the red channel of the last {!pixel}, unclamped. *)
@@ -217,6 +231,18 @@ val save : t -> samples -> int -> unit
 (** [save tr saved k] writes the colour of the last {!pixel} or {!sample}, each
     channel clamped to [\[0, 255\]], to [saved] at [k], [k + 1], [k + 2].
     @raise Invalid_argument if [k + 2] is outside [saved]. *)
+
+val save_blur : t -> samples -> int -> unit
+(** [save_blur tr blur k] writes to [blur] at [k] the diameter, in pixels,
+    of the circle of confusion of the last {!pixel}'s first hit: a point at
+    depth [z] (along the view axis) spreads, through a lens of diameter
+    [A] focused at [f], over a circle of diameter [A |z - f| / z] on the
+    plane of focus, here divided by a pixel's width on that plane. [0.] if
+    the ray hit nothing (the background is one colour) or the camera is a
+    pinhole. An estimate: [z] is the ray's parameter times the viewport
+    distance, exact for an orthonormal camera matrix; reflections and
+    refractions of blurred objects are not counted.
+    @raise Invalid_argument if [k] is outside [blur]. *)
 
 val average_reusing : t -> samples -> int -> int -> int -> n:int -> unit
 (** [average_reusing tr saved k gx gy ~n] is {!average} [tr gx gy ~n] for

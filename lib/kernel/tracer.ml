@@ -79,6 +79,15 @@ type t = {
           sample being traced, from which the integrals over a light or a
           lens draw their numbers. An int of the tracer, not of [Scratch]:
           an int field would unflatten that all-float record. *)
+  mutable lens_gx : int;  (** With [p.sampled]: the sample's pixel and place, for a stratified lens. *)
+  mutable lens_gy : int;
+  mutable lens_n : int;
+  mutable lens_k : int;
+  mutable lens_px : int;  (** The pixel whose lens numbers are cached: [s.lens_u0], [lens_hc]. *)
+  mutable lens_py : int;
+  mutable lens_hc : int;
+  mutable lens_m : int;  (** The cell permutation's domain whose mask is [lens_w]. *)
+  mutable lens_w : int;
   red : float array;
   green : float array;
   blue : float array;
@@ -157,6 +166,15 @@ let rec create ?(averaging = false) (p : Prepared.t) =
     inner = (if Array.length p.instances.bottoms = 0 then [||] else Array.map (fun b -> create ~averaging b) p.instances.bottoms);
     inner_material = 0;
     key = 0;
+    lens_gx = 0;
+    lens_gy = 0;
+    lens_n = 1;
+    lens_k = 0;
+    lens_px = min_int;
+    lens_py = min_int;
+    lens_hc = 0;
+    lens_m = 0;
+    lens_w = 0;
     (* A copy only where a texture writes in it: the other scenes read the
        prepared scene's own arrays. *)
     red = (if Array.length p.texture_of = 0 then p.red else Array.copy p.red);

@@ -91,6 +91,26 @@ type t = {
           [sample]; the integrals over a light or a lens draw their numbers
           from it, so that they are the same for every [--jobs], tiling and
           order of the pixels. [0] without [p.sampled]. *)
+  mutable lens_gx : int;
+      (** With [p.sampled], set with [key]: the canvas point [(lens_gx,
+          lens_gy)] of the pixel being traced, the side [lens_n] of its grid
+          of camera samples and the sample's place [lens_k = j lens_n + i]
+          in it ([1] and [0] for a pixel's centre ray): a stratified lens
+          ({!Camera_ray}) gives the samples of a pixel one cell each. *)
+  mutable lens_gy : int;
+  mutable lens_n : int;
+  mutable lens_k : int;
+  mutable lens_px : int;
+      (** A stratified lens's numbers of one pixel, kept from sample to
+          sample: the pixel [(lens_px, lens_py)] ([min_int] before the
+          first) whose offset is in [s.lens_u0], [s.lens_v0] and whose key
+          of the cell permutation, mixed ({!Sample_key.walk}'s [p]), is
+          [lens_hc]; and the permutation's last domain [lens_m] ([0]
+          before the first) and its mask [lens_w]. *)
+  mutable lens_py : int;
+  mutable lens_hc : int;
+  mutable lens_m : int;
+  mutable lens_w : int;
   red : float array;
       (** The colour channels of each material, read by the tracing loops:
           [p.red] itself, or, where some material has a texture

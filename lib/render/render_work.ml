@@ -8,11 +8,16 @@ let inside fn scene (region : Region.t) =
 (* Refused before anything is allocated: a render that cannot finish
    should fail now, not after hours or with the machine out of memory. At
    most [samples x samples] rays a pixel (adaptive sampling traces fewer,
-   subsampling about half a ray). *)
+   subsampling about half a ray), and under a lens adaptive sampling's
+   four probes of a pixel besides: counted in the work, not in the
+   samples. *)
 let check ~limits scene (region : Region.t) (sampling : Sampling.t) =
   let rays_per_pixel = sampling.samples * sampling.samples in
   let* _ = Limits.check_samples limits rays_per_pixel in
-  Scene.check_work ~limits ~samples:rays_per_pixel ~pixels:(Region.pixels region) scene
+  let probes =
+    if sampling.adaptive <> None && Camera.has_lens (Scene.view (Scene.of_valid scene)).camera then 4 else 0
+  in
+  Scene.check_work ~limits ~samples:(rays_per_pixel + probes) ~pixels:(Region.pixels region) scene
 
 let out_of_memory (region : Region.t) =
   let mib = Float.of_int (3 * Region.pixels region) /. 1048576. in

@@ -17,10 +17,43 @@
       suggestion; POV-Ray's adaptive method 1 is the peer). The grid of an
       odd [n] has the centre as its middle sample, so a refined pixel
       reuses its first ray and is exactly the pixel of full supersampling,
-      and an unrefined one is exactly the document's pixel: adaptive
-      sampling never traces more rays than full supersampling. (An even
+      and an unrefined one is exactly the document's pixel: without a
+      lens, adaptive sampling never traces more rays than full
+      supersampling (under one, at most the four probes of a pixel more). (An even
       [n] has no centre sample: the first ray would be wasted or taken off
       centre, which measurably raises the error; it is refused.)
+      Under a thin lens ({!Camera.has_lens}), where one ray per pixel of a
+      blurred region is noise and the neighbour test refines it at random,
+      a pixel the neighbour test leaves is {e probed} when it is
+      {e blurred}: when the circle of confusion of its first ray's hit, or
+      of a first ray's within 4 pixels whose circle reaches it, is wider
+      than half a pixel (the circle's diameter in pixels: [A |z - f| / z]
+      on the plane of focus, for a lens of diameter [A] focused at [f] and
+      the hit at depth [z], over a pixel's width there). Its probes are
+      four rays from fixed points of the lens's rim, [(+-A/2, 0)] and
+      [(0, +-A/2)] in lens coordinates, through the point of its centre on
+      the plane of focus ({!Raytrace.Private.Trace.probe}), the widest
+      rays of the cone whose average the pixel is; it is refined when one
+      of them hits another object than its first ray, or gives bytes more
+      than [th] apart from its first ray's in some channel (the neighbour
+      test's rule), and keeps its first ray when all four agree: inside
+      one object's blurred interior, or one checker cell, every lens point
+      sees the same. The probes are not samples (nothing averages them),
+      are counted as primary rays, take no key (the same rays for every
+      process, tile and region) and stop at the first that disagrees.
+      What is exact: an unrefined pixel is the one-sample render's, a
+      refined one [--samples n]'s, the same for every [--jobs] and tiling.
+      What is an estimate: the circle is that of the first ray's hit alone
+      (its depth [t d], exact for an orthonormal camera matrix; a
+      reflection of a blurred object, or a blurred object that no first
+      ray within 4 pixels hits, is not seen); an edge or a small object
+      can lie inside the cone between the probes and the centre ray (a
+      pixel that sees it in some of its [n x n] samples then keeps its
+      first ray, as an area light's corners can miss a small blocker);
+      and a pixel whose first ray and neighbourhood are in focus keeps one
+      ray (or the full grid at an edge, as for a pinhole). A pinhole's
+      circle is 0: its pixels are decided as without a lens, and nothing
+      is probed.
     - {e Subsampling} (CGFS, "Performance Optimizations") traces one ray
       per pixel but skips the search for the primary ray's sphere where
       the two neighbours on either side (left and right on even rows, above

@@ -17,9 +17,12 @@ let local =
 
 (* A plan renders the [w x h] rectangle of the canvas at [(x, y)] into
    [img]. Adaptive sampling and subsampling decide a pixel from its
-   neighbours' first rays, so their first pass also traces a margin of one
-   pixel around the rectangle (clipped to the canvas): the rectangle
-   [(mx, my)], [mw x mh], whose pixels the buffers hold, row by row. *)
+   neighbours' first rays, so their first pass also traces a margin around
+   the rectangle (clipped to the canvas): the rectangle [(mx, my)],
+   [mw x mh], whose pixels the buffers hold, row by row. The margin is one
+   pixel wide, or [reach] for adaptive sampling, whose buffers leave room
+   for a lens's blur; its first pass traces that wider margin only under a
+   lens (see [first_rays]). *)
 type plan = {
   s : Sampling.t;
   img : Image.t;
@@ -36,15 +39,24 @@ type plan = {
   first : Image.buffer;  (** Adaptive: the bytes of each pixel's first ray. *)
   saved : Trace.samples;  (** Adaptive: its clamped colour. *)
   hits : ints;  (** The sphere each pixel's (first) ray hit, [-1] for none. *)
+  blur : Trace.samples;  (** Adaptive: the circle of confusion of each first ray, in pixels. *)
+  probe : Image.buffer;  (** Adaptive: the bytes of the last probe. *)
   at_row : unit -> unit;
 }
+
+(* How far, in pixels, adaptive sampling looks for a blurred first ray
+   whose circle of confusion covers a pixel: a wider circle than
+   [2 (reach - 1)] pixels across is seen up to [reach] only (see
+   [blurred]). *)
+let reach = 4
 
 let plan ?(memory = local) (s : Sampling.t) img ~canvas:(cw, ch) ~at:(x, y) =
   let w = Image.width img and h = Image.height img in
   if x < 0 || y < 0 || x + w > cw || y + h > ch then invalid_arg "Sampling_rows.plan: rectangle outside the canvas";
-  let mx = max 0 (x - 1) and my = max 0 (y - 1) in
-  let mw = min cw (x + w + 1) - mx and mh = min ch (y + h + 1) - my in
   let adaptive = s.adaptive <> None in
+  let r = if adaptive then reach else 1 in
+  let mx = max 0 (x - r) and my = max 0 (y - r) in
+  let mw = min cw (x + w + r) - mx and mh = min ch (y + h + r) - my in
   let margin = if adaptive || s.subsample then mw * mh else 0 in
   (* Empty buffers need no shared memory. *)
   let bytes n = if n > 0 then memory.bytes n else local.bytes 0 in
@@ -67,6 +79,8 @@ let plan ?(memory = local) (s : Sampling.t) img ~canvas:(cw, ch) ~at:(x, y) =
     first = bytes (if adaptive then 3 * margin else 0);
     saved = floats (if adaptive then 3 * margin else 0);
     hits = ints margin;
+    blur = floats (if adaptive then margin else 0);
+    probe = local.bytes (if adaptive then 3 else 0);
     at_row = memory.at_row;
   }
 
@@ -97,17 +111,26 @@ let full pl tr cy =
 let set_hit (hits : ints) i tr = Bigarray.Array1.set hits i (Int64.of_int (Trace.hit_object tr))
 let hit (hits : ints) i = Int64.to_int (Bigarray.Array1.get hits i)
 
+let[@inline] has_lens tr = Camera.has_lens (Trace.prepared tr).camera
+
 (* Adaptive, pass 0: the first ray of each pixel of canvas row [cy] of the
-   margin, kept three ways. *)
+   margin, kept three ways (four under a lens: its circle of confusion).
+   A pinhole decides from the four neighbours: only the pixels within one
+   of the rectangle are traced, as the margin of one pixel was. *)
 let first_rays pl tr cy =
   let gy = gy pl cy in
-  for cx = pl.mx to pl.mx + pl.mw - 1 do
-    let i = m pl cx cy in
-    Trace.pixel tr (gx pl cx) gy;
-    Trace.store tr pl.first (3 * i);
-    Trace.save tr pl.saved (3 * i);
-    set_hit pl.hits i tr
-  done
+  let lens = has_lens tr in
+  let x0 = if lens then pl.mx else max pl.mx (pl.x - 1) in
+  let x1 = if lens then pl.mx + pl.mw - 1 else min (pl.mx + pl.mw - 1) (pl.x + pl.w) in
+  if lens || (cy >= pl.y - 1 && cy <= pl.y + pl.h) then
+    for cx = x0 to x1 do
+      let i = m pl cx cy in
+      Trace.pixel tr (gx pl cx) gy;
+      Trace.store tr pl.first (3 * i);
+      Trace.save tr pl.saved (3 * i);
+      set_hit pl.hits i tr;
+      if lens then Trace.save_blur tr pl.blur i
+    done
 
 (* Do the first rays of margin pixels [p] and [q] differ: another sphere,
    or a channel more than [th] apart? *)
@@ -117,11 +140,64 @@ let[@inline] apart (f : Image.buffer) th p q c =
 let differ pl th p q =
   hit pl.hits p <> hit pl.hits q || apart pl.first th p q 0 || apart pl.first th p q 1 || apart pl.first th p q 2
 
+(* Below this circle of confusion, in pixels, a first ray counts as in
+   focus: its blur stays inside its pixel. *)
+let sharp = 0.5
+
+(* Under a lens, is pixel [(cx, cy)] (margin index [i]) blurred: is its
+   own first ray's circle of confusion wider than [sharp], or that of a
+   first ray [q] within [reach] whose circle, around [q], reaches the
+   pixel ([|q - p| <= c/2 + 1] pixels, the pixels' own extent included)?
+   A blurred foreground spreads over the sharp pixels around it. *)
+let blurred pl i cx cy =
+  Bigarray.Array1.get pl.blur i > sharp
+  ||
+  let found = ref false in
+  let y1 = min (pl.my + pl.mh - 1) (cy + reach) and x0 = max pl.mx (cx - reach) and x1 = min (pl.mx + pl.mw - 1) (cx + reach) in
+  let qy = ref (max pl.my (cy - reach)) in
+  while (not !found) && !qy <= y1 do
+    for qx = x0 to x1 do
+      let c = Bigarray.Array1.get pl.blur (m pl qx !qy) in
+      if c > sharp then begin
+        let dx = qx - cx and dy = !qy - cy in
+        let r = (0.5 *. c) +. 1. in
+        if Float.of_int ((dx * dx) + (dy * dy)) <= r *. r then found := true
+      end
+    done;
+    incr qy
+  done;
+  !found
+
+(* Under a lens, does a probe of pixel [(cx, cy)] (margin index [i]) see
+   another object than its first ray, or a colour more than [th] apart in
+   some channel? The probes go from the four rim points of the lens
+   through the pixel centre's point on the plane of focus, the widest
+   rays of its cone: where all four see what the centre saw, the cone is
+   taken to lie inside one object and one colour. An estimate: an edge
+   can pass between them. *)
+let probes_differ pl th tr i cx cy =
+  let gx = gx pl cx and gy = gy pl cy and h = hit pl.hits i in
+  let found = ref false and k = ref 0 in
+  while (not !found) && !k < 4 do
+    Trace.probe tr gx gy !k;
+    if Trace.hit_object tr <> h then found := true
+    else begin
+      Trace.store tr pl.probe 0;
+      for c = 0 to 2 do
+        if abs (Bigarray.Array1.get pl.probe c - Bigarray.Array1.get pl.first ((3 * i) + c)) > th then found := true
+      done
+    end;
+    incr k
+  done;
+  !found
+
 (* Adaptive, pass 1: refine the pixels of canvas row [cy] that differ from a
-   neighbour in the canvas, copy the others' first bytes. Reads only what
-   pass 0 wrote. *)
+   neighbour in the canvas, or under a lens are blurred and a probe of
+   their lens sees something else: the full grid; copy the others' first
+   bytes. Reads only what pass 0 wrote. *)
 let refine pl th tr cy =
   let buffer = Image.buffer pl.img and n = pl.s.samples and mw = pl.mw in
+  let lens = has_lens tr in
   let gy = gy pl cy in
   for cx = pl.x to pl.x + pl.w - 1 do
     let i = m pl cx cy and k = 3 * out pl cx cy in
@@ -130,6 +206,7 @@ let refine pl th tr cy =
       || (cx < pl.cw - 1 && differ pl th i (i + 1))
       || (cy > 0 && differ pl th i (i - mw))
       || (cy < pl.ch - 1 && differ pl th i (i + mw))
+      || (lens && blurred pl i cx cy && probes_differ pl th tr i cx cy)
     then begin
       Trace.average_reusing tr pl.saved (3 * i) (gx pl cx) gy ~n;
       Trace.store_average tr buffer k ~count:(n * n)

@@ -34,8 +34,10 @@ val plan : ?memory:memory -> Sampling.t -> Image.t -> canvas:int * int -> at:int
     rendering with [s] the rectangle of a [cw x ch] canvas whose top-left
     pixel is [(x, y)] (image coordinates) into [img], of the rectangle's
     size: byte for byte those pixels of the whole image. Adaptive sampling
-    and subsampling also trace the first rays of a one-pixel margin around
-    the rectangle, so that they decide as the whole image does. The
+    and subsampling also trace the first rays of a margin around the
+    rectangle, so that they decide as the whole image does: one pixel wide,
+    or under a lens 4 (the reach of a circle of confusion, see
+    {!Raytrace.Render.Sampling}), whose room adaptive plans always keep. The
     buffers that carry results from pass to pass come from [memory]
     (default [local]): with memory shared with forked processes, passes
     may run in workers.

@@ -1,18 +1,36 @@
 type rotation = { row0 : Vec3.t; row1 : Vec3.t; row2 : Vec3.t } [@@deriving eq]
-type t = { position : Vec3.t; rotation : rotation; aperture : float; focal_distance : float } [@@deriving eq]
+type lens_sampling = Stratified | Uniform [@@deriving eq]
+
+type t = {
+  position : Vec3.t;
+  rotation : rotation;
+  aperture : float;
+  focal_distance : float;
+  lens_sampling : lens_sampling;
+}
+[@@deriving eq]
 
 let identity = { row0 = Vec3.ox; row1 = Vec3.oy; row2 = Vec3.oz }
 
-(* A pinhole focuses everywhere: its focal distance is the default, so
-   that two pinholes are equal and [pp] reads back whatever was given. *)
-let v ?(rotation = identity) ?(aperture = 0.) ?(focal_distance = 1.) position =
-  { position; rotation; aperture; focal_distance = (if aperture = 0. then 1. else focal_distance) }
+(* A pinhole focuses everywhere and has no lens to sample: its focal
+   distance and lens sampling are the defaults, so that two pinholes are
+   equal and [pp] reads back whatever was given. *)
+let v ?(rotation = identity) ?(aperture = 0.) ?(focal_distance = 1.) ?(lens_sampling = Stratified) position =
+  let pinhole = aperture = 0. in
+  {
+    position;
+    rotation;
+    aperture;
+    focal_distance = (if pinhole then 1. else focal_distance);
+    lens_sampling = (if pinhole then Stratified else lens_sampling);
+  }
 
 let default = v Vec3.zero
 let position c = c.position
 let rotation c = c.rotation
 let aperture c = c.aperture
 let focal_distance c = c.focal_distance
+let lens_sampling c = c.lens_sampling
 let has_lens c = c.aperture > 0.
 let is_identity m = equal_rotation m identity
 let determinant m = Vec3.dot m.row0 (Vec3.cross m.row1 m.row2)
@@ -21,7 +39,7 @@ let direction cam v =
   let m = cam.rotation in
   Vec3.v (Vec3.dot v m.row0) (Vec3.dot v m.row1) (Vec3.dot v m.row2)
 
-let look_at ?(up = Vec3.oy) ?aperture ?focal_distance ~position target =
+let look_at ?(up = Vec3.oy) ?aperture ?focal_distance ?lens_sampling ~position target =
   let forward = Vec3.sub target position in
   if Vec3.norm2 forward = 0. then Error (`Msg "the camera looks at its own position")
   else
@@ -39,7 +57,7 @@ let look_at ?(up = Vec3.oy) ?aperture ?focal_distance ~position target =
       in
       (* Focused on what it looks at unless told otherwise. *)
       let focal_distance = match focal_distance with Some f -> f | None -> Vec3.norm forward in
-      Ok (v ~rotation ?aperture ~focal_distance position)
+      Ok (v ~rotation ?aperture ~focal_distance ?lens_sampling position)
 
 let check_position p = Limits.check_point "camera position" p
 
@@ -84,6 +102,7 @@ let pp ppf c =
   if has_lens c then
     Format.fprintf ppf " (aperture %s) (focal-distance %s)" (Float_text.to_string c.aperture)
       (Float_text.to_string c.focal_distance);
+  if has_lens c && c.lens_sampling = Uniform then Format.fprintf ppf " (lens-sampling uniform)";
   Format.fprintf ppf ")"
 
 let show c = Format.asprintf "%a" pp c

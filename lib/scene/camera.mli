@@ -35,15 +35,42 @@ val equal_rotation : rotation -> rotation -> bool
 (** [equal_rotation a b] is [true] iff [a] and [b] are equal field by field, floats
     compared with [=]. *)
 
-type t = private { position : Vec3.t; rotation : rotation; aperture : float; focal_distance : float }
+(** How the camera samples of a pixel draw their lens points. *)
+type lens_sampling =
+  | Stratified
+      (** The default: the [n x n] samples of a pixel take one cell each
+          of an [n x n] cut of the square mapped onto the lens (the cells
+          shuffled per pixel and shifted by a per-pixel offset), a
+          jittered point in it, mapped onto the disc by the concentric map
+          (Shirley and Chiu), which keeps areas: each point is uniform
+          over the disc and the set is stratified. The centre sample of an
+          odd grid takes the pixel's offset itself, the point of a
+          one-sample render ({!Raytrace.Private.Camera_ray}). *)
+  | Uniform
+      (** Each camera sample's point drawn independently and uniformly
+          over the disc (by rejection): plain Monte Carlo, kept to measure
+          what stratifying gains (docs/run-time-against-error.md). *)
+
+val equal_lens_sampling : lens_sampling -> lens_sampling -> bool
+(** [equal_lens_sampling a b] is [true] iff [a] and [b] are the same. *)
+
+type t = private {
+  position : Vec3.t;
+  rotation : rotation;
+  aperture : float;
+  focal_distance : float;
+  lens_sampling : lens_sampling;
+}
 (** The type for cameras: where the camera is, how it is turned, the
-    diameter of its lens ([0] for a pinhole) and the distance of its plane
-    of focus, in scene units ([1] for a pinhole). *)
+    diameter of its lens ([0] for a pinhole), the distance of its plane
+    of focus, in scene units ([1] for a pinhole), and how its lens is
+    sampled ([Stratified] for a pinhole). *)
 
 val pp : Format.formatter -> t -> unit
 (** [pp ppf c] prints [c] as its [camera] form in the scene-file syntax,
-    without the rotation when it is {!identity} and without the lens for a
-    pinhole; it reads back as [c]. *)
+    without the rotation when it is {!identity}, without the lens for a
+    pinhole and without [(lens-sampling ...)] when it is [Stratified]; it
+    reads back as [c]. *)
 
 val show : t -> string
 (** [show x] is [x] formatted by {!pp}. *)
@@ -59,13 +86,15 @@ val default : t
 (** [default] is the document's camera: at the origin, oriented by
     {!identity}, a pinhole. *)
 
-val v : ?rotation:rotation -> ?aperture:float -> ?focal_distance:float -> Vec3.t -> t
-(** [v ~rotation ~aperture ~focal_distance position] is a camera at
-    [position] turned by [rotation] (default {!identity}), with a lens of
-    diameter [aperture] (default [0.], a pinhole) focused at
+val v :
+  ?rotation:rotation -> ?aperture:float -> ?focal_distance:float -> ?lens_sampling:lens_sampling -> Vec3.t -> t
+(** [v ~rotation ~aperture ~focal_distance ~lens_sampling position] is a
+    camera at [position] turned by [rotation] (default {!identity}), with
+    a lens of diameter [aperture] (default [0.], a pinhole) focused at
     [focal_distance] (default [1.]; a pinhole's is always [1.], whatever
-    is given, since it focuses everywhere). Nothing is checked:
-    {!validate}. *)
+    is given, since it focuses everywhere) and sampled by [lens_sampling]
+    (default [Stratified]; a pinhole's is always [Stratified]). Nothing is
+    checked: {!validate}. *)
 
 val position : t -> Vec3.t
 (** [position c] is where [c] is, in world coordinates. *)
@@ -80,6 +109,10 @@ val focal_distance : t -> float
 (** [focal_distance c] is the distance from [c] of its plane of focus,
     along the view axis ([1.] for a pinhole). *)
 
+val lens_sampling : t -> lens_sampling
+(** [lens_sampling c] is how [c]'s camera samples draw their lens points
+    ([Stratified] for a pinhole). *)
+
 val has_lens : t -> bool
 (** [has_lens c] is [aperture c > 0.]: [c]'s rays start on a lens, and
     each camera sample draws its own point of it. *)
@@ -88,6 +121,7 @@ val look_at :
   ?up:Vec3.t ->
   ?aperture:float ->
   ?focal_distance:float ->
+  ?lens_sampling:lens_sampling ->
   position:Vec3.t ->
   Vec3.t ->
   (t, [> `Msg of string ]) result
@@ -95,7 +129,8 @@ val look_at :
     camera at [position] whose viewport center lies in the direction of
     [target], with [up] (default [Vec3.oy]) pointing up in the picture as
     far as it can, and the lens of {!v} (focused by default on [target]:
-    [focal_distance] is [|target - position|]). The matrix is orthonormal.
+    [focal_distance] is [|target - position|]) sampled by [lens_sampling].
+    The matrix is orthonormal.
     [Error] explains why when [target = position] or [up] is zero or
     parallel to the view direction. *)
 

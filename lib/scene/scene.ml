@@ -382,7 +382,7 @@ let at_frame (s : valid) f =
           let camera =
             if Camera.has_lens s.camera then
               Camera.v ~rotation:camera.rotation ~aperture:s.camera.aperture ~focal_distance:s.camera.focal_distance
-                camera.position
+                ~lens_sampling:s.camera.lens_sampling camera.position
             else camera
           in
           Ok { s with camera; camera_path = None }

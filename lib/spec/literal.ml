@@ -655,10 +655,10 @@ let transparent (scene : Scene.view) =
   Spheres.exists (fun (s : Sphere.t) -> s.material.transparency > 0.) scene.spheres
   || List.exists (fun sh -> List.exists (fun (m : Material.t) -> m.transparency > 0.) (Shape.materials sh)) scene.shapes
 
-(* The thin lens, from its definition (Camera): a point of the unit disc
-   for the camera sample keyed [key], the first pair of its numbers that
-   falls inside, [(0, 0)] if none of 32 does. *)
-let lens_point key =
+(* The thin lens, from its definition (Camera). [Uniform]: a point of the
+   unit disc for the camera sample keyed [key], the first pair of its
+   numbers that falls inside, [(0, 0)] if none of 32 does. *)
+let uniform_lens_point key =
   let h = Sample_key.key key (-1) in
   let rec pair k =
     if k >= 32 then (0., 0.)
@@ -669,26 +669,69 @@ let lens_point key =
   in
   pair 0
 
+(* [Stratified]: sample [(i, j)] of the [n x n] grid of pixel [(gx, gy)]
+   takes cell [pi k] ([k = j n + i]) of the [n x n] cut of the unit
+   square, [pi] the pixel's permutation with the centre of an odd grid
+   sent to cell 0; a point jittered in that cell (the centre: the cell's
+   corner), shifted by the pixel's offset [u0] modulo 1; then Shirley and
+   Chiu's concentric map onto the disc, written here with [sin] and [cos]
+   (the kernel's polynomials agree to rounding). *)
+let stratified_lens_point ~key ~gx ~gy ~n ~i ~j =
+  let hp = Sample_key.pixel ~col:gx ~row:gy ~sample:(-1) in
+  let u0 = (Sample_key.unit (Sample_key.key hp 0), Sample_key.unit (Sample_key.key hp 1)) in
+  let k = (j * n) + i in
+  let centre = if n mod 2 = 1 then Some ((n / 2 * n) + (n / 2)) else None in
+  let u, v =
+    match centre with
+    | Some c when k = c -> u0
+    | _ ->
+        let perm = Sample_key.permute (Sample_key.key hp 2) in
+        let cell =
+          match centre with
+          | Some c -> 1 + perm ~n:((n * n) - 1) (if k < c then k else k - 1)
+          | None -> perm ~n:(n * n) k
+        in
+        let h = Sample_key.key key (-1) in
+        let jitter a hj = (Float.of_int a +. Sample_key.unit hj) /. Float.of_int n in
+        let wrap z = if z >= 1. then z -. 1. else z in
+        (wrap (jitter (cell mod n) h +. fst u0), wrap (jitter (cell / n) (Sample_key.mix h) +. snd u0))
+  in
+  let a = (2. *. u) -. 1. and b = (2. *. v) -. 1. in
+  if a = 0. && b = 0. then (0., 0.)
+  else if Float.abs a > Float.abs b then
+    let phi = Float.pi /. 4. *. (b /. a) in
+    (a *. cos phi, a *. sin phi)
+  else
+    let phi = (Float.pi /. 2.) -. (Float.pi /. 4. *. (a /. b)) in
+    (b *. cos phi, b *. sin phi)
+
+(* The camera sample's lens point: [lens] is [(gx, gy, n, i, j)], its
+   pixel, its grid's side and its place in the grid. *)
+let lens_point (cam : Camera.t) ~key ~lens:(gx, gy, n, i, j) =
+  match cam.lens_sampling with
+  | Camera.Uniform -> uniform_lens_point key
+  | Camera.Stratified -> stratified_lens_point ~key ~gx ~gy ~n ~i ~j
+
 (* The camera ray through viewport point [v]: from the camera's position
    (the value itself, which [closest_numbered] recognises) for a pinhole;
    with a lens, from [position + M (r u, r w, 0)] towards the point
    [position + (f / d) M v] where the pinhole ray meets the plane of
    focus, scaled so that [t = 1] is the viewport plane. *)
-let camera_ray (scene : Scene.view) ~key v =
+let camera_ray (scene : Scene.view) ~key ~lens v =
   let cam = scene.camera in
   let direction = Camera.direction cam v in
   if not (Camera.has_lens cam) then (cam.position, direction)
   else
     let f = Camera.focal_distance cam and d = Viewport.distance scene.viewport in
     let focus = Vec3.add cam.position (Vec3.smul (f /. d) direction) in
-    let u, w = lens_point key in
+    let u, w = lens_point cam ~key ~lens in
     let r = Camera.aperture cam /. 2. in
     let origin = Vec3.add cam.position (Camera.direction cam (Vec3.v (r *. u) (r *. w) 0.)) in
     (origin, Vec3.smul (d /. f) (Vec3.sub focus origin))
 
-let camera_colour (scene : Scene.view) ~key v =
+let camera_colour (scene : Scene.view) ~key ~lens v =
   let epsilon = Option.value scene.epsilon ~default:Scene.document_epsilon in
-  let origin, direction = camera_ray scene ~key v in
+  let origin, direction = camera_ray scene ~key ~lens v in
   if transparent scene then shade ~key scene ~epsilon ~origin ~direction ~t_min:1. ~level:0 ~media:[]
   else trace_ray ~key scene ~epsilon ~origin ~direction ~t_min:1. ~t_max:infinity ~depth:scene.depth
 
@@ -696,7 +739,7 @@ let pixel (scene : Scene.view) gx gy =
   let v =
     Viewport.of_canvas scene.viewport ~canvas_width:scene.width ~canvas_height:scene.height gx gy
   in
-  camera_colour scene ~key:(Sample_key.camera ~gx ~gy ~di:0 ~dj:0) v
+  camera_colour scene ~key:(Sample_key.camera ~gx ~gy ~di:0 ~dj:0) ~lens:(gx, gy, 1, 0, 0) v
 
 let sample (scene : Scene.view) gx gy ~i ~j ~n =
   let offset k = ((Float.of_int k +. 0.5) /. Float.of_int n) -. 0.5 in
@@ -704,7 +747,7 @@ let sample (scene : Scene.view) gx gy ~i ~j ~n =
     Viewport.of_canvas_f scene.viewport ~canvas_width:scene.width ~canvas_height:scene.height
       (Float.of_int gx +. offset i) (Float.of_int gy +. offset j)
   in
-  camera_colour scene ~key:(Sample_key.camera ~gx ~gy ~di:((2 * i) + 1 - n) ~dj:((2 * j) + 1 - n)) v
+  camera_colour scene ~key:(Sample_key.camera ~gx ~gy ~di:((2 * i) + 1 - n) ~dj:((2 * j) + 1 - n)) ~lens:(gx, gy, n, i, j) v
 
 let render ?(limits = Limits.default) valid =
   let scene = Scene.view (Scene.of_valid valid) in

@@ -175,11 +175,27 @@ val sample : Scene.t -> int -> int -> i:int -> j:int -> n:int -> Color.t
     camera's matrix [M], the ray leaves [O' = O + M (a u / 2, a w / 2, 0)]
     for the point [F = O + (f / d) M V] of the plane of focus, in
     direction [(d / f) (F - O')] ([t = 1] on the viewport plane, as the
-    pinhole's), where [(u, w)] is the first pair
-    [(2 unit (key h 2k) - 1, 2 unit (key h (2k+1)) - 1)], [k = 0 .. 31],
-    inside the unit disc ([(0, 0)] if none), [h = key (camera ~gx ~gy
-    ~di:(2i+1-n) ~dj:(2j+1-n)) (-1)] ({!Sample_key}). Written from that
+    pinhole's), where [(u, w)] is {!lens_point} [~lens:(gx, gy, n, i, j)]
+    of the camera sample's key [camera ~gx ~gy ~di:(2i+1-n) ~dj:(2j+1-n)]
+    ({!Sample_key}). Written from that
     definition, not with the kernel's camera rays. *)
+
+val lens_point : Camera.t -> key:int -> lens:int * int * int * int * int -> float * float
+(** [lens_point cam ~key ~lens:(gx, gy, n, i, j)] is the point [(u, w)] of
+    the unit disc from which camera sample [(i, j)] of the [n x n] grid of
+    pixel [(gx, gy)], keyed [key], leaves the lens. With [Uniform]
+    sampling ({!Camera.lens_sampling}), the first pair
+    [(2 unit (key h 2k) - 1, 2 unit (key h (2k+1)) - 1)], [k = 0 .. 31],
+    inside the disc ([(0, 0)] if none), [h = key key (-1)]. With
+    [Stratified], from the pixel's key [hp = pixel ~col:gx ~row:gy
+    ~sample:(-1)]: the offset [u0 = (unit (key hp 0), unit (key hp 1))]; for
+    the centre [k = (n/2) n + n/2] of an odd grid the point [u0]; for the
+    other samples [k = j n + i], the cell [c = 1 + permute (key hp 2)
+    ~n:(n^2 - 1) k'] ([k'] = [k] less one past the centre; for an even
+    grid [permute (key hp 2) ~n:(n^2) k]) of the [n x n] cut of the unit
+    square, the point [((c mod n + unit h) / n, (c / n + unit (mix h)) / n)
+    + u0] modulo 1 ([h = key key (-1)]); then Shirley and Chiu's concentric map onto
+    the disc, with the library's [sin] and [cos]. *)
 
 val render : ?limits:Limits.t -> Scene.valid -> Image.t
 (** [render ~limits scene] is the image of [scene]: every pixel of the canvas

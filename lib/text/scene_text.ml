@@ -184,10 +184,22 @@ let rotation form name f =
   | args ->
       fail f.node "%s takes 3 rows, e.g. (1 0 0) (0 1 0) (0 0 1), got %d values" (what ()) (List.length args)
 
+(* A camera's [(lens-sampling stratified)] or [(lens-sampling uniform)]. *)
+let lens_sampling form f =
+  let kinds = [ "stratified"; "uniform" ] and name = "lens-sampling" in
+  match single form name f with
+  | Sexp.Atom "stratified" -> Camera.Stratified
+  | Sexp.Atom "uniform" -> Camera.Uniform
+  | Sexp.Atom a as node ->
+      fail node "%s: expected %s, got %s%s" (field_what form name ()) (one_of kinds) (show_atom a) (suggestion a kinds)
+  | node -> fail node "%s: expected %s" (field_what form name ()) (one_of kinds)
+
 let camera ~where nodes =
   let form = "camera" in
   let fs =
-    fields ~where ~form ~allowed:[ "position"; "rotation"; "look-at"; "up"; "aperture"; "focal-distance" ] nodes
+    fields ~where ~form
+      ~allowed:[ "position"; "rotation"; "look-at"; "up"; "aperture"; "focal-distance"; "lens-sampling" ]
+      nodes
   in
   let with_node name parse = get ~form fs name (fun _ f -> (f.node, parse f)) in
   let position =
@@ -205,18 +217,23 @@ let camera ~where nodes =
   | Some f, Some a, None, None when a > 0. ->
       fail f.node "camera (aperture ...) needs a (focal-distance ...), or a (look-at ...) target to focus on"
   | _ -> ());
+  let lens_sampling = Option.map (lens_sampling form) (find fs "lens-sampling") in
+  (* A pinhole has no lens to sample: say so rather than drop the field. *)
+  (match (find fs "lens-sampling", aperture) with
+  | Some f, (None | Some 0.) -> fail f.node "camera (lens-sampling ...) needs an (aperture ...) above 0"
+  | _ -> ());
   match (rot, look, up) with
   | Some _, Some (node, _), _ -> fail node "camera takes either (rotation ...) or (look-at ...), not both"
   | _, None, Some (node, _) -> fail node "camera (up ...) needs a (look-at ...) target"
   | Some (node, rotation), None, None ->
-      Camera.v ~rotation:(check node (Camera.check_rotation rotation)) ?aperture ?focal_distance position
+      Camera.v ~rotation:(check node (Camera.check_rotation rotation)) ?aperture ?focal_distance ?lens_sampling position
   | None, Some (node, target), up -> (
       ignore (check node (Limits.check_point "camera look-at" target));
-      match Camera.look_at ?up:(Option.map snd up) ?aperture ?focal_distance ~position target with
+      match Camera.look_at ?up:(Option.map snd up) ?aperture ?focal_distance ?lens_sampling ~position target with
       (* The default focal distance, the target's, may be out of range. *)
       | Ok cam -> check node (Camera.validate cam)
       | Error (`Msg m) -> fail node "%s" m)
-  | None, None, _ -> Camera.v ?aperture ?focal_distance position
+  | None, None, _ -> Camera.v ?aperture ?focal_distance ?lens_sampling position
 
 (* [(pattern checker (color r g b) (size s))], the optional field of
    every object's material. *)

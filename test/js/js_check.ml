@@ -138,3 +138,45 @@ let () =
       let h = pixel ~col ~row ~sample in
       Printf.printf "sample key %d %d %d: %d %h %h\n" col row sample h (unit h) (stratum h ~n:7 3))
     [ (0, 0, 0); (1, 0, 0); (0, 1, 0); (-300, 299, 15); (1_000_000, -7, 4095); (0x3FFF_FFFF, -0x4000_0000, -1) ]
+
+(* A stratified lens (the default) and the independent draw, on both
+   builds: the cell permutations, and the images of a small lens scene at
+   3 x 3 samples and adaptively (its lens-aware refinement and probes), whose points
+   come from the concentric map's polynomials: the web page must render
+   the command line's bytes. *)
+let () =
+  let open Raytrace.Private.Sample_key in
+  List.iter
+    (fun (h, n) ->
+      Printf.printf "permute %d n=%d: %s\n" h n (String.concat " " (List.init (min n 12) (fun k -> string_of_int (permute h ~n k)))))
+    [ (0, 1); (17, 8); (0x7FFF_FFFF, 9); (-5, 24); (123456, 48); (99, 4096) ];
+  let lens sampling =
+    Printf.sprintf
+      "(canvas (width 40) (height 24)) (camera (position 0 1.4 -3.5) (look-at 0 0.6 6) (aperture 0.3) (lens-sampling %s))\n\
+       (plane (point 0 0 0) (normal 0 1 0) (color 225 225 215) (pattern checker (color 60 70 100) (size 1)))\n\
+       (sphere (center -1.2 0.6 3.8) (radius 0.6) (color 240 180 30) (specular 300))\n\
+       (sphere (center 0 0.6 6) (radius 0.6) (color 40 190 80) (reflective 0.2))\n\
+       (light ambient (intensity 0.2)) (light point (intensity 0.8) (position -4 6 -1))"
+      sampling
+  in
+  (* Pinned: a change of the lens points shows here, on both builds. *)
+  List.iter
+    (fun (sampling, samples, adaptive, pinned) ->
+      match Raytrace.Scene_file.of_string ~file:"lens.scene" (lens sampling) with
+      | Error (`Msg m) -> failwith m
+      | Ok scene -> (
+          match Raytrace.Render.image ~samples ?adaptive scene with
+          | Error (`Msg m) -> failwith m
+          | Ok (img, stats) ->
+              let md5 = Digest.to_hex (Digest.string (Raytrace.Image.Ppm.to_string img)) in
+              Printf.printf "lens %s samples %d%s: md5 %s, %d primary rays\n" sampling samples
+                (match adaptive with Some t -> Printf.sprintf " adaptive %d" t | None -> "")
+                md5 stats.primary;
+              if md5 <> pinned then failwith (Printf.sprintf "lens %s samples %d: md5 %s, not the pinned %s" sampling samples md5 pinned)))
+    [
+      ("stratified", 1, None, "1580078cf4e32f864953ddeae535001d");
+      ("stratified", 3, None, "7dfe6832073f43f57c20e979a542f9ae");
+      ("stratified", 4, None, "fe1bb4b0097c53c7dd6298a590b47015");
+      ("stratified", 5, Some 8, "e5bddc00b2f8afc5e01306ce1596e42f");
+      ("uniform", 3, None, "3eea459a01a1f19980d27ac9bfe70414");
+    ]
