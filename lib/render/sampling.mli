@@ -32,7 +32,7 @@
       the hit at depth [z], over a pixel's width there). Its probes are
       four rays from fixed points of the lens's rim, [(+-A/2, 0)] and
       [(0, +-A/2)] in lens coordinates, through the point of its centre on
-      the plane of focus ({!Raytrace.Private.Trace.probe}), the widest
+      the plane of focus, the widest
       rays of the cone whose average the pixel is; it is refined when one
       of them hits another object than its first ray, or gives bytes more
       than [th] apart from its first ray's in some channel (the neighbour
