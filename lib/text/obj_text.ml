@@ -219,7 +219,8 @@ type parser = {
   pos : floats;
   nrm : floats;
   tris : ints;
-  tri_nrm : ints;
+  tri_nrm : ints;  (* only with [nrm_mode = nrm_explicit]: see [keep_normals] *)
+  mutable nrm_mode : int;
   tex : floats;  (* u v of each [vt] *)
   tri_tex : ints;  (* empty until a face gives a texture index: see [face] *)
   mutable textured : bool;  (* a face gave a texture index *)
@@ -251,10 +252,25 @@ let need_normal = 2
 let need_texture = 4
 let no_needs () = [| min_int; 0; min_int; 0; min_int; 0 |]
 
+(* The triangles' normal numbers, as exporters write them: each the
+   vertex's number ([f 1//1 2//2 3//3]), or none ([f 1 2 3], each [-1]).
+   While every triangle so far is one of the two, the reader stores no
+   normal numbers ([nrm_same], [nrm_none]: a million triangles' were 24
+   MB of blocks, garbage once read); the first triangle that is neither
+   makes them explicit ([explicit_normals]). [nrm_unknown]: no triangle
+   yet. *)
+let nrm_unknown = 0
+let nrm_same = 1
+let nrm_none = 2
+let nrm_explicit = 3
+
 let make ~offset ~output ~name ~max_vertices ~max_triangles =
   {
     name; max_vertices; max_triangles; offset; needs = no_needs ();
     pos = floats (); nrm = floats (); tris = ints (); tri_nrm = ints ();
+    (* A part's blocks of normal numbers are sent in step with its
+       triangles' ([spill]): kept from the start. *)
+    nrm_mode = (if offset > 0 then nrm_explicit else nrm_unknown);
     tex = floats (); tri_tex = ints (); textured = false;
     face_v = { fa = Array.make 16 0; len = 0 }; face_n = { fa = Array.make 16 0; len = 0 };
     face_t = { fa = Array.make 16 0; len = 0 };
@@ -469,6 +485,35 @@ let[@inline] fast_index p b i k j ~count ~what =
     index p b i k j ~count ~what
   end
 
+(* The normal numbers of the triangles read so far, written out in
+   [tri_nrm]: the triangles' own numbers, or [-1] each. *)
+let explicit_normals p =
+  let t = p.tris and m = p.nrm_mode in
+  if m = nrm_same then begin
+    List.iter (fun a -> for k = 0 to block - 1 do push_int p.tri_nrm (Array.unsafe_get a k) done) (List.rev t.iblocks);
+    for k = 0 to t.inn - 1 do push_int p.tri_nrm (Array.unsafe_get t.icur k) done
+  end
+  else if m = nrm_none then for _ = 1 to int_length t do push_int p.tri_nrm (-1) done;
+  p.nrm_mode <- nrm_explicit
+
+(* Whether the normal numbers [na nb nc] of the triangle [a b c], about
+   to be pushed, go to [tri_nrm]: only once some triangle's are neither
+   its vertices' numbers nor all [-1]. *)
+let keep_normals p a b c na nb nc =
+  let m = p.nrm_mode in
+  if m = nrm_explicit then true
+  else
+    let same = na = a && nb = b && nc = c and none = na < 0 && nb < 0 && nc < 0 in
+    if (m = nrm_same && same) || (m = nrm_none && none) then false
+    else if m = nrm_unknown && (same || none) then begin
+      p.nrm_mode <- (if same then nrm_same else nrm_none);
+      false
+    end
+    else begin
+      explicit_normals p;
+      true
+    end
+
 let face p b i f k j =
   p.face_v.len <- 0;
   p.face_n.len <- 0;
@@ -512,8 +557,10 @@ let face p b i f k j =
     p.textured <- true
   end;
   for t = 1 to n - 2 do
+    if keep_normals p v.(0) v.(t) v.(t + 1) vn.(0) vn.(t) vn.(t + 1) then begin
+      push_int p.tri_nrm vn.(0); push_int p.tri_nrm vn.(t); push_int p.tri_nrm vn.(t + 1)
+    end;
     push_int p.tris v.(0); push_int p.tris v.(t); push_int p.tris v.(t + 1);
-    push_int p.tri_nrm vn.(0); push_int p.tri_nrm vn.(t); push_int p.tri_nrm vn.(t + 1);
     if p.textured then begin
       push_int p.tri_tex vt.(0); push_int p.tri_tex vt.(t); push_int p.tri_tex vt.(t + 1)
     end
@@ -568,8 +615,10 @@ let triangle p b k j =
          p.face_n.len <- 3;
          note_face p ~nv ~nn
        end;
-       push3 p.tris (Array.unsafe_get v 0) (Array.unsafe_get v 1) (Array.unsafe_get v 2);
-       push3 p.tri_nrm (Array.unsafe_get vn 0) (Array.unsafe_get vn 1) (Array.unsafe_get vn 2);
+       let a = Array.unsafe_get v 0 and b = Array.unsafe_get v 1 and c = Array.unsafe_get v 2 in
+       let na = Array.unsafe_get vn 0 and nb = Array.unsafe_get vn 1 and nc = Array.unsafe_get vn 2 in
+       if keep_normals p a b c na nb nc then push3 p.tri_nrm na nb nc;
+       push3 p.tris a b c;
        (* This layout has no texture numbers. *)
        if p.textured then push3 p.tri_tex (-1) (-1) (-1);
        true
@@ -823,9 +872,12 @@ let finish p =
   | () ->
       let positions = float_array p.pos in
       let normals = float_array p.nrm in
-      let same = same_stores p.tri_nrm p.tris in
+      let mode = p.nrm_mode in
+      let same = mode = nrm_unknown || mode = nrm_same || (mode = nrm_explicit && same_stores p.tri_nrm p.tris) in
       let triangles = int_array p.tris in
-      let triangle_normals = if same then triangles else int_array p.tri_nrm in
+      let triangle_normals =
+        if same then triangles else if mode = nrm_none then Array.make (Array.length triangles) (-1) else int_array p.tri_nrm
+      in
       let texcoords = float_array p.tex in
       let triangle_texcoords = if p.textured then int_array p.tri_tex else [||] in
       Ok { positions; normals; triangles; triangle_normals; texcoords; triangle_texcoords; skipped = skipped_of p.counts }
@@ -950,8 +1002,9 @@ let join p part ~input =
     blit_float_store p.nrm normals;
     let triangles = Array.make (at_t + part.part_numbers) 0 in
     blit_int_store p.tris triangles;
+    if p.nrm_mode = nrm_none then explicit_normals p;
     let tn =
-      if same_stores p.tri_nrm p.tris then [||]
+      if p.nrm_mode <> nrm_explicit || same_stores p.tri_nrm p.tris then [||]
       else begin
         let a = Array.make (Array.length triangles) 0 in
         blit_int_store p.tri_nrm a;
