@@ -194,6 +194,36 @@ let[@inline] triangles_closest tr s first last =
   | 4 -> leaf_closest tr s first last 0 1 2
   | _ -> leaf_closest tr s first last 1 0 2
 
+(* The first of the triangles in slots [first .. last - 1] of a leaf,
+   other than slot [skip], that the ray in [s] (sheared) meets with
+   [t_min < t < t_max], or [last]: [triangle_blocks]'s test, the axes
+   [kx, ky, kz] constants as in [leaf_closest]. *)
+let[@inline] leaf_blocker tr s first last skip kx ky kz =
+  let p = tr.p in
+  let g = p.vertex and at0 = p.at0 and at1 = p.at1 and at2 = p.at2 in
+  let i = ref first in
+  while
+    !i < last
+    && (!i = skip
+       || not
+            (Triangle.hit s g (Array.unsafe_get at0 !i) (Array.unsafe_get at1 !i) (Array.unsafe_get at2 !i) kx ky kz
+            &&
+            let t = s.near in
+            s.t_min < t && t < s.t_max))
+  do
+    incr i
+  done;
+  !i
+
+let[@inline] triangles_blocker tr s first last skip =
+  match tr.order with
+  | 0 -> leaf_blocker tr s first last skip 1 2 0
+  | 1 -> leaf_blocker tr s first last skip 2 1 0
+  | 2 -> leaf_blocker tr s first last skip 0 2 1
+  | 3 -> leaf_blocker tr s first last skip 2 0 1
+  | 4 -> leaf_blocker tr s first last skip 0 1 2
+  | _ -> leaf_blocker tr s first last skip 1 0 2
+
 (* {2 Instances}
 
    An instance's roots are the closest hit of its bottom level (its own
@@ -363,33 +393,6 @@ let[@inline] box_exit (nodes : float array) o nx ny nz ox oy oz ix iy iz =
   let exit_z = (Array.unsafe_get nodes (o + 7 - nz) -. oz) *. iz in
   let exit = if exit_x < exit_y then exit_x else exit_y in
   if exit < exit_z then exit else exit_z
-
-(* Does the ray in [s] (with slab inverses [ix, iy, iz], near planes [nx,
-   ny, nz]) meet the box of the node at offset [o] of [nodes] at some t in
-   [t_min, limit]? *)
-let[@inline] meets_box (nodes : float array) s o nx ny nz ix iy iz limit =
-  let ox = s.ox and oy = s.oy and oz = s.oz in
-  let enter = box_enter nodes o nx ny nz ox oy oz ix iy iz in
-  let exit = box_exit nodes o nx ny nz ox oy oz ix iy iz in
-  enter <= exit && exit >= s.t_min && enter <= limit
-
-(* Pushes the children of the inner node at offset [o] of [nodes] on
-   [stack] above [sp], so that the nearer along the ray is popped first;
-   the new stack pointer. The stack holds nodes' offsets: the left child
-   follows its parent (8 floats on), the right one is at its link. *)
-let[@inline] push_children nodes stack sp o dx dy dz =
-  let right = node_link nodes o and left = o + 8 in
-  let tag = node_tag nodes o in
-  let d = if tag = -1 then dx else if tag = -2 then dy else dz in
-  if d >= 0. then begin
-    Array.unsafe_set stack sp right;
-    Array.unsafe_set stack (sp + 1) left
-  end
-  else begin
-    Array.unsafe_set stack sp left;
-    Array.unsafe_set stack (sp + 1) right
-  end;
-  sp + 2
 
 (* The intersection loops below read every loop invariant (arrays, ray,
    range) into a local once per ray: without flambda, OCaml reloads a
@@ -674,26 +677,72 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
           sp := 0
         end
       end;
-      Array.unsafe_set stack 0 b.root;
+      (* As in [closest_from], a node is pushed only if the ray meets its
+         box, tested by its parent (the root here), in the same order as
+         the box tests at the pop had: along the split axis, the nearer
+         child first, so the same blocker is found. *)
+      let ox = s.ox and oy = s.oy and oz = s.oz and t_min = s.t_min and t_max = s.t_max in
+      if !sp > 0 then begin
+        let root = b.root in
+        incr boxes;
+        let enter = box_enter nodes root nx ny nz ox oy oz ix iy iz in
+        let exit = box_exit nodes root nx ny nz ox oy oz ix iy iz in
+        if enter <= exit && exit >= t_min && enter <= t_max then Array.unsafe_set stack 0 root else sp := 0
+      end;
       while !sp > 0 do
         decr sp;
         let o = Array.unsafe_get stack !sp in
-        incr boxes;
-        if meets_box nodes s o nx ny nz ix iy iz s.t_max then begin
-          let count = node_tag nodes o in
-          if count > 0 then begin
-            let first = node_link nodes o in
-            let i = ref first and last = first + count in
-            while !i < last && (!i = skip || not (blocks tr !i ~spheres ~triangles a inv_a)) do
-              incr i
-            done;
-            tests := !tests + count;
-            if !i < last then begin
-              found := !i;
-              sp := 0
+        let count = node_tag nodes o in
+        if count > 0 then begin
+          let first = node_link nodes o in
+          let last = first + count in
+          let i =
+            if triangles then triangles_blocker tr s first last skip
+            else begin
+              let i = ref first in
+              while !i < last && (!i = skip || not (blocks tr !i ~spheres ~triangles a inv_a)) do
+                incr i
+              done;
+              !i
             end
+          in
+          tests := !tests + count;
+          if i < last then begin
+            found := i;
+            sp := 0
           end
-          else sp := push_children nodes stack !sp o dx dy dz
+        end
+        else begin
+          let left = o + 8 and right = node_link nodes o in
+          boxes := !boxes + 2;
+          let l_enter = box_enter nodes left nx ny nz ox oy oz ix iy iz in
+          let l_exit = box_exit nodes left nx ny nz ox oy oz ix iy iz in
+          let r_enter = box_enter nodes right nx ny nz ox oy oz ix iy iz in
+          let r_exit = box_exit nodes right nx ny nz ox oy oz ix iy iz in
+          let l_met = l_enter <= l_exit && l_exit >= t_min && l_enter <= t_max in
+          let r_met = r_enter <= r_exit && r_exit >= t_min && r_enter <= t_max in
+          let sp0 = !sp in
+          if l_met && r_met then begin
+            let tag = node_tag nodes o in
+            let d = if tag = -1 then dx else if tag = -2 then dy else dz in
+            if d >= 0. then begin
+              Array.unsafe_set stack sp0 right;
+              Array.unsafe_set stack (sp0 + 1) left
+            end
+            else begin
+              Array.unsafe_set stack sp0 left;
+              Array.unsafe_set stack (sp0 + 1) right
+            end;
+            sp := sp0 + 2
+          end
+          else if l_met then begin
+            Array.unsafe_set stack sp0 left;
+            sp := sp0 + 1
+          end
+          else if r_met then begin
+            Array.unsafe_set stack sp0 right;
+            sp := sp0 + 1
+          end
         end
       done;
       tr.counters.box_tests <- tr.counters.box_tests + !boxes;
