@@ -394,6 +394,78 @@ let[@inline] box_exit (nodes : float array) o nx ny nz ox oy oz ix iy iz =
   let exit = if exit_x < exit_y then exit_x else exit_y in
   if exit < exit_z then exit else exit_z
 
+(* The children of the inner node at offset [o] of [nodes] whose boxes
+   the ray meets in [t_min, limit], pushed on [stack] (their entries
+   beside, in [entries]) above [sp]; the new stack pointer. With
+   [by_entry], the nearer by its entry on top (the left one on a tie);
+   otherwise the nearer along the split axis, by the sign of the
+   direction's coordinate on it ([dx, dy, dz]), as shadow rays search.
+   The left child follows its parent (8 floats on), the right one is at
+   its link. The near planes [nx, ny, nz] are constants in each of
+   [visit_children]'s copies: a plane is then one load at a fixed
+   displacement from the node's offset. *)
+let[@inline] push_met (nodes : float array) stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit nx ny nz =
+  let left = o + 8 and right = node_link nodes o in
+  let l_enter = box_enter nodes left nx ny nz ox oy oz ix iy iz in
+  let l_exit = box_exit nodes left nx ny nz ox oy oz ix iy iz in
+  let r_enter = box_enter nodes right nx ny nz ox oy oz ix iy iz in
+  let r_exit = box_exit nodes right nx ny nz ox oy oz ix iy iz in
+  if l_enter <= l_exit && l_exit >= t_min && l_enter <= limit then begin
+    if r_enter <= r_exit && r_exit >= t_min && r_enter <= limit then begin
+      let right_first =
+        if by_entry then r_enter < l_enter
+        else
+          let tag = node_tag nodes o in
+          let d = if tag = -1 then dx else if tag = -2 then dy else dz in
+          d < 0.
+      in
+      if right_first then begin
+        Array.unsafe_set stack sp left;
+        Array.unsafe_set stack (sp + 1) right;
+        if by_entry then begin
+          Array.unsafe_set entries sp l_enter;
+          Array.unsafe_set entries (sp + 1) r_enter
+        end
+      end
+      else begin
+        Array.unsafe_set stack sp right;
+        Array.unsafe_set stack (sp + 1) left;
+        if by_entry then begin
+          Array.unsafe_set entries sp r_enter;
+          Array.unsafe_set entries (sp + 1) l_enter
+        end
+      end;
+      sp + 2
+    end
+    else begin
+      Array.unsafe_set stack sp left;
+      if by_entry then Array.unsafe_set entries sp l_enter;
+      sp + 1
+    end
+  end
+  else if r_enter <= r_exit && r_exit >= t_min && r_enter <= limit then begin
+    Array.unsafe_set stack sp right;
+    if by_entry then Array.unsafe_set entries sp r_enter;
+    sp + 1
+  end
+  else sp
+
+(* [push_met] in the ray's octant, [octant ix iy iz]: one copy per
+   octant, its near planes constants. The octant is the same at every
+   node of a ray: its branch is predicted. *)
+let[@inline] octant ix iy iz = (if ix >= 0. then 0 else 1) + (if iy >= 0. then 0 else 2) + if iz >= 0. then 0 else 4
+
+let[@inline] visit_children nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit oct =
+  match oct with
+  | 0 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 2
+  | 1 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 2
+  | 2 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 2
+  | 3 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 2
+  | 4 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 5
+  | 5 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 5
+  | 6 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 5
+  | _ -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 5
+
 (* The intersection loops below read every loop invariant (arrays, ray,
    range) into a local once per ray: without flambda, OCaml reloads a
    record field at every use. *)
@@ -476,7 +548,7 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
             done
           end;
           let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
-          let nx = near_x ix and ny = near_y iy and nz = near_z iz in
+          let nx = near_x ix and ny = near_y iy and nz = near_z iz and oct = octant ix iy iz in
           (* A hierarchy of triangles: the ray's shear once, here, rather
              than a check of [tr.kz] at every triangle. *)
           if triangles then shear_once tr s;
@@ -517,41 +589,8 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
                   done
               end
               else begin
-                let left = o + 8 and right = node_link nodes o in
                 boxes := !boxes + 2;
-                let l_enter = box_enter nodes left nx ny nz ox oy oz ix iy iz in
-                let l_exit = box_exit nodes left nx ny nz ox oy oz ix iy iz in
-                let r_enter = box_enter nodes right nx ny nz ox oy oz ix iy iz in
-                let r_exit = box_exit nodes right nx ny nz ox oy oz ix iy iz in
-                let sp0 = !sp in
-                if l_enter <= l_exit && l_exit >= t_min && l_enter <= limit then begin
-                  if r_enter <= r_exit && r_exit >= t_min && r_enter <= limit then begin
-                    (* Both: the nearer on top (the left one on a tie). *)
-                    if r_enter < l_enter then begin
-                      Array.unsafe_set stack sp0 left;
-                      Array.unsafe_set entries sp0 l_enter;
-                      Array.unsafe_set stack (sp0 + 1) right;
-                      Array.unsafe_set entries (sp0 + 1) r_enter
-                    end
-                    else begin
-                      Array.unsafe_set stack sp0 right;
-                      Array.unsafe_set entries sp0 r_enter;
-                      Array.unsafe_set stack (sp0 + 1) left;
-                      Array.unsafe_set entries (sp0 + 1) l_enter
-                    end;
-                    sp := sp0 + 2
-                  end
-                  else begin
-                    Array.unsafe_set stack sp0 left;
-                    Array.unsafe_set entries sp0 l_enter;
-                    sp := sp0 + 1
-                  end
-                end
-                else if r_enter <= r_exit && r_exit >= t_min && r_enter <= limit then begin
-                  Array.unsafe_set stack sp0 right;
-                  Array.unsafe_set entries sp0 r_enter;
-                  sp := sp0 + 1
-                end
+                sp := visit_children nodes stack entries !sp o ~by_entry:true dx dy dz ox oy oz ix iy iz t_min limit oct
               end
             end
           done;
@@ -659,7 +698,7 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
   | Some b ->
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
-      let nx = near_x ix and ny = near_y iy and nz = near_z iz in
+      let nx = near_x ix and ny = near_y iy and nz = near_z iz and oct = octant ix iy iz in
       if triangles then shear_once tr s;
       let nodes = b.nodes and stack = tr.nodes and sp = ref 1 and found = ref (-1) in
       let boxes = ref 0 and tests = ref 0 in
@@ -713,36 +752,8 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
           end
         end
         else begin
-          let left = o + 8 and right = node_link nodes o in
           boxes := !boxes + 2;
-          let l_enter = box_enter nodes left nx ny nz ox oy oz ix iy iz in
-          let l_exit = box_exit nodes left nx ny nz ox oy oz ix iy iz in
-          let r_enter = box_enter nodes right nx ny nz ox oy oz ix iy iz in
-          let r_exit = box_exit nodes right nx ny nz ox oy oz ix iy iz in
-          let l_met = l_enter <= l_exit && l_exit >= t_min && l_enter <= t_max in
-          let r_met = r_enter <= r_exit && r_exit >= t_min && r_enter <= t_max in
-          let sp0 = !sp in
-          if l_met && r_met then begin
-            let tag = node_tag nodes o in
-            let d = if tag = -1 then dx else if tag = -2 then dy else dz in
-            if d >= 0. then begin
-              Array.unsafe_set stack sp0 right;
-              Array.unsafe_set stack (sp0 + 1) left
-            end
-            else begin
-              Array.unsafe_set stack sp0 left;
-              Array.unsafe_set stack (sp0 + 1) right
-            end;
-            sp := sp0 + 2
-          end
-          else if l_met then begin
-            Array.unsafe_set stack sp0 left;
-            sp := sp0 + 1
-          end
-          else if r_met then begin
-            Array.unsafe_set stack sp0 right;
-            sp := sp0 + 1
-          end
+          sp := visit_children nodes stack tr.entries !sp o ~by_entry:false dx dy dz ox oy oz ix iy iz t_min t_max oct
         end
       done;
       tr.counters.box_tests <- tr.counters.box_tests + !boxes;
