@@ -805,7 +805,7 @@ let tests =
                no sphere shadowed. Fewer shadow rays (and tests) outside
                the document's kernel since [lighting] skips them alike. *)
             ("cgfs.scene", [ 4096; 6415; 4243; 44993; 0; 0 ]);
-            ("grid-100.scene", [ 4096; 5985; 3034; 15679; 91552; 0 ]);
+            ("grid-100.scene", [ 4096; 5985; 3034; 15679; 92514; 0 ]);
             ("mirrors.scene", [ 3072; 17942; 11368; 206653; 0; 75 ]);
             ("room.scene", [ 3072; 8775; 2510; 106940; 0; 11 ]);
             ("boxes.scene", [ 3072; 6131; 2668; 100672; 0; 0 ]);

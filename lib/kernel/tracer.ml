@@ -29,6 +29,9 @@ type t = {
   blockers_first : int array;  (** Per light [l]: [4 n l], read rather than multiplied per shadow ray. *)
   counters : counters;
   nodes : int array;  (** Stack of hierarchy nodes still to visit: their offsets in [Bvh.t]'s [nodes]. *)
+  entries : float array;
+      (** Beside [nodes], the closest-hit search's: each node's entry
+          distance along the ray, found when its parent tested its box. *)
   csg : Csg.work;  (** Room for the intervals of the CSG solids. *)
   mutable hit : int;  (** Index of the sphere found by [closest]. *)
   mutable origin_sphere : int;
@@ -137,6 +140,7 @@ let rec create ?(averaging = false) (p : Prepared.t) =
     counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0; decided = 0; penumbra = 0; umbra = 0 };
     nodes =
       Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0;
+    entries = Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0.;
     csg = Csg.work p.csg;
     hit = -1;
     origin_sphere = -1;

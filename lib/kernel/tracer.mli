@@ -40,6 +40,9 @@ type t = {
   blockers_first : int array;  (** Per light [l]: [4 n l], read rather than multiplied per shadow ray. *)
   counters : counters;
   nodes : int array;  (** Stack of hierarchy nodes still to visit: their offsets in [Bvh.t]'s [nodes]. *)
+  entries : float array;
+      (** Beside [nodes], the closest-hit search's: each node's entry
+          distance along the ray, found when its parent tested its box. *)
   csg : Csg.work;  (** Room for the intervals of the CSG solids. *)
   mutable hit : int;  (** Index of the sphere found by {!Traversal.closest}. *)
   mutable origin_sphere : int;

@@ -171,6 +171,59 @@ let[@inline] triangle_hit tr s i ~sheared =
   | 4 -> Triangle.hit s g o0 o1 o2 0 1 2
   | _ -> Triangle.hit s g o0 o1 o2 1 0 2
 
+(* The triangles in slots [first .. last] of a leaf, each tested
+   against the ray in [s] (sheared: [tr.kz >= 0]) with the axes [kx, ky,
+   kz] as constants, keeping the better hit: [triangle_hit]'s test with
+   its order chosen once a leaf, not once a triangle, and the arrays read
+   into locals once a leaf. *)
+let[@inline] leaf_closest tr s first last kx ky kz =
+  let p = tr.p in
+  let g = p.vertex and at0 = p.at0 and at1 = p.at1 and at2 = p.at2 in
+  for i = first to last do
+    if Triangle.hit s g (Array.unsafe_get at0 i) (Array.unsafe_get at1 i) (Array.unsafe_get at2 i) kx ky kz then
+      keep tr s i s.near
+  done
+
+(* [leaf_closest] in the ray's order of the axes ([triangle_hit]'s six). *)
+let[@inline] triangles_closest tr s first last =
+  match tr.order with
+  | 0 -> leaf_closest tr s first last 1 2 0
+  | 1 -> leaf_closest tr s first last 2 1 0
+  | 2 -> leaf_closest tr s first last 0 2 1
+  | 3 -> leaf_closest tr s first last 2 0 1
+  | 4 -> leaf_closest tr s first last 0 1 2
+  | _ -> leaf_closest tr s first last 1 0 2
+
+(* The first of the triangles in slots [first .. last - 1] of a leaf,
+   other than slot [skip], that the ray in [s] (sheared) meets with
+   [t_min < t < t_max], or [last]: [triangle_blocks]'s test, the axes
+   [kx, ky, kz] constants as in [leaf_closest]. *)
+let[@inline] leaf_blocker tr s first last skip kx ky kz =
+  let p = tr.p in
+  let g = p.vertex and at0 = p.at0 and at1 = p.at1 and at2 = p.at2 in
+  let i = ref first in
+  while
+    !i < last
+    && (!i = skip
+       || not
+            (Triangle.hit s g (Array.unsafe_get at0 !i) (Array.unsafe_get at1 !i) (Array.unsafe_get at2 !i) kx ky kz
+            &&
+            let t = s.near in
+            s.t_min < t && t < s.t_max))
+  do
+    incr i
+  done;
+  !i
+
+let[@inline] triangles_blocker tr s first last skip =
+  match tr.order with
+  | 0 -> leaf_blocker tr s first last skip 1 2 0
+  | 1 -> leaf_blocker tr s first last skip 2 1 0
+  | 2 -> leaf_blocker tr s first last skip 0 2 1
+  | 3 -> leaf_blocker tr s first last skip 2 0 1
+  | 4 -> leaf_blocker tr s first last skip 0 1 2
+  | _ -> leaf_blocker tr s first last skip 1 0 2
+
 (* {2 Instances}
 
    An instance's roots are the closest hit of its bottom level (its own
@@ -309,39 +362,109 @@ let[@inline] slab_inverse d = if d = 0. then 1e300 else 1. /. d
 let[@inline] node_link (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 6))
 let[@inline] node_tag (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 7))
 
-(* Does the ray in [s] (with slab inverses [ix, iy, iz]) meet the box of
-   the node at offset [o] of [nodes] at some t in [t_min, limit]? *)
-let[@inline] meets_box (nodes : float array) s o ix iy iz limit =
-  let ox = s.ox and oy = s.oy and oz = s.oz in
-  let x0 = (Array.unsafe_get nodes o -. ox) *. ix and x1 = (Array.unsafe_get nodes (o + 3) -. ox) *. ix in
-  let y0 = (Array.unsafe_get nodes (o + 1) -. oy) *. iy and y1 = (Array.unsafe_get nodes (o + 4) -. oy) *. iy in
-  let z0 = (Array.unsafe_get nodes (o + 2) -. oz) *. iz and z1 = (Array.unsafe_get nodes (o + 5) -. oz) *. iz in
-  let enter_x = if x0 < x1 then x0 else x1 and exit_x = if x0 < x1 then x1 else x0 in
-  let enter_y = if y0 < y1 then y0 else y1 and exit_y = if y0 < y1 then y1 else y0 in
-  let enter_z = if z0 < z1 then z0 else z1 and exit_z = if z0 < z1 then z1 else z0 in
-  let enter = if enter_x > enter_y then enter_x else enter_y in
-  let enter = if enter > enter_z then enter else enter_z in
-  let exit = if exit_x < exit_y then exit_x else exit_y in
-  let exit = if exit < exit_z then exit else exit_z in
-  enter <= exit && exit >= s.t_min && enter <= limit
+(* The offsets in a node of the box's planes that a ray with slab
+   inverses [ix, iy, iz] meets first: per axis, the lower corner's where
+   the inverse is positive, the upper corner's where it is negative; the
+   planes it meets last are the others ([far_x n = 3 - n], [far_y n =
+   5 - n], [far_z n = 7 - n]). Chosen once a ray: [(b - o) * inv] is
+   monotone in [b], rounding included, so the near plane's is the smaller
+   of the two products, as a compare per axis and box would find (equal
+   products are the same number). An inverse is never 0 nor NaN
+   ([slab_inverse]). *)
+let[@inline] near_x ix = if ix >= 0. then 0 else 3
+let[@inline] near_y iy = if iy >= 0. then 1 else 4
+let[@inline] near_z iz = if iz >= 0. then 2 else 5
 
-(* Pushes the children of the inner node at offset [o] of [nodes] on
-   [stack] above [sp], so that the nearer along the ray is popped first;
-   the new stack pointer. The stack holds nodes' offsets: the left child
-   follows its parent (8 floats on), the right one is at its link. *)
-let[@inline] push_children nodes stack sp o dx dy dz =
-  let right = node_link nodes o and left = o + 8 in
-  let tag = node_tag nodes o in
-  let d = if tag = -1 then dx else if tag = -2 then dy else dz in
-  if d >= 0. then begin
-    Array.unsafe_set stack sp right;
-    Array.unsafe_set stack (sp + 1) left
+(* The ray's entry into the box of the node at offset [o] of [nodes]: the
+   largest of its three slabs' near distances ([nx], [ny], [nz] from
+   [near_x] ...), with origin [ox, oy, oz] and slab inverses [ix, iy,
+   iz]. *)
+let[@inline] box_enter (nodes : float array) o nx ny nz ox oy oz ix iy iz =
+  let enter_x = (Array.unsafe_get nodes (o + nx) -. ox) *. ix in
+  let enter_y = (Array.unsafe_get nodes (o + ny) -. oy) *. iy in
+  let enter_z = (Array.unsafe_get nodes (o + nz) -. oz) *. iz in
+  let enter = if enter_x > enter_y then enter_x else enter_y in
+  if enter > enter_z then enter else enter_z
+
+(* Its exit: the smallest of the far distances. *)
+let[@inline] box_exit (nodes : float array) o nx ny nz ox oy oz ix iy iz =
+  let exit_x = (Array.unsafe_get nodes (o + 3 - nx) -. ox) *. ix in
+  let exit_y = (Array.unsafe_get nodes (o + 5 - ny) -. oy) *. iy in
+  let exit_z = (Array.unsafe_get nodes (o + 7 - nz) -. oz) *. iz in
+  let exit = if exit_x < exit_y then exit_x else exit_y in
+  if exit < exit_z then exit else exit_z
+
+(* The children of the inner node at offset [o] of [nodes] whose boxes
+   the ray meets in [t_min, limit], pushed on [stack] (their entries
+   beside, in [entries]) above [sp]; the new stack pointer. With
+   [by_entry], the nearer by its entry on top (the left one on a tie);
+   otherwise the nearer along the split axis, by the sign of the
+   direction's coordinate on it ([dx, dy, dz]), as shadow rays search.
+   The left child follows its parent (8 floats on), the right one is at
+   its link. The near planes [nx, ny, nz] are constants in each of
+   [visit_children]'s copies: a plane is then one load at a fixed
+   displacement from the node's offset. *)
+let[@inline] push_met (nodes : float array) stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit nx ny nz =
+  let left = o + 8 and right = node_link nodes o in
+  let l_enter = box_enter nodes left nx ny nz ox oy oz ix iy iz in
+  let l_exit = box_exit nodes left nx ny nz ox oy oz ix iy iz in
+  let r_enter = box_enter nodes right nx ny nz ox oy oz ix iy iz in
+  let r_exit = box_exit nodes right nx ny nz ox oy oz ix iy iz in
+  if l_enter <= l_exit && l_exit >= t_min && l_enter <= limit then begin
+    if r_enter <= r_exit && r_exit >= t_min && r_enter <= limit then begin
+      let right_first =
+        if by_entry then r_enter < l_enter
+        else
+          let tag = node_tag nodes o in
+          let d = if tag = -1 then dx else if tag = -2 then dy else dz in
+          d < 0.
+      in
+      if right_first then begin
+        Array.unsafe_set stack sp left;
+        Array.unsafe_set stack (sp + 1) right;
+        if by_entry then begin
+          Array.unsafe_set entries sp l_enter;
+          Array.unsafe_set entries (sp + 1) r_enter
+        end
+      end
+      else begin
+        Array.unsafe_set stack sp right;
+        Array.unsafe_set stack (sp + 1) left;
+        if by_entry then begin
+          Array.unsafe_set entries sp r_enter;
+          Array.unsafe_set entries (sp + 1) l_enter
+        end
+      end;
+      sp + 2
+    end
+    else begin
+      Array.unsafe_set stack sp left;
+      if by_entry then Array.unsafe_set entries sp l_enter;
+      sp + 1
+    end
   end
-  else begin
-    Array.unsafe_set stack sp left;
-    Array.unsafe_set stack (sp + 1) right
-  end;
-  sp + 2
+  else if r_enter <= r_exit && r_exit >= t_min && r_enter <= limit then begin
+    Array.unsafe_set stack sp right;
+    if by_entry then Array.unsafe_set entries sp r_enter;
+    sp + 1
+  end
+  else sp
+
+(* [push_met] in the ray's octant, [octant ix iy iz]: one copy per
+   octant, its near planes constants. The octant is the same at every
+   node of a ray: its branch is predicted. *)
+let[@inline] octant ix iy iz = (if ix >= 0. then 0 else 1) + (if iy >= 0. then 0 else 2) + if iz >= 0. then 0 else 4
+
+let[@inline] visit_children nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit oct =
+  match oct with
+  | 0 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 2
+  | 1 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 2
+  | 2 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 2
+  | 3 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 2
+  | 4 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 5
+  | 5 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 5
+  | 6 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 5
+  | _ -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 5
 
 (* The intersection loops below read every loop invariant (arrays, ray,
    range) into a local once per ray: without flambda, OCaml reloads a
@@ -425,30 +548,50 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
             done
           end;
           let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+          let nx = near_x ix and ny = near_y iy and nz = near_z iz and oct = octant ix iy iz in
           (* A hierarchy of triangles: the ray's shear once, here, rather
              than a check of [tr.kz] at every triangle. *)
           if triangles then shear_once tr s;
-          let nodes = b.nodes and stack = tr.nodes and sp = ref 1 in
+          let nodes = b.nodes and stack = tr.nodes and entries = tr.entries and sp = ref 0 in
+          let ox = s.ox and oy = s.oy and oz = s.oz and t_min = s.t_min in
           (* Counted here, added to the counters once a ray. *)
-          let boxes = ref 0 and tests = ref 0 in
-          Array.unsafe_set stack 0 b.root;
+          let boxes = ref 1 and tests = ref 0 in
+          (* A node is pushed only if the ray meets its box, with its entry
+             distance, tested by its parent (the root here): both children's
+             boxes are read together, and the nearer child is visited
+             first. A box entered beyond the best hit so far cannot hold a
+             better one (its objects' hit points lie inside it, rounding
+             included); one entered exactly there may hold an equal one:
+             the entry is checked again when the node is popped, against
+             the best hit then. The same boxes are entered as by a test at
+             the pop (the range only shrinks). *)
+          let root = b.root in
+          let enter = box_enter nodes root nx ny nz ox oy oz ix iy iz in
+          let exit = box_exit nodes root nx ny nz ox oy oz ix iy iz in
+          if enter <= exit && exit >= t_min && enter <= s.t_max then begin
+            Array.unsafe_set stack 0 root;
+            Array.unsafe_set entries 0 enter;
+            sp := 1
+          end;
           while !sp > 0 do
             decr sp;
             let o = Array.unsafe_get stack !sp in
-            incr boxes;
-            (* A box entered beyond the best hit so far cannot hold a better
-               one (its spheres' hit points lie inside it, rounding
-               included); one entered exactly there may hold an equal one. *)
-            if meets_box nodes s o ix iy iz (if s.t < s.t_max then s.t else s.t_max) then begin
+            let limit = if s.t < s.t_max then s.t else s.t_max in
+            if Array.unsafe_get entries !sp <= limit then begin
               let count = node_tag nodes o in
               if count > 0 then begin
                 let first = node_link nodes o in
                 tests := !tests + count;
-                for i = first to first + count - 1 do
-                  test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4
-                done
+                if triangles then triangles_closest tr s first (first + count - 1)
+                else
+                  for i = first to first + count - 1 do
+                    test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4
+                  done
               end
-              else sp := push_children nodes stack !sp o dx dy dz
+              else begin
+                boxes := !boxes + 2;
+                sp := visit_children nodes stack entries !sp o ~by_entry:true dx dy dz ox oy oz ix iy iz t_min limit oct
+              end
             end
           done;
           tr.counters.box_tests <- tr.counters.box_tests + !boxes;
@@ -555,6 +698,7 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
   | Some b ->
       let dx = s.dx and dy = s.dy and dz = s.dz in
       let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
+      let nx = near_x ix and ny = near_y iy and nz = near_z iz and oct = octant ix iy iz in
       if triangles then shear_once tr s;
       let nodes = b.nodes and stack = tr.nodes and sp = ref 1 and found = ref (-1) in
       let boxes = ref 0 and tests = ref 0 in
@@ -572,26 +716,44 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
           sp := 0
         end
       end;
-      Array.unsafe_set stack 0 b.root;
+      (* As in [closest_from], a node is pushed only if the ray meets its
+         box, tested by its parent (the root here), in the same order as
+         the box tests at the pop had: along the split axis, the nearer
+         child first, so the same blocker is found. *)
+      let ox = s.ox and oy = s.oy and oz = s.oz and t_min = s.t_min and t_max = s.t_max in
+      if !sp > 0 then begin
+        let root = b.root in
+        incr boxes;
+        let enter = box_enter nodes root nx ny nz ox oy oz ix iy iz in
+        let exit = box_exit nodes root nx ny nz ox oy oz ix iy iz in
+        if enter <= exit && exit >= t_min && enter <= t_max then Array.unsafe_set stack 0 root else sp := 0
+      end;
       while !sp > 0 do
         decr sp;
         let o = Array.unsafe_get stack !sp in
-        incr boxes;
-        if meets_box nodes s o ix iy iz s.t_max then begin
-          let count = node_tag nodes o in
-          if count > 0 then begin
-            let first = node_link nodes o in
-            let i = ref first and last = first + count in
-            while !i < last && (!i = skip || not (blocks tr !i ~spheres ~triangles a inv_a)) do
-              incr i
-            done;
-            tests := !tests + count;
-            if !i < last then begin
-              found := !i;
-              sp := 0
+        let count = node_tag nodes o in
+        if count > 0 then begin
+          let first = node_link nodes o in
+          let last = first + count in
+          let i =
+            if triangles then triangles_blocker tr s first last skip
+            else begin
+              let i = ref first in
+              while !i < last && (!i = skip || not (blocks tr !i ~spheres ~triangles a inv_a)) do
+                incr i
+              done;
+              !i
             end
+          in
+          tests := !tests + count;
+          if i < last then begin
+            found := i;
+            sp := 0
           end
-          else sp := push_children nodes stack !sp o dx dy dz
+        end
+        else begin
+          boxes := !boxes + 2;
+          sp := visit_children nodes stack tr.entries !sp o ~by_entry:false dx dy dz ox oy oz ix iy iz t_min t_max oct
         end
       done;
       tr.counters.box_tests <- tr.counters.box_tests + !boxes;
