@@ -41,9 +41,11 @@ let build ?leaf_size ?beside boxes =
 
 (* [beside] of the renderer with [min_objects], counting in [built] the
    parts that another process built. A core is taken to be idle (unless
-   [idle] says otherwise), whatever else runs beside the tests. *)
+   [idle] says otherwise), whatever else runs beside the tests, and a
+   late child is waited for, not taken over: on a loaded host the parent
+   would otherwise build the part itself and the count would say 0. *)
 let counting ?(idle = fun () -> true) ~min_objects built =
-  let b = Render_jobs.bvh_beside ~min_objects ~idle () in
+  let b = Render_jobs.bvh_beside ~min_objects ~idle ~take_over:false () in
   let me = Unix.getpid () in
   let beside f =
     let wait = b.beside (fun () -> (Unix.getpid (), f ())) in

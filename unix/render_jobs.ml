@@ -57,7 +57,7 @@ let bands ~jobs n =
    cost more, and the image is complete from the top down as the bands
    come back (the parent is told of each on {!Parallel.reports}), so that
    [rows_done] can write it while the workers still trace. *)
-let bvh_beside ?(min_objects = 1 lsl 16) ?(idle = Parallel.idle_core) () =
+let bvh_beside ?(min_objects = 1 lsl 16) ?(idle = Parallel.idle_core) ?(take_over = true) () =
   (* The floats in memory shared with the child: its part's leaves' boxes
      come back in order, no permutation followed through them here. The
      child reserves what it sends, once it knows how much: nothing is
@@ -74,7 +74,7 @@ let bvh_beside ?(min_objects = 1 lsl 16) ?(idle = Parallel.idle_core) () =
      process could do its part again is killed and its part built here
      ([take_over]): a core taken after the fork costs about the fork. *)
   let beside f =
-    let wait = Parallel.beside ~take_over:true f in
+    let wait = Parallel.beside ~take_over f in
     fun () ->
       let r = wait () in
       List.iter (fun (r : Parallel.reserved_later) -> r.release ()) !pending;

@@ -74,15 +74,16 @@ val region_image :
     @raise Invalid_argument if [jobs < 1] or [r] is not inside the
     canvas. *)
 
-val bvh_beside : ?min_objects:int -> ?idle:(unit -> bool) -> unit -> Bvh.beside
-(** [bvh_beside ~min_objects ~idle ()] builds the right subtree of a hierarchy's
+val bvh_beside : ?min_objects:int -> ?idle:(unit -> bool) -> ?take_over:bool -> unit -> Bvh.beside
+(** [bvh_beside ~min_objects ~idle ~take_over ()] builds the right subtree of a hierarchy's
     node of at least [min_objects] (default [2^16]) objects in a child
     process ({!Parallel.beside}) while this one builds the rest; the
     child's leaves' boxes come back in memory shared with it, which the
     child reserves as it writes ({!Parallel.shared_floats_later}). A child
     that fails (killed, out of memory) costs the time it took: its part
     is built here; so is the part of a child that is late when this
-    process has built the rest ({!Parallel.beside}'s [take_over]): it is
+    process has built the rest ({!Parallel.beside}'s [take_over], default
+    [true]; a test that counts the parts built beside turns it off): it is
     killed. It forks only where [idle ()] (default
     {!Parallel.idle_core}; {!Bvh.beside}'s [idle]), asked before each fork,
     says a core is idle; otherwise the part is built here at once, as
