@@ -69,20 +69,39 @@ let bins = 16
    and max of its objects' boxes, whichever way they are grouped). Node
    [k]'s [link] is its right child (inner node) or first slot (leaf), its
    [tag] its split axis 0 to 2 (inner node) or minus its count (leaf).
-   Integers held as floats (exact: below 2^53), in arrays made without
-   writing them: room for [1.06 n] nodes takes memory only where nodes
-   are written (a mesh's leaves of 16 make about [0.19 n]; int arrays,
-   zeroed, took 17 MB for a million triangles, 14 of them never read). *)
-type shape = { mutable size : int; mutable link : float array; mutable tag : float array }
+   Out of the collector's heap, in bigarrays (malloc'd, their pages
+   taken from the system only where written, and given back once the
+   build lets them go): room for [1.06 n] nodes takes memory only where
+   nodes are written (a mesh's leaves of 16 make about [0.19 n]), and
+   the arrays made after the build find no room in the heap that no
+   node ever used (int arrays, zeroed, took 17 MB for a million
+   triangles, 14 of them never read). *)
+type ints = (int, Bigarray.int_elt, Bigarray.c_layout) Bigarray.Array1.t
 
-let[@inline] link_of t k = truncate t.link.(k)
-let[@inline] tag_of t k = truncate t.tag.(k)
-let[@inline] set_link t k v = t.link.(k) <- Float.of_int v
-let[@inline] set_tag t k v = t.tag.(k) <- Float.of_int v
+type shape = { mutable size : int; mutable link : ints; mutable tag : ints }
+
+(* Made with the collector's pace for memory out of its heap relaxed: it
+   counts a bigarray's bytes as a reason to mark the heap sooner, where
+   these are let go at the build's end (as [Obj_text]'s blocks). *)
+let ints n =
+  let gc = Gc.get () in
+  Gc.set { gc with custom_major_ratio = 1_000_000 };
+  let a = Bigarray.Array1.create Bigarray.int Bigarray.c_layout n in
+  Gc.set gc;
+  a
+
+let[@inline] link_of t k = Bigarray.Array1.get t.link k
+let[@inline] tag_of t k = Bigarray.Array1.get t.tag k
+let[@inline] set_link t k v = Bigarray.Array1.set t.link k v
+let[@inline] set_tag t k v = Bigarray.Array1.set t.tag k v
 
 let add_node t =
-  if t.size = Array.length t.link then begin
-    let grow a = let b = Array.create_float (2 * t.size) in Array.blit a 0 b 0 t.size; b in
+  if t.size = Bigarray.Array1.dim t.link then begin
+    let grow a =
+      let b = ints (2 * t.size) in
+      Bigarray.Array1.blit a (Bigarray.Array1.sub b 0 t.size);
+      b
+    in
     t.link <- grow t.link;
     t.tag <- grow t.tag
   end;
@@ -392,11 +411,11 @@ let none_gathered = { first = 0; last = 0; at = 0; leaves = 0 }
    slots if [gathered < 0], else the leaves' boxes are gathered in slots
    [.. gathered - 1] (the box of one slot is that slot's box: the min of
    infinity and [x] is [x]). It is where the gathered boxes start. *)
-let finish_nodes nodes root (link : float array) (tag : float array) x0 y0 z0 x1 y1 z1 lo hi gathered =
+let finish_nodes nodes root (link : ints) (tag : ints) x0 y0 z0 x1 y1 z1 lo hi gathered =
   let next = ref gathered in
   for k = hi - 1 downto lo do
     let o = at root k in
-    let l = truncate link.(k) and g = truncate tag.(k) in
+    let l = Bigarray.Array1.get link k and g = Bigarray.Array1.get tag k in
     (* An inner node's link is its right child's offset: the tracer's
        stack holds offsets, not indices to multiply. *)
     nodes.(o + 6) <- Float.of_int (if g < 0 then l else at root l);
@@ -511,8 +530,8 @@ let start_build ~leaf_size ~beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 =
   (* Up to [1.04 n] nodes for a wall of spheres, [0.6 n] for a mesh: room
      for [n + n / 16] from the start, not grown (a copy) in most cases. *)
   let cap = n + (n / 16) + 16 in
-  let link = Array.create_float cap in
-  let tag = Array.create_float cap in
+  let link = ints cap in
+  let tag = ints cap in
   let frames = Array.make (block * 2 * 48) 0. in
   let counts = Array.make (bins * 2 * 48) 0 in
   let params = Array.make 4 0. in
