@@ -40,12 +40,14 @@ let () =
     (* With --jobs 2 a child reads half the file: its CPU time is not this
        process's, the wall time shows the gain. *)
     Printf.printf "load wall %.3f s (%d jobs)\n" (Unix.gettimeofday () -. wall) jobs;
+    let mb x = Float.of_int (Obj.reachable_words (Obj.repr x) * (Sys.word_size / 8)) /. 1048576. in
+    (* Measured before: the scene not held past [prepare], as the
+       renderers hold it (a flat mesh's normals go with it). *)
+    let scene_mb = if sizes then mb scene else 0. in
     let p = Prepared.prepare ?beside scene in
     let t3 = Sys.time () and w3 = Unix.gettimeofday () in
-    if sizes then begin
-      let mb x = Float.of_int (Obj.reachable_words (Obj.repr x) * (Sys.word_size / 8)) /. 1048576. in
-      Printf.printf "scene %.1f MB, prepared %.1f MB (what it shares with the scene included)\n" (mb scene) (mb p)
-    end;
+    if sizes then
+      Printf.printf "scene %.1f MB, prepared %.1f MB (what it shares with the scene included)\n" scene_mb (mb p);
     let nodes, depth = match p.bvh with Some b -> (b.n_nodes, b.depth) | None -> (0, 0) in
     (* With a child process, this one's CPU time is not the wall's. *)
     Printf.printf "%s: %d objects, %d nodes of depth %d; cpu s: load %.3f, prepare %.3f (wall %.3f), total %.3f\n%!"

@@ -68,12 +68,40 @@ let bins = 16
    known, and their boxes filled in from the leaves up (a box is the min
    and max of its objects' boxes, whichever way they are grouped). Node
    [k]'s [link] is its right child (inner node) or first slot (leaf), its
-   [tag] its split axis 0 to 2 (inner node) or minus its count (leaf). *)
-type shape = { mutable size : int; mutable link : int array; mutable tag : int array }
+   [tag] its split axis 0 to 2 (inner node) or minus its count (leaf).
+   Out of the collector's heap, in bigarrays (malloc'd, their pages
+   taken from the system only where written, and given back once the
+   build lets them go): room for [1.06 n] nodes takes memory only where
+   nodes are written (a mesh's leaves of 16 make about [0.19 n]), and
+   the arrays made after the build find no room in the heap that no
+   node ever used (int arrays, zeroed, took 17 MB for a million
+   triangles, 14 of them never read). *)
+type ints = (int, Bigarray.int_elt, Bigarray.c_layout) Bigarray.Array1.t
+
+type shape = { mutable size : int; mutable link : ints; mutable tag : ints }
+
+(* Made with the collector's pace for memory out of its heap relaxed: it
+   counts a bigarray's bytes as a reason to mark the heap sooner, where
+   these are let go at the build's end (as [Obj_text]'s blocks). *)
+let ints n =
+  let gc = Gc.get () in
+  Gc.set { gc with custom_major_ratio = 1_000_000 };
+  let a = Bigarray.Array1.create Bigarray.int Bigarray.c_layout n in
+  Gc.set gc;
+  a
+
+let[@inline] link_of t k = Bigarray.Array1.get t.link k
+let[@inline] tag_of t k = Bigarray.Array1.get t.tag k
+let[@inline] set_link t k v = Bigarray.Array1.set t.link k v
+let[@inline] set_tag t k v = Bigarray.Array1.set t.tag k v
 
 let add_node t =
-  if t.size = Array.length t.link then begin
-    let grow a = let b = Array.make (2 * t.size) 0 in Array.blit a 0 b 0 t.size; b in
+  if t.size = Bigarray.Array1.dim t.link then begin
+    let grow a =
+      let b = ints (2 * t.size) in
+      Bigarray.Array1.blit a (Bigarray.Array1.sub b 0 t.size);
+      b
+    in
     t.link <- grow t.link;
     t.tag <- grow t.tag
   end;
@@ -383,11 +411,11 @@ let none_gathered = { first = 0; last = 0; at = 0; leaves = 0 }
    slots if [gathered < 0], else the leaves' boxes are gathered in slots
    [.. gathered - 1] (the box of one slot is that slot's box: the min of
    infinity and [x] is [x]). It is where the gathered boxes start. *)
-let finish_nodes nodes root (link : int array) (tag : int array) x0 y0 z0 x1 y1 z1 lo hi gathered =
+let finish_nodes nodes root (link : ints) (tag : ints) x0 y0 z0 x1 y1 z1 lo hi gathered =
   let next = ref gathered in
   for k = hi - 1 downto lo do
     let o = at root k in
-    let l = link.(k) and g = tag.(k) in
+    let l = Bigarray.Array1.get link k and g = Bigarray.Array1.get tag k in
     (* An inner node's link is its right child's offset: the tracer's
        stack holds offsets, not indices to multiply. *)
     nodes.(o + 6) <- Float.of_int (if g < 0 then l else at root l);
@@ -502,8 +530,8 @@ let start_build ~leaf_size ~beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 =
   (* Up to [1.04 n] nodes for a wall of spheres, [0.6 n] for a mesh: room
      for [n + n / 16] from the start, not grown (a copy) in most cases. *)
   let cap = n + (n / 16) + 16 in
-  let link = Array.make cap 0 in
-  let tag = Array.make cap 0 in
+  let link = ints cap in
+  let tag = ints cap in
   let frames = Array.make (block * 2 * 48) 0. in
   let counts = Array.make (bins * 2 * 48) 0 in
   let params = Array.make 4 0. in
@@ -613,9 +641,9 @@ let gather b first at =
   let t = b.t in
   let box = Array.make 6 0. and j = ref 0 in
   for c = first to t.size - 1 do
-    let g = t.tag.(c) in
+    let g = tag_of t c in
     if g < 0 then begin
-      leaf_box b.x0 b.y0 b.z0 b.x1 b.y1 b.z1 t.link.(c) (-g) box 0;
+      leaf_box b.x0 b.y0 b.z0 b.x1 b.y1 b.z1 (link_of t c) (-g) box 0;
       put_box b box (at + !j);
       incr j
     end
@@ -731,27 +759,26 @@ let graft b lo hi p (sh : floats) =
   let t = b.t in
   let first = t.size and nodes = Bytes.length p.tags in
   for c = 0 to nodes - 1 do
-    t.tag.(add_node t) <- Bytes.get_int8 p.tags c
+    set_tag t (add_node t) (Bytes.get_int8 p.tags c)
   done;
-  let link = t.link and tag = t.tag in
   (* The nodes are depth first: each subtree's size from the last node
      back (children after their parent), in [link]; then the links, in
      order, an inner node's from its left child's size, not yet
      overwritten, a leaf's from the slots of the leaves before it. *)
   for k = first + nodes - 1 downto first do
-    if tag.(k) < 0 then link.(k) <- 1
+    if tag_of t k < 0 then set_link t k 1
     else
-      let l = link.(k + 1) in
-      link.(k) <- 1 + l + link.(k + 1 + l)
+      let l = link_of t (k + 1) in
+      set_link t k (1 + l + link_of t (k + 1 + l))
   done;
   let slot = ref lo and leaves = ref 0 in
   for k = first to first + nodes - 1 do
-    if tag.(k) < 0 then begin
-      link.(k) <- !slot;
-      slot := !slot - tag.(k);
+    if tag_of t k < 0 then begin
+      set_link t k !slot;
+      slot := !slot - tag_of t k;
       incr leaves
     end
-    else link.(k) <- k + 1 + link.(k + 1)
+    else set_link t k (k + 1 + link_of t (k + 1))
   done;
   if p.part_depth > b.depth then b.depth <- p.part_depth;
   let m = hi - lo in
@@ -784,11 +811,11 @@ let rec node b lo hi level (fr : float array) (cn : int array) p =
   let f = frame b level in
   let split = sah_split b lo hi fr cn p a nbins f in
   if split = -2 then begin
-    t.link.(k) <- lo;
-    t.tag.(k) <- lo - hi
+    set_link t k lo;
+    set_tag t k (lo - hi)
   end
   else begin
-    t.tag.(k) <- a;
+    set_tag t k a;
     let split = if split >= 0 then split else median_split b a lo hi f in
     match share_right b lo split hi with
     | Some (s, sh, reserve) ->
@@ -800,14 +827,14 @@ let rec node b lo hi level (fr : float array) (cn : int array) p =
         (* Work of [finish], done while the other process may still
            build: the left subtree's leaves' boxes, read once, there. *)
         b.mine <- gather b (k + 1) lo;
-        t.link.(k) <- t.size;
+        set_link t k t.size;
         (match wait () with
         | Some _ when b.built_here -> (* [beside] ran [part] here: the tree is complete. *) ()
         | Some p -> graft b split hi p sh
         | None -> node b split hi (level + 1) b.frames b.counts (f + 1))
     | None ->
         node b lo split (level + 1) b.frames b.counts f;
-        t.link.(k) <- t.size;
+        set_link t k t.size;
         (* [frames] may have grown (and moved) meanwhile. *)
         node b split hi (level + 1) b.frames b.counts (f + 1)
   end
@@ -828,7 +855,7 @@ and part b lo hi level block_fr block_cn (sh : floats) reserve =
   node b lo hi level block_fr block_cn 0;
   let leaves = ref 0 in
   for c = first to t.size - 1 do
-    if t.tag.(c) < 0 then incr leaves
+    if tag_of t c < 0 then incr leaves
   done;
   (* Only what is sent takes memory: this process writes no zeros
      before the build. *)
@@ -838,9 +865,9 @@ and part b lo hi level block_fr block_cn (sh : floats) reserve =
   done;
   let box = Array.make 6 0. and at = ref m in
   for c = first to t.size - 1 do
-    let g = t.tag.(c) in
+    let g = tag_of t c in
     if g < 0 then begin
-      leaf_box b.x0 b.y0 b.z0 b.x1 b.y1 b.z1 t.link.(c) (-g) box 0;
+      leaf_box b.x0 b.y0 b.z0 b.x1 b.y1 b.z1 (link_of t c) (-g) box 0;
       (* [!at + 6 <= 7 m]: at most [m] leaves. *)
       for i = 0 to 5 do
         Bigarray.Array1.unsafe_set sh (!at + i) (Array.unsafe_get box i)
@@ -850,7 +877,7 @@ and part b lo hi level block_fr block_cn (sh : floats) reserve =
   done;
   let tags = Bytes.create (t.size - first) in
   for c = 0 to t.size - first - 1 do
-    Bytes.set_int8 tags c t.tag.(first + c)
+    Bytes.set_int8 tags c (tag_of t (first + c))
   done;
   { tags; part_depth = b.depth }
 

@@ -5,7 +5,7 @@ let check_corner vertex o =
   if o < 0 || o + 2 >= Array.length vertex then
     invalid_arg (Printf.sprintf "Vertex_order.gather: %d is not a vertex's offset" o)
 
-let gather ~kind ~vertex at0 at1 at2 =
+let gather ?(sources = true) ~kind ~vertex at0 at1 at2 =
   let n = Array.length kind in
   if Array.length at0 <> n || Array.length at1 <> n || Array.length at2 <> n then
     invalid_arg "Vertex_order.gather: arrays of different lengths";
@@ -15,7 +15,7 @@ let gather ~kind ~vertex at0 at1 at2 =
   let fresh = Array.make n_vertices (-1) in
   (* Written in order before any read: no zeroing. *)
   let out = Array.create_float (Array.length vertex) in
-  let source = Array.make n_vertices 0 in
+  let source = Array.make (if sources then n_vertices else 0) 0 in
   let placed = ref 0 in
   let place o =
     let v = o / 3 in
@@ -27,7 +27,7 @@ let gather ~kind ~vertex at0 at1 at2 =
       Array.unsafe_set out p (Array.unsafe_get vertex o);
       Array.unsafe_set out (p + 1) (Array.unsafe_get vertex (o + 1));
       Array.unsafe_set out (p + 2) (Array.unsafe_get vertex (o + 2));
-      Array.unsafe_set source j o;
+      if sources then Array.unsafe_set source j o;
       Array.unsafe_set fresh v p;
       placed := j + 1;
       p
@@ -46,4 +46,4 @@ let gather ~kind ~vertex at0 at1 at2 =
     end
   done;
   let used = !placed in
-  if used = n_vertices then (out, source) else (Array.sub out 0 (3 * used), Array.sub source 0 used)
+  if used = n_vertices then (out, source) else (Array.sub out 0 (3 * used), if sources then Array.sub source 0 used else source)

@@ -11,7 +11,7 @@
     The copy moves coordinates, never computes them: every test reads the
     same floats as before, and every image is the same. *)
 
-val gather : kind:Kind.t array -> vertex:float array -> int array -> int array -> int array -> float array * int array
+val gather : ?sources:bool -> kind:Kind.t array -> vertex:float array -> int array -> int array -> int array -> float array * int array
 (** [gather ~kind ~vertex at0 at1 at2] is [(vertex', source)]: the
     vertices (3 floats each) that the triangles name, in the order in
     which the slots [i] whose [kind.(i)] is {!Kind.Triangle} or
@@ -22,6 +22,7 @@ val gather : kind:Kind.t array -> vertex:float array -> int array -> int array -
     [at0.(i)], [at1.(i)], [at2.(i)] (corners in [vertex], multiples of 3)
     to the same vertices' offsets in [vertex']; other slots are left as
     they are. [vertex'] holds only the vertices some triangle names: it is
-    [vertex]'s length or shorter.
+    [vertex]'s length or shorter. With [~sources:false] (default [true]),
+    [source] is empty: a flat mesh's shading reads no vertex's normal.
     @raise Invalid_argument if [at0], [at1], [at2] and [kind] differ in
     length, or if a triangle's corner lies outside [vertex]. *)

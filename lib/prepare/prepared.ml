@@ -156,14 +156,28 @@ let iter_shapes o ~single ~mesh =
     o.shapes;
   !k
 
+(* The scene's shapes and placed shapes (the same, in the same order),
+   each flat mesh held without its normals ([Mesh.flat_view]: nothing
+   here reads them), so that they go with the scene once its caller lets
+   go of it, before the hierarchy's build: 12 MB for a million normals. *)
+let flat_views (scene : Scene.view) =
+  let flat = function Shape.Mesh m -> (not m.smooth) && Array.length m.normals > 0 | _ -> false in
+  if List.exists flat scene.shapes && List.compare_lengths scene.shapes scene.placed = 0
+     && List.for_all2 (fun sh (_, p) -> sh == p) scene.shapes scene.placed
+  then
+    let placed = List.map (fun (j, sh) -> match sh with Shape.Mesh m when flat sh -> (j, Shape.Mesh (Mesh.flat_view m)) | _ -> (j, sh)) scene.placed in
+    (List.map snd placed, placed)
+  else (scene.shapes, scene.placed)
+
 let read_objects (scene : Scene.view) =
+  let shapes, placed = flat_views scene in
   let o =
     {
       n = 0;
       n_spheres = Spheres.length scene.spheres;
       spheres = scene.spheres;
-      shapes = scene.shapes;
-      placed = scene.placed;
+      shapes;
+      placed;
       any_mesh = List.exists (function Shape.Mesh _ -> true | _ -> false) scene.shapes;
       csg_triangles = List.fold_left (fun t -> function Shape.Csg c -> t + Csg.triangles c | _ -> t) 0 scene.shapes;
     }
@@ -1881,7 +1895,7 @@ let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
      (Vertex_order); the normals stay where they are. *)
   let vertex, vsource =
     if bvh = None || Array.length v.vertex = 0 then (v.vertex, [||])
-    else Vertex_order.gather ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
+    else Vertex_order.gather ~sources:any_smooth ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
   in
   let uv = uv_table o sl.slot (Array.length sl.kind) in
   assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)

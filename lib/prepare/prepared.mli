@@ -85,7 +85,9 @@ type t = private {
   vsource : int array;
       (** Where [vertex] is a copy in the slots' order: per vertex of
           [vertex] (the one at offset [o] at [o / 3]), its offset in the
-          scene's order; empty where [vertex] is in the scene's order. *)
+          scene's order; empty where [vertex] is in the scene's order,
+          and where the scene has no smooth triangle (no normal is
+          read). *)
   vcorner : int array;
       (** Smooth triangles whose corners' normals are not their vertices'
           numbers: the offsets in [vnormal] of the normals of the three

@@ -167,6 +167,8 @@ let box m k b =
     b.(a + 3) <- fmax u (fmax v w)
   done
 
+let flat_view m = if m.smooth || m.normals = [||] then m else { m with normals = [||] }
+
 let equal a b =
   let fa x y = Array.length x = Array.length y && Array.for_all2 Float.equal x y in
   let ia x y = Array.length x = Array.length y && Array.for_all2 Int.equal x y in

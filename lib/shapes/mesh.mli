@@ -126,6 +126,14 @@ val box : t -> int -> float array -> unit
 (** [box m k b] writes the box of triangle [k] to [b]: its lower corner
     [x y z] at [0 .. 2], its upper corner at [3 .. 5]. *)
 
+val flat_view : t -> t
+(** [flat_view m] is [m] if it is [smooth]; otherwise [m] without its
+    normals ([normals] empty, every other field [m]'s, shared): all that a
+    flat mesh's shading reads, none of its normals. [Prepared] holds it in
+    place of [m], so that the normals go with a scene let go (12 MB for a
+    million of them). Its [triangle_normals] are [m]'s: they may name
+    normals it no longer has, as no mesh of {!v} does. *)
+
 val equal : t -> t -> bool
 (** [equal a b] is [true] iff every field of [a] equals [b]'s, floats
     compared with [Float.equal]. *)

@@ -180,3 +180,20 @@ let () =
       ("stratified", 5, Some 8, "e5bddc00b2f8afc5e01306ce1596e42f");
       ("uniform", 3, None, "3eea459a01a1f19980d27ac9bfe70414");
     ]
+
+(* Enough spheres for a hierarchy ([Prepared.bvh_threshold]): its build's
+   node arrays are bigarrays, which JavaScript must make and read alike. *)
+let () =
+  let spheres =
+    String.concat "\n"
+      (List.init 20 (fun i ->
+           Printf.sprintf "(sphere (center %d 0 %d) (radius 0.4) (color 200 100 50))" ((i mod 5) - 2) ((i / 5) + 3)))
+  in
+  let text = "(canvas (width 24) (height 16))\n(light ambient (intensity 1))\n" ^ spheres in
+  match Raytrace.Scene_file.of_string ~file:"grid.scene" text with
+  | Error (`Msg m) -> failwith m
+  | Ok scene -> (
+      match Raytrace.Render.image scene with
+      | Error (`Msg m) -> failwith m
+      | Ok (img, _) ->
+          Printf.printf "20 spheres: md5 %s\n" (Digest.to_hex (Digest.string (Raytrace.Image.Ppm.to_string img))))
