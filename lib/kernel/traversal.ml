@@ -573,24 +573,27 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
             Array.unsafe_set entries 0 enter;
             sp := 1
           end;
+          (* The best hit's bound, [min t t_max], read again after a leaf
+             only: nothing else lowers [s.t]. *)
+          let limit = ref (if s.t < s.t_max then s.t else s.t_max) in
           while !sp > 0 do
             decr sp;
             let o = Array.unsafe_get stack !sp in
-            let limit = if s.t < s.t_max then s.t else s.t_max in
-            if Array.unsafe_get entries !sp <= limit then begin
+            if Array.unsafe_get entries !sp <= !limit then begin
               let count = node_tag nodes o in
               if count > 0 then begin
                 let first = node_link nodes o in
                 tests := !tests + count;
-                if triangles then triangles_closest tr s first (first + count - 1)
-                else
-                  for i = first to first + count - 1 do
-                    test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4
-                  done
+                (if triangles then triangles_closest tr s first (first + count - 1)
+                 else
+                   for i = first to first + count - 1 do
+                     test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4
+                   done);
+                limit := if s.t < s.t_max then s.t else s.t_max
               end
               else begin
                 boxes := !boxes + 2;
-                sp := visit_children nodes stack entries !sp o ~by_entry:true dx dy dz ox oy oz ix iy iz t_min limit oct
+                sp := visit_children nodes stack entries !sp o ~by_entry:true dx dy dz ox oy oz ix iy iz t_min !limit oct
               end
             end
           done;
