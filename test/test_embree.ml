@@ -1,8 +1,9 @@
 (* The benchmark against Embree (issue 28, make bench-embree) is not a test,
    but its instrument is: the C driver bench/embree/embree_rays.c builds
    against Debian's libembree-dev, and on a small mesh it finds the same
-   hit mask as raytrace on raytrace's own camera rays (Mesh_rays), in both
-   of Embree's modes. Without Embree the check is skipped (a failure under
+   hit mask as raytrace on raytrace's own camera rays (Mesh_rays), and the
+   same blocked shadow rays from their hits toward a light, in both of
+   Embree's modes. Without Embree the check is skipped (a failure under
    CI=true, where make deps installs it). *)
 
 open Raytrace
@@ -32,9 +33,15 @@ let driver =
        if Sys.command cmd <> 0 then Alcotest.failf "the Embree driver does not build: %s" cmd;
        Some exe)
 
+let differ a b =
+  let n = ref 0 in
+  String.iteri (fun k c -> if (c <> '\000') <> (Bytes.get b k <> '\000') then incr n) a;
+  !n
+
 (* Raytrace's mask of [mesh] at 64 x 64 from [camera], and Embree's in each
-   mode, on the same rays: they must agree on every pixel. *)
-let same_masks name (mesh : Mesh.Obj.t) camera () =
+   mode, on the same rays: they must agree on every pixel; so must their
+   masks of the shadow rays from the hits toward [light]. *)
+let same_masks name (mesh : Mesh.Obj.t) camera light () =
   match Lazy.force driver with
   | None -> Helpers.skip ("embree " ^ name) ~why:("no " ^ header ^ " (apt-get install libembree-dev)")
   | Some exe ->
@@ -54,36 +61,55 @@ let same_masks name (mesh : Mesh.Obj.t) camera () =
       let r = Mesh_rays.cast p ours in
       (* A mask worth comparing: neither all hits nor all misses. *)
       if r.hits < 200 || r.hits > (64 * 64) - 200 then Alcotest.failf "%d hits of %d: move the camera" r.hits r.rays;
+      let alone = Bytes.create (64 * 64) in
+      ignore (Mesh_rays.cast_camera p alone);
+      Alcotest.(check int) "the camera rays' search alone finds the pixels' hits" 0 (differ (Bytes.to_string alone) ours);
       let rays = Filename.concat dir "rays" and mask = Filename.concat dir "ours.mask" in
       Mesh_rays.write_rays p rays;
       write mask (Bytes.to_string ours);
+      let shadow_rays = Mesh_rays.shadow_rays p ~light in
+      let n = Array.length shadow_rays / 6 in
+      Alcotest.(check int) "a shadow ray per hit" r.hits n;
+      let blocked = Bytes.create n in
+      let b = Mesh_rays.cast_shadows p shadow_rays ~rounds:1 blocked in
+      if b.hits < 50 || b.hits > n - 50 then Alcotest.failf "%d of %d shadow rays blocked: move the light" b.hits n;
+      let shadows = Filename.concat dir "shadows" and smask = Filename.concat dir "ours.smask" in
+      Mesh_rays.write_floats shadow_rays shadows;
+      write smask (Bytes.to_string blocked);
       List.iter
         (fun mode ->
-          let theirs = Filename.concat dir "embree.mask" in
+          let theirs = Filename.concat dir "embree.mask" and their_shadows = Filename.concat dir "embree.smask" in
           let cmd =
             String.concat " "
-              (List.map Filename.quote ([ exe ] @ mode @ [ "--compare"; mask; obj; rays; theirs ]))
+              (List.map Filename.quote
+                 ([ exe ] @ mode
+                 @ [ "--compare"; mask; "--shadows"; shadows; their_shadows; "--compare-shadows"; smask; obj; rays; theirs ]))
             ^ " > " ^ Filename.quote (Filename.concat dir "row")
           in
           if Sys.command cmd <> 0 then Alcotest.failf "%s failed" cmd;
           let theirs = read theirs in
           Alcotest.(check int) "one byte per pixel" (64 * 64) (String.length theirs);
-          let differ = ref 0 in
-          String.iteri (fun k c -> if (c <> '\000') <> (Bytes.get ours k <> '\000') then incr differ) theirs;
-          Alcotest.(check int) (String.concat " " ("pixels that differ, embree" :: mode)) 0 !differ;
-          (* The driver's own count, the column make bench-embree prints. *)
-          let row = String.split_on_char ' ' (String.trim (read (Filename.concat dir "row"))) in
-          Alcotest.(check string) "the driver's count" "0" (List.nth row (List.length row - 1)))
+          Alcotest.(check int) (String.concat " " ("pixels that differ, embree" :: mode)) 0 (differ theirs ours);
+          let their_shadows = read their_shadows in
+          Alcotest.(check int) "one byte per shadow ray" n (String.length their_shadows);
+          Alcotest.(check int) (String.concat " " ("shadow rays that differ, embree" :: mode)) 0 (differ their_shadows blocked);
+          (* The driver's own counts, the columns make bench-embree prints:
+             differ (the 9th) and the shadow rays' (the 12th, the last). *)
+          let row = List.filter (( <> ) "") (String.split_on_char ' ' (String.trim (read (Filename.concat dir "row")))) in
+          Alcotest.(check int) "the driver's columns" 12 (List.length row);
+          Alcotest.(check string) "the driver's count" "0" (List.nth row 8);
+          Alcotest.(check string) "the driver's count of shadow rays" "0" (List.nth row 11))
         [ []; [ "--robust" ] ]
 
 let tests =
   [
-    Alcotest.test_case "Embree's two modes find raytrace's hit mask on a 2048-triangle knot" `Quick
+    Alcotest.test_case "Embree's two modes find raytrace's hit masks of camera and shadow rays on a 2048-triangle knot" `Quick
       (same_masks "knot"
          (Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.35 ~segments:128 ~sides:8)
-         "(camera (position 0 0.8333333333333334 -8.333333333333334) (look-at 0 -0.6111111111111112 0))");
-    Alcotest.test_case "Embree's two modes find raytrace's hit mask on a 2048-triangle terrain" `Quick
+         "(camera (position 0 0.8333333333333334 -8.333333333333334) (look-at 0 -0.6111111111111112 0))"
+         (Vec3.v (-3.) 5. (-5.)));
+    Alcotest.test_case "Embree's two modes find raytrace's hit masks of camera and shadow rays on a 2048-triangle terrain" `Quick
       (same_masks "terrain"
          (Mesh.Gen.terrain ~seed:1 ~nx:32 ~nz:32 ~size:10. ~height:1.)
-         "(camera (position 0 3 -7) (look-at 0 0 0))");
+         "(camera (position 0 3 -7) (look-at 0 0 0))" (Vec3.v 8. 1.5 2.));
   ]

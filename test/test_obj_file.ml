@@ -109,6 +109,20 @@ let tests =
         (* No normals: [-1] each, never the vertices. *)
         let m = mesh (square ^ "f 1 2 3\n") in
         Alcotest.check ints __LOC__ [| -1; -1; -1 |] m.triangle_normals);
+    Alcotest.test_case "normal numbers not stored while they follow the vertices (or are none) are all found after" `Quick
+      (fun () ->
+        (* The reader keeps no normal numbers while each triangle's are its
+           vertices' or none; the first that is neither writes out those
+           before it, over several of its blocks (65536 numbers). *)
+        let normals = "vn 0 0 1\nvn 0 1 0\nvn 1 0 0\nvn 0 0 -1\n" in
+        let mesh s = match parse ~max_triangles:100_000 s with Ok m -> m | Error (`Msg e) -> Alcotest.fail e in
+        let repeat n line = String.concat "" (List.init n (fun _ -> line)) in
+        let m = mesh (square ^ normals ^ repeat 30_000 "f 1//1 2//2 3//3\n" ^ "f 1//4 2//2 4//3\nf 2 3 4\n") in
+        let expected = Array.concat [ Array.init 90_000 (fun k -> k mod 3); [| 3; 1; 2; -1; -1; -1 |] ] in
+        Alcotest.check ints __LOC__ expected m.triangle_normals;
+        let m = mesh (square ^ normals ^ repeat 30_000 "f 1 2 3 4\n" ^ "f 1//1 2//2 3//3\n") in
+        let expected = Array.concat [ Array.make 180_000 (-1); [| 0; 1; 2 |] ] in
+        Alcotest.check ints __LOC__ expected m.triangle_normals);
     Alcotest.test_case "a # word starts a comment in v, vn and f lines" `Quick (fun () ->
         let m = mesh "v 0 0 0 # origin\nv 1 0 0 #x\nv 0 1 0\t#\nvn 0 0 1 #up\nf 1//1 2//1 3//1 # a face\n" in
         Alcotest.check floats __LOC__ [| 0.; 0.; 0.; 1.; 0.; 0.; 0.; 1.; 0. |] m.positions;

@@ -1,18 +1,28 @@
 /* Embree's side of make bench-embree (issue 28): the reference that
    raytrace's mesh rays are measured against, one thread.
 
-   embree_rays [--robust] [--compare MASK] OBJ RAYS MASK_OUT
+   embree_rays [--robust] [--compare MASK] [--shadows SHADOW_RAYS SHADOW_MASK_OUT
+               [--compare-shadows MASK]] OBJ RAYS MASK_OUT
 
    Reads the triangles of a Wavefront OBJ file (v and f lines; polygons as
    fans, as raytrace reads them), builds Embree's scene on one thread
    (RTC_SCENE_FLAG_ROBUST with --robust), casts the rays of the file RAYS
    (six little-endian float64s per ray, origin then direction, written by
    raytrace_rays from raytrace's own camera rays) with the range (1, inf),
-   writes the hit mask (one byte per ray, 1 for a hit) to MASK_OUT and
-   prints one row: read and build CPU seconds, ns per ray (CPU time), the
-   share of rays that hit, peak RSS per triangle in bytes, and with
-   --compare the number of rays whose hit differs from the mask MASK.
-   Embree takes floats: the vertices and rays are rounded to them. */
+   writes the hit mask (one byte per ray, 1 for a hit) to MASK_OUT. With
+   --shadows it casts the shadow rays of SHADOW_RAYS (the same format,
+   written by raytrace_rays from raytrace's hits) with rtcOccluded1 and the
+   range (0, 1), camera rays / shadow rays times over (at least once, as
+   Mesh_rays.rounds), and writes their mask (1: blocked) to SHADOW_MASK_OUT.
+   It prints one row, the columns of raytrace_rays's: read and build CPU
+   seconds (the build: the geometry's buffers filled and the scene
+   committed), the commit alone (the hierarchy's build), ns per camera ray
+   (CPU time) twice (Embree shades nothing), the share of rays that hit,
+   peak RSS per triangle in bytes, with --compare the number of rays whose
+   hit differs from the mask MASK; then with --shadows the ns per shadow
+   ray, the share blocked and, with --compare-shadows, the number that
+   differ from that mask ("-" where not asked). Embree takes floats: the
+   vertices and rays are rounded to them. */
 
 #include <embree3/rtcore.h>
 #include <math.h>
@@ -101,11 +111,13 @@ static void read_obj(const char *path, mesh *m) {
 
 int main(int argc, char **argv) {
   int robust = 0;
-  const char *compare = NULL;
+  const char *compare = NULL, *shadows = NULL, *shadow_mask = NULL, *compare_shadows = NULL;
   int i = 1;
   for (; i < argc && argv[i][0] == '-' && argv[i][1] == '-'; i++) {
     if (!strcmp(argv[i], "--robust")) robust = 1;
     else if (!strcmp(argv[i], "--compare") && i + 1 < argc) compare = argv[++i];
+    else if (!strcmp(argv[i], "--shadows") && i + 2 < argc) { shadows = argv[++i]; shadow_mask = argv[++i]; }
+    else if (!strcmp(argv[i], "--compare-shadows") && i + 1 < argc) compare_shadows = argv[++i];
     else die(argv[i], "unknown option");
   }
   if (argc - i != 3) {
@@ -134,6 +146,7 @@ int main(int argc, char **argv) {
   rtcCommitGeometry(g);
   rtcAttachGeometry(scene, g);
   rtcReleaseGeometry(g);
+  double t1b = cpu();
   rtcCommitScene(scene);
   double t2 = cpu();
   if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) die("embree", "error building the scene");
@@ -171,6 +184,45 @@ int main(int argc, char **argv) {
   }
   double t4 = cpu();
 
+  /* The shadow rays, [rounds] times over, their mask from the first. */
+  size_t ns = 0, blocked = 0, rounds = 1;
+  unsigned char *smask = NULL;
+  double t5 = 0., t6 = 0.;
+  if (shadows) {
+    size_t slen;
+    char *sraw = slurp(shadows, &slen);
+    if (slen % 48) die(shadows, "not six float64s per ray");
+    ns = slen / 48;
+    double *sr = malloc(slen ? slen : 1);
+    memcpy(sr, sraw, slen);
+    free(sraw);
+    smask = malloc(ns ? ns : 1);
+    rounds = ns ? n / ns : 1;
+    if (rounds < 1) rounds = 1;
+    t5 = cpu();
+    for (size_t round = 0; round < rounds; round++)
+      for (size_t k = 0; k < ns; k++) {
+        const double *q = sr + 6 * k;
+        struct RTCRay ray;
+        ray.org_x = (float)q[0]; ray.org_y = (float)q[1]; ray.org_z = (float)q[2];
+        ray.dir_x = (float)q[3]; ray.dir_y = (float)q[4]; ray.dir_z = (float)q[5];
+        ray.tnear = 0.0f;
+        ray.tfar = 1.0f;
+        ray.time = 0.0f;
+        ray.mask = 0xFFFFFFFFu;
+        ray.id = 0;
+        ray.flags = 0;
+        rtcOccluded1(scene, &ctx, &ray);
+        if (round == 0) {
+          int b = ray.tfar < 0.0f; /* -inf where blocked */
+          smask[k] = (unsigned char)b;
+          blocked += (size_t)b;
+        }
+      }
+    t6 = cpu();
+    free(sr);
+  }
+
   struct rusage ru;
   getrusage(RUSAGE_SELF, &ru);
   char differ[32] = "-";
@@ -183,12 +235,33 @@ int main(int argc, char **argv) {
     snprintf(differ, sizeof differ, "%zu", d);
     free(other);
   }
-  printf("%-16s %8.3f %8.3f %8.0f %7.2f%% %7.0f %8s\n", robust ? "embree-robust" : "embree", t1 - t0,
-         t2 - t1, n ? (t4 - t3) * 1e9 / (double)n : 0., n ? 100. * (double)hits / (double)n : 0.,
+  char sdiffer[32] = "-";
+  if (compare_shadows && shadows) {
+    size_t clen;
+    char *other = slurp(compare_shadows, &clen);
+    if (clen != ns) die(compare_shadows, "not one byte per shadow ray");
+    size_t d = 0;
+    for (size_t k = 0; k < ns; k++) d += (other[k] != 0) != (smask[k] != 0);
+    snprintf(sdiffer, sizeof sdiffer, "%zu", d);
+    free(other);
+  }
+  double per_ray = n ? (t4 - t3) * 1e9 / (double)n : 0.;
+  printf("%-16s %8.3f %8.3f %8.3f %8.0f %8.0f %7.2f%% %7.0f %8s", robust ? "embree-robust" : "embree", t1 - t0,
+         t2 - t1, t2 - t1b, per_ray, per_ray, n ? 100. * (double)hits / (double)n : 0.,
          m.nt ? (double)ru.ru_maxrss * 1024. / (double)m.nt : 0., differ);
+  if (shadows)
+    printf(" %8.0f %7.2f%% %8s\n", ns ? (t6 - t5) * 1e9 / (double)(ns * rounds) : 0.,
+           ns ? 100. * (double)blocked / (double)ns : 0., sdiffer);
+  else
+    printf(" %8s %8s %8s\n", "-", "-", "-");
 
   FILE *f = fopen(mask_path, "wb");
   if (!f || fwrite(mask, 1, n, f) != n || fclose(f)) die(mask_path, "cannot write");
+  if (shadows) {
+    FILE *sf = fopen(shadow_mask, "wb");
+    if (!sf || fwrite(smask, 1, ns, sf) != ns || fclose(sf)) die(shadow_mask, "cannot write");
+    free(smask);
+  }
   rtcReleaseScene(scene);
   rtcReleaseDevice(dev);
   free(r);

@@ -167,6 +167,32 @@ let cast tr ~from (o : Vec3.t) (d : Vec3.t) =
   let hit = Traversal.closest tr in
   if hit < 0 then -1 else tr.p.index.(hit)
 
+(* The benchmark's rays (issue 28): the traversals alone, no shading. *)
+let camera_hit tr gx gy =
+  let p = tr.p in
+  let col = gx + (p.width / 2) and row = gy + (p.height / 2) in
+  if col < 0 || col >= p.width || row < 0 || row >= p.height then invalid_arg "Trace.camera_hit: no such pixel";
+  Camera_ray.set_pixel tr col row;
+  tr.counters.primary <- tr.counters.primary + 1;
+  tr.origin_sphere <- -1;
+  let i = if p.all_spheres then Traversal.primary_hit_spheres tr else Traversal.primary_hit_objects tr in
+  tr.first_hit <- i;
+  if i < 0 then -1 else Array.unsafe_get p.index i
+
+let shadow_blocked tr (rays : float array) k =
+  if k < 0 || (6 * k) + 5 >= Array.length rays then invalid_arg "Trace.shadow_blocked: no such ray";
+  let s = tr.s and o = 6 * k in
+  s.ox <- Array.unsafe_get rays o;
+  s.oy <- Array.unsafe_get rays (o + 1);
+  s.oz <- Array.unsafe_get rays (o + 2);
+  s.dx <- Array.unsafe_get rays (o + 3);
+  s.dy <- Array.unsafe_get rays (o + 4);
+  s.dz <- Array.unsafe_get rays (o + 5);
+  s.t_min <- tr.p.epsilon;
+  s.t_max <- 1.;
+  tr.origin_sphere <- -1;
+  Traversal.shadowed tr 0
+
 (* Several rays per pixel. The colours are summed here, in the scratch
    record, so that no float crosses a module boundary per sample. *)
 

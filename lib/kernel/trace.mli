@@ -152,6 +152,27 @@ val cast : t -> from:int -> Vec3.t -> Vec3.t -> int
     [from] is handled exactly: the ray can meet it only by going into it),
     or [-1] if it meets none: the test behind shadow and mirror rays. *)
 
+val camera_hit : t -> int -> int -> int
+(** [camera_hit tr gx gy] is the object (counted as {!hit_object} counts
+    them) that the camera ray through the centre of canvas pixel
+    [(gx, gy)] (centered coordinates, as {!pixel}) meets first with
+    [t > 1], or [-1]: {!pixel}'s search for the first hit, the
+    hierarchy's traversal and the intersection tests, without the
+    pixel's shading. The ray is the pinhole's (a lens is ignored), and it
+    counts as a primary ray. For the benchmark against Embree
+    ([bench/embree/]); it allocates nothing.
+    @raise Invalid_argument if the pixel is outside the canvas. *)
+
+val shadow_blocked : t -> float array -> int -> bool
+(** [shadow_blocked tr rays k] is [true] iff some object meets the ray
+    [o + t d] with [epsilon < t < 1] (the scene's epsilon, [0] in the
+    robust mode), where [o] and [d] are the six floats of [rays] from
+    [6 k] on (origin, then direction): the test of a shadow ray toward a
+    point at [o + d] ({!pixel}'s shadow rays' test, stopping at the first
+    blocker, light [0]'s last blocker tried first), counted as a shadow
+    ray. For the benchmark against Embree; it allocates nothing.
+    @raise Invalid_argument if [rays] has no ray [k]. *)
+
 val roots : t -> int -> Vec3.t -> Vec3.t -> float * float
 (** [roots tr k origin direction] is [(near, far)], the roots that the
     tracer's own intersection test computes for object [k] (objects

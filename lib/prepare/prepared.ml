@@ -1302,8 +1302,9 @@ let floats pool len =
 (* The hierarchy over [boxes]; with [reuse] (spheres alone, each with a
    slot: the arrays of their number made later fit the boxes'), the
    boxes' arrays go to [pool]; otherwise they are let go, for the arrays
-   of other lengths made later. *)
-let hierarchy ?beside ~reuse ~instances pool boxes =
+   of other lengths made later, but with [scratch] (every object in the
+   hierarchy) one of them, [slots]'s scratch. *)
+let hierarchy ?beside ~reuse ~scratch ~instances pool boxes =
   match boxes with
   | None -> None
   | Some (x0, y0, z0, x1, y1, z1) ->
@@ -1319,7 +1320,7 @@ let hierarchy ?beside ~reuse ~instances pool boxes =
          15's fifth round). The grids of spheres build the same trees as with 4.
          The image never depends on the tree (see [Trace.better]). *)
       let b = Bvh.build_boxes ?beside ~leaf_size ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 () in
-      if reuse then pool.spare <- [ x0; y0; z0; x1; y1; z1 ];
+      if reuse then pool.spare <- [ x0; y0; z0; x1; y1; z1 ] else if scratch then pool.spare <- [ x0 ];
       Some b
 
 (* {2 Slots} *)
@@ -1371,12 +1372,33 @@ type slots = {
          along its cycles cost more than the copies. *)
 }
 
+(* A kind as a number, and back: [kinds.(kind_code k) = k]. *)
+let kind_code : Kind.t -> int = function
+  | Sphere -> 0
+  | Triangle -> 1
+  | Smooth_triangle -> 2
+  | Plane -> 3
+  | Box -> 4
+  | Csg -> 5
+  | Cylinder -> 6
+  | Disk -> 7
+  | Cone -> 8
+  | Torus -> 9
+  | Instance -> 10
+
+let kinds = Kind.[| Sphere; Triangle; Smooth_triangle; Plane; Box; Csg; Cylinder; Disk; Cone; Torus; Instance |]
+
 (* The slot of each object ([slot]; a twin's is its first's) and each
    slot's kind and material. *)
-let slots o index okind omat twin_of =
+let slots o pool index okind omat twin_of =
   let n = o.n and n_kept = Array.length index in
   let in_place = n_kept = n && o.shapes = [] in
   let slot = Array.make n 0 in
+  (* A mesh's objects each with a slot, and a scratch (a box array of
+     the build, [hierarchy]): [okind] and [omat] put in slot order where
+     they are, through the scratch, not copied into two more arrays (16
+     MB for a million triangles, made where the peak is). *)
+  let gathered = (not in_place) && n_kept = n && Array.length twin_of = 0 && List.exists (fun a -> Array.length a = n) pool.spare in
   (* Otherwise each slot's kind and material, in the walk that finds the
      slots: one read of [index], the three random accesses of a slot's
      object side by side. *)
@@ -1385,6 +1407,19 @@ let slots o index okind omat twin_of =
       for i = 0 to n_kept - 1 do
         slot.(index.(i)) <- i
       done;
+      (okind, omat)
+    end
+    else if gathered then begin
+      let fs = floats pool n in
+      for i = 0 to n - 1 do
+        let k = index.(i) in
+        slot.(k) <- i;
+        Array.unsafe_set fs i (Float.of_int (kind_code okind.(k)))
+      done;
+      for i = 0 to n - 1 do
+        okind.(i) <- kinds.(truncate (Array.unsafe_get fs i))
+      done;
+      gather_in_place index ~scratch:fs ~floats:[||] ~ints:[| omat |];
       (okind, omat)
     end
     else begin
@@ -1516,7 +1551,7 @@ type spheres_by_slot = {
 }
 
 (* The spheres' centers and radii by slot, from [c]. *)
-let sphere_arrays o pool sl okind c =
+let sphere_arrays o pool sl c =
   let n = o.n and n_kept = Array.length sl.index and index = sl.index in
   let { ocx; ocy; ocz; ohalf; _ } = c in
   if sl.in_place && List.length pool.spare >= 5 then begin
@@ -1545,7 +1580,8 @@ let sphere_arrays o pool sl okind c =
     let cz = Array.make sphere_len 0. and radius = Array.make sphere_len 0. in
     for i = 0 to sphere_len - 1 do
       let k = index.(i) in
-      if okind.(k) = Kind.Sphere then begin
+      (* The slot's kind: [okind] may be in slot order ([slots]). *)
+      if sl.kind.(i) = Kind.Sphere then begin
         cx.(i) <- ocx.(k);
         cy.(i) <- ocy.(k);
         cz.(i) <- ocz.(k);
@@ -1826,15 +1862,20 @@ let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
   let collections = ref 0 in
   let twin_of, sel, boxes = twins_and_boxes ~skips ?beside o scene okind c collections in
   let pool = { spare = [] } in
-  let bvh = hierarchy ?beside ~reuse:(o.shapes = [] && sel.nb = o.n) ~instances:(2 * Hashtbl.length c.oboxes >= sel.nb) pool boxes in
+  let bvh =
+    hierarchy ?beside ~reuse:(o.shapes = [] && sel.nb = o.n) ~scratch:(sel.nb = o.n) ~instances:(2 * Hashtbl.length c.oboxes >= sel.nb)
+      pool boxes
+  in
   collect o collections;
   let unbounded = sel.unbounded in
-  let sl = slots o (index_of_slots o bvh sel twin_of) okind omat twin_of in
+  let sl = slots o pool (index_of_slots o bvh sel twin_of) okind omat twin_of in
+  (* The scratch, if [slots] took none, let go. *)
+  if not sl.in_place then pool.spare <- [];
   (* Geometry and sphere data, in slot order. *)
   let any_smooth = Array.exists (fun k -> k = Kind.Smooth_triangle) okind in
   let vnormal = if any_smooth then v.vnormal else [||] in
   let g = geometry_arrays o sl ~any_smooth ~follow:v.follow in
-  let sp = camera_constants pool scene.camera.position (sphere_arrays o pool sl okind c) in
+  let sp = camera_constants pool scene.camera.position (sphere_arrays o pool sl c) in
   store_geometry o v s inst normal_base sl g ~any_smooth;
   (* The triangles' vertices in the order the leaves read them
      (Vertex_order); the normals stay where they are. *)

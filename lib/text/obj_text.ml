@@ -57,7 +57,28 @@ let texcoord_count m = Array.length m.texcoords / 2
    blocks, then the result), where doubling arrays would leave up to
    twice the result in capacity plus the garbage of each growth. Two
    types rather than one polymorphic: a [float array] known as such
-   stores and loads unboxed floats. *)
+   stores and loads unboxed floats. The current block is an array, a
+   full block is copied out of the collector's heap into a bigarray
+   ([fblock], [iblock]): the system's memory, given back once the
+   collector finds the blocks garbage, where blocks in the heap (48 MB
+   for a million triangles) stayed resident, and the compaction after a
+   big mesh's loading moved its arrays into pages never touched beside
+   them (docs/performance.md, "Issue 28, round 3: build and memory"). *)
+type fblock = (float, Bigarray.float64_elt, Bigarray.c_layout) Bigarray.Array1.t
+type iblock = (int, Bigarray.int_elt, Bigarray.c_layout) Bigarray.Array1.t
+
+(* A new block, made without hurrying the collector: a bigarray's memory
+   counts toward the major collection's speed ([custom_major_ratio]),
+   and the reader's 48 MB for a million triangles, all live until
+   [finish], set it marking the heap about once more for nothing (30-40
+   ms of the 1M knot's preparation). *)
+let out_of_heap create =
+  let gc = Gc.get () in
+  Gc.set { gc with custom_major_ratio = 1_000_000 };
+  let b = create () in
+  Gc.set gc;
+  b
+
 let block = 1 lsl 16
 
 (* A part (the text from a line start on, read without the text before
@@ -75,19 +96,19 @@ let[@inline] rebased r before = if r >= positive_below then r - part_offset + be
 (* A store's full blocks are newest first; [free] holds blocks already
    sent ({!spill}), reused for the next ones. *)
 type floats = {
-  mutable fblocks : float array list;
+  mutable fblocks : fblock list;
   mutable fcur : float array;
   mutable fn : int;
   mutable ffull : int;
-  mutable ffree : float array list;
+  mutable ffree : fblock list;
 }
 
 type ints = {
-  mutable iblocks : int array list;
+  mutable iblocks : iblock list;
   mutable icur : int array;
   mutable inn : int;
   mutable ifull : int;
-  mutable ifree : int array list;
+  mutable ifree : iblock list;
 }
 
 let floats () = { fblocks = []; fcur = Array.make 256 0.; fn = 0; ffull = 0; ffree = [] }
@@ -107,13 +128,19 @@ let push_float g (src : float array) i =
       g.fcur <- a
     end
     else begin
-      g.fblocks <- g.fcur :: g.fblocks;
+      let b =
+        match g.ffree with
+        | b :: rest ->
+            g.ffree <- rest;
+            b
+        | [] -> out_of_heap (fun () -> Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout block)
+      in
+      let a = g.fcur in
+      for k = 0 to block - 1 do
+        Bigarray.Array1.unsafe_set b k (Array.unsafe_get a k)
+      done;
+      g.fblocks <- b :: g.fblocks;
       g.ffull <- g.ffull + block;
-      (match g.ffree with
-       | a :: rest ->
-           g.ffree <- rest;
-           g.fcur <- a
-       | [] -> g.fcur <- Array.make block 0.);
       g.fn <- 0
     end;
   Array.unsafe_set g.fcur g.fn src.(i);
@@ -135,13 +162,19 @@ let push_int g x =
       g.icur <- a
     end
     else begin
-      g.iblocks <- g.icur :: g.iblocks;
+      let b =
+        match g.ifree with
+        | b :: rest ->
+            g.ifree <- rest;
+            b
+        | [] -> out_of_heap (fun () -> Bigarray.Array1.create Bigarray.int Bigarray.c_layout block)
+      in
+      let a = g.icur in
+      for k = 0 to block - 1 do
+        Bigarray.Array1.unsafe_set b k (Array.unsafe_get a k)
+      done;
+      g.iblocks <- b :: g.iblocks;
       g.ifull <- g.ifull + block;
-      (match g.ifree with
-       | a :: rest ->
-           g.ifree <- rest;
-           g.icur <- a
-       | [] -> g.icur <- Array.make block 0);
       g.inn <- 0
     end;
   Array.unsafe_set g.icur g.inn x;
@@ -164,11 +197,23 @@ let[@inline] int_at b k = Int64.to_int (get64 b (8 * k))
 (* The elements of store [g] into [a.(0) ..], the store left as it is. *)
 let blit_float_store g (a : float array) =
   Array.blit g.fcur 0 a g.ffull g.fn;
-  List.iteri (fun k b -> Array.blit b 0 a (g.ffull - ((k + 1) * block)) block) g.fblocks
+  List.iteri
+    (fun k (b : fblock) ->
+      let at = g.ffull - ((k + 1) * block) in
+      for j = 0 to block - 1 do
+        Array.unsafe_set a (at + j) (Bigarray.Array1.unsafe_get b j)
+      done)
+    g.fblocks
 
 let blit_int_store g (a : int array) =
   blit_ints g.icur a g.ifull g.inn;
-  List.iteri (fun k b -> blit_ints b a (g.ifull - ((k + 1) * block)) block) g.iblocks
+  List.iteri
+    (fun k (b : iblock) ->
+      let at = g.ifull - ((k + 1) * block) in
+      for j = 0 to block - 1 do
+        Array.unsafe_set a (at + j) (Bigarray.Array1.unsafe_get b j)
+      done)
+    g.iblocks
 
 (* The elements of store [g] as one array; the store is emptied, so that
    its blocks can be collected while the next store is concatenated. *)
@@ -196,7 +241,14 @@ let same_stores g h =
     done;
     !r
   in
-  int_length g = int_length h && same g.icur h.icur g.inn && List.for_all2 (fun a b -> same a b block) g.iblocks h.iblocks
+  let same_block (a : iblock) (b : iblock) =
+    let r = ref true in
+    for k = 0 to block - 1 do
+      if Bigarray.Array1.unsafe_get a k <> Bigarray.Array1.unsafe_get b k then r := false
+    done;
+    !r
+  in
+  int_length g = int_length h && same g.icur h.icur g.inn && List.for_all2 same_block g.iblocks h.iblocks
 
 (* A face's vertices: a growable array, reused from face to face. *)
 type face = { mutable fa : int array; mutable len : int }
@@ -219,7 +271,8 @@ type parser = {
   pos : floats;
   nrm : floats;
   tris : ints;
-  tri_nrm : ints;
+  tri_nrm : ints;  (* only with [nrm_mode = nrm_explicit]: see [keep_normals] *)
+  mutable nrm_mode : int;
   tex : floats;  (* u v of each [vt] *)
   tri_tex : ints;  (* empty until a face gives a texture index: see [face] *)
   mutable textured : bool;  (* a face gave a texture index *)
@@ -251,10 +304,25 @@ let need_normal = 2
 let need_texture = 4
 let no_needs () = [| min_int; 0; min_int; 0; min_int; 0 |]
 
+(* The triangles' normal numbers, as exporters write them: each the
+   vertex's number ([f 1//1 2//2 3//3]), or none ([f 1 2 3], each [-1]).
+   While every triangle so far is one of the two, the reader stores no
+   normal numbers ([nrm_same], [nrm_none]: a million triangles' were 24
+   MB of blocks, garbage once read); the first triangle that is neither
+   makes them explicit ([explicit_normals]). [nrm_unknown]: no triangle
+   yet. *)
+let nrm_unknown = 0
+let nrm_same = 1
+let nrm_none = 2
+let nrm_explicit = 3
+
 let make ~offset ~output ~name ~max_vertices ~max_triangles =
   {
     name; max_vertices; max_triangles; offset; needs = no_needs ();
     pos = floats (); nrm = floats (); tris = ints (); tri_nrm = ints ();
+    (* A part's blocks of normal numbers are sent in step with its
+       triangles' ([spill]): kept from the start. *)
+    nrm_mode = (if offset > 0 then nrm_explicit else nrm_unknown);
     tex = floats (); tri_tex = ints (); textured = false;
     face_v = { fa = Array.make 16 0; len = 0 }; face_n = { fa = Array.make 16 0; len = 0 };
     face_t = { fa = Array.make 16 0; len = 0 };
@@ -469,6 +537,35 @@ let[@inline] fast_index p b i k j ~count ~what =
     index p b i k j ~count ~what
   end
 
+(* The normal numbers of the triangles read so far, written out in
+   [tri_nrm]: the triangles' own numbers, or [-1] each. *)
+let explicit_normals p =
+  let t = p.tris and m = p.nrm_mode in
+  if m = nrm_same then begin
+    List.iter (fun (a : iblock) -> for k = 0 to block - 1 do push_int p.tri_nrm (Bigarray.Array1.unsafe_get a k) done) (List.rev t.iblocks);
+    for k = 0 to t.inn - 1 do push_int p.tri_nrm (Array.unsafe_get t.icur k) done
+  end
+  else if m = nrm_none then for _ = 1 to int_length t do push_int p.tri_nrm (-1) done;
+  p.nrm_mode <- nrm_explicit
+
+(* Whether the normal numbers [na nb nc] of the triangle [a b c], about
+   to be pushed, go to [tri_nrm]: only once some triangle's are neither
+   its vertices' numbers nor all [-1]. *)
+let keep_normals p a b c na nb nc =
+  let m = p.nrm_mode in
+  if m = nrm_explicit then true
+  else
+    let same = na = a && nb = b && nc = c and none = na < 0 && nb < 0 && nc < 0 in
+    if (m = nrm_same && same) || (m = nrm_none && none) then false
+    else if m = nrm_unknown && (same || none) then begin
+      p.nrm_mode <- (if same then nrm_same else nrm_none);
+      false
+    end
+    else begin
+      explicit_normals p;
+      true
+    end
+
 let face p b i f k j =
   p.face_v.len <- 0;
   p.face_n.len <- 0;
@@ -512,8 +609,10 @@ let face p b i f k j =
     p.textured <- true
   end;
   for t = 1 to n - 2 do
+    if keep_normals p v.(0) v.(t) v.(t + 1) vn.(0) vn.(t) vn.(t + 1) then begin
+      push_int p.tri_nrm vn.(0); push_int p.tri_nrm vn.(t); push_int p.tri_nrm vn.(t + 1)
+    end;
     push_int p.tris v.(0); push_int p.tris v.(t); push_int p.tris v.(t + 1);
-    push_int p.tri_nrm vn.(0); push_int p.tri_nrm vn.(t); push_int p.tri_nrm vn.(t + 1);
     if p.textured then begin
       push_int p.tri_tex vt.(0); push_int p.tri_tex vt.(t); push_int p.tri_tex vt.(t + 1)
     end
@@ -568,8 +667,10 @@ let triangle p b k j =
          p.face_n.len <- 3;
          note_face p ~nv ~nn
        end;
-       push3 p.tris (Array.unsafe_get v 0) (Array.unsafe_get v 1) (Array.unsafe_get v 2);
-       push3 p.tri_nrm (Array.unsafe_get vn 0) (Array.unsafe_get vn 1) (Array.unsafe_get vn 2);
+       let a = Array.unsafe_get v 0 and b = Array.unsafe_get v 1 and c = Array.unsafe_get v 2 in
+       let na = Array.unsafe_get vn 0 and nb = Array.unsafe_get vn 1 and nc = Array.unsafe_get vn 2 in
+       if keep_normals p a b c na nb nc then push3 p.tri_nrm na nb nc;
+       push3 p.tris a b c;
        (* This layout has no texture numbers. *)
        if p.textured then push3 p.tri_tex (-1) (-1) (-1);
        true
@@ -701,6 +802,19 @@ let send_ints p out kind (a : int array) n =
   done;
   send p out kind n
 
+(* [send_floats] and [send_ints] of a full block. *)
+let send_float_block p out kind (b : fblock) =
+  for k = 0 to block - 1 do
+    set64 p.send_buffer (record_header + (8 * k)) (Int64.bits_of_float (Bigarray.Array1.unsafe_get b k))
+  done;
+  send p out kind block
+
+let send_int_block p out kind (b : iblock) =
+  for k = 0 to block - 1 do
+    set64 p.send_buffer (record_header + (8 * k)) (Int64.of_int (Bigarray.Array1.unsafe_get b k))
+  done;
+  send p out kind block
+
 (* Whether the first [n] numbers of [a] and [b] are equal and none is
    relative (see [part_offset]). *)
 let same_plain (a : int array) (b : int array) n =
@@ -717,6 +831,15 @@ let send_pair p out (t : int array) (tn : int array) n =
   send_ints p out record_triangles t n;
   if same_plain t tn n then send p out record_same n else send_ints p out record_triangle_normals tn n
 
+let send_block_pair p out (t : iblock) (tn : iblock) =
+  send_int_block p out record_triangles t;
+  let same = ref true in
+  for k = 0 to block - 1 do
+    let x = Bigarray.Array1.unsafe_get t k in
+    if x <> Bigarray.Array1.unsafe_get tn k || x >= positive_below then same := false
+  done;
+  if !same then send p out record_same block else send_int_block p out record_triangle_normals tn
+
 (* Sends the full blocks of a part's arrays (at a line start), and with
    [last] the rest; the blocks sent are reused. *)
 let spill p ~last =
@@ -725,7 +848,7 @@ let spill p ~last =
   | Some out ->
       if Bytes.length p.send_buffer = 0 then p.send_buffer <- Bytes.create (record_header + (8 * block));
       let floats kind g =
-        List.iter (fun a -> send_floats p out kind a block) (List.rev g.fblocks);
+        List.iter (fun b -> send_float_block p out kind b) (List.rev g.fblocks);
         g.ffree <- List.rev_append g.fblocks g.ffree;
         g.fblocks <- [];
         if last && g.fn > 0 then send_floats p out kind g.fcur g.fn
@@ -736,12 +859,12 @@ let spill p ~last =
       (* A part's texture numbers, once it has any, are as many as its
          triangles' vertex numbers; sent a block at a time likewise. *)
       let tt = p.tri_tex in
-      List.iter (fun a -> send_ints p out record_triangle_texcoords a block) (List.rev tt.iblocks);
+      List.iter (fun b -> send_int_block p out record_triangle_texcoords b) (List.rev tt.iblocks);
       tt.ifree <- List.rev_append tt.iblocks tt.ifree;
       tt.iblocks <- [];
       if last && tt.inn > 0 then send_ints p out record_triangle_texcoords tt.icur tt.inn;
       let t = p.tris and tn = p.tri_nrm in
-      List.iter2 (fun a b -> send_pair p out a b block) (List.rev t.iblocks) (List.rev tn.iblocks);
+      List.iter2 (fun a b -> send_block_pair p out a b) (List.rev t.iblocks) (List.rev tn.iblocks);
       t.ifree <- List.rev_append t.iblocks t.ifree;
       tn.ifree <- List.rev_append tn.iblocks tn.ifree;
       t.iblocks <- [];
@@ -823,9 +946,12 @@ let finish p =
   | () ->
       let positions = float_array p.pos in
       let normals = float_array p.nrm in
-      let same = same_stores p.tri_nrm p.tris in
+      let mode = p.nrm_mode in
+      let same = mode = nrm_unknown || mode = nrm_same || (mode = nrm_explicit && same_stores p.tri_nrm p.tris) in
       let triangles = int_array p.tris in
-      let triangle_normals = if same then triangles else int_array p.tri_nrm in
+      let triangle_normals =
+        if same then triangles else if mode = nrm_none then Array.make (Array.length triangles) (-1) else int_array p.tri_nrm
+      in
       let texcoords = float_array p.tex in
       let triangle_texcoords = if p.textured then int_array p.tri_tex else [||] in
       Ok { positions; normals; triangles; triangle_normals; texcoords; triangle_texcoords; skipped = skipped_of p.counts }
@@ -950,8 +1076,9 @@ let join p part ~input =
     blit_float_store p.nrm normals;
     let triangles = Array.make (at_t + part.part_numbers) 0 in
     blit_int_store p.tris triangles;
+    if p.nrm_mode = nrm_none then explicit_normals p;
     let tn =
-      if same_stores p.tri_nrm p.tris then [||]
+      if p.nrm_mode <> nrm_explicit || same_stores p.tri_nrm p.tris then [||]
       else begin
         let a = Array.make (Array.length triangles) 0 in
         blit_int_store p.tri_nrm a;
