@@ -194,35 +194,37 @@ let[@inline] triangles_closest tr s first last =
   | 4 -> leaf_closest tr s first last 0 1 2
   | _ -> leaf_closest tr s first last 1 0 2
 
-(* The first of the triangles in slots [first .. last - 1] of a leaf,
-   other than slot [skip], that the ray in [s] (sheared) meets with
-   [t_min < t < t_max], or [last]: [triangle_blocks]'s test, the axes
-   [kx, ky, kz] constants as in [leaf_closest]. *)
-let[@inline] leaf_blocker tr s first last skip kx ky kz =
+(* The first of the triangles in slots [first .. last - 1] of a leaf
+   that the ray in [s] (sheared) meets with [t_min < t < t_max], or
+   [last]: [triangle_blocks]'s test, the axes [kx, ky, kz] constants as in
+   [leaf_closest]. The light's last blocker, already tried and found not
+   to block ([blocked_from]), is not skipped: the same test of the same
+   ray gives the same answer again, and a compare per triangle costs more
+   than the one test it would save. *)
+let[@inline] leaf_blocker tr s first last kx ky kz =
   let p = tr.p in
   let g = p.vertex and at0 = p.at0 and at1 = p.at1 and at2 = p.at2 in
   let i = ref first in
   while
     !i < last
-    && (!i = skip
-       || not
-            (Triangle.hit s g (Array.unsafe_get at0 !i) (Array.unsafe_get at1 !i) (Array.unsafe_get at2 !i) kx ky kz
-            &&
-            let t = s.near in
-            s.t_min < t && t < s.t_max))
+    && not
+         (Triangle.hit s g (Array.unsafe_get at0 !i) (Array.unsafe_get at1 !i) (Array.unsafe_get at2 !i) kx ky kz
+         &&
+         let t = s.near in
+         s.t_min < t && t < s.t_max)
   do
     incr i
   done;
   !i
 
-let[@inline] triangles_blocker tr s first last skip =
+let[@inline] triangles_blocker tr s first last =
   match tr.order with
-  | 0 -> leaf_blocker tr s first last skip 1 2 0
-  | 1 -> leaf_blocker tr s first last skip 2 1 0
-  | 2 -> leaf_blocker tr s first last skip 0 2 1
-  | 3 -> leaf_blocker tr s first last skip 2 0 1
-  | 4 -> leaf_blocker tr s first last skip 0 1 2
-  | _ -> leaf_blocker tr s first last skip 1 0 2
+  | 0 -> leaf_blocker tr s first last 1 2 0
+  | 1 -> leaf_blocker tr s first last 2 1 0
+  | 2 -> leaf_blocker tr s first last 0 2 1
+  | 3 -> leaf_blocker tr s first last 2 0 1
+  | 4 -> leaf_blocker tr s first last 0 1 2
+  | _ -> leaf_blocker tr s first last 1 0 2
 
 (* {2 Instances}
 
@@ -690,7 +692,9 @@ let[@inline] blocks tr i ~spheres ~triangles a inv_a =
     | Sphere -> sphere_blocks tr i a inv_a
     | _ -> shape_blocks tr i
 
-(* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
+(* The first blocker of the ray in [s] other than slot [skip], or [-1].
+   (The leaves of triangles test [skip] too: it is the light's last
+   blocker, which [blocked_from] has found not to block this ray.) *)
 let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
   let p = tr.p and s = tr.s in
   match p.bvh with
@@ -745,7 +749,7 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
           let first = node_link nodes o in
           let last = first + count in
           let i =
-            if triangles then triangles_blocker tr s first last skip
+            if triangles then triangles_blocker tr s first last
             else begin
               let i = ref first in
               while !i < last && (!i = skip || not (blocks tr !i ~spheres ~triangles a inv_a)) do
