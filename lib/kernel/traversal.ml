@@ -400,8 +400,10 @@ let[@inline] box_exit (nodes : float array) o nx ny nz ox oy oz ix iy iz =
    the ray meets in [t_min, limit], pushed on [stack] (their entries
    beside, in [entries]) above [sp]; the new stack pointer. With
    [by_entry], the nearer by its entry on top (the left one on a tie);
-   otherwise the farther along the split axis on top, by the sign of the
-   direction's coordinate on it ([dx, dy, dz]), as shadow rays search:
+   otherwise the farther along the split axis ([tag], the node's
+   [node_tag], which the caller has read: -1, -2, -3 for x, y, z) on top,
+   by the sign of the direction's coordinate on it ([dx, dy, dz]), as
+   shadow rays search:
    from the light's end back toward the ray's origin, which lies on a
    surface among leaves that seldom block it (docs/performance.md, "Issue
    28, round 3: the walk", shadow rays).
@@ -409,7 +411,7 @@ let[@inline] box_exit (nodes : float array) o nx ny nz ox oy oz ix iy iz =
    its link. The near planes [nx, ny, nz] are constants in each of
    [visit_children]'s copies: a plane is then one load at a fixed
    displacement from the node's offset. *)
-let[@inline] push_met (nodes : float array) stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit nx ny nz =
+let[@inline] push_met (nodes : float array) stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit nx ny nz =
   let left = o + 8 and right = node_link nodes o in
   let l_enter = box_enter nodes left nx ny nz ox oy oz ix iy iz in
   let l_exit = box_exit nodes left nx ny nz ox oy oz ix iy iz in
@@ -420,7 +422,6 @@ let[@inline] push_met (nodes : float array) stack entries sp o ~by_entry dx dy d
       let right_first =
         if by_entry then r_enter < l_enter
         else
-          let tag = node_tag nodes o in
           let d = if tag = -1 then dx else if tag = -2 then dy else dz in
           (* The farther on top. *)
           d >= 0.
@@ -461,16 +462,16 @@ let[@inline] push_met (nodes : float array) stack entries sp o ~by_entry dx dy d
    node of a ray: its branch is predicted. *)
 let[@inline] octant ix iy iz = (if ix >= 0. then 0 else 1) + (if iy >= 0. then 0 else 2) + if iz >= 0. then 0 else 4
 
-let[@inline] visit_children nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit oct =
+let[@inline] visit_children nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit oct =
   match oct with
-  | 0 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 2
-  | 1 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 2
-  | 2 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 2
-  | 3 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 2
-  | 4 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 5
-  | 5 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 5
-  | 6 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 5
-  | _ -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 5
+  | 0 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 2
+  | 1 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 2
+  | 2 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 2
+  | 3 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 2
+  | 4 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 5
+  | 5 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 5
+  | 6 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 5
+  | _ -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 5
 
 (* The intersection loops below read every loop invariant (arrays, ray,
    range) into a local once per ray: without flambda, OCaml reloads a
@@ -599,7 +600,7 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
               end
               else begin
                 boxes := !boxes + 2;
-                sp := visit_children nodes stack entries !sp o ~by_entry:true dx dy dz ox oy oz ix iy iz t_min !limit oct
+                sp := visit_children nodes stack entries !sp o ~tag:0 ~by_entry:true dx dy dz ox oy oz ix iy iz t_min !limit oct
               end
             end
           done;
@@ -766,7 +767,7 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
         end
         else begin
           boxes := !boxes + 2;
-          sp := visit_children nodes stack tr.entries !sp o ~by_entry:false dx dy dz ox oy oz ix iy iz t_min t_max oct
+          sp := visit_children nodes stack tr.entries !sp o ~tag:count ~by_entry:false dx dy dz ox oy oz ix iy iz t_min t_max oct
         end
       done;
       tr.counters.box_tests <- tr.counters.box_tests + !boxes;
