@@ -194,35 +194,37 @@ let[@inline] triangles_closest tr s first last =
   | 4 -> leaf_closest tr s first last 0 1 2
   | _ -> leaf_closest tr s first last 1 0 2
 
-(* The first of the triangles in slots [first .. last - 1] of a leaf,
-   other than slot [skip], that the ray in [s] (sheared) meets with
-   [t_min < t < t_max], or [last]: [triangle_blocks]'s test, the axes
-   [kx, ky, kz] constants as in [leaf_closest]. *)
-let[@inline] leaf_blocker tr s first last skip kx ky kz =
+(* The first of the triangles in slots [first .. last - 1] of a leaf
+   that the ray in [s] (sheared) meets with [t_min < t < t_max], or
+   [last]: [triangle_blocks]'s test, the axes [kx, ky, kz] constants as in
+   [leaf_closest]. The light's last blocker, already tried and found not
+   to block ([blocked_from]), is not skipped: the same test of the same
+   ray gives the same answer again, and a compare per triangle costs more
+   than the one test it would save. *)
+let[@inline] leaf_blocker tr s first last kx ky kz =
   let p = tr.p in
   let g = p.vertex and at0 = p.at0 and at1 = p.at1 and at2 = p.at2 in
   let i = ref first in
   while
     !i < last
-    && (!i = skip
-       || not
-            (Triangle.hit s g (Array.unsafe_get at0 !i) (Array.unsafe_get at1 !i) (Array.unsafe_get at2 !i) kx ky kz
-            &&
-            let t = s.near in
-            s.t_min < t && t < s.t_max))
+    && not
+         (Triangle.hit s g (Array.unsafe_get at0 !i) (Array.unsafe_get at1 !i) (Array.unsafe_get at2 !i) kx ky kz
+         &&
+         let t = s.near in
+         s.t_min < t && t < s.t_max)
   do
     incr i
   done;
   !i
 
-let[@inline] triangles_blocker tr s first last skip =
+let[@inline] triangles_blocker tr s first last =
   match tr.order with
-  | 0 -> leaf_blocker tr s first last skip 1 2 0
-  | 1 -> leaf_blocker tr s first last skip 2 1 0
-  | 2 -> leaf_blocker tr s first last skip 0 2 1
-  | 3 -> leaf_blocker tr s first last skip 2 0 1
-  | 4 -> leaf_blocker tr s first last skip 0 1 2
-  | _ -> leaf_blocker tr s first last skip 1 0 2
+  | 0 -> leaf_blocker tr s first last 1 2 0
+  | 1 -> leaf_blocker tr s first last 2 1 0
+  | 2 -> leaf_blocker tr s first last 0 2 1
+  | 3 -> leaf_blocker tr s first last 2 0 1
+  | 4 -> leaf_blocker tr s first last 0 1 2
+  | _ -> leaf_blocker tr s first last 1 0 2
 
 (* {2 Instances}
 
@@ -398,13 +400,18 @@ let[@inline] box_exit (nodes : float array) o nx ny nz ox oy oz ix iy iz =
    the ray meets in [t_min, limit], pushed on [stack] (their entries
    beside, in [entries]) above [sp]; the new stack pointer. With
    [by_entry], the nearer by its entry on top (the left one on a tie);
-   otherwise the nearer along the split axis, by the sign of the
-   direction's coordinate on it ([dx, dy, dz]), as shadow rays search.
+   otherwise the farther along the split axis ([tag], the node's
+   [node_tag], which the caller has read: -1, -2, -3 for x, y, z) on top,
+   by the sign of the direction's coordinate on it ([dx, dy, dz]), as
+   shadow rays search:
+   from the light's end back toward the ray's origin, which lies on a
+   surface among leaves that seldom block it (docs/performance.md, "Issue
+   28, round 3: the walk", shadow rays).
    The left child follows its parent (8 floats on), the right one is at
    its link. The near planes [nx, ny, nz] are constants in each of
    [visit_children]'s copies: a plane is then one load at a fixed
    displacement from the node's offset. *)
-let[@inline] push_met (nodes : float array) stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit nx ny nz =
+let[@inline] push_met (nodes : float array) stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit nx ny nz =
   let left = o + 8 and right = node_link nodes o in
   let l_enter = box_enter nodes left nx ny nz ox oy oz ix iy iz in
   let l_exit = box_exit nodes left nx ny nz ox oy oz ix iy iz in
@@ -415,9 +422,9 @@ let[@inline] push_met (nodes : float array) stack entries sp o ~by_entry dx dy d
       let right_first =
         if by_entry then r_enter < l_enter
         else
-          let tag = node_tag nodes o in
           let d = if tag = -1 then dx else if tag = -2 then dy else dz in
-          d < 0.
+          (* The farther on top. *)
+          d >= 0.
       in
       if right_first then begin
         Array.unsafe_set stack sp left;
@@ -455,16 +462,16 @@ let[@inline] push_met (nodes : float array) stack entries sp o ~by_entry dx dy d
    node of a ray: its branch is predicted. *)
 let[@inline] octant ix iy iz = (if ix >= 0. then 0 else 1) + (if iy >= 0. then 0 else 2) + if iz >= 0. then 0 else 4
 
-let[@inline] visit_children nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit oct =
+let[@inline] visit_children nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit oct =
   match oct with
-  | 0 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 2
-  | 1 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 2
-  | 2 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 2
-  | 3 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 2
-  | 4 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 5
-  | 5 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 5
-  | 6 -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 5
-  | _ -> push_met nodes stack entries sp o ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 5
+  | 0 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 2
+  | 1 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 2
+  | 2 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 2
+  | 3 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 2
+  | 4 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 1 5
+  | 5 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 5
+  | 6 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 5
+  | _ -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 5
 
 (* The intersection loops below read every loop invariant (arrays, ray,
    range) into a local once per ray: without flambda, OCaml reloads a
@@ -573,24 +580,27 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
             Array.unsafe_set entries 0 enter;
             sp := 1
           end;
+          (* The best hit's bound, [min t t_max], read again after a leaf
+             only: nothing else lowers [s.t]. *)
+          let limit = ref (if s.t < s.t_max then s.t else s.t_max) in
           while !sp > 0 do
             decr sp;
             let o = Array.unsafe_get stack !sp in
-            let limit = if s.t < s.t_max then s.t else s.t_max in
-            if Array.unsafe_get entries !sp <= limit then begin
+            if Array.unsafe_get entries !sp <= !limit then begin
               let count = node_tag nodes o in
               if count > 0 then begin
                 let first = node_link nodes o in
                 tests := !tests + count;
-                if triangles then triangles_closest tr s first (first + count - 1)
-                else
-                  for i = first to first + count - 1 do
-                    test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4
-                  done
+                (if triangles then triangles_closest tr s first (first + count - 1)
+                 else
+                   for i = first to first + count - 1 do
+                     test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1x4
+                   done);
+                limit := if s.t < s.t_max then s.t else s.t_max
               end
               else begin
                 boxes := !boxes + 2;
-                sp := visit_children nodes stack entries !sp o ~by_entry:true dx dy dz ox oy oz ix iy iz t_min limit oct
+                sp := visit_children nodes stack entries !sp o ~tag:0 ~by_entry:true dx dy dz ox oy oz ix iy iz t_min !limit oct
               end
             end
           done;
@@ -683,7 +693,9 @@ let[@inline] blocks tr i ~spheres ~triangles a inv_a =
     | Sphere -> sphere_blocks tr i a inv_a
     | _ -> shape_blocks tr i
 
-(* The first blocker of the ray in [s] other than slot [skip], or [-1]. *)
+(* The first blocker of the ray in [s] other than slot [skip], or [-1].
+   (The leaves of triangles test [skip] too: it is the light's last
+   blocker, which [blocked_from] has found not to block this ray.) *)
 let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
   let p = tr.p and s = tr.s in
   match p.bvh with
@@ -717,9 +729,11 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
         end
       end;
       (* As in [closest_from], a node is pushed only if the ray meets its
-         box, tested by its parent (the root here), in the same order as
-         the box tests at the pop had: along the split axis, the nearer
-         child first, so the same blocker is found. *)
+         box, tested by its parent (the root here). Any blocker answers:
+         the farther child along the split axis is visited first, the
+         ray's origin is on a surface whose nearby leaves the ray meets but
+         seldom blocks (the 1M knot's blocked shadow rays test 151
+         triangles, not 265 nearer first). *)
       let ox = s.ox and oy = s.oy and oz = s.oz and t_min = s.t_min and t_max = s.t_max in
       if !sp > 0 then begin
         let root = b.root in
@@ -736,7 +750,7 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
           let first = node_link nodes o in
           let last = first + count in
           let i =
-            if triangles then triangles_blocker tr s first last skip
+            if triangles then triangles_blocker tr s first last
             else begin
               let i = ref first in
               while !i < last && (!i = skip || not (blocks tr !i ~spheres ~triangles a inv_a)) do
@@ -753,7 +767,7 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
         end
         else begin
           boxes := !boxes + 2;
-          sp := visit_children nodes stack tr.entries !sp o ~by_entry:false dx dy dz ox oy oz ix iy iz t_min t_max oct
+          sp := visit_children nodes stack tr.entries !sp o ~tag:count ~by_entry:false dx dy dz ox oy oz ix iy iz t_min t_max oct
         end
       done;
       tr.counters.box_tests <- tr.counters.box_tests + !boxes;
