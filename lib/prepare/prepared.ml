@@ -1400,7 +1400,10 @@ let kind_code : Kind.t -> int = function
   | Torus -> 9
   | Instance -> 10
 
-let kinds = Kind.[| Sphere; Triangle; Smooth_triangle; Plane; Box; Csg; Cylinder; Disk; Cone; Torus; Instance |]
+let kinds =
+  let a = Array.make (List.length Kind.all) Kind.Sphere in
+  List.iter (fun k -> a.(kind_code k) <- k) Kind.all;
+  a
 
 (* The slot of each object ([slot]; a twin's is its first's) and each
    slot's kind and material. *)
