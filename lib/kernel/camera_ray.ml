@@ -123,10 +123,17 @@ let[@inline] cos_q t =
    [Stratified]: the pixel's own numbers ([hp], the chain of the pixel
    with sample [-1], which no camera key uses) give an offset [u0] on the
    unit square and a permutation of the cells of its [n x n] cut. Sample
-   [k] of the grid takes cell [pi k], a jittered point in it (from its own
-   key), plus [u0] modulo 1: each point is uniform over the square (the
-   offset is), and the [n^2] points of a pixel are one to a cell of the
-   shifted cut. The centre sample of an odd grid takes cell 0 without
+   [k] of the grid takes cell [pi k], [(ci, cj)], and in it the sub-cell
+   [(sx, sy)] of the cell's own [n x n] cut, where [sx = sigma cj] and
+   [sy = tau ci] for two more permutations of the pixel's, of [0 .. n - 1]
+   fixing 0 (Kensler's correlated multi-jittered sampling, 2013: each
+   column of cells takes every column of sub-cells once, each row every
+   row), a jittered point in it (from its own key), plus [u0] modulo 1:
+   each point is uniform over the square (the offset is), the [n^2]
+   points of a pixel are one to a cell of the shifted cut, and their
+   abscissae (ordinates) one to each of the [n^2] columns (rows) of
+   sub-cells: an edge across the lens parallel to one of its axes is
+   crossed as by [n^2] strata, not [n]. The centre sample of an odd grid takes cell 0 without
    jitter, the point [u0] itself, which is also the point of the pixel's
    centre ray ([n = 1]): adaptive sampling's first ray is both the
    one-sample render's and the full grid's centre sample. The square goes
@@ -159,6 +166,8 @@ let lens tr =
       s.lens_u0 <- unit (Sample_key.key hp 0);
       s.lens_v0 <- unit (Sample_key.key hp 1);
       tr.lens_hc <- Sample_key.mix (Sample_key.key hp 2);
+      tr.lens_hx <- Sample_key.mix (Sample_key.key hp 3);
+      tr.lens_hy <- Sample_key.mix (Sample_key.key hp 4);
       tr.lens_px <- tr.lens_gx;
       tr.lens_py <- tr.lens_gy
     end;
@@ -172,16 +181,25 @@ let lens tr =
       let m = if centre >= 0 then (n * n) - 1 else n * n in
       if m <> tr.lens_m then begin
         tr.lens_m <- m;
-        tr.lens_w <- Sample_key.mask m
+        tr.lens_w <- Sample_key.mask m;
+        tr.lens_w1 <- Sample_key.mask (n - 1)
       end;
       let c =
         if centre >= 0 then 1 + Sample_key.walk ~p:tr.lens_hc ~w:tr.lens_w ~n:m (if k < centre then k else k - 1)
         else Sample_key.walk ~p:tr.lens_hc ~w:tr.lens_w ~n:m k
       in
-      (* The jitter: two numbers chained from the sample's lens key. *)
+      (* The sub-cell: the cell's column [ci] and row [cj] are the coarse
+         strata; [sx], the row's place in the pixel's first sub-cell
+         permutation, and [sy], the column's in its second, the fine ones
+         (both fix 0: cell 0's sub-cell is its corner's, the centre
+         sample's point); the jitter, two numbers chained from the
+         sample's lens key, inside it. *)
+      let ci = c mod n and cj = c / n in
+      let sx = if cj = 0 then 0 else 1 + Sample_key.walk ~p:tr.lens_hx ~w:tr.lens_w1 ~n:(n - 1) (cj - 1) in
+      let sy = if ci = 0 then 0 else 1 + Sample_key.walk ~p:tr.lens_hy ~w:tr.lens_w1 ~n:(n - 1) (ci - 1) in
       let h = Sample_key.key tr.key lens_tag and fn = Float.of_int n in
-      let a = ((Float.of_int (c mod n) +. unit h) /. fn) +. x0 in
-      let b = ((Float.of_int (c / n) +. unit (Sample_key.mix h)) /. fn) +. y0 in
+      let a = ((Float.of_int ci +. ((Float.of_int sx +. unit h) /. fn)) /. fn) +. x0 in
+      let b = ((Float.of_int cj +. ((Float.of_int sy +. unit (Sample_key.mix h)) /. fn)) /. fn) +. y0 in
       u := if a >= 1. then a -. 1. else a;
       v := if b >= 1. then b -. 1. else b
     end;

@@ -672,8 +672,10 @@ let uniform_lens_point key =
 (* [Stratified]: sample [(i, j)] of the [n x n] grid of pixel [(gx, gy)]
    takes cell [pi k] ([k = j n + i]) of the [n x n] cut of the unit
    square, [pi] the pixel's permutation with the centre of an odd grid
-   sent to cell 0; a point jittered in that cell (the centre: the cell's
-   corner), shifted by the pixel's offset [u0] modulo 1; then Shirley and
+   sent to cell 0; in cell [(ci, cj)], the sub-cell [(sigma cj, tau ci)]
+   of its own [n x n] cut, [sigma] and [tau] the pixel's permutations of
+   [0 .. n - 1] that fix 0 (correlated multi-jittering); a point jittered
+   in that sub-cell (the centre: cell 0's corner), shifted by the pixel's offset [u0] modulo 1; then Shirley and
    Chiu's concentric map onto the disc, written here with [sin] and [cos]
    (the kernel's polynomials agree to rounding). *)
 let stratified_lens_point ~key ~gx ~gy ~n ~i ~j =
@@ -692,9 +694,13 @@ let stratified_lens_point ~key ~gx ~gy ~n ~i ~j =
           | None -> perm ~n:(n * n) k
         in
         let h = Sample_key.key key (-1) in
-        let jitter a hj = (Float.of_int a +. Sample_key.unit hj) /. Float.of_int n in
+        let fixing_0 hs r = if r = 0 then 0 else 1 + Sample_key.permute hs ~n:(n - 1) (r - 1) in
+        let ci = cell mod n and cj = cell / n in
+        let sx = fixing_0 (Sample_key.key hp 3) cj and sy = fixing_0 (Sample_key.key hp 4) ci in
+        let fn = Float.of_int n in
+        let jitter a s hj = (Float.of_int a +. ((Float.of_int s +. Sample_key.unit hj) /. fn)) /. fn in
         let wrap z = if z >= 1. then z -. 1. else z in
-        (wrap (jitter (cell mod n) h +. fst u0), wrap (jitter (cell / n) (Sample_key.mix h) +. snd u0))
+        (wrap (jitter ci sx h +. fst u0), wrap (jitter cj sy (Sample_key.mix h) +. snd u0))
   in
   let a = (2. *. u) -. 1. and b = (2. *. v) -. 1. in
   if a = 0. && b = 0. then (0., 0.)

@@ -193,7 +193,10 @@ val lens_point : Camera.t -> key:int -> lens:int * int * int * int * int -> floa
     other samples [k = j n + i], the cell [c = 1 + permute (key hp 2)
     ~n:(n^2 - 1) k'] ([k'] = [k] less one past the centre; for an even
     grid [permute (key hp 2) ~n:(n^2) k]) of the [n x n] cut of the unit
-    square, the point [((c mod n + unit h) / n, (c / n + unit (mix h)) / n)
+    square, [(ci, cj) = (c mod n, c / n)], and in it the sub-cell
+    [(sx, sy) = (s3 cj, s4 ci)], where [sK 0 = 0] and
+    [sK r = 1 + permute (key hp K) ~n:(n - 1) (r - 1)]: the point
+    [((ci + (sx + unit h) / n) / n, (cj + (sy + unit (mix h)) / n) / n)
     + u0] modulo 1 ([h = key key (-1)]); then Shirley and Chiu's concentric map onto
     the disc, with the library's [sin] and [cos]. *)
 
