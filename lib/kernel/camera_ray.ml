@@ -139,6 +139,22 @@ let[@inline] cos_q t =
    one-sample render's and the full grid's centre sample. The square goes
    onto the disc by Shirley and Chiu's concentric map, which keeps areas,
    with the polynomials above for its sine and cosine. *)
+(* The pixel's two permutations of the sub-cells' columns and rows, of
+   [0 .. n - 1] fixing 0, from its keys [key hp 3] and [key hp 4]
+   ([Sample_key.permute] of the [n - 1] others), into [tr.lens_sub]. *)
+let sub_cells tr n =
+  let hp = Sample_key.pixel ~col:tr.lens_gx ~row:tr.lens_gy ~sample:lens_tag in
+  let px = Sample_key.mix (Sample_key.key hp 3) and py = Sample_key.mix (Sample_key.key hp 4) in
+  let w = Sample_key.mask (n - 1) in
+  let t = tr.lens_sub in
+  t.(0) <- 0;
+  t.(n) <- 0;
+  for r = 1 to n - 1 do
+    t.(r) <- 1 + Sample_key.walk ~p:px ~w ~n:(n - 1) (r - 1);
+    t.(n + r) <- 1 + Sample_key.walk ~p:py ~w ~n:(n - 1) (r - 1)
+  done;
+  tr.lens_sub_n <- n
+
 let lens tr =
   let p = tr.p in
   let cam = p.camera in
@@ -166,8 +182,7 @@ let lens tr =
       s.lens_u0 <- unit (Sample_key.key hp 0);
       s.lens_v0 <- unit (Sample_key.key hp 1);
       tr.lens_hc <- Sample_key.mix (Sample_key.key hp 2);
-      tr.lens_hx <- Sample_key.mix (Sample_key.key hp 3);
-      tr.lens_hy <- Sample_key.mix (Sample_key.key hp 4);
+      tr.lens_sub_n <- 0;
       tr.lens_px <- tr.lens_gx;
       tr.lens_py <- tr.lens_gy
     end;
@@ -181,9 +196,11 @@ let lens tr =
       let m = if centre >= 0 then (n * n) - 1 else n * n in
       if m <> tr.lens_m then begin
         tr.lens_m <- m;
-        tr.lens_w <- Sample_key.mask m;
-        tr.lens_w1 <- Sample_key.mask (n - 1)
+        tr.lens_w <- Sample_key.mask m
       end;
+      (* The sub-cell permutations, once per pixel and grid: [n - 1]
+         walks each, not two a sample. *)
+      if n <> tr.lens_sub_n then sub_cells tr n;
       let c =
         if centre >= 0 then 1 + Sample_key.walk ~p:tr.lens_hc ~w:tr.lens_w ~n:m (if k < centre then k else k - 1)
         else Sample_key.walk ~p:tr.lens_hc ~w:tr.lens_w ~n:m k
@@ -195,11 +212,10 @@ let lens tr =
          sample's point); the jitter, two numbers chained from the
          sample's lens key, inside it. *)
       let ci = c mod n and cj = c / n in
-      let sx = if cj = 0 then 0 else 1 + Sample_key.walk ~p:tr.lens_hx ~w:tr.lens_w1 ~n:(n - 1) (cj - 1) in
-      let sy = if ci = 0 then 0 else 1 + Sample_key.walk ~p:tr.lens_hy ~w:tr.lens_w1 ~n:(n - 1) (ci - 1) in
-      let h = Sample_key.key tr.key lens_tag and fn = Float.of_int n in
-      let a = ((Float.of_int ci +. ((Float.of_int sx +. unit h) /. fn)) /. fn) +. x0 in
-      let b = ((Float.of_int cj +. ((Float.of_int sy +. unit (Sample_key.mix h)) /. fn)) /. fn) +. y0 in
+      let sx = Array.unsafe_get tr.lens_sub cj and sy = Array.unsafe_get tr.lens_sub (n + ci) in
+      let h = Sample_key.key tr.key lens_tag and fn2 = Float.of_int (n * n) in
+      let a = ((Float.of_int ((ci * n) + sx) +. unit h) /. fn2) +. x0 in
+      let b = ((Float.of_int ((cj * n) + sy) +. unit (Sample_key.mix h)) /. fn2) +. y0 in
       u := if a >= 1. then a -. 1. else a;
       v := if b >= 1. then b -. 1. else b
     end;

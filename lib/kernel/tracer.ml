@@ -89,11 +89,10 @@ type t = {
   mutable lens_px : int;  (** The pixel whose lens numbers are cached: [s.lens_u0], [lens_hc]. *)
   mutable lens_py : int;
   mutable lens_hc : int;
-  mutable lens_hx : int;  (** The pixel's keys of its sub-cell permutations, mixed. *)
-  mutable lens_hy : int;
   mutable lens_m : int;  (** The cell permutation's domain whose mask is [lens_w]. *)
   mutable lens_w : int;
-  mutable lens_w1 : int;  (** The mask of the sub-cell permutations' domain, [lens_n - 1]. *)
+  lens_sub : int array;  (** The pixel's sub-cell permutations, for [lens_sub_n]. *)
+  mutable lens_sub_n : int;
   red : float array;
   green : float array;
   blue : float array;
@@ -180,11 +179,10 @@ let rec create ?(averaging = false) (p : Prepared.t) =
     lens_px = min_int;
     lens_py = min_int;
     lens_hc = 0;
-    lens_hx = 0;
-    lens_hy = 0;
     lens_m = 0;
     lens_w = 0;
-    lens_w1 = 0;
+    lens_sub = Array.make (2 * Limits.max_grid) 0;
+    lens_sub_n = 0;
     (* A copy only where a texture writes in it: the other scenes read the
        prepared scene's own arrays. *)
     red = (if Array.length p.texture_of = 0 then p.red else Array.copy p.red);

@@ -108,17 +108,17 @@ type t = {
           sample: the pixel [(lens_px, lens_py)] ([min_int] before the
           first) whose offset is in [s.lens_u0], [s.lens_v0] and whose key
           of the cell permutation, mixed ({!Sample_key.walk}'s [p]), is
-          [lens_hc], those of its two sub-cell permutations [lens_hx] and
-          [lens_hy]; and the cell permutation's last domain [lens_m] ([0]
-          before the first), its mask [lens_w] and the sub-cell
-          permutations' mask [lens_w1] (of [lens_n - 1] values). *)
+          [lens_hc]; the permutation's last domain [lens_m] ([0] before
+          the first) and its mask [lens_w]; and the pixel's two sub-cell
+          permutations of [0 .. lens_sub_n - 1] ([0]: none yet), the
+          first at [lens_sub.(r)], the second at
+          [lens_sub.(lens_sub_n + r)] ([2 Limits.max_grid] ints). *)
   mutable lens_py : int;
   mutable lens_hc : int;
-  mutable lens_hx : int;
-  mutable lens_hy : int;
   mutable lens_m : int;
   mutable lens_w : int;
-  mutable lens_w1 : int;
+  lens_sub : int array;
+  mutable lens_sub_n : int;
   red : float array;
       (** The colour channels of each material, read by the tracing loops:
           [p.red] itself, or, where some material has a texture

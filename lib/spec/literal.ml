@@ -697,8 +697,7 @@ let stratified_lens_point ~key ~gx ~gy ~n ~i ~j =
         let fixing_0 hs r = if r = 0 then 0 else 1 + Sample_key.permute hs ~n:(n - 1) (r - 1) in
         let ci = cell mod n and cj = cell / n in
         let sx = fixing_0 (Sample_key.key hp 3) cj and sy = fixing_0 (Sample_key.key hp 4) ci in
-        let fn = Float.of_int n in
-        let jitter a s hj = (Float.of_int a +. ((Float.of_int s +. Sample_key.unit hj) /. fn)) /. fn in
+        let jitter a s hj = (Float.of_int ((a * n) + s) +. Sample_key.unit hj) /. Float.of_int (n * n) in
         let wrap z = if z >= 1. then z -. 1. else z in
         (wrap (jitter ci sx h +. fst u0), wrap (jitter cj sy (Sample_key.mix h) +. snd u0))
   in

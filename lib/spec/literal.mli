@@ -196,7 +196,7 @@ val lens_point : Camera.t -> key:int -> lens:int * int * int * int * int -> floa
     square, [(ci, cj) = (c mod n, c / n)], and in it the sub-cell
     [(sx, sy) = (s3 cj, s4 ci)], where [sK 0 = 0] and
     [sK r = 1 + permute (key hp K) ~n:(n - 1) (r - 1)]: the point
-    [((ci + (sx + unit h) / n) / n, (cj + (sy + unit (mix h)) / n) / n)
+    [((ci n + sx + unit h) / n^2, (cj n + sy + unit (mix h)) / n^2)
     + u0] modulo 1 ([h = key key (-1)]); then Shirley and Chiu's concentric map onto
     the disc, with the library's [sin] and [cos]. *)
 
