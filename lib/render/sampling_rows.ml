@@ -153,13 +153,17 @@ let blurred pl i cx cy =
   Bigarray.Array1.get pl.blur i > sharp
   ||
   let found = ref false in
-  let y1 = min (pl.my + pl.mh - 1) (cy + reach) and x0 = max pl.mx (cx - reach) and x1 = min (pl.mx + pl.mw - 1) (cx + reach) in
-  let qy = ref (max pl.my (cy - reach)) in
+  (* Integer bounds by hand: [min] and [max] are polymorphic calls. *)
+  let y1 = if cy + reach < pl.my + pl.mh - 1 then cy + reach else pl.my + pl.mh - 1 in
+  let x0 = if cx - reach > pl.mx then cx - reach else pl.mx in
+  let x1 = if cx + reach < pl.mx + pl.mw - 1 then cx + reach else pl.mx + pl.mw - 1 in
+  let qy = ref (if cy - reach > pl.my then cy - reach else pl.my) in
   while (not !found) && !qy <= y1 do
+    let dy = !qy - cy and row = m pl 0 !qy in
     for qx = x0 to x1 do
-      let c = Bigarray.Array1.get pl.blur (m pl qx !qy) in
+      let c = Bigarray.Array1.get pl.blur (row + qx) in
       if c > sharp then begin
-        let dx = qx - cx and dy = !qy - cy in
+        let dx = qx - cx in
         let r = (0.5 *. c) +. 1. in
         if Float.of_int ((dx * dx) + (dy * dy)) <= r *. r then found := true
       end
