@@ -336,13 +336,16 @@ let soft_reference_side = 64
 (* Depth of field: the pixel's N x N grid, one lens point per camera
    sample, drawn independently over the lens disc ([(lens-sampling
    uniform)]: "uniform") or stratified (the default: "stratified"), for
-   N = 1-6; and stratified under [--adaptive T] for odd N, which refines
-   to the full grid the pixels that differ from a neighbour, and those
-   that lie in a first ray's circle of confusion where a probe from the
-   lens's rim sees another object or colour. The reference: stratified
-   48 x 48, 64 times the 6 x 6 top. *)
+   N = 1-6; and stratified under [--adaptive T] for N = 3-7 and 9 (an
+   even N only under a lens: its refined pixels trace the whole grid),
+   which refines to the full grid the pixels that differ from a
+   neighbour, and those that lie in a first ray's circle of confusion
+   where a probe from the lens's rim sees another object or colour. The
+   reference: stratified 48 x 48, 64 times the 6 x 6 top. *)
 let lens_sides = [ 1; 2; 3; 4; 5; 6 ]
-let lens_adaptive = [ (3, 8); (3, 2); (5, 8); (5, 2); (7, 8); (7, 2); (9, 8); (9, 2) ]
+
+let lens_adaptive =
+  [ (3, 8); (3, 2); (4, 8); (4, 2); (5, 8); (5, 2); (6, 8); (6, 2); (7, 8); (7, 2); (9, 8); (9, 2) ]
 let lens_reference_side = 48
 
 (* A ball over a floor under a 2 x 2 panel (the soft-light tests'

@@ -79,7 +79,7 @@ let sampling =
       & info [ "adaptive" ] ~docv:"T"
           ~doc:
             "Adaptive supersampling: trace one ray per pixel, through its centre, then the rest \
-             of the $(b,--samples) grid (an odd N: 3, 5, 7...) only in pixels whose ray hit \
+             of the $(b,--samples) grid (an odd N: 3, 5, 7...; under a lens any N >= 2) only in pixels whose ray hit \
              another object than a neighbour's, or whose colour differs from a neighbour's by \
              more than $(docv) (0-255) in some channel; under a camera with a lens, also in \
              blurred pixels where one of four probe rays from the lens's rim sees another \

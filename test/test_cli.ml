@@ -277,7 +277,10 @@ let tests =
             ([ "--samples"; "0" ], "samples must lie in [1, 64] (an N x N grid per pixel), got 0");
             ( [ "--adaptive"; "8" ],
               "adaptive sampling needs an odd number of samples >= 3, whose grid has the pixel's centre in its \
-               middle, got 1" );
+               middle (or, under a lens, any number >= 2), got 1" );
+            ( [ "--samples"; "4"; "--adaptive"; "8" ],
+              "adaptive sampling needs an odd number of samples >= 3, whose grid has the pixel's centre in its \
+               middle (or, under a lens, any number >= 2), got 4" );
             ([ "--samples"; "3"; "--adaptive"; "300" ], "the adaptive threshold must lie in [0, 255], got 300");
             ([ "--samples"; "2"; "--subsample" ], "subsampling traces one ray per pixel: it cannot be combined with samples > 1");
             ( [ "--literal"; "--samples"; "2" ],

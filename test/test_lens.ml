@@ -290,7 +290,11 @@ let tests =
               (fun (r : Render.Region.t) ->
                 let expected = Image.sub one ~x:r.x ~y:r.y ~w:r.w ~h:r.h in
                 let samples, adaptive =
-                  match what with "samples 3" -> (Some 3, None) | "adaptive" -> (Some 5, Some 4) | _ -> (None, None)
+                  match what with
+                  | "samples 3" -> (Some 3, None)
+                  | "adaptive" -> (Some 5, Some 4)
+                  | "adaptive, even" -> (Some 4, Some 4)
+                  | _ -> (None, None)
                 in
                 match Helpers.render_region ?samples ?adaptive ~jobs:2 s r with
                 | Ok (img, _) -> Helpers.check_images (Format.asprintf "%s, region %a" what Render.Region.pp r) ~expected img
@@ -300,6 +304,7 @@ let tests =
             ("1 sample", fun jobs -> image ~jobs s);
             ("samples 3", fun jobs -> image ~jobs ~samples:3 s);
             ("adaptive", fun jobs -> image ~jobs ~samples:5 ~adaptive:4 s);
+            ("adaptive, even", fun jobs -> image ~jobs ~samples:4 ~adaptive:4 s);
           ]);
     Alcotest.test_case "the blur grows with the aperture" `Quick (fun () ->
         let pin = image ~samples:2 (row "") in
@@ -402,6 +407,36 @@ let tests =
           !beside !missed;
         if !missed > 1 then Alcotest.failf "%d pixels that see the ball in one sample were not refined" !missed;
         if !beside < 8 then Alcotest.failf "only %d pixels of the wall under the ball's blur" !beside);
+    Alcotest.test_case "adaptive under a lens with an even grid: each pixel the one-sample render's or --samples n's"
+      `Quick (fun () ->
+        (* As above for odd grids: the 4 x 4 grid has no centre sample, so
+           a refined pixel traces all 16 (its first ray not reused) and is
+           exactly --samples 4's; the others keep their first ray. The
+           blurred checker wall (circles of about 6 pixels, cells of 5.6)
+           at threshold 255 keeps one ray but where a probe sees the ball;
+           at threshold 8 nearly every cone meets an edge. *)
+        let blurred = wall ~aperture:0.5 ~focus:2. ~wall:5. in
+        let one = image blurred and full = image ~samples:4 blurred in
+        List.iter
+          (fun (th, min_one, min_full) ->
+            let a = image ~samples:4 ~adaptive:th blurred in
+            let as_one = ref 0 and as_full = ref 0 in
+            for y = 0 to 39 do
+              for x = 0 to 39 do
+                let p = Image.get a x y in
+                if p = Image.get one x y then incr as_one
+                else if p = Image.get full x y then incr as_full
+                else Alcotest.failf "threshold %d, pixel (%d, %d): neither one sample's nor --samples 4's" th x y
+              done
+            done;
+            Printf.printf "a blurred wall, 4 x 4, threshold %d: %d pixels as one sample, %d as 4 x 4\n" th !as_one !as_full;
+            if !as_one < min_one || !as_full < min_full then
+              Alcotest.failf "threshold %d: %d pixels as one sample, %d as 4 x 4" th !as_one !as_full)
+          [ (255, 1000, 50); (8, 0, 1000) ];
+        (* Without a lens an even adaptive grid is refused, before any work. *)
+        match Helpers.render ~samples:4 ~adaptive:8 (wall ~aperture:0. ~focus:2. ~wall:5.) with
+        | Ok _ -> Alcotest.fail "a pinhole rendered --samples 4 --adaptive 8"
+        | Error (`Msg m) -> Alcotest.(check string) __LOC__ (Render.Sampling.even_message 4) m);
     Alcotest.test_case "adaptive under a lens: the probes are an estimate, an object between them is missed" `Quick
       (fun () ->
         (* Focused at 5 with a lens of radius 1, the cone of the centre

@@ -65,7 +65,8 @@ let tests =
         | Ok _ -> Alcotest.fail "rendered"
         | Error (`Msg m) ->
             Alcotest.(check string) __LOC__
-              "adaptive sampling needs an odd number of samples >= 3, whose grid has the pixel's centre in its middle, got 2" m);
+              "adaptive sampling needs an odd number of samples >= 3, whose grid has the pixel's centre in its middle (or, \
+               under a lens, any number >= 2), got 2" m);
     Alcotest.test_case "with samples, a pixel's colour is Render.image's pixel with the same samples (cgfs.scene)" `Quick
       (fun () ->
         let cgfs = Helpers.valid (Helpers.load_scene "cgfs.scene") in

@@ -31,8 +31,10 @@ val set_lens_pixel : Tracer.t -> int -> int -> unit
     (-1)], independent from sample to sample. Stratified (the default):
     sample [tr.lens_k] of the [tr.lens_n x tr.lens_n] grid of pixel
     [(tr.lens_gx, tr.lens_gy)] takes a cell of the [n x n] cut of the unit
-    square (permuted per pixel, the centre of an odd grid in cell 0), a
-    jittered point in it, plus the pixel's offset modulo 1 (the centre:
+    square (permuted per pixel, the centre of an odd grid in cell 0), and
+    in it the sub-cell that two more permutations of the pixel's give the
+    cell's column and row (multi-jittered: the pixel's [n^2] points fall
+    one in each of [n^2] columns and rows), a jittered point in that, plus the pixel's offset modulo 1 (the centre:
     the offset itself, the point of the pixel's one-sample ray), mapped
     onto the disc by the concentric map: {!Raytrace.Private.Literal.lens_point}
     states it exactly. The same bytes native and in JavaScript: no libm

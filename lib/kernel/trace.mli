@@ -130,7 +130,8 @@ val sample : t -> int -> int -> i:int -> j:int -> n:int -> unit
     up, both in [\[0, n)]). [sample tr gx gy ~i:0 ~j:0 ~n:1] is exactly
     [pixel tr gx gy]. With a lens, each sample has its own lens point,
     keyed by [Sample_key.camera ~gx ~gy ~di:(2i+1-n) ~dj:(2j+1-n)] and,
-    stratified (the default), one cell each of the lens's [n x n] cut,
+    stratified (the default), one cell each of the lens's [n x n] cut
+    (multi-jittered: one each of its [n^2] columns and rows too),
     the centre of an odd grid taking {!pixel}'s point: the grid's samples
     average over the lens as over the pixel. *)
 

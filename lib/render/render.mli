@@ -22,7 +22,9 @@ val image :
     them); [samples] (default 1: the document's image), [adaptive] and
     [subsample] are the rays per pixel of {!Sampling.v}; [clock] (default
     [Sys.time]) times the statistics. [Error], before anything is
-    allocated, if {!Sampling.v} refuses the sampling settings, or the rays
+    allocated, if {!Sampling.v} refuses the sampling settings or they are
+    adaptive with an even [samples] and the camera has no lens
+    ({!Sampling.even_message}), or the rays
     per pixel or the work of the render exceed [limits] (default
     {!Limits.default}; {!Scene.check_work}); [Error] if no memory can be
     had for the image.

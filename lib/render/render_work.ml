@@ -14,9 +14,16 @@ let inside fn scene (region : Region.t) =
 let check ~limits scene (region : Region.t) (sampling : Sampling.t) =
   let rays_per_pixel = sampling.samples * sampling.samples in
   let* _ = Limits.check_samples limits rays_per_pixel in
-  let probes =
-    if sampling.adaptive <> None && Camera.has_lens (Scene.view (Scene.of_valid scene)).camera then 4 else 0
+  let lens = Camera.has_lens (Scene.view (Scene.of_valid scene)).camera in
+  (* An even adaptive grid has no centre sample for the first ray: under a
+     lens, where the first ray is noise anyway, it is traced whole;
+     without one it would waste or bias the first ray (Sampling). *)
+  let* () =
+    if sampling.adaptive <> None && sampling.samples land 1 = 0 && not lens then
+      Error (`Msg (Sampling.even_message sampling.samples))
+    else Ok ()
   in
+  let probes = if sampling.adaptive <> None && lens then 4 else 0 in
   Scene.check_work ~limits ~samples:(rays_per_pixel + probes) ~pixels:(Region.pixels region) scene
 
 let out_of_memory (region : Region.t) =

@@ -4,6 +4,12 @@ let max_samples = Limits.max_grid
 let max_threshold = 255
 let msg fmt = Printf.ksprintf (fun m -> Error (`Msg m)) fmt
 
+let even_message samples =
+  Printf.sprintf
+    "adaptive sampling needs an odd number of samples >= 3, whose grid has the pixel's centre in its middle (or, under a \
+     lens, any number >= 2), got %d"
+    samples
+
 let v ?(samples = 1) ?adaptive ?(subsample = false) () =
   if samples < 1 || samples > max_samples then
     msg "samples must lie in [1, %d] (an N x N grid per pixel), got %d" max_samples samples
@@ -11,9 +17,7 @@ let v ?(samples = 1) ?adaptive ?(subsample = false) () =
     match adaptive with
     | Some th when th < 0 || th > max_threshold ->
         msg "the adaptive threshold must lie in [0, %d], got %d" max_threshold th
-    | Some _ when samples < 3 || samples land 1 = 0 ->
-        msg "adaptive sampling needs an odd number of samples >= 3, whose grid has the pixel's centre in its middle, got %d"
-          samples
+    | Some _ when samples < 2 -> msg "%s" (even_message samples)
     | _ when subsample && samples > 1 ->
         msg "subsampling traces one ray per pixel: it cannot be combined with samples > 1"
     | _ -> Ok { samples; adaptive; subsample }

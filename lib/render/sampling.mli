@@ -21,7 +21,12 @@
       lens, adaptive sampling never traces more rays than full
       supersampling (under one, at most the four probes of a pixel more). (An even
       [n] has no centre sample: the first ray would be wasted or taken off
-      centre, which measurably raises the error; it is refused.)
+      centre, which measurably raises the error; without a lens the
+      renderers refuse it. Under a lens an even [n] is accepted: a refined
+      pixel traces the whole [n x n] grid, exactly [--samples n]'s, and
+      its first ray is not reused, one ray more than an odd grid's
+      [n^2 - 1]; it fills the ladder between odd sides, see
+      docs/run-time-against-error.md.)
       Under a thin lens ({!Camera.has_lens}), where one ray per pixel of a
       blurred region is noise and the neighbour test refines it at random,
       a pixel the neighbour test leaves is {e probed} when it is
@@ -71,7 +76,10 @@
 
 type t = private {
   samples : int;  (** [n]: at most [n x n] rays per pixel, [1 <= n <= max_samples]. *)
-  adaptive : int option;  (** Adaptive threshold, in [\[0, 255\]] (then [samples] is odd, [>= 3]), or full sampling. *)
+  adaptive : int option;
+      (** Adaptive threshold, in [\[0, 255\]] (then [samples >= 2]; an even
+          [samples] only under a lens, which the renderers check), or full
+          sampling. *)
   subsample : bool;  (** CGFS's subsampling (then [samples = 1], not adaptive). *)
 }
 (** The type for sampling settings.
@@ -85,8 +93,13 @@ val v : ?samples:int -> ?adaptive:int -> ?subsample:bool -> unit -> (t, [> `Msg 
 (** [v ~samples ~adaptive ~subsample ()] is the settings, or [Error] with a
     one-line message if [samples] (default 1) is outside
     [\[1, max_samples\]], [adaptive] is outside [\[0, 255\]] or given with
-    an even [samples] or [samples = 1], or [subsample] (default [false]) is
+    [samples = 1] ({!even_message}), or [subsample] (default [false]) is
     combined with [samples > 1]. *)
+
+val even_message : int -> string
+(** [even_message n] is the one-line message of an adaptive [n] refused:
+    [n < 2], or an even [n] without a lens (which the renderers refuse,
+    {!Raytrace.Render.image}). *)
 
 val one : t
 (** [one] is one ray per pixel through its centre: the document's image. *)

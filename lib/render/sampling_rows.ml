@@ -212,7 +212,9 @@ let refine pl th tr cy =
       || (cy < pl.ch - 1 && differ pl th i (i + mw))
       || (lens && blurred pl i cx cy && probes_differ pl th tr i cx cy)
     then begin
-      Trace.average_reusing tr pl.saved (3 * i) (gx pl cx) gy ~n;
+      (* An even grid, under a lens only, has no centre sample to reuse. *)
+      if n land 1 = 1 then Trace.average_reusing tr pl.saved (3 * i) (gx pl cx) gy ~n
+      else Trace.average tr (gx pl cx) gy ~n;
       Trace.store_average tr buffer k ~count:(n * n)
     end
     else

@@ -40,9 +40,12 @@ type lens_sampling =
   | Stratified
       (** The default: the [n x n] samples of a pixel take one cell each
           of an [n x n] cut of the square mapped onto the lens (the cells
-          shuffled per pixel and shifted by a per-pixel offset), a
-          jittered point in it, mapped onto the disc by the concentric map
-          (Shirley and Chiu), which keeps areas: each point is uniform
+          shuffled per pixel and shifted by a per-pixel offset), and in
+          it one sub-cell of the cell's own [n x n] cut, chosen so that
+          the [n^2] points fall one in each of [n^2] columns and rows of
+          the square (Kensler's correlated multi-jittered sampling), a
+          jittered point in that, mapped onto the disc by the concentric
+          map (Shirley and Chiu), which keeps areas: each point is uniform
           over the disc and the set is stratified. The centre sample of an
           odd grid takes the pixel's offset itself, the point of a
           one-sample render ({!Raytrace.Private.Camera_ray}). *)
