@@ -247,19 +247,35 @@ let scene_tests =
             (match read printed with
             | Error (`Msg m) -> Alcotest.failf "printed scene refused: %s\n%s" m printed
             | Ok back -> Alcotest.(check bool) __LOC__ true (Scene.equal s (Scene.of_valid back))));
-    Alcotest.test_case "a texture is refused where the renderer does not draw it: a transform's own, a CSG operand's" `Quick (fun () ->
-        (* An object's own texture, transformed or used, is drawn in its frame. *)
+    Alcotest.test_case "a texture on a transform, a use or a CSG operand is read where its mapping fits every surface it lies on, refused elsewhere" `Quick (fun () ->
+        (* An object's own texture, transformed or used, is drawn in its
+           frame; a transform's or use's own lies on its object's every
+           surface; a CSG solid's sphere and box operands take theirs. *)
         List.iter
           (fun text -> match read text with Ok _ -> () | Error (`Msg m) -> Alcotest.failf "%s: %s" text m)
           [
             {|(transform ((translate 0 0 1)) (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))))|};
             "(define ball (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file \"earth.ppm\") (mapping spherical))))\n(use ball)";
+            {|(transform ((translate 0 0 1)) (box (min 0 0 0) (max 1 1 1) (color 1 1 1)) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|};
+            "(define ball (sphere (center 0 0 3) (radius 1) (color 1 1 1)))\n(use ball (color 1 1 1) (texture (file \"earth.ppm\") (mapping spherical)))";
+            {|(csg union (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))) (box (min 0 0 0) (max 1 1 1) (color 1 1 1) (texture (file "earth.ppm") (mapping box))))|};
+            {|(transform ((rotate-y 30)) (csg difference (box (min 0 0 0) (max 1 1 1) (color 1 1 1)) (box (min 0.5 0.5 0.5) (max 2 2 2) (color 1 1 1))) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|};
           ];
-        Alcotest.(check string) __LOC__ "s.scene:1:90: a transform takes no texture; textures map onto spheres (spherical), planes (planar), boxes (box) and meshes (uv)"
-          (read_error {|(transform ((translate 0 0 1)) (box (min 0 0 0) (max 1 1 1) (color 1 1 1)) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|});
-        Alcotest.(check string) __LOC__ "s.scene:1:1: object 1 (csg): a CSG solid's operands cannot have a texture yet"
-          (read_error
-             {|(csg union (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))) (box (min 0 0 0) (max 1 1 1) (color 1 1 1)))|});
+        let csg_sphere = {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical)))|} in
+        List.iter
+          (fun (expected, text) -> Alcotest.(check string) __LOC__ expected (read_error text))
+          [
+            ( "s.scene:1:1: its texture lies on its object's surfaces: sphere texture mapping must be spherical, got box",
+              {|(transform ((translate 0 0 1)) (sphere (center 0 0 3) (radius 1) (color 1 1 1)) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|} );
+            ( "s.scene:1:1: its texture lies on its object's surfaces: a triangle takes no texture; textures map onto spheres, planes, boxes and meshes",
+              {|(transform ((translate 0 0 1)) (triangle (vertices (0 0 1) (1 0 1) (0 1 1)) (color 1 1 1)) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|} );
+            ( "s.scene:2:1: its texture lies on its object's surfaces: csg: sphere texture mapping must be spherical, got box",
+              "(define ball (csg union (sphere (center 0 0 3) (radius 1) (color 1 1 1)) (box (min 0 0 0) (max 1 1 1) (color 1 1 1))))\n(use ball (color 1 1 1) (texture (file \"earth.ppm\") (mapping box)))" );
+            ( "s.scene:1:104: box texture mapping must be box, got spherical",
+              {|(csg union (sphere (center 0 0 3) (radius 1) (color 1 1 1)) (box (min 0 0 0) (max 1 1 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))))|} );
+            ( "s.scene:1:1: object 1 (csg): csg: a transformed operand cannot have a texture yet (textures are not carried into an operand's frame)",
+              "(csg union (transform ((translate 1 0 0)) " ^ csg_sphere ^ ") (box (min 0 0 0) (max 1 1 1) (color 1 1 1)))" );
+          ];
         Alcotest.(check string) __LOC__ "s.scene:1:90: sphere has a pattern and a texture; a material's colour comes from one of them"
           (read_error
              {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) (pattern checker (color 0 0 0) (size 1)) (texture (file "earth.ppm") (mapping spherical)))|});

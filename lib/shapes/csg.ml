@@ -171,6 +171,35 @@ let no_pattern p =
     Error (`Msg "csg: a transformed operand cannot have a pattern (patterns are not carried into an object's frame yet)")
   else Ok ()
 
+(* A texture on a leaf: the leaf's kind takes its mapping (as an object
+   of that kind does, {!Shape.validate}); a mesh operand's uv texture
+   would need its triangles' [vt] in the CSG table, and a transformed
+   operand's texture its frame at the hit: neither is drawn yet. *)
+let leaf_texture l (t : Texture_map.t) =
+  let name = match l with Sphere _ -> "sphere" | Box _ -> "box" | Mesh _ -> "mesh" | Primitive p -> Shape_desc.name p | Csg _ | Transformed _ -> "csg" in
+  match (l, Texture_map.mapping_for name) with
+  | Mesh _, _ -> Error (`Msg "csg: a mesh operand cannot have a texture yet")
+  | _, None -> Error (`Msg (Printf.sprintf "csg: a %s takes no texture; textures map onto spheres, planes, boxes and meshes" name))
+  | _, Some m when m <> t.mapping ->
+      Error
+        (`Msg
+          (Printf.sprintf "csg: %s texture mapping must be %s, got %s" name (Texture_map.mapping_name m)
+             (Texture_map.mapping_name t.mapping)))
+  | _, Some _ -> Ok ()
+
+let check_textures ?texture c =
+  List.fold_left
+    (fun acc (l, (m : Material.t), frames) ->
+      match acc with
+      | Error _ -> acc
+      | Ok () -> (
+          match (match texture with Some _ -> texture | None -> m.texture) with
+          | None -> Ok ()
+          | Some _ when frames <> [] ->
+              Error (`Msg "csg: a transformed operand cannot have a texture yet (textures are not carried into an operand's frame)")
+          | Some t -> leaf_texture l t))
+    (Ok ()) (leaves c)
+
 let rec validate c =
   let ( let* ) = Result.bind in
   let* () =
@@ -992,6 +1021,8 @@ let normal tb w (s : Scratch.t) =
   end
 
 let material tb w = Array.unsafe_get tb.surface_material (w.surface lsr tb.slot_bits)
+let geometry tb = tb.geom
+let surface_offset tb w = stride * (w.surface lsr tb.slot_bits)
 let entering w = w.entering
 let take_tests w =
   let n = w.tests in

@@ -384,14 +384,15 @@ let pattern_frame = function
 (* {1 Textures} *)
 
 (* The texture coordinates of [point] on [obj] (in its own frame: a
-   placed object's is looked up there, [local_color]), by the mappings'
+   placed object's is looked up there, [local_color]; a CSG solid's
+   sphere or box leaf's in the solid's frame), by the mappings'
    definitions (Texture_map); a mesh's corner without a [vt] counts as
    [(0, 0)]. *)
 let texture_uv obj (tex : Texture_map.t) point =
   match obj with
-  | Sphere s | Shape (Shape.Sphere s, _) -> Texture_map.spherical ~center:s.center point
+  | Sphere s | Shape (Shape.Sphere s, _) | Csg_surface (_, Csg.Sphere s, _) -> Texture_map.spherical ~center:s.center point
   | Shape (Shape.Plane p, _) -> Texture_map.planar ~point:p.point ~normal:p.normal ~size:tex.size point
-  | Shape (Shape.Box b, _) ->
+  | Shape (Shape.Box b, _) | Csg_surface (_, Csg.Box b, _) ->
       let _, u, v = Texture_map.box ~min:b.min ~max:b.max point in
       (u, v)
   | Mesh_triangle (m, k) ->
