@@ -477,10 +477,17 @@ let light_samples ~key ~number light point =
         let a = if Float.abs w.x > 0.9 then Vec3.oy else Vec3.ox in
         let e1 = Vec3.unit (Vec3.cross a w) in
         let e2 = Vec3.cross w e1 in
+        let c = Light.sectors n in
+        let q = (n + c - 1) / c in
+        let r = Sample_key.unit (Sample_key.key hl (-1)) in
         List.init n (fun j ->
             let h = Sample_key.key hl j in
             let rho = radius *. sqrt (Sample_key.stratum (Sample_key.key h 0) ~n j) in
-            let phi = 2. *. Float.pi *. Sample_key.unit (Sample_key.key h 1) in
+            let a = j mod c and b = Sample_key.permute (Sample_key.key hl (-2)) ~n:q (j / c) in
+            let phi =
+              2. *. Float.pi
+              *. (r +. ((Float.of_int a +. ((Float.of_int b +. Sample_key.unit (Sample_key.key h 1)) /. Float.of_int q)) /. Float.of_int c))
+            in
             let q = Vec3.add (Vec3.add position (Vec3.smul (rho *. cos phi) e1)) (Vec3.smul (rho *. sin phi) e2) in
             (intensity /. Float.of_int n, Vec3.sub q point))
   | Spot { intensity; position; direction; angle; falloff } ->

@@ -221,3 +221,20 @@ let () =
       match Raytrace.Render.image scene with
       | Error (`Msg m) -> failwith m
       | Ok (img, _) -> Printf.printf "textured die: md5 %s\n" (Digest.to_hex (Digest.string (Raytrace.Image.Ppm.to_string img))))
+
+(* A sphere light of 10 samples (3 sectors, 4 blocks of rings, the last
+   short): its angles' permutations ([Sample_key.walk]) and the image, on
+   both builds. *)
+let () =
+  let text =
+    "(canvas (width 32) (height 24)) (camera (position 0 2 -3) (look-at 0 0 2))\n\
+     (plane (point 0 -1 0) (normal 0 1 0) (color 200 200 200))\n\
+     (sphere (center 0 0 2) (radius 0.7) (color 255 80 80) (specular 300))\n\
+     (light ambient (intensity 0.1)) (light sphere (intensity 0.7) (position 1 3 1) (radius 0.8) (samples 10))"
+  in
+  match Raytrace.Scene_file.of_string ~file:"sphere-light.scene" text with
+  | Error (`Msg m) -> failwith m
+  | Ok scene -> (
+      match Raytrace.Render.image ~samples:2 scene with
+      | Error (`Msg m) -> failwith m
+      | Ok (img, _) -> Printf.printf "sphere light: md5 %s\n" (Digest.to_hex (Digest.string (Raytrace.Image.Ppm.to_string img))))
