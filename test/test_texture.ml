@@ -331,8 +331,49 @@ let textured_grid n =
   done;
   Buffer.contents b
 
+(* [contents] written to a temporary file, read by [Files.read_ppm_texture]
+   and by [Files.read_ppm] then [Texture.of_image]: the two results. *)
+let both_readers contents =
+  let path = Filename.temp_file "texture" ".ppm" in
+  Fun.protect
+    ~finally:(fun () -> Sys.remove path)
+    (fun () ->
+      let oc = open_out_bin path in
+      output_string oc contents;
+      close_out oc;
+      let msg r = Result.map_error (fun (`Msg m) -> m) r in
+      ( msg (Raytrace_unix.Files.read_ppm_texture path),
+        msg (Result.map Texture.of_image (Raytrace_unix.Files.read_ppm path)) ))
+
 let file_tests =
   [
+    Alcotest.test_case "a PPM texture read straight into its bytes is the image read whole, errors included" `Quick (fun () ->
+        let p6 ?(maxval = 255) ?(header = "") w h body = Printf.sprintf "P6\n%s%d %d\n%d\n%s" header w h maxval body in
+        let pixels n = String.init (3 * n) (fun k -> Char.chr ((k * 37) mod 256)) in
+        let small = String.init 12 (fun k -> Char.chr (k * 9)) in
+        List.iter
+          (fun (what, contents) ->
+            match both_readers contents with
+            | Ok a, Ok b -> if not (Texture.equal a b) then Alcotest.failf "%s: the textures differ" what
+            | Error a, Error b -> Alcotest.(check string) what b a
+            | Ok _, Error m -> Alcotest.failf "%s: only the whole read failed: %s" what m
+            | Error m, Ok _ -> Alcotest.failf "%s: only the direct read failed: %s" what m)
+          [
+            ("P6 at maxval 255", p6 64 48 (pixels (64 * 48)));
+            ("P6 at maxval 100, scaled", p6 ~maxval:100 2 2 small);
+            ("a P6 sample above maxval", p6 ~maxval:50 2 2 small);
+            ("a commented header", p6 ~header:"# made by hand\n# twice\n" 64 48 (pixels (64 * 48)));
+            (* A header longer than the first read's room: read whole. *)
+            ("a header of 2 MB of comments", p6 ~header:(String.concat "" (List.init 40000 (fun _ -> "# " ^ String.make 50 'x' ^ "\n"))) 4 4 (pixels 16));
+            ("P3", "P3 2 1 255 1 2 3 4 5 6\n");
+            ("truncated pixels", p6 64 48 (pixels 100));
+            ("unexpected data after the pixels", p6 2 2 (pixels 4 ^ "xx"));
+            ("no whitespace after maxval", "P6 1 1 255");
+            ("a bad width", "P6 x 1 255\n...");
+            ("not a PPM", "P5 1 1 255\n.");
+            ("a header cut short", "P6 4 4");
+            ("maxval 0", p6 ~maxval:0 1 1 "abc");
+          ]);
     Alcotest.test_case "a textured mesh read in two parts is the mesh read whole" `Quick (fun () ->
         let text = textured_grid 130 in
         let max_vertices = 100_000 and max_triangles = 100_000 in
