@@ -130,6 +130,13 @@ let tests =
               "(use crate (transform ((rotate-y 35) (translate 0.2 -0.5 4))) (color 9 9 9) " ^ texture ^ "box)))";
               "(define notch (csg difference (box (min -0.5 -0.5 -0.5) (max 0.5 0.5 0.5) (color 1 1 1)) (box (min 0 0 -1) (max 1 1 0) (color 1 1 1))))";
               "(use notch (transform ((scale 0.6) (rotate-x 45) (translate 1.2 -0.6 4))) (color 9 9 9) (specular 10) " ^ texture ^ "box)))";
+              (* Transformed operands: a turned textured box, a used
+                 textured ball, a ball given its texture by its transform. *)
+              "(define globe (sphere (center 0 0 0) (radius 0.35) (color 9 9 9) " ^ texture ^ "spherical))))";
+              "(csg union (transform ((rotate-y 40) (rotate-x 25) (translate 0 1.1 4.5)) (box (min -0.3 -0.3 -0.3) (max 0.3 0.3 0.3) (color 9 9 9) "
+              ^ texture ^ "box)))) (csg difference (use globe (transform ((rotate-z 60) (translate 0.6 1.2 4.5)))) "
+              ^ "(transform ((rotate-y 90) (translate 1.0 1.1 4.2)) (sphere (center 0 0 0) (radius 0.2) (color 1 1 1)) (color 9 9 9) "
+              ^ texture ^ "spherical)))))";
               "(plane (point 0 -1 0) (normal 0 1 0) (color 120 120 120) (reflective 0.3))";
               "(light ambient (intensity 0.3)) (light point (intensity 0.5) (position 2 3 -1))";
             ]
@@ -209,8 +216,8 @@ let tests =
           [
             scene (); scene ~epsilon:"" ();
             scene ~extra:"(sphere (center 0.2 -0.6 2.5) (radius 0.4) (color 200 200 200) (transparency 0.8) (refractive-index 1.3))" ();
-            (* Textured CSG operands, in the world and in a turned
-               object, and a use's own texture. *)
+            (* Textured CSG operands, in the world, in a turned object
+               and turned themselves, and a use's own texture. *)
             scene
               ~extra:
                 ("(csg intersection (box (min -0.5 0.5 3) (max 0.5 1.5 4) (color 9 9 9) " ^ texture
@@ -218,7 +225,9 @@ let tests =
                ^ "(transform ((rotate-y 30) (translate 2 1 5)) (csg difference (sphere (center 0 0 0) (radius 0.6) (color 9 9 9) "
                ^ texture ^ "spherical))) (box (min 0 0 -1) (max 1 1 0) (color 9 9 9))))\n"
                ^ "(define b (sphere (center 0 0 0) (radius 0.4) (color 1 1 1)))\n(use b (transform ((rotate-y 90) (translate -2 1.2 4))) (color 9 9 9) "
-               ^ texture ^ "spherical)))")
+               ^ texture ^ "spherical)))\n"
+               ^ "(csg union (transform ((rotate-y 30) (translate -1 2 5)) (box (min -0.3 -0.3 -0.3) (max 0.3 0.3 0.3) (color 9 9 9) " ^ texture
+               ^ "box)))) (sphere (center -1.3 2 5) (radius 0.3) (color 9 9 9)))")
               ();
           ]);
   ]

@@ -17,8 +17,8 @@
     transformed and instanced ones (in the object's own frame), as a
     transform's or instance's own material (on every surface of its
     object, in the object's frame) and on a CSG solid's sphere and box
-    operands (not yet on its mesh operands nor inside its transformed
-    operands, which {!Shape.validate} refuses): the kernel's own copy of these mappings
+    operands, placed or transformed (not yet on its mesh operands, which
+    {!Shape.validate} refuses): the kernel's own copy of these mappings
     and of {!Texture}'s lookup is [Texturing], and the executable
     specification [Literal] calls the functions below.
 
