@@ -132,6 +132,9 @@ let tests =
               "(use notch (transform ((scale 0.6) (rotate-x 45) (translate 1.2 -0.6 4))) (color 9 9 9) (specular 10) " ^ texture ^ "box)))";
               (* Transformed operands: a turned textured box, a used
                  textured ball, a ball given its texture by its transform. *)
+              (* A mesh with vt used with a uv texture of its own. *)
+              "(define quad (mesh (file \"q.obj\") (scale 0.4) (color 200 40 40)))";
+              "(use quad (transform ((rotate-y -30) (translate -0.2 1.4 6))) (color 9 9 9) " ^ texture ^ "uv)))";
               "(define globe (sphere (center 0 0 0) (radius 0.35) (color 9 9 9) " ^ texture ^ "spherical))))";
               "(csg union (transform ((rotate-y 40) (rotate-x 25) (translate 0 1.1 4.5)) (box (min -0.3 -0.3 -0.3) (max 0.3 0.3 0.3) (color 9 9 9) "
               ^ texture ^ "box)))) (csg difference (use globe (transform ((rotate-z 60) (translate 0.6 1.2 4.5)))) "

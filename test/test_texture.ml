@@ -261,6 +261,7 @@ let scene_tests =
             {|(csg union (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))) (box (min 0 0 0) (max 1 1 1) (color 1 1 1) (texture (file "earth.ppm") (mapping box))))|};
             {|(transform ((rotate-y 30)) (csg difference (box (min 0 0 0) (max 1 1 1) (color 1 1 1)) (box (min 0.5 0.5 0.5) (max 2 2 2) (color 1 1 1))) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|};
             {|(csg union (transform ((translate 1 0 0)) (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical)))) (box (min 0 0 0) (max 1 1 1) (color 1 1 1)))|};
+            "(define m (mesh (file \"m.obj\") (color 1 1 1)))\n(use m (color 1 1 1) (texture (file \"earth.ppm\") (mapping uv)))";
           ];
         let csg_sphere = {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical)))|} in
         List.iter

@@ -56,13 +56,14 @@ let fits name (t : Texture_map.t) =
   | Some _ -> Ok ()
 
 (* A transform's or use's own texture [t] lies on every surface of its
-   object, in the object's frame: each must take [t]'s mapping. A mesh's
-   would need its [vt] in every bottom level that shows it, which only a
-   mesh with its own uv texture has. *)
+   object, in the object's frame: each must take [t]'s mapping (a mesh's
+   uv needs its [vt], which a bottom level keeps for every mesh that has
+   them). *)
 let rec own_texture t = function
   | Instance { shape; _ } -> own_texture t shape
   | Csg c -> Csg.check_textures ~texture:t c
-  | Mesh _ -> Error (`Msg "a transform's or use's own texture cannot lie on a mesh yet (give the mesh its texture)")
+  | Mesh m when t.mapping = Texture_map.Uv && not (Mesh.has_texcoords m) ->
+      Error (`Msg "mesh texture mapping uv needs the mesh's texture coordinates (vt), which it has none of")
   | s -> fits (name s) t
 
 (* The kernel draws a texture on an object of a kind that has a mapping

@@ -80,8 +80,9 @@ val validate : t -> (t, [> `Msg of string ]) result
     texture coordinates). An instance's own material's texture lies on
     every surface of its object, in the object's frame (the frame before
     the transform: a globe turned by a transform turns its map with it),
-    so each of them must take its mapping (a mesh's takes none yet); a
-    CSG solid's operands are checked by {!Csg.check_textures}. *)
+    so each of them must take its mapping (a mesh's [uv] needs its
+    texture coordinates); a CSG solid's operands are checked by
+    {!Csg.check_textures}. *)
 
 val name : t -> string
 (** [name s] is the scene-file form of [s]: ["sphere"], ["plane"], ["triangle"], ["box"], ["mesh"] or ["csg"]. *)
