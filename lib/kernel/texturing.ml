@@ -122,6 +122,12 @@ let[@inline] coordinates (g : Tracer.t) i mapping px py pz =
   let p = g.p and s = g.s in
   if Array.unsafe_get p.kind i = Kind.Csg then begin
     let geom = Csg.geometry p.csg and o = Csg.surface_offset p.csg g.csg in
+    (* A leaf inside transformed operands: the point in their frame, on
+       the ray carried there. *)
+    Csg.enter_surface_frame p.csg g.csg s;
+    let t = s.t in
+    let px = s.ox +. (s.dx *. t) and py = s.oy +. (s.dy *. t) and pz = s.oz +. (s.dz *. t) in
+    Csg.leave_surface_frame p.csg g.csg s;
     if mapping = Prepared.spherical then
       sphere_uv s (Array.unsafe_get geom o) (Array.unsafe_get geom (o + 1)) (Array.unsafe_get geom (o + 2)) px py pz
     else box_uv s geom o px py pz
@@ -133,14 +139,10 @@ let[@inline] coordinates (g : Tracer.t) i mapping px py pz =
 
 let[@inline never] colour_at tr m g i =
   let p = tr.p and s = g.s in
-  (* A CSG leaf inside transformed operands: its point in their frame. *)
-  let framed = Array.unsafe_get g.p.kind i = Kind.Csg in
-  if framed then Csg.enter_surface_frame g.p.csg g.csg s;
   (* The hit point as the tracer computed it, before the robust mode
      moved it off the surface. *)
   let t = s.t in
   let px = s.ox +. (s.dx *. t) and py = s.oy +. (s.dy *. t) and pz = s.oz +. (s.dz *. t) in
-  if framed then Csg.leave_surface_frame g.p.csg g.csg s;
   let k = Array.unsafe_get p.texture_of m in
   let e = Prepared.texture_stride * k and table = p.texture_table in
   let mapping = Array.unsafe_get table (e + 3) in
