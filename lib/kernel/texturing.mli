@@ -15,7 +15,8 @@ val colour : Tracer.t -> int -> int -> unit
     [tr.s] at [tr.s.t] on the object in slot [i], whose kind fits the
     texture's mapping (a sphere for [spherical], a plane for [planar], a
     box for [box], a mesh's triangle for [uv]; a CSG solid whose leaf
-    there is a sphere or a box, the one or the other): the point is taken as
+    there is a sphere or a box, the one or the other, mapped in the frame
+    of the transformed operands around it): the point is taken as
     [O + t D], before the robust mode moves it off the surface. The
     colour stays there until the next call for [m]: the tracer reads it
     at once, before tracing any other ray that may meet [m]. *)

@@ -1032,6 +1032,7 @@ let enter_surface_frame tb w (s : Scratch.t) =
 
 let leave_surface_frame tb w (s : Scratch.t) =
   if Array.unsafe_get tb.surface_frame (w.surface lsr tb.slot_bits) >= 0 then restore w.rays 0 s
+
 let entering w = w.entering
 let take_tests w =
   let n = w.tests in
