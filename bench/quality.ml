@@ -612,9 +612,51 @@ let soft_main ~out ~runs ~only =
   write (path ".md") (fun oc -> output_string oc (soft_summary ~runs rows));
   plot ~path (soft_gnuplot ~runs scenes rows)
 
+(* {1 A sphere light's samples (--sphere-light)}
+
+   A ball and a box under a sphere light alone: the error of [n] samples
+   against [64 n] (4096 at most, the most a light takes), the same
+   sampler, one camera ray a pixel. Printed, not written: the numbers are
+   quoted in docs/run-time-against-error.md. *)
+let sphere_light_scene =
+  {|(canvas (width 160) (height 120))
+(viewport (width 1.3333333333333333) (height 1) (distance 1))
+(camera (position 0 2.2 -1.5) (look-at 0 0 4))
+(plane (point 0 -1 0) (normal 0 1 0) (color 220 220 220))
+(sphere (center -0.8 -0.3 4) (radius 0.6) (color 200 80 60))
+(box (min 0.5 -1 3.4) (max 1.4 0.2 4.3) (color 60 120 200))
+(light ambient (intensity 0.15))
+(light sphere (intensity 0.85) (position 0.2 1.6 3.6) (radius 0.6) (samples 1))|}
+
+let with_sphere_samples scene n =
+  let lights =
+    List.map
+      (fun (l : Light.t) ->
+        match l with Sphere { intensity; position; radius; _ } -> Light.sphere intensity ~position ~radius ~samples:n | l -> l)
+      (Scene.lights scene)
+  in
+  Scene.with_overrides ~lights scene
+
+let sphere_light_main ~runs =
+  let scene = soft_load (`Text sphere_light_scene) (160, 120) in
+  let setting = { family = "soft"; depth = Scene.depth scene; samples = 1; adaptive = None; subsample = false } in
+  Printf.printf "%4s %6s %10s %10s %8s %5s %8s\n" "n" "ref" "time s" "shadow/px" "mean" "max" "rmse";
+  List.iter
+    (fun n ->
+      let r = min Light.max_samples (64 * n) in
+      let reference, _, _, _ = render (with_sphere_samples scene r) setting in
+      let img, (stats : Render.Stats.t), times, _ = measure ~runs (with_sphere_samples scene n) setting in
+      let d = match Image.Diff.compare reference img with Ok d -> d | Error (`Msg m) -> failwith m in
+      (* PSNR = 20 log10 (255 / rmse). *)
+      let rmse = 255. /. (10. ** (d.psnr /. 20.)) in
+      Printf.printf "%4d %6d %10.4f %10.1f %8.4f %5d %8.4f\n%!" n r (median times)
+        (Float.of_int stats.shadow /. Float.of_int stats.pixels)
+        d.mean_abs d.max_abs rmse)
+    [ 4; 9; 16; 36; 64 ]
+
 let () =
   let out = ref "docs" and name = ref "quality" and runs = ref 5 and only = ref [] and half = ref false
-  and soft = ref false in
+  and soft = ref false and sphere_light = ref false in
   Arg.parse
     [
       ("--out", Arg.Set_string out, "DIR  where to write quality.csv, quality.png, quality.md (default docs)");
@@ -623,9 +665,14 @@ let () =
       ("--scene", Arg.String (fun s -> only := s :: !only), "NAME  only this scene (repeatable)");
       ("--half", Arg.Set half, " at half the scene files' canvas sizes (4 times quicker)");
       ("--soft", Arg.Set soft, " soft shadows and depth of field instead: writes soft.{csv,png,md,gp}");
+      ("--sphere-light", Arg.Set sphere_light, " a sphere light's error against 64 times its samples, printed");
     ]
     (fun a -> raise (Arg.Bad ("unexpected argument " ^ a)))
-    "quality [--out DIR] [--name NAME] [--runs R] [--scene NAME] [--half] [--soft]: run time against error";
+    "quality [--out DIR] [--name NAME] [--runs R] [--scene NAME] [--half] [--soft] [--sphere-light]: run time against error";
+  if !sphere_light then begin
+    sphere_light_main ~runs:!runs;
+    exit 0
+  end;
   if !soft then begin
     soft_main ~out:!out ~runs:!runs ~only:!only;
     exit 0

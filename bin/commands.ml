@@ -74,7 +74,7 @@ let load_with_inputs ~limits ~jobs opts =
         let* s = Scene.validate ~limits Scene.cgfs in
         Ok (s, [])
     | Some path ->
-        let* l = Files.load_scene ~limits ~jobs ~read_image:(Image_file.read_file ~limits) path in
+        let* l = Files.load_scene ~limits ~jobs ~read_texture:(Image_file.read_texture ~limits) path in
         Ok (l.scene, l.inputs)
   in
   let* scene = Scene.override ~limits ?width:opts.width ?height:opts.height ?depth:opts.depth scene in

@@ -22,3 +22,11 @@ val read_file : ?limits:Raytrace.Limits.t -> string -> (Raytrace.Image.t, [> `Ms
     and [path] ends in [.png]; and otherwise a PPM file. A file larger than
     a PPM image within [limits] (default {!Raytrace.Limits.default}) is
     refused before it is read. *)
+
+val read_texture : ?limits:Raytrace.Limits.t -> string -> (Raytrace.Image.Texture.t, [> `Msg of string ]) result
+(** [read_texture ~limits path] is the texture of the image in [path], as
+    [Texture.of_image] of {!read_file}'s image, with its errors: a PNG
+    file decoded by {!Png_file.read_file}, a PPM file read by
+    [Raytrace_unix.Files.read_ppm_texture] (its pixels straight into the
+    texture: the reading holds about the texture's size). Only the first
+    8 bytes are read to tell the two apart. *)

@@ -120,6 +120,34 @@ let tests =
         in
         let hard = distinct "(light point (intensity 0.7) (position 0 3 2))" and soft = distinct area in
         if soft < hard + 5 then Alcotest.failf "%d shades under the area light, %d under the point light" soft hard);
+    Alcotest.test_case "a sphere light's samples are stratified in angle: a wall over half its disc stops 7 to 9 of 16, for every key" `Quick
+      (fun () ->
+        (* The light 10 above the point P = 0, of radius 1, P's normal up:
+           w = (0, 1, 0), so e1 = (1, 0, 0) x w = (0, 0, 1) and
+           e2 = w x e1 = (1, 0, 0), and sample j is at x = rho sin phi.
+           The slab x in [0, 5], y in [4, 5] stops the shadow rays of the
+           samples with phi in (0, pi) (turns 0 to 1/2). Of 16 samples
+           (c = 4 sectors of a quarter turn, turned by r; q = 4 blocks of
+           4 rings, one sample a sector each) the half turn holds one
+           whole sector, 4 samples, and two parts of sectors that add up
+           to one: the left part f of one, the right part 1 - f of the
+           other, each sector's 4 samples one in each quarter of it
+           (their blocks' b), so 4 +- 1 of those 8: 7 to 9 stopped, for
+           every key. Each seen sample adds (0.8 / 16) 10 / sqrt (100 +
+           rho^2), in (0.04975, 0.05]: 7 to 9 of them, (0.348, 0.45].
+           Angles drawn independently stop 8 +- 2 (binomial): outside
+           7 to 9 for about half the keys. *)
+        let scene =
+          Helpers.parse_ok
+            "(box (min 0 4 -5) (max 5 5 5) (color 1 1 1)) (light sphere (intensity 0.8) (position 0 10 0) (radius 1) (samples 16))"
+        in
+        for key = 0 to 199 do
+          let i =
+            Private.Literal.compute_lighting ~key scene ~epsilon:1e-3 ~point:Vec3.zero ~normal:(Vec3.v 0. 1. 0.)
+              ~view:(Vec3.v 0. 1. 0.) ~specular:Sphere.matte
+          in
+          if not (i > 0.348 && i <= 0.45) then Alcotest.failf "key %d: intensity %g, not 7 to 9 samples' (0.348, 0.45]" key i
+        done);
     Alcotest.test_case "a 1 x 1 area light of no extent is the point light at its jittered corner cell" `Quick (fun () ->
         (* Tiny edges: every sample lies within 1e-9 of the corner. *)
         let tiny = "(light area (intensity 0.7) (corner 0 3 2) (edge1 1e-9 0 0) (edge2 0 0 1e-9) (samples 1 1))" in

@@ -107,6 +107,70 @@ let tests =
         in
         as_the_oracle "document's mode" (read (text "(epsilon 0.001)"));
         as_the_oracle "robust mode" (read (text "")));
+    Alcotest.test_case "textures on a CSG solid's operands and as a transform's or use's own material are drawn as the oracle draws them" `Quick
+      (fun () ->
+        (* A die: the intersection of a textured box and a textured ball,
+           turned by a transform (its bottom level); a bare CSG solid with
+           a textured ball less a plain box; a globe given its texture by
+           its transform; a defined crate used with a textured material,
+           and a defined notched box (a CSG solid of two boxes) used with
+           one (the texture on every leaf). *)
+        let die = "(csg intersection (box (min -0.5 -0.5 -0.5) (max 0.5 0.5 0.5) (color 9 9 9) " ^ texture ^ "box)))"
+          ^ " (sphere (center 0 0 0) (radius 0.68) (color 9 9 9) (specular 40) " ^ texture ^ "spherical))))" in
+        let text epsilon =
+          String.concat "\n"
+            [
+              "(canvas (width 64) (height 48)) (background 20 20 20) " ^ epsilon;
+              "(transform ((rotate-y 30) (rotate-x 20) (translate -1.3 0.6 5)) " ^ die ^ ")";
+              "(csg difference (sphere (center 1.3 0.6 5) (radius 0.8) (color 9 9 9) " ^ texture
+              ^ "spherical))) (box (min 1.3 0.6 3) (max 3 3 5) (color 200 40 40)))";
+              "(transform ((rotate-z 23) (translate -1.1 -0.6 4)) (sphere (center 0 0 0) (radius 0.5) (color 9 9 9)) (color 9 9 9) "
+              ^ texture ^ "spherical)))";
+              "(define crate (box (min -0.4 -0.4 -0.4) (max 0.4 0.4 0.4) (color 200 40 40)))";
+              "(use crate (transform ((rotate-y 35) (translate 0.2 -0.5 4))) (color 9 9 9) " ^ texture ^ "box)))";
+              "(define notch (csg difference (box (min -0.5 -0.5 -0.5) (max 0.5 0.5 0.5) (color 1 1 1)) (box (min 0 0 -1) (max 1 1 0) (color 1 1 1))))";
+              "(use notch (transform ((scale 0.6) (rotate-x 45) (translate 1.2 -0.6 4))) (color 9 9 9) (specular 10) " ^ texture ^ "box)))";
+              (* Transformed operands: a turned textured box, a used
+                 textured ball, a ball given its texture by its transform. *)
+              (* A mesh with vt used with a uv texture of its own. *)
+              "(define quad (mesh (file \"q.obj\") (scale 0.4) (color 200 40 40)))";
+              "(use quad (transform ((rotate-y -30) (translate -0.2 1.4 6))) (color 9 9 9) " ^ texture ^ "uv)))";
+              "(define globe (sphere (center 0 0 0) (radius 0.35) (color 9 9 9) " ^ texture ^ "spherical))))";
+              "(csg union (transform ((rotate-y 40) (rotate-x 25) (translate 0 1.1 4.5)) (box (min -0.3 -0.3 -0.3) (max 0.3 0.3 0.3) (color 9 9 9) "
+              ^ texture ^ "box)))) (csg difference (use globe (transform ((rotate-z 60) (translate 0.6 1.2 4.5)))) "
+              ^ "(transform ((rotate-y 90) (translate 1.0 1.1 4.2)) (sphere (center 0 0 0) (radius 0.2) (color 1 1 1)) (color 9 9 9) "
+              ^ texture ^ "spherical)))))";
+              "(plane (point 0 -1 0) (normal 0 1 0) (color 120 120 120) (reflective 0.3))";
+              "(light ambient (intensity 0.3)) (light point (intensity 0.5) (position 2 3 -1))";
+            ]
+        in
+        let s = read (text "(epsilon 0.001)") in
+        as_the_oracle "document's mode" s;
+        as_the_oracle "robust mode" (read (text ""));
+        let n = Hashtbl.length (Test_pattern.colours (Helpers.image_exn s)) in
+        if n < 200 then Alcotest.failf "only %d colours: the textures are not drawn" n);
+    Alcotest.test_case "a globe turned a quarter about y by its transform shows its map a quarter turn on" `Quick (fun () ->
+        (* rotate-y 90 takes the object's point (x, y, z) to the world's
+           (z, y, -x) (exact: its sines and cosines are 0 and 1). The
+           world's point facing the camera, d = (0, 0, -1), is the object's
+           (1, 0, 0): u = 0.5 + atan2 1 0 / 2 pi = 0.75, where the unturned
+           globe shows u = 0.5. Everywhere the turned globe shows the
+           unturned one's colour at u + 0.25: the image rolled left by one
+           column of four. Colours within 1 (the turned ray's roots round
+           on their own). *)
+        let bytes = Texture.bytes image in
+        (* Pixel (x, y) of the rolled image is pixel (x + 1 mod 4, y). *)
+        let rolled = Texture.v ~width:4 ~height:2 (String.init 24 (fun k -> let px = k / 3 in bytes.[(3 * ((4 * (px / 4)) + ((px + 1) mod 4))) + (k mod 3)])) in
+        let globe ops = "(canvas (width 48) (height 48)) (viewport (width 1) (height 1) (distance 1)) (epsilon 0.001)\n"
+          ^ "(transform (" ^ ops ^ "(translate 0 0 3)) (sphere (center 0 0 0) (radius 1) (color 9 9 9)) (color 9 9 9) " ^ texture
+          ^ "spherical)))\n(light ambient (intensity 1))" in
+        let turned = Helpers.image_exn (read (globe "(rotate-y 90) ")) in
+        let plain = Helpers.image_exn (read ~image:rolled (globe "")) in
+        Helpers.check_images ~max_abs:1 __LOC__ ~expected:plain turned;
+        (* Not the unturned globe with the image as it is. *)
+        match Image.Diff.compare (Helpers.image_exn (read (globe ""))) turned with
+        | Ok d -> if d.differing < 500 then Alcotest.failf "only %d pixels differ from the unturned map" d.differing
+        | Error (`Msg m) -> Alcotest.fail m);
     Alcotest.test_case "random textured scenes are drawn as the oracle draws them, and the skips change no byte" `Slow (fun () ->
         (* The property tests' scenes (every light, material and shape, both
            modes), textures on half their spheres, planes and boxes. *)
@@ -155,5 +219,18 @@ let tests =
           [
             scene (); scene ~epsilon:"" ();
             scene ~extra:"(sphere (center 0.2 -0.6 2.5) (radius 0.4) (color 200 200 200) (transparency 0.8) (refractive-index 1.3))" ();
+            (* Textured CSG operands, in the world, in a turned object
+               and turned themselves, and a use's own texture. *)
+            scene
+              ~extra:
+                ("(csg intersection (box (min -0.5 0.5 3) (max 0.5 1.5 4) (color 9 9 9) " ^ texture
+               ^ "box))) (sphere (center 0 1 3.5) (radius 0.68) (color 9 9 9) " ^ texture ^ "spherical))))\n"
+               ^ "(transform ((rotate-y 30) (translate 2 1 5)) (csg difference (sphere (center 0 0 0) (radius 0.6) (color 9 9 9) "
+               ^ texture ^ "spherical))) (box (min 0 0 -1) (max 1 1 0) (color 9 9 9))))\n"
+               ^ "(define b (sphere (center 0 0 0) (radius 0.4) (color 1 1 1)))\n(use b (transform ((rotate-y 90) (translate -2 1.2 4))) (color 9 9 9) "
+               ^ texture ^ "spherical)))\n"
+               ^ "(csg union (transform ((rotate-y 30) (translate -1 2 5)) (box (min -0.3 -0.3 -0.3) (max 0.3 0.3 0.3) (color 9 9 9) " ^ texture
+               ^ "box)))) (sphere (center -1.3 2 5) (radius 0.3) (color 9 9 9)))")
+              ();
           ]);
   ]

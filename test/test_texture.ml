@@ -247,19 +247,44 @@ let scene_tests =
             (match read printed with
             | Error (`Msg m) -> Alcotest.failf "printed scene refused: %s\n%s" m printed
             | Ok back -> Alcotest.(check bool) __LOC__ true (Scene.equal s (Scene.of_valid back))));
-    Alcotest.test_case "a texture is refused where the renderer does not draw it: a transform's own, a CSG operand's" `Quick (fun () ->
-        (* An object's own texture, transformed or used, is drawn in its frame. *)
+    Alcotest.test_case "a texture on a transform, a use or a CSG operand is read where its mapping fits every surface it lies on, refused elsewhere" `Quick (fun () ->
+        (* An object's own texture, transformed or used, is drawn in its
+           frame; a transform's or use's own lies on its object's every
+           surface; a CSG solid's sphere and box operands take theirs. *)
         List.iter
           (fun text -> match read text with Ok _ -> () | Error (`Msg m) -> Alcotest.failf "%s: %s" text m)
           [
             {|(transform ((translate 0 0 1)) (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))))|};
             "(define ball (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file \"earth.ppm\") (mapping spherical))))\n(use ball)";
+            {|(transform ((translate 0 0 1)) (box (min 0 0 0) (max 1 1 1) (color 1 1 1)) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|};
+            "(define ball (sphere (center 0 0 3) (radius 1) (color 1 1 1)))\n(use ball (color 1 1 1) (texture (file \"earth.ppm\") (mapping spherical)))";
+            {|(csg union (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))) (box (min 0 0 0) (max 1 1 1) (color 1 1 1) (texture (file "earth.ppm") (mapping box))))|};
+            {|(transform ((rotate-y 30)) (csg difference (box (min 0 0 0) (max 1 1 1) (color 1 1 1)) (box (min 0.5 0.5 0.5) (max 2 2 2) (color 1 1 1))) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|};
+            {|(csg union (transform ((translate 1 0 0)) (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical)))) (box (min 0 0 0) (max 1 1 1) (color 1 1 1)))|};
+            "(define m (mesh (file \"m.obj\") (color 1 1 1)))\n(use m (color 1 1 1) (texture (file \"earth.ppm\") (mapping uv)))";
           ];
-        Alcotest.(check string) __LOC__ "s.scene:1:90: a transform takes no texture; textures map onto spheres (spherical), planes (planar), boxes (box) and meshes (uv)"
-          (read_error {|(transform ((translate 0 0 1)) (box (min 0 0 0) (max 1 1 1) (color 1 1 1)) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|});
-        Alcotest.(check string) __LOC__ "s.scene:1:1: object 1 (csg): a CSG solid's operands cannot have a texture yet"
-          (read_error
-             {|(csg union (sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))) (box (min 0 0 0) (max 1 1 1) (color 1 1 1)))|});
+        let csg_sphere = {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical)))|} in
+        List.iter
+          (fun (expected, text) -> Alcotest.(check string) __LOC__ expected (read_error text))
+          [
+            ( "s.scene:1:1: its texture lies on its object's surfaces: sphere texture mapping must be spherical, got box",
+              {|(transform ((translate 0 0 1)) (sphere (center 0 0 3) (radius 1) (color 1 1 1)) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|} );
+            ( "s.scene:1:1: its texture lies on its object's surfaces: a triangle takes no texture; textures map onto spheres, planes, boxes and meshes",
+              {|(transform ((translate 0 0 1)) (triangle (vertices (0 0 1) (1 0 1) (0 1 1)) (color 1 1 1)) (color 1 1 1) (texture (file "earth.ppm") (mapping box)))|} );
+            ( "s.scene:2:1: its texture lies on its object's surfaces: csg: sphere texture mapping must be spherical, got box",
+              "(define ball (csg union (sphere (center 0 0 3) (radius 1) (color 1 1 1)) (box (min 0 0 0) (max 1 1 1) (color 1 1 1))))\n(use ball (color 1 1 1) (texture (file \"earth.ppm\") (mapping box)))" );
+            ( "s.scene:1:104: box texture mapping must be box, got spherical",
+              {|(csg union (sphere (center 0 0 3) (radius 1) (color 1 1 1)) (box (min 0 0 0) (max 1 1 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))))|} );
+          ];
+        (* A closed mesh (a tetrahedron) with vt: a uv texture on it as an
+           operand is refused, not yet drawn. *)
+        let tetra = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nf 1/1 3/1 2/1\nf 1/1 2/1 4/1\nf 1/1 4/1 3/1\nf 2/1 3/1 4/1\n" in
+        (match
+          Scene_file.of_string ~load_texture ~load_mesh:(fun _ -> Ok (obj tetra)) ~file:"s.scene"
+            ("(csg union " ^ csg_sphere ^ " (mesh (file \"m.obj\") (color 1 1 1) (texture (file \"earth.ppm\") (mapping uv))))")
+        with
+        | Ok _ -> Alcotest.fail "a mesh operand's texture was accepted"
+        | Error (`Msg m) -> Alcotest.(check string) __LOC__ "s.scene:1:1: object 1 (csg): csg: a mesh operand cannot have a texture yet" m);
         Alcotest.(check string) __LOC__ "s.scene:1:90: sphere has a pattern and a texture; a material's colour comes from one of them"
           (read_error
              {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) (pattern checker (color 0 0 0) (size 1)) (texture (file "earth.ppm") (mapping spherical)))|});
@@ -315,8 +340,49 @@ let textured_grid n =
   done;
   Buffer.contents b
 
+(* [contents] written to a temporary file, read by [Files.read_ppm_texture]
+   and by [Files.read_ppm] then [Texture.of_image]: the two results. *)
+let both_readers contents =
+  let path = Filename.temp_file "texture" ".ppm" in
+  Fun.protect
+    ~finally:(fun () -> Sys.remove path)
+    (fun () ->
+      let oc = open_out_bin path in
+      output_string oc contents;
+      close_out oc;
+      let msg r = Result.map_error (fun (`Msg m) -> m) r in
+      ( msg (Raytrace_unix.Files.read_ppm_texture path),
+        msg (Result.map Texture.of_image (Raytrace_unix.Files.read_ppm path)) ))
+
 let file_tests =
   [
+    Alcotest.test_case "a PPM texture read straight into its bytes is the image read whole, errors included" `Quick (fun () ->
+        let p6 ?(maxval = 255) ?(header = "") w h body = Printf.sprintf "P6\n%s%d %d\n%d\n%s" header w h maxval body in
+        let pixels n = String.init (3 * n) (fun k -> Char.chr ((k * 37) mod 256)) in
+        let small = String.init 12 (fun k -> Char.chr (k * 9)) in
+        List.iter
+          (fun (what, contents) ->
+            match both_readers contents with
+            | Ok a, Ok b -> if not (Texture.equal a b) then Alcotest.failf "%s: the textures differ" what
+            | Error a, Error b -> Alcotest.(check string) what b a
+            | Ok _, Error m -> Alcotest.failf "%s: only the whole read failed: %s" what m
+            | Error m, Ok _ -> Alcotest.failf "%s: only the direct read failed: %s" what m)
+          [
+            ("P6 at maxval 255", p6 64 48 (pixels (64 * 48)));
+            ("P6 at maxval 100, scaled", p6 ~maxval:100 2 2 small);
+            ("a P6 sample above maxval", p6 ~maxval:50 2 2 small);
+            ("a commented header", p6 ~header:"# made by hand\n# twice\n" 64 48 (pixels (64 * 48)));
+            (* A header longer than the first read's room: read whole. *)
+            ("a header of 2 MB of comments", p6 ~header:(String.concat "" (List.init 40000 (fun _ -> "# " ^ String.make 50 'x' ^ "\n"))) 4 4 (pixels 16));
+            ("P3", "P3 2 1 255 1 2 3 4 5 6\n");
+            ("truncated pixels", p6 64 48 (pixels 100));
+            ("unexpected data after the pixels", p6 2 2 (pixels 4 ^ "xx"));
+            ("no whitespace after maxval", "P6 1 1 255");
+            ("a bad width", "P6 x 1 255\n...");
+            ("not a PPM", "P5 1 1 255\n.");
+            ("a header cut short", "P6 4 4");
+            ("maxval 0", p6 ~maxval:0 1 1 "abc");
+          ]);
     Alcotest.test_case "a textured mesh read in two parts is the mesh read whole" `Quick (fun () ->
         let text = textured_grid 130 in
         let max_vertices = 100_000 and max_triangles = 100_000 in

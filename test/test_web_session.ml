@@ -122,6 +122,13 @@ let tests =
             Alcotest.(check string) __LOC__
               "scene:1:58: cannot read texture file moon.png: the page reads no files; its textures are the example scenes' earth.ppm and tiles.ppm"
               m);
+    Alcotest.test_case "the textured die (textures on CSG operands and on a use's own material) renders as raytrace render's" `Quick
+      (fun () ->
+        let text = match File_io.read (Helpers.scene_path "textured-die.scene") with Ok t -> t | Error (`Msg m) -> Alcotest.fail m in
+        let p = session text in
+        small p;
+        let expected = Helpers.image_exn (Session.view p).scene in
+        Helpers.check_images __LOC__ ~expected (finish p));
     Alcotest.test_case "a step traces at least one band and stops at its deadline" `Quick (fun () ->
         let p = session (cgfs_text ()) in
         (* The ticking clock passes [until] at the first reading after a band. *)

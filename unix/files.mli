@@ -27,9 +27,10 @@ val load_scene :
   ?split_bytes:int ->
   ?on_part:(int -> unit) ->
   ?read_image:(string -> (Image.t, [ `Msg of string ]) result) ->
+  ?read_texture:(string -> (Image.Texture.t, [ `Msg of string ]) result) ->
   string ->
   (loaded, [> `Msg of string ]) result
-(** [load_scene ~limits ~jobs ~split_bytes ~on_part ~read_image path]
+(** [load_scene ~limits ~jobs ~split_bytes ~on_part ~read_image ~read_texture path]
     is {!read_scene} with the files the scene read. *)
 
 val inputs_digest : input list -> (string, [> `Msg of string ]) result
@@ -46,14 +47,16 @@ val read_scene :
   ?split_bytes:int ->
   ?on_part:(int -> unit) ->
   ?read_image:(string -> (Image.t, [ `Msg of string ]) result) ->
+  ?read_texture:(string -> (Image.Texture.t, [ `Msg of string ]) result) ->
   string ->
   (Scene.valid, [> `Msg of string ]) result
-(** [read_scene ~limits ~jobs ~split_bytes ~on_part ~read_image path]
+(** [read_scene ~limits ~jobs ~split_bytes ~on_part ~read_image ~read_texture path]
     is the scene in file [path] ({!Raytrace.Scene_file.of_string} with
     [~file:path]), its meshes read by {!read_mesh} with
-    [jobs] and [split_bytes], its textures' images by [read_image]
-    (default: PPM files only, {!Raytrace.Image.Ppm} within [limits]; pass
-    [Raytrace_png.Image_file.read_file] for PNG too), a texture file's
+    [jobs] and [split_bytes], its textures by [read_texture], else as
+    images by [read_image], else by {!read_ppm_texture} (PPM files only,
+    within [limits]; pass [Raytrace_png.Image_file.read_texture] for PNG
+    too), a texture file's
     error prefixed by ["cannot read texture file: "]; a file larger than the [`Scene_bytes]
     bound of [limits] (default {!Raytrace.Limits.default}) is refused
     before it is read. A regular file is read a window at a time
@@ -105,6 +108,13 @@ val read_mesh :
     the child's part is joined, with the number [k] of its triangles and
     the id [pid] of the process that read it (this one's where no process
     could be forked). *)
+
+val read_ppm_texture : ?limits:Limits.t -> string -> (Image.Texture.t, [> `Msg of string ]) result
+(** [read_ppm_texture ~limits path] is the texture of the PPM file
+    [path], a regular file, as [Texture.of_image] of {!read_ppm}'s image,
+    with its errors, but read by {!Raytrace.Image.Ppm.texture_of_channel}:
+    a P6 file's pixels go straight into the texture, so its reading holds
+    about the texture's size, not three times it. *)
 
 val read_ppm : ?limits:Limits.t -> string -> (Image.t, [> `Msg of string ]) result
 (** [read_ppm ~limits path] reads and decodes the PPM file [path]. A file

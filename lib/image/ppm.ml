@@ -135,6 +135,64 @@ let decode ~limits s =
 
 let of_string ?(limits = Limits.default) s = match decode ~limits s with img -> Ok img | exception Bad m -> Error (`Msg m)
 
+(* The header's room: a P6 header of comments may take 1 MiB
+   ([check_file_size]); past that the whole file is read as before. *)
+let header_room = 1048576 + 4096
+
+(* A P6 file's pixels read straight into the texture's string: the file's
+   first [header_room] bytes (or all of it), then the rest of its pixels
+   into the bytes that become the texture. Only the texture is held, not
+   the file's text and an image as well ([of_string] then
+   [Texture.of_image]: three times the pixels). The checks and their
+   messages are [decode]'s, in its order; a P3 file, or a header that
+   does not end within the room, is read whole and decoded by [decode]. *)
+let texture_of_channel ?(limits = Limits.default) ic ~length =
+  let whole prefix =
+    let rest = really_input_string ic (length - String.length prefix) in
+    let img = decode ~limits (prefix ^ rest) in
+    Texture.of_image img
+  in
+  let read () =
+    let prefix = really_input_string ic (min length header_room) in
+    let in_header () = raise Exit in
+    let binary = String.length prefix >= 3 && String.sub prefix 0 2 = "P6" && is_space prefix.[2] in
+    match
+      if not binary then None
+      else
+        let w, _, pos = number ~at_end:in_header "width" prefix 2 in
+        let h, _, pos = number ~at_end:in_header "height" prefix pos in
+        let maxval, _, pos = number ~at_end:in_header "maxval" prefix pos in
+        (* The maxval's token may go on past the room: not its end. *)
+        if pos >= String.length prefix && String.length prefix < length then None else Some (w, h, maxval, pos)
+    with
+    | exception Exit -> whole prefix
+    | None -> whole prefix
+    | Some (w, h, maxval, pos) ->
+        (match Limits.check_image_size limits w h with Ok () -> () | Error (`Msg m) -> bad "%s" m);
+        if maxval < 1 || maxval > 255 then bad "maxval must lie in [1, 255], got %d" maxval;
+        let n = 3 * w * h in
+        let start = pos + 1 in
+        if pos >= length || not (is_space prefix.[pos]) then bad "missing whitespace after maxval at byte %d" pos;
+        let avail = length - start in
+        if avail < n then bad "pixel data is truncated: %d of %d bytes" avail n;
+        if avail > n then bad "%d bytes of unexpected data after the pixels" (avail - n);
+        let b = Bytes.create n in
+        let have = String.length prefix - start in
+        Bytes.blit_string prefix start b 0 have;
+        really_input ic b have (n - have);
+        if maxval < 255 then
+          for k = 0 to n - 1 do
+            let v = Char.code (Bytes.unsafe_get b k) in
+            if v > maxval then bad "sample %d at byte %d exceeds maxval %d" v (start + k) maxval;
+            Bytes.unsafe_set b k (Char.unsafe_chr (((v * 255) + (maxval / 2)) / maxval))
+          done;
+        Texture.v ~width:w ~height:h (Bytes.unsafe_to_string b)
+  in
+  match read () with
+  | t -> Ok t
+  | exception Bad m -> Error (`Msg m)
+  | exception End_of_file -> Error (`Msg "the file ended before its length: was it written to while read?")
+
 (* A P6 image at the pixel bound, with room for a long commented header;
    anything larger is refused before it is read. *)
 let check_file_size ?(limits = Limits.default) n =

@@ -37,6 +37,16 @@ val of_string : ?limits:Limits.t -> string -> (Image.t, [> `Msg of string ]) res
     {!Limits.check_image_size} allows with [limits] (default
     {!Limits.default}; checked before any allocation). It never raises. *)
 
+val texture_of_channel : ?limits:Limits.t -> in_channel -> length:int -> (Texture.t, [> `Msg of string ]) result
+(** [texture_of_channel ~limits ic ~length] is the texture of the PPM
+    file of [length] bytes read from [ic] (at its start), as
+    [Texture.of_image] of {!of_string} of the file's contents: the same
+    pixels, the same errors. A P6 file's pixels are read straight into
+    the texture's bytes, so that reading it holds little more than the
+    texture (a P3 file's text, or a P6 header longer than 1 MiB, is read
+    whole and decoded by {!of_string}). [Error] too if [ic] ends before
+    [length] bytes. Never raises but [Sys_error] from [ic]. *)
+
 val check_file_size : ?limits:Limits.t -> int -> (int, [> `Msg of string ]) result
 (** [check_file_size ~limits n] is [Ok n] if [n] bytes can hold an image
     within the pixel bound of [limits] (default {!Limits.default}): at most

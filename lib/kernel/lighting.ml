@@ -255,10 +255,28 @@ let[@inline] sphere tr ~through ~shiny ~specular_of m l length_n length_v =
     let inv = 1. /. l1 in
     let e1x = inv *. e1x and e1y = inv *. e1y and e1z = inv *. e1z in
     let e2x = (wy *. e1z) -. (wz *. e1y) and e2y = (wz *. e1x) -. (wx *. e1z) and e2z = (wx *. e1y) -. (wy *. e1x) in
+    (* The angles, stratified with the rings (Light, "Sample points"):
+       [c] sectors, turned by [r]; ring [j]'s [a = j mod c], its block's
+       [b] (a permutation of the [q] blocks, one walk a block). *)
+    let c = Light.sectors n in
+    let q = (n + c - 1) / c in
+    let r = unit (Sample_key.key hl (-1)) in
+    let pb = Sample_key.mix (Sample_key.key hl (-2)) and wb = Sample_key.mask q in
+    let fc = Float.of_int c and fq = Float.of_int q in
+    let a = ref 0 and block = ref 0 and b = ref (Sample_key.walk ~p:pb ~w:wb ~n:q 0) in
     for j = 0 to n - 1 do
       let h = Sample_key.key hl j in
       let rho = radius *. sqrt (stratum (Sample_key.key h 0) n j) in
-      let phi = 2. *. Float.pi *. (Float.of_int (Sample_key.mix (Sample_key.key h 1)) *. 0x1p-31) in
+      let phi =
+        2. *. Float.pi
+        *. (r +. ((Float.of_int !a +. ((Float.of_int !b +. (Float.of_int (Sample_key.mix (Sample_key.key h 1)) *. 0x1p-31)) /. fq)) /. fc))
+      in
+      if !a = c - 1 then begin
+        a := 0;
+        incr block;
+        if !block < q then b := Sample_key.walk ~p:pb ~w:wb ~n:q !block
+      end
+      else incr a;
       let c1 = rho *. cos phi and c2 = rho *. sin phi in
       s.dx <- cx +. (c1 *. e1x) +. (c2 *. e2x) -. px;
       s.dy <- cy +. (c1 *. e1y) +. (c2 *. e2y) -. py;

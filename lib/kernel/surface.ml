@@ -194,11 +194,10 @@ and instance_normal tr i =
    ([tr.inner_material]) in this scene's numbering, or, where that has a
    pattern, its second colour's if the pattern says so. The pattern lies
    in the object's frame: looked up on the ray still carried there, in
-   the bottom level's record, with the normal in that frame. A texture of
-   the object's likewise: its colour found by the bottom level's tracer,
-   on the carried ray, at the hit it found, and copied to this tracer's
-   colour arrays (an instance's own material has no texture:
-   Shape.validate). *)
+   the bottom level's record, with the normal in that frame. A texture
+   likewise, the object's own or the instance's own material's: the
+   world's material [m]'s texture, mapped on the surface the bottom
+   level's tracer found, on the carried ray, at the hit it found. *)
 and[@inline never] instance_material tr i =
   let inst = tr.p.instances in
   let n = Traversal.instance_number tr i in
@@ -207,10 +206,7 @@ and[@inline never] instance_material tr i =
   let placed = inst.placed_alternate and world = tr.p.alternate in
   if Array.length world > 0 && Array.unsafe_get world m = Prepared.textured_material then begin
     let sub = Array.unsafe_get tr.inner (Array.unsafe_get inst.bottom n) in
-    Texturing.colour sub sub.hit inner;
-    Array.unsafe_set tr.red m (Array.unsafe_get sub.red inner);
-    Array.unsafe_set tr.green m (Array.unsafe_get sub.green inner);
-    Array.unsafe_set tr.blue m (Array.unsafe_get sub.blue inner);
+    Texturing.colour_at tr m sub sub.hit;
     m
   end
   else if Array.length placed = 0 then m

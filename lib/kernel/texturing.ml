@@ -9,8 +9,8 @@ let two_pi = 2. *. pi
    Texture_map's documentation, computed with the same operations where it
    can be (a plane's unit normal is the one stored, not recomputed). *)
 
-let[@inline] sphere_uv (p : Prepared.t) s i px py pz =
-  let dx = px -. Array.unsafe_get p.cx i and dy = py -. Array.unsafe_get p.cy i and dz = pz -. Array.unsafe_get p.cz i in
+let[@inline] sphere_uv s cx cy cz px py pz =
+  let dx = px -. cx and dy = py -. cy and dz = pz -. cz in
   let n = sqrt ((dx *. dx) +. (dy *. dy) +. (dz *. dz)) in
   if not (n > 0.) then begin
     s.tu <- 0.5;
@@ -45,8 +45,7 @@ let[@inline] fraction lo hi x = if hi > lo then (x -. lo) /. (hi -. lo) else 0.
 
 (* The face nearest the point, the first in Texture_map's order on a tie
    (a later face wins only when strictly nearer), then its (u, v). *)
-let[@inline] box_uv (p : Prepared.t) s i px py pz =
-  let g = p.geom and o = Kind.stride * Array.unsafe_get p.at0 i in
+let[@inline] box_uv s g o px py pz =
   let x0 = Array.unsafe_get g o and y0 = Array.unsafe_get g (o + 1) and z0 = Array.unsafe_get g (o + 2) in
   let x1 = Array.unsafe_get g (o + 3) and y1 = Array.unsafe_get g (o + 4) and z1 = Array.unsafe_get g (o + 5) in
   let face = 0 and best = Float.abs (px -. x0) in
@@ -114,8 +113,32 @@ let[@inline] blend x k00 k10 k01 k11 tx ty =
   let bottom = b +. (tx *. (byte x k11 -. b)) in
   top +. (ty *. (bottom -. top))
 
-let[@inline never] colour tr i m =
-  let p = tr.p and s = tr.s in
+(* The texture coordinates, into [s.tu] and [s.tv], of the point
+   [px, py, pz] on the surface that tracer [g]'s last hit found in slot
+   [i], by [mapping] (not [planar], which takes the texture's size): a
+   CSG solid's leaf's (a sphere or a box: Csg's [check_textures]), or the
+   slot's own shape's. *)
+let[@inline] coordinates (g : Tracer.t) i mapping px py pz =
+  let p = g.p and s = g.s in
+  if Array.unsafe_get p.kind i = Kind.Csg then begin
+    let geom = Csg.geometry p.csg and o = Csg.surface_offset p.csg g.csg in
+    (* A leaf inside transformed operands: the point in their frame, on
+       the ray carried there. *)
+    Csg.enter_surface_frame p.csg g.csg s;
+    let t = s.t in
+    let px = s.ox +. (s.dx *. t) and py = s.oy +. (s.dy *. t) and pz = s.oz +. (s.dz *. t) in
+    Csg.leave_surface_frame p.csg g.csg s;
+    if mapping = Prepared.spherical then
+      sphere_uv s (Array.unsafe_get geom o) (Array.unsafe_get geom (o + 1)) (Array.unsafe_get geom (o + 2)) px py pz
+    else box_uv s geom o px py pz
+  end
+  else if mapping = Prepared.spherical then
+    sphere_uv s (Array.unsafe_get p.cx i) (Array.unsafe_get p.cy i) (Array.unsafe_get p.cz i) px py pz
+  else if mapping = Prepared.box_mapping then box_uv s p.geom (Kind.stride * Array.unsafe_get p.at0 i) px py pz
+  else triangle_uv p s i px py pz
+
+let[@inline never] colour_at tr m g i =
+  let p = tr.p and s = g.s in
   (* The hit point as the tracer computed it, before the robust mode
      moved it off the surface. *)
   let t = s.t in
@@ -123,10 +146,8 @@ let[@inline never] colour tr i m =
   let k = Array.unsafe_get p.texture_of m in
   let e = Prepared.texture_stride * k and table = p.texture_table in
   let mapping = Array.unsafe_get table (e + 3) in
-  if mapping = Prepared.spherical then sphere_uv p s i px py pz
-  else if mapping = Prepared.planar then plane_uv p s i px py pz (Array.unsafe_get p.texture_size k)
-  else if mapping = Prepared.box_mapping then box_uv p s i px py pz
-  else triangle_uv p s i px py pz;
+  if mapping = Prepared.planar then plane_uv g.p s i px py pz (Array.unsafe_get p.texture_size k)
+  else coordinates g i mapping px py pz;
   (* Texture_map.wraps: [Repeat, Clamp] on a sphere, [Clamp, Clamp] on a
      box, [Repeat, Repeat] on a plane or a mesh. *)
   let repeat_u = mapping <> Prepared.box_mapping and repeat_v = mapping = Prepared.planar || mapping = Prepared.uv_mapping in
@@ -143,3 +164,5 @@ let[@inline never] colour tr i m =
   Array.unsafe_set tr.red m (blend x k00 k10 k01 k11 tx ty);
   Array.unsafe_set tr.green m (blend x (k00 + 1) (k10 + 1) (k01 + 1) (k11 + 1) tx ty);
   Array.unsafe_set tr.blue m (blend x (k00 + 2) (k10 + 2) (k01 + 2) (k11 + 2) tx ty)
+
+let colour tr i m = colour_at tr m tr i

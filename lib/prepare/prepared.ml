@@ -845,11 +845,14 @@ let texture_tables (materials : Material.t array) =
 
 (* Per slot, the [vt] of the corners of each triangle of a mesh whose
    material has a uv texture, in the order of its corners (the order of
-   [at0], [at1], [at2]); empty when no such mesh. *)
-let uv_table o (sl_slot : int array) n_slots =
+   [at0], [at1], [at2]); empty when no such mesh. In a bottom level
+   ([every_frame]), of every mesh with [vt]: an instance's own material
+   may lay a uv texture on it. *)
+let uv_table ~every_frame o (sl_slot : int array) n_slots =
   let uv_mesh = function
     | Shape.Mesh (m : Mesh.t) -> (
-        match m.material.texture with Some { mapping = Texture_map.Uv; _ } -> Mesh.has_texcoords m | _ -> false)
+        Mesh.has_texcoords m
+        && (every_frame || match m.material.texture with Some { mapping = Texture_map.Uv; _ } -> true | _ -> false))
     | _ -> false
   in
   if not (List.exists uv_mesh o.shapes) then [||]
@@ -1900,7 +1903,7 @@ let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
     if bvh = None || Array.length v.vertex = 0 then (v.vertex, [||])
     else Vertex_order.gather ~sources:any_smooth ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
   in
-  let uv = uv_table o sl.slot (Array.length sl.kind) in
+  let uv = uv_table ~every_frame o sl.slot (Array.length sl.kind) in
   assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)
     ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal ~uv
 

@@ -183,3 +183,11 @@ let pp ppf = function
         (Float_text.to_string angle) (Float_text.to_string falloff)
 
 let show l = Format.asprintf "%a" pp l
+
+(* The largest [m] with [m * m <= n]: exact, no float square root. *)
+let sectors n =
+  let m = ref 1 in
+  while (!m + 1) * (!m + 1) <= n do
+    incr m
+  done;
+  !m

@@ -173,15 +173,28 @@ val shadow_t_max : t -> float
       keys, each point anywhere on the rectangle);
     - sphere light, samples [j] from [0] to [n - 1]: [h = key (key k l) j],
       [rho = radius sqrt (stratum (key h 0) ~n j)],
-      [phi = 2 pi unit (key h 1)], [w = (position - P) / |position - P|],
+      [c = sectors n], [q = ceil (n / c)], [r = unit (key (key k l) (-1))],
+      [b = permute (key (key k l) (-2)) ~n:q (j / c)],
+      [phi = 2 pi (r + ((j mod c) + (b + unit (key h 1)) / q) / c)],
+      [w = (position - P) / |position - P|],
       [e1 = (a x w) / |a x w|] with [a = (0, 1, 0)] if [|w.x| > 0.9] and
       [(1, 0, 0)] otherwise, [e2 = w x e1],
       [Q = position + (rho cos phi) e1 + (rho sin phi) e2]: stratified in
-      area by rings of the disc facing [P]; a point at the centre gets no
-      light from it.
+      area by rings of the disc facing [P], and in angle: the disc,
+      turned by [r], is cut in [c] sectors of [2 pi / c], and the [c]
+      rings of each block [j / c] (an annulus) hold one sample in each
+      sector, at a place in it that the block's [b] sets: across the [q]
+      blocks, a sector's samples lie one in each of [q] sub-sectors (the
+      angle stratified in [c q] strata, as in Kensler's correlated
+      multi-jittered sampling, 2013, on the disc by its polar map of
+      equal areas). A point at the centre gets no light from it.
 
     The stratified points give each ring or cell one sample: the error of
     a soft shadow falls faster with [n] than independent samples'. *)
+
+val sectors : int -> int
+(** [sectors n] is the largest [m >= 1] with [m * m <= n] ([n >= 1]):
+    the angular sectors of a sphere light of [n] samples ({!samples_def}). *)
 
 (** {1:adaptive Penumbra-only sampling}
 

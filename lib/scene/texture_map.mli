@@ -13,10 +13,12 @@
     that an image seen from the front of a surface reads left to right,
     not mirrored.
 
-    The renderer draws them on objects placed as written and on
-    transformed and instanced ones (in the object's own frame), not on a
-    CSG solid's operands nor as an instance's own material, which
-    {!Shape.validate} refuses: the kernel's own copy of these mappings
+    The renderer draws them on objects placed as written, on
+    transformed and instanced ones (in the object's own frame), as a
+    transform's or instance's own material (on every surface of its
+    object, in the object's frame) and on a CSG solid's sphere and box
+    operands, placed or transformed (not yet on its mesh operands, which
+    {!Shape.validate} refuses): the kernel's own copy of these mappings
     and of {!Texture}'s lookup is [Texturing], and the executable
     specification [Literal] calls the functions below.
 

@@ -171,6 +171,32 @@ let no_pattern p =
     Error (`Msg "csg: a transformed operand cannot have a pattern (patterns are not carried into an object's frame yet)")
   else Ok ()
 
+(* A texture on a leaf: the leaf's kind takes its mapping (as an object
+   of that kind does, {!Shape.validate}); a mesh operand's uv texture
+   would need its triangles' [vt] in the CSG table: not drawn yet. *)
+let leaf_texture l (t : Texture_map.t) =
+  let name = match l with Sphere _ -> "sphere" | Box _ -> "box" | Mesh _ -> "mesh" | Primitive p -> Shape_desc.name p | Csg _ | Transformed _ -> "csg" in
+  match (l, Texture_map.mapping_for name) with
+  | Mesh _, _ -> Error (`Msg "csg: a mesh operand cannot have a texture yet")
+  | _, None -> Error (`Msg (Printf.sprintf "csg: a %s takes no texture; textures map onto spheres, planes, boxes and meshes" name))
+  | _, Some m when m <> t.mapping ->
+      Error
+        (`Msg
+          (Printf.sprintf "csg: %s texture mapping must be %s, got %s" name (Texture_map.mapping_name m)
+             (Texture_map.mapping_name t.mapping)))
+  | _, Some _ -> Ok ()
+
+let check_textures ?texture c =
+  List.fold_left
+    (fun acc (l, (m : Material.t), _) ->
+      match acc with
+      | Error _ -> acc
+      | Ok () -> (
+          match (match texture with Some _ -> texture | None -> m.texture) with
+          | None -> Ok ()
+          | Some t -> leaf_texture l t))
+    (Ok ()) (leaves c)
+
 let rec validate c =
   let ( let* ) = Result.bind in
   let* () =
@@ -992,6 +1018,21 @@ let normal tb w (s : Scratch.t) =
   end
 
 let material tb w = Array.unsafe_get tb.surface_material (w.surface lsr tb.slot_bits)
+let geometry tb = tb.geom
+let surface_offset tb w = stride * (w.surface lsr tb.slot_bits)
+
+(* As [framed_normal] carries it: the ray saved at the start of
+   [w.rays], put back by [leave_surface_frame]. *)
+let enter_surface_frame tb w (s : Scratch.t) =
+  let f = Array.unsafe_get tb.surface_frame (w.surface lsr tb.slot_bits) in
+  if f >= 0 then begin
+    save w.rays 0 s;
+    carry tb.frames (12 * f) w.rays s
+  end
+
+let leave_surface_frame tb w (s : Scratch.t) =
+  if Array.unsafe_get tb.surface_frame (w.surface lsr tb.slot_bits) >= 0 then restore w.rays 0 s
+
 let entering w = w.entering
 let take_tests w =
   let n = w.tests in

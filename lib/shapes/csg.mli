@@ -95,6 +95,17 @@ val validate : t -> (t, [> `Msg of string ]) result
     object's frame), and that [c] nests at most {!max_depth} levels deep
     (CSG forms and transformed operands each count one). *)
 
+val check_textures : ?texture:Texture_map.t -> t -> (unit, [> `Msg of string ]) result
+(** [check_textures ~texture c] is [Ok ()] iff every leaf's texture (its
+    material's as {!leaves} gives it, or [texture] on every leaf where
+    given: an instance's own material's) fits the leaf: a sphere takes
+    the [spherical] mapping, a box the [box] one, a described kind none
+    ({!Texture_map.mapping_for}); a mesh operand takes none yet (the
+    kernel would need the mesh's [vt]). The texture maps in the leaf's
+    frame: the solid's, or inside transformed operands the frame before
+    their transforms, as the leaf's own surface would as an object.
+    {!Shape.validate} calls it. *)
+
 val leaf_material : solid -> Material.t
 (** [leaf_material l] is the material of the leaf [l] (a sphere's own
     fields as a material, pattern included).
@@ -209,6 +220,26 @@ val normal : table -> work -> Scratch.t -> unit
     normal of the solid at the hit point [s.px], [s.py], [s.pz] found by
     the last [roots] with [w] for the ray still in [s]: against the ray
     where it enters the solid, along it where it leaves. *)
+
+val geometry : table -> float array
+(** [geometry tb] is the leaves' geometry: a surface's numbers as its
+    kind's [store] writes them (a sphere's centre and radius, a box's
+    corners), {!Kind.stride} floats each. *)
+
+val surface_offset : table -> work -> int
+(** [surface_offset tb w] is the offset in [geometry tb] of the surface of
+    the last hit found by [roots] with [w]: the kernel's texture
+    mappings read a textured leaf's sphere or box there. *)
+
+val enter_surface_frame : table -> work -> Scratch.t -> unit
+(** [enter_surface_frame tb w s] carries the ray of [s] into the frame of
+    the surface of the last hit found by [roots] with [w] (its transformed
+    operands' frame, as [normal] carries it: [t] the same number), if it
+    has one; the ray is kept in [w] for {!leave_surface_frame}. *)
+
+val leave_surface_frame : table -> work -> Scratch.t -> unit
+(** [leave_surface_frame tb w s] puts back the ray that
+    {!enter_surface_frame}[ tb w s] carried. *)
 
 val material : table -> work -> int
 (** [material tb w] is the material's number of the surface of the last

@@ -41,45 +41,52 @@ let rec materials = function
   | Instance { shape; _ } -> materials shape
   | s -> [ material s ]
 
-let has_texture (m : Material.t) = Option.is_some m.texture
-
-(* Every material of [s], an instance's object's as well as its own. *)
-let rec any_material f = function
-  | Instance { own_material; shape; _ } -> Option.fold ~none:false ~some:f own_material || any_material f shape
-  | Csg c -> List.exists f (Csg.materials c)
-  | s -> f (material s)
-
 let name = function Instance _ -> "transform" | Sphere _ -> "sphere" | Plane _ -> "plane" | Triangle _ -> "triangle" | Box _ -> "box" | Mesh _ -> "mesh" | Csg _ -> "csg" | Primitive p -> Shape_desc.name p
+
+(* Whether an object of kind [name] takes texture [t]: its kind has the
+   mapping [t] has ({!Texture_map.mapping_for}). *)
+let fits name (t : Texture_map.t) =
+  match Texture_map.mapping_for name with
+  | None -> Error (`Msg (Printf.sprintf "a %s takes no texture; textures map onto spheres, planes, boxes and meshes" name))
+  | Some m when m <> t.mapping ->
+      Error
+        (`Msg
+          (Printf.sprintf "%s texture mapping must be %s, got %s" name (Texture_map.mapping_name m)
+             (Texture_map.mapping_name t.mapping)))
+  | Some _ -> Ok ()
+
+(* A transform's or use's own texture [t] lies on every surface of its
+   object, in the object's frame: each must take [t]'s mapping (a mesh's
+   uv needs its [vt], which a bottom level keeps for every mesh that has
+   them). *)
+let rec own_texture t = function
+  | Instance { shape; _ } -> own_texture t shape
+  | Csg c -> Csg.check_textures ~texture:t c
+  | Mesh m when t.mapping = Texture_map.Uv && not (Mesh.has_texcoords m) ->
+      Error (`Msg "mesh texture mapping uv needs the mesh's texture coordinates (vt), which it has none of")
+  | s -> fits (name s) t
 
 (* The kernel draws a texture on an object of a kind that has a mapping
    ({!Texture_map.mapping_for}), placed as written or through a transform
-   or an instance (the object's own texture, in its frame), but not an
-   instance's own material's, which would lie on every surface of the
-   object, nor on a CSG solid's operands, whose hits it finds through
-   another object's slot. *)
+   or an instance (the object's own texture, in its frame), on an
+   instance's own material (on every surface of the object, in its
+   frame), and on a CSG solid's sphere and box operands ({!Csg.check_textures}). *)
 let check_texture s =
   let name = name s in
   match s with
-  | Instance { own_material = Some m; _ } when has_texture m ->
-      Error (`Msg "a transform's or use's own material cannot have a texture yet (give the object its texture)")
-  | Csg _ when any_material has_texture s -> Error (`Msg "a CSG solid's operands cannot have a texture yet")
-  | Instance _ | Csg _ -> Ok ()
+  | Instance { own_material = Some { texture = Some t; _ }; shape; _ } ->
+      Result.map_error (fun (`Msg m) -> `Msg ("its texture lies on its object's surfaces: " ^ m)) (own_texture t shape)
+  | Csg c -> Csg.check_textures c
+  | Instance _ -> Ok ()
   | s -> (
       match (material s).texture with
       | None -> Ok ()
       | Some t -> (
-          match Texture_map.mapping_for name with
-          | None -> Error (`Msg (Printf.sprintf "a %s takes no texture; textures map onto spheres, planes, boxes and meshes" name))
-          | Some m when m <> t.mapping ->
-              Error
-                (`Msg
-                  (Printf.sprintf "%s texture mapping must be %s, got %s" name (Texture_map.mapping_name m)
-                     (Texture_map.mapping_name t.mapping)))
-          | Some _ -> (
-              match s with
-              | Mesh m when not (Mesh.has_texcoords m) ->
-                  Error (`Msg "mesh texture mapping uv needs the mesh's texture coordinates (vt), which it has none of")
-              | _ -> Ok ())))
+          match (fits name t, s) with
+          | (Error _ as e), _ -> e
+          | Ok (), Mesh m when not (Mesh.has_texcoords m) ->
+              Error (`Msg "mesh texture mapping uv needs the mesh's texture coordinates (vt), which it has none of")
+          | Ok (), _ -> Ok ()))
 
 let rec validate s =
   let ( let* ) = Result.bind in

@@ -77,9 +77,12 @@ val validate : t -> (t, [> `Msg of string ]) result
     is validated, and an instance is refused if it is of a plane (see
     {!instance}). A texture ({!Texture_map}) must take the mapping of its
     object's kind ({!Texture_map.mapping_for}; a mesh's [uv] needs its
-    texture coordinates), and is refused as an instance's own material
-    (the object's own texture is drawn, in its frame) and on a CSG
-    solid's operands, where the renderer does not draw it yet. *)
+    texture coordinates). An instance's own material's texture lies on
+    every surface of its object, in the object's frame (the frame before
+    the transform: a globe turned by a transform turns its map with it),
+    so each of them must take its mapping (a mesh's [uv] needs its
+    texture coordinates); a CSG solid's operands are checked by
+    {!Csg.check_textures}. *)
 
 val name : t -> string
 (** [name s] is the scene-file form of [s]: ["sphere"], ["plane"], ["triangle"], ["box"], ["mesh"] or ["csg"]. *)

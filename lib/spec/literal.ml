@@ -384,14 +384,15 @@ let pattern_frame = function
 (* {1 Textures} *)
 
 (* The texture coordinates of [point] on [obj] (in its own frame: a
-   placed object's is looked up there, [local_color]), by the mappings'
+   placed object's is looked up there, [local_color]; a CSG solid's
+   sphere or box leaf's in the solid's frame), by the mappings'
    definitions (Texture_map); a mesh's corner without a [vt] counts as
    [(0, 0)]. *)
-let texture_uv obj (tex : Texture_map.t) point =
+let rec texture_uv obj (tex : Texture_map.t) point =
   match obj with
-  | Sphere s | Shape (Shape.Sphere s, _) -> Texture_map.spherical ~center:s.center point
+  | Sphere s | Shape (Shape.Sphere s, _) | Csg_surface (_, Csg.Sphere s, _) -> Texture_map.spherical ~center:s.center point
   | Shape (Shape.Plane p, _) -> Texture_map.planar ~point:p.point ~normal:p.normal ~size:tex.size point
-  | Shape (Shape.Box b, _) ->
+  | Shape (Shape.Box b, _) | Csg_surface (_, Csg.Box b, _) ->
       let _, u, v = Texture_map.box ~min:b.min ~max:b.max point in
       (u, v)
   | Mesh_triangle (m, k) ->
@@ -401,6 +402,7 @@ let texture_uv obj (tex : Texture_map.t) point =
         if j < 0 then (0., 0.) else (m.texcoords.(2 * j), m.texcoords.((2 * j) + 1))
       in
       Texture_map.interpolate ~b1 ~b2 (corner 0) (corner 1) (corner 2)
+  | Csg_surface (c, Csg.Transformed p, n) -> texture_uv (Csg_surface (c, p.solid, n)) tex point
   | Shape _ | Csg_surface _ | Placed _ -> invalid_arg "Literal.texture_uv: a texture on an object that takes none"
 
 (* The image's colour at the hit: its bilinear lookup at the point's
@@ -409,6 +411,30 @@ let texture_color obj (tex : Texture_map.t) point =
   let u, v = texture_uv obj tex point in
   let wrap_u, wrap_v = Texture_map.wraps tex.mapping in
   Texture.color ~wrap_u ~wrap_v tex.image u v
+
+(* Where a texture looks [point] up: on a CSG leaf inside transformed
+   operands, in their frame, the ray carried through their transforms,
+   outermost first, to the same [t] (Csg.literal_hit's lines). The leaf is
+   found by physical equality: one placed twice in a solid is taken at
+   its first place. *)
+let texture_point obj ~t ~origin ~direction point =
+  match obj with
+  | Csg_surface (c, leaf, _) -> (
+      (* A leaf shown with another material comes wrapped in an identity
+         placement (Literal_geometry.shown). *)
+      let leaf = match leaf with Csg.Transformed p -> p.solid | l -> l in
+      match List.find_opt (fun (l, _, _) -> l == leaf) (Csg.leaves c) with
+      | Some (_, _, (_ :: _ as frames)) ->
+          let origin, direction =
+            List.fold_left
+              (fun (o, d) (tr : Transform.t) ->
+                let inv = inverse (world_matrix tr) in
+                (affine_point inv o, linear inv d))
+              (origin, direction) (List.rev frames)
+          in
+          Vec3.add origin (Vec3.smul t direction)
+      | _ -> point)
+  | _ -> point
 
 (* The colour the hit at [t] shows: the material's, its pattern's second
    colour, or its texture's. A transformed object's pattern or texture
@@ -426,7 +452,8 @@ let rec local_color obj (m : Material.t) ~t ~origin ~direction ~point ~normal =
       let point = Vec3.add origin (Vec3.smul t direction) in
       let normal = inner_normal inner ~point ~direction in
       local_color inner m ~t ~origin ~direction ~point ~normal
-  | None, _ -> ( match m.texture with Some tex -> texture_color obj tex point | None -> m.color)
+  | None, _ -> (
+      match m.texture with Some tex -> texture_color obj tex (texture_point obj ~t ~origin ~direction point) | None -> m.color)
   | Some p, _ ->
       let near0, _ = G.undecided () in
       let odd = G.odd p ~frame:(pattern_frame obj) ~origin ~direction ~point ~normal in
@@ -476,10 +503,17 @@ let light_samples ~key ~number light point =
         let a = if Float.abs w.x > 0.9 then Vec3.oy else Vec3.ox in
         let e1 = Vec3.unit (Vec3.cross a w) in
         let e2 = Vec3.cross w e1 in
+        let c = Light.sectors n in
+        let q = (n + c - 1) / c in
+        let r = Sample_key.unit (Sample_key.key hl (-1)) in
         List.init n (fun j ->
             let h = Sample_key.key hl j in
             let rho = radius *. sqrt (Sample_key.stratum (Sample_key.key h 0) ~n j) in
-            let phi = 2. *. Float.pi *. Sample_key.unit (Sample_key.key h 1) in
+            let a = j mod c and b = Sample_key.permute (Sample_key.key hl (-2)) ~n:q (j / c) in
+            let phi =
+              2. *. Float.pi
+              *. (r +. ((Float.of_int a +. ((Float.of_int b +. Sample_key.unit (Sample_key.key h 1)) /. Float.of_int q)) /. Float.of_int c))
+            in
             let q = Vec3.add (Vec3.add position (Vec3.smul (rho *. cos phi) e1)) (Vec3.smul (rho *. sin phi) e2) in
             (intensity /. Float.of_int n, Vec3.sub q point))
   | Spot { intensity; position; direction; angle; falloff } ->

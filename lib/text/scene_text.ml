@@ -371,14 +371,18 @@ let texture ~where ~(named : named) ~form fs =
 let is_definition form = String.length form > 9 && String.sub form 0 9 = "material "
 
 (* An object of kind [form] takes the one mapping that fits its surface;
-   a named material's texture is checked where an object uses it. *)
+   a named material's texture is checked where an object uses it, a
+   transform's or use's where Shape.validate checks its object's
+   surfaces. *)
 let check_mapping ~form ~node (t : Texture_map.t) =
   let names = "spheres (spherical), planes (planar), boxes (box) and meshes (uv)" in
-  match Texture_map.mapping_for form with
-  | None -> fail node "a %s takes no texture; textures map onto %s" form names
-  | Some m when m <> t.mapping ->
-      fail node "%s texture mapping must be %s, got %s" form (Texture_map.mapping_name m) (Texture_map.mapping_name t.mapping)
-  | Some _ -> ()
+  if form = "transform" || String.starts_with ~prefix:"use " form then ()
+  else
+    match Texture_map.mapping_for form with
+    | None -> fail node "a %s takes no texture; textures map onto %s" form names
+    | Some m when m <> t.mapping ->
+        fail node "%s texture mapping must be %s, got %s" form (Texture_map.mapping_name m) (Texture_map.mapping_name t.mapping)
+    | Some _ -> ()
 
 let material ~where ~named ~form ~form_node fs =
   let base = Option.map (named_material ~named ~form) (find fs "material") in

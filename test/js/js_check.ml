@@ -197,3 +197,44 @@ let () =
       | Error (`Msg m) -> failwith m
       | Ok (img, _) ->
           Printf.printf "20 spheres: md5 %s\n" (Digest.to_hex (Digest.string (Raytrace.Image.Ppm.to_string img))))
+
+(* Textures on a CSG solid's operands and on a use's own material, in a
+   turned die (scenes/textured-die.scene's forms, a small image built in):
+   the web page must draw the command line's bytes. *)
+let () =
+  let image =
+    Raytrace.Image.Texture.v ~width:4 ~height:2
+      "\255\000\000\000\255\000\000\000\255\255\255\000\000\255\255\255\000\255\128\064\032\032\064\128"
+  in
+  let text =
+    "(canvas (width 40) (height 30)) (camera (position 0 1.6 -2.2) (look-at 0 0.1 4))\n\
+     (transform ((rotate-y 35) (rotate-x -20) (translate -0.9 0.25 4)) (csg intersection\n\
+    \  (box (min -0.8 -0.8 -0.8) (max 0.8 0.8 0.8) (color 255 255 255) (texture (file \"t.ppm\") (mapping box)))\n\
+    \  (sphere (center 0 0 0) (radius 1.08) (color 255 255 255) (texture (file \"t.ppm\") (mapping spherical)))))\n\
+     (define ball (sphere (center 0 0 0) (radius 0.7) (color 255 255 255)))\n\
+     (use ball (transform ((rotate-y 90) (translate 1.3 0 4.2))) (color 255 255 255) (texture (file \"t.ppm\") (mapping spherical)))\n\
+     (light ambient (intensity 0.3)) (light point (intensity 0.6) (position 3 4 -1))"
+  in
+  match Raytrace.Scene_file.of_string ~load_texture:(fun _ -> Ok image) ~file:"die.scene" text with
+  | Error (`Msg m) -> failwith m
+  | Ok scene -> (
+      match Raytrace.Render.image scene with
+      | Error (`Msg m) -> failwith m
+      | Ok (img, _) -> Printf.printf "textured die: md5 %s\n" (Digest.to_hex (Digest.string (Raytrace.Image.Ppm.to_string img))))
+
+(* A sphere light of 10 samples (3 sectors, 4 blocks of rings, the last
+   short): its angles' permutations ([Sample_key.walk]) and the image, on
+   both builds. *)
+let () =
+  let text =
+    "(canvas (width 32) (height 24)) (camera (position 0 2 -3) (look-at 0 0 2))\n\
+     (plane (point 0 -1 0) (normal 0 1 0) (color 200 200 200))\n\
+     (sphere (center 0 0 2) (radius 0.7) (color 255 80 80) (specular 300))\n\
+     (light ambient (intensity 0.1)) (light sphere (intensity 0.7) (position 1 3 1) (radius 0.8) (samples 10))"
+  in
+  match Raytrace.Scene_file.of_string ~file:"sphere-light.scene" text with
+  | Error (`Msg m) -> failwith m
+  | Ok scene -> (
+      match Raytrace.Render.image ~samples:2 scene with
+      | Error (`Msg m) -> failwith m
+      | Ok (img, _) -> Printf.printf "sphere light: md5 %s\n" (Digest.to_hex (Digest.string (Raytrace.Image.Ppm.to_string img))))
