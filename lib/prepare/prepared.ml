@@ -600,7 +600,7 @@ let slot_of (bounded : int array) k =
    then each box is padded where it is, with no array of margins, centers
    or half sides of a million triangles between, and no second reading
    of the corners. *)
-let mesh_boxes o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius ~oboxes =
+let mesh_boxes ~mterms o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius ~oboxes =
   (* Every element is written below. *)
   let f () = Array.create_float nb in
   let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
@@ -630,6 +630,7 @@ let mesh_boxes o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radi
          end)
        ~mesh:(fun k m -> mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds ~all ~first ~bounded ~nb ~pos m k));
   let terms = Bvh.margin_of_bounds bounds in
+  mterms := Some terms;
   for i = 0 to nb - 1 do
     let hx = x1.(i) and hy = y1.(i) and hz = z1.(i) in
     let m = Bvh.margin terms (fmax hx (fmax hy hz)) in
@@ -686,6 +687,9 @@ type cubes = {
   ocz : float array;
   ohalf : float array;
   oboxes : (int, float array) Hashtbl.t;
+  mutable mterms : Bvh.margin option;
+      (* The margins' terms of a mesh's boxes ([mesh_boxes]), for the
+         leaves cut by planes ([Bvh.split_leaves]). *)
       (* Object [k]'s center, half sides and transform's stretch, if it
          is an instance ([instance_half_box]): its box, not its cube.
          Empty in a scene without instances. *)
@@ -697,7 +701,7 @@ let cubes o =
      [Spheres.blit_fields], the other shapes' by [shape_objects]. *)
   let f () = Array.create_float nc in
   let ocx = f () and ocy = f () and ocz = f () and ohalf = f () in
-  { ocx; ocy; ocz; ohalf; oboxes = Hashtbl.create 0 }
+  { ocx; ocy; ocz; ohalf; oboxes = Hashtbl.create 0; mterms = None }
 
 (* {2 Materials} *)
 
@@ -1227,7 +1231,10 @@ let boxes ~skips o (scene : Scene.view) c sel =
     let all = Array.length sel.bounded = 0 and nb = sel.nb and bounded = sel.bounded in
     let { ocx; ocy; ocz; ohalf; _ } = c in
     if o.any_mesh then
-      Some (mesh_boxes o scene ~all ~first:sel.first ~bounded ~nb ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~oboxes:c.oboxes)
+      let mterms = ref None in
+      let b = mesh_boxes ~mterms o scene ~all ~first:sel.first ~bounded ~nb ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~oboxes:c.oboxes in
+      c.mterms <- !mterms;
+      Some b
     else begin
       (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
       let terms =
@@ -1853,6 +1860,46 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
 
 (* The steps in order. Each big array is let go as soon as no step needs
    it any more: the steps' results are taken apart here, not held whole. *)
+(* The hierarchy with its leaves of a mesh's triangles cut by a plane
+   where the surface area heuristic finds it pays ([Bvh.split_leaves]):
+   the long thin triangles of a fine mesh, whose boxes are far bigger
+   than they are, tested only where the ray meets the box of their part
+   on the side it crosses. Each part's box is padded by twice its
+   triangle's margin ([mesh_boxes] pads the whole triangle's box by one:
+   a cut corner's rounding is a few units in the last place of the
+   coordinates, far below it), so that a ray that hits a triangle meets
+   the box of a part that holds the hit, as it met the triangle's box.
+   Slots are shared, not copied: both sides' leaves name slots of the
+   same range, and a ray that meets both tests their common triangles
+   twice (the same answer twice). *)
+let cut_leaves bvh c ~kind ~vertex g =
+  match (bvh, c.mterms) with
+  | Some b, Some terms ->
+      let n = Array.length kind in
+      let tri s (v : float array) =
+        s < n
+        && Kind.is_triangle kind.(s)
+        && begin
+             let a = g.at0.(s) and b = g.at1.(s) and c = g.at2.(s) in
+             for i = 0 to 2 do
+               v.(i) <- vertex.(a + i);
+               v.(3 + i) <- vertex.(b + i);
+               v.(6 + i) <- vertex.(c + i)
+             done;
+             true
+           end
+      in
+      let pad _ (v : float array) =
+        let h = ref 0. in
+        for i = 0 to 2 do
+          let lo = fmin v.(i) (fmin v.(3 + i) v.(6 + i)) and hi = fmax v.(i) (fmax v.(3 + i) v.(6 + i)) in
+          h := fmax !h (0.5 *. (hi -. lo))
+        done;
+        Bvh.margin terms !h
+      in
+      Some (Bvh.split_leaves b ~tri ~pad)
+  | _ -> bvh
+
 let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
   (* The settings alone: the objects of [scene] are let go below. *)
   let bottom_scene = Scene.bottom scene in
@@ -1900,6 +1947,7 @@ let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
     if bvh = None || Array.length v.vertex = 0 then (v.vertex, [||])
     else Vertex_order.gather ~sources:any_smooth ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
   in
+  let bvh = cut_leaves bvh c ~kind:sl.kind ~vertex g in
   let uv = uv_table o sl.slot (Array.length sl.kind) in
   assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)
     ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal ~uv
