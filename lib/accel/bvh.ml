@@ -957,40 +957,31 @@ let halves (v : float array) vo a c (out : float array) lo ro =
     Array.unsafe_set out (ro + i) infinity;
     Array.unsafe_set out (ro + 3 + i) neg_infinity
   done;
-  let[@inline] add o x y z =
-    Array.unsafe_set out o (fmin (Array.unsafe_get out o) x);
-    Array.unsafe_set out (o + 1) (fmin (Array.unsafe_get out (o + 1)) y);
-    Array.unsafe_set out (o + 2) (fmin (Array.unsafe_get out (o + 2)) z);
-    Array.unsafe_set out (o + 3) (fmax (Array.unsafe_get out (o + 3)) x);
-    Array.unsafe_set out (o + 4) (fmax (Array.unsafe_get out (o + 4)) y);
-    Array.unsafe_set out (o + 5) (fmax (Array.unsafe_get out (o + 5)) z)
-  in
+  (* No local functions: without flambda, each call would box its floats. *)
   let sides = ref 0 in
   for i = 0 to 2 do
-    let oi = vo + (3 * i) and oj = vo + (if i = 2 then 0 else 3 * (i + 1)) in
+    let oi = vo + (3 * i) and oj = vo + if i = 2 then 0 else 3 * (i + 1) in
     let ci = Array.unsafe_get v (oi + a) and cj = Array.unsafe_get v (oj + a) in
-    let x = Array.unsafe_get v oi and y = Array.unsafe_get v (oi + 1) and z = Array.unsafe_get v (oi + 2) in
-    if ci <= c then begin
-      sides := !sides lor 1;
-      add lo x y z
-    end;
-    if ci >= c then begin
-      sides := !sides lor 2;
-      add ro x y z
-    end;
-    if (ci < c && cj > c) || (ci > c && cj < c) then begin
-      (* The edge crosses the plane: the point on both sides. *)
-      let t = (c -. ci) /. (cj -. ci) in
-      let[@inline] lerp k =
-        if k = a then c
-        else
-          let p = Array.unsafe_get v (oi + k) in
-          p +. (t *. (Array.unsafe_get v (oj + k) -. p))
-      in
-      let px = lerp 0 and py = lerp 1 and pz = lerp 2 in
-      add lo px py pz;
-      add ro px py pz
-    end
+    let crosses = (ci < c && cj > c) || (ci > c && cj < c) in
+    (* Corner [i], and the edge's crossing point, to the sides they are
+       on: [w = 0] the corner, [w = 1] the point. *)
+    for w = 0 to if crosses then 1 else 0 do
+      let t = if w = 0 then 0. else (c -. ci) /. (cj -. ci) in
+      for k = 0 to 2 do
+        let p = Array.unsafe_get v (oi + k) in
+        let x = if w = 0 then p else if k = a then c else p +. (t *. (Array.unsafe_get v (oj + k) -. p)) in
+        if w = 1 || ci <= c then begin
+          if x < Array.unsafe_get out (lo + k) then Array.unsafe_set out (lo + k) x;
+          if x > Array.unsafe_get out (lo + 3 + k) then Array.unsafe_set out (lo + 3 + k) x
+        end;
+        if w = 1 || ci >= c then begin
+          if x < Array.unsafe_get out (ro + k) then Array.unsafe_set out (ro + k) x;
+          if x > Array.unsafe_get out (ro + 3 + k) then Array.unsafe_set out (ro + 3 + k) x
+        end
+      done
+    done;
+    if ci <= c then sides := !sides lor 1;
+    if ci >= c then sides := !sides lor 2
   done;
   !sides
 
@@ -1037,7 +1028,8 @@ let split_leaves ?(cost = 3.) ?(cuts = 1) t ~tri ~pad =
   (* The part at [o] in [parts]: the one at [f] cut to the box at [b] in
      [cut] padded by [p]; its box grows [box], its slot [s] the range at
      [r] of [range]. *)
-  let side s f p o b (box : float array) r =
+  let side s j f o b (box : float array) r =
+    let p = pads.(j) in
     let empty = ref false in
     for i = 0 to 2 do
       let l = fmax parts.(f + i) (cut.(b + i) -. p) and h = fmin parts.(f + 3 + i) (cut.(b + 3 + i) +. p) in
@@ -1078,9 +1070,8 @@ let split_leaves ?(cost = 3.) ?(cuts = 1) t ~tri ~pad =
       parts.(or_) <- infinity;
       if parts.(f) < infinity then begin
         let sides = halves verts (9 * j) a c cut 0 6 in
-        let p = pads.(j) in
-        if sides land 1 <> 0 then side s f p ol 0 bl 0;
-        if sides land 2 <> 0 then side s f p or_ 6 br 2
+        if sides land 1 <> 0 then side s j f ol 0 bl 0;
+        if sides land 2 <> 0 then side s j f or_ 6 br 2
       end
     done
   in

@@ -1860,8 +1860,9 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
 
 (* The steps in order. Each big array is let go as soon as no step needs
    it any more: the steps' results are taken apart here, not held whole. *)
-(* The hierarchy with its leaves of a mesh's triangles cut by a plane
-   where the surface area heuristic finds it pays ([Bvh.split_leaves]):
+(* With [prepare]'s [cut]: the hierarchy with its leaves of a mesh's
+   triangles cut by a plane where the surface area heuristic finds it
+   pays ([Bvh.split_leaves]):
    the long thin triangles of a fine mesh, whose boxes are far bigger
    than they are, tested only where the ray meets the box of their part
    on the side it crosses. Each part's box is padded by twice its
@@ -1900,7 +1901,7 @@ let cut_leaves bvh c ~kind ~vertex g =
       Some (Bvh.split_leaves b ~tri ~pad)
   | _ -> bvh
 
-let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
+let rec prepare_scene ?(every_frame = false) ?(cut = false) ~skips ?beside scene =
   (* The settings alone: the objects of [scene] are let go below. *)
   let bottom_scene = Scene.bottom scene in
   let scene = Scene.view (Scene.of_valid scene) in
@@ -1947,7 +1948,7 @@ let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
     if bvh = None || Array.length v.vertex = 0 then (v.vertex, [||])
     else Vertex_order.gather ~sources:any_smooth ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
   in
-  let bvh = cut_leaves bvh c ~kind:sl.kind ~vertex g in
+  let bvh = if cut then cut_leaves bvh c ~kind:sl.kind ~vertex g else bvh in
   let uv = uv_table o sl.slot (Array.length sl.kind) in
   assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)
     ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal ~uv
@@ -1966,13 +1967,13 @@ and bottom ~skips bottom_scene shape =
    where it is written. *)
 let big_increment = 32 * 1024 * 1024
 
-let prepare ?(skips = true) ?beside scene =
-  if object_count (Scene.view (Scene.of_valid scene)) <= big_scene then prepare_scene ~skips ?beside scene
+let prepare ?(skips = true) ?cut ?beside scene =
+  if object_count (Scene.view (Scene.of_valid scene)) <= big_scene then prepare_scene ?cut ~skips ?beside scene
   else begin
     let gc = Gc.get () in
     Gc.set { gc with major_heap_increment = big_increment };
     Fun.protect ~finally:(fun () -> Gc.set { (Gc.get ()) with major_heap_increment = gc.major_heap_increment })
-      (fun () -> prepare_scene ~skips ?beside scene)
+      (fun () -> prepare_scene ?cut ~skips ?beside scene)
   end
 
 type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms | Umbra
