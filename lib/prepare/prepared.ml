@@ -687,12 +687,12 @@ type cubes = {
   ocz : float array;
   ohalf : float array;
   oboxes : (int, float array) Hashtbl.t;
-  mutable mterms : Bvh.margin option;
-      (* The margins' terms of a mesh's boxes ([mesh_boxes]), for the
-         leaves cut by planes ([Bvh.split_leaves]). *)
       (* Object [k]'s center, half sides and transform's stretch, if it
          is an instance ([instance_half_box]): its box, not its cube.
          Empty in a scene without instances. *)
+  mutable mterms : Bvh.margin option;
+      (* The margins' terms of a mesh's boxes ([mesh_boxes]), for the
+         leaves cut by planes ([cut_leaves]). *)
 }
 
 let cubes o =
@@ -1858,8 +1858,6 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     uv;
   }
 
-(* The steps in order. Each big array is let go as soon as no step needs
-   it any more: the steps' results are taken apart here, not held whole. *)
 (* With [prepare]'s [cut]: the hierarchy with its leaves of a mesh's
    triangles cut by a plane where the surface area heuristic finds it
    pays ([Bvh.split_leaves]):
@@ -1901,6 +1899,8 @@ let cut_leaves bvh c ~kind ~vertex g =
       Some (Bvh.split_leaves b ~tri ~pad)
   | _ -> bvh
 
+(* The steps in order. Each big array is let go as soon as no step needs
+   it any more: the steps' results are taken apart here, not held whole. *)
 let rec prepare_scene ?(every_frame = false) ?(cut = false) ~skips ?beside scene =
   (* The settings alone: the objects of [scene] are let go below. *)
   let bottom_scene = Scene.bottom scene in
