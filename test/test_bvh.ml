@@ -631,6 +631,38 @@ let tests =
             ("grid:40000", grid, [ 9216; 13088; 6874; 29254; 298324; 0 ], [ 43137; 17 ]);
           ];
         if !fails <> [] then Alcotest.fail (String.concat "\n" (List.rev !fails)));
+    Alcotest.test_case "leaves cut by planes (Prepared.prepare ~cut): the same image, fewer triangle tests" `Slow (fun () ->
+        (* The pinned test's knot: a square tube of 4800 rings, thin
+           triangles; shiny, smooth, reflective, over the reference
+           scene's ground: primary, shadow and reflected rays. *)
+        let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments:4800 ~sides:4 in
+        let m =
+          match
+            Mesh.v ~smooth:true ~translate:(Vec3.v 0. 0.5 5.) ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
+              ~triangle_normals:o.triangle_normals
+              (Material.v ~specular:300. ~reflective:0.2 (Color.v 230. 150. 40.))
+          with
+          | Ok m -> Shape.Mesh m
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        let s = Helpers.with_objects ~shapes:[ m ] (Scene.with_overrides ~width:96 ~height:96 Scene.cgfs) in
+        let run cut =
+          let p = Prepared.prepare ~cut (Helpers.valid s) in
+          let tr = Trace.create p in
+          let img = Helpers.by_pixels tr in
+          let c = Trace.counters tr in
+          let nodes = match p.bvh with Some b -> b.n_nodes | None -> 0 in
+          Printf.printf "cut %b: %d nodes, %d tests, %d box tests\n" cut nodes c.tests c.box_tests;
+          (img, nodes, c.tests, c.box_tests)
+        in
+        let img, nodes, tests, boxes = run false and img', nodes', tests', boxes' = run true in
+        Helpers.check_images "the cut tree's image" ~expected:img img';
+        Alcotest.(check bool) "the same bytes" true (Image.equal img img');
+        (* 38,400 triangles in leaves of about 9: most are cut. *)
+        Alcotest.(check bool) "more nodes" true (nodes' > nodes);
+        Alcotest.(check bool) "fewer triangle tests" true (tests' < tests);
+        Alcotest.(check bool) "fewer tests in all, a box test priced at a third of a triangle's" true
+          ((3 * tests') + boxes' < (3 * tests) + boxes));
     Helpers.qcheck ~count:150 "crowded scenes: the hierarchy gives the brute force's bytes"
       (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
       (fun s ->

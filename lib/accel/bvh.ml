@@ -937,3 +937,344 @@ let ray_box_margin ?among ~cx ~cy ~cz ~radius camera =
   let t = margin_terms ?among ~cx ~cy ~cz ~radius camera in
   let among = match among with Some a -> a | None -> Array.init (Array.length cx) Fun.id in
   Array.map (fun i -> margin t radius.(i)) among
+
+(* {1 Leaves cut by planes} *)
+
+(* [halves v vo a c out lo ro] writes to [out] at [lo] the box of the part
+   of the triangle of corners [v] (9 floats at [vo]) where coordinate [a]
+   is at most [c], at [ro] the box of its part where it is at least [c],
+   and is [l + 2 r]: [l] ([r]) is 1 if that part is not empty (its box is
+   then written), else 0. A part's box is that of its corners on that side
+   and of the points where its edges cross the plane (coordinate [a]
+   exactly [c], the others rounded: the caller pads). *)
+let halves (v : float array) vo a c (out : float array) lo ro =
+  if vo < 0 || vo + 9 > Array.length v || a < 0 || a > 2 || lo < 0 || lo + 6 > Array.length out || ro < 0
+     || ro + 6 > Array.length out
+  then invalid_arg "Bvh.halves";
+  for i = 0 to 2 do
+    Array.unsafe_set out (lo + i) infinity;
+    Array.unsafe_set out (lo + 3 + i) neg_infinity;
+    Array.unsafe_set out (ro + i) infinity;
+    Array.unsafe_set out (ro + 3 + i) neg_infinity
+  done;
+  (* No local functions: without flambda, each call would box its floats. *)
+  let sides = ref 0 in
+  for i = 0 to 2 do
+    let oi = vo + (3 * i) and oj = vo + if i = 2 then 0 else 3 * (i + 1) in
+    let ci = Array.unsafe_get v (oi + a) and cj = Array.unsafe_get v (oj + a) in
+    let crosses = (ci < c && cj > c) || (ci > c && cj < c) in
+    (* Corner [i], and the edge's crossing point, to the sides they are
+       on: [w = 0] the corner, [w = 1] the point. *)
+    for w = 0 to if crosses then 1 else 0 do
+      let t = if w = 0 then 0. else (c -. ci) /. (cj -. ci) in
+      for k = 0 to 2 do
+        let p = Array.unsafe_get v (oi + k) in
+        let x = if w = 0 then p else if k = a then c else p +. (t *. (Array.unsafe_get v (oj + k) -. p)) in
+        if w = 1 || ci <= c then begin
+          if x < Array.unsafe_get out (lo + k) then Array.unsafe_set out (lo + k) x;
+          if x > Array.unsafe_get out (lo + 3 + k) then Array.unsafe_set out (lo + 3 + k) x
+        end;
+        if w = 1 || ci >= c then begin
+          if x < Array.unsafe_get out (ro + k) then Array.unsafe_set out (ro + k) x;
+          if x > Array.unsafe_get out (ro + 3 + k) then Array.unsafe_set out (ro + 3 + k) x
+        end
+      done
+    done;
+    if ci <= c then sides := !sides lor 1;
+    if ci >= c then sides := !sides lor 2
+  done;
+  !sides
+
+let box_area (b : float array) o = half_area b.(o) b.(o + 1) b.(o + 2) b.(o + 3) b.(o + 4) b.(o + 5)
+
+
+(* A growable buffer of floats. *)
+type buffer = { mutable a : float array; mutable len : int }
+
+let reserve (b : buffer) n =
+  if b.len + n > Array.length b.a then begin
+    let c = Array.create_float (max (b.len + n) (2 * Array.length b.a)) in
+    Array.blit b.a 0 c 0 b.len;
+    b.a <- c
+  end
+
+let split_leaves ?(cost = 3.) ?(cuts = 1) t ~tri ~pad =
+  if cuts < 0 || not (cost >= 0.) then invalid_arg "Bvh.split_leaves";
+  (* A leaf's subtree, 8 floats a node as in [nodes] but its inner nodes'
+     links the index of their right child in the subtree. *)
+  let sub = { a = Array.create_float 64; len = 0 } in
+  let emit () =
+    reserve sub 8;
+    sub.len <- sub.len + 8;
+    (sub.len / 8) - 1
+  in
+  let set_box k (b : float array) o =
+    for i = 0 to 5 do
+      sub.a.((8 * k) + i) <- b.(o + i)
+    done
+  in
+  (* The padded boxes of the leaf's triangles' parts, [max_count] a
+     region, 6 floats a part (an empty part's lower x is [infinity]):
+     region 0 the leaf's triangles, [2 l + 1] and [2 l + 2] the two sides
+     of a cut at level [l]. The leaf's triangles' corners and pads, read
+     once. *)
+  let max_count = 64 in
+  let parts = Array.create_float (((2 * cuts) + 1) * max_count * 6) in
+  let verts = Array.create_float (max_count * 9) and pads = Array.create_float max_count in
+  let v = Array.make 9 0. and cut = Array.make 12 0. in
+  let range = Array.make 4 0 in
+  (* The boxes of the two sides of a cut at each level. *)
+  let sides_boxes = Array.init (2 * (cuts + 1)) (fun _ -> Array.make 6 0.) in
+  (* The part at [o] in [parts]: the one at [f] cut to the box at [b] in
+     [cut] padded by [p]; its box grows [box], its slot [s] the range at
+     [r] of [range]. *)
+  let side s j f o b (box : float array) r =
+    let p = pads.(j) in
+    let empty = ref false in
+    for i = 0 to 2 do
+      let l = fmax parts.(f + i) (cut.(b + i) -. p) and h = fmin parts.(f + 3 + i) (cut.(b + 3 + i) +. p) in
+      if not (l <= h) then empty := true;
+      parts.(o + i) <- l;
+      parts.(o + 3 + i) <- h
+    done;
+    if !empty then parts.(o) <- infinity
+    else begin
+      for i = 0 to 2 do
+        box.(i) <- fmin box.(i) parts.(o + i);
+        box.(3 + i) <- fmax box.(3 + i) parts.(o + 3 + i)
+      done;
+      if range.(r) < 0 then range.(r) <- s;
+      range.(r + 1) <- s
+    end
+  in
+  (* The parts in regions [into_l] and [into_r] of those in region [from]
+     of slots [first .. first + count - 1] of the leaf from [leaf_first]
+     on which coordinate [a] is at most [c] and at least [c], their boxes
+     to [bl] and [br]; to [range] the first and last slot with a part on
+     each side ([-1] if none). *)
+  let cut_sides leaf_first from into_l into_r first count a c (bl : float array) (br : float array) (range : int array) =
+    for i = 0 to 2 do
+      bl.(i) <- infinity;
+      bl.(3 + i) <- neg_infinity;
+      br.(i) <- infinity;
+      br.(3 + i) <- neg_infinity
+    done;
+    range.(0) <- -1;
+    range.(2) <- -1;
+    let from = from * max_count * 6 and into_l = into_l * max_count * 6 and into_r = into_r * max_count * 6 in
+    for s = first to first + count - 1 do
+      let j = s - leaf_first in
+      let f = from + (6 * j) in
+      let ol = into_l + (6 * j) and or_ = into_r + (6 * j) in
+      parts.(ol) <- infinity;
+      parts.(or_) <- infinity;
+      if parts.(f) < infinity then begin
+        let sides = halves verts (9 * j) a c cut 0 6 in
+        if sides land 1 <> 0 then side s j f ol 0 bl 0;
+        if sides land 2 <> 0 then side s j f or_ 6 br 2
+      end
+    done
+  in
+  (* The subtree of the parts in region [src] of slots [first .. first +
+     count - 1] of the leaf from [leaf_first], their box [box]. *)
+  let rec leaf leaf_first src first count (box : float array) level =
+    let k = emit () in
+    set_box k box 0;
+    let a =
+      let ex = box.(3) -. box.(0) and ey = box.(4) -. box.(1) and ez = box.(5) -. box.(2) in
+      if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2
+    in
+    let c = 0.5 *. (box.(a) +. box.(3 + a)) in
+    let bl = sides_boxes.(2 * level) and br = sides_boxes.((2 * level) + 1) in
+    let split =
+      if level >= cuts || count < 1 then None
+      else begin
+        cut_sides leaf_first src ((2 * level) + 1) ((2 * level) + 2) first count a c bl br range;
+        let l0 = range.(0) and l1 = range.(1) and r0 = range.(2) and r1 = range.(3) in
+        if l0 < 0 || r0 < 0 then None
+        else
+          let nl = l1 - l0 + 1 and nr = r1 - r0 + 1 in
+          let cost = (cost *. box_area box 0) +. (box_area bl 0 *. Float.of_int nl) +. (box_area br 0 *. Float.of_int nr) in
+          if cost < Float.of_int count *. box_area box 0 then Some (l0, nl, r0, nr) else None
+      end
+    in
+    match split with
+    | None ->
+        sub.a.((8 * k) + 6) <- Float.of_int first;
+        sub.a.((8 * k) + 7) <- Float.of_int count
+    | Some (l0, nl, r0, nr) ->
+        sub.a.((8 * k) + 7) <- Float.of_int (-1 - a);
+        leaf leaf_first ((2 * level) + 1) l0 nl bl (level + 1);
+        sub.a.((8 * k) + 6) <- Float.of_int (sub.len / 8);
+        leaf leaf_first ((2 * level) + 2) r0 nr br (level + 1)
+  in
+  (* Region 0: each triangle's box padded, within the leaf's box; whether
+     every slot is a triangle. *)
+  let start first count (box : float array) =
+    let ok = ref true in
+    for s = first to first + count - 1 do
+      if !ok && tri s v then begin
+        let j = s - first in
+        Array.blit v 0 verts (9 * j) 9;
+        let p = 2. *. pad s v and o = 6 * j in
+        pads.(j) <- p;
+        for i = 0 to 2 do
+          let l = fmin v.(i) (fmin v.(3 + i) v.(6 + i)) and h = fmax v.(i) (fmax v.(3 + i) v.(6 + i)) in
+          parts.(o + i) <- fmax box.(i) (l -. p);
+          parts.(o + 3 + i) <- fmin box.(3 + i) (h +. p)
+        done
+      end
+      else ok := false
+    done;
+    !ok
+  in
+  let n = t.n_nodes and nodes = t.nodes in
+  let leaf_box = Array.make 6 0. in
+  (* The subtree of leaf [k] in [sub], its number of nodes (1: not cut). *)
+  let subtree k =
+    let o = offset t k in
+    let g = tag_at nodes o and first = link_at nodes o in
+    Array.blit nodes o leaf_box 0 6;
+    (* A cut costs [cost] tests of the leaf's area before its sides' tests:
+       never less than a leaf of [cost] triangles or fewer. *)
+    if Float.of_int g > cost && g <= max_count && start first g leaf_box then begin
+      sub.len <- 0;
+      leaf first 0 first g leaf_box 0;
+      sub.len / 8
+    end
+    else 1
+  in
+  (* The subtrees of the leaves cut, in node order, in chunks of
+     [chunk] floats (none grown by a copy): the leaf's index and its
+     subtree's number of nodes, then its nodes. *)
+  let chunk = 1 lsl 16 in
+  let chunks = ref [] and cur = ref (Array.create_float chunk) and used = ref 0 in
+  let put x =
+    if !used = chunk then begin
+      chunks := !cur :: !chunks;
+      cur := Array.create_float chunk;
+      used := 0
+    end;
+    Array.unsafe_set !cur !used x;
+    incr used
+  in
+  let extra = ref 0 in
+  for k = 0 to n - 1 do
+    if tag_at nodes (offset t k) > 0 then begin
+      let m = subtree k in
+      if m > 1 then begin
+        extra := !extra + m - 1;
+        put (Float.of_int k);
+        put (Float.of_int m);
+        for i = 0 to (8 * m) - 1 do
+          put sub.a.(i)
+        done
+      end
+    end
+  done;
+  chunks := List.rev (!cur :: !chunks);
+  cur := [||];
+  (* Read back in order. *)
+  let get =
+    let at = ref 0 in
+    fun () ->
+      if !at = chunk then begin
+        chunks := List.tl !chunks;
+        at := 0
+      end;
+      let x = Array.unsafe_get (List.hd !chunks) !at in
+      incr at;
+      x
+  in
+  if !extra = 0 then t
+  else begin
+    (* The next leaf cut and its nodes' number. *)
+    let next_cut = ref (truncate (get ())) in
+    let next_m = ref (truncate (get ())) in
+    let n_nodes = n + !extra in
+    let out = Array.create_float ((node_floats * n_nodes) + node_floats - 1) in
+    let root = aligned_root out in
+    (* The inner nodes whose right child is not yet written, innermost on
+       top: the old index of that child, the parent's new index and
+       level. *)
+    let pending = Array.make (3 * (t.depth + 1)) 0 and top = ref 0 in
+    let next = ref 0 and depth = ref 0 and last_level = ref 0 and last_inner = ref false in
+    for k = 0 to n - 1 do
+      let o = offset t k and d = !next in
+      (* Its level: below the node before it if that is an inner node
+         (its left child), else below the parent that waits for it. *)
+      let level =
+        if k = 0 then 1
+        else if !last_inner then !last_level + 1
+        else begin
+          decr top;
+          let p = 3 * !top in
+          if pending.(p) <> k then invalid_arg "Bvh.split_leaves: nodes not depth first";
+          out.(at root pending.(p + 1) + 6) <- Float.of_int (at root d);
+          pending.(p + 2) + 1
+        end
+      in
+      let g = tag_at nodes o in
+      if g < 0 then begin
+        for i = 0 to 7 do
+          out.(at root d + i) <- nodes.(o + i)
+        done;
+        pending.(3 * !top) <- (link_at nodes o - t.root) / node_floats;
+        pending.((3 * !top) + 1) <- d;
+        pending.((3 * !top) + 2) <- level;
+        incr top;
+        next := d + 1
+      end
+      else begin
+        let m = if k = !next_cut then !next_m else 1 in
+        if m = 1 then
+          for i = 0 to 7 do
+            out.(at root d + i) <- nodes.(o + i)
+          done
+        else begin
+          for i = 0 to (8 * m) - 1 do
+            sub.a.(i) <- get ()
+          done;
+          if !extra > 0 then begin
+            extra := !extra - m + 1;
+            if !extra > 0 then begin
+              next_cut := truncate (get ());
+              next_m := truncate (get ())
+            end
+          end;
+          (* The subtree's levels: each node's from its parent's. *)
+          let lv = Array.make m level in
+          for j = 0 to m - 1 do
+            let so = 8 * j and dj = at root (d + j) in
+            for i = 0 to 7 do
+              out.(dj + i) <- sub.a.(so + i)
+            done;
+            if lv.(j) > !depth then depth := lv.(j);
+            if sub.a.(so + 7) < 0. then begin
+              let r = truncate sub.a.(so + 6) in
+              out.(dj + 6) <- Float.of_int (at root (d + r));
+              lv.(j + 1) <- lv.(j) + 1;
+              lv.(r) <- lv.(j) + 1
+            end
+          done
+        end;
+        next := d + m
+      end;
+      if level > !depth then depth := level;
+      last_level := level;
+      last_inner := g < 0
+    done;
+    (* The inner nodes' boxes, the union of their children's, from the
+       leaves up. *)
+    for k = n_nodes - 1 downto 0 do
+      let o = at root k in
+      if out.(o + 7) < 0. then begin
+        let l = o + node_floats and r = link_at out o in
+        for i = 0 to 2 do
+          out.(o + i) <- fmin out.(l + i) out.(r + i);
+          out.(o + 3 + i) <- fmax out.(l + 3 + i) out.(r + 3 + i)
+        done
+      end
+    done;
+    { t with n_nodes; nodes = out; root; depth = !depth }
+  end

@@ -189,3 +189,34 @@ val margin : margin -> float -> float
 (** [margin t r] is the margin of {!ray_box_margin} of a sphere of radius
     [r] among those of [t], bit for bit: with {!margin_terms}, a million
     boxes are padded with no array of margins. *)
+
+(** {1:cut Leaves cut by planes} *)
+
+val split_leaves :
+  ?cost:float -> ?cuts:int -> t -> tri:(int -> float array -> bool) -> pad:(int -> float array -> float) -> t
+(** [split_leaves ~cost ~cuts t ~tri ~pad] is [t] with each leaf of
+    triangles cut in two where the surface area heuristic finds it pays,
+    and so on [cuts] (default 1) times down: the plane halves the leaf's
+    box across its longest side, and the leaf becomes an inner node
+    (tagged with that axis) over two leaves, each over the range of the
+    leaf's slots that have a part on its side, boxed by those parts. The
+    slots are shared, not copied ([order] is [t]'s): a ray that meets both
+    sides' boxes tests the triangles of both ranges, some twice. A cut is
+    made where [cost A + A_l n_l + A_r n_r < n A] ([A] the leaf's box's
+    area, [n] its slots; [A_l], [n_l] and [A_r], [n_r] its sides'):
+    [cost] (default 3.) is the price of the inner node's two box tests in
+    triangle tests. It pays on long thin triangles, whose boxes are far
+    bigger than they are (a fine mesh's: the 1M-triangle knot's are 150
+    times longer than wide); never on leaves of [cost] slots or fewer,
+    which are not tried. Leaves of more than 64 slots or with a slot that
+    is not a triangle are left as they are. Inner nodes' boxes are their
+    children's union again; [depth] is the new tree's.
+
+    [tri s v] writes slot [s]'s triangle's corners to [v] (9 floats:
+    x, y, z of each) and is [true], or is [false] if [s] is not a
+    triangle. [pad s v] is how much the box of a part of that triangle
+    (its corners [v]) must be grown on every side so that a ray that hits
+    the triangle in that part meets the box, with the part's corners
+    rounded ([Prepared]: twice the triangle's box's margin). If no leaf
+    is cut, the result is [t] itself.
+    @raise Invalid_argument if [cuts < 0] or [cost] is negative or NaN. *)

@@ -600,7 +600,7 @@ let slot_of (bounded : int array) k =
    then each box is padded where it is, with no array of margins, centers
    or half sides of a million triangles between, and no second reading
    of the corners. *)
-let mesh_boxes o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius ~oboxes =
+let mesh_boxes ~mterms o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radius ~oboxes =
   (* Every element is written below. *)
   let f () = Array.create_float nb in
   let x0 = f () and y0 = f () and z0 = f () and x1 = f () and y1 = f () and z1 = f () in
@@ -630,6 +630,7 @@ let mesh_boxes o (scene : Scene.view) ~all ~first ~bounded ~nb ~cx ~cy ~cz ~radi
          end)
        ~mesh:(fun k m -> mesh_half_boxes ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 bounds ~all ~first ~bounded ~nb ~pos m k));
   let terms = Bvh.margin_of_bounds bounds in
+  mterms := Some terms;
   for i = 0 to nb - 1 do
     let hx = x1.(i) and hy = y1.(i) and hz = z1.(i) in
     let m = Bvh.margin terms (fmax hx (fmax hy hz)) in
@@ -689,6 +690,9 @@ type cubes = {
       (* Object [k]'s center, half sides and transform's stretch, if it
          is an instance ([instance_half_box]): its box, not its cube.
          Empty in a scene without instances. *)
+  mutable mterms : Bvh.margin option;
+      (* The margins' terms of a mesh's boxes ([mesh_boxes]), for the
+         leaves cut by planes ([cut_leaves]). *)
 }
 
 let cubes o =
@@ -697,7 +701,7 @@ let cubes o =
      [Spheres.blit_fields], the other shapes' by [shape_objects]. *)
   let f () = Array.create_float nc in
   let ocx = f () and ocy = f () and ocz = f () and ohalf = f () in
-  { ocx; ocy; ocz; ohalf; oboxes = Hashtbl.create 0 }
+  { ocx; ocy; ocz; ohalf; oboxes = Hashtbl.create 0; mterms = None }
 
 (* {2 Materials} *)
 
@@ -1230,7 +1234,10 @@ let boxes ~skips o (scene : Scene.view) c sel =
     let all = Array.length sel.bounded = 0 and nb = sel.nb and bounded = sel.bounded in
     let { ocx; ocy; ocz; ohalf; _ } = c in
     if o.any_mesh then
-      Some (mesh_boxes o scene ~all ~first:sel.first ~bounded ~nb ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~oboxes:c.oboxes)
+      let mterms = ref None in
+      let b = mesh_boxes ~mterms o scene ~all ~first:sel.first ~bounded ~nb ~cx:ocx ~cy:ocy ~cz:ocz ~radius:ohalf ~oboxes:c.oboxes in
+      c.mterms <- !mterms;
+      Some b
     else begin
       (* [among], not copies of the arrays: a million objects make 8 MB an array. *)
       let terms =
@@ -1854,9 +1861,50 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     uv;
   }
 
+(* With [prepare]'s [cut]: the hierarchy with its leaves of a mesh's
+   triangles cut by a plane where the surface area heuristic finds it
+   pays ([Bvh.split_leaves]):
+   the long thin triangles of a fine mesh, whose boxes are far bigger
+   than they are, tested only where the ray meets the box of their part
+   on the side it crosses. Each part's box is padded by twice its
+   triangle's margin ([mesh_boxes] pads the whole triangle's box by one:
+   a cut corner's rounding is a few units in the last place of the
+   coordinates, far below it), so that a ray that hits a triangle meets
+   the box of a part that holds the hit, as it met the triangle's box.
+   Slots are shared, not copied: both sides' leaves name slots of the
+   same range, and a ray that meets both tests their common triangles
+   twice (the same answer twice). *)
+let cut_leaves bvh c ~kind ~vertex g =
+  match (bvh, c.mterms) with
+  | Some b, Some terms ->
+      let n = Array.length kind in
+      let tri s (v : float array) =
+        s < n
+        && Kind.is_triangle kind.(s)
+        && begin
+             let a = g.at0.(s) and b = g.at1.(s) and c = g.at2.(s) in
+             for i = 0 to 2 do
+               v.(i) <- vertex.(a + i);
+               v.(3 + i) <- vertex.(b + i);
+               v.(6 + i) <- vertex.(c + i)
+             done;
+             true
+           end
+      in
+      let pad _ (v : float array) =
+        let h = ref 0. in
+        for i = 0 to 2 do
+          let lo = fmin v.(i) (fmin v.(3 + i) v.(6 + i)) and hi = fmax v.(i) (fmax v.(3 + i) v.(6 + i)) in
+          h := fmax !h (0.5 *. (hi -. lo))
+        done;
+        Bvh.margin terms !h
+      in
+      Some (Bvh.split_leaves b ~tri ~pad)
+  | _ -> bvh
+
 (* The steps in order. Each big array is let go as soon as no step needs
    it any more: the steps' results are taken apart here, not held whole. *)
-let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
+let rec prepare_scene ?(every_frame = false) ?(cut = false) ~skips ?beside scene =
   (* The settings alone: the objects of [scene] are let go below. *)
   let bottom_scene = Scene.bottom scene in
   let scene = Scene.view (Scene.of_valid scene) in
@@ -1903,6 +1951,7 @@ let rec prepare_scene ?(every_frame = false) ~skips ?beside scene =
     if bvh = None || Array.length v.vertex = 0 then (v.vertex, [||])
     else Vertex_order.gather ~sources:any_smooth ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
   in
+  let bvh = if cut then cut_leaves bvh c ~kind:sl.kind ~vertex g else bvh in
   let uv = uv_table ~every_frame o sl.slot (Array.length sl.kind) in
   assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)
     ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal ~uv
@@ -1921,13 +1970,13 @@ and bottom ~skips bottom_scene shape =
    where it is written. *)
 let big_increment = 32 * 1024 * 1024
 
-let prepare ?(skips = true) ?beside scene =
-  if object_count (Scene.view (Scene.of_valid scene)) <= big_scene then prepare_scene ~skips ?beside scene
+let prepare ?(skips = true) ?cut ?beside scene =
+  if object_count (Scene.view (Scene.of_valid scene)) <= big_scene then prepare_scene ?cut ~skips ?beside scene
   else begin
     let gc = Gc.get () in
     Gc.set { gc with major_heap_increment = big_increment };
     Fun.protect ~finally:(fun () -> Gc.set { (Gc.get ()) with major_heap_increment = gc.major_heap_increment })
-      (fun () -> prepare_scene ~skips ?beside scene)
+      (fun () -> prepare_scene ?cut ~skips ?beside scene)
   end
 
 type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms | Umbra

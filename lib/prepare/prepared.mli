@@ -367,8 +367,8 @@ val box_mapping : int
 val uv_mapping : int
 (** [uv_mapping] is the mapping code of {!Texture_map.Uv}. *)
 
-val prepare : ?skips:bool -> ?beside:Bvh.beside -> Scene.valid -> t
-(** [prepare ~skips ~beside scene] is [scene] prepared for {!Raytrace.Private.Trace}. With [skips]
+val prepare : ?skips:bool -> ?cut:bool -> ?beside:Bvh.beside -> Scene.valid -> t
+(** [prepare ~skips ~cut ~beside scene] is [scene] prepared for {!Raytrace.Private.Trace}. With [skips]
     (default [true]) the tracer skips work that provably cannot change an
     output byte: lights of zero intensity are dropped here, shadow rays stop
     at the first blocker and try the last blocker first, and reflections
@@ -379,7 +379,13 @@ val prepare : ?skips:bool -> ?beside:Bvh.beside -> Scene.valid -> t
     prove the skips exact. [beside] builds a part of the hierarchy on
     another core ({!Raytrace.Private.Bvh.build_boxes}) and, from its
     [min_objects] spheres on, finds the identical spheres there while
-    this process makes the hierarchy's boxes: the same result.
+    this process makes the hierarchy's boxes: the same result. With
+    [cut] (default [false]), a mesh's leaves are cut by planes where the
+    surface area heuristic finds it pays ({!Raytrace.Private.Bvh.split_leaves},
+    prices by default): the same image, fewer triangle tests a ray on meshes of long
+    thin triangles (the 1M-triangle knot: camera rays 17% and shadow rays
+    23% fewer instructions), for a slower build and more memory
+    (docs/performance.md, "Issue 28, round 3: the tree").
     For a scene of more than 2{^18} objects, the garbage collector's
     [major_heap_increment] is 256 MB while it runs (then set back): the
     heap's free pieces between the default's smaller chunks do not fit
