@@ -27,6 +27,17 @@ let finish p =
 (* A small picture of the scene, so that frames are quick. *)
 let small p = ok (Session.set_size p (Some (60, 40)))
 
+(* The example scene [name] in a session, made small, finishes with the
+   picture raytrace render makes of the session's scene; the session is
+   returned for more checks. *)
+let renders_as_cli name =
+  let text = match File_io.read (Helpers.scene_path name) with Ok t -> t | Error (`Msg m) -> Alcotest.fail m in
+  let p = session text in
+  small p;
+  let expected = Helpers.image_exn (Session.view p).scene in
+  Helpers.check_images name ~expected (finish p);
+  p
+
 let glass ~width ~height ~depth = session ~now:Unix.gettimeofday (Helpers.glass_planes ~width ~height ~depth)
 
 let tests =
@@ -104,11 +115,7 @@ let tests =
         Alcotest.(check string) __LOC__ (Scene_file.to_string Scene.cgfs) (Session.shown_text p));
     Alcotest.test_case "the textured globe renders as raytrace render's, its textures built in; another texture file is refused at its name" `Quick
       (fun () ->
-        let text = match File_io.read (Helpers.scene_path "globe.scene") with Ok t -> t | Error (`Msg m) -> Alcotest.fail m in
-        let p = session text in
-        small p;
-        let expected = Helpers.image_exn (Session.view p).scene in
-        Helpers.check_images __LOC__ ~expected (finish p);
+        let p = renders_as_cli "globe.scene" in
         (* The built-in images are the checked-in files. *)
         List.iter
           (fun (name, contents) ->
@@ -124,11 +131,7 @@ let tests =
               m);
     Alcotest.test_case "the textured die (textures on CSG operands and on a use's own material) renders as raytrace render's" `Quick
       (fun () ->
-        let text = match File_io.read (Helpers.scene_path "textured-die.scene") with Ok t -> t | Error (`Msg m) -> Alcotest.fail m in
-        let p = session text in
-        small p;
-        let expected = Helpers.image_exn (Session.view p).scene in
-        Helpers.check_images __LOC__ ~expected (finish p));
+        ignore (renders_as_cli "textured-die.scene"));
     Alcotest.test_case "a step traces at least one band and stops at its deadline" `Quick (fun () ->
         let p = session (cgfs_text ()) in
         (* The ticking clock passes [until] at the first reading after a band. *)
