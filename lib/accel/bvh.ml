@@ -75,35 +75,46 @@ let bins = 16
    nodes are written (a mesh's leaves of 16 make about [0.19 n]), and
    the arrays made after the build find no room in the heap that no
    node ever used (int arrays, zeroed, took 17 MB for a million
-   triangles, 14 of them never read). *)
-type ints = (int, Bigarray.int_elt, Bigarray.c_layout) Bigarray.Array1.t
+   triangles, 14 of them never read). A link is a node's or a slot's
+   number, below [2^31] (checked at the start), in 32 bits; a tag is at
+   least [-max_leaf], in 16: 6 bytes a node, not 16. A wall of spheres
+   writes all of its [1.04 n] nodes, and the collector frees these
+   arrays only at a later cycle, while prepare makes its next arrays: a
+   million spheres' peak had grown by 7 MB when they left the heap as
+   ints. *)
+type links = (int32, Bigarray.int32_elt, Bigarray.c_layout) Bigarray.Array1.t
 
-type shape = { mutable size : int; mutable link : ints; mutable tag : ints }
+type tags = (int, Bigarray.int16_signed_elt, Bigarray.c_layout) Bigarray.Array1.t
+
+type shape = { mutable size : int; mutable link : links; mutable tag : tags }
+
+(* The most objects a leaf holds: its count's negation is a tag. *)
+let max_leaf = 0x7fff
 
 (* Made with the collector's pace for memory out of its heap relaxed: it
    counts a bigarray's bytes as a reason to mark the heap sooner, where
    these are let go at the build's end (as [Obj_text]'s blocks). *)
-let ints n =
+let out_of_heap kind n =
   let gc = Gc.get () in
   Gc.set { gc with custom_major_ratio = 1_000_000 };
-  let a = Bigarray.Array1.create Bigarray.int Bigarray.c_layout n in
+  let a = Bigarray.Array1.create kind Bigarray.c_layout n in
   Gc.set gc;
   a
 
-let[@inline] link_of t k = Bigarray.Array1.get t.link k
+let[@inline] link_of t k = Int32.to_int (Bigarray.Array1.get t.link k)
 let[@inline] tag_of t k = Bigarray.Array1.get t.tag k
-let[@inline] set_link t k v = Bigarray.Array1.set t.link k v
+let[@inline] set_link t k v = Bigarray.Array1.set t.link k (Int32.of_int v)
 let[@inline] set_tag t k v = Bigarray.Array1.set t.tag k v
 
 let add_node t =
   if t.size = Bigarray.Array1.dim t.link then begin
-    let grow a =
-      let b = ints (2 * t.size) in
+    let grow kind a =
+      let b = out_of_heap kind (2 * t.size) in
       Bigarray.Array1.blit a (Bigarray.Array1.sub b 0 t.size);
       b
     in
-    t.link <- grow t.link;
-    t.tag <- grow t.tag
+    t.link <- grow Bigarray.int32 t.link;
+    t.tag <- grow Bigarray.int16_signed t.tag
   end;
   t.size <- t.size + 1;
   t.size - 1
@@ -411,11 +422,11 @@ let none_gathered = { first = 0; last = 0; at = 0; leaves = 0 }
    slots if [gathered < 0], else the leaves' boxes are gathered in slots
    [.. gathered - 1] (the box of one slot is that slot's box: the min of
    infinity and [x] is [x]). It is where the gathered boxes start. *)
-let finish_nodes nodes root (link : ints) (tag : ints) x0 y0 z0 x1 y1 z1 lo hi gathered =
+let finish_nodes nodes root (link : links) (tag : tags) x0 y0 z0 x1 y1 z1 lo hi gathered =
   let next = ref gathered in
   for k = hi - 1 downto lo do
     let o = at root k in
-    let l = Bigarray.Array1.get link k and g = Bigarray.Array1.get tag k in
+    let l = Int32.to_int (Bigarray.Array1.get link k) and g = Bigarray.Array1.get tag k in
     (* An inner node's link is its right child's offset: the tracer's
        stack holds offsets, not indices to multiply. *)
     nodes.(o + 6) <- Float.of_int (if g < 0 then l else at root l);
@@ -530,8 +541,9 @@ let start_build ~leaf_size ~beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 =
   (* Up to [1.04 n] nodes for a wall of spheres, [0.6 n] for a mesh: room
      for [n + n / 16] from the start, not grown (a copy) in most cases. *)
   let cap = n + (n / 16) + 16 in
-  let link = ints cap in
-  let tag = ints cap in
+  if n > 0x7fff_ffff then invalid_arg "Bvh.build_boxes: more than 2^31 - 1 objects";
+  let link = out_of_heap Bigarray.int32 cap in
+  let tag = out_of_heap Bigarray.int16_signed cap in
   let frames = Array.make (block * 2 * 48) 0. in
   let counts = Array.make (bins * 2 * 48) 0 in
   let params = Array.make 4 0. in
@@ -547,7 +559,7 @@ let start_build ~leaf_size ~beside ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 =
     z1;
     order;
     t = { size = 0; link; tag };
-    leaf_size = max 1 leaf_size;
+    leaf_size = max 1 (min max_leaf leaf_size);
     beside;
     n_all = n;
     frames;

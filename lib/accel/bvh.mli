@@ -131,7 +131,7 @@ val build_boxes :
     and upper corners [(x1.(i), y1.(i), z1.(i))], split by the surface area
     heuristic over 16 bins of their centers along the longest axis (at the
     median when their centers coincide). Leaves hold at most [leaf_size]
-    (default 4) objects. The six arrays are reordered in place (the
+    (default 4, at most 32767: a larger one is taken as 32767) objects. The six arrays are reordered in place (the
     boxes move with the objects, so that each pass over a node reads
     memory in order): afterwards, without [beside], [x0.(slot)] is the
     box of object [order.(slot)]; with [beside], they are the build's
@@ -144,7 +144,7 @@ val build_boxes :
     127]) while this process builds the rest:
     the same tree, node for node and bit for bit, as without.
     @raise Invalid_argument if the arrays are empty or of different
-    lengths. *)
+    lengths, or hold more than [2^31 - 1] objects. *)
 
 val ray_box_margin :
   ?among:int array -> cx:float array -> cy:float array -> cz:float array -> radius:float array -> Vec3.t -> float array
