@@ -1010,138 +1010,164 @@ let reserve (b : buffer) n =
     b.a <- c
   end
 
-let split_leaves ?(cost = 3.) ?(cuts = 1) t ~tri ~pad =
-  if cuts < 0 || not (cost >= 0.) then invalid_arg "Bvh.split_leaves";
-  (* A leaf's subtree, 8 floats a node as in [nodes] but its inner nodes'
-     links the index of their right child in the subtree. *)
-  let sub = { a = Array.create_float 64; len = 0 } in
-  let emit () =
-    reserve sub 8;
-    sub.len <- sub.len + 8;
-    (sub.len / 8) - 1
-  in
-  let set_box k (b : float array) o =
-    for i = 0 to 5 do
-      sub.a.((8 * k) + i) <- b.(o + i)
-    done
-  in
-  (* The padded boxes of the leaf's triangles' parts, [max_count] a
-     region, 6 floats a part (an empty part's lower x is [infinity]):
-     region 0 the leaf's triangles, [2 l + 1] and [2 l + 2] the two sides
-     of a cut at level [l]. The leaf's triangles' corners and pads, read
-     once. *)
-  let max_count = 64 in
-  let parts = Array.create_float (((2 * cuts) + 1) * max_count * 6) in
-  let verts = Array.create_float (max_count * 9) and pads = Array.create_float max_count in
-  let v = Array.make 9 0. and cut = Array.make 12 0. in
-  let range = Array.make 4 0 in
-  (* The boxes of the two sides of a cut at each level. *)
-  let sides_boxes = Array.init (2 * (cuts + 1)) (fun _ -> Array.make 6 0.) in
-  (* The part at [o] in [parts]: the one at [f] cut to the box at [b] in
-     [cut] padded by [p]; its box grows [box], its slot [s] the range at
-     [r] of [range]. *)
-  let side s j f o b (box : float array) r =
-    let p = pads.(j) in
-    let empty = ref false in
+(* The most triangles of a leaf that is tried. *)
+let cut_max_count = 64
+
+(* The scratch of [split_leaves], made once for all the leaves. [sub]: a
+   leaf's subtree, 8 floats a node as in [nodes] but its inner nodes'
+   links the index of their right child in the subtree. [parts]: the
+   padded boxes of the leaf's triangles' parts, [cut_max_count] a region,
+   6 floats a part (an empty part's lower x is [infinity]): region 0 the
+   leaf's triangles, [2 l + 1] and [2 l + 2] the two sides of a cut at
+   level [l]. [verts] and [pads]: the leaf's triangles' corners and pads,
+   read once. [sides_boxes]: the boxes of the two sides of a cut at each
+   level. [range]: the first and last slot with a part on each side. *)
+type cutter = {
+  cost : float;
+  cuts : int;
+  sub : buffer;
+  parts : float array;
+  verts : float array;
+  pads : float array;
+  v : float array;
+  cut : float array;
+  range : int array;
+  sides_boxes : float array array;
+}
+
+let cutter ~cost ~cuts =
+  {
+    cost;
+    cuts;
+    sub = { a = Array.create_float 64; len = 0 };
+    parts = Array.create_float (((2 * cuts) + 1) * cut_max_count * 6);
+    verts = Array.create_float (cut_max_count * 9);
+    pads = Array.create_float cut_max_count;
+    v = Array.make 9 0.;
+    cut = Array.make 12 0.;
+    range = Array.make 4 0;
+    sides_boxes = Array.init (2 * (cuts + 1)) (fun _ -> Array.make 6 0.);
+  }
+
+let emit c =
+  reserve c.sub 8;
+  c.sub.len <- c.sub.len + 8;
+  (c.sub.len / 8) - 1
+
+(* The part at [o] in [parts]: the one at [f] cut to the box at [b] in
+   [cut] padded by the pad of the leaf's triangle [j]; its box grows
+   [box], its slot [s] the range at [r] of [range]. *)
+let cut_side c s j f o b (box : float array) r =
+  let p = c.pads.(j) and parts = c.parts and cut = c.cut in
+  let empty = ref false in
+  for i = 0 to 2 do
+    let l = fmax parts.(f + i) (cut.(b + i) -. p) and h = fmin parts.(f + 3 + i) (cut.(b + 3 + i) +. p) in
+    if not (l <= h) then empty := true;
+    parts.(o + i) <- l;
+    parts.(o + 3 + i) <- h
+  done;
+  if !empty then parts.(o) <- infinity
+  else begin
     for i = 0 to 2 do
-      let l = fmax parts.(f + i) (cut.(b + i) -. p) and h = fmin parts.(f + 3 + i) (cut.(b + 3 + i) +. p) in
-      if not (l <= h) then empty := true;
-      parts.(o + i) <- l;
-      parts.(o + 3 + i) <- h
+      box.(i) <- fmin box.(i) parts.(o + i);
+      box.(3 + i) <- fmax box.(3 + i) parts.(o + 3 + i)
     done;
-    if !empty then parts.(o) <- infinity
+    if c.range.(r) < 0 then c.range.(r) <- s;
+    c.range.(r + 1) <- s
+  end
+
+(* The parts in regions [into_l] and [into_r] of those in region [from]
+   of slots [first .. first + count - 1] of the leaf from [leaf_first] on
+   which coordinate [a] is at most [at] and at least [at], their boxes to
+   [bl] and [br]; to [range] the first and last slot with a part on each
+   side ([-1] if none). *)
+let cut_sides c leaf_first from into_l into_r first count a at (bl : float array) (br : float array) =
+  for i = 0 to 2 do
+    bl.(i) <- infinity;
+    bl.(3 + i) <- neg_infinity;
+    br.(i) <- infinity;
+    br.(3 + i) <- neg_infinity
+  done;
+  c.range.(0) <- -1;
+  c.range.(2) <- -1;
+  let region = cut_max_count * 6 in
+  let from = from * region and into_l = into_l * region and into_r = into_r * region in
+  for s = first to first + count - 1 do
+    let j = s - leaf_first in
+    let f = from + (6 * j) in
+    let ol = into_l + (6 * j) and or_ = into_r + (6 * j) in
+    c.parts.(ol) <- infinity;
+    c.parts.(or_) <- infinity;
+    if c.parts.(f) < infinity then begin
+      let sides = halves c.verts (9 * j) a at c.cut 0 6 in
+      if sides land 1 <> 0 then cut_side c s j f ol 0 bl 0;
+      if sides land 2 <> 0 then cut_side c s j f or_ 6 br 2
+    end
+  done
+
+(* Appends to [sub] the subtree of the parts in region [src] of slots
+   [first .. first + count - 1] of the leaf from [leaf_first], their box
+   [box]. *)
+let rec cut_leaf c leaf_first src first count (box : float array) level =
+  let k = emit c in
+  let sub = c.sub in
+  Array.blit box 0 sub.a (8 * k) 6;
+  let a =
+    let ex = box.(3) -. box.(0) and ey = box.(4) -. box.(1) and ez = box.(5) -. box.(2) in
+    if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2
+  in
+  let at = 0.5 *. (box.(a) +. box.(3 + a)) in
+  let bl = c.sides_boxes.(2 * level) and br = c.sides_boxes.((2 * level) + 1) in
+  let split =
+    if level >= c.cuts || count < 1 then None
     else begin
-      for i = 0 to 2 do
-        box.(i) <- fmin box.(i) parts.(o + i);
-        box.(3 + i) <- fmax box.(3 + i) parts.(o + 3 + i)
-      done;
-      if range.(r) < 0 then range.(r) <- s;
-      range.(r + 1) <- s
+      cut_sides c leaf_first src ((2 * level) + 1) ((2 * level) + 2) first count a at bl br;
+      let l0 = c.range.(0) and l1 = c.range.(1) and r0 = c.range.(2) and r1 = c.range.(3) in
+      if l0 < 0 || r0 < 0 then None
+      else
+        let nl = l1 - l0 + 1 and nr = r1 - r0 + 1 in
+        let cost = (c.cost *. box_area box 0) +. (box_area bl 0 *. Float.of_int nl) +. (box_area br 0 *. Float.of_int nr) in
+        if cost < Float.of_int count *. box_area box 0 then Some (l0, nl, r0, nr) else None
     end
   in
-  (* The parts in regions [into_l] and [into_r] of those in region [from]
-     of slots [first .. first + count - 1] of the leaf from [leaf_first]
-     on which coordinate [a] is at most [c] and at least [c], their boxes
-     to [bl] and [br]; to [range] the first and last slot with a part on
-     each side ([-1] if none). *)
-  let cut_sides leaf_first from into_l into_r first count a c (bl : float array) (br : float array) (range : int array) =
-    for i = 0 to 2 do
-      bl.(i) <- infinity;
-      bl.(3 + i) <- neg_infinity;
-      br.(i) <- infinity;
-      br.(3 + i) <- neg_infinity
-    done;
-    range.(0) <- -1;
-    range.(2) <- -1;
-    let from = from * max_count * 6 and into_l = into_l * max_count * 6 and into_r = into_r * max_count * 6 in
-    for s = first to first + count - 1 do
-      let j = s - leaf_first in
-      let f = from + (6 * j) in
-      let ol = into_l + (6 * j) and or_ = into_r + (6 * j) in
-      parts.(ol) <- infinity;
-      parts.(or_) <- infinity;
-      if parts.(f) < infinity then begin
-        let sides = halves verts (9 * j) a c cut 0 6 in
-        if sides land 1 <> 0 then side s j f ol 0 bl 0;
-        if sides land 2 <> 0 then side s j f or_ 6 br 2
-      end
-    done
-  in
-  (* The subtree of the parts in region [src] of slots [first .. first +
-     count - 1] of the leaf from [leaf_first], their box [box]. *)
-  let rec leaf leaf_first src first count (box : float array) level =
-    let k = emit () in
-    set_box k box 0;
-    let a =
-      let ex = box.(3) -. box.(0) and ey = box.(4) -. box.(1) and ez = box.(5) -. box.(2) in
-      if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2
-    in
-    let c = 0.5 *. (box.(a) +. box.(3 + a)) in
-    let bl = sides_boxes.(2 * level) and br = sides_boxes.((2 * level) + 1) in
-    let split =
-      if level >= cuts || count < 1 then None
-      else begin
-        cut_sides leaf_first src ((2 * level) + 1) ((2 * level) + 2) first count a c bl br range;
-        let l0 = range.(0) and l1 = range.(1) and r0 = range.(2) and r1 = range.(3) in
-        if l0 < 0 || r0 < 0 then None
-        else
-          let nl = l1 - l0 + 1 and nr = r1 - r0 + 1 in
-          let cost = (cost *. box_area box 0) +. (box_area bl 0 *. Float.of_int nl) +. (box_area br 0 *. Float.of_int nr) in
-          if cost < Float.of_int count *. box_area box 0 then Some (l0, nl, r0, nr) else None
-      end
-    in
-    match split with
-    | None ->
-        sub.a.((8 * k) + 6) <- Float.of_int first;
-        sub.a.((8 * k) + 7) <- Float.of_int count
-    | Some (l0, nl, r0, nr) ->
-        sub.a.((8 * k) + 7) <- Float.of_int (-1 - a);
-        leaf leaf_first ((2 * level) + 1) l0 nl bl (level + 1);
-        sub.a.((8 * k) + 6) <- Float.of_int (sub.len / 8);
-        leaf leaf_first ((2 * level) + 2) r0 nr br (level + 1)
-  in
-  (* Region 0: each triangle's box padded, within the leaf's box; whether
-     every slot is a triangle. *)
-  let start first count (box : float array) =
-    let ok = ref true in
-    for s = first to first + count - 1 do
-      if !ok && tri s v then begin
-        let j = s - first in
-        Array.blit v 0 verts (9 * j) 9;
-        let p = 2. *. pad s v and o = 6 * j in
-        pads.(j) <- p;
-        for i = 0 to 2 do
-          let l = fmin v.(i) (fmin v.(3 + i) v.(6 + i)) and h = fmax v.(i) (fmax v.(3 + i) v.(6 + i)) in
-          parts.(o + i) <- fmax box.(i) (l -. p);
-          parts.(o + 3 + i) <- fmin box.(3 + i) (h +. p)
-        done
-      end
-      else ok := false
-    done;
-    !ok
-  in
-  let n = t.n_nodes and nodes = t.nodes in
-  let leaf_box = Array.make 6 0. in
+  match split with
+  | None ->
+      sub.a.((8 * k) + 6) <- Float.of_int first;
+      sub.a.((8 * k) + 7) <- Float.of_int count
+  | Some (l0, nl, r0, nr) ->
+      sub.a.((8 * k) + 7) <- Float.of_int (-1 - a);
+      cut_leaf c leaf_first ((2 * level) + 1) l0 nl bl (level + 1);
+      (* [sub.a] may have grown (and moved) meanwhile. *)
+      c.sub.a.((8 * k) + 6) <- Float.of_int (c.sub.len / 8);
+      cut_leaf c leaf_first ((2 * level) + 2) r0 nr br (level + 1)
+
+(* Region 0: each triangle's box padded, within the leaf's box; whether
+   every slot is a triangle. *)
+let cut_start c ~tri ~pad first count (box : float array) =
+  let ok = ref true and v = c.v and parts = c.parts in
+  for s = first to first + count - 1 do
+    if !ok && tri s v then begin
+      let j = s - first in
+      Array.blit v 0 c.verts (9 * j) 9;
+      let p = 2. *. pad s v and o = 6 * j in
+      c.pads.(j) <- p;
+      for i = 0 to 2 do
+        let l = fmin v.(i) (fmin v.(3 + i) v.(6 + i)) and h = fmax v.(i) (fmax v.(3 + i) v.(6 + i)) in
+        parts.(o + i) <- fmax box.(i) (l -. p);
+        parts.(o + 3 + i) <- fmin box.(3 + i) (h +. p)
+      done
+    end
+    else ok := false
+  done;
+  !ok
+
+(* The subtrees of the leaves of [t] cut, in node order, in chunks of
+   [cut_chunk] floats (none grown by a copy): the leaf's index and its
+   subtree's number of nodes, then its nodes; and how many nodes they add. *)
+let cut_chunk = 1 lsl 16
+
+let cut_subtrees c t ~tri ~pad =
+  let nodes = t.nodes and leaf_box = Array.make 6 0. in
   (* The subtree of leaf [k] in [sub], its number of nodes (1: not cut). *)
   let subtree k =
     let o = offset t k in
@@ -1149,29 +1175,25 @@ let split_leaves ?(cost = 3.) ?(cuts = 1) t ~tri ~pad =
     Array.blit nodes o leaf_box 0 6;
     (* A cut costs [cost] tests of the leaf's area before its sides' tests:
        never less than a leaf of [cost] triangles or fewer. *)
-    if Float.of_int g > cost && g <= max_count && start first g leaf_box then begin
-      sub.len <- 0;
-      leaf first 0 first g leaf_box 0;
-      sub.len / 8
+    if Float.of_int g > c.cost && g <= cut_max_count && cut_start c ~tri ~pad first g leaf_box then begin
+      c.sub.len <- 0;
+      cut_leaf c first 0 first g leaf_box 0;
+      c.sub.len / 8
     end
     else 1
   in
-  (* The subtrees of the leaves cut, in node order, in chunks of
-     [chunk] floats (none grown by a copy): the leaf's index and its
-     subtree's number of nodes, then its nodes. *)
-  let chunk = 1 lsl 16 in
-  let chunks = ref [] and cur = ref (Array.create_float chunk) and used = ref 0 in
+  let chunks = ref [] and cur = ref (Array.create_float cut_chunk) and used = ref 0 in
   let put x =
-    if !used = chunk then begin
+    if !used = cut_chunk then begin
       chunks := !cur :: !chunks;
-      cur := Array.create_float chunk;
+      cur := Array.create_float cut_chunk;
       used := 0
     end;
     Array.unsafe_set !cur !used x;
     incr used
   in
   let extra = ref 0 in
-  for k = 0 to n - 1 do
+  for k = 0 to t.n_nodes - 1 do
     if tag_at nodes (offset t k) > 0 then begin
       let m = subtree k in
       if m > 1 then begin
@@ -1179,114 +1201,113 @@ let split_leaves ?(cost = 3.) ?(cuts = 1) t ~tri ~pad =
         put (Float.of_int k);
         put (Float.of_int m);
         for i = 0 to (8 * m) - 1 do
-          put sub.a.(i)
+          put c.sub.a.(i)
         done
       end
     end
   done;
-  chunks := List.rev (!cur :: !chunks);
-  cur := [||];
+  (List.rev (!cur :: !chunks), !extra)
+
+(* [t]'s nodes with the leaves of [chunks] ([cut_subtrees]'s) replaced by
+   their subtrees, [extra] nodes more, in a fresh node array. *)
+let splice t chunks extra =
+  let n = t.n_nodes and nodes = t.nodes in
   (* Read back in order. *)
-  let get =
-    let at = ref 0 in
-    fun () ->
-      if !at = chunk then begin
-        chunks := List.tl !chunks;
-        at := 0
-      end;
-      let x = Array.unsafe_get (List.hd !chunks) !at in
-      incr at;
-      x
+  let chunks = ref chunks and at_chunk = ref 0 in
+  let get () =
+    if !at_chunk = cut_chunk then begin
+      chunks := List.tl !chunks;
+      at_chunk := 0
+    end;
+    let x = Array.unsafe_get (List.hd !chunks) !at_chunk in
+    incr at_chunk;
+    x
   in
-  if !extra = 0 then t
-  else begin
-    (* The next leaf cut and its nodes' number. *)
-    let next_cut = ref (truncate (get ())) in
-    let next_m = ref (truncate (get ())) in
-    let n_nodes = n + !extra in
-    let out = Array.create_float ((node_floats * n_nodes) + node_floats - 1) in
-    let root = aligned_root out in
-    (* The inner nodes whose right child is not yet written, innermost on
-       top: the old index of that child, the parent's new index and
-       level. *)
-    let pending = Array.make (3 * (t.depth + 1)) 0 and top = ref 0 in
-    let next = ref 0 and depth = ref 0 and last_level = ref 0 and last_inner = ref false in
-    for k = 0 to n - 1 do
-      let o = offset t k and d = !next in
-      (* Its level: below the node before it if that is an inner node
-         (its left child), else below the parent that waits for it. *)
-      let level =
-        if k = 0 then 1
-        else if !last_inner then !last_level + 1
-        else begin
-          decr top;
-          let p = 3 * !top in
-          if pending.(p) <> k then invalid_arg "Bvh.split_leaves: nodes not depth first";
-          out.(at root pending.(p + 1) + 6) <- Float.of_int (at root d);
-          pending.(p + 2) + 1
-        end
-      in
-      let g = tag_at nodes o in
-      if g < 0 then begin
-        for i = 0 to 7 do
-          out.(at root d + i) <- nodes.(o + i)
-        done;
-        pending.(3 * !top) <- (link_at nodes o - t.root) / node_floats;
-        pending.((3 * !top) + 1) <- d;
-        pending.((3 * !top) + 2) <- level;
-        incr top;
-        next := d + 1
-      end
+  let extra = ref extra and sub = ref (Array.create_float 64) in
+  (* The next leaf cut and its nodes' number. *)
+  let next_cut = ref (truncate (get ())) in
+  let next_m = ref (truncate (get ())) in
+  let n_nodes = n + !extra in
+  let out = Array.create_float ((node_floats * n_nodes) + node_floats - 1) in
+  let root = aligned_root out in
+  (* The inner nodes whose right child is not yet written, innermost on
+     top: the old index of that child, the parent's new index and
+     level. *)
+  let pending = Array.make (3 * (t.depth + 1)) 0 and top = ref 0 in
+  let next = ref 0 and depth = ref 0 and last_level = ref 0 and last_inner = ref false in
+  for k = 0 to n - 1 do
+    let o = offset t k and d = !next in
+    (* Its level: below the node before it if that is an inner node
+       (its left child), else below the parent that waits for it. *)
+    let level =
+      if k = 0 then 1
+      else if !last_inner then !last_level + 1
       else begin
-        let m = if k = !next_cut then !next_m else 1 in
-        if m = 1 then
-          for i = 0 to 7 do
-            out.(at root d + i) <- nodes.(o + i)
-          done
-        else begin
-          for i = 0 to (8 * m) - 1 do
-            sub.a.(i) <- get ()
-          done;
-          if !extra > 0 then begin
-            extra := !extra - m + 1;
-            if !extra > 0 then begin
-              next_cut := truncate (get ());
-              next_m := truncate (get ())
-            end
-          end;
-          (* The subtree's levels: each node's from its parent's. *)
-          let lv = Array.make m level in
-          for j = 0 to m - 1 do
-            let so = 8 * j and dj = at root (d + j) in
-            for i = 0 to 7 do
-              out.(dj + i) <- sub.a.(so + i)
-            done;
-            if lv.(j) > !depth then depth := lv.(j);
-            if sub.a.(so + 7) < 0. then begin
-              let r = truncate sub.a.(so + 6) in
-              out.(dj + 6) <- Float.of_int (at root (d + r));
-              lv.(j + 1) <- lv.(j) + 1;
-              lv.(r) <- lv.(j) + 1
-            end
-          done
-        end;
-        next := d + m
-      end;
-      if level > !depth then depth := level;
-      last_level := level;
-      last_inner := g < 0
-    done;
-    (* The inner nodes' boxes, the union of their children's, from the
-       leaves up. *)
-    for k = n_nodes - 1 downto 0 do
-      let o = at root k in
-      if out.(o + 7) < 0. then begin
-        let l = o + node_floats and r = link_at out o in
-        for i = 0 to 2 do
-          out.(o + i) <- fmin out.(l + i) out.(r + i);
-          out.(o + 3 + i) <- fmax out.(l + 3 + i) out.(r + 3 + i)
-        done
+        decr top;
+        let p = 3 * !top in
+        if pending.(p) <> k then invalid_arg "Bvh.split_leaves: nodes not depth first";
+        out.(at root pending.(p + 1) + 6) <- Float.of_int (at root d);
+        pending.(p + 2) + 1
       end
-    done;
-    { t with n_nodes; nodes = out; root; depth = !depth }
-  end
+    in
+    let g = tag_at nodes o in
+    if g < 0 then begin
+      Array.blit nodes o out (at root d) 8;
+      pending.(3 * !top) <- (link_at nodes o - t.root) / node_floats;
+      pending.((3 * !top) + 1) <- d;
+      pending.((3 * !top) + 2) <- level;
+      incr top;
+      next := d + 1
+    end
+    else begin
+      let m = if k = !next_cut then !next_m else 1 in
+      if m = 1 then Array.blit nodes o out (at root d) 8
+      else begin
+        if Array.length !sub < 8 * m then sub := Array.create_float (8 * m);
+        let sub = !sub in
+        for i = 0 to (8 * m) - 1 do
+          sub.(i) <- get ()
+        done;
+        extra := !extra - m + 1;
+        if !extra > 0 then begin
+          next_cut := truncate (get ());
+          next_m := truncate (get ())
+        end;
+        (* The subtree's levels: each node's from its parent's. *)
+        let lv = Array.make m level in
+        for j = 0 to m - 1 do
+          let so = 8 * j and dj = at root (d + j) in
+          Array.blit sub so out dj 8;
+          if lv.(j) > !depth then depth := lv.(j);
+          if sub.(so + 7) < 0. then begin
+            let r = truncate sub.(so + 6) in
+            out.(dj + 6) <- Float.of_int (at root (d + r));
+            lv.(j + 1) <- lv.(j) + 1;
+            lv.(r) <- lv.(j) + 1
+          end
+        done
+      end;
+      next := d + m
+    end;
+    if level > !depth then depth := level;
+    last_level := level;
+    last_inner := g < 0
+  done;
+  (* The inner nodes' boxes, the union of their children's, from the
+     leaves up. *)
+  for k = n_nodes - 1 downto 0 do
+    let o = at root k in
+    if out.(o + 7) < 0. then begin
+      let l = o + node_floats and r = link_at out o in
+      for i = 0 to 2 do
+        out.(o + i) <- fmin out.(l + i) out.(r + i);
+        out.(o + 3 + i) <- fmax out.(l + 3 + i) out.(r + 3 + i)
+      done
+    end
+  done;
+  { t with n_nodes; nodes = out; root; depth = !depth }
+
+let split_leaves ?(cost = 3.) ?(cuts = 1) t ~tri ~pad =
+  if cuts < 0 || not (cost >= 0.) then invalid_arg "Bvh.split_leaves";
+  let chunks, extra = cut_subtrees (cutter ~cost ~cuts) t ~tri ~pad in
+  if extra = 0 then t else splice t chunks extra
