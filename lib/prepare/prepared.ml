@@ -1667,6 +1667,47 @@ let in_list_order o ~index ~slot =
     (Array.map (fun k -> rank.(k)) index, listed)
   end
 
+(* With [prepare]'s [cut]: the hierarchy with its leaves of a mesh's
+   triangles cut by a plane where the surface area heuristic finds it
+   pays ([Bvh.split_leaves]):
+   the long thin triangles of a fine mesh, whose boxes are far bigger
+   than they are, tested only where the ray meets the box of their part
+   on the side it crosses. Each part's box is padded by twice its
+   triangle's margin ([mesh_boxes] pads the whole triangle's box by one:
+   a cut corner's rounding is a few units in the last place of the
+   coordinates, far below it), so that a ray that hits a triangle meets
+   the box of a part that holds the hit, as it met the triangle's box.
+   Slots are shared, not copied: both sides' leaves name slots of the
+   same range, and a ray that meets both tests their common triangles
+   twice (the same answer twice). *)
+let cut_leaves bvh c ~kind ~vertex g =
+  match (bvh, c.mterms) with
+  | Some b, Some terms ->
+      let n = Array.length kind in
+      let tri s (v : float array) =
+        s < n
+        && Kind.is_triangle kind.(s)
+        && begin
+             let a = g.at0.(s) and b = g.at1.(s) and c = g.at2.(s) in
+             for i = 0 to 2 do
+               v.(i) <- vertex.(a + i);
+               v.(3 + i) <- vertex.(b + i);
+               v.(6 + i) <- vertex.(c + i)
+             done;
+             true
+           end
+      in
+      let pad _ (v : float array) =
+        let h = ref 0. in
+        for i = 0 to 2 do
+          let lo = fmin v.(i) (fmin v.(3 + i) v.(6 + i)) and hi = fmax v.(i) (fmax v.(3 + i) v.(6 + i)) in
+          h := fmax !h (0.5 *. (hi -. lo))
+        done;
+        Bvh.margin terms !h
+      in
+      Some (Bvh.split_leaves b ~tri ~pad)
+  | _ -> bvh
+
 (* {2 The prepared scene} *)
 
 (* The [light_stride] floats of a light's geometry in [light_geom]. *)
@@ -1860,47 +1901,6 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     texels;
     uv;
   }
-
-(* With [prepare]'s [cut]: the hierarchy with its leaves of a mesh's
-   triangles cut by a plane where the surface area heuristic finds it
-   pays ([Bvh.split_leaves]):
-   the long thin triangles of a fine mesh, whose boxes are far bigger
-   than they are, tested only where the ray meets the box of their part
-   on the side it crosses. Each part's box is padded by twice its
-   triangle's margin ([mesh_boxes] pads the whole triangle's box by one:
-   a cut corner's rounding is a few units in the last place of the
-   coordinates, far below it), so that a ray that hits a triangle meets
-   the box of a part that holds the hit, as it met the triangle's box.
-   Slots are shared, not copied: both sides' leaves name slots of the
-   same range, and a ray that meets both tests their common triangles
-   twice (the same answer twice). *)
-let cut_leaves bvh c ~kind ~vertex g =
-  match (bvh, c.mterms) with
-  | Some b, Some terms ->
-      let n = Array.length kind in
-      let tri s (v : float array) =
-        s < n
-        && Kind.is_triangle kind.(s)
-        && begin
-             let a = g.at0.(s) and b = g.at1.(s) and c = g.at2.(s) in
-             for i = 0 to 2 do
-               v.(i) <- vertex.(a + i);
-               v.(3 + i) <- vertex.(b + i);
-               v.(6 + i) <- vertex.(c + i)
-             done;
-             true
-           end
-      in
-      let pad _ (v : float array) =
-        let h = ref 0. in
-        for i = 0 to 2 do
-          let lo = fmin v.(i) (fmin v.(3 + i) v.(6 + i)) and hi = fmax v.(i) (fmax v.(3 + i) v.(6 + i)) in
-          h := fmax !h (0.5 *. (hi -. lo))
-        done;
-        Bvh.margin terms !h
-      in
-      Some (Bvh.split_leaves b ~tri ~pad)
-  | _ -> bvh
 
 (* The steps in order. Each big array is let go as soon as no step needs
    it any more: the steps' results are taken apart here, not held whole. *)
