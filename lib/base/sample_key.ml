@@ -52,6 +52,12 @@ let walk ~p ~w ~n k =
   (* [p mod n] first: [p + i] could pass [2^31 - 1], JavaScript's largest int. *)
   ((p mod n) + !i) mod n
 
+let fill t ~at ~shift ~p ~n =
+  let w = mask n in
+  for k = 0 to n - 1 do
+    t.(at + k) <- shift + walk ~p ~w ~n k
+  done
+
 let permute h ~n k =
   if n < 1 || k < 0 || k >= n then invalid_arg "Sample_key.permute: k outside [0, n)";
   walk ~p:(mix h) ~w:(mask n) ~n k

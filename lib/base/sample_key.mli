@@ -66,3 +66,11 @@ val walk : p:int -> w:int -> n:int -> int -> int
 (** [walk ~p:(mix h) ~w:(mask n) ~n k] is [permute h ~n k], its key mixed
     and its mask computed by the caller, who may keep them from call to
     call (the kernel does, per pixel); not checked. *)
+
+val fill : int array -> at:int -> shift:int -> p:int -> n:int -> unit
+(** [fill t ~at ~shift ~p:(mix h) ~n] writes [shift + permute h ~n k]
+    into [t.(at + k)] for every [k] in [\[0, n)]: a whole permutation
+    tabulated, its mask computed once ([n] walks). The lens's sub-cells and
+    an area light's cells take theirs so, once per pixel or lit point;
+    [p] is not checked.
+    @raise Invalid_argument if [t] holds fewer than [at + n] ints. *)

@@ -145,14 +145,11 @@ let[@inline] cos_q t =
 let sub_cells tr n =
   let hp = Sample_key.pixel ~col:tr.lens_gx ~row:tr.lens_gy ~sample:lens_tag in
   let px = Sample_key.mix (Sample_key.key hp 3) and py = Sample_key.mix (Sample_key.key hp 4) in
-  let w = Sample_key.mask (n - 1) in
   let t = tr.lens_sub in
   t.(0) <- 0;
+  Sample_key.fill t ~at:1 ~shift:1 ~p:px ~n:(n - 1);
   t.(n) <- 0;
-  for r = 1 to n - 1 do
-    t.(r) <- 1 + Sample_key.walk ~p:px ~w ~n:(n - 1) (r - 1);
-    t.(n + r) <- 1 + Sample_key.walk ~p:py ~w ~n:(n - 1) (r - 1)
-  done;
+  Sample_key.fill t ~at:(n + 1) ~shift:1 ~p:py ~n:(n - 1);
   tr.lens_sub_n <- n
 
 let lens tr =

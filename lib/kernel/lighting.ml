@@ -128,10 +128,31 @@ let[@inline] corners tr ~through l cx cy cz ax ay az bx by bz =
   done;
   if !n_seen = 4 then seen else if !n_hidden = 4 then hidden else doubt
 
-(* The sample of cell [(a, b)] of an area light of [u x v] cells whose
-   key is [hl]: its place [(s, t)] on the rectangle. *)
-let[@inline] cell_s hl u v a b = stratum (Sample_key.key (Sample_key.key hl ((a * v) + b)) 0) u a
-let[@inline] cell_t hl v a b = stratum (Sample_key.key (Sample_key.key hl ((a * v) + b)) 1) v b
+(* The sample of cell [(a, b)] of an area light of [u x v] cells, the
+   mixed key of its cell [m = mix (key hl (a v + b))]: its place [(s, t)]
+   on the rectangle, in the sub-stratum [cells.(b)] of the cell's [v]
+   columns and [cells.(v + a)] of its [u] rows (Light, "Sample points":
+   correlated multi-jittered, the [u v] abscissae one in each of [u v]
+   columns, the ordinates one in each of [u v] rows). *)
+let[@inline] below_1 x = if x < 1. then x else 0x1.fffffffffffffp-1
+
+let[@inline] cell_s cells u v a b m =
+  below_1 ((Float.of_int ((a * v) + Array.unsafe_get cells b) +. (Float.of_int m *. 0x1p-31)) /. Float.of_int (u * v))
+
+let[@inline] cell_t cells u v a b m =
+  below_1
+    ((Float.of_int ((b * u) + Array.unsafe_get cells (v + a)) +. (Float.of_int (Sample_key.mix m) *. 0x1p-31))
+    /. Float.of_int (u * v))
+
+let[@inline] cell_key hl v a b = Sample_key.mix (Sample_key.key hl ((a * v) + b))
+
+(* The point's two permutations of the cells' sub-strata, of the [v]
+   columns and of the [u] rows, into [tr.light_cells]: one walk a cell
+   side, none for a side of one cell. *)
+let cells tr hl u v =
+  let t = tr.light_cells in
+  if v = 1 then t.(0) <- 0 else Sample_key.fill t ~at:0 ~shift:0 ~p:(Sample_key.mix (Sample_key.key hl (-1))) ~n:v;
+  if u = 1 then t.(v) <- 0 else Sample_key.fill t ~at:v ~shift:0 ~p:(Sample_key.mix (Sample_key.key hl (-2))) ~n:u
 
 (* Is the shadow ray from [s.px..] to the point [(su, sv)] of the area
    light stopped? *)
@@ -197,9 +218,17 @@ let[@inline] area tr ~through ~shiny ~specular_of m l length_n length_v =
          +. (s.nz *. (cz +. (0.5 *. (az +. bz)) -. pz))
          > 0.
     in
-    let u1 = u - 1 and v1 = v - 1 in
-    let s00 = cell_s hl u v 0 0 and t00 = cell_t hl v 0 0 and s10 = cell_s hl u v u1 0 and t10 = cell_t hl v u1 0 in
-    let s11 = cell_s hl u v u1 v1 and t11 = cell_t hl v u1 v1 and s01 = cell_s hl u v 0 v1 and t01 = cell_t hl v 0 v1 in
+    let u1 = u - 1 and v1 = v - 1 and c = tr.light_cells in
+    if not uniform then cells tr hl u v;
+    (* The corner cells' points, only where they are traced first. *)
+    let s00 = if early then cell_s c u v 0 0 (cell_key hl v 0 0) else 0. in
+    let t00 = if early then cell_t c u v 0 0 (cell_key hl v 0 0) else 0. in
+    let s10 = if early then cell_s c u v u1 0 (cell_key hl v u1 0) else 0. in
+    let t10 = if early then cell_t c u v u1 0 (cell_key hl v u1 0) else 0. in
+    let s11 = if early then cell_s c u v u1 v1 (cell_key hl v u1 v1) else 0. in
+    let t11 = if early then cell_t c u v u1 v1 (cell_key hl v u1 v1) else 0. in
+    let s01 = if early then cell_s c u v 0 v1 (cell_key hl v 0 v1) else 0. in
+    let t01 = if early then cell_t c u v 0 v1 (cell_key hl v 0 v1) else 0. in
     (* Per corner cell: stopped, and by which object ([-1]: seen). *)
     let k00 = ref (-1) and k10 = ref (-1) and k11 = ref (-1) and k01 = ref (-1) in
     if early then begin
@@ -211,9 +240,9 @@ let[@inline] area tr ~through ~shiny ~specular_of m l length_n length_v =
     let umbra = early && !k00 >= 0 && !k10 = !k00 && !k11 = !k00 && !k01 = !k00 && convex (Array.unsafe_get p.kind !k00) in
     for a = 0 to u - 1 do
       for b = 0 to v - 1 do
-        let h = Sample_key.key hl ((a * v) + b) in
-        let su = if uniform then unit (Sample_key.key h 0) else stratum (Sample_key.key h 0) u a in
-        let sv = if uniform then unit (Sample_key.key h 1) else stratum (Sample_key.key h 1) v b in
+        let mk = cell_key hl v a b in
+        let su = if uniform then Float.of_int mk *. 0x1p-31 else cell_s c u v a b mk in
+        let sv = if uniform then Float.of_int (Sample_key.mix mk) *. 0x1p-31 else cell_t c u v a b mk in
         s.dx <- cx +. (su *. ax) +. (sv *. bx) -. px;
         s.dy <- cy +. (su *. ay) +. (sv *. by) -. py;
         s.dz <- cz +. (su *. az) +. (sv *. bz) -. pz;

@@ -93,6 +93,7 @@ type t = {
   mutable lens_w : int;
   lens_sub : int array;  (** The pixel's sub-cell permutations, for [lens_sub_n]. *)
   mutable lens_sub_n : int;
+  light_cells : int array;
   red : float array;
   green : float array;
   blue : float array;
@@ -183,6 +184,12 @@ let rec create ?(averaging = false) (p : Prepared.t) =
     lens_w = 0;
     lens_sub = Array.make (2 * Limits.max_grid) 0;
     lens_sub_n = 0;
+    light_cells =
+      Array.make
+        (Array.fold_left max 1
+           (Array.init p.n_lights (fun l ->
+                if p.light_kind.(l) = Prepared.area then p.light_su.(l) + p.light_sv.(l) else 0)))
+        0;
     (* A copy only where a texture writes in it: the other scenes read the
        prepared scene's own arrays. *)
     red = (if Array.length p.texture_of = 0 then p.red else Array.copy p.red);

@@ -119,6 +119,12 @@ type t = {
   mutable lens_w : int;
   lens_sub : int array;
   mutable lens_sub_n : int;
+  light_cells : int array;
+      (** An area light's two permutations of its cells' sub-strata, for
+          the point being lit ({!Lighting}): of [0 .. v - 1] at
+          [light_cells.(b)], of [0 .. u - 1] at [light_cells.(v + a)]
+          (as many ints as the largest [u + v] of the scene's area
+          lights, at least one). *)
   red : float array;
       (** The colour channels of each material, read by the tracing loops:
           [p.red] itself, or, where some material has a texture

@@ -1824,7 +1824,7 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     light_geom = Array.concat (List.map light_geom (Array.to_list lights));
     light_su = lf (function Light.Area { samples_u; _ } -> samples_u | Sphere { samples; _ } -> samples | _ -> 1);
     light_sv = lf (function Light.Area { samples_v; _ } -> samples_v | _ -> 1);
-    light_adaptive = lf (function Light.Area { adaptive; _ } -> adaptive | _ -> false);
+    light_adaptive = lf Light.corners_first;
     light_uniform = lf (function Light.Area { sampling = Uniform; _ } -> true | _ -> false);
     light_intensity = lf Light.intensity;
     lx = lf (fun l -> (light_vector l).x);

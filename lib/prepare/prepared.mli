@@ -193,7 +193,8 @@ type t = private {
   light_sv : int array;  (** Per light: an area light's samples along edge2, [1] otherwise. *)
   light_adaptive : bool array;
       (** Per light: an area light samples only the points its corners
-          leave in doubt ({!Light}, "Penumbra-only sampling"). *)
+          leave in doubt ({!Light.corners_first}: adaptive, at least four
+          samples; {!Light}, "Penumbra-only sampling"). *)
   light_uniform : bool array;
       (** Per light: an area light's samples are drawn independently over
           its whole rectangle ([Light.Uniform]), not one per cell. *)

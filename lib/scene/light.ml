@@ -40,11 +40,17 @@ let intensity = function
   | Spot { intensity; _ } ->
       intensity
 
+(* Four corner rays cost more than they save on fewer than four samples
+   (docs/run-time-against-error.md). *)
+let corners_first = function
+  | Area { samples_u; samples_v; adaptive; _ } -> adaptive && samples_u * samples_v >= 4
+  | Ambient _ | Point _ | Directional _ | Spot _ | Sphere _ -> false
+
 let samples = function
   | Ambient _ | Point _ | Directional _ | Spot _ -> 1
   (* An adaptive light's four corner rays come first, then its samples'
      where the corners disagree. *)
-  | Area { samples_u; samples_v; adaptive; _ } -> (samples_u * samples_v) + if adaptive then 4 else 0
+  | Area { samples_u; samples_v; _ } as l -> (samples_u * samples_v) + if corners_first l then 4 else 0
   | Sphere { samples; _ } -> samples
 
 let sampled = function Area _ | Sphere _ -> true | Ambient _ | Point _ | Directional _ | Spot _ -> false

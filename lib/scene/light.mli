@@ -98,10 +98,14 @@ val spot : float -> position:Vec3.t -> direction:Vec3.t -> angle:float -> fallof
 val intensity : t -> float
 (** [intensity l] is the intensity of [l]. *)
 
+val corners_first : t -> bool
+(** [corners_first l] is [true] iff [l] is an adaptive area light of at
+    least four samples, whose corners are traced first ({!adaptive}). *)
+
 val samples : t -> int
 (** [samples l] is the most shadow rays [l] casts at a point: [u v]
-    for an area light ([u v + 4] if adaptive: its corners' rays first),
-    [samples] for a sphere light, [1] otherwise. *)
+    for an area light ([u v + 4] if {!corners_first}: its corners' rays
+    first), [samples] for a sphere light, [1] otherwise. *)
 
 val sampled : t -> bool
 (** [sampled l] is [true] iff [l] is an area or sphere light, whose light
@@ -198,13 +202,16 @@ val sectors : int -> int
 
 (** {1:adaptive Penumbra-only sampling}
 
-    An area light with [adaptive] first sends a shadow ray from [P] to
+    An area light with [adaptive] and at least four samples
+    ({!corners_first}) first sends a shadow ray from [P] to
     each of its four corners, [corner], [corner + edge1], [corner + edge2]
     and [corner + edge1 + edge2] (each [(corner + a edge1) + b edge2], [a],
     [b] in [{0, 1}], as the samples'). If all four pass freely (through
     glass: a factor of exactly 1), every sample's terms are added without
     its shadow ray; if all four are stopped (factor 0), the light adds
     nothing; otherwise (the penumbra) the samples are traced as above.
+    With fewer than four samples the corners' four rays cost more than
+    they save: [adaptive] is then full sampling, exactly.
 
     What is exact and what is an estimate: the samples' terms, and the
     samples of the points in doubt, are exactly those of full sampling. A

@@ -483,6 +483,10 @@ let light_samples ~key ~number light point =
   | Directional { intensity; direction } -> [ (intensity, direction) ]
   | Area { intensity; corner; edge1; edge2; samples_u = u; samples_v = v; adaptive = _; sampling } ->
       let i = intensity /. Float.of_int (u * v) in
+      let sigma = Sample_key.permute (Sample_key.key hl (-1)) ~n:v
+      and tau = Sample_key.permute (Sample_key.key hl (-2)) ~n:u in
+      let below_1 x = if x < 1. then x else Float.pred 1. in
+      let uv = Float.of_int (u * v) in
       List.concat
         (List.init u (fun a ->
              List.init v (fun b ->
@@ -490,8 +494,9 @@ let light_samples ~key ~number light point =
                  let s, t =
                    match sampling with
                    | Light.Stratified ->
-                       (Sample_key.stratum (Sample_key.key h 0) ~n:u a, Sample_key.stratum (Sample_key.key h 1) ~n:v b)
-                   | Uniform -> (Sample_key.unit (Sample_key.key h 0), Sample_key.unit (Sample_key.key h 1))
+                       ( below_1 ((Float.of_int ((a * v) + sigma b) +. Sample_key.unit h) /. uv),
+                         below_1 ((Float.of_int ((b * u) + tau a) +. Sample_key.unit (Sample_key.mix h)) /. uv) )
+                   | Uniform -> (Sample_key.unit h, Sample_key.unit (Sample_key.mix h))
                  in
                  let q = Vec3.add (Vec3.add corner (Vec3.smul s edge1)) (Vec3.smul t edge2) in
                  (i, Vec3.sub q point))))
@@ -530,7 +535,7 @@ let light_samples ~key ~number light point =
    sampling"). *)
 let corners ~passes light point =
   match light with
-  | Light.Area { corner; edge1; edge2; adaptive = true; _ } ->
+  | Light.Area { corner; edge1; edge2; _ } when Light.corners_first light ->
       let at a b = Vec3.sub (Vec3.add (Vec3.add corner (Vec3.smul a edge1)) (Vec3.smul b edge2)) point in
       let f = List.map passes [ at 0. 0.; at 1. 0.; at 0. 1.; at 1. 1. ] in
       if List.for_all (fun x -> x = 1.) f then `Seen else if List.for_all (fun x -> x = 0.) f then `Hidden else `Doubt
