@@ -171,10 +171,18 @@ val shadow_t_max : t -> float
 
     - area light, cells [(a, b)] for [a] from [0] to [u - 1], then [b]
       from [0] to [v - 1]: [h = key (key k l) (a v + b)],
-      [s = stratum (key h 0) ~n:u a], [t = stratum (key h 1) ~n:v b],
-      [Q = (corner + s edge1) + t edge2]; with [sampling = Uniform],
-      [s = unit (key h 0)] and [t = unit (key h 1)] instead (the same
-      keys, each point anywhere on the rectangle);
+      [sigma = permute (key (key k l) (-1)) ~n:v],
+      [tau = permute (key (key k l) (-2)) ~n:u],
+      [s = ((a v + sigma b) + unit h) / (u v)],
+      [t = ((b u + tau a) + unit (mix h)) / (u v)] (either taken as the
+      largest float below 1 where it rounds to 1),
+      [Q = (corner + s edge1) + t edge2]: the point of cell [(a, b)] lies
+      in the sub-cell [(sigma b, tau a)] of the cell's own [v x u] cut, so
+      the [u v] values of [s] fall one in each of [u v] equal strata of
+      [\[0, 1)], and so do those of [t] (Kensler's correlated
+      multi-jittered sampling, 2013, as a lens's points); with
+      [sampling = Uniform], [s = unit h] and [t = unit (mix h)] instead
+      (the same keys, each point anywhere on the rectangle);
     - sphere light, samples [j] from [0] to [n - 1]: [h = key (key k l) j],
       [rho = radius sqrt (stratum (key h 0) ~n j)],
       [c = sectors n], [q = ceil (n / c)], [r = unit (key (key k l) (-1))],
