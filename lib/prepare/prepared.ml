@@ -1682,30 +1682,10 @@ let in_list_order o ~index ~slot =
    twice (the same answer twice). *)
 let cut_leaves bvh c ~kind ~vertex g =
   match (bvh, c.mterms) with
-  | Some b, Some terms ->
+  | Some b, Some margin ->
       let n = Array.length kind in
-      let tri s (v : float array) =
-        s < n
-        && Kind.is_triangle kind.(s)
-        && begin
-             let a = g.at0.(s) and b = g.at1.(s) and c = g.at2.(s) in
-             for i = 0 to 2 do
-               v.(i) <- vertex.(a + i);
-               v.(3 + i) <- vertex.(b + i);
-               v.(6 + i) <- vertex.(c + i)
-             done;
-             true
-           end
-      in
-      let pad _ (v : float array) =
-        let h = ref 0. in
-        for i = 0 to 2 do
-          let lo = fmin v.(i) (fmin v.(3 + i) v.(6 + i)) and hi = fmax v.(i) (fmax v.(3 + i) v.(6 + i)) in
-          h := fmax !h (0.5 *. (hi -. lo))
-        done;
-        Bvh.margin terms !h
-      in
-      Some (Bvh.split_leaves b ~tri ~pad)
+      let triangle s = s < n && Kind.is_triangle kind.(s) in
+      Some (Bvh.split_leaves b ~triangle ~vertex ~at0:g.at0 ~at1:g.at1 ~at2:g.at2 ~margin)
   | _ -> bvh
 
 (* {2 The prepared scene} *)
