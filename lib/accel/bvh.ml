@@ -1369,8 +1369,8 @@ let offsets w =
     if out.(o + 7) < 0. then out.(o + 6) <- Float.of_int (at w.root (truncate out.(o + 6)))
   done
 
-(* Room for [t]'s nodes and two more a leaf tried: one cut a leaf fits,
-   written once (a count of the nodes first would cut every leaf
+(* The number of [t]'s nodes and two more a leaf tried: room for one cut
+   a leaf, written once (a count of the nodes first would cut every leaf
    twice). *)
 let room_for c t =
   let n = ref t.n_nodes in
@@ -1378,23 +1378,33 @@ let room_for c t =
     let g = tag_at t.nodes (offset t k) in
     if g > 0 && tried c g then n := !n + 2
   done;
-  node_array !n
+  !n
+
+(* [w], or an exact copy of its nodes where more than an eighth of its
+   room went unused (few leaves cut). *)
+let fitted w =
+  let n = w.used in
+  if 8 * n >= 7 * (Array.length w.out / node_floats) then w
+  else begin
+    let exact = node_array n in
+    Array.blit w.out w.root exact.out exact.root (node_floats * n);
+    { exact with used = n }
+  end
+
+(* [t] with its leaves cut, written into room for [room] nodes. *)
+let cut_tree c t room =
+  let w = node_array room in
+  ignore (copy c t w 0 1);
+  if w.used = t.n_nodes then t
+  else begin
+    let w = fitted w in
+    offsets w;
+    { t with n_nodes = w.used; nodes = w.out; root = w.root; depth = c.depth }
+  end
 
 let split_leaves ?(cost = 3.) ?(cuts = 1) t ~triangle ~vertex ~at0 ~at1 ~at2 ~margin =
   if cuts < 0 || not (cost >= 0.) then invalid_arg "Bvh.split_leaves";
   let c = cutter ~cost ~cuts ~vertex ~at0 ~at1 ~at2 ~margin ~triangle in
-  let w = room_for c t in
-  ignore (copy c t w 0 1);
-  let n_nodes = w.used in
-  if n_nodes = t.n_nodes then t
-  else begin
-    (* Where few leaves were cut, the room not used is given back. *)
-    let w = if 8 * n_nodes >= 7 * (Array.length w.out / node_floats) then w else begin
-        let exact = node_array n_nodes in
-        Array.blit w.out w.root exact.out exact.root (node_floats * n_nodes);
-        { exact with used = n_nodes }
-      end
-    in
-    offsets w;
-    { t with n_nodes; nodes = w.out; root = w.root; depth = c.depth }
-  end
+  let room = room_for c t in
+  (* No leaf tried (a terrain's leaves of one or two triangles): no copy. *)
+  if room = t.n_nodes then t else cut_tree c t room
