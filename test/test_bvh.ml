@@ -663,6 +663,29 @@ let tests =
         Alcotest.(check bool) "fewer triangle tests" true (tests' < tests);
         Alcotest.(check bool) "fewer tests in all, a box test priced at a third of a triangle's" true
           ((3 * tests') + boxes' < (3 * tests) + boxes));
+    Alcotest.test_case "a terrain's leaves of one grid cell are not cut: the same nodes with the cut as without" `Quick
+      (fun () ->
+        (* Leaves of one or two triangles (a cell's two, whose boxes are
+           the cell's) are not tried: no fewer than [cost] = 3 slots
+           ever pays. The tree is then not copied at all. *)
+        let o = Mesh.Gen.terrain ~seed:30 ~nx:60 ~nz:60 ~size:20. ~height:3. in
+        let m =
+          match
+            Mesh.v ~translate:Vec3.zero ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
+              ~triangle_normals:o.triangle_normals (Material.v (Color.v 90. 160. 60.))
+          with
+          | Ok m -> Shape.Mesh m
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        let s = Helpers.with_objects ~shapes:[ m ] (Scene.with_overrides ~width:32 ~height:32 Scene.cgfs) in
+        let tree cut = match (Prepared.prepare ~cut (Helpers.valid s)).bvh with Some b -> b | None -> Alcotest.fail "no hierarchy" in
+        let a = tree false and b = tree true in
+        Alcotest.(check int) "nodes" a.n_nodes b.n_nodes;
+        for k = 0 to a.n_nodes - 1 do
+          let node (t : Bvh.t) = (List.init 3 (Bvh.lo t k), List.init 3 (Bvh.hi t k), Bvh.link t k, Bvh.tag t k) in
+          if node a <> node b then Alcotest.failf "node %d differs" k;
+          if Bvh.tag a k > 3 then Alcotest.failf "leaf %d holds %d triangles" k (Bvh.tag a k)
+        done);
     Helpers.qcheck ~count:150 "crowded scenes: the hierarchy gives the brute force's bytes"
       (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
       (fun s ->
