@@ -663,6 +663,79 @@ let tests =
         Alcotest.(check bool) "fewer triangle tests" true (tests' < tests);
         Alcotest.(check bool) "fewer tests in all, a box test priced at a third of a triangle's" true
           ((3 * tests') + boxes' < (3 * tests) + boxes));
+    Alcotest.test_case "leaves cut twice over (Bvh.split_leaves ~cuts:2): a tree whose boxes hold their children, deeper than one cut"
+      `Quick (fun () ->
+        (* More than one cut a leaf outgrows the room made for one: the
+           node array is grown while it is written. The margin is the
+           bounds' of a cube of side 200 around the scene, larger than
+           prepare's (so one cut here is not prepare's [~cut] tree). *)
+        let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments:4800 ~sides:4 in
+        let m =
+          match
+            Mesh.v ~translate:(Vec3.v 0. 0.5 5.) ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
+              ~triangle_normals:o.triangle_normals (Material.v (Color.v 230. 150. 40.))
+          with
+          | Ok m -> Shape.Mesh m
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        let s = Helpers.valid (Helpers.with_objects ~shapes:[ m ] (Scene.with_overrides ~width:32 ~height:32 Scene.cgfs)) in
+        let p = Prepared.prepare s in
+        let b = match p.bvh with Some b -> b | None -> Alcotest.fail "no hierarchy" in
+        let margin = Bvh.margin_of_bounds [| -100.; -100.; -100.; 100.; 100.; 100. |] in
+        let n = Array.length p.kind in
+        let triangle s = s < n && Kind.is_triangle p.kind.(s) in
+        let cut cuts = Bvh.split_leaves ~cuts b ~triangle ~vertex:p.vertex ~at0:p.at0 ~at1:p.at1 ~at2:p.at2 ~margin in
+        let one = cut 1 and two = cut 2 in
+        Printf.printf "nodes: %d, one cut %d, two cuts %d; depth %d, %d, %d\n" b.n_nodes one.n_nodes two.n_nodes b.depth one.depth
+          two.depth;
+        Alcotest.(check bool) "more nodes" true (two.n_nodes > one.n_nodes && one.n_nodes > b.n_nodes);
+        (* Every inner node's box the union of its children's, every leaf
+           over slots of the tree, the depth the longest path. *)
+        let check (t : Bvh.t) =
+          let rec walk k level =
+            let g = Bvh.tag t k in
+            if g > 0 then begin
+              if Bvh.link t k < 0 || Bvh.link t k + g > n then Alcotest.failf "leaf %d over slots out of range" k;
+              level
+            end
+            else begin
+              let r = Bvh.link t k in
+              List.iter
+                (fun a ->
+                  if Bvh.lo t k a <> Float.min (Bvh.lo t (k + 1) a) (Bvh.lo t r a)
+                     || Bvh.hi t k a <> Float.max (Bvh.hi t (k + 1) a) (Bvh.hi t r a)
+                  then Alcotest.failf "node %d: not its children's union" k)
+                [ 0; 1; 2 ];
+              max (walk (k + 1) (level + 1)) (walk r (level + 1))
+            end
+          in
+          Alcotest.(check int) "depth" t.depth (walk 0 1)
+        in
+        check one;
+        check two);
+    Alcotest.test_case "a terrain's leaves of one grid cell are not cut: the same nodes with the cut as without" `Quick
+      (fun () ->
+        (* Leaves of one or two triangles (a cell's two, whose boxes are
+           the cell's) are not tried: no fewer than [cost] = 3 slots
+           ever pays. The tree is then not copied at all. *)
+        let o = Mesh.Gen.terrain ~seed:30 ~nx:60 ~nz:60 ~size:20. ~height:3. in
+        let m =
+          match
+            Mesh.v ~translate:Vec3.zero ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
+              ~triangle_normals:o.triangle_normals (Material.v (Color.v 90. 160. 60.))
+          with
+          | Ok m -> Shape.Mesh m
+          | Error (`Msg m) -> Alcotest.fail m
+        in
+        let s = Helpers.with_objects ~shapes:[ m ] (Scene.with_overrides ~width:32 ~height:32 Scene.cgfs) in
+        let tree cut = match (Prepared.prepare ~cut (Helpers.valid s)).bvh with Some b -> b | None -> Alcotest.fail "no hierarchy" in
+        let a = tree false and b = tree true in
+        Alcotest.(check int) "nodes" a.n_nodes b.n_nodes;
+        for k = 0 to a.n_nodes - 1 do
+          let node (t : Bvh.t) = (List.init 3 (Bvh.lo t k), List.init 3 (Bvh.hi t k), Bvh.link t k, Bvh.tag t k) in
+          if node a <> node b then Alcotest.failf "node %d differs" k;
+          if Bvh.tag a k > 3 then Alcotest.failf "leaf %d holds %d triangles" k (Bvh.tag a k)
+        done);
     Helpers.qcheck ~count:150 "crowded scenes: the hierarchy gives the brute force's bytes"
       (QCheck.make ~print:Scene_file.to_string Gen_scene.crowd)
       (fun s ->

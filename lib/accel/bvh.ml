@@ -952,362 +952,459 @@ let ray_box_margin ?among ~cx ~cy ~cz ~radius camera =
 
 (* {1 Leaves cut by planes} *)
 
-(* [halves v vo a c out lo ro] writes to [out] at [lo] the box of the part
-   of the triangle of corners [v] (9 floats at [vo]) where coordinate [a]
-   is at most [c], at [ro] the box of its part where it is at least [c],
-   and is [l + 2 r]: [l] ([r]) is 1 if that part is not empty (its box is
-   then written), else 0. A part's box is that of its corners on that side
-   and of the points where its edges cross the plane (coordinate [a]
-   exactly [c], the others rounded: the caller pads). *)
-let halves (v : float array) vo a c (out : float array) lo ro =
-  if vo < 0 || vo + 9 > Array.length v || a < 0 || a > 2 || lo < 0 || lo + 6 > Array.length out || ro < 0
-     || ro + 6 > Array.length out
-  then invalid_arg "Bvh.halves";
-  for i = 0 to 2 do
-    Array.unsafe_set out (lo + i) infinity;
-    Array.unsafe_set out (lo + 3 + i) neg_infinity;
-    Array.unsafe_set out (ro + i) infinity;
-    Array.unsafe_set out (ro + 3 + i) neg_infinity
-  done;
-  (* No local functions: without flambda, each call would box its floats. *)
-  let sides = ref 0 in
-  for i = 0 to 2 do
-    let oi = vo + (3 * i) and oj = vo + if i = 2 then 0 else 3 * (i + 1) in
-    let ci = Array.unsafe_get v (oi + a) and cj = Array.unsafe_get v (oj + a) in
-    let crosses = (ci < c && cj > c) || (ci > c && cj < c) in
-    (* Corner [i], and the edge's crossing point, to the sides they are
-       on: [w = 0] the corner, [w = 1] the point. *)
-    for w = 0 to if crosses then 1 else 0 do
-      let t = if w = 0 then 0. else (c -. ci) /. (cj -. ci) in
-      for k = 0 to 2 do
-        let p = Array.unsafe_get v (oi + k) in
-        let x = if w = 0 then p else if k = a then c else p +. (t *. (Array.unsafe_get v (oj + k) -. p)) in
-        if w = 1 || ci <= c then begin
-          if x < Array.unsafe_get out (lo + k) then Array.unsafe_set out (lo + k) x;
-          if x > Array.unsafe_get out (lo + 3 + k) then Array.unsafe_set out (lo + 3 + k) x
-        end;
-        if w = 1 || ci >= c then begin
-          if x < Array.unsafe_get out (ro + k) then Array.unsafe_set out (ro + k) x;
-          if x > Array.unsafe_get out (ro + 3 + k) then Array.unsafe_set out (ro + 3 + k) x
-        end
-      done
-    done;
-    if ci <= c then sides := !sides lor 1;
-    if ci >= c then sides := !sides lor 2
-  done;
-  !sides
-
-let box_area (b : float array) o = half_area b.(o) b.(o + 1) b.(o + 2) b.(o + 3) b.(o + 4) b.(o + 5)
-
-
-(* A growable buffer of floats. *)
-type buffer = { mutable a : float array; mutable len : int }
-
-let reserve (b : buffer) n =
-  if b.len + n > Array.length b.a then begin
-    let c = Array.create_float (max (b.len + n) (2 * Array.length b.a)) in
-    Array.blit b.a 0 c 0 b.len;
-    b.a <- c
-  end
-
 (* The most triangles of a leaf that is tried. *)
 let cut_max_count = 64
 
-(* The scratch of [split_leaves], made once for all the leaves. [sub]: a
-   leaf's subtree, 8 floats a node as in [nodes] but its inner nodes'
-   links the index of their right child in the subtree. [parts]: the
-   padded boxes of the leaf's triangles' parts, [cut_max_count] a region,
-   6 floats a part (an empty part's lower x is [infinity]): region 0 the
-   leaf's triangles, [2 l + 1] and [2 l + 2] the two sides of a cut at
-   level [l]. [verts] and [pads]: the leaf's triangles' corners and pads,
-   read once. [sides_boxes]: the boxes of the two sides of a cut at each
-   level. [range]: the first and last slot with a part on each side. *)
+(* A region of [parts]: the boxes of the parts of a leaf's triangles, 6
+   floats a triangle. *)
+let region = 6 * cut_max_count
+
+(* The scratch of [split_leaves], made once for all the leaves, and the
+   mesh it reads. [parts]: the padded boxes of the leaf's triangles'
+   parts, a region each (an empty part's lower x is [infinity]): region
+   0 the leaf's triangles, [2 l + 1] and [2 l + 2] the two sides of a cut
+   at level [l]. [pads]: each triangle's pad. [cut]: a triangle's two
+   parts' boxes before they are padded and clipped. [sides]: the boxes of
+   the two sides of a cut at each level, 12 floats a level. [range]: the
+   first and last slot with a part on each side. [sub]: a leaf's subtree,
+   8 floats a node as in [nodes] but its inner nodes' links the index of
+   their right child in the subtree. *)
 type cutter = {
   cost : float;
   cuts : int;
-  sub : buffer;
+  vertex : float array;
+  at0 : int array;
+  at1 : int array;
+  at2 : int array;
+  terms : margin;
+  triangle : int -> bool;
   parts : float array;
-  verts : float array;
   pads : float array;
-  v : float array;
   cut : float array;
+  sides : float array;
   range : int array;
-  sides_boxes : float array array;
+  mutable sub : float array;
+  mutable len : int;
+  mutable depth : int;
 }
 
-let cutter ~cost ~cuts =
+let cutter ~cost ~cuts ~vertex ~at0 ~at1 ~at2 ~margin ~triangle =
   {
     cost;
     cuts;
-    sub = { a = Array.create_float 64; len = 0 };
-    parts = Array.create_float (((2 * cuts) + 1) * cut_max_count * 6);
-    verts = Array.create_float (cut_max_count * 9);
+    vertex;
+    at0;
+    at1;
+    at2;
+    terms = margin;
+    triangle;
+    parts = Array.create_float (((2 * cuts) + 1) * region);
     pads = Array.create_float cut_max_count;
-    v = Array.make 9 0.;
-    cut = Array.make 12 0.;
+    cut = Array.create_float 12;
+    sides = Array.create_float (12 * (cuts + 1));
     range = Array.make 4 0;
-    sides_boxes = Array.init (2 * (cuts + 1)) (fun _ -> Array.make 6 0.);
+    sub = Array.create_float 64;
+    len = 0;
+    depth = 0;
   }
 
-let emit c =
-  reserve c.sub 8;
-  c.sub.len <- c.sub.len + 8;
-  (c.sub.len / 8) - 1
-
-(* The part at [o] in [parts]: the one at [f] cut to the box at [b] in
-   [cut] padded by the pad of the leaf's triangle [j]; its box grows
-   [box], its slot [s] the range at [r] of [range]. *)
-let cut_side c s j f o b (box : float array) r =
-  let p = c.pads.(j) and parts = c.parts and cut = c.cut in
-  let empty = ref false in
-  for i = 0 to 2 do
-    let l = fmax parts.(f + i) (cut.(b + i) -. p) and h = fmin parts.(f + 3 + i) (cut.(b + 3 + i) +. p) in
-    if not (l <= h) then empty := true;
-    parts.(o + i) <- l;
-    parts.(o + 3 + i) <- h
-  done;
-  if !empty then parts.(o) <- infinity
-  else begin
-    for i = 0 to 2 do
-      box.(i) <- fmin box.(i) parts.(o + i);
-      box.(3 + i) <- fmax box.(3 + i) parts.(o + 3 + i)
-    done;
-    if c.range.(r) < 0 then c.range.(r) <- s;
-    c.range.(r + 1) <- s
-  end
-
-(* The parts in regions [into_l] and [into_r] of those in region [from]
-   of slots [first .. first + count - 1] of the leaf from [leaf_first] on
-   which coordinate [a] is at most [at] and at least [at], their boxes to
-   [bl] and [br]; to [range] the first and last slot with a part on each
-   side ([-1] if none). *)
-let cut_sides c leaf_first from into_l into_r first count a at (bl : float array) (br : float array) =
-  for i = 0 to 2 do
-    bl.(i) <- infinity;
-    bl.(3 + i) <- neg_infinity;
-    br.(i) <- infinity;
-    br.(3 + i) <- neg_infinity
-  done;
-  c.range.(0) <- -1;
-  c.range.(2) <- -1;
-  let region = cut_max_count * 6 in
-  let from = from * region and into_l = into_l * region and into_r = into_r * region in
-  for s = first to first + count - 1 do
-    let j = s - leaf_first in
-    let f = from + (6 * j) in
-    let ol = into_l + (6 * j) and or_ = into_r + (6 * j) in
-    c.parts.(ol) <- infinity;
-    c.parts.(or_) <- infinity;
-    if c.parts.(f) < infinity then begin
-      let sides = halves c.verts (9 * j) a at c.cut 0 6 in
-      if sides land 1 <> 0 then cut_side c s j f ol 0 bl 0;
-      if sides land 2 <> 0 then cut_side c s j f or_ 6 br 2
+(* [halves c s a at] writes to [c.cut] at 0 the box of the part of slot
+   [s]'s triangle where coordinate [a] is at most [at], at 6 the box of
+   its part where it is at least [at], and is [l + 2 r]: [l] ([r]) is 1 if
+   that part is not empty (its box is then written), else 0. A part's box
+   is that of its corners on that side and of the points where its edges
+   cross the plane (coordinate [a] exactly [at], the others rounded: the
+   caller pads). Each corner and edge read once and the boxes grown in
+   registers (a bound replaced only by a smaller or larger value, the
+   first of equals kept), not through an array. *)
+let halves c s a at =
+  let v = c.vertex and out = c.cut in
+  if s < 0 || s >= Array.length c.at0 || s >= Array.length c.at1 || s >= Array.length c.at2 || a < 0 || a > 2
+     || Array.length out < 12
+  then invalid_arg "Bvh.halves";
+  let i0 = Array.unsafe_get c.at0 s and i1 = Array.unsafe_get c.at1 s and i2 = Array.unsafe_get c.at2 s in
+  if i0 < 0 || i1 < 0 || i2 < 0 || i0 + 3 > Array.length v || i1 + 3 > Array.length v || i2 + 3 > Array.length v then
+    invalid_arg "Bvh.halves: corners";
+  let lx0 = ref infinity and ly0 = ref infinity and lz0 = ref infinity in
+  let lx1 = ref neg_infinity and ly1 = ref neg_infinity and lz1 = ref neg_infinity in
+  let rx0 = ref infinity and ry0 = ref infinity and rz0 = ref infinity in
+  let rx1 = ref neg_infinity and ry1 = ref neg_infinity and rz1 = ref neg_infinity in
+  let sides = ref 0 in
+  for e = 0 to 2 do
+    (* Corner [e] and its edge to the next corner. *)
+    let oi = if e = 0 then i0 else if e = 1 then i1 else i2 and oj = if e = 0 then i1 else if e = 1 then i2 else i0 in
+    let xi = Array.unsafe_get v oi and yi = Array.unsafe_get v (oi + 1) and zi = Array.unsafe_get v (oi + 2) in
+    let ci = if a = 0 then xi else if a = 1 then yi else zi and cj = Array.unsafe_get v (oj + a) in
+    if ci <= at then begin
+      sides := !sides lor 1;
+      if xi < !lx0 then lx0 := xi;
+      if yi < !ly0 then ly0 := yi;
+      if zi < !lz0 then lz0 := zi;
+      if xi > !lx1 then lx1 := xi;
+      if yi > !ly1 then ly1 := yi;
+      if zi > !lz1 then lz1 := zi
+    end;
+    if ci >= at then begin
+      sides := !sides lor 2;
+      if xi < !rx0 then rx0 := xi;
+      if yi < !ry0 then ry0 := yi;
+      if zi < !rz0 then rz0 := zi;
+      if xi > !rx1 then rx1 := xi;
+      if yi > !ry1 then ry1 := yi;
+      if zi > !rz1 then rz1 := zi
+    end;
+    if (ci < at && cj > at) || (ci > at && cj < at) then begin
+      (* The edge's crossing, on both sides. *)
+      let t = (at -. ci) /. (cj -. ci) in
+      let x = if a = 0 then at else xi +. (t *. (Array.unsafe_get v oj -. xi)) in
+      let y = if a = 1 then at else yi +. (t *. (Array.unsafe_get v (oj + 1) -. yi)) in
+      let z = if a = 2 then at else zi +. (t *. (Array.unsafe_get v (oj + 2) -. zi)) in
+      if x < !lx0 then lx0 := x;
+      if y < !ly0 then ly0 := y;
+      if z < !lz0 then lz0 := z;
+      if x > !lx1 then lx1 := x;
+      if y > !ly1 then ly1 := y;
+      if z > !lz1 then lz1 := z;
+      if x < !rx0 then rx0 := x;
+      if y < !ry0 then ry0 := y;
+      if z < !rz0 then rz0 := z;
+      if x > !rx1 then rx1 := x;
+      if y > !ry1 then ry1 := y;
+      if z > !rz1 then rz1 := z
     end
-  done
+  done;
+  Array.unsafe_set out 0 !lx0;
+  Array.unsafe_set out 1 !ly0;
+  Array.unsafe_set out 2 !lz0;
+  Array.unsafe_set out 3 !lx1;
+  Array.unsafe_set out 4 !ly1;
+  Array.unsafe_set out 5 !lz1;
+  Array.unsafe_set out 6 !rx0;
+  Array.unsafe_set out 7 !ry0;
+  Array.unsafe_set out 8 !rz0;
+  Array.unsafe_set out 9 !rx1;
+  Array.unsafe_set out 10 !ry1;
+  Array.unsafe_set out 11 !rz1;
+  !sides
+
+(* [clip parts o f cut b p] writes to [o] in [parts] the part at [f] cut
+   to the box at [b] of [cut] padded by [p], or makes it empty (its lower
+   x [infinity]). *)
+let[@inline] clip (parts : float array) o f (cut : float array) b p =
+  let x0 = fmax (Array.unsafe_get parts f) (Array.unsafe_get cut b -. p) in
+  let y0 = fmax (Array.unsafe_get parts (f + 1)) (Array.unsafe_get cut (b + 1) -. p) in
+  let z0 = fmax (Array.unsafe_get parts (f + 2)) (Array.unsafe_get cut (b + 2) -. p) in
+  let x1 = fmin (Array.unsafe_get parts (f + 3)) (Array.unsafe_get cut (b + 3) +. p) in
+  let y1 = fmin (Array.unsafe_get parts (f + 4)) (Array.unsafe_get cut (b + 4) +. p) in
+  let z1 = fmin (Array.unsafe_get parts (f + 5)) (Array.unsafe_get cut (b + 5) +. p) in
+  Array.unsafe_set parts o (if x0 <= x1 && y0 <= y1 && z0 <= z1 then x0 else infinity);
+  Array.unsafe_set parts (o + 1) y0;
+  Array.unsafe_set parts (o + 2) z0;
+  Array.unsafe_set parts (o + 3) x1;
+  Array.unsafe_set parts (o + 4) y1;
+  Array.unsafe_set parts (o + 5) z1
+
+(* The box at [into] of [parts]' region of the [count] parts of a side to
+   [sides] at [sb] (their union, in order), and to [range] at [r] and [r
+   + 1] the first and last of their slots from [first] with a part not
+   empty ([-1] if none). *)
+let side_box c into first count sb r =
+  let parts = c.parts in
+  if into < 0 || into + (6 * count) > Array.length parts || sb < 0 || sb + 6 > Array.length c.sides then
+    invalid_arg "Bvh.side_box";
+  let x0 = ref infinity and y0 = ref infinity and z0 = ref infinity in
+  let x1 = ref neg_infinity and y1 = ref neg_infinity and z1 = ref neg_infinity in
+  let lo = ref (-1) and hi = ref (-1) in
+  for j = 0 to count - 1 do
+    let o = into + (6 * j) in
+    if Array.unsafe_get parts o < infinity then begin
+      x0 := fmin !x0 (Array.unsafe_get parts o);
+      y0 := fmin !y0 (Array.unsafe_get parts (o + 1));
+      z0 := fmin !z0 (Array.unsafe_get parts (o + 2));
+      x1 := fmax !x1 (Array.unsafe_get parts (o + 3));
+      y1 := fmax !y1 (Array.unsafe_get parts (o + 4));
+      z1 := fmax !z1 (Array.unsafe_get parts (o + 5));
+      if !lo < 0 then lo := first + j;
+      hi := first + j
+    end
+  done;
+  let s = c.sides in
+  Array.unsafe_set s sb !x0;
+  Array.unsafe_set s (sb + 1) !y0;
+  Array.unsafe_set s (sb + 2) !z0;
+  Array.unsafe_set s (sb + 3) !x1;
+  Array.unsafe_set s (sb + 4) !y1;
+  Array.unsafe_set s (sb + 5) !z1;
+  c.range.(r) <- !lo;
+  c.range.(r + 1) <- !hi
+
+(* The parts at [level + 1] (regions [2 level + 1] and [2 level + 2]) of
+   those in region [from] of slots [first .. first + count - 1] of the
+   leaf from [leaf_first] on which coordinate [a] is at most [at] and at
+   least [at], each the part at this level cut to the triangle's part on
+   that side padded by its pad; the boxes of the two sides to [sides] at
+   [12 level] and [12 level + 6]; to [range] the first and last slot with
+   a part on each side ([-1] if none). *)
+let cut_sides c leaf_first from level first count a at =
+  let j0 = first - leaf_first in
+  let from = (from * region) + (6 * j0) and into_l = (((2 * level) + 1) * region) + (6 * j0) in
+  let into_r = (((2 * level) + 2) * region) + (6 * j0) in
+  let parts = c.parts and cut = c.cut in
+  if j0 < 0 || count < 0 || j0 + count > cut_max_count || from < 0 || into_r + (6 * count) > Array.length parts
+     || Array.length cut < 12
+  then invalid_arg "Bvh.cut_sides";
+  for j = 0 to count - 1 do
+    let f = from + (6 * j) and ol = into_l + (6 * j) and or_ = into_r + (6 * j) in
+    Array.unsafe_set parts ol infinity;
+    Array.unsafe_set parts or_ infinity;
+    if Array.unsafe_get parts f < infinity then begin
+      let sides = halves c (first + j) a at and p = c.pads.(j0 + j) in
+      if sides land 1 <> 0 then clip parts ol f cut 0 p;
+      if sides land 2 <> 0 then clip parts or_ f cut 6 p
+    end
+  done;
+  side_box c into_l first count (12 * level) 0;
+  side_box c into_r first count ((12 * level) + 6) 2
+
+(* A node appended to [sub], its box the 6 floats at [bo] in [b]: its
+   index. *)
+let emit c (b : float array) bo =
+  if c.len + 8 > Array.length c.sub then begin
+    let a = Array.create_float (2 * Array.length c.sub) in
+    Array.blit c.sub 0 a 0 c.len;
+    c.sub <- a
+  end;
+  copy6 b bo c.sub c.len;
+  c.len <- c.len + 8;
+  (c.len / 8) - 1
+
+(* Whether cutting the node of [count] slots and box at [bo] in [b]
+   across its longest side pays: the sides' boxes then in [sides] at [12
+   level], their slots in [range]. Its axis and plane to [axis] and
+   [plane]. *)
+let cut_pays c leaf_first src first count (b : float array) bo level a at =
+  level < c.cuts
+  && begin
+       cut_sides c leaf_first src level first count a at;
+       let r = c.range in
+       r.(0) >= 0 && r.(2) >= 0
+       && begin
+            let nl = r.(1) - r.(0) + 1 and nr = r.(3) - r.(2) + 1 and sb = 12 * level in
+            let area = half_area b.(bo) b.(bo + 1) b.(bo + 2) b.(bo + 3) b.(bo + 4) b.(bo + 5) in
+            let s = c.sides in
+            let al = half_area s.(sb) s.(sb + 1) s.(sb + 2) s.(sb + 3) s.(sb + 4) s.(sb + 5) in
+            let ar = half_area s.(sb + 6) s.(sb + 7) s.(sb + 8) s.(sb + 9) s.(sb + 10) s.(sb + 11) in
+            (c.cost *. area) +. (al *. Float.of_int nl) +. (ar *. Float.of_int nr) < Float.of_int count *. area
+          end
+     end
 
 (* Appends to [sub] the subtree of the parts in region [src] of slots
    [first .. first + count - 1] of the leaf from [leaf_first], their box
-   [box]. *)
-let rec cut_leaf c leaf_first src first count (box : float array) level =
-  let k = emit c in
-  let sub = c.sub in
-  Array.blit box 0 sub.a (8 * k) 6;
-  let a =
-    let ex = box.(3) -. box.(0) and ey = box.(4) -. box.(1) and ez = box.(5) -. box.(2) in
-    if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2
-  in
-  let at = 0.5 *. (box.(a) +. box.(3 + a)) in
-  let bl = c.sides_boxes.(2 * level) and br = c.sides_boxes.((2 * level) + 1) in
-  let split =
-    if level >= c.cuts || count < 1 then None
-    else begin
-      cut_sides c leaf_first src ((2 * level) + 1) ((2 * level) + 2) first count a at bl br;
-      let l0 = c.range.(0) and l1 = c.range.(1) and r0 = c.range.(2) and r1 = c.range.(3) in
-      if l0 < 0 || r0 < 0 then None
-      else
-        let nl = l1 - l0 + 1 and nr = r1 - r0 + 1 in
-        let cost = (c.cost *. box_area box 0) +. (box_area bl 0 *. Float.of_int nl) +. (box_area br 0 *. Float.of_int nr) in
-        if cost < Float.of_int count *. box_area box 0 then Some (l0, nl, r0, nr) else None
-    end
-  in
-  match split with
-  | None ->
-      sub.a.((8 * k) + 6) <- Float.of_int first;
-      sub.a.((8 * k) + 7) <- Float.of_int count
-  | Some (l0, nl, r0, nr) ->
-      sub.a.((8 * k) + 7) <- Float.of_int (-1 - a);
-      cut_leaf c leaf_first ((2 * level) + 1) l0 nl bl (level + 1);
-      (* [sub.a] may have grown (and moved) meanwhile. *)
-      c.sub.a.((8 * k) + 6) <- Float.of_int (c.sub.len / 8);
-      cut_leaf c leaf_first ((2 * level) + 2) r0 nr br (level + 1)
+   at [bo] in [b], at [level] below the leaf (0: the leaf's node). An
+   inner node's box is its children's union. *)
+let rec cut_leaf c leaf_first src first count (b : float array) bo level =
+  let k = emit c b bo in
+  let ex = b.(bo + 3) -. b.(bo) and ey = b.(bo + 4) -. b.(bo + 1) and ez = b.(bo + 5) -. b.(bo + 2) in
+  let a = if ex >= ey && ex >= ez then 0 else if ey >= ez then 1 else 2 in
+  let at = 0.5 *. (b.(bo + a) +. b.(bo + 3 + a)) in
+  if count < 1 || not (cut_pays c leaf_first src first count b bo level a at) then begin
+    c.sub.((8 * k) + 6) <- Float.of_int first;
+    c.sub.((8 * k) + 7) <- Float.of_int count
+  end
+  else begin
+    let r = c.range and sb = 12 * level in
+    let l0 = r.(0) and nl = r.(1) - r.(0) + 1 and r0 = r.(2) and nr = r.(3) - r.(2) + 1 in
+    c.sub.((8 * k) + 7) <- Float.of_int (-1 - a);
+    (* The sides' boxes at this level are read before a deeper level
+       writes its own. *)
+    cut_leaf c leaf_first ((2 * level) + 1) l0 nl c.sides sb (level + 1);
+    let right = c.len / 8 in
+    (* [sub] may have grown (and moved) meanwhile. *)
+    c.sub.((8 * k) + 6) <- Float.of_int right;
+    cut_leaf c leaf_first ((2 * level) + 2) r0 nr c.sides (sb + 6) (level + 1);
+    let sub = c.sub and o = 8 * k in
+    let l = o + 8 and rr = 8 * right in
+    for i = 0 to 2 do
+      sub.(o + i) <- fmin sub.(l + i) sub.(rr + i);
+      sub.(o + 3 + i) <- fmax sub.(l + 3 + i) sub.(rr + 3 + i)
+    done
+  end
 
-(* Region 0: each triangle's box padded, within the leaf's box; whether
-   every slot is a triangle. *)
-let cut_start c ~tri ~pad first count (box : float array) =
-  let ok = ref true and v = c.v and parts = c.parts in
+(* The least and greatest coordinate [i] of the corners at [a], [b],
+   [c] of [v] (checked by the caller). *)
+let[@inline] corners_min (v : float array) a b c i =
+  fmin (Array.unsafe_get v (a + i)) (fmin (Array.unsafe_get v (b + i)) (Array.unsafe_get v (c + i)))
+
+let[@inline] corners_max (v : float array) a b c i =
+  fmax (Array.unsafe_get v (a + i)) (fmax (Array.unsafe_get v (b + i)) (Array.unsafe_get v (c + i)))
+
+(* Region 0: each triangle's box padded by twice its margin, within the
+   leaf's box at [bo] in [b]; each triangle's pad; whether every slot is
+   a triangle. *)
+let cut_start c first count (b : float array) bo =
+  let ok = ref true and v = c.vertex and parts = c.parts in
+  if bo < 0 || bo + 6 > Array.length b || count > cut_max_count || 6 * count > Array.length parts then
+    invalid_arg "Bvh.cut_start";
   for s = first to first + count - 1 do
-    if !ok && tri s v then begin
+    if !ok && c.triangle s then begin
+      let ia = c.at0.(s) and ib = c.at1.(s) and ic = c.at2.(s) in
+      if ia < 0 || ib < 0 || ic < 0 || ia + 3 > Array.length v || ib + 3 > Array.length v || ic + 3 > Array.length v then
+        invalid_arg "Bvh.cut_start: corners";
+      let x0 = corners_min v ia ib ic 0 and y0 = corners_min v ia ib ic 1 and z0 = corners_min v ia ib ic 2 in
+      let x1 = corners_max v ia ib ic 0 and y1 = corners_max v ia ib ic 1 and z1 = corners_max v ia ib ic 2 in
+      (* The margin of a sphere of the triangle's largest half side, as
+         [Prepared]'s boxes. *)
+      let h = fmax (fmax (fmax 0. (0.5 *. (x1 -. x0))) (0.5 *. (y1 -. y0))) (0.5 *. (z1 -. z0)) in
+      let p = 2. *. margin c.terms h in
       let j = s - first in
-      Array.blit v 0 c.verts (9 * j) 9;
-      let p = 2. *. pad s v and o = 6 * j in
       c.pads.(j) <- p;
-      for i = 0 to 2 do
-        let l = fmin v.(i) (fmin v.(3 + i) v.(6 + i)) and h = fmax v.(i) (fmax v.(3 + i) v.(6 + i)) in
-        parts.(o + i) <- fmax box.(i) (l -. p);
-        parts.(o + 3 + i) <- fmin box.(3 + i) (h +. p)
-      done
+      let o = 6 * j in
+      Array.unsafe_set parts o (fmax (Array.unsafe_get b bo) (x0 -. p));
+      Array.unsafe_set parts (o + 1) (fmax (Array.unsafe_get b (bo + 1)) (y0 -. p));
+      Array.unsafe_set parts (o + 2) (fmax (Array.unsafe_get b (bo + 2)) (z0 -. p));
+      Array.unsafe_set parts (o + 3) (fmin (Array.unsafe_get b (bo + 3)) (x1 +. p));
+      Array.unsafe_set parts (o + 4) (fmin (Array.unsafe_get b (bo + 4)) (y1 +. p));
+      Array.unsafe_set parts (o + 5) (fmin (Array.unsafe_get b (bo + 5)) (z1 +. p))
     end
     else ok := false
   done;
   !ok
 
-(* The subtrees of the leaves of [t] cut, in node order, in chunks of
-   [cut_chunk] floats (none grown by a copy): the leaf's index and its
-   subtree's number of nodes, then its nodes; and how many nodes they add. *)
-let cut_chunk = 1 lsl 16
+(* The subtree of the leaf at offset [o] of [nodes], tried, in [sub]
+   (from 0), and its number of nodes: 1 (not cut, not written) or
+   more. *)
+let leaf_subtree c (nodes : float array) o =
+  let g = tag_at nodes o and first = link_at nodes o in
+  if cut_start c first g nodes o then begin
+    c.len <- 0;
+    cut_leaf c first 0 first g nodes o 0;
+    c.len / 8
+  end
+  else 1
 
-let cut_subtrees c t ~tri ~pad =
-  let nodes = t.nodes and leaf_box = Array.make 6 0. in
-  (* The subtree of leaf [k] in [sub], its number of nodes (1: not cut). *)
-  let subtree k =
-    let o = offset t k in
-    let g = tag_at nodes o and first = link_at nodes o in
-    Array.blit nodes o leaf_box 0 6;
-    (* A cut costs [cost] tests of the leaf's area before its sides' tests:
-       never less than a leaf of [cost] triangles or fewer. *)
-    if Float.of_int g > c.cost && g <= cut_max_count && cut_start c ~tri ~pad first g leaf_box then begin
-      c.sub.len <- 0;
-      cut_leaf c first 0 first g leaf_box 0;
-      c.sub.len / 8
+(* Whether leaf [g] slots is tried. A cut costs [cost] tests of the
+   leaf's area before its sides' tests: never less than a leaf of [cost]
+   triangles or fewer, which is not tried. *)
+let[@inline] tried c g = Float.of_int g > c.cost && g <= cut_max_count
+
+(* The new tree's nodes while they are written: room for [n] nodes or
+   more, node 0 at [root]. Inner nodes' links are node numbers until
+   [offsets]. *)
+type written = { mutable out : float array; mutable root : int; mutable used : int }
+
+let node_array n =
+  let out = Array.create_float ((node_floats * n) + node_floats - 1) in
+  { out; root = aligned_root out; used = 0 }
+
+(* [room w m] is the first of [m] more nodes of [w], made room for: where
+   the nodes do not fit (more than one cut a leaf), the array is
+   doubled, its nodes copied to the new one's aligned place. *)
+let room w m =
+  let d = w.used in
+  if at w.root (d + m) + node_floats - 1 > Array.length w.out then begin
+    let bigger = node_array (2 * (d + m)) in
+    Array.blit w.out w.root bigger.out bigger.root (node_floats * d);
+    w.out <- bigger.out;
+    w.root <- bigger.root
+  end;
+  w.used <- d + m;
+  d
+
+(* [copy c t w k level] writes node [k] of [t] and its subtree to [w],
+   its leaves cut, at [level] of the new tree; it is the new node's
+   number. Boxes of inner nodes are their children's union, from the
+   leaves up. *)
+let rec copy c t w k level =
+  let o = offset t k and nodes = t.nodes in
+  let g = tag_at nodes o in
+  if g > 0 then begin
+    let m = if tried c g then leaf_subtree c nodes o else 1 in
+    let d = room w m in
+    if m = 1 then begin
+      Array.blit nodes o w.out (at w.root d) node_floats;
+      if level > c.depth then c.depth <- level
     end
-    else 1
-  in
-  let chunks = ref [] and cur = ref (Array.create_float cut_chunk) and used = ref 0 in
-  let put x =
-    if !used = cut_chunk then begin
-      chunks := !cur :: !chunks;
-      cur := Array.create_float cut_chunk;
-      used := 0
-    end;
-    Array.unsafe_set !cur !used x;
-    incr used
-  in
-  let extra = ref 0 in
+    else place_subtree c w d m level;
+    d
+  end
+  else begin
+    let d = room w 1 in
+    w.out.(at w.root d + 7) <- nodes.(o + 7);
+    ignore (copy c t w (k + 1) (level + 1));
+    let right = copy c t w ((link_at nodes o - t.root) / node_floats) (level + 1) in
+    (* [w.out] may have grown (and moved) meanwhile. *)
+    let out = w.out and od = at w.root d in
+    out.(od + 6) <- Float.of_int right;
+    let l = od + node_floats and r = at w.root right in
+    for i = 0 to 2 do
+      out.(od + i) <- fmin out.(l + i) out.(r + i);
+      out.(od + 3 + i) <- fmax out.(l + 3 + i) out.(r + 3 + i)
+    done;
+    d
+  end
+
+(* The [m] nodes of [sub] to [w] from node [d] on, their links node
+   numbers, the depth reached counted. *)
+and place_subtree c w d m level =
+  let sub = c.sub and out = w.out in
+  (* Each node's level: its parent's and one, children after parents. *)
+  let lv = Array.make m level in
+  for j = 0 to m - 1 do
+    let so = 8 * j and dj = at w.root (d + j) in
+    Array.blit sub so out dj node_floats;
+    if lv.(j) > c.depth then c.depth <- lv.(j);
+    if sub.(so + 7) < 0. then begin
+      let r = truncate sub.(so + 6) in
+      out.(dj + 6) <- Float.of_int (d + r);
+      lv.(j + 1) <- lv.(j) + 1;
+      lv.(r) <- lv.(j) + 1
+    end
+  done
+
+(* The inner nodes' links of [w] made offsets, for the tracer. *)
+let offsets w =
+  let out = w.out in
+  for k = 0 to w.used - 1 do
+    let o = at w.root k in
+    if out.(o + 7) < 0. then out.(o + 6) <- Float.of_int (at w.root (truncate out.(o + 6)))
+  done
+
+(* The number of [t]'s nodes and two more a leaf tried: room for one cut
+   a leaf, written once (a count of the nodes first would cut every leaf
+   twice). *)
+let room_for c t =
+  let n = ref t.n_nodes in
   for k = 0 to t.n_nodes - 1 do
-    if tag_at nodes (offset t k) > 0 then begin
-      let m = subtree k in
-      if m > 1 then begin
-        extra := !extra + m - 1;
-        put (Float.of_int k);
-        put (Float.of_int m);
-        for i = 0 to (8 * m) - 1 do
-          put c.sub.a.(i)
-        done
-      end
-    end
+    let g = tag_at t.nodes (offset t k) in
+    if g > 0 && tried c g then n := !n + 2
   done;
-  (List.rev (!cur :: !chunks), !extra)
+  !n
 
-(* [t]'s nodes with the leaves of [chunks] ([cut_subtrees]'s) replaced by
-   their subtrees, [extra] nodes more, in a fresh node array. *)
-let splice t chunks extra =
-  let n = t.n_nodes and nodes = t.nodes in
-  (* Read back in order. *)
-  let chunks = ref chunks and at_chunk = ref 0 in
-  let get () =
-    if !at_chunk = cut_chunk then begin
-      chunks := List.tl !chunks;
-      at_chunk := 0
-    end;
-    let x = Array.unsafe_get (List.hd !chunks) !at_chunk in
-    incr at_chunk;
-    x
-  in
-  let extra = ref extra and sub = ref (Array.create_float 64) in
-  (* The next leaf cut and its nodes' number. *)
-  let next_cut = ref (truncate (get ())) in
-  let next_m = ref (truncate (get ())) in
-  let n_nodes = n + !extra in
-  let out = Array.create_float ((node_floats * n_nodes) + node_floats - 1) in
-  let root = aligned_root out in
-  (* The inner nodes whose right child is not yet written, innermost on
-     top: the old index of that child, the parent's new index and
-     level. *)
-  let pending = Array.make (3 * (t.depth + 1)) 0 and top = ref 0 in
-  let next = ref 0 and depth = ref 0 and last_level = ref 0 and last_inner = ref false in
-  for k = 0 to n - 1 do
-    let o = offset t k and d = !next in
-    (* Its level: below the node before it if that is an inner node
-       (its left child), else below the parent that waits for it. *)
-    let level =
-      if k = 0 then 1
-      else if !last_inner then !last_level + 1
-      else begin
-        decr top;
-        let p = 3 * !top in
-        if pending.(p) <> k then invalid_arg "Bvh.split_leaves: nodes not depth first";
-        out.(at root pending.(p + 1) + 6) <- Float.of_int (at root d);
-        pending.(p + 2) + 1
-      end
-    in
-    let g = tag_at nodes o in
-    if g < 0 then begin
-      Array.blit nodes o out (at root d) 8;
-      pending.(3 * !top) <- (link_at nodes o - t.root) / node_floats;
-      pending.((3 * !top) + 1) <- d;
-      pending.((3 * !top) + 2) <- level;
-      incr top;
-      next := d + 1
-    end
-    else begin
-      let m = if k = !next_cut then !next_m else 1 in
-      if m = 1 then Array.blit nodes o out (at root d) 8
-      else begin
-        if Array.length !sub < 8 * m then sub := Array.create_float (8 * m);
-        let sub = !sub in
-        for i = 0 to (8 * m) - 1 do
-          sub.(i) <- get ()
-        done;
-        extra := !extra - m + 1;
-        if !extra > 0 then begin
-          next_cut := truncate (get ());
-          next_m := truncate (get ())
-        end;
-        (* The subtree's levels: each node's from its parent's. *)
-        let lv = Array.make m level in
-        for j = 0 to m - 1 do
-          let so = 8 * j and dj = at root (d + j) in
-          Array.blit sub so out dj 8;
-          if lv.(j) > !depth then depth := lv.(j);
-          if sub.(so + 7) < 0. then begin
-            let r = truncate sub.(so + 6) in
-            out.(dj + 6) <- Float.of_int (at root (d + r));
-            lv.(j + 1) <- lv.(j) + 1;
-            lv.(r) <- lv.(j) + 1
-          end
-        done
-      end;
-      next := d + m
-    end;
-    if level > !depth then depth := level;
-    last_level := level;
-    last_inner := g < 0
-  done;
-  (* The inner nodes' boxes, the union of their children's, from the
-     leaves up. *)
-  for k = n_nodes - 1 downto 0 do
-    let o = at root k in
-    if out.(o + 7) < 0. then begin
-      let l = o + node_floats and r = link_at out o in
-      for i = 0 to 2 do
-        out.(o + i) <- fmin out.(l + i) out.(r + i);
-        out.(o + 3 + i) <- fmax out.(l + 3 + i) out.(r + 3 + i)
-      done
-    end
-  done;
-  { t with n_nodes; nodes = out; root; depth = !depth }
+(* [w], or an exact copy of its nodes where more than an eighth of its
+   room went unused (few leaves cut). *)
+let fitted w =
+  let n = w.used in
+  if 8 * n >= 7 * (Array.length w.out / node_floats) then w
+  else begin
+    let exact = node_array n in
+    Array.blit w.out w.root exact.out exact.root (node_floats * n);
+    { exact with used = n }
+  end
 
-let split_leaves ?(cost = 3.) ?(cuts = 1) t ~tri ~pad =
+(* [t] with its leaves cut, written into room for [room] nodes. *)
+let cut_tree c t room =
+  let w = node_array room in
+  ignore (copy c t w 0 1);
+  if w.used = t.n_nodes then t
+  else begin
+    let w = fitted w in
+    offsets w;
+    { t with n_nodes = w.used; nodes = w.out; root = w.root; depth = c.depth }
+  end
+
+let split_leaves ?(cost = 3.) ?(cuts = 1) t ~triangle ~vertex ~at0 ~at1 ~at2 ~margin =
   if cuts < 0 || not (cost >= 0.) then invalid_arg "Bvh.split_leaves";
-  let chunks, extra = cut_subtrees (cutter ~cost ~cuts) t ~tri ~pad in
-  if extra = 0 then t else splice t chunks extra
+  let c = cutter ~cost ~cuts ~vertex ~at0 ~at1 ~at2 ~margin ~triangle in
+  let room = room_for c t in
+  (* No leaf tried (a terrain's leaves of one or two triangles): no copy. *)
+  if room = t.n_nodes then t else cut_tree c t room

@@ -30,7 +30,7 @@ type t = private {
           leaf, its number of slots, [>= 1]; of an inner node, [-1 - a],
           [a] the axis 0 to 2 its children are split along. The array
           holds [8 n_nodes + 7] floats: the [root] unused ones before the
-          nodes, the others after. *)
+          nodes, the others after ({!split_leaves}' may hold more after). *)
   root : int;
       (** The offset of node 0 in [nodes], from 0 to 7: where the nodes
           start on a 64-byte boundary in memory, so that each node is one
@@ -193,30 +193,48 @@ val margin : margin -> float -> float
 (** {1:cut Leaves cut by planes} *)
 
 val split_leaves :
-  ?cost:float -> ?cuts:int -> t -> tri:(int -> float array -> bool) -> pad:(int -> float array -> float) -> t
-(** [split_leaves ~cost ~cuts t ~tri ~pad] is [t] with each leaf of
-    triangles cut in two where the surface area heuristic finds it pays,
-    and so on [cuts] (default 1) times down: the plane halves the leaf's
-    box across its longest side, and the leaf becomes an inner node
-    (tagged with that axis) over two leaves, each over the range of the
-    leaf's slots that have a part on its side, boxed by those parts. The
-    slots are shared, not copied ([order] is [t]'s): a ray that meets both
-    sides' boxes tests the triangles of both ranges, some twice. A cut is
-    made where [cost A + A_l n_l + A_r n_r < n A] ([A] the leaf's box's
-    area, [n] its slots; [A_l], [n_l] and [A_r], [n_r] its sides'):
-    [cost] (default 3.) is the price of the inner node's two box tests in
-    triangle tests. It pays on long thin triangles, whose boxes are far
-    bigger than they are (a fine mesh's: the 1M-triangle knot's are 150
-    times longer than wide); never on leaves of [cost] slots or fewer,
-    which are not tried. Leaves of more than 64 slots or with a slot that
-    is not a triangle are left as they are. Inner nodes' boxes are their
-    children's union again; [depth] is the new tree's.
+  ?cost:float ->
+  ?cuts:int ->
+  t ->
+  triangle:(int -> bool) ->
+  vertex:float array ->
+  at0:int array ->
+  at1:int array ->
+  at2:int array ->
+  margin:margin ->
+  t
+(** [split_leaves ~cost ~cuts t ~triangle ~vertex ~at0 ~at1 ~at2 ~margin]
+    is [t] with each leaf of triangles cut in two where the surface area
+    heuristic finds it pays, and so on [cuts] (default 1) times down: the
+    plane halves the leaf's box across its longest side, and the leaf
+    becomes an inner node (tagged with that axis) over two leaves, each
+    over the range of the leaf's slots that have a part on its side,
+    boxed by those parts. The slots are shared, not copied ([order] is
+    [t]'s): a ray that meets both sides' boxes tests the triangles of both
+    ranges, some twice. A cut is made where [cost A + A_l n_l + A_r n_r <
+    n A] ([A] the leaf's box's area, [n] its slots; [A_l], [n_l] and
+    [A_r], [n_r] its sides'): [cost] (default 3.) is the price of the
+    inner node's two box tests in triangle tests. It pays on long thin
+    triangles, whose boxes are far bigger than they are (a fine mesh's:
+    the 1M-triangle knot's are 150 times longer than wide); never on
+    leaves of [cost] slots or fewer, which are not tried. Leaves of more
+    than 64 slots or with a slot that is not a triangle are left as they
+    are. Inner nodes' boxes are their children's union again; [depth] is
+    the new tree's. The cut leaf's nodes follow each other: the inner
+    node, then its sides.
 
-    [tri s v] writes slot [s]'s triangle's corners to [v] (9 floats:
-    x, y, z of each) and is [true], or is [false] if [s] is not a
-    triangle. [pad s v] is how much the box of a part of that triangle
-    (its corners [v]) must be grown on every side so that a ray that hits
-    the triangle in that part meets the box, with the part's corners
-    rounded ([Prepared]: twice the triangle's box's margin). If no leaf
-    is cut, the result is [t] itself.
-    @raise Invalid_argument if [cuts < 0] or [cost] is negative or NaN. *)
+    [triangle s] is whether slot [s] is a triangle; its corners are then
+    at [vertex.(at0.(s))], [vertex.(at1.(s))], [vertex.(at2.(s))] (x, y,
+    z at each). A part of a triangle (its corners on one side of the
+    plane and the points where its edges cross it, rounded) is boxed
+    padded by twice {!margin}[ margin h] on every side, [h] the largest
+    half side of the triangle's box ([Prepared]'s boxes pad by one: a
+    part's rounding is a few units in the last place), so that a ray that
+    hits the triangle in that part meets the box. If no leaf is cut, the
+    result is [t] itself. The new nodes are written once, into an array
+    with room for two more nodes a leaf tried: its [nodes] may hold more
+    than [8 n_nodes + 7] floats (at most an eighth more nodes than
+    [n_nodes]; an exact copy is made where more room than that went
+    unused).
+    @raise Invalid_argument if [cuts < 0] or [cost] is negative or NaN,
+    or a triangle's corners are not in [vertex]. *)

@@ -385,8 +385,10 @@ val prepare : ?skips:bool -> ?cut:bool -> ?beside:Bvh.beside -> Scene.valid -> t
     surface area heuristic finds it pays ({!Raytrace.Private.Bvh.split_leaves},
     prices by default): the same image, fewer triangle tests a ray on meshes of long
     thin triangles (the 1M-triangle knot: camera rays 17% and shadow rays
-    23% fewer instructions), for a slower build and more memory
-    (docs/performance.md, "Issue 28, round 3: the tree").
+    23% fewer instructions), for a slower prepare (the 1M knot's cut:
+    about 1 G instructions, a sixth of a second) and twice the nodes
+    (docs/performance.md, "Issue 28, round 3: the tree" and "Issue 28,
+    round 3: the cut made cheap").
     For a scene of more than 2{^18} objects, the garbage collector's
     [major_heap_increment] is 256 MB while it runs (then set back): the
     heap's free pieces between the default's smaller chunks do not fit
