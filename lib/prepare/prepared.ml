@@ -1183,12 +1183,12 @@ type selection = { bounded : int array; unbounded : int array; nb : int; first :
 
 let[@inline] kept twin_of k = Array.length twin_of = 0 || twin_of.(k) = k
 
-let select o (bounded : int -> bool) twin_of =
+let select o okind twin_of =
   let n = o.n in
-  let is_bounded k = kept twin_of k && bounded k in
+  let is_bounded k = kept twin_of k && Kind.bounded okind.(k) in
   let nb = ref 0 and planes = ref [] in
   for k = 0 to n - 1 do
-    if kept twin_of k then if not (bounded k) then planes := k :: !planes else incr nb
+    if kept twin_of k then if not (Kind.bounded okind.(k)) then planes := k :: !planes else incr nb
   done;
   let unbounded = Array.of_list (List.rev !planes) in
   (* The first and the last bounded object, looked for from each end. *)
@@ -1225,63 +1225,6 @@ let collect o collections =
    operand, in a scene of few objects. *)
 let compact_after_loading o =
   if (o.any_mesh && o.n > big_scene) || o.csg_triangles > big_scene then Gc.compact ()
-
-(* The per-object kinds and materials as runs of equal pairs: the
-   first object of each run, its kind and its material. A big mesh's
-   million triangles are a few runs: held so while the hierarchy is
-   built, [okind] and [omat] (16 MB for a million) are let go and
-   collected before the build's boxes are made, which fill their room,
-   and made again after the collection that follows the build
-   (docs/performance.md, "Third round: the peak"). [None] without a
-   mesh, in a scene not big, or where the runs would not be few (a run
-   takes 3 words, an object 2). *)
-type pair_runs = { first_of : int array; kind_of : Kind.t array; mat_of : int array }
-
-let runs_of o (okind : Kind.t array) (omat : int array) =
-  let n = Array.length okind in
-  let differs k = okind.(k) != okind.(k - 1) || omat.(k) <> omat.(k - 1) in
-  let count = ref (min n 1) in
-  if o.any_mesh && n > big_scene then
-    for k = 1 to n - 1 do
-      if differs k then incr count
-    done;
-  if (not o.any_mesh) || n <= big_scene || !count > n / 64 then None
-  else begin
-    let first_of = Array.make !count 0 and kind_of = Array.make !count Kind.Sphere and mat_of = Array.make !count 0 in
-    let r = ref 0 in
-    for k = 0 to n - 1 do
-      if k = 0 || differs k then begin
-        first_of.(!r) <- k;
-        kind_of.(!r) <- okind.(k);
-        mat_of.(!r) <- omat.(k);
-        incr r
-      end
-    done;
-    Some { first_of; kind_of; mat_of }
-  end
-
-(* [okind] and [omat] of [n] objects, from their runs. *)
-let of_runs n { first_of; kind_of; mat_of } =
-  let okind = Array.make n Kind.Sphere and omat = Array.make n 0 in
-  let m = Array.length first_of in
-  for r = 0 to m - 1 do
-    let last = if r + 1 < m then first_of.(r + 1) - 1 else n - 1 in
-    Array.fill okind first_of.(r) (last - first_of.(r) + 1) kind_of.(r);
-    Array.fill omat first_of.(r) (last - first_of.(r) + 1) mat_of.(r)
-  done;
-  (okind, omat)
-
-(* Whether object [k] is bounded ([Kind.bounded]), from the runs. *)
-let bounded_of_runs { first_of; kind_of; _ } =
-  if Array.for_all Kind.bounded kind_of then fun _ -> true
-  else fun k ->
-    (* The last run that starts at or before [k]. *)
-    let lo = ref 0 and hi = ref (Array.length first_of - 1) in
-    while !lo < !hi do
-      let mid = (!lo + !hi + 1) / 2 in
-      if first_of.(mid) <= k then lo := mid else hi := mid - 1
-    done;
-    Kind.bounded kind_of.(!lo)
 
 (* The boxes of the selected objects, each padded by its margin, as
    [Bvh.build_boxes] takes them; [None] without a hierarchy. *)
@@ -1342,7 +1285,7 @@ let boxes ~skips o (scene : Scene.view) c sel =
    finds some, their selection and boxes are made again (twins are exact
    copies: the margins' terms would be the same, but the boxes are of
    fewer objects). *)
-let twins_and_boxes ~skips ?beside o scene bounded c collections =
+let twins_and_boxes ~skips ?beside o scene okind c collections =
   let find_twins () = sphere_twins ~cx:c.ocx ~cy:c.ocy ~cz:c.ocz ~radius:c.ohalf ~n_spheres:o.n_spheres in
   match (beside : Bvh.beside option) with
   | Some b when o.n_spheres >= b.min_objects && b.idle () -> (
@@ -1350,7 +1293,7 @@ let twins_and_boxes ~skips ?beside o scene bounded c collections =
          shares the compacted heap, and writing the boxes there copied
          its pages. *)
       let wait = b.beside find_twins in
-      let selected = select o bounded [||] in
+      let selected = select o okind [||] in
       collect o collections;
       let guess = boxes ~skips o scene c selected in
       let pairs = match wait () with Some pairs -> pairs | None -> find_twins () in
@@ -1358,11 +1301,11 @@ let twins_and_boxes ~skips ?beside o scene bounded c collections =
       | [||] -> ([||], selected, guess)
       | _ ->
           let twin_of = twin_table pairs o.n in
-          let selected = select o bounded twin_of in
+          let selected = select o okind twin_of in
           (twin_of, selected, boxes ~skips o scene c selected))
   | _ ->
       let twin_of = twin_table (find_twins ()) o.n in
-      let selected = select o bounded twin_of in
+      let selected = select o okind twin_of in
       collect o collections;
       (twin_of, selected, boxes ~skips o scene c selected)
 
@@ -1747,10 +1690,6 @@ let cut_leaves bvh c ~kind ~vertex g =
 
 (* {2 The prepared scene} *)
 
-(* What [assemble] reads of the objects: their counts, not the shapes,
-   which [prepare_scene] lets go before the vertices' gather. *)
-type counts = { spheres : int; objects : int; spheres_only : bool }
-
 (* The [light_stride] floats of a light's geometry in [light_geom]. *)
 let light_geom l =
   let v3 (v : Vec3.t) = [ v.x; v.y; v.z ] in
@@ -1801,8 +1740,8 @@ let light6 lights =
 
 (* The record, from the steps' results; the lights' and the materials'
    arrays made here. *)
-let assemble ~skips (scene : Scene.view) (c : counts) ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg ~instances
-    sl ~index ~slot g sp ~vertex ~vsource ~vnormal ~uv =
+let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg ~instances sl g sp
+    ~vertex ~vsource ~vnormal ~uv =
   (* Each light with its place in the scene's list, which keys its
      samples (Light, "Sample points"): dropping a dark light changes no
      other light's numbers. *)
@@ -1817,15 +1756,16 @@ let assemble ~skips (scene : Scene.view) (c : counts) ~max_channel ~materials ~a
   (* The document's own scenes: spheres of plain materials (no pattern, no
      glass), few enough for no hierarchy, in the document's mode. *)
   let textbook_all =
-    c.spheres_only && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None
+    o.shapes = [] && alternate = [||] && (not transparent) && bvh = None && scene.epsilon <> None
     && (not (Camera.has_lens scene.camera)) && not soft
   in
   let texture_of, texture_table, texture_size, texels = texture_tables materials in
   let n_kept = Array.length sl.index in
+  let index, slot = in_list_order o ~index:sl.index ~slot:sl.slot in
   {
-    n_spheres = c.spheres;
+    n_spheres = o.n_spheres;
     n_objects = n_kept;
-    all_spheres = c.spheres_only && alternate = [||];
+    all_spheres = o.shapes = [] && alternate = [||];
     patterned = alternate <> [||];
     alternate;
     pattern;
@@ -1845,7 +1785,7 @@ let assemble ~skips (scene : Scene.view) (c : counts) ~max_channel ~materials ~a
     vcorner = g.vcorner;
     extent = g.extent;
     csg;
-    n_scene_objects = c.objects;
+    n_scene_objects = o.n;
     material = sl.material;
     cx = sp.cx;
     cy = sp.cy;
@@ -1968,21 +1908,13 @@ let rec prepare_scene ?(every_frame = false) ?(cut = false) ~skips ?beside scene
   let materials, alternate, placed, pattern = material_table r in
   (* The hierarchy over the bounded objects kept, then the slots. *)
   let collections = ref 0 in
-  (* A big mesh's kinds and materials held as runs until the build is
-     done ([runs_of]), their arrays collected before the boxes fill
-     their room. *)
-  let runs = runs_of o okind omat in
-  let bounded = match runs with None -> fun k -> Kind.bounded okind.(k) | Some r -> bounded_of_runs r in
-  let okind, omat = if runs = None then (okind, omat) else ([||], [||]) in
-  if runs <> None then Gc.full_major ();
-  let twin_of, sel, boxes = twins_and_boxes ~skips ?beside o scene bounded c collections in
+  let twin_of, sel, boxes = twins_and_boxes ~skips ?beside o scene okind c collections in
   let pool = { spare = [] } in
   let bvh =
     hierarchy ?beside ~reuse:(o.shapes = [] && sel.nb = o.n) ~scratch:(sel.nb = o.n) ~instances:(2 * Hashtbl.length c.oboxes >= sel.nb)
       pool boxes
   in
   collect o collections;
-  let okind, omat = match runs with Some r -> of_runs o.n r | None -> (okind, omat) in
   let unbounded = sel.unbounded in
   let sl = slots o pool (index_of_slots o bvh sel twin_of) okind omat twin_of in
   (* The scratch, if [slots] took none, let go. *)
@@ -1993,24 +1925,16 @@ let rec prepare_scene ?(every_frame = false) ?(cut = false) ~skips ?beside scene
   let g = geometry_arrays o sl ~any_smooth ~follow:v.follow in
   let sp = camera_constants pool scene.camera.position (sphere_arrays o pool sl c) in
   store_geometry o v s inst normal_base sl g ~any_smooth;
-  (* What is left to read of the shapes, read now: from here on [o] and
-     [v] are let go, and with them the scene's triangles (24 MB for a
-     million), which a collection frees before the gather below fills
-     their room (docs/performance.md, "Third round: the peak"). *)
-  let uv = uv_table ~every_frame o sl.slot (Array.length sl.kind) in
-  let index, slot = in_list_order o ~index:sl.index ~slot:sl.slot in
-  let counts = { spheres = o.n_spheres; objects = o.n; spheres_only = o.shapes = [] } in
-  let positions = v.vertex in
-  if o.any_mesh && o.n > big_scene then Gc.full_major ();
   (* The triangles' vertices in the order the leaves read them
      (Vertex_order); the normals stay where they are. *)
   let vertex, vsource =
-    if bvh = None || Array.length positions = 0 then (positions, [||])
-    else Vertex_order.gather ~sources:any_smooth ~kind:sl.kind ~vertex:positions g.at0 g.at1 g.at2
+    if bvh = None || Array.length v.vertex = 0 then (v.vertex, [||])
+    else Vertex_order.gather ~sources:any_smooth ~kind:sl.kind ~vertex:v.vertex g.at0 g.at1 g.at2
   in
   let bvh = if cut then cut_leaves bvh c ~kind:sl.kind ~vertex g else bvh in
-  assemble ~skips scene counts ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)
-    ~instances:(instance_table inst placed) sl ~index ~slot g sp ~vertex ~vsource ~vnormal ~uv
+  let uv = uv_table ~every_frame o sl.slot (Array.length sl.kind) in
+  assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)
+    ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal ~uv
 
 (* The bottom level of an instance: its object alone, prepared as a scene
    of the top's mode (epsilon) with no lights; the kernel traces it in
