@@ -114,7 +114,7 @@ let full pl tr cy = full_span pl tr cy pl.x pl.w
    of their hierarchies while these are still in the cache; a row of 1,920
    pixels crosses 48 small knots before it comes back to the first
    (docs/performance.md, "Third pass"). *)
-let square = 32
+let square = 64
 
 (* Canvas rows [r0 .. r1 - 1] of the rectangle, one [square] wide column of
    them after the other. Each pixel is computed alone ([full] has no

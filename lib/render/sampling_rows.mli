@@ -70,7 +70,7 @@ val rows : plan -> int -> Trace.t -> first:int -> step:int -> unit
     squares: the same bytes. *)
 
 val square : int
-(** [square] is 32, the side in pixels of the squares in which {!band}
+(** [square] is 64, the side in pixels of the squares in which {!band}
     traces. *)
 
 val band_rows : plan -> Trace.t -> int
