@@ -239,7 +239,7 @@ let[@inline] triangles_blocker tr s first last =
 let closest_ref : (Tracer.t -> int) ref = ref (fun _ -> -1)
 
 (* Likewise the any-blocker search of a bottom level for shadow rays
-   ([instance_blocks]), defined below ([any_blocker]). *)
+   ([instance_roots]), defined below ([any_blocker]). *)
 let blocker_ref : (Tracer.t -> bool) ref = ref (fun _ -> false)
 
 (* Carries the ray in [s] into the frame of instance [n], in the per-ray
