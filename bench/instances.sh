@@ -5,11 +5,16 @@
 # indirection alone), and two of 1,000 instances of it ((define knot ...), then 1,000
 # (use knot ...), each turned its own way): in a 10x10x10 block (block: a
 # ray crosses the boxes of ten knots or more) and in one layer of 40x25
-# facing the camera (wall: a ray meets one knot's box, or two). Renders
-# each at WIDTHxHEIGHT with --jobs JOBS, in alternation REPEATS times, and
-# prints per scene the median wall-clock seconds, the median CPU seconds
-# (user + system: steadier than wall-clock on a busy machine) and the
-# largest peak resident memory (GNU time's maximum resident set size).
+# facing the camera (wall: a ray meets one knot's box, or two); and
+# field, 1,000 instances as a user places them: standing on a floor (a
+# plane) in 25 columns and 40 rows receding toward the horizon, each
+# shifted and turned its own way, under another camera. Renders each at
+# WIDTHxHEIGHT with --jobs JOBS, in alternation REPEATS times, and prints
+# per scene the median wall-clock seconds, the median CPU seconds (user +
+# system: steadier than wall-clock on a busy machine), the largest peak
+# resident memory (GNU time's maximum resident set size) and the fraction
+# of the picture's pixels that show a knot (red above blue: the knots'
+# colour, not the floor's nor the black background).
 #
 #   bench/instances.sh [REPEATS] [WIDTH] [HEIGHT] [JOBS]
 #   dune build --profile release && bench/instances.sh 3 1920 1080 1
@@ -23,11 +28,12 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/instances.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 
 "$gen" knot --segments 31250 --sides 16 -o "$work/knot.obj"
+# The canvas, the camera ($1, or the knots' front view) and the lights.
 head() {
   cat <<SCENE
 (canvas (width $width) (height $height))
 (viewport (width 1.7777777777777777) (height 1) (distance 1))
-(camera (position 0 0 -9) (look-at 0 0 0))
+${1:-(camera (position 0 0 -9) (look-at 0 0 0))}
 (light ambient (intensity 0.2))
 (light point (intensity 0.6) (position -6 8 -10))
 (light directional (intensity 0.2) (direction 1 3 -2))
@@ -64,19 +70,37 @@ SCENE
     done
   done
 } >"$work/wall.scene"
+{
+  head '(camera (position 0 2.2 -4) (look-at 0 0.3 12))'
+  echo '(plane (point 0 0 0) (normal 0 1 0) (color 70 100 200) (specular 10))'
+  echo '(define knot (mesh (file "knot.obj") (color 200 120 60) (specular 100) (smooth true)))'
+  # Each knot's shift (up to 0.2) and turn from its place: integers, the
+  # same scene from every awk.
+  awk 'BEGIN {
+    for (i = 0; i < 25; i++) for (k = 0; k < 40; k++) {
+      x = (i - 12) * 1.2 + ((i * 7919 + k * 104729) % 41 - 20) / 100
+      z = k * 1.2 + ((i * 104729 + k * 7919) % 41 - 20) / 100
+      printf "(use knot (transform ((scale 0.35) (rotate-x %d) (rotate-y %d) (translate %g 0.5 %g))))\n", (i * 11 + k * 17) % 31 - 15, (i * 37 + k * 73) % 360, x, z
+    } }'
+} >"$work/field.scene"
+scenes="one use block wall field"
 
 median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 for ((r = 1; r <= repeats; r++)); do
-  for s in one use block wall; do
+  for s in $scenes; do
     /usr/bin/time -f "%e %M %U %S" -o "$work/$s.t" "$raytrace" render "$work/$s.scene" --jobs "$jobs" -o "$work/$s.ppm" 2>/dev/null
     cat "$work/$s.t" >>"$work/$s.times"
   done
 done
-printf '%-10s %10s %10s %12s\n' scene "wall (s)" "cpu (s)" "peak (MB)"
-for s in one use block wall; do
+# The percentage of the pixels of image $1 whose red exceeds their blue.
+covered() {
+  tail -c $((3 * width * height)) "$1" | od -An -v -tu1 -w3 | awk '$1 > $3 { c++ } END { printf "%.1f%%", 100 * c / NR }'
+}
+printf '%-10s %10s %10s %12s %10s\n' scene "wall (s)" "cpu (s)" "peak (MB)" "knots"
+for s in $scenes; do
   wall=$(awk '{ print $1 }' "$work/$s.times" | median)
   cpu=$(awk '{ print $3 + $4 }' "$work/$s.times" | median)
   peak=$(awk '{ if ($2 > m) m = $2 } END { printf "%.1f", m / 1024 }' "$work/$s.times")
-  printf '%-10s %10s %10s %12s\n' "$s" "$wall" "$cpu" "$peak"
+  printf '%-10s %10s %10s %12s %10s\n' "$s" "$wall" "$cpu" "$peak" "$(covered "$work/$s.ppm")"
 done
 if [ -n "${KEEP:-}" ]; then cp "$work"/*.ppm "$work"/*.scene "$KEEP"/; fi

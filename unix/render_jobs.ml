@@ -185,11 +185,20 @@ let in_workers ~limits ~jobs ~split ~one_process ?skips ?progress ?rows_done sam
                       | Some slots -> Int64.to_int (Bigarray.Array1.get slots (jobs + w)) - Render_work.rays tr
                       | None -> 0
                     in
-                    for r = bands.(b) to bands.(b + 1) - 1 do
-                      Sampling_rows.rows plan i tr ~first:r ~step:n;
-                      match slots with
-                      | Some slots -> count_row slots ~jobs w ~rays:(earlier + Render_work.rays tr)
-                      | None -> ()
+                    (* Square by square where the pass allows
+                       ([Sampling_rows.band]), the rows counted for the
+                       progress after each band of them. *)
+                    let r = ref bands.(b) and stop = bands.(b + 1) and rows = Sampling_rows.band_rows plan tr in
+                    while !r < stop do
+                      let last = min stop (!r + rows) in
+                      Sampling_rows.band plan i tr ~first:!r ~last;
+                      (match slots with
+                      | Some slots ->
+                          for _ = !r to last - 1 do
+                            count_row slots ~jobs w ~rays:(earlier + Render_work.rays tr)
+                          done
+                      | None -> ());
+                      r := last
                     done;
                     Parallel.report reports b;
                     loop ()

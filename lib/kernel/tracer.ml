@@ -77,6 +77,13 @@ type t = {
   mutable inner_material : int;
       (** The material, in the bottom level's numbering, of the surface
           last hit in an instance ({!Surface}). *)
+  mutable inner_slot : int;
+      (** The slot of the instance whose closest hit the last closest
+          search found last ([-1] before any), and that hit's slot in its
+          bottom level, [inner_hit]: where the search kept that hit, the
+          normal takes it from here rather than from a second walk of the
+          bottom level ({!Traversal.instance_hit}). *)
+  mutable inner_hit : int;
   mutable key : int;
       (** With [p.sampled]: the {!Sample_key.camera} key of the camera
           sample being traced, from which the integrals over a light or a
@@ -172,6 +179,8 @@ let rec create ?(averaging = false) (p : Prepared.t) =
     (* No closure made where there is no instance. *)
     inner = (if Array.length p.instances.bottoms = 0 then [||] else Array.map (fun b -> create ~averaging b) p.instances.bottoms);
     inner_material = 0;
+    inner_slot = -1;
+    inner_hit = -1;
     key = 0;
     lens_gx = 0;
     lens_gy = 0;

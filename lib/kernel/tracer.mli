@@ -88,6 +88,13 @@ type t = {
   mutable inner_material : int;
       (** The material, in the bottom level's numbering, of the surface
           last hit in an instance ({!Surface}). *)
+  mutable inner_slot : int;
+      (** The slot of the instance whose closest hit the last closest
+          search found last ([-1] before any), and that hit's slot in its
+          bottom level, [inner_hit]: where the search kept that hit, the
+          normal takes it from here rather than from a second walk of the
+          bottom level ({!Traversal.instance_hit}). *)
+  mutable inner_hit : int;
   mutable key : int;
       (** With [p.sampled]: the {!Sample_key.camera} key of the camera
           sample being traced, set by {!Trace}'s [pixel], [row] and

@@ -238,6 +238,10 @@ let[@inline] triangles_blocker tr s first last =
    is initialised: a call through it allocates nothing. *)
 let closest_ref : (Tracer.t -> int) ref = ref (fun _ -> -1)
 
+(* Likewise the any-blocker search of a bottom level for shadow rays
+   ([instance_roots]), defined below ([any_blocker]). *)
+let blocker_ref : (Tracer.t -> bool) ref = ref (fun _ -> false)
+
 (* Carries the ray in [s] into the frame of instance [n], in the per-ray
    record of its bottom level's tracer, which it returns. *)
 let[@inline] carry tr s n =
@@ -261,8 +265,9 @@ let[@inline] carry tr s n =
      there may still win a tie: the bound is above it, [t (1 + 2^-52)]
      rounded, at least the next float up for a normal [t > 0] (not
      [Float.succ]: a call to C's [nextafter] per instance test).
-     Every search over shapes sets [s.t] to [infinity] before its first
-     test. *)
+     Every closest search over shapes sets [s.t] to [infinity] before its
+     first test, a shadow ray's to NaN ([shadow_search]): the bound is
+     then [t_max]. *)
   ss.t_max <- (let t = s.t in let best = t +. (t *. epsilon_float) in if best < s.t_max then best else s.t_max);
   (* The bottom level's surfaces are left by no secondary ray of its own:
      the top level offsets an instance's hit point. *)
@@ -273,14 +278,33 @@ let[@inline] carry tr s n =
    [s.far]; [false] if it has none. *)
 let[@inline] instance_number tr i = truncate (Array.unsafe_get tr.p.geom (Kind.stride * Array.unsafe_get tr.p.at0 i))
 
+(* Is the search in progress a shadow ray's ([blocked_from]), which
+   asks for any blocker, not the closest hit? Its best hit so far is then
+   NaN, not a number: there is none, and [carry]'s bound from it, [NaN <
+   t_max], is false, so none. *)
+let[@inline] shadow_search s = Float.is_nan s.t
+
 let[@inline never] instance_roots tr s i =
   let sub = carry tr s (instance_number tr i) in
-  !closest_ref sub >= 0
-  &&
-  let t = sub.s.t in
-  s.near <- t;
-  s.far <- t;
-  true
+  if shadow_search s then
+    (* A shadow ray's: any root in range will do, not the closest. *)
+    !blocker_ref sub
+    &&
+    let t = sub.s.t in
+    s.near <- t;
+    s.far <- t;
+    true
+  else
+    let j = !closest_ref sub in
+    j >= 0
+    &&
+    let t = sub.s.t in
+    s.near <- t;
+    s.far <- t;
+    (* Remembered for the normal ([instance_hit]). *)
+    tr.inner_slot <- i;
+    tr.inner_hit <- j;
+    true
 
 (* The roots of the shape (not a sphere) in slot [i], by its module's
    routine, in [s.near] and [s.far]; [false] if it misses. A CSG solid
@@ -633,9 +657,22 @@ let[@inline] closest_primary_in tr ~spheres =
 let[@inline] closest tr = if tr.p.all_spheres then closest_in tr ~spheres:true else closest_in tr ~spheres:false
 let () = closest_ref := fun tr -> closest tr
 
+(* The bottom level's hit is the one [instance_roots] remembered when
+   slot [i] is the last instance that found one: the closest search that
+   kept slot [i] tested it and found its hit ([tr.inner_slot <- i]);
+   where a later instance's hit overwrote the record without being kept
+   (a tie lost by scene order), the record names another slot, and the
+   bottom level is walked again, bounded by the hit kept. Nothing runs
+   an instance's closest search between a top-level search and its
+   normal. The remembered hit is the walk's: the same ray carried the
+   same way, and its [t] is the [s.t] the top level kept. *)
 let instance_hit tr i =
   let sub = carry tr tr.s (instance_number tr i) in
-  ignore (closest sub);
+  if tr.inner_slot = i then begin
+    sub.hit <- tr.inner_hit;
+    sub.s.t <- tr.s.t
+  end
+  else ignore (closest sub);
   sub
 
 (* Does the shape (not a sphere) in slot [i] meet the ray in [s] with
@@ -774,6 +811,39 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
       tr.counters.tests <- tr.counters.tests + !tests;
       !found
 
+(* Whether any object of [tr]'s scene blocks the ray in [tr.s] (an
+   instance's bottom level, the ray carried there by [instance_roots] for
+   a shadow ray), its root in range then left in [s.t]:
+   [first_blocker_from] with no last blocker to try first (a bottom level
+   has no lights of its own: the light's last blocker is the top level's
+   instance), then the blocker's roots again, for the one in range. The
+   same roots as [closest], so the same answer as a closest search of the
+   bottom level gives. *)
+let any_blocker tr =
+  let s = tr.s in
+  let dx = s.dx and dy = s.dy and dz = s.dz in
+  let a = (dx *. dx) +. (dy *. dy) +. (dz *. dz) in
+  let inv_a = 1. /. a in
+  let j =
+    if tr.p.all_spheres then first_blocker_from tr ~spheres:true ~triangles:false (-1) a inv_a
+    else begin
+      tr.kz <- -1;
+      (* A shadow ray's search ([shadow_search]): a nested instance
+         answers as this one. *)
+      s.t <- nan;
+      if tr.triangles then first_blocker_from tr ~spheres:false ~triangles:true (-1) a inv_a
+      else first_blocker_from tr ~spheres:false ~triangles:false (-1) a inv_a
+    end
+  in
+  j >= 0
+  && begin
+       if Array.unsafe_get tr.p.kind j = Kind.Sphere then ignore (sphere_roots tr s j) else ignore (shape_roots tr s j);
+       s.t <- (if s.t_min < s.near && s.near < s.t_max then s.near else s.far);
+       true
+     end
+
+let () = blocker_ref := any_blocker
+
 (* With skips and a hierarchy or the robust roots: light [l]'s last
    blocker first, then the first blocker of the others. One copy per kind
    of scene, so that spheres alone ask the kind once per shadow ray. *)
@@ -781,8 +851,10 @@ let[@inline] blocked_from tr l ~spheres ~triangles =
   let s = tr.s in
   if not spheres then begin
     tr.kz <- -1;
-    (* No best hit: an instance's search is bounded by none ([carry]). *)
-    s.t <- infinity
+    (* No best hit, and a shadow ray's search ([shadow_search]): an
+       instance's stops at its first blocker, bounded by none
+       ([carry]). *)
+    s.t <- nan
   end;
   let last = Array.unsafe_get tr.last_blocker l in
   let dx = s.dx and dy = s.dy and dz = s.dz in

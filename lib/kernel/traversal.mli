@@ -54,7 +54,11 @@ val instance_hit : Tracer.t -> int -> Tracer.t
 (** [instance_hit tr i] is the tracer of the bottom level of the instance
     in slot [i], its per-ray record holding the ray of [tr.s] carried into
     the instance's frame and the closest hit there ([hit], and [t] in its
-    record): the hit that {!closest} found in that instance. *)
+    record): the hit that {!closest} found in that instance, as the search
+    remembered it ([tr.inner_slot], [tr.inner_hit]) when slot [i] was the
+    last instance to find one, or found again by the same search bounded
+    by the hit kept. To be called after the closest search that kept slot
+    [i] and before any other search of [tr]. *)
 
 val roots : Tracer.t -> int -> Vec3.t -> Vec3.t -> float * float
 (** [roots tr k o d] is {!Trace.roots}. *)

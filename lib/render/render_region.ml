@@ -37,12 +37,20 @@ let region_image ?(limits = Limits.default) ?(clock = Sys.time) ?skips ?beside ?
           let finished = ref 0 in
           for i = 0 to Sampling_rows.passes plan - 1 do
             let n = Sampling_rows.pass_rows plan i in
-            for r = 0 to n - 1 do
-              Sampling_rows.rows plan i tr ~first:r ~step:n;
-              incr finished;
-              let w = Gc.minor_words () in
-              progress ~rows:!finished ~total ~rays:(Render_work.rays tr);
-              progress_words.(0) <- progress_words.(0) +. (Gc.minor_words () -. w)
+            (* A band of rows at a time, square by square where the
+               pass allows ([Sampling_rows.band]); then the progress of
+               each of its rows. *)
+            let r = ref 0 and rows = Sampling_rows.band_rows plan tr in
+            while !r < n do
+              let last = min n (!r + rows) in
+              Sampling_rows.band plan i tr ~first:!r ~last;
+              for _ = !r to last - 1 do
+                incr finished;
+                let w = Gc.minor_words () in
+                progress ~rows:!finished ~total ~rays:(Render_work.rays tr);
+                progress_words.(0) <- progress_words.(0) +. (Gc.minor_words () -. w)
+              done;
+              r := last
             done
           done
       with

@@ -62,6 +62,34 @@ val rows : plan -> int -> Trace.t -> first:int -> step:int -> unit
     scene must have the canvas size of [pl] and whose {!Raytrace.Private.Trace.averaging}
     must be {!Raytrace.Render.Sampling.averaging}. After each row it checks [tr]'s work budget
     ({!Raytrace.Private.Trace.check_budget}).
+    With [step = 1], a pass whose pixels read no neighbour's ray (neither
+    adaptive sampling nor subsampling) in a scene with a hierarchy is
+    traced as {!band} traces it, in squares: the same bytes.
     @raise Invalid_argument if [i] is not a pass, [step < 1], or the
     canvas sizes or the averaging disagree.
+    @raise Limits.Work_exceeded when [tr] passes its budget. *)
+
+val square : int
+(** [square] is 64, the side in pixels of the squares in which {!band}
+    traces. *)
+
+val band_rows : plan -> Trace.t -> int
+(** [band_rows pl tr] is the number of rows a {!band} call of [pl] with
+    tracer [tr] should take at a time: {!square} where it traces squares,
+    [1] where it traces row by row (a caller that reports progress a band
+    at a time then reports it a row at a time, as before). *)
+
+val band : plan -> int -> Trace.t -> first:int -> last:int -> unit
+(** [band pl i tr ~first ~last] runs pass [i] of [pl] on rows [first] to
+    [last - 1] of the rows that pass works on, as {!rows} runs each of them
+    alone, with the same checks and the same bytes. Where the pass's
+    pixels read no neighbour's ray (neither adaptive sampling nor
+    subsampling) and the scene has a hierarchy, it traces them in squares
+    of {!square} pixels a side (bands of {!square} rows, each a column of
+    squares after the other), not row after row: the camera rays of a
+    square meet the same few objects and walk the same nodes of their
+    hierarchies while those are in the cache. The
+    work budget is checked after each row of a square.
+    @raise Invalid_argument as {!rows} does, or if [first < 0] or [last]
+    is past the pass's rows.
     @raise Limits.Work_exceeded when [tr] passes its budget. *)
