@@ -61,6 +61,15 @@ let counting ?(idle = fun () -> true) ~min_objects built =
 (* Floats of this process's own memory, for a [beside] that computes here. *)
 let own n = (Bigarray.Array1.create Bigarray.float64 Bigarray.c_layout n, fun _ -> ())
 
+(* A generated mesh ([Mesh.Gen]) as a shape of the scene. *)
+let mesh_shape ?(smooth = false) ?(translate = Vec3.zero) (o : Mesh.Obj.t) material =
+  match
+    Mesh.v ~smooth ~translate ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
+      ~triangle_normals:o.triangle_normals material
+  with
+  | Ok m -> Shape.Mesh m
+  | Error (`Msg m) -> Alcotest.fail m
+
 let bits = Array.map Int64.bits_of_float
 
 (* Fails unless [a] and [b] are the same tree over the same slots, field
@@ -575,14 +584,6 @@ let tests =
            has no randomness, one job), so the counts are exact: a change
            here means the tracer does more or less work than it did; say
            why in the commit and update them. *)
-        let mesh ?(smooth = false) ~translate (o : Mesh.Obj.t) material =
-          match
-            Mesh.v ~smooth ~translate ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
-              ~triangle_normals:o.triangle_normals material
-          with
-          | Ok m -> Shape.Mesh m
-          | Error (`Msg m) -> Alcotest.fail m
-        in
         (* The knot of docs/performance.md, smaller, shiny and smooth, in the
            reference scene's light over its yellow ground, beside its
            spheres: primary, shadow and reflected rays all cross the
@@ -595,7 +596,7 @@ let tests =
         let knot =
           let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments:4800 ~sides:4 in
           Helpers.with_objects
-            ~shapes:[ mesh ~smooth:true ~translate:(Vec3.v 0. 0.5 5.) o (Material.v ~specular:300. ~reflective:0.2 (Color.v 230. 150. 40.)) ]
+            ~shapes:[ mesh_shape ~smooth:true ~translate:(Vec3.v 0. 0.5 5.) o (Material.v ~specular:300. ~reflective:0.2 (Color.v 230. 150. 40.)) ]
             (Scene.with_overrides ~width:96 ~height:96 Scene.cgfs)
         in
         (* A terrain seen from above at a slant, lit from the side: long
@@ -604,7 +605,7 @@ let tests =
           let o = Mesh.Gen.terrain ~seed:30 ~nx:150 ~nz:150 ~size:20. ~height:3. in
           let camera = match Camera.look_at ~position:(Vec3.v 0. 9. (-14.)) (Vec3.v 0. 0. 2.) with Ok c -> c | Error (`Msg m) -> Alcotest.fail m in
           Helpers.scene ~width:96 ~height:72 ~camera ~spheres:[]
-            ~shapes:[ mesh ~translate:Vec3.zero o (Material.v ~specular:10. (Color.v 90. 160. 60.)) ]
+            ~shapes:[ mesh_shape o (Material.v ~specular:10. (Color.v 90. 160. 60.)) ]
             ~lights:[ Light.ambient 0.2; Light.point 0.5 (Vec3.v (-8.) 6. 0.); Light.directional 0.3 (Vec3.v 1. 0.4 0.2) ] ()
         in
         let grid = Scene.with_overrides ~width:96 ~height:96 (Scene.grid 40_000) in
@@ -640,13 +641,7 @@ let tests =
            scene's ground: primary, shadow and reflected rays. *)
         let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments:4800 ~sides:4 in
         let m =
-          match
-            Mesh.v ~smooth:true ~translate:(Vec3.v 0. 0.5 5.) ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
-              ~triangle_normals:o.triangle_normals
-              (Material.v ~specular:300. ~reflective:0.2 (Color.v 230. 150. 40.))
-          with
-          | Ok m -> Shape.Mesh m
-          | Error (`Msg m) -> Alcotest.fail m
+          mesh_shape ~smooth:true ~translate:(Vec3.v 0. 0.5 5.) o (Material.v ~specular:300. ~reflective:0.2 (Color.v 230. 150. 40.))
         in
         let s = Helpers.with_objects ~shapes:[ m ] (Scene.with_overrides ~width:96 ~height:96 Scene.cgfs) in
         let run cut =
@@ -673,14 +668,7 @@ let tests =
            bounds' of a cube of side 200 around the scene, larger than
            prepare's (so one cut here is not prepare's [~cut] tree). *)
         let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.3 ~segments:4800 ~sides:4 in
-        let m =
-          match
-            Mesh.v ~translate:(Vec3.v 0. 0.5 5.) ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
-              ~triangle_normals:o.triangle_normals (Material.v (Color.v 230. 150. 40.))
-          with
-          | Ok m -> Shape.Mesh m
-          | Error (`Msg m) -> Alcotest.fail m
-        in
+        let m = mesh_shape ~translate:(Vec3.v 0. 0.5 5.) o (Material.v (Color.v 230. 150. 40.)) in
         let s = Helpers.valid (Helpers.with_objects ~shapes:[ m ] (Scene.with_overrides ~width:32 ~height:32 Scene.cgfs)) in
         let p = Prepared.prepare s in
         let b = match p.bvh with Some b -> b | None -> Alcotest.fail "no hierarchy" in
@@ -722,14 +710,7 @@ let tests =
            the cell's) are not tried: no fewer than [cost] = 3 slots
            ever pays. The tree is then not copied at all. *)
         let o = Mesh.Gen.terrain ~seed:30 ~nx:60 ~nz:60 ~size:20. ~height:3. in
-        let m =
-          match
-            Mesh.v ~translate:Vec3.zero ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
-              ~triangle_normals:o.triangle_normals (Material.v (Color.v 90. 160. 60.))
-          with
-          | Ok m -> Shape.Mesh m
-          | Error (`Msg m) -> Alcotest.fail m
-        in
+        let m = mesh_shape o (Material.v (Color.v 90. 160. 60.)) in
         let s = Helpers.with_objects ~shapes:[ m ] (Scene.with_overrides ~width:32 ~height:32 Scene.cgfs) in
         let tree cut = match (Prepared.prepare ~cut (Helpers.valid s)).bvh with Some b -> b | None -> Alcotest.fail "no hierarchy" in
         let a = tree false and b = tree true in
@@ -761,14 +742,7 @@ let tests =
            robust mode), the first of equal roots in the scene's order:
            each triangle's own root by [Trace.roots], the same test. *)
         let o = Mesh.Gen.torus_knot ~p:2 ~q:3 ~radius:2. ~tube:0.35 ~segments:300 ~sides:8 in
-        let mesh =
-          match
-            Mesh.v ~translate:Vec3.zero ~positions:o.positions ~triangles:o.triangles ~normals:o.normals
-              ~triangle_normals:o.triangle_normals (Material.v (Color.v 230. 150. 40.))
-          with
-          | Ok m -> Shape.Mesh m
-          | Error (`Msg m) -> Alcotest.fail m
-        in
+        let mesh = mesh_shape o (Material.v (Color.v 230. 150. 40.)) in
         let tr = Trace.create (Helpers.prepare (Helpers.scene ~spheres:[] ~shapes:[ mesh ] ~lights:[] ())) in
         let n = Array.length o.triangles / 3 in
         if (Trace.prepared tr).bvh = None then Alcotest.fail "no hierarchy";
