@@ -17,6 +17,18 @@ let image =
 (* A 2 x 2 quad, its corners' vt the unit square's. *)
 let quad_obj = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"
 
+(* A closed cube of side 1 about the origin, each face's two triangles
+   given the unit square's vt in another turn (so a corner's vt taken
+   from the wrong triangle or corner shows). *)
+let cube =
+  let face a b c d k =
+    let vt i = 1 + ((i + k) mod 4) in
+    Printf.sprintf "f %d/%d %d/%d %d/%d\nf %d/%d %d/%d %d/%d\n" a (vt 0) b (vt 1) c (vt 2) a (vt 0) c (vt 2) d (vt 3)
+  in
+  "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\n"
+  ^ "v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+  ^ face 1 2 3 4 0 ^ face 5 6 7 8 1 ^ face 1 2 6 5 2 ^ face 4 3 7 8 3 ^ face 1 4 8 5 1 ^ face 2 3 7 6 2
+
 (* The scene [text], whose every texture file is [image] and every mesh
    file [mesh]. *)
 let read ?(image = image) ?(mesh = quad_obj) text =
@@ -149,6 +161,42 @@ let tests =
         as_the_oracle "robust mode" (read (text ""));
         let n = Hashtbl.length (Test_pattern.colours (Helpers.image_exn s)) in
         if n < 200 then Alcotest.failf "only %d colours: the textures are not drawn" n);
+    Alcotest.test_case "a uv texture on a CSG solid's mesh operand is drawn as the mesh alone draws it where the solid keeps its surface" `Quick
+      (fun () ->
+        (* The closed cube [cube], textured through its vt. In a union
+           with a box far out of view, or an intersection with a box that holds it, the
+           solid's surface is the mesh's: the same hit, the same point in
+           the operand's frame (also inside a transformed operand), so the
+           same texture coordinates and every pixel the same byte. *)
+        let mesh = "(mesh (file \"c.obj\") (scale 1.5) (translate 1 0.9 4) (color 9 9 9) (specular 30) " ^ texture ^ "uv)))" in
+        let turned = "(transform ((rotate-y 30) (rotate-x 20) (translate -0.9 -0.5 3.5)) (mesh (file \"c.obj\") (color 9 9 9) " ^ texture ^ "uv))))" in
+        let far = "(box (min 50 50 50) (max 51 51 51) (color 200 40 40))" in
+        let holder = "(box (min -3 -3 1) (max 3 3 8) (color 200 40 40))" in
+        let scene epsilon objects =
+          read ~mesh:cube
+            (String.concat "\n"
+               ([ "(canvas (width 64) (height 48)) (background 20 20 20) " ^ epsilon ]
+               @ objects
+               @ [ "(light ambient (intensity 0.3)) (light point (intensity 0.6) (position 2 3 -1))" ]))
+        in
+        let image epsilon objects = Helpers.image_exn (scene epsilon objects) in
+        List.iter
+          (fun epsilon ->
+            let alone = image epsilon [ mesh; turned ] in
+            let n = Hashtbl.length (Test_pattern.colours alone) in
+            if n < 50 then Alcotest.failf "only %d colours: the texture is not drawn" n;
+            List.iter
+              (fun (what, objects) -> Helpers.check_images (what ^ ", " ^ epsilon) ~expected:alone (image epsilon objects))
+              [
+                ("union with a far box", [ "(csg union " ^ mesh ^ " " ^ far ^ ")"; "(csg union " ^ turned ^ " " ^ far ^ ")" ]);
+                ("intersection with a box that holds it", [ "(csg intersection " ^ mesh ^ " " ^ holder ^ ")"; "(csg intersection " ^ holder ^ " " ^ turned ^ ")" ]);
+              ];
+            (* Cut by a box, and as the oracle draws it (which finds the
+               triangle again on the line, Literal.texture_point). *)
+            let cut = "(box (min 1.2 1.1 2) (max 3 3 4.2) (color 200 40 40))" in
+            as_the_oracle ("oracle, " ^ epsilon)
+              (scene epsilon [ "(csg difference " ^ mesh ^ " " ^ cut ^ ")"; "(csg union " ^ turned ^ " " ^ far ^ ")" ]))
+          [ "(epsilon 0.001)"; "" ]);
     Alcotest.test_case "a globe turned a quarter about y by its transform shows its map a quarter turn on" `Quick (fun () ->
         (* rotate-y 90 takes the object's point (x, y, z) to the world's
            (z, y, -x) (exact: its sines and cosines are 0 and 1). The
@@ -232,5 +280,14 @@ let tests =
                ^ "(csg union (transform ((rotate-y 30) (translate -1 2 5)) (box (min -0.3 -0.3 -0.3) (max 0.3 0.3 0.3) (color 9 9 9) " ^ texture
                ^ "box)))) (sphere (center -1.3 2 5) (radius 0.3) (color 9 9 9)))")
               ();
+            (* A textured mesh operand, in the world and turned. *)
+            read ~mesh:cube
+              ("(canvas (width 32) (height 24)) (csg difference (mesh (file \"c.obj\") (translate 0.5 0.5 4) (color 9 9 9) " ^ texture
+             ^ "uv))) (box (min 0.6 0.6 2) (max 2 2 4.2) (color 9 9 9)))\n"
+             ^ "(csg union (transform ((rotate-y 30) (translate -0.8 0 3.5)) (mesh (file \"c.obj\") (color 9 9 9) " ^ texture
+             ^ "uv)))) (sphere (center -1 1 4) (radius 0.3) (color 9 9 9)))\n(light ambient (intensity 0.3)) (light point (intensity 0.5) (position 2 3 -1))");
+            read ~mesh:cube
+              ("(canvas (width 32) (height 24)) (csg intersection (mesh (file \"c.obj\") (translate 0 0 4) (color 9 9 9) " ^ texture
+             ^ "uv))) (sphere (center 0 0 4) (radius 0.7) (color 9 9 9)))\n(light ambient (intensity 1))");
           ]);
   ]

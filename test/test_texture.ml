@@ -250,7 +250,8 @@ let scene_tests =
     Alcotest.test_case "a texture on a transform, a use or a CSG operand is read where its mapping fits every surface it lies on, refused elsewhere" `Quick (fun () ->
         (* An object's own texture, transformed or used, is drawn in its
            frame; a transform's or use's own lies on its object's every
-           surface; a CSG solid's sphere and box operands take theirs. *)
+           surface; a CSG solid's sphere, box and mesh operands take
+           theirs. *)
         List.iter
           (fun text -> match read text with Ok _ -> () | Error (`Msg m) -> Alcotest.failf "%s: %s" text m)
           [
@@ -276,15 +277,34 @@ let scene_tests =
             ( "s.scene:1:104: box texture mapping must be box, got spherical",
               {|(csg union (sphere (center 0 0 3) (radius 1) (color 1 1 1)) (box (min 0 0 0) (max 1 1 1) (color 1 1 1) (texture (file "earth.ppm") (mapping spherical))))|} );
           ];
-        (* A closed mesh (a tetrahedron) with vt: a uv texture on it as an
-           operand is refused, not yet drawn. *)
+        (* A closed mesh (a tetrahedron): as an operand, with vt, it takes
+           a uv texture of its own or its transform's or use's; without vt
+           it is refused as a plain mesh is, at the texture (a mesh form's
+           own), or at the object (a use's texture over the solid); a box
+           mapping over it is refused at the object. *)
         let tetra = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nf 1/1 3/1 2/1\nf 1/1 2/1 4/1\nf 1/1 4/1 3/1\nf 2/1 3/1 4/1\n" in
-        (match
-          Scene_file.of_string ~load_texture ~load_mesh:(fun _ -> Ok (obj tetra)) ~file:"s.scene"
-            ("(csg union " ^ csg_sphere ^ " (mesh (file \"m.obj\") (color 1 1 1) (texture (file \"earth.ppm\") (mapping uv))))")
-        with
-        | Ok _ -> Alcotest.fail "a mesh operand's texture was accepted"
-        | Error (`Msg m) -> Alcotest.(check string) __LOC__ "s.scene:1:1: object 1 (csg): csg: a mesh operand cannot have a texture yet" m);
+        let bare = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n" in
+        let read_with mesh text = Scene_file.of_string ~load_texture ~load_mesh:(fun _ -> Ok (obj mesh)) ~file:"s.scene" text in
+        let uv_operand = "(csg union " ^ csg_sphere ^ " (mesh (file \"m.obj\") (color 1 1 1) (texture (file \"earth.ppm\") (mapping uv))))" in
+        let used mapping =
+          "(define d (csg union (mesh (file \"m.obj\") (color 1 1 1)) (mesh (file \"m.obj\") (scale 2) (color 1 1 1))))\n"
+          ^ "(use d (color 1 1 1) (texture (file \"earth.ppm\") (mapping " ^ mapping ^ ")))"
+        in
+        List.iter
+          (fun text -> match read_with tetra text with Ok _ -> () | Error (`Msg m) -> Alcotest.failf "%s: %s" text m)
+          [ uv_operand; "(transform ((rotate-y 30)) " ^ uv_operand ^ ")"; used "uv" ];
+        List.iter
+          (fun (mesh, text, expected) ->
+            match read_with mesh text with
+            | Ok _ -> Alcotest.failf "accepted %S" text
+            | Error (`Msg m) -> Alcotest.(check string) __LOC__ expected m)
+          [
+            ( bare, uv_operand,
+              "s.scene:1:145: mesh texture mapping uv needs the file's texture coordinates (vt and f v/vt), which m.obj does not give" );
+            ( bare, used "uv",
+              "s.scene:2:1: its texture lies on its object's surfaces: csg: mesh texture mapping uv needs the mesh's texture coordinates (vt), which it has none of" );
+            (tetra, used "spherical", "s.scene:2:1: its texture lies on its object's surfaces: csg: mesh texture mapping must be uv, got spherical");
+          ];
         Alcotest.(check string) __LOC__ "s.scene:1:90: sphere has a pattern and a texture; a material's colour comes from one of them"
           (read_error
              {|(sphere (center 0 0 3) (radius 1) (color 1 1 1) (pattern checker (color 0 0 0) (size 1)) (texture (file "earth.ppm") (mapping spherical)))|});
@@ -434,7 +454,32 @@ let file_tests =
         Alcotest.(check (pair int bool)) __LOC__ (1, false) (code, out);
         let prefix = "raytrace: " ^ path ^ ":1:58: cannot read texture file: " in
         if not (String.length err > String.length prefix && String.sub err 0 (String.length prefix) = prefix && not (String.contains err '\n'))
-        then Alcotest.failf "not one located line: %S" err);
+        then Alcotest.failf "not one located line: %S" err;
+        (* A CSG solid's mesh operand with a uv texture: drawn through
+           the file's vt; a file without them is refused at the texture,
+           as a plain mesh's is. *)
+        let faces = "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n" in
+        write "bare.obj" ("v 0 0 3\nv 1 0 3\nv 0 1 3\nv 0 0 4\n" ^ faces);
+        write "tetra.obj" ("v 0 0 3\nv 1 0 3\nv 0 1 3\nv 0 0 4\nvt 0 0\nvt 1 0\nvt 0 1\n"
+          ^ "f 1/1 3/3 2/2\nf 1/1 2/2 4/3\nf 1/1 4/3 3/3\nf 2/2 3/3 4/1\n");
+        let csg obj =
+          write "c.scene"
+            ({|(csg union (box (min 5 5 5) (max 6 6 6) (color 1 1 1)) (mesh (file "|} ^ obj
+           ^ {|") (color 1 1 1) (texture (file "t.ppm") (mapping uv))))|} ^ "\n(light ambient (intensity 1))");
+          let out = Filename.concat dir "out.ppm" in
+          let code, _, err = Helpers.run (Helpers.raytrace ()) [ "render"; Filename.concat dir "c.scene"; "-o"; out ] in
+          let made = Sys.file_exists out in
+          if made then Sys.remove out;
+          (code, String.trim err, made)
+        in
+        (let code, _, made = csg "tetra.obj" in
+         Alcotest.(check (pair int bool)) __LOC__ (0, true) (code, made));
+        Alcotest.(check (triple int string bool)) __LOC__
+          ( 1,
+            "raytrace: " ^ Filename.concat dir "c.scene"
+            ^ ":1:94: mesh texture mapping uv needs the file's texture coordinates (vt and f v/vt), which bare.obj does not give",
+            false )
+          (csg "bare.obj"));
     Alcotest.test_case "a scene built in code with a texture is valid where its mapping fits the object" `Quick (fun () ->
         let ball t = Shape.Sphere (Sphere.v ~center:(v 0. 0. 3.) ~radius:1. (Material.v ~texture:t (Color.v 1. 1. 1.))) in
         let valid t = Scene.validate (Scene.v ~objects:[ ball t ] ~lights:[] ()) in

@@ -68,26 +68,11 @@ let[@inline] box_uv s g o px py pz =
   | 4 -> s.tu <- sx; s.tv <- sy
   | _ -> s.tu <- 1. -. sx; s.tv <- sy
 
-(* A triangle's point by its barycentric weights on the corners as the
-   kernel stores them (Texture_map.barycentric's formula), then its
-   corners' [vt] blended ({!Texture_map.interpolate}). *)
-let[@inline] triangle_uv (p : Prepared.t) s i px py pz =
-  let v = p.vertex in
-  let o0 = Array.unsafe_get p.at0 i and o1 = Array.unsafe_get p.at1 i and o2 = Array.unsafe_get p.at2 i in
-  let ax = Array.unsafe_get v o0 and ay = Array.unsafe_get v (o0 + 1) and az = Array.unsafe_get v (o0 + 2) in
-  let e1x = Array.unsafe_get v o1 -. ax and e1y = Array.unsafe_get v (o1 + 1) -. ay and e1z = Array.unsafe_get v (o1 + 2) -. az in
-  let e2x = Array.unsafe_get v o2 -. ax and e2y = Array.unsafe_get v (o2 + 1) -. ay and e2z = Array.unsafe_get v (o2 + 2) -. az in
-  let dx = px -. ax and dy = py -. ay and dz = pz -. az in
-  let d11 = (e1x *. e1x) +. (e1y *. e1y) +. (e1z *. e1z) and d12 = (e1x *. e2x) +. (e1y *. e2y) +. (e1z *. e2z) in
-  let d22 = (e2x *. e2x) +. (e2y *. e2y) +. (e2z *. e2z) in
-  let dp1 = (dx *. e1x) +. (dy *. e1y) +. (dz *. e1z) and dp2 = (dx *. e2x) +. (dy *. e2y) +. (dz *. e2z) in
-  let den = (d11 *. d22) -. (d12 *. d12) in
-  let b1 = if den > 0. then ((d22 *. dp1) -. (d12 *. dp2)) /. den else 0. in
-  let b2 = if den > 0. then ((d11 *. dp2) -. (d12 *. dp1)) /. den else 0. in
-  let uv = p.uv and j = 6 * i in
-  let u0 = Array.unsafe_get uv j and v0 = Array.unsafe_get uv (j + 1) in
-  s.tu <- u0 +. (b1 *. (Array.unsafe_get uv (j + 2) -. u0)) +. (b2 *. (Array.unsafe_get uv (j + 4) -. u0));
-  s.tv <- v0 +. (b1 *. (Array.unsafe_get uv (j + 3) -. v0)) +. (b2 *. (Array.unsafe_get uv (j + 5) -. v0))
+(* A mesh triangle's (u, v) at the ray's point at [s.t] (the hit point
+   as [colour_at] computes it), from the corners as the kernel stores
+   them and their [vt] in the uv table. *)
+let[@inline] triangle_uv (p : Prepared.t) s i =
+  Triangle.texcoords_at s p.vertex (Array.unsafe_get p.at0 i) (Array.unsafe_get p.at1 i) (Array.unsafe_get p.at2 i) p.uv (6 * i)
 
 (* {!Texture}'s lookup, on the image's bytes: the pixel coordinate of a
    texture coordinate (a NaN or infinity looks up 0; far out, [repeat]
@@ -116,8 +101,8 @@ let[@inline] blend x k00 k10 k01 k11 tx ty =
 (* The texture coordinates, into [s.tu] and [s.tv], of the point
    [px, py, pz] on the surface that tracer [g]'s last hit found in slot
    [i], by [mapping] (not [planar], which takes the texture's size): a
-   CSG solid's leaf's (a sphere or a box: Csg's [check_textures]), or the
-   slot's own shape's. *)
+   CSG solid's leaf's (a sphere, a box, or a mesh's triangle with its
+   [vt]: Csg's [check_textures]), or the slot's own shape's. *)
 let[@inline] coordinates (g : Tracer.t) i mapping px py pz =
   let p = g.p and s = g.s in
   if Array.unsafe_get p.kind i = Kind.Csg then begin
@@ -127,15 +112,17 @@ let[@inline] coordinates (g : Tracer.t) i mapping px py pz =
     Csg.enter_surface_frame p.csg g.csg s;
     let t = s.t in
     let px = s.ox +. (s.dx *. t) and py = s.oy +. (s.dy *. t) and pz = s.oz +. (s.dz *. t) in
+    (* A mesh's triangle: the point on that ray, read by Csg. *)
+    if mapping = Prepared.uv_mapping then Csg.texcoords p.csg g.csg s;
     Csg.leave_surface_frame p.csg g.csg s;
     if mapping = Prepared.spherical then
       sphere_uv s (Array.unsafe_get geom o) (Array.unsafe_get geom (o + 1)) (Array.unsafe_get geom (o + 2)) px py pz
-    else box_uv s geom o px py pz
+    else if mapping = Prepared.box_mapping then box_uv s geom o px py pz
   end
   else if mapping = Prepared.spherical then
     sphere_uv s (Array.unsafe_get p.cx i) (Array.unsafe_get p.cy i) (Array.unsafe_get p.cz i) px py pz
   else if mapping = Prepared.box_mapping then box_uv s p.geom (Kind.stride * Array.unsafe_get p.at0 i) px py pz
-  else triangle_uv p s i px py pz
+  else triangle_uv p s i
 
 let[@inline never] colour_at tr m g i =
   let p = tr.p and s = g.s in

@@ -16,9 +16,9 @@
     The renderer draws them on objects placed as written, on
     transformed and instanced ones (in the object's own frame), as a
     transform's or instance's own material (on every surface of its
-    object, in the object's frame) and on a CSG solid's sphere and box
-    operands, placed or transformed (not yet on its mesh operands, which
-    {!Shape.validate} refuses): the kernel's own copy of these mappings
+    object, in the object's frame) and on a CSG solid's sphere, box and
+    mesh operands, placed or transformed (a mesh's [uv] through its
+    [vt]): the kernel's own copy of these mappings
     and of {!Texture}'s lookup is [Texturing], and the executable
     specification [Literal] calls the functions below.
 

@@ -172,12 +172,13 @@ let no_pattern p =
   else Ok ()
 
 (* A texture on a leaf: the leaf's kind takes its mapping (as an object
-   of that kind does, {!Shape.validate}); a mesh operand's uv texture
-   would need its triangles' [vt] in the CSG table: not drawn yet. *)
+   of that kind does, {!Shape.validate}); a mesh's uv texture needs its
+   [vt], which its leaf in the kernel's table keeps ([mesh_leaf]). *)
 let leaf_texture l (t : Texture_map.t) =
   let name = match l with Sphere _ -> "sphere" | Box _ -> "box" | Mesh _ -> "mesh" | Primitive p -> Shape_desc.name p | Csg _ | Transformed _ -> "csg" in
   match (l, Texture_map.mapping_for name) with
-  | Mesh _, _ -> Error (`Msg "csg: a mesh operand cannot have a texture yet")
+  | Mesh m, Some Texture_map.Uv when t.mapping = Texture_map.Uv && not (Mesh.has_texcoords m) ->
+      Error (`Msg "csg: mesh texture mapping uv needs the mesh's texture coordinates (vt), which it has none of")
   | _, None -> Error (`Msg (Printf.sprintf "csg: a %s takes no texture; textures map onto spheres, planes, boxes and meshes" name))
   | _, Some m when m <> t.mapping ->
       Error
@@ -321,6 +322,10 @@ type mesh_leaf = {
   root : int;
   depth : int;  (** Of the hierarchy: {!Bvh.t}'s. *)
   reach : float;  (** The largest magnitude of a coordinate of the mesh. *)
+  uv : float array;
+      (** The [vt] of each slot's corners, [u v] for each in [corners]'
+          order, 6 floats a slot (a corner without one: [0 0], as a plain
+          mesh's, {!Prepared}); empty for a mesh without [vt]. *)
 }
 
 type table = {
@@ -397,7 +402,7 @@ let add_node b kind left right cap =
 let mesh_leaf (m : Mesh.t) =
   let n = Mesh.objects m in
   let reach = Array.fold_left (fun acc x -> Float.max acc (Float.abs x)) 0. m.positions in
-  if n = 0 then { vertex = m.positions; corners = [||]; nodes = [||]; root = 0; depth = 0; reach }
+  if n = 0 then { vertex = m.positions; corners = [||]; nodes = [||]; root = 0; depth = 0; reach; uv = [||] }
   else begin
     let kept = Array.make n 0 and j = ref 0 in
     for k = 0 to Mesh.triangle_count m - 1 do
@@ -430,7 +435,19 @@ let mesh_leaf (m : Mesh.t) =
           corners.((3 * slot) + c) <- 3 * m.triangles.((3 * kept.(i)) + c)
         done)
       bvh.order;
-    { vertex = m.positions; corners; nodes = bvh.nodes; root = bvh.root; depth = bvh.depth; reach }
+    let uv = if Mesh.has_texcoords m then Array.make (6 * n) 0. else [||] in
+    if Mesh.has_texcoords m then
+      Array.iteri
+        (fun slot i ->
+          for c = 0 to 2 do
+            let j = m.triangle_texcoords.((3 * kept.(i)) + c) in
+            if j >= 0 then begin
+              uv.((6 * slot) + (2 * c)) <- m.texcoords.(2 * j);
+              uv.((6 * slot) + (2 * c) + 1) <- m.texcoords.((2 * j) + 1)
+            end
+          done)
+        bvh.order;
+    { vertex = m.positions; corners; nodes = bvh.nodes; root = bvh.root; depth = bvh.depth; reach; uv }
   end
 
 (* Adds [s] with its leaves' materials numbered by [material] (given the
@@ -1020,6 +1037,19 @@ let normal tb w (s : Scratch.t) =
 let material tb w = Array.unsafe_get tb.surface_material (w.surface lsr tb.slot_bits)
 let geometry tb = tb.geom
 let surface_offset tb w = stride * (w.surface lsr tb.slot_bits)
+
+let texcoords (tb : table) w (s : Scratch.t) =
+  let leaf = Array.unsafe_get tb.meshes (truncate (Array.unsafe_get tb.geom (surface_offset tb w))) in
+  let slot = w.surface land ((1 lsl tb.slot_bits) - 1) and c = leaf.corners in
+  (* Without [vt] (which [check_textures] refuses): [(0, 0)], as a
+     corner without one, rather than a read past the array. *)
+  if Array.length leaf.uv = 0 then begin
+    s.tu <- 0.;
+    s.tv <- 0.
+  end
+  else
+    Triangle.texcoords_at s leaf.vertex (Array.unsafe_get c (3 * slot)) (Array.unsafe_get c ((3 * slot) + 1))
+      (Array.unsafe_get c ((3 * slot) + 2)) leaf.uv (6 * slot)
 
 (* As [framed_normal] carries it: the ray saved at the start of
    [w.rays], put back by [leave_surface_frame]. *)

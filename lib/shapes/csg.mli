@@ -100,8 +100,8 @@ val check_textures : ?texture:Texture_map.t -> t -> (unit, [> `Msg of string ]) 
     material's as {!leaves} gives it, or [texture] on every leaf where
     given: an instance's own material's) fits the leaf: a sphere takes
     the [spherical] mapping, a box the [box] one, a described kind none
-    ({!Texture_map.mapping_for}); a mesh operand takes none yet (the
-    kernel would need the mesh's [vt]). The texture maps in the leaf's
+    ({!Texture_map.mapping_for}), a mesh the [uv] one if it has [vt]
+    ({!Mesh.has_texcoords}). The texture maps in the leaf's
     frame: the solid's, or inside transformed operands the frame before
     their transforms, as the leaf's own surface would as an object.
     {!Shape.validate} calls it. *)
@@ -230,6 +230,15 @@ val surface_offset : table -> work -> int
 (** [surface_offset tb w] is the offset in [geometry tb] of the surface of
     the last hit found by [roots] with [w]: the kernel's texture
     mappings read a textured leaf's sphere or box there. *)
+
+val texcoords : table -> work -> Scratch.t -> unit
+(** [texcoords tb w s] sets [s.tu], [s.tv] to the texture coordinates, by
+    its [vt] ({!Triangle.texcoords_at}), of the point [O + t D] of the
+    ray of [s] (carried into the leaf's frame: {!enter_surface_frame}) on the mesh
+    triangle whose surface the last hit found by [roots] with [w] is; [0,
+    0] for a mesh without [vt] (which {!check_textures} refuses a uv
+    texture on). The surface must be a mesh leaf's; else what it reads is
+    unspecified. *)
 
 val enter_surface_frame : table -> work -> Scratch.t -> unit
 (** [enter_surface_frame tb w s] carries the ray of [s] into the frame of

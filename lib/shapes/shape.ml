@@ -70,7 +70,7 @@ let rec own_texture t = function
    ({!Texture_map.mapping_for}), placed as written or through a transform
    or an instance (the object's own texture, in its frame), on an
    instance's own material (on every surface of the object, in its
-   frame), and on a CSG solid's sphere and box operands ({!Csg.check_textures}). *)
+   frame), and on a CSG solid's sphere, box and mesh operands ({!Csg.check_textures}). *)
 let check_texture s =
   let name = name s in
   match s with

@@ -213,6 +213,28 @@ let[@inline never] smooth_normal_at (s : Scratch.t) g o0 o1 o2 vn k0 k1 k2 =
 
 let smooth_normal s g o vn k0 k1 k2 = smooth_normal_at s g o (o + 3) (o + 6) vn k0 k1 k2
 
+(* The point's barycentric weights on the corners as stored
+   (Texture_map.barycentric's formula), then the corners' [vt] blended
+   ({!Texture_map.interpolate}). The point is read from [s], not passed:
+   a float argument across modules is boxed where they are not inlined
+   (the dev profile). *)
+let[@inline] texcoords_at (s : Scratch.t) v o0 o1 o2 uv j =
+  let t = s.t in
+  let px = s.ox +. (s.dx *. t) and py = s.oy +. (s.dy *. t) and pz = s.oz +. (s.dz *. t) in
+  let ax = Array.unsafe_get v o0 and ay = Array.unsafe_get v (o0 + 1) and az = Array.unsafe_get v (o0 + 2) in
+  let e1x = Array.unsafe_get v o1 -. ax and e1y = Array.unsafe_get v (o1 + 1) -. ay and e1z = Array.unsafe_get v (o1 + 2) -. az in
+  let e2x = Array.unsafe_get v o2 -. ax and e2y = Array.unsafe_get v (o2 + 1) -. ay and e2z = Array.unsafe_get v (o2 + 2) -. az in
+  let dx = px -. ax and dy = py -. ay and dz = pz -. az in
+  let d11 = (e1x *. e1x) +. (e1y *. e1y) +. (e1z *. e1z) and d12 = (e1x *. e2x) +. (e1y *. e2y) +. (e1z *. e2z) in
+  let d22 = (e2x *. e2x) +. (e2y *. e2y) +. (e2z *. e2z) in
+  let dp1 = (dx *. e1x) +. (dy *. e1y) +. (dz *. e1z) and dp2 = (dx *. e2x) +. (dy *. e2y) +. (dz *. e2z) in
+  let den = (d11 *. d22) -. (d12 *. d12) in
+  let b1 = if den > 0. then ((d22 *. dp1) -. (d12 *. dp2)) /. den else 0. in
+  let b2 = if den > 0. then ((d11 *. dp2) -. (d12 *. dp1)) /. den else 0. in
+  let u0 = Array.unsafe_get uv j and v0 = Array.unsafe_get uv (j + 1) in
+  s.tu <- u0 +. (b1 *. (Array.unsafe_get uv (j + 2) -. u0)) +. (b2 *. (Array.unsafe_get uv (j + 4) -. u0));
+  s.tv <- v0 +. (b1 *. (Array.unsafe_get uv (j + 3) -. v0)) +. (b2 *. (Array.unsafe_get uv (j + 5) -. v0))
+
 let intersect tri ~origin ~direction =
   let g = Array.make 9 0. and s = Scratch.create () in
   store tri g 0;

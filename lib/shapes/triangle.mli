@@ -191,3 +191,12 @@ val smooth_normal_at : Scratch.t -> float array -> int -> int -> int -> float ar
     the triangle with vertices at [o0], [o1], [o2] in [g] (see
     [roots_at]). *)
 
+val texcoords_at : Scratch.t -> float array -> int -> int -> int -> float array -> int -> unit
+(** [texcoords_at s v o0 o1 o2 uv j] sets [s.tu], [s.tv] to the texture
+    coordinates of the point [O + t D] of the ray of [s] on the triangle with
+    vertices at [o0], [o1], [o2] in [v]: its barycentric weights [b1],
+    [b2] on the corners ({!Texture_map.barycentric}'s formula; [0, 0] for
+    a degenerate triangle) blending the corners' [u v], stored in that
+    order at [uv.(j .. j + 5)] ({!Texture_map.interpolate}). The arrays
+    are read without bounds checks: the caller keeps the offsets in them. *)
+

@@ -385,9 +385,9 @@ let pattern_frame = function
 
 (* The texture coordinates of [point] on [obj] (in its own frame: a
    placed object's is looked up there, [local_color]; a CSG solid's
-   sphere or box leaf's in the solid's frame), by the mappings'
-   definitions (Texture_map); a mesh's corner without a [vt] counts as
-   [(0, 0)]. *)
+   sphere or box leaf's in the solid's frame, a mesh leaf's as its
+   triangle, [texture_point]), by the mappings' definitions
+   (Texture_map); a mesh's corner without a [vt] counts as [(0, 0)]. *)
 let rec texture_uv obj (tex : Texture_map.t) point =
   match obj with
   | Sphere s | Shape (Shape.Sphere s, _) | Csg_surface (_, Csg.Sphere s, _) -> Texture_map.spherical ~center:s.center point
@@ -412,17 +412,34 @@ let texture_color obj (tex : Texture_map.t) point =
   let wrap_u, wrap_v = Texture_map.wraps tex.mapping in
   Texture.color ~wrap_u ~wrap_v tex.image u v
 
-(* Where a texture looks [point] up: on a CSG leaf inside transformed
-   operands, in their frame, the ray carried through their transforms,
-   outermost first, to the same [t] (Csg.literal_hit's lines). The leaf is
-   found by physical equality: one placed twice in a solid is taken at
-   its first place. *)
+(* Where a texture looks [point] up, and on what: on a CSG leaf inside
+   transformed operands, in their frame, the ray carried through their
+   transforms, outermost first, to the same [t] (Csg.literal_hit's
+   lines); on a CSG mesh leaf, its triangle there. The leaf is found by
+   physical equality: one placed twice in a solid is taken at its first
+   place. *)
 let texture_point obj ~t ~origin ~direction point =
   match obj with
   | Csg_surface (c, leaf, _) -> (
       (* A leaf shown with another material comes wrapped in an identity
          placement (Literal_geometry.shown). *)
       let leaf = match leaf with Csg.Transformed p -> p.solid | l -> l in
+      let on_line origin direction =
+        (* A mesh leaf's texture lies on its triangle crossed at [t]: the
+           first the line crosses there, its key's [t] that number. *)
+        let point = Vec3.add origin (Vec3.smul t direction) in
+        match leaf with
+        | Csg.Mesh m ->
+            let crossed k =
+              let a = Mesh.vertex m k 0 and b = Mesh.vertex m k 1 and c = Mesh.vertex m k 2 in
+              (not (Mesh.degenerate m k))
+              && G.triangle_crossing ~origin ~direction a b c
+              && (G.triangle_key ~origin ~direction a b c).t = t
+            in
+            let k = List.find_opt crossed (List.init (Mesh.triangle_count m) Fun.id) in
+            (Option.fold ~none:obj ~some:(fun k -> Mesh_triangle (m, k)) k, point)
+        | _ -> (obj, point)
+      in
       match List.find_opt (fun (l, _, _) -> l == leaf) (Csg.leaves c) with
       | Some (_, _, (_ :: _ as frames)) ->
           let origin, direction =
@@ -432,9 +449,9 @@ let texture_point obj ~t ~origin ~direction point =
                 (affine_point inv o, linear inv d))
               (origin, direction) (List.rev frames)
           in
-          Vec3.add origin (Vec3.smul t direction)
-      | _ -> point)
-  | _ -> point
+          on_line origin direction
+      | _ -> (fst (on_line origin direction), point))
+  | _ -> (obj, point)
 
 (* The colour the hit at [t] shows: the material's, its pattern's second
    colour, or its texture's. A transformed object's pattern or texture
@@ -453,7 +470,11 @@ let rec local_color obj (m : Material.t) ~t ~origin ~direction ~point ~normal =
       let normal = inner_normal inner ~point ~direction in
       local_color inner m ~t ~origin ~direction ~point ~normal
   | None, _ -> (
-      match m.texture with Some tex -> texture_color obj tex (texture_point obj ~t ~origin ~direction point) | None -> m.color)
+      match m.texture with
+      | Some tex ->
+          let obj, point = texture_point obj ~t ~origin ~direction point in
+          texture_color obj tex point
+      | None -> m.color)
   | Some p, _ ->
       let near0, _ = G.undecided () in
       let odd = G.odd p ~frame:(pattern_frame obj) ~origin ~direction ~point ~normal in
