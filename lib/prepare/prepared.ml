@@ -871,14 +871,7 @@ let uv_table ~every_frame o (sl_slot : int array) n_slots =
              for t = 0 to Mesh.triangle_count m - 1 do
                if not (Mesh.degenerate m t) then begin
                  let i = sl_slot.(!k) in
-                 if i >= 0 && i < n_slots then
-                   for c = 0 to 2 do
-                     let j = m.triangle_texcoords.((3 * t) + c) in
-                     if j >= 0 then begin
-                       uv.((6 * i) + (2 * c)) <- m.texcoords.(2 * j);
-                       uv.((6 * i) + (2 * c) + 1) <- m.texcoords.((2 * j) + 1)
-                     end
-                   done;
+                 if i >= 0 && i < n_slots then Mesh.store_texcoords m t uv (6 * i);
                  incr k
                end
              done

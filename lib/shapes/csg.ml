@@ -436,17 +436,7 @@ let mesh_leaf (m : Mesh.t) =
         done)
       bvh.order;
     let uv = if Mesh.has_texcoords m then Array.make (6 * n) 0. else [||] in
-    if Mesh.has_texcoords m then
-      Array.iteri
-        (fun slot i ->
-          for c = 0 to 2 do
-            let j = m.triangle_texcoords.((3 * kept.(i)) + c) in
-            if j >= 0 then begin
-              uv.((6 * slot) + (2 * c)) <- m.texcoords.(2 * j);
-              uv.((6 * slot) + (2 * c) + 1) <- m.texcoords.((2 * j) + 1)
-            end
-          done)
-        bvh.order;
+    if Mesh.has_texcoords m then Array.iteri (fun slot i -> Mesh.store_texcoords m kept.(i) uv (6 * slot)) bvh.order;
     { vertex = m.positions; corners; nodes = bvh.nodes; root = bvh.root; depth = bvh.depth; reach; uv }
   end
 

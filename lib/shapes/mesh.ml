@@ -118,6 +118,15 @@ let triangle m k = Triangle.v (vertex m k 0) (vertex m k 1) (vertex m k 2) m.mat
 
 let has_texcoords m = m.triangle_texcoords <> [||]
 
+let store_texcoords m t uv j =
+  for c = 0 to 2 do
+    let k = m.triangle_texcoords.((3 * t) + c) in
+    if k >= 0 then begin
+      uv.(j + (2 * c)) <- m.texcoords.(2 * k);
+      uv.(j + (2 * c) + 1) <- m.texcoords.((2 * k) + 1)
+    end
+  done
+
 let texcoord m k ~b1 ~b2 =
   if k < 0 || k >= triangle_count m then invalid_arg "Mesh.texcoord: no such triangle";
   if m.triangle_texcoords = [||] then None
