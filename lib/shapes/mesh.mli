@@ -96,9 +96,8 @@ val store_texcoords : t -> int -> float array -> int -> unit
 (** [store_texcoords m t uv j] writes the [u v] of triangle [t]'s three
     corners, in their order, into [uv.(j .. j + 5)]; a corner without a
     [vt] leaves its two floats as they are (the kernel's tables start
-    them at [0 0]). Needs {!has_texcoords}[ m]. The one copy of this for
-    a plain mesh's table ([Prepared.uv_table]) and a CSG mesh
-    operand's ({!Csg}). *)
+    them at [0 0]). Needs {!has_texcoords}[ m]. Both the table of a
+    plain mesh's [vt] and a CSG mesh operand's ({!Csg}) are filled by it. *)
 
 val texcoord : t -> int -> b1:float -> b2:float -> (float * float) option
 (** [texcoord m k ~b1 ~b2] is the texture coordinates [(u, v)] of the
