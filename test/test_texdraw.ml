@@ -206,9 +206,9 @@ let tests =
            unturned one's colour at u + 0.25: the image rolled left by one
            column of four. Colours within 1 (the turned ray's roots round
            on their own). *)
-        let bytes = Texture.bytes image in
+        let bytes = Texture.channels image in
         (* Pixel (x, y) of the rolled image is pixel (x + 1 mod 4, y). *)
-        let rolled = Texture.v ~width:4 ~height:2 (String.init 24 (fun k -> let px = k / 3 in bytes.[(3 * ((4 * (px / 4)) + ((px + 1) mod 4))) + (k mod 3)])) in
+        let rolled = Texture.v ~width:4 ~height:2 (String.init 24 (fun k -> let px = k / 3 in Char.chr bytes.{(3 * ((4 * (px / 4)) + ((px + 1) mod 4))) + (k mod 3)})) in
         let globe ops = "(canvas (width 48) (height 48)) (viewport (width 1) (height 1) (distance 1)) (epsilon 0.001)\n"
           ^ "(transform (" ^ ops ^ "(translate 0 0 3)) (sphere (center 0 0 0) (radius 1) (color 9 9 9)) (color 9 9 9) " ^ texture
           ^ "spherical)))\n(light ambient (intensity 1))" in

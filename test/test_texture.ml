@@ -376,10 +376,11 @@ let both_readers contents =
 
 let file_tests =
   [
-    Alcotest.test_case "a PPM texture read straight into its bytes is the image read whole, errors included" `Quick (fun () ->
+    Alcotest.test_case "a PPM texture read straight into its channels is the image read whole, errors included" `Quick (fun () ->
         let p6 ?(maxval = 255) ?(header = "") w h body = Printf.sprintf "P6\n%s%d %d\n%d\n%s" header w h maxval body in
         let pixels n = String.init (3 * n) (fun k -> Char.chr ((k * 37) mod 256)) in
         let small = String.init 12 (fun k -> Char.chr (k * 9)) in
+        let below m n = String.init (3 * n) (fun k -> Char.chr ((k * 37) mod m)) in
         List.iter
           (fun (what, contents) ->
             match both_readers contents with
@@ -389,6 +390,11 @@ let file_tests =
             | Error m, Ok _ -> Alcotest.failf "%s: only the direct read failed: %s" what m)
           [
             ("P6 at maxval 255", p6 64 48 (pixels (64 * 48)));
+            (* 1.5 MB of pixels: past the first read's room of 1 MiB + 4
+               KiB, the rest read in chunks of 64 KiB, the last one short. *)
+            ("P6 past the first read, in chunks", p6 701 701 (pixels (701 * 701)));
+            ("P6 past the first read at maxval 200, scaled", p6 ~maxval:200 701 701 (below 201 (701 * 701)));
+            ("a sample above maxval in the last chunk", p6 ~maxval:200 701 701 (below 201 ((701 * 701) - 1) ^ "\201\000\000"));
             ("P6 at maxval 100, scaled", p6 ~maxval:100 2 2 small);
             ("a P6 sample above maxval", p6 ~maxval:50 2 2 small);
             ("a commented header", p6 ~header:"# made by hand\n# twice\n" 64 48 (pixels (64 * 48)));

@@ -139,11 +139,29 @@ let of_string ?(limits = Limits.default) s = match decode ~limits s with img -> 
    ([check_file_size]); past that the whole file is read as before. *)
 let header_room = 1048576 + 4096
 
-(* A P6 file's pixels read straight into the texture's string: the file's
+let blit_string s o (b : Image.buffer) k n =
+  for i = 0 to n - 1 do
+    Bigarray.Array1.unsafe_set b (k + i) (Char.code (String.unsafe_get s (o + i)))
+  done
+
+(* [n] bytes of [ic] into [b] from [k], through a chunk of 64 KiB: the
+   channel reads no bigarray. *)
+let input_channels ic (b : Image.buffer) k n =
+  let chunk = Bytes.create (min n 65536) in
+  let rec go k n =
+    if n > 0 then begin
+      let m = min n (Bytes.length chunk) in
+      really_input ic chunk 0 m;
+      blit_string (Bytes.unsafe_to_string chunk) 0 b k m;
+      go (k + m) (n - m)
+    end
+  in
+  go k n
+
+(* A P6 file's pixels read straight into the texture's channels: the file's
    first [header_room] bytes (or all of it), then the rest of its pixels
-   into the bytes that become the texture. Only the texture is held, not
-   the file's text and an image as well ([of_string] then
-   [Texture.of_image]: three times the pixels). The checks and their
+   into the bigarray that becomes the texture. Only the texture is held,
+   not the file's text as well ([of_string]: twice the pixels). The checks and their
    messages are [decode]'s, in its order; a P3 file, or a header that
    does not end within the room, is read whole and decoded by [decode]. *)
 let texture_of_channel ?(limits = Limits.default) ic ~length =
@@ -176,17 +194,17 @@ let texture_of_channel ?(limits = Limits.default) ic ~length =
         let avail = length - start in
         if avail < n then bad "pixel data is truncated: %d of %d bytes" avail n;
         if avail > n then bad "%d bytes of unexpected data after the pixels" (avail - n);
-        let b = Bytes.create n in
+        let b = Bigarray.Array1.create Bigarray.int8_unsigned Bigarray.c_layout n in
         let have = String.length prefix - start in
-        Bytes.blit_string prefix start b 0 have;
-        really_input ic b have (n - have);
+        blit_string prefix start b 0 have;
+        input_channels ic b have (n - have);
         if maxval < 255 then
           for k = 0 to n - 1 do
-            let v = Char.code (Bytes.unsafe_get b k) in
+            let v = Bigarray.Array1.unsafe_get b k in
             if v > maxval then bad "sample %d at byte %d exceeds maxval %d" v (start + k) maxval;
-            Bytes.unsafe_set b k (Char.unsafe_chr (((v * 255) + (maxval / 2)) / maxval))
+            Bigarray.Array1.unsafe_set b k (((v * 255) + (maxval / 2)) / maxval)
           done;
-        Texture.v ~width:w ~height:h (Bytes.unsafe_to_string b)
+        Texture.of_image (Image.of_buffer w h b)
   in
   match read () with
   | t -> Ok t

@@ -42,7 +42,7 @@ val texture_of_channel : ?limits:Limits.t -> in_channel -> length:int -> (Textur
     file of [length] bytes read from [ic] (at its start), as
     [Texture.of_image] of {!of_string} of the file's contents: the same
     pixels, the same errors. A P6 file's pixels are read straight into
-    the texture's bytes, so that reading it holds little more than the
+    the texture's channels, so that reading it holds little more than the
     texture (a P3 file's text, or a P6 header longer than 1 MiB, is read
     whole and decoded by {!of_string}). [Error] too if [ic] ends before
     [length] bytes. Never raises but [Sys_error] from [ic]. *)

@@ -1,27 +1,31 @@
-type t = { width : int; height : int; bytes : string }
+(* The channels in a bigarray, not a string: a decoder's buffer (a PNG's,
+   decoded by another process into shared memory) becomes the texture
+   without a copy, and the kernel's typed reads of it are inlined. *)
+type t = { width : int; height : int; channels : Image.buffer }
 type wrap = Repeat | Clamp
 
 let v ~width ~height bytes =
   if width < 1 || height < 1 then invalid_arg (Printf.sprintf "Texture.v: size %dx%d is empty" width height);
   if String.length bytes <> 3 * width * height then invalid_arg "Texture.v: bytes do not match the size";
-  { width; height; bytes }
+  let channels = Bigarray.Array1.create Bigarray.int8_unsigned Bigarray.c_layout (String.length bytes) in
+  String.iteri (fun k c -> Bigarray.Array1.unsafe_set channels k (Char.code c)) bytes;
+  { width; height; channels }
 
-let of_image img =
-  let width = Image.width img and height = Image.height img in
-  v ~width ~height (String.init (3 * width * height) (fun k -> Char.chr (Image.channel img k)))
+let of_image img = { width = Image.width img; height = Image.height img; channels = Image.buffer img }
 
 let width t = t.width
 let height t = t.height
-let bytes t = t.bytes
+let channels t = t.channels
 
 let pixel t x y =
   if x < 0 || y < 0 || x >= t.width || y >= t.height then
     invalid_arg (Printf.sprintf "Texture.pixel: (%d, %d) outside %dx%d" x y t.width t.height);
   let k = 3 * ((y * t.width) + x) in
-  let c i = float (Char.code t.bytes.[k + i]) in
+  let c i = float (Bigarray.Array1.get t.channels (k + i)) in
   Color.v (c 0) (c 1) (c 2)
 
-let equal a b = a.width = b.width && a.height = b.height && String.equal a.bytes b.bytes
+let image t = Image.of_buffer t.width t.height t.channels
+let equal a b = a.width = b.width && a.height = b.height && Image.equal (image a) (image b)
 let pp ppf t = Format.fprintf ppf "<texture %dx%d>" t.width t.height
 
 (* The column (or row) [i] of an axis of [n] pixels, brought inside. *)
@@ -41,7 +45,7 @@ let[@inline] pixel_coordinate wrap (c : float) n =
   let c = match wrap with Repeat -> c -. Float.floor c | Clamp -> Float.min 2. (Float.max (-1.) c) in
   (c *. float n) -. 0.5
 
-let[@inline] byte t k = float (Char.code (String.unsafe_get t.bytes k))
+let[@inline] byte t k = float (Bigarray.Array1.unsafe_get (t.channels : Image.buffer) k)
 
 let lookup ~wrap_u ~wrap_v t (uv : float array) i (dst : float array) j =
   if i < 0 || i + 1 >= Array.length uv || j < 0 || j + 2 >= Array.length dst then

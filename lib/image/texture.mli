@@ -35,14 +35,18 @@ type wrap =
 (** {1:make Constructors} *)
 
 val of_image : Image.t -> t
-(** [of_image img] is the texture of [img]'s pixels, copied. *)
+(** [of_image img] is the texture of [img]'s pixels: its buffer
+    ({!Image.buffer}) shared, not copied, so that a decoder's image
+    becomes the texture without a second copy of its pixels; [img] must
+    not be changed after. *)
 
 val v : width:int -> height:int -> string -> t
 (** [v ~width ~height bytes] is the texture of [width x height] pixels
     whose channels are [bytes], [r g b] per pixel, rows top-down (the
     layout of a P6 file's pixels).
     @raise Invalid_argument if [width < 1], [height < 1] or
-    [String.length bytes <> 3 * width * height]. *)
+    [String.length bytes <> 3 * width * height]. The bytes are copied
+    into the texture's channels ({!channels}). *)
 
 (** {1:access Accessors} *)
 
@@ -52,9 +56,9 @@ val width : t -> int
 val height : t -> int
 (** [height t] is [t]'s height in pixels, [>= 1]. *)
 
-val bytes : t -> string
-(** [bytes t] is [t]'s channels as {!v} takes them: [r g b] per pixel,
-    rows top-down, [3 * width t * height t] bytes. The string itself, not
+val channels : t -> Image.buffer
+(** [channels t] is [t]'s channels in {!v}'s layout: [r g b] per pixel,
+    rows top-down, [3 * width t * height t] bytes. The buffer itself, not
     a copy: the renderer reads its lookups there. *)
 
 val pixel : t -> int -> int -> Color.t

@@ -90,7 +90,7 @@ let[@inline] inside repeat n i =
   else if i >= n then n - 1
   else i
 
-let[@inline] byte x k = float (Char.code (String.unsafe_get x k))
+let[@inline] byte (x : Image.buffer) k = float (Bigarray.Array1.unsafe_get x k)
 
 let[@inline] blend x k00 k10 k01 k11 tx ty =
   let a = byte x k00 and b = byte x k01 in

@@ -85,7 +85,7 @@ type t = {
   texture_of : int array;
   texture_table : int array;
   texture_size : float array;
-  texels : string array;
+  texels : Image.buffer array;
   uv : float array;
 }
 
@@ -240,8 +240,11 @@ let max_channel (scene : Scene.view) o =
     match List.assq_opt t.image !brightest with
     | Some c -> c
     | None ->
-        let b = Texture.bytes t.image and c = ref 0 in
-        String.iter (fun ch -> c := max !c (Char.code ch)) b;
+        let b = Texture.channels t.image and c = ref 0 in
+        for k = 0 to Bigarray.Array1.dim b - 1 do
+          let x = Bigarray.Array1.unsafe_get b k in
+          if x > !c then c := x
+        done;
         let c = Float.of_int !c in
         brightest := (t.image, c) :: !brightest;
         c
@@ -842,8 +845,8 @@ let texture_tables (materials : Material.t array) =
         table.(o + 3) <- mapping_code t.mapping;
         size.(k) <- t.size)
       (List.rev !entries);
-    let texels = Array.make !n_images "" in
-    List.iter (fun (img, k) -> texels.(k) <- Texture.bytes img) !images;
+    (* [images] holds the last number first. *)
+    let texels = Array.of_list (List.rev_map (fun (img, _) -> Texture.channels img) !images) in
     (texture_of, table, size, texels)
   end
 

@@ -248,9 +248,9 @@ type t = private {
           that several materials share is one; an image that several
           textures show (one file, read once) is one. *)
   texture_size : float array;  (** Per texture: the side of one copy of a planar mapping's image. *)
-  texels : string array;
-      (** Each image's channels, {!Texture.bytes}: the scene's own
-          strings, not copies (a float per channel would take eight times
+  texels : Image.buffer array;
+      (** Each image's channels, {!Texture.channels}: the scene's own
+          buffers, not copies (a float per channel would take eight times
           their memory, for a conversion saved per channel read). *)
   uv : float array;
       (** Per slot [i], at [6 i], the [vt] coordinates [u0 v0 u1 v1 u2
