@@ -139,6 +139,7 @@ let of_string ?(limits = Limits.default) s = match decode ~limits s with img -> 
    ([check_file_size]); past that the whole file is read as before. *)
 let header_room = 1048576 + 4096
 
+(* [n] bytes of [s] from [o] into [b] from [k]. *)
 let blit_string s o (b : Image.buffer) k n =
   for i = 0 to n - 1 do
     Bigarray.Array1.unsafe_set b (k + i) (Char.code (String.unsafe_get s (o + i)))
@@ -161,9 +162,10 @@ let input_channels ic (b : Image.buffer) k n =
 (* A P6 file's pixels read straight into the texture's channels: the file's
    first [header_room] bytes (or all of it), then the rest of its pixels
    into the bigarray that becomes the texture. Only the texture is held,
-   not the file's text as well ([of_string]: twice the pixels). The checks and their
-   messages are [decode]'s, in its order; a P3 file, or a header that
-   does not end within the room, is read whole and decoded by [decode]. *)
+   not the file's text as well ([of_string]: twice the pixels). The
+   checks and their messages are [decode]'s, in its order; a P3 file, or
+   a header that does not end within the room, is read whole and decoded
+   by [decode]. *)
 let texture_of_channel ?(limits = Limits.default) ic ~length =
   let whole prefix =
     let rest = really_input_string ic (length - String.length prefix) in

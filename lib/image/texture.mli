@@ -43,10 +43,10 @@ val of_image : Image.t -> t
 val v : width:int -> height:int -> string -> t
 (** [v ~width ~height bytes] is the texture of [width x height] pixels
     whose channels are [bytes], [r g b] per pixel, rows top-down (the
-    layout of a P6 file's pixels).
+    layout of a P6 file's pixels), copied into the texture's channels
+    ({!channels}).
     @raise Invalid_argument if [width < 1], [height < 1] or
-    [String.length bytes <> 3 * width * height]. The bytes are copied
-    into the texture's channels ({!channels}). *)
+    [String.length bytes <> 3 * width * height]. *)
 
 (** {1:access Accessors} *)
 
