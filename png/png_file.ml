@@ -4,10 +4,11 @@ let signature = "\137PNG\r\n\026\n"
 let is_png s = String.length s >= 8 && String.sub s 0 8 = signature
 let ( let* ) = Result.bind
 
-(* camlimages' libpng stubs print to stderr, and crash (SIGSEGV) on a file
-   that breaks off or goes wrong after its header. So libpng runs in a
-   child process, its stderr silenced, writing the pixels into shared
-   memory: a crash there becomes an error message here. *)
+(* libpng prints to stderr, and camlimages' stubs (still the writer's)
+   crash (SIGSEGV) on a file that breaks off or goes wrong after its
+   header. So libpng runs in a child process, its stderr silenced,
+   writing the pixels into shared memory, which becomes the image: a
+   crash there becomes an error message here. *)
 let in_child ~pixels ~crash f =
   let out = Parallel.shared_bytes (max 1 (3 * pixels)) in
   let message = Parallel.shared_bytes 256 in
@@ -37,37 +38,18 @@ let in_child ~pixels ~crash f =
          else if killed then "the decoding process was killed by SIGKILL (out of memory?)"
          else crash)
 
-(* Row by row ([Rgb24.get_scanline]), not the whole image dumped into
-   one more string of its size. *)
-let copy_rgb (b : Rgb24.t) (out : Image.buffer) =
-  for y = 0 to b.height - 1 do
-    let row = Rgb24.get_scanline b y and o = 3 * b.width * y in
-    for k = 0 to Bytes.length row - 1 do
-      Bigarray.Array1.unsafe_set out (o + k) (Char.code (Bytes.unsafe_get row k))
-    done
-  done
+(* In the child: the file's pixels, alpha dropped, decoded by libpng
+   straight into [out] (png_stubs.c), with the transforms camlimages'
+   readers ask of it: [Png.load_as_rgb24]'s, then, where it refuses the
+   file (an RGB file with a transparent colour), [Png.load]'s. *)
+external decode_into : string -> Image.buffer -> int -> int -> unit = "raytrace_png_decode"
 
-(* In the child: the file's pixels, alpha dropped, into [out]. *)
-let decode path ~width ~height out =
-  let rgb b =
-    if b.Rgb24.width <> width || b.Rgb24.height <> height then failwith "size differs from the header";
-    copy_rgb b out
-  in
-  match Png.load_as_rgb24 path [] with
-  | Images.Rgb24 b -> rgb b
-  | _ -> failwith "unsupported PNG layout"
-  | exception Failure _ -> (
-      (* RGB files with a transparent colour are refused by that loader. *)
-      match Png.load path [] with
-      | Images.Rgba32 b -> rgb (Rgb24.of_rgba32 b)
-      | Images.Rgb24 b -> rgb b
-      | _ -> failwith "unsupported PNG layout")
+let decode path ~width ~height out = decode_into path out width height
 
 (* The most memory decoding takes, in bytes: the pixels in shared memory
-   (3 bytes a pixel, which become the image), and in the decoding process
-   camlimages' RGB image (3; copied out a row at a time), or an RGBA image
-   first (4 more). *)
-let decode_bytes pixels = 10 * pixels
+   (3 bytes a pixel, which become the image) and, in the decoding
+   process, libpng's rows and a pointer a row (at most 1 more a pixel). *)
+let decode_bytes pixels = 4 * pixels
 
 let be32 s o =
   (Char.code s.[o] lsl 24) lor (Char.code s.[o + 1] lsl 16) lor (Char.code s.[o + 2] lsl 8) lor Char.code s.[o + 3]

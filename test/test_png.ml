@@ -1,5 +1,6 @@
-(* PNG files through camlimages: exact round trips, other programs' files,
-   and damaged files reported, never crashing. *)
+(* PNG files, written through camlimages, read through libpng: exact
+   round trips, other programs' files and every layout read as camlimages
+   reads them, and damaged files reported, never crashing. *)
 open Raytrace
 module Png_file = Raytrace_png.Png_file
 module Image_file = Raytrace_png.Image_file
@@ -14,6 +15,29 @@ let write_string path s =
   close_out oc
 
 let be32 s o = Int32.to_int (String.get_int32_be s o)
+
+(* camlimages' own reading of the file [path] as 8-bit RGB, alpha
+   dropped, as this project read PNG files before it decoded them with
+   libpng itself (png_stubs.c): [Png.load_as_rgb24], or [Png.load] where
+   that refuses the file; [None] for a layout neither gives as RGB. Only
+   on well-formed files: camlimages crashes on damaged ones. *)
+let camlimages_rgb path =
+  let image (b : Rgb24.t) =
+    let img = Image.create b.width b.height in
+    for y = 0 to b.height - 1 do
+      let row = Rgb24.get_scanline b y in
+      for x = 0 to b.width - 1 do
+        let c k = Char.code (Bytes.get row ((3 * x) + k)) in
+        Image.set img x y (c 0) (c 1) (c 2)
+      done
+    done;
+    Some img
+  in
+  match Png.load_as_rgb24 path [] with
+  | Images.Rgb24 b -> image b
+  | _ -> None
+  | exception Failure _ -> (
+      match Png.load path [] with Images.Rgba32 b -> image (Rgb24.of_rgba32 b) | Images.Rgb24 b -> image b | _ -> None)
 
 let tests =
   [
@@ -45,6 +69,41 @@ let tests =
         let code, _, err = Helpers.run "/usr/bin/convert" [ ours; back ] in
         Alcotest.(check int) err 0 code;
         Helpers.check_images __LOC__ ~expected:img (ok (Files.read_ppm back)));
+    Alcotest.test_case "every PNG layout reads as camlimages reads it" `Quick (fun () ->
+        let dir = Helpers.temp_dir () in
+        let ppm = Filename.concat dir "a.ppm" in
+        ok (Files.write_ppm ppm (image ()));
+        (* An alpha channel that runs from 0 to 1 left to right. *)
+        let alpha = [ "-alpha"; "set"; "-channel"; "A"; "-fx"; "i/w"; "+channel" ] in
+        let corner = [ "-transparent"; "rgb(0,0,0)"; "-fill"; "black"; "-draw"; "point 0,0" ] in
+        List.iter
+          (fun (name, args, format) ->
+            let path = Filename.concat dir name in
+            let code, _, err = Helpers.run "/usr/bin/convert" ((ppm :: args) @ [ format ^ path ]) in
+            Alcotest.(check int) err 0 code;
+            match (camlimages_rgb path, Image_file.read_file path) with
+            | Some expected, Ok img -> Helpers.check_images name ~expected img
+            | None, Error (`Msg m) ->
+                Alcotest.(check string) name (path ^ ": cannot decode the PNG file: unsupported PNG layout") m
+            | Some _, Error (`Msg m) -> Alcotest.failf "%s: camlimages reads it, this reader: %s" name m
+            | None, Ok _ -> Alcotest.failf "%s: camlimages refuses it, this reader does not" name)
+          [
+            ("rgb8.png", [], "PNG24:");
+            ("rgb16.png", [ "-depth"; "16" ], "PNG48:");
+            ("rgba8.png", alpha, "PNG32:");
+            ("rgba16.png", alpha @ [ "-depth"; "16" ], "PNG64:");
+            ("gray8.png", [ "-colorspace"; "Gray"; "-define"; "png:color-type=0"; "-define"; "png:bit-depth=8" ], "");
+            ("gray16.png", [ "-colorspace"; "Gray"; "-depth"; "16"; "-define"; "png:color-type=0" ], "");
+            ("gray1.png", [ "-monochrome" ], "");
+            ("gray-alpha.png", alpha @ [ "-colorspace"; "Gray"; "-define"; "png:color-type=4" ], "");
+            ("palette.png", [ "-colors"; "50" ], "PNG8:");
+            ("interlaced.png", [ "-interlace"; "PNG" ], "PNG24:");
+            ("interlaced-rgba.png", alpha @ [ "-interlace"; "PNG" ], "PNG32:");
+            (* A transparent colour (tRNS): load_as_rgb24 refuses the RGB
+               file and Png.load reads it; neither reads the palette one. *)
+            ("rgb-transparent.png", corner @ [ "-define"; "png:color-type=2"; "-define"; "png:bit-depth=8" ], "");
+            ("palette-transparent.png", corner @ [ "-colors"; "50"; "-define"; "png:format=png8" ], "");
+          ]);
     Alcotest.test_case "damaged PNG files are errors, not crashes" `Quick (fun () ->
         let dir = Helpers.temp_dir () in
         let png = ok (Png_file.to_string (image ())) in
