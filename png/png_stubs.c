@@ -15,6 +15,10 @@
 #include <caml/fail.h>
 #include <caml/memory.h>
 
+/* The failure of the first reader's transforms where they give no 8-bit
+   RGB: the second reader's are tried. */
+static const char again[] = "again";
+
 /* What a decoding needs to let go of on any way out. */
 struct decoding {
   FILE *file;
@@ -50,7 +54,7 @@ static const char *start(struct decoding *d, const char *path)
    transforms of camlimages' [Png.load_as_rgb24] (gray to RGB, colour and
    palette expanded, which makes a transparent colour an alpha channel, 16
    bits stripped, alpha stripped); else those of its [Png.load] (gray to
-   RGB, 16 bits stripped). Returns NULL, or the failure: ["again"]
+   RGB, 16 bits stripped). Returns NULL, or the failure: [again]
    where [rgb24]'s result is not 8-bit RGB (camlimages' first reader
    fails there and its second is tried). */
 static const char *decode(struct decoding *d, const char *path, unsigned char *out, png_uint_32 width,
@@ -74,7 +78,7 @@ static const char *decode(struct decoding *d, const char *path, unsigned char *o
   if (rgb24 && (colour & PNG_COLOR_MASK_ALPHA)) png_set_strip_alpha(d->png);
   png_read_update_info(d->png, d->info);
   png_get_IHDR(d->png, d->info, &w, &h, &depth, &colour, &interlace, NULL, NULL);
-  if (rgb24 && (colour != PNG_COLOR_TYPE_RGB || depth != 8)) return "again";
+  if (rgb24 && (colour != PNG_COLOR_TYPE_RGB || depth != 8)) return again;
   /* Png.load's palette images are refused by png_file.ml, as are the
      layouts it leaves other than RGB: what is left here is an RGB file
      with a transparent colour, which Png.load reads as RGB. */
@@ -100,7 +104,7 @@ value raytrace_png_decode(value path, value buffer, value width, value height)
     caml_invalid_argument("Png_file.decode: the buffer does not fit the image");
   failure = decode(&d, String_val(path), out, w, h, 1);
   finish(&d);
-  if (failure != NULL && failure[0] == 'a' && failure[1] == 'g') {
+  if (failure == again) {
     failure = decode(&d, String_val(path), out, w, h, 0);
     finish(&d);
   }
