@@ -215,8 +215,8 @@ type t = private {
           [1 + 6 i]: its centre, then its half sides, each grown by
           [2^-30 (M + 1)] (far more than the rounding of the centre and
           half sides, and of any hit the kernel reports on the object). The
-          kernel's [Lighting] tests a lit point's hull with an area or
-          sphere light against them and the planes ([unbounded]): a point
+          kernel's [Lighting] tests a lit point's hull with a stratified
+          area light or a sphere light against them and the planes ([unbounded]): a point
           whose hull meets none sees the light whole and casts no shadow
           ray to it. Empty otherwise, and with the skip [Whole_light] off. *)
   sampled : bool;
