@@ -413,7 +413,17 @@ let tests =
           let _, c = image (Helpers.prepare (room (panel "(samples 1 1)"))) in
           Alcotest.(check int) "1 x 1: not tested" 0 c.whole;
           let _, c = image (Helpers.prepare (scene ~size:40 uniform)) in
-          Alcotest.(check int) "uniform: not tested" 0 c.whole);
+          Alcotest.(check int) "uniform: not tested" 0 c.whole;
+          (* A few objects with an instance, no hierarchy: no boxes (an
+             instance's hits are found in its frame; its box's margin is
+             the hierarchy's). *)
+          let p =
+            Helpers.prepare
+              (room
+                 ("(define ball (sphere (center 0 0 0) (radius 0.3) (color 255 255 255)))\n\
+                   (use ball (transform ((translate 0.5 0.3 2))))\n" ^ panel "(samples 2 2)"))
+          in
+          Alcotest.(check int) "with an instance: no boxes" 0 (Array.length p.casters));
       Alcotest.test_case "Prepared.without Umbra turns the umbra skip off alone: the same bytes, more rays" `Quick (fun () ->
         let image p =
           let tr = Trace.create p in

@@ -216,9 +216,10 @@ let[@inline] apart nx ny nz lo hi mx my mz hx hy hz scale =
   c -. r > hi +. tol || c +. r < lo -. tol
 
 (* The fewest samples (shadow rays) a light must have for the test: it
-   costs about as much as three shadow rays through a few objects (on the
-   [ball] scene of bench/quality.ml, 1 x 1, it cost 13 M instructions more
-   than the ray it saved). *)
+   costs about as much as three or four shadow rays through a few objects
+   (made for every light of the [ball] and [area-room] scenes of
+   bench/quality.ml at 1 x 1, it cost 11.9 M and 10.3 M instructions more
+   than the rays it saved). *)
 let min_whole = 4
 
 (* Is box [o] of [casters] beside the extent [(l.., h..)] (relative to

@@ -1886,11 +1886,18 @@ let caster_depth = 4
 
 (* The boxes ([lo], [hi]) of the scene's bounded objects, if at most
    [max_casters]: an axis-aligned box its own corners, any other object
-   [Shape.box_bounds] (a sphere's cube). Made before the objects are let
-   go; [None] for more. *)
+   [Shape.box_bounds] (a sphere's cube), each grown by the margin of
+   {!Bvh.ray_box_margin} for a sphere of its largest half side, the one
+   the hierarchy's boxes take: no hit test of the kernel reports a hit
+   outside (the textbook quadratic's rounding near a small sphere's
+   outline above all). Made before the objects are let go; [None] for
+   more objects, and for a scene with an instance, whose hits the kernel
+   finds in a carried frame (its box's margin, {!instance_box}, is the
+   hierarchy's: such a scene takes the nodes' boxes, or no test). *)
 let object_casters (scene : Scene.view) =
-  let n = Spheres.length scene.spheres + List.length (List.filter Shape.bounded scene.shapes) in
-  if n > max_casters then None
+  let bounded = List.filter Shape.bounded scene.shapes in
+  let instance = function Shape.Instance _ -> true | _ -> false in
+  if Spheres.length scene.spheres + List.length bounded > max_casters || List.exists instance bounded then None
   else
     let sp = scene.spheres in
     let spheres =
@@ -1899,7 +1906,26 @@ let object_casters (scene : Scene.view) =
           (Vec3.v (x -. r) (y -. r) (z -. r), Vec3.v (x +. r) (y +. r) (z +. r)))
     in
     let shape = function Shape.Box b -> (b.Box.min, b.Box.max) | s -> Shape.box_bounds s in
-    Some (spheres @ List.map shape (List.filter Shape.bounded scene.shapes))
+    let boxes = spheres @ List.map shape bounded in
+    (* [D] and [M] of the margin: the boxes and the camera's lens. *)
+    let reach = lens_reach scene.camera and (c : Vec3.t) = scene.camera.position in
+    let b = [| c.x -. reach; c.y -. reach; c.z -. reach; c.x +. reach; c.y +. reach; c.z +. reach |] in
+    List.iter
+      (fun ((lo : Vec3.t), (hi : Vec3.t)) ->
+        b.(0) <- Float.min b.(0) lo.x;
+        b.(1) <- Float.min b.(1) lo.y;
+        b.(2) <- Float.min b.(2) lo.z;
+        b.(3) <- Float.max b.(3) hi.x;
+        b.(4) <- Float.max b.(4) hi.y;
+        b.(5) <- Float.max b.(5) hi.z)
+      boxes;
+    let terms = Bvh.margin_of_bounds b in
+    let grown ((lo : Vec3.t), (hi : Vec3.t)) =
+      let h = 0.5 *. Float.max (hi.x -. lo.x) (Float.max (hi.y -. lo.y) (hi.z -. lo.z)) in
+      let e = Bvh.margin terms h in
+      (Vec3.v (lo.x -. e) (lo.y -. e) (lo.z -. e), Vec3.v (hi.x +. e) (hi.y +. e) (hi.z +. e))
+    in
+    Some (List.map grown boxes)
 
 (* The hierarchy's nodes at depth [caster_depth] (and its leaves above
    it): together they hold every bounded object. *)

@@ -209,16 +209,19 @@ type t = private {
       (** With the skips and an area or sphere light, boxes that together
           hold every bounded object: each object's own where the scene has
           at most 16 (a sphere's cube, an axis-aligned box itself, another
-          object's {!Shape.box_bounds}), else the hierarchy's nodes at
-          depth 4 and its leaves above it. [casters.(0)] is [M], the
-          largest magnitude of a coordinate of their corners; box [i] is at
-          [1 + 6 i]: its centre, then its half sides, each grown by
-          [2^-30 (M + 1)] (far more than the rounding of the centre and
-          half sides, and of any hit the kernel reports on the object). The
-          kernel's [Lighting] tests a lit point's hull with a stratified
-          area light or a sphere light against them and the planes ([unbounded]): a point
-          whose hull meets none sees the light whole and casts no shadow
-          ray to it. Empty otherwise, and with the skip [Whole_light] off. *)
+          object's {!Shape.box_bounds}, each grown by the margin of
+          {!Bvh.ray_box_margin} for its largest half side, as the
+          hierarchy's boxes are), else the hierarchy's nodes at depth 4 and
+          its leaves above it; none for a scene of at most 16 objects with
+          an instance and no hierarchy. [casters.(0)] is [M], the largest
+          magnitude of a coordinate of their corners; box [i] is at [1 + 6
+          i]: its centre, then its half sides, each grown by [2^-30 (M +
+          1)] (far more than the rounding of the centre and half sides).
+          The kernel's [Lighting] tests a lit point's hull with a
+          stratified area light or a sphere light against them and the
+          planes ([unbounded]): a point whose hull meets none sees the
+          light whole and casts no shadow ray to it. Empty otherwise, and
+          with the skip [Whole_light] off. *)
   sampled : bool;
       (** Some pixel is an integral that draws numbers (an area light, a
           lens): the tracer keeps the key of each camera sample
