@@ -367,7 +367,7 @@ let image_tests =
         Alcotest.(check bool) "psnr" true (contains ~sub:" psnr=" line));
     Alcotest.test_case "Render.Stats.rays is primary + shadow + reflection; pp_table of no time and no pixel has no nan or inf" `Quick (fun () ->
         let s =
-          Render.Stats.{ pixels = 1; primary = 3; shadow = 50; reflection = 700; tests = 9; box_tests = 9; early_stops = 9; decided = 0; penumbra = 0; umbra = 0; jobs = 1;
+          Render.Stats.{ pixels = 1; primary = 3; shadow = 50; reflection = 700; tests = 9; box_tests = 9; early_stops = 9; decided = 0; penumbra = 0; umbra = 0; whole = 0; jobs = 1;
                   prepare_s = 0.; trace_s = 0.; minor_words = 0. }
         in
         Alcotest.(check int) "rays" 753 (Render.Stats.rays s);

@@ -19,7 +19,19 @@ val lighting : Tracer.t -> shiny:bool -> specular_of:float array -> int -> unit
     samples, when one convex object (sphere, plane, box, triangle, disk)
     stops all four of those, cast no shadow ray: that object stops theirs
     too (the proof is at [area] in the implementation), so the sum is the
-    same; [tr.counters.umbra] counts them. The document's lights take a
+    same; [tr.counters.umbra] counts them. With the skips, an area or
+    sphere light of at least four samples (an area light's stratified, not
+    [(sampling uniform)]: the plain Monte Carlo baseline that the
+    benchmark measures the others against) casts no shadow ray from a
+    point whose hull with the light's rectangle (a sphere light's: the
+    square around the disc its samples lie on) meets no plane and no box
+    of {!Prepared.t}'s [casters]: nothing can stop those rays, and each
+    sample's terms are added as a ray that passes would add them, in the
+    same order (the same bytes, adaptive or not: uniform sampling could
+    take it too, with the same bytes; exact up to the margins
+    stated at [whole_in_view] in the implementation, which cover the
+    rounding of the test and of the kernel's hit tests);
+    [tr.counters.whole] counts those points. The document's lights take a
     copy of the loop that never asks for the new kinds. *)
 
 val lighting_through : Tracer.t -> shiny:bool -> specular_of:float array -> int -> unit

@@ -11,6 +11,7 @@ type counters = Tracer.counters = {
   mutable decided : int;
   mutable penumbra : int;
   mutable umbra : int;
+  mutable whole : int;
 }
 
 type t = Tracer.t

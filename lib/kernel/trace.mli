@@ -36,6 +36,7 @@ type counters = {
   mutable decided : int;  (** Points an adaptive area light's corners decided. *)
   mutable penumbra : int;  (** Points an adaptive area light's corners left in doubt. *)
   mutable umbra : int;  (** Area light samples in an exact umbra: no shadow ray. *)
+  mutable whole : int;  (** Points that see an area or sphere light whole: no shadow ray to it (exact). *)
 }
 (** The type for work counters. *)
 

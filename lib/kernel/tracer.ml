@@ -13,6 +13,7 @@ type counters = {
   mutable decided : int;
   mutable penumbra : int;
   mutable umbra : int;
+  mutable whole : int;
 }
 
 
@@ -147,7 +148,7 @@ let rec create ?(averaging = false) (p : Prepared.t) =
       (let n4 = Array.length p.sphere4 in
        Array.init (p.n_lights * n4) (fun k -> p.sphere4.(k mod n4)));
     blockers_first = Array.init p.n_lights (fun l -> l * Array.length p.sphere4);
-    counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0; decided = 0; penumbra = 0; umbra = 0 };
+    counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0; decided = 0; penumbra = 0; umbra = 0; whole = 0 };
     nodes =
       Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0;
     entries = Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0.;

@@ -24,6 +24,9 @@ type counters = {
   mutable umbra : int;
       (** Area light samples that cast no shadow ray: inside the corner
           cells' samples, all stopped by one convex object (exact). *)
+  mutable whole : int;
+      (** Points that see an area or sphere light whole (no blocker's box
+          meets their hull with it, {!Lighting}): no shadow ray to it (exact). *)
 }
 (** The type for the work counters ({!Trace.counters}). *)
 

@@ -71,6 +71,7 @@ type t = {
   light_uniform : bool array;
   soft_lights : bool;
   umbra_skip : bool;
+  casters : float array;
   sampled : bool;
   specular_cut : float array;
   ambient_lead : float;
@@ -1737,7 +1738,7 @@ let light6 lights =
 (* The record, from the steps' results; the lights' and the materials'
    arrays made here. *)
 let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg ~instances sl g sp
-    ~vertex ~vsource ~vnormal ~uv =
+    ~vertex ~vsource ~vnormal ~uv ~casters =
   (* Each light with its place in the scene's list, which keys its
      samples (Light, "Sample points"): dropping a dark light changes no
      other light's numbers. *)
@@ -1839,6 +1840,7 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     sampled = Camera.has_lens scene.camera || Array.exists Light.sampled lights;
     soft_lights = soft;
     umbra_skip = skips;
+    casters;
     specular_cut = specular_cut ~skips materials lights;
     ambient_lead = fst (ambient_lead lights);
     first_light = snd (ambient_lead lights);
@@ -1878,6 +1880,89 @@ let assemble ~skips (scene : Scene.view) o ~max_channel ~materials ~alternate ~p
     uv;
   }
 
+(* {2 The blockers' boxes, for the test that a point sees a light whole} *)
+
+(* At most this many objects are each a box of [casters]; a scene of more
+   takes its hierarchy's nodes at depth [caster_depth] (at most 16). *)
+let max_casters = 16
+let caster_depth = 4
+
+(* The boxes ([lo], [hi]) of the scene's bounded objects, if at most
+   [max_casters]: an axis-aligned box its own corners, any other object
+   [Shape.box_bounds] (a sphere's cube), each grown by the margin of
+   {!Bvh.ray_box_margin} for a sphere of its largest half side, the one
+   the hierarchy's boxes take: no hit test of the kernel reports a hit
+   outside (the textbook quadratic's rounding near a small sphere's
+   outline above all). Made before the objects are let go; [None] for
+   more objects, and for a scene with an instance, whose hits the kernel
+   finds in a carried frame (its box's margin, {!instance_box}, is the
+   hierarchy's: such a scene takes the nodes' boxes, or no test). *)
+let object_casters (scene : Scene.view) =
+  let bounded = List.filter Shape.bounded scene.shapes in
+  let instance = function Shape.Instance _ -> true | _ -> false in
+  if Spheres.length scene.spheres + List.length bounded > max_casters || List.exists instance bounded then None
+  else
+    let sp = scene.spheres in
+    let spheres =
+      List.init (Spheres.length sp) (fun i ->
+          let r = Spheres.radius sp i and x = Spheres.center_x sp i and y = Spheres.center_y sp i and z = Spheres.center_z sp i in
+          (Vec3.v (x -. r) (y -. r) (z -. r), Vec3.v (x +. r) (y +. r) (z +. r)))
+    in
+    let shape = function Shape.Box b -> (b.Box.min, b.Box.max) | s -> Shape.box_bounds s in
+    let boxes = spheres @ List.map shape bounded in
+    (* [D] and [M] of the margin: the boxes and the camera's lens. *)
+    let reach = lens_reach scene.camera and (c : Vec3.t) = scene.camera.position in
+    let b = [| c.x -. reach; c.y -. reach; c.z -. reach; c.x +. reach; c.y +. reach; c.z +. reach |] in
+    List.iter
+      (fun ((lo : Vec3.t), (hi : Vec3.t)) ->
+        b.(0) <- Float.min b.(0) lo.x;
+        b.(1) <- Float.min b.(1) lo.y;
+        b.(2) <- Float.min b.(2) lo.z;
+        b.(3) <- Float.max b.(3) hi.x;
+        b.(4) <- Float.max b.(4) hi.y;
+        b.(5) <- Float.max b.(5) hi.z)
+      boxes;
+    let terms = Bvh.margin_of_bounds b in
+    let grown ((lo : Vec3.t), (hi : Vec3.t)) =
+      let h = 0.5 *. Float.max (hi.x -. lo.x) (Float.max (hi.y -. lo.y) (hi.z -. lo.z)) in
+      let e = Bvh.margin terms h in
+      (Vec3.v (lo.x -. e) (lo.y -. e) (lo.z -. e), Vec3.v (hi.x +. e) (hi.y +. e) (hi.z +. e))
+    in
+    Some (List.map grown boxes)
+
+(* The hierarchy's nodes at depth [caster_depth] (and its leaves above
+   it): together they hold every bounded object. *)
+let node_casters b =
+  let box k = (Vec3.v (Bvh.lo b k 0) (Bvh.lo b k 1) (Bvh.lo b k 2), Vec3.v (Bvh.hi b k 0) (Bvh.hi b k 1) (Bvh.hi b k 2)) in
+  let rec walk k d acc = if d = caster_depth || Bvh.tag b k >= 1 then box k :: acc else walk (k + 1) (d + 1) (walk (Bvh.link b k) (d + 1) acc) in
+  walk 0 0 []
+
+let largest (v : Vec3.t) = Float.max (Float.abs v.x) (Float.max (Float.abs v.y) (Float.abs v.z))
+
+(* [casters] as {!t} documents it: the boxes in centre and half-side
+   form, each half side grown by [2^-30] times the largest magnitude [M]
+   of a coordinate of all of them (plus one), which covers the rounding
+   of every hit the kernel reports in them; [M] first. *)
+let casters ~skips ~few_casters (scene : Scene.view) bvh =
+  let boxes = match (few_casters, bvh) with Some l, _ -> Some l | None, Some b -> Some (node_casters b) | None, None -> None in
+  match boxes with
+  | Some boxes when skips && List.exists Light.sampled scene.lights ->
+      let m = List.fold_left (fun m ((lo : Vec3.t), (hi : Vec3.t)) -> Float.max m (Float.max (largest lo) (largest hi))) 0. boxes in
+      let pad = (m +. 1.) *. 0x1p-30 in
+      let a = Array.make (1 + (6 * List.length boxes)) m in
+      List.iteri
+        (fun i ((lo : Vec3.t), (hi : Vec3.t)) ->
+          let o = 1 + (6 * i) in
+          a.(o) <- 0.5 *. (lo.x +. hi.x);
+          a.(o + 1) <- 0.5 *. (lo.y +. hi.y);
+          a.(o + 2) <- 0.5 *. (lo.z +. hi.z);
+          a.(o + 3) <- (0.5 *. (hi.x -. lo.x)) +. pad;
+          a.(o + 4) <- (0.5 *. (hi.y -. lo.y)) +. pad;
+          a.(o + 5) <- (0.5 *. (hi.z -. lo.z)) +. pad)
+        boxes;
+      a
+  | _ -> [||]
+
 (* The steps in order. Each big array is let go as soon as no step needs
    it any more: the steps' results are taken apart here, not held whole. *)
 let rec prepare_scene ?(every_frame = false) ?(cut = false) ~skips ?beside scene =
@@ -1885,6 +1970,7 @@ let rec prepare_scene ?(every_frame = false) ?(cut = false) ~skips ?beside scene
   let bottom_scene = Scene.bottom scene in
   let scene = Scene.view (Scene.of_valid scene) in
   let o = read_objects scene in
+  let few_casters = if skips && List.exists Light.sampled scene.lights then object_casters scene else None in
   let scene = settings scene in
   compact_after_loading o;
   (* Per object, in object order: kind, material, and the cube around it. *)
@@ -1929,8 +2015,9 @@ let rec prepare_scene ?(every_frame = false) ?(cut = false) ~skips ?beside scene
   in
   let bvh = if cut then cut_leaves bvh c ~kind:sl.kind ~vertex g else bvh in
   let uv = uv_table ~every_frame o sl.slot (Array.length sl.kind) in
+  let casters = casters ~skips ~few_casters scene bvh in
   assemble ~skips scene o ~max_channel ~materials ~alternate ~pattern ~bvh ~unbounded ~csg:(Csg.table s.builder)
-    ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal ~uv
+    ~instances:(instance_table inst placed) sl g sp ~vertex ~vsource ~vnormal ~uv ~casters
 
 (* The bottom level of an instance: its object alone, prepared as a scene
    of the top's mode (epsilon) with no lights; the kernel traces it in
@@ -1955,7 +2042,7 @@ let prepare ?(skips = true) ?cut ?beside scene =
       (fun () -> prepare_scene ?cut ~skips ?beside scene)
   end
 
-type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms | Umbra
+type kernel_skip = Behind | Shadow_rays | Culling | Negligible_terms | Umbra | Whole_light
 
 let without k p =
   match k with
@@ -1963,6 +2050,7 @@ let without k p =
   | Shadow_rays -> { p with shadow_skip = false }
   | Culling -> { p with cull = false }
   | Umbra -> { p with umbra_skip = false }
+  | Whole_light -> { p with casters = [||] }
   | Negligible_terms ->
       {
         p with

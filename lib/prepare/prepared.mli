@@ -205,6 +205,23 @@ type t = private {
       (** The skips are on: an area light's samples inside the hull of its
           corner cells' samples, all four stopped by one convex object,
           cast no shadow ray (the kernel's [Lighting], exact). *)
+  casters : float array;
+      (** With the skips and an area or sphere light, boxes that together
+          hold every bounded object: each object's own where the scene has
+          at most 16 (a sphere's cube, an axis-aligned box itself, another
+          object's {!Shape.box_bounds}, each grown by the margin of
+          {!Bvh.ray_box_margin} for its largest half side, as the
+          hierarchy's boxes are), else the hierarchy's nodes at depth 4 and
+          its leaves above it; none for a scene of at most 16 objects with
+          an instance and no hierarchy. [casters.(0)] is [M], the largest
+          magnitude of a coordinate of their corners; box [i] is at [1 + 6
+          i]: its centre, then its half sides, each grown by [2^-30 (M +
+          1)] (far more than the rounding of the centre and half sides).
+          The kernel's [Lighting] tests a lit point's hull with a
+          stratified area light or a sphere light against them and the
+          planes ([unbounded]): a point whose hull meets none sees the
+          light whole and casts no shadow ray to it. Empty otherwise, and
+          with the skip [Whole_light] off. *)
   sampled : bool;
       (** Some pixel is an integral that draws numbers (an area light, a
           lens): the tracer keeps the key of each camera sample
@@ -397,13 +414,15 @@ val prepare : ?skips:bool -> ?cut:bool -> ?beside:Bvh.beside -> Scene.valid -> t
 (** The skips of the tracer's kernel, each exact on its own: [Behind] and
     [Culling] for the document's scenes (spheres alone, an epsilon, no
     hierarchy), [Shadow_rays] and [Negligible_terms] for every scene,
-    [Umbra] for scenes with area lights. *)
+    [Umbra] and [Whole_light] for scenes with area (and, [Whole_light],
+    sphere) lights. *)
 type kernel_skip =
   | Behind  (** [behind]: no roots computed for a sphere behind the ray. *)
   | Shadow_rays  (** [shadow_skip]: no shadow ray for a light that adds nothing. *)
   | Culling  (** [cull]: camera rays test only their tile's spheres. *)
   | Negligible_terms  (** [specular_cut]: no specular term too small to count. *)
   | Umbra  (** [umbra_skip]: no shadow ray for an area light's samples in one convex object's umbra. *)
+  | Whole_light  (** [casters]: no shadow ray to an area or sphere light that no blocker can hide from the point. *)
 
 val without : kernel_skip -> t -> t
 (** [without k p] is [p] with the skip [k] off and the others as they

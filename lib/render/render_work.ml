@@ -30,7 +30,7 @@ let out_of_memory (region : Region.t) =
   let mib = Float.of_int (3 * Region.pixels region) /. 1048576. in
   Error (`Msg (Printf.sprintf "not enough memory for a %dx%d image (%.0f MiB)" region.w region.h mib))
 
-let counter_fields = 11
+let counter_fields = 12
 
 type counters = (int64, Bigarray.int64_elt, Bigarray.c_layout) Bigarray.Array1.t
 
@@ -48,7 +48,8 @@ let save ints w tr words =
   set 6 c.box_tests;
   set 8 c.decided;
   set 9 c.penumbra;
-  set 10 c.umbra
+  set 10 c.umbra;
+  set 11 c.whole
 
 let save_work ?(base = 0) ints w tr =
   let c = Trace.counters tr in
@@ -111,6 +112,7 @@ let stats ints ~slots ~pixels ~jobs ~prepare_s ~trace_s =
       decided = sum 8;
       penumbra = sum 9;
       umbra = sum 10;
+      whole = sum 11;
       jobs;
       prepare_s;
       trace_s;

@@ -9,6 +9,7 @@ type t = {
   decided : int;
   penumbra : int;
   umbra : int;
+  whole : int;
   jobs : int;
   prepare_s : float;
   trace_s : float;
@@ -36,6 +37,7 @@ let pp_table ppf s =
     row "soft light, penumbra" (int s.penumbra)
   end;
   if s.umbra > 0 then row "soft light, umbra" (int s.umbra);
+  if s.whole > 0 then row "soft light, whole" (int s.whole);
   row "jobs" (int s.jobs);
   row "time, prepare (s)" (Printf.sprintf "%.4f" s.prepare_s);
   row "time, trace (s)" (Printf.sprintf "%.4f" s.trace_s);

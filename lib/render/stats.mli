@@ -19,6 +19,11 @@ type t = {
       (** Area light samples that cast no shadow ray because one convex
           object stops the rays of the corner cells' samples around them
           (exact: the kernel's [Lighting] (lib/kernel/lighting.mli)). *)
+  whole : int;
+      (** Lit points that see an area or sphere light whole: no blocker's
+          box meets the hull of the point and the light, and no shadow ray
+          is cast to it (exact: the kernel's [Lighting]
+          (lib/kernel/lighting.mli)). *)
   jobs : int;  (** Processes that traced. *)
   prepare_s : float;  (** Seconds spent preparing the scene, by the render's clock (below). *)
   trace_s : float;

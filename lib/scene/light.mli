@@ -235,7 +235,20 @@ val sectors : int -> int
     Without [adaptive], the kernel's exact umbra skip (with the skips on)
     changes no byte: where one convex object stops the shadow rays of the
     four corner cells' samples, the samples inside their hull cast none
-    (the kernel's [Lighting] (lib/kernel/lighting.mli)). *)
+    (the kernel's [Lighting] (lib/kernel/lighting.mli)).
+
+    With the skips on, adaptive or not, a stratified area light of at
+    least four samples and a sphere light of at least four first ask whether
+    anything at all could hide them from [P]: where no plane and no
+    blocker's bounding box meets the hull of [P] and the light's
+    rectangle (for a sphere light, the square around its disc facing
+    [P]), every sample is seen, and its terms are added without a shadow
+    ray. That is what the rays would find: it changes no byte, adaptive
+    or not. With [sampling = Uniform] (plain Monte Carlo, the baseline that
+    docs/run-time-against-error.md measures the others against) an area
+    light does not ask (it would change none of its bytes either; the kernel's
+    [Lighting] states the margins; [--stats] counts the points, [soft
+    light, whole]). *)
 
 (** {1:document The document's light record}
 
