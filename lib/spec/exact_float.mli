@@ -42,6 +42,12 @@ val mul : t -> t -> t
 val sign : t -> int
 (** [sign a] is [-1], [0] or [1], the sign of [a]'s exact value. *)
 
+val approx : t -> float
+(** [approx a] is the largest component of [a]: the others, each below
+    the next one's last bit, sum to less than two of its units in the last
+    place, so [approx a] is within [2u |approx a|] of [a]'s value ([u] the
+    unit roundoff), with its sign. *)
+
 val compare_fractions : t -> t -> t -> t -> int
 (** [compare_fractions n1 d1 n2 d2] is the sign of [n1 / d1 - n2 / d2],
     exactly. [d1] and [d2] must not be zero. *)

@@ -65,6 +65,21 @@ let rec medium_material = function
   | Placed (_, inner, _) -> medium_material inner
   | obj -> material obj
 
+(* Which of the kernel's formulas finds an object's parameter. Two
+   surfaces that coincide tie exactly; a camera ray's parameters (the
+   camera's own origin, the placed scenes' coordinates) are exact for
+   every formula, but a ray from a rounded point gets each formula's own
+   rounding, so which of two formulas' equal roots comes first is
+   rounding's decision, not the scene order's. *)
+let rec formula = function
+  | Sphere _ | Shape (Shape.Sphere _, _) | Csg_surface (_, Csg.Sphere _, _) -> 0
+  | Shape (Shape.Plane _, _) -> 1
+  | Shape (Shape.Triangle _, _) | Mesh_triangle _ | Csg_surface (_, Csg.Mesh _, _) -> 2
+  | Shape (Shape.Box _, _) | Csg_surface (_, Csg.Box _, _) -> 3
+  | Shape (Shape.Primitive _, _) | Csg_surface (_, Csg.Primitive _, _) -> 4
+  | Placed (_, inner, _) -> 8 + formula inner
+  | Shape ((Shape.Mesh _ | Shape.Csg _ | Shape.Instance _), _) | Csg_surface (_, (Csg.Csg _ | Csg.Transformed _), _) -> 16
+
 (* The objects other than spheres, each with the number of its shape in
    the scene's list (a mesh's triangles share theirs, and are listed with
    their corners), made once per list of shapes. *)
@@ -281,6 +296,7 @@ let closest_numbered ?(continued = false) (scene : Scene.view) ~origin ~directio
   (* A camera ray's origin is the camera's own value, continued or not:
      every other ray leaves a computed point. *)
   let secondary = origin != scene.camera.position in
+  let cross_tie = ref false in
   let spheres = sphere_list scene.spheres in
   let best =
     match closest_intersection spheres ~origin ~direction ~t_min ~t_max with
@@ -290,12 +306,13 @@ let closest_numbered ?(continued = false) (scene : Scene.view) ~origin ~directio
   let best =
     Array.fold_left
       (fun best (item, id) ->
-        let in_range ((t : G.key), _) =
+        let in_range ((t : G.key), obj) =
           G.in_range ~continued ~t_min ~t_max t
           &&
           match best with
-          | Some (_, best_id, b) ->
+          | Some (best_obj, best_id, b) ->
               let c = G.compare_keys t b in
+              if c = 0 && secondary && formula obj <> formula best_obj then cross_tie := true;
               c < 0 || (c = 0 && id < best_id)
           | None -> true
         in
@@ -305,7 +322,7 @@ let closest_numbered ?(continued = false) (scene : Scene.view) ~origin ~directio
       best (items scene.placed)
   in
   let near1, ties1 = G.undecided () in
-  if near1 > near0 || (secondary && ties1 > ties0) then incr dependent;
+  if near1 > near0 || (secondary && (ties1 > ties0 || !cross_tie)) then incr dependent;
   Option.map (fun (obj, id, (t : G.key)) -> (obj, id, t.t)) best
 
 let closest_hit scene ~origin ~direction ~t_min ~t_max =

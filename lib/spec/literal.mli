@@ -93,11 +93,15 @@ val rounding_dependent : unit -> int
     those of a ray from a computed hit point (a shadow, mirror or
     refracted ray) exactly through a triangle's edge, since that point
     and the ray's direction are rounded, by the oracle's arithmetic and
-    the kernel's each its own way; and the checker cells of points within
-    rounding of a cell's boundary. A camera ray exactly through an edge
-    or a vertex, and exact ties of two roots (touching CSG operands,
-    coinciding surfaces, a box's edge), are not counted: their answer is
-    exact. *)
+    the kernel's each its own way; those of such a ray where two objects
+    whose parameters different formulas find (a box's face and a mesh's
+    triangle in it) tie exactly, as each formula rounds its own way from
+    that point; those of a ray within rounding of parallel to a plane
+    (met very far away, or, where its denominator rounds to 0, not at
+    all); and the checker cells of points within rounding of a cell's
+    boundary. A camera ray exactly through an edge or a vertex, and other
+    exact ties of two roots (touching CSG operands, coinciding surfaces
+    of one kind, a box's edge), are not counted: their answer is exact. *)
 
 val closest_hit :
   Scene.t -> origin:Vec3.t -> direction:Vec3.t -> t_min:float -> t_max:float -> (obj * float) option
