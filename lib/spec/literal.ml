@@ -297,6 +297,7 @@ let closest_numbered ?(continued = false) (scene : Scene.view) ~origin ~directio
      every other ray leaves a computed point. *)
   let secondary = origin != scene.camera.position in
   let cross_tie = ref false in
+
   let spheres = sphere_list scene.spheres in
   let best =
     match closest_intersection spheres ~origin ~direction ~t_min ~t_max with
@@ -304,6 +305,7 @@ let closest_numbered ?(continued = false) (scene : Scene.view) ~origin ~directio
     | None -> None
   in
   let best =
+    G.from_origin ~computed:secondary origin @@ fun () ->
     Array.fold_left
       (fun best (item, id) ->
         let in_range ((t : G.key), obj) =

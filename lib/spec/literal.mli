@@ -91,7 +91,8 @@ val rounding_dependent : unit -> int
     passes a boundary (a triangle's edge or vertex, another root) it is
     within rounding of but off ({!Literal_geometry.undecided}'s [near]),
     those of a ray from a computed hit point (a shadow, mirror or
-    refracted ray) exactly through a triangle's edge, since that point
+    refracted ray) through a triangle's edge or within what that point's
+    rounding can move it of the edge ({!Literal_geometry.from_origin}), since that point
     and the ray's direction are rounded, by the oracle's arithmetic and
     the kernel's each its own way; those of such a ray where two objects
     whose parameters different formulas find (a box's face and a mesh's

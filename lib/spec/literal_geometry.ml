@@ -186,9 +186,39 @@ let plane_normal (p : Plane.t) = Vec3.unit p.normal
 
 (* {1 Triangles} *)
 
+(* How far the kernel's origin of the ray being traced may lie from the
+   oracle's, per coordinate: 0 for a camera ray (the camera's own value);
+   for a ray from a hit point, which each side computes from its own
+   rounded parameter, set by [Literal] while it traces such a ray. *)
+let origin_slack = ref 0.
+
+let from_origin ~computed (origin : Vec3.t) f =
+  let before = !origin_slack in
+  origin_slack :=
+    if computed then 64. *. u *. Float.max (Float.abs origin.x) (Float.max (Float.abs origin.y) (Float.abs origin.z)) else 0.;
+  Fun.protect ~finally:(fun () -> origin_slack := before) f
+
+(* An edge function of the line's origin within [origin_slack] of 0 is
+   rounding's: the kernel's origin may lie on the edge's other side. The
+   origin moved by [w] changes det[p - o, q - o, d] by <d, w x (p - q)>. *)
+let near_for_origin ~(o : Vec3.t) ~(d : Vec3.t) (p : Vec3.t) (q : Vec3.t) =
+  if !origin_slack > 0. then begin
+    let ax = p.x -. o.x and ay = p.y -. o.y and az = p.z -. o.z in
+    let bx = q.x -. o.x and by = q.y -. o.y and bz = q.z -. o.z in
+    let v = (d.x *. ((ay *. bz) -. (az *. by))) +. (d.y *. ((az *. bx) -. (ax *. bz))) +. (d.z *. ((ax *. by) -. (ay *. bx))) in
+    let dn = Float.abs d.x +. Float.abs d.y +. Float.abs d.z
+    and pq = Float.abs (p.x -. q.x) +. Float.abs (p.y -. q.y) +. Float.abs (p.z -. q.z) in
+    if Float.abs v <= 2. *. !origin_slack *. dn *. pq then incr near_count
+  end
+
 let edge_signs ~origin ~direction a b c =
   let s = orient ~o:a ~d:direction b c in
   let e0 = orient ~o:origin ~d:direction b c and e1 = orient ~o:origin ~d:direction c a and e2 = orient ~o:origin ~d:direction a b in
+  if s <> 0 then begin
+    near_for_origin ~o:origin ~d:direction b c;
+    near_for_origin ~o:origin ~d:direction c a;
+    near_for_origin ~o:origin ~d:direction a b
+  end;
   (* A zero edge function is a tie with the line's origin, unless the edge
      is parallel to the line, which makes it zero wherever the origin is. *)
   let through p q e =

@@ -39,6 +39,15 @@ val in_range : continued:bool -> t_min:float -> t_max:float -> key -> bool
     surface there again, as it would where the exact parameter lies above
     its rounding. *)
 
+val from_origin : computed:bool -> Vec3.t -> (unit -> 'a) -> 'a
+(** [from_origin ~computed o f] is [f ()], with the searches it makes
+    from the origin [o] counted in {!undecided}'s [near] also where the
+    line passes a triangle's edge within [64u max |o_i|] of [o] (per
+    coordinate) of it, if [computed]: the origin of a ray from a hit point,
+    which the kernel computes from its own rounded parameter, may lie that
+    far from the oracle's, on the edge's other side. A camera ray's origin
+    is the camera's own value ([computed] false). *)
+
 val undecided : unit -> int * int
 (** [undecided ()] is [(near, ties)], counts so far of decisions the
     float filter could not make: [near], those exact arithmetic made
