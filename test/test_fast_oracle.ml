@@ -15,10 +15,12 @@
    hit point, along a rounded direction) exactly through a triangle's
    edge (a shadow ray that slides along the wall it leaves, through the
    edge where the ceiling meets it), a checker point within rounding of a
-   cell's boundary. A camera ray exactly through an edge or vertex, and
-   exact ties of two roots (touching CSG operands, coinciding faces, a
-   box's edge), are held to bytes: leaving out the ties hid three CSG
-   mutants (docs/testing.md). In the robust mode the kernel uses other
+   cell's boundary, an exact tie of two surfaces whose parameters two
+   formulas find (a box's face and a mesh's triangle in it). A camera ray
+   exactly through an edge or vertex, and exact ties of two roots of one
+   formula (touching CSG operands, coinciding faces of one kind, a box's
+   edge), are held to bytes: leaving out the ties hid three CSG mutants
+   (docs/testing.md). In the robust mode the kernel uses other
    formulas, and there the skips alone are held to bytes, on and off. *)
 open Raytrace
 
@@ -163,28 +165,17 @@ let box_and_mesh =
 (mesh (file "cube.obj") (color 0 255 0) (specular 547.8439674637534) (reflective 0.875266942240346))
 (box (min 1.25 -1 3.5) (max 2.75 -0.25 5) (color 0 0 0) (reflective 0.6122893138239754))|}
 
-let cube =
-  {|v 1.25 -1 3.5
-v 2.75 -1 3.5
-v 1.25 -0.25 3.5
-v 2.75 -0.25 3.5
-v 1.25 -1 5
-v 2.75 -1 5
-v 1.25 -0.25 5
-v 2.75 -0.25 5
-f 1 5 7
-f 1 7 3
-f 2 4 8
-f 2 8 6
-f 1 2 6
-f 1 6 5
-f 3 7 8
-f 3 8 4
-f 1 3 4
-f 1 4 2
-f 5 6 8
-f 5 8 7
-|}
+(* The OBJ text of the box [x0, x1] x [y0, y1] x [z0, z1] as 12
+   triangles, the corners and faces in Gen_placed's order. *)
+let cube_obj (x0, y0, z0) (x1, y1, z1) =
+  let v x y z = Printf.sprintf "v %s %s %s\n" x y z in
+  String.concat "" [ v x0 y0 z0; v x1 y0 z0; v x0 y1 z0; v x1 y1 z0; v x0 y0 z1; v x1 y0 z1; v x0 y1 z1; v x1 y1 z1 ]
+  ^ String.concat ""
+      (List.map
+         (fun (a, b, c) -> Printf.sprintf "f %d %d %d\n" a b c)
+         [ (1, 5, 7); (1, 7, 3); (2, 4, 8); (2, 8, 6); (1, 2, 6); (1, 6, 5); (3, 7, 8); (3, 8, 4); (1, 3, 4); (1, 4, 2); (5, 6, 8); (5, 8, 7) ])
+
+let cube = cube_obj ("1.25", "-1", "3.5") ("2.75", "-0.25", "5")
 
 (* The third (seeds 3 and 4): a mirror cube under a directional light
    along its front face, specular 0 (a light with R . V > 0 adds its whole
@@ -199,13 +190,18 @@ let sliding =
 (light directional (intensity 0.24037612734215788) (direction 0 1 0))|}
 
 let sliding_cube =
-  let x0 = "-1.1807784594970219" and x1 = "0.06149137290022" and y0 = "0.473645182545004" and y1 = "1.715915014942246"
-  and z0 = "0.43844464291411256" and z1 = "1.6807144753113543" in
-  let v x y z = Printf.sprintf "v %s %s %s\n" x y z in
-  String.concat ""
-    [ v x0 y0 z0; v x1 y0 z0; v x0 y1 z0; v x1 y1 z0; v x0 y0 z1; v x1 y0 z1; v x0 y1 z1; v x1 y1 z1 ]
-  ^ String.concat "\n" (List.filter (fun l -> String.length l > 0 && l.[0] = 'f') (String.split_on_char '\n' cube))
-  ^ "\n"
+  cube_obj ("-1.1807784594970219", "0.473645182545004", "0.43844464291411256") ("0.06149137290022", "1.715915014942246", "1.6807144753113543")
+
+(* The fourth (seed 10): camera rays at a box and a mesh cube that
+   coincide, on a canvas 10 high: a ray's [gy / 10] is rounded, and the
+   box's slabs and the triangle's test round their equal parameters each
+   its own way. *)
+let camera_tie =
+  {|(canvas (width 6) (height 10)) (viewport (width 1) (height 1) (distance 1))
+(camera (position -0.75 0.75 0.5)) (background 255 239 156) (recursion-depth 0) (epsilon 0.0001)
+(box (min 0 -1 4.5) (max 1.5 -0.25 6) (color 126.30999480116417 133.80848727014705 114.8146574068015) (specular 444.83061670810224) (reflective 0.6583689517387218))
+(mesh (file "cube.obj") (color 92.16444692147589 255 255) (reflective 1))
+(light ambient (intensity 0.23328439440876442))|}
 
 (* A scene's text read from a file, beside its mesh's cube.obj if any. *)
 let replayed scene obj =
@@ -237,11 +233,16 @@ let tests =
           (fun direction -> Alcotest.(check (float 0.)) __LOC__ infinity (Plane.intersect p ~origin:Vec3.zero ~direction))
           [ Vec3.v (-0.25) 0.375 1.; Vec3.v 0.5 (-0.25) 0.; Vec3.v 2. 0. 4. ]);
     Helpers.qcheck ~count:300 "in the robust mode the skips change no byte of such scenes" Gen_placed.arbitrary skips_exact;
-    Alcotest.test_case "found by other seeds: a plane met where its float denominator rounds to 0, a mirror ray on a box's face that a mesh's triangle coincides with, and a shadow ray sliding along a mesh's face, are left to rounding" `Quick
+    Alcotest.test_case "found by other seeds: a plane met where its float denominator rounds to 0, camera and mirror rays at a box's face that a mesh's triangle coincides with, and a shadow ray sliding along a mesh's face, are left to rounding" `Quick
       (fun () ->
         List.iter
           (fun (scene, obj) ->
             let s = replayed scene obj in
             if not (as_the_oracle s) then Alcotest.fail "differs")
-          [ (plane_far, None); (box_and_mesh, Some cube); (sliding, Some sliding_cube) ]);
+          [
+            (plane_far, None);
+            (box_and_mesh, Some cube);
+            (sliding, Some sliding_cube);
+            (camera_tie, Some (cube_obj ("0", "-1", "4.5") ("1.5", "-0.25", "6")));
+          ]);
   ]

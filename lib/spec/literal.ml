@@ -66,11 +66,10 @@ let rec medium_material = function
   | obj -> material obj
 
 (* Which of the kernel's formulas finds an object's parameter. Two
-   surfaces that coincide tie exactly; a camera ray's parameters (the
-   camera's own origin, the placed scenes' coordinates) are exact for
-   every formula, but a ray from a rounded point gets each formula's own
-   rounding, so which of two formulas' equal roots comes first is
-   rounding's decision, not the scene order's. *)
+   surfaces that coincide tie exactly, but each formula rounds the
+   parameter its own way (a camera ray's too: its direction's [gy / H] is
+   rounded for most canvas heights), so which of two formulas' equal
+   roots comes first is rounding's decision, not the scene order's. *)
 let rec formula = function
   | Sphere _ | Shape (Shape.Sphere _, _) | Csg_surface (_, Csg.Sphere _, _) -> 0
   | Shape (Shape.Plane _, _) -> 1
@@ -314,7 +313,7 @@ let closest_numbered ?(continued = false) (scene : Scene.view) ~origin ~directio
           match best with
           | Some (best_obj, best_id, b) ->
               let c = G.compare_keys t b in
-              if c = 0 && secondary && formula obj <> formula best_obj then cross_tie := true;
+              if c = 0 && formula obj <> formula best_obj then cross_tie := true;
               c < 0 || (c = 0 && id < best_id)
           | None -> true
         in
@@ -324,7 +323,7 @@ let closest_numbered ?(continued = false) (scene : Scene.view) ~origin ~directio
       best (items scene.placed)
   in
   let near1, ties1 = G.undecided () in
-  if near1 > near0 || (secondary && (ties1 > ties0 || !cross_tie)) then incr dependent;
+  if near1 > near0 || !cross_tie || (secondary && ties1 > ties0) then incr dependent;
   Option.map (fun (obj, id, (t : G.key)) -> (obj, id, t.t)) best
 
 let closest_hit scene ~origin ~direction ~t_min ~t_max =

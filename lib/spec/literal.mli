@@ -94,10 +94,10 @@ val rounding_dependent : unit -> int
     refracted ray) through a triangle's edge or within what that point's
     rounding can move it of the edge ({!Literal_geometry.from_origin}), since that point
     and the ray's direction are rounded, by the oracle's arithmetic and
-    the kernel's each its own way; those of such a ray where two objects
+    the kernel's each its own way; those of any ray where two objects
     whose parameters different formulas find (a box's face and a mesh's
-    triangle in it) tie exactly, as each formula rounds its own way from
-    that point; those of a ray within rounding of parallel to a plane
+    triangle in it) tie exactly, as each formula rounds the parameter its
+    own way; those of a ray within rounding of parallel to a plane
     (met very far away, or, where its denominator rounds to 0, not at
     all); and the checker cells of points within rounding of a cell's
     boundary. A camera ray exactly through an edge or a vertex, and other
