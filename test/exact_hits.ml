@@ -85,3 +85,31 @@ let roots (s : Scene.t) =
          | Primitive _ -> invalid_arg "Exact_hits.roots: a described kind has its own exact tests"
          | Instance _ -> invalid_arg "Exact_hits.roots: an instance")
        (Scene.shapes s))
+
+(* Each object of [roots]' order: the mesh (its number among the shapes)
+   and the triangle, for a mesh's triangles. *)
+let facets (s : Scene.t) =
+  Array.of_list
+    (List.concat
+       (List.mapi
+          (fun i -> function
+            | Shape.Mesh m ->
+                List.filter_map
+                  (fun k -> if Mesh.degenerate m k then None else Some (Some (i, m, k)))
+                  (List.init (Mesh.triangle_count m) Fun.id)
+            | _ -> [ None ])
+          (Scene.shapes s)))
+
+let neighbours s i j =
+  let f = facets s in
+  i >= 0 && j >= 0 && i < Array.length f && j < Array.length f
+  &&
+  match (f.(i), f.(j)) with
+  | Some (mi, m, ki), Some (mj, _, kj) when mi = mj && Array.length m.Mesh.normals = 0 ->
+      let a = Mesh.triangle m ki and b = Mesh.triangle m kj in
+      let corners (t : Triangle.t) = [ t.v0; t.v1; t.v2 ] in
+      let shared = List.filter (fun p -> List.exists (Vec3.equal p) (corners b)) (corners a) in
+      let n = cross (sub (v a.v1) (v a.v0)) (sub (v a.v2) (v a.v0)) in
+      List.length shared >= 2
+      && List.for_all (fun p -> Q.equal (dot (sub (v p) (v a.v0)) n) Q.zero) (corners b)
+  | _ -> false

@@ -19,3 +19,10 @@ val roots : Raytrace.Scene.t -> (origin:Raytrace.Vec3.t -> direction:Raytrace.Ve
     bounding box grown by a millionth of its coordinates is not tried in
     exact arithmetic: it misses.)
     @raise Invalid_argument if [s] has spheres or CSG solids. *)
+
+val neighbours : Raytrace.Scene.t -> int -> int -> bool
+(** [neighbours s i j] is whether objects [i] and [j] of {!roots}' order
+    are two triangles of one mesh, flat (no [vn]), that share an edge (two
+    corners with the same coordinates) and lie in one plane (exactly): a
+    ray within rounding of that edge may be given to either by a
+    watertight test, with the same point, plane, normal and material. *)

@@ -116,12 +116,13 @@ let wrong_hit (s : Scene.t) roots tr gx gy =
   let seen = if k < 0 then None else exact.(k) in
   let show = function Some t -> Printf.sprintf "t = %s" (Q.to_string t) | None -> "no hit" in
   let near_enough t m = Q.leq (Q.sub t m) (Q.mul m coinciding) in
+  let first = ref (-1) in
+  Array.iteri (fun i r -> if !first < 0 && r <> None && r = nearest then first := i) exact;
   match (nearest, seen) with
   | None, _ when k < 0 -> None
   | Some m, Some t when near_enough t m -> None
+  | Some _, None when Exact_hits.neighbours s k !first -> None
   | _ ->
-      let first = ref (-1) in
-      Array.iteri (fun i r -> if !first < 0 && r <> None && r = nearest then first := i) exact;
       Some
         (Printf.sprintf "pixel (%d, %d): the kernel sees object %d (exactly: %s), the nearest is object %d at %s" gx gy k
            (show seen) !first (show nearest))
@@ -203,6 +204,25 @@ let camera_tie =
 (mesh (file "cube.obj") (color 92.16444692147589 255 255) (reflective 1))
 (light ambient (intensity 0.23328439440876442))|}
 
+(* The fifth (seed 5): the same sliding shadow ray, from a mesh cube's
+   face in a CSG union, where the oracle finds the operand's inside by
+   counting crossings. *)
+let sliding_csg =
+  {|(canvas (width 16) (height 16)) (viewport (width 1) (height 1) (distance 1))
+(camera (position 0.75 0.25 -1)) (background 255 0 7) (recursion-depth 2) (epsilon 0.0001)
+(csg union (sphere (center 0.2714323209266545 2.5998962610917755 6.12419581239282) (radius 0.25) (color 255 0 0) (specular 621.1661245633289) (reflective 0.9962520021045688) (transparency 0.003747997895431232) (fresnel true)) (mesh (file "cube.obj") (color 0 0 154.11256924705128) (specular 0) (reflective 0.5369773609571181)))
+(light directional (intensity 0.5) (direction 0 1 0))|}
+
+(* The sixth (seed 7): a spot light that lies in a mirror plane; a shadow
+   ray from the box below meets the plane at its own t = 1, which the
+   oracle's and the kernel's plane formulas round each their own way. *)
+let light_in_plane =
+  {|(canvas (width 8) (height 16)) (viewport (width 1) (height 1) (distance 1))
+(camera (position -0.75 -0.75 0.5)) (background 248 0 255) (recursion-depth 0) (epsilon 0.0001)
+(box (min -8 -3 -2) (max 8 -1 20) (color 129.74792456407397 0 160.52851672181603) (specular 228.36931835956864) (reflective 1))
+(plane (point 1.75 3 7) (normal 0.5 0.25 -0.75) (color 0 32.4113940150096 255) (specular 666.3854482562728) (reflective 1) (fresnel true))
+(light spot (intensity 0.5) (position 0.5 1 5.5) (direction -1.25 -2 -1.5) (angle 35) (falloff 2))|}
+
 (* A scene's text read from a file, beside its mesh's cube.obj if any. *)
 let replayed scene obj =
   let dir = Helpers.temp_dir () in
@@ -233,7 +253,7 @@ let tests =
           (fun direction -> Alcotest.(check (float 0.)) __LOC__ infinity (Plane.intersect p ~origin:Vec3.zero ~direction))
           [ Vec3.v (-0.25) 0.375 1.; Vec3.v 0.5 (-0.25) 0.; Vec3.v 2. 0. 4. ]);
     Helpers.qcheck ~count:300 "in the robust mode the skips change no byte of such scenes" Gen_placed.arbitrary skips_exact;
-    Alcotest.test_case "found by other seeds: a plane met where its float denominator rounds to 0, camera and mirror rays at a box's face that a mesh's triangle coincides with, and a shadow ray sliding along a mesh's face, are left to rounding" `Quick
+    Alcotest.test_case "found by other seeds: a plane met where its float denominator rounds to 0, camera and mirror rays at a box's face that a mesh's triangle coincides with, a shadow ray sliding along a mesh's face (alone or in a CSG union), and a plane through a light, are left to rounding" `Quick
       (fun () ->
         List.iter
           (fun (scene, obj) ->
@@ -244,5 +264,11 @@ let tests =
             (box_and_mesh, Some cube);
             (sliding, Some sliding_cube);
             (camera_tie, Some (cube_obj ("0", "-1", "4.5") ("1.5", "-0.25", "6")));
+            ( sliding_csg,
+              Some
+                (cube_obj
+                   ("-0.027432556349294757", "2.42658386962258", "5.730597563628052")
+                   ("0.37256744365070527", "2.8265838696225805", "6.1305975636280525")) );
+            (light_in_plane, None);
           ]);
   ]

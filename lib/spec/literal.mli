@@ -97,7 +97,8 @@ val rounding_dependent : unit -> int
     the kernel's each its own way; those of any ray where two objects
     whose parameters different formulas find (a box's face and a mesh's
     triangle in it) tie exactly, as each formula rounds the parameter its
-    own way; those of a ray within rounding of parallel to a plane
+    own way; those where a root's enclosure holds the ray's end (a plane
+    through a light, met at the shadow ray's [t = 1]); those of a ray within rounding of parallel to a plane
     (met very far away, or, where its denominator rounds to 0, not at
     all); and the checker cells of points within rounding of a cell's
     boundary. A camera ray exactly through an edge or a vertex, and other

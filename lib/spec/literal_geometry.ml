@@ -98,7 +98,11 @@ let compare_keys a b =
    that rounding, not by the scene, and the document compares the
    computed [t]. *)
 let above ~continued t_min k = compare_keys (key_of_float t_min) k < 0 && ((not continued) || t_min < k.t)
-let below t_max k = k.t < t_max
+let below t_max k =
+  (* Within its enclosure of [t_max], each formula's rounding decides (a
+     plane through a point light, met at its [t = 1]). *)
+  if k.lo < k.hi && k.lo <= t_max && t_max <= k.hi then incr near_count;
+  k.t < t_max
 let in_range ~continued ~t_min ~t_max k = above ~continued t_min k && below t_max k
 
 (* (p - o) / d for floats, d <> 0: rounded twice, within 2u of |t|. *)
@@ -290,6 +294,9 @@ let triangle_crossing ~origin ~direction a b c =
   let kz = largest_axis direction in
   let k1 = (kz + 1) mod 3 and k2 = (kz + 2) mod 3 in
   let side p q = perturbed_sign ~origin ~direction ~k1 ~k2 p q = s in
+  near_for_origin ~o:origin ~d:direction b c;
+  near_for_origin ~o:origin ~d:direction c a;
+  near_for_origin ~o:origin ~d:direction a b;
   side b c && side c a && side a b
 
 let triangle_normal a b c = Vec3.unit (Vec3.cross (Vec3.sub b a) (Vec3.sub c a))
