@@ -1,14 +1,4 @@
-type pairs = (float, Bigarray.float32_elt, Bigarray.c_layout) Bigarray.Array1.t
-
-type t = {
-  order : int array;
-  n_nodes : int;
-  nodes : float array;
-  root : int;
-  depth : int;
-  pairs : pairs;
-  pairs_root : int;
-}
+type t = { order : int array; n_nodes : int; nodes : float array; root : int; depth : int }
 
 (* A node's 8 floats, at [root + 8 k]: lower corner, upper corner, link,
    tag. A node visit of the tracer reads one 64-byte block, not 8 arrays
@@ -422,81 +412,6 @@ let[@inline] leaf_box (x0 : float array) (y0 : float array) (z0 : float array) (
 (* The leaves of nodes [first .. last - 1], whose boxes were gathered
    into the six arrays of slot boxes: the [j]th one's box in slot
    [at + j], each one slot ([at + j] is at most its first slot). *)
-(* {2 The walk's layout: a node's two children side by side, in 32-bit floats}
-
-   Pair [j] (16 floats of 4 bytes, one 64-byte line) at [pairs_root + 16 j]
-   holds the two children of an inner node: the left child's box (lower
-   corner x, y, z, upper corner x, y, z) at 0 to 5, the right child's at 6
-   to 11, the left child's word at 12 and 13, the right child's at 14 and
-   15. Pair 0 holds the root alone (its box at 0 to 5, its word at 12 and
-   13). A box is the double box rounded outward to the float32 grid (lower
-   bounds down, upper bounds up). A child's word [w] is held as two floats
-   [w asr 24] and [w land (2^24 - 1)], each an integer below 2^24 in
-   magnitude and so exact in a float32: a leaf's [w] is [first * 32768 +
-   count] ([count] from 1 to 32767, {!max_leaf}); an inner node's is [-1 -
-   (4 q + a)], [q] the offset of its pair, [a] its split axis. *)
-let pair_floats = 16
-
-(* The address of [a]'s first float modulo 64: the bigarray's data
-   pointer, the custom block's field after its operations, read as
-   [line_offset] reads an array's (JavaScript has none: 0). *)
-let pairs_line_offset (a : pairs) =
-  match Sys.backend_type with
-  | Native | Bytecode -> (((Obj.magic (Obj.field (Obj.repr a) 1) : int) * 2) + 1) land 63
-  | Other _ -> 0
-
-(* The nearest float32 at or below [x], and at or above. *)
-let float32_down x =
-  let b = Int32.bits_of_float x in
-  let f = Int32.float_of_bits b in
-  if not (f > x) then f
-  else if f > 0. then Int32.float_of_bits (Int32.pred b)
-  else if f < 0. then Int32.float_of_bits (Int32.succ b)
-  else -.Int32.float_of_bits 1l
-
-let float32_up x = -.float32_down (-.x)
-
-let pair_word_set (a : pairs) e w =
-  Bigarray.Array1.set a e (Float.of_int (w asr 24));
-  Bigarray.Array1.set a (e + 1) (Float.of_int (w land 0xffffff))
-
-let pair_box_set (a : pairs) e (nodes : float array) o =
-  for i = 0 to 2 do
-    Bigarray.Array1.set a (e + i) (float32_down nodes.(o + i));
-    Bigarray.Array1.set a (e + 3 + i) (float32_up nodes.(o + 3 + i))
-  done
-
-(* The pairs of the nodes [nodes] with node 0 at [root]. *)
-let pairs_of (nodes : float array) root n_nodes =
-  let index = Array.make n_nodes 0 and n_pairs = ref 1 in
-  for k = 0 to n_nodes - 1 do
-    if tag_at nodes (at root k) < 0 then begin
-      index.(k) <- !n_pairs;
-      incr n_pairs
-    end
-  done;
-  let a = Bigarray.Array1.create Bigarray.float32 Bigarray.c_layout ((pair_floats * !n_pairs) + pair_floats - 1) in
-  Bigarray.Array1.fill a 0.;
-  let proot = ((64 - pairs_line_offset a) / 4) land 15 in
-  let word k =
-    let o = at root k in
-    let g = tag_at nodes o in
-    if g > 0 then (link_at nodes o * 32768) + g else -1 - (((proot + (pair_floats * index.(k))) lsl 2) lor (-1 - g))
-  in
-  pair_box_set a proot nodes (at root 0);
-  pair_word_set a (proot + 12) (word 0);
-  for k = 0 to n_nodes - 1 do
-    let o = at root k in
-    if tag_at nodes o < 0 then begin
-      let q = proot + (pair_floats * index.(k)) and r = (link_at nodes o - root) / node_floats in
-      pair_box_set a q nodes (at root (k + 1));
-      pair_box_set a (q + 6) nodes (at root r);
-      pair_word_set a (q + 12) (word (k + 1));
-      pair_word_set a (q + 14) (word r)
-    end
-  done;
-  (a, proot)
-
 type gathered = { first : int; last : int; at : int; leaves : int }
 
 let none_gathered = { first = 0; last = 0; at = 0; leaves = 0 }
@@ -564,8 +479,7 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ?(mine = none_gathered) ?(theirs = none_gat
   let m_at = finish_nodes mine.first mine.last (mine.at + mine.leaves) in
   ignore (finish_nodes 0 mine.first (-1));
   if t_at <> theirs.at || m_at <> mine.at then invalid_arg "Bvh.finish: gathered leaves";
-  let pairs, pairs_root = pairs_of nodes root n_nodes in
-  { order; n_nodes; nodes; root; depth; pairs; pairs_root }
+  { order; n_nodes; nodes; root; depth }
 
 type beside = {
   beside : 'a. (unit -> 'a) -> unit -> 'a option;
@@ -1485,8 +1399,7 @@ let cut_tree c t room =
   else begin
     let w = fitted w in
     offsets w;
-    let pairs, pairs_root = pairs_of w.out w.root w.used in
-    { t with n_nodes = w.used; nodes = w.out; root = w.root; depth = c.depth; pairs; pairs_root }
+    { t with n_nodes = w.used; nodes = w.out; root = w.root; depth = c.depth }
   end
 
 let split_leaves ?(cost = 3.) ?(cuts = 1) t ~triangle ~vertex ~at0 ~at1 ~at2 ~margin =

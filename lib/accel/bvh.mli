@@ -18,9 +18,6 @@
 
     @canonical Raytrace.Private.Bvh *)
 
-type pairs = (float, Bigarray.float32_elt, Bigarray.c_layout) Bigarray.Array1.t
-(** The type for the walk's nodes: see {!t}'s [pairs]. *)
-
 type t = private {
   order : int array;  (** Input index of the object in each slot. *)
   n_nodes : int;  (** The number of nodes. *)
@@ -39,8 +36,6 @@ type t = private {
           start on a 64-byte boundary in memory, so that each node is one
           cache line (if the collector has not moved the array since). *)
   depth : int;  (** Largest number of nodes on a path from the root. *)
-  pairs : pairs;  (** The walk's layout (prototype). *)
-  pairs_root : int;  (** Offset of pair 0 in [pairs]. *)
 }
 (** The type for hierarchies. *)
 

@@ -380,12 +380,13 @@ let[@inline] test tr s i ~primary ~spheres ~triangles dx dy dz a inv_a two_k1 k1
    [0 * inv] is 0, never NaN (rays only look at t >= 0). *)
 let[@inline] slab_inverse d = if d = 0. then 1e300 else 1. /. d
 
-(* A child's word at offset [e] of [pairs] (the layout of {!Bvh.t}'s
-   [pairs]): two floats, [w asr 24] and [w land (2^24 - 1)]. Read here
-   with the bigarray's own primitives, inlined (a float32 load and a
-   conversion each). *)
-let[@inline] pair_word (pairs : Bvh.pairs) e =
-  (truncate (Bigarray.Array1.unsafe_get pairs e) lsl 24) + truncate (Bigarray.Array1.unsafe_get pairs (e + 1))
+(* A node of the hierarchy at offset [o] of [nodes] (the layout of
+   {!Bvh.t}): its box's lower corner at [o], its upper corner at [o + 3],
+   its link at [o + 6], its tag at [o + 7]. Read here with the array's
+   own primitives: a float returned by a function of another module is
+   boxed where that module's code is not inlined (the dev profile). *)
+let[@inline] node_link (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 6))
+let[@inline] node_tag (nodes : float array) o = truncate (Array.unsafe_get nodes (o + 7))
 
 (* The offsets in a node of the box's planes that a ray with slab
    inverses [ix, iy, iz] meets first: per axis, the lower corner's where
@@ -400,25 +401,22 @@ let[@inline] near_x ix = if ix >= 0. then 0 else 3
 let[@inline] near_y iy = if iy >= 0. then 1 else 4
 let[@inline] near_z iz = if iz >= 0. then 2 else 5
 
-let[@inline] max3 (a : float) b c = let m = if a > b then a else b in if m > c then m else c
-let[@inline] min3 (a : float) b c = let m = if a < b then a else b in if m < c then m else c
-
 (* The ray's entry into the box of the node at offset [o] of [nodes]: the
    largest of its three slabs' near distances ([nx], [ny], [nz] from
    [near_x] ...), with origin [ox, oy, oz] and slab inverses [ix, iy,
    iz]. *)
-let[@inline] box_enter (nodes : Bvh.pairs) o nx ny nz ox oy oz ix iy iz =
-  let enter_x = (Bigarray.Array1.unsafe_get nodes (o + nx) -. ox) *. ix in
-  let enter_y = (Bigarray.Array1.unsafe_get nodes (o + ny) -. oy) *. iy in
-  let enter_z = (Bigarray.Array1.unsafe_get nodes (o + nz) -. oz) *. iz in
+let[@inline] box_enter (nodes : float array) o nx ny nz ox oy oz ix iy iz =
+  let enter_x = (Array.unsafe_get nodes (o + nx) -. ox) *. ix in
+  let enter_y = (Array.unsafe_get nodes (o + ny) -. oy) *. iy in
+  let enter_z = (Array.unsafe_get nodes (o + nz) -. oz) *. iz in
   let enter = if enter_x > enter_y then enter_x else enter_y in
   if enter > enter_z then enter else enter_z
 
 (* Its exit: the smallest of the far distances. *)
-let[@inline] box_exit (nodes : Bvh.pairs) o nx ny nz ox oy oz ix iy iz =
-  let exit_x = (Bigarray.Array1.unsafe_get nodes (o + 3 - nx) -. ox) *. ix in
-  let exit_y = (Bigarray.Array1.unsafe_get nodes (o + 5 - ny) -. oy) *. iy in
-  let exit_z = (Bigarray.Array1.unsafe_get nodes (o + 7 - nz) -. oz) *. iz in
+let[@inline] box_exit (nodes : float array) o nx ny nz ox oy oz ix iy iz =
+  let exit_x = (Array.unsafe_get nodes (o + 3 - nx) -. ox) *. ix in
+  let exit_y = (Array.unsafe_get nodes (o + 5 - ny) -. oy) *. iy in
+  let exit_z = (Array.unsafe_get nodes (o + 7 - nz) -. oz) *. iz in
   let exit = if exit_x < exit_y then exit_x else exit_y in
   if exit < exit_z then exit else exit_z
 
@@ -437,42 +435,32 @@ let[@inline] box_exit (nodes : Bvh.pairs) o nx ny nz ox oy oz ix iy iz =
    its link. The near planes [nx, ny, nz] are constants in each of
    [visit_children]'s copies: a plane is then one load at a fixed
    displacement from the node's offset. *)
-let[@inline] push_met (nodes : Bvh.pairs) stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit nx ny nz =
-  let left = o + 12 and right = o + 14 in
-  let l_ex = (Bigarray.Array1.unsafe_get nodes (o + nx) -. ox) *. ix in
-  let l_ey = (Bigarray.Array1.unsafe_get nodes (o + ny) -. oy) *. iy in
-  let l_ez = (Bigarray.Array1.unsafe_get nodes (o + nz) -. oz) *. iz in
-  let l_xx = (Bigarray.Array1.unsafe_get nodes (o + 3 - nx) -. ox) *. ix in
-  let l_xy = (Bigarray.Array1.unsafe_get nodes (o + 5 - ny) -. oy) *. iy in
-  let l_xz = (Bigarray.Array1.unsafe_get nodes (o + 7 - nz) -. oz) *. iz in
-  let r_ex = (Bigarray.Array1.unsafe_get nodes (o + 6 + nx) -. ox) *. ix in
-  let r_ey = (Bigarray.Array1.unsafe_get nodes (o + 6 + ny) -. oy) *. iy in
-  let r_ez = (Bigarray.Array1.unsafe_get nodes (o + 6 + nz) -. oz) *. iz in
-  let r_xx = (Bigarray.Array1.unsafe_get nodes (o + 9 - nx) -. ox) *. ix in
-  let r_xy = (Bigarray.Array1.unsafe_get nodes (o + 11 - ny) -. oy) *. iy in
-  let r_xz = (Bigarray.Array1.unsafe_get nodes (o + 13 - nz) -. oz) *. iz in
-  let l_enter = max3 l_ex l_ey l_ez and l_exit = min3 l_xx l_xy l_xz in
-  let r_enter = max3 r_ex r_ey r_ez and r_exit = min3 r_xx r_xy r_xz in
+let[@inline] push_met (nodes : float array) stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit nx ny nz =
+  let left = o + 8 and right = node_link nodes o in
+  let l_enter = box_enter nodes left nx ny nz ox oy oz ix iy iz in
+  let l_exit = box_exit nodes left nx ny nz ox oy oz ix iy iz in
+  let r_enter = box_enter nodes right nx ny nz ox oy oz ix iy iz in
+  let r_exit = box_exit nodes right nx ny nz ox oy oz ix iy iz in
   if l_enter <= l_exit && l_exit >= t_min && l_enter <= limit then begin
     if r_enter <= r_exit && r_exit >= t_min && r_enter <= limit then begin
       let right_first =
         if by_entry then r_enter < l_enter
         else
-          let d = if tag = 0 then dx else if tag = 1 then dy else dz in
+          let d = if tag = -1 then dx else if tag = -2 then dy else dz in
           (* The farther on top. *)
           d >= 0.
       in
       if right_first then begin
-        Array.unsafe_set stack sp (pair_word nodes left);
-        Array.unsafe_set stack (sp + 1) (pair_word nodes right);
+        Array.unsafe_set stack sp left;
+        Array.unsafe_set stack (sp + 1) right;
         if by_entry then begin
           Array.unsafe_set entries sp l_enter;
           Array.unsafe_set entries (sp + 1) r_enter
         end
       end
       else begin
-        Array.unsafe_set stack sp (pair_word nodes right);
-        Array.unsafe_set stack (sp + 1) (pair_word nodes left);
+        Array.unsafe_set stack sp right;
+        Array.unsafe_set stack (sp + 1) left;
         if by_entry then begin
           Array.unsafe_set entries sp r_enter;
           Array.unsafe_set entries (sp + 1) l_enter
@@ -481,13 +469,13 @@ let[@inline] push_met (nodes : Bvh.pairs) stack entries sp o ~tag ~by_entry dx d
       sp + 2
     end
     else begin
-      Array.unsafe_set stack sp (pair_word nodes left);
+      Array.unsafe_set stack sp left;
       if by_entry then Array.unsafe_set entries sp l_enter;
       sp + 1
     end
   end
   else if r_enter <= r_exit && r_exit >= t_min && r_enter <= limit then begin
-    Array.unsafe_set stack sp (pair_word nodes right);
+    Array.unsafe_set stack sp right;
     if by_entry then Array.unsafe_set entries sp r_enter;
     sp + 1
   end
@@ -595,7 +583,7 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
           (* A hierarchy of triangles: the ray's shear once, here, rather
              than a check of [tr.kz] at every triangle. *)
           if triangles then shear_once tr s;
-          let nodes = b.pairs and stack = tr.nodes and entries = tr.entries and sp = ref 0 in
+          let nodes = b.nodes and stack = tr.nodes and entries = tr.entries and sp = ref 0 in
           let ox = s.ox and oy = s.oy and oz = s.oz and t_min = s.t_min in
           (* Counted here, added to the counters once a ray. *)
           let boxes = ref 1 and tests = ref 0 in
@@ -608,11 +596,11 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
              the entry is checked again when the node is popped, against
              the best hit then. The same boxes are entered as by a test at
              the pop (the range only shrinks). *)
-          let root = b.pairs_root in
+          let root = b.root in
           let enter = box_enter nodes root nx ny nz ox oy oz ix iy iz in
           let exit = box_exit nodes root nx ny nz ox oy oz ix iy iz in
           if enter <= exit && exit >= t_min && enter <= s.t_max then begin
-            Array.unsafe_set stack 0 (pair_word nodes (root + 12));
+            Array.unsafe_set stack 0 root;
             Array.unsafe_set entries 0 enter;
             sp := 1
           end;
@@ -621,11 +609,11 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
           let limit = ref (if s.t < s.t_max then s.t else s.t_max) in
           while !sp > 0 do
             decr sp;
-            let e = Array.unsafe_get stack !sp in
+            let o = Array.unsafe_get stack !sp in
             if Array.unsafe_get entries !sp <= !limit then begin
-              let w = e in
-              if w >= 0 then begin
-                let count = w land 0x7fff and first = w lsr 15 in
+              let count = node_tag nodes o in
+              if count > 0 then begin
+                let first = node_link nodes o in
                 tests := !tests + count;
                 (if triangles then triangles_closest tr s first (first + count - 1)
                  else
@@ -636,7 +624,7 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
               end
               else begin
                 boxes := !boxes + 2;
-                sp := visit_children nodes stack entries !sp ((-1 - w) lsr 2) ~tag:0 ~by_entry:true dx dy dz ox oy oz ix iy iz t_min !limit oct
+                sp := visit_children nodes stack entries !sp o ~tag:0 ~by_entry:true dx dy dz ox oy oz ix iy iz t_min !limit oct
               end
             end
           done;
@@ -761,7 +749,7 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
       let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
       let nx = near_x ix and ny = near_y iy and nz = near_z iz and oct = octant ix iy iz in
       if triangles then shear_once tr s;
-      let nodes = b.pairs and stack = tr.nodes and sp = ref 1 and found = ref (-1) in
+      let nodes = b.nodes and stack = tr.nodes and sp = ref 1 and found = ref (-1) in
       let boxes = ref 0 and tests = ref 0 in
       (* Planes first: they are outside the hierarchy. *)
       let planes = p.unbounded in
@@ -785,17 +773,18 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
          triangles, not 265 nearer first). *)
       let ox = s.ox and oy = s.oy and oz = s.oz and t_min = s.t_min and t_max = s.t_max in
       if !sp > 0 then begin
-        let root = b.pairs_root in
+        let root = b.root in
         incr boxes;
         let enter = box_enter nodes root nx ny nz ox oy oz ix iy iz in
         let exit = box_exit nodes root nx ny nz ox oy oz ix iy iz in
-        if enter <= exit && exit >= t_min && enter <= t_max then Array.unsafe_set stack 0 (pair_word nodes (root + 12)) else sp := 0
+        if enter <= exit && exit >= t_min && enter <= t_max then Array.unsafe_set stack 0 root else sp := 0
       end;
       while !sp > 0 do
         decr sp;
-        let w = Array.unsafe_get stack !sp in
-        if w >= 0 then begin
-          let first = w lsr 15 and count = w land 0x7fff in
+        let o = Array.unsafe_get stack !sp in
+        let count = node_tag nodes o in
+        if count > 0 then begin
+          let first = node_link nodes o in
           let last = first + count in
           let i =
             if triangles then triangles_blocker tr s first last
@@ -815,8 +804,7 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
         end
         else begin
           boxes := !boxes + 2;
-          let v = -1 - w in
-          sp := visit_children nodes stack tr.entries !sp (v lsr 2) ~tag:(v land 3) ~by_entry:false dx dy dz ox oy oz ix iy iz t_min t_max oct
+          sp := visit_children nodes stack tr.entries !sp o ~tag:count ~by_entry:false dx dy dz ox oy oz ix iy iz t_min t_max oct
         end
       done;
       tr.counters.box_tests <- tr.counters.box_tests + !boxes;
