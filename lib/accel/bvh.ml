@@ -1,4 +1,4 @@
-type t = { order : int array; n_nodes : int; nodes : float array; root : int; depth : int; quads : float array; quads_root : int }
+type t = { order : int array; n_nodes : int; nodes : float array; root : int; depth : int }
 
 (* A node's 8 floats, at [root + 8 k]: lower corner, upper corner, link,
    tag. A node visit of the tracer reads one 64-byte block, not 8 arrays
@@ -412,62 +412,6 @@ let[@inline] leaf_box (x0 : float array) (y0 : float array) (z0 : float array) (
 (* The leaves of nodes [first .. last - 1], whose boxes were gathered
    into the six arrays of slot boxes: the [j]th one's box in slot
    [at + j], each one slot ([at + j] is at most its first slot). *)
-(* Prototype: four children a node. Quad [j] at [quads_root + 32 j]: plane
-   [p] (0 to 2 lower x y z, 3 to 5 upper) of child [c] at [4 p + c], the
-   child's word at [24 + c] (a leaf's [first * 32768 + count], an inner
-   node's [-1 - q], [q] its quad's offset); an empty slot's box is empty
-   (lower bounds infinity, upper minus infinity). Quad 0 holds the root
-   alone. A quad holds a binary node's grandchildren (a leaf child
-   itself). *)
-let quad_floats = 32
-
-let quads_of (nodes : float array) root n_nodes =
-  let a = Array.make ((quad_floats * ((n_nodes / 2) + 2)) + 7) 0. in
-  let qroot = aligned_root a in
-  let next = ref 1 in
-  let put_child q c k w =
-    let o = at root k in
-    for p = 0 to 5 do
-      a.(q + (4 * p) + c) <- nodes.(o + p)
-    done;
-    a.(q + 24 + c) <- Float.of_int w
-  in
-  let empty q c =
-    for p = 0 to 2 do
-      a.(q + (4 * p) + c) <- infinity;
-      a.(q + (4 * (p + 3)) + c) <- neg_infinity
-    done
-  in
-  let right k = (link_at nodes (at root k) - root) / node_floats in
-  let is_leaf k = tag_at nodes (at root k) > 0 in
-  let expand c = if is_leaf c then [ c ] else [ c + 1; right c ] in
-  let rec word k =
-    let o = at root k in
-    let g = tag_at nodes o in
-    if g > 0 then (link_at nodes o * 32768) + g else -1 - quad k
-  and quad k =
-    let q = qroot + (quad_floats * !next) in
-    incr next;
-    let kids = expand (k + 1) @ expand (right k) in
-    let axis k = if is_leaf k then 0. else Float.of_int (-1 - tag_at nodes (at root k)) in
-    let nl = List.length (expand (k + 1)) and nr = List.length (expand (right k)) in
-    a.(q + 28) <- axis k;
-    a.(q + 29) <- axis (k + 1);
-    a.(q + 30) <- axis (right k);
-    a.(q + 31) <- Float.of_int (nl + (4 * nr));
-    List.iteri (fun c kid -> put_child q c kid (word kid)) kids;
-    for c = List.length kids to 3 do
-      empty q c
-    done;
-    q
-  in
-  put_child qroot 0 0 (word 0);
-  a.(qroot + 31) <- 1.;
-  for c = 1 to 3 do
-    empty qroot c
-  done;
-  (a, qroot)
-
 type gathered = { first : int; last : int; at : int; leaves : int }
 
 let none_gathered = { first = 0; last = 0; at = 0; leaves = 0 }
@@ -535,8 +479,7 @@ let finish t ~x0 ~y0 ~z0 ~x1 ~y1 ~z1 ?(mine = none_gathered) ?(theirs = none_gat
   let m_at = finish_nodes mine.first mine.last (mine.at + mine.leaves) in
   ignore (finish_nodes 0 mine.first (-1));
   if t_at <> theirs.at || m_at <> mine.at then invalid_arg "Bvh.finish: gathered leaves";
-  let quads, quads_root = quads_of nodes root n_nodes in
-  { order; n_nodes; nodes; root; depth; quads; quads_root }
+  { order; n_nodes; nodes; root; depth }
 
 type beside = {
   beside : 'a. (unit -> 'a) -> unit -> 'a option;
@@ -1456,8 +1399,7 @@ let cut_tree c t room =
   else begin
     let w = fitted w in
     offsets w;
-    let quads, quads_root = quads_of w.out w.root w.used in
-    { t with n_nodes = w.used; nodes = w.out; root = w.root; depth = c.depth; quads; quads_root }
+    { t with n_nodes = w.used; nodes = w.out; root = w.root; depth = c.depth }
   end
 
 let split_leaves ?(cost = 3.) ?(cuts = 1) t ~triangle ~vertex ~at0 ~at1 ~at2 ~margin =

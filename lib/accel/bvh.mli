@@ -36,8 +36,6 @@ type t = private {
           start on a 64-byte boundary in memory, so that each node is one
           cache line (if the collector has not moved the array since). *)
   depth : int;  (** Largest number of nodes on a path from the root. *)
-  quads : float array;  (** Prototype: four children a node. *)
-  quads_root : int;  (** Offset of quad 0 in [quads]. *)
 }
 (** The type for hierarchies. *)
 

@@ -149,8 +149,8 @@ let rec create ?(averaging = false) (p : Prepared.t) =
     blockers_first = Array.init p.n_lights (fun l -> l * Array.length p.sphere4);
     counters = { primary = 0; shadow = 0; reflection = 0; tests = 0; box_tests = 0; early_stops = 0; decided = 0; penumbra = 0; umbra = 0 };
     nodes =
-      Array.make (match p.bvh with Some b -> (3 * b.depth) + 8 | None -> 1) 0;
-    entries = Array.make (match p.bvh with Some b -> (3 * b.depth) + 8 | None -> 1) 0.;
+      Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0;
+    entries = Array.make (match p.bvh with Some b -> (2 * b.depth) + 2 | None -> 1) 0.;
     csg = Csg.work p.csg;
     hit = -1;
     origin_sphere = -1;

@@ -481,98 +481,6 @@ let[@inline] push_met (nodes : float array) stack entries sp o ~tag ~by_entry dx
   end
   else sp
 
-(* Prototype: four children a node ({!Bvh.t}'s [quads]). Child [c] of the
-   quad at [q], pushed with its entry if the ray meets its box in [t_min,
-   limit]; the new stack pointer. Near planes [nx] (0 or 12), [ny] (4 or
-   16), [nz] (8 or 20): constants in each octant's copy. *)
-let[@inline] push_child (nodes : float array) stack entries sp q c ox oy oz ix iy iz t_min limit nx ny nz =
-  let ex = (Array.unsafe_get nodes (q + nx + c) -. ox) *. ix in
-  let ey = (Array.unsafe_get nodes (q + ny + c) -. oy) *. iy in
-  let ez = (Array.unsafe_get nodes (q + nz + c) -. oz) *. iz in
-  let xx = (Array.unsafe_get nodes (q + 12 - nx + c) -. ox) *. ix in
-  let xy = (Array.unsafe_get nodes (q + 20 - ny + c) -. oy) *. iy in
-  let xz = (Array.unsafe_get nodes (q + 28 - nz + c) -. oz) *. iz in
-  let enter = if ex > ey then ex else ey in
-  let enter = if enter > ez then enter else ez in
-  let exit = if xx < xy then xx else xy in
-  let exit = if exit < xz then exit else xz in
-  if enter <= exit && exit >= t_min && enter <= limit then begin
-    Array.unsafe_set stack sp (truncate (Array.unsafe_get nodes (q + 24 + c)));
-    Array.unsafe_set entries sp enter;
-    sp + 1
-  end
-  else sp
-
-(* The children met of the quad at [q], pushed above [sp] the nearest on
-   top (by entry, insertion sort of at most four). *)
-let[@inline] push_quad (nodes : float array) (stack : int array) (entries : float array) sp q ox oy oz ix iy iz t_min limit nx ny nz =
-  let s1 = push_child nodes stack entries sp q 0 ox oy oz ix iy iz t_min limit nx ny nz in
-  let s2 = push_child nodes stack entries s1 q 1 ox oy oz ix iy iz t_min limit nx ny nz in
-  let s3 = push_child nodes stack entries s2 q 2 ox oy oz ix iy iz t_min limit nx ny nz in
-  let s4 = push_child nodes stack entries s3 q 3 ox oy oz ix iy iz t_min limit nx ny nz in
-  for i = sp + 1 to s4 - 1 do
-    let e = Array.unsafe_get entries i and w = Array.unsafe_get stack i in
-    let j = ref (i - 1) in
-    while !j >= sp && Array.unsafe_get entries !j < e do
-      Array.unsafe_set entries (!j + 1) (Array.unsafe_get entries !j);
-      Array.unsafe_set stack (!j + 1) (Array.unsafe_get stack !j);
-      decr j
-    done;
-    Array.unsafe_set entries (!j + 1) e;
-    Array.unsafe_set stack (!j + 1) w
-  done;
-  s4
-
-(* A shadow ray's: the children met pushed in slot order (the upper side
-   along the quad's own split axis on top, visited first), or the reverse
-   where the direction along that axis is negative: the farther first. *)
-let[@inline] push_side (nodes : float array) stack entries sp q first n d ox oy oz ix iy iz t_min limit nx ny nz =
-  if n = 1 then push_child nodes stack entries sp q first ox oy oz ix iy iz t_min limit nx ny nz
-  else if n = 0 then sp
-  else if d >= 0. then
-    let sp = push_child nodes stack entries sp q first ox oy oz ix iy iz t_min limit nx ny nz in
-    push_child nodes stack entries sp q (first + 1) ox oy oz ix iy iz t_min limit nx ny nz
-  else
-    let sp = push_child nodes stack entries sp q (first + 1) ox oy oz ix iy iz t_min limit nx ny nz in
-    push_child nodes stack entries sp q first ox oy oz ix iy iz t_min limit nx ny nz
-
-let[@inline] axis_d axis dx dy dz = if axis = 0 then dx else if axis = 1 then dy else dz
-
-let[@inline] push_quad_far (nodes : float array) (stack : int array) (entries : float array) sp q dx dy dz ox oy oz ix iy iz t_min limit nx ny nz =
-  let dk = axis_d (truncate (Array.unsafe_get nodes (q + 28))) dx dy dz in
-  let dl = axis_d (truncate (Array.unsafe_get nodes (q + 29))) dx dy dz in
-  let dr = axis_d (truncate (Array.unsafe_get nodes (q + 30))) dx dy dz in
-  let ns = truncate (Array.unsafe_get nodes (q + 31)) in
-  let nl = ns land 3 and nr = ns lsr 2 in
-  if dk >= 0. then
-    let sp = push_side nodes stack entries sp q 0 nl dl ox oy oz ix iy iz t_min limit nx ny nz in
-    push_side nodes stack entries sp q nl nr dr ox oy oz ix iy iz t_min limit nx ny nz
-  else
-    let sp = push_side nodes stack entries sp q nl nr dr ox oy oz ix iy iz t_min limit nx ny nz in
-    push_side nodes stack entries sp q 0 nl dl ox oy oz ix iy iz t_min limit nx ny nz
-
-let[@inline] visit_quad_far nodes stack entries sp q dx dy dz ox oy oz ix iy iz t_min limit oct =
-  match oct with
-  | 0 -> push_quad_far nodes stack entries sp q dx dy dz ox oy oz ix iy iz t_min limit 0 4 8
-  | 1 -> push_quad_far nodes stack entries sp q dx dy dz ox oy oz ix iy iz t_min limit 12 4 8
-  | 2 -> push_quad_far nodes stack entries sp q dx dy dz ox oy oz ix iy iz t_min limit 0 16 8
-  | 3 -> push_quad_far nodes stack entries sp q dx dy dz ox oy oz ix iy iz t_min limit 12 16 8
-  | 4 -> push_quad_far nodes stack entries sp q dx dy dz ox oy oz ix iy iz t_min limit 0 4 20
-  | 5 -> push_quad_far nodes stack entries sp q dx dy dz ox oy oz ix iy iz t_min limit 12 4 20
-  | 6 -> push_quad_far nodes stack entries sp q dx dy dz ox oy oz ix iy iz t_min limit 0 16 20
-  | _ -> push_quad_far nodes stack entries sp q dx dy dz ox oy oz ix iy iz t_min limit 12 16 20
-
-let[@inline] visit_quad nodes stack entries sp q ox oy oz ix iy iz t_min limit oct =
-  match oct with
-  | 0 -> push_quad nodes stack entries sp q ox oy oz ix iy iz t_min limit 0 4 8
-  | 1 -> push_quad nodes stack entries sp q ox oy oz ix iy iz t_min limit 12 4 8
-  | 2 -> push_quad nodes stack entries sp q ox oy oz ix iy iz t_min limit 0 16 8
-  | 3 -> push_quad nodes stack entries sp q ox oy oz ix iy iz t_min limit 12 16 8
-  | 4 -> push_quad nodes stack entries sp q ox oy oz ix iy iz t_min limit 0 4 20
-  | 5 -> push_quad nodes stack entries sp q ox oy oz ix iy iz t_min limit 12 4 20
-  | 6 -> push_quad nodes stack entries sp q ox oy oz ix iy iz t_min limit 0 16 20
-  | _ -> push_quad nodes stack entries sp q ox oy oz ix iy iz t_min limit 12 16 20
-
 (* [push_met] in the ray's octant, [octant ix iy iz]: one copy per
    octant, its near planes constants. The octant is the same at every
    node of a ray: its branch is predicted. *)
@@ -588,9 +496,6 @@ let[@inline] visit_children nodes stack entries sp o ~tag ~by_entry dx dy dz ox 
   | 5 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 1 5
   | 6 -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 0 4 5
   | _ -> push_met nodes stack entries sp o ~tag ~by_entry dx dy dz ox oy oz ix iy iz t_min limit 3 4 5
-
-(* Prototype: the binary walk's functions, unused while the quads are walked. *)
-let _ = (node_tag, visit_children)
 
 (* The intersection loops below read every loop invariant (arrays, ray,
    range) into a local once per ray: without flambda, OCaml reloads a
@@ -678,19 +583,37 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
           (* A hierarchy of triangles: the ray's shear once, here, rather
              than a check of [tr.kz] at every triangle. *)
           if triangles then shear_once tr s;
-          let nodes = b.quads and stack = tr.nodes and entries = tr.entries and sp = ref 1 in
+          let nodes = b.nodes and stack = tr.nodes and entries = tr.entries and sp = ref 0 in
           let ox = s.ox and oy = s.oy and oz = s.oz and t_min = s.t_min in
-          let boxes = ref 0 and tests = ref 0 in
-          ignore nx; ignore ny; ignore nz;
-          Array.unsafe_set stack 0 (-1 - b.quads_root);
-          Array.unsafe_set entries 0 neg_infinity;
+          (* Counted here, added to the counters once a ray. *)
+          let boxes = ref 1 and tests = ref 0 in
+          (* A node is pushed only if the ray meets its box, with its entry
+             distance, tested by its parent (the root here): both children's
+             boxes are read together, and the nearer child is visited
+             first. A box entered beyond the best hit so far cannot hold a
+             better one (its objects' hit points lie inside it, rounding
+             included); one entered exactly there may hold an equal one:
+             the entry is checked again when the node is popped, against
+             the best hit then. The same boxes are entered as by a test at
+             the pop (the range only shrinks). *)
+          let root = b.root in
+          let enter = box_enter nodes root nx ny nz ox oy oz ix iy iz in
+          let exit = box_exit nodes root nx ny nz ox oy oz ix iy iz in
+          if enter <= exit && exit >= t_min && enter <= s.t_max then begin
+            Array.unsafe_set stack 0 root;
+            Array.unsafe_set entries 0 enter;
+            sp := 1
+          end;
+          (* The best hit's bound, [min t t_max], read again after a leaf
+             only: nothing else lowers [s.t]. *)
           let limit = ref (if s.t < s.t_max then s.t else s.t_max) in
           while !sp > 0 do
             decr sp;
-            let w = Array.unsafe_get stack !sp in
+            let o = Array.unsafe_get stack !sp in
             if Array.unsafe_get entries !sp <= !limit then begin
-              if w >= 0 then begin
-                let count = w land 0x7fff and first = w lsr 15 in
+              let count = node_tag nodes o in
+              if count > 0 then begin
+                let first = node_link nodes o in
                 tests := !tests + count;
                 (if triangles then triangles_closest tr s first (first + count - 1)
                  else
@@ -700,8 +623,8 @@ let[@inline] closest_from tr ~primary ~spheres ~triangles =
                 limit := if s.t < s.t_max then s.t else s.t_max
               end
               else begin
-                boxes := !boxes + 4;
-                sp := visit_quad nodes stack entries !sp (-1 - w) ox oy oz ix iy iz t_min !limit oct
+                boxes := !boxes + 2;
+                sp := visit_children nodes stack entries !sp o ~tag:0 ~by_entry:true dx dy dz ox oy oz ix iy iz t_min !limit oct
               end
             end
           done;
@@ -826,7 +749,7 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
       let ix = slab_inverse dx and iy = slab_inverse dy and iz = slab_inverse dz in
       let nx = near_x ix and ny = near_y iy and nz = near_z iz and oct = octant ix iy iz in
       if triangles then shear_once tr s;
-      let stack = tr.nodes and sp = ref 1 and found = ref (-1) in
+      let nodes = b.nodes and stack = tr.nodes and sp = ref 1 and found = ref (-1) in
       let boxes = ref 0 and tests = ref 0 in
       (* Planes first: they are outside the hierarchy. *)
       let planes = p.unbounded in
@@ -849,14 +772,19 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
          seldom blocks (the 1M knot's blocked shadow rays test 151
          triangles, not 265 nearer first). *)
       let ox = s.ox and oy = s.oy and oz = s.oz and t_min = s.t_min and t_max = s.t_max in
-      let nodes = b.quads in
-      ignore nx; ignore ny; ignore nz;
-      if !sp > 0 then Array.unsafe_set stack 0 (-1 - b.quads_root);
+      if !sp > 0 then begin
+        let root = b.root in
+        incr boxes;
+        let enter = box_enter nodes root nx ny nz ox oy oz ix iy iz in
+        let exit = box_exit nodes root nx ny nz ox oy oz ix iy iz in
+        if enter <= exit && exit >= t_min && enter <= t_max then Array.unsafe_set stack 0 root else sp := 0
+      end;
       while !sp > 0 do
         decr sp;
-        let w = Array.unsafe_get stack !sp in
-        if w >= 0 then begin
-          let first = w lsr 15 and count = w land 0x7fff in
+        let o = Array.unsafe_get stack !sp in
+        let count = node_tag nodes o in
+        if count > 0 then begin
+          let first = node_link nodes o in
           let last = first + count in
           let i =
             if triangles then triangles_blocker tr s first last
@@ -875,8 +803,8 @@ let[@inline] first_blocker_from tr ~spheres ~triangles skip a inv_a =
           end
         end
         else begin
-          boxes := !boxes + 4;
-          sp := visit_quad_far nodes stack tr.entries !sp (-1 - w) dx dy dz ox oy oz ix iy iz t_min t_max oct
+          boxes := !boxes + 2;
+          sp := visit_children nodes stack tr.entries !sp o ~tag:count ~by_entry:false dx dy dz ox oy oz ix iy iz t_min t_max oct
         end
       done;
       tr.counters.box_tests <- tr.counters.box_tests + !boxes;
